@@ -1,0 +1,34 @@
+// Gauss-Chebyshev collocation for the Cauchy singular integral equation of
+// index -1 (density bounded at both ends): p(a r) = g(r) sqrt(1 - r^2).
+#pragma once
+
+#include <functional>
+
+#include <Eigen/Dense>
+
+namespace movingpunch {
+
+struct ChebyshevNodes {
+  int n = 0;
+  Eigen::VectorXd r;  // r_i = cos(i pi / (N + 1)), i = 1..N (zeros of U_N)
+  Eigen::VectorXd s;  // s_k = cos(pi (2k - 1) / (2 (N + 1))), k = 1..N+1 (zeros of T_{N+1})
+  Eigen::VectorXd w;  // W_i = (1 - r_i^2) / (N + 1): (1/pi) int sqrt(1-r^2) f ~ sum W_i f(r_i)
+};
+
+// N must be even and >= 2; throws std::invalid_argument otherwise.
+ChebyshevNodes chebyshev_nodes(int n);
+
+// Solves sum_i W_i g_i [1/(r_i - s_k) + a k(a (r_i - s_k))] = s_k for the even
+// g, folded to N/2 unknowns (s_k > 0 only; the middle equation s = 0 holds by
+// symmetry). Returns g at r_1..r_{N/2} (r > 0). `kernel` must be odd.
+Eigen::VectorXd solve_unit_collocation(const ChebyshevNodes& nodes, double a,
+                                       const std::function<double(double)>& kernel);
+
+// Coefficients b_n (n = 0..N-1) of g(r) = sum b_n U_n(r) from the nodal values
+// at all N nodes (exact for polynomials of degree < N).
+Eigen::VectorXd u_coefficients(const ChebyshevNodes& nodes, const Eigen::VectorXd& g_full);
+
+// g(r) = sum b_n U_n(r) for |r| <= 1 (Clenshaw).
+double u_series(const Eigen::VectorXd& b, double r);
+
+}  // namespace movingpunch

@@ -1,0 +1,79 @@
+// The moving-punch contact problem: contact half-width, pressure, indentation.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "movingpunch/kernel.hpp"
+
+namespace movingpunch {
+
+// Dimensionless inputs (h = 1, mu = 1).
+struct ContactParams {
+  double vstar = 0;    // rho V^2 / mu, 0 <= vstar < V*_cr
+  double kw = 1;       // k_w h / mu in [0, inf]
+  double radius = 100; // R / h > 0
+  double load = 0.002; // P / (mu h) > 0
+  double nu = 0.2;     // Poisson's ratio in [0, 0.5)
+  double tol = 1e-8;   // relative tolerance on a/h, in [1e-14, 1e-2]
+  bool allow_unphysical = false;  // if true, return invalid solutions flagged
+};
+
+// Throws std::invalid_argument naming the parameter and its valid range.
+void validate(const ContactParams& p);
+
+class ContactSolution {
+ public:
+  const ContactParams& params() const noexcept { return params_; }
+  double a() const noexcept { return a_; }               // a/h
+  double p0() const noexcept { return p0_; }             // p(0)/(P/h)
+  double indentation() const noexcept { return delta_; } // delta/h
+  double critical_vstar() const noexcept { return vcr_; }
+  double rayleigh_vstar() const noexcept { return vr_; }
+  double phi1() const noexcept { return phi1_; }
+  double error_estimate() const noexcept { return err_; } // absolute, of a/h
+  double elapsed() const noexcept { return elapsed_; }     // seconds
+  int iterations() const noexcept { return iterations_; }  // load evaluations, all N
+  int collocation_n() const noexcept { return n_; }
+  bool valid() const noexcept { return valid_; }
+  const std::string& validity() const noexcept { return validity_; }
+  double min_pressure() const noexcept { return min_p_; }  // min p/(P/h) on [-a, a]
+  double min_gap() const noexcept { return min_gap_; }     // min gap/h on a < |x| <= 3a
+
+  // p(x)/(P/h) at x/h (0 outside the contact).
+  double pressure(double x) const;
+  Eigen::VectorXd pressure(const Eigen::Ref<const Eigen::VectorXd>& x) const;
+  // Vertical surface displacement v(x, 0)/h (negative under the punch).
+  double surface_displacement(double x) const;
+  Eigen::VectorXd surface_displacement(const Eigen::Ref<const Eigen::VectorXd>& x) const;
+  // Chebyshev-U coefficients of g(r) = p(a r) / ((P/h) sqrt(1 - r^2)).
+  const Eigen::VectorXd& g_coefficients() const noexcept { return b_; }
+  const KernelK1& kernel() const noexcept { return *kernel_; }
+
+ private:
+  friend ContactSolution solve_contact(const ContactParams& p);
+  ContactParams params_{};
+  double a_ = 0, p0_ = 0, delta_ = 0, vcr_ = 0, vr_ = 0, phi1_ = 0, err_ = 0, elapsed_ = 0;
+  int iterations_ = 0, n_ = 0;
+  bool valid_ = true;
+  std::string validity_;
+  double min_p_ = 0, min_gap_ = 0;
+  Eigen::VectorXd b_;  // U_n coefficients of g, normalised by P/h
+  std::shared_ptr<const KernelK1> kernel_;
+  // Transform of the pressure at the kernel's alpha nodes, times the smooth
+  // Green's-function weight: w_i f(alpha_i) ptilde(alpha_i) (set by the solver).
+  std::vector<double> smooth_weights_;
+  // Helpers for displacement: (1/pi) int p(xi) G(x - xi) d xi.
+  double greens_integral(double x) const;
+  void prepare_displacement();
+};
+
+// Solves the contact problem. Throws std::invalid_argument (bad input),
+// SupercriticalSpeedError (vstar >= V*_cr), UnphysicalContactError (unless
+// allow_unphysical) and ConvergenceError.
+ContactSolution solve_contact(const ContactParams& p);
+
+}  // namespace movingpunch

@@ -1,0 +1,20 @@
+// Critical speed of the layer on springs: the minimum phase speed of free waves.
+#pragma once
+
+namespace movingpunch {
+
+// Lowest vstar in (0, rayleigh) at which a free wave of wavenumber t = alpha h
+// exists; rayleigh_vstar(nu) when there is none below it.
+double first_wave_vstar(double t, double kw, double nu);
+
+struct CriticalSpeed {
+  double vstar = 0;  // V*_cr = rho V_cr^2 / mu
+  double t = 0;      // alpha h at the minimum (inf for a rigid base)
+};
+
+// V*_cr(kw, nu) = min over t of first_wave_vstar (the Rayleigh value when
+// kw = inf). Cached per (kw, nu); thread-safe.
+CriticalSpeed critical_speed(double kw, double nu);
+inline double critical_vstar(double kw, double nu) { return critical_speed(kw, nu).vstar; }
+
+}  // namespace movingpunch

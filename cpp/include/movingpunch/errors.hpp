@@ -1,0 +1,38 @@
+// Exceptions thrown by the numerical core. Only the binding layer knows Python types.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace movingpunch {
+
+// vstar at or above the critical speed: no bounded steady solution exists.
+class SupercriticalSpeedError : public std::domain_error {
+ public:
+  SupercriticalSpeedError(double vstar, double critical, double rayleigh);
+  double vstar() const noexcept { return vstar_; }
+  double critical() const noexcept { return critical_; }
+  double rayleigh() const noexcept { return rayleigh_; }
+
+ private:
+  double vstar_, critical_, rayleigh_;
+};
+
+// The single-contact solution violates p >= 0 or non-penetration outside (-a, a).
+class UnphysicalContactError : public std::domain_error {
+ public:
+  using std::domain_error::domain_error;
+};
+
+// An iteration failed to meet its tolerance within its budget.
+class ConvergenceError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Throws std::invalid_argument naming `name` and the valid range unless
+// lo <= value <= hi (open ends when the flags say so). NaN always fails.
+void require_in_range(const char* name, double value, double lo, double hi,
+                      bool lo_open, bool hi_open, bool allow_inf_hi = false);
+
+}  // namespace movingpunch

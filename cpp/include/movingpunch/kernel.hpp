@@ -1,0 +1,49 @@
+// The regular part of the singular integral equation's kernel,
+//   k1(u) = (1/phi1) * int_0^inf (M1(alpha) - phi1) sin(alpha u) d alpha,
+// an odd, smooth difference kernel independent of the contact width. It is
+// computed once per (vstar, kw, nu) by adaptive Gauss-Kronrod quadrature in
+// alpha and tabulated as an odd Chebyshev series on |u| <= L.
+#pragma once
+
+#include <vector>
+
+#include "movingpunch/layer_response.hpp"
+
+namespace movingpunch {
+
+struct AlphaQuadrature {
+  std::vector<double> alpha;   // nodes
+  std::vector<double> weight;  // weights
+  std::vector<double> m1;      // M1(alpha) at the nodes
+  double alpha_max = 0;        // M1 = phi1 to double precision beyond it
+  double error_estimate = 0;   // sum of |K15 - G7| of (M1 - phi1)/phi1
+};
+
+// Adaptive quadrature nodes for integrals of (M1 - phi1) times an oscillation
+// of frequency up to `max_frequency`, resolved to absolute tolerance `tol`.
+AlphaQuadrature build_alpha_quadrature(const LayerModel& model, double tol,
+                                       double max_frequency);
+
+class KernelK1 {
+ public:
+  // Tabulates k1 on |u| <= range to tolerance tol (absolute, k1 is O(1)).
+  KernelK1(const LayerModel& model, double tol, double range);
+
+  double operator()(double u) const;  // any |u| <= range()
+  double range() const noexcept { return range_; }
+  const AlphaQuadrature& quadrature() const noexcept { return quad_; }
+  const LayerModel& model() const noexcept { return model_; }
+  double tol() const noexcept { return tol_; }
+  int terms() const noexcept { return static_cast<int>(coef_.size()); }
+  // Direct quadrature sum (no Chebyshev table); for tests.
+  double direct(double u) const;
+
+ private:
+  LayerModel model_;
+  double tol_;
+  double range_;
+  AlphaQuadrature quad_;
+  std::vector<double> coef_;  // Chebyshev coefficients in u / range
+};
+
+}  // namespace movingpunch

@@ -1,0 +1,91 @@
+// Response of the elastic layer on a Winkler foundation to one Fourier mode of
+// surface pressure, p(x) = cos(alpha x), in units h = 1, mu = 1.
+//
+// The layer occupies -1 <= y <= 0 (y up). Top: sigma_y = -p, tau_xy = 0. Bottom:
+// tau_xy = 0 and sigma_y = kw * v (kw = inf: v = 0, a smooth rigid base).
+// The steady motion at speed V enters through vstar = rho V^2 / mu.
+//
+// Two independent evaluations are used (see docs/theory.md):
+//  * t = alpha h < kSmallT: the transfer matrix exp(-t A) by a Taylor series
+//    (exact in the static limit, no loss of relative accuracy as t -> 0);
+//  * t >= kSmallT: the exponential modes written relative to the face each
+//    decays from, with the shear/dilatation pair replaced by its divided
+//    difference (regular at vstar = 0, never overflows).
+#pragma once
+
+#include <Eigen/Dense>
+
+namespace movingpunch {
+
+// Wave constants of the layer for one (vstar, nu); everything the layer
+// response and the closed forms need, computed without cancellation.
+struct WaveConstants {
+  double s = 0;       // vstar
+  double nu = 0;      // Poisson's ratio
+  double c2 = 0;      // c_L^2 / c_T^2 = (kappa + 1) / (kappa - 1)
+  double nT = 1;      // sqrt(1 - s)
+  double nL = 1;      // sqrt(1 - s / c2)
+  double delta = 0;   // nL - nT >= 0, computed without cancellation
+  double phi1 = 0;    // lim_{alpha -> inf} M1 (moving half-plane factor)
+  double phi2 = 0;    // lim_{alpha -> inf} M2
+  // Divided differences (v_L - v_T) / delta of the mode vectors [U, W, T, S].
+  double dW = 0, dT = 0, dS = 0;
+  // Rows of the first-order system z' = alpha A z, z = [U, W, tau/alpha, sigma_y/alpha].
+  Eigen::Matrix4d A;
+};
+
+// Throws std::invalid_argument unless 0 <= vstar < 1 and 0 <= nu < 0.5.
+WaveConstants wave_constants(double vstar, double nu);
+
+// Rayleigh speed rho c_R^2 / mu for Poisson's ratio nu.
+double rayleigh_vstar(double nu);
+// Closed forms of the half-plane limits, regular at vstar = 0
+// (phi1(0) = 1 - nu, phi2(0) = 1). Require vstar < rayleigh_vstar(nu).
+double phi1(double vstar, double nu);
+double phi2(double vstar, double nu);
+
+// Per unit transformed pressure at t = alpha h:
+//   M1 = -alpha * W(alpha, 0)   (surface slope response; -> phi1)
+//   M2 = -Sigma_x(alpha, 0)     (surface sigma_x; -> phi2)
+struct Response {
+  double M1 = 0;
+  double M2 = 0;
+  double U0 = 0;  // alpha * transformed u at the top, per unit pressure
+  double W0 = 0;  // alpha * transformed v at the top, per unit pressure
+};
+
+class LayerModel {
+ public:
+  static constexpr double kSmallT = 0.5;
+
+  // kw = k_w h / mu in [0, inf]; throws std::invalid_argument otherwise.
+  LayerModel(double vstar, double kw, double nu);
+
+  const WaveConstants& constants() const noexcept { return c_; }
+  double vstar() const noexcept { return c_.s; }
+  double kw() const noexcept { return kw_; }
+  double nu() const noexcept { return c_.nu; }
+  double phi1() const noexcept { return c_.phi1; }
+  double phi2() const noexcept { return c_.phi2; }
+  bool rigid_base() const noexcept { return rigid_; }
+
+  // Response at t = alpha h > 0 (t = 0 returns the exact limit M1 = 0 for
+  // finite kw). Finite for every t up to 1e300.
+  Response response(double t) const;
+
+  // Same, forcing one of the two evaluations (for cross-checks in tests).
+  Response response_modal(double t) const;
+  Response response_transfer(double t) const;
+
+  // A function of (t, vstar) that changes sign exactly where a free wave of
+  // wavenumber t exists (a real pole of the response). Used by the
+  // critical-speed search; its sign convention is arbitrary.
+  double dispersion(double t) const;
+
+ private:
+  WaveConstants c_;
+  double kw_;
+  bool rigid_;
+};
+
+}  // namespace movingpunch

@@ -1,0 +1,75 @@
+#include "movingpunch/collocation.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace movingpunch {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+}
+
+ChebyshevNodes chebyshev_nodes(int n) {
+  if (n < 2 || n % 2 != 0 || n > 100000)
+    throw std::invalid_argument("collocation N must be even and in [2, 100000], got " +
+                                std::to_string(n));
+  ChebyshevNodes c;
+  c.n = n;
+  c.r.resize(n);
+  c.w.resize(n);
+  c.s.resize(n + 1);
+  for (int i = 1; i <= n; ++i) {
+    const double th = i * kPi / (n + 1);
+    c.r(i - 1) = std::cos(th);
+    const double sn = std::sin(th);
+    c.w(i - 1) = sn * sn / (n + 1);  // (1 - r^2)/(N+1), without cancellation
+  }
+  for (int k = 1; k <= n + 1; ++k) c.s(k - 1) = std::cos(kPi * (2 * k - 1) / (2.0 * (n + 1)));
+  c.s(n / 2) = 0.0;  // the middle point exactly
+  return c;
+}
+
+Eigen::VectorXd solve_unit_collocation(const ChebyshevNodes& nodes, double a,
+                                       const std::function<double(double)>& kernel) {
+  const int n = nodes.n, h = n / 2;
+  Eigen::MatrixXd M(h, h);
+  Eigen::VectorXd rhs(h);
+  for (int k = 0; k < h; ++k) {  // s_k > 0 for k = 1..N/2
+    const double s = nodes.s(k);
+    rhs(k) = s;
+    for (int j = 0; j < h; ++j) {  // r_j > 0; its mirror -r_j carries the same g
+      const double r = nodes.r(j);
+      const double up = r - s, um = -r - s;
+      M(k, j) = nodes.w(j) * (1.0 / up + 1.0 / um + a * (kernel(a * up) + kernel(a * um)));
+    }
+  }
+  return M.partialPivLu().solve(rhs);
+}
+
+Eigen::VectorXd u_coefficients(const ChebyshevNodes& nodes, const Eigen::VectorXd& g_full) {
+  const int n = nodes.n;
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(n);
+  for (int m = 0; m < n; ++m) {
+    double sum = 0.0;
+    for (int i = 1; i <= n; ++i) {
+      const double th = i * kPi / (n + 1);
+      // (1 - r^2) U_m(r) = sin(th) sin((m+1) th)
+      sum += std::sin(th) * std::sin((m + 1) * th) * g_full(i - 1);
+    }
+    b(m) = 2.0 * sum / (n + 1);
+  }
+  return b;
+}
+
+double u_series(const Eigen::VectorXd& b, double r) {
+  // Clenshaw for U_n: U_{n+1} = 2 r U_n - U_{n-1}, U_0 = 1, U_{-1} = 0.
+  double b1 = 0.0, b2 = 0.0;
+  for (Eigen::Index m = b.size() - 1; m >= 0; --m) {
+    const double b0 = b(m) + 2.0 * r * b1 - b2;
+    b2 = b1;
+    b1 = b0;
+  }
+  return b1;
+}
+
+}  // namespace movingpunch

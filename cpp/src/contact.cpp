@@ -1,0 +1,391 @@
+#include "movingpunch/contact.hpp"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "movingpunch/collocation.hpp"
+#include "movingpunch/dispersion.hpp"
+#include "movingpunch/errors.hpp"
+
+namespace movingpunch {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kLn2 = 0.69314718055994530942;
+
+// Collocation sizes tried in turn; the last is the cap.
+constexpr std::array<int, 17> kSizes = {8,   12,  16,  24,  32,  48,  64,   96,  128,
+                                        192, 256, 384, 512, 640, 768, 896, 1024};
+
+// Table range of the kernel for a contact half-width a: covers the
+// collocation (|u| <= 2a) and the displacement checks (|u| <= 4a).
+double table_range(double a) { return 4.2 * a; }
+
+// (1/pi) int_{-1}^{1} sqrt(1 - t^2) U_n(t) ln|x - t| dt.
+double log_potential(int n, double x) {
+  const double ax = std::fabs(x);
+  if (ax <= 1.0) {
+    if (n == 0) return 0.5 * x * x - 0.25 - 0.5 * kLn2;
+    const double th = std::acos(std::clamp(x, -1.0, 1.0));
+    return 0.5 * (std::cos((n + 2) * th) / (n + 2) - std::cos(n * th) / n);
+  }
+  const double th = std::acosh(ax);
+  if (n == 0) return 0.5 * th + 0.25 * std::exp(-2.0 * th) - 0.5 * kLn2;
+  const double sg = (x > 0.0 || n % 2 == 0) ? 1.0 : -1.0;
+  return sg * 0.5 * (-std::exp(-n * th) / n + std::exp(-(n + 2) * th) / (n + 2));
+}
+
+struct Timer {
+  std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
+  double seconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+};
+
+}  // namespace
+
+void validate(const ContactParams& p) {
+  require_in_range("nu", p.nu, 0.0, 0.5, false, true);
+  require_in_range("vstar", p.vstar, 0.0, 1.0, false, true);
+  require_in_range("kw", p.kw, 0.0, kInf, true, false, true);
+  require_in_range("radius", p.radius, 0.0, 1e12, true, false);
+  require_in_range("load", p.load, 0.0, 1e6, true, false);
+  require_in_range("tol", p.tol, 1e-14, 1e-2, false, false);
+}
+
+namespace {
+
+// Everything the iteration on a needs for one (vstar, kw, nu).
+class Problem {
+ public:
+  Problem(const ContactParams& p, const LayerModel& model)
+      : p_(p), model_(model), phi1_(model.phi1()) {
+    kernel_tol_ = std::max(1e-2 * p.tol, 1e-15);
+  }
+
+  const KernelK1& kernel(double a) {
+    if (!kernel_ || 2.0 * a > kernel_->range())
+      kernel_ = std::make_shared<KernelK1>(model_, kernel_tol_, table_range(a));
+    return *kernel_;
+  }
+  std::shared_ptr<const KernelK1> kernel_ptr() const { return kernel_; }
+  void ensure_range(double range) {
+    if (!kernel_ || kernel_->range() < range)
+      kernel_ = std::make_shared<KernelK1>(model_, kernel_tol_, range * 1.05);
+  }
+
+  // Unit solution G (g = -(a / (phi1 R)) G) and the load this a carries.
+  double load_of(const ChebyshevNodes& nodes, double a, Eigen::VectorXd* G_out) {
+    const KernelK1& k = kernel(a);
+    ++evaluations_;
+    const Eigen::VectorXd G =
+        solve_unit_collocation(nodes, a, [&k](double u) { return k(u); });
+    const double sum = 2.0 * nodes.w.head(nodes.n / 2).dot(G);
+    if (G_out) *G_out = G;
+    return -kPi * a * a / (phi1_ * p_.radius) * sum;
+  }
+
+  int evaluations() const { return evaluations_; }
+
+ private:
+  const ContactParams& p_;
+  const LayerModel& model_;
+  double phi1_;
+  double kernel_tol_;
+  std::shared_ptr<const KernelK1> kernel_;
+  int evaluations_ = 0;
+};
+
+// Solves load(a) = P for a at fixed N: safeguarded secant on F(ln a) =
+// ln load(a) - ln P (monotone increasing, nearly 2 ln a for Hertz).
+double solve_width(Problem& prob, const ChebyshevNodes& nodes, double P, double a_guess,
+                   double xtol) {
+  auto F = [&](double la) {
+    const double load = prob.load_of(nodes, std::exp(la), nullptr);
+    if (!(load > 0.0) || !std::isfinite(load)) return kInf;  // treat as "a too large"
+    return std::log(load) - std::log(P);
+  };
+  double x0 = std::log(a_guess), f0 = F(x0);
+  if (f0 == 0.0) return a_guess;
+  // Bracket: [lo, hi] with F(lo) < 0 < F(hi), found by steps of the local
+  // slope (about 2) limited to a factor e^2 in a.
+  double lo = -kInf, hi = kInf;
+  (f0 < 0.0 ? lo : hi) = x0;
+  double x1 = x0 - (std::isfinite(f0) ? std::clamp(f0 / 2.0, -2.0, 2.0) : 1.0);
+  double ref_width = kInf;
+  int slow = 0;
+  for (int it = 0; it < 200; ++it) {
+    const double f1 = F(x1);
+    if (f1 == 0.0) return std::exp(x1);
+    if (f1 < 0.0)
+      lo = std::max(lo, x1);
+    else
+      hi = std::min(hi, x1);
+    const bool bracketed = std::isfinite(lo) && std::isfinite(hi);
+    if (bracketed && hi - lo <= xtol) return std::exp(0.5 * (lo + hi));
+    double x2 = (std::isfinite(f0) && std::isfinite(f1) && f1 != f0)
+                    ? x1 - f1 * (x1 - x0) / (f1 - f0)  // secant
+                    : x1 - 1.0;
+    if (bracketed) {
+      // Safeguards: stay strictly inside the bracket, and bisect when the
+      // bracket has not halved over three steps (a stalled secant).
+      const double w = hi - lo;
+      if (w <= 0.5 * ref_width) {
+        ref_width = w;
+        slow = 0;
+      } else if (++slow >= 3) {
+        ref_width = w;
+        slow = 0;
+        x2 = 0.5 * (lo + hi);
+      }
+      if (!(x2 > lo && x2 < hi)) x2 = 0.5 * (lo + hi);
+    } else {
+      x2 = std::clamp(x2, x1 - 2.0, x1 + 2.0);  // expanding search for a bracket
+    }
+    if (!std::isfinite(x2) || x2 > std::log(1e6) || x2 < std::log(1e-12))
+      throw ConvergenceError("contact width search left the range 1e-12 < a/h < 1e6");
+    if (std::fabs(x2 - x1) <= xtol) return std::exp(x2);
+    x0 = x1;
+    f0 = f1;
+    x1 = x2;
+  }
+  throw ConvergenceError("contact width iteration did not converge in 200 steps");
+}
+
+}  // namespace
+
+ContactSolution solve_contact(const ContactParams& p) {
+  Timer timer;
+  validate(p);
+  const double vr = rayleigh_vstar(p.nu);
+  const CriticalSpeed crit = critical_speed(p.kw, p.nu);
+  if (p.vstar >= crit.vstar) throw SupercriticalSpeedError(p.vstar, crit.vstar, vr);
+
+  const LayerModel model(p.vstar, p.kw, p.nu);
+  const double phi1 = model.phi1();
+  Problem prob(p, model);
+
+  // Start from the half-plane (Hertz) width.
+  const double lambda = p.radius * p.load;
+  double a = std::sqrt(2.0 * phi1 * lambda / kPi);
+  const double xtol = std::max(1e-2 * p.tol, 1e-15);
+
+  double a_prev = std::numeric_limits<double>::quiet_NaN();
+  double change = kInf;
+  ChebyshevNodes nodes;
+  bool converged = false;
+  for (std::size_t idx = 0; idx < kSizes.size(); ++idx) {
+    nodes = chebyshev_nodes(kSizes[idx]);
+    a = solve_width(prob, nodes, p.load, a, xtol);
+    if (idx > 0) {
+      change = std::fabs(a - a_prev);
+      if (change <= p.tol * a) {
+        converged = true;
+        break;
+      }
+    }
+    a_prev = a;
+  }
+  if (!converged) {
+    std::ostringstream m;
+    m << "a/h did not converge to tol = " << p.tol << " with N up to " << kSizes.back()
+      << " collocation points (last change " << change << ")";
+    throw ConvergenceError(m.str());
+  }
+
+  // The displacement checks need the kernel's quadrature to resolve
+  // oscillations up to 4a; extend it (and re-solve on it) if the width grew.
+  if (prob.kernel_ptr()->range() < 4.0 * a) {
+    prob.ensure_range(table_range(a));
+    a = solve_width(prob, nodes, p.load, a, xtol);
+  }
+
+  ContactSolution sol;
+  sol.params_ = p;
+  sol.a_ = a;
+  sol.vcr_ = crit.vstar;
+  sol.vr_ = vr;
+  sol.phi1_ = phi1;
+  sol.n_ = nodes.n;
+  sol.kernel_ = prob.kernel_ptr();
+
+  // Final unit solution at the converged a; g normalised by the load.
+  Eigen::VectorXd G;
+  const double load = prob.load_of(nodes, a, &G);
+  const int h = nodes.n / 2;
+  Eigen::VectorXd g_full(nodes.n);
+  const double scale = -(a / (phi1 * p.radius)) / load;
+  for (int j = 0; j < h; ++j) {
+    g_full(j) = scale * G(j);
+    g_full(nodes.n - 1 - j) = scale * G(j);
+  }
+  sol.b_ = u_coefficients(nodes, g_full);
+  for (Eigen::Index m = 1; m < sol.b_.size(); m += 2) sol.b_(m) = 0.0;  // g is even
+  sol.p0_ = u_series(sol.b_, 0.0);
+  sol.iterations_ = prob.evaluations();
+  const double root_err = a * xtol;
+  sol.err_ = change + root_err + a * a * sol.kernel_->quadrature().error_estimate;
+
+  // Indentation: delta = -v(0, 0).
+  sol.prepare_displacement();
+  sol.delta_ = -sol.surface_displacement(0.0);
+
+  // Validity: p >= 0 on the contact and no penetration on a < |x| <= 3a.
+  double pmin = kInf, gmin = kInf, gmax = 0.0, x_pmin = 0.0;
+  for (int i = 0; i <= 400; ++i) {
+    const double r = std::cos(kPi * i / 400.0);
+    const double g = u_series(sol.b_, r);
+    gmax = std::max(gmax, std::fabs(g));
+    if (g < gmin) {
+      gmin = g;
+      x_pmin = a * r;
+    }
+    pmin = std::min(pmin, g * std::sqrt(std::max(0.0, 1.0 - r * r)));
+  }
+  sol.min_p_ = pmin;
+  double gap_min = kInf, x_gap = 0.0;
+  for (int j = 1; j <= 48; ++j) {
+    const double q = j / 48.0;
+    const double x = a * (1.0 + 2.0 * q * q);
+    const double gap = -sol.delta_ + x * x / (2.0 * p.radius) - sol.surface_displacement(x);
+    if (gap < gap_min) {
+      gap_min = gap;
+      x_gap = x;
+    }
+  }
+  sol.min_gap_ = gap_min;
+  const double rel = std::max(1e-6, 100.0 * p.tol);
+  std::ostringstream why;
+  why.precision(6);
+  if (gmin < -rel * gmax) {
+    sol.valid_ = false;
+    why << "the contact pressure is negative near x/h = " << x_pmin
+        << " (the punch would pull on the layer): the contact separates and the "
+           "single-contact solution is unphysical";
+  } else {
+    const double gap_scale = std::max(a * a / (2.0 * p.radius), std::fabs(sol.delta_));
+    if (gap_min < -rel * gap_scale) {
+      sol.valid_ = false;
+      why << "the layer surface rises above the punch at x/h = " << x_gap
+          << " (gap " << gap_min << " h): the punch would penetrate outside the contact "
+             "and the single-contact solution is unphysical";
+    }
+  }
+  if (sol.valid_) {
+    sol.validity_ = "valid: p >= 0 on the contact, no penetration for a < |x| <= 3a";
+  } else {
+    sol.validity_ = why.str();
+    if (!p.allow_unphysical) {
+      std::ostringstream m;
+      m.precision(8);
+      m << "vstar=" << p.vstar << ", kw=" << p.kw << ", radius=" << p.radius
+        << ", load=" << p.load << ", nu=" << p.nu << ": " << sol.validity_
+        << " (a/h = " << a << ")";
+      throw UnphysicalContactError(m.str());
+    }
+  }
+  sol.elapsed_ = timer.seconds();
+  return sol;
+}
+
+double ContactSolution::pressure(double x) const {
+  if (std::isnan(x)) throw std::invalid_argument("pressure: x must not be NaN");
+  const double r = x / a_;
+  if (!(std::fabs(r) < 1.0)) return 0.0;
+  return u_series(b_, r) * std::sqrt((1.0 - r) * (1.0 + r));
+}
+
+Eigen::VectorXd ContactSolution::pressure(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  Eigen::VectorXd out(x.size());
+  for (Eigen::Index i = 0; i < x.size(); ++i) out(i) = pressure(x(i));
+  return out;
+}
+
+// Highest even n with a non-negligible Chebyshev-U coefficient.
+static Eigen::Index last_even_term(const Eigen::VectorXd& b) {
+  Eigen::Index last = 0;
+  const double bmax = b.cwiseAbs().maxCoeff();
+  for (Eigen::Index n = 0; n < b.size(); n += 2)
+    if (std::fabs(b(n)) > 1e-17 * bmax) last = n;
+  return last;
+}
+
+// Precomputes w_i f(alpha_i) ptilde(alpha_i) with f = [M1 - phi1 (1 - e^-alpha)]/alpha and
+// ptilde = (a/2) sum b_n pi (n+1) (-1)^{n/2} J_{n+1}(alpha a)/(alpha a), the exact
+// transform of the Chebyshev series of p.
+void ContactSolution::prepare_displacement() {
+  const double a = a_;
+  const Eigen::Index last = last_even_term(b_);
+  const AlphaQuadrature& q = kernel_->quadrature();
+  smooth_weights_.assign(q.alpha.size(), 0.0);
+  for (std::size_t i = 0; i < q.alpha.size(); ++i) {
+    const double al = q.alpha[i];
+    const double f = (q.m1[i] - phi1_ * (-std::expm1(-al))) / al;
+    const double w = al * a;
+    double pt = 0.0;
+    if (w < 1e-8) {
+      pt = 0.5 * b_(0) * 0.5 * kPi * a;  // J_1(w)/w -> 1/2, higher orders vanish
+    } else {
+      for (Eigen::Index n = 0; n <= last; n += 2) {
+        const double sg = (n / 2) % 2 == 0 ? 1.0 : -1.0;
+        pt += b_(n) * static_cast<double>(n + 1) * sg *
+              std::cyl_bessel_j(static_cast<double>(n + 1), w);
+      }
+      pt *= 0.5 * kPi * a / w;
+    }
+    smooth_weights_[i] = q.weight[i] * f * pt;
+  }
+}
+
+// (1/pi) int p(xi)/(P/h) G(x - xi) d xi with G(u) = int_0^inf (M1/alpha) cos(alpha u)
+// d alpha, split as int [M1 - phi1 (1 - e^-alpha)]/alpha cos + (phi1/2) ln(1 + 1/u^2).
+double ContactSolution::greens_integral(double x) const {
+  const double a = a_;
+  const Eigen::Index nb = b_.size();
+  const Eigen::Index last = last_even_term(b_);
+  const AlphaQuadrature& q = kernel_->quadrature();
+  double smooth = 0.0;
+  for (std::size_t i = 0; i < q.alpha.size(); ++i)
+    smooth += smooth_weights_[i] * std::cos(q.alpha[i] * x);
+  smooth *= 2.0 / kPi;
+
+  // Log part: -(phi1/pi) int p ln|x - xi| = -phi1 a [ln a (b0/2) + sum b_n L_n(s)].
+  const double s = x / a;
+  double lp = 0.5 * b_(0) * std::log(a);
+  for (Eigen::Index n = 0; n <= last; n += 2) lp += b_(n) * log_potential(static_cast<int>(n), s);
+  const double log_part = -phi1_ * a * lp;
+
+  // (phi1 / (2 pi)) int p ln(1 + (x - xi)^2) d xi by Gauss-Chebyshev (U) quadrature.
+  const int m = std::max({64, 2 * static_cast<int>(nb), static_cast<int>(40.0 * (1.0 + a))});
+  double l1 = 0.0;
+  for (int i = 1; i <= m; ++i) {
+    const double th = i * kPi / (m + 1);
+    const double r = std::cos(th), sn = std::sin(th);
+    const double d = x - a * r;
+    l1 += sn * sn * u_series(b_, r) * std::log1p(d * d);
+  }
+  l1 *= kPi / (m + 1);  // int sqrt(1-r^2) g(r) f(r) dr
+  const double log1p_part = phi1_ / (2.0 * kPi) * a * l1;
+
+  return smooth + log_part + log1p_part;
+}
+
+double ContactSolution::surface_displacement(double x) const {
+  if (!std::isfinite(x)) throw std::invalid_argument("surface_displacement: x must be finite");
+  return -params_.load * greens_integral(x);
+}
+
+Eigen::VectorXd ContactSolution::surface_displacement(
+    const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  Eigen::VectorXd out(x.size());
+  for (Eigen::Index i = 0; i < x.size(); ++i) out(i) = surface_displacement(x(i));
+  return out;
+}
+
+}  // namespace movingpunch

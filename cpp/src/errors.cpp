@@ -1,0 +1,46 @@
+#include "movingpunch/errors.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace movingpunch {
+
+namespace {
+std::string supercritical_message(double vstar, double critical, double rayleigh) {
+  std::ostringstream m;
+  m.precision(10);
+  m << "vstar = " << vstar << " is at or above the critical speed V*_cr = " << critical
+    << " of this layer on its foundation (Rayleigh value V*_R = " << rayleigh
+    << "); no bounded steady solution exists there: vstar must be in [0, " << critical
+    << ")";
+  return m.str();
+}
+}  // namespace
+
+SupercriticalSpeedError::SupercriticalSpeedError(double vstar, double critical,
+                                                 double rayleigh)
+    : std::domain_error(supercritical_message(vstar, critical, rayleigh)),
+      vstar_(vstar),
+      critical_(critical),
+      rayleigh_(rayleigh) {}
+
+void require_in_range(const char* name, double value, double lo, double hi, bool lo_open,
+                      bool hi_open, bool allow_inf_hi) {
+  const bool inf_ok = allow_inf_hi && std::isinf(value) && value > 0;
+  bool ok = !std::isnan(value) && (inf_ok || std::isfinite(value));
+  if (ok && !inf_ok) {
+    ok = (lo_open ? value > lo : value >= lo) && (hi_open ? value < hi : value <= hi);
+  }
+  if (ok) return;
+  std::ostringstream m;
+  m.precision(10);
+  m << name << " must be in " << (lo_open ? "(" : "[") << lo << ", ";
+  if (allow_inf_hi)
+    m << "inf]";
+  else
+    m << hi << (hi_open ? ")" : "]");
+  m << ", got " << value;
+  throw std::invalid_argument(m.str());
+}
+
+}  // namespace movingpunch

@@ -1,0 +1,207 @@
+#include "movingpunch/kernel.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "movingpunch/errors.hpp"
+
+namespace movingpunch {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Gauss-Kronrod 7-15 (QUADPACK qk15): Kronrod nodes (positive half, the last
+// is 0), Kronrod weights, and Gauss weights for nodes xgk[1], xgk[3], xgk[5], xgk[7].
+constexpr double kXgk[8] = {0.991455371120812639206854697526329,
+                            0.949107912342758524526189684047851,
+                            0.864864423359769072789712788640926,
+                            0.741531185599394439863864773280788,
+                            0.586087235467691130294144845693013,
+                            0.405845151377397166906606412076961,
+                            0.207784955007898467600689403773245,
+                            0.0};
+constexpr double kWgk[8] = {0.022935322010529224963732008058970,
+                            0.063092092629978553290700663189204,
+                            0.104790010322250183839876322541518,
+                            0.140653259715525918745189590510238,
+                            0.169004726639267902826583426598550,
+                            0.190350578064785409913256402421014,
+                            0.204432940075298892414161999234649,
+                            0.209482141084727828012999174891714};
+constexpr double kWg[4] = {0.129484966168869693270611432679082,
+                           0.279705391489276667901467771423780,
+                           0.381830050505118944950369775488975,
+                           0.417959183673469387755102040816327};
+
+struct Panel {
+  double lo, hi;
+  double nodes[15];
+  double m1[15];
+  double kronrod, error;
+  double resabs;  // integral of |f|
+  double floor;   // round-off floor of the rule on this panel
+};
+
+Panel eval_panel(const LayerModel& model, double lo, double hi) {
+  Panel p{};
+  p.lo = lo;
+  p.hi = hi;
+  const double c = 0.5 * (lo + hi), h = 0.5 * (hi - lo);
+  const double phi1 = model.phi1();
+  double fk = 0.0, fg = 0.0, fabs_sum = 0.0;
+  double fv[15];
+  for (int j = 0; j < 15; ++j) {
+    const int k = j < 7 ? j : (j == 7 ? 7 : 14 - j);
+    const double sgn = j < 7 ? -1.0 : 1.0;
+    const double x = c + sgn * h * kXgk[k];
+    p.nodes[j] = x;
+    p.m1[j] = model.response(x).M1;
+    const double f = (p.m1[j] - phi1) / phi1;
+    fv[j] = f;
+    fk += kWgk[k] * f;
+    fabs_sum += kWgk[k] * std::fabs(f);
+    if (k % 2 == 1) fg += kWg[k / 2] * f;
+  }
+  // QUADPACK's estimate: the raw |K15 - G7| rescaled by the integrand's
+  // variation, floored at the round-off of the rule.
+  const double mean = 0.5 * fk;
+  double resasc = 0.0;
+  for (int j = 0; j < 15; ++j) {
+    const int k = j < 7 ? j : (j == 7 ? 7 : 14 - j);
+    resasc += kWgk[k] * std::fabs(fv[j] - mean);
+  }
+  resasc *= h;
+  p.kronrod = fk * h;
+  p.resabs = fabs_sum * h;
+  double err = std::fabs((fk - fg) * h);
+  if (resasc > 0.0 && err > 0.0) err = resasc * std::min(1.0, std::pow(200.0 * err / resasc, 1.5));
+  constexpr double eps = 2.220446049250313e-16;
+  // f = (M1 - phi1)/phi1 carries an absolute round-off of a few eps where
+  // M1 ~ phi1, and eps |f|^2 near a resonance, where the 4 x 4 boundary
+  // system is ill-conditioned in proportion to |M1|.
+  double fmax = 0.0;
+  for (double v : fv) fmax = std::max(fmax, std::fabs(v));
+  p.floor = 50.0 * eps * (2.0 * h + p.resabs * (1.0 + fmax));
+  p.error = std::max(err, p.floor);
+  return p;
+}
+
+double kronrod_weight(int j, double h) {
+  const int k = j < 7 ? j : (j == 7 ? 7 : 14 - j);
+  return kWgk[k] * h;
+}
+
+}  // namespace
+
+AlphaQuadrature build_alpha_quadrature(const LayerModel& model, double tol,
+                                       double max_frequency) {
+  if (!(tol > 0.0)) throw std::invalid_argument("kernel quadrature: tol must be > 0");
+  if (!(max_frequency > 0.0) || !std::isfinite(max_frequency))
+    throw std::invalid_argument("kernel quadrature: max_frequency must be finite and > 0");
+  const double nT = model.constants().nT;
+  AlphaQuadrature q;
+  // M1 - phi1 decays like (1 + 4t) exp(-2 nT t): below 1e-18 beyond this.
+  q.alpha_max = (std::log(1e18) + std::log1p(4.0 * 30.0 / nT)) / (2.0 * nT);
+  // Panels narrow enough that sin(alpha u) turns at most ~2 radians on one.
+  const double width = std::min(1.0, 2.0 / max_frequency);
+  const int n0 = std::max(1, static_cast<int>(std::ceil(q.alpha_max / width)));
+  const double w0 = q.alpha_max / n0;
+  std::vector<Panel> work, done;
+  for (int i = n0 - 1; i >= 0; --i) work.push_back(eval_panel(model, i * w0, (i + 1) * w0));
+  const double panel_tol = tol / n0;
+  int evaluations = n0;
+  while (!work.empty()) {
+    Panel p = work.back();
+    work.pop_back();
+    const double len = p.hi - p.lo;
+    // Converged, or already at the round-off floor of the integrand.
+    const bool fine = p.error <= std::max(panel_tol * len / w0, p.floor);
+    if (fine || len < 1e-9 * w0 || evaluations > 20000) {
+      done.push_back(p);
+      continue;
+    }
+    const double mid = 0.5 * (p.lo + p.hi);
+    work.push_back(eval_panel(model, mid, p.hi));
+    work.push_back(eval_panel(model, p.lo, mid));
+    evaluations += 2;
+  }
+  std::sort(done.begin(), done.end(),
+            [](const Panel& a, const Panel& b) { return a.lo < b.lo; });
+  q.alpha.reserve(done.size() * 15);
+  for (const Panel& p : done) {
+    const double h = 0.5 * (p.hi - p.lo);
+    for (int j = 0; j < 15; ++j) {
+      q.alpha.push_back(p.nodes[j]);
+      q.weight.push_back(kronrod_weight(j, h));
+      q.m1.push_back(p.m1[j]);
+    }
+    q.error_estimate += p.error;
+  }
+  return q;
+}
+
+KernelK1::KernelK1(const LayerModel& model, double tol, double range)
+    : model_(model), tol_(tol), range_(range) {
+  require_in_range("kernel tol", tol, 0.0, 1.0, true, false);
+  require_in_range("kernel range", range, 0.0, 1e6, true, false);
+  quad_ = build_alpha_quadrature(model_, tol_, range_);
+  // Odd Chebyshev series on [-range, range]; values at the positive half of
+  // the first-kind nodes, doubled until the tail is below tol.
+  for (int n = 32;; n *= 2) {
+    std::vector<double> vals(static_cast<std::size_t>(n / 2));
+    for (int j = 0; j < n / 2; ++j) {
+      const double x = std::cos(kPi * (j + 0.5) / n);
+      vals[static_cast<std::size_t>(j)] = direct(range_ * x);
+    }
+    std::vector<double> c(static_cast<std::size_t>(n), 0.0);
+    double cmax = 0.0;
+    for (int m = 1; m < n; m += 2) {
+      double sum = 0.0;
+      for (int j = 0; j < n / 2; ++j)
+        sum += vals[static_cast<std::size_t>(j)] * std::cos(kPi * m * (j + 0.5) / n);
+      c[static_cast<std::size_t>(m)] = 4.0 * sum / n;  // both halves (odd symmetry)
+      cmax = std::max(cmax, std::fabs(c[static_cast<std::size_t>(m)]));
+    }
+    double tail = 0.0;
+    for (int m = n - 7; m < n; m += 2)
+      tail = std::max(tail, std::fabs(c[static_cast<std::size_t>(m)]));
+    constexpr double eps = 2.220446049250313e-16;
+    double vmax = 0.0;
+    for (double v : vals) vmax = std::max(vmax, std::fabs(v));
+    // Below this the coefficients are round-off of the quadrature sum.
+    const double goal = std::max(1e-2 * tol_, 64.0 * eps * std::max(cmax, vmax));
+    if (tail <= goal || n >= 16384) {
+      // Drop the negligible tail.
+      std::size_t last = c.size();
+      while (last > 1 && std::fabs(c[last - 1]) <= 1e-3 * goal) --last;
+      c.resize(std::max<std::size_t>(last, 2));
+      coef_ = std::move(c);
+      break;
+    }
+  }
+}
+
+double KernelK1::direct(double u) const {
+  const double phi1 = model_.phi1();
+  double sum = 0.0;
+  for (std::size_t i = 0; i < quad_.alpha.size(); ++i)
+    sum += quad_.weight[i] * (quad_.m1[i] - phi1) * std::sin(quad_.alpha[i] * u);
+  return sum / phi1;
+}
+
+double KernelK1::operator()(double u) const {
+  const double x = u / range_;
+  // Clenshaw for sum c_m T_m(x).
+  double b1 = 0.0, b2 = 0.0;
+  const double x2 = 2.0 * x;
+  for (std::size_t m = coef_.size() - 1; m >= 1; --m) {
+    const double b0 = coef_[m] + x2 * b1 - b2;
+    b2 = b1;
+    b1 = b0;
+  }
+  return coef_[0] + x * b1 - b2;
+}
+
+}  // namespace movingpunch

@@ -1,0 +1,215 @@
+#include "movingpunch/layer_response.hpp"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "movingpunch/errors.hpp"
+
+namespace movingpunch {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Regular form of the Rayleigh function divided by s:
+// (4 nL nT - (2 - s)^2) / s = 4 - s - 4 X / (1 + Y).
+double rayleigh_over_s(double s, double c2) {
+  const double nT = std::sqrt(1.0 - s), nL = std::sqrt(1.0 - s / c2);
+  const double X = 1.0 + 1.0 / c2 - s / c2, Y = nL * nT;
+  return 4.0 - s - 4.0 * X / (1.0 + Y);
+}
+
+double c2_of(double nu) {
+  const double kappa = 3.0 - 4.0 * nu;
+  return (kappa + 1.0) / (kappa - 1.0);
+}
+
+// Mode vector [U, W, tau/alpha, sigma_y/alpha] of the shear root m (U = 1).
+Eigen::Vector4d shear_vector(double m) { return {1.0, -1.0 / m, (1.0 + m * m) / m, -2.0}; }
+
+}  // namespace
+
+double rayleigh_vstar(double nu) {
+  require_in_range("nu", nu, 0.0, 0.5, false, true);
+  const double c2 = c2_of(nu);
+  // rayleigh_over_s is positive at s = 0 (2 - 2/c2 >= 1) and negative near s = 1.
+  double lo = 0.0, hi = 1.0 - 1e-300;
+  for (int i = 0; i < 200 && hi - lo > 4e-17; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (rayleigh_over_s(mid, c2) > 0.0 ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+WaveConstants wave_constants(double vstar, double nu) {
+  require_in_range("nu", nu, 0.0, 0.5, false, true);
+  require_in_range("vstar", vstar, 0.0, 1.0, false, true);
+  WaveConstants c;
+  const double s = vstar;
+  c.s = s;
+  c.nu = nu;
+  c.c2 = c2_of(nu);
+  const double c2 = c.c2;
+  c.nT = std::sqrt(1.0 - s);
+  c.nL = std::sqrt(1.0 - s / c2);
+  const double X = 1.0 + 1.0 / c2 - s / c2, Y = c.nL * c.nT;
+  const double one_minus_inv_c2 = 1.0 - 1.0 / c2;  // = 2 / (kappa + 1)
+  c.delta = s * one_minus_inv_c2 / (c.nL + c.nT);
+  const double ratio = (c.nL + c.nT) / (one_minus_inv_c2 * c.nT);
+  c.dW = X / (1.0 + Y) * ratio;
+  c.dT = ((-s * X / (1.0 + Y) - 2.0 * (1.0 - s) / c2) / (1.0 + Y)) * ratio;
+  c.dS = (c.nL + c.nT) / one_minus_inv_c2;
+  const double den = 4.0 - s - 4.0 * X / (1.0 + Y);
+  c.phi1 = c.nL / den;
+  c.phi2 = (4.0 * X / (1.0 + Y) - 2.0 + 2.0 * (c2 - 2.0) / c2 - s * (c2 - 2.0) / c2) / den;
+  c.A << 0.0, 1.0, 1.0, 0.0,                                   //
+      -(c2 - 2.0) / c2, 0.0, 0.0, 1.0 / c2,                    //
+      4.0 * (c2 - 1.0) / c2 - s, 0.0, 0.0, (c2 - 2.0) / c2,  //
+      0.0, -s, -1.0, 0.0;
+  return c;
+}
+
+double phi1(double vstar, double nu) {
+  const double vr = rayleigh_vstar(nu);
+  if (!(vstar < vr))
+    throw std::invalid_argument("phi1: vstar must be below the Rayleigh value " +
+                                std::to_string(vr));
+  return wave_constants(vstar, nu).phi1;
+}
+
+double phi2(double vstar, double nu) {
+  const double vr = rayleigh_vstar(nu);
+  if (!(vstar < vr))
+    throw std::invalid_argument("phi2: vstar must be below the Rayleigh value " +
+                                std::to_string(vr));
+  return wave_constants(vstar, nu).phi2;
+}
+
+LayerModel::LayerModel(double vstar, double kw, double nu)
+    : c_(wave_constants(vstar, nu)), kw_(kw), rigid_(std::isinf(kw)) {
+  require_in_range("kw", kw, 0.0, kInf, true, false, true);
+}
+
+namespace {
+
+// The 4 x 4 boundary matrix on the regularised exponential basis (columns:
+// top shear mode, top divided difference, bottom shear mode, bottom divided
+// difference); rows: tau(0), sigma(0), tau(-1), bottom condition.
+Eigen::Matrix4d modal_matrix(const WaveConstants& c, double kw, bool rigid, double t,
+                             Eigen::Matrix4d* top_columns) {
+  const double nT = c.nT, nL = c.nL, d = c.delta;
+  auto E = [d](double x) { return d > 0.0 ? std::expm1(d * x) / d : x; };
+  const Eigen::Vector4d vTp = shear_vector(nT), vTm = shear_vector(-nT);
+  const Eigen::Vector4d dvp(0.0, c.dW, c.dT, c.dS), dvm(0.0, -c.dW, -c.dT, c.dS);
+  auto columns = [&](double y) {
+    Eigen::Matrix4d C;
+    const double et = std::exp(nT * t * y), el = std::exp(nL * t * y);
+    const double yb = y + 1.0;
+    const double ebt = std::exp(-nT * t * yb), ebl = std::exp(-nL * t * yb);
+    C.col(0) = et * vTp;
+    C.col(1) = el * dvp + vTp * (et * E(t * y));
+    C.col(2) = ebt * vTm;
+    C.col(3) = ebl * dvm + vTm * (ebt * E(-t * yb));
+    return C;
+  };
+  const Eigen::Matrix4d top = columns(0.0), bot = columns(-1.0);
+  Eigen::Matrix4d M;
+  M.row(0) = top.row(2);
+  M.row(1) = top.row(3);
+  M.row(2) = bot.row(2);
+  if (rigid)
+    M.row(3) = bot.row(1);
+  else
+    M.row(3) = (t * bot.row(3) - kw * bot.row(1)) / (t + kw);
+  if (top_columns) *top_columns = top;
+  return M;
+}
+
+// Transfer matrix exp(-t A) by its Taylor series (t < 0.5, |A| <= 6).
+Eigen::Matrix4d transfer_matrix(const WaveConstants& c, double t) {
+  Eigen::Matrix4d P = Eigen::Matrix4d::Identity();
+  Eigen::Matrix4d term = Eigen::Matrix4d::Identity();
+  const Eigen::Matrix4d B = -t * c.A;
+  for (int k = 1; k < 80; ++k) {
+    term = term * B / static_cast<double>(k);
+    P += term;
+    if (term.cwiseAbs().maxCoeff() <= 1e-18 * P.cwiseAbs().maxCoeff() && k > 3) break;
+  }
+  return P;
+}
+
+// Bottom conditions as two rows acting on z(-1) = P z(0).
+Eigen::Matrix<double, 2, 4> bottom_rows(const Eigen::Matrix4d& P, double kw, bool rigid,
+                                        double t) {
+  Eigen::Matrix<double, 2, 4> R;
+  R.row(0) = P.row(2);
+  if (rigid)
+    R.row(1) = P.row(1);
+  else
+    R.row(1) = (t * P.row(3) - kw * P.row(1)) / (t + kw);
+  return R;
+}
+
+Response from_top(const WaveConstants& c, double U0, double W0) {
+  Response r;
+  r.U0 = U0;
+  r.W0 = W0;
+  r.M1 = -W0;
+  r.M2 = (c.c2 - 2.0) / c.c2 - 4.0 * (c.c2 - 1.0) / c.c2 * U0;
+  return r;
+}
+
+}  // namespace
+
+Response LayerModel::response_modal(double t) const {
+  if (!(t > 0.0)) throw std::invalid_argument("layer response: t = alpha h must be > 0");
+  // Beyond this M1 - phi1 ~ exp(-2 nT t) underflows: return the exact limit.
+  if (t * c_.nT >= 400.0) {
+    const double U0 = ((c_.c2 - 2.0) / c_.c2 - c_.phi2) * c_.c2 / (4.0 * (c_.c2 - 1.0));
+    return from_top(c_, U0, -c_.phi1);
+  }
+  Eigen::Matrix4d top;
+  const Eigen::Matrix4d M = modal_matrix(c_, kw_, rigid_, t, &top);
+  const Eigen::Vector4d rhs(0.0, -1.0, 0.0, 0.0);
+  const Eigen::Vector4d amp = M.partialPivLu().solve(rhs);
+  const Eigen::Vector4d z0 = top * amp;
+  return from_top(c_, z0(0), z0(1));
+}
+
+Response LayerModel::response_transfer(double t) const {
+  if (!(t >= 0.0) || !(t <= 4.0))
+    throw std::invalid_argument("layer response (transfer): t must be in [0, 4]");
+  if (t == 0.0) {
+    // Exact limit: W0 = 0 for a finite foundation (M1 ~ t); U0 from the row tau(-1).
+    const double U0 = c_.A(2, 3) / c_.A(2, 0);
+    return from_top(c_, U0, 0.0);
+  }
+  const Eigen::Matrix4d P = transfer_matrix(c_, t);
+  const Eigen::Matrix<double, 2, 4> R = bottom_rows(P, kw_, rigid_, t);
+  // z0 = [U0, W0, 0, -1]: R(:,0:1) [U0, W0] = R(:,3).
+  Eigen::Matrix2d M = R.leftCols<2>();
+  const Eigen::Vector2d rhs = R.col(3);
+  const Eigen::Vector2d x = M.fullPivLu().solve(rhs);
+  return from_top(c_, x(0), x(1));
+}
+
+Response LayerModel::response(double t) const {
+  if (std::isnan(t) || t < 0.0)
+    throw std::invalid_argument("layer response: t = alpha h must be >= 0");
+  if (t < kSmallT) return response_transfer(t);
+  return response_modal(t);
+}
+
+double LayerModel::dispersion(double t) const {
+  if (!(t > 0.0) || !std::isfinite(t))
+    throw std::invalid_argument("dispersion: t = alpha h must be finite and > 0");
+  if (t < kSmallT) {
+    const Eigen::Matrix4d P = transfer_matrix(c_, t);
+    const Eigen::Matrix<double, 2, 4> R = bottom_rows(P, kw_, rigid_, t);
+    return R(0, 0) * R(1, 1) - R(0, 1) * R(1, 0);
+  }
+  return modal_matrix(c_, kw_, rigid_, t, nullptr).partialPivLu().determinant();
+}
+
+}  // namespace movingpunch

@@ -1,0 +1,85 @@
+// Gauss-Chebyshev nodes, weights, the singular quadrature, and the Hertz solve.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "movingpunch/collocation.hpp"
+
+using namespace movingpunch;
+
+namespace {
+double cheb_u(int n, double x) {
+  const double th = std::acos(x);
+  return std::sin((n + 1) * th) / std::sin(th);
+}
+double cheb_t(int n, double x) { return std::cos(n * std::acos(x)); }
+}  // namespace
+
+TEST(Collocation, NodesAreChebyshevZeros) {
+  for (int n : {2, 8, 20, 64}) {
+    const ChebyshevNodes c = chebyshev_nodes(n);
+    ASSERT_EQ(c.r.size(), n);
+    ASSERT_EQ(c.s.size(), n + 1);
+    for (int i = 0; i < n; ++i) EXPECT_NEAR(std::sin((n + 1) * std::acos(c.r(i))), 0.0, 1e-13);
+    for (int k = 0; k <= n; ++k) EXPECT_NEAR(cheb_t(n + 1, c.s(k)), 0.0, 1e-12);
+    EXPECT_EQ(c.s(n / 2), 0.0);
+  }
+}
+
+TEST(Collocation, WeightsIntegratePolynomialsExactly) {
+  // (1/pi) int sqrt(1-r^2) r^{2m} dr = Gamma(m+1/2) Gamma(3/2) / (pi Gamma(m+2)).
+  const ChebyshevNodes c = chebyshev_nodes(16);
+  for (int m = 0; m < 16; ++m) {
+    double sum = 0.0;
+    for (int i = 0; i < 16; ++i) sum += c.w(i) * std::pow(c.r(i), 2 * m);
+    const double exact = std::tgamma(m + 0.5) * std::tgamma(1.5) / (M_PI * std::tgamma(m + 2.0));
+    EXPECT_NEAR(sum, exact, 1e-15) << "m " << m;
+  }
+}
+
+TEST(Collocation, SingularQuadratureIsExact) {
+  // (1/pi) int sqrt(1-r^2) U_n(r)/(r - s) dr = -T_{n+1}(s) at the zeros of T_{N+1}.
+  const int N = 12;
+  const ChebyshevNodes c = chebyshev_nodes(N);
+  for (int n = 0; n < N; ++n)
+    for (int k = 0; k <= N; ++k) {
+      double sum = 0.0;
+      for (int i = 0; i < N; ++i) sum += c.w(i) * cheb_u(n, c.r(i)) / (c.r(i) - c.s(k));
+      EXPECT_NEAR(sum, -cheb_t(n + 1, c.s(k)), 1e-12);
+    }
+}
+
+TEST(Collocation, HertzKernelSolveMatchesClosedForm) {
+  // k = 0: p = p0 sqrt(1 - r^2) solves the equation, i.e. G = -1 for unit RHS,
+  // so the load is pi a^2 / (2 phi1 R): a^2 = 2 phi1 R P / pi.
+  for (int N : {2, 8, 24, 64}) {
+    const ChebyshevNodes c = chebyshev_nodes(N);
+    const Eigen::VectorXd G = solve_unit_collocation(c, 0.7, [](double) { return 0.0; });
+    for (int j = 0; j < N / 2; ++j) EXPECT_NEAR(G(j), -1.0, 1e-13);
+    Eigen::VectorXd full(N);
+    for (int j = 0; j < N / 2; ++j) full(j) = full(N - 1 - j) = G(j);
+    const Eigen::VectorXd b = u_coefficients(c, full);
+    EXPECT_NEAR(b(0), -1.0, 1e-13);
+    for (int m = 1; m < N; ++m) EXPECT_NEAR(b(m), 0.0, 1e-13);
+    EXPECT_NEAR(u_series(b, 0.3), -1.0, 1e-13);
+    const double phi1 = 0.8, R = 100.0, a = 0.7;
+    const double load = -M_PI * a * a / (phi1 * R) * 2.0 * c.w.head(N / 2).dot(G);
+    EXPECT_NEAR(load, M_PI * a * a / (2.0 * phi1 * R), 1e-15);
+  }
+}
+
+TEST(Collocation, UCoefficientsInterpolate) {
+  const ChebyshevNodes c = chebyshev_nodes(10);
+  Eigen::VectorXd g(10);
+  for (int i = 0; i < 10; ++i) g(i) = 1.0 + c.r(i) * c.r(i) - 3.0 * std::pow(c.r(i), 4);
+  const Eigen::VectorXd b = u_coefficients(c, g);
+  for (double r : {-0.9, -0.2, 0.0, 0.55, 1.0})
+    EXPECT_NEAR(u_series(b, r), 1.0 + r * r - 3.0 * std::pow(r, 4), 1e-13);
+}
+
+TEST(Collocation, RejectsOddOrTinyN) {
+  EXPECT_THROW(chebyshev_nodes(7), std::invalid_argument);
+  EXPECT_THROW(chebyshev_nodes(0), std::invalid_argument);
+  EXPECT_THROW(chebyshev_nodes(-4), std::invalid_argument);
+}

@@ -1,0 +1,120 @@
+// The contact solve: the paper's Table 1, the half-plane limit, equilibrium.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "movingpunch/contact.hpp"
+#include "movingpunch/errors.hpp"
+
+using namespace movingpunch;
+
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+ContactParams paper(double vstar, double kw) {
+  ContactParams p;
+  p.vstar = vstar;
+  p.kw = kw;
+  p.radius = 100.0;
+  p.load = 0.002;
+  p.nu = 0.2;
+  return p;
+}
+}  // namespace
+
+TEST(Contact, PaperTable1) {
+  const double kw[] = {0.1, 1.0, 10.0, kInf};
+  const double static_a[] = {0.372478, 0.330419, 0.315037, 0.311557};
+  const double slow_a[] = {0.372878, 0.330577, 0.315152, 0.311665};
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_NEAR(solve_contact(paper(0.0, kw[i])).a(), static_a[i], 2e-6) << kw[i];
+    EXPECT_NEAR(solve_contact(paper(1e-3, kw[i])).a(), slow_a[i], 2e-6) << kw[i];
+  }
+}
+
+TEST(Contact, HalfPlaneLimit) {
+  for (double v : {0.0, 0.2, 0.4, 0.6}) {
+    ContactParams p = paper(v, kInf);
+    p.radius = 1.0;
+    p.load = 5e-7;
+    const ContactSolution s = solve_contact(p);
+    ASSERT_LE(s.a(), 1e-3);
+    const double hertz = std::sqrt(2.0 * s.phi1() * p.radius * p.load / M_PI);
+    EXPECT_NEAR(s.a() / hertz, 1.0, 1e-5) << "vstar " << v;
+    EXPECT_NEAR(s.p0(), 2.0 / (M_PI * s.a()), 1e-4 * s.p0());
+  }
+}
+
+TEST(Contact, EquilibriumSymmetryAndPositivePressure) {
+  for (double kw : {0.1, 1.0, kInf}) {
+    const ContactSolution s = solve_contact(paper(0.2, kw));
+    // int p dx / (P/h) = 1 by an independent trapezoid rule in theta (x = a cos theta).
+    const int m = 2000;
+    double sum = 0.0;
+    for (int i = 1; i < m; ++i) {
+      const double th = M_PI * i / m;
+      sum += s.pressure(s.a() * std::cos(th)) * std::sin(th);
+    }
+    EXPECT_NEAR(sum * M_PI / m * s.a(), 1.0, 1e-12);
+    for (double x : {0.0, 0.1, 0.2, 0.3}) {
+      EXPECT_NEAR(s.pressure(x), s.pressure(-x), 1e-14);
+      EXPECT_GE(s.pressure(x), 0.0);
+    }
+    EXPECT_EQ(s.pressure(1.01 * s.a()), 0.0);
+    EXPECT_TRUE(s.valid());
+  }
+}
+
+TEST(Contact, SurfaceFollowsThePunchInsideTheContact) {
+  // v(x, 0) = -delta + x^2/(2R) on |x| < a: only the slope is imposed.
+  const ContactSolution s = solve_contact(paper(0.2, 1.0));
+  for (double f : {0.25, 0.5, 0.9, 1.0}) {
+    const double x = f * s.a();
+    EXPECT_NEAR(s.surface_displacement(x), -s.indentation() + x * x / 200.0, 1e-10);
+  }
+  EXPECT_GT(s.indentation(), 0.0);
+}
+
+TEST(Contact, SupercriticalSpeedIsRefused) {
+  try {
+    solve_contact(paper(0.6, 1.0));
+    FAIL() << "no exception";
+  } catch (const SupercriticalSpeedError& e) {
+    EXPECT_NEAR(e.critical(), 0.5716928, 2e-6);
+    EXPECT_NEAR(e.rayleigh(), 0.8299135, 1e-7);
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("0.57169"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("0.82991"), std::string::npos) << msg;
+  }
+}
+
+TEST(Contact, RejectsInvalidParameters) {
+  auto expect_bad = [](ContactParams p, const std::string& name) {
+    try {
+      solve_contact(p);
+      FAIL() << name;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+    }
+  };
+  ContactParams p = paper(0.2, 1.0);
+  p.radius = -1;
+  expect_bad(p, "radius");
+  p = paper(0.2, 1.0);
+  p.load = 0.0;
+  expect_bad(p, "load");
+  p = paper(std::nan(""), 1.0);
+  expect_bad(p, "vstar");
+  p = paper(0.2, -1.0);
+  expect_bad(p, "kw");
+  p = paper(0.2, 1.0);
+  p.nu = 0.5;
+  expect_bad(p, "nu");
+  p = paper(0.2, 1.0);
+  p.tol = 0.0;
+  expect_bad(p, "tol");
+  p = paper(0.2, 1.0);
+  p.radius = kInf;
+  expect_bad(p, "radius");
+}
