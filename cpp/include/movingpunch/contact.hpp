@@ -14,7 +14,7 @@ namespace movingpunch {
 // Dimensionless inputs (h = 1, mu = 1).
 struct ContactParams {
   double vstar = 0;    // rho V^2 / mu, 0 <= vstar < V*_cr
-  double kw = 1;       // k_w h / mu in [0, inf]
+  double kw = 1;       // k_w h / mu in (0, inf]
   double radius = 100; // R / h > 0
   double load = 0.002; // P / (mu h) > 0
   double nu = 0.2;     // Poisson's ratio in [0, 0.5)

@@ -58,7 +58,8 @@ class LayerModel {
  public:
   static constexpr double kSmallT = 0.5;
 
-  // kw = k_w h / mu in [0, inf]; throws std::invalid_argument otherwise.
+  // kw = k_w h / mu in (0, inf] (0, no foundation, has no equilibrium);
+  // throws std::invalid_argument otherwise.
   LayerModel(double vstar, double kw, double nu);
 
   const WaveConstants& constants() const noexcept { return c_; }

@@ -1,0 +1,66 @@
+"""movingpunch: a rigid cylindrical punch sliding over an elastic layer on a
+Winkler foundation (plane strain, steady state, frictionless).
+
+All quantities are dimensionless (layer thickness h = 1, shear modulus mu = 1)::
+
+    import movingpunch as mp
+    s = mp.solve(vstar=0.2, kw=1.0, radius=100.0, load=0.002)
+    s.a, s.p0, s.pressure(0.1)
+
+See README.md for the parameters and docs/theory.md for the method.
+"""
+
+from __future__ import annotations
+
+from importlib.metadata import PackageNotFoundError
+from importlib.metadata import version as _distribution_version
+
+from movingpunch.errors import (
+    ConvergenceError,
+    InvalidParameterError,
+    MovingPunchError,
+    SupercriticalSpeedError,
+    UnphysicalContactError,
+)
+
+try:
+    from movingpunch import _core  # the compiled extension
+except ImportError as exc:  # pragma: no cover - depends on how it was installed
+    raise ImportError(
+        "movingpunch's compiled extension movingpunch._core is missing or "
+        f"cannot be loaded ({exc}). Build and install the package: run "
+        "`pip install .` from the repository or see README"
+    ) from exc
+
+from movingpunch.solver import (
+    Solution,
+    critical_vstar,
+    critical_wavenumber,
+    layer_response,
+    phi1,
+    phi2,
+    rayleigh_vstar,
+    solve,
+)
+
+try:
+    __version__ = _distribution_version("movingpunch")
+except PackageNotFoundError:  # pragma: no cover - running from a source tree
+    __version__ = _core.__version__
+
+__all__ = [
+    "ConvergenceError",
+    "InvalidParameterError",
+    "MovingPunchError",
+    "Solution",
+    "SupercriticalSpeedError",
+    "UnphysicalContactError",
+    "__version__",
+    "critical_vstar",
+    "critical_wavenumber",
+    "layer_response",
+    "phi1",
+    "phi2",
+    "rayleigh_vstar",
+    "solve",
+]

@@ -1,0 +1,60 @@
+"""Exceptions raised by movingpunch.
+
+Pure Python on purpose: the compiled module ``movingpunch._core`` imports these
+classes to translate the core's C++ exceptions, so this module must never
+import ``_core``.
+"""
+
+from __future__ import annotations
+
+__all__ = [
+    "ConvergenceError",
+    "InvalidParameterError",
+    "MovingPunchError",
+    "SupercriticalSpeedError",
+    "UnphysicalContactError",
+]
+
+
+class MovingPunchError(Exception):
+    """Base class of every error movingpunch raises on purpose."""
+
+
+class InvalidParameterError(MovingPunchError, ValueError):
+    """An input is of the wrong type or outside its valid range.
+
+    The message names the parameter and its valid range.
+    """
+
+
+class SupercriticalSpeedError(MovingPunchError, ValueError):
+    """The speed is at or above the critical speed: no bounded steady solution.
+
+    Attributes ``vstar`` (the requested V*), ``critical_vstar`` (V*_cr for the
+    foundation and Poisson's ratio) and ``rayleigh_vstar`` (V*_R) are floats
+    when known, else None.
+    """
+
+    def __init__(
+        self,
+        message: str = "",
+        *,
+        vstar: float | None = None,
+        critical_vstar: float | None = None,
+        rayleigh_vstar: float | None = None,
+    ) -> None:
+        super().__init__(message)
+        self.vstar = vstar
+        self.critical_vstar = critical_vstar
+        self.rayleigh_vstar = rayleigh_vstar
+
+
+class UnphysicalContactError(MovingPunchError, ValueError):
+    """The single-contact solution has p < 0 or the punch penetrates the surface.
+
+    Pass ``allow_unphysical=True`` to get the flagged solution instead.
+    """
+
+
+class ConvergenceError(MovingPunchError, RuntimeError):
+    """An iteration did not meet its tolerance within its budget."""

@@ -1,0 +1,385 @@
+"""Public Python API: validated wrappers around the compiled core.
+
+Every quantity is dimensionless (layer thickness h = 1, shear modulus mu = 1):
+
+========  ==============  =====================================
+name      meaning         valid range
+========  ==============  =====================================
+vstar     rho V^2 / mu    0 <= vstar < V*_cr(kw, nu)
+kw        k_w h / mu      0 < kw <= inf (inf: smooth rigid base)
+radius    R / h           > 0, finite
+load      P / (mu h)      > 0, finite (the paper's mu/(P/h) = 1/load)
+nu        Poisson's ratio 0 <= nu < 0.5
+tol       tolerance       1e-14 <= tol <= 1e-2 (relative, on a/h)
+========  ==============  =====================================
+
+Inputs are checked here first so that messages name the parameter and its
+range; the core checks them again. Computations release the GIL.
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+from collections.abc import Sequence
+from dataclasses import dataclass, field, fields
+from typing import Any, Literal, overload
+
+import numpy as np
+import numpy.typing as npt
+
+from movingpunch import _core
+from movingpunch.errors import InvalidParameterError
+
+__all__ = [
+    "Solution",
+    "critical_vstar",
+    "critical_wavenumber",
+    "layer_response",
+    "phi1",
+    "phi2",
+    "rayleigh_vstar",
+    "solve",
+]
+
+FloatArray = npt.NDArray[np.float64]
+
+# Valid range of each scalar parameter, as shown in error messages.
+_RANGES: dict[str, str] = {
+    "vstar": "0 <= vstar < V*_cr, vstar = rho V^2/mu",
+    "kw": "0 < kw <= inf, kw = k_w h/mu",
+    "radius": "R/h > 0",
+    "load": "P/(mu h) > 0",
+    "nu": "0 <= nu < 0.5",
+    "tol": "1e-14 <= tol <= 1e-2",
+    "t": "t = alpha h >= 0",
+}
+
+_TOL_MIN = 1e-14
+_TOL_MAX = 1e-2
+
+
+def _real(name: str, value: object) -> float:
+    """``value`` as a float if it is a real number (bool, str, None, complex
+    and everything else are rejected)."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
+        raise InvalidParameterError(
+            f"{name} must be a real number ({_RANGES[name]}), got {value!r}"
+        )
+    return float(value)
+
+
+def _fail(name: str, x: float) -> InvalidParameterError:
+    return InvalidParameterError(f"{name} must satisfy {_RANGES[name]}, got {x!r}")
+
+
+def _finite(name: str, value: object) -> float:
+    x = _real(name, value)
+    if not math.isfinite(x):
+        raise InvalidParameterError(
+            f"{name} must be a finite number ({_RANGES[name]}), got {x!r}"
+        )
+    return x
+
+
+def _check_vstar(value: object) -> float:
+    # The upper bound V*_cr(kw, nu) is checked by the core, which raises
+    # SupercriticalSpeedError with the critical and Rayleigh speeds.
+    x = _finite("vstar", value)
+    if x < 0:
+        raise _fail("vstar", x)
+    return x
+
+
+def _check_kw(value: object) -> float:
+    # kw = 0 (no foundation) has no static equilibrium: V*_cr = 0.
+    x = _real("kw", value)
+    if math.isnan(x) or x <= 0:
+        raise _fail("kw", x)
+    return x
+
+
+def _check_positive(name: str, value: object) -> float:
+    x = _finite(name, value)
+    if x <= 0:
+        raise _fail(name, x)
+    return x
+
+
+def _check_nu(value: object) -> float:
+    x = _finite("nu", value)
+    if not 0 <= x < 0.5:
+        raise _fail("nu", x)
+    return x
+
+
+def _check_tol(value: object) -> float:
+    x = _finite("tol", value)
+    if not _TOL_MIN <= x <= _TOL_MAX:
+        raise _fail("tol", x)
+    return x
+
+
+def _check_flag(name: str, value: object) -> bool:
+    if not isinstance(value, (bool, np.bool_)):
+        raise InvalidParameterError(f"{name} must be True or False, got {value!r}")
+    return bool(value)
+
+
+def _as_points(name: str, x: object) -> FloatArray:
+    """``x`` as a float64 array of finite values (any shape)."""
+    try:
+        raw = np.asarray(x)
+    except (TypeError, ValueError) as exc:
+        raise InvalidParameterError(
+            f"{name} must be a real number or an array of them, got {x!r}"
+        ) from exc
+    if raw.dtype.kind not in "iuf":
+        raise InvalidParameterError(
+            f"{name} must be a real number or an array of them, got {x!r}"
+        )
+    points = np.asarray(raw, dtype=np.float64)
+    bad = ~np.isfinite(points)
+    if bad.any():
+        first = float(points[bad].flat[0])
+        raise InvalidParameterError(
+            f"{name} must contain only finite numbers, got {first!r}"
+        )
+    return points
+
+
+def _is_scalar(x: npt.ArrayLike) -> bool:
+    """A plain scalar (not a 0-d array): results for it are floats."""
+    return not isinstance(x, np.ndarray) and np.ndim(x) == 0
+
+
+def _flat(points: FloatArray) -> FloatArray:
+    return np.ascontiguousarray(points.reshape(-1))
+
+
+def _json_safe(value: object) -> object:
+    if isinstance(value, float) and not math.isfinite(value):
+        return str(value)  # "inf", "-inf", "nan"
+    return value
+
+
+@dataclass(frozen=True)
+class Solution:
+    """Solution of the moving-punch contact problem (dimensionless).
+
+    Lengths are in units of the layer thickness h, pressures in units of P/h.
+    """
+
+    vstar: float
+    """V* = rho V^2/mu."""
+    kw: float
+    """k_w h/mu (inf: smooth rigid base)."""
+    radius: float
+    """R/h."""
+    load: float
+    """P/(mu h)."""
+    nu: float
+    """Poisson's ratio."""
+    tol: float
+    """Requested relative tolerance on a/h."""
+    a: float
+    """Contact half-width a/h."""
+    p0: float
+    """Central pressure p(0)/(P/h)."""
+    indentation: float
+    """Indentation delta/h."""
+    critical_vstar: float
+    """Critical speed V*_cr(kw, nu)."""
+    rayleigh_vstar: float
+    """Rayleigh speed V*_R(nu)."""
+    phi1: float
+    """Moving half-plane factor phi1(vstar, nu)."""
+    iterations: int
+    """Load evaluations over all collocation sizes."""
+    collocation_n: int
+    """Number N of collocation nodes of the final solve."""
+    error_estimate: float
+    """Absolute error estimate of a/h."""
+    elapsed: float
+    """Solve time in seconds."""
+    valid: bool
+    """True if p >= 0 on (-a, a) and the punch does not penetrate outside it."""
+    validity: str
+    """Account of the validity checks."""
+    min_pressure: float
+    """Minimum of p/(P/h) on [-a, a]."""
+    min_gap: float
+    """Minimum gap/h between punch and surface on a < |x| <= 3a."""
+    _impl: _core.ContactSolution = field(repr=False, compare=False)
+
+    @property
+    def mu_over_load(self) -> float:
+        """The paper's mu/(P/h) = 1/load (500 for load = 0.002)."""
+        return 1.0 / self.load
+
+    @property
+    def g_coefficients(self) -> FloatArray:
+        """Chebyshev-U coefficients of g(r) = p(a r)/((P/h) sqrt(1 - r^2))."""
+        return self._impl.g_coefficients
+
+    @overload
+    def pressure(self, x: float) -> float: ...
+    @overload
+    def pressure(self, x: npt.NDArray[Any] | Sequence[Any]) -> FloatArray: ...
+    def pressure(self, x: npt.ArrayLike) -> float | FloatArray:
+        """Contact pressure p/(P/h) at x/h (0 outside the contact).
+
+        A float for a scalar ``x``, else an array of the shape of ``x``.
+        """
+        points = _as_points("x", x)
+        values = self._impl.pressure(_flat(points))
+        if _is_scalar(x):
+            return float(values[0])
+        return values.reshape(points.shape)
+
+    @overload
+    def surface_displacement(self, x: float) -> float: ...
+    @overload
+    def surface_displacement(
+        self, x: npt.NDArray[Any] | Sequence[Any]
+    ) -> FloatArray: ...
+    def surface_displacement(self, x: npt.ArrayLike) -> float | FloatArray:
+        """Vertical surface displacement v(x, 0)/h at x/h (negative under the
+        punch). A float for a scalar ``x``, else an array of the shape of ``x``.
+        """
+        points = _as_points("x", x)
+        values = self._impl.surface_displacement(_flat(points))
+        if _is_scalar(x):
+            return float(values[0])
+        return values.reshape(points.shape)
+
+    def to_dict(self) -> dict[str, object]:
+        """Every public field, JSON-safe (non-finite floats become "inf" etc.)."""
+        return {
+            f.name: _json_safe(getattr(self, f.name))
+            for f in fields(self)
+            if not f.name.startswith("_")
+        }
+
+
+def solve(
+    *,
+    vstar: float,
+    kw: float,
+    radius: float,
+    load: float,
+    nu: float = 0.2,
+    tol: float = 1e-8,
+    allow_unphysical: bool = False,
+) -> Solution:
+    """Solves the contact problem of a rigid cylinder sliding over the layer.
+
+    Parameters are dimensionless (see the module docstring). Raises
+    InvalidParameterError (bad input), SupercriticalSpeedError (vstar at or
+    above the critical speed), UnphysicalContactError (p < 0 or penetration,
+    unless ``allow_unphysical``; then the solution comes back with
+    ``valid=False``) and ConvergenceError.
+    """
+    inputs = {
+        "vstar": _check_vstar(vstar),
+        "kw": _check_kw(kw),
+        "radius": _check_positive("radius", radius),
+        "load": _check_positive("load", load),
+        "nu": _check_nu(nu),
+        "tol": _check_tol(tol),
+    }
+    flag = _check_flag("allow_unphysical", allow_unphysical)
+    impl = _core.solve_contact(**inputs, allow_unphysical=flag)
+    return Solution(
+        **inputs,
+        a=impl.a,
+        p0=impl.p0,
+        indentation=impl.indentation,
+        critical_vstar=impl.critical_vstar,
+        rayleigh_vstar=impl.rayleigh_vstar,
+        phi1=impl.phi1,
+        iterations=impl.iterations,
+        collocation_n=impl.collocation_n,
+        error_estimate=impl.error_estimate,
+        elapsed=impl.elapsed,
+        valid=impl.valid,
+        validity=impl.validity,
+        min_pressure=impl.min_pressure,
+        min_gap=impl.min_gap,
+        _impl=impl,
+    )
+
+
+def critical_vstar(kw: float, nu: float = 0.2) -> float:
+    """Critical speed V*_cr(kw, nu): the minimum phase speed of free waves in
+    the layer on springs (the Rayleigh speed for kw = inf)."""
+    return _core.critical_speed(_check_kw(kw), _check_nu(nu))[0]
+
+
+def critical_wavenumber(kw: float, nu: float = 0.2) -> float:
+    """alpha h at which the phase speed is minimal (inf for kw = inf)."""
+    return _core.critical_speed(_check_kw(kw), _check_nu(nu))[1]
+
+
+def rayleigh_vstar(nu: float = 0.2) -> float:
+    """Rayleigh speed V*_R = rho c_R^2/mu."""
+    return _core.rayleigh_vstar(_check_nu(nu))
+
+
+def phi1(vstar: float, nu: float = 0.2) -> float:
+    """Moving half-plane factor phi1 = lim M1 (phi1(0) = 1 - nu); needs
+    vstar < rayleigh_vstar(nu)."""
+    return _core.phi1(_check_vstar(vstar), _check_nu(nu))
+
+
+def phi2(vstar: float, nu: float = 0.2) -> float:
+    """Half-plane limit phi2 = lim M2 of the surface sigma_x response
+    (phi2(0) = 1); needs vstar < rayleigh_vstar(nu)."""
+    return _core.phi2(_check_vstar(vstar), _check_nu(nu))
+
+
+@overload
+def layer_response(
+    t: float,
+    *,
+    vstar: float,
+    kw: float,
+    nu: float = ...,
+    method: Literal["auto", "modal", "transfer"] = ...,
+) -> tuple[float, float]: ...
+@overload
+def layer_response(
+    t: npt.NDArray[Any] | Sequence[Any],
+    *,
+    vstar: float,
+    kw: float,
+    nu: float = ...,
+    method: Literal["auto", "modal", "transfer"] = ...,
+) -> tuple[FloatArray, FloatArray]: ...
+def layer_response(
+    t: npt.ArrayLike,
+    *,
+    vstar: float,
+    kw: float,
+    nu: float = 0.2,
+    method: Literal["auto", "modal", "transfer"] = "auto",
+) -> tuple[float, float] | tuple[FloatArray, FloatArray]:
+    """Surface responses (M1, M2) of the layer per unit transformed pressure
+    at wavenumbers t = alpha h >= 0 (M1 -> phi1, M2 -> phi2 as t -> inf).
+
+    Floats for a scalar ``t``, else two arrays of the shape of ``t``.
+    ``method`` forces one of the two evaluations (for cross-checks).
+    """
+    points = _as_points("t", t)
+    if (points < 0).any():
+        raise _fail("t", float(points[points < 0].flat[0]))
+    if method not in ("auto", "modal", "transfer"):
+        raise InvalidParameterError(
+            f"method must be 'auto', 'modal' or 'transfer', got {method!r}"
+        )
+    m1, m2 = _core.layer_response(
+        _flat(points), _check_vstar(vstar), _check_kw(kw), _check_nu(nu), method
+    )
+    if _is_scalar(t):
+        return float(m1[0]), float(m2[0])
+    return m1.reshape(points.shape), m2.reshape(points.shape)
