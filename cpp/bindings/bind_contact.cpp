@@ -1,5 +1,7 @@
 // The contact solve and its result. Adapters only.
 #include <string>
+#include <tuple>
+#include <utility>
 
 #include <Eigen/Dense>
 #include <pybind11/eigen.h>
@@ -70,6 +72,40 @@ void bind_contact(py::module_& m) {
           "x"_a, Release(),
           "Vertical surface displacement v(x, 0)/h at each x/h (negative under "
           "the punch). x: 1-D float64.")
+      .def(
+          "stress_field",
+          [](const ContactSolution& s, const VectorRef& x, const VectorRef& y) {
+            StressField f = s.stress_field(x, y);
+            return std::make_tuple(std::move(f.sigma_x), std::move(f.sigma_y),
+                                   std::move(f.tau_xy));
+          },
+          "x"_a, "y"_a, Release(),
+          "(sigma_x, sigma_y, tau_xy)/(P/h) on the grid x/h by y/h (-1 <= y <= 0), each "
+          "shaped (len(y), len(x)).")
+      .def(
+          "surface_stress",
+          [](const ContactSolution& s, const VectorRef& x) -> Eigen::VectorXd {
+            return s.surface_stress(x);
+          },
+          "x"_a, Release(), "sigma_x(x, 0)/(P/h) at each x/h.")
+      .def(
+          "depth_stress",
+          [](const ContactSolution& s, const VectorRef& y) -> Eigen::VectorXd {
+            return s.depth_stress(y);
+          },
+          "y"_a, Release(), "sigma_x(0, y)/(P/h) at each y/h in [-1, 0].")
+      .def(
+          "displacement",
+          [](const ContactSolution& s, const VectorRef& x, const VectorRef& y)
+              -> Eigen::MatrixXd { return s.displacement(x, y); },
+          "x"_a, "y"_a, Release(),
+          "Vertical displacement v/h on the grid x/h by y/h, shaped (len(y), len(x)).")
+      .def(
+          "foundation_reaction",
+          [](const ContactSolution& s, const VectorRef& x) -> Eigen::VectorXd {
+            return s.foundation_reaction(x);
+          },
+          "x"_a, Release(), "Pressure of the base on the layer, -sigma_y(x, -h)/(P/h).")
       .def("__repr__", [](const ContactSolution& s) {
         return py::str("<movingpunch._core.ContactSolution a={!r} valid={}>")
             .format(s.a(), s.valid());

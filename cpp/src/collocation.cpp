@@ -61,6 +61,22 @@ Eigen::VectorXd u_coefficients(const ChebyshevNodes& nodes, const Eigen::VectorX
   return b;
 }
 
+double u_series_cosine_transform(const Eigen::VectorXd& b, double a, double alpha) {
+  const double w = alpha * a;
+  if (w < 1e-8) return 0.5 * b(0) * 0.5 * kPi * a;  // J_1(w)/w -> 1/2, higher orders vanish
+  Eigen::Index last = 0;  // highest even n with a non-negligible coefficient
+  const double bmax = b.cwiseAbs().maxCoeff();
+  for (Eigen::Index n = 0; n < b.size(); n += 2)
+    if (std::fabs(b(n)) > 1e-17 * bmax) last = n;
+  double sum = 0.0;
+  for (Eigen::Index n = 0; n <= last; n += 2) {
+    const double sg = (n / 2) % 2 == 0 ? 1.0 : -1.0;
+    sum += b(n) * static_cast<double>(n + 1) * sg *
+           std::cyl_bessel_j(static_cast<double>(n + 1), w);
+  }
+  return sum * 0.5 * kPi * a / w;
+}
+
 double u_series(const Eigen::VectorXd& b, double r) {
   // Clenshaw for U_n: U_{n+1} = 2 r U_n - U_{n-1}, U_0 = 1, U_{-1} = 0.
   double b1 = 0.0, b2 = 0.0;

@@ -214,6 +214,7 @@ ContactSolution solve_contact(const ContactParams& p) {
   sol.phi1_ = phi1;
   sol.n_ = nodes.n;
   sol.kernel_ = prob.kernel_ptr();
+  sol.field_cache_ = std::make_shared<ContactSolution::FieldCache>();
 
   // Final unit solution at the converged a; g normalised by the load.
   Eigen::VectorXd G;
@@ -294,6 +295,59 @@ ContactSolution solve_contact(const ContactParams& p) {
   return sol;
 }
 
+struct ContactSolution::FieldCache {
+  std::mutex mutex;
+  std::shared_ptr<const FieldEvaluator> evaluator;
+};
+
+std::shared_ptr<const FieldEvaluator> ContactSolution::field(double x_extent) const {
+  if (!std::isfinite(x_extent)) throw std::invalid_argument("x must be finite");
+  std::lock_guard<std::mutex> lock(field_cache_->mutex);
+  auto& ev = field_cache_->evaluator;
+  if (!ev || ev->x_extent() < x_extent) {
+    const double extent = std::max({1.25 * x_extent, 4.0 * a_, 2.0, ev ? 2.0 * ev->x_extent() : 0.0});
+    ev = std::make_shared<const FieldEvaluator>(kernel_->model(), a_, b_, kernel_->tol(), extent);
+  }
+  return ev;
+}
+
+namespace {
+double max_abs(const Eigen::Ref<const Eigen::VectorXd>& x) {
+  double m = 0.0;
+  for (Eigen::Index i = 0; i < x.size(); ++i) {
+    if (!std::isfinite(x(i))) throw std::invalid_argument("x must be finite, got " + std::to_string(x(i)));
+    m = std::max(m, std::fabs(x(i)));
+  }
+  return m;
+}
+}  // namespace
+
+StressField ContactSolution::stress_field(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                          const Eigen::Ref<const Eigen::VectorXd>& y) const {
+  return field(max_abs(x))->stresses(x, y);
+}
+
+Eigen::VectorXd ContactSolution::surface_stress(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  const Eigen::VectorXd y0 = Eigen::VectorXd::Zero(1);
+  return stress_field(x, y0).sigma_x.row(0).transpose();
+}
+
+Eigen::VectorXd ContactSolution::depth_stress(const Eigen::Ref<const Eigen::VectorXd>& y) const {
+  const Eigen::VectorXd x0 = Eigen::VectorXd::Zero(1);
+  return stress_field(x0, y).sigma_x.col(0);
+}
+
+Eigen::MatrixXd ContactSolution::displacement(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                              const Eigen::Ref<const Eigen::VectorXd>& y) const {
+  return params_.load * field(max_abs(x))->displacement(x, y);
+}
+
+Eigen::VectorXd ContactSolution::foundation_reaction(
+    const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  const Eigen::VectorXd yb = Eigen::VectorXd::Constant(1, -1.0);
+  return -stress_field(x, yb).sigma_y.row(0).transpose();
+}
+
 double ContactSolution::pressure(double x) const {
   if (std::isnan(x)) throw std::invalid_argument("pressure: x must not be NaN");
   const double r = x / a_;
@@ -317,29 +371,14 @@ static Eigen::Index last_even_term(const Eigen::VectorXd& b) {
 }
 
 // Precomputes w_i f(alpha_i) ptilde(alpha_i) with f = [M1 - phi1 (1 - e^-alpha)]/alpha and
-// ptilde = (a/2) sum b_n pi (n+1) (-1)^{n/2} J_{n+1}(alpha a)/(alpha a), the exact
-// transform of the Chebyshev series of p.
+// ptilde the exact transform of the Chebyshev series of p.
 void ContactSolution::prepare_displacement() {
-  const double a = a_;
-  const Eigen::Index last = last_even_term(b_);
   const AlphaQuadrature& q = kernel_->quadrature();
   smooth_weights_.assign(q.alpha.size(), 0.0);
   for (std::size_t i = 0; i < q.alpha.size(); ++i) {
     const double al = q.alpha[i];
     const double f = (q.m1[i] - phi1_ * (-std::expm1(-al))) / al;
-    const double w = al * a;
-    double pt = 0.0;
-    if (w < 1e-8) {
-      pt = 0.5 * b_(0) * 0.5 * kPi * a;  // J_1(w)/w -> 1/2, higher orders vanish
-    } else {
-      for (Eigen::Index n = 0; n <= last; n += 2) {
-        const double sg = (n / 2) % 2 == 0 ? 1.0 : -1.0;
-        pt += b_(n) * static_cast<double>(n + 1) * sg *
-              std::cyl_bessel_j(static_cast<double>(n + 1), w);
-      }
-      pt *= 0.5 * kPi * a / w;
-    }
-    smooth_weights_[i] = q.weight[i] * f * pt;
+    smooth_weights_[i] = q.weight[i] * f * u_series_cosine_transform(b_, a_, al);
   }
 }
 

@@ -96,14 +96,15 @@ double kronrod_weight(int j, double h) {
 }  // namespace
 
 AlphaQuadrature build_alpha_quadrature(const LayerModel& model, double tol,
-                                       double max_frequency) {
+                                       double max_frequency, double decay) {
   if (!(tol > 0.0)) throw std::invalid_argument("kernel quadrature: tol must be > 0");
   if (!(max_frequency > 0.0) || !std::isfinite(max_frequency))
     throw std::invalid_argument("kernel quadrature: max_frequency must be finite and > 0");
   const double nT = model.constants().nT;
   AlphaQuadrature q;
+  if (!(decay > 0.0)) throw std::invalid_argument("kernel quadrature: decay must be > 0");
   // M1 - phi1 decays like (1 + 4t) exp(-2 nT t): below 1e-18 beyond this.
-  q.alpha_max = (std::log(1e18) + std::log1p(4.0 * 30.0 / nT)) / (2.0 * nT);
+  q.alpha_max = (std::log(1e18) + std::log1p(4.0 * 60.0 / (decay * nT))) / (decay * nT);
   // Panels narrow enough that sin(alpha u) turns at most ~2 radians on one.
   const double width = std::min(1.0, 2.0 / max_frequency);
   const int n0 = std::max(1, static_cast<int>(std::ceil(q.alpha_max / width)));

@@ -63,6 +63,13 @@ WaveConstants wave_constants(double vstar, double nu) {
   const double den = 4.0 - s - 4.0 * X / (1.0 + Y);
   c.phi1 = c.nL / den;
   c.phi2 = (4.0 * X / (1.0 + Y) - 2.0 + 2.0 * (c2 - 2.0) / c2 - s * (c2 - 2.0) / c2) / den;
+  // Half-plane amplitudes: tau(0) = hp1 q + hp2 dT = 0, sigma(0) = -2 hp1 + hp2 dS = -1.
+  {
+    const double q = (1.0 + c.nT * c.nT) / c.nT;
+    const double det = q * c.dS + 2.0 * c.dT;
+    c.hp1 = c.dT / det;
+    c.hp2 = -q / det;
+  }
   c.A << 0.0, 1.0, 1.0, 0.0,                                   //
       -(c2 - 2.0) / c2, 0.0, 0.0, 1.0 / c2,                    //
       4.0 * (c2 - 1.0) / c2 - s, 0.0, 0.0, (c2 - 2.0) / c2,  //
@@ -96,24 +103,26 @@ namespace {
 // The 4 x 4 boundary matrix on the regularised exponential basis (columns:
 // top shear mode, top divided difference, bottom shear mode, bottom divided
 // difference); rows: tau(0), sigma(0), tau(-1), bottom condition.
-Eigen::Matrix4d modal_matrix(const WaveConstants& c, double kw, bool rigid, double t,
-                             Eigen::Matrix4d* top_columns) {
+// The four columns of the regularised exponential basis at depth y.
+Eigen::Matrix4d modal_columns(const WaveConstants& c, double t, double y) {
   const double nT = c.nT, nL = c.nL, d = c.delta;
   auto E = [d](double x) { return d > 0.0 ? std::expm1(d * x) / d : x; };
   const Eigen::Vector4d vTp = shear_vector(nT), vTm = shear_vector(-nT);
   const Eigen::Vector4d dvp(0.0, c.dW, c.dT, c.dS), dvm(0.0, -c.dW, -c.dT, c.dS);
-  auto columns = [&](double y) {
-    Eigen::Matrix4d C;
-    const double et = std::exp(nT * t * y), el = std::exp(nL * t * y);
-    const double yb = y + 1.0;
-    const double ebt = std::exp(-nT * t * yb), ebl = std::exp(-nL * t * yb);
-    C.col(0) = et * vTp;
-    C.col(1) = el * dvp + vTp * (et * E(t * y));
-    C.col(2) = ebt * vTm;
-    C.col(3) = ebl * dvm + vTm * (ebt * E(-t * yb));
-    return C;
-  };
-  const Eigen::Matrix4d top = columns(0.0), bot = columns(-1.0);
+  Eigen::Matrix4d C;
+  const double et = std::exp(nT * t * y), el = std::exp(nL * t * y);
+  const double yb = y + 1.0;
+  const double ebt = std::exp(-nT * t * yb), ebl = std::exp(-nL * t * yb);
+  C.col(0) = et * vTp;
+  C.col(1) = el * dvp + vTp * (et * E(t * y));
+  C.col(2) = ebt * vTm;
+  C.col(3) = ebl * dvm + vTm * (ebt * E(-t * yb));
+  return C;
+}
+
+Eigen::Matrix4d modal_matrix(const WaveConstants& c, double kw, bool rigid, double t,
+                             Eigen::Matrix4d* top_columns) {
+  const Eigen::Matrix4d top = modal_columns(c, t, 0.0), bot = modal_columns(c, t, -1.0);
   Eigen::Matrix4d M;
   M.row(0) = top.row(2);
   M.row(1) = top.row(3);
@@ -126,11 +135,12 @@ Eigen::Matrix4d modal_matrix(const WaveConstants& c, double kw, bool rigid, doub
   return M;
 }
 
-// Transfer matrix exp(-t A) by its Taylor series (t < 0.5, |A| <= 6).
-Eigen::Matrix4d transfer_matrix(const WaveConstants& c, double t) {
+// Transfer matrix exp(-t A) by its Taylor series (t < 0.5, |A| <= 6); with
+// depth y, exp(t y A) (z(y) = exp(t y A) z(0)).
+Eigen::Matrix4d transfer_matrix(const WaveConstants& c, double t, double y = -1.0) {
   Eigen::Matrix4d P = Eigen::Matrix4d::Identity();
   Eigen::Matrix4d term = Eigen::Matrix4d::Identity();
-  const Eigen::Matrix4d B = -t * c.A;
+  const Eigen::Matrix4d B = (t * y) * c.A;
   for (int k = 1; k < 80; ++k) {
     term = term * B / static_cast<double>(k);
     P += term;
@@ -199,6 +209,33 @@ Response LayerModel::response(double t) const {
     throw std::invalid_argument("layer response: t = alpha h must be >= 0");
   if (t < kSmallT) return response_transfer(t);
   return response_modal(t);
+}
+
+ModeField LayerModel::mode_field(double t) const {
+  if (!(t > 0.0) || !std::isfinite(t))
+    throw std::invalid_argument("mode_field: t = alpha h must be finite and > 0");
+  ModeField f;
+  f.c_ = &c_;
+  f.t_ = t;
+  if (t < kSmallT) {
+    const Response r = response_transfer(t);
+    f.transfer_ = true;
+    f.top_ = Eigen::Vector4d(r.U0, r.W0, 0.0, -1.0);
+  } else {
+    const Eigen::Matrix4d M = modal_matrix(c_, kw_, rigid_, t, nullptr);
+    f.amp_ = M.partialPivLu().solve(Eigen::Vector4d(0.0, -1.0, 0.0, 0.0));
+  }
+  return f;
+}
+
+Eigen::Vector4d ModeField::state(double y) const {
+  if (transfer_) return transfer_matrix(*c_, t_, y) * top_;
+  return modal_columns(*c_, t_, y) * amp_;
+}
+
+Eigen::Vector4d ModeField::half_plane_state(double y) const {
+  const Eigen::Matrix4d C = modal_columns(*c_, t_, y);
+  return c_->hp1 * C.col(0) + c_->hp2 * C.col(1);
 }
 
 double LayerModel::dispersion(double t) const {

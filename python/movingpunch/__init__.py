@@ -32,6 +32,7 @@ except ImportError as exc:  # pragma: no cover - depends on how it was installed
         "`pip install .` from the repository or see README"
     ) from exc
 
+from movingpunch.fields import StressField, StressPeaks
 from movingpunch.solver import (
     Solution,
     critical_vstar,
@@ -53,6 +54,8 @@ __all__ = [
     "InvalidParameterError",
     "MovingPunchError",
     "Solution",
+    "StressField",
+    "StressPeaks",
     "SupercriticalSpeedError",
     "UnphysicalContactError",
     "__version__",

@@ -30,6 +30,7 @@ import numpy.typing as npt
 
 from movingpunch import _core
 from movingpunch.errors import InvalidParameterError
+from movingpunch.fields import StressField, StressPeaks, derived_stresses
 
 __all__ = [
     "Solution",
@@ -53,6 +54,7 @@ _RANGES: dict[str, str] = {
     "nu": "0 <= nu < 0.5",
     "tol": "1e-14 <= tol <= 1e-2",
     "t": "t = alpha h >= 0",
+    "y": "-1 <= y <= 0, y/h (the layer)",
 }
 
 _TOL_MIN = 1e-14
@@ -146,6 +148,30 @@ def _as_points(name: str, x: object) -> FloatArray:
             f"{name} must contain only finite numbers, got {first!r}"
         )
     return points
+
+
+def _depths(y: object) -> FloatArray:
+    """``y`` as float64 depths y/h, each in [-1, 0]."""
+    points = _as_points("y", y)
+    bad = (points < -1.0) | (points > 0.0)
+    if bad.any():
+        raise InvalidParameterError(
+            f"y must satisfy {_RANGES['y']}, got {float(points[bad].flat[0])!r}"
+        )
+    return points
+
+
+def _check_positive_extent(value: object) -> float:
+    x = _real_any("extent", value)
+    if not (math.isfinite(x) and x > 0):
+        raise InvalidParameterError(f"extent must be a finite x/h > 0, got {value!r}")
+    return x
+
+
+def _real_any(name: str, value: object) -> float:
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
+        raise InvalidParameterError(f"{name} must be a real number, got {value!r}")
+    return float(value)
 
 
 def _is_scalar(x: npt.ArrayLike) -> bool:
@@ -252,6 +278,124 @@ class Solution:
         if _is_scalar(x):
             return float(values[0])
         return values.reshape(points.shape)
+
+    @overload
+    def surface_stress(self, x: float) -> float: ...
+    @overload
+    def surface_stress(self, x: npt.NDArray[Any] | Sequence[Any]) -> FloatArray: ...
+    def surface_stress(self, x: npt.ArrayLike) -> float | FloatArray:
+        """sigma_x(x, 0)/(P/h) on the top surface at x/h, inside and outside
+        the contact (tension positive)."""
+        points = _as_points("x", x)
+        values = self._impl.surface_stress(_flat(points))
+        return float(values[0]) if _is_scalar(x) else values.reshape(points.shape)
+
+    @overload
+    def depth_stress(self, y: float) -> float: ...
+    @overload
+    def depth_stress(self, y: npt.NDArray[Any] | Sequence[Any]) -> FloatArray: ...
+    def depth_stress(self, y: npt.ArrayLike) -> float | FloatArray:
+        """sigma_x(0, y)/(P/h) under the centre of the punch, y/h in [-1, 0]."""
+        points = _depths(y)
+        values = self._impl.depth_stress(_flat(points))
+        return float(values[0]) if _is_scalar(y) else values.reshape(points.shape)
+
+    def stress_field(self, x: npt.ArrayLike, y: npt.ArrayLike) -> StressField:
+        """All stresses over P/h on the grid ``x`` (x/h) by ``y`` (y/h in
+        [-1, 0]); arrays shaped (len(y), len(x))."""
+        xs = _flat(_as_points("x", x))
+        ys = _flat(_depths(y))
+        sx, sy, txy = self._impl.stress_field(xs, ys)
+        sz, vm, ms = derived_stresses(sx, sy, txy, self.nu)
+        return StressField(
+            x=xs,
+            y=ys,
+            sigma_x=sx,
+            sigma_y=sy,
+            tau_xy=txy,
+            sigma_z=sz,
+            von_mises=vm,
+            max_shear=ms,
+        )
+
+    @overload
+    def displacement(self, x: float, y: float = 0.0) -> float: ...
+    @overload
+    def displacement(
+        self, x: npt.NDArray[Any] | Sequence[Any], y: float = 0.0
+    ) -> FloatArray: ...
+    def displacement(self, x: npt.ArrayLike, y: float = 0.0) -> float | FloatArray:
+        """Vertical displacement v(x, y)/h at x/h and one depth y/h in [-1, 0]
+        (negative downwards)."""
+        points = _as_points("x", x)
+        depth = _depths(y)
+        if depth.ndim != 0:
+            raise InvalidParameterError(f"y must be one depth in [-1, 0], got {y!r}")
+        values = self._impl.displacement(_flat(points), _flat(depth))[0]
+        return float(values[0]) if _is_scalar(x) else values.reshape(points.shape)
+
+    @overload
+    def foundation_reaction(self, x: float) -> float: ...
+    @overload
+    def foundation_reaction(
+        self, x: npt.NDArray[Any] | Sequence[Any]
+    ) -> FloatArray: ...
+    def foundation_reaction(self, x: npt.ArrayLike) -> float | FloatArray:
+        """Pressure the base exerts on the layer, -sigma_y(x, -h)/(P/h)
+        (= -kw v(x, -h)/(P/h) for a finite foundation; the rigid base's
+        contact pressure for kw = inf). Integrates to 1 over x."""
+        points = _as_points("x", x)
+        values = self._impl.foundation_reaction(_flat(points))
+        return float(values[0]) if _is_scalar(x) else values.reshape(points.shape)
+
+    def stress_peaks(self, extent: float | None = None) -> StressPeaks:
+        """Peaks of sigma_x/(P/h): most compressive and most tensile on the
+        top surface, most tensile at the bottom (with their x/h >= 0), and
+        sigma_x at (0, 0) and (0, -h). Searched on 0 <= x <= extent (default
+        max(6 a, 10 h)) on a fine grid, then refined."""
+        span = (
+            max(6.0 * self.a, 10.0)
+            if extent is None
+            else _check_positive_extent(extent)
+        )
+        xs = np.unique(
+            np.concatenate(
+                [
+                    np.linspace(0.0, span, 801),
+                    np.linspace(0.0, min(span, 2.0 * self.a), 201),
+                ]
+            )
+        )
+        top = self._impl.surface_stress(xs)
+        field = self._impl.stress_field(xs, np.array([-1.0]))[0][0]
+
+        def refine(values: FloatArray, sign: float, y: float) -> tuple[float, float]:
+            i = int(np.argmax(sign * values))
+            lo, hi = xs[max(i - 1, 0)], xs[min(i + 1, len(xs) - 1)]
+            fine = np.linspace(lo, hi, 41)
+            vals = (
+                self._impl.surface_stress(fine)
+                if y == 0.0
+                else self._impl.stress_field(fine, np.array([y]))[0][0]
+            )
+            j = int(np.argmax(sign * vals))
+            return float(vals[j]), float(fine[j])
+
+        tc, tcx = refine(top, -1.0, 0.0)
+        tt, ttx = refine(top, 1.0, 0.0)
+        bt, btx = refine(field, 1.0, -1.0)
+        centre = self._impl.depth_stress(np.array([0.0, -1.0]))
+        return StressPeaks(
+            top_compressive=tc,
+            top_compressive_x=tcx,
+            top_tensile=tt,
+            top_tensile_x=ttx,
+            bottom_tensile=bt,
+            bottom_tensile_x=btx,
+            centre_top=float(centre[0]),
+            centre_bottom=float(centre[1]),
+            search_extent=float(span),
+        )
 
     def to_dict(self) -> dict[str, object]:
         """Every public field, JSON-safe (non-finite floats become "inf" etc.)."""

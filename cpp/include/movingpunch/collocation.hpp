@@ -31,4 +31,9 @@ Eigen::VectorXd u_coefficients(const ChebyshevNodes& nodes, const Eigen::VectorX
 // g(r) = sum b_n U_n(r) for |r| <= 1 (Clenshaw).
 double u_series(const Eigen::VectorXd& b, double r);
 
+// Exact cosine transform of p(x) = sqrt(1 - (x/a)^2) g(x/a) on |x| < a, g even:
+// int_0^a p(x) cos(alpha x) dx = (a/2) sum_n b_n pi (n+1) (-1)^{n/2} J_{n+1}(alpha a)/(alpha a)
+// (the Chebyshev-Bessel identity). Odd coefficients are ignored.
+double u_series_cosine_transform(const Eigen::VectorXd& b, double a, double alpha);
+
 }  // namespace movingpunch

@@ -2,12 +2,14 @@
 #pragma once
 
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
 #include <Eigen/Dense>
 
 #include "movingpunch/kernel.hpp"
+#include "movingpunch/stresses.hpp"
 
 namespace movingpunch {
 
@@ -49,6 +51,20 @@ class ContactSolution {
   // Vertical surface displacement v(x, 0)/h (negative under the punch).
   double surface_displacement(double x) const;
   Eigen::VectorXd surface_displacement(const Eigen::Ref<const Eigen::VectorXd>& x) const;
+  // Stresses over P/h on the grid x by y (-1 <= y <= 0), shaped (len(y), len(x)).
+  StressField stress_field(const Eigen::Ref<const Eigen::VectorXd>& x,
+                           const Eigen::Ref<const Eigen::VectorXd>& y) const;
+  // sigma_x(x, 0)/(P/h) and sigma_x(0, y)/(P/h).
+  Eigen::VectorXd surface_stress(const Eigen::Ref<const Eigen::VectorXd>& x) const;
+  Eigen::VectorXd depth_stress(const Eigen::Ref<const Eigen::VectorXd>& y) const;
+  // Vertical displacement v(x, y)/h on the grid x by y, shaped (len(y), len(x)).
+  Eigen::MatrixXd displacement(const Eigen::Ref<const Eigen::VectorXd>& x,
+                               const Eigen::Ref<const Eigen::VectorXd>& y) const;
+  // Pressure of the base on the layer, -sigma_y(x, -h)/(P/h).
+  Eigen::VectorXd foundation_reaction(const Eigen::Ref<const Eigen::VectorXd>& x) const;
+  // The field evaluator covering |x| <= x_extent (built on first use, cached).
+  std::shared_ptr<const FieldEvaluator> field(double x_extent) const;
+
   // Chebyshev-U coefficients of g(r) = p(a r) / ((P/h) sqrt(1 - r^2)).
   const Eigen::VectorXd& g_coefficients() const noexcept { return b_; }
   const KernelK1& kernel() const noexcept { return *kernel_; }
@@ -63,6 +79,8 @@ class ContactSolution {
   double min_p_ = 0, min_gap_ = 0;
   Eigen::VectorXd b_;  // U_n coefficients of g, normalised by P/h
   std::shared_ptr<const KernelK1> kernel_;
+  struct FieldCache;
+  std::shared_ptr<FieldCache> field_cache_;
   // Transform of the pressure at the kernel's alpha nodes, times the smooth
   // Green's-function weight: w_i f(alpha_i) ptilde(alpha_i) (set by the solver).
   std::vector<double> smooth_weights_;

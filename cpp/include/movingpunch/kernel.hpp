@@ -20,9 +20,11 @@ struct AlphaQuadrature {
 };
 
 // Adaptive quadrature nodes for integrals of (M1 - phi1) times an oscillation
-// of frequency up to `max_frequency`, resolved to absolute tolerance `tol`.
+// of frequency up to `max_frequency`, resolved to absolute tolerance `tol`,
+// on [0, alpha_max] where exp(-decay nT alpha) is negligible: decay = 2 for
+// M1 - phi1 at the surface, 1 for the field at the bottom of the layer.
 AlphaQuadrature build_alpha_quadrature(const LayerModel& model, double tol,
-                                       double max_frequency);
+                                       double max_frequency, double decay = 2.0);
 
 class KernelK1 {
  public:

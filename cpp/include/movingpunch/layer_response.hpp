@@ -32,6 +32,35 @@ struct WaveConstants {
   double dW = 0, dT = 0, dS = 0;
   // Rows of the first-order system z' = alpha A z, z = [U, W, tau/alpha, sigma_y/alpha].
   Eigen::Matrix4d A;
+  // Half-plane solution (sigma_y/alpha = -1, tau = 0 at y = 0) on the top
+  // regularised basis: z_hp(y) = hp1 e^{nT t y} v_T + hp2 d(t, y), with
+  // d = e^{nL t y} dv + v_T (e^{nL t y} - e^{nT t y}) / delta. Independent of t.
+  double hp1 = 0, hp2 = 0;
+};
+
+// sigma_x / alpha from the state [U, W, tau/alpha, sigma_y/alpha] (Hooke's law).
+inline double sigma_x_hat(const WaveConstants& c, const Eigen::Vector4d& z) {
+  return 4.0 * (c.c2 - 1.0) / c.c2 * z(0) + (c.c2 - 2.0) / c.c2 * z(3);
+}
+
+// The full solution of one wavenumber, normalised so that sigma_y/alpha = -1
+// and tau = 0 at y = 0 (so its stresses are per unit transformed pressure and
+// its displacements are alpha times the per-unit-pressure values).
+class ModeField {
+ public:
+  // State z(y) = [U, W, tau/alpha, sigma_y/alpha] at -1 <= y <= 0.
+  Eigen::Vector4d state(double y) const;
+  // The half-plane part of the state (the same top load on a half-plane).
+  Eigen::Vector4d half_plane_state(double y) const;
+  double t() const noexcept { return t_; }
+
+ private:
+  friend class LayerModel;
+  const WaveConstants* c_ = nullptr;
+  double t_ = 0;
+  bool transfer_ = false;
+  Eigen::Vector4d top_;  // transfer form: z(0)
+  Eigen::Vector4d amp_;  // modal form: amplitudes of the four columns
 };
 
 // Throws std::invalid_argument unless 0 <= vstar < 1 and 0 <= nu < 0.5.
@@ -77,6 +106,10 @@ class LayerModel {
   // Same, forcing one of the two evaluations (for cross-checks in tests).
   Response response_modal(double t) const;
   Response response_transfer(double t) const;
+
+  // The full solution at t = alpha h > 0 (keeps a pointer to this model's
+  // constants: the model must outlive it).
+  ModeField mode_field(double t) const;
 
   // A function of (t, vstar) that changes sign exactly where a free wave of
   // wavenumber t exists (a real pole of the response). Used by the

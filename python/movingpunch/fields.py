@@ -1,0 +1,82 @@
+"""Result types for stresses: the field on a grid and the peak values.
+
+Pure NumPy on arrays the core computed; no Textual, no _core import.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import numpy.typing as npt
+
+__all__ = ["StressField", "StressPeaks", "derived_stresses"]
+
+FloatArray = npt.NDArray[np.float64]
+
+
+def derived_stresses(
+    sigma_x: FloatArray, sigma_y: FloatArray, tau_xy: FloatArray, nu: float
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """(sigma_z, von_mises, max_shear) of a plane-strain state.
+
+    sigma_z = nu (sigma_x + sigma_y); von Mises from the three normal stresses
+    and tau_xy; max_shear is Tresca's (sigma_max - sigma_min)/2 over the three
+    principal stresses (sigma_z is one of them).
+    """
+    sigma_z = nu * (sigma_x + sigma_y)
+    von_mises = np.sqrt(
+        0.5
+        * (
+            (sigma_x - sigma_y) ** 2
+            + (sigma_y - sigma_z) ** 2
+            + (sigma_z - sigma_x) ** 2
+        )
+        + 3.0 * tau_xy**2
+    )
+    centre = 0.5 * (sigma_x + sigma_y)
+    radius = np.hypot(0.5 * (sigma_x - sigma_y), tau_xy)
+    principal = np.stack([centre + radius, centre - radius, sigma_z])
+    max_shear = 0.5 * (principal.max(axis=0) - principal.min(axis=0))
+    return sigma_z, von_mises, max_shear
+
+
+@dataclass(frozen=True)
+class StressField:
+    """Stresses over P/h on the grid ``x`` (x/h) by ``y`` (y/h, -1 <= y <= 0).
+
+    Every array is shaped (len(y), len(x)); tension is positive.
+    """
+
+    x: FloatArray
+    y: FloatArray
+    sigma_x: FloatArray
+    sigma_y: FloatArray
+    tau_xy: FloatArray
+    sigma_z: FloatArray
+    """Out-of-plane normal stress of plane strain, nu (sigma_x + sigma_y)."""
+    von_mises: FloatArray
+    max_shear: FloatArray
+    """Tresca: half the spread of the three principal stresses."""
+
+
+@dataclass(frozen=True)
+class StressPeaks:
+    """Peak values of sigma_x/(P/h), with their positions x/h (x >= 0; the
+    distributions are even in x)."""
+
+    top_compressive: float
+    """Most compressive (lowest) sigma_x on the top surface."""
+    top_compressive_x: float
+    top_tensile: float
+    """Most tensile (highest) sigma_x on the top surface."""
+    top_tensile_x: float
+    bottom_tensile: float
+    """Most tensile sigma_x on the bottom surface (y = -h)."""
+    bottom_tensile_x: float
+    centre_top: float
+    """sigma_x(0, 0)."""
+    centre_bottom: float
+    """sigma_x(0, -h)."""
+    search_extent: float
+    """The peaks were searched on 0 <= x <= search_extent."""
