@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import math
 import numbers
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, fields
 from typing import Any, Literal, overload
 
@@ -174,6 +174,19 @@ def _real_any(name: str, value: object) -> float:
     return float(value)
 
 
+def _pointwise(
+    name: str,
+    x: npt.ArrayLike,
+    evaluate: Callable[[FloatArray], FloatArray],
+    points: FloatArray | None = None,
+) -> float | FloatArray:
+    """Applies a vectorised core function to ``x``: a float for a scalar
+    ``x``, else an array of the shape of ``x``."""
+    pts = _as_points(name, x) if points is None else points
+    values = evaluate(_flat(pts))
+    return float(values[0]) if _is_scalar(x) else values.reshape(pts.shape)
+
+
 def _is_scalar(x: npt.ArrayLike) -> bool:
     """A plain scalar (not a 0-d array): results for it are floats."""
     return not isinstance(x, np.ndarray) and np.ndim(x) == 0
@@ -257,11 +270,7 @@ class Solution:
 
         A float for a scalar ``x``, else an array of the shape of ``x``.
         """
-        points = _as_points("x", x)
-        values = self._impl.pressure(_flat(points))
-        if _is_scalar(x):
-            return float(values[0])
-        return values.reshape(points.shape)
+        return _pointwise("x", x, self._impl.pressure)
 
     @overload
     def surface_displacement(self, x: float) -> float: ...
@@ -273,11 +282,7 @@ class Solution:
         """Vertical surface displacement v(x, 0)/h at x/h (negative under the
         punch). A float for a scalar ``x``, else an array of the shape of ``x``.
         """
-        points = _as_points("x", x)
-        values = self._impl.surface_displacement(_flat(points))
-        if _is_scalar(x):
-            return float(values[0])
-        return values.reshape(points.shape)
+        return _pointwise("x", x, self._impl.surface_displacement)
 
     @overload
     def surface_stress(self, x: float) -> float: ...
@@ -286,9 +291,7 @@ class Solution:
     def surface_stress(self, x: npt.ArrayLike) -> float | FloatArray:
         """sigma_x(x, 0)/(P/h) on the top surface at x/h, inside and outside
         the contact (tension positive)."""
-        points = _as_points("x", x)
-        values = self._impl.surface_stress(_flat(points))
-        return float(values[0]) if _is_scalar(x) else values.reshape(points.shape)
+        return _pointwise("x", x, self._impl.surface_stress)
 
     @overload
     def depth_stress(self, y: float) -> float: ...
@@ -296,9 +299,7 @@ class Solution:
     def depth_stress(self, y: npt.NDArray[Any] | Sequence[Any]) -> FloatArray: ...
     def depth_stress(self, y: npt.ArrayLike) -> float | FloatArray:
         """sigma_x(0, y)/(P/h) under the centre of the punch, y/h in [-1, 0]."""
-        points = _depths(y)
-        values = self._impl.depth_stress(_flat(points))
-        return float(values[0]) if _is_scalar(y) else values.reshape(points.shape)
+        return _pointwise("y", y, self._impl.depth_stress, points=_depths(y))
 
     def stress_field(self, x: npt.ArrayLike, y: npt.ArrayLike) -> StressField:
         """All stresses over P/h on the grid ``x`` (x/h) by ``y`` (y/h in
@@ -327,12 +328,12 @@ class Solution:
     def displacement(self, x: npt.ArrayLike, y: float = 0.0) -> float | FloatArray:
         """Vertical displacement v(x, y)/h at x/h and one depth y/h in [-1, 0]
         (negative downwards)."""
-        points = _as_points("x", x)
         depth = _depths(y)
         if depth.ndim != 0:
             raise InvalidParameterError(f"y must be one depth in [-1, 0], got {y!r}")
-        values = self._impl.displacement(_flat(points), _flat(depth))[0]
-        return float(values[0]) if _is_scalar(x) else values.reshape(points.shape)
+        return _pointwise(
+            "x", x, lambda xs: self._impl.displacement(xs, _flat(depth))[0]
+        )
 
     @overload
     def foundation_reaction(self, x: float) -> float: ...
@@ -344,9 +345,7 @@ class Solution:
         """Pressure the base exerts on the layer, -sigma_y(x, -h)/(P/h)
         (= -kw v(x, -h)/(P/h) for a finite foundation; the rigid base's
         contact pressure for kw = inf). Integrates to 1 over x."""
-        points = _as_points("x", x)
-        values = self._impl.foundation_reaction(_flat(points))
-        return float(values[0]) if _is_scalar(x) else values.reshape(points.shape)
+        return _pointwise("x", x, self._impl.foundation_reaction)
 
     def stress_peaks(self, extent: float | None = None) -> StressPeaks:
         """Peaks of sigma_x/(P/h): most compressive and most tensile on the

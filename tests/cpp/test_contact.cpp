@@ -6,21 +6,14 @@
 #include <string>
 
 #include "movingpunch/contact.hpp"
+#include "test_helpers.hpp"
 #include "movingpunch/errors.hpp"
 
 using namespace movingpunch;
 
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
-ContactParams paper(double vstar, double kw) {
-  ContactParams p;
-  p.vstar = vstar;
-  p.kw = kw;
-  p.radius = 100.0;
-  p.load = 0.002;
-  p.nu = 0.2;
-  return p;
-}
+using movingpunch::testing::paper;
 }  // namespace
 
 TEST(Contact, PaperTable1) {

@@ -7,23 +7,14 @@
 #include <stdexcept>
 
 #include "movingpunch/contact.hpp"
+#include "test_helpers.hpp"
 
 using namespace movingpunch;
 
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
-ContactParams paper(double vstar, double kw) {
-  ContactParams p;
-  p.vstar = vstar;
-  p.kw = kw;
-  return p;  // radius 100, load 0.002, nu 0.2
-}
-Eigen::VectorXd grid(std::initializer_list<double> v) {
-  Eigen::VectorXd x(static_cast<Eigen::Index>(v.size()));
-  Eigen::Index i = 0;
-  for (double d : v) x(i++) = d;
-  return x;
-}
+using movingpunch::testing::paper;
+const auto grid = [](std::initializer_list<double> v) { return movingpunch::testing::vec(v); };
 }  // namespace
 
 TEST(ModeField, TopStateMatchesResponseAndModesAgree) {
