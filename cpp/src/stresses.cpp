@@ -131,13 +131,9 @@ StressField FieldEvaluator::stresses(const Eigen::Ref<const Eigen::VectorXd>& x,
   f.tau_xy.setZero(ny, nx);
 
   // Layer remainder: per depth, coefficients over alpha times cos/sin(alpha x).
-  Eigen::MatrixXd C(nq, nx), S(nq, nx);
-  for (Eigen::Index q = 0; q < nq; ++q)
-    for (Eigen::Index i = 0; i < nx; ++i) {
-      const double arg = quad_.alpha[static_cast<std::size_t>(q)] * x(i);
-      C(q, i) = std::cos(arg);
-      S(q, i) = std::sin(arg);
-    }
+  const Eigen::Map<const Eigen::VectorXd> alpha(quad_.alpha.data(), nq);
+  const Eigen::ArrayXXd arg = (alpha * x.transpose()).array();
+  const Eigen::MatrixXd C = arg.cos().matrix(), S = arg.sin().matrix();
   Eigen::MatrixXd Rx(ny, nq), Ry(ny, nq), Rt(ny, nq);
   for (Eigen::Index q = 0; q < nq; ++q) {
     const ModeField& m = modes_[static_cast<std::size_t>(q)];
@@ -185,10 +181,11 @@ Eigen::MatrixXd FieldEvaluator::displacement(const Eigen::Ref<const Eigen::Vecto
   const Eigen::Index nx = x.size(), ny = y.size();
   const auto nq = static_cast<Eigen::Index>(quad_.alpha.size());
   // Remainder [W - W_hp (1 - e^-alpha)] / alpha (finite at alpha -> 0).
-  Eigen::MatrixXd C(nq, nx), Rw(ny, nq);
+  const Eigen::Map<const Eigen::VectorXd> alpha(quad_.alpha.data(), nq);
+  const Eigen::MatrixXd C = (alpha * x.transpose()).array().cos().matrix();
+  Eigen::MatrixXd Rw(ny, nq);
   for (Eigen::Index q = 0; q < nq; ++q) {
     const double al = quad_.alpha[static_cast<std::size_t>(q)];
-    for (Eigen::Index i = 0; i < nx; ++i) C(q, i) = std::cos(al * x(i));
     const ModeField& m = modes_[static_cast<std::size_t>(q)];
     const double pw = ptilde_w_[static_cast<std::size_t>(q)];
     for (Eigen::Index j = 0; j < ny; ++j) {
