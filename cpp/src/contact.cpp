@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <complex>
 #include <sstream>
 
 #include "movingpunch/collocation.hpp"
@@ -300,31 +301,16 @@ struct ContactSolution::FieldCache {
   std::shared_ptr<const FieldEvaluator> evaluator;
 };
 
-std::shared_ptr<const FieldEvaluator> ContactSolution::field(double x_extent) const {
-  if (!std::isfinite(x_extent)) throw std::invalid_argument("x must be finite");
+std::shared_ptr<const FieldEvaluator> ContactSolution::field() const {
   std::lock_guard<std::mutex> lock(field_cache_->mutex);
   auto& ev = field_cache_->evaluator;
-  if (!ev || ev->x_extent() < x_extent) {
-    const double extent = std::max({1.25 * x_extent, 4.0 * a_, 2.0, ev ? 2.0 * ev->x_extent() : 0.0});
-    ev = std::make_shared<const FieldEvaluator>(kernel_->model(), a_, b_, kernel_->tol(), extent);
-  }
+  if (!ev) ev = std::make_shared<const FieldEvaluator>(kernel_->model(), a_, b_, kernel_->tol());
   return ev;
 }
 
-namespace {
-double max_abs(const Eigen::Ref<const Eigen::VectorXd>& x) {
-  double m = 0.0;
-  for (Eigen::Index i = 0; i < x.size(); ++i) {
-    if (!std::isfinite(x(i))) throw std::invalid_argument("x must be finite, got " + std::to_string(x(i)));
-    m = std::max(m, std::fabs(x(i)));
-  }
-  return m;
-}
-}  // namespace
-
 StressField ContactSolution::stress_field(const Eigen::Ref<const Eigen::VectorXd>& x,
                                           const Eigen::Ref<const Eigen::VectorXd>& y) const {
-  return field(max_abs(x))->stresses(x, y);
+  return field()->stresses(x, y);
 }
 
 Eigen::VectorXd ContactSolution::surface_stress(const Eigen::Ref<const Eigen::VectorXd>& x) const {
@@ -339,7 +325,7 @@ Eigen::VectorXd ContactSolution::depth_stress(const Eigen::Ref<const Eigen::Vect
 
 Eigen::MatrixXd ContactSolution::displacement(const Eigen::Ref<const Eigen::VectorXd>& x,
                                               const Eigen::Ref<const Eigen::VectorXd>& y) const {
-  return params_.load * field(max_abs(x))->displacement(x, y);
+  return params_.load * field()->displacement(x, y);
 }
 
 Eigen::VectorXd ContactSolution::foundation_reaction(
@@ -370,16 +356,18 @@ static Eigen::Index last_even_term(const Eigen::VectorXd& b) {
   return last;
 }
 
-// Precomputes w_i f(alpha_i) ptilde(alpha_i) with f = [M1 - phi1 (1 - e^-alpha)]/alpha and
-// ptilde the exact transform of the Chebyshev series of p.
+// Precomputes the Filon coefficients of f(alpha) ptilde(alpha), f = [M1 - phi1 (1 -
+// e^-alpha)]/alpha and ptilde the exact transform of the Chebyshev series of p.
 void ContactSolution::prepare_displacement() {
   const AlphaQuadrature& q = kernel_->quadrature();
-  smooth_weights_.assign(q.alpha.size(), 0.0);
+  std::vector<double> g(q.alpha.size());
   for (std::size_t i = 0; i < q.alpha.size(); ++i) {
     const double al = q.alpha[i];
     const double f = (q.m1[i] - phi1_ * (-std::expm1(-al))) / al;
-    smooth_weights_[i] = q.weight[i] * f * u_series_cosine_transform(b_, a_, al);
+    g[i] = f * u_series_cosine_transform(b_, a_, al);
   }
+  filon_ = std::make_shared<const FilonIntegrator>(q);
+  smooth_coef_ = filon_->coefficients(g);
 }
 
 // (1/pi) int p(xi)/(P/h) G(x - xi) d xi with G(u) = int_0^inf (M1/alpha) cos(alpha u)
@@ -388,11 +376,9 @@ double ContactSolution::greens_integral(double x) const {
   const double a = a_;
   const Eigen::Index nb = b_.size();
   const Eigen::Index last = last_even_term(b_);
-  const AlphaQuadrature& q = kernel_->quadrature();
-  double smooth = 0.0;
-  for (std::size_t i = 0; i < q.alpha.size(); ++i)
-    smooth += smooth_weights_[i] * std::cos(q.alpha[i] * x);
-  smooth *= 2.0 / kPi;
+  std::vector<std::complex<double>> K;
+  filon_->weights(x, K);
+  const double smooth = 2.0 / kPi * FilonIntegrator::apply(K, smooth_coef_).real();
 
   // Log part: -(phi1/pi) int p ln|x - xi| = -phi1 a [ln a (b0/2) + sum b_n L_n(s)].
   const double s = x / a;

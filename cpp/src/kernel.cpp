@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <array>
+#include <map>
+
+#include <Eigen/Dense>
 #include <stdexcept>
 
 #include "movingpunch/errors.hpp"
@@ -133,6 +137,8 @@ AlphaQuadrature build_alpha_quadrature(const LayerModel& model, double tol,
   q.alpha.reserve(done.size() * 15);
   for (const Panel& p : done) {
     const double h = 0.5 * (p.hi - p.lo);
+    q.panel_centre.push_back(0.5 * (p.lo + p.hi));
+    q.panel_half.push_back(h);
     for (int j = 0; j < 15; ++j) {
       q.alpha.push_back(p.nodes[j]);
       q.weight.push_back(kronrod_weight(j, h));
@@ -141,6 +147,98 @@ AlphaQuadrature build_alpha_quadrature(const LayerModel& model, double tol,
     q.error_estimate += p.error;
   }
   return q;
+}
+
+namespace {
+
+// Inverse of V(j, k) = P_k(t_j) at the 15 Kronrod nodes t_j in [-1, 1]
+// (ascending): maps nodal values to Legendre coefficients.
+const Eigen::Matrix<double, 15, 15>& legendre_from_nodes() {
+  static const Eigen::Matrix<double, 15, 15> inv = [] {
+    Eigen::Matrix<double, 15, 15> V;
+    for (int j = 0; j < 15; ++j) {
+      const int k = j < 7 ? j : (j == 7 ? 7 : 14 - j);
+      const double t = (j < 7 ? -1.0 : 1.0) * kXgk[k];
+      double p0 = 1.0, p1 = t;
+      V(j, 0) = p0;
+      V(j, 1) = p1;
+      for (int n = 1; n < 14; ++n) {
+        const double p2 = ((2 * n + 1) * t * p1 - n * p0) / (n + 1);
+        V(j, n + 1) = p2;
+        p0 = p1;
+        p1 = p2;
+      }
+    }
+    return Eigen::Matrix<double, 15, 15>(V.inverse());
+  }();
+  return inv;
+}
+
+// Spherical Bessel functions j_0 .. j_14 at z >= 0. Above the largest order the
+// upward recurrence from j_0 = sin z / z is stable (and works for any z, where
+// the library's own routine gives up); below it the library is exact.
+std::array<double, 15> spherical_bessel(double z) {
+  std::array<double, 15> j{};
+  if (z == 0.0) {
+    j[0] = 1.0;
+    return j;
+  }
+  if (z > 15.0) {
+    const double s = std::sin(z), c = std::cos(z);
+    j[0] = s / z;
+    j[1] = s / (z * z) - c / z;
+    for (unsigned k = 1; k < 14; ++k) j[k + 1] = (2.0 * k + 1.0) / z * j[k] - j[k - 1];
+    return j;
+  }
+  for (unsigned k = 0; k < 15; ++k) j[k] = std::sph_bessel(k, z);
+  return j;
+}
+
+}  // namespace
+
+FilonIntegrator::FilonIntegrator(const AlphaQuadrature& q)
+    : centre_(q.panel_centre), half_(q.panel_half) {}
+
+std::vector<double> FilonIntegrator::coefficients(const std::vector<double>& g) const {
+  if (g.size() != centre_.size() * 15)
+    throw std::invalid_argument("Filon: one value per quadrature node expected");
+  const auto& inv = legendre_from_nodes();
+  std::vector<double> c(g.size());
+  for (std::size_t p = 0; p < centre_.size(); ++p) {
+    const Eigen::Map<const Eigen::Matrix<double, 15, 1>> v(g.data() + 15 * p);
+    Eigen::Map<Eigen::Matrix<double, 15, 1>> out(c.data() + 15 * p);
+    out = inv * v;
+  }
+  return c;
+}
+
+void FilonIntegrator::weights(double x, std::vector<cplx>& K) const {
+  // int_{c-h}^{c+h} P_k((alpha - c)/h) e^{i alpha x} = h e^{i c x} 2 i^k j_k(h x).
+  K.resize(centre_.size() * 15);
+  std::map<double, std::array<double, 15>> bessel;  // per distinct half-width
+  const cplx ipow[4] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
+  const double ax = std::fabs(x), sgn = x < 0.0 ? -1.0 : 1.0;
+  for (std::size_t p = 0; p < centre_.size(); ++p) {
+    const double h = half_[p];
+    auto it = bessel.find(h);
+    if (it == bessel.end()) {
+      it = bessel.emplace(h, spherical_bessel(h * ax)).first;
+    }
+    const cplx phase = h * std::exp(cplx(0.0, centre_[p] * x));
+    for (int k = 0; k < 15; ++k) {
+      // j_k(-z) = (-1)^k j_k(z)
+      const double jk = (k % 2 == 1 && sgn < 0.0) ? -it->second[static_cast<std::size_t>(k)]
+                                                  : it->second[static_cast<std::size_t>(k)];
+      K[15 * p + static_cast<std::size_t>(k)] = phase * (2.0 * jk) * ipow[k % 4];
+    }
+  }
+}
+
+FilonIntegrator::cplx FilonIntegrator::apply(const std::vector<cplx>& K,
+                                             const std::vector<double>& c) {
+  cplx sum = 0.0;
+  for (std::size_t i = 0; i < K.size(); ++i) sum += K[i] * c[i];
+  return sum;
 }
 
 KernelK1::KernelK1(const LayerModel& model, double tol, double range)

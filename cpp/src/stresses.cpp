@@ -89,29 +89,56 @@ cplx z_of(double x, double n, double y, double a) {
 }  // namespace
 
 FieldEvaluator::FieldEvaluator(const LayerModel& model, double a, const Eigen::VectorXd& b,
-                               double tol, double x_extent)
-    : model_(std::make_shared<const LayerModel>(model)), a_(a), b_(b), x_extent_(x_extent) {
+                               double tol)
+    : model_(std::make_shared<const LayerModel>(model)), a_(a), b_(b) {
   if (!(a > 0.0) || !std::isfinite(a)) throw std::invalid_argument("field: a must be > 0");
-  if (!(x_extent > 0.0) || !std::isfinite(x_extent))
-    throw std::invalid_argument("field: x_extent must be finite and > 0");
   for (Eigen::Index n = 1; n < b_.size(); n += 2) b_(n) = 0.0;
-  quad_ = build_alpha_quadrature(*model_, tol, x_extent + a, 1.0);
+  // Panels resolve the remainder and the transform of p (frequency a); the
+  // oscillation in x is integrated exactly by the Filon rule.
+  quad_ = build_alpha_quadrature(*model_, tol, 2.0 * a, 1.0);
+  filon_ = std::make_unique<FilonIntegrator>(quad_);
   const std::size_t nq = quad_.alpha.size();
-  ptilde_w_.resize(nq);
+  ptilde_.resize(nq);
   modes_.reserve(nq);
   for (std::size_t q = 0; q < nq; ++q) {
-    ptilde_w_[q] = 2.0 / kPi * quad_.weight[q] *
-                   u_series_cosine_transform(b_, a_, quad_.alpha[q]);
+    ptilde_[q] = 2.0 / kPi * u_series_cosine_transform(b_, a_, quad_.alpha[q]);
     modes_.push_back(model_->mode_field(quad_.alpha[q]));
   }
 }
 
+Eigen::MatrixXd FieldEvaluator::transform(const Eigen::MatrixXd& values, bool sine,
+                                          const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  // Legendre coefficients of every column, then blocks of x against them.
+  const Eigen::Index m = values.rows(), ncol = values.cols();
+  Eigen::MatrixXd coef(m, ncol);
+  std::vector<double> col(static_cast<std::size_t>(m));
+  for (Eigen::Index c = 0; c < ncol; ++c) {
+    Eigen::Map<Eigen::VectorXd>(col.data(), m) = values.col(c);
+    const std::vector<double> k = filon_->coefficients(col);
+    coef.col(c) = Eigen::Map<const Eigen::VectorXd>(k.data(), m);
+  }
+  Eigen::MatrixXd out(x.size(), ncol);
+  constexpr Eigen::Index kBlock = 256;
+  std::vector<std::complex<double>> K;
+  for (Eigen::Index start = 0; start < x.size(); start += kBlock) {
+    const Eigen::Index nb = std::min(kBlock, x.size() - start);
+    Eigen::MatrixXd W(nb, m);
+    for (Eigen::Index i = 0; i < nb; ++i) {
+      filon_->weights(x(start + i), K);
+      for (Eigen::Index j = 0; j < m; ++j)
+        W(i, j) = sine ? K[static_cast<std::size_t>(j)].imag() : K[static_cast<std::size_t>(j)].real();
+    }
+    out.middleRows(start, nb) = W * coef;
+  }
+  return out;
+}
+
 namespace {
 void check_grid(const Eigen::Ref<const Eigen::VectorXd>& x,
-                const Eigen::Ref<const Eigen::VectorXd>& y, double extent) {
+                const Eigen::Ref<const Eigen::VectorXd>& y) {
   for (Eigen::Index i = 0; i < x.size(); ++i)
-    if (!std::isfinite(x(i)) || std::fabs(x(i)) > extent * (1 + 1e-12))
-      throw std::invalid_argument("field: x must be finite and within the evaluator's extent");
+    if (!std::isfinite(x(i)))
+      throw std::invalid_argument("x must be finite, got " + std::to_string(x(i)));
   for (Eigen::Index j = 0; j < y.size(); ++j)
     if (!(y(j) >= -1.0 && y(j) <= 0.0))
       throw std::invalid_argument("y must be in [-1, 0] (y/h, the layer), got " +
@@ -121,7 +148,7 @@ void check_grid(const Eigen::Ref<const Eigen::VectorXd>& x,
 
 StressField FieldEvaluator::stresses(const Eigen::Ref<const Eigen::VectorXd>& x,
                                      const Eigen::Ref<const Eigen::VectorXd>& y) const {
-  check_grid(x, y, x_extent_);
+  check_grid(x, y);
   const WaveConstants& c = model_->constants();
   const Eigen::Index nx = x.size(), ny = y.size();
   const auto nq = static_cast<Eigen::Index>(quad_.alpha.size());
@@ -130,24 +157,24 @@ StressField FieldEvaluator::stresses(const Eigen::Ref<const Eigen::VectorXd>& x,
   f.sigma_y.setZero(ny, nx);
   f.tau_xy.setZero(ny, nx);
 
-  // Layer remainder: per depth, coefficients over alpha times cos/sin(alpha x).
-  const Eigen::Map<const Eigen::VectorXd> alpha(quad_.alpha.data(), nq);
-  const Eigen::ArrayXXd arg = (alpha * x.transpose()).array();
-  const Eigen::MatrixXd C = arg.cos().matrix(), S = arg.sin().matrix();
-  Eigen::MatrixXd Rx(ny, nq), Ry(ny, nq), Rt(ny, nq);
+  // Layer remainder: per depth, values over alpha, then their transforms in x.
+  Eigen::MatrixXd Rx(nq, ny), Ry(nq, ny), Rt(nq, ny);
   for (Eigen::Index q = 0; q < nq; ++q) {
     const ModeField& m = modes_[static_cast<std::size_t>(q)];
-    const double pw = ptilde_w_[static_cast<std::size_t>(q)];
+    const double pt = ptilde_[static_cast<std::size_t>(q)];
     for (Eigen::Index j = 0; j < ny; ++j) {
       const Eigen::Vector4d r = m.state(y(j)) - m.half_plane_state(y(j));
-      Rx(j, q) = pw * sigma_x_hat(c, r);
-      Ry(j, q) = pw * r(3);
-      Rt(j, q) = pw * r(2);
+      Rx(q, j) = pt * sigma_x_hat(c, r);
+      Ry(q, j) = pt * r(3);
+      Rt(q, j) = pt * r(2);
     }
   }
-  f.sigma_x = Rx * C;
-  f.sigma_y = Ry * C;
-  f.tau_xy = Rt * S;
+  Eigen::MatrixXd cosv(nq, 2 * ny);
+  cosv << Rx, Ry;
+  const Eigen::MatrixXd cos_part = transform(cosv, false, x);  // (nx, 2 ny)
+  f.sigma_x = cos_part.leftCols(ny).transpose();
+  f.sigma_y = cos_part.rightCols(ny).transpose();
+  f.tau_xy = transform(Rt, true, x).transpose();
 
   // Half-plane part in closed form. State of the half-plane mode mix:
   // hp1 e_T v_T + hp2 [e_L dv + v_T (e_L - e_T)/delta].
@@ -176,24 +203,22 @@ StressField FieldEvaluator::stresses(const Eigen::Ref<const Eigen::VectorXd>& x,
 
 Eigen::MatrixXd FieldEvaluator::displacement(const Eigen::Ref<const Eigen::VectorXd>& x,
                                              const Eigen::Ref<const Eigen::VectorXd>& y) const {
-  check_grid(x, y, x_extent_);
+  check_grid(x, y);
   const WaveConstants& c = model_->constants();
   const Eigen::Index nx = x.size(), ny = y.size();
   const auto nq = static_cast<Eigen::Index>(quad_.alpha.size());
   // Remainder [W - W_hp (1 - e^-alpha)] / alpha (finite at alpha -> 0).
-  const Eigen::Map<const Eigen::VectorXd> alpha(quad_.alpha.data(), nq);
-  const Eigen::MatrixXd C = (alpha * x.transpose()).array().cos().matrix();
-  Eigen::MatrixXd Rw(ny, nq);
+  Eigen::MatrixXd Rw(nq, ny);
   for (Eigen::Index q = 0; q < nq; ++q) {
     const double al = quad_.alpha[static_cast<std::size_t>(q)];
     const ModeField& m = modes_[static_cast<std::size_t>(q)];
-    const double pw = ptilde_w_[static_cast<std::size_t>(q)];
+    const double pt = ptilde_[static_cast<std::size_t>(q)];
     for (Eigen::Index j = 0; j < ny; ++j) {
       const double w = m.state(y(j))(1), whp = m.half_plane_state(y(j))(1);
-      Rw(j, q) = pw * (w + whp * std::expm1(-al)) / al;
+      Rw(q, j) = pt * (w + whp * std::expm1(-al)) / al;
     }
   }
-  Eigen::MatrixXd v = Rw * C;
+  Eigen::MatrixXd v = transform(Rw, false, x).transpose();
   // Half-plane part: int (1 - e^-alpha) e^{n alpha y} / alpha cos(alpha u) = Re ln((p+1)/p):
   // V(z) = a sum b_n [L_n(z + i/a) - L_n(z)], V'(z) = a [Phi(z + i/a) - Phi(z)].
   const double nT = c.nT, nL = c.nL, d = c.delta;

@@ -1,5 +1,7 @@
 """Command-line interface: ``movingpunch solve ...`` and ``movingpunch critical ...``.
 
+``solve --stress`` adds the peaks of sigma_x/(P/h) (``Solution.stress_peaks``).
+
 Bad arguments and every MovingPunchError/ValueError end in one line
 ``movingpunch: error: ...`` on stderr and exit status 2, never a traceback.
 """
@@ -7,6 +9,7 @@ Bad arguments and every MovingPunchError/ValueError end in one line
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import io
 import json
 import math
@@ -15,6 +18,7 @@ from collections.abc import Callable, Sequence
 from typing import NoReturn
 
 from movingpunch.errors import MovingPunchError
+from movingpunch.fields import StressPeaks
 from movingpunch.solver import (
     Solution,
     critical_vstar,
@@ -110,6 +114,13 @@ def _build_parser() -> argparse.ArgumentParser:
         help="return a solution with p < 0 or penetration, flagged invalid, "
         "instead of failing",
     )
+    solve_p.add_argument(
+        "--stress",
+        action="store_true",
+        help="also print the peaks of sigma_x/(P/h): most compressive and most "
+        "tensile on the top surface, most tensile at the bottom (with their x/h), "
+        "and sigma_x(0, 0), sigma_x(0, -h)",
+    )
     solve_p.add_argument("--json", action="store_true", help="print JSON")
     solve_p.set_defaults(handler=_cmd_solve)
 
@@ -167,8 +178,12 @@ def _cmd_solve(args: argparse.Namespace) -> int:
         tol=args.tol,
         allow_unphysical=args.allow_unphysical,
     )
+    peaks = s.stress_peaks() if args.stress else None
     if args.json:
-        print(json.dumps(s.to_dict(), indent=2))
+        data = s.to_dict()
+        if peaks is not None:
+            data["stress"] = dataclasses.asdict(peaks)
+        print(json.dumps(data, indent=2))
         return 0
     inputs = [
         ("V* = ρV²/μ", _fmt(s.vstar)),
@@ -193,8 +208,26 @@ def _cmd_solve(args: argparse.Namespace) -> int:
         ("valid", "yes" if s.valid else "NO"),
         ("validity", s.validity or "-"),
     ]
-    print(_tables(("Inputs", inputs), ("Results", results)))
+    sections = [("Inputs", inputs), ("Results", results)]
+    if peaks is not None:
+        sections.append(("Stress sigma_x/(P/h)", _stress_rows(peaks)))
+    print(_tables(*sections))
     return 0
+
+
+def _stress_rows(peaks: StressPeaks) -> list[tuple[str, str]]:
+    """Rows of the stress section: the peaks of sigma_x/(P/h) with their x/h."""
+    return [
+        ("top, most compressive", _fmt(peaks.top_compressive)),
+        ("top, most compressive x/h", _fmt(peaks.top_compressive_x)),
+        ("top, most tensile", _fmt(peaks.top_tensile)),
+        ("top, most tensile x/h", _fmt(peaks.top_tensile_x)),
+        ("bottom, most tensile", _fmt(peaks.bottom_tensile)),
+        ("bottom, most tensile x/h", _fmt(peaks.bottom_tensile_x)),
+        ("centre, top (0, 0)", _fmt(peaks.centre_top)),
+        ("centre, bottom (0, -h)", _fmt(peaks.centre_bottom)),
+        ("searched on 0 <= x/h <=", _fmt(peaks.search_extent)),
+    ]
 
 
 def _cmd_critical(args: argparse.Namespace) -> int:

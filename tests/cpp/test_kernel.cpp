@@ -2,7 +2,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <complex>
 #include <limits>
+#include <vector>
 
 #include "movingpunch/kernel.hpp"
 
@@ -71,4 +73,25 @@ TEST(Kernel, ResolvesTheSharpPeakNearTheCriticalSpeed) {
     scale += q.weight[i] * std::fabs(q.m1[i] - m.phi1()) / m.phi1();
   EXPECT_GT(scale, 100.0);
   EXPECT_LT(q.error_estimate, 1e-8 * scale);
+}
+
+TEST(Filon, ExactFourierIntegralsOfPolynomialsAndSmoothFunctions) {
+  // g(alpha) = exp(-alpha) on the quadrature's panels: int_0^A e^{-alpha} e^{i alpha x}
+  // = (1 - e^{-(1 - i x) A}) / (1 - i x), exactly, for small and huge x.
+  const LayerModel m(0.2, 1.0, 0.2);
+  const AlphaQuadrature q = build_alpha_quadrature(m, 1e-10, 1.0);
+  const FilonIntegrator f(q);
+  std::vector<double> g(q.alpha.size());
+  for (std::size_t i = 0; i < g.size(); ++i) g[i] = std::exp(-q.alpha[i]);
+  const std::vector<double> c = f.coefficients(g);
+  const double A = q.panel_centre.back() + q.panel_half.back();
+  std::vector<std::complex<double>> K;
+  for (double x : {0.0, 0.3, 7.0, 150.0, 1e4, 1e7, -3.0}) {
+    f.weights(x, K);
+    const std::complex<double> got = FilonIntegrator::apply(K, c);
+    const std::complex<double> s(1.0, -x);
+    const std::complex<double> want = (1.0 - std::exp(-s * A)) / s;
+    EXPECT_NEAR(got.real(), want.real(), 1e-12) << "x " << x;
+    EXPECT_NEAR(got.imag(), want.imag(), 1e-12) << "x " << x;
+  }
 }

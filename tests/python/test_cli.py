@@ -1,7 +1,9 @@
-"""The command-line interface, run as a user would: in a subprocess."""
+"""The command-line interface, run as a user would: in a subprocess (the
+stress peaks are compared with the Python API in this process)."""
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import re
 import subprocess
@@ -9,6 +11,8 @@ import sys
 from pathlib import Path
 
 import pytest
+
+import movingpunch as mp
 
 PAPER_CASE = ["--vstar", "0.2", "--kw", "1", "--radius", "100", "--load", "0.002"]
 
@@ -110,6 +114,73 @@ def test_solve_json_rigid_base_is_json_safe() -> None:
     assert proc.returncode == 0, proc.stderr
     data = json.loads(proc.stdout)
     assert data["kw"] == "inf"
+
+
+STRESS_ROWS = {
+    # table label: StressPeaks field
+    "top, most compressive": "top_compressive",
+    "top, most compressive x/h": "top_compressive_x",
+    "top, most tensile": "top_tensile",
+    "top, most tensile x/h": "top_tensile_x",
+    "bottom, most tensile": "bottom_tensile",
+    "bottom, most tensile x/h": "bottom_tensile_x",
+    "centre, top (0, 0)": "centre_top",
+    "centre, bottom (0, -h)": "centre_bottom",
+}
+
+
+def _peaks() -> dict[str, float]:
+    sol = mp.solve(vstar=0.2, kw=1.0, radius=100.0, load=0.002)
+    return dataclasses.asdict(sol.stress_peaks())
+
+
+def test_solve_stress_table() -> None:
+    proc = run("solve", *PAPER_CASE, "--stress")
+    assert proc.returncode == 0, proc.stderr
+    out = proc.stdout
+    assert "Stress sigma_x/(P/h)" in out
+    want = _peaks()
+    for label, key in STRESS_ROWS.items():
+        row = re.search(rf"^\s*{re.escape(label)}\s+(\S+)\s*$", out, re.MULTILINE)
+        assert row, f"no row {label!r} in:\n{out}"
+        # Printed with 10 significant digits.
+        assert float(row.group(1)) == pytest.approx(want[key], rel=1e-9, abs=1e-12)
+    # The paper's case: tension outside the contact and at the bottom,
+    # compression under the punch.
+    assert number_after("top, most tensile", out) > 0
+    assert number_after("bottom, most tensile", out) > 0
+    assert number_after("top, most compressive", out) < 0
+    assert number_after("a/h", out) == pytest.approx(0.37288, abs=1e-5)
+
+
+def test_solve_stress_json() -> None:
+    proc = run("solve", *PAPER_CASE, "--stress", "--json")
+    assert proc.returncode == 0, proc.stderr
+    data = json.loads(proc.stdout)
+    assert data["a"] == pytest.approx(0.37288, abs=1e-5)
+    stress = data["stress"]
+    want = _peaks()
+    assert set(stress) == set(want)
+    for key, value in want.items():
+        assert stress[key] == pytest.approx(value, rel=1e-12, abs=1e-14), key
+    assert stress["top_tensile_x"] > data["a"]
+
+
+def test_solve_without_stress_prints_no_stress() -> None:
+    proc = run("solve", *PAPER_CASE, "--json")
+    assert proc.returncode == 0, proc.stderr
+    assert "stress" not in json.loads(proc.stdout)
+    table = run("solve", *PAPER_CASE)
+    assert "sigma_x" not in table.stdout
+
+
+def test_solve_stress_rigid_base_json() -> None:
+    rigid = replace(replace(PAPER_CASE, "--vstar", "0"), "--kw", "inf")
+    proc = run("solve", *rigid, "--stress", "--json")
+    assert proc.returncode == 0, proc.stderr
+    data = json.loads(proc.stdout)
+    assert data["kw"] == "inf"
+    assert data["stress"]["centre_top"] < 0
 
 
 def test_critical() -> None:

@@ -62,8 +62,8 @@ class ContactSolution {
                                const Eigen::Ref<const Eigen::VectorXd>& y) const;
   // Pressure of the base on the layer, -sigma_y(x, -h)/(P/h).
   Eigen::VectorXd foundation_reaction(const Eigen::Ref<const Eigen::VectorXd>& x) const;
-  // The field evaluator covering |x| <= x_extent (built on first use, cached).
-  std::shared_ptr<const FieldEvaluator> field(double x_extent) const;
+  // The field evaluator (built on first use, then shared).
+  std::shared_ptr<const FieldEvaluator> field() const;
 
   // Chebyshev-U coefficients of g(r) = p(a r) / ((P/h) sqrt(1 - r^2)).
   const Eigen::VectorXd& g_coefficients() const noexcept { return b_; }
@@ -81,9 +81,10 @@ class ContactSolution {
   std::shared_ptr<const KernelK1> kernel_;
   struct FieldCache;
   std::shared_ptr<FieldCache> field_cache_;
-  // Transform of the pressure at the kernel's alpha nodes, times the smooth
-  // Green's-function weight: w_i f(alpha_i) ptilde(alpha_i) (set by the solver).
-  std::vector<double> smooth_weights_;
+  // Filon coefficients of f(alpha) ptilde(alpha) on the kernel's panels, with
+  // f = [M1 - phi1 (1 - e^-alpha)]/alpha the smooth part of the Green's function.
+  std::shared_ptr<const FilonIntegrator> filon_;
+  std::vector<double> smooth_coef_;
   // Helpers for displacement: (1/pi) int p(xi) G(x - xi) d xi.
   double greens_integral(double x) const;
   void prepare_displacement();

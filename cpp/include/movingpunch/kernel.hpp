@@ -5,6 +5,7 @@
 // alpha and tabulated as an odd Chebyshev series on |u| <= L.
 #pragma once
 
+#include <complex>
 #include <vector>
 
 #include "movingpunch/layer_response.hpp"
@@ -12,9 +13,10 @@
 namespace movingpunch {
 
 struct AlphaQuadrature {
-  std::vector<double> alpha;   // nodes
+  std::vector<double> alpha;   // nodes, 15 per panel, ascending
   std::vector<double> weight;  // weights
   std::vector<double> m1;      // M1(alpha) at the nodes
+  std::vector<double> panel_centre, panel_half;  // panel p holds nodes 15p .. 15p+14
   double alpha_max = 0;        // M1 = phi1 to double precision beyond it
   double error_estimate = 0;   // sum of |K15 - G7| of (M1 - phi1)/phi1
 };
@@ -25,6 +27,26 @@ struct AlphaQuadrature {
 // M1 - phi1 at the surface, 1 for the field at the bottom of the layer.
 AlphaQuadrature build_alpha_quadrature(const LayerModel& model, double tol,
                                        double max_frequency, double decay = 2.0);
+
+// Fourier integrals int g(alpha) e^{i alpha x} d alpha over the panels of a
+// quadrature, exact for the degree-14 interpolant of g on each panel (Filon):
+// accurate for every x, however large, at a cost independent of x. The
+// integrand g must be smooth on the panels (the quadrature resolved it).
+class FilonIntegrator {
+ public:
+  using cplx = std::complex<double>;
+  explicit FilonIntegrator(const AlphaQuadrature& q);
+  int panels() const noexcept { return static_cast<int>(centre_.size()); }
+  // Legendre coefficients (15 per panel) of g given at the quadrature nodes.
+  std::vector<double> coefficients(const std::vector<double>& g) const;
+  // Row of weights K(p, k) with int g e^{i alpha x} = sum K(p, k) c(p, k).
+  void weights(double x, std::vector<cplx>& K) const;
+  // int g cos(alpha x) (real part) and int g sin(alpha x) (imaginary part).
+  static cplx apply(const std::vector<cplx>& K, const std::vector<double>& c);
+
+ private:
+  std::vector<double> centre_, half_;
+};
 
 class KernelK1 {
  public:

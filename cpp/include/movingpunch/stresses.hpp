@@ -8,8 +8,10 @@
 //    (1/pi) int sqrt(1-t^2) U_n(t)/(z - t) dt = w(z)^{n+1}, w = z - sqrt(z^2 - 1),
 //    at z = (x - i n y)/a; exact at and near the surface, where the transforms
 //    decay only algebraically;
-//  * the layer remainder, which decays like e^{-n alpha (2 + y)}, integrated by
-//    adaptive quadrature in alpha with the exact (Bessel) transform of p.
+//  * the layer remainder, which decays like e^{-n alpha (2 + y)}, integrated on
+//    an adaptive alpha grid with the exact (Bessel) transform of p, by a Filon
+//    rule (exact Fourier integrals of the panel interpolants): the cost and the
+//    accuracy do not depend on x, and x is processed in blocks (bounded memory).
 #pragma once
 
 #include <memory>
@@ -28,13 +30,10 @@ struct StressField {
 class FieldEvaluator {
  public:
   // a: contact half-width; b: Chebyshev-U coefficients of p/(P/h) (even);
-  // tol: quadrature tolerance; x_extent: the evaluator is accurate for |x| <= x_extent.
-  FieldEvaluator(const LayerModel& model, double a, const Eigen::VectorXd& b, double tol,
-                 double x_extent);
+  // tol: quadrature tolerance.
+  FieldEvaluator(const LayerModel& model, double a, const Eigen::VectorXd& b, double tol);
 
-  double x_extent() const noexcept { return x_extent_; }
-
-  // Stresses on the grid x (any, |x| <= x_extent) by y (-1 <= y <= 0).
+  // Stresses on the grid x (any finite x) by y (-1 <= y <= 0).
   StressField stresses(const Eigen::Ref<const Eigen::VectorXd>& x,
                        const Eigen::Ref<const Eigen::VectorXd>& y) const;
   // Vertical displacement v(x, y) mu / (P) (multiply by P/(mu h) for v/h),
@@ -46,10 +45,15 @@ class FieldEvaluator {
   std::shared_ptr<const LayerModel> model_;  // stable address for the mode fields
   double a_;
   Eigen::VectorXd b_;
-  double x_extent_;
   AlphaQuadrature quad_;
-  std::vector<double> ptilde_w_;  // (2/pi) w_q ptilde(alpha_q)
+  std::unique_ptr<FilonIntegrator> filon_;
+  std::vector<double> ptilde_;  // (2/pi) ptilde(alpha_q) at the nodes
   std::vector<ModeField> modes_;
+
+  // Remainder integrals: for each column of `values` (one function of alpha
+  // per column, at the nodes) the cosine or sine transform at every x.
+  Eigen::MatrixXd transform(const Eigen::MatrixXd& values, bool sine,
+                            const Eigen::Ref<const Eigen::VectorXd>& x) const;
 };
 
 }  // namespace movingpunch
