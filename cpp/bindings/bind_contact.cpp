@@ -114,7 +114,7 @@ void bind_contact(py::module_& m) {
   m.def(
       "solve_contact",
       [](double vstar, double kw, double radius, double load, double nu, double tol,
-         bool allow_unphysical) {
+         bool allow_unphysical, int n) {
         ContactParams p;
         p.vstar = vstar;
         p.kw = kw;
@@ -123,10 +123,11 @@ void bind_contact(py::module_& m) {
         p.nu = nu;
         p.tol = tol;
         p.allow_unphysical = allow_unphysical;
+        p.n = n;
         return solve_contact(p);
       },
       py::kw_only(), "vstar"_a, "kw"_a, "radius"_a, "load"_a, "nu"_a, "tol"_a,
-      "allow_unphysical"_a, Release(),
+      "allow_unphysical"_a, "n"_a = 0, Release(),
       "Solves the moving-punch contact problem (dimensionless inputs: vstar = "
       "rho V^2/mu, kw = k_w h/mu, radius = R/h, load = P/(mu h), nu, tol on a/h). "
       "Raises InvalidParameterError, SupercriticalSpeedError, "

@@ -38,6 +38,7 @@ def solve_contact(
     nu: float,
     tol: float,
     allow_unphysical: bool,
+    n: int = 0,
 ) -> ContactSolution: ...
 
 class ContactSolution:

@@ -22,6 +22,7 @@ struct ContactParams {
   double nu = 0.2;     // Poisson's ratio in [0, 0.5)
   double tol = 1e-8;   // relative tolerance on a/h, in [1e-14, 1e-2]
   bool allow_unphysical = false;  // if true, return invalid solutions flagged
+  int n = 0;  // fixed collocation size (even, 2..4096); 0: refine N until a/h converges
 };
 
 // Throws std::invalid_argument naming the parameter and its valid range.
