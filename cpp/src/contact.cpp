@@ -19,6 +19,8 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kLn2 = 0.69314718055994530942;
+// Below this the lowest free wave lies beyond the critical-speed search.
+constexpr double kMinKw = 1e-12;
 
 // Collocation sizes tried in turn; the last is the cap.
 constexpr std::array<int, 17> kSizes = {8,   12,  16,  24,  32,  48,  64,   96,  128,
@@ -53,8 +55,10 @@ struct Timer {
 
 void validate(const ContactParams& p) {
   require_in_range("nu", p.nu, 0.0, 0.5, false, true);
-  require_in_range("vstar", p.vstar, 0.0, 1.0, false, true);
-  require_in_range("kw", p.kw, 0.0, kInf, true, false, true);
+  // Any finite vstar >= 0 is a valid question: at or above V*_cr the answer
+  // is SupercriticalSpeedError (raised by solve_contact with both speeds).
+  require_in_range("vstar", p.vstar, 0.0, 1e300, false, false);
+  require_in_range("kw", p.kw, kMinKw, kInf, false, false, true);
   require_in_range("radius", p.radius, 0.0, 1e12, true, false);
   require_in_range("load", p.load, 0.0, 1e6, true, false);
   require_in_range("tol", p.tol, 1e-14, 1e-2, false, false);
@@ -381,8 +385,7 @@ void ContactSolution::prepare_displacement() {
     const double f = (q.m1[i] - phi1_ * (-std::expm1(-al))) / al;
     g[i] = f * u_series_cosine_transform(b_, a_, al);
   }
-  filon_ = std::make_shared<const FilonIntegrator>(q);
-  smooth_coef_ = filon_->coefficients(g);
+  smooth_coef_ = kernel_->filon().coefficients(g);
 }
 
 // (1/pi) int p(xi)/(P/h) G(x - xi) d xi with G(u) = int_0^inf (M1/alpha) cos(alpha u)
@@ -392,7 +395,7 @@ double ContactSolution::greens_integral(double x) const {
   const Eigen::Index nb = b_.size();
   const Eigen::Index last = last_even_term(b_);
   std::vector<std::complex<double>> K;
-  filon_->weights(x, K);
+  kernel_->filon().weights(x, K);
   const double smooth = 2.0 / kPi * FilonIntegrator::apply(K, smooth_coef_).real();
 
   // Log part: -(phi1/pi) int p ln|x - xi| = -phi1 a [ln a (b0/2) + sum b_n L_n(s)].

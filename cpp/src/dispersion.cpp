@@ -94,7 +94,8 @@ CriticalSpeed compute_critical(double kw, double nu) {
 }  // namespace
 
 CriticalSpeed critical_speed(double kw, double nu) {
-  require_in_range("kw", kw, 0.0, kInf, true, false, true);
+  // The search grid reaches t = 1e-5: enough for kw >= 1e-12 (t_min ~ kw^(1/4)).
+  require_in_range("kw", kw, 1e-12, kInf, false, false, true);
   require_in_range("nu", nu, 0.0, 0.5, false, true);
   static std::mutex mutex;
   static std::map<std::pair<double, double>, CriticalSpeed> cache;

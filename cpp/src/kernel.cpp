@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <array>
-#include <map>
 
 #include <Eigen/Dense>
 #include <stdexcept>
@@ -175,22 +174,40 @@ const Eigen::Matrix<double, 15, 15>& legendre_from_nodes() {
 }
 
 // Spherical Bessel functions j_0 .. j_14 at z >= 0. Above the largest order the
-// upward recurrence from j_0 = sin z / z is stable (and works for any z, where
-// the library's own routine gives up); below it the library is exact.
+// upward recurrence from j_0 = sin z / z is stable; below it, Miller's downward
+// recurrence normalised by the larger of j_0 = sin z / z and
+// j_1 = sin z / z^2 - cos z / z (both exact).
 std::array<double, 15> spherical_bessel(double z) {
   std::array<double, 15> j{};
   if (z == 0.0) {
     j[0] = 1.0;
     return j;
   }
+  const double s = std::sin(z), c = std::cos(z);
+  const double j0 = z < 1e-4 ? 1.0 - z * z / 6.0 : s / z;
+  const double j1 = z < 1e-4 ? z / 3.0 - z * z * z / 30.0 : s / (z * z) - c / z;
   if (z > 15.0) {
-    const double s = std::sin(z), c = std::cos(z);
-    j[0] = s / z;
-    j[1] = s / (z * z) - c / z;
+    j[0] = j0;
+    j[1] = j1;
     for (unsigned k = 1; k < 14; ++k) j[k + 1] = (2.0 * k + 1.0) / z * j[k] - j[k - 1];
     return j;
   }
-  for (unsigned k = 0; k < 15; ++k) j[k] = std::sph_bessel(k, z);
+  // j_{k-1} = (2k+1)/z j_k - j_{k+1}, started well above order 14.
+  const int start = 14 + 24 + static_cast<int>(z);
+  double up = 0.0, cur = 1e-300;
+  for (int k = start; k >= 1; --k) {
+    const double down = (2.0 * k + 1.0) / z * cur - up;
+    up = cur;
+    cur = down;
+    if (k - 1 <= 14) j[static_cast<std::size_t>(k - 1)] = cur;
+    if (std::fabs(cur) > 1e250) {  // rescale to avoid overflow
+      for (int m = k - 1; m <= 14; ++m) j[static_cast<std::size_t>(m)] *= 1e-250;
+      up *= 1e-250;
+      cur *= 1e-250;
+    }
+  }
+  const double scale = std::fabs(j0) >= std::fabs(j1) ? j0 / j[0] : j1 / j[1];
+  for (double& v : j) v *= scale;
   return j;
 }
 
@@ -215,14 +232,17 @@ std::vector<double> FilonIntegrator::coefficients(const std::vector<double>& g) 
 void FilonIntegrator::weights(double x, std::vector<cplx>& K) const {
   // int_{c-h}^{c+h} P_k((alpha - c)/h) e^{i alpha x} = h e^{i c x} 2 i^k j_k(h x).
   K.resize(centre_.size() * 15);
-  std::map<double, std::array<double, 15>> bessel;  // per distinct half-width
+  // Panels share a few half-widths (bisections of one width): cache per width.
+  std::vector<std::pair<double, std::array<double, 15>>> bessel;
   const cplx ipow[4] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
   const double ax = std::fabs(x), sgn = x < 0.0 ? -1.0 : 1.0;
   for (std::size_t p = 0; p < centre_.size(); ++p) {
     const double h = half_[p];
-    auto it = bessel.find(h);
+    auto it = std::find_if(bessel.begin(), bessel.end(),
+                           [h](const auto& e) { return e.first == h; });
     if (it == bessel.end()) {
-      it = bessel.emplace(h, spherical_bessel(h * ax)).first;
+      bessel.emplace_back(h, spherical_bessel(h * ax));
+      it = bessel.end() - 1;
     }
     const cplx phase = h * std::exp(cplx(0.0, centre_[p] * x));
     for (int k = 0; k < 15; ++k) {
@@ -245,7 +265,14 @@ KernelK1::KernelK1(const LayerModel& model, double tol, double range)
     : model_(model), tol_(tol), range_(range) {
   require_in_range("kernel tol", tol, 0.0, 1.0, true, false);
   require_in_range("kernel range", range, 0.0, 1e6, true, false);
-  quad_ = build_alpha_quadrature(model_, tol_, range_);
+  // The panels resolve M1 (and, for the displacement, the transform of a
+  // pressure of half-width ~ range/4); sin(alpha u) is integrated exactly by
+  // the Filon rule, so the grid does not grow with the range.
+  quad_ = build_alpha_quadrature(model_, tol_, 0.25 * range_);
+  filon_ = std::make_shared<const FilonIntegrator>(quad_);
+  std::vector<double> f(quad_.alpha.size());
+  for (std::size_t i = 0; i < f.size(); ++i) f[i] = (quad_.m1[i] - model_.phi1()) / model_.phi1();
+  f_coef_ = filon_->coefficients(f);
   // Odd Chebyshev series on [-range, range]; values at the positive half of
   // the first-kind nodes, doubled until the tail is below tol.
   for (int n = 32;; n *= 2) {
@@ -283,11 +310,9 @@ KernelK1::KernelK1(const LayerModel& model, double tol, double range)
 }
 
 double KernelK1::direct(double u) const {
-  const double phi1 = model_.phi1();
-  double sum = 0.0;
-  for (std::size_t i = 0; i < quad_.alpha.size(); ++i)
-    sum += quad_.weight[i] * (quad_.m1[i] - phi1) * std::sin(quad_.alpha[i] * u);
-  return sum / phi1;
+  std::vector<FilonIntegrator::cplx> K;
+  filon_->weights(u, K);
+  return FilonIntegrator::apply(K, f_coef_).imag();
 }
 
 double KernelK1::operator()(double u) const {

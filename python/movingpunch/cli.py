@@ -85,7 +85,7 @@ def _build_parser() -> argparse.ArgumentParser:
         "--kw",
         type=_number("0 < k_w h/mu <= inf"),
         required=True,
-        help="k_w h/mu in (0, inf] ('inf': smooth rigid base)",
+        help="k_w h/mu in [1e-12, inf] ('inf': smooth rigid base)",
     )
     solve_p.add_argument(
         "--radius", type=_number("R/h > 0"), required=True, help="R/h > 0"
@@ -133,7 +133,7 @@ def _build_parser() -> argparse.ArgumentParser:
         "--kw",
         type=_number("0 < k_w h/mu <= inf"),
         required=True,
-        help="k_w h/mu in (0, inf] ('inf': smooth rigid base)",
+        help="k_w h/mu in [1e-12, inf] ('inf': smooth rigid base)",
     )
     crit_p.add_argument(
         "--nu",

@@ -6,7 +6,7 @@ Every quantity is dimensionless (layer thickness h = 1, shear modulus mu = 1):
 name      meaning         valid range
 ========  ==============  =====================================
 vstar     rho V^2 / mu    0 <= vstar < V*_cr(kw, nu)
-kw        k_w h / mu      0 < kw <= inf (inf: smooth rigid base)
+kw        k_w h / mu      1e-12 <= kw <= inf (inf: smooth rigid base)
 radius    R / h           > 0, finite
 load      P / (mu h)      > 0, finite (the paper's mu/(P/h) = 1/load)
 nu        Poisson's ratio 0 <= nu < 0.5
@@ -48,7 +48,7 @@ FloatArray = npt.NDArray[np.float64]
 # Valid range of each scalar parameter, as shown in error messages.
 _RANGES: dict[str, str] = {
     "vstar": "0 <= vstar < V*_cr, vstar = rho V^2/mu",
-    "kw": "0 < kw <= inf, kw = k_w h/mu",
+    "kw": "1e-12 <= kw <= inf, kw = k_w h/mu",
     "radius": "R/h > 0",
     "load": "P/(mu h) > 0",
     "nu": "0 <= nu < 0.5",
@@ -94,9 +94,10 @@ def _check_vstar(value: object) -> float:
 
 
 def _check_kw(value: object) -> float:
-    # kw = 0 (no foundation) has no static equilibrium: V*_cr = 0.
+    # kw = 0 (no foundation) has no static equilibrium (V*_cr = 0); below 1e-12
+    # the lowest free wave lies beyond the critical-speed search.
     x = _real("kw", value)
-    if math.isnan(x) or x <= 0:
+    if math.isnan(x) or x < 1e-12:
         raise _fail("kw", x)
     return x
 

@@ -95,3 +95,21 @@ TEST(Filon, ExactFourierIntegralsOfPolynomialsAndSmoothFunctions) {
     EXPECT_NEAR(got.imag(), want.imag(), 1e-12) << "x " << x;
   }
 }
+
+TEST(Filon, SphericalBesselAgainstTheLibraryAndClosedForms) {
+  // Through the Filon weights of a single panel [-h, h] with c = 0: K(k) = 2 h i^k j_k(h x).
+  AlphaQuadrature q;
+  q.panel_centre = {0.0};
+  q.panel_half = {1.0};
+  const FilonIntegrator f(q);
+  std::vector<std::complex<double>> K;
+  for (double z : {1e-9, 1e-3, 0.5, 3.0, 9.42477796076938, 14.9, 15.1, 40.0, 1e5}) {
+    f.weights(z, K);
+    for (unsigned k = 0; k < 15; ++k) {
+      const std::complex<double> ik = std::pow(std::complex<double>(0, 1), static_cast<int>(k));
+      const double jk = (K[k] / (2.0 * ik)).real();
+      const double want = z < 1e3 ? std::sph_bessel(k, z) : (k == 0 ? std::sin(z) / z : jk);
+      EXPECT_NEAR(jk, want, 1e-13 * (1 + std::fabs(want))) << "z " << z << " k " << k;
+    }
+  }
+}

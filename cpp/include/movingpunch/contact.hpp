@@ -16,7 +16,7 @@ namespace movingpunch {
 // Dimensionless inputs (h = 1, mu = 1).
 struct ContactParams {
   double vstar = 0;    // rho V^2 / mu, 0 <= vstar < V*_cr
-  double kw = 1;       // k_w h / mu in (0, inf]
+  double kw = 1;       // k_w h / mu in [1e-12, inf]
   double radius = 100; // R / h > 0
   double load = 0.002; // P / (mu h) > 0
   double nu = 0.2;     // Poisson's ratio in [0, 0.5)
@@ -84,7 +84,6 @@ class ContactSolution {
   std::shared_ptr<FieldCache> field_cache_;
   // Filon coefficients of f(alpha) ptilde(alpha) on the kernel's panels, with
   // f = [M1 - phi1 (1 - e^-alpha)]/alpha the smooth part of the Green's function.
-  std::shared_ptr<const FilonIntegrator> filon_;
   std::vector<double> smooth_coef_;
   // Helpers for displacement: (1/pi) int p(xi) G(x - xi) d xi.
   double greens_integral(double x) const;

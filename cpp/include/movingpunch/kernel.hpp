@@ -6,6 +6,7 @@
 #pragma once
 
 #include <complex>
+#include <memory>
 #include <vector>
 
 #include "movingpunch/layer_response.hpp"
@@ -59,15 +60,18 @@ class KernelK1 {
   const LayerModel& model() const noexcept { return model_; }
   double tol() const noexcept { return tol_; }
   int terms() const noexcept { return static_cast<int>(coef_.size()); }
-  // Direct quadrature sum (no Chebyshev table); for tests.
+  // Direct Filon quadrature (no Chebyshev table); any u.
   double direct(double u) const;
+  const FilonIntegrator& filon() const noexcept { return *filon_; }
 
  private:
   LayerModel model_;
   double tol_;
   double range_;
   AlphaQuadrature quad_;
-  std::vector<double> coef_;  // Chebyshev coefficients in u / range
+  std::shared_ptr<const FilonIntegrator> filon_;
+  std::vector<double> f_coef_;  // Legendre coefficients of (M1 - phi1)/phi1 per panel
+  std::vector<double> coef_;    // Chebyshev coefficients in u / range
 };
 
 }  // namespace movingpunch
