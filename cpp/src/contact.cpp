@@ -21,6 +21,20 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kLn2 = 0.69314718055994530942;
 // Below this the lowest free wave lies beyond the critical-speed search.
 constexpr double kMinKw = 1e-12;
+// Supported contact half-widths: the kernel's grid grows with a, and far
+// beyond a = 50 h the layer is a plate on springs under a distributed load.
+constexpr double kMinA = 1e-10, kMaxA = 50.0;
+
+[[noreturn]] void width_out_of_range(const ContactParams& p, bool too_wide) {
+  std::ostringstream m;
+  m.precision(6);
+  m << "radius * load = " << p.radius * p.load << " (radius " << p.radius << ", load "
+    << p.load << ") needs a contact half-width " << (too_wide ? "above" : "below")
+    << " the supported range " << kMinA << " <= a/h <= " << kMaxA << " for kw = " << p.kw
+    << ", vstar = " << p.vstar << ": " << (too_wide ? "reduce" : "increase")
+    << " the radius or the load";
+  throw std::invalid_argument(m.str());
+}
 
 // Collocation sizes tried in turn; the last is the cap.
 constexpr std::array<int, 17> kSizes = {8,   12,  16,  24,  32,  48,  64,   96,  128,
@@ -112,8 +126,8 @@ class Problem {
 
 // Solves load(a) = P for a at fixed N: safeguarded secant on F(ln a) =
 // ln load(a) - ln P (monotone increasing, nearly 2 ln a for Hertz).
-double solve_width(Problem& prob, const ChebyshevNodes& nodes, double P, double a_guess,
-                   double xtol) {
+double solve_width(Problem& prob, const ContactParams& params, const ChebyshevNodes& nodes,
+                   double P, double a_guess, double xtol) {
   auto F = [&](double la) {
     const double load = prob.load_of(nodes, std::exp(la), nullptr);
     if (!(load > 0.0) || !std::isfinite(load)) return kInf;  // treat as "a too large"
@@ -156,8 +170,17 @@ double solve_width(Problem& prob, const ChebyshevNodes& nodes, double P, double 
     } else {
       x2 = std::clamp(x2, x1 - 2.0, x1 + 2.0);  // expanding search for a bracket
     }
-    if (!std::isfinite(x2) || x2 > std::log(1e6) || x2 < std::log(1e-12))
-      throw ConvergenceError("contact width search left the range 1e-12 < a/h < 1e6");
+    if (!std::isfinite(x2)) throw ConvergenceError("contact width iteration failed (non-finite step)");
+    // Outside the supported widths: the load there proves the target lies beyond.
+    if (x2 > std::log(kMaxA)) {
+      if (std::isfinite(hi) && hi <= std::log(kMaxA)) x2 = 0.5 * (std::max(lo, x1) + hi);
+      else if (F(std::log(kMaxA)) < 0.0) width_out_of_range(params, true);
+      else x2 = std::log(kMaxA);
+    } else if (x2 < std::log(kMinA)) {
+      if (std::isfinite(lo) && lo >= std::log(kMinA)) x2 = 0.5 * (lo + std::min(hi, x1));
+      else if (F(std::log(kMinA)) > 0.0) width_out_of_range(params, false);
+      else x2 = std::log(kMinA);
+    }
     if (std::fabs(x2 - x1) <= xtol) return std::exp(x2);
     x0 = x1;
     f0 = f1;
@@ -179,9 +202,17 @@ ContactSolution solve_contact(const ContactParams& p) {
   const double phi1 = model.phi1();
   Problem prob(p, model);
 
-  // Start from the half-plane (Hertz) width.
+  // Refuse at once what is surely outside the supported widths. The static
+  // rigid base is the stiffest support (a grows as kw falls and as vstar
+  // rises), and for a >> h its contact is at least 0.5 (0.75 lambda)^(1/3) wide
+  // (a layer compressed under the punch, measured for 0 <= nu < 0.5); tiny
+  // contacts are half-plane (Hertz) contacts.
   const double lambda = p.radius * p.load;
-  double a = std::sqrt(2.0 * phi1 * lambda / kPi);
+  if (0.5 * std::cbrt(0.75 * lambda) > kMaxA) width_out_of_range(p, true);
+  if (10.0 * std::sqrt(2.0 * phi1 * lambda / kPi) < kMinA) width_out_of_range(p, false);
+
+  // Start from the half-plane (Hertz) width, clamped to the supported range.
+  double a = std::clamp(std::sqrt(2.0 * phi1 * lambda / kPi), kMinA, kMaxA);
   const double xtol = std::max(1e-2 * p.tol, 1e-15);
 
   double a_prev = std::numeric_limits<double>::quiet_NaN();
@@ -191,17 +222,17 @@ ContactSolution solve_contact(const ContactParams& p) {
     // Fixed N: the estimate compares with the solve at about half the size.
     const int coarse = std::max(2, (p.n / 4) * 2);
     if (coarse < p.n) {
-      a = solve_width(prob, chebyshev_nodes(coarse), p.load, a, xtol);
+      a = solve_width(prob, p, chebyshev_nodes(coarse), p.load, a, xtol);
       a_prev = a;
     }
     nodes = chebyshev_nodes(p.n);
-    a = solve_width(prob, nodes, p.load, a, xtol);
+    a = solve_width(prob, p, nodes, p.load, a, xtol);
     change = coarse < p.n ? std::fabs(a - a_prev) : 0.0;
   } else {
     bool converged = false;
     for (std::size_t idx = 0; idx < kSizes.size(); ++idx) {
       nodes = chebyshev_nodes(kSizes[idx]);
-      a = solve_width(prob, nodes, p.load, a, xtol);
+      a = solve_width(prob, p, nodes, p.load, a, xtol);
       if (idx > 0) {
         change = std::fabs(a - a_prev);
         if (change <= p.tol * a) {
@@ -223,7 +254,7 @@ ContactSolution solve_contact(const ContactParams& p) {
   // oscillations up to 4a; extend it (and re-solve on it) if the width grew.
   if (prob.kernel_ptr()->range() < 4.0 * a) {
     prob.ensure_range(table_range(a));
-    a = solve_width(prob, nodes, p.load, a, xtol);
+    a = solve_width(prob, p, nodes, p.load, a, xtol);
   }
 
   ContactSolution sol;
