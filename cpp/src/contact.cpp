@@ -452,6 +452,7 @@ double ContactSolution::greens_integral(double x) const {
 
 double ContactSolution::surface_displacement(double x) const {
   if (!std::isfinite(x)) throw std::invalid_argument("surface_displacement: x must be finite");
+  if (std::fabs(x) > kFarField) return 0.0;  // see stresses.hpp
   return -params_.load * greens_integral(x);
 }
 

@@ -43,8 +43,9 @@ struct Panel {
   double nodes[15];
   double m1[15];
   double kronrod, error;
-  double resabs;  // integral of |f|
-  double floor;   // round-off floor of the rule on this panel
+  double resabs;      // integral of |f|
+  double floor;       // round-off floor of the rule on this panel
+  double truncation;  // QUADPACK's rescaled |K15 - G7|
 };
 
 Panel eval_panel(const LayerModel& model, double lo, double hi) {
@@ -86,7 +87,8 @@ Panel eval_panel(const LayerModel& model, double lo, double hi) {
   // system is ill-conditioned in proportion to |M1|.
   double fmax = 0.0;
   for (double v : fv) fmax = std::max(fmax, std::fabs(v));
-  p.floor = 50.0 * eps * (2.0 * h + p.resabs * (1.0 + fmax));
+  p.floor = 4.0 * eps * (2.0 * h + p.resabs * (1.0 + fmax));
+  p.truncation = err;
   p.error = std::max(err, p.floor);
   return p;
 }
@@ -143,7 +145,9 @@ AlphaQuadrature build_alpha_quadrature(const LayerModel& model, double tol,
       q.weight.push_back(kronrod_weight(j, h));
       q.m1.push_back(p.m1[j]);
     }
-    q.error_estimate += p.error;
+    // Truncation (QUADPACK's rescaled estimate, not the stopping floor) plus
+    // the round-off of the sum itself.
+    q.error_estimate += p.truncation + 16.0 * 2.220446049250313e-16 * p.resabs;
   }
   return q;
 }
@@ -183,9 +187,18 @@ std::array<double, 15> spherical_bessel(double z) {
     j[0] = 1.0;
     return j;
   }
+  if (z < 1e-4) {
+    // j_k(z) = z^k / (2k+1)!! (1 - z^2 / (2 (2k+3)) + O(z^4)): exact to rounding here.
+    double lead = 1.0;
+    for (unsigned k = 0; k < 15; ++k) {
+      j[k] = lead * (1.0 - z * z / (2.0 * (2.0 * k + 3.0)));
+      lead *= z / (2.0 * k + 3.0);
+    }
+    return j;
+  }
   const double s = std::sin(z), c = std::cos(z);
-  const double j0 = z < 1e-4 ? 1.0 - z * z / 6.0 : s / z;
-  const double j1 = z < 1e-4 ? z / 3.0 - z * z * z / 30.0 : s / (z * z) - c / z;
+  const double j0 = s / z;
+  const double j1 = s / (z * z) - c / z;
   if (z > 15.0) {
     j[0] = j0;
     j[1] = j1;

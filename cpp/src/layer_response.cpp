@@ -103,6 +103,11 @@ namespace {
 // The 4 x 4 boundary matrix on the regularised exponential basis (columns:
 // top shear mode, top divided difference, bottom shear mode, bottom divided
 // difference); rows: tau(0), sigma(0), tau(-1), bottom condition.
+// The bottom condition t sigma/alpha - kw W = 0 normalised as
+// [t/(t+kw)] sigma/alpha - [kw/(t+kw)] W, without overflow for any kw, t.
+double spring_weight_t(double t, double kw) { return 1.0 / (1.0 + kw / t); }
+double spring_weight_k(double t, double kw) { return 1.0 / (1.0 + t / kw); }
+
 // The four columns of the regularised exponential basis at depth y.
 Eigen::Matrix4d modal_columns(const WaveConstants& c, double t, double y) {
   const double nT = c.nT, nL = c.nL, d = c.delta;
@@ -130,7 +135,7 @@ Eigen::Matrix4d modal_matrix(const WaveConstants& c, double kw, bool rigid, doub
   if (rigid)
     M.row(3) = bot.row(1);
   else
-    M.row(3) = (t * bot.row(3) - kw * bot.row(1)) / (t + kw);
+    M.row(3) = spring_weight_t(t, kw) * bot.row(3) - spring_weight_k(t, kw) * bot.row(1);
   if (top_columns) *top_columns = top;
   return M;
 }
@@ -157,7 +162,7 @@ Eigen::Matrix<double, 2, 4> bottom_rows(const Eigen::Matrix4d& P, double kw, boo
   if (rigid)
     R.row(1) = P.row(1);
   else
-    R.row(1) = (t * P.row(3) - kw * P.row(1)) / (t + kw);
+    R.row(1) = spring_weight_t(t, kw) * P.row(3) - spring_weight_k(t, kw) * P.row(1);
   return R;
 }
 

@@ -124,6 +124,10 @@ Eigen::MatrixXd FieldEvaluator::transform(const Eigen::MatrixXd& values, bool si
     const Eigen::Index nb = std::min(kBlock, x.size() - start);
     Eigen::MatrixXd W(nb, m);
     for (Eigen::Index i = 0; i < nb; ++i) {
+      if (std::fabs(x(start + i)) > kFarField) {
+        W.row(i).setZero();
+        continue;
+      }
       filon_->weights(x(start + i), K);
       for (Eigen::Index j = 0; j < m; ++j)
         W(i, j) = sine ? K[static_cast<std::size_t>(j)].imag() : K[static_cast<std::size_t>(j)].real();
@@ -190,6 +194,7 @@ StressField FieldEvaluator::stresses(const Eigen::Ref<const Eigen::VectorXd>& x,
   auto dF = [this](cplx z) { return cplx(0.0, 1.0) * dphi(b_, z); };
   for (Eigen::Index j = 0; j < ny; ++j)
     for (Eigen::Index i = 0; i < nx; ++i) {
+      if (std::fabs(x(i)) > kFarField) continue;
       const cplx zT = z_of(x(i), nT, y(j), a_), zL = z_of(x(i), nL, y(j), a_);
       const cplx fT = F(zT), fL = F(zL);
       const cplx fD = divided_difference(F, dF, zT, zL, d, cplx(0.0, -y(j) / a_));
@@ -230,6 +235,7 @@ Eigen::MatrixXd FieldEvaluator::displacement(const Eigen::Ref<const Eigen::Vecto
   auto dV = [this, shift](cplx z) { return a_ * (phi(b_, z + shift) - phi(b_, z)); };
   for (Eigen::Index j = 0; j < ny; ++j)
     for (Eigen::Index i = 0; i < nx; ++i) {
+      if (std::fabs(x(i)) > kFarField) continue;
       const cplx zT = z_of(x(i), nT, y(j), a_), zL = z_of(x(i), nL, y(j), a_);
       const cplx vD = divided_difference(V, dV, zT, zL, d, cplx(0.0, -y(j) / a_));
       v(j, i) += kT * V(zT).real() + kL * V(zL).real() + kD * vD.real();

@@ -63,12 +63,17 @@ _TOL_MAX = 1e-2
 
 def _real(name: str, value: object) -> float:
     """``value`` as a float if it is a real number (bool, str, None, complex
-    and everything else are rejected)."""
+    and everything else are rejected; so are integers beyond float range)."""
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
         raise InvalidParameterError(
             f"{name} must be a real number ({_RANGES[name]}), got {value!r}"
         )
-    return float(value)
+    try:
+        return float(value)
+    except OverflowError:
+        raise InvalidParameterError(
+            f"{name} is too large for a float ({_RANGES[name]})"
+        ) from None
 
 
 def _fail(name: str, x: float) -> InvalidParameterError:
@@ -188,7 +193,10 @@ def _check_positive_extent(value: object) -> float:
 def _real_any(name: str, value: object) -> float:
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
         raise InvalidParameterError(f"{name} must be a real number, got {value!r}")
-    return float(value)
+    try:
+        return float(value)
+    except OverflowError:
+        raise InvalidParameterError(f"{name} is too large for a float") from None
 
 
 def _pointwise(

@@ -22,6 +22,11 @@
 
 namespace movingpunch {
 
+// Beyond this distance from the punch every field is zero to far below double
+// precision of its scale (the layer's far field decays), and the phases of the
+// Fourier integrals would no longer be representable: the fields return 0 there.
+constexpr double kFarField = 1e9;
+
 struct StressField {
   // Shaped (len(y), len(x)), per P/h; tension positive.
   Eigen::MatrixXd sigma_x, sigma_y, tau_xy;
