@@ -219,21 +219,40 @@ ContactSolution solve_contact(const ContactParams& p) {
   double change = kInf;
   ChebyshevNodes nodes;
   if (p.n != 0) {
-    // Fixed N: the estimate compares with the solve at about half the size.
+    // Fixed N: the estimate compares with the solve at about half the size
+    // (infinite if that coarse solve has no root: an under-resolved load curve).
     const int coarse = std::max(2, (p.n / 4) * 2);
+    double a_coarse = std::numeric_limits<double>::quiet_NaN();
     if (coarse < p.n) {
-      a = solve_width(prob, p, chebyshev_nodes(coarse), p.load, a, xtol);
-      a_prev = a;
+      try {
+        a_coarse = solve_width(prob, p, chebyshev_nodes(coarse), p.load, a, xtol);
+        a = a_coarse;
+      } catch (const ConvergenceError&) {
+      } catch (const std::invalid_argument&) {
+      }
     }
     nodes = chebyshev_nodes(p.n);
     a = solve_width(prob, p, nodes, p.load, a, xtol);
-    change = coarse < p.n ? std::fabs(a - a_prev) : 0.0;
+    change = coarse < p.n ? (std::isnan(a_coarse) ? kInf : std::fabs(a - a_coarse)) : 0.0;
   } else {
-    bool converged = false;
+    // Refine N. A coarse N can under-resolve the load curve (it may even be
+    // non-monotone, with no root): a failure there moves on to the next N;
+    // two failures in a row, or at the largest N, are reported.
+    bool converged = false, prev_ok = false;
+    int failures = 0;
     for (std::size_t idx = 0; idx < kSizes.size(); ++idx) {
       nodes = chebyshev_nodes(kSizes[idx]);
-      a = solve_width(prob, p, nodes, p.load, a, xtol);
-      if (idx > 0) {
+      double a_new = a;
+      try {
+        a_new = solve_width(prob, p, nodes, p.load, a, xtol);
+      } catch (const std::exception&) {
+        if (++failures >= 2 || idx + 1 == kSizes.size()) throw;
+        prev_ok = false;
+        continue;
+      }
+      failures = 0;
+      a = a_new;
+      if (prev_ok) {
         change = std::fabs(a - a_prev);
         if (change <= p.tol * a) {
           converged = true;
@@ -241,6 +260,7 @@ ContactSolution solve_contact(const ContactParams& p) {
         }
       }
       a_prev = a;
+      prev_ok = true;
     }
     if (!converged) {
       std::ostringstream m;
