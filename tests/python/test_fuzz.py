@@ -1,0 +1,318 @@
+"""Fuzzing (issue 4, case 8): random and extreme values through the binding
+``movingpunch._core.solve_contact`` and through ``movingpunch.solve``.
+
+Every call must either return a solution with finite a > 0 and finite p0, or
+raise one of the exceptions of ``movingpunch.errors``: never a crash, a hang,
+a NaN or an exception from elsewhere. The draws are seeded. Each parameter is
+drawn from a mix of its valid range, the edges of that range and invalid or
+extreme values; kw and nu come mostly from small pools because every new
+(kw, nu) costs a critical-speed search (~10 ms).
+
+``test_fuzz_binding_20000`` (slow) makes 20 000 calls; the unmarked
+``test_fuzz_binding_2000`` 2 000 with another seed.
+"""
+
+from __future__ import annotations
+
+import collections
+import math
+import sys
+import threading
+import time
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+import pytest
+
+import movingpunch as mp
+from movingpunch import _core, errors
+
+INF = math.inf
+NAN = math.nan
+DBL_MAX = sys.float_info.max
+
+KW_POOL = [1e-3, 0.01, 0.1, 1.0, 10.0, 1e3, INF]
+NU_POOL = [0.0, 0.2, 0.3, 0.45, 0.499]
+KW_EXTREME = [0.0, -0.0, -1.0, NAN, -INF, 1e-300, 5e-324, 1e-13, 1e-12, 1e308, DBL_MAX]
+NU_EXTREME = [0.5, 0.5 - 1e-16, 0.4999999999, -0.0, -1e-300, 1.0, NAN, INF, -INF, 1e308]
+VSTAR_EXTREME = [0.0, -0.0, 5e-324, 1e-300, -1e-300, 1.0, 2.0, 0.99999, 1e308, NAN]
+VSTAR_EXTREME += [INF, -INF]
+SIZE_EXTREME = [
+    0.0,
+    -0.0,
+    -1.0,
+    5e-324,
+    1e-308,
+    1e-300,
+    1e12,
+    1e13,
+    1e6,
+    1e7,
+    1e308,
+    DBL_MAX,
+    NAN,
+    INF,
+    -INF,
+]
+TOL_EXTREME = [0.0, 1e-15, 1e-14, 1e-2, 0.011, 1.0, -1e-8, 1e-300, NAN, INF, -INF]
+N_EXTREME = [-2, -1, 1, 3, 4097, 4098, 2**31 - 1, -(2**31), 1001]
+
+
+class Draw:
+    """Random parameters for solve_contact: mostly valid, some extreme."""
+
+    def __init__(self, seed: int) -> None:
+        self.rng = np.random.default_rng(seed)
+        self._vcr: dict[tuple[float, float], float] = {}
+
+    def _pick(self, values: list[Any]) -> Any:
+        return values[int(self.rng.integers(len(values)))]
+
+    def _loguniform(self, lo: float, hi: float) -> float:
+        return float(10.0 ** self.rng.uniform(math.log10(lo), math.log10(hi)))
+
+    def kw(self) -> float:
+        r = self.rng.random()
+        if r < 0.85:
+            return float(self._pick(KW_POOL))
+        if r < 0.88:
+            return self._loguniform(1e-12, 1e12)
+        return float(self._pick(KW_EXTREME))
+
+    def nu(self) -> float:
+        r = self.rng.random()
+        if r < 0.88:
+            return float(self._pick(NU_POOL))
+        if r < 0.90:
+            return float(self.rng.uniform(0.0, 0.5))
+        return float(self._pick(NU_EXTREME))
+
+    def critical(self, kw: float, nu: float) -> float | None:
+        key = (kw, nu)
+        if key not in self._vcr:
+            try:
+                self._vcr[key] = _core.critical_speed(kw, nu)[0]
+            except errors.MovingPunchError:
+                self._vcr[key] = NAN
+        vcr = self._vcr[key]
+        return None if math.isnan(vcr) else vcr
+
+    def vstar(self, kw: float, nu: float) -> float:
+        r = self.rng.random()
+        vcr = self.critical(kw, nu)
+        if r < 0.65 and vcr is not None:
+            s = self.rng.random()
+            if s < 0.7:
+                frac = float(self.rng.uniform(0.0, 0.95))
+            elif s < 0.9:
+                # Right up to V*_cr for kw <= 10. For stiffer foundations V*_cr
+                # is within 1e-4 of the Rayleigh speed and solves there take
+                # seconds (test_hard_cases.py covers them): stop at 1e-4.
+                closest = 15.0 if kw <= 10.0 else 4.0
+                frac = 1.0 - 10.0 ** -self.rng.uniform(2.0, closest)
+            else:
+                frac = float(self._pick([1.0, 1.0 + 1e-9, 1.01, 0.0]))
+            return frac * vcr
+        if r < 0.85:
+            return float(self.rng.uniform(0.0, 1.2))
+        return float(self._pick(VSTAR_EXTREME))
+
+    def radius_load(self) -> tuple[float, float]:
+        r = self.rng.random()
+        if r < 0.8:
+            lam = self._loguniform(1e-9, 0.3)
+        elif r < 0.81:
+            lam = self._loguniform(0.3, 100.0)
+        else:
+            return float(self._pick(SIZE_EXTREME)), float(self._pick(SIZE_EXTREME))
+        radius = self._loguniform(1e-3, 1e5)
+        if self.rng.random() < 0.1:
+            # An extreme radius with the load that keeps R P moderate (wide
+            # contacts, a/h ~ 10-50, take seconds each: test_hard_cases.py).
+            radius = float(self._pick(SIZE_EXTREME))
+            load = lam / radius if radius > 0.0 and math.isfinite(radius) else lam
+            return radius, load
+        return radius, lam / radius
+
+    def tol(self) -> float:
+        r = self.rng.random()
+        if r < 0.7:
+            return 1e-8
+        if r < 0.9:
+            return self._loguniform(1e-14, 1e-2)
+        return float(self._pick(TOL_EXTREME))
+
+    def n(self) -> int:
+        r = self.rng.random()
+        if r < 0.9:
+            return 0
+        if r < 0.96:
+            return 2 * int(self.rng.integers(1, 40))
+        return int(self._pick(N_EXTREME))
+
+    def call(self) -> dict[str, Any]:
+        kw, nu = self.kw(), self.nu()
+        radius, load = self.radius_load()
+        return {
+            "vstar": self.vstar(kw, nu),
+            "kw": kw,
+            "radius": radius,
+            "load": load,
+            "nu": nu,
+            "tol": self.tol(),
+            "allow_unphysical": bool(self.rng.random() < 0.5),
+            "n": self.n(),
+        }
+
+
+def _is_package_error(exc: BaseException) -> bool:
+    return type(exc).__module__ == errors.__name__ and isinstance(
+        exc, (errors.MovingPunchError, ValueError, RuntimeError)
+    )
+
+
+def _attempt(fn: Callable[[], Any]) -> tuple[Any, Exception | None]:
+    try:
+        return fn(), None
+    except Exception as exc:
+        return None, exc
+
+
+def _check_error(exc: Exception, args: dict[str, Any]) -> None:
+    assert _is_package_error(exc), (args, repr(exc))
+    assert str(exc), args
+
+
+def _check_solution(sol: Any, args: dict[str, Any]) -> None:
+    assert isinstance(sol, _core.ContactSolution), args
+    assert math.isfinite(sol.a), args
+    assert sol.a > 0.0, args
+    assert math.isfinite(sol.p0), args
+    assert math.isfinite(sol.indentation), args
+    assert sol.collocation_n % 2 == 0, args
+    if args["n"]:
+        assert sol.collocation_n == args["n"], args
+    if not sol.valid:
+        assert args["allow_unphysical"], args
+    coeffs = sol.g_coefficients
+    assert np.isfinite(coeffs).all(), args
+
+
+def _run_with_watchdog(work: Callable[[], None], budget: float) -> None:
+    """Runs ``work`` in a daemon thread (the core releases the GIL); fails
+    instead of hanging if it is not done within ``budget`` seconds."""
+    failure: list[BaseException] = []
+
+    def target() -> None:
+        try:
+            work()
+        except BaseException as exc:  # reported in the main thread
+            failure.append(exc)
+
+    thread = threading.Thread(target=target, daemon=True)
+    thread.start()
+    thread.join(budget)
+    if thread.is_alive():
+        pytest.fail(f"fuzzing did not finish within {budget:.0f} s (a hang?)")
+    if failure:
+        raise failure[0]
+
+
+def fuzz_binding(calls: int, seed: int, budget: float) -> collections.Counter[str]:
+    draw = Draw(seed)
+    outcomes: collections.Counter[str] = collections.Counter()
+    slowest: list[tuple[float, dict[str, Any]]] = []
+
+    def work() -> None:
+        for _ in range(calls):
+            args = draw.call()
+            t0 = time.perf_counter()
+            sol, exc = _attempt(lambda args=args: _core.solve_contact(**args))
+            if exc is not None:
+                _check_error(exc, args)
+                outcomes[type(exc).__name__] += 1
+            else:
+                _check_solution(sol, args)
+                outcomes["valid" if sol.valid else "flagged"] += 1
+            dt = time.perf_counter() - t0
+            slowest.append((dt, args))
+            slowest.sort(key=lambda item: -item[0])
+            del slowest[3:]
+
+    _run_with_watchdog(work, budget)
+    assert sum(outcomes.values()) == calls
+    # The draws must exercise the solver, not only the argument checks.
+    assert outcomes["valid"] + outcomes["flagged"] >= 0.3 * calls, outcomes
+    assert outcomes["InvalidParameterError"] >= 0.05 * calls, outcomes
+    assert outcomes["SupercriticalSpeedError"] >= 0.01 * calls, outcomes
+    # No single call may stall (the slowest are listed on failure).
+    assert slowest[0][0] < 30.0, slowest
+    return outcomes
+
+
+def test_fuzz_binding_2000() -> None:
+    fuzz_binding(2000, seed=20240601, budget=240.0)
+
+
+@pytest.mark.slow
+def test_fuzz_binding_20000() -> None:
+    fuzz_binding(20000, seed=4, budget=1200.0)
+
+
+# --------------------------------------------------------------------------
+# the public API with values of every type
+
+
+class _Floaty:
+    def __float__(self) -> float:
+        return 0.2
+
+
+ODD_VALUES: list[Any] = [
+    None,
+    "0.2",
+    "",
+    b"1",
+    True,
+    False,
+    np.bool_(True),
+    [0.2],
+    (0.2,),
+    {"a": 1},
+    1 + 0j,
+    np.complex64(1),
+    np.array(0.2),
+    np.array([0.2, 0.3]),
+    np.float32(NAN),
+    np.float16(INF),
+    _Floaty(),
+    object(),
+]
+# 10**400 (an int too large for a float) is in test_hard_cases.py's list.
+
+
+def test_fuzz_public_api_every_type() -> None:
+    rng = np.random.default_rng(77)
+    draw = Draw(78)
+    names = ["vstar", "kw", "radius", "load", "nu", "tol"]
+    outcomes: collections.Counter[str] = collections.Counter()
+    for _ in range(2000):
+        args: dict[str, Any] = draw.call()
+        args["n"] = None if args["n"] == 0 else args["n"]
+        spoiled = [name for name in names if rng.random() < 0.08]
+        for name in spoiled:
+            args[name] = ODD_VALUES[int(rng.integers(len(ODD_VALUES)))]
+        sol, exc = _attempt(lambda args=args: mp.solve(**args))
+        if exc is not None:
+            _check_error(exc, args)
+            if spoiled and isinstance(exc, mp.InvalidParameterError):
+                named = [n for n in [*names, "n"] if str(exc).startswith(n)]
+                assert named or "radius" in str(exc), (args, str(exc))
+            outcomes[type(exc).__name__] += 1
+        else:
+            assert math.isfinite(sol.a), args
+            assert sol.a > 0.0, args
+            assert math.isfinite(sol.p0), args
+            outcomes["solved"] += 1
+    assert outcomes["solved"] >= 300, outcomes
