@@ -70,6 +70,9 @@ double u_series_cosine_transform(const Eigen::VectorXd& b, double a, double alph
     if (std::fabs(b(n)) > 1e-17 * bmax) last = n;
   double sum = 0.0;
   for (Eigen::Index n = 0; n <= last; n += 2) {
+    // J_nu(w) <= (w/2)^nu / nu!: negligible (and, in the library, not always
+    // finite) once the order exceeds the argument by 40; higher orders are smaller.
+    if (static_cast<double>(n + 1) > w + 40.0) break;
     const double sg = (n / 2) % 2 == 0 ? 1.0 : -1.0;
     sum += b(n) * static_cast<double>(n + 1) * sg *
            std::cyl_bessel_j(static_cast<double>(n + 1), w);

@@ -307,6 +307,9 @@ ContactSolution solve_contact(const ContactParams& p) {
   // Indentation: delta = -v(0, 0).
   sol.prepare_displacement();
   sol.delta_ = -sol.surface_displacement(0.0);
+  if (!std::isfinite(sol.delta_))
+    throw ConvergenceError("the indentation came out non-finite (N = " +
+                           std::to_string(nodes.n) + "); the solution is not trusted");
 
   // Validity: p >= 0 on the contact and no penetration on a < |x| <= 3a.
   double pmin = kInf, gmin = kInf, gmax = 0.0, x_pmin = 0.0;
@@ -331,6 +334,8 @@ ContactSolution solve_contact(const ContactParams& p) {
       x_gap = x;
     }
   }
+  if (!std::isfinite(gap_min))
+    throw ConvergenceError("the gap outside the contact came out non-finite; the solution is not trusted");
   sol.min_gap_ = gap_min;
   const double rel = std::max(1e-6, 100.0 * p.tol);
   std::ostringstream why;

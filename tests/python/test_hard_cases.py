@@ -329,6 +329,10 @@ STIFF_NEAR_CRITICAL = [
 ]
 
 
+@pytest.mark.xfail(
+    strict=False,
+    reason="open (issue 4): stiff foundation within 1e-5 of V*_cr wrongly refused as too wide; see docs/hard-cases.md, Open failures",
+)
 @pytest.mark.slow
 @pytest.mark.parametrize(("kw", "eps", "lam"), STIFF_NEAR_CRITICAL)
 def test_stiff_foundation_near_critical(kw: float, eps: float, lam: float) -> None:
@@ -342,6 +346,10 @@ def test_stiff_foundation_near_critical(kw: float, eps: float, lam: float) -> No
     assert dt < NO_HANG
 
 
+@pytest.mark.xfail(
+    strict=False,
+    reason="open (issue 4): calls within 1e-6 of V*_R can exceed 30 s; see docs/hard-cases.md, Open failures",
+)
 @pytest.mark.slow
 @pytest.mark.parametrize(
     ("kw", "nu", "eps", "lam"),
@@ -570,6 +578,10 @@ WIDE_AND_FAST = [
 ]
 
 
+@pytest.mark.xfail(
+    strict=False,
+    reason="open (issue 4): wide contacts at speed can exceed 30 s; see docs/hard-cases.md, Open failures",
+)
 @pytest.mark.slow
 @pytest.mark.parametrize(("vstar", "kw", "radius", "load", "nu"), WIDE_AND_FAST)
 def test_wide_contact_at_speed(
@@ -760,6 +772,10 @@ def test_every_collocation_size_is_well_conditioned(n: int) -> None:
     assert total_load(s) == pytest.approx(1.0, rel=1e-10)
 
 
+@pytest.mark.xfail(
+    strict=False,
+    reason="open (issue 4): N >= 640 on a/h ~ 5.5 disagrees with N = 512 at 1e-9; see docs/hard-cases.md, Open failures",
+)
 @pytest.mark.parametrize(("kw", "lam"), [(1.0, 100.0), (INF, 300.0), (0.01, 1.64)])
 def test_large_n_on_a_wide_contact(kw: float, lam: float) -> None:
     # a/h ~ 4-7 with N = 640 (what the automatic refinement reaches for a wide
