@@ -331,7 +331,11 @@ STIFF_NEAR_CRITICAL = [
 
 @pytest.mark.xfail(
     strict=False,
-    reason="open (issue 4): stiff foundation within 1e-5 of V*_cr wrongly refused as too wide; see docs/hard-cases.md, Open failures",
+    reason=(
+        "open (issue 4): stiff foundation within 1e-5 of V*_cr wrongly refused "
+        "as too wide; "
+        "see docs/hard-cases.md, Open failures"
+    ),
 )
 @pytest.mark.slow
 @pytest.mark.parametrize(("kw", "eps", "lam"), STIFF_NEAR_CRITICAL)
@@ -348,7 +352,10 @@ def test_stiff_foundation_near_critical(kw: float, eps: float, lam: float) -> No
 
 @pytest.mark.xfail(
     strict=False,
-    reason="open (issue 4): calls within 1e-6 of V*_R can exceed 30 s; see docs/hard-cases.md, Open failures",
+    reason=(
+        "open (issue 4): calls within 1e-6 of V*_R can exceed 30 s; "
+        "see docs/hard-cases.md, Open failures"
+    ),
 )
 @pytest.mark.slow
 @pytest.mark.parametrize(
@@ -580,7 +587,10 @@ WIDE_AND_FAST = [
 
 @pytest.mark.xfail(
     strict=False,
-    reason="open (issue 4): wide contacts at speed can exceed 30 s; see docs/hard-cases.md, Open failures",
+    reason=(
+        "open (issue 4): wide contacts at speed can exceed 30 s; "
+        "see docs/hard-cases.md, Open failures"
+    ),
 )
 @pytest.mark.slow
 @pytest.mark.parametrize(("vstar", "kw", "radius", "load", "nu"), WIDE_AND_FAST)
@@ -774,7 +784,10 @@ def test_every_collocation_size_is_well_conditioned(n: int) -> None:
 
 @pytest.mark.xfail(
     strict=False,
-    reason="open (issue 4): N >= 640 on a/h ~ 5.5 disagrees with N = 512 at 1e-9; see docs/hard-cases.md, Open failures",
+    reason=(
+        "open (issue 4): N >= 640 on a/h ~ 5.5 disagrees with N = 512 at 1e-9; "
+        "see docs/hard-cases.md, Open failures"
+    ),
 )
 @pytest.mark.parametrize(("kw", "lam"), [(1.0, 100.0), (INF, 300.0), (0.01, 1.64)])
 def test_large_n_on_a_wide_contact(kw: float, lam: float) -> None:
