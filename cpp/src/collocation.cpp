@@ -61,13 +61,18 @@ Eigen::VectorXd u_coefficients(const ChebyshevNodes& nodes, const Eigen::VectorX
   return b;
 }
 
-double u_series_cosine_transform(const Eigen::VectorXd& b, double a, double alpha) {
-  const double w = alpha * a;
-  if (w < 1e-8) return 0.5 * b(0) * 0.5 * kPi * a;  // J_1(w)/w -> 1/2, higher orders vanish
-  Eigen::Index last = 0;  // highest even n with a non-negligible coefficient
+Eigen::Index last_even_term(const Eigen::VectorXd& b) {
+  Eigen::Index last = 0;
   const double bmax = b.cwiseAbs().maxCoeff();
   for (Eigen::Index n = 0; n < b.size(); n += 2)
     if (std::fabs(b(n)) > 1e-17 * bmax) last = n;
+  return last;
+}
+
+double u_series_cosine_transform(const Eigen::VectorXd& b, double a, double alpha) {
+  const double w = alpha * a;
+  if (w < 1e-8) return 0.5 * b(0) * 0.5 * kPi * a;  // J_1(w)/w -> 1/2, higher orders vanish
+  const Eigen::Index last = last_even_term(b);
   double sum = 0.0;
   for (Eigen::Index n = 0; n <= last; n += 2) {
     // J_nu(w) <= (w/2)^nu / nu!: negligible (and, in the library, not always

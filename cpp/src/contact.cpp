@@ -270,8 +270,9 @@ ContactSolution solve_contact(const ContactParams& p) {
     }
   }
 
-  // The displacement checks need the kernel's quadrature to resolve
-  // oscillations up to 4a; extend it (and re-solve on it) if the width grew.
+  // The displacement (indentation, validity) integrates the transform of p,
+  // which oscillates with frequency a, on the kernel's panels: if the width
+  // grew past what they resolve, extend the kernel and re-solve on it.
   if (prob.kernel_ptr()->range() < 4.0 * a) {
     prob.ensure_range(table_range(a));
     a = solve_width(prob, p, nodes, p.load, a, xtol);
@@ -420,15 +421,6 @@ Eigen::VectorXd ContactSolution::pressure(const Eigen::Ref<const Eigen::VectorXd
   Eigen::VectorXd out(x.size());
   for (Eigen::Index i = 0; i < x.size(); ++i) out(i) = pressure(x(i));
   return out;
-}
-
-// Highest even n with a non-negligible Chebyshev-U coefficient.
-static Eigen::Index last_even_term(const Eigen::VectorXd& b) {
-  Eigen::Index last = 0;
-  const double bmax = b.cwiseAbs().maxCoeff();
-  for (Eigen::Index n = 0; n < b.size(); n += 2)
-    if (std::fabs(b(n)) > 1e-17 * bmax) last = n;
-  return last;
 }
 
 // Precomputes the Filon coefficients of f(alpha) ptilde(alpha), f = [M1 - phi1 (1 -

@@ -31,6 +31,9 @@ Eigen::VectorXd u_coefficients(const ChebyshevNodes& nodes, const Eigen::VectorX
 // g(r) = sum b_n U_n(r) for |r| <= 1 (Clenshaw).
 double u_series(const Eigen::VectorXd& b, double r);
 
+// Highest even n with |b_n| above round-off of the largest coefficient.
+Eigen::Index last_even_term(const Eigen::VectorXd& b);
+
 // Exact cosine transform of p(x) = sqrt(1 - (x/a)^2) g(x/a) on |x| < a, g even:
 // int_0^a p(x) cos(alpha x) dx = (a/2) sum_n b_n pi (n+1) (-1)^{n/2} J_{n+1}(alpha a)/(alpha a)
 // (the Chebyshev-Bessel identity). Odd coefficients are ignored.
