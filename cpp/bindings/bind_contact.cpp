@@ -42,6 +42,22 @@ void bind_contact(py::module_& m) {
                              "Load evaluations over all collocation sizes.")
       .def_property_readonly("collocation_n", &ContactSolution::collocation_n,
                              "Number N of collocation nodes of the final solve.")
+      .def_property_readonly(
+          "stage_seconds",
+          [](const ContactSolution& s) {
+            const auto& t = s.stage_seconds();
+            py::dict d;
+            d["critical_speed"] = t.critical_speed;
+            d["kernel"] = t.kernel;
+            d["width"] = t.width;
+            d["checks"] = t.checks;
+            return d;
+          },
+          "Seconds per stage: critical_speed, kernel (fetching or building the k1 "
+          "table), width (the iteration on a), checks (indentation and validity).")
+      .def_property_readonly("kernel_builds", &ContactSolution::kernel_builds,
+                             "k1 kernel tables this solve built (0: reused from the "
+                             "process-wide cache).")
       .def_property_readonly("valid", &ContactSolution::valid,
                              "True if p >= 0 on (-a, a) and the punch does not "
                              "penetrate the surface outside it.")
@@ -110,6 +126,21 @@ void bind_contact(py::module_& m) {
         return py::str("<movingpunch._core.ContactSolution a={!r} valid={}>")
             .format(s.a(), s.valid());
       });
+
+  m.def(
+      "kernel_cache_info",
+      []() {
+        const KernelCacheInfo i = kernel_cache_info();
+        py::dict d;
+        d["size"] = i.size;
+        d["hits"] = i.hits;
+        d["misses"] = i.misses;
+        return d;
+      },
+      "Process-wide k1 kernel cache: tables held (size), requests served (hits), "
+      "tables built (misses).");
+  m.def("clear_kernel_cache", &clear_kernel_cache, Release(),
+        "Empties the process-wide k1 kernel cache and resets its counters.");
 
   m.def(
       "solve_contact",

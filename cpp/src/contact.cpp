@@ -92,15 +92,17 @@ class Problem {
   }
 
   const KernelK1& kernel(double a) {
-    if (!kernel_ || 2.0 * a > kernel_->range())
-      kernel_ = std::make_shared<KernelK1>(model_, kernel_tol_, table_range(a));
+    if (!kernel_ || 2.0 * a > kernel_->range()) fetch(2.0 * a, table_range(a));
     return *kernel_;
   }
   std::shared_ptr<const KernelK1> kernel_ptr() const { return kernel_; }
   void ensure_range(double range) {
-    if (!kernel_ || kernel_->range() < range)
-      kernel_ = std::make_shared<KernelK1>(model_, kernel_tol_, range * 1.05);
+    if (!kernel_ || kernel_->range() < range) fetch(range, range * 1.05);
   }
+  // Kernel tables built by this solve (0 if all came from the cache), and the
+  // time spent fetching or building them.
+  int kernel_builds() const { return builds_; }
+  double kernel_seconds() const { return kernel_seconds_; }
 
   // Unit solution G (g = -(a / (phi1 R)) G) and the load this a carries.
   double load_of(const ChebyshevNodes& nodes, double a, Eigen::VectorXd* G_out) {
@@ -122,6 +124,16 @@ class Problem {
   double kernel_tol_;
   std::shared_ptr<const KernelK1> kernel_;
   int evaluations_ = 0;
+  int builds_ = 0;
+  double kernel_seconds_ = 0.0;
+
+  void fetch(double min_range, double build_range) {
+    const Timer t;
+    bool built = false;
+    kernel_ = cached_kernel(model_, kernel_tol_, min_range, build_range, &built);
+    builds_ += built ? 1 : 0;
+    kernel_seconds_ += t.seconds();
+  }
 };
 
 // Solves load(a) = P for a at fixed N: safeguarded secant on F(ln a) =
@@ -196,6 +208,7 @@ ContactSolution solve_contact(const ContactParams& p) {
   validate(p);
   const double vr = rayleigh_vstar(p.nu);
   const CriticalSpeed crit = critical_speed(p.kw, p.nu);
+  const double t_critical = timer.seconds();
   if (p.vstar >= crit.vstar) throw SupercriticalSpeedError(p.vstar, crit.vstar, vr);
 
   const LayerModel model(p.vstar, p.kw, p.nu);
@@ -278,8 +291,10 @@ ContactSolution solve_contact(const ContactParams& p) {
     a = solve_width(prob, p, nodes, p.load, a, xtol);
   }
 
+  const double t_width = timer.seconds();
   ContactSolution sol;
   sol.params_ = p;
+  sol.kernel_builds_ = prob.kernel_builds();
   sol.a_ = a;
   sol.vcr_ = crit.vstar;
   sol.vr_ = vr;
@@ -369,6 +384,9 @@ ContactSolution solve_contact(const ContactParams& p) {
     }
   }
   sol.elapsed_ = timer.seconds();
+  sol.stage_seconds_ = {t_critical, prob.kernel_seconds(),
+                        t_width - t_critical - prob.kernel_seconds(),
+                        sol.elapsed_ - t_width};
   return sol;
 }
 

@@ -35,8 +35,10 @@ except ImportError as exc:  # pragma: no cover - depends on how it was installed
 from movingpunch.fields import StressField, StressPeaks
 from movingpunch.solver import (
     Solution,
+    clear_kernel_cache,
     critical_vstar,
     critical_wavenumber,
+    kernel_cache_info,
     layer_response,
     phi1,
     phi2,
@@ -59,8 +61,10 @@ __all__ = [
     "SupercriticalSpeedError",
     "UnphysicalContactError",
     "__version__",
+    "clear_kernel_cache",
     "critical_vstar",
     "critical_wavenumber",
+    "kernel_cache_info",
     "layer_response",
     "phi1",
     "phi2",

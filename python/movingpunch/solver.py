@@ -21,8 +21,9 @@ from __future__ import annotations
 
 import math
 import numbers
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, fields
+from types import MappingProxyType
 from typing import Any, Literal, overload
 
 import numpy as np
@@ -34,8 +35,10 @@ from movingpunch.fields import StressField, StressPeaks, derived_stresses
 
 __all__ = [
     "Solution",
+    "clear_kernel_cache",
     "critical_vstar",
     "critical_wavenumber",
+    "kernel_cache_info",
     "layer_response",
     "phi1",
     "phi2",
@@ -222,6 +225,8 @@ def _flat(points: FloatArray) -> FloatArray:
 
 
 def _json_safe(value: object) -> object:
+    if isinstance(value, Mapping):
+        return {str(k): _json_safe(v) for k, v in value.items()}
     if isinstance(value, float) and not math.isfinite(value):
         return str(value)  # "inf", "-inf", "nan"
     return value
@@ -274,6 +279,14 @@ class Solution:
     """Minimum of p/(P/h) on [-a, a]."""
     min_gap: float
     """Minimum gap/h between punch and surface on a < |x| <= 3a."""
+    kernel_builds: int = field(compare=False)
+    """k1 kernel tables this solve built (0: all reused from the process-wide
+    cache, as in a load or radius sweep at fixed vstar, kw, nu and tol)."""
+    stage_times: Mapping[str, float] = field(compare=False)
+    """Seconds per stage of the solve: ``critical_speed``, ``kernel``
+    (fetching or building the k1 table), ``width`` (the iteration on a) and
+    ``checks`` (indentation and validity). They sum to ``elapsed`` up to the
+    cost of reading the clock."""
     _impl: _core.ContactSolution = field(repr=False, compare=False)
 
     @property
@@ -480,8 +493,26 @@ def solve(
         validity=impl.validity,
         min_pressure=impl.min_pressure,
         min_gap=impl.min_gap,
+        kernel_builds=impl.kernel_builds,
+        stage_times=MappingProxyType(dict(impl.stage_seconds)),
         _impl=impl,
     )
+
+
+def kernel_cache_info() -> dict[str, int]:
+    """The process-wide cache of k1 kernel tables: ``size`` (tables held),
+    ``hits`` (solves that reused a table), ``misses`` (tables built).
+
+    Tables are keyed on (vstar, kw, nu, tol), so solves that change only the
+    radius or the load reuse one table (when the cached table covers the new
+    contact width).
+    """
+    return dict(_core.kernel_cache_info())
+
+
+def clear_kernel_cache() -> None:
+    """Empties the kernel cache and resets its counters."""
+    _core.clear_kernel_cache()
 
 
 def critical_vstar(kw: float, nu: float = 0.2) -> float:

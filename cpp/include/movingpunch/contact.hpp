@@ -41,6 +41,15 @@ class ContactSolution {
   double elapsed() const noexcept { return elapsed_; }     // seconds
   int iterations() const noexcept { return iterations_; }  // load evaluations, all N
   int collocation_n() const noexcept { return n_; }
+  // Seconds spent in each stage: the critical-speed check, fetching or
+  // building the k1 kernel, the width iteration (without the kernel), and the
+  // indentation and validity checks. They sum to elapsed() up to timer reads.
+  struct StageSeconds {
+    double critical_speed = 0, kernel = 0, width = 0, checks = 0;
+  };
+  const StageSeconds& stage_seconds() const noexcept { return stage_seconds_; }
+  // Kernel tables this solve built (0: all reused from the process-wide cache).
+  int kernel_builds() const noexcept { return kernel_builds_; }
   bool valid() const noexcept { return valid_; }
   const std::string& validity() const noexcept { return validity_; }
   double min_pressure() const noexcept { return min_p_; }  // min p/(P/h) on [-a, a]
@@ -74,7 +83,8 @@ class ContactSolution {
   friend ContactSolution solve_contact(const ContactParams& p);
   ContactParams params_{};
   double a_ = 0, p0_ = 0, delta_ = 0, vcr_ = 0, vr_ = 0, phi1_ = 0, err_ = 0, elapsed_ = 0;
-  int iterations_ = 0, n_ = 0;
+  int iterations_ = 0, n_ = 0, kernel_builds_ = 0;
+  StageSeconds stage_seconds_{};
   bool valid_ = true;
   std::string validity_;
   double min_p_ = 0, min_gap_ = 0;

@@ -74,4 +74,24 @@ class KernelK1 {
   std::vector<double> coef_;    // Chebyshev coefficients in u / range
 };
 
+// Process-wide cache of k1 tables, keyed on (vstar, kw, nu, tol): solves that
+// share a material and speed (a load or radius sweep) reuse one table.
+// Returns a cached table whose range is at least `min_range` (and at most
+// kMaxRangeRatio times it, so a tiny contact never pays for a huge table), or
+// builds one of range `build_range` (>= min_range) and caches it. `built`
+// (optional) is set to whether a table was built. Thread-safe; the least
+// recently used tables are evicted beyond kCapacity.
+struct KernelCacheInfo {
+  std::size_t size = 0;    // tables held
+  std::size_t hits = 0;    // requests served from the cache
+  std::size_t misses = 0;  // requests that built a table
+};
+inline constexpr double kMaxRangeRatio = 16.0;
+inline constexpr std::size_t kKernelCacheCapacity = 32;
+std::shared_ptr<const KernelK1> cached_kernel(const LayerModel& model, double tol,
+                                              double min_range, double build_range,
+                                              bool* built = nullptr);
+KernelCacheInfo kernel_cache_info();
+void clear_kernel_cache();
+
 }  // namespace movingpunch
