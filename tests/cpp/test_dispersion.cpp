@@ -1,6 +1,7 @@
 // Critical speed: the published table, the rigid-base limit, monotonicity.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -57,5 +58,29 @@ TEST(CriticalSpeed, IncreasesWithFoundationStiffness) {
     EXPECT_GT(v, prev) << "kw " << kw;
     EXPECT_LT(v, rayleigh_vstar(0.2));
     prev = v;
+  }
+}
+
+// The search (a coarse grid and Brent's minimiser) finds the minimum of the
+// first-wave speed everywhere: no point of a dense, independent log grid of
+// 20 points per decade over t in [1e-5, 1e5] lies below it, and the grid's
+// best point is within the grid's own resolution of it.
+TEST(CriticalSpeed, NoDenseGridPointLiesBelowIt) {
+  for (double nu : {0.0, 0.2, 0.45}) {
+    for (double kw : {1e-6, 0.01, 0.3, 1.0, 10.0, 30.0, 100.0}) {
+      const CriticalSpeed c = critical_speed(kw, nu);
+      double grid_min = rayleigh_vstar(nu);
+      for (int i = 0; i <= 200; ++i) {
+        const double t = std::pow(10.0, -5.0 + 0.05 * i);
+        const double v = first_wave_vstar(t, kw, nu);
+        EXPECT_GE(v, c.vstar * (1.0 - 1e-12)) << "kw " << kw << " nu " << nu << " t " << t;
+        grid_min = std::min(grid_min, v);
+      }
+      EXPECT_LE(c.vstar, grid_min) << "kw " << kw << " nu " << nu;
+      EXPECT_NEAR(c.vstar, grid_min, 2e-2 * c.vstar) << "kw " << kw << " nu " << nu;
+      if (std::isfinite(c.t)) {
+        EXPECT_NEAR(first_wave_vstar(c.t, kw, nu), c.vstar, 1e-13) << "kw " << kw;
+      }
+    }
   }
 }
