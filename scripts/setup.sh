@@ -56,6 +56,6 @@ if [[ "${MOVINGPUNCH_FORCE_INSTALL:-0}" != 1 && -f $stamp && $(<"$stamp") == "$d
 else
   log "building and installing movingpunch into .venv (first build takes a few minutes)"
   rm -f "$stamp"
-  .venv/bin/python -m pip install --progress-bar off ".[test,dev]"
+  .venv/bin/python -m pip install --progress-bar off ".[test,dev,dask,png,serve]"
   printf '%s\n' "$digest" >"$stamp"
 fi

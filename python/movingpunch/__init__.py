@@ -33,6 +33,7 @@ except ImportError as exc:  # pragma: no cover - depends on how it was installed
     ) from exc
 
 from movingpunch.fields import StressField, StressPeaks
+from movingpunch.scene import Scene, SceneError, SceneResult, bundled_scenes
 from movingpunch.solver import (
     Solution,
     clear_kernel_cache,
@@ -55,12 +56,16 @@ __all__ = [
     "ConvergenceError",
     "InvalidParameterError",
     "MovingPunchError",
+    "Scene",
+    "SceneError",
+    "SceneResult",
     "Solution",
     "StressField",
     "StressPeaks",
     "SupercriticalSpeedError",
     "UnphysicalContactError",
     "__version__",
+    "bundled_scenes",
     "clear_kernel_cache",
     "critical_vstar",
     "critical_wavenumber",

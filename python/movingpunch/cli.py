@@ -2,6 +2,13 @@
 
 ``solve --stress`` adds the peaks of sigma_x/(P/h) (``Solution.stress_peaks``).
 
+``movingpunch`` with no command, or ``movingpunch tui [SCENE]``, starts the
+terminal UI (``movingpunch.tui``, imported only then); ``movingpunch serve``
+serves it in a browser through textual-serve.
+
+``movingpunch run SCENE``, ``movingpunch scenes`` and ``movingpunch scene show
+NAME`` run, list and print scenes (``movingpunch.scene``, docs/scenes.md).
+
 Bad arguments and every MovingPunchError/ValueError end in one line
 ``movingpunch: error: ...`` on stderr and exit status 2, never a traceback.
 """
@@ -13,9 +20,10 @@ import dataclasses
 import io
 import json
 import math
+import shlex
 import sys
 from collections.abc import Callable, Sequence
-from typing import NoReturn
+from typing import Any, NoReturn
 
 from movingpunch.errors import MovingPunchError
 from movingpunch.fields import StressPeaks
@@ -143,6 +151,39 @@ def _build_parser() -> argparse.ArgumentParser:
     )
     crit_p.add_argument("--json", action="store_true", help="print JSON")
     crit_p.set_defaults(handler=_cmd_critical)
+
+    tui_p = sub.add_parser(
+        "tui",
+        help="the terminal UI (also: movingpunch with no command)",
+        description="Edit the parameters and watch the contact pressure and "
+        "stresses in the terminal. Starts on the paper's Fig. 4 case.",
+    )
+    tui_p.add_argument(
+        "scene",
+        nargs="?",
+        default=None,
+        help="a scene file (TOML) or the name of a bundled scene (fig2 ... fig6)",
+    )
+    tui_p.add_argument(
+        "--no-timing",
+        action="store_true",
+        help="hide the solve time (reproducible screens)",
+    )
+    tui_p.set_defaults(handler=_cmd_tui)
+
+    serve_p = sub.add_parser(
+        "serve",
+        help="serve the terminal UI in a web browser (needs the 'serve' extra)",
+        description="Serve the terminal UI on http://HOST:PORT through "
+        "textual-serve (pip install 'movingpunch[serve]').",
+    )
+    serve_p.add_argument(
+        "scene", nargs="?", default=None, help="a scene file or bundled name"
+    )
+    serve_p.add_argument("--host", default="localhost", help="default localhost")
+    serve_p.add_argument("--port", type=int, default=8000, help="default 8000")
+    serve_p.set_defaults(handler=_cmd_serve)
+    _add_scene_commands(sub)
     return parser
 
 
@@ -255,6 +296,193 @@ def _cmd_critical(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_tui(args: argparse.Namespace) -> int:
+    # Imported here: the numerical commands never load Textual.
+    from movingpunch.tui import create_app
+
+    app = create_app(args.scene, show_timing=not args.no_timing)
+    app.run()
+    return 0
+
+
+def _cmd_serve(args: argparse.Namespace) -> int:
+    try:
+        from textual_serve.server import Server
+    except ImportError:
+        _fail(
+            "serve needs textual-serve: pip install 'movingpunch[serve]' "
+            "(or pip install textual-serve)"
+        )
+    if args.scene is not None:
+        from movingpunch.tui import scenes
+
+        scenes.load(args.scene)  # a bad scene fails here, in one line
+    command = [sys.executable, "-m", "movingpunch", "tui"]
+    if args.scene is not None:
+        command.append(args.scene)
+    server = Server(shlex.join(command), host=args.host, port=args.port, title=PROG)
+    server.serve()
+    return 0
+
+
+# --- Scenes: movingpunch run / scenes / scene show ---------------------------
+
+
+def _add_scene_commands(sub: Any) -> None:
+    """The ``run``, ``scenes`` and ``scene show`` subcommands (docs/scenes.md)."""
+    run_p = sub.add_parser(
+        "run",
+        help="run a scene file or a bundled scene (table1, fig2 ... fig6, ...)",
+        description="Run a scene: compute only the outputs it asks for, print a "
+        "summary table and the stages with their times, optionally plot and "
+        "write one CSV/JSON file per output (docs/scenes.md).",
+    )
+    run_p.add_argument("scene", help="a scene file (TOML) or a bundled scene name")
+    run_p.add_argument(
+        "--out",
+        metavar="DIR",
+        default=None,
+        help="write one file per output into DIR (default: none; '.' when "
+        "--format or --png is given)",
+    )
+    run_p.add_argument(
+        "--format", choices=("csv", "json"), default=None, help="file format (csv)"
+    )
+    plot = run_p.add_mutually_exclusive_group()
+    plot.add_argument(
+        "--plot",
+        action="store_true",
+        default=None,
+        help="ASCII plots in the terminal (default when stdout is a terminal)",
+    )
+    plot.add_argument(
+        "--no-plot", dest="plot", action="store_false", help="no ASCII plots"
+    )
+    run_p.add_argument(
+        "--png", action="store_true", help="PNG figures (needs the 'png' extra)"
+    )
+    run_p.add_argument(
+        "--jobs",
+        type=_jobs,
+        default=None,
+        metavar="N",
+        help="worker processes for a sweep (default: all cores; 1: none)",
+    )
+    run_p.add_argument(
+        "--dask",
+        metavar="ADDRESS",
+        default=None,
+        help="run the sweep on a Dask scheduler, e.g. tcp://host:8786 "
+        "(needs the 'dask' extra)",
+    )
+    run_p.set_defaults(handler=_cmd_run)
+
+    list_p = sub.add_parser(
+        "scenes",
+        help="list the bundled scenes",
+        description="List the bundled scenes with a one-line description.",
+    )
+    list_p.set_defaults(handler=_cmd_scenes)
+
+    scene_p = sub.add_parser(
+        "scene",
+        help="show a bundled scene as TOML",
+        description="Print a bundled scene as TOML, to start a scene file from.",
+    )
+    scene_sub = scene_p.add_subparsers(dest="scene_command", metavar="ACTION")
+    show_p = scene_sub.add_parser(
+        "show",
+        help="print a bundled scene as TOML",
+        description="Print a bundled scene (or a scene file, validated) as TOML.",
+    )
+    show_p.add_argument("name", help="a bundled scene name (or a scene file)")
+    show_p.set_defaults(handler=_cmd_scene_show)
+    scene_p.set_defaults(handler=lambda _args: _fail("scene: missing ACTION: show"))
+
+
+def _jobs(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"must be an integer >= 1, got {text!r}"
+        ) from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be an integer >= 1, got {text!r}")
+    return value
+
+
+def _cmd_run(args: argparse.Namespace) -> int:
+    from pathlib import Path
+
+    from movingpunch.scene import (
+        ascii_plots,
+        format_summary,
+        load_scene,
+        write_outputs,
+        write_pngs,
+    )
+
+    scene = load_scene(args.scene)
+    bar = _ProgressBar() if sys.stderr.isatty() else None
+    try:
+        result = scene.run(jobs=args.jobs, progress=bar, dask=args.dask)
+    finally:
+        if bar is not None:
+            bar.close()
+    print(format_summary(result))
+    show_plot = args.plot if args.plot is not None else sys.stdout.isatty()
+    if show_plot:
+        print()
+        print(ascii_plots(result, color=sys.stdout.isatty()))
+    if args.out is not None or args.format is not None or args.png:
+        out_dir = Path(args.out or ".")
+        written = write_outputs(result, out_dir, args.format or "csv")
+        if args.png:
+            written += write_pngs(result, out_dir)
+        print()
+        print("Files")
+        for path in written:
+            print(f"  {path}")
+    return 0
+
+
+class _ProgressBar:
+    """``progress(done, total)`` drawn as one line on stderr."""
+
+    def __init__(self) -> None:
+        self.drawn = False
+
+    def __call__(self, done: int, total: int) -> None:
+        width = 30
+        filled = width * done // max(total, 1)
+        sys.stderr.write(f"\r[{'#' * filled}{'.' * (width - filled)}] {done}/{total}")
+        sys.stderr.flush()
+        self.drawn = True
+
+    def close(self) -> None:
+        if self.drawn:
+            sys.stderr.write("\n")
+
+
+def _cmd_scenes(args: argparse.Namespace) -> int:
+    from movingpunch.scene import bundled_scenes
+
+    scenes = bundled_scenes()
+    width = max(len(name) for name in scenes)
+    for name, description in scenes.items():
+        print(f"{name:<{width}}  {description}")
+    return 0
+
+
+def _cmd_scene_show(args: argparse.Namespace) -> int:
+    from movingpunch.scene import bundled_scene_text, load_scene
+
+    text = bundled_scene_text(args.name)
+    print(text if text is not None else load_scene(args.name).to_toml(), end="")
+    return 0
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``movingpunch`` command; returns the exit status."""
     if isinstance(sys.stdout, io.TextIOWrapper):
@@ -264,8 +492,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     args = parser.parse_args(argv)
     handler: Callable[[argparse.Namespace], int] | None = getattr(args, "handler", None)
     if handler is None:
-        parser.print_help()
-        return 0
+        handler = _cmd_tui  # no command: the terminal UI on the paper's Fig. 4
+        args = argparse.Namespace(scene=None, no_timing=False)
     try:
         return handler(args)
     except (MovingPunchError, ValueError) as exc:

@@ -415,7 +415,8 @@ class Solution:
         def at(x: FloatArray, y: float) -> FloatArray:
             if y == 0.0:
                 return self._impl.surface_stress(x)
-            return self._impl.stress_field(x, np.array([y]))[0][0]
+            row: FloatArray = self._impl.stress_field(x, np.array([y]))[0][0]
+            return row
 
         def refine(values: FloatArray, sign: float, y: float) -> tuple[float, float]:
             i = int(np.argmax(sign * values))

@@ -1,0 +1,450 @@
+"""Showing and saving a scene's result: summary table, ASCII plots (plotext),
+CSV/JSON files with the scene and the package version as metadata, PNG
+figures (matplotlib, optional). Every file is written atomically."""
+
+from __future__ import annotations
+
+import contextlib
+import importlib
+import io
+import json
+import math
+import os
+import tempfile
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from movingpunch.scene._run import Curve, MissingExtraError, SceneResult
+from movingpunch.scene._spec import SWEEP_QUANTITIES, Scene
+
+__all__ = [
+    "ascii_plots",
+    "atomic_write",
+    "format_summary",
+    "read_csv",
+    "read_json",
+    "write_outputs",
+    "write_pngs",
+]
+
+FloatArray = npt.NDArray[np.float64]
+
+_PARAM_LABELS = {
+    "vstar": "V*",
+    "kw": "k_w h/μ",
+    "radius": "R/h",
+    "load": "P/(μh)",
+    "nu": "ν",
+}
+_QUANTITY_LABELS = {
+    "a": "a/h",
+    "p0": "p0/(P/h)",
+    "indentation": "δ/h",
+    "min_pressure": "min p/(P/h)",
+    "critical_vstar": "V*_cr",
+    "phi1": "φ1",
+    "top_compressive": "top σx min",
+    "top_tensile": "top σx max",
+    "bottom_tensile": "bottom σx max",
+    "centre_top": "σx(0,0)",
+    "centre_bottom": "σx(0,-h)",
+}
+
+
+def _version() -> str:
+    import movingpunch
+
+    return str(movingpunch.__version__)
+
+
+# ----------------------------------------------------------------------------
+# Atomic files
+# ----------------------------------------------------------------------------
+
+
+def atomic_write(path: Path, data: bytes) -> None:
+    """Writes ``data`` to ``path`` through a temporary file in the same
+    directory and ``os.replace``: readers see the old file or the whole new
+    one, and a failure leaves no partial file behind."""
+    path = Path(path)
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(fd, "wb") as f:
+            f.write(data)
+            f.flush()
+            os.fsync(f.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        raise
+
+
+# ----------------------------------------------------------------------------
+# Summary
+# ----------------------------------------------------------------------------
+
+
+def _fmt(x: float) -> str:
+    if isinstance(x, float) and math.isnan(x):
+        return "-"
+    if isinstance(x, float) and math.isinf(x):
+        return "inf" if x > 0 else "-inf"
+    return f"{x:.10g}"
+
+
+def _table(header: Sequence[str], rows: Sequence[Sequence[str]]) -> list[str]:
+    widths = [len(h) for h in header]
+    for row in rows:
+        widths = [max(w, len(c)) for w, c in zip(widths, row, strict=True)]
+    lines = ["  " + "  ".join(h.ljust(w) for h, w in zip(header, widths, strict=True))]
+    lines += [
+        "  " + "  ".join(c.ljust(w) for c, w in zip(row, widths, strict=True))
+        for row in rows
+    ]
+    return [line.rstrip() for line in lines]
+
+
+def format_summary(result: SceneResult) -> str:
+    """The run as text: the scene, its scalar results, the sweep table and
+    the stages with their times."""
+    scene = result.scene
+    out: list[str] = []
+    title = f"Scene {scene.name}" if scene.name else "Scene"
+    out.append(f"{title}: {scene.description}" if scene.description else title)
+    params = ", ".join(
+        f"{_PARAM_LABELS[k]} = {_fmt(v)}" for k, v in scene.params.items()
+    )
+    out.append(f"  {params}, tol = {scene.tol:g}")
+    if scene.vary is not None:
+        vals = ", ".join(_fmt(v) for v in scene.vary.values)
+        out.append(f"  curves: {_PARAM_LABELS[scene.vary.param]} = {vals}")
+
+    cw = result.outputs.get("contact_width")
+    if cw is not None:
+        out += ["", "Contact"]
+        names = [n for n in cw.columns if n not in ("error_estimate", "collocation_n")]
+        header = [_PARAM_LABELS.get(n, _QUANTITY_LABELS.get(n, n)) for n in names]
+        rows = []
+        for i in range(len(cw.columns["a"])):
+            row = []
+            for n in names:
+                value = float(cw.columns[n][i])
+                row.append(("yes" if value else "NO") if n == "valid" else _fmt(value))
+            rows.append(row)
+        out += _table(header, rows)
+
+    cs = result.outputs.get("critical_speed")
+    if cs is not None and not cs.curves:
+        out += ["", "Critical speed"]
+        rows = [
+            [_fmt(float(cs.columns[n][i])) for n in cs.columns]
+            for i in range(len(cs.columns["kw"]))
+        ]
+        out += _table(["k_w h/μ", "ν", "V*_cr", "αh at min", "V*_R"], rows)
+
+    sw = result.sweep
+    if sw is not None:
+        out += ["", f"Sweep over {_PARAM_LABELS[sw.param]} ({len(sw.values)} points)"]
+        header = [_PARAM_LABELS[sw.param]]
+        for label in sw.labels:
+            for q in sw.quantities:
+                header.append(
+                    f"{_QUANTITY_LABELS[q]} ({label})" if label else _QUANTITY_LABELS[q]
+                )
+        rows = []
+        for j, x in enumerate(sw.values):
+            row = [_fmt(float(x))]
+            for i in range(len(sw.labels)):
+                for q in sw.quantities:
+                    row.append(
+                        _fmt(float(sw.data[q][i, j])) + ("" if sw.valid[i, j] else " !")
+                    )
+            rows.append(row)
+        out += _table(header, rows)
+        if not sw.valid.all():
+            out.append(
+                "  ! not a valid single contact (p < 0, penetration or failed solve)"
+            )
+        for (_, j), message in list(sw.errors.items())[:3]:
+            out.append(
+                f"  error at {sw.param} = {_fmt(float(sw.values[j]))}: {message}"
+            )
+
+    files = [k for k in result.outputs if k not in ("contact_width",)]
+    if files:
+        out += ["", "Outputs: " + ", ".join(files)]
+
+    out += [
+        "",
+        f"Stages (total {result.total_seconds:.3f} s, jobs {result.jobs or 'dask'})",
+    ]
+    out += _table(
+        ["stage", "count", "seconds"],
+        [[s.name, str(s.count), f"{s.seconds:.4f}"] for s in result.stages],
+    )
+    return "\n".join(out)
+
+
+# ----------------------------------------------------------------------------
+# Plots
+# ----------------------------------------------------------------------------
+
+
+def _plot_items(
+    result: SceneResult,
+) -> list[tuple[str, str, str, str, tuple[Curve, ...], bool]]:
+    """(key, title, x label, y label, curves, log x) for each plottable result
+    (key: the output's name, or ``sweep-<quantity>``)."""
+    items = []
+    for data in result.outputs.values():
+        if data.curves:
+            log_x = data.name == "critical_speed"
+            items.append(
+                (data.name, data.title, data.x_label, data.y_label, data.curves, log_x)
+            )
+    sw = result.sweep
+    if sw is not None:
+        spacing_log = (
+            result.scene.sweep is not None and result.scene.sweep.spacing == "log"
+        )
+        for q in sw.quantities:
+            curves = tuple(c for c in sw.curves(q) if np.isfinite(c.x).all())
+            items.append(
+                (
+                    f"sweep-{q}",
+                    f"{SWEEP_QUANTITIES[q]} against {_PARAM_LABELS[sw.param]}",
+                    _PARAM_LABELS[sw.param],
+                    _QUANTITY_LABELS[q],
+                    curves,
+                    spacing_log,
+                )
+            )
+    return items
+
+
+def ascii_plots(
+    result: SceneResult, *, width: int = 80, height: int = 20, color: bool = False
+) -> str:
+    """ASCII plots (plotext) of every curve output and every sweep quantity."""
+    plt: Any = importlib.import_module("plotext")
+
+    blocks = []
+    for _, title, xl, yl, curves, log_x in _plot_items(result):
+        plt.clear_figure()
+        plt.plotsize(width, height)
+        if not color:
+            plt.theme("clear")
+        drawn = False
+        for c in curves:
+            mask = np.isfinite(c.x) & np.isfinite(c.y)
+            if mask.sum() < 1:
+                continue
+            plt.plot(c.x[mask].tolist(), c.y[mask].tolist(), label=c.label or None)
+            drawn = True
+        if not drawn:
+            continue
+        if log_x:
+            plt.xscale("log")
+        plt.title(title)
+        plt.xlabel(xl)
+        plt.ylabel(yl)
+        text = plt.build()
+        blocks.append(text if color else plt.uncolorize(text))
+    plt.clear_figure()
+    return "\n".join(blocks)
+
+
+def write_pngs(result: SceneResult, out_dir: Path) -> list[Path]:
+    """One PNG figure per curve output and sweep quantity (and per stress
+    field); needs matplotlib (the ``png`` extra)."""
+    try:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        raise MissingExtraError(
+            "--png needs matplotlib: pip install 'movingpunch[png]'"
+        ) from None
+    stem = _stem(result.scene)
+    written: list[Path] = []
+    figures: list[tuple[str, Any]] = []
+    try:
+        for key, title, xl, yl, curves, log_x in _plot_items(result):
+            fig, ax = plt.subplots(figsize=(6.4, 4.4))
+            for c in curves:
+                ax.plot(c.x, c.y, label=c.label or None)
+            if log_x:
+                ax.set_xscale("log")
+            ax.set(title=title, xlabel=xl, ylabel=yl)
+            ax.grid(True, alpha=0.3)
+            if any(c.label for c in curves):
+                ax.legend()
+            figures.append((key, fig))
+        fd = result.outputs.get("stress_field")
+        if fd is not None:
+            spec = result.scene.outputs["stress_field"]
+            comp = spec.resolved_component()
+            n = len(fd.fields)
+            fig, axes = plt.subplots(n, 1, figsize=(6.4, 2.6 * n), squeeze=False)
+            for ax, (label, f) in zip(axes[:, 0], fd.fields, strict=True):
+                mesh = ax.pcolormesh(
+                    f.x, f.y, getattr(f, comp), shading="auto", cmap="RdBu_r"
+                )
+                fig.colorbar(mesh, ax=ax, label=f"{comp}/(P/h)")
+                ax.set(title=f"{comp} {label}".strip(), xlabel="x/h", ylabel="y/h")
+            fig.tight_layout()
+            figures.append((f"stress_field-{comp}", fig))
+        for name, fig in figures:
+            buf = io.BytesIO()
+            fig.savefig(buf, format="png", dpi=120)
+            path = out_dir / f"{stem}-{name}.png"
+            atomic_write(path, buf.getvalue())
+            written.append(path)
+    finally:
+        for _, fig in figures:
+            plt.close(fig)
+    return written
+
+
+def _slug(text: str) -> str:
+    keep = [ch.lower() if ch.isalnum() else "-" for ch in text]
+    return "-".join(part for part in "".join(keep).split("-") if part)
+
+
+def _stem(scene: Scene) -> str:
+    return _slug(scene.name) or "scene"
+
+
+# ----------------------------------------------------------------------------
+# CSV and JSON
+# ----------------------------------------------------------------------------
+
+
+def _tables(result: SceneResult) -> list[tuple[str, str, Mapping[str, FloatArray]]]:
+    tables: list[tuple[str, str, Mapping[str, FloatArray]]] = [
+        (name, data.title, data.columns) for name, data in result.outputs.items()
+    ]
+    if result.sweep is not None:
+        tables.append(
+            ("sweep", f"sweep over {result.sweep.param}", result.sweep.columns())
+        )
+    return tables
+
+
+def _metadata(result: SceneResult, output: str, title: str) -> dict[str, str]:
+    return {
+        "movingpunch_version": _version(),
+        "scene_name": result.scene.name,
+        "output": output,
+        "title": title,
+    }
+
+
+def write_outputs(result: SceneResult, out_dir: Path, fmt: str = "csv") -> list[Path]:
+    """Writes one ``<scene>-<output>.csv`` (or ``.json``) per output and one
+    for the sweep into ``out_dir``, each with the scene (as TOML) and the
+    package version as metadata. Returns the paths written."""
+    if fmt not in ("csv", "json"):
+        raise ValueError(f"format must be 'csv' or 'json', got {fmt!r}")
+    out_dir = Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    stem = _stem(result.scene)
+    scene_toml = result.scene.to_toml()
+    # Render everything first: a failure leaves no file at all.
+    rendered: list[tuple[Path, bytes]] = []
+    for output, title, columns in _tables(result):
+        meta = _metadata(result, output, title)
+        if fmt == "csv":
+            body = _csv(meta, scene_toml, columns)
+        else:
+            body = _json(meta, scene_toml, columns)
+        rendered.append((out_dir / f"{stem}-{output}.{fmt}", body.encode("utf-8")))
+    for path, data in rendered:
+        atomic_write(path, data)
+    return [path for path, _ in rendered]
+
+
+def _csv(
+    meta: Mapping[str, str], scene_toml: str, columns: Mapping[str, FloatArray]
+) -> str:
+    lines = [f"# {k}: {v}" for k, v in meta.items()]
+    lines.append("# columns: " + ",".join(columns))
+    lines.append("# scene:")
+    lines += [f"#   {line}" if line else "#" for line in scene_toml.splitlines()]
+    arrays = [np.asarray(v, dtype=np.float64) for v in columns.values()]
+    n = len(arrays[0]) if arrays else 0
+    for i in range(n):
+        lines.append(",".join(repr(float(a[i])) for a in arrays))
+    return "\n".join(lines) + "\n"
+
+
+def _json_float(x: float) -> float | str:
+    return (
+        x
+        if math.isfinite(x)
+        else ("nan" if math.isnan(x) else ("inf" if x > 0 else "-inf"))
+    )
+
+
+def _json(
+    meta: Mapping[str, str], scene_toml: str, columns: Mapping[str, FloatArray]
+) -> str:
+    doc = {
+        **meta,
+        "scene": scene_toml,
+        "columns": {
+            k: [_json_float(float(x)) for x in np.asarray(v, dtype=np.float64)]
+            for k, v in columns.items()
+        },
+    }
+    return json.dumps(doc, indent=1, allow_nan=False) + "\n"
+
+
+def read_csv(path: str | Path) -> tuple[dict[str, Any], dict[str, FloatArray]]:
+    """Reads a CSV written by ``write_outputs``: (metadata, columns).
+
+    The metadata holds the ``#`` header fields and ``scene``, the ``Scene``
+    the file came from. The numbers alone load with
+    ``np.loadtxt(path, delimiter=",")`` (every header line is a comment).
+    """
+    text = Path(path).read_text(encoding="utf-8")
+    meta: dict[str, Any] = {}
+    names: list[str] = []
+    toml_lines: list[str] = []
+    in_scene = False
+    for line in text.splitlines():
+        if not line.startswith("#"):
+            break
+        body = line[1:]
+        if in_scene:
+            toml_lines.append(body[3:] if body.startswith("   ") else body.strip())
+            continue
+        key, _, value = body.strip().partition(": ")
+        if body.strip() == "scene:":
+            in_scene = True
+        elif key == "columns":
+            names = value.split(",")
+        else:
+            meta[key] = value
+    meta["scene"] = Scene.from_toml("\n".join(toml_lines) + "\n", f"{path} (metadata)")
+    data = np.loadtxt(path, delimiter=",", ndmin=2)
+    columns = {name: data[:, i] for i, name in enumerate(names)}
+    return meta, columns
+
+
+def read_json(path: str | Path) -> tuple[dict[str, Any], dict[str, FloatArray]]:
+    """Reads a JSON file written by ``write_outputs``: (metadata, columns)."""
+    doc = json.loads(Path(path).read_text(encoding="utf-8"))
+    raw_columns = doc.pop("columns")
+    doc["scene"] = Scene.from_toml(doc["scene"], f"{path} (metadata)")
+    columns = {
+        k: np.asarray([float(x) for x in v], dtype=np.float64)
+        for k, v in raw_columns.items()
+    }
+    return doc, columns

@@ -1,0 +1,770 @@
+"""Running a scene: plan the minimal work, do it once, record every stage.
+
+The contact solve is shared by every output of a curve; sweep points that
+share (vstar, kw, nu, tol) share the k1 kernel (the core caches it per
+process); and because a/h, p/(P/h) and sigma/(P/h) depend on radius and load
+only through lambda = radius * load, points with equal (vstar, kw, nu, tol,
+lambda) are solved once (displacements and the indentation scale with the
+load: v = load * V(x; lambda)).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import importlib
+import math
+import multiprocessing
+import os
+import time
+from collections.abc import Callable, Iterator, Mapping, Sequence
+from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from movingpunch.errors import MovingPunchError
+from movingpunch.fields import StressField
+from movingpunch.scene._spec import PEAK_QUANTITIES, Scene, critical_speed
+from movingpunch.solver import Solution, rayleigh_vstar, solve
+
+__all__ = [
+    "Curve",
+    "MissingExtraError",
+    "OutputData",
+    "SceneResult",
+    "Stage",
+    "SweepTable",
+    "run_scene",
+]
+
+FloatArray = npt.NDArray[np.float64]
+
+# Stage names of the core solve (Solution.stage_times), nested in "contact".
+CORE_STAGES = ("critical_speed", "kernel", "width", "checks")
+_TABLES = "#kernel_tables"  # carried with the stage records from workers
+
+DASK_CONNECT_TIMEOUT = 20.0
+"""Seconds to wait for a Dask scheduler before giving up."""
+
+
+class MissingExtraError(MovingPunchError, ImportError):
+    """An optional dependency (an extra of the package) is not installed."""
+
+
+@dataclass(frozen=True)
+class Stage:
+    """One kind of work a run did: ``count`` times, ``seconds`` in total.
+
+    ``contact`` counts contact solves; ``critical_speed``, ``kernel``,
+    ``width`` and ``checks`` are the parts of those solves (``kernel`` counts
+    kernel tables built, not reused); the others are the outputs' evaluations.
+    """
+
+    name: str
+    seconds: float
+    count: int
+
+
+class _Stages:
+    def __init__(self) -> None:
+        self._data: dict[str, list[float]] = {}
+        self.kernel_tables = 0
+
+    def add(self, name: str, seconds: float, count: int = 1) -> None:
+        entry = self._data.setdefault(name, [0.0, 0.0])
+        entry[0] += seconds
+        entry[1] += count
+
+    def add_solution(self, s: Solution) -> None:
+        self.add("contact", s.elapsed)
+        times = getattr(s, "stage_times", None) or {}
+        builds = int(getattr(s, "kernel_builds", 0))
+        self.kernel_tables += builds
+        for name in CORE_STAGES:
+            if name in times:
+                # kernel: counts the solves that had to build a table.
+                count = (1 if builds else 0) if name == "kernel" else 1
+                self.add(name, float(times[name]), count)
+
+    def merge(self, records: Sequence[tuple[str, float, int]]) -> None:
+        for name, seconds, count in records:
+            if name == _TABLES:
+                self.kernel_tables += count
+            else:
+                self.add(name, seconds, count)
+
+    def records(self) -> list[tuple[str, float, int]]:
+        out = [(n, v[0], int(v[1])) for n, v in self._data.items()]
+        return [*out, (_TABLES, 0.0, self.kernel_tables)]
+
+    def stages(self) -> list[Stage]:
+        return [Stage(n, s, c) for n, s, c in self.records() if n != _TABLES]
+
+
+class ClusterError(MovingPunchError, RuntimeError):
+    """The Dask scheduler could not be reached or a task failed on it."""
+
+
+@dataclass(frozen=True)
+class Curve:
+    """One curve of an output or a sweep: ``y`` against ``x``; ``value`` is
+    the vary parameter's value (None without ``vary``), ``label`` names it."""
+
+    label: str
+    value: float | None
+    x: FloatArray
+    y: FloatArray
+
+
+@dataclass(frozen=True)
+class OutputData:
+    """The data of one output: its curves (one per vary value), its stress
+    fields (``stress_field`` only) and ``columns``, the table written to CSV
+    and JSON (column name -> 1-D array, all of one length)."""
+
+    name: str
+    title: str
+    x_label: str
+    y_label: str
+    columns: Mapping[str, FloatArray]
+    curves: tuple[Curve, ...] = ()
+    fields: tuple[tuple[str, StressField], ...] = ()
+
+
+@dataclass(frozen=True)
+class SweepTable:
+    """Scalar quantities against the sweep parameter, one row per vary value.
+
+    ``data[q]`` and ``valid`` are shaped (len(labels), len(values)); a point
+    whose solve failed holds NaN and its message in ``errors[(i, j)]``.
+    """
+
+    param: str
+    values: FloatArray
+    quantities: tuple[str, ...]
+    labels: tuple[str, ...]
+    vary_param: str | None
+    vary_values: tuple[float | None, ...]
+    data: Mapping[str, FloatArray]
+    valid: npt.NDArray[np.bool_]
+    errors: Mapping[tuple[int, int], str] = field(default_factory=dict)
+
+    def curves(self, quantity: str) -> tuple[Curve, ...]:
+        """One curve of ``quantity`` against the sweep parameter per vary value."""
+        return tuple(
+            Curve(label, value, self.values, self.data[quantity][i])
+            for i, (label, value) in enumerate(
+                zip(self.labels, self.vary_values, strict=True)
+            )
+        )
+
+    def columns(self) -> dict[str, FloatArray]:
+        """The table as columns: the parameter, then each quantity (and
+        ``valid``) per vary value, named ``quantity[label]``."""
+        cols: dict[str, FloatArray] = {self.param: self.values}
+        for i, label in enumerate(self.labels):
+            for q in self.quantities:
+                cols[_col(q, label)] = self.data[q][i]
+            cols[_col("valid", label)] = self.valid[i].astype(np.float64)
+        return cols
+
+
+def _col(name: str, label: str) -> str:
+    return f"{name}[{label}]" if label else name
+
+
+@dataclass(frozen=True)
+class SceneResult:
+    """What a scene run computed, and the record of the work it did."""
+
+    scene: Scene
+    outputs: Mapping[str, OutputData]
+    sweep: SweepTable | None
+    solutions: tuple[Solution, ...]
+    """Contact solutions computed in this process (sweep points solved in
+    worker processes or on Dask return their numbers only)."""
+    stages: list[Stage]
+    total_seconds: float
+    """Wall-clock time of the whole run."""
+    jobs: int = 1
+    """Worker processes used for the sweep (1: this process; 0: Dask)."""
+    kernel_tables: int = 0
+    """k1 kernel tables built in all (the ``kernel`` stage counts the solves
+    that built any: a first solve may build two as it widens the table to the
+    contact it finds)."""
+
+    def ran(self, name: str) -> bool:
+        """Whether the stage ``name`` did any work (``count > 0``)."""
+        return any(s.name == name and s.count > 0 for s in self.stages)
+
+    def stage(self, name: str) -> Stage:
+        """The record of stage ``name`` (count 0 if it never ran)."""
+        for s in self.stages:
+            if s.name == name:
+                return s
+        return Stage(name, 0.0, 0)
+
+
+# ----------------------------------------------------------------------------
+# Solving points
+# ----------------------------------------------------------------------------
+
+_Key = tuple[float, float, float, float, float]  # vstar, kw, nu, tol, lambda
+
+
+def _key(p: Mapping[str, float], tol: float) -> _Key:
+    return (p["vstar"], p["kw"], p["nu"], tol, p["radius"] * p["load"])
+
+
+def _label(param: str | None, value: float | None) -> str:
+    if param is None or value is None:
+        return ""
+    return f"{param}={'inf' if math.isinf(value) else format(value, '.6g')}"
+
+
+def _solve(p: Mapping[str, float], tol: float, stages: _Stages) -> Solution:
+    s = solve(
+        vstar=p["vstar"],
+        kw=p["kw"],
+        radius=p["radius"],
+        load=p["load"],
+        nu=p["nu"],
+        tol=tol,
+        allow_unphysical=True,
+    )
+    stages.add_solution(s)
+    return s
+
+
+def _quantities(s: Solution, want_peaks: bool, stages: _Stages) -> dict[str, float]:
+    q: dict[str, float] = {
+        "a": s.a,
+        "p0": s.p0,
+        "indentation": s.indentation,
+        "min_pressure": s.min_pressure,
+        "critical_vstar": s.critical_vstar,
+        "phi1": s.phi1,
+        "valid": 1.0 if s.valid else 0.0,
+        "load": s.load,
+    }
+    if want_peaks:
+        t0 = time.perf_counter()
+        peaks = s.stress_peaks()
+        stages.add("stress_peaks", time.perf_counter() - t0)
+        for name in PEAK_QUANTITIES:
+            q[name] = float(getattr(peaks, name))
+    return q
+
+
+def _solve_group(task: Mapping[str, Any]) -> dict[str, Any]:
+    """Solves one group of sweep points sharing (vstar, kw, nu, tol), in
+    descending lambda (the first solve builds the widest kernel; the rest
+    reuse it). Runs in a worker process or on a Dask worker."""
+    stages = _Stages()
+    results: list[dict[str, float] | str] = []
+    for radius, load in task["points"]:
+        p = {
+            "vstar": task["vstar"],
+            "kw": task["kw"],
+            "nu": task["nu"],
+            "radius": radius,
+            "load": load,
+        }
+        try:
+            s = _solve(p, task["tol"], stages)
+            results.append(_quantities(s, task["peaks"], stages))
+        except MovingPunchError as exc:
+            results.append(str(exc))
+    return {"results": results, "stages": stages.records()}
+
+
+# ----------------------------------------------------------------------------
+# The run
+# ----------------------------------------------------------------------------
+
+
+@dataclass
+class _Run:
+    scene: Scene
+    stages: _Stages = field(default_factory=_Stages)
+    memo: dict[_Key, Solution] = field(default_factory=dict)
+    done: int = 0
+    total: int = 0
+    progress: Callable[[int, int], None] | None = None
+
+    def tick(self, n: int = 1) -> None:
+        self.done += n
+        if self.progress is not None:
+            self.progress(self.done, self.total)
+
+    def solution(self, p: Mapping[str, float]) -> Solution:
+        key = _key(p, self.scene.tol)
+        if key not in self.memo:
+            self.memo[key] = _solve(p, self.scene.tol, self.stages)
+            self.tick()
+        return self.memo[key]
+
+    @contextlib.contextmanager
+    def timed(self, name: str) -> Iterator[None]:
+        t0 = time.perf_counter()
+        yield
+        self.stages.add(name, time.perf_counter() - t0)
+
+
+def _needs_contact(scene: Scene) -> bool:
+    return any(kind != "critical_speed" for kind in scene.outputs)
+
+
+def run_scene(
+    scene: Scene,
+    *,
+    jobs: int | None = 1,
+    progress: Callable[[int, int], None] | None = None,
+    dask: str | None = None,
+) -> SceneResult:
+    """Runs ``scene`` (see ``Scene.run``)."""
+    if jobs is not None and (
+        isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1
+    ):
+        raise ValueError(
+            f"jobs must be None (all cores) or an integer >= 1, got {jobs!r}"
+        )
+    n_jobs = (os.cpu_count() or 1) if jobs is None else jobs
+    t_start = time.perf_counter()
+    run = _Run(scene, progress=progress)
+
+    base_points = (
+        [scene.point(v) for v in scene.curve_values()] if _needs_contact(scene) else []
+    )
+    base_keys = {_key(p, scene.tol) for p in base_points}
+    sweep_plan = _plan_sweep(scene) if scene.sweep is not None else None
+    remote = sweep_plan is not None and _use_workers(
+        sweep_plan, n_jobs, dask, auto_jobs=jobs is None
+    )
+    sweep_keys = set(sweep_plan.keys) if sweep_plan is not None else set()
+    # Points solved elsewhere are solved again here if an output needs them.
+    run.total = len(sweep_keys) + len(base_keys if remote else base_keys - sweep_keys)
+
+    sweep_table: SweepTable | None = None
+    used_jobs = 1
+    if sweep_plan is not None:
+        sweep_table, used_jobs = _run_sweep(run, sweep_plan, n_jobs, dask, remote)
+
+    outputs: dict[str, OutputData] = {}
+    solutions = {
+        v: run.solution(p)
+        for v, p in zip(scene.curve_values(), base_points, strict=False)
+    }
+    for kind, spec in scene.outputs.items():
+        outputs[kind] = _OUTPUTS[kind](run, spec, solutions)
+
+    return SceneResult(
+        scene=scene,
+        outputs=outputs,
+        sweep=sweep_table,
+        solutions=tuple(run.memo.values()),
+        stages=run.stages.stages(),
+        total_seconds=time.perf_counter() - t_start,
+        jobs=used_jobs,
+        kernel_tables=run.stages.kernel_tables,
+    )
+
+
+# ----------------------------------------------------------------------------
+# Sweeps
+# ----------------------------------------------------------------------------
+
+
+@dataclass
+class _SweepPlan:
+    points: list[list[dict[str, float]]]  # [curve][grid] -> parameters
+    keys: list[_Key]  # unique keys, in solve order
+    groups: dict[tuple[float, float, float, float], list[_Key]]
+    representative: dict[_Key, dict[str, float]]
+    want_peaks: bool
+
+
+def _plan_sweep(scene: Scene) -> _SweepPlan:
+    assert scene.sweep is not None
+    sw = scene.sweep
+    points = [
+        [scene.point(v, **{sw.param: x}) for x in sw.values]
+        for v in scene.curve_values()
+    ]
+    representative: dict[_Key, dict[str, float]] = {}
+    for row in points:
+        for p in row:
+            representative.setdefault(_key(p, scene.tol), p)
+    groups: dict[tuple[float, float, float, float], list[_Key]] = {}
+    for key in representative:
+        groups.setdefault(key[:4], []).append(key)
+    for members in groups.values():
+        members.sort(key=lambda k: -k[4])  # descending lambda: widest kernel first
+    keys = [k for members in groups.values() for k in members]
+    want_peaks = any(q in PEAK_QUANTITIES for q in sw.quantities)
+    return _SweepPlan(points, keys, groups, representative, want_peaks)
+
+
+# Rough serial cost of a sweep point (a cold contact solve; with stress peaks)
+# and the cost of starting worker processes, in seconds.
+_SOLVE_SECONDS, _PEAKS_SECONDS, _STARTUP_SECONDS = 2e-3, 2e-2, 1.0
+
+
+def _use_workers(
+    plan: _SweepPlan, n_jobs: int, dask: str | None, *, auto_jobs: bool
+) -> bool:
+    """Whether the sweep goes to worker processes (or Dask): never for one
+    group or one job; with automatic jobs only when the sweep is long enough
+    to pay for starting the workers."""
+    if dask is not None:
+        return True
+    if n_jobs <= 1 or len(plan.groups) <= 1:
+        return False
+    per_point = _SOLVE_SECONDS + (_PEAKS_SECONDS if plan.want_peaks else 0.0)
+    return not auto_jobs or len(plan.keys) * per_point > _STARTUP_SECONDS
+
+
+def _run_sweep(
+    run: _Run, plan: _SweepPlan, n_jobs: int, dask: str | None, remote: bool
+) -> tuple[SweepTable, int]:
+    scene = run.scene
+    assert scene.sweep is not None
+    values: dict[_Key, dict[str, float] | str] = {}
+    used_jobs = 1
+    if not remote:
+        for key in plan.keys:
+            try:
+                s = run.solution(plan.representative[key])
+                values[key] = _quantities(s, plan.want_peaks, run.stages)
+            except MovingPunchError as exc:
+                values[key] = str(exc)
+                run.tick()
+    else:
+        tasks = [
+            {
+                "vstar": g[0],
+                "kw": g[1],
+                "nu": g[2],
+                "tol": g[3],
+                "points": [
+                    (plan.representative[k]["radius"], plan.representative[k]["load"])
+                    for k in members
+                ],
+                "peaks": plan.want_peaks,
+            }
+            for g, members in plan.groups.items()
+        ]
+        member_keys = list(plan.groups.values())
+        results = (
+            _dask_map(tasks, dask) if dask is not None else _pool_map(tasks, n_jobs)
+        )
+        for index, out in results:
+            run.stages.merge(out["stages"])
+            for key, res in zip(member_keys[index], out["results"], strict=True):
+                values[key] = res
+            run.tick(len(member_keys[index]))
+        used_jobs = min(n_jobs, len(tasks)) if dask is None else 0
+    return _sweep_table(scene, plan, values), used_jobs
+
+
+def _pool_map(
+    tasks: Sequence[Mapping[str, Any]], n_jobs: int
+) -> Iterator[tuple[int, dict[str, Any]]]:
+    # spawn: never fork a process that may hold threads (the core's, Dask's).
+    context = multiprocessing.get_context("spawn")
+    with ProcessPoolExecutor(
+        max_workers=min(n_jobs, len(tasks)), mp_context=context
+    ) as pool:
+        pending: dict[Future[dict[str, Any]], int] = {
+            pool.submit(_solve_group, task): i for i, task in enumerate(tasks)
+        }
+        try:
+            while pending:
+                finished, _ = wait(pending, return_when=FIRST_COMPLETED)
+                for fut in finished:
+                    index = pending.pop(fut)
+                    yield index, fut.result()
+        except BaseException:
+            for fut in pending:
+                fut.cancel()
+            raise
+
+
+def _dask_map(
+    tasks: Sequence[Mapping[str, Any]], address: str
+) -> Iterator[tuple[int, dict[str, Any]]]:
+    try:
+        distributed: Any = importlib.import_module("distributed")
+    except ImportError:
+        raise MissingExtraError(
+            "--dask needs Dask distributed: pip install 'movingpunch[dask]'"
+        ) from None
+    try:
+        client = distributed.Client(address, timeout=DASK_CONNECT_TIMEOUT)
+    except (OSError, TimeoutError) as exc:
+        raise ClusterError(
+            f"dask: cannot reach the scheduler at {address!r}: {exc}"
+        ) from None
+    try:
+        futures = [client.submit(_solve_group, task, pure=False) for task in tasks]
+        index = {fut.key: i for i, fut in enumerate(futures)}
+        for fut in distributed.as_completed(futures):
+            yield index[fut.key], fut.result()
+    finally:
+        client.close()
+
+
+def _sweep_table(
+    scene: Scene, plan: _SweepPlan, values: Mapping[_Key, dict[str, float] | str]
+) -> SweepTable:
+    sw = scene.sweep
+    assert sw is not None
+    n_curves, n_grid = len(plan.points), len(sw.values)
+    data = {q: np.full((n_curves, n_grid), np.nan) for q in sw.quantities}
+    valid = np.zeros((n_curves, n_grid), dtype=bool)
+    errors: dict[tuple[int, int], str] = {}
+    for i, row in enumerate(plan.points):
+        for j, p in enumerate(row):
+            res = values[_key(p, scene.tol)]
+            if isinstance(res, str):
+                errors[(i, j)] = res
+                continue
+            for q in sw.quantities:
+                value = res[q]
+                if q == "indentation":  # v = load * V(lambda)
+                    value *= p["load"] / res["load"]
+                data[q][i, j] = value
+            valid[i, j] = bool(res["valid"])
+    vary_param = scene.vary.param if scene.vary is not None else None
+    return SweepTable(
+        param=sw.param,
+        values=np.asarray(sw.values, dtype=np.float64),
+        quantities=sw.quantities,
+        labels=tuple(_label(vary_param, v) for v in scene.curve_values()),
+        vary_param=vary_param,
+        vary_values=scene.curve_values(),
+        data=data,
+        valid=valid,
+        errors=errors,
+    )
+
+
+# ----------------------------------------------------------------------------
+# Outputs
+# ----------------------------------------------------------------------------
+
+_Solutions = Mapping[float | None, Solution]
+
+
+def _curves(
+    run: _Run,
+    stage: str,
+    solutions: _Solutions,
+    x: FloatArray,
+    evaluate: Callable[[Solution, Mapping[str, float]], FloatArray],
+) -> tuple[Curve, ...]:
+    scene = run.scene
+    param = scene.vary.param if scene.vary is not None else None
+    out = []
+    for v, s in solutions.items():
+        p = scene.point(v)
+        with run.timed(stage):
+            y = evaluate(s, p)
+        out.append(Curve(_label(param, v), v, x, np.asarray(y, dtype=np.float64)))
+    return tuple(out)
+
+
+def _curve_columns(
+    xname: str, yname: str, curves: Sequence[Curve]
+) -> dict[str, FloatArray]:
+    cols: dict[str, FloatArray] = {xname: curves[0].x}
+    for c in curves:
+        cols[_col(yname, c.label)] = c.y
+    return cols
+
+
+def _x_grid(
+    spec_x: tuple[float, float] | None, default: tuple[float, float], n: int
+) -> FloatArray:
+    lo, hi = spec_x if spec_x is not None else default
+    return np.linspace(lo, hi, n)
+
+
+def _out_contact_width(run: _Run, spec: Any, solutions: _Solutions) -> OutputData:
+    scene = run.scene
+    cols: dict[str, list[float]] = {}
+    if scene.vary is not None:
+        cols[scene.vary.param] = []
+    for name in ("a", "p0", "indentation", "valid", "error_estimate", "collocation_n"):
+        cols[name] = []
+    for v, s in solutions.items():
+        p = scene.point(v)
+        if scene.vary is not None:
+            cols[scene.vary.param].append(float(v) if v is not None else math.nan)
+        cols["a"].append(s.a)
+        cols["p0"].append(s.p0)
+        cols["indentation"].append(s.indentation * p["load"] / s.load)
+        cols["valid"].append(1.0 if s.valid else 0.0)
+        cols["error_estimate"].append(s.error_estimate)
+        cols["collocation_n"].append(float(s.collocation_n))
+    return OutputData(
+        name="contact_width",
+        title="Contact half-width",
+        x_label=scene.vary.param if scene.vary is not None else "",
+        y_label="a/h",
+        columns={k: np.asarray(v, dtype=np.float64) for k, v in cols.items()},
+    )
+
+
+def _out_pressure(run: _Run, spec: Any, solutions: _Solutions) -> OutputData:
+    a_max = max(s.a for s in solutions.values())
+    x = _x_grid(spec.x, (-1.25 * a_max, 1.25 * a_max), spec.resolved_points())
+    curves = _curves(run, "pressure", solutions, x, lambda s, p: s.pressure(x))
+    return OutputData(
+        "pressure",
+        "Contact pressure",
+        "x/h",
+        "p/(P/h)",
+        _curve_columns("x", "p", curves),
+        curves,
+    )
+
+
+def _out_surface_stress(run: _Run, spec: Any, solutions: _Solutions) -> OutputData:
+    x = _x_grid(spec.x, (-3.0, 3.0), spec.resolved_points())
+    curves = _curves(
+        run, "surface_stress", solutions, x, lambda s, p: s.surface_stress(x)
+    )
+    return OutputData(
+        "surface_stress",
+        "In-plane stress on the top surface",
+        "x/h",
+        "sigma_x(x, 0)/(P/h)",
+        _curve_columns("x", "sigma_x", curves),
+        curves,
+    )
+
+
+def _out_depth_stress(run: _Run, spec: Any, solutions: _Solutions) -> OutputData:
+    lo, hi = spec.resolved_y()
+    y = np.linspace(lo, hi, spec.resolved_points())
+    curves = _curves(run, "depth_stress", solutions, y, lambda s, p: s.depth_stress(y))
+    return OutputData(
+        "depth_stress",
+        "In-plane stress under the centre",
+        "y/h",
+        "sigma_x(0, y)/(P/h)",
+        _curve_columns("y", "sigma_x", curves),
+        curves,
+    )
+
+
+def _out_displacement(run: _Run, spec: Any, solutions: _Solutions) -> OutputData:
+    x = _x_grid(spec.x, (-3.0, 3.0), spec.resolved_points())
+    depth = spec.resolved_depth()
+    curves = _curves(
+        run,
+        "displacement",
+        solutions,
+        x,
+        # v = load * V(x; lambda): rescale a solution shared through lambda.
+        lambda s, p: s.displacement(x, depth) * (p["load"] / s.load),
+    )
+    return OutputData(
+        "displacement",
+        f"Vertical displacement at y/h = {depth:g}",
+        "x/h",
+        "v/h",
+        _curve_columns("x", "v", curves),
+        curves,
+    )
+
+
+def _out_stress_field(run: _Run, spec: Any, solutions: _Solutions) -> OutputData:
+    scene = run.scene
+    x = _x_grid(spec.x, (-2.0, 2.0), spec.resolved_points())
+    lo, hi = spec.resolved_y()
+    y = np.linspace(lo, hi, spec.resolved_depth_points())
+    param = scene.vary.param if scene.vary is not None else None
+    fields_: list[tuple[str, StressField]] = []
+    cols: dict[str, list[FloatArray]] = {}
+    for v, s in solutions.items():
+        with run.timed("stress_field"):
+            f = s.stress_field(x, y)
+        label = _label(param, v)
+        fields_.append((label, f))
+        gx, gy = np.meshgrid(f.x, f.y)
+        if param is not None:
+            cols.setdefault(param, []).append(
+                np.full(gx.size, float(v) if v is not None else math.nan)
+            )
+        cols.setdefault("x", []).append(gx.ravel())
+        cols.setdefault("y", []).append(gy.ravel())
+        for comp in (
+            "sigma_x",
+            "sigma_y",
+            "tau_xy",
+            "sigma_z",
+            "von_mises",
+            "max_shear",
+        ):
+            cols.setdefault(comp, []).append(np.asarray(getattr(f, comp)).ravel())
+    return OutputData(
+        "stress_field",
+        "Stresses in the layer",
+        "x/h",
+        "y/h",
+        {k: np.concatenate(v) for k, v in cols.items()},
+        (),
+        tuple(fields_),
+    )
+
+
+def _out_critical_speed(run: _Run, spec: Any, solutions: _Solutions) -> OutputData:
+    scene = run.scene
+    combos: list[tuple[float, float]] = []
+    for v in scene.curve_values():
+        p = scene.point(v)
+        if (p["kw"], p["nu"]) not in combos:
+            combos.append((p["kw"], p["nu"]))
+    nus = list(dict.fromkeys(nu for _, nu in combos))
+    curves: list[Curve] = []
+    if spec.kw is not None:
+        grid = np.geomspace(spec.kw[0], spec.kw[1], spec.resolved_points())
+        combos = [(float(k), nu) for nu in nus for k in grid]
+    rows = []
+    for kw, nu in combos:
+        with run.timed("critical_speed"):
+            vcr, alpha = critical_speed(kw, nu)
+        rows.append((kw, nu, vcr, alpha, rayleigh_vstar(nu)))
+    table = np.asarray(rows, dtype=np.float64).reshape(-1, 5)
+    if spec.kw is not None:
+        n = spec.resolved_points()
+        for i, nu in enumerate(nus):
+            block = table[i * n : (i + 1) * n]
+            label = _label("nu", nu) if len(nus) > 1 else ""
+            curves.append(
+                Curve(label, nu if len(nus) > 1 else None, block[:, 0], block[:, 2])
+            )
+    names = ("kw", "nu", "critical_vstar", "critical_wavenumber", "rayleigh_vstar")
+    return OutputData(
+        "critical_speed",
+        "Critical speed",
+        "kw = k_w h/mu",
+        "V*_cr",
+        {n: table[:, i] for i, n in enumerate(names)},
+        tuple(curves),
+    )
+
+
+_OUTPUTS: dict[str, Callable[[_Run, Any, _Solutions], OutputData]] = {
+    "contact_width": _out_contact_width,
+    "pressure": _out_pressure,
+    "surface_stress": _out_surface_stress,
+    "depth_stress": _out_depth_stress,
+    "stress_field": _out_stress_field,
+    "displacement": _out_displacement,
+    "critical_speed": _out_critical_speed,
+}

@@ -1,0 +1,973 @@
+"""What a scene is: its parts, their validation, and its TOML form.
+
+A scene file is read with the standard library's ``tomllib`` (``tomli`` on
+Python 3.10) and written by hand here (no writer dependency). Every problem is
+reported as one ``SceneError`` line: ``FILE: key: problem (allowed: ...)``.
+"""
+
+from __future__ import annotations
+
+import functools
+import json
+import math
+import numbers
+import sys
+from collections.abc import Callable, Iterable, Mapping, Sequence
+from dataclasses import dataclass, field
+from importlib import resources
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from movingpunch.errors import InvalidParameterError
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover - Python 3.10 only
+    import tomli as tomllib  # type: ignore[import-not-found, unused-ignore]
+
+if TYPE_CHECKING:
+    from movingpunch.scene._run import SceneResult
+
+__all__ = [
+    "OUTPUT_KINDS",
+    "PARAMS",
+    "SWEEP_QUANTITIES",
+    "OutputSpec",
+    "Scene",
+    "SceneError",
+    "Sweep",
+    "Vary",
+    "bundled_scenes",
+]
+
+PARAMS: tuple[str, ...] = ("vstar", "kw", "radius", "load", "nu")
+"""The physical parameters of a scene, in the order they are written."""
+
+_PARAM_ALLOWED: dict[str, str] = {
+    "vstar": "a number, 0 <= vstar < V*_cr(kw, nu)",
+    "kw": 'a number 1e-12 <= kw <= inf, or "inf" (smooth rigid base)',
+    "radius": "a finite number > 0 (R/h)",
+    "load": "a finite number > 0 (P/(mu h))",
+    "nu": "a number, 0 <= nu < 0.5",
+}
+
+OUTPUT_KINDS: dict[str, str] = {
+    "contact_width": "a/h, p0/(P/h), indentation and validity",
+    "pressure": "contact pressure p(x)/(P/h) against x/h",
+    "surface_stress": "sigma_x(x, 0)/(P/h) on the top surface against x/h",
+    "depth_stress": "sigma_x(0, y)/(P/h) under the centre against y/h",
+    "stress_field": "all stresses over P/h on an x/h by y/h grid",
+    "displacement": "vertical displacement v(x, y)/h at one depth against x/h",
+    "critical_speed": "V*_cr, alpha h at the minimum and V*_R (optionally a "
+    "curve of V*_cr against kw)",
+}
+"""Every output a scene may ask for, with a one-line description."""
+
+# Keys each output accepts (besides none at all: ``name = true``).
+_OUTPUT_KEYS: dict[str, tuple[str, ...]] = {
+    "contact_width": (),
+    "pressure": ("x", "points"),
+    "surface_stress": ("x", "points"),
+    "depth_stress": ("y", "points"),
+    "stress_field": ("x", "y", "points", "depth_points", "component"),
+    "displacement": ("x", "points", "depth"),
+    "critical_speed": ("kw", "points"),
+}
+
+STRESS_COMPONENTS: tuple[str, ...] = (
+    "sigma_x",
+    "sigma_y",
+    "tau_xy",
+    "sigma_z",
+    "von_mises",
+    "max_shear",
+)
+
+SWEEP_QUANTITIES: dict[str, str] = {
+    "a": "contact half-width a/h",
+    "p0": "central pressure p(0)/(P/h)",
+    "indentation": "indentation delta/h",
+    "min_pressure": "minimum of p/(P/h) on the contact",
+    "critical_vstar": "critical speed V*_cr(kw, nu)",
+    "phi1": "moving half-plane factor phi1",
+    "top_compressive": "most compressive sigma_x/(P/h) on the top surface",
+    "top_tensile": "most tensile sigma_x/(P/h) on the top surface",
+    "bottom_tensile": "most tensile sigma_x/(P/h) at the bottom",
+    "centre_top": "sigma_x(0, 0)/(P/h)",
+    "centre_bottom": "sigma_x(0, -h)/(P/h)",
+}
+"""Scalar quantities a sweep can tabulate against its parameter."""
+
+PEAK_QUANTITIES = frozenset(
+    {"top_compressive", "top_tensile", "bottom_tensile", "centre_top", "centre_bottom"}
+)
+
+_MAX_POINTS = 100_000
+_MAX_GRID = 1001  # per axis of a stress field
+_MAX_SWEEP = 100_000
+_MAX_VARY = 20
+_TOL_MIN, _TOL_MAX = 1e-14, 1e-2
+_DEFAULT_TOL = 1e-8
+_DEFAULT_NU = 0.2
+
+
+class SceneError(InvalidParameterError):
+    """A scene (file or object) is malformed or asks for something impossible.
+
+    The message is one line, ``FILE: key: problem (allowed: ...)``; the
+    attributes ``source``, ``key``, ``problem`` and ``allowed`` hold its parts.
+    """
+
+    def __init__(self, source: str, key: str, problem: str, allowed: str = "") -> None:
+        self.source = source
+        self.key = key
+        self.problem = problem
+        self.allowed = allowed
+        text = f"{source}: {key}: {problem}"
+        if allowed:
+            text += f" (allowed: {allowed})"
+        super().__init__(" ".join(text.split()))
+
+
+@dataclass(frozen=True)
+class OutputSpec:
+    """One requested output and its plot range and resolution.
+
+    ``x`` and ``y`` are ranges in units of h (``None``: the default of the
+    output; for ``pressure``, 1.25 times the widest contact). ``points`` is
+    the number of samples along the curve (along x for a stress field),
+    ``depth_points`` along y for a stress field, ``depth`` the y/h of a
+    displacement curve, ``component`` the stress a field plot shows, ``kw``
+    a range of k_w h/mu for a curve of V*_cr (log-spaced).
+    """
+
+    kind: str
+    x: tuple[float, float] | None = None
+    y: tuple[float, float] | None = None
+    points: int | None = None
+    depth_points: int | None = None
+    depth: float | None = None
+    component: str | None = None
+    kw: tuple[float, float] | None = None
+
+    def resolved_points(self) -> int:
+        """``points`` or the output's default."""
+        if self.points is not None:
+            return self.points
+        return {"stress_field": 81, "depth_stress": 101, "critical_speed": 41}.get(
+            self.kind, 201
+        )
+
+    def resolved_depth_points(self) -> int:
+        return 41 if self.depth_points is None else self.depth_points
+
+    def resolved_y(self) -> tuple[float, float]:
+        return (-1.0, 0.0) if self.y is None else self.y
+
+    def resolved_depth(self) -> float:
+        return 0.0 if self.depth is None else self.depth
+
+    def resolved_component(self) -> str:
+        return "sigma_x" if self.component is None else self.component
+
+
+@dataclass(frozen=True)
+class Vary:
+    """One parameter over a list of values: one overlaid curve per value."""
+
+    param: str
+    values: tuple[float, ...]
+
+
+@dataclass(frozen=True)
+class Sweep:
+    """A parameter over a grid: scalar ``quantities`` tabulated against it.
+
+    Either explicit ``values``, or a range ``start``..``stop`` with
+    ``points`` samples spaced ``"linear"`` or ``"log"`` (``values`` is then
+    the grid it spans; use ``Sweep.range`` to build one).
+    """
+
+    param: str
+    values: tuple[float, ...]
+    quantities: tuple[str, ...] = ("a", "p0")
+    start: float | None = None
+    stop: float | None = None
+    points: int | None = None
+    spacing: str = "linear"
+
+    @classmethod
+    def range(
+        cls,
+        param: str,
+        start: float,
+        stop: float,
+        points: int,
+        *,
+        spacing: str = "linear",
+        quantities: Sequence[str] = ("a", "p0"),
+    ) -> Sweep:
+        """A sweep of ``param`` over ``points`` values from ``start`` to
+        ``stop`` (both included), linear or log spaced."""
+        return cls(
+            param=param,
+            values=_grid(float(start), float(stop), int(points), spacing),
+            quantities=tuple(quantities),
+            start=float(start),
+            stop=float(stop),
+            points=int(points),
+            spacing=spacing,
+        )
+
+    @property
+    def is_range(self) -> bool:
+        return self.start is not None
+
+
+def _grid(start: float, stop: float, points: int, spacing: str) -> tuple[float, ...]:
+    if spacing == "log":
+        grid = np.geomspace(start, stop, points)
+    else:
+        grid = np.linspace(start, stop, points)
+    return tuple(float(v) for v in grid)
+
+
+@functools.lru_cache(maxsize=4096)
+def critical_speed(kw: float, nu: float) -> tuple[float, float]:
+    """(V*_cr, alpha h at the minimum) for (kw, nu), computed once per process."""
+    from movingpunch import _core
+
+    return _core.critical_speed(kw, nu)
+
+
+# ----------------------------------------------------------------------------
+# Validation of plain values
+# ----------------------------------------------------------------------------
+
+
+class _Checker:
+    """Validates raw (TOML or Python) values; errors name ``source`` and key."""
+
+    def __init__(self, source: str) -> None:
+        self.source = source
+
+    def fail(self, key: str, problem: str, allowed: str = "") -> SceneError:
+        return SceneError(self.source, key, problem, allowed)
+
+    def table(
+        self, key: str, value: object, allowed_keys: Iterable[str]
+    ) -> Mapping[str, Any]:
+        allowed = tuple(allowed_keys)
+        names = ", ".join(allowed) if allowed else "no keys"
+        if not isinstance(value, Mapping):
+            raise self.fail(key, f"must be a table, got {_show(value)}", names)
+        for k in value:
+            if k not in allowed:
+                where = f"{key}.{k}" if key else str(k)
+                raise self.fail(where, "unknown key", names)
+        return value
+
+    def number(self, key: str, value: object, allowed: str) -> float:
+        if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
+            raise self.fail(key, f"must be a number, got {_show(value)}", allowed)
+        try:
+            return float(value)
+        except OverflowError:
+            raise self.fail(key, "is too large for a float", allowed) from None
+
+    def param(self, key: str, name: str, value: object) -> float:
+        allowed = _PARAM_ALLOWED[name]
+        if name == "kw" and isinstance(value, str):
+            if value.strip().lower() in ("inf", "+inf", "infinity"):
+                return math.inf
+            raise self.fail(key, f"must be a number or 'inf', got {value!r}", allowed)
+        x = self.number(key, value, allowed)
+        ok = {
+            "vstar": math.isfinite(x) and x >= 0,
+            "kw": x >= 1e-12,  # NaN fails
+            "radius": math.isfinite(x) and x > 0,
+            "load": math.isfinite(x) and x > 0,
+            "nu": math.isfinite(x) and 0 <= x < 0.5,
+        }[name]
+        if not ok:
+            raise self.fail(key, f"out of range: {_show(x)}", allowed)
+        return x
+
+    def integer(self, key: str, value: object, lo: int, hi: int) -> int:
+        allowed = f"an integer {lo} to {hi}"
+        if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+            raise self.fail(key, f"must be an integer, got {_show(value)}", allowed)
+        if not lo <= int(value) <= hi:
+            raise self.fail(key, f"out of range: {value}", allowed)
+        return int(value)
+
+    def string(self, key: str, value: object, choices: Sequence[str] = ()) -> str:
+        allowed = ", ".join(choices) if choices else "a string"
+        if not isinstance(value, str):
+            raise self.fail(key, f"must be a string, got {_show(value)}", allowed)
+        if choices and value not in choices:
+            raise self.fail(key, f"unknown value {value!r}", allowed)
+        return value
+
+    def pair(
+        self,
+        key: str,
+        value: object,
+        allowed: str,
+        ok: Callable[[float], bool] = math.isfinite,
+    ) -> tuple[float, float]:
+        if isinstance(value, (str, bytes)) or not isinstance(value, Sequence):
+            raise self.fail(
+                key, f"must be a list [low, high], got {_show(value)}", allowed
+            )
+        if len(value) != 2:
+            raise self.fail(key, f"must have 2 numbers, got {len(value)}", allowed)
+        lo = self.number(f"{key}[0]", value[0], allowed)
+        hi = self.number(f"{key}[1]", value[1], allowed)
+        if not (ok(lo) and ok(hi)):
+            raise self.fail(key, f"out of range: [{_show(lo)}, {_show(hi)}]", allowed)
+        if not lo < hi:
+            raise self.fail(key, "low must be below high", allowed)
+        return lo, hi
+
+
+def _show(value: object) -> str:
+    if isinstance(value, float):
+        return repr(value)
+    if isinstance(value, str):
+        return repr(value)
+    if isinstance(value, Mapping):
+        return "a table"
+    if isinstance(value, (list, tuple)):
+        return "a list"
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    return f"{type(value).__name__} {value!r}"[:60]
+
+
+# ----------------------------------------------------------------------------
+# The scene
+# ----------------------------------------------------------------------------
+
+_TOP_KEYS = ("name", "description", "params", "outputs", "vary", "sweep", "accuracy")
+
+
+@dataclass(frozen=True)
+class Scene:
+    """A physical configuration, the outputs to show, optional overlaid
+    curves (``vary``) or a parameter sweep (``sweep``), and an accuracy.
+
+    Built directly, ``Scene.load(path)``, ``Scene.from_toml(text)`` or
+    ``Scene.bundled(name)``; every way validates (``SceneError``).
+    ``params`` holds vstar, kw (``math.inf``: rigid base), radius, load, nu.
+    """
+
+    params: Mapping[str, float]
+    outputs: Mapping[str, OutputSpec] = field(default_factory=dict)
+    vary: Vary | None = None
+    sweep: Sweep | None = None
+    tol: float = _DEFAULT_TOL
+    name: str = ""
+    description: str = ""
+
+    def __post_init__(self) -> None:
+        _validate(self, "<Scene>")
+
+    # -- construction -------------------------------------------------------
+
+    @classmethod
+    def from_toml(cls, text: str, source: str = "<string>") -> Scene:
+        """Parses and validates a scene from TOML text (``source`` names it in
+        errors)."""
+        if not isinstance(text, str):
+            raise SceneError(source, "(file)", "must be text", "a TOML document")
+        if not text.strip():
+            raise SceneError(
+                source,
+                "params",
+                "missing: the file is empty",
+                "a TOML document with [params] and [outputs] or [sweep]",
+            )
+        try:
+            data = tomllib.loads(text)
+        except tomllib.TOMLDecodeError as exc:
+            raise SceneError(
+                source, "(file)", f"not valid TOML: {exc}", "a TOML document"
+            ) from None
+        return _from_mapping(data, source)
+
+    @classmethod
+    def load(cls, path: str | Path) -> Scene:
+        """Reads and validates a scene file. The scene's name defaults to the
+        file's stem."""
+        p = Path(path)
+        source = str(path)
+        try:
+            raw = p.read_bytes()
+        except OSError as exc:
+            raise SceneError(
+                source,
+                "(file)",
+                f"cannot read: {exc.strerror or exc}",
+                "a readable file",
+            ) from None
+        try:
+            text = raw.decode("utf-8")
+        except UnicodeDecodeError as exc:
+            raise SceneError(
+                source,
+                "(file)",
+                f"not valid TOML: not UTF-8 text (byte {exc.start})",
+                "a UTF-8 TOML document",
+            ) from None
+        scene = cls.from_toml(text, source)
+        if not scene.name:
+            scene = _replace(scene, name=p.stem)
+        return scene
+
+    @classmethod
+    def bundled(cls, name: str) -> Scene:
+        """One of the scenes shipped with the package (``bundled_scenes()``)."""
+        text = _bundled_text(name)
+        return cls.from_toml(text, f"<bundled scene {name}>")
+
+    def with_params(self, **changes: float) -> Scene:
+        """A copy with some of ``params`` changed, validated."""
+        for key in changes:
+            if key not in PARAMS:
+                raise SceneError(
+                    "<Scene>", f"params.{key}", "unknown key", ", ".join(PARAMS)
+                )
+        return _replace(self, params={**self.params, **changes})
+
+    # -- writing ------------------------------------------------------------
+
+    def to_toml(self) -> str:
+        """The scene as TOML text that ``Scene.from_toml`` reads back equal."""
+        return _to_toml(self)
+
+    def save(self, path: str | Path) -> None:
+        """Writes ``to_toml()`` to ``path`` atomically (temp file, then rename)."""
+        from movingpunch.scene._export import atomic_write
+
+        atomic_write(Path(path), self.to_toml().encode("utf-8"))
+
+    # -- running ------------------------------------------------------------
+
+    def run(
+        self,
+        *,
+        jobs: int | None = 1,
+        progress: Callable[[int, int], None] | None = None,
+        dask: str | None = None,
+    ) -> SceneResult:
+        """Computes what the scene asks for, and only that.
+
+        ``jobs``: worker processes for a sweep (``None``: all cores; 1: in
+        this process). ``dask``: address of a Dask scheduler to run the sweep
+        on instead. ``progress(done, total)`` is called as solves finish.
+        """
+        from movingpunch.scene._run import run_scene
+
+        return run_scene(self, jobs=jobs, progress=progress, dask=dask)
+
+    # -- derived ------------------------------------------------------------
+
+    def curve_values(self) -> tuple[float | None, ...]:
+        """The value of the vary parameter of each overlaid curve (``(None,)``
+        without ``vary``)."""
+        return (None,) if self.vary is None else self.vary.values
+
+    def point(
+        self, vary_value: float | None = None, **override: float
+    ) -> dict[str, float]:
+        """The parameters of one computation: ``params`` with the vary value
+        and any overrides applied."""
+        p = dict(self.params)
+        if self.vary is not None and vary_value is not None:
+            p[self.vary.param] = vary_value
+        p.update(override)
+        return p
+
+
+def _replace(scene: Scene, **changes: Any) -> Scene:
+    import dataclasses
+
+    return dataclasses.replace(scene, **changes)
+
+
+# ----------------------------------------------------------------------------
+# From a mapping (TOML) to a Scene
+# ----------------------------------------------------------------------------
+
+
+def _from_mapping(data: Mapping[str, Any], source: str) -> Scene:
+    c = _Checker(source)
+    c.table("", data, _TOP_KEYS)
+    name = c.string("name", data["name"]) if "name" in data else ""
+    description = (
+        c.string("description", data["description"]) if "description" in data else ""
+    )
+
+    vary = _parse_vary(c, data["vary"]) if "vary" in data else None
+    sweep = _parse_sweep(c, data["sweep"]) if "sweep" in data else None
+    if vary is not None and sweep is not None and vary.param == sweep.param:
+        raise c.fail(
+            "sweep.param",
+            f"{sweep.param!r} is already the vary parameter",
+            "a parameter other than vary.param",
+        )
+
+    if "params" not in data:
+        raise c.fail("params", "missing", "a table [params] with " + ", ".join(PARAMS))
+    raw_params = c.table("params", data["params"], PARAMS)
+    params: dict[str, float] = {}
+    for name_ in PARAMS:
+        key = f"params.{name_}"
+        if name_ in raw_params:
+            params[name_] = c.param(key, name_, raw_params[name_])
+        elif name_ == "nu":
+            params[name_] = _DEFAULT_NU
+        elif vary is not None and vary.param == name_:
+            params[name_] = vary.values[0]
+        elif sweep is not None and sweep.param == name_:
+            params[name_] = sweep.values[0]
+        else:
+            raise c.fail(key, "missing", _PARAM_ALLOWED[name_])
+
+    tol = _DEFAULT_TOL
+    if "accuracy" in data:
+        acc = c.table("accuracy", data["accuracy"], ("tol",))
+        if "tol" in acc:
+            tol = c.number("accuracy.tol", acc["tol"], "1e-14 <= tol <= 1e-2")
+
+    outputs: dict[str, OutputSpec] = {}
+    if "outputs" in data:
+        raw_outputs = c.table("outputs", data["outputs"], OUTPUT_KINDS)
+        for kind, spec in raw_outputs.items():
+            parsed = _parse_output(c, kind, spec)
+            if parsed is not None:
+                outputs[kind] = parsed
+
+    scene = Scene.__new__(Scene)
+    for k, v in {
+        "params": params,
+        "outputs": outputs,
+        "vary": vary,
+        "sweep": sweep,
+        "tol": tol,
+        "name": name,
+        "description": description,
+    }.items():
+        object.__setattr__(scene, k, v)
+    _validate(scene, source)
+    return scene
+
+
+def _values_list(
+    c: _Checker, key: str, param: str, raw: object, limit: int
+) -> tuple[float, ...]:
+    if isinstance(raw, (str, bytes)) or not isinstance(raw, Sequence):
+        raise c.fail(key, f"must be a list, got {_show(raw)}", _PARAM_ALLOWED[param])
+    if not 1 <= len(raw) <= limit:
+        raise c.fail(key, f"has {len(raw)} values", f"1 to {limit} values")
+    values = tuple(c.param(f"{key}[{i}]", param, v) for i, v in enumerate(raw))
+    if len(set(values)) != len(values):
+        raise c.fail(key, "values repeat", "distinct values")
+    return values
+
+
+def _parse_vary(c: _Checker, raw: object) -> Vary:
+    t = c.table("vary", raw, ("param", "values"))
+    if "param" not in t:
+        raise c.fail("vary.param", "missing", ", ".join(PARAMS))
+    param = c.string("vary.param", t["param"], PARAMS)
+    if "values" not in t:
+        raise c.fail("vary.values", "missing", _PARAM_ALLOWED[param])
+    return Vary(param, _values_list(c, "vary.values", param, t["values"], _MAX_VARY))
+
+
+def _parse_sweep(c: _Checker, raw: object) -> Sweep:
+    keys = ("param", "values", "start", "stop", "points", "spacing", "quantities")
+    t = c.table("sweep", raw, keys)
+    if "param" not in t:
+        raise c.fail("sweep.param", "missing", ", ".join(PARAMS))
+    param = c.string("sweep.param", t["param"], PARAMS)
+    quantities: tuple[str, ...] = ("a", "p0")
+    if "quantities" in t:
+        q = t["quantities"]
+        if isinstance(q, str) or not isinstance(q, Sequence) or not q:
+            raise c.fail(
+                "sweep.quantities",
+                f"must be a non-empty list, got {_show(q)}",
+                ", ".join(SWEEP_QUANTITIES),
+            )
+        quantities = tuple(
+            c.string(f"sweep.quantities[{i}]", v, tuple(SWEEP_QUANTITIES))
+            for i, v in enumerate(q)
+        )
+        if len(set(quantities)) != len(quantities):
+            raise c.fail("sweep.quantities", "quantities repeat", "distinct names")
+    range_keys = [k for k in ("start", "stop", "points", "spacing") if k in t]
+    if "values" in t:
+        if range_keys:
+            raise c.fail(
+                f"sweep.{range_keys[0]}",
+                "cannot be combined with sweep.values",
+                "either values = [...] or start, stop, points (, spacing)",
+            )
+        values = _values_list(c, "sweep.values", param, t["values"], _MAX_SWEEP)
+        return Sweep(param, values, quantities)
+    for k in ("start", "stop", "points"):
+        if k not in t:
+            raise c.fail(
+                f"sweep.{k}", "missing", "either values = [...] or start, stop, points"
+            )
+    start = c.param("sweep.start", param, t["start"])
+    stop = c.param("sweep.stop", param, t["stop"])
+    for k, v in (("start", start), ("stop", stop)):
+        if not math.isfinite(v):
+            raise c.fail(
+                f"sweep.{k}", "must be finite", "finite numbers; list inf in values"
+            )
+    points = c.integer("sweep.points", t["points"], 2, _MAX_SWEEP)
+    spacing = c.string("sweep.spacing", t.get("spacing", "linear"), ("linear", "log"))
+    if start == stop:
+        raise c.fail("sweep.stop", "equals sweep.start", "stop != start")
+    if spacing == "log" and min(start, stop) <= 0:
+        raise c.fail(
+            "sweep.start", "log spacing needs positive bounds", "start, stop > 0"
+        )
+    return Sweep.range(
+        param, start, stop, points, spacing=spacing, quantities=quantities
+    )
+
+
+def _parse_output(c: _Checker, kind: str, raw: object) -> OutputSpec | None:
+    key = f"outputs.{kind}"
+    if isinstance(raw, bool):
+        return OutputSpec(kind) if raw else None
+    t = c.table(key, raw, _OUTPUT_KEYS[kind])
+    spec: dict[str, Any] = {}
+    if "x" in t:
+        spec["x"] = c.pair(f"{key}.x", t["x"], "[low, high], finite x/h, low < high")
+    if "y" in t:
+        spec["y"] = c.pair(
+            f"{key}.y", t["y"], "[low, high], -1 <= y/h <= 0, low < high", _in_layer
+        )
+    if "points" in t:
+        hi = _MAX_GRID if kind == "stress_field" else _MAX_POINTS
+        spec["points"] = c.integer(f"{key}.points", t["points"], 2, hi)
+    if "depth_points" in t:
+        spec["depth_points"] = c.integer(
+            f"{key}.depth_points", t["depth_points"], 2, _MAX_GRID
+        )
+    if "depth" in t:
+        d = c.number(f"{key}.depth", t["depth"], "-1 <= y/h <= 0")
+        if not _in_layer(d):
+            raise c.fail(f"{key}.depth", f"out of range: {_show(d)}", "-1 <= y/h <= 0")
+        spec["depth"] = d
+    if "component" in t:
+        spec["component"] = c.string(
+            f"{key}.component", t["component"], STRESS_COMPONENTS
+        )
+    if "kw" in t:
+        spec["kw"] = c.pair(
+            f"{key}.kw", t["kw"], "[low, high], 1e-12 <= kw < inf", _finite_kw
+        )
+    return OutputSpec(kind, **spec)
+
+
+def _in_layer(y: float) -> bool:
+    return -1.0 <= y <= 0.0
+
+
+def _finite_kw(kw: float) -> bool:
+    return math.isfinite(kw) and kw >= 1e-12
+
+
+# ----------------------------------------------------------------------------
+# Whole-scene validation (also for scenes built in Python)
+# ----------------------------------------------------------------------------
+
+
+def _validate(scene: Scene, source: str) -> None:
+    c = _Checker(source)
+    if not isinstance(scene.params, Mapping):
+        raise c.fail("params", "must be a mapping", ", ".join(PARAMS))
+    c.table("params", scene.params, PARAMS)
+    params: dict[str, float] = {}
+    for name in PARAMS:
+        if name not in scene.params:
+            if name == "nu":
+                params[name] = _DEFAULT_NU
+                continue
+            raise c.fail(f"params.{name}", "missing", _PARAM_ALLOWED[name])
+        params[name] = c.param(f"params.{name}", name, scene.params[name])
+    object.__setattr__(scene, "params", params)
+
+    tol = c.number("accuracy.tol", scene.tol, "1e-14 <= tol <= 1e-2")
+    if not (math.isfinite(tol) and _TOL_MIN <= tol <= _TOL_MAX):
+        raise c.fail(
+            "accuracy.tol", f"out of range: {_show(tol)}", "1e-14 <= tol <= 1e-2"
+        )
+    object.__setattr__(scene, "tol", tol)
+    c.string("name", scene.name)
+    c.string("description", scene.description)
+
+    if not isinstance(scene.outputs, Mapping):
+        raise c.fail("outputs", "must be a mapping", ", ".join(OUTPUT_KINDS))
+    outputs: dict[str, OutputSpec] = {}
+    for kind, spec in scene.outputs.items():
+        if kind not in OUTPUT_KINDS:
+            raise c.fail(f"outputs.{kind}", "unknown key", ", ".join(OUTPUT_KINDS))
+        if not isinstance(spec, OutputSpec) or spec.kind != kind:
+            raise c.fail(f"outputs.{kind}", "must be an OutputSpec of that kind")
+        as_toml = dict(_output_items(spec))
+        checked = _parse_output(c, kind, as_toml)
+        if checked != spec:
+            raise c.fail(
+                f"outputs.{kind}",
+                "has keys this output does not take",
+                ", ".join(_OUTPUT_KEYS[kind]) or "no keys",
+            )
+        outputs[kind] = spec
+    object.__setattr__(scene, "outputs", outputs)
+
+    if scene.vary is not None:
+        v = scene.vary
+        if not isinstance(v, Vary):
+            raise c.fail("vary", "must be a Vary")
+        c.string("vary.param", v.param, PARAMS)
+        _values_list(c, "vary.values", v.param, list(v.values), _MAX_VARY)
+    if scene.sweep is not None:
+        s = scene.sweep
+        if not isinstance(s, Sweep):
+            raise c.fail("sweep", "must be a Sweep")
+        c.string("sweep.param", s.param, PARAMS)
+        _values_list(c, "sweep.values", s.param, list(s.values), _MAX_SWEEP)
+        for i, q in enumerate(s.quantities):
+            c.string(f"sweep.quantities[{i}]", q, tuple(SWEEP_QUANTITIES))
+        if not s.quantities:
+            raise c.fail("sweep.quantities", "is empty", ", ".join(SWEEP_QUANTITIES))
+        if scene.vary is not None and scene.vary.param == s.param:
+            raise c.fail(
+                "sweep.param",
+                f"{s.param!r} is already the vary parameter",
+                "a parameter other than vary.param",
+            )
+    if not outputs and scene.sweep is None:
+        raise c.fail(
+            "outputs",
+            "nothing to compute",
+            "at least one of " + ", ".join(OUTPUT_KINDS) + ", or a [sweep]",
+        )
+    _check_speeds(scene, c)
+
+
+def _check_speeds(scene: Scene, c: _Checker) -> None:
+    """vstar < V*_cr(kw, nu) for every combination the scene computes."""
+    needs_contact = any(k != "critical_speed" for k in scene.outputs)
+    combos: list[tuple[dict[str, float], dict[str, str]]] = []
+    curve_values = scene.curve_values()
+    sweep_values: tuple[float | None, ...] = (None,)
+    if scene.sweep is not None:
+        sweep_values = scene.sweep.values
+    for vi, v in enumerate(curve_values):
+        bases: list[tuple[float | None, int]] = []
+        if needs_contact:
+            bases.append((None, -1))
+        if scene.sweep is not None:
+            bases.extend((s, si) for si, s in enumerate(sweep_values))
+        for s, si in bases:
+            p = scene.point(v)
+            where = {name: f"params.{name}" for name in PARAMS}
+            if scene.vary is not None:
+                where[scene.vary.param] = f"vary.values[{vi}]"
+            if scene.sweep is not None and s is not None:
+                p[scene.sweep.param] = s
+                sw = scene.sweep
+                where[sw.param] = (
+                    (
+                        f"sweep.{'start' if si == 0 else 'stop'}"
+                        if si in (0, len(sw.values) - 1)
+                        else "sweep.values"
+                    )
+                    if sw.is_range
+                    else f"sweep.values[{si}]"
+                )
+            combos.append((p, where))
+    seen: set[tuple[float, float, float]] = set()
+    for p, where in combos:
+        key = (p["vstar"], p["kw"], p["nu"])
+        if key in seen:
+            continue
+        seen.add(key)
+        if p["vstar"] == 0.0:
+            continue
+        vcr, _ = critical_speed(p["kw"], p["nu"])
+        if not p["vstar"] < vcr:
+            # Blame the key that moved the point off the base parameters.
+            culprit, allowed = where["vstar"], f"0 <= vstar < {vcr:.10g}"
+            if culprit.startswith("params."):
+                for name in ("kw", "nu"):
+                    if not where[name].startswith("params."):
+                        culprit = where[name]
+                        allowed = f"{name} with V*_cr(kw, nu) > vstar = {p['vstar']:g}"
+            raise c.fail(
+                culprit,
+                f"vstar = {p['vstar']:.10g} is at or above the critical speed "
+                f"V*_cr = {vcr:.10g} (kw = {_fmt_num(p['kw'])}, nu = {p['nu']:g}): "
+                "no steady solution",
+                allowed,
+            )
+
+
+def _fmt_num(x: float) -> str:
+    return "inf" if math.isinf(x) else f"{x:.10g}"
+
+
+# ----------------------------------------------------------------------------
+# TOML writing
+# ----------------------------------------------------------------------------
+
+
+def _toml_value(value: object) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, float):
+        if math.isnan(value):
+            return "nan"
+        if math.isinf(value):
+            return "inf" if value > 0 else "-inf"
+        text = repr(value)
+        return text if any(ch in text for ch in ".en") else text + ".0"
+    if isinstance(value, str):
+        return json.dumps(value, ensure_ascii=False)
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(_toml_value(v) for v in value) + "]"
+    raise TypeError(f"cannot write {type(value).__name__} as TOML")
+
+
+def _output_items(spec: OutputSpec) -> list[tuple[str, object]]:
+    items: list[tuple[str, object]] = []
+    for key in ("x", "y", "points", "depth_points", "depth", "component", "kw"):
+        value = getattr(spec, key)
+        if value is not None:
+            items.append((key, list(value) if isinstance(value, tuple) else value))
+    return items
+
+
+def _to_toml(scene: Scene) -> str:
+    lines: list[str] = []
+    if scene.name:
+        lines.append(f"name = {_toml_value(scene.name)}")
+    if scene.description:
+        lines.append(f"description = {_toml_value(scene.description)}")
+    if lines:
+        lines.append("")
+    lines.append("[params]")
+    for name in PARAMS:
+        lines.append(f"{name} = {_toml_value(scene.params[name])}")
+    lines += ["", "[accuracy]", f"tol = {_toml_value(scene.tol)}"]
+    if scene.outputs:
+        lines += ["", "[outputs]"]
+        for kind, spec in scene.outputs.items():
+            items = _output_items(spec)
+            if items:
+                body = ", ".join(f"{k} = {_toml_value(v)}" for k, v in items)
+                lines.append(f"{kind} = {{ {body} }}")
+            else:
+                lines.append(f"{kind} = true")
+    if scene.vary is not None:
+        lines += [
+            "",
+            "[vary]",
+            f"param = {_toml_value(scene.vary.param)}",
+            f"values = {_toml_value(list(scene.vary.values))}",
+        ]
+    if scene.sweep is not None:
+        s = scene.sweep
+        lines += ["", "[sweep]", f"param = {_toml_value(s.param)}"]
+        if s.is_range:
+            lines += [
+                f"start = {_toml_value(s.start)}",
+                f"stop = {_toml_value(s.stop)}",
+                f"points = {_toml_value(s.points)}",
+                f"spacing = {_toml_value(s.spacing)}",
+            ]
+        else:
+            lines.append(f"values = {_toml_value(list(s.values))}")
+        lines.append(f"quantities = {_toml_value(list(s.quantities))}")
+    return "\n".join(lines) + "\n"
+
+
+# ----------------------------------------------------------------------------
+# Bundled scenes
+# ----------------------------------------------------------------------------
+
+
+def _bundled_dir() -> Any:
+    return resources.files("movingpunch").joinpath("scenes")
+
+
+def _bundled_names() -> list[str]:
+    names = [
+        entry.name[: -len(".toml")]
+        for entry in _bundled_dir().iterdir()
+        if entry.name.endswith(".toml")
+    ]
+    order = ["table1", "fig2", "fig3", "fig4", "fig5", "fig6"]
+    return sorted(
+        names, key=lambda n: (order.index(n) if n in order else len(order), n)
+    )
+
+
+def _bundled_text(name: str) -> str:
+    names = _bundled_names()
+    if name not in names:
+        raise SceneError(
+            f"<bundled scene {name}>",
+            "name",
+            f"no bundled scene {name!r} and no such file",
+            ", ".join(names),
+        )
+    text: str = _bundled_dir().joinpath(f"{name}.toml").read_text(encoding="utf-8")
+    return text
+
+
+def bundled_scenes() -> dict[str, str]:
+    """The scenes shipped with the package: name -> one-line description."""
+    out: dict[str, str] = {}
+    for name in _bundled_names():
+        scene = Scene.bundled(name)
+        out[name] = scene.description.splitlines()[0] if scene.description else ""
+    return out
+
+
+def bundled_scene_text(name: str) -> str | None:
+    """The TOML text (with its comments) of a bundled scene, None if there is
+    no bundled scene of that name."""
+    if name not in _bundled_names():
+        return None
+    return _bundled_text(name)
+
+
+def load_scene(ref: str | Path) -> Scene:
+    """A scene from a file path, or else the bundled scene of that name."""
+    p = Path(ref)
+    if p.exists() or p.suffix == ".toml" or len(p.parts) > 1:
+        return Scene.load(p)
+    names = _bundled_names()
+    if str(ref) in names:
+        return Scene.bundled(str(ref))
+    raise SceneError(
+        str(ref),
+        "(file)",
+        "no such scene file or bundled scene",
+        "a TOML file, or one of " + ", ".join(names),
+    )

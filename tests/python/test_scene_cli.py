@@ -1,0 +1,184 @@
+"""``movingpunch run / scenes / scene show``, run as a user would (in a
+subprocess)."""
+
+from __future__ import annotations
+
+import math
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import movingpunch as mp
+from movingpunch.scene import Scene, read_csv, read_json
+
+# physics.md section 8: a/h at R/h = 100, P/(mu h) = 0.002, nu = 0.2.
+TABLE1 = {
+    "0.1": (0.372478, 0.3729),
+    "1": (0.330419, 0.3306),
+    "10": (0.315037, 0.3152),
+    "inf": (0.311557, 0.3117),
+}
+
+VALID = "[params]\nvstar = 0.2\nkw = 1\nradius = 100\nload = 0.002\n"
+
+
+def run(*args: str, cwd: Path | None = None) -> subprocess.CompletedProcess[str]:
+    return subprocess.run(
+        [sys.executable, "-m", "movingpunch", *args],
+        capture_output=True,
+        text=True,
+        timeout=300,
+        check=False,
+        cwd=cwd,
+    )
+
+
+def assert_one_line_error(proc: subprocess.CompletedProcess[str], *words: str) -> None:
+    assert proc.returncode == 2, proc
+    assert "Traceback" not in proc.stderr
+    lines = proc.stderr.strip().splitlines()
+    assert len(lines) == 1, proc.stderr
+    assert lines[0].startswith("movingpunch: error: "), proc.stderr
+    for word in words:
+        assert word in lines[0], proc.stderr
+    assert proc.stdout == ""
+
+
+def test_run_table1_prints_both_columns() -> None:
+    proc = run("run", "table1", "--jobs", "1")
+    assert proc.returncode == 0, proc.stderr
+    header = next(line for line in proc.stdout.splitlines() if "a/h (vstar=0)" in line)
+    assert "a/h (vstar=0.001)" in header
+    # Columns: kw, then a/h and p0/(P/h) for vstar = 0, then for vstar = 1e-3.
+    for kw, (static, paper) in TABLE1.items():
+        match = re.search(rf"^\s+{re.escape(kw)}\s+(.*)$", proc.stdout, re.MULTILINE)
+        assert match, proc.stdout
+        numbers = [float(v) for v in match.group(1).split()]
+        assert numbers[0] == pytest.approx(static, abs=1e-6)
+        assert numbers[2] == pytest.approx(paper, abs=6e-5)
+    assert "Stages" in proc.stdout
+    assert proc.stderr == ""
+
+
+def test_run_writes_csv_and_json_that_load_back(tmp_path: Path) -> None:
+    proc = run("run", "fig6", "--out", str(tmp_path), "--no-plot")
+    assert proc.returncode == 0, proc.stderr
+    names = sorted(p.name for p in tmp_path.iterdir())
+    assert names == sorted(
+        f"fig6-{k}.csv"
+        for k in ("contact_width", "pressure", "surface_stress", "depth_stress")
+    )
+    meta, cols = read_csv(tmp_path / "fig6-contact_width.csv")
+    assert meta["scene"] == Scene.bundled("fig6")
+    assert meta["movingpunch_version"] == mp.__version__
+    s = mp.solve(vstar=0.2, kw=1.0, radius=10.0, load=0.002)
+    assert cols["radius"][0] == 10.0
+    assert cols["a"][0] == pytest.approx(s.a, rel=1e-8)
+    assert np.loadtxt(tmp_path / "fig6-depth_stress.csv", delimiter=",").shape == (
+        101,
+        5,
+    )
+
+    proc = run("run", "table1", "--format", "json", "--jobs", "2", cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    meta, cols = read_json(tmp_path / "table1-sweep.json")
+    assert meta["scene"] == Scene.bundled("table1")
+    assert cols["kw"][-1] == math.inf
+    assert cols["a[vstar=0]"] == pytest.approx(
+        [v[0] for v in TABLE1.values()], abs=1e-6
+    )
+
+
+def test_run_plots_in_ascii() -> None:
+    proc = run("run", "fig2", "--plot", "--jobs", "1")
+    assert proc.returncode == 0, proc.stderr
+    assert "contact half-width a/h against R/h" in proc.stdout
+    assert "vstar=0.5" in proc.stdout
+    assert "\x1b[" not in proc.stdout  # no colour codes into a pipe
+    assert "┤" in proc.stdout
+
+
+def test_png_without_matplotlib_is_a_one_line_error(tmp_path: Path) -> None:
+    code = (
+        "import sys; sys.modules['matplotlib'] = None; "
+        "from movingpunch.cli import main; raise SystemExit(main(sys.argv[1:]))"
+    )
+    proc = subprocess.run(
+        [sys.executable, "-c", code, "run", "table1", "--png", "--out", str(tmp_path)],
+        capture_output=True,
+        text=True,
+        timeout=300,
+        check=False,
+    )
+    assert proc.returncode == 2, proc.stderr
+    assert "Traceback" not in proc.stderr
+    assert proc.stderr.strip().splitlines() == [
+        "movingpunch: error: --png needs matplotlib: pip install 'movingpunch[png]'"
+    ]
+
+
+def test_scenes_lists_the_bundled_scenes() -> None:
+    proc = run("scenes")
+    assert proc.returncode == 0, proc.stderr
+    lines = proc.stdout.splitlines()
+    names = [line.split()[0] for line in lines]
+    assert names[:6] == ["table1", "fig2", "fig3", "fig4", "fig5", "fig6"]
+    assert "near-critical" in names
+    assert all(len(line.split(maxsplit=1)) == 2 for line in lines)
+
+
+def test_scene_show_prints_loadable_toml() -> None:
+    proc = run("scene", "show", "fig3")
+    assert proc.returncode == 0, proc.stderr
+    assert Scene.from_toml(proc.stdout) == Scene.bundled("fig3")
+    assert proc.stdout.startswith('name = "fig3"')
+
+
+MALFORMED = {
+    "unknown key": (
+        VALID + "colour = 3\n[outputs]\ncontact_width = true\n",
+        "params.colour",
+    ),
+    "wrong type": (
+        VALID + "[outputs]\npressure = { points = 'many' }\n",
+        "outputs.pressure.points",
+    ),
+    "missing parameter": (
+        "[params]\nvstar = 0.2\nradius = 100\nload = 0.002\n"
+        "[outputs]\ncontact_width = true\n",
+        "params.kw",
+    ),
+    "vstar above critical": (
+        VALID.replace("0.2", "0.58") + "[outputs]\ncontact_width = true\n",
+        "params.vstar",
+    ),
+    "non-TOML bytes": (b"\x00\x01\xff\xfe garbage [[[", "(file)"),
+    "empty file": ("", "params"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(MALFORMED))
+def test_malformed_scene_is_a_one_line_error(case: str, tmp_path: Path) -> None:
+    content, key = MALFORMED[case]
+    path = tmp_path / "scene.toml"
+    if isinstance(content, bytes):
+        path.write_bytes(content)
+    else:
+        path.write_text(content, encoding="utf-8")
+    proc = run("run", str(path))
+    assert_one_line_error(proc, str(path), f": {key}: ")
+    assert list(tmp_path.iterdir()) == [path]
+
+
+def test_unknown_scene_name() -> None:
+    proc = run("run", "fig7")
+    assert_one_line_error(proc, "fig7", "table1", "near-critical")
+
+
+@pytest.mark.parametrize("jobs", ["0", "-2", "two"])
+def test_bad_jobs(jobs: str) -> None:
+    assert_one_line_error(run("run", "table1", "--jobs", jobs), "--jobs")
