@@ -200,11 +200,53 @@ def test_critical_json_rigid_base() -> None:
     assert data["rayleigh_vstar"] == pytest.approx(0.8299135134, rel=1e-9)
 
 
-def test_no_subcommand_prints_help() -> None:
-    proc = run()
+def test_help_lists_the_commands() -> None:
+    proc = run("--help")
     assert proc.returncode == 0
-    assert "solve" in proc.stdout
-    assert "critical" in proc.stdout
+    for command in ("solve", "critical", "tui", "serve"):
+        assert command in proc.stdout
+
+
+def test_no_subcommand_starts_the_terminal_ui(monkeypatch: pytest.MonkeyPatch) -> None:
+    # In this process, with App.run replaced: the real terminal run is in
+    # test_tui_tmux.py.
+    from movingpunch import cli
+    from movingpunch.tui import MovingPunchApp
+    from movingpunch.tui.model import PAPER_FIG4
+
+    started: list[MovingPunchApp] = []
+
+    def fake_run(self: MovingPunchApp, *args: object, **kwargs: object) -> None:
+        started.append(self)
+
+    monkeypatch.setattr(MovingPunchApp, "run", fake_run)
+    assert cli.main([]) == 0
+    assert cli.main(["tui", "fig5"]) == 0
+    assert len(started) == 2
+    assert started[0].scene.params == PAPER_FIG4
+    assert started[1].scene.overlay is not None
+    assert started[1].scene.overlay.param == "kw"
+
+
+def test_tui_bad_scene_is_one_line() -> None:
+    assert_one_line_error(run("tui", "no-such-scene"), "no-such-scene")
+    assert_one_line_error(run("serve", "no-such-scene"), "no-such-scene")
+
+
+def test_serve_without_textual_serve_is_one_line(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from movingpunch import cli
+
+    monkeypatch.setitem(sys.modules, "textual_serve", None)
+    monkeypatch.setitem(sys.modules, "textual_serve.server", None)
+    with pytest.raises(SystemExit) as info:
+        cli.main(["serve"])
+    assert info.value.code == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("movingpunch: error: serve needs textual-serve")
+    assert "movingpunch[serve]" in err
+    assert len(err.splitlines()) == 1
 
 
 def replace(args: list[str], flag: str, value: str) -> list[str]:

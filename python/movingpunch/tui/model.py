@@ -1,0 +1,538 @@
+"""What the terminal UI computes, without Textual: parameter sets, the
+validation of typed text, the curves of each tab and a thread-safe cache.
+
+Everything here runs in worker threads (the solver releases the GIL); the
+app only turns the results into widgets. Nothing in this module touches a
+widget, so it can be tested on its own.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+import threading
+from collections import OrderedDict
+from collections.abc import Callable, Iterable, Sequence
+from dataclasses import dataclass, field, replace
+from typing import Literal
+
+import numpy as np
+import numpy.typing as npt
+
+from movingpunch import solver
+from movingpunch.errors import InvalidParameterError, MovingPunchError
+from movingpunch.fields import StressPeaks
+from movingpunch.solver import Solution, critical_vstar, rayleigh_vstar, solve
+
+FloatArray = npt.NDArray[np.float64]
+
+PARAM_NAMES: tuple[str, ...] = ("vstar", "kw", "radius", "load", "nu", "tol")
+"""Every input of the parameters panel, in order."""
+
+SCENE_PARAMS: tuple[str, ...] = ("vstar", "kw", "radius", "load", "nu")
+"""The physical parameters (a scene's ``params``); ``tol`` is separate."""
+
+TabName = Literal["pressure", "surface", "depth", "sweep", "field"]
+TABS: tuple[TabName, ...] = ("pressure", "surface", "depth", "sweep", "field")
+
+FieldQuantity = Literal["sigma_x", "von_mises"]
+
+# The same checks as movingpunch.solve, so the messages name the parameter and
+# its valid range exactly as the API's do (one source of truth for ranges).
+_CHECKS: dict[str, Callable[[object], float]] = {
+    "vstar": solver._check_vstar,
+    "kw": solver._check_kw,
+    "radius": lambda v: solver._check_positive("radius", v),
+    "load": lambda v: solver._check_positive("load", v),
+    "nu": solver._check_nu,
+    "tol": solver._check_tol,
+}
+
+SHORT: dict[str, str] = {
+    "vstar": "V*",
+    "kw": "kw",
+    "radius": "R/h",
+    "load": "P/μh",
+    "nu": "ν",
+    "tol": "tol",
+}
+"""Short labels of the parameters, for legends."""
+
+GRID_LABELS: dict[str, str] = {
+    "vstar": "V* = ρV²/μ",
+    "kw": "k_w h/μ",
+    "radius": "R/h",
+    "load": "P/(μh)",
+    "nu": "ν",
+}
+"""Axis labels of a swept parameter (the paper's normalisations)."""
+
+
+def fmt(value: float, digits: int = 6) -> str:
+    """A compact number: ``inf`` for infinity, else ``digits`` significant."""
+    if math.isinf(value):
+        return "inf" if value > 0 else "-inf"
+    return f"{value:.{digits}g}"
+
+
+def parse_param(name: str, text: str) -> float:
+    """The value typed for ``name``, checked as ``movingpunch.solve`` checks
+    it. Raises InvalidParameterError naming the parameter and its range.
+
+    The bound vstar < V*_cr depends on kw and nu: the solve checks it.
+    """
+    stripped = text.strip()
+    try:
+        value: object = float(stripped)
+    except ValueError:
+        value = stripped  # the check rejects it with the usual message
+    if not stripped:
+        value = text
+    return _CHECKS[name](value)
+
+
+@dataclass(frozen=True)
+class Params:
+    """One parameter set (hashable: the key of every cache)."""
+
+    vstar: float = 0.2
+    kw: float = 1.0
+    radius: float = 100.0
+    load: float = 0.002
+    nu: float = 0.2
+    tol: float = 1e-8
+
+    def get(self, name: str) -> float:
+        value: float = getattr(self, name)
+        return value
+
+    def with_value(self, name: str, value: float) -> Params:
+        if name not in PARAM_NAMES:
+            raise InvalidParameterError(f"unknown parameter {name!r}")
+        return replace(self, **{name: value})
+
+    def physical(self) -> dict[str, float]:
+        """The scene's ``params`` mapping (without tol)."""
+        return {name: self.get(name) for name in SCENE_PARAMS}
+
+    def label(self, against: Params | None = None) -> str:
+        """``V*=0.2 kw=1 ...``; only the values that differ from ``against``."""
+        names = [
+            n for n in SCENE_PARAMS if against is None or self.get(n) != against.get(n)
+        ]
+        if not names:
+            return "same"
+        return " ".join(f"{SHORT[n]}={fmt(self.get(n), 4)}" for n in names)
+
+
+PAPER_FIG4 = Params()
+"""The paper's Fig. 4 case: V* = 0.2, kw = 1, R/h = 100, μ/(P/h) = 500, ν = 0.2."""
+
+
+@dataclass(frozen=True)
+class Overlay:
+    """One parameter set to several values, drawn over the current curves."""
+
+    param: str
+    values: tuple[float, ...]
+
+    def members(self, base: Params) -> list[tuple[str, Params]]:
+        return [
+            (f"{SHORT[self.param]}={fmt(v, 4)}", base.with_value(self.param, v))
+            for v in self.values
+        ]
+
+
+def parse_values(name: str, text: str) -> tuple[float, ...]:
+    """A list of values for ``name`` typed as ``0.1, 0.2 0.3``; each checked."""
+    parts = [p for p in text.replace(",", " ").replace(";", " ").split() if p]
+    if not parts:
+        raise InvalidParameterError(f"give one or more values of {name}")
+    if len(parts) > 12:
+        raise InvalidParameterError(f"at most 12 values of {name}, got {len(parts)}")
+    return tuple(parse_param(name, p) for p in parts)
+
+
+@dataclass(frozen=True)
+class SweepSpec:
+    """The a/h tab: a/h against ``param`` on ``values`` (the paper's Figs 2-3)."""
+
+    param: str = "load"
+    values: tuple[float, ...] | None = None
+    """None: 13 points on a log scale from a tenth to ten times the current."""
+
+    def grid(self, base: Params) -> FloatArray:
+        if self.values is not None:
+            return np.asarray(self.values, dtype=np.float64)
+        centre = base.get(self.param)
+        return np.geomspace(centre / 10.0, centre * 10.0, 13)
+
+
+@dataclass(frozen=True, eq=False)  # arrays: compared by identity
+class Series:
+    label: str
+    values: FloatArray
+
+
+@dataclass(frozen=True, eq=False)  # arrays: compared by identity
+class Curves:
+    """The curves of one tab on a shared grid (what the CSV export writes)."""
+
+    tab: TabName
+    title: str
+    grid_label: str
+    value_label: str
+    grid: FloatArray
+    series: tuple[Series, ...]
+    vertical_grid: bool = False
+    """Draw the grid vertically (σx through the depth: y/h upwards)."""
+    log_grid: bool = False
+
+
+@dataclass(frozen=True, eq=False)  # arrays: compared by identity
+class FieldMap:
+    """A stress over P/h on x by y under the punch (the coloured map)."""
+
+    quantity: FieldQuantity
+    title: str
+    x: FloatArray
+    y: FloatArray
+    values: FloatArray
+    """Shaped (len(y), len(x))."""
+    a: float
+
+
+TabData = Curves | FieldMap
+
+
+@dataclass(frozen=True)
+class Summary:
+    params: Params
+    a: float
+    p0: float
+    indentation: float
+    top_tensile: float
+    bottom_tensile: float
+    iterations: int
+    error_estimate: float
+    elapsed: float
+    valid: bool
+    critical_vstar: float
+    rayleigh_vstar: float
+
+
+@dataclass(frozen=True)
+class Request:
+    """What one worker computes: the summary of ``params`` and the data of
+    one tab for the current set, the overlay and the pins."""
+
+    generation: int
+    params: Params
+    tab: TabName
+    pins: tuple[Params, ...] = ()
+    overlay: Overlay | None = None
+    sweep: SweepSpec = field(default_factory=SweepSpec)
+    quantity: FieldQuantity = "sigma_x"
+
+
+@dataclass(frozen=True)
+class Result:
+    request: Request
+    summary: Summary
+    data: TabData
+    notes: tuple[str, ...] = ()
+    """Overlay or pin members that could not be solved, one line each."""
+
+
+class Cache:
+    """Solutions, peaks and curves per parameter set (thread-safe, bounded)."""
+
+    def __init__(self, size: int = 256) -> None:
+        self._size = size
+        self._lock = threading.Lock()
+        self._items: OrderedDict[tuple[object, ...], object] = OrderedDict()
+        self.misses: dict[str, int] = {}
+
+    def get_or_make(
+        self, key: tuple[object, ...], make: Callable[[], object]
+    ) -> object:
+        with self._lock:
+            if key in self._items:
+                self._items.move_to_end(key)
+                return self._items[key]
+        value = make()  # outside the lock: solves run in parallel
+        with self._lock:
+            kind = str(key[0])
+            self.misses[kind] = self.misses.get(kind, 0) + 1
+            self._items[key] = value
+            while len(self._items) > self._size:
+                self._items.popitem(last=False)
+        return value
+
+    def kinds(self) -> set[tuple[str, Params]]:
+        """(kind, params) of every cached item whose key has params second."""
+        with self._lock:
+            return {(str(k[0]), k[1]) for k in self._items if isinstance(k[1], Params)}
+
+    def clear(self) -> None:
+        with self._lock:
+            self._items.clear()
+            self.misses.clear()
+
+
+def solution(cache: Cache, params: Params) -> Solution:
+    s = cache.get_or_make(("solution", params), lambda: _solve(params))
+    assert isinstance(s, Solution)
+    return s
+
+
+def _solve(params: Params) -> Solution:
+    return solve(
+        vstar=params.vstar,
+        kw=params.kw,
+        radius=params.radius,
+        load=params.load,
+        nu=params.nu,
+        tol=params.tol,
+    )
+
+
+def limits(kw: float, nu: float) -> tuple[float, float]:
+    """(V*_cr, V*_R) for the foundation and Poisson's ratio."""
+    return critical_vstar(kw, nu), rayleigh_vstar(nu)
+
+
+def summary(cache: Cache, params: Params) -> Summary:
+    s = solution(cache, params)
+    peaks = cache.get_or_make(("peaks", params), s.stress_peaks)
+    assert isinstance(peaks, StressPeaks)
+    return Summary(
+        params=params,
+        a=s.a,
+        p0=s.p0,
+        indentation=s.indentation,
+        top_tensile=peaks.top_tensile,
+        bottom_tensile=peaks.bottom_tensile,
+        iterations=s.iterations,
+        error_estimate=s.error_estimate,
+        elapsed=s.elapsed,
+        valid=s.valid,
+        critical_vstar=s.critical_vstar,
+        rayleigh_vstar=s.rayleigh_vstar,
+    )
+
+
+Progress = Callable[[int, int], None]
+
+
+def _members(request: Request) -> list[tuple[str, Params]]:
+    """(label, params) of every curve: the current set, the overlay, the pins."""
+    out: list[tuple[str, Params]] = [("current", request.params)]
+    if request.overlay is not None:
+        overlay = request.overlay
+        value = fmt(request.params.get(overlay.param), 4)
+        out[0] = (f"current {SHORT[overlay.param]}={value}", request.params)
+        # A value equal to the current one would draw the same curve twice.
+        out += [m for m in overlay.members(request.params) if m[1] != request.params]
+    for i, pin in enumerate(request.pins, start=1):
+        out.append((f"pin{i} {pin.label(request.params)}", pin))
+    return out
+
+
+def compute(
+    cache: Cache,
+    request: Request,
+    progress: Progress | None = None,
+    cancelled: Callable[[], bool] | None = None,
+) -> Result | None:
+    """The summary and the visible tab's data for ``request``.
+
+    Errors of the current set propagate (the app shows them inline); overlay
+    and pin members that fail are left out with a note. Returns None if
+    ``cancelled()`` turns true (a newer request superseded this one).
+    """
+    report = progress or (lambda done, total: None)
+    stop = cancelled or (lambda: False)
+    head = summary(cache, request.params)
+    members = _members(request)
+    solved: list[tuple[str, Params, Solution]] = []
+    notes: list[str] = []
+    for label, params in members:
+        try:
+            solved.append((label, params, solution(cache, params)))
+        except MovingPunchError as exc:
+            notes.append(f"{label}: {_one_line(exc)}")
+    if stop():
+        return None
+    data: TabData
+    if request.tab == "field":
+        data = _field(cache, request.params, request.quantity)
+    elif request.tab == "sweep":
+        out = _sweep(cache, request, solved, report, stop)
+        if out is None:
+            return None
+        data = out
+    else:
+        data = _curves(cache, request.tab, solved, report, stop)
+    return Result(request=request, summary=head, data=data, notes=tuple(notes))
+
+
+def _one_line(exc: BaseException) -> str:
+    return " ".join(str(exc).split()) or type(exc).__name__
+
+
+def _extent(tab: TabName, solved: Sequence[tuple[str, Params, Solution]]) -> float:
+    amax = max(s.a for _, _, s in solved)
+    if tab == "pressure":
+        return _round_up(1.15 * amax)
+    return _round_up(max(3.0, 4.0 * amax))
+
+
+def _round_up(x: float) -> float:
+    """x rounded up to 2 significant digits (stable grids, stable caches)."""
+    step = 10.0 ** (math.floor(math.log10(x)) - 1)
+    return math.ceil(x / step) * step
+
+
+_LABELS = {
+    "pressure": ("Contact pressure", "x/h", "p(x)/(P/h)"),
+    "surface": ("σx on the surface y = 0", "x/h", "σx(x,0)/(P/h)"),
+    "depth": ("σx under the centre x = 0", "y/h", "σx(0,y)/(P/h)"),
+}
+
+
+def _curves(
+    cache: Cache,
+    tab: TabName,
+    solved: Sequence[tuple[str, Params, Solution]],
+    report: Progress,
+    stop: Callable[[], bool],
+) -> Curves:
+    title, grid_label, value_label = _LABELS[tab]
+    if tab == "depth":
+        grid = np.linspace(-1.0, 0.0, 101)
+        key: tuple[object, ...] = (101,)
+    else:
+        extent = _extent(tab, solved)
+        grid = np.linspace(-extent, extent, 241 if tab == "surface" else 201)
+        key = (extent, len(grid))
+    series = []
+    for i, (label, params, s) in enumerate(solved):
+        if stop():
+            break
+        make = {
+            "pressure": lambda s=s: s.pressure(grid),
+            "surface": lambda s=s: s.surface_stress(grid),
+            "depth": lambda s=s: s.depth_stress(grid),
+        }[tab]
+        values = cache.get_or_make((tab, params, *key), make)
+        assert isinstance(values, np.ndarray)
+        series.append(Series(label, values))
+        report(i + 1, len(solved))
+    return Curves(
+        tab=tab,
+        title=title,
+        grid_label=grid_label,
+        value_label=value_label,
+        grid=grid,
+        series=tuple(series),
+        vertical_grid=tab == "depth",
+    )
+
+
+def _sweep(
+    cache: Cache,
+    request: Request,
+    solved: Sequence[tuple[str, Params, Solution]],
+    report: Progress,
+    stop: Callable[[], bool],
+) -> Curves | None:
+    spec = request.sweep
+    grid = spec.grid(request.params)
+    total = len(solved) * len(grid)
+    done = 0
+    series = []
+    for label, params, _ in solved:
+        values = np.full(len(grid), np.nan)
+        for j, x in enumerate(grid):
+            if stop():
+                return None
+            point = params.with_value(spec.param, float(x))
+            a = cache.get_or_make(("a", point), functools.partial(_a_or_nan, point))
+            assert isinstance(a, float)
+            values[j] = a
+            done += 1
+            report(done, total)
+        series.append(Series(label, values))
+    swept = GRID_LABELS[spec.param]
+    return Curves(
+        tab="sweep",
+        title=f"Contact half-width against {swept}",
+        grid_label=swept,
+        value_label="a/h",
+        grid=grid,
+        series=tuple(series),
+        log_grid=spec.values is None,
+    )
+
+
+def _a_or_nan(params: Params) -> float:
+    try:
+        return _solve(params).a
+    except MovingPunchError:
+        return math.nan
+
+
+def _field(cache: Cache, params: Params, quantity: FieldQuantity) -> FieldMap:
+    s = solution(cache, params)
+    extent = _round_up(max(2.0, 3.0 * s.a))
+    x = np.linspace(-extent, extent, 97)
+    y = np.linspace(-1.0, 0.0, 41)
+
+    def make() -> FloatArray:
+        f = s.stress_field(x, y)
+        return f.sigma_x if quantity == "sigma_x" else f.von_mises
+
+    values = cache.get_or_make((f"field-{quantity}", params, extent), make)
+    assert isinstance(values, np.ndarray)
+    name = "σx/(P/h)" if quantity == "sigma_x" else "von Mises σ/(P/h)"
+    return FieldMap(
+        quantity=quantity,
+        title=f"{name} under the punch",
+        x=x,
+        y=y,
+        values=values,
+        a=s.a,
+    )
+
+
+def to_csv(data: TabData, source: Params) -> str:
+    """The tab's data as CSV that ``numpy.loadtxt(..., delimiter=",")``
+    reads back: ``#`` comment lines, then numbers only."""
+    lines = [f"# movingpunch {source.label()} tol={fmt(source.tol)}"]
+    if isinstance(data, Curves):
+        lines.append(f"# {data.title}")
+        names = [data.grid_label] + [
+            f"{data.value_label} [{s.label}]" for s in data.series
+        ]
+        lines.append("# " + ", ".join(names))
+        columns = [data.grid] + [s.values for s in data.series]
+        for row in np.column_stack(columns):
+            lines.append(",".join(_csv_number(v) for v in row))
+    else:
+        lines.append(f"# {data.title}")
+        lines.append("# x/h, y/h, " + data.title.split(" under")[0])
+        for j, yv in enumerate(data.y):
+            for i, xv in enumerate(data.x):
+                lines.append(
+                    ",".join(_csv_number(v) for v in (xv, yv, data.values[j, i]))
+                )
+    return "\n".join(lines) + "\n"
+
+
+def _csv_number(value: float) -> str:
+    return repr(float(value))
+
+
+def describe(values: Iterable[float]) -> str:
+    return ", ".join(fmt(v, 4) for v in values)

@@ -1,0 +1,100 @@
+"""Between the app's state and ``movingpunch.scene`` files and bundled scenes.
+
+Opening keeps the scene's parameters, accuracy, overlaid values (``[vary]``)
+and sweep; saving writes them back with the outputs the app shows.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+from movingpunch.scene import OutputSpec, Scene, Sweep, Vary
+from movingpunch.tui.model import SCENE_PARAMS, Overlay, Params, SweepSpec
+
+SAVED_OUTPUTS: tuple[str, ...] = (
+    "contact_width",
+    "pressure",
+    "surface_stress",
+    "depth_stress",
+    "stress_field",
+)
+"""What a saved scene asks for: the quantities of the app's tabs."""
+
+
+@dataclass(frozen=True)
+class SceneState:
+    """What the app takes from (and gives to) a scene."""
+
+    params: Params
+    overlay: Overlay | None = None
+    sweep: SweepSpec | None = None
+    name: str = ""
+    description: str = ""
+
+
+def load(source: str | Path) -> SceneState:
+    """A scene file (a path that exists or ends in .toml) or a bundled name.
+
+    Raises SceneError (an InvalidParameterError) with a one-line message.
+    """
+    text = str(source)
+    path = Path(text).expanduser()
+    if path.exists() or text.endswith(".toml") or "/" in text:
+        scene = Scene.load(path)
+    else:
+        scene = Scene.bundled(text)
+    return from_scene(scene)
+
+
+def from_scene(scene: Scene) -> SceneState:
+    values = {name: float(scene.params[name]) for name in SCENE_PARAMS}
+    params = Params(**values, tol=float(scene.tol))
+    overlay = (
+        None
+        if scene.vary is None
+        else Overlay(scene.vary.param, tuple(float(v) for v in scene.vary.values))
+    )
+    sweep = (
+        None
+        if scene.sweep is None
+        else SweepSpec(
+            param=scene.sweep.param,
+            values=tuple(float(v) for v in scene.sweep.values),
+        )
+    )
+    return SceneState(
+        params=params,
+        overlay=overlay,
+        sweep=sweep,
+        name=scene.name,
+        description=scene.description,
+    )
+
+
+def to_scene(state: SceneState) -> Scene:
+    """The state as a Scene (validated: raises SceneError)."""
+    vary = (
+        None
+        if state.overlay is None
+        else Vary(state.overlay.param, tuple(state.overlay.values))
+    )
+    sweep = None
+    spec = state.sweep
+    if spec is not None and (vary is None or vary.param != spec.param):
+        grid = tuple(float(v) for v in spec.grid(state.params))
+        sweep = Sweep(param=spec.param, values=grid, quantities=("a",))
+    return Scene(
+        params=state.params.physical(),
+        outputs={kind: OutputSpec(kind) for kind in SAVED_OUTPUTS},
+        vary=vary,
+        sweep=sweep,
+        tol=state.params.tol,
+        name=state.name,
+        description=state.description,
+    )
+
+
+def save(state: SceneState, path: Path) -> None:
+    """Writes the state as a scene file (atomically)."""
+    to_scene(state).save(path)

@@ -1,0 +1,540 @@
+"""The main screen: parameters, plot tabs, summary line, status and keys.
+
+Every computation runs in one exclusive thread worker; each request carries
+a generation number and a result (or error) from an older generation is
+dropped, so a stale result never overwrites a newer one.
+"""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+from typing import ClassVar
+
+from rich.text import Text
+from textual import work
+from textual.app import ComposeResult
+from textual.binding import Binding, BindingType
+from textual.containers import Horizontal, Vertical
+from textual.screen import Screen
+from textual.widgets import (
+    Footer,
+    Input,
+    ProgressBar,
+    Static,
+    TabbedContent,
+    TabPane,
+    Tabs,
+)
+from textual.worker import Worker, WorkerState, get_current_worker
+
+from movingpunch.errors import (
+    ConvergenceError,
+    InvalidParameterError,
+    MovingPunchError,
+    SupercriticalSpeedError,
+    UnphysicalContactError,
+)
+from movingpunch.tui import model, scenes
+from movingpunch.tui.messages import Computed, Progressed
+from movingpunch.tui.model import (
+    PARAM_NAMES,
+    TABS,
+    Cache,
+    FieldMap,
+    FieldQuantity,
+    Overlay,
+    Params,
+    Request,
+    Result,
+    SweepSpec,
+    TabName,
+    fmt,
+)
+from movingpunch.tui.screens.help import HelpScreen
+from movingpunch.tui.screens.prompts import OverlayPrompt, PathPrompt
+from movingpunch.tui.widgets import CurvePlot, Gauge, ParamsPanel, StressMap
+
+TAB_TITLES: dict[TabName, str] = {
+    "pressure": "p(x)",
+    "surface": "σx(x,0)",
+    "depth": "σx(0,y)",
+    "sweep": "a/h sweep",
+    "field": "field",
+}
+
+FIGURE_TABS: dict[str, TabName] = {
+    "fig2": "sweep",
+    "fig3": "sweep",
+    "fig4": "pressure",
+    "fig5": "pressure",
+    "fig6": "pressure",
+}
+
+
+class MainScreen(Screen[None]):
+    BINDINGS: ClassVar[list[BindingType]] = [
+        Binding("r", "recompute", "Recompute"),
+        Binding("p", "pin", "Pin"),
+        Binding("c", "clear_pins", "Clear"),
+        Binding("right_square_bracket", "next_tab", "Tab", key_display="]"),
+        Binding(
+            "left_square_bracket",
+            "previous_tab",
+            "Previous tab",
+            key_display="[",
+            show=False,
+        ),
+        Binding("v", "overlay", "Vary"),
+        Binding("o", "open_scene", "Open"),
+        Binding("s", "save_scene", "Save"),
+        Binding("e", "export", "CSV"),
+        Binding("question_mark,f1", "help", "Help", key_display="?"),
+        Binding("q", "quit", "Quit"),
+        Binding("escape", "leave_input", "Leave input", key_display="esc"),
+        Binding("i", "edit", "Edit the inputs", show=False),
+        Binding("m", "toggle_quantity", "σx/VM", show=False),
+        Binding("w", "toggle_sweep", "Sweep R/P", show=False),
+        *(
+            Binding(str(i + 1), f"show_tab('{tab}')", TAB_TITLES[tab], show=False)
+            for i, tab in enumerate(TABS)
+        ),
+        *(
+            Binding(f"f{n}", f"figure('fig{n}')", f"Fig. {n}", show=False)
+            for n in range(2, 7)
+        ),
+    ]
+
+    def __init__(
+        self,
+        params: Params,
+        *,
+        overlay: Overlay | None = None,
+        sweep: SweepSpec | None = None,
+        show_timing: bool = True,
+        cursor_blink: bool = True,
+        tab: TabName = "pressure",
+    ) -> None:
+        super().__init__()
+        self.params = params
+        """The last complete, valid parameter set (what the result shows)."""
+        self.overlay = overlay
+        self.sweep = sweep or SweepSpec()
+        self.pins: list[Params] = []
+        self.quantity: FieldQuantity = "sigma_x"
+        self.cache = Cache()
+        self.generation = 0
+        self.result: Result | None = None
+        """The newest result shown (its request's params and tab)."""
+        self.results: dict[TabName, Result] = {}
+        self.redraw_seconds: list[float] = []
+        """Time from a parameter change to its summary on screen."""
+        self._changed_at: dict[int, float] = {}
+        self._worker_generation: dict[Worker[None], int] = {}
+        self._show_timing = show_timing
+        self._cursor_blink = cursor_blink
+        self._initial_tab = tab
+        self._invalid: set[str] = set()
+        self._status_error = ""
+        self._notes: tuple[str, ...] = ()
+
+    # -- layout -------------------------------------------------------------
+
+    def compose(self) -> ComposeResult:
+        with Horizontal(id="body"):
+            yield ParamsPanel(self.params, cursor_blink=self._cursor_blink)
+            with TabbedContent(id="tabs", initial=f"tab-{self._initial_tab}"):
+                for tab in TABS:
+                    with TabPane(TAB_TITLES[tab], id=f"tab-{tab}"):
+                        if tab == "field":
+                            yield StressMap(id="plot-field")
+                        else:
+                            yield CurvePlot(id=f"plot-{tab}")
+        with Vertical(id="bottom"):
+            yield Static("", id="summary")
+            with Horizontal(id="status-row"):
+                yield Static("", id="status")
+                yield ProgressBar(id="progress", show_eta=False)
+        yield Footer(compact=True)
+
+    def on_mount(self) -> None:
+        self.query_one("#tabs", TabbedContent).query_one(Tabs).focus()
+        self.request()
+
+    # -- state --------------------------------------------------------------
+
+    @property
+    def tab(self) -> TabName:
+        active = self.query_one("#tabs", TabbedContent).active
+        name = active.removeprefix("tab-")
+        assert name in TABS
+        return name
+
+    def request(self) -> None:
+        """Computes what the visible tab needs for the current state."""
+        if self._invalid:
+            return  # keep the last valid result on screen
+        self.generation += 1
+        request = Request(
+            generation=self.generation,
+            params=self.params,
+            tab=self.tab,
+            pins=tuple(self.pins),
+            overlay=self.overlay,
+            sweep=self.sweep,
+            quantity=self.quantity,
+        )
+        self._changed_at[self.generation] = time.perf_counter()
+        bar = self.query_one("#progress", ProgressBar)
+        bar.update(total=None, progress=0)
+        bar.add_class("-busy")
+        worker = self._compute(request)
+        self._worker_generation[worker] = request.generation
+
+    @work(thread=True, exclusive=True, exit_on_error=False, group="compute")
+    def _compute(self, request: Request) -> None:
+        worker = get_current_worker()
+        generation = request.generation
+
+        def progress(done: int, total: int) -> None:
+            self.post_message(Progressed(generation, done, total))
+
+        def cancelled() -> bool:
+            return worker.is_cancelled or self.generation != generation
+
+        result = model.compute(self.cache, request, progress, cancelled)
+        if result is not None:
+            self.post_message(Computed(result))
+
+    # -- results ------------------------------------------------------------
+
+    def on_progressed(self, message: Progressed) -> None:
+        if message.generation == self.generation:
+            bar = self.query_one("#progress", ProgressBar)
+            bar.update(total=message.total, progress=message.done)
+
+    def on_computed(self, message: Computed) -> None:
+        result = message.result
+        generation = result.request.generation
+        if generation != self.generation:
+            return  # stale: a newer request is running or done
+        started = self._changed_at.pop(generation, None)
+        self.result = result
+        self.results[result.request.tab] = result
+        self._status_error = ""
+        self._notes = result.notes
+        self._clear_solver_messages()
+        self._show(result)
+        self.query_one("#progress", ProgressBar).remove_class("-busy")
+        if started is not None:
+            self.redraw_seconds.append(time.perf_counter() - started)
+
+    def on_worker_state_changed(self, event: Worker.StateChanged) -> None:
+        worker = event.worker
+        if event.state not in (
+            WorkerState.ERROR,
+            WorkerState.SUCCESS,
+            WorkerState.CANCELLED,
+        ):
+            return
+        generation = self._worker_generation.pop(worker, None)
+        if event.state != WorkerState.ERROR or generation != self.generation:
+            return
+        self.query_one("#progress", ProgressBar).remove_class("-busy")
+        self.show_error(worker.error)
+
+    def show_error(self, error: BaseException | None) -> None:
+        """An error of the current request, inline; the last result stays."""
+        panel = self.query_one(ParamsPanel)
+        self._clear_solver_messages()
+        if isinstance(error, SupercriticalSpeedError):
+            vcr = error.critical_vstar
+            vr = error.rayleigh_vstar
+            if vcr is not None and vr is not None:
+                self.query_one(Gauge).limits = (self.params.vstar, vcr, vr)
+                panel.set_message(
+                    "vstar",
+                    f"V* = {fmt(self.params.vstar, 5)} is at or above V*_cr = "
+                    f"{fmt(vcr, 6)} (kw {fmt(self.params.kw, 4)}, ν "
+                    f"{fmt(self.params.nu, 4)}): need 0 <= V* < V*_cr",
+                )
+            else:
+                panel.set_message("vstar", _one_line(error))
+            self._status_error = "supercritical speed: no steady solution"
+        elif isinstance(error, InvalidParameterError):
+            name = _parameter_named(str(error))
+            if name is not None:
+                panel.set_message(name, _one_line(error))
+            self._status_error = _one_line(error)
+        elif isinstance(error, UnphysicalContactError):
+            self._status_error = "unphysical contact: " + _one_line(error)
+        elif isinstance(error, ConvergenceError):
+            self._status_error = "no convergence: " + _one_line(error)
+        else:
+            what = type(error).__name__ if error is not None else "error"
+            self._status_error = f"{what}: {_one_line(error)}"
+        self._update_status()
+
+    def _clear_solver_messages(self) -> None:
+        """Messages from the solver (not from typing) go when a solve succeeds."""
+        panel = self.query_one(ParamsPanel)
+        for name in PARAM_NAMES:
+            if name not in self._invalid and panel.message(name):
+                panel.set_message(name, "")
+
+    def _show(self, result: Result) -> None:
+        s = result.summary
+        self.query_one(Gauge).limits = (
+            s.params.vstar,
+            s.critical_vstar,
+            s.rayleigh_vstar,
+        )
+        self.query_one("#summary", Static).update(self._summary_text(result))
+        data = result.data
+        if isinstance(data, FieldMap):
+            self.query_one("#plot-field", StressMap).field = data
+        else:
+            self.query_one(f"#plot-{data.tab}", CurvePlot).curves = data
+        self._update_status()
+
+    def _summary_text(self, result: Result) -> Text:
+        s = result.summary
+        out = Text()
+        parts = [
+            ("a/h", fmt(s.a, 6)),
+            ("p0", fmt(s.p0, 4)),
+            ("δ/h", fmt(s.indentation, 3)),
+            ("σx⁺ top", fmt(s.top_tensile, 3)),
+            ("bot", fmt(s.bottom_tensile, 3)),
+            ("it", str(s.iterations)),
+            ("err", f"{s.error_estimate:.0e}"),
+        ]
+        if self._show_timing:
+            parts.append(("", f"{s.elapsed * 1e3:.1f} ms"))
+        for i, (label, value) in enumerate(parts):
+            if i:
+                out.append(" ")
+            if not label:
+                out.append(value, "dim")
+                continue
+            out.append(label + " ", "dim")
+            out.append(value, "bold")
+        if not s.valid:
+            out.append("  INVALID", "bold red")
+        return out
+
+    def _update_status(self) -> None:
+        status = self.query_one("#status", Static)
+        text = Text()
+        if self._invalid:
+            text.append("invalid input; showing the last valid result", "bold yellow")
+        elif self._status_error:
+            text.append(self._status_error, "bold red")
+            text.append("; showing the last valid result", "yellow")
+        else:
+            extras = []
+            if self.overlay is not None:
+                values = model.describe(self.overlay.values)
+                extras.append(f"overlay {self.overlay.param}: {values}")
+            if self.pins:
+                extras.append(f"{len(self.pins)} pinned")
+            if self._notes:
+                extras.append("; ".join(self._notes))
+            text.append("  ".join(extras) or "ready", "dim")
+        status.update(text)
+
+    # -- input --------------------------------------------------------------
+
+    def on_input_changed(self, event: Input.Changed) -> None:
+        box_id = event.input.id or ""
+        if not box_id.startswith("in-"):
+            return
+        event.stop()
+        name = box_id.removeprefix("in-")
+        panel = self.query_one(ParamsPanel)
+        try:
+            value = model.parse_param(name, event.value)
+        except InvalidParameterError as exc:
+            self._invalid.add(name)
+            panel.set_message(name, _one_line(exc))
+            self._update_status()
+            return
+        was_invalid = name in self._invalid
+        self._invalid.discard(name)
+        panel.set_message(name, "")
+        if name == "load":
+            panel.show_load(value)
+        changed = self.params.get(name) != value
+        self.params = self.params.with_value(name, value)
+        self._update_status()
+        if changed or (was_invalid and not self._invalid):
+            self.request()
+
+    def on_input_submitted(self, event: Input.Submitted) -> None:
+        if (event.input.id or "").startswith("in-"):
+            event.stop()
+            self.action_leave_input()
+
+    def on_tabbed_content_tab_activated(
+        self, event: TabbedContent.TabActivated
+    ) -> None:
+        event.stop()
+        if self.is_mounted and self.generation:
+            self.request()
+
+    # -- actions ------------------------------------------------------------
+
+    def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
+        if action == "leave_input":
+            # Shown in the footer (and active) only while an input has focus.
+            return isinstance(self.focused, Input)
+        return True
+
+    def action_leave_input(self) -> None:
+        self.query_one("#tabs", TabbedContent).query_one(Tabs).focus()
+
+    def action_edit(self) -> None:
+        self.query_one("#in-vstar", Input).focus()
+
+    def action_recompute(self) -> None:
+        self.cache.clear()
+        self.request()
+
+    def action_pin(self) -> None:
+        if self.result is None:
+            self.notify("nothing to pin yet", severity="warning")
+            return
+        pinned = self.result.summary.params
+        if pinned in self.pins:
+            self.notify("already pinned")
+            return
+        self.pins.append(pinned)
+        self.notify(f"pinned {pinned.label()}")
+        self.request()
+
+    def action_clear_pins(self) -> None:
+        self.pins.clear()
+        self.overlay = None
+        self.request()
+
+    def _cycle(self, step: int) -> None:
+        index = (TABS.index(self.tab) + step) % len(TABS)
+        self.action_show_tab(TABS[index])
+
+    def action_next_tab(self) -> None:
+        self._cycle(1)
+
+    def action_previous_tab(self) -> None:
+        self._cycle(-1)
+
+    def action_show_tab(self, tab: str) -> None:
+        self.query_one("#tabs", TabbedContent).active = f"tab-{tab}"
+
+    def action_toggle_quantity(self) -> None:
+        self.quantity = "von_mises" if self.quantity == "sigma_x" else "sigma_x"
+        self.action_show_tab("field")
+        self.request()
+
+    def action_toggle_sweep(self) -> None:
+        param = "radius" if self.sweep.param == "load" else "load"
+        self.sweep = SweepSpec(param=param)
+        self.action_show_tab("sweep")
+        self.request()
+
+    def action_overlay(self) -> None:
+        current = self.overlay
+        prompt = (
+            OverlayPrompt()
+            if current is None
+            else OverlayPrompt(current.param, model.describe(current.values))
+        )
+        self.app.push_screen(prompt, self._set_overlay)
+
+    def _set_overlay(self, overlay: Overlay | None) -> None:
+        if overlay is not None:
+            self.overlay = overlay
+            self.request()
+
+    def action_help(self) -> None:
+        self.app.push_screen(HelpScreen())
+
+    def action_quit(self) -> None:
+        self.app.exit()
+
+    def action_figure(self, name: str) -> None:
+        try:
+            scene = scenes.load(name)
+        except (MovingPunchError, OSError) as exc:
+            self.notify(_one_line(exc), severity="error")
+            return
+        self.apply(scene, tab=FIGURE_TABS.get(name))
+
+    def apply(self, scene: scenes.SceneState, tab: TabName | None = None) -> None:
+        """Shows a scene: its parameters, overlay and sweep."""
+        self._invalid.clear()
+        self.params = scene.params
+        self.overlay = scene.overlay
+        self.sweep = scene.sweep or SweepSpec()
+        self.query_one(ParamsPanel).set_values(scene.params)
+        for name in PARAM_NAMES:
+            self.query_one(ParamsPanel).set_message(name, "")
+        self.query_one(ParamsPanel).show_load(scene.params.load)
+        if tab is not None and tab != self.tab:
+            self.action_show_tab(tab)
+        self.notify(f"scene {scene.name}" if scene.name else "scene loaded")
+        self.request()
+
+    def action_open_scene(self) -> None:
+        def attempt(path: str) -> str | None:
+            self.apply(scenes.load(path))
+            return None
+
+        self.app.push_screen(
+            PathPrompt(
+                "Open a scene (TOML file or bundled name)", "scene.toml", attempt
+            )
+        )
+
+    def action_save_scene(self) -> None:
+        state = scenes.SceneState(
+            params=self.params, overlay=self.overlay, sweep=self.sweep, name=""
+        )
+
+        def attempt(path: str) -> str | None:
+            scenes.save(state, Path(path))
+            self.notify(f"saved {path}")
+            return None
+
+        self.app.push_screen(PathPrompt("Save the scene to", "scene.toml", attempt))
+
+    def action_export(self) -> None:
+        result = self.results.get(self.tab)
+        if result is None or result.request.params != self.params:
+            self.notify("nothing computed for this tab yet", severity="warning")
+            return
+        text = model.to_csv(result.data, result.request.params)
+
+        def attempt(path: str) -> str | None:
+            Path(path).write_text(text, encoding="utf-8")
+            self.notify(f"wrote {path}")
+            return None
+
+        self.app.push_screen(
+            PathPrompt(
+                "Export the visible curves to CSV",
+                f"movingpunch-{self.tab}.csv",
+                attempt,
+            )
+        )
+
+
+def _one_line(error: BaseException | None) -> str:
+    if error is None:
+        return "unknown error"
+    return " ".join(str(error).split()) or type(error).__name__
+
+
+def _parameter_named(message: str) -> str | None:
+    """The parameter an InvalidParameterError message starts with."""
+    first = message.split(" ", 1)[0]
+    return first if first in PARAM_NAMES else None

@@ -1,0 +1,103 @@
+"""Small modal prompts: a file path (open, save, export) and an overlay."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import ClassVar
+
+from textual.app import ComposeResult
+from textual.binding import Binding, BindingType
+from textual.containers import Vertical
+from textual.screen import ModalScreen
+from textual.widgets import Input, Label, Select, Static
+
+from movingpunch.errors import MovingPunchError
+from movingpunch.tui.model import SCENE_PARAMS, Overlay, parse_values
+from movingpunch.tui.widgets.params import LABELS
+
+Attempt = Callable[[str], str | None]
+"""Tries a path; returns an error message (the prompt stays open) or None."""
+
+
+class PathPrompt(ModalScreen[str | None]):
+    """Asks for a path and runs ``attempt`` on it; errors appear inline."""
+
+    BINDINGS: ClassVar[list[BindingType]] = [Binding("escape", "cancel", "Cancel")]
+
+    def __init__(self, title: str, default: str, attempt: Attempt) -> None:
+        super().__init__()
+        self._title = title
+        self._default = default
+        self._attempt = attempt
+
+    def compose(self) -> ComposeResult:
+        with Vertical(classes="prompt-box"):
+            yield Label(self._title, classes="panel-title")
+            yield Input(self._default, id="path")
+            yield Static("enter: ok   escape: cancel", id="prompt-msg")
+
+    def on_input_submitted(self, event: Input.Submitted) -> None:
+        event.stop()
+        path = event.value.strip()
+        if not path:
+            self._show("give a path")
+            return
+        try:
+            error = self._attempt(path)
+        except (OSError, MovingPunchError, ValueError) as exc:
+            error = " ".join(str(exc).split()) or type(exc).__name__
+        if error:
+            self._show(error)
+        else:
+            self.dismiss(path)
+
+    def _show(self, message: str) -> None:
+        msg = self.query_one("#prompt-msg", Static)
+        msg.update(message)
+        msg.add_class("-error")
+
+    def action_cancel(self) -> None:
+        self.dismiss(None)
+
+
+class OverlayPrompt(ModalScreen[Overlay | None]):
+    """Pick a parameter and a list of values to draw over the current curves."""
+
+    BINDINGS: ClassVar[list[BindingType]] = [Binding("escape", "cancel", "Cancel")]
+
+    def __init__(self, param: str = "vstar", values: str = "0, 0.2, 0.4") -> None:
+        super().__init__()
+        self._param = param
+        self._values = values
+
+    def compose(self) -> ComposeResult:
+        with Vertical(classes="prompt-box"):
+            yield Label(
+                "Overlay: one parameter at several values", classes="panel-title"
+            )
+            yield Select(
+                [(f"{LABELS[n]} ({n})", n) for n in SCENE_PARAMS],
+                value=self._param,
+                allow_blank=False,
+                id="overlay-param",
+            )
+            yield Input(self._values, id="overlay-values")
+            yield Static("values separated by commas; enter: ok", id="prompt-msg")
+
+    def on_mount(self) -> None:
+        self.query_one("#overlay-values", Input).focus()
+
+    def on_input_submitted(self, event: Input.Submitted) -> None:
+        event.stop()
+        param = str(self.query_one("#overlay-param", Select).value)
+        try:
+            values = parse_values(param, event.value)
+        except MovingPunchError as exc:
+            msg = self.query_one("#prompt-msg", Static)
+            msg.update(" ".join(str(exc).split()))
+            msg.add_class("-error")
+            return
+        self.dismiss(Overlay(param, values))
+
+    def action_cancel(self) -> None:
+        self.dismiss(None)

@@ -1,0 +1,6 @@
+"""Widgets of the terminal UI."""
+
+from movingpunch.tui.widgets.params import Gauge, ParamsPanel
+from movingpunch.tui.widgets.plots import CurvePlot, StressMap
+
+__all__ = ["CurvePlot", "Gauge", "ParamsPanel", "StressMap"]

@@ -1,0 +1,116 @@
+"""The parameters panel: one compact input per parameter with its inline
+message, μ/(P/h) beside the load, and the gauge of V* against V*_cr."""
+
+from __future__ import annotations
+
+from rich.text import Text
+from textual.app import ComposeResult
+from textual.containers import Horizontal, VerticalScroll
+from textual.reactive import reactive
+from textual.widgets import Input, Label, Static
+
+from movingpunch.tui.model import PARAM_NAMES, Params, fmt
+
+LABELS: dict[str, str] = {
+    "vstar": "V*",
+    "kw": "kw h/μ",
+    "radius": "R/h",
+    "load": "P/(μh)",
+    "nu": "ν",
+    "tol": "tol",
+}
+
+TOOLTIPS: dict[str, str] = {
+    "vstar": "V* = ρV²/μ, 0 <= V* < V*_cr",
+    "kw": "foundation stiffness k_w h/μ, 1e-12 to inf (inf: rigid base)",
+    "radius": "punch radius R/h > 0",
+    "load": "load P/(μh) > 0; the paper's μ/(P/h) = 1/load",
+    "nu": "Poisson's ratio, 0 <= ν < 0.5",
+    "tol": "relative tolerance on a/h, 1e-14 to 1e-2",
+}
+
+WARN_FRACTION = 0.95
+"""The gauge turns to a warning above this fraction of V*_cr."""
+
+
+class Gauge(Static):
+    """V* against V*_cr as a bar, with V*_cr and the Rayleigh V*_R."""
+
+    limits: reactive[tuple[float, float, float] | None] = reactive(None)
+    """(vstar, V*_cr, V*_R), or None before the first result."""
+
+    def render(self) -> Text:
+        if self.limits is None:
+            return Text("V*/V*_cr  ...", style="dim")
+        vstar, vcr, vr = self.limits
+        ratio = vstar / vcr if vcr > 0 else float("inf")
+        self.set_class(ratio > WARN_FRACTION, "-warning")
+        width = 12  # fixed: the panel is 30 cells wide at every size
+        filled = round(min(max(ratio, 0.0), 1.0) * width)
+        out = Text("V*/V*_cr ")
+        bar_style = "bold red" if ratio > WARN_FRACTION else "green"
+        out.append("█" * filled, bar_style)
+        out.append("░" * (width - filled), "dim")
+        out.append(f" {min(ratio, 9.99):.2f}\n")
+        out.append(f"V*_cr {fmt(vcr, 5)}  V*_R {fmt(vr, 5)}")
+        if ratio >= 1.0:
+            out.append("\nabove the critical speed", "bold red")
+        elif ratio > WARN_FRACTION:
+            out.append("\nnear the critical speed", "bold red")
+        return out
+
+
+class ParamsPanel(VerticalScroll):
+    """Inputs for every parameter; the screen validates what is typed."""
+
+    def __init__(self, params: Params, *, cursor_blink: bool = True) -> None:
+        super().__init__(id="params")
+        self._initial = params
+        self._blink = cursor_blink
+        self._messages: dict[str, str] = dict.fromkeys(PARAM_NAMES, "")
+
+    def compose(self) -> ComposeResult:
+        yield Label("Parameters", classes="panel-title")
+        for name in PARAM_NAMES:
+            with Horizontal(classes="param-row"):
+                yield Label(LABELS[name], classes="param-label")
+                box = Input(
+                    fmt(self._initial.get(name), 10),
+                    id=f"in-{name}",
+                    compact=True,
+                    select_on_focus=False,
+                    tooltip=TOOLTIPS[name],
+                )
+                box.cursor_blink = self._blink
+                yield box
+                if name == "load":
+                    yield Label(self._mu_text(self._initial.load), id="mu-note")
+            yield Static("", id=f"msg-{name}", classes="param-msg")
+        yield Gauge(id="gauge")
+
+    @staticmethod
+    def _mu_text(load: float) -> str:
+        return f"μ/(P/h) {fmt(1.0 / load, 4)}"
+
+    def show_load(self, load: float) -> None:
+        self.query_one("#mu-note", Label).update(self._mu_text(load))
+
+    def set_message(self, name: str, message: str) -> None:
+        self._messages[name] = message
+        msg = self.query_one(f"#msg-{name}", Static)
+        msg.update(message)
+        msg.set_class(bool(message), "-shown")
+        self.query_one(f"#in-{name}", Input).set_class(bool(message), "-invalid")
+
+    def message(self, name: str) -> str:
+        return self._messages[name]
+
+    def text(self, name: str) -> str:
+        return self.query_one(f"#in-{name}", Input).value
+
+    def set_values(self, params: Params) -> None:
+        for name in PARAM_NAMES:
+            box = self.query_one(f"#in-{name}", Input)
+            text = fmt(params.get(name), 10)
+            if box.value != text:
+                box.value = text
