@@ -102,6 +102,24 @@ def test_run_plots_in_ascii() -> None:
     assert "┤" in proc.stdout
 
 
+def test_png_writes_real_figures(tmp_path: Path) -> None:
+    # matplotlib is installed by scripts/setup.sh (the png extra).
+    proc = run("run", "fig4", "--png", "--no-plot", "--out", str(tmp_path))
+    assert proc.returncode == 0, proc.stderr
+    pngs = sorted(tmp_path.glob("*.png"))
+    assert pngs, proc.stdout
+    for png in pngs:
+        data = png.read_bytes()
+        assert data[:8] == b"\x89PNG\r\n\x1a\n", png
+        width = int.from_bytes(data[16:20], "big")
+        height = int.from_bytes(data[20:24], "big")
+        assert width >= 300, (png, width)
+        assert height >= 200, (png, height)
+        assert str(png.name) in proc.stdout
+    # No temporary or half-written files are left beside them.
+    assert {p.suffix for p in tmp_path.iterdir()} <= {".png", ".csv"}
+
+
 def test_png_without_matplotlib_is_a_one_line_error(tmp_path: Path) -> None:
     code = (
         "import sys; sys.modules['matplotlib'] = None; "
