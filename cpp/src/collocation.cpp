@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <vector>
+#include <algorithm>
 
 namespace movingpunch {
 
@@ -69,18 +71,57 @@ Eigen::Index last_even_term(const Eigen::VectorXd& b) {
   return last;
 }
 
+namespace {
+
+// J_0(w) .. J_kmax(w), w > 0, all at once: upward recurrence from the
+// library's J_0, J_1 while the order stays below w (stable there), Miller's
+// downward recurrence normalised by J_0 + 2 sum J_2k = 1 otherwise.
+void bessel_orders(double w, int kmax, std::vector<double>& J) {
+  J.assign(static_cast<std::size_t>(kmax) + 1, 0.0);
+  if (kmax + 1 < w) {
+    J[0] = std::cyl_bessel_j(0.0, w);
+    if (kmax >= 1) J[1] = std::cyl_bessel_j(1.0, w);
+    for (int k = 1; k < kmax; ++k)
+      J[static_cast<std::size_t>(k) + 1] = 2.0 * k / w * J[static_cast<std::size_t>(k)] -
+                                           J[static_cast<std::size_t>(k) - 1];
+    return;
+  }
+  const double top = std::max(static_cast<double>(kmax), w);
+  int start = static_cast<int>(top + 30.0 + 6.0 * std::sqrt(top));
+  start += start % 2;  // even, so the normalisation sum ends on J_0
+  double up = 0.0, cur = 1e-280, norm = 0.0;
+  for (int k = start; k >= 1; --k) {
+    const double down = 2.0 * k / w * cur - up;  // J_{k-1}
+    up = cur;
+    cur = down;
+    if (k - 1 <= kmax) J[static_cast<std::size_t>(k) - 1] = cur;
+    if ((k - 1) % 2 == 0 && k - 1 > 0) norm += 2.0 * cur;
+    if (std::fabs(cur) > 1e250) {  // rescale to avoid overflow
+      for (int m = k - 1; m <= kmax; ++m) J[static_cast<std::size_t>(m)] *= 1e-250;
+      up *= 1e-250;
+      cur *= 1e-250;
+      norm *= 1e-250;
+    }
+  }
+  norm += cur;  // J_0
+  for (double& v : J) v /= norm;
+}
+
+}  // namespace
+
 double u_series_cosine_transform(const Eigen::VectorXd& b, double a, double alpha) {
   const double w = alpha * a;
   if (w < 1e-8) return 0.5 * b(0) * 0.5 * kPi * a;  // J_1(w)/w -> 1/2, higher orders vanish
-  const Eigen::Index last = last_even_term(b);
+  Eigen::Index last = last_even_term(b);
+  // J_nu(w) <= (w/2)^nu / nu!: negligible once the order exceeds the argument
+  // by 40; higher orders are smaller.
+  while (last > 0 && static_cast<double>(last + 1) > w + 40.0) last -= 2;
+  thread_local std::vector<double> J;
+  bessel_orders(w, static_cast<int>(last) + 1, J);
   double sum = 0.0;
   for (Eigen::Index n = 0; n <= last; n += 2) {
-    // J_nu(w) <= (w/2)^nu / nu!: negligible (and, in the library, not always
-    // finite) once the order exceeds the argument by 40; higher orders are smaller.
-    if (static_cast<double>(n + 1) > w + 40.0) break;
     const double sg = (n / 2) % 2 == 0 ? 1.0 : -1.0;
-    sum += b(n) * static_cast<double>(n + 1) * sg *
-           std::cyl_bessel_j(static_cast<double>(n + 1), w);
+    sum += b(n) * static_cast<double>(n + 1) * sg * J[static_cast<std::size_t>(n) + 1];
   }
   return sum * 0.5 * kPi * a / w;
 }

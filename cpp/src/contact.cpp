@@ -136,8 +136,18 @@ class Problem {
   }
 };
 
+// The load curve at this N is not monotone: the collocation under-resolves
+// the kernel (near V*_cr it oscillates like sin(alpha_cr u) with an amplitude
+// growing like 1/sqrt(eps)); a finer N is needed, not a wider contact.
+class UnderResolved : public ConvergenceError {
+ public:
+  using ConvergenceError::ConvergenceError;
+};
+
 // Solves load(a) = P for a at fixed N: safeguarded secant on F(ln a) =
-// ln load(a) - ln P (monotone increasing, nearly 2 ln a for Hertz).
+// ln load(a) - ln P (monotone increasing, nearly 2 ln a for Hertz). While
+// searching for a bracket, a load that falls as a grows proves the curve
+// under-resolved (UnderResolved) before the search wanders off to a = kMaxA.
 double solve_width(Problem& prob, const ContactParams& params, const ChebyshevNodes& nodes,
                    double P, double a_guess, double xtol) {
   auto F = [&](double la) {
@@ -152,11 +162,26 @@ double solve_width(Problem& prob, const ContactParams& params, const ChebyshevNo
   double lo = -kInf, hi = kInf;
   (f0 < 0.0 ? lo : hi) = x0;
   double x1 = x0 - (std::isfinite(f0) ? std::clamp(f0 / 2.0, -2.0, 2.0) : 1.0);
+  // The first step stays within the supported widths too (a trial beyond
+  // kMaxA would build a kernel table for a width never returned); from a
+  // guess at a bound, step inwards and let the search below decide.
+  const double lmin = std::log(kMinA), lmax = std::log(kMaxA);
+  x1 = std::clamp(x1, lmin, lmax);
+  if (x1 == x0) x1 = x0 >= lmax ? x0 - 1.0 : x0 + 1.0;
   double ref_width = kInf;
   int slow = 0;
   for (int it = 0; it < 200; ++it) {
     const double f1 = F(x1);
     if (f1 == 0.0) return std::exp(x1);
+    if (!std::isfinite(lo) || !std::isfinite(hi)) {
+      // Still searching: the load must grow with a (slope 2 to 3 in log-log
+      // on every resolved curve). Steps below 1 % in a are left alone: there
+      // the difference can be round-off.
+      if (std::isfinite(f0) && std::isfinite(f1) && std::fabs(x1 - x0) >= 1e-2 &&
+          (f1 - f0) * (x1 - x0) <= 0.0)
+        throw UnderResolved("the load carried by a trial width is not monotone at N = " +
+                            std::to_string(nodes.n));
+    }
     if (f1 < 0.0)
       lo = std::max(lo, x1);
     else
@@ -184,14 +209,26 @@ double solve_width(Problem& prob, const ContactParams& params, const ChebyshevNo
     }
     if (!std::isfinite(x2)) throw ConvergenceError("contact width iteration failed (non-finite step)");
     // Outside the supported widths: the load there proves the target lies beyond.
-    if (x2 > std::log(kMaxA)) {
-      if (std::isfinite(hi) && hi <= std::log(kMaxA)) x2 = 0.5 * (std::max(lo, x1) + hi);
-      else if (F(std::log(kMaxA)) < 0.0) width_out_of_range(params, true);
-      else x2 = std::log(kMaxA);
-    } else if (x2 < std::log(kMinA)) {
-      if (std::isfinite(lo) && lo >= std::log(kMinA)) x2 = 0.5 * (lo + std::min(hi, x1));
-      else if (F(std::log(kMinA)) > 0.0) width_out_of_range(params, false);
-      else x2 = std::log(kMinA);
+    if (x2 > lmax) {
+      if (std::isfinite(hi) && hi <= lmax) x2 = 0.5 * (std::max(lo, x1) + hi);
+      else {
+        const double fmax = F(lmax);
+        if (lmax - x1 >= 1e-2 && std::isfinite(f1) && fmax <= f1)
+          throw UnderResolved("the load carried by a trial width is not monotone at N = " +
+                              std::to_string(nodes.n));
+        if (fmax < 0.0) width_out_of_range(params, true);
+        x2 = lmax;
+      }
+    } else if (x2 < lmin) {
+      if (std::isfinite(lo) && lo >= lmin) x2 = 0.5 * (lo + std::min(hi, x1));
+      else {
+        const double fmin = F(lmin);
+        if (x1 - lmin >= 1e-2 && std::isfinite(f1) && fmin >= f1)
+          throw UnderResolved("the load carried by a trial width is not monotone at N = " +
+                              std::to_string(nodes.n));
+        if (fmin > 0.0) width_out_of_range(params, false);
+        x2 = lmin;
+      }
     }
     if (std::fabs(x2 - x1) <= xtol) return std::exp(x2);
     x0 = x1;
@@ -213,6 +250,24 @@ ContactSolution solve_contact(const ContactParams& p) {
 
   const LayerModel model(p.vstar, p.kw, p.nu);
   const double phi1 = model.phi1();
+  // Round-off of a/h (relative) from the layer response: within a hair of the
+  // Rayleigh speed phi1 = nL / R(vstar) carries a relative error of about
+  // eps phi1 (the Rayleigh function cancels), and so do M1 and k1. Measured
+  // scatter of a/h over N = 64 ... 1024 (kw = inf, nu = 0.2, eps = 1e-10, 1e-12;
+  // kw = 1000, nu = 0.499, eps = 3.4e-13): 0.5e-3 to 1.6e-3 eps phi1. Where it
+  // exceeds tol, a/h cannot be resolved in double precision: say so at once.
+  const double roundoff = 2e-3 * std::numeric_limits<double>::epsilon() * std::fabs(phi1);
+  if (roundoff > p.tol) {
+    std::ostringstream m;
+    m.precision(10);
+    m << "vstar = " << p.vstar << " (kw = " << p.kw << ", nu = " << p.nu
+      << ") is within a relative " << 1.0 - p.vstar / vr
+      << " of the Rayleigh speed V*_R = " << vr << ": the layer response there (phi1 = "
+      << phi1 << ") is computed with a round-off of ~eps*phi1, which limits a/h to a relative "
+      << roundoff << ", above tol = " << p.tol
+      << "; this is unsupported in double precision: raise tol or lower vstar";
+    throw ConvergenceError(m.str());
+  }
   Problem prob(p, model);
 
   // Refuse at once what is surely outside the supported widths. The static
@@ -224,8 +279,17 @@ ContactSolution solve_contact(const ContactParams& p) {
   if (0.5 * std::cbrt(0.75 * lambda) > kMaxA) width_out_of_range(p, true);
   if (10.0 * std::sqrt(2.0 * phi1 * lambda / kPi) < kMinA) width_out_of_range(p, false);
 
-  // Start from the half-plane (Hertz) width, clamped to the supported range.
-  double a = std::clamp(std::sqrt(2.0 * phi1 * lambda / kPi), kMinA, kMaxA);
+  // Start from the half-plane (Hertz) width a_H, unless the wide-contact
+  // width a_W of a layer squeezed on springs (docs/hard-cases.md §5) is far
+  // off it: near V*_R, phi1 (and a_H) grows without bound while the layer's
+  // thickness keeps the contact finite (a_H > 8 a_W), and on soft foundations
+  // the contact is wide (a_W > max(1, a_H)). A far guess builds kernel tables
+  // for widths never needed.
+  const double a_hertz = std::sqrt(2.0 * phi1 * lambda / kPi);
+  const double a_wide =
+      std::cbrt(1.5 * lambda * ((std::isinf(p.kw) ? 0.0 : 1.0 / p.kw) + 0.5 * (1.0 - p.nu)));
+  const bool wide_guess = a_hertz > 8.0 * a_wide || a_wide > std::max(1.0, a_hertz);
+  double a = std::clamp(wide_guess ? a_wide : a_hertz, kMinA, kMaxA);
   const double xtol = std::max(1e-2 * p.tol, 1e-15);
 
   double a_prev = std::numeric_limits<double>::quiet_NaN();
@@ -258,6 +322,11 @@ ContactSolution solve_contact(const ContactParams& p) {
       double a_new = a;
       try {
         a_new = solve_width(prob, p, nodes, p.load, a, xtol);
+      } catch (const UnderResolved&) {
+        // Not a failure of this problem: refine N (cheap, the kernel is kept).
+        if (idx + 1 == kSizes.size()) throw;
+        prev_ok = false;
+        continue;
       } catch (const std::exception&) {
         if (++failures >= 2 || idx + 1 == kSizes.size()) throw;
         prev_ok = false;
@@ -318,7 +387,7 @@ ContactSolution solve_contact(const ContactParams& p) {
   sol.p0_ = u_series(sol.b_, 0.0);
   sol.iterations_ = prob.evaluations();
   const double root_err = a * xtol;
-  sol.err_ = change + root_err + a * a * sol.kernel_->quadrature().error_estimate;
+  sol.err_ = change + root_err + a * a * sol.kernel_->quadrature().error_estimate + a * roundoff;
 
   // Indentation: delta = -v(0, 0).
   sol.prepare_displacement();

@@ -286,6 +286,12 @@ KernelK1::KernelK1(const LayerModel& model, double tol, double range)
   std::vector<double> f(quad_.alpha.size());
   for (std::size_t i = 0; i < f.size(); ++i) f[i] = (quad_.m1[i] - model_.phi1()) / model_.phi1();
   f_coef_ = filon_->coefficients(f);
+  // A long table (many oscillations of k1 on |u| <= range) is held piecewise:
+  // its cost is then proportional to the range, and so is no evaluation's.
+  if (range_ * quad_.alpha_max > kPieceBandwidth) {
+    build_pieces();
+    return;
+  }
   // Odd Chebyshev series on [-range, range]; values at the positive half of
   // the first-kind nodes, doubled until the tail is below tol.
   for (int n = 32;; n *= 2) {
@@ -322,6 +328,43 @@ KernelK1::KernelK1(const LayerModel& model, double tol, double range)
   }
 }
 
+void KernelK1::build_pieces() {
+  // k1 is band-limited: the quadrature stops at alpha_max. On a piece of
+  // width w, sin(alpha u) turns by at most alpha_max w / 2 = 4 radians about
+  // the piece's centre, where a degree-24 Chebyshev interpolant is exact to
+  // (e 4 / 50)^25 ~ 1e-17 relative. The values come from a Filon sum on
+  // panels that resolve M1 only (Filon integrates sin(alpha u) exactly for
+  // any u): the panels of quad_ also resolve the transform of a pressure of
+  // half-width range/4 (the displacement), many times more of them on a wide
+  // table.
+  constexpr int D = kPieceDegree;
+  const AlphaQuadrature coarse = build_alpha_quadrature(model_, tol_, 1.0);
+  const FilonIntegrator filon(coarse);
+  std::vector<double> f(coarse.alpha.size());
+  for (std::size_t i = 0; i < f.size(); ++i) f[i] = (coarse.m1[i] - model_.phi1()) / model_.phi1();
+  const std::vector<double> fc = filon.coefficients(f);
+  std::vector<FilonIntegrator::cplx> K;
+  auto value = [&](double u) {
+    filon.weights(u, K);
+    return FilonIntegrator::apply(K, fc).imag();
+  };
+  const double band = std::max(quad_.alpha_max, coarse.alpha_max);
+  const std::size_t pieces = static_cast<std::size_t>(std::ceil(range_ * band / 8.0));
+  const double w = range_ / static_cast<double>(pieces);
+  piece_coef_.assign(pieces * (D + 1), 0.0);
+  piece_width_ = w;
+  double vals[D + 1];
+  for (std::size_t p = 0; p < pieces; ++p) {
+    const double c0 = (static_cast<double>(p) + 0.5) * w;
+    for (int j = 0; j <= D; ++j) vals[j] = value(c0 + 0.5 * w * std::cos(kPi * (j + 0.5) / (D + 1)));
+    for (int m = 0; m <= D; ++m) {
+      double sum = 0.0;
+      for (int j = 0; j <= D; ++j) sum += vals[j] * std::cos(kPi * m * (j + 0.5) / (D + 1));
+      piece_coef_[p * (D + 1) + static_cast<std::size_t>(m)] = (m == 0 ? 1.0 : 2.0) * sum / (D + 1);
+    }
+  }
+}
+
 double KernelK1::direct(double u) const {
   std::vector<FilonIntegrator::cplx> K;
   filon_->weights(u, K);
@@ -329,6 +372,27 @@ double KernelK1::direct(double u) const {
 }
 
 double KernelK1::operator()(double u) const {
+  if (!piece_coef_.empty()) {
+    constexpr int D = kPieceDegree;
+    const double au = std::fabs(u);
+    const std::size_t pieces = piece_coef_.size() / (D + 1);
+    const std::size_t p = std::min(pieces - 1, static_cast<std::size_t>(au / piece_width_));
+    const double x = 2.0 * (au - (static_cast<double>(p) + 0.5) * piece_width_) / piece_width_;
+    const double* c = piece_coef_.data() + p * (D + 1);
+    double b1 = 0.0, b2 = 0.0;
+    const double x2 = 2.0 * x;
+    for (int m = D; m >= 1; --m) {
+      const double b0 = c[m] + x2 * b1 - b2;
+      b2 = b1;
+      b1 = b0;
+    }
+    const double v = c[0] + x * b1 - b2;
+    return u < 0.0 ? -v : v;
+  }
+  return global(u);
+}
+
+double KernelK1::global(double u) const {
   const double x = u / range_;
   // Clenshaw for sum c_m T_m(x).
   double b1 = 0.0, b2 = 0.0;

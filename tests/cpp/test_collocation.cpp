@@ -83,3 +83,41 @@ TEST(Collocation, RejectsOddOrTinyN) {
   EXPECT_THROW(chebyshev_nodes(0), std::invalid_argument);
   EXPECT_THROW(chebyshev_nodes(-4), std::invalid_argument);
 }
+
+TEST(Collocation, CosineTransformHoldsAtHighBesselOrders) {
+  // The transform of U_n sums J_{n+1}(alpha a). The C++ library's
+  // cyl_bessel_j is wrong by up to 1e30 for orders above ~300 at arguments
+  // ~1000 (it made a valid wide contact look like a 0.017 h penetration);
+  // the transform now uses one recurrence over all orders. Reference values
+  // of J_nu(1098) from mpmath (30 digits, rounded).
+  const struct {
+    int order;
+    double j;
+  } ref[] = {{1, -0.0172582542424398}, {101, 0.0179036417657971},
+             {301, 0.0244519296645075}, {401, 0.0125424777145836},
+             {451, 0.013134375424562},  {491, -0.0136687069391376},
+             {511, 0.012606647413878}};
+  const double kPi = 3.14159265358979323846, w = 1098.0;
+  for (const auto& r : ref) {
+    const int n = r.order - 1;  // U_n transforms to J_{n+1}
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(n + 1);
+    b(n) = 1.0;
+    const double sg = (n / 2) % 2 == 0 ? 1.0 : -1.0;
+    const double expect = sg * (n + 1) * r.j * 0.5 * kPi / w;
+    EXPECT_NEAR(u_series_cosine_transform(b, 1.0, w), expect, 1e-13 * (n + 1) / w)
+        << "order " << r.order;
+  }
+  // Small arguments (downward recurrence) against the library, which is
+  // accurate there.
+  for (int n : {0, 2, 10, 40}) {
+    for (double w2 : {0.3, 5.0, 30.0}) {
+      Eigen::VectorXd b = Eigen::VectorXd::Zero(n + 1);
+      b(n) = 1.0;
+      const double sg = (n / 2) % 2 == 0 ? 1.0 : -1.0;
+      const double expect =
+          sg * (n + 1) * std::cyl_bessel_j(n + 1.0, w2) * 0.5 * kPi / w2;
+      EXPECT_NEAR(u_series_cosine_transform(b, 1.0, w2), expect, 1e-14 * (n + 1))
+          << n << " " << w2;
+    }
+  }
+}

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "movingpunch/contact.hpp"
+#include "movingpunch/dispersion.hpp"
 #include "test_helpers.hpp"
 #include "movingpunch/errors.hpp"
 
@@ -110,4 +111,58 @@ TEST(Contact, RejectsInvalidParameters) {
   p = paper(0.2, 1.0);
   p.radius = kInf;
   expect_bad(p, "radius");
+}
+
+TEST(Contact, UnderResolvedLoadCurveRefinesInsteadOfRefusing) {
+  // kw = 30, 1e-5 below V*_cr, R P = 2: the load curve of N = 8 ... 24 is not
+  // monotone (k1 oscillates like sin(9.27 u) with amplitude ~ 1/sqrt(eps)).
+  // It used to end in "above the supported range"; a/h = 1.63 matches fixed N.
+  ContactParams p;
+  p.kw = 30.0;
+  p.vstar = critical_vstar(30.0, 0.2) * (1.0 - 1e-5);
+  p.radius = 100.0;
+  p.load = 0.02;
+  const ContactSolution s = solve_contact(p);
+  EXPECT_TRUE(s.valid());
+  ContactParams fixed = p;
+  fixed.n = 128;
+  EXPECT_NEAR(solve_contact(fixed).a(), s.a(), 1e-8 * s.a());
+  EXPECT_GT(s.a(), 1.5);
+  EXPECT_LT(s.a(), 1.8);
+}
+
+TEST(Contact, RoundOffNearTheRayleighSpeedIsAClearError) {
+  // 3.4e-13 below V*_R (kw = 1000, nu = 0.499): phi1 ~ 6e11 and a/h scatters
+  // by 2e-7 with N; tol = 1e-8 cannot be met in double precision.
+  ContactParams p;
+  p.kw = 1000.0;
+  p.nu = 0.499;
+  p.vstar = critical_vstar(1000.0, 0.499) * (1.0 - 3.4e-13);
+  p.radius = 1.0;
+  p.load = 2.2e-4;
+  p.allow_unphysical = true;
+  try {
+    solve_contact(p);
+    ADD_FAILURE() << "expected ConvergenceError";
+  } catch (const ConvergenceError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("Rayleigh"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("tol"), std::string::npos) << msg;
+  }
+  p.tol = 1e-6;
+  const ContactSolution s = solve_contact(p);
+  EXPECT_TRUE(std::isfinite(s.a()));
+  EXPECT_GT(s.error_estimate(), 1e-8 * s.a());
+}
+
+TEST(Contact, WidthSearchStaysWithinTheSupportedRange) {
+  // Just beyond a/h = 50: refused without building tables for widths above 50
+  // (the first step of the bracket search used to reach a = 127).
+  ContactParams p;
+  p.kw = kInf;
+  p.radius = 100.0;
+  p.load = 3000.0;
+  EXPECT_THROW(solve_contact(p), std::invalid_argument);
+  p.load = 2000.0;
+  EXPECT_NEAR(solve_contact(p).a(), 49.1471030254, 1e-8);
 }

@@ -113,3 +113,21 @@ TEST(Filon, SphericalBesselAgainstTheLibraryAndClosedForms) {
     }
   }
 }
+
+TEST(Kernel, LongTableIsPiecewiseAndMatchesDirectQuadrature) {
+  // 0.993 V*_cr of a very stiff foundation on a table of range 210: k1
+  // oscillates thousands of times. It is held piecewise (one evaluation costs
+  // 25 terms, not 16384) and must match the direct Filon sum everywhere.
+  const LayerModel m(0.8539047076137971, 6504951049.121735, 0.3);
+  const KernelK1 k(m, 1e-10, 210.0);
+  ASSERT_TRUE(k.piecewise());
+  double scale = 0.0;
+  for (int i = 0; i <= 400; ++i) scale = std::max(scale, std::fabs(k.direct(0.5 * i)));
+  for (int i = 0; i <= 700; ++i) {
+    const double u = 210.0 * std::pow(i / 700.0, 1.3) * (i % 2 == 0 ? 1.0 : -1.0);
+    EXPECT_NEAR(k(u), k.direct(u), 1e-12 * std::max(1.0, scale)) << u;
+  }
+  // A short table keeps the global series (the default solves).
+  const KernelK1 short_table(LayerModel(0.2, 1.0, 0.2), 1e-10, 1.6);
+  EXPECT_FALSE(short_table.piecewise());
+}

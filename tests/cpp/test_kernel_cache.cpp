@@ -94,7 +94,9 @@ TEST(KernelCache, SweepBuildsOnce) {
   for (int i = 0; i < 14; ++i) {
     p.load = 0.01 * std::pow(0.8, i);  // descending: a/h from about 0.9 down to 0.2
     const ContactSolution s = solve_contact(p);
-    if (i > 0) EXPECT_EQ(s.kernel_builds(), 0) << "load " << p.load;
+    if (i > 0) {
+      EXPECT_EQ(s.kernel_builds(), 0) << "load " << p.load;
+    }
     builds += s.kernel_builds();
     const auto& t = s.stage_seconds();
     EXPECT_GE(t.critical_speed, 0.0);

@@ -59,7 +59,11 @@ class KernelK1 {
   const AlphaQuadrature& quadrature() const noexcept { return quad_; }
   const LayerModel& model() const noexcept { return model_; }
   double tol() const noexcept { return tol_; }
-  int terms() const noexcept { return static_cast<int>(coef_.size()); }
+  // Coefficients held (of the global series, or of all pieces).
+  int terms() const noexcept {
+    return static_cast<int>(piece_coef_.empty() ? coef_.size() : piece_coef_.size());
+  }
+  bool piecewise() const noexcept { return !piece_coef_.empty(); }
   // Direct Filon quadrature (no Chebyshev table); any u.
   double direct(double u) const;
   const FilonIntegrator& filon() const noexcept { return *filon_; }
@@ -72,6 +76,17 @@ class KernelK1 {
   std::shared_ptr<const FilonIntegrator> filon_;
   std::vector<double> f_coef_;  // Legendre coefficients of (M1 - phi1)/phi1 per panel
   std::vector<double> coef_;    // Chebyshev coefficients in u / range
+  // Long tables (range * alpha_max above kPieceBandwidth: k1 oscillates many
+  // times on |u| <= range) are held as piecewise Chebyshev interpolants of
+  // degree kPieceDegree on equal pieces of [0, range], built from direct()
+  // values: building and evaluating them costs O(range) and O(kPieceDegree),
+  // where one global series would need thousands of terms per evaluation.
+  static constexpr int kPieceDegree = 24;
+  static constexpr double kPieceBandwidth = 600.0;
+  std::vector<double> piece_coef_;  // (kPieceDegree + 1) per piece; empty: global series
+  double piece_width_ = 0;
+  double global(double u) const;
+  void build_pieces();
 };
 
 // Process-wide cache of k1 tables, keyed on (vstar, kw, nu, tol): solves that
