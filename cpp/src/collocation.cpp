@@ -1,5 +1,7 @@
 #include "movingpunch/collocation.hpp"
 
+#include <array>
+
 #include <cmath>
 #include <stdexcept>
 #include <vector>
@@ -87,7 +89,7 @@ void bessel_orders(double w, int kmax, std::vector<double>& J) {
     return;
   }
   const double top = std::max(static_cast<double>(kmax), w);
-  int start = static_cast<int>(top + 30.0 + 6.0 * std::sqrt(top));
+  int start = static_cast<int>(top + 20.0 + 4.0 * std::sqrt(top));
   start += start % 2;  // even, so the normalisation sum ends on J_0
   double up = 0.0, cur = 1e-280, norm = 0.0;
   for (int k = start; k >= 1; --k) {
@@ -124,6 +126,90 @@ double u_series_cosine_transform(const Eigen::VectorXd& b, double a, double alph
     sum += b(n) * static_cast<double>(n + 1) * sg * J[static_cast<std::size_t>(n) + 1];
   }
   return sum * 0.5 * kPi * a / w;
+}
+
+void u_series_cosine_transforms(const Eigen::VectorXd& b, double a, const double* alpha,
+                                double* out, std::size_t count) {
+  constexpr int L = 4;
+  const Eigen::Index last_all = last_even_term(b);
+  std::size_t i = 0;
+  while (i < count) {
+    // Gather up to L arguments that take Miller's recurrence (order above the
+    // argument); the others go one by one.
+    std::array<std::size_t, L> idx{};
+    std::array<double, L> w{};
+    int lanes = 0;
+    int kmax = 0;
+    double wmax = 0.0;
+    while (i < count && lanes < L) {
+      const double wi = alpha[i] * a;
+      Eigen::Index last = last_all;
+      while (last > 0 && static_cast<double>(last + 1) > wi + 40.0) last -= 2;
+      if (wi < 1e-8 || static_cast<double>(last) + 2.0 < wi) {
+        out[i] = u_series_cosine_transform(b, a, alpha[i]);
+      } else {
+        idx[static_cast<std::size_t>(lanes)] = i;
+        w[static_cast<std::size_t>(lanes)] = wi;
+        ++lanes;
+        kmax = std::max(kmax, static_cast<int>(last) + 1);
+        wmax = std::max(wmax, wi);
+      }
+      ++i;
+    }
+    if (lanes == 0) continue;
+    for (int l = lanes; l < L; ++l) w[static_cast<std::size_t>(l)] = w[0];  // padding
+    // Common start (a higher start is as accurate): even, so the
+    // normalisation J_0 + 2 sum J_2k ends on J_0.
+    const double top = std::max(static_cast<double>(kmax), wmax);
+    int start = static_cast<int>(top + 20.0 + 4.0 * std::sqrt(top));
+    start += start % 2;
+    // coef[m]: the weight b_n (n+1) (-1)^{n/2} of J_m, m = n + 1 odd.
+    thread_local std::vector<double> coef;
+    coef.assign(static_cast<std::size_t>(start) + 1, 0.0);
+    for (int m = 1; m <= kmax; m += 2)
+      coef[static_cast<std::size_t>(m)] =
+          b(m - 1) * static_cast<double>(m) * (((m - 1) / 2) % 2 == 0 ? 1.0 : -1.0);
+    std::array<double, L> up{}, cur{}, norm{}, sum{}, inv{};
+    for (int l = 0; l < L; ++l) {
+      cur[static_cast<std::size_t>(l)] = 1e-280;
+      inv[static_cast<std::size_t>(l)] = 2.0 / w[static_cast<std::size_t>(l)];
+    }
+    // Steps in pairs (start is even): J_{k-1} (odd order, into the sum) then
+    // J_{k-2} (even order, into the normalisation, J_0 included twice and
+    // taken out below). Rescaled when large: two steps grow by at most
+    // (2 start / w)^2 < 1e30, far from overflow above 1e250.
+    for (int k = start; k >= 2; k -= 2) {
+      const double c = coef[static_cast<std::size_t>(k) - 1];
+      const double f1 = static_cast<double>(k), f2 = static_cast<double>(k - 1);
+      bool big = false;
+      for (int l = 0; l < L; ++l) {
+        const std::size_t q = static_cast<std::size_t>(l);
+        const double odd = f1 * inv[q] * cur[q] - up[q];
+        const double even = f2 * inv[q] * odd - cur[q];
+        sum[q] += c * odd;
+        norm[q] += 2.0 * even;
+        up[q] = odd;
+        cur[q] = even;
+        big = big || std::fabs(even) > 1e250;
+      }
+      if (big) {
+        for (int l = 0; l < L; ++l) {
+          const std::size_t q = static_cast<std::size_t>(l);
+          if (std::fabs(cur[q]) > 1e200) {
+            up[q] *= 1e-250;
+            cur[q] *= 1e-250;
+            norm[q] *= 1e-250;
+            sum[q] *= 1e-250;
+          }
+        }
+      }
+    }
+    for (int l = 0; l < lanes; ++l) {
+      const std::size_t q = static_cast<std::size_t>(l);
+      const double total = norm[q] - cur[q];  // J_0 + 2 sum J_2k
+      out[idx[q]] = sum[q] / total * 0.5 * kPi * a / w[q];
+    }
+  }
 }
 
 double u_series(const Eigen::VectorXd& b, double r) {

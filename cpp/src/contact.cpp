@@ -515,23 +515,31 @@ Eigen::VectorXd ContactSolution::pressure(const Eigen::Ref<const Eigen::VectorXd
 void ContactSolution::prepare_displacement() {
   const AlphaQuadrature& q = kernel_->quadrature();
   std::vector<double> g(q.alpha.size());
+  u_series_cosine_transforms(b_, a_, q.alpha.data(), g.data(), g.size());
   for (std::size_t i = 0; i < q.alpha.size(); ++i) {
     const double al = q.alpha[i];
-    const double f = (q.m1[i] - phi1_ * (-std::expm1(-al))) / al;
-    g[i] = f * u_series_cosine_transform(b_, a_, al);
+    g[i] *= (q.m1[i] - phi1_ * (-std::expm1(-al))) / al;
   }
   smooth_coef_ = kernel_->filon().coefficients(g);
+  // (phi1 / (2 pi)) int p ln(1 + (x - xi)^2) d xi by Gauss-Chebyshev (U)
+  // quadrature: the nodes and g at them do not depend on x.
+  const int m = std::max({64, 2 * static_cast<int>(b_.size()), static_cast<int>(40.0 * (1.0 + a_))});
+  log1p_r_.resize(static_cast<std::size_t>(m));
+  log1p_w_.resize(static_cast<std::size_t>(m));
+  for (int i = 1; i <= m; ++i) {
+    const double th = i * kPi / (m + 1);
+    const double r = std::cos(th), sn = std::sin(th);
+    log1p_r_[static_cast<std::size_t>(i - 1)] = r;
+    log1p_w_[static_cast<std::size_t>(i - 1)] = sn * sn * u_series(b_, r) * kPi / (m + 1);
+  }
 }
 
 // (1/pi) int p(xi)/(P/h) G(x - xi) d xi with G(u) = int_0^inf (M1/alpha) cos(alpha u)
 // d alpha, split as int [M1 - phi1 (1 - e^-alpha)]/alpha cos + (phi1/2) ln(1 + 1/u^2).
 double ContactSolution::greens_integral(double x) const {
   const double a = a_;
-  const Eigen::Index nb = b_.size();
   const Eigen::Index last = last_even_term(b_);
-  std::vector<std::complex<double>> K;
-  kernel_->filon().weights(x, K);
-  const double smooth = 2.0 / kPi * FilonIntegrator::apply(K, smooth_coef_).real();
+  const double smooth = 2.0 / kPi * kernel_->filon().integral(x, smooth_coef_).real();
 
   // Log part: -(phi1/pi) int p ln|x - xi| = -phi1 a [ln a (b0/2) + sum b_n L_n(s)].
   const double s = x / a;
@@ -539,16 +547,13 @@ double ContactSolution::greens_integral(double x) const {
   for (Eigen::Index n = 0; n <= last; n += 2) lp += b_(n) * log_potential(static_cast<int>(n), s);
   const double log_part = -phi1_ * a * lp;
 
-  // (phi1 / (2 pi)) int p ln(1 + (x - xi)^2) d xi by Gauss-Chebyshev (U) quadrature.
-  const int m = std::max({64, 2 * static_cast<int>(nb), static_cast<int>(40.0 * (1.0 + a))});
+  // (phi1 / (2 pi)) int p ln(1 + (x - xi)^2) d xi on the precomputed nodes:
+  // int sqrt(1 - r^2) g(r) ln(1 + (x - a r)^2) dr.
   double l1 = 0.0;
-  for (int i = 1; i <= m; ++i) {
-    const double th = i * kPi / (m + 1);
-    const double r = std::cos(th), sn = std::sin(th);
-    const double d = x - a * r;
-    l1 += sn * sn * u_series(b_, r) * std::log1p(d * d);
+  for (std::size_t i = 0; i < log1p_r_.size(); ++i) {
+    const double d = x - a * log1p_r_[i];
+    l1 += log1p_w_[i] * std::log1p(d * d);
   }
-  l1 *= kPi / (m + 1);  // int sqrt(1-r^2) g(r) f(r) dr
   const double log1p_part = phi1_ / (2.0 * kPi) * a * l1;
 
   return smooth + log_part + log1p_part;

@@ -100,8 +100,9 @@ FieldEvaluator::FieldEvaluator(const LayerModel& model, double a, const Eigen::V
   const std::size_t nq = quad_.alpha.size();
   ptilde_.resize(nq);
   modes_.reserve(nq);
+  u_series_cosine_transforms(b_, a_, quad_.alpha.data(), ptilde_.data(), nq);
   for (std::size_t q = 0; q < nq; ++q) {
-    ptilde_[q] = 2.0 / kPi * u_series_cosine_transform(b_, a_, quad_.alpha[q]);
+    ptilde_[q] *= 2.0 / kPi;
     modes_.push_back(model_->mode_field(quad_.alpha[q]));
   }
 }

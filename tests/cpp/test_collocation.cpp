@@ -121,3 +121,22 @@ TEST(Collocation, CosineTransformHoldsAtHighBesselOrders) {
     }
   }
 }
+
+// The batched transform equals the one-at-a-time one: for wide and narrow
+// contacts, tiny and large arguments (both recurrences), in any order.
+TEST(Collocation, BatchedCosineTransformMatchesScalar) {
+  for (double a : {1e-6, 0.37, 5.0, 40.0}) {
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(40);
+    for (Eigen::Index n = 0; n < b.size(); n += 2) b(n) = std::pow(-0.6, static_cast<double>(n / 2)) / (1.0 + static_cast<double>(n));
+    std::vector<double> alpha;
+    for (int i = 0; i < 203; ++i) alpha.push_back(1e-10 * std::pow(1.2, i));  // 1e-10 .. 1e6
+    alpha.push_back(0.0);
+    alpha.push_back(3.0);
+    std::vector<double> out(alpha.size());
+    u_series_cosine_transforms(b, a, alpha.data(), out.data(), alpha.size());
+    for (std::size_t i = 0; i < alpha.size(); ++i) {
+      const double want = u_series_cosine_transform(b, a, alpha[i]);
+      EXPECT_NEAR(out[i], want, 1e-14 * (std::fabs(want) + a)) << "a " << a << " alpha " << alpha[i];
+    }
+  }
+}

@@ -2,6 +2,8 @@
 // index -1 (density bounded at both ends): p(a r) = g(r) sqrt(1 - r^2).
 #pragma once
 
+#include <cstddef>
+
 #include <functional>
 
 #include <Eigen/Dense>
@@ -38,5 +40,10 @@ Eigen::Index last_even_term(const Eigen::VectorXd& b);
 // int_0^a p(x) cos(alpha x) dx = (a/2) sum_n b_n pi (n+1) (-1)^{n/2} J_{n+1}(alpha a)/(alpha a)
 // (the Chebyshev-Bessel identity). Odd coefficients are ignored.
 double u_series_cosine_transform(const Eigen::VectorXd& b, double a, double alpha);
+// The same at many alpha: out[i] = u_series_cosine_transform(b, a, alpha[i]),
+// four at a time (Miller's recurrences of four arguments interleaved, the sum
+// accumulated on the way down): several times faster than one by one.
+void u_series_cosine_transforms(const Eigen::VectorXd& b, double a, const double* alpha,
+                                double* out, std::size_t count);
 
 }  // namespace movingpunch

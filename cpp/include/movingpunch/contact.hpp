@@ -95,6 +95,9 @@ class ContactSolution {
   // Filon coefficients of f(alpha) ptilde(alpha) on the kernel's panels, with
   // f = [M1 - phi1 (1 - e^-alpha)]/alpha the smooth part of the Green's function.
   std::vector<double> smooth_coef_;
+  // Gauss-Chebyshev (U) nodes r_i of the ln(1 + (x - xi)^2) part of the
+  // displacement and their weights times sqrt(1 - r^2)^2 g(r_i), per solution.
+  std::vector<double> log1p_r_, log1p_w_;
   // Helpers for displacement: (1/pi) int p(xi) G(x - xi) d xi.
   double greens_integral(double x) const;
   void prepare_displacement();

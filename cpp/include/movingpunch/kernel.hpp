@@ -5,6 +5,7 @@
 // alpha and tabulated as an odd Chebyshev series on |u| <= L.
 #pragma once
 
+#include <array>
 #include <complex>
 #include <memory>
 #include <vector>
@@ -44,9 +45,16 @@ class FilonIntegrator {
   void weights(double x, std::vector<cplx>& K) const;
   // int g cos(alpha x) (real part) and int g sin(alpha x) (imaginary part).
   static cplx apply(const std::vector<cplx>& K, const std::vector<double>& c);
+  // The same as apply(weights(x), c), fused: no weight vector, one complex
+  // multiplication per panel instead of one per coefficient.
+  cplx integral(double x, const std::vector<double>& c) const;
 
  private:
   std::vector<double> centre_, half_;
+  std::vector<double> widths_;         // the distinct half-widths
+  std::vector<std::size_t> width_of_;  // panel -> index into widths_
+  // j_0 .. j_14 (h ax) for every distinct half-width h.
+  void bessel_by_width(double ax, std::vector<std::array<double, 15>>& j) const;
 };
 
 class KernelK1 {
