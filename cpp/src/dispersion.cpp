@@ -19,6 +19,10 @@ constexpr double kPi = 3.14159265358979323846;
 }  // namespace
 
 double first_wave_vstar(double t, double kw, double nu) {
+  return first_wave_vstar(t, kw, nu, kFirstWaveScan);
+}
+
+double first_wave_vstar(double t, double kw, double nu, int scan) {
   require_in_range("kw", kw, 0.0, kInf, true, false, true);
   const double vr = rayleigh_vstar(nu);
   if (!(t > 0.0) || !std::isfinite(t))
@@ -27,7 +31,7 @@ double first_wave_vstar(double t, double kw, double nu) {
   // Scan with points clustered at both ends (waves near 0 for soft
   // foundations, near the Rayleigh value for short waves); the lowest branch
   // is the first sign change.
-  const int m = 96;
+  const int m = scan;
   const double top = vr * (1.0 - 1e-13);
   double s_prev = 0.0, d_prev = D(0.0);
   for (int j = 1; j <= m; ++j) {
@@ -57,7 +61,7 @@ CriticalSpeed compute_critical(double kw, double nu) {
   const double lt0 = std::log(1e-5), lt1 = std::log(1e5);
   int n = 0, best = 0;
   double best_s = kInf;
-  for (const int size : {41, 201}) {
+  for (const int size : {21, 201}) {
     n = size;
     best = 0;
     best_s = kInf;

@@ -84,3 +84,21 @@ TEST(CriticalSpeed, NoDenseGridPointLiesBelowIt) {
     }
   }
 }
+
+// The default scan for the first sign change (kFirstWaveScan points) finds
+// the same lowest free wave as a scan six times denser, from the soft to the
+// stiff foundation, the compressible to the nearly incompressible layer, and
+// the longest to the shortest waves.
+TEST(CriticalSpeed, DefaultScanFindsTheLowestBranch) {
+  for (double nu : {0.0, 0.3, 0.499}) {
+    for (double kw : {1e-10, 1e-4, 0.03, 1.0, 30.0, 1e6}) {
+      for (int i = 0; i <= 80; ++i) {
+        const double t = std::pow(10.0, -5.0 + 0.125 * i);
+        const double coarse = first_wave_vstar(t, kw, nu);
+        const double dense = first_wave_vstar(t, kw, nu, 6 * kFirstWaveScan);
+        EXPECT_NEAR(coarse, dense, 1e-12 * std::max(dense, 1e-3))
+            << "nu " << nu << " kw " << kw << " t " << t;
+      }
+    }
+  }
+}

@@ -109,7 +109,7 @@ struct KernelCacheInfo {
   std::size_t hits = 0;    // requests served from the cache
   std::size_t misses = 0;  // requests that built a table
 };
-inline constexpr double kMaxRangeRatio = 16.0;
+inline constexpr double kMaxRangeRatio = 24.0;
 inline constexpr std::size_t kKernelCacheCapacity = 32;
 std::shared_ptr<const KernelK1> cached_kernel(const LayerModel& model, double tol,
                                               double min_range, double build_range,
