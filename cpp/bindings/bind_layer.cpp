@@ -84,7 +84,7 @@ void bind_layer(py::module_& m) {
       "Critical speed of the layer on springs: (V*_cr, alpha h at the minimum). "
       "For kw = inf it is (rayleigh_vstar(nu), inf).");
 
-  m.def("first_wave_vstar", &first_wave_vstar, "t"_a, "kw"_a, "nu"_a, Release(),
+  m.def("first_wave_vstar", static_cast<double (*)(double, double, double)>(&first_wave_vstar), "t"_a, "kw"_a, "nu"_a, Release(),
         "Lowest vstar in (0, V*_R) at which a free wave of wavenumber t = alpha h "
         "exists; rayleigh_vstar(nu) when there is none below it.");
 
