@@ -111,7 +111,7 @@ class Problem {
     const KernelK1& k = kernel(a);
     ++evaluations_;
     const Eigen::VectorXd G =
-        solve_unit_collocation(nodes, a, [&k](double u) { return k(u); });
+        solve_unit_collocation_sum(nodes, a, [&k](double u, double v) { return k.sum(u, v); });
     const double sum = 2.0 * nodes.w.head(nodes.n / 2).dot(G);
     if (G_out) *G_out = G;
     return -kPi * a * a / (phi1_ * p_.radius) * sum;

@@ -418,6 +418,7 @@ KernelK1::KernelK1(const LayerModel& model, double tol, double range)
       while (last > 1 && std::fabs(c[last - 1]) <= 1e-3 * goal) --last;
       c.resize(std::max<std::size_t>(last, 2));
       coef_ = std::move(c);
+      for (std::size_t m = 1; m < coef_.size(); m += 2) odd_.push_back(coef_[m]);
       break;
     }
   }
@@ -466,38 +467,58 @@ double KernelK1::direct(double u) const {
   return FilonIntegrator::apply(K, f_coef_).imag();
 }
 
-double KernelK1::operator()(double u) const {
-  if (!piece_coef_.empty()) {
-    constexpr int D = kPieceDegree;
-    const double au = std::fabs(u);
-    const std::size_t pieces = piece_coef_.size() / (D + 1);
-    const std::size_t p = std::min(pieces - 1, static_cast<std::size_t>(au / piece_width_));
-    const double x = 2.0 * (au - (static_cast<double>(p) + 0.5) * piece_width_) / piece_width_;
-    const double* c = piece_coef_.data() + p * (D + 1);
-    double b1 = 0.0, b2 = 0.0;
-    const double x2 = 2.0 * x;
-    for (int m = D; m >= 1; --m) {
-      const double b0 = c[m] + x2 * b1 - b2;
-      b2 = b1;
-      b1 = b0;
-    }
-    const double v = c[0] + x * b1 - b2;
-    return u < 0.0 ? -v : v;
-  }
-  return global(u);
-}
-
-double KernelK1::global(double u) const {
-  const double x = u / range_;
-  // Clenshaw for sum c_m T_m(x).
+double KernelK1::piece(double u) const {
+  constexpr int D = kPieceDegree;
+  const double au = std::fabs(u);
+  const std::size_t pieces = piece_coef_.size() / (D + 1);
+  const std::size_t p = std::min(pieces - 1, static_cast<std::size_t>(au / piece_width_));
+  const double x = 2.0 * (au - (static_cast<double>(p) + 0.5) * piece_width_) / piece_width_;
+  const double* c = piece_coef_.data() + p * (D + 1);
   double b1 = 0.0, b2 = 0.0;
   const double x2 = 2.0 * x;
-  for (std::size_t m = coef_.size() - 1; m >= 1; --m) {
-    const double b0 = coef_[m] + x2 * b1 - b2;
+  for (int m = D; m >= 1; --m) {
+    const double b0 = c[m] + x2 * b1 - b2;
     b2 = b1;
     b1 = b0;
   }
-  return coef_[0] + x * b1 - b2;
+  const double v = c[0] + x * b1 - b2;
+  return u < 0.0 ? -v : v;
+}
+
+double KernelK1::operator()(double u) const {
+  return piece_coef_.empty() ? global(u) : piece(u);
+}
+
+// The series is odd, sum_j c_{2j+1} T_{2j+1}(x): Clenshaw on the odd terms
+// with T_{m+2} = 2 T_2 T_m - T_{m-2}, T_2 = 2 x^2 - 1, gives x (b_0 - b_1)
+// (half the terms of the plain recurrence).
+double KernelK1::global(double u) const {
+  const double x = u / range_;
+  const double y2 = 2.0 * (2.0 * x * x - 1.0);
+  double b1 = 0.0, b2 = 0.0;
+  for (std::size_t j = odd_.size(); j-- > 0;) {
+    const double b0 = odd_[j] + y2 * b1 - b2;
+    b2 = b1;
+    b1 = b0;
+  }
+  return x * (b1 - b2);
+}
+
+double KernelK1::sum(double u, double v) const {
+  if (!piece_coef_.empty()) return piece(u) + piece(v);
+  // Two recurrences interleaved (each is a chain of dependent steps).
+  const double x = u / range_, z = v / range_;
+  const double yx = 2.0 * (2.0 * x * x - 1.0), yz = 2.0 * (2.0 * z * z - 1.0);
+  double b1 = 0.0, b2 = 0.0, d1 = 0.0, d2 = 0.0;
+  for (std::size_t j = odd_.size(); j-- > 0;) {
+    const double b0 = odd_[j] + yx * b1 - b2;
+    const double d0 = odd_[j] + yz * d1 - d2;
+    b2 = b1;
+    b1 = b0;
+    d2 = d1;
+    d1 = d0;
+  }
+  return x * (b1 - b2) + z * (d1 - d2);
 }
 
 }  // namespace movingpunch

@@ -131,3 +131,25 @@ TEST(Kernel, LongTableIsPiecewiseAndMatchesDirectQuadrature) {
   const KernelK1 short_table(LayerModel(0.2, 1.0, 0.2), 1e-10, 1.6);
   EXPECT_FALSE(short_table.piecewise());
 }
+
+// k1(u) + k1(v) evaluated together (the collocation's entries) equals the two
+// evaluations, for the global odd series and for a piecewise table; and the
+// odd-term Clenshaw recurrence matches the direct quadrature.
+TEST(Kernel, PairSumMatchesTwoEvaluations) {
+  const KernelK1 global(LayerModel(0.2, 0.1, 0.2), 1e-10, 8.5);
+  ASSERT_FALSE(global.piecewise());
+  const KernelK1 pieces(LayerModel(0.8539047076137971, 6504951049.121735, 0.3), 1e-10, 210.0);
+  ASSERT_TRUE(pieces.piecewise());
+  for (const KernelK1* k : {&global, &pieces}) {
+    const double L = k->range();
+    for (int i = 0; i <= 200; ++i) {
+      const double u = L * std::sin(0.37 * i), v = -L * std::cos(0.11 * i) * 0.999;
+      EXPECT_NEAR(k->sum(u, v), (*k)(u) + (*k)(v), 1e-14 * (1.0 + std::fabs((*k)(u)) + std::fabs((*k)(v))));
+    }
+  }
+  for (int i = -20; i <= 20; ++i) {
+    const double u = 8.5 * i / 20.0;
+    EXPECT_NEAR(global(u), global.direct(u), 1e-10) << u;
+    EXPECT_DOUBLE_EQ(global(-u), -global(u));
+  }
+}

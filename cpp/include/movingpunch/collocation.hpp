@@ -25,6 +25,10 @@ ChebyshevNodes chebyshev_nodes(int n);
 // symmetry). Returns g at r_1..r_{N/2} (r > 0). `kernel` must be odd.
 Eigen::VectorXd solve_unit_collocation(const ChebyshevNodes& nodes, double a,
                                        const std::function<double(double)>& kernel);
+// The same with kernel_sum(u, v) = k(u) + k(v) (one call per matrix entry).
+Eigen::VectorXd solve_unit_collocation_sum(
+    const ChebyshevNodes& nodes, double a,
+    const std::function<double(double, double)>& kernel_sum);
 
 // Coefficients b_n (n = 0..N-1) of g(r) = sum b_n U_n(r) from the nodal values
 // at all N nodes (exact for polynomials of degree < N).

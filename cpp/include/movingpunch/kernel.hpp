@@ -63,6 +63,8 @@ class KernelK1 {
   KernelK1(const LayerModel& model, double tol, double range);
 
   double operator()(double u) const;  // any |u| <= range()
+  // k1(u) + k1(v), the two evaluated together (faster than two calls).
+  double sum(double u, double v) const;
   double range() const noexcept { return range_; }
   const AlphaQuadrature& quadrature() const noexcept { return quad_; }
   const LayerModel& model() const noexcept { return model_; }
@@ -84,6 +86,7 @@ class KernelK1 {
   std::shared_ptr<const FilonIntegrator> filon_;
   std::vector<double> f_coef_;  // Legendre coefficients of (M1 - phi1)/phi1 per panel
   std::vector<double> coef_;    // Chebyshev coefficients in u / range
+  std::vector<double> odd_;     // coef_[1], coef_[3], ...: the series is odd
   // Long tables (range * alpha_max above kPieceBandwidth: k1 oscillates many
   // times on |u| <= range) are held as piecewise Chebyshev interpolants of
   // degree kPieceDegree on equal pieces of [0, range], built from direct()
@@ -94,6 +97,7 @@ class KernelK1 {
   std::vector<double> piece_coef_;  // (kPieceDegree + 1) per piece; empty: global series
   double piece_width_ = 0;
   double global(double u) const;
+  double piece(double u) const;
   void build_pieces();
 };
 
