@@ -415,7 +415,7 @@ KernelK1::KernelK1(const LayerModel& model, double tol, double range)
     if (tail <= goal || n >= 16384) {
       // Drop the negligible tail.
       std::size_t last = c.size();
-      while (last > 1 && std::fabs(c[last - 1]) <= 1e-3 * goal) --last;
+      while (last > 1 && std::fabs(c[last - 1]) <= 1e-2 * goal) --last;
       c.resize(std::max<std::size_t>(last, 2));
       coef_ = std::move(c);
       for (std::size_t m = 1; m < coef_.size(); m += 2) odd_.push_back(coef_[m]);
