@@ -1,0 +1,200 @@
+// The moving punch on a layer over a damped (Kelvin-Voigt) Winkler foundation.
+//
+// Base condition (moving frame, units h = 1, mu = 1, c_T = 1):
+//   sigma_y(x, -1) = kw v + c_w dv/dt = kw v - damping sqrt(vstar) dv/dx,
+// with damping = c_w c_T / mu (c_w: pressure per unit velocity). With Fourier
+// modes e^{i alpha x} (f^(alpha) = int f e^{-i alpha x} dx) the foundation
+// becomes the complex, alpha-dependent stiffness
+//   kw(alpha) = kw - i damping sqrt(vstar) alpha,
+// so the layer response is complex: M1(-alpha) = conj(M1(alpha)). The
+// contact (-b, a) is asymmetric and both ends are unknown; see docs/damped.md.
+//
+// damping = 0 is the paper's model and is NOT handled here: solve_contact()
+// (contact.hpp) is the undamped path and is unchanged.
+#pragma once
+
+#include <complex>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "movingpunch/kernel.hpp"
+#include "movingpunch/layer_response.hpp"
+
+namespace movingpunch {
+
+using cplx = std::complex<double>;
+
+// Per unit transformed pressure at t = alpha h > 0 (alpha < 0: the complex
+// conjugates). M1 = -alpha v^(alpha, 0)/p^, M2 = -sigma_x^(alpha, 0)/p^ as in
+// layer_response.hpp; Wb = alpha v^(alpha, -1)/p^ (the bottom face).
+struct DampedResponse {
+  cplx M1{0.0, 0.0};
+  cplx M2{0.0, 0.0};
+  cplx U0{0.0, 0.0};
+  cplx W0{0.0, 0.0};
+  cplx Wb{0.0, 0.0};
+};
+
+class DampedLayerModel {
+ public:
+  static constexpr double kSmallT = 0.5;
+
+  // vstar in [0, 1), kw in (0, inf], nu in [0, 0.5), damping >= 0 finite;
+  // throws std::invalid_argument naming the parameter otherwise.
+  DampedLayerModel(double vstar, double kw, double nu, double damping);
+
+  const WaveConstants& constants() const noexcept { return c_; }
+  double vstar() const noexcept { return c_.s; }
+  double kw() const noexcept { return kw_; }
+  double nu() const noexcept { return c_.nu; }
+  double damping() const noexcept { return damping_; }
+  double phi1() const noexcept { return c_.phi1; }
+  double phi2() const noexcept { return c_.phi2; }
+  bool rigid_base() const noexcept { return rigid_; }
+  // kw(alpha) = kw - i damping sqrt(vstar) t for alpha = t > 0.
+  cplx foundation(double t) const noexcept;
+
+  // Response at t = alpha h >= 0 (t = 0: the exact limit M1 = 0, Wb = 0).
+  DampedResponse response(double t) const;
+  // Forcing one of the two evaluations (cross-checks in tests).
+  DampedResponse response_modal(double t) const;
+  DampedResponse response_transfer(double t) const;
+  // State [U, W, tau/alpha, sigma_y/alpha] at depth -1 <= y <= 0 of the mode
+  // normalised by sigma_y/alpha = -1, tau = 0 at y = 0 (complex amplitudes of
+  // u = -i U e^{i alpha x}, v = W e^{i alpha x}, ...), t > 0.
+  Eigen::Vector4cd state(double t, double y) const;
+
+ private:
+  WaveConstants c_;
+  double kw_;
+  double damping_;
+  bool rigid_;
+  double beta_;  // damping sqrt(vstar)
+};
+
+// Adaptive (Gauss-Kronrod 7/15) panels on [0, alpha_max] resolving
+// M1 - phi1, M2 - phi2 and Wb of a damped layer; nodes in the order of
+// kernel.hpp's AlphaQuadrature (so FilonIntegrator applies).
+struct DampedQuadrature {
+  AlphaQuadrature panels;      // nodes, weights, panel centres/half-widths
+  std::vector<cplx> m1, m2, wb;
+  double error_estimate = 0;   // of the integral of |M1 - phi1|/phi1
+};
+DampedQuadrature build_damped_quadrature(const DampedLayerModel& model, double tol);
+
+// Dimensionless inputs (h = 1, mu = 1).
+struct DampedParams {
+  double vstar = 0;     // 0 <= vstar < V*_R (supercritical allowed)
+  double kw = 1;        // k_w h / mu in [1e-12, inf]
+  double radius = 100;  // R / h > 0
+  double load = 0.002;  // P / (mu h) > 0
+  double nu = 0.2;      // [0, 0.5)
+  double damping = 0;   // c_w c_T / mu > 0 (finite)
+  double tol = 1e-8;    // relative tolerance on the contact ends, [1e-14, 1e-2]
+  bool allow_unphysical = false;
+  int n = 0;            // fixed collocation size (even, 2..1024); 0: refine
+};
+
+// Throws std::invalid_argument naming the parameter and its valid range.
+void validate(const DampedParams& p);
+
+// Stresses over P/h on a grid, each shaped (len(y), len(x)).
+struct DampedStressGrid {
+  Eigen::MatrixXd sigma_x, sigma_y, tau_xy;
+};
+
+class DampedSolution {
+ public:
+  const DampedParams& params() const noexcept { return params_; }
+  double left() const noexcept { return centre_ - half_; }   // -b/h (trailing end)
+  double right() const noexcept { return centre_ + half_; }  // a/h (leading end)
+  double centre() const noexcept { return centre_; }
+  double half_width() const noexcept { return half_; }
+  // Horizontal force on the punch over P, int p x/R dx / P: positive when it
+  // opposes the motion (the punch moves towards +x).
+  double drag() const noexcept { return drag_; }
+  double critical_vstar() const noexcept { return vcr_; }
+  double rayleigh_vstar() const noexcept { return vr_; }
+  double phi1() const noexcept { return model_->phi1(); }
+  double error_estimate() const noexcept { return err_; }  // of the ends, absolute
+  int iterations() const noexcept { return iterations_; }
+  int collocation_n() const noexcept { return n_; }
+  double elapsed() const noexcept { return elapsed_; }
+  bool valid() const noexcept { return valid_; }
+  const std::string& validity() const noexcept { return validity_; }
+  double min_pressure() const noexcept { return min_p_; }
+  double min_gap() const noexcept { return min_gap_; }
+  // Half-widths (a+b)/2 of other contacts carrying the same load (roots of
+  // lambda(w) = lambda on [w/8, 4w], to about 1 %); empty when unique there.
+  const std::vector<double>& other_half_widths() const noexcept { return other_widths_; }
+
+  // p(x)/(P/h) (0 outside the contact).
+  double pressure(double x) const;
+  // Transformed pressure p^(alpha)/(P/h) = int p e^{-i alpha x} dx, any alpha.
+  cplx pressure_transform(double alpha) const;
+  // Surface slope dv/dx(x, 0) (any x; = x/R inside the contact).
+  double surface_slope(double x) const;
+  // sigma_x(x, 0)/(P/h), any x.
+  double surface_stress(double x) const;
+  // sigma_x(x, y)/(P/h) for -1 <= y <= -1e-3 (below the surface layer of
+  // thickness 1e-3, where the Fourier integral converges fast enough).
+  double stress_x(double x, double y) const;
+  // (sigma_x, sigma_y, tau_xy)(x, y)/(P/h) for -1 <= y <= -1e-3.
+  Eigen::Vector3d stresses(double x, double y) const;
+  DampedStressGrid stress_grid(const Eigen::Ref<const Eigen::VectorXd>& x,
+                               const Eigen::Ref<const Eigen::VectorXd>& y) const;
+  // Slope dv/dx(x, -1) and displacement v(x, -1)/h of the bottom face (any x;
+  // the displacement needs a finite kw).
+  double bottom_slope(double x) const;
+  double bottom_displacement(double x) const;
+  // Power dissipated in the dashpots over P V: damping sqrt(vstar)/load *
+  // int (dv/dx(x, -1))^2 dx, by Parseval on the layer's bottom response;
+  // equals drag() by the energy balance.
+  double dissipation() const;
+
+  const Eigen::VectorXd& g_coefficients() const noexcept { return b_; }
+  const DampedLayerModel& model() const noexcept { return *model_; }
+
+ private:
+  friend DampedSolution solve_damped(const DampedParams& p);
+  DampedParams params_{};
+  double centre_ = 0, half_ = 0, drag_ = 0, vcr_ = 0, vr_ = 0, err_ = 0, elapsed_ = 0;
+  int iterations_ = 0, n_ = 0;
+  bool valid_ = true;
+  std::string validity_;
+  double min_p_ = 0, min_gap_ = 0;
+  std::vector<double> other_widths_;
+  Eigen::VectorXd b_;
+  std::shared_ptr<const DampedLayerModel> model_;
+  std::shared_ptr<const DampedQuadrature> quad_;
+  std::shared_ptr<const FilonIntegrator> filon_;
+  std::vector<double> kr_, ki_;  // Filon coefficients of Re, Im (M1 - phi1)/phi1
+  // Fine Gauss-Kronrod nodes (the quadrature's panels split so that each
+  // resolves oscillations of frequency `freq`), with the response and the
+  // transformed pressure at each node.
+  struct Fine {
+    double freq = 0;
+    std::vector<double> alpha, weight;
+    std::vector<DampedResponse> r;
+    std::vector<cplx> phat;
+  };
+  std::shared_ptr<const Fine> fine_;  // built by solve_damped for |x| <= 3 (a + b)
+  std::shared_ptr<const Fine> fine_for(double x) const;
+  Fine build_fine(double freq) const;
+};
+
+// Solves the damped contact problem (damping > 0). Throws std::invalid_argument
+// (bad input), SupercriticalSpeedError (vstar >= V*_R), UnphysicalContactError
+// (unless allow_unphysical) and ConvergenceError.
+DampedSolution solve_damped(const DampedParams& p);
+
+// The regular kernel of the damped equation,
+//   K(u) = (1/phi1) int_0^inf [Re(M1 - phi1) sin(alpha u) + Im(M1 - phi1) cos(alpha u)] d alpha,
+// (= k1(u) of kernel.hpp when damping -> 0), by Filon quadrature; exposed for tests.
+double damped_kernel(const FilonIntegrator& f, const std::vector<double>& kr,
+                     const std::vector<double>& ki, double u);
+
+}  // namespace movingpunch

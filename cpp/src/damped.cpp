@@ -1,0 +1,826 @@
+// The moving punch on a damped (Kelvin-Voigt) Winkler foundation: complex
+// layer response, asymmetric contact (-b, a), drag. See docs/damped.md.
+#include "movingpunch/damped.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include "movingpunch/collocation.hpp"
+#include "movingpunch/dispersion.hpp"
+#include "movingpunch/errors.hpp"
+
+namespace movingpunch {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kEps = 2.220446049250313e-16;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Gauss-Kronrod 7-15 (QUADPACK qk15), as in kernel.cpp.
+constexpr double kXgk[8] = {0.991455371120812639206854697526329,
+                            0.949107912342758524526189684047851,
+                            0.864864423359769072789712788640926,
+                            0.741531185599394439863864773280788,
+                            0.586087235467691130294144845693013,
+                            0.405845151377397166906606412076961,
+                            0.207784955007898467600689403773245,
+                            0.0};
+constexpr double kWgk[8] = {0.022935322010529224963732008058970,
+                            0.063092092629978553290700663189204,
+                            0.104790010322250183839876322541518,
+                            0.140653259715525918745189590510238,
+                            0.169004726639267902826583426598550,
+                            0.190350578064785409913256402421014,
+                            0.204432940075298892414161999234649,
+                            0.209482141084727828012999174891714};
+constexpr double kWg[4] = {0.129484966168869693270611432679082,
+                           0.279705391489276667901467771423780,
+                           0.381830050505118944950369775488975,
+                           0.417959183673469387755102040816327};
+
+// Node j (0..14, ascending) of the rule on [c - h, c + h] and its Kronrod weight.
+double gk_node(int j, double c, double h) {
+  const int k = j < 7 ? j : (j == 7 ? 7 : 14 - j);
+  return c + (j < 7 ? -1.0 : 1.0) * h * kXgk[k];
+}
+double gk_weight(int j, double h) {
+  const int k = j < 7 ? j : (j == 7 ? 7 : 14 - j);
+  return kWgk[k] * h;
+}
+// Gauss weight of node j (0 for Kronrod-only nodes).
+double g_weight(int j, double h) {
+  const int k = j < 7 ? j : (j == 7 ? 7 : 14 - j);
+  return k % 2 == 1 ? kWg[k / 2] * h : 0.0;
+}
+
+Eigen::Vector4d shear_vector(double m) { return {1.0, -1.0 / m, (1.0 + m * m) / m, -2.0}; }
+
+// The regularised exponential basis of layer_response.cpp (columns: top shear
+// mode, top divided difference, bottom shear mode, bottom divided difference)
+// at depth y; real, since only the bottom condition is complex.
+Eigen::Matrix4d modal_columns(const WaveConstants& c, double t, double y) {
+  const double nT = c.nT, nL = c.nL, d = c.delta;
+  auto E = [d](double x) { return d > 0.0 ? std::expm1(d * x) / d : x; };
+  const Eigen::Vector4d vTp = shear_vector(nT), vTm = shear_vector(-nT);
+  const Eigen::Vector4d dvp(0.0, c.dW, c.dT, c.dS), dvm(0.0, -c.dW, -c.dT, c.dS);
+  Eigen::Matrix4d C;
+  const double et = std::exp(nT * t * y), el = std::exp(nL * t * y);
+  const double yb = y + 1.0;
+  const double ebt = std::exp(-nT * t * yb), ebl = std::exp(-nL * t * yb);
+  C.col(0) = et * vTp;
+  C.col(1) = el * dvp + vTp * (et * E(t * y));
+  C.col(2) = ebt * vTm;
+  C.col(3) = ebl * dvm + vTm * (ebt * E(-t * yb));
+  return C;
+}
+
+// exp(t y A) by its Taylor series (|t y| < 0.5).
+Eigen::Matrix4d transfer_matrix(const WaveConstants& c, double t, double y) {
+  Eigen::Matrix4d P = Eigen::Matrix4d::Identity();
+  Eigen::Matrix4d term = Eigen::Matrix4d::Identity();
+  const Eigen::Matrix4d B = (t * y) * c.A;
+  for (int k = 1; k < 80; ++k) {
+    term = term * B / static_cast<double>(k);
+    P += term;
+    if (term.cwiseAbs().maxCoeff() <= 1e-18 * P.cwiseAbs().maxCoeff() && k > 3) break;
+  }
+  return P;
+}
+
+// Bottom spring row t S - k W, normalised by t + |k| (no overflow for any k, t).
+Eigen::RowVector4cd spring_row(const Eigen::RowVector4d& S, const Eigen::RowVector4d& W,
+                               double t, cplx k, bool rigid) {
+  if (rigid) return W.cast<cplx>();
+  const double n = t + std::abs(k);
+  return (t / n) * S.cast<cplx>() - (k / n) * W.cast<cplx>();
+}
+
+// J_0 .. J_{nmax+1} at x >= 0: upward recurrence from the exact J_0, J_1 when
+// x exceeds every order, else Miller's backward recurrence normalised by the
+// larger of the exact J_0, J_1.
+void bessel_j(double x, int nmax, std::vector<double>& J) {
+  J.assign(static_cast<std::size_t>(nmax) + 2, 0.0);
+  if (x == 0.0) {
+    J[0] = 1.0;
+    return;
+  }
+  if (x > nmax + 2.0) {
+    // Upward recurrence is stable for orders below the argument: O(nmax).
+    J[0] = std::cyl_bessel_j(0.0, x);
+    J[1] = std::cyl_bessel_j(1.0, x);
+    for (int k = 1; k <= nmax; ++k)
+      J[static_cast<std::size_t>(k + 1)] =
+          2.0 * k / x * J[static_cast<std::size_t>(k)] - J[static_cast<std::size_t>(k - 1)];
+    return;
+  }
+  const double top = std::max(static_cast<double>(nmax), x);
+  int m = static_cast<int>(top + 20.0 + std::sqrt(60.0 * top));
+  m += m % 2;
+  double jp1 = 0.0, j = 1e-280;
+  std::vector<double> tmp(static_cast<std::size_t>(m) + 1, 0.0);
+  tmp[static_cast<std::size_t>(m)] = j;
+  for (int k = m; k >= 1; --k) {
+    const double jm1 = 2.0 * k / x * j - jp1;
+    jp1 = j;
+    j = jm1;
+    tmp[static_cast<std::size_t>(k - 1)] = j;
+    if (std::fabs(j) > 1e250) {
+      for (int q = k - 1; q <= m; ++q) tmp[static_cast<std::size_t>(q)] *= 1e-250;
+      j *= 1e-250;
+      jp1 *= 1e-250;
+    }
+  }
+  const double J0 = std::cyl_bessel_j(0.0, x), J1 = std::cyl_bessel_j(1.0, x);
+  const double scale = std::fabs(J0) > std::fabs(J1) ? J0 / tmp[0] : J1 / tmp[1];
+  for (int k = 0; k <= nmax + 1 && k <= m; ++k)
+    J[static_cast<std::size_t>(k)] = tmp[static_cast<std::size_t>(k)] * scale;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------
+// Complex layer response
+
+DampedLayerModel::DampedLayerModel(double vstar, double kw, double nu, double damping)
+    : c_(wave_constants(vstar, nu)), kw_(kw), damping_(damping), rigid_(std::isinf(kw)) {
+  require_in_range("kw", kw, 0.0, kInf, true, false, true);
+  require_in_range("damping", damping, 0.0, kInf, false, true);
+  beta_ = damping * std::sqrt(vstar);
+}
+
+cplx DampedLayerModel::foundation(double t) const noexcept { return {kw_, -beta_ * t}; }
+
+DampedResponse DampedLayerModel::response_modal(double t) const {
+  if (!(t > 0.0)) throw std::invalid_argument("damped layer response: t must be > 0");
+  DampedResponse r;
+  const double c2 = c_.c2;
+  if (t * c_.nT >= 400.0) {  // M1 - phi1 ~ exp(-2 nT t) underflows: the exact limit
+    r.U0 = ((c2 - 2.0) / c2 - c_.phi2) * c2 / (4.0 * (c2 - 1.0));
+    r.W0 = -c_.phi1;
+    r.M1 = c_.phi1;
+    r.M2 = c_.phi2;
+    r.Wb = 0.0;
+    return r;
+  }
+  const Eigen::Matrix4d top = modal_columns(c_, t, 0.0), bot = modal_columns(c_, t, -1.0);
+  Eigen::Matrix4cd M;
+  M.row(0) = top.row(2).cast<cplx>();
+  M.row(1) = top.row(3).cast<cplx>();
+  M.row(2) = bot.row(2).cast<cplx>();
+  M.row(3) = spring_row(bot.row(3), bot.row(1), t, foundation(t), rigid_);
+  const Eigen::Vector4cd rhs(0.0, -1.0, 0.0, 0.0);
+  const Eigen::Vector4cd amp = M.partialPivLu().solve(rhs);
+  const Eigen::Vector4cd z0 = top.cast<cplx>() * amp;
+  r.U0 = z0(0);
+  r.W0 = z0(1);
+  r.M1 = -z0(1);
+  r.M2 = (c2 - 2.0) / c2 - 4.0 * (c2 - 1.0) / c2 * z0(0);
+  r.Wb = (bot.row(1).cast<cplx>() * amp)(0);
+  return r;
+}
+
+DampedResponse DampedLayerModel::response_transfer(double t) const {
+  if (!(t >= 0.0) || !(t <= 4.0))
+    throw std::invalid_argument("damped layer response (transfer): t must be in [0, 4]");
+  const double c2 = c_.c2;
+  DampedResponse r;
+  if (t == 0.0) {
+    r.U0 = c_.A(2, 3) / c_.A(2, 0);
+    r.W0 = 0.0;
+    r.M1 = 0.0;
+    r.M2 = (c2 - 2.0) / c2 - 4.0 * (c2 - 1.0) / c2 * r.U0;
+    r.Wb = 0.0;
+    return r;
+  }
+  const Eigen::Matrix4d P = transfer_matrix(c_, t, -1.0);
+  Eigen::Matrix<cplx, 2, 4> R;
+  R.row(0) = P.row(2).cast<cplx>();
+  R.row(1) = spring_row(P.row(3), P.row(1), t, foundation(t), rigid_);
+  const Eigen::Matrix2cd M = R.leftCols<2>();
+  const Eigen::Vector2cd rhs = R.col(3);
+  const Eigen::Vector2cd x = M.fullPivLu().solve(rhs);
+  const Eigen::Vector4cd z0(x(0), x(1), 0.0, -1.0);
+  r.U0 = x(0);
+  r.W0 = x(1);
+  r.M1 = -x(1);
+  r.M2 = (c2 - 2.0) / c2 - 4.0 * (c2 - 1.0) / c2 * x(0);
+  r.Wb = (P.row(1).cast<cplx>() * z0)(0);
+  return r;
+}
+
+DampedResponse DampedLayerModel::response(double t) const {
+  if (std::isnan(t) || t < 0.0)
+    throw std::invalid_argument("damped layer response: t = alpha h must be >= 0");
+  if (t < kSmallT) return response_transfer(t);
+  return response_modal(t);
+}
+
+Eigen::Vector4cd DampedLayerModel::state(double t, double y) const {
+  if (!(t > 0.0) || !std::isfinite(t) || !(y >= -1.0) || !(y <= 0.0))
+    throw std::invalid_argument("damped state: need t > 0 finite and -1 <= y <= 0");
+  if (t < kSmallT) {
+    const DampedResponse r = response_transfer(t);
+    const Eigen::Vector4cd z0(r.U0, r.W0, 0.0, -1.0);
+    return transfer_matrix(c_, t, y).cast<cplx>() * z0;
+  }
+  const Eigen::Matrix4d top = modal_columns(c_, t, 0.0), bot = modal_columns(c_, t, -1.0);
+  Eigen::Matrix4cd M;
+  M.row(0) = top.row(2).cast<cplx>();
+  M.row(1) = top.row(3).cast<cplx>();
+  M.row(2) = bot.row(2).cast<cplx>();
+  M.row(3) = spring_row(bot.row(3), bot.row(1), t, foundation(t), rigid_);
+  const Eigen::Vector4cd amp = M.partialPivLu().solve(Eigen::Vector4cd(0.0, -1.0, 0.0, 0.0));
+  return modal_columns(c_, t, y).cast<cplx>() * amp;
+}
+
+// ---------------------------------------------------------------------------
+// Quadrature in alpha
+
+namespace {
+
+struct DPanel {
+  double lo = 0, hi = 0;
+  DampedResponse r[15];
+  double error = 0, floor = 0, resabs = 0;
+};
+
+DPanel eval_dpanel(const DampedLayerModel& m, double lo, double hi) {
+  DPanel p;
+  p.lo = lo;
+  p.hi = hi;
+  const double c = 0.5 * (lo + hi), h = 0.5 * (hi - lo), phi1 = m.phi1();
+  cplx kf = 0.0, gf = 0.0, kb = 0.0, gb = 0.0;
+  double fmax = 0.0;
+  for (int j = 0; j < 15; ++j) {
+    p.r[j] = m.response(gk_node(j, c, h));
+    const cplx f = (p.r[j].M1 - phi1) / phi1;
+    const cplx b = p.r[j].Wb;
+    kf += gk_weight(j, h) * f;
+    gf += g_weight(j, h) * f;
+    kb += gk_weight(j, h) * b;
+    gb += g_weight(j, h) * b;
+    p.resabs += gk_weight(j, h) * (std::abs(f) + std::abs(b));
+    fmax = std::max(fmax, std::max(std::abs(f), std::abs(b)));
+  }
+  p.error = std::abs(kf - gf) + std::abs(kb - gb);
+  p.floor = 8.0 * kEps * (2.0 * h + p.resabs * (1.0 + fmax));
+  return p;
+}
+
+}  // namespace
+
+DampedQuadrature build_damped_quadrature(const DampedLayerModel& model, double tol) {
+  if (!(tol > 0.0)) throw std::invalid_argument("damped quadrature: tol must be > 0");
+  const double nT = model.constants().nT;
+  DampedQuadrature q;
+  // The bottom response Wb decays like (1 + t) exp(-nT t): below 1e-18 beyond this.
+  double& amax = q.panels.alpha_max;
+  amax = (std::log(1e18) + std::log1p(4.0 * 60.0 / nT)) / nT;
+  const double w0 = 0.5;
+  const int n0 = static_cast<int>(std::ceil(amax / w0));
+  amax = n0 * w0;  // the panels cover [0, alpha_max] exactly
+  std::vector<DPanel> work, done;
+  for (int i = n0 - 1; i >= 0; --i) work.push_back(eval_dpanel(model, i * w0, (i + 1) * w0));
+  const double panel_tol = tol / n0;
+  int evaluations = n0;
+  while (!work.empty()) {
+    DPanel p = work.back();
+    work.pop_back();
+    const double len = p.hi - p.lo;
+    const bool fine = p.error <= std::max(panel_tol * len / w0, p.floor);
+    if (fine || len < 1e-12 * w0 || evaluations > 40000) {
+      done.push_back(p);
+      continue;
+    }
+    const double mid = 0.5 * (p.lo + p.hi);
+    work.push_back(eval_dpanel(model, mid, p.hi));
+    work.push_back(eval_dpanel(model, p.lo, mid));
+    evaluations += 2;
+  }
+  std::sort(done.begin(), done.end(), [](const DPanel& a, const DPanel& b) { return a.lo < b.lo; });
+  for (const DPanel& p : done) {
+    const double c = 0.5 * (p.lo + p.hi), h = 0.5 * (p.hi - p.lo);
+    q.panels.panel_centre.push_back(c);
+    q.panels.panel_half.push_back(h);
+    for (int j = 0; j < 15; ++j) {
+      q.panels.alpha.push_back(gk_node(j, c, h));
+      q.panels.weight.push_back(gk_weight(j, h));
+      q.panels.m1.push_back(p.r[j].M1.real());
+      q.m1.push_back(p.r[j].M1);
+      q.m2.push_back(p.r[j].M2);
+      q.wb.push_back(p.r[j].Wb);
+    }
+    q.error_estimate += p.error;
+  }
+  q.panels.error_estimate = q.error_estimate;
+  return q;
+}
+
+double damped_kernel(const FilonIntegrator& f, const std::vector<double>& kr,
+                     const std::vector<double>& ki, double u) {
+  return f.integral(u, kr).imag() + f.integral(u, ki).real();
+}
+
+// ---------------------------------------------------------------------------
+// Validation
+
+void validate(const DampedParams& p) {
+  require_in_range("vstar", p.vstar, 0.0, 1.0, false, true);
+  require_in_range("kw", p.kw, 1e-12, kInf, false, false, true);
+  require_in_range("radius", p.radius, 0.0, kInf, true, true);
+  require_in_range("load", p.load, 0.0, kInf, true, true);
+  require_in_range("nu", p.nu, 0.0, 0.5, false, true);
+  require_in_range("damping", p.damping, 0.0, kInf, true, true);
+  require_in_range("tol", p.tol, 1e-14, 1e-2, false, false);
+  if (p.n != 0 && (p.n < 2 || p.n > 1024 || p.n % 2 != 0))
+    throw std::invalid_argument("n must be 0 (automatic) or an even integer in [2, 1024], got " +
+                                std::to_string(p.n));
+}
+
+// ---------------------------------------------------------------------------
+// The contact solve
+
+namespace {
+
+struct WidthEval {
+  double lambda = 0;  // the load R P/(mu h^2) this half-width carries
+  double centre = 0;  // the centre c of the contact
+  Eigen::VectorXd G;  // unit solution; g = -(w/(phi1 lambda)) G
+};
+
+// For a trial half-width w the collocation system with the centre as the
+// extra unknown is square and linear:
+//   sum_i W_i G_i [1/(r_i - s_k) - w K(w (s_k - r_i))] + gamma = s_k  (k = 1..N+1),
+// g = -(w/(phi1 lambda)) G and c = -w gamma; equilibrium gives lambda(w).
+WidthEval eval_width(const ChebyshevNodes& nd, double w, const FilonIntegrator& fi,
+                     const std::vector<double>& kr, const std::vector<double>& ki,
+                     double phi1) {
+  const int n = nd.n;
+  Eigen::MatrixXd M(n + 1, n + 1);
+  for (int k = 0; k <= n; ++k) {
+    for (int i = 0; i < n; ++i) {
+      const double d = nd.r(i) - nd.s(k);
+      M(k, i) = nd.w(i) * (1.0 / d - w * damped_kernel(fi, kr, ki, -w * d));
+    }
+    M(k, n) = 1.0;
+  }
+  const Eigen::VectorXd x = M.partialPivLu().solve(nd.s);
+  WidthEval e;
+  e.G = x.head(n);
+  e.centre = -w * x(n);
+  e.lambda = -kPi * w * w * nd.w.dot(e.G) / phi1;
+  return e;
+}
+
+struct WidthSolve {
+  double w = 0, c = 0;
+  Eigen::VectorXd g;
+  int evaluations = 0;
+};
+
+// Secant (Illinois, safeguarded by a bracket) on ln lambda(w) = ln lambda_t in ln w.
+WidthSolve solve_width(const ChebyshevNodes& nd, double lambda_t, double w_guess,
+                       const FilonIntegrator& fi, const std::vector<double>& kr,
+                       const std::vector<double>& ki, double phi1) {
+  WidthSolve out;
+  auto F = [&](double lw, WidthEval& e) {
+    e = eval_width(nd, std::exp(lw), fi, kr, ki, phi1);
+    ++out.evaluations;
+    if (!(e.lambda > 0.0) || !std::isfinite(e.lambda)) return std::nan("");
+    return std::log(e.lambda) - std::log(lambda_t);
+  };
+  const double lmin = std::log(1e-10), lmax = std::log(50.0);
+  double x0 = std::clamp(std::log(w_guess), lmin, lmax);
+  WidthEval e0, e1;
+  double f0 = F(x0, e0);
+  // A wide first guess can be under-resolved at this N (no positive load):
+  // step down towards narrower contacts.
+  for (int k = 0; k < 24 && std::isnan(f0) && x0 > lmin; ++k) {
+    x0 = std::max(lmin, x0 - 0.7);
+    f0 = F(x0, e0);
+  }
+  if (std::isnan(f0))
+    throw ConvergenceError("damped contact: the collocation system gives no positive load at "
+                           "any trial width (N = " + std::to_string(nd.n) + ")");
+  // Bracket: lambda grows with w.
+  double step = f0 > 0.0 ? -0.4 : 0.4;
+  double x1 = x0, f1 = f0;
+  for (int it = 0; it < 80; ++it) {
+    x1 = std::clamp(x0 + step, lmin, lmax);
+    f1 = F(x1, e1);
+    if (std::isnan(f1)) throw ConvergenceError("damped contact: non-positive load while bracketing");
+    if ((f1 > 0.0) != (f0 > 0.0)) break;
+    if (x1 == lmin || x1 == lmax)
+      throw ConvergenceError("damped contact: the contact width leaves [1e-10, 50] h");
+    x0 = x1;
+    f0 = f1;
+    e0 = e1;
+  }
+  if ((f1 > 0.0) == (f0 > 0.0)) throw ConvergenceError("damped contact: no bracket found");
+  // Illinois regula falsi on [x0, x1].
+  double xa = x0, fa = f0, xb = x1, fb = f1;
+  WidthEval eb = e1, ea = e0;
+  int side = 0;
+  for (int it = 0; it < 200; ++it) {
+    const double xn = (xa * fb - xb * fa) / (fb - fa);
+    WidthEval en;
+    const double fn = F(xn, en);
+    if (std::isnan(fn)) throw ConvergenceError("damped contact: non-positive load in the iteration");
+    if ((fn > 0.0) == (fb > 0.0)) {
+      xb = xn;
+      fb = fn;
+      eb = en;
+      if (side == -1) fa *= 0.5;
+      side = -1;
+    } else {
+      xa = xb;
+      fa = fb;
+      ea = eb;
+      xb = xn;
+      fb = fn;
+      eb = en;
+      side = +1;
+    }
+    if (std::fabs(fn) < 1e-15 || std::fabs(xb - xa) < 1e-15) break;
+  }
+  const WidthEval& e = std::fabs(fb) <= std::fabs(fa) ? eb : ea;
+  const double x = std::fabs(fb) <= std::fabs(fa) ? xb : xa;
+  out.w = std::exp(x);
+  out.c = e.centre;
+  out.g = -(out.w / (phi1 * e.lambda)) * e.G;
+  return out;
+}
+
+}  // namespace
+
+DampedSolution solve_damped(const DampedParams& prm) {
+  const auto t0 = std::chrono::steady_clock::now();
+  validate(prm);
+  DampedSolution s;
+  s.params_ = prm;
+  s.vr_ = rayleigh_vstar(prm.nu);
+  s.vcr_ = critical_vstar(prm.kw, prm.nu);
+  if (!(prm.vstar < s.vr_)) throw SupercriticalSpeedError(prm.vstar, s.vcr_, s.vr_);
+  auto model = std::make_shared<DampedLayerModel>(prm.vstar, prm.kw, prm.nu, prm.damping);
+  s.model_ = model;
+  const double tolk = std::max(1e-2 * prm.tol, 1e-15);
+  auto quad = std::make_shared<DampedQuadrature>(build_damped_quadrature(*model, tolk));
+  s.quad_ = quad;
+  auto fi = std::make_shared<FilonIntegrator>(quad->panels);
+  s.filon_ = fi;
+  const double phi1 = model->phi1();
+  std::vector<double> re(quad->m1.size()), im(quad->m1.size());
+  for (std::size_t i = 0; i < re.size(); ++i) {
+    re[i] = (quad->m1[i].real() - phi1) / phi1;
+    im[i] = quad->m1[i].imag() / phi1;
+  }
+  s.kr_ = fi->coefficients(re);
+  s.ki_ = fi->coefficients(im);
+
+  const double lambda = prm.radius * prm.load;
+  const double aH = std::sqrt(2.0 * phi1 * lambda / kPi);
+  const double soft = std::isinf(prm.kw) ? 0.0 : 1.0 / prm.kw;
+  const double aW = std::cbrt(1.5 * lambda * (soft + 0.5 * (1.0 - prm.nu)));
+  double guess = (aH > 1.0 || aW > 1.0) ? aW : aH;
+
+  const std::vector<int> ladder = {8, 12, 16, 24, 32, 48, 64, 96, 128, 192, 256, 384, 512};
+  std::vector<int> sizes;
+  if (prm.n > 0) {
+    sizes.push_back(std::max(2, (prm.n / 2) - (prm.n / 2) % 2));  // error estimate
+    sizes.push_back(prm.n);
+  } else {
+    sizes = ladder;
+  }
+  double w_prev = 0, c_prev = 0;
+  bool have_prev = false, converged = false;
+  WidthSolve ws;
+  ChebyshevNodes nd;
+  for (std::size_t k = 0; k < sizes.size(); ++k) {
+    nd = chebyshev_nodes(sizes[k]);
+    try {
+      ws = solve_width(nd, lambda, guess, *fi, s.kr_, s.ki_, phi1);
+    } catch (const ConvergenceError& e) {
+      // Under-resolved at this N (a non-monotone or non-positive discrete
+      // load curve): refine N, unless this was the last size.
+      if (k + 1 == sizes.size()) {
+        std::ostringstream msg;
+        msg << e.what() << "; vstar = " << prm.vstar << ", kw = " << prm.kw
+            << ", damping = " << prm.damping << " (very soft foundations far above V*_cr "
+            << "have no bounded steady contact)";
+        throw ConvergenceError(msg.str());
+      }
+      have_prev = false;
+      continue;
+    }
+    s.iterations_ += ws.evaluations;
+    guess = ws.w;
+    if (have_prev) {
+      s.err_ = std::fabs(ws.w - w_prev) + std::fabs(ws.c - c_prev);
+      if (prm.n == 0 && s.err_ <= prm.tol * (ws.w + std::fabs(ws.c))) {
+        converged = true;
+        break;
+      }
+    }
+    w_prev = ws.w;
+    c_prev = ws.c;
+    have_prev = true;
+  }
+  if (prm.n > 0) converged = true;
+  if (!converged) {
+    std::ostringstream msg;
+    msg << "damped contact: the contact ends did not converge to tol = " << prm.tol
+        << " by N = " << sizes.back() << " (last change " << s.err_ << ")";
+    throw ConvergenceError(msg.str());
+  }
+  s.err_ += 4.0 * quad->error_estimate * ws.w * ws.w;
+  s.n_ = nd.n;
+  s.half_ = ws.w;
+  s.centre_ = ws.c;
+  s.b_ = u_coefficients(nd, ws.g);
+  // drag = int p x / R dx / P with p = g sqrt(1 - r^2), x = c + w r:
+  // int sqrt(1-r^2) U_n = pi/2 delta_n0, int r sqrt(1-r^2) U_n = pi/4 delta_n1.
+  const double b1 = s.b_.size() > 1 ? s.b_(1) : 0.0;
+  s.drag_ = (s.centre_ + 0.25 * kPi * s.half_ * s.half_ * b1) / prm.radius;
+
+  // Above V*_cr lambda(w) need not be monotone: a load can be carried by
+  // several contacts (the steady problem has several solutions). Scan
+  // lambda(w) on [w/8, 4w] (at N >= 32) for other roots and report them.
+  {
+    const ChebyshevNodes ns = chebyshev_nodes(std::max(32, nd.n));
+    const double lo = std::log(std::max(1e-10, s.half_ / 8.0));
+    const double hi = std::log(std::min(50.0, 4.0 * s.half_));
+    const int m = 48;
+    double prev_x = lo, prev_f = std::nan("");
+    for (int i = 0; i <= m; ++i) {
+      const double x = lo + (hi - lo) * i / m;
+      const WidthEval e = eval_width(ns, std::exp(x), *fi, s.kr_, s.ki_, phi1);
+      const double f = e.lambda > 0.0 ? std::log(e.lambda / lambda) : std::nan("");
+      if (!std::isnan(f) && !std::isnan(prev_f) && (f > 0.0) != (prev_f > 0.0)) {
+        const double xr = prev_x - prev_f * (x - prev_x) / (f - prev_f);  // linear estimate
+        const double wr = std::exp(xr);
+        if (std::fabs(wr - s.half_) > 0.05 * s.half_) s.other_widths_.push_back(wr);
+      }
+      prev_x = x;
+      prev_f = f;
+    }
+  }
+
+  // Fine nodes for the Fourier integrals up to |x| <= 3 (a + b).
+  s.fine_ = std::make_shared<DampedSolution::Fine>(s.build_fine(6.0 * s.half_ + std::fabs(s.centre_)));
+
+  // Validity: p >= 0 on the contact, no penetration beside it.
+  s.min_p_ = kInf;
+  for (int i = 0; i <= 400; ++i) {
+    const double r = -1.0 + 2.0 * i / 400.0;
+    s.min_p_ = std::min(s.min_p_, u_series(s.b_, r) * std::sqrt(std::max(0.0, 1.0 - r * r)));
+  }
+  // gap(x) = int_edge^x (xi/R - v'(xi)) d xi beside each end, with xi = edge +- q^2.
+  s.min_gap_ = kInf;
+  {
+    const double R = prm.radius;
+    for (int side = -1; side <= 1; side += 2) {
+      const double edge = s.centre_ + side * s.half_;
+      const double qmax = std::sqrt(2.0 * s.half_);
+      const int m = 24;
+      double gap = 0.0;
+      for (int seg = 0; seg < m; ++seg) {
+        const double lo = qmax * seg / m, hi = qmax * (seg + 1) / m;
+        const double c = 0.5 * (lo + hi), h = 0.5 * (hi - lo);
+        for (int j = 0; j < 15; ++j) {
+          const double q = gk_node(j, c, h);
+          const double x = edge + side * q * q;
+          gap += gk_weight(j, h) * 2.0 * q * (x / R - s.surface_slope(x)) * side;
+        }
+        s.min_gap_ = std::min(s.min_gap_, gap);
+      }
+    }
+  }
+  s.valid_ = true;
+  std::ostringstream why;
+  const double gap_scale = s.half_ * s.half_ / prm.radius;
+  if (s.min_p_ < -1e-8) {
+    s.valid_ = false;
+    why << "pressure negative inside the contact (min p/(P/h) = " << s.min_p_ << "); ";
+  }
+  if (s.min_gap_ < -1e-6 * gap_scale) {
+    s.valid_ = false;
+    why << "the punch penetrates the surface beside the contact (min gap/h = " << s.min_gap_
+        << "); ";
+  }
+  s.validity_ = s.valid_ ? "valid: p >= 0 on the contact and no penetration within 2(a+b) of it"
+                         : "invalid: " + why.str();
+  if (!s.other_widths_.empty()) {
+    std::ostringstream note;
+    note << "; not unique: the load is also carried by contacts of half-width (a+b)/2 ~";
+    for (double w : s.other_widths_) note << " " << w;
+    note << " h (lambda(w) is not monotone; this solution continues the half-plane width)";
+    s.validity_ += note.str();
+  }
+  if (!s.valid_ && !prm.allow_unphysical) throw UnphysicalContactError(s.validity_);
+  s.elapsed_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return s;
+}
+
+// ---------------------------------------------------------------------------
+// Outputs
+
+double DampedSolution::pressure(double x) const {
+  const double r = (x - centre_) / half_;
+  if (!(std::fabs(r) < 1.0)) return 0.0;
+  return u_series(b_, r) * std::sqrt(1.0 - r * r);
+}
+
+cplx DampedSolution::pressure_transform(double alpha) const {
+  const double w = half_, om = std::fabs(alpha) * w;
+  const int n = static_cast<int>(b_.size());
+  cplx sum = 0.0;
+  if (om < 1e-8) {
+    sum = 0.5 * kPi * b_(0);  // J_1(om)/om -> 1/2; higher orders vanish
+    if (n > 1) sum += kPi * 2.0 * cplx(0.0, -1.0) * b_(1) * (om / 8.0);
+  } else {
+    thread_local std::vector<double> J;
+    bessel_j(om, n + 1, J);
+    cplx ipow = 1.0;  // (-i)^k
+    for (int k = 0; k < n; ++k) {
+      sum += b_(k) * kPi * (k + 1.0) * ipow * (J[static_cast<std::size_t>(k + 1)] / om);
+      ipow *= cplx(0.0, -1.0);
+    }
+  }
+  cplx ph = w * std::exp(cplx(0.0, -std::fabs(alpha) * centre_)) * sum;
+  return alpha < 0.0 ? std::conj(ph) : ph;
+}
+
+double DampedSolution::surface_slope(double x) const {
+  // -(phi1/pi) int p/(xi - x) + (phi1/pi) int p(xi) K(x - xi) d xi, per P/h times load.
+  const double phi1 = model_->phi1(), w = half_, z = (x - centre_) / w;
+  double cauchy = 0.0;  // sum b_n (1/pi) int sqrt(1-r^2) U_n/(r - z) dr
+  const int n = static_cast<int>(b_.size());
+  if (std::fabs(z) < 1.0) {
+    double tkm1 = 1.0, tk = z;  // T_0, T_1
+    for (int k = 0; k < n; ++k) {
+      cauchy -= b_(k) * tk;
+      const double tn = 2.0 * z * tk - tkm1;
+      tkm1 = tk;
+      tk = tn;
+    }
+  } else {
+    const double q = z - (z > 0 ? 1.0 : -1.0) * std::sqrt(z * z - 1.0);
+    double qk = q;
+    for (int k = 0; k < n; ++k) {
+      cauchy -= b_(k) * qk;
+      qk *= q;
+    }
+  }
+  // Kernel part by Gauss-Chebyshev (U) quadrature of p K: (1/pi) int sqrt(1-r^2) f ~ sum W_i f(r_i).
+  const int m = std::max(64, 2 * n + 2);
+  double kern = 0.0;
+  for (int i = 1; i <= m; ++i) {
+    const double th = i * kPi / (m + 1), r = std::cos(th);
+    const double wi = std::sin(th) * std::sin(th) / (m + 1);
+    kern += wi * u_series(b_, r) * damped_kernel(*filon_, kr_, ki_, x - centre_ - w * r);
+  }
+  return params_.load * phi1 * (-cauchy + w * kern);
+}
+
+DampedSolution::Fine DampedSolution::build_fine(double freq) const {
+  Fine f;
+  f.freq = freq;
+  const auto& P = quad_->panels;
+  const double width = std::min(0.5, 1.5 / std::max(freq, 1e-300));
+  for (std::size_t p = 0; p < P.panel_centre.size(); ++p) {
+    const double lo = P.panel_centre[p] - P.panel_half[p];
+    const double len = 2.0 * P.panel_half[p];
+    const int m = std::max(1, static_cast<int>(std::ceil(len / width)));
+    for (int q = 0; q < m; ++q) {
+      const double c = lo + (q + 0.5) * len / m, h = 0.5 * len / m;
+      for (int j = 0; j < 15; ++j) {
+        const double a = gk_node(j, c, h);
+        f.alpha.push_back(a);
+        f.weight.push_back(gk_weight(j, h));
+        f.r.push_back(model_->response(a));
+        f.phat.push_back(pressure_transform(a));
+      }
+    }
+  }
+  return f;
+}
+
+std::shared_ptr<const DampedSolution::Fine> DampedSolution::fine_for(double x) const {
+  const double need = 2.0 * half_ + std::fabs(centre_) + std::fabs(x);
+  if (fine_ && need <= fine_->freq) return fine_;
+  return std::make_shared<const Fine>(build_fine(need));
+}
+
+double DampedSolution::surface_stress(double x) const {
+  const auto f = fine_for(x);
+  const double phi2 = model_->phi2();
+  double sum = 0.0;
+  for (std::size_t i = 0; i < f->alpha.size(); ++i)
+    sum += f->weight[i] *
+           ((f->r[i].M2 - phi2) * f->phat[i] * std::exp(cplx(0.0, f->alpha[i] * x))).real();
+  return -phi2 * pressure(x) - sum / kPi;
+}
+
+Eigen::Vector3d DampedSolution::stresses(double x, double y) const {
+  if (!std::isfinite(x)) throw std::invalid_argument("stresses: x must be finite");
+  const Eigen::VectorXd xs = Eigen::VectorXd::Constant(1, x), ys = Eigen::VectorXd::Constant(1, y);
+  const DampedStressGrid g = stress_grid(xs, ys);
+  return {g.sigma_x(0, 0), g.sigma_y(0, 0), g.tau_xy(0, 0)};
+}
+
+DampedStressGrid DampedSolution::stress_grid(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                             const Eigen::Ref<const Eigen::VectorXd>& y) const {
+  double xmax = 0.0;
+  for (Eigen::Index j = 0; j < x.size(); ++j) {
+    if (!std::isfinite(x(j))) throw std::invalid_argument("stresses: x must be finite");
+    xmax = std::max(xmax, std::fabs(x(j)));
+  }
+  for (Eigen::Index i = 0; i < y.size(); ++i)
+    if (!(y(i) >= -1.0) || !(y(i) <= -1e-3))
+      throw std::invalid_argument("stresses: y must be in [-1, -1e-3], got " +
+                                  std::to_string(y(i)));
+  const auto f = fine_for(xmax);  // one set of nodes for the whole grid
+  const WaveConstants& c = model_->constants();
+  DampedStressGrid g;
+  g.sigma_x.resize(y.size(), x.size());
+  g.sigma_y.resize(y.size(), x.size());
+  g.tau_xy.resize(y.size(), x.size());
+  std::vector<double> alpha;
+  std::vector<Eigen::Vector3cd> amp;
+  for (Eigen::Index i = 0; i < y.size(); ++i) {
+    // Per node: weight * (sigma_x, sigma_y, tau_xy amplitudes) * p^; tau ~
+    // sin(alpha x) has the complex amplitude -i T.
+    alpha.clear();
+    amp.clear();
+    auto add = [&](double a, double wgt, const cplx& ph) {
+      const Eigen::Vector4cd z = model_->state(a, y(i));
+      const cplx sx = 4.0 * (c.c2 - 1.0) / c.c2 * z(0) + (c.c2 - 2.0) / c.c2 * z(3);
+      alpha.push_back(a);
+      amp.emplace_back(wgt * sx * ph, wgt * z(3) * ph, wgt * cplx(0.0, -1.0) * z(2) * ph);
+    };
+    for (std::size_t k = 0; k < f->alpha.size(); ++k)
+      if (f->alpha[k] > 0.0) add(f->alpha[k], f->weight[k], f->phat[k]);
+    // The field decays like exp(nT alpha y): beyond the quadrature's
+    // alpha_max extend with panels of width 1.5/freq up to 45/(nT |y|).
+    const double amax = quad_->panels.alpha_max, aend = 45.0 / (c.nT * std::fabs(y(i)));
+    if (aend > amax) {
+      const double width = std::min(0.5, 1.5 / f->freq);
+      const int m = static_cast<int>(std::ceil((aend - amax) / width));
+      const double h = 0.5 * (aend - amax) / m;
+      for (int q = 0; q < m; ++q) {
+        const double cc = amax + (2 * q + 1) * h;
+        for (int j = 0; j < 15; ++j) {
+          const double a = gk_node(j, cc, h);
+          add(a, gk_weight(j, h), pressure_transform(a));
+        }
+      }
+    }
+    for (Eigen::Index j = 0; j < x.size(); ++j) {
+      Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+      for (std::size_t k = 0; k < alpha.size(); ++k)
+        sum += (amp[k] * std::exp(cplx(0.0, alpha[k] * x(j)))).real();
+      g.sigma_x(i, j) = sum(0) / kPi;
+      g.sigma_y(i, j) = sum(1) / kPi;
+      g.tau_xy(i, j) = sum(2) / kPi;
+    }
+  }
+  return g;
+}
+
+double DampedSolution::stress_x(double x, double y) const { return stresses(x, y)(0); }
+
+double DampedSolution::bottom_displacement(double x) const {
+  // v(x, -1) = (1/2pi) int (Wb/alpha) p^ e^{i alpha x}; Wb/alpha -> -1/kw at alpha -> 0.
+  const auto f = fine_for(x);
+  double sum = 0.0;
+  for (std::size_t i = 0; i < f->alpha.size(); ++i)
+    if (f->alpha[i] > 0.0)
+      sum += f->weight[i] *
+             (f->r[i].Wb / f->alpha[i] * f->phat[i] * std::exp(cplx(0.0, f->alpha[i] * x))).real();
+  return params_.load * sum / kPi;
+}
+
+double DampedSolution::bottom_slope(double x) const {
+  // dv/dx(x, -1) = (1/2pi) int i alpha (Wb/alpha) p^ e^{i alpha x}, per P/h times load.
+  const auto f = fine_for(x);
+  double sum = 0.0;
+  for (std::size_t i = 0; i < f->alpha.size(); ++i)
+    sum += f->weight[i] *
+           (cplx(0.0, 1.0) * f->r[i].Wb * f->phat[i] * std::exp(cplx(0.0, f->alpha[i] * x))).real();
+  return params_.load * sum / kPi;
+}
+
+double DampedSolution::dissipation() const {
+  // damping sqrt(s) int (v_b')^2 dx / load, with int (v_b')^2 = (load^2/pi) int_0^inf |Wb p^|^2.
+  double sum = 0.0;
+  for (std::size_t i = 0; i < fine_->alpha.size(); ++i)
+    sum += fine_->weight[i] * std::norm(fine_->r[i].Wb * fine_->phat[i]);
+  return model_->damping() * std::sqrt(model_->vstar()) * params_.load * sum / kPi;
+}
+
+}  // namespace movingpunch

@@ -1,0 +1,316 @@
+"""The punch on a damped (Kelvin-Voigt) Winkler foundation.
+
+The base condition becomes sigma_y(x, -h) = k_w v + c_w dv/dt, i.e. in the
+moving frame and in units h = mu = c_T = 1::
+
+    sigma_y(x, -1) = kw v - damping * sqrt(vstar) * dv/dx,  damping = c_w c_T / mu
+
+(c_w: pressure per unit velocity). With damping the contact (-b, a) is
+asymmetric, a drag force appears without friction, and speeds at or above the
+critical speed V*_cr solve; speeds at or above the Rayleigh speed V*_R do not.
+``damping = 0`` is the paper's model: use :func:`movingpunch.solve`, which
+takes the undamped path then. See docs/damped.md.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+import numbers
+from dataclasses import dataclass, field, fields
+
+import numpy as np
+import numpy.typing as npt
+
+from movingpunch import _core
+from movingpunch.errors import InvalidParameterError, SupercriticalSpeedError
+from movingpunch.fields import StressField, derived_stresses
+from movingpunch.solver import (
+    FloatArray,
+    _as_points,
+    _check_flag,
+    _check_kw,
+    _check_nu,
+    _check_positive,
+    _check_size,
+    _check_tol,
+    _check_vstar,
+    _flat,
+    _is_scalar,
+    _json_safe,
+    _pointwise,
+    _real,
+    _real_any,
+)
+
+__all__ = ["DampedSolution", "check_damping", "damped_layer_response", "solve_damped"]
+
+_DAMPING_RANGE = "0 <= damping < inf, damping = c_w c_T/mu"
+_N_MAX = 1024
+
+
+def check_damping(value: object, *, positive: bool = False) -> float:
+    """``value`` as a float damping (finite, >= 0; > 0 when ``positive``).
+
+    Raises InvalidParameterError naming the parameter and its range.
+    """
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
+        raise InvalidParameterError(
+            f"damping must be a real number ({_DAMPING_RANGE}), got {value!r}"
+        )
+    try:
+        x = float(value)
+    except OverflowError:
+        raise InvalidParameterError(
+            f"damping is too large for a float ({_DAMPING_RANGE})"
+        ) from None
+    if not math.isfinite(x) or x < 0 or (positive and x == 0):
+        bound = "0 < damping < inf" if positive else _DAMPING_RANGE
+        raise InvalidParameterError(f"damping must satisfy {bound}, got {value!r}")
+    return x
+
+
+def _check_damped_size(value: object) -> int:
+    size = _check_size(value)
+    if size > _N_MAX:
+        raise InvalidParameterError(
+            f"n must be None (automatic) or an even integer in [2, {_N_MAX}] "
+            f"for the damped solver, got {value!r}"
+        )
+    return size
+
+
+@dataclass(frozen=True)
+class DampedSolution:
+    """Solution on a damped foundation (dimensionless: lengths per h,
+    pressures and stresses per P/h). The punch moves towards +x."""
+
+    vstar: float
+    """V* = rho V^2/mu."""
+    kw: float
+    """k_w h/mu."""
+    radius: float
+    """R/h."""
+    load: float
+    """P/(mu h)."""
+    nu: float
+    """Poisson's ratio."""
+    damping: float
+    """c_w c_T/mu."""
+    tol: float
+    """Requested relative tolerance on the contact ends."""
+    contact_interval: tuple[float, float]
+    """(-b/h, a/h): trailing and leading ends of the contact."""
+    drag: float
+    """Horizontal force on the punch over P, int p x/R dx / P; positive when it
+    opposes the motion."""
+    critical_vstar: float
+    """Critical speed V*_cr(kw, nu) of the undamped layer (may be exceeded)."""
+    rayleigh_vstar: float
+    """Rayleigh speed V*_R(nu) (the upper limit)."""
+    phi1: float
+    """Moving half-plane factor phi1(vstar, nu)."""
+    iterations: int
+    """Width evaluations over all collocation sizes."""
+    collocation_n: int
+    """Number N of collocation nodes of the final solve."""
+    error_estimate: float
+    """Absolute error estimate of the contact ends."""
+    elapsed: float
+    """Solve time in seconds."""
+    valid: bool
+    """True if p >= 0 on the contact and no penetration beside it."""
+    validity: str
+    """Account of the validity checks."""
+    min_pressure: float
+    """Minimum of p/(P/h) on the contact."""
+    min_gap: float
+    """Minimum gap/h within 2(a + b) beside the contact."""
+    other_half_widths: tuple[float, ...]
+    """Half-widths (a + b)/(2h) of other contacts that carry the same load
+    (above V*_cr the steady solution need not be unique; to about 1 %).
+    Empty when none was found on [w/8, 4w]."""
+    _impl: _core.DampedSolution = field(repr=False, compare=False)
+
+    @property
+    def a(self) -> float:
+        """Leading end a/h of the contact (-b, a)."""
+        return self.contact_interval[1]
+
+    @property
+    def b(self) -> float:
+        """Trailing end b/h of the contact (-b, a) (negative when the whole
+        contact lies ahead of the punch's lowest point)."""
+        return -self.contact_interval[0]
+
+    @property
+    def half_width(self) -> float:
+        """(a + b)/(2h)."""
+        return float(self._impl.half_width)
+
+    @property
+    def centre(self) -> float:
+        """(a - b)/(2h)."""
+        return float(self._impl.centre)
+
+    @functools.cached_property
+    def dissipation(self) -> float:
+        """Power dissipated in the dashpots over P V, from the bottom face's
+        slope by Parseval; equals ``drag`` by the energy balance."""
+        return float(self._impl.dissipation())
+
+    def pressure(self, x: npt.ArrayLike) -> float | FloatArray:
+        """p(x)/(P/h) (0 outside the contact)."""
+        return _pointwise("x", x, self._impl.pressure)
+
+    def surface_slope(self, x: npt.ArrayLike) -> float | FloatArray:
+        """Surface slope dv/dx(x, 0) (x/R on the contact)."""
+        return _pointwise("x", x, self._impl.surface_slope)
+
+    def bottom_slope(self, x: npt.ArrayLike) -> float | FloatArray:
+        """Slope dv/dx(x, -h) of the bottom face."""
+        return _pointwise("x", x, self._impl.bottom_slope)
+
+    def surface_stress(self, x: npt.ArrayLike) -> float | FloatArray:
+        """sigma_x(x, 0)/(P/h)."""
+        return _pointwise("x", x, self._impl.surface_stress)
+
+    def depth_stress(self, y: npt.ArrayLike, x: float = 0.0) -> float | FloatArray:
+        """sigma_x(x, y)/(P/h) for -1 <= y <= -1e-3 (the Fourier integral is
+        not used closer to the surface; use ``surface_stress`` at y = 0)."""
+        pts = _as_points("y", y)
+        bad = (pts < -1.0) | (pts > -1e-3)
+        if bad.any():
+            raise InvalidParameterError(
+                "y must satisfy -1 <= y <= -1e-3 for the damped solver's depth "
+                f"stress, got {float(pts[bad].flat[0])!r}"
+            )
+        xs = _real_any("x", x)
+        if not math.isfinite(xs):
+            raise InvalidParameterError(f"x must be a finite number, got {x!r}")
+        return _pointwise("y", y, lambda v: self._impl.stress_x(xs, v), pts)
+
+    def bottom_displacement(self, x: npt.ArrayLike) -> float | FloatArray:
+        """Displacement v(x, -h)/h of the bottom face."""
+        return _pointwise("x", x, self._impl.bottom_displacement)
+
+    def foundation_reaction(self, x: npt.ArrayLike) -> float | FloatArray:
+        """Pressure of the base on the layer, -sigma_y(x, -h)/(P/h)
+        (springs and dashpots together)."""
+        field = self.stress_field(_flat(_as_points("x", x)), [-1.0])
+        values = -field.sigma_y[0]
+        return float(values[0]) if _is_scalar(x) else values.reshape(np.shape(x))
+
+    def stress_field(self, x: npt.ArrayLike, y: npt.ArrayLike) -> StressField:
+        """All stresses over P/h on the grid ``x`` (x/h) by ``y`` (y/h in
+        [-1, -1e-3]); arrays shaped (len(y), len(x)). The cost grows like
+        1/|y| near the surface (use ``surface_stress`` at y = 0)."""
+        xs = _flat(_as_points("x", x))
+        ys = _flat(_as_points("y", y))
+        bad = (ys < -1.0) | (ys > -1e-3)
+        if bad.any():
+            raise InvalidParameterError(
+                "y must satisfy -1 <= y <= -1e-3 for the damped solver's stress "
+                f"field, got {float(ys[bad][0])!r}"
+            )
+        sx, sy, txy = self._impl.stress_field(xs, ys)
+        sz, vm, ms = derived_stresses(sx, sy, txy, self.nu)
+        return StressField(
+            x=xs,
+            y=ys,
+            sigma_x=sx,
+            sigma_y=sy,
+            tau_xy=txy,
+            sigma_z=sz,
+            von_mises=vm,
+            max_shear=ms,
+        )
+
+    def to_dict(self) -> dict[str, object]:
+        """Every public field, JSON-safe."""
+        data = {
+            f.name: _json_safe(getattr(self, f.name))
+            for f in fields(self)
+            if not f.name.startswith("_")
+        }
+        data["contact_interval"] = list(self.contact_interval)
+        data["other_half_widths"] = list(self.other_half_widths)
+        data["dissipation"] = self.dissipation
+        return data
+
+
+def solve_damped(
+    *,
+    vstar: float,
+    kw: float,
+    radius: float,
+    load: float,
+    nu: float = 0.2,
+    damping: float,
+    tol: float | str = 1e-8,
+    allow_unphysical: bool = False,
+    n: int | None = None,
+) -> DampedSolution:
+    """Solves the contact problem on a damped foundation (``damping`` > 0).
+
+    Speeds up to (not including) the Rayleigh speed solve, above the critical
+    speed too. Raises InvalidParameterError, SupercriticalSpeedError (vstar >=
+    V*_R), UnphysicalContactError (unless ``allow_unphysical``) and
+    ConvergenceError.
+    """
+    inputs = {
+        "vstar": _check_vstar(vstar),
+        "kw": _check_kw(kw),
+        "radius": _check_positive("radius", radius),
+        "load": _check_positive("load", load),
+        "nu": _check_nu(nu),
+        "damping": check_damping(damping, positive=True),
+        "tol": _check_tol(tol),
+    }
+    flag = _check_flag("allow_unphysical", allow_unphysical)
+    size = _check_damped_size(n)
+    vr = float(_core.rayleigh_vstar(inputs["nu"]))
+    if inputs["vstar"] >= vr:
+        raise SupercriticalSpeedError(
+            f"vstar = {inputs['vstar']!r} is at or above the Rayleigh speed "
+            f"V*_R = {vr:.10f} (nu = {inputs['nu']!r}): even with damping there "
+            f"is no steady solution there; vstar must be in [0, {vr:.10f})",
+            vstar=inputs["vstar"],
+            critical_vstar=None,
+            rayleigh_vstar=vr,
+        )
+    impl = _core.solve_damped(**inputs, allow_unphysical=flag, n=size)
+    return DampedSolution(
+        **inputs,
+        contact_interval=(float(impl.left), float(impl.right)),
+        drag=float(impl.drag),
+        critical_vstar=float(impl.critical_vstar),
+        rayleigh_vstar=float(impl.rayleigh_vstar),
+        phi1=float(impl.phi1),
+        iterations=int(impl.iterations),
+        collocation_n=int(impl.collocation_n),
+        error_estimate=float(impl.error_estimate),
+        elapsed=float(impl.elapsed),
+        valid=bool(impl.valid),
+        validity=str(impl.validity),
+        min_pressure=float(impl.min_pressure),
+        min_gap=float(impl.min_gap),
+        other_half_widths=tuple(float(w) for w in impl.other_half_widths),
+        _impl=impl,
+    )
+
+
+def damped_layer_response(
+    t: float, *, vstar: float, kw: float, nu: float = 0.2, damping: float
+) -> tuple[complex, complex, complex]:
+    """(M1, M2, Wb) of the damped layer per unit transformed pressure at
+    t = alpha h >= 0: M1 = -alpha v^(alpha, 0)/p^, M2 = -sigma_x^(alpha, 0)/p^,
+    Wb = alpha v^(alpha, -h)/p^, for modes e^{i alpha x} (alpha < 0: the
+    complex conjugates)."""
+    tt = _real("t", t)
+    if not (math.isfinite(tt) and tt >= 0):
+        raise InvalidParameterError(f"t must satisfy t = alpha h >= 0, got {t!r}")
+    m1, m2, wb = _core.damped_layer_response(
+        tt, _check_vstar(vstar), _check_kw(kw), _check_nu(nu), check_damping(damping)
+    )
+    return complex(m1), complex(m2), complex(wb)

@@ -1,0 +1,349 @@
+// The damped (Kelvin-Voigt) foundation: complex layer response, asymmetric
+// contact, drag. Every check is against an independent anchor: the undamped
+// code (damping -> 0), a Moebius map in kw built from the real response, the
+// energy balance per mode and for the whole contact, the paper's Table 1.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <complex>
+#include <limits>
+
+#include "movingpunch/contact.hpp"
+#include "movingpunch/damped.hpp"
+#include "movingpunch/dispersion.hpp"
+#include "movingpunch/errors.hpp"
+#include "movingpunch/kernel.hpp"
+#include "test_helpers.hpp"
+
+namespace mp = movingpunch;
+using mp::cplx;
+
+namespace {
+
+mp::DampedParams damped(double vstar, double kw, double damping) {
+  mp::DampedParams p;
+  p.vstar = vstar;
+  p.kw = kw;
+  p.radius = 100.0;
+  p.load = 0.002;
+  p.nu = 0.2;
+  p.damping = damping;
+  return p;
+}
+
+const double kTs[] = {1e-3, 0.2, 0.49, 0.5, 0.8, 2.0, 5.0, 30.0, 500.0};
+
+}  // namespace
+
+TEST(DampedLayer, ZeroDampingIsTheUndampedResponse) {
+  for (double s : {0.0, 1e-3, 0.2, 0.6}) {
+    for (double kw : {0.1, 1.0, 10.0, std::numeric_limits<double>::infinity()}) {
+      const mp::DampedLayerModel d(s, kw, 0.2, 0.0);
+      const mp::LayerModel r(s, kw, 0.2);
+      for (double t : kTs) {
+        const auto a = d.response(t);
+        const auto b = r.response(t);
+        EXPECT_NEAR(a.M1.real(), b.M1, 1e-13 * std::max(1.0, std::fabs(b.M1))) << s << " " << kw << " " << t;
+        EXPECT_NEAR(a.M2.real(), b.M2, 1e-13 * std::max(1.0, std::fabs(b.M2)));
+        EXPECT_EQ(a.M1.imag(), 0.0);
+      }
+    }
+  }
+}
+
+// kw enters one boundary row linearly, so M1 is a Moebius function of kw:
+// three real stiffnesses of the undamped code fix it, and it must then give
+// the damped response at the complex stiffness kw - i damping sqrt(s) t.
+TEST(DampedLayer, MoebiusMapOfTheRealResponse) {
+  for (double s : {0.2, 0.65}) {
+    for (double kw : {0.1, 1.0}) {
+      const double damping = 0.7;
+      const mp::DampedLayerModel d(s, kw, 0.2, damping);
+      for (double t : {0.3, 1.0, 2.0, 4.0}) {
+        const double k[3] = {0.5 * kw, kw, 2.0 * kw};
+        Eigen::Matrix3d A;
+        Eigen::Vector3d m;
+        for (int j = 0; j < 3; ++j) {
+          m(j) = mp::LayerModel(s, k[j], 0.2).response(t).M1;
+          A.row(j) << k[j], 1.0, -k[j] * m(j);  // M (c k + 1) = a k + b
+        }
+        const Eigen::Vector3d abc = A.fullPivLu().solve(m);
+        const cplx kc(kw, -damping * std::sqrt(s) * t);
+        const cplx expect = (abc(0) * kc + abc(1)) / (abc(2) * kc + 1.0);
+        const cplx got = d.response(t).M1;
+        EXPECT_LT(std::abs(got - expect), 1e-8 * std::abs(expect)) << s << " " << kw << " " << t;
+      }
+    }
+  }
+}
+
+// Per wavenumber, the power put in at the top (Im M1) equals the power taken
+// by the dashpots at the bottom (damping sqrt(s) |Wb|^2).
+TEST(DampedLayer, EnergyBalancePerMode) {
+  for (double s : {0.05, 0.2, 0.65, 0.8}) {
+    for (double damping : {1e-3, 0.3, 30.0}) {
+      const mp::DampedLayerModel d(s, 1.0, 0.2, damping);
+      for (double t : kTs) {
+        const auto r = d.response(t);
+        const double diss = damping * std::sqrt(s) * std::norm(r.Wb);
+        EXPECT_GE(r.M1.imag(), 0.0);
+        EXPECT_NEAR(r.M1.imag(), diss, 1e-11 * std::max(diss, 1e-300) + 1e-300)
+            << s << " " << damping << " " << t;
+      }
+    }
+  }
+}
+
+TEST(DampedLayer, TransferAndModalAgree) {
+  const mp::DampedLayerModel d(0.65, 0.3, 0.25, 0.5);
+  for (double t : {0.3, 0.5, 1.0, 2.0, 3.5}) {
+    const auto a = d.response_transfer(t), b = d.response_modal(t);
+    EXPECT_LT(std::abs(a.M1 - b.M1), 1e-11 * std::abs(b.M1)) << t;
+    EXPECT_LT(std::abs(a.Wb - b.Wb), 1e-11 * std::abs(b.Wb)) << t;
+    EXPECT_LT(std::abs(a.M2 - b.M2), 1e-11 * std::abs(b.M2)) << t;
+  }
+}
+
+TEST(DampedLayer, HalfPlaneLimitAndStaticCase) {
+  const mp::DampedLayerModel d(0.4, 1.0, 0.2, 2.0);
+  EXPECT_LT(std::abs(d.response(60.0).M1 - d.phi1()), 1e-14);
+  EXPECT_DOUBLE_EQ(d.phi1(), mp::phi1(0.4, 0.2));
+  // At rest the dashpots do nothing: identical to the springs alone.
+  const mp::DampedLayerModel st(0.0, 1.0, 0.2, 5.0);
+  const mp::LayerModel r(0.0, 1.0, 0.2);
+  for (double t : kTs) {
+    const cplx m = st.response(t).M1;
+    EXPECT_EQ(m.imag(), 0.0) << t;
+    EXPECT_NEAR(m.real(), r.response(t).M1, 1e-14 * std::fabs(m.real())) << t;
+  }
+}
+
+TEST(DampedLayer, RejectsBadDamping) {
+  for (double d : {-1.0, std::nan(""), std::numeric_limits<double>::infinity()}) {
+    try {
+      mp::DampedLayerModel m(0.2, 1.0, 0.2, d);
+      ADD_FAILURE() << d;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("damping"), std::string::npos);
+    }
+  }
+}
+
+TEST(DampedKernel, ZeroDampingIsK1) {
+  const mp::DampedLayerModel d(0.2, 1.0, 0.2, 0.0);
+  const auto q = mp::build_damped_quadrature(d, 1e-12);
+  const mp::FilonIntegrator f(q.panels);
+  std::vector<double> re(q.m1.size()), im(q.m1.size());
+  for (std::size_t i = 0; i < re.size(); ++i) {
+    re[i] = (q.m1[i].real() - d.phi1()) / d.phi1();
+    im[i] = q.m1[i].imag() / d.phi1();
+  }
+  const auto kr = f.coefficients(re), ki = f.coefficients(im);
+  const mp::KernelK1 k1(mp::LayerModel(0.2, 1.0, 0.2), 1e-12, 3.0);
+  for (double u : {-2.5, -0.4, 0.0, 0.1, 0.7, 2.9})
+    EXPECT_NEAR(mp::damped_kernel(f, kr, ki, u), k1(u), 1e-9) << u;
+}
+
+// damping = 1e-9 reproduces the undamped solver and the paper's Table 1.
+TEST(DampedContact, TinyDampingReproducesTable1) {
+  const double kws[] = {0.1, 1.0, 10.0, std::numeric_limits<double>::infinity()};
+  const double paper[] = {0.3729, 0.3306, 0.3152, 0.3117};
+  for (int i = 0; i < 4; ++i) {
+    const auto s = mp::solve_damped(damped(1e-3, kws[i], 1e-9));
+    const auto u = mp::solve_contact(mp::testing::paper(1e-3, kws[i]));
+    EXPECT_NEAR(s.right(), paper[i], 5e-5);
+    EXPECT_NEAR(s.right(), u.a(), 1e-8);
+    EXPECT_NEAR(s.left(), -u.a(), 1e-8);
+    EXPECT_LT(std::fabs(s.drag()), 1e-12);
+    for (double x : {0.0, 0.1, 0.25, 0.3}) {
+      EXPECT_NEAR(s.pressure(x), u.pressure(x), 1e-7);
+      EXPECT_NEAR(s.pressure(-x), u.pressure(-x), 1e-7);
+    }
+    const Eigen::VectorXd xs = mp::testing::vec({0.0, 0.2, 0.5, 1.5});
+    const Eigen::VectorXd sx = u.surface_stress(xs);
+    for (Eigen::Index j = 0; j < xs.size(); ++j)
+      EXPECT_NEAR(s.surface_stress(xs(j)), sx(j), 1e-7) << kws[i] << " " << xs(j);
+  }
+}
+
+TEST(DampedContact, DepthStressMatchesUndampedSolver) {
+  const auto s = mp::solve_damped(damped(0.2, 1.0, 1e-9));
+  const auto u = mp::solve_contact(mp::testing::paper(0.2, 1.0));
+  // Direct Fourier integral (damped) against half-plane closed form plus
+  // remainder (undamped), down to near the surface.
+  const Eigen::VectorXd ys = mp::testing::vec({-1.0, -0.75, -0.5, -0.1, -0.01, -0.002});
+  const Eigen::VectorXd sx = u.depth_stress(ys);
+  for (Eigen::Index j = 0; j < ys.size(); ++j)
+    EXPECT_NEAR(s.stress_x(0.0, ys(j)), sx(j), 1e-8) << ys(j);
+  EXPECT_THROW((void)s.stress_x(0.0, -1e-4), std::invalid_argument);
+}
+
+// The field at the faces, in real space: traction-free top (tau = 0,
+// sigma_y -> -p), and at the bottom tau = 0 and the Kelvin-Voigt condition
+// sigma_y = kw v - damping sqrt(vstar) dv/dx, sub- and supercritical.
+TEST(DampedContact, FaceConditionsInRealSpace) {
+  for (const double vstar : {0.2, 0.65}) {
+    const auto p = damped(vstar, 1.0, 0.3);
+    const auto s = mp::solve_damped(p);
+    const double beta = p.damping * std::sqrt(vstar);
+    for (double x : {-1.5, -0.3, 0.0, 0.4, 1.0, 2.5}) {
+      const Eigen::Vector3d b = s.stresses(x, -1.0);
+      const double vb = s.bottom_displacement(x), sb = s.bottom_slope(x);
+      EXPECT_NEAR(p.load * b(1), p.kw * vb - beta * sb, 1e-9 * p.load) << vstar << " " << x;
+      EXPECT_NEAR(b(2), 0.0, 1e-9);
+    }
+    // Bottom slope against a central difference of the bottom displacement.
+    const double hstep = 1e-3;
+    EXPECT_NEAR(s.bottom_slope(0.3),
+                (s.bottom_displacement(0.3 + hstep) - s.bottom_displacement(0.3 - hstep)) /
+                    (2 * hstep),
+                1e-8);
+    // Towards the top, sigma_y -> -p and tau -> 0 linearly in y.
+    const double xc = s.centre();
+    const Eigen::Vector3d t2 = s.stresses(xc, -2e-3), t4 = s.stresses(xc, -4e-3);
+    EXPECT_NEAR(2.0 * t2(1) - t4(1), -s.pressure(xc), 1e-4 * s.pressure(xc));
+    EXPECT_NEAR(t2(2) / t4(2), 0.5, 0.02);
+  }
+}
+
+// The whole field (sigma_x, sigma_y, tau_xy) against the undamped solver.
+TEST(DampedContact, StressFieldMatchesUndampedSolver) {
+  const auto s = mp::solve_damped(damped(0.2, 1.0, 1e-9));
+  const auto u = mp::solve_contact(mp::testing::paper(0.2, 1.0));
+  const Eigen::VectorXd xs = mp::testing::vec({-0.6, 0.0, 0.2, 0.37, 1.0});
+  const Eigen::VectorXd ys = mp::testing::vec({-1.0, -0.5, -0.05, -0.002});
+  const auto f = u.stress_field(xs, ys);
+  for (Eigen::Index i = 0; i < ys.size(); ++i)
+    for (Eigen::Index j = 0; j < xs.size(); ++j) {
+      const Eigen::Vector3d t = s.stresses(xs(j), ys(i));
+      EXPECT_NEAR(t(0), f.sigma_x(i, j), 1e-8) << xs(j) << " " << ys(i);
+      EXPECT_NEAR(t(1), f.sigma_y(i, j), 1e-8) << xs(j) << " " << ys(i);
+      EXPECT_NEAR(t(2), f.tau_xy(i, j), 1e-8) << xs(j) << " " << ys(i);
+    }
+}
+
+TEST(DampedContact, NoEffectAtRest) {
+  const auto s = mp::solve_damped(damped(0.0, 1.0, 5.0));
+  EXPECT_NEAR(s.right(), 0.330419, 1e-6);  // the static study cited by the paper
+  EXPECT_NEAR(s.left(), -s.right(), 1e-12);
+  EXPECT_LT(std::fabs(s.drag()), 1e-14);
+}
+
+TEST(DampedContact, DragVanishesWithSpeed) {
+  double prev = std::numeric_limits<double>::infinity();
+  for (double v : {1e-2, 1e-4, 1e-6}) {
+    const double drag = mp::solve_damped(damped(v, 1.0, 1.0)).drag();
+    EXPECT_GT(drag, 0.0);
+    EXPECT_LT(drag, 0.2 * prev);  // drag ~ damping sqrt(vstar) at low speed
+    prev = drag;
+  }
+  EXPECT_LT(prev, 1e-6);
+}
+
+// drag P V = int c_w (V dv/dx(x, -h))^2 dx: the drag from the contact solution
+// against the dissipation from the layer's bottom response (Parseval).
+TEST(DampedContact, EnergyBalance) {
+  struct Case { double vstar, kw, damping; };
+  for (const Case c : {Case{0.2, 1.0, 0.1}, Case{0.2, 1.0, 1.0}, Case{0.2, 0.1, 3.0},
+                       Case{0.65, 1.0, 0.1}, Case{0.65, 1.0, 0.01}, Case{0.3, 0.01, 0.1},
+                       Case{0.8, 1.0, 0.01}}) {
+    const auto s = mp::solve_damped(damped(c.vstar, c.kw, c.damping));
+    EXPECT_GT(s.drag(), 0.0);
+    EXPECT_NEAR(s.dissipation() / s.drag(), 1.0, 1e-6) << c.vstar << " " << c.kw << " " << c.damping;
+    EXPECT_TRUE(s.valid()) << s.validity();
+    // The punch profile is followed on the contact: slope x/R.
+    for (double r : {-0.9, 0.0, 0.6})
+      EXPECT_NEAR(s.surface_slope(s.centre() + r * s.half_width()),
+                  (s.centre() + r * s.half_width()) / 100.0, 1e-9);
+  }
+}
+
+// As damping -> 0 above V*_cr the solution converges (limiting absorption),
+// at first order in the damping.
+TEST(DampedContact, LimitingAbsorptionAboveCriticalSpeed) {
+  ASSERT_GT(0.65, mp::critical_vstar(1.0, 0.2));
+  double r[4], l[4], dr[4];
+  const double ds[4] = {1e-3, 1e-4, 1e-5, 1e-6};
+  for (int i = 0; i < 4; ++i) {
+    const auto s = mp::solve_damped(damped(0.65, 1.0, ds[i]));
+    r[i] = s.right();
+    l[i] = s.left();
+    dr[i] = s.drag();
+  }
+  for (int i = 0; i < 2; ++i) {
+    const double ratio = (r[i + 1] - r[i]) / (r[i + 2] - r[i + 1]);
+    EXPECT_GT(ratio, 8.0);
+    EXPECT_LT(ratio, 12.0);
+    const double lratio = (l[i + 1] - l[i]) / (l[i + 2] - l[i + 1]);
+    EXPECT_GT(lratio, 8.0);
+    EXPECT_LT(lratio, 12.0);
+  }
+  EXPECT_LT(std::fabs(r[3] - r[2]), 1e-5);
+  EXPECT_LT(std::fabs(dr[3] - dr[2]) / dr[3], 1e-5);
+  EXPECT_GT(l[3], 0.0);  // the whole contact lies ahead of the punch's lowest point
+}
+
+// Above V*_cr lambda(w) is not monotone: between the local maximum and
+// minimum of lambda(w) three contacts carry the same load; all are reported.
+TEST(DampedContact, MultipleSteadyStatesAreReported) {
+  EXPECT_TRUE(mp::solve_damped(damped(0.65, 1.0, 0.01)).other_half_widths().empty());
+  auto p = damped(0.65, 1.0, 0.01);
+  p.load = 0.0025;  // lambda = 0.25, inside the fold (0.21, 0.31)
+  const auto s = mp::solve_damped(p);
+  ASSERT_EQ(s.other_half_widths().size(), 2u);
+  EXPECT_NEAR(s.half_width(), 0.459, 0.01);
+  EXPECT_NEAR(s.other_half_widths()[0], 0.728, 0.02);
+  EXPECT_NEAR(s.other_half_widths()[1], 1.120, 0.02);
+  EXPECT_NE(s.validity().find("not unique"), std::string::npos);
+}
+
+TEST(DampedContact, RayleighSpeedIsRefused) {
+  const double vr = mp::rayleigh_vstar(0.2);
+  EXPECT_THROW(mp::solve_damped(damped(vr, 1.0, 0.1)), mp::SupercriticalSpeedError);
+  EXPECT_THROW(mp::solve_damped(damped(0.9, 1.0, 0.1)), mp::SupercriticalSpeedError);
+  EXPECT_NO_THROW(mp::solve_damped(damped(0.8, 1.0, 0.1)));
+}
+
+TEST(DampedContact, ValidatesDamping) {
+  for (double d : {0.0, -1.0, std::nan(""), std::numeric_limits<double>::infinity()}) {
+    try {
+      (void)mp::solve_damped(damped(0.2, 1.0, d));
+      ADD_FAILURE() << d;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("damping"), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(DampedContact, HardCases) {
+  // Large damping: the dashpots lock the base; drag small, energy balanced.
+  const auto big = mp::solve_damped(damped(0.6, 1.0, 1e3));
+  EXPECT_NEAR(big.dissipation() / big.drag(), 1.0, 1e-6);
+  // Tiny damping a hair below V*_cr: the undamped width.
+  const double vcr = mp::critical_vstar(1.0, 0.2);
+  const auto near = mp::solve_damped(damped(vcr * (1.0 - 1e-6), 1.0, 1e-8));
+  const auto und = mp::solve_contact(mp::testing::paper(vcr * (1.0 - 1e-6), 1.0));
+  EXPECT_NEAR(near.right(), und.a(), 1e-5);
+  EXPECT_NEAR(near.left(), -und.a(), 1e-5);
+  // Supercritical on a very soft foundation with a wide contact (a + b ~ 5h).
+  auto p = damped(0.3, 0.01, 0.1);
+  p.load = 0.02;
+  const auto wide = mp::solve_damped(p);
+  EXPECT_GT(wide.half_width(), 2.0);
+  EXPECT_NEAR(wide.dissipation() / wide.drag(), 1.0, 1e-6);
+  EXPECT_TRUE(wide.valid());
+  // Dashpots alone (kw -> 0) far above V*_cr: a bounded steady state (the
+  // wake stays sunk); the limit is reached smoothly and energy balances.
+  const auto d12 = mp::solve_damped(damped(0.3, 1e-12, 1.0));
+  const auto d6 = mp::solve_damped(damped(0.3, 1e-6, 1.0));
+  EXPECT_NEAR(d12.right(), d6.right(), 1e-6);
+  EXPECT_NEAR(d12.left(), d6.left(), 1e-6);
+  EXPECT_NEAR(d12.dissipation() / d12.drag(), 1.0, 1e-6);
+  // Lighter damping there separates the contact: flagged, never silent.
+  p.damping = 0.01;
+  EXPECT_THROW(mp::solve_damped(p), mp::UnphysicalContactError);
+  p.allow_unphysical = true;
+  const auto bad = mp::solve_damped(p);
+  EXPECT_FALSE(bad.valid());
+  EXPECT_LT(bad.min_pressure(), 0.0);
+}
