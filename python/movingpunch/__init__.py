@@ -35,6 +35,7 @@ except ImportError as exc:  # pragma: no cover - depends on how it was installed
 from movingpunch.fields import StressField, StressPeaks
 from movingpunch.scene import Scene, SceneError, SceneResult, bundled_scenes
 from movingpunch.solver import (
+    PRESETS,
     Solution,
     clear_kernel_cache,
     critical_vstar,
@@ -53,6 +54,7 @@ except PackageNotFoundError:  # pragma: no cover - running from a source tree
     __version__ = _core.__version__
 
 __all__ = [
+    "PRESETS",
     "ConvergenceError",
     "InvalidParameterError",
     "MovingPunchError",

@@ -9,6 +9,9 @@ serves it in a browser through textual-serve.
 ``movingpunch run SCENE``, ``movingpunch scenes`` and ``movingpunch scene show
 NAME`` run, list and print scenes (``movingpunch.scene``, docs/scenes.md).
 
+``movingpunch accuracy [SCENE]`` shows what accuracy costs in time
+(``movingpunch.accuracy``, docs/performance.md).
+
 Bad arguments and every MovingPunchError/ValueError end in one line
 ``movingpunch: error: ...`` on stderr and exit status 2, never a traceback.
 """
@@ -28,6 +31,7 @@ from typing import Any, NoReturn
 from movingpunch.errors import MovingPunchError
 from movingpunch.fields import StressPeaks
 from movingpunch.solver import (
+    PRESETS,
     Solution,
     critical_vstar,
     critical_wavenumber,
@@ -66,6 +70,18 @@ def _number(what: str) -> Callable[[str], float]:
             ) from None
 
     return parse
+
+
+_PRESETS_HELP = ", ".join(f"{name} ({tol:.0e})" for name, tol in PRESETS.items())
+
+
+def _tol(text: str) -> float | str:
+    """argparse type of --tol: a number or a preset name (checked by the
+    solver, whose message names the range and the presets)."""
+    try:
+        return float(text)
+    except ValueError:
+        return text
 
 
 def _build_parser() -> argparse.ArgumentParser:
@@ -112,9 +128,19 @@ def _build_parser() -> argparse.ArgumentParser:
     )
     solve_p.add_argument(
         "--tol",
-        type=_number("1e-14 <= tol <= 1e-2"),
+        type=_tol,
         default=1e-8,
-        help="relative tolerance on a/h in [1e-14, 1e-2] (default 1e-8)",
+        help="relative tolerance on a/h in [1e-14, 1e-2], or a preset: "
+        + _PRESETS_HELP
+        + " (default 1e-8)",
+    )
+    solve_p.add_argument(
+        "--damping",
+        type=_number("damping >= 0"),
+        default=0.0,
+        help="dashpots in the foundation, damping = c_w c_T/mu >= 0 (default 0: "
+        "the paper's model); > 0 gives the asymmetric contact (-b, a) and the "
+        "drag, at any speed below the Rayleigh speed (docs/damped.md)",
     )
     solve_p.add_argument(
         "--allow-unphysical",
@@ -184,6 +210,7 @@ def _build_parser() -> argparse.ArgumentParser:
     serve_p.add_argument("--port", type=int, default=8000, help="default 8000")
     serve_p.set_defaults(handler=_cmd_serve)
     _add_scene_commands(sub)
+    _add_accuracy_command(sub)
     return parser
 
 
@@ -210,6 +237,8 @@ def _json_number(value: float) -> float | str:
 
 
 def _cmd_solve(args: argparse.Namespace) -> int:
+    if args.damping != 0.0:
+        return _cmd_solve_damped(args)
     s: Solution = solve(
         vstar=args.vstar,
         kw=args.kw,
@@ -245,6 +274,7 @@ def _cmd_solve(args: argparse.Namespace) -> int:
         ("collocation N", _fmt(s.collocation_n)),
         ("iterations", _fmt(s.iterations)),
         ("error estimate (a/h)", f"{s.error_estimate:.2e}"),
+        ("error bound (σx/(P/h))", f"{s.stress_error_estimate:.2e}"),
         ("solve time", f"{s.elapsed * 1e3:.1f} ms"),
         ("valid", "yes" if s.valid else "NO"),
         ("validity", s.validity or "-"),
@@ -253,6 +283,55 @@ def _cmd_solve(args: argparse.Namespace) -> int:
     if peaks is not None:
         sections.append(("Stress sigma_x/(P/h)", _stress_rows(peaks)))
     print(_tables(*sections))
+    return 0
+
+
+def _cmd_solve_damped(args: argparse.Namespace) -> int:
+    """``solve --damping D``: the damped foundation (movingpunch.damped)."""
+    from movingpunch.damped import solve_damped
+
+    if args.stress:
+        _fail(
+            "--stress is not available with --damping (use the Python API's "
+            "DampedSolution.surface_stress and depth_stress)"
+        )
+    d = solve_damped(
+        vstar=args.vstar,
+        kw=args.kw,
+        radius=args.radius,
+        load=args.load,
+        nu=args.nu,
+        damping=args.damping,
+        tol=args.tol,
+        allow_unphysical=args.allow_unphysical,
+    )
+    if args.json:
+        print(json.dumps(d.to_dict(), indent=2))
+        return 0
+    inputs = [
+        ("V* = ρV²/μ", _fmt(d.vstar)),
+        ("k_w h/μ", _fmt(d.kw)),
+        ("damping c_w c_T/μ", _fmt(d.damping)),
+        ("R/h", _fmt(d.radius)),
+        ("P/(μh)", _fmt(d.load)),
+        ("ν", _fmt(d.nu)),
+        ("tolerance", _fmt(d.tol)),
+    ]
+    results = [
+        ("contact (-b/h, a/h)", f"({_fmt(d.contact_interval[0])}, {_fmt(d.a)})"),
+        ("drag (∫p x/R dx)/P", _fmt(d.drag)),
+        ("dissipation/(P V)", _fmt(d.dissipation)),
+        ("V*_cr (undamped)", _fmt(d.critical_vstar)),
+        ("V*_R", _fmt(d.rayleigh_vstar)),
+        ("φ1", _fmt(d.phi1)),
+        ("collocation N", _fmt(d.collocation_n)),
+        ("iterations", _fmt(d.iterations)),
+        ("error estimate (ends)", f"{d.error_estimate:.2e}"),
+        ("solve time", f"{d.elapsed * 1e3:.1f} ms"),
+        ("valid", "yes" if d.valid else "NO"),
+        ("validity", d.validity or "-"),
+    ]
+    print(_tables(("Inputs", inputs), ("Results", results)))
     return 0
 
 
@@ -480,6 +559,87 @@ def _cmd_scene_show(args: argparse.Namespace) -> int:
 
     text = bundled_scene_text(args.name)
     print(text if text is not None else load_scene(args.name).to_toml(), end="")
+    return 0
+
+
+# --- movingpunch accuracy -----------------------------------------------------
+
+
+def _add_accuracy_command(sub: Any) -> None:
+    acc_p = sub.add_parser(
+        "accuracy",
+        help="what accuracy costs in time: errors and times for tol 1e-2 ... 1e-12",
+        description="For tol = 1e-2, 1e-3, ..., 1e-12 run a case or a scene (cold "
+        "kernel cache, then warm), compare a/h, p0 and the sigma_x peaks with a "
+        "reference at a fixed large N and tol 1e-14, and print the table, the "
+        "time per stage and a log-log plot of error against time. Without "
+        "SCENE: the paper's Fig. 4 case (V* 0.2, kw 1, R/h 100, load 0.002, "
+        "nu 0.2), solve + sigma_x peaks.",
+    )
+    acc_p.add_argument(
+        "scene",
+        nargs="?",
+        default=None,
+        help="a scene file or bundled name (table1, fig2 ... fig6); default: "
+        "the Fig. 4 case",
+    )
+    acc_p.add_argument(
+        "--tols",
+        type=_tol_list,
+        default=None,
+        metavar="T1,T2,...",
+        help="the ladder of tolerances (default 1e-2,1e-3,...,1e-12; presets allowed)",
+    )
+    acc_p.add_argument(
+        "--out", metavar="DIR", default=None, help="write <name>-accuracy.csv into DIR"
+    )
+    plot = acc_p.add_mutually_exclusive_group()
+    plot.add_argument(
+        "--plot",
+        action="store_true",
+        default=None,
+        help="log-log plot of error against time (default when stdout is a terminal)",
+    )
+    plot.add_argument("--no-plot", dest="plot", action="store_false", help="no plot")
+    acc_p.set_defaults(handler=_cmd_accuracy)
+
+
+def _tol_list(text: str) -> list[float]:
+    from movingpunch.solver import resolve_tol
+
+    parts = [p for p in text.replace(";", ",").split(",") if p.strip()]
+    if not parts:
+        raise argparse.ArgumentTypeError("give one or more tolerances")
+    try:
+        return [resolve_tol(_tol(p.strip())) for p in parts]
+    except MovingPunchError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+
+
+def _cmd_accuracy(args: argparse.Namespace) -> int:
+    from pathlib import Path
+
+    from movingpunch import accuracy
+
+    bar = _ProgressBar() if sys.stderr.isatty() else None
+    try:
+        report = accuracy.accuracy_report(
+            args.scene, args.tols or accuracy.LADDER, progress=bar
+        )
+    finally:
+        if bar is not None:
+            bar.close()
+    assert report is not None  # never cancelled here
+    print(accuracy.format_table(report))
+    show_plot = args.plot if args.plot is not None else sys.stdout.isatty()
+    if show_plot:
+        print()
+        print(accuracy.ascii_plot(report, color=sys.stdout.isatty()))
+    if args.out is not None:
+        path = accuracy.write_csv(report, Path(args.out))
+        print()
+        print("Files")
+        print(f"  {path}")
     return 0
 
 

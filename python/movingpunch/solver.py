@@ -10,7 +10,9 @@ kw        k_w h / mu      1e-12 <= kw <= inf (inf: smooth rigid base)
 radius    R / h           > 0, finite
 load      P / (mu h)      > 0, finite (the paper's mu/(P/h) = 1/load)
 nu        Poisson's ratio 0 <= nu < 0.5
-tol       tolerance       1e-14 <= tol <= 1e-2 (relative, on a/h)
+tol       tolerance       1e-14 <= tol <= 1e-2 (relative, on a/h), or a
+                          preset: "draft" (1e-4), "default" (1e-8),
+                          "precise" (1e-12) (see PRESETS)
 ========  ==============  =====================================
 
 Inputs are checked here first so that messages name the parameter and its
@@ -19,12 +21,13 @@ range; the core checks them again. Computations release the GIL.
 
 from __future__ import annotations
 
+import functools
 import math
 import numbers
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, fields
 from types import MappingProxyType
-from typing import Any, Literal, overload
+from typing import TYPE_CHECKING, Any, Literal, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -33,7 +36,11 @@ from movingpunch import _core
 from movingpunch.errors import InvalidParameterError
 from movingpunch.fields import StressField, StressPeaks, derived_stresses
 
+if TYPE_CHECKING:
+    from movingpunch.damped import DampedSolution
+
 __all__ = [
+    "PRESETS",
     "Solution",
     "clear_kernel_cache",
     "critical_vstar",
@@ -62,6 +69,17 @@ _RANGES: dict[str, str] = {
 
 _TOL_MIN = 1e-14
 _TOL_MAX = 1e-2
+
+PRESETS: Mapping[str, float] = MappingProxyType(
+    {"draft": 1e-4, "default": 1e-8, "precise": 1e-12}
+)
+"""Named accuracies: preset name -> tol (relative tolerance on a/h). ``tol``
+accepts a name wherever it accepts a number (solve, scene files, the CLI's
+``--tol``, the terminal UI)."""
+
+
+def _presets_text() -> str:
+    return ", ".join(f"{name} = {tol:.0e}" for name, tol in PRESETS.items())
 
 
 def _real(name: str, value: object) -> float:
@@ -125,10 +143,33 @@ def _check_nu(value: object) -> float:
 
 
 def _check_tol(value: object) -> float:
-    x = _finite("tol", value)
+    """A tolerance: a number in [1e-14, 1e-2] or the name of a preset."""
+    if isinstance(value, str):
+        key = value.strip().lower()
+        if key in PRESETS:
+            return PRESETS[key]
+        raise InvalidParameterError(
+            f"tol must be a number with {_RANGES['tol']} or a preset name "
+            f"({_presets_text()}), got {value!r}"
+        )
+    try:
+        x = _finite("tol", value)
+    except InvalidParameterError as exc:
+        raise InvalidParameterError(
+            f"{exc}; or a preset name ({_presets_text()})"
+        ) from None
     if not _TOL_MIN <= x <= _TOL_MAX:
-        raise _fail("tol", x)
+        raise InvalidParameterError(
+            f"tol must satisfy {_RANGES['tol']} or be a preset name "
+            f"({_presets_text()}), got {x!r}"
+        )
     return x
+
+
+def resolve_tol(tol: float | str) -> float:
+    """``tol`` as a number: a preset's value, or the number checked against
+    1e-14 <= tol <= 1e-2. Raises InvalidParameterError naming the presets."""
+    return _check_tol(tol)
 
 
 def _check_size(value: object) -> int:
@@ -288,6 +329,17 @@ class Solution:
     ``checks`` (indentation and validity). They sum to ``elapsed`` up to the
     cost of reading the clock."""
     _impl: _core.ContactSolution = field(repr=False, compare=False)
+
+    @functools.cached_property
+    def stress_error_estimate(self) -> float:
+        """Estimated bound on the absolute error of sigma_x/(P/h): of the
+        peaks (``stress_peaks``) and of the surface, bottom and depth values at
+        points more than 1e-3 a from the contact edge |x| = a (where sigma_x
+        has a square-root cusp). From the geometric tail of the pressure's
+        Chebyshev series, the a/h error carried into p and the kernel
+        quadrature's tolerance, amplified by the stress response
+        (docs/performance.md). Computed on first access."""
+        return _stress_error_estimate(self._impl, self.vstar, self.nu, self.tol)
 
     @property
     def mu_over_load(self) -> float:
@@ -450,11 +502,43 @@ class Solution:
 
     def to_dict(self) -> dict[str, object]:
         """Every public field, JSON-safe (non-finite floats become "inf" etc.)."""
-        return {
+        data = {
             f.name: _json_safe(getattr(self, f.name))
             for f in fields(self)
             if not f.name.startswith("_")
         }
+        data["stress_error_estimate"] = self.stress_error_estimate
+        return data
+
+
+@overload
+def solve(
+    *,
+    vstar: float,
+    kw: float,
+    radius: float,
+    load: float,
+    nu: float = ...,
+    tol: float | str = ...,
+    allow_unphysical: bool = ...,
+    n: int | None = ...,
+    damping: Literal[0] = ...,
+) -> Solution: ...
+
+
+@overload
+def solve(
+    *,
+    vstar: float,
+    kw: float,
+    radius: float,
+    load: float,
+    nu: float = ...,
+    tol: float | str = ...,
+    allow_unphysical: bool = ...,
+    n: int | None = ...,
+    damping: float,
+) -> Solution | DampedSolution: ...
 
 
 def solve(
@@ -464,10 +548,11 @@ def solve(
     radius: float,
     load: float,
     nu: float = 0.2,
-    tol: float = 1e-8,
+    tol: float | str = 1e-8,
     allow_unphysical: bool = False,
     n: int | None = None,
-) -> Solution:
+    damping: float = 0.0,
+) -> Solution | DampedSolution:
     """Solves the contact problem of a rigid cylinder sliding over the layer.
 
     Parameters are dimensionless (see the module docstring). Raises
@@ -476,10 +561,34 @@ def solve(
     unless ``allow_unphysical``; then the solution comes back with
     ``valid=False``) and ConvergenceError.
 
+    ``tol`` is the relative tolerance on a/h (1e-14 to 1e-2) or a preset
+    name from ``PRESETS``: "draft" (1e-4), "default" (1e-8), "precise"
+    (1e-12). It drives the collocation size N, the root find on a and the
+    k1 kernel quadrature (to 1e-2 tol), which the stresses also use.
+
     ``n`` fixes the number of collocation points (even, 2 to 4096) instead of
     refining N until a/h meets ``tol``; the error estimate then compares with
     the solve at about half the size.
+
+    ``damping`` = c_w c_T/mu >= 0 adds dashpots to the springs (a Kelvin-Voigt
+    foundation, docs/damped.md). 0 (the default) is the paper's model and
+    returns a Solution; > 0 returns a ``movingpunch.damped.DampedSolution``
+    (asymmetric contact, drag; speeds up to the Rayleigh speed).
     """
+    from movingpunch.damped import check_damping, solve_damped
+
+    if check_damping(damping) > 0:
+        return solve_damped(
+            vstar=vstar,
+            kw=kw,
+            radius=radius,
+            load=load,
+            nu=nu,
+            damping=damping,
+            tol=tol,
+            allow_unphysical=allow_unphysical,
+            n=n,
+        )
     inputs = {
         "vstar": _check_vstar(vstar),
         "kw": _check_kw(kw),
@@ -511,6 +620,55 @@ def solve(
         stage_times=MappingProxyType(dict(impl.stage_seconds)),
         _impl=impl,
     )
+
+
+_EPS = float(np.finfo(np.float64).eps)
+
+
+_EDGE = 1e-3
+"""Relative distance from the contact edge beyond which
+``stress_error_estimate`` holds pointwise (sigma_x has a square-root cusp at
+|x| = a, so an error da in a moves it there by about p0 sqrt(2 da/a))."""
+
+
+def _stress_error_estimate(
+    impl: _core.ContactSolution, vstar: float, nu: float, tol: float
+) -> float:
+    """A bound on |error| of sigma_x/(P/h) (see Solution.stress_error_estimate).
+
+    p(a r)/(P/h) = sqrt(1 - r^2) sum_k b_k U_k(r) with |sqrt(1 - r^2) U_k| <= 1,
+    so an error db_k in the coefficients moves p by at most sum |db_k|. The
+    series is truncated at N terms and its (even) coefficients decay
+    geometrically: the omitted tail is about b rho / (1 - rho), b the larger
+    of the last two kept coefficients and rho the slower of the last two
+    two-step decay rates (robust to one coefficient near a zero crossing),
+    counted twice since collocation also aliases the tail onto the kept ones.
+    An error da in a/h changes p by about p0 da/a, and by p0 (da/a)/sqrt(2 d)
+    at a relative distance d from the edge (d >= 1e-3 here). The kernel
+    quadrature meets 1e-2 tol relative to p. Every stress is a linear map of
+    p (on the surface sigma_x = -phi2 p + a smoother layer term), so the
+    pressure error is multiplied by 2 (1 + phi2); a round-off floor of
+    64 eps N sum|b_k| is added.
+    """
+    c = np.abs(np.asarray(impl.g_coefficients, dtype=np.float64)[::2])
+    total = float(c.sum())
+    if len(c) >= 4:
+        last = float(max(c[-1], c[-2]))
+        rates = [math.sqrt(float(c[k] / c[k - 2])) for k in (-1, -2) if c[k - 2] > 0.0]
+        rho = min(max([0.0, *rates]), 0.9)
+        tail = 2.0 * last * rho / (1.0 - rho)
+    else:  # too few terms to see a decay: the last one is the tail
+        tail = float(c[-1])
+    p0 = abs(impl.p0)
+    width = p0 * (impl.error_estimate / impl.a) * (1.0 + 1.0 / math.sqrt(2.0 * _EDGE))
+    kernel = 1e-2 * tol * max(p0, total)
+    roundoff = 64.0 * _EPS * len(impl.g_coefficients) * total
+    try:
+        phi2_value = _core.phi2(vstar, nu)
+    except ValueError:  # pragma: no cover - vstar < V*_cr <= V*_R always
+        phi2_value = 1.0
+    gain = 2.0 * (1.0 + abs(phi2_value))
+    return gain * (tail + width + kernel + roundoff)
 
 
 def kernel_cache_info() -> dict[str, int]:

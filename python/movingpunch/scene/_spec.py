@@ -21,6 +21,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from movingpunch.errors import InvalidParameterError
+from movingpunch.solver import PRESETS
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -110,6 +111,9 @@ _MAX_SWEEP = 100_000
 _MAX_VARY = 20
 _TOL_MIN, _TOL_MAX = 1e-14, 1e-2
 _DEFAULT_TOL = 1e-8
+_TOL_ALLOWED = "1e-14 <= tol <= 1e-2, or a preset: " + ", ".join(
+    f'"{name}" ({value:.0e})' for name, value in PRESETS.items()
+)
 _DEFAULT_NU = 0.2
 
 
@@ -276,6 +280,18 @@ class _Checker:
             return float(value)
         except OverflowError:
             raise self.fail(key, "is too large for a float", allowed) from None
+
+    def tol(self, key: str, value: object) -> float:
+        """A tolerance: a number in [1e-14, 1e-2] or a preset name."""
+        if isinstance(value, str):
+            preset = PRESETS.get(value.strip().lower())
+            if preset is None:
+                raise self.fail(key, f"unknown preset {value!r}", _TOL_ALLOWED)
+            return preset
+        x = self.number(key, value, _TOL_ALLOWED)
+        if not (math.isfinite(x) and _TOL_MIN <= x <= _TOL_MAX):
+            raise self.fail(key, f"out of range: {_show(x)}", _TOL_ALLOWED)
+        return x
 
     def param(self, key: str, name: str, value: object) -> float:
         allowed = _PARAM_ALLOWED[name]
@@ -541,7 +557,7 @@ def _from_mapping(data: Mapping[str, Any], source: str) -> Scene:
     if "accuracy" in data:
         acc = c.table("accuracy", data["accuracy"], ("tol",))
         if "tol" in acc:
-            tol = c.number("accuracy.tol", acc["tol"], "1e-14 <= tol <= 1e-2")
+            tol = c.tol("accuracy.tol", acc["tol"])
 
     outputs: dict[str, OutputSpec] = {}
     if "outputs" in data:
@@ -708,11 +724,7 @@ def _validate(scene: Scene, source: str) -> None:
         params[name] = c.param(f"params.{name}", name, scene.params[name])
     object.__setattr__(scene, "params", params)
 
-    tol = c.number("accuracy.tol", scene.tol, "1e-14 <= tol <= 1e-2")
-    if not (math.isfinite(tol) and _TOL_MIN <= tol <= _TOL_MAX):
-        raise c.fail(
-            "accuracy.tol", f"out of range: {_show(tol)}", "1e-14 <= tol <= 1e-2"
-        )
+    tol = c.tol("accuracy.tol", scene.tol)
     object.__setattr__(scene, "tol", tol)
     c.string("name", scene.name)
     c.string("description", scene.description)

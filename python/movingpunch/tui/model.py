@@ -20,6 +20,7 @@ import numpy as np
 import numpy.typing as npt
 
 from movingpunch import solver
+from movingpunch.accuracy import LADDER, AccuracyReport, accuracy_report
 from movingpunch.errors import InvalidParameterError, MovingPunchError
 from movingpunch.fields import StressPeaks
 from movingpunch.solver import Solution, critical_vstar, rayleigh_vstar, solve
@@ -32,8 +33,15 @@ PARAM_NAMES: tuple[str, ...] = ("vstar", "kw", "radius", "load", "nu", "tol")
 SCENE_PARAMS: tuple[str, ...] = ("vstar", "kw", "radius", "load", "nu")
 """The physical parameters (a scene's ``params``); ``tol`` is separate."""
 
-TabName = Literal["pressure", "surface", "depth", "sweep", "field"]
-TABS: tuple[TabName, ...] = ("pressure", "surface", "depth", "sweep", "field")
+TabName = Literal["pressure", "surface", "depth", "sweep", "field", "accuracy"]
+TABS: tuple[TabName, ...] = (
+    "pressure",
+    "surface",
+    "depth",
+    "sweep",
+    "field",
+    "accuracy",
+)
 
 FieldQuantity = Literal["sigma_x", "von_mises"]
 
@@ -202,7 +210,16 @@ class FieldMap:
     a: float
 
 
-TabData = Curves | FieldMap
+@dataclass(frozen=True, eq=False)
+class AccuracyTable:
+    """The Accuracy tab: errors and times for tol 1e-2 ... 1e-12 at the
+    current parameters (``movingpunch.accuracy``)."""
+
+    report: AccuracyReport
+    tab: TabName = "accuracy"
+
+
+TabData = Curves | FieldMap | AccuracyTable
 
 
 @dataclass(frozen=True)
@@ -268,6 +285,11 @@ class Cache:
             while len(self._items) > self._size:
                 self._items.popitem(last=False)
         return value
+
+    def peek(self, key: tuple[object, ...]) -> object | None:
+        """The cached value of ``key``, or None (nothing is computed)."""
+        with self._lock:
+            return self._items.get(key)
 
     def kinds(self) -> set[tuple[str, Params]]:
         """(kind, params) of every cached item whose key has params second."""
@@ -365,7 +387,12 @@ def compute(
     if stop():
         return None
     data: TabData
-    if request.tab == "field":
+    if request.tab == "accuracy":
+        table = _accuracy(cache, request.params, report, stop)
+        if table is None:
+            return None
+        data = table
+    elif request.tab == "field":
         data = _field(cache, request.params, request.quantity)
     elif request.tab == "sweep":
         out = _sweep(cache, request, solved, report, stop)
@@ -506,11 +533,35 @@ def _field(cache: Cache, params: Params, quantity: FieldQuantity) -> FieldMap:
     )
 
 
+def _accuracy(
+    cache: Cache, params: Params, report: Progress, stop: Callable[[], bool]
+) -> AccuracyTable | None:
+    """The accuracy ladder of ``params`` (solve + sigma_x peaks per tol),
+    computed once per parameter set (its tol does not matter: the ladder runs
+    every tol). Each rung clears the core's kernel cache for a cold time."""
+    key = ("accuracy", replace(params, tol=PAPER_FIG4.tol))
+    known = cache.peek(key)
+    if isinstance(known, AccuracyTable):
+        return known
+    out = accuracy_report(params.physical(), LADDER, progress=report, cancelled=stop)
+    if out is None:
+        return None
+    table = cache.get_or_make(key, lambda: AccuracyTable(out))
+    assert isinstance(table, AccuracyTable)
+    return table
+
+
 def to_csv(data: TabData, source: Params) -> str:
     """The tab's data as CSV that ``numpy.loadtxt(..., delimiter=",")``
     reads back: ``#`` comment lines, then numbers only."""
     lines = [f"# movingpunch {source.label()} tol={fmt(source.tol)}"]
-    if isinstance(data, Curves):
+    if isinstance(data, AccuracyTable):
+        lines.append(f"# accuracy against time; reference {data.report.reference}")
+        table = data.report.columns()
+        lines.append("# " + ", ".join(table))
+        for row in np.column_stack(list(table.values())):
+            lines.append(",".join(_csv_number(v) for v in row))
+    elif isinstance(data, Curves):
         lines.append(f"# {data.title}")
         names = [data.grid_label] + [
             f"{data.value_label} [{s.label}]" for s in data.series

@@ -23,7 +23,7 @@ Keys (letters act outside the inputs; Escape leaves an input)
   c                 clear the pins and the overlay
   v                 overlay: one parameter at several values
   ] / [             next / previous plot tab
-  1 ... 5           go to a plot tab
+  1 ... 6           go to a tab (6: Accuracy, errors and times per tol)
   m                 field map: σx or von Mises
   w                 a/h sweep: against P/(μh) or R/h
   F2 ... F6         the paper's Figs 2-6 (bundled scenes)

@@ -40,6 +40,7 @@ from movingpunch.tui.messages import Computed, Progressed
 from movingpunch.tui.model import (
     PARAM_NAMES,
     TABS,
+    AccuracyTable,
     Cache,
     FieldMap,
     FieldQuantity,
@@ -53,7 +54,13 @@ from movingpunch.tui.model import (
 )
 from movingpunch.tui.screens.help import HelpScreen
 from movingpunch.tui.screens.prompts import OverlayPrompt, PathPrompt
-from movingpunch.tui.widgets import CurvePlot, Gauge, ParamsPanel, StressMap
+from movingpunch.tui.widgets import (
+    AccuracyView,
+    CurvePlot,
+    Gauge,
+    ParamsPanel,
+    StressMap,
+)
 
 TAB_TITLES: dict[TabName, str] = {
     "pressure": "p(x)",
@@ -61,6 +68,7 @@ TAB_TITLES: dict[TabName, str] = {
     "depth": "σx(0,y)",
     "sweep": "a/h sweep",
     "field": "field",
+    "accuracy": "Accuracy",
 }
 
 FIGURE_TABS: dict[str, TabName] = {
@@ -148,6 +156,8 @@ class MainScreen(Screen[None]):
                     with TabPane(TAB_TITLES[tab], id=f"tab-{tab}"):
                         if tab == "field":
                             yield StressMap(id="plot-field")
+                        elif tab == "accuracy":
+                            yield AccuracyView(id="plot-accuracy")
                         else:
                             yield CurvePlot(id=f"plot-{tab}")
         with Vertical(id="bottom"):
@@ -291,7 +301,9 @@ class MainScreen(Screen[None]):
         )
         self.query_one("#summary", Static).update(self._summary_text(result))
         data = result.data
-        if isinstance(data, FieldMap):
+        if isinstance(data, AccuracyTable):
+            self.query_one("#plot-accuracy", AccuracyView).table = data
+        elif isinstance(data, FieldMap):
             self.query_one("#plot-field", StressMap).field = data
         else:
             self.query_one(f"#plot-{data.tab}", CurvePlot).curves = data

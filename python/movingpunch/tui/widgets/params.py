@@ -26,7 +26,7 @@ TOOLTIPS: dict[str, str] = {
     "radius": "punch radius R/h > 0",
     "load": "load P/(μh) > 0; the paper's μ/(P/h) = 1/load",
     "nu": "Poisson's ratio, 0 <= ν < 0.5",
-    "tol": "relative tolerance on a/h, 1e-14 to 1e-2",
+    "tol": "relative tolerance on a/h, 1e-14 to 1e-2, or draft, default, precise",
 }
 
 WARN_FRACTION = 0.95

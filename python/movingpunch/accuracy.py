@@ -1,0 +1,560 @@
+"""What accuracy costs in time: a ladder of tolerances against a tight reference.
+
+For each tol of a ladder (1e-2, 1e-3, ..., 1e-12) a case (one parameter set:
+solve + the sigma_x peaks) or a scene (``Scene.run`` with that tol, then the
+sigma_x peaks of its base configurations) is computed with a cold kernel
+cache and again warm. Its a/h, p0 and sigma_x peaks are compared with a
+reference computed differently: a fixed, much larger collocation size
+(N = max(64, 4 N_auto), N_auto the size the automatic refinement picks at tol
+1e-14) at tol 1e-14, so the reference does not share the refinement's
+stopping rule. ``movingpunch accuracy`` prints the table, a log-log plot and
+writes CSV; the terminal UI's Accuracy tab shows the same.
+
+Nothing here imports Textual.
+"""
+
+from __future__ import annotations
+
+import importlib
+import math
+import time
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from movingpunch.errors import InvalidParameterError, MovingPunchError
+from movingpunch.fields import StressPeaks
+from movingpunch.scene._export import atomic_write
+from movingpunch.scene._run import CORE_STAGES
+from movingpunch.scene._spec import OutputSpec, Scene, load_scene
+from movingpunch.solver import Solution, clear_kernel_cache, solve
+
+__all__ = [
+    "FIG4_CASE",
+    "LADDER",
+    "AccuracyReport",
+    "Rung",
+    "accuracy_report",
+    "ascii_plot",
+    "format_table",
+    "write_csv",
+]
+
+FloatArray = npt.NDArray[np.float64]
+
+LADDER: tuple[float, ...] = tuple(10.0**-k for k in range(2, 13))
+"""The default tolerances: 1e-2, 1e-3, ..., 1e-12."""
+
+FIG4_CASE: Mapping[str, float] = {
+    "vstar": 0.2,
+    "kw": 1.0,
+    "radius": 100.0,
+    "load": 0.002,
+    "nu": 0.2,
+}
+"""The paper's Fig. 4 case (V* 0.2, kw h/mu 1, R/h 100, mu/(P/h) 500, nu 0.2)."""
+
+_REF_TOLS = (1e-14, 1e-13, 1e-12)
+_REF_MIN_N = 64
+_PARAMS = ("vstar", "kw", "radius", "load", "nu")
+
+Point = tuple[float, float, float, float, float]
+Progress = Callable[[int, int], None]
+
+
+@dataclass(frozen=True)
+class Rung:
+    """One tolerance of the ladder: estimated and actual errors (absolute,
+    the largest over the case's points) and the time per stage."""
+
+    tol: float
+    collocation_n: int
+    """Largest collocation N over the points."""
+    kernel_tables: int
+    """k1 kernel tables built in the cold run (the kernel's quadrature nodes
+    are not exposed by the core; this counts the tables)."""
+    error_estimate: float
+    """Largest reported a/h error estimate (Solution.error_estimate)."""
+    error_a: float
+    """Largest actual |a/h - reference|."""
+    error_p0: float
+    """Largest actual |p0 - reference| (P/h)."""
+    stress_error_estimate: float
+    """Largest reported sigma_x error bound (Solution.stress_error_estimate)."""
+    error_top_tensile: float
+    """Actual error of the top-surface tensile sigma_x peak (P/h)."""
+    error_bottom_tensile: float
+    """Actual error of the bottom tensile sigma_x peak (P/h)."""
+    bounded: bool
+    """Every point's actual a/h error is within its own estimate, and every
+    peak's error within the stress estimate."""
+    stages: Mapping[str, float]
+    """Cold seconds per stage; they sum to ``seconds``."""
+    seconds: float
+    """Cold time (kernel cache cleared first)."""
+    warm_seconds: float
+    """The same run again with the kernel tables cached."""
+    failure: str = ""
+    """Why this rung could not be computed ("" if it was)."""
+
+
+@dataclass(frozen=True)
+class AccuracyReport:
+    """The ladder for one case or scene."""
+
+    name: str
+    scene: Scene
+    """The scene run (for a single case: its contact width, at tol 1e-8)."""
+    points: int
+    """Contact solutions compared per rung."""
+    peak_points: int
+    """Configurations whose sigma_x peaks are compared."""
+    reference: str
+    """How the reference was computed."""
+    rungs: tuple[Rung, ...]
+    stage_names: tuple[str, ...] = field(default=())
+
+    def columns(self) -> dict[str, FloatArray]:
+        """The table as columns (what ``write_csv`` writes)."""
+        ok = self.rungs
+
+        def col(get: Callable[[Rung], float]) -> FloatArray:
+            return np.array([get(r) for r in ok], dtype=np.float64)
+
+        out: dict[str, FloatArray] = {
+            "tol": col(lambda r: r.tol),
+            "collocation_n": col(lambda r: r.collocation_n),
+            "kernel_tables": col(lambda r: r.kernel_tables),
+            "error_estimate_a": col(lambda r: r.error_estimate),
+            "error_a": col(lambda r: r.error_a),
+            "error_p0": col(lambda r: r.error_p0),
+            "stress_error_estimate": col(lambda r: r.stress_error_estimate),
+            "error_top_tensile": col(lambda r: r.error_top_tensile),
+            "error_bottom_tensile": col(lambda r: r.error_bottom_tensile),
+            "bounded": col(lambda r: float(r.bounded)),
+            "cold_seconds": col(lambda r: r.seconds),
+            "warm_seconds": col(lambda r: r.warm_seconds),
+        }
+        for name in self.stage_names:
+            out[f"cold_{name}_seconds"] = np.array(
+                [r.stages.get(name, math.nan) for r in ok], dtype=np.float64
+            )
+        return out
+
+
+def _key(p: Mapping[str, float]) -> Point:
+    return (p["vstar"], p["kw"], p["radius"], p["load"], p["nu"])
+
+
+def _solve_point(key: Point, tol: float, n: int | None = None) -> Solution:
+    vstar, kw, radius, load, nu = key
+    return solve(
+        vstar=vstar,
+        kw=kw,
+        radius=radius,
+        load=load,
+        nu=nu,
+        tol=tol,
+        n=n,
+        allow_unphysical=True,
+    )
+
+
+def _reference(key: Point) -> tuple[Solution, int, float]:
+    """The reference solution: fixed N = max(64, 4 N_auto) at tol 1e-14 (or
+    1e-13, 1e-12 if tighter tolerances are out of reach)."""
+    last: MovingPunchError | None = None
+    for tol in _REF_TOLS:
+        try:
+            auto = _solve_point(key, tol)
+            n = min(max(_REF_MIN_N, 4 * auto.collocation_n), 4096)
+            return _solve_point(key, tol, n), n, tol
+        except MovingPunchError as exc:
+            last = exc
+    assert last is not None
+    raise last
+
+
+def _timed_peaks(
+    sols: Mapping[Point, Solution], base: Sequence[Point]
+) -> tuple[dict[Point, StressPeaks], float]:
+    """The sigma_x peaks of the base configurations, and the seconds taken."""
+    t0 = time.perf_counter()
+    peaks = {k: sols[k].stress_peaks() for k in base if k in sols}
+    return peaks, time.perf_counter() - t0
+
+
+@dataclass
+class _Target:
+    """A case or a scene: how to run one rung and which points it solves."""
+
+    name: str
+    scene: Scene
+    single: bool
+
+    def run(
+        self, tol: float
+    ) -> tuple[dict[Point, Solution], list[Point], float, dict[str, float], int]:
+        """(solutions by point, base points, seconds, stages, kernel tables)."""
+        if self.single:
+            key = _key(self.scene.params)
+            s = _solve_point(key, tol)
+            parts = {name: float(s.stage_times.get(name, 0.0)) for name in CORE_STAGES}
+            return {key: s}, [key], s.elapsed, parts, s.kernel_builds
+        scene = replace(self.scene, tol=tol)
+        result = scene.run(jobs=1)
+        sols = {_key(_params_of(s)): s for s in result.solutions}
+        base = [_key(scene.point(v)) for v in scene.curve_values()]
+        stages: dict[str, float] = {}
+        for st in result.stages:
+            if st.name == "contact":
+                continue  # its parts are listed: critical_speed ... checks
+            stages[st.name] = stages.get(st.name, 0.0) + st.seconds
+        contact = sum(st.seconds for st in result.stages if st.name == "contact")
+        core = sum(stages.get(n, 0.0) for n in CORE_STAGES)
+        stages["contact_other"] = max(contact - core, 0.0)
+        listed = sum(stages.values())
+        stages["other"] = max(result.total_seconds - listed, 0.0)
+        total = sum(stages.values())
+        return sols, base, total, stages, result.kernel_tables
+
+
+def _params_of(s: Solution) -> dict[str, float]:
+    return {name: float(getattr(s, name)) for name in _PARAMS}
+
+
+def _target(target: Scene | Mapping[str, float] | str | Path | None) -> _Target:
+    if target is None:
+        target = FIG4_CASE
+    if isinstance(target, (str, Path)):
+        scene = load_scene(target)
+        return _Target(scene.name or str(target), scene, single=False)
+    if isinstance(target, Scene):
+        return _Target(target.name or "scene", target, single=False)
+    params = {name: float(target[name]) for name in _PARAMS if name in target}
+    params.setdefault("nu", 0.2)
+    scene = Scene(
+        params=params,
+        outputs={"contact_width": OutputSpec("contact_width")},
+        name="case",
+        description="one parameter set: solve and the sigma_x peaks",
+    )
+    name = "fig4-case" if _key(params) == _key(FIG4_CASE) else "case"
+    return _Target(name, replace(scene, name=name), single=True)
+
+
+def accuracy_report(
+    target: Scene | Mapping[str, float] | str | Path | None = None,
+    tols: Sequence[float] = LADDER,
+    *,
+    progress: Progress | None = None,
+    cancelled: Callable[[], bool] | None = None,
+) -> AccuracyReport | None:
+    """The accuracy ladder of ``target``: None (the paper's Fig. 4 case), a
+    parameter mapping (vstar, kw, radius, load, optional nu), a ``Scene``, or
+    a scene file / bundled scene name. Each rung is run cold (the kernel
+    cache cleared first: this empties the process-wide cache) and then warm.
+    Returns None if ``cancelled()`` turns true.
+    """
+    report = progress or (lambda done, total: None)
+    stop = cancelled or (lambda: False)
+    tgt = _target(target)
+    ladder = [float(t) for t in tols]
+    total = len(ladder)
+    # The points are those of the first rung that runs (the same set at every
+    # tol: a scene plans its points from the parameters alone); the reference
+    # is computed for them once.
+    rungs: list[Rung] = []
+    refs: dict[Point, Solution] = {}
+    ref_peaks: dict[Point, StressPeaks] = {}
+    ref_text = ""
+    stage_names: list[str] = []
+    for i, tol in enumerate(ladder):
+        if stop():
+            return None
+        clear_kernel_cache()
+        try:
+            sols, base, seconds, stages, tables = tgt.run(tol)
+            # A scene whose sweep tabulates peaks has its own stress_peaks.
+            own = "stress_peaks_report" if "stress_peaks" in stages else "stress_peaks"
+            peaks, stages[own] = _timed_peaks(sols, base)
+            seconds += stages[own]
+            warm_sols, warm_base, warm, _, _ = tgt.run(tol)
+            warm += _timed_peaks(warm_sols, warm_base)[1]
+        except MovingPunchError as exc:
+            rungs.append(_failed(tol, exc))
+            report(i + 1, total)
+            continue
+        if not sols:
+            raise InvalidParameterError(
+                f"{tgt.name}: the scene solves no contact (its outputs need "
+                "none), so there is no accuracy to measure; add contact_width"
+            )
+        if not refs:
+            ref_n: list[int] = []
+            ref_tol: list[float] = []
+            for k in sols:
+                ref, n, rtol = _reference(k)
+                refs[k] = ref
+                ref_n.append(n)
+                ref_tol.append(rtol)
+            for k in base:
+                if k in refs:
+                    ref_peaks[k] = refs[k].stress_peaks()
+            ref_text = (
+                f"fixed N = {min(ref_n)}..{max(ref_n)} at tol {max(ref_tol):.0e}"
+                if min(ref_n) != max(ref_n)
+                else f"fixed N = {ref_n[0]} at tol {max(ref_tol):.0e}"
+            )
+        for name in stages:
+            if name not in stage_names:
+                stage_names.append(name)
+        rungs.append(
+            _rung(tol, sols, peaks, refs, ref_peaks, stages, seconds, warm, tables)
+        )
+        report(i + 1, total)
+    return AccuracyReport(
+        name=tgt.name,
+        scene=tgt.scene,
+        points=len(refs),
+        peak_points=len(ref_peaks),
+        reference=ref_text or "none (every rung failed)",
+        rungs=tuple(rungs),
+        stage_names=tuple(stage_names),
+    )
+
+
+def _failed(tol: float, exc: BaseException) -> Rung:
+    nan = math.nan
+    return Rung(
+        tol=tol,
+        collocation_n=0,
+        kernel_tables=0,
+        error_estimate=nan,
+        error_a=nan,
+        error_p0=nan,
+        stress_error_estimate=nan,
+        error_top_tensile=nan,
+        error_bottom_tensile=nan,
+        bounded=False,
+        stages={},
+        seconds=nan,
+        warm_seconds=nan,
+        failure=" ".join(str(exc).split()) or type(exc).__name__,
+    )
+
+
+def _rung(
+    tol: float,
+    sols: Mapping[Point, Solution],
+    peaks: Mapping[Point, StressPeaks],
+    refs: Mapping[Point, Solution],
+    ref_peaks: Mapping[Point, StressPeaks],
+    stages: Mapping[str, float],
+    seconds: float,
+    warm: float,
+    tables: int,
+) -> Rung:
+    ea = {k: abs(s.a - refs[k].a) for k, s in sols.items() if k in refs}
+    ep0 = [abs(s.p0 - refs[k].p0) for k, s in sols.items() if k in refs]
+    top = [abs(p.top_tensile - ref_peaks[k].top_tensile) for k, p in peaks.items()]
+    bot = [
+        abs(p.bottom_tensile - ref_peaks[k].bottom_tensile) for k, p in peaks.items()
+    ]
+    stress_est = [sols[k].stress_error_estimate for k in peaks]
+    bounded = all(ea[k] <= sols[k].error_estimate for k in ea) and all(
+        max(t, b) <= sols[k].stress_error_estimate
+        for k, t, b in zip(peaks, top, bot, strict=True)
+    )
+    return Rung(
+        tol=tol,
+        collocation_n=max(s.collocation_n for s in sols.values()),
+        kernel_tables=tables,
+        error_estimate=max(s.error_estimate for s in sols.values()),
+        error_a=max(ea.values(), default=math.nan),
+        error_p0=max(ep0, default=math.nan),
+        stress_error_estimate=max(stress_est, default=math.nan),
+        error_top_tensile=max(top, default=math.nan),
+        error_bottom_tensile=max(bot, default=math.nan),
+        bounded=bounded,
+        stages=dict(stages),
+        seconds=seconds,
+        warm_seconds=warm,
+    )
+
+
+# ----------------------------------------------------------------------------
+# Showing and saving
+# ----------------------------------------------------------------------------
+
+
+def _e(x: float) -> str:
+    return "-" if not math.isfinite(x) else f"{x:.1e}"
+
+
+def _ms(x: float) -> str:
+    return "-" if not math.isfinite(x) else f"{x * 1e3:.2f}"
+
+
+HEADER = (
+    "tol",
+    "N",
+    "tables",
+    "est a/h",
+    "err a/h",
+    "err p0",
+    "est σx",
+    "err σx top",
+    "err σx bot",
+    "ok",
+    "cold ms",
+    "warm ms",
+)
+
+
+def table_rows(report: AccuracyReport) -> list[tuple[str, ...]]:
+    """The rows of the table (strings), one per rung, in HEADER's order (a
+    failed rung: its tol and the reason)."""
+    rows: list[tuple[str, ...]] = []
+    for r in report.rungs:
+        if r.failure:
+            rows.append((f"{r.tol:.0e}", "failed: " + r.failure[:60]))
+            continue
+        rows.append(
+            (
+                f"{r.tol:.0e}",
+                str(r.collocation_n),
+                str(r.kernel_tables),
+                _e(r.error_estimate),
+                _e(r.error_a),
+                _e(r.error_p0),
+                _e(r.stress_error_estimate),
+                _e(r.error_top_tensile),
+                _e(r.error_bottom_tensile),
+                "yes" if r.bounded else "NO",
+                _ms(r.seconds),
+                _ms(r.warm_seconds),
+            )
+        )
+    return rows
+
+
+def format_table(report: AccuracyReport, *, stages: bool = True) -> str:
+    """The ladder as an aligned text table, then the cold seconds per stage."""
+    head = [
+        f"Accuracy against time: {report.name} ({report.points} contact "
+        f"solution(s), σx peaks of {report.peak_points})",
+        f"reference: {report.reference}; errors are absolute (a/h, P/h); "
+        "cold: kernel cache cleared; tables: k1 kernel tables built",
+        "",
+    ]
+    rows = [HEADER, *table_rows(report)]
+    widths = [
+        max(len(r[i]) for r in rows if len(r) > i and len(r) == len(HEADER))
+        for i in range(len(HEADER))
+    ]
+    lines = []
+    for r in rows:
+        if len(r) != len(HEADER):
+            lines.append("  ".join(r))
+            continue
+        lines.append("  ".join(c.rjust(w) for c, w in zip(r, widths, strict=True)))
+    out = head + lines
+    if stages and report.stage_names:
+        names = list(report.stage_names)
+        out += ["", "Cold time per stage (ms)"]
+        srows = [("tol", *names)]
+        for rung in report.rungs:
+            if rung.failure:
+                continue
+            srows.append(
+                (f"{rung.tol:.0e}", *(_ms(rung.stages.get(n, math.nan)) for n in names))
+            )
+        sw = [max(len(r[i]) for r in srows) for i in range(len(srows[0]))]
+        out += [
+            "  ".join(c.rjust(w) for c, w in zip(r, sw, strict=True)) for r in srows
+        ]
+    return "\n".join(out)
+
+
+def plot_series(
+    report: AccuracyReport,
+) -> list[tuple[str, list[float], list[float]]]:
+    """(label, cold seconds, error) of each error series, positive errors
+    only (a log-log plot cannot show an exact zero). A label's first letter
+    is its marker."""
+    series = []
+    for label, name in (
+        ("a  a/h", "error_a"),
+        ("p  p0", "error_p0"),
+        ("t  σx top", "error_top_tensile"),
+        ("b  σx bottom", "error_bottom_tensile"),
+        ("e  est a/h", "error_estimate"),
+    ):
+        pts = [
+            (r.seconds, float(getattr(r, name)))
+            for r in report.rungs
+            if not r.failure and 0 < float(getattr(r, name)) < math.inf
+        ]
+        if pts:
+            series.append((label, [p[0] for p in pts], [p[1] for p in pts]))
+    return series
+
+
+def ascii_plot(
+    report: AccuracyReport, *, width: int = 80, height: int = 22, color: bool = False
+) -> str:
+    """A log-log plotext plot of the actual errors against the cold time."""
+    plt: Any = importlib.import_module("plotext")
+    plt.clear_figure()
+    plt.plotsize(width, height)
+    if not color:
+        plt.theme("clear")
+    lo, hi = math.inf, -math.inf
+    for label, x, y in plot_series(report):
+        ly = [math.log10(v) for v in y]
+        lo, hi = min(lo, *ly), max(hi, *ly)
+        plt.scatter([math.log10(v) for v in x], ly, label=label, marker=label[0])
+    if math.isfinite(lo):
+        ticks = list(range(math.floor(lo), math.ceil(hi) + 1, 2))
+        plt.yticks(ticks, [f"1e{t}" for t in ticks])
+    plt.title(f"Error against cold time: {report.name} (log-log)")
+    plt.xlabel("log10 seconds (cold)")
+    plt.ylabel("absolute error")
+    text = str(plt.build())
+    plt.clear_figure()
+    return text if color else str(plt.uncolorize(text))
+
+
+def write_csv(report: AccuracyReport, out_dir: str | Path) -> Path:
+    """Writes ``<name>-accuracy.csv`` into ``out_dir`` atomically: ``#``
+    metadata lines (the version, the reference, the columns and the scene as
+    TOML, as scene exports have; ``movingpunch.scene.read_csv`` reads it),
+    then numbers only (``np.loadtxt(path, delimiter=",")``)."""
+    import movingpunch
+
+    directory = Path(out_dir)
+    directory.mkdir(parents=True, exist_ok=True)
+    path = directory / f"{report.name}-accuracy.csv"
+    columns = report.columns()
+    lines = [
+        f"# movingpunch_version: {movingpunch.__version__}",
+        f"# scene_name: {report.scene.name}",
+        "# output: accuracy",
+        f"# title: accuracy against time ({report.name})",
+        f"# reference: {report.reference}",
+        "# columns: " + ",".join(columns),
+        "# scene:",
+    ]
+    lines += [
+        f"#   {line}" if line else "#" for line in report.scene.to_toml().splitlines()
+    ]
+    arrays = list(columns.values())
+    for i in range(len(report.rungs)):
+        lines.append(",".join(repr(float(a[i])) for a in arrays))
+    atomic_write(path, ("\n".join(lines) + "\n").encode("utf-8"))
+    return path
