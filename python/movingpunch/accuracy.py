@@ -29,7 +29,7 @@ import numpy.typing as npt
 from movingpunch.errors import InvalidParameterError, MovingPunchError
 from movingpunch.fields import StressPeaks
 from movingpunch.scene._export import atomic_write
-from movingpunch.scene._run import CORE_STAGES
+from movingpunch.scene._run import CORE_STAGES, is_damped
 from movingpunch.scene._spec import OutputSpec, Scene, load_scene
 from movingpunch.solver import Solution, clear_kernel_cache, solve
 
@@ -207,7 +207,11 @@ class _Target:
             return {key: s}, [key], s.elapsed, parts, s.kernel_builds
         scene = replace(self.scene, tol=tol)
         result = scene.run(jobs=1)
-        sols = {_key(_params_of(s)): s for s in result.solutions}
+        sols = {
+            _key(_params_of(s)): s
+            for s in result.solutions
+            if isinstance(s, Solution)  # damped scenes are refused in _target
+        }
         base = [_key(scene.point(v)) for v in scene.curve_values()]
         stages: dict[str, float] = {}
         for st in result.stages:
@@ -227,14 +231,25 @@ def _params_of(s: Solution) -> dict[str, float]:
     return {name: float(getattr(s, name)) for name in _PARAMS}
 
 
+def _undamped(scene: Scene) -> Scene:
+    """``scene``, or InvalidParameterError if it has damping > 0 (the ladder
+    measures the undamped solver and its sigma_x peaks)."""
+    if is_damped(scene):
+        raise InvalidParameterError(
+            f"{scene.name or 'scene'}: the accuracy ladder covers the undamped "
+            "solver only; this scene has damping > 0"
+        )
+    return scene
+
+
 def _target(target: Scene | Mapping[str, float] | str | Path | None) -> _Target:
     if target is None:
         target = FIG4_CASE
     if isinstance(target, (str, Path)):
         scene = load_scene(target)
-        return _Target(scene.name or str(target), scene, single=False)
+        return _Target(scene.name or str(target), _undamped(scene), single=False)
     if isinstance(target, Scene):
-        return _Target(target.name or "scene", target, single=False)
+        return _Target(target.name or "scene", _undamped(target), single=False)
     params = {name: float(target[name]) for name in _PARAMS if name in target}
     params.setdefault("nu", 0.2)
     scene = Scene(

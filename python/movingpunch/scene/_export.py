@@ -39,6 +39,7 @@ _PARAM_LABELS = {
     "radius": "R/h",
     "load": "P/(μh)",
     "nu": "ν",
+    "damping": "damping",
 }
 _QUANTITY_LABELS = {
     "a": "a/h",
@@ -47,6 +48,9 @@ _QUANTITY_LABELS = {
     "min_pressure": "min p/(P/h)",
     "critical_vstar": "V*_cr",
     "phi1": "φ1",
+    "drag": "drag/P",
+    "contact_start": "-b/h (trailing end)",
+    "contact_end": "a/h (end)",
     "top_compressive": "top σx min",
     "top_tensile": "top σx max",
     "bottom_tensile": "bottom σx max",
@@ -127,7 +131,8 @@ def format_summary(result: SceneResult) -> str:
     cw = result.outputs.get("contact_width")
     if cw is not None:
         out += ["", "Contact"]
-        names = [n for n in cw.columns if n not in ("error_estimate", "collocation_n")]
+        hidden = ("error_estimate", "collocation_n", "contact_end")  # end: = a
+        names = [n for n in cw.columns if n not in hidden]
         header = [_PARAM_LABELS.get(n, _QUANTITY_LABELS.get(n, n)) for n in names]
         rows = []
         for i in range(len(cw.columns["a"])):

@@ -5,7 +5,12 @@ share (vstar, kw, nu, tol) share the k1 kernel (the core caches it per
 process); and because a/h, p/(P/h) and sigma/(P/h) depend on radius and load
 only through lambda = radius * load, points with equal (vstar, kw, nu, tol,
 lambda) are solved once (displacements and the indentation scale with the
-load: v = load * V(x; lambda)).
+load: v = load * V(x; lambda)). The drag of a damped point scales like
+1/radius at fixed lambda (drag = int p x/R dx / P).
+
+Points with damping > 0 (docs/damped.md) are solved by the damped solver:
+their contact is (-b, a), they have a drag, and stresses at y/h > -1e-3 are
+evaluated at y/h = -1e-3 (``DAMPED_MAX_Y``).
 """
 
 from __future__ import annotations
@@ -24,9 +29,15 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from movingpunch.damped import DampedSolution
 from movingpunch.errors import MovingPunchError
-from movingpunch.fields import StressField
-from movingpunch.scene._spec import PEAK_QUANTITIES, Scene, critical_speed
+from movingpunch.fields import StressField, derived_stresses
+from movingpunch.scene._spec import (
+    DAMPED_MAX_Y,
+    PEAK_QUANTITIES,
+    Scene,
+    critical_speed,
+)
 from movingpunch.solver import Solution, rayleigh_vstar, solve
 
 __all__ = [
@@ -40,6 +51,9 @@ __all__ = [
 ]
 
 FloatArray = npt.NDArray[np.float64]
+
+AnySolution = Solution | DampedSolution
+"""A contact solution: undamped, or on a damped foundation (damping > 0)."""
 
 # Stage names of the core solve (Solution.stage_times), nested in "contact".
 CORE_STAGES = ("critical_speed", "kernel", "width", "checks")
@@ -77,7 +91,7 @@ class _Stages:
         entry[0] += seconds
         entry[1] += count
 
-    def add_solution(self, s: Solution) -> None:
+    def add_solution(self, s: AnySolution) -> None:
         self.add("contact", s.elapsed)
         times = getattr(s, "stage_times", None) or {}
         builds = int(getattr(s, "kernel_builds", 0))
@@ -182,7 +196,7 @@ class SceneResult:
     scene: Scene
     outputs: Mapping[str, OutputData]
     sweep: SweepTable | None
-    solutions: tuple[Solution, ...]
+    solutions: tuple[AnySolution, ...]
     """Contact solutions computed in this process (sweep points solved in
     worker processes or on Dask return their numbers only)."""
     stages: list[Stage]
@@ -211,11 +225,25 @@ class SceneResult:
 # Solving points
 # ----------------------------------------------------------------------------
 
-_Key = tuple[float, float, float, float, float]  # vstar, kw, nu, tol, lambda
+# vstar, kw, nu, tol, damping, lambda
+_Key = tuple[float, float, float, float, float, float]
+
+
+def _damping(p: Mapping[str, float]) -> float:
+    return p.get("damping", 0.0)
 
 
 def _key(p: Mapping[str, float], tol: float) -> _Key:
-    return (p["vstar"], p["kw"], p["nu"], tol, p["radius"] * p["load"])
+    return (p["vstar"], p["kw"], p["nu"], tol, _damping(p), p["radius"] * p["load"])
+
+
+def is_damped(scene: Scene) -> bool:
+    """Whether any point the scene computes has damping > 0."""
+    values = [scene.params.get("damping", 0.0)]
+    for part in (scene.vary, scene.sweep):
+        if part is not None and part.param == "damping":
+            values += list(part.values)
+    return any(v > 0.0 for v in values)
 
 
 def _label(param: str | None, value: float | None) -> str:
@@ -224,7 +252,7 @@ def _label(param: str | None, value: float | None) -> str:
     return f"{param}={'inf' if math.isinf(value) else format(value, '.6g')}"
 
 
-def _solve(p: Mapping[str, float], tol: float, stages: _Stages) -> Solution:
+def _solve(p: Mapping[str, float], tol: float, stages: _Stages) -> AnySolution:
     s = solve(
         vstar=p["vstar"],
         kw=p["kw"],
@@ -233,22 +261,39 @@ def _solve(p: Mapping[str, float], tol: float, stages: _Stages) -> Solution:
         nu=p["nu"],
         tol=tol,
         allow_unphysical=True,
+        damping=_damping(p),
     )
     stages.add_solution(s)
     return s
 
 
-def _quantities(s: Solution, want_peaks: bool, stages: _Stages) -> dict[str, float]:
+def _quantities(s: AnySolution, want_peaks: bool, stages: _Stages) -> dict[str, float]:
     q: dict[str, float] = {
         "a": s.a,
-        "p0": s.p0,
-        "indentation": s.indentation,
         "min_pressure": s.min_pressure,
         "critical_vstar": s.critical_vstar,
         "phi1": s.phi1,
         "valid": 1.0 if s.valid else 0.0,
         "load": s.load,
+        "radius": s.radius,
     }
+    if isinstance(s, DampedSolution):
+        # Validation refuses indentation and peaks for damped points.
+        q.update(
+            p0=float(s.pressure(0.0)),
+            indentation=math.nan,
+            drag=s.drag,
+            contact_start=s.contact_interval[0],
+            contact_end=s.contact_interval[1],
+        )
+        return q
+    q.update(
+        p0=s.p0,
+        indentation=s.indentation,
+        drag=0.0,
+        contact_start=-s.a,
+        contact_end=s.a,
+    )
     if want_peaks:
         t0 = time.perf_counter()
         peaks = s.stress_peaks()
@@ -259,7 +304,7 @@ def _quantities(s: Solution, want_peaks: bool, stages: _Stages) -> dict[str, flo
 
 
 def _solve_group(task: Mapping[str, Any]) -> dict[str, Any]:
-    """Solves one group of sweep points sharing (vstar, kw, nu, tol), in
+    """Solves one group of sweep points sharing (vstar, kw, nu, tol, damping), in
     descending lambda (the first solve builds the widest kernel; the rest
     reuse it). Runs in a worker process or on a Dask worker."""
     stages = _Stages()
@@ -269,6 +314,7 @@ def _solve_group(task: Mapping[str, Any]) -> dict[str, Any]:
             "vstar": task["vstar"],
             "kw": task["kw"],
             "nu": task["nu"],
+            "damping": task["damping"],
             "radius": radius,
             "load": load,
         }
@@ -289,7 +335,7 @@ def _solve_group(task: Mapping[str, Any]) -> dict[str, Any]:
 class _Run:
     scene: Scene
     stages: _Stages = field(default_factory=_Stages)
-    memo: dict[_Key, Solution] = field(default_factory=dict)
+    memo: dict[_Key, AnySolution] = field(default_factory=dict)
     done: int = 0
     total: int = 0
     progress: Callable[[int, int], None] | None = None
@@ -299,7 +345,7 @@ class _Run:
         if self.progress is not None:
             self.progress(self.done, self.total)
 
-    def solution(self, p: Mapping[str, float]) -> Solution:
+    def solution(self, p: Mapping[str, float]) -> AnySolution:
         key = _key(p, self.scene.tol)
         if key not in self.memo:
             self.memo[key] = _solve(p, self.scene.tol, self.stages)
@@ -381,9 +427,10 @@ def run_scene(
 class _SweepPlan:
     points: list[list[dict[str, float]]]  # [curve][grid] -> parameters
     keys: list[_Key]  # unique keys, in solve order
-    groups: dict[tuple[float, float, float, float], list[_Key]]
+    groups: dict[tuple[float, ...], list[_Key]]
     representative: dict[_Key, dict[str, float]]
     want_peaks: bool
+    damped: bool
 
 
 def _plan_sweep(scene: Scene) -> _SweepPlan:
@@ -397,19 +444,21 @@ def _plan_sweep(scene: Scene) -> _SweepPlan:
     for row in points:
         for p in row:
             representative.setdefault(_key(p, scene.tol), p)
-    groups: dict[tuple[float, float, float, float], list[_Key]] = {}
+    groups: dict[tuple[float, ...], list[_Key]] = {}
     for key in representative:
-        groups.setdefault(key[:4], []).append(key)
+        groups.setdefault(key[:5], []).append(key)
     for members in groups.values():
-        members.sort(key=lambda k: -k[4])  # descending lambda: widest kernel first
+        members.sort(key=lambda k: -k[5])  # descending lambda: widest kernel first
     keys = [k for members in groups.values() for k in members]
     want_peaks = any(q in PEAK_QUANTITIES for q in sw.quantities)
-    return _SweepPlan(points, keys, groups, representative, want_peaks)
+    damped = any(k[4] > 0.0 for k in keys)
+    return _SweepPlan(points, keys, groups, representative, want_peaks, damped)
 
 
-# Rough serial cost of a sweep point (a cold contact solve; with stress peaks)
-# and the cost of starting worker processes, in seconds.
+# Rough serial cost of a sweep point (a cold contact solve; with stress peaks;
+# a damped solve) and the cost of starting worker processes, in seconds.
 _SOLVE_SECONDS, _PEAKS_SECONDS, _STARTUP_SECONDS = 2e-3, 2e-2, 1.0
+_DAMPED_SECONDS = 0.7
 
 
 def _use_workers(
@@ -423,6 +472,8 @@ def _use_workers(
     if n_jobs <= 1 or len(plan.groups) <= 1:
         return False
     per_point = _SOLVE_SECONDS + (_PEAKS_SECONDS if plan.want_peaks else 0.0)
+    if plan.damped:
+        per_point = _DAMPED_SECONDS
     return not auto_jobs or len(plan.keys) * per_point > _STARTUP_SECONDS
 
 
@@ -448,6 +499,7 @@ def _run_sweep(
                 "kw": g[1],
                 "nu": g[2],
                 "tol": g[3],
+                "damping": g[4],
                 "points": [
                     (plan.representative[k]["radius"], plan.representative[k]["load"])
                     for k in members
@@ -535,6 +587,8 @@ def _sweep_table(
                 value = res[q]
                 if q == "indentation":  # v = load * V(lambda)
                     value *= p["load"] / res["load"]
+                elif q == "drag":  # int p x/R dx / P at fixed lambda
+                    value *= res["radius"] / p["radius"]
                 data[q][i, j] = value
             valid[i, j] = bool(res["valid"])
     vary_param = scene.vary.param if scene.vary is not None else None
@@ -555,7 +609,7 @@ def _sweep_table(
 # Outputs
 # ----------------------------------------------------------------------------
 
-_Solutions = Mapping[float | None, Solution]
+_Solutions = Mapping[float | None, AnySolution]
 
 
 def _curves(
@@ -563,7 +617,7 @@ def _curves(
     stage: str,
     solutions: _Solutions,
     x: FloatArray,
-    evaluate: Callable[[Solution, Mapping[str, float]], FloatArray],
+    evaluate: Callable[[AnySolution, Mapping[str, float]], FloatArray],
 ) -> tuple[Curve, ...]:
     scene = run.scene
     param = scene.vary.param if scene.vary is not None else None
@@ -597,15 +651,31 @@ def _out_contact_width(run: _Run, spec: Any, solutions: _Solutions) -> OutputDat
     cols: dict[str, list[float]] = {}
     if scene.vary is not None:
         cols[scene.vary.param] = []
-    for name in ("a", "p0", "indentation", "valid", "error_estimate", "collocation_n"):
+    damped = is_damped(scene)
+    names = ["a", "p0", "indentation", "valid", "error_estimate", "collocation_n"]
+    if damped:  # the contact interval (-b, a) and the drag
+        names[1:1] = ["contact_start", "contact_end", "drag"]
+    for name in names:
         cols[name] = []
     for v, s in solutions.items():
         p = scene.point(v)
         if scene.vary is not None:
             cols[scene.vary.param].append(float(v) if v is not None else math.nan)
         cols["a"].append(s.a)
-        cols["p0"].append(s.p0)
-        cols["indentation"].append(s.indentation * p["load"] / s.load)
+        if isinstance(s, DampedSolution):
+            cols["p0"].append(float(s.pressure(0.0)))
+            cols["indentation"].append(math.nan)  # not given by the damped solver
+            cols["contact_start"].append(s.contact_interval[0])
+            cols["contact_end"].append(s.contact_interval[1])
+            # int p x/R dx / P: 1/radius at fixed lambda (shared solutions).
+            cols["drag"].append(s.drag * s.radius / p["radius"])
+        else:
+            cols["p0"].append(s.p0)
+            cols["indentation"].append(s.indentation * p["load"] / s.load)
+            if damped:
+                cols["contact_start"].append(-s.a)
+                cols["contact_end"].append(s.a)
+                cols["drag"].append(0.0)
         cols["valid"].append(1.0 if s.valid else 0.0)
         cols["error_estimate"].append(s.error_estimate)
         cols["collocation_n"].append(float(s.collocation_n))
@@ -619,9 +689,17 @@ def _out_contact_width(run: _Run, spec: Any, solutions: _Solutions) -> OutputDat
 
 
 def _out_pressure(run: _Run, spec: Any, solutions: _Solutions) -> OutputData:
-    a_max = max(s.a for s in solutions.values())
-    x = _x_grid(spec.x, (-1.25 * a_max, 1.25 * a_max), spec.resolved_points())
-    curves = _curves(run, "pressure", solutions, x, lambda s, p: s.pressure(x))
+    if is_damped(run.scene):  # 1.25 x the span of every (asymmetric) contact
+        ends = [e for s in solutions.values() for e in _interval(s)]
+        reach = max(abs(e) for e in ends)
+        default = (-1.25 * reach, 1.25 * reach)
+    else:
+        a_max = max(s.a for s in solutions.values())
+        default = (-1.25 * a_max, 1.25 * a_max)
+    x = _x_grid(spec.x, default, spec.resolved_points())
+    curves = _curves(
+        run, "pressure", solutions, x, lambda s, p: np.asarray(s.pressure(x))
+    )
     return OutputData(
         "pressure",
         "Contact pressure",
@@ -632,10 +710,86 @@ def _out_pressure(run: _Run, spec: Any, solutions: _Solutions) -> OutputData:
     )
 
 
+def _interval(s: AnySolution) -> tuple[float, float]:
+    """The contact (-b/h, a/h); (-a/h, a/h) for an undamped solution."""
+    if isinstance(s, DampedSolution):
+        return s.contact_interval
+    return (-s.a, s.a)
+
+
+def _clipped_depths(y: FloatArray) -> tuple[FloatArray, FloatArray, npt.NDArray[Any]]:
+    """For a damped point: (the depths evaluated: y, with DAMPED_MAX_Y < y < 0
+    clipped to DAMPED_MAX_Y; their distinct values below the surface; the
+    index of each depth among them, -1 at the surface y = 0)."""
+    clipped = np.where(y < 0.0, np.minimum(y, DAMPED_MAX_Y), 0.0)
+    below = clipped < 0.0
+    distinct, index = np.unique(clipped[below], return_inverse=True)
+    full = np.full(len(y), -1, dtype=np.intp)
+    full[below] = index
+    return clipped, distinct, full
+
+
+def _depth_stress(s: AnySolution, y: FloatArray) -> FloatArray:
+    """sigma_x(0, y); for a damped point at the clipped depths, and at y = 0
+    the surface value sigma_x(0, 0) (``surface_stress``)."""
+    if not isinstance(s, DampedSolution):
+        return np.asarray(s.depth_stress(y), dtype=np.float64)
+    _, distinct, index = _clipped_depths(y)
+    out = np.empty(len(y))
+    if len(distinct):
+        values = np.asarray(s.depth_stress(distinct), dtype=np.float64)
+        out[index >= 0] = values[index[index >= 0]]
+    if (index < 0).any():
+        out[index < 0] = float(np.asarray(s.surface_stress(0.0)))
+    return out
+
+
+def _stress_field(s: AnySolution, x: FloatArray, y: FloatArray) -> StressField:
+    """The stress field; for a damped point at the clipped depths, and on the
+    surface y = 0 from the surface values (sigma_x(x, 0), sigma_y = -p,
+    tau_xy = 0: the punch is frictionless)."""
+    if not isinstance(s, DampedSolution):
+        return s.stress_field(x, y)
+    clipped, distinct, index = _clipped_depths(y)
+    comps = {name: np.empty((len(y), len(x))) for name in ("sx", "sy", "txy")}
+    if len(distinct):
+        f = s.stress_field(x, distinct)
+        rows = index >= 0
+        comps["sx"][rows] = f.sigma_x[index[rows]]
+        comps["sy"][rows] = f.sigma_y[index[rows]]
+        comps["txy"][rows] = f.tau_xy[index[rows]]
+    top = index < 0
+    if top.any():
+        comps["sx"][top] = np.asarray(s.surface_stress(x), dtype=np.float64)
+        comps["sy"][top] = -np.asarray(s.pressure(x), dtype=np.float64)
+        comps["txy"][top] = 0.0
+    sz, vm, ms = derived_stresses(comps["sx"], comps["sy"], comps["txy"], s.nu)
+    return StressField(
+        x=np.asarray(x, dtype=np.float64),
+        y=clipped,
+        sigma_x=comps["sx"],
+        sigma_y=comps["sy"],
+        tau_xy=comps["txy"],
+        sigma_z=sz,
+        von_mises=vm,
+        max_shear=ms,
+    )
+
+
+def _undamped(s: AnySolution, output: str) -> Solution:
+    if isinstance(s, DampedSolution):  # refused by the scene's validation
+        raise MovingPunchError(f"{output} is not available with damping > 0")
+    return s
+
+
 def _out_surface_stress(run: _Run, spec: Any, solutions: _Solutions) -> OutputData:
     x = _x_grid(spec.x, (-3.0, 3.0), spec.resolved_points())
     curves = _curves(
-        run, "surface_stress", solutions, x, lambda s, p: s.surface_stress(x)
+        run,
+        "surface_stress",
+        solutions,
+        x,
+        lambda s, p: np.asarray(s.surface_stress(x), dtype=np.float64),
     )
     return OutputData(
         "surface_stress",
@@ -650,7 +804,9 @@ def _out_surface_stress(run: _Run, spec: Any, solutions: _Solutions) -> OutputDa
 def _out_depth_stress(run: _Run, spec: Any, solutions: _Solutions) -> OutputData:
     lo, hi = spec.resolved_y()
     y = np.linspace(lo, hi, spec.resolved_points())
-    curves = _curves(run, "depth_stress", solutions, y, lambda s, p: s.depth_stress(y))
+    curves = _curves(
+        run, "depth_stress", solutions, y, lambda s, p: _depth_stress(s, y)
+    )
     return OutputData(
         "depth_stress",
         "In-plane stress under the centre",
@@ -670,7 +826,9 @@ def _out_displacement(run: _Run, spec: Any, solutions: _Solutions) -> OutputData
         solutions,
         x,
         # v = load * V(x; lambda): rescale a solution shared through lambda.
-        lambda s, p: s.displacement(x, depth) * (p["load"] / s.load),
+        lambda s, p: (
+            _undamped(s, "displacement").displacement(x, depth) * (p["load"] / s.load)
+        ),
     )
     return OutputData(
         "displacement",
@@ -692,7 +850,7 @@ def _out_stress_field(run: _Run, spec: Any, solutions: _Solutions) -> OutputData
     cols: dict[str, list[FloatArray]] = {}
     for v, s in solutions.items():
         with run.timed("stress_field"):
-            f = s.stress_field(x, y)
+            f = _stress_field(s, x, y)
         label = _label(param, v)
         fields_.append((label, f))
         gx, gy = np.meshgrid(f.x, f.y)

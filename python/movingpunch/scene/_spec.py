@@ -43,15 +43,35 @@ __all__ = [
     "bundled_scenes",
 ]
 
-PARAMS: tuple[str, ...] = ("vstar", "kw", "radius", "load", "nu")
-"""The physical parameters of a scene, in the order they are written."""
+PARAMS: tuple[str, ...] = ("vstar", "kw", "radius", "load", "nu", "damping")
+"""The physical parameters of a scene, in the order they are written.
+``nu`` defaults to 0.2; ``damping`` (c_w c_T/mu, the Kelvin-Voigt dashpots,
+docs/damped.md) to 0 and is kept in ``params`` only when given."""
+
+DAMPED_UNAVAILABLE: dict[str, str] = {
+    "displacement": "the damped solver gives no displacement of the layer",
+    "indentation": "the damped solver gives no indentation",
+    "top_compressive": "the damped solver has no stress peaks",
+    "top_tensile": "the damped solver has no stress peaks",
+    "bottom_tensile": "the damped solver has no stress peaks",
+    "centre_top": "the damped solver has no stress peaks",
+    "centre_bottom": "the damped solver has no stress peaks",
+}
+"""Outputs and sweep quantities a point with damping > 0 cannot give, with
+the reason (docs/damped.md, section 3)."""
+
+DAMPED_MAX_Y = -1e-3
+"""Damped points evaluate stresses at y/h <= this (the Fourier integral of
+the damped solver is not used closer to the surface): depths above it are
+clipped to it."""
 
 _PARAM_ALLOWED: dict[str, str] = {
-    "vstar": "a number, 0 <= vstar < V*_cr(kw, nu)",
+    "vstar": "a number, 0 <= vstar < V*_cr(kw, nu) (< V*_R(nu) with damping > 0)",
     "kw": 'a number 1e-12 <= kw <= inf, or "inf" (smooth rigid base)',
     "radius": "a finite number > 0 (R/h)",
     "load": "a finite number > 0 (P/(mu h))",
     "nu": "a number, 0 <= nu < 0.5",
+    "damping": "a finite number >= 0 (c_w c_T/mu; 0: no dashpots)",
 }
 
 OUTPUT_KINDS: dict[str, str] = {
@@ -93,6 +113,9 @@ SWEEP_QUANTITIES: dict[str, str] = {
     "min_pressure": "minimum of p/(P/h) on the contact",
     "critical_vstar": "critical speed V*_cr(kw, nu)",
     "phi1": "moving half-plane factor phi1",
+    "drag": "horizontal force on the punch over P (0 without damping)",
+    "contact_start": "trailing end -b/h of the contact (-a/h without damping)",
+    "contact_end": "leading end a/h of the contact",
     "top_compressive": "most compressive sigma_x/(P/h) on the top surface",
     "top_tensile": "most tensile sigma_x/(P/h) on the top surface",
     "bottom_tensile": "most tensile sigma_x/(P/h) at the bottom",
@@ -246,6 +269,14 @@ def critical_speed(kw: float, nu: float) -> tuple[float, float]:
     return _core.critical_speed(kw, nu)
 
 
+@functools.lru_cache(maxsize=64)
+def rayleigh_speed(nu: float) -> float:
+    """V*_R(nu), computed once per process."""
+    from movingpunch import _core
+
+    return float(_core.rayleigh_vstar(nu))
+
+
 # ----------------------------------------------------------------------------
 # Validation of plain values
 # ----------------------------------------------------------------------------
@@ -306,6 +337,7 @@ class _Checker:
             "radius": math.isfinite(x) and x > 0,
             "load": math.isfinite(x) and x > 0,
             "nu": math.isfinite(x) and 0 <= x < 0.5,
+            "damping": math.isfinite(x) and x >= 0,
         }[name]
         if not ok:
             raise self.fail(key, f"out of range: {_show(x)}", allowed)
@@ -550,7 +582,7 @@ def _from_mapping(data: Mapping[str, Any], source: str) -> Scene:
             params[name_] = vary.values[0]
         elif sweep is not None and sweep.param == name_:
             params[name_] = sweep.values[0]
-        else:
+        elif name_ != "damping":  # damping: optional, 0
             raise c.fail(key, "missing", _PARAM_ALLOWED[name_])
 
     tol = _DEFAULT_TOL
@@ -720,6 +752,8 @@ def _validate(scene: Scene, source: str) -> None:
             if name == "nu":
                 params[name] = _DEFAULT_NU
                 continue
+            if name == "damping":  # optional, 0; kept only when given
+                continue
             raise c.fail(f"params.{name}", "missing", _PARAM_ALLOWED[name])
         params[name] = c.param(f"params.{name}", name, scene.params[name])
     object.__setattr__(scene, "params", params)
@@ -780,7 +814,9 @@ def _validate(scene: Scene, source: str) -> None:
 
 
 def _check_speeds(scene: Scene, c: _Checker) -> None:
-    """vstar < V*_cr(kw, nu) for every combination the scene computes."""
+    """vstar < V*_cr(kw, nu) for every combination the scene computes
+    (vstar < V*_R(nu) where damping > 0), and no output or sweep quantity
+    the damped solver cannot give at a point with damping > 0."""
     needs_contact = any(k != "critical_speed" for k in scene.outputs)
     combos: list[tuple[dict[str, float], dict[str, str]]] = []
     curve_values = scene.curve_values()
@@ -811,30 +847,89 @@ def _check_speeds(scene: Scene, c: _Checker) -> None:
                     else f"sweep.values[{si}]"
                 )
             combos.append((p, where))
-    seen: set[tuple[float, float, float]] = set()
+    seen: set[tuple[float, float, float, bool]] = set()
+    damped_where: str | None = None
     for p, where in combos:
-        key = (p["vstar"], p["kw"], p["nu"])
+        damped = p.get("damping", 0.0) > 0.0
+        if damped and damped_where is None:
+            damped_where = where["damping"]
+        key = (p["vstar"], p["kw"], p["nu"], damped)
         if key in seen:
             continue
         seen.add(key)
         if p["vstar"] == 0.0:
+            continue
+        if damped:
+            vr = rayleigh_speed(p["nu"])
+            if not p["vstar"] < vr:
+                culprit = where["vstar"]
+                if culprit.startswith("params.") and not where["nu"].startswith(
+                    "params."
+                ):
+                    culprit = where["nu"]
+                raise c.fail(
+                    culprit,
+                    f"vstar = {p['vstar']:.10g} is at or above the Rayleigh speed "
+                    f"V*_R = {vr:.10g} (nu = {p['nu']:g}): no steady solution, "
+                    "even with damping",
+                    f"0 <= vstar < {vr:.10g} with damping > 0",
+                )
             continue
         vcr, _ = critical_speed(p["kw"], p["nu"])
         if not p["vstar"] < vcr:
             # Blame the key that moved the point off the base parameters.
             culprit, allowed = where["vstar"], f"0 <= vstar < {vcr:.10g}"
             if culprit.startswith("params."):
-                for name in ("kw", "nu"):
+                for name in ("kw", "nu", "damping"):
                     if not where[name].startswith("params."):
                         culprit = where[name]
                         allowed = f"{name} with V*_cr(kw, nu) > vstar = {p['vstar']:g}"
+                        if name == "damping":
+                            allowed = "damping > 0 above V*_cr"
             raise c.fail(
                 culprit,
                 f"vstar = {p['vstar']:.10g} is at or above the critical speed "
                 f"V*_cr = {vcr:.10g} (kw = {_fmt_num(p['kw'])}, nu = {p['nu']:g}): "
-                "no steady solution",
-                allowed,
+                "no steady solution without damping",
+                f"{allowed}, or damping > 0 (then vstar < V*_R)"
+                if allowed.startswith("0 <=")
+                else allowed,
             )
+    if damped_where is not None:
+        _check_damped_outputs(scene, c, damped_where)
+
+
+def _check_damped_outputs(scene: Scene, c: _Checker, damped_where: str) -> None:
+    """Outputs and sweep quantities a damped point cannot give, and depth
+    ranges that lie wholly above y/h = -1e-3 (``DAMPED_MAX_Y``)."""
+    why = f"damping > 0 at {damped_where}"
+    for kind, spec in scene.outputs.items():
+        if kind in DAMPED_UNAVAILABLE:
+            raise c.fail(
+                f"outputs.{kind}",
+                f"not available with {why}: {DAMPED_UNAVAILABLE[kind]}",
+                "contact_width, pressure, surface_stress, depth_stress, "
+                "stress_field, critical_speed",
+            )
+        if kind in ("depth_stress", "stress_field"):
+            lo, _ = spec.resolved_y()
+            if lo > DAMPED_MAX_Y:
+                raise c.fail(
+                    f"outputs.{kind}.y",
+                    f"lies above y/h = {DAMPED_MAX_Y:g}, where the damped solver "
+                    f"gives no stresses ({why})",
+                    f"a range reaching below y/h = {DAMPED_MAX_Y:g}",
+                )
+    if scene.sweep is not None:
+        for i, q in enumerate(scene.sweep.quantities):
+            if q in DAMPED_UNAVAILABLE:
+                raise c.fail(
+                    f"sweep.quantities[{i}]",
+                    f"{q!r} is not available with {why}: {DAMPED_UNAVAILABLE[q]}",
+                    ", ".join(
+                        k for k in SWEEP_QUANTITIES if k not in DAMPED_UNAVAILABLE
+                    ),
+                )
 
 
 def _fmt_num(x: float) -> str:
@@ -884,7 +979,8 @@ def _to_toml(scene: Scene) -> str:
         lines.append("")
     lines.append("[params]")
     for name in PARAMS:
-        lines.append(f"{name} = {_toml_value(scene.params[name])}")
+        if name in scene.params:
+            lines.append(f"{name} = {_toml_value(scene.params[name])}")
     lines += ["", "[accuracy]", f"tol = {_toml_value(scene.tol)}"]
     if scene.outputs:
         lines += ["", "[outputs]"]

@@ -21,17 +21,32 @@ import numpy.typing as npt
 
 from movingpunch import solver
 from movingpunch.accuracy import LADDER, AccuracyReport, accuracy_report
+from movingpunch.damped import DampedSolution, check_damping
 from movingpunch.errors import InvalidParameterError, MovingPunchError
 from movingpunch.fields import StressPeaks
 from movingpunch.solver import Solution, critical_vstar, rayleigh_vstar, solve
 
 FloatArray = npt.NDArray[np.float64]
 
-PARAM_NAMES: tuple[str, ...] = ("vstar", "kw", "radius", "load", "nu", "tol")
+PARAM_NAMES: tuple[str, ...] = (
+    "vstar",
+    "kw",
+    "radius",
+    "load",
+    "nu",
+    "damping",
+    "tol",
+)
 """Every input of the parameters panel, in order."""
 
-SCENE_PARAMS: tuple[str, ...] = ("vstar", "kw", "radius", "load", "nu")
+SCENE_PARAMS: tuple[str, ...] = ("vstar", "kw", "radius", "load", "nu", "damping")
 """The physical parameters (a scene's ``params``); ``tol`` is separate."""
+
+AnySolution = Solution | DampedSolution
+"""A contact solution: undamped, or on a damped foundation (damping > 0)."""
+
+DAMPED_MAX_Y = -1e-3
+"""A damped solution gives stresses at y/h <= this (and on the surface)."""
 
 TabName = Literal["pressure", "surface", "depth", "sweep", "field", "accuracy"]
 TABS: tuple[TabName, ...] = (
@@ -53,6 +68,7 @@ _CHECKS: dict[str, Callable[[object], float]] = {
     "radius": lambda v: solver._check_positive("radius", v),
     "load": lambda v: solver._check_positive("load", v),
     "nu": solver._check_nu,
+    "damping": check_damping,
     "tol": solver._check_tol,
 }
 
@@ -62,6 +78,7 @@ SHORT: dict[str, str] = {
     "radius": "R/h",
     "load": "P/μh",
     "nu": "ν",
+    "damping": "damping",
     "tol": "tol",
 }
 """Short labels of the parameters, for legends."""
@@ -72,6 +89,7 @@ GRID_LABELS: dict[str, str] = {
     "radius": "R/h",
     "load": "P/(μh)",
     "nu": "ν",
+    "damping": "damping c_w c_T/μ",
 }
 """Axis labels of a swept parameter (the paper's normalisations)."""
 
@@ -109,6 +127,12 @@ class Params:
     load: float = 0.002
     nu: float = 0.2
     tol: float = 1e-8
+    damping: float = 0.0
+    """c_w c_T/mu: dashpots in the foundation (docs/damped.md); 0: none."""
+
+    @property
+    def damped(self) -> bool:
+        return self.damping > 0.0
 
     def get(self, name: str) -> float:
         value: float = getattr(self, name)
@@ -120,13 +144,21 @@ class Params:
         return replace(self, **{name: value})
 
     def physical(self) -> dict[str, float]:
-        """The scene's ``params`` mapping (without tol)."""
-        return {name: self.get(name) for name in SCENE_PARAMS}
+        """The scene's ``params`` mapping (without tol; damping only if > 0)."""
+        return {
+            name: self.get(name)
+            for name in SCENE_PARAMS
+            if name != "damping" or self.damped
+        }
 
     def label(self, against: Params | None = None) -> str:
-        """``V*=0.2 kw=1 ...``; only the values that differ from ``against``."""
+        """``V*=0.2 kw=1 ...``; only the values that differ from ``against``
+        (damping 0 is not shown)."""
         names = [
-            n for n in SCENE_PARAMS if against is None or self.get(n) != against.get(n)
+            n
+            for n in SCENE_PARAMS
+            if (against is None and (n != "damping" or self.damped))
+            or (against is not None and self.get(n) != against.get(n))
         ]
         if not names:
             return "same"
@@ -219,7 +251,16 @@ class AccuracyTable:
     tab: TabName = "accuracy"
 
 
-TabData = Curves | FieldMap | AccuracyTable
+@dataclass(frozen=True)
+class Notice:
+    """A tab the current parameters cannot show (e.g. the stress map with
+    damping > 0): the reason, shown in the tab instead of a plot."""
+
+    tab: TabName
+    text: str
+
+
+TabData = Curves | FieldMap | AccuracyTable | Notice
 
 
 @dataclass(frozen=True)
@@ -228,7 +269,9 @@ class Summary:
     a: float
     p0: float
     indentation: float
+    """NaN with damping > 0 (the damped solver gives no indentation)."""
     top_tensile: float
+    """NaN with damping > 0 (no stress peaks)."""
     bottom_tensile: float
     iterations: int
     error_estimate: float
@@ -236,6 +279,14 @@ class Summary:
     valid: bool
     critical_vstar: float
     rayleigh_vstar: float
+    contact_interval: tuple[float, float] = (math.nan, math.nan)
+    """(-b/h, a/h); (-a/h, a/h) without damping."""
+    drag: float = 0.0
+    """Horizontal force on the punch over P (0 without damping)."""
+
+    @property
+    def damped(self) -> bool:
+        return self.params.damped
 
 
 @dataclass(frozen=True)
@@ -302,13 +353,13 @@ class Cache:
             self.misses.clear()
 
 
-def solution(cache: Cache, params: Params) -> Solution:
+def solution(cache: Cache, params: Params) -> AnySolution:
     s = cache.get_or_make(("solution", params), lambda: _solve(params))
-    assert isinstance(s, Solution)
+    assert isinstance(s, (Solution, DampedSolution))
     return s
 
 
-def _solve(params: Params) -> Solution:
+def _solve(params: Params) -> AnySolution:
     return solve(
         vstar=params.vstar,
         kw=params.kw,
@@ -316,6 +367,7 @@ def _solve(params: Params) -> Solution:
         load=params.load,
         nu=params.nu,
         tol=params.tol,
+        damping=params.damping,
     )
 
 
@@ -326,6 +378,23 @@ def limits(kw: float, nu: float) -> tuple[float, float]:
 
 def summary(cache: Cache, params: Params) -> Summary:
     s = solution(cache, params)
+    if isinstance(s, DampedSolution):
+        return Summary(
+            params=params,
+            a=s.a,
+            p0=float(np.asarray(s.pressure(0.0))),
+            indentation=math.nan,
+            top_tensile=math.nan,
+            bottom_tensile=math.nan,
+            iterations=s.iterations,
+            error_estimate=s.error_estimate,
+            elapsed=s.elapsed,
+            valid=s.valid,
+            critical_vstar=s.critical_vstar,
+            rayleigh_vstar=s.rayleigh_vstar,
+            contact_interval=s.contact_interval,
+            drag=s.drag,
+        )
     peaks = cache.get_or_make(("peaks", params), s.stress_peaks)
     assert isinstance(peaks, StressPeaks)
     return Summary(
@@ -341,6 +410,7 @@ def summary(cache: Cache, params: Params) -> Summary:
         valid=s.valid,
         critical_vstar=s.critical_vstar,
         rayleigh_vstar=s.rayleigh_vstar,
+        contact_interval=(-s.a, s.a),
     )
 
 
@@ -377,7 +447,7 @@ def compute(
     stop = cancelled or (lambda: False)
     head = summary(cache, request.params)
     members = _members(request)
-    solved: list[tuple[str, Params, Solution]] = []
+    solved: list[tuple[str, Params, AnySolution]] = []
     notes: list[str] = []
     for label, params in members:
         try:
@@ -387,7 +457,10 @@ def compute(
     if stop():
         return None
     data: TabData
-    if request.tab == "accuracy":
+    notice = _unsupported(request, [params for _, params, _ in solved])
+    if notice is not None:
+        data = notice
+    elif request.tab == "accuracy":
         table = _accuracy(cache, request.params, report, stop)
         if table is None:
             return None
@@ -404,12 +477,39 @@ def compute(
     return Result(request=request, summary=head, data=data, notes=tuple(notes))
 
 
+_DAMPED_TABS: dict[TabName, str] = {
+    "sweep": "the a/h sweep is not computed with damping > 0 (13 damped solves "
+    "of 0.4-1.5 s each); use a scene with [sweep] (movingpunch run)",
+    "field": "the stress map is not computed with damping > 0 (the damped "
+    "solver's field integral is too slow for a map); see the σx(0,y) tab",
+    "accuracy": "the accuracy ladder covers the undamped solver only; set damping = 0",
+}
+
+
+def _unsupported(request: Request, members: Sequence[Params]) -> Notice | None:
+    """A Notice if the tab cannot be shown with damping > 0: the current set
+    (field, accuracy) or any member (sweep) is damped."""
+    reason = _DAMPED_TABS.get(request.tab)
+    if reason is None:
+        return None
+    damped = (
+        any(m.damped for m in members) if request.tab == "sweep" else False
+    ) or request.params.damped
+    return Notice(request.tab, reason) if damped else None
+
+
 def _one_line(exc: BaseException) -> str:
     return " ".join(str(exc).split()) or type(exc).__name__
 
 
-def _extent(tab: TabName, solved: Sequence[tuple[str, Params, Solution]]) -> float:
-    amax = max(s.a for _, _, s in solved)
+def _extent(tab: TabName, solved: Sequence[tuple[str, Params, AnySolution]]) -> float:
+    # The farthest contact end (the damped contact (-b, a) is asymmetric).
+    amax = max(
+        max(abs(e) for e in s.contact_interval)
+        if isinstance(s, DampedSolution)
+        else s.a
+        for _, _, s in solved
+    )
     if tab == "pressure":
         return _round_up(1.15 * amax)
     return _round_up(max(3.0, 4.0 * amax))
@@ -431,14 +531,16 @@ _LABELS = {
 def _curves(
     cache: Cache,
     tab: TabName,
-    solved: Sequence[tuple[str, Params, Solution]],
+    solved: Sequence[tuple[str, Params, AnySolution]],
     report: Progress,
     stop: Callable[[], bool],
 ) -> Curves:
     title, grid_label, value_label = _LABELS[tab]
     if tab == "depth":
-        grid = np.linspace(-1.0, 0.0, 101)
-        key: tuple[object, ...] = (101,)
+        # Damped depth stresses cost ~1/|y| each: a coarser grid then.
+        n = 41 if any(params.damped for _, params, _ in solved) else 101
+        grid = np.linspace(-1.0, 0.0, n)
+        key: tuple[object, ...] = (n,)
     else:
         extent = _extent(tab, solved)
         grid = np.linspace(-extent, extent, 241 if tab == "surface" else 201)
@@ -450,7 +552,7 @@ def _curves(
         make = {
             "pressure": lambda s=s: s.pressure(grid),
             "surface": lambda s=s: s.surface_stress(grid),
-            "depth": lambda s=s: s.depth_stress(grid),
+            "depth": lambda s=s: _depth_stress(s, grid),
         }[tab]
         values = cache.get_or_make((tab, params, *key), make)
         assert isinstance(values, np.ndarray)
@@ -467,10 +569,26 @@ def _curves(
     )
 
 
+def _depth_stress(s: AnySolution, y: FloatArray) -> FloatArray:
+    """sigma_x(0, y); a damped solution at y clipped to <= DAMPED_MAX_Y, and
+    at y = 0 its surface value sigma_x(0, 0)."""
+    if not isinstance(s, DampedSolution):
+        return np.asarray(s.depth_stress(y), dtype=np.float64)
+    clipped = np.minimum(y, DAMPED_MAX_Y)
+    below = y < 0.0
+    out = np.empty(len(y))
+    distinct, index = np.unique(clipped[below], return_inverse=True)
+    if len(distinct):
+        out[below] = np.asarray(s.depth_stress(distinct), dtype=np.float64)[index]
+    if not below.all():
+        out[~below] = float(np.asarray(s.surface_stress(0.0)))
+    return out
+
+
 def _sweep(
     cache: Cache,
     request: Request,
-    solved: Sequence[tuple[str, Params, Solution]],
+    solved: Sequence[tuple[str, Params, AnySolution]],
     report: Progress,
     stop: Callable[[], bool],
 ) -> Curves | None:
@@ -512,6 +630,7 @@ def _a_or_nan(params: Params) -> float:
 
 def _field(cache: Cache, params: Params, quantity: FieldQuantity) -> FieldMap:
     s = solution(cache, params)
+    assert isinstance(s, Solution)  # damped: a Notice (_unsupported)
     extent = _round_up(max(2.0, 3.0 * s.a))
     x = np.linspace(-extent, extent, 97)
     y = np.linspace(-1.0, 0.0, 41)
@@ -555,7 +674,9 @@ def to_csv(data: TabData, source: Params) -> str:
     """The tab's data as CSV that ``numpy.loadtxt(..., delimiter=",")``
     reads back: ``#`` comment lines, then numbers only."""
     lines = [f"# movingpunch {source.label()} tol={fmt(source.tol)}"]
-    if isinstance(data, AccuracyTable):
+    if isinstance(data, Notice):
+        lines.append(f"# {data.text}")
+    elif isinstance(data, AccuracyTable):
         lines.append(f"# accuracy against time; reference {data.report.reference}")
         table = data.report.columns()
         lines.append("# " + ", ".join(table))

@@ -48,7 +48,7 @@ def load(source: str | Path) -> SceneState:
 
 
 def from_scene(scene: Scene) -> SceneState:
-    values = {name: float(scene.params[name]) for name in SCENE_PARAMS}
+    values = {name: float(scene.params.get(name, 0.0)) for name in SCENE_PARAMS}
     params = Params(**values, tol=float(scene.tol))
     overlay = (
         None

@@ -37,6 +37,13 @@ the last valid result stays on screen. kw accepts inf (rigid base).
 The gauge compares V* with the critical speed V*_cr(kw, ν); it turns red
 above 95 %.
 
+damp: foundation damping c_w c_T/μ >= 0 (dashpots; 0: the paper's model).
+With damping > 0 the gauge compares V* with the Rayleigh speed V*_R (V* may
+exceed V*_cr), the summary shows the contact (-b, a) and the drag over P,
+and the p(x), σx(x,0) and σx(0,y) tabs plot the asymmetric solution; the
+a/h sweep, field and Accuracy tabs show a message instead (too slow or not
+available for the damped solver). Damped solves take 0.4-1.5 s.
+
 Press escape, q or ? to close."""
 
 

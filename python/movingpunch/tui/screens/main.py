@@ -44,6 +44,7 @@ from movingpunch.tui.model import (
     Cache,
     FieldMap,
     FieldQuantity,
+    Notice,
     Overlay,
     Params,
     Request,
@@ -261,6 +262,7 @@ class MainScreen(Screen[None]):
             vcr = error.critical_vstar
             vr = error.rayleigh_vstar
             if vcr is not None and vr is not None:
+                self.query_one(Gauge).damped = False
                 self.query_one(Gauge).limits = (self.params.vstar, vcr, vr)
                 panel.set_message(
                     "vstar",
@@ -294,14 +296,14 @@ class MainScreen(Screen[None]):
 
     def _show(self, result: Result) -> None:
         s = result.summary
-        self.query_one(Gauge).limits = (
-            s.params.vstar,
-            s.critical_vstar,
-            s.rayleigh_vstar,
-        )
+        gauge = self.query_one(Gauge)
+        gauge.damped = s.damped
+        gauge.limits = (s.params.vstar, s.critical_vstar, s.rayleigh_vstar)
         self.query_one("#summary", Static).update(self._summary_text(result))
         data = result.data
-        if isinstance(data, AccuracyTable):
+        if isinstance(data, Notice):
+            self._show_notice(data)
+        elif isinstance(data, AccuracyTable):
             self.query_one("#plot-accuracy", AccuracyView).table = data
         elif isinstance(data, FieldMap):
             self.query_one("#plot-field", StressMap).field = data
@@ -309,8 +311,25 @@ class MainScreen(Screen[None]):
             self.query_one(f"#plot-{data.tab}", CurvePlot).curves = data
         self._update_status()
 
+    def _show_notice(self, notice: Notice) -> None:
+        """A tab the current parameters cannot show: its reason, in the tab."""
+        if notice.tab == "accuracy":
+            view = self.query_one("#plot-accuracy", AccuracyView)
+            view.table = None
+            view.placeholder = notice.text
+        elif notice.tab == "field":
+            smap = self.query_one("#plot-field", StressMap)
+            smap.field = None
+            smap.placeholder = notice.text
+        else:
+            plot = self.query_one(f"#plot-{notice.tab}", CurvePlot)
+            plot.curves = None
+            plot.placeholder = notice.text
+
     def _summary_text(self, result: Result) -> Text:
         s = result.summary
+        if s.damped:
+            return self._damped_summary_text(result)
         out = Text()
         parts = [
             ("a/h", fmt(s.a, 6)),
@@ -323,6 +342,32 @@ class MainScreen(Screen[None]):
         ]
         if self._show_timing:
             parts.append(("", f"{s.elapsed * 1e3:.1f} ms"))
+        for i, (label, value) in enumerate(parts):
+            if i:
+                out.append(" ")
+            if not label:
+                out.append(value, "dim")
+                continue
+            out.append(label + " ", "dim")
+            out.append(value, "bold")
+        if not s.valid:
+            out.append("  INVALID", "bold red")
+        return out
+
+    def _damped_summary_text(self, result: Result) -> Text:
+        """Damping > 0: the contact (-b, a), the drag over P and p(0)."""
+        s = result.summary
+        start, end = s.contact_interval
+        parts = [
+            ("(-b,a)/h", f"({fmt(start, 5)}, {fmt(end, 5)})"),
+            ("drag/P", fmt(s.drag, 4)),
+            ("p(0)", fmt(s.p0, 4)),
+            ("it", str(s.iterations)),
+            ("err", f"{s.error_estimate:.0e}"),
+        ]
+        if self._show_timing:
+            parts.append(("", f"{s.elapsed * 1e3:.0f} ms"))
+        out = Text()
         for i, (label, value) in enumerate(parts):
             if i:
                 out.append(" ")

@@ -80,11 +80,13 @@ class AccuracyView(Widget):
     """
 
     table: reactive[AccuracyTable | None] = reactive(None)
+    placeholder: reactive[str] = reactive("computing the accuracy ladder...")
+    """Shown while ``table`` is None (a notice if the ladder is unavailable)."""
 
     def render(self) -> RenderableType:
         data = self.table
         if data is None:
-            return Text("computing the accuracy ladder...", style="dim")
+            return Text(self.placeholder, style="dim")
         report = data.report
         width, height = self.size.width, self.size.height
         out = Text(no_wrap=True, overflow="crop")

@@ -1,5 +1,6 @@
 """The parameters panel: one compact input per parameter with its inline
-message, μ/(P/h) beside the load, and the gauge of V* against V*_cr."""
+message, μ/(P/h) beside the load, and the gauge of V* against V*_cr (against
+the Rayleigh speed V*_R with damping > 0)."""
 
 from __future__ import annotations
 
@@ -17,6 +18,7 @@ LABELS: dict[str, str] = {
     "radius": "R/h",
     "load": "P/(μh)",
     "nu": "ν",
+    "damping": "damp",
     "tol": "tol",
 }
 
@@ -26,6 +28,8 @@ TOOLTIPS: dict[str, str] = {
     "radius": "punch radius R/h > 0",
     "load": "load P/(μh) > 0; the paper's μ/(P/h) = 1/load",
     "nu": "Poisson's ratio, 0 <= ν < 0.5",
+    "damping": "foundation damping c_w c_T/μ >= 0 (dashpots beside the springs; "
+    "0: the paper's model); with damping V* may exceed V*_cr, up to V*_R",
     "tol": "relative tolerance on a/h, 1e-14 to 1e-2, or draft, default, precise",
 }
 
@@ -34,15 +38,21 @@ WARN_FRACTION = 0.95
 
 
 class Gauge(Static):
-    """V* against V*_cr as a bar, with V*_cr and the Rayleigh V*_R."""
+    """V* against V*_cr as a bar, with V*_cr and the Rayleigh V*_R. With
+    damping > 0 the bar measures V* against V*_R: the critical speed no
+    longer bounds the solution, the Rayleigh speed does."""
 
     limits: reactive[tuple[float, float, float] | None] = reactive(None)
     """(vstar, V*_cr, V*_R), or None before the first result."""
+    damped: reactive[bool] = reactive(False)
+    """Damping > 0: the limit is V*_R."""
 
     def render(self) -> Text:
         if self.limits is None:
             return Text("V*/V*_cr  ...", style="dim")
         vstar, vcr, vr = self.limits
+        if self.damped:
+            return self._render_damped(vstar, vcr, vr)
         ratio = vstar / vcr if vcr > 0 else float("inf")
         self.set_class(ratio > WARN_FRACTION, "-warning")
         width = 12  # fixed: the panel is 30 cells wide at every size
@@ -57,6 +67,25 @@ class Gauge(Static):
             out.append("\nabove the critical speed", "bold red")
         elif ratio > WARN_FRACTION:
             out.append("\nnear the critical speed", "bold red")
+        return out
+
+    def _render_damped(self, vstar: float, vcr: float, vr: float) -> Text:
+        ratio = vstar / vr if vr > 0 else float("inf")
+        self.set_class(ratio > WARN_FRACTION, "-warning")
+        width = 12
+        filled = round(min(max(ratio, 0.0), 1.0) * width)
+        out = Text("V*/V*_R  ")
+        bar_style = "bold red" if ratio > WARN_FRACTION else "green"
+        out.append("█" * filled, bar_style)
+        out.append("░" * (width - filled), "dim")
+        out.append(f" {min(ratio, 9.99):.2f}\n")
+        out.append(f"V*_cr {fmt(vcr, 5)}  V*_R {fmt(vr, 5)}")
+        if ratio >= 1.0:
+            out.append("\nat or above the Rayleigh speed", "bold red")
+        elif ratio > WARN_FRACTION:
+            out.append("\nnear the Rayleigh speed", "bold red")
+        elif vstar >= vcr:
+            out.append("\ndamped: above V*_cr", "yellow")
         return out
 
 

@@ -107,11 +107,13 @@ class StressMap(Widget):
     """
 
     field: reactive[FieldMap | None] = reactive(None)
+    placeholder: reactive[str] = reactive("computing...")
+    """Shown while ``field`` is None (a notice if the map is unavailable)."""
 
     def render(self) -> RenderableType:
         data = self.field
         if data is None:
-            return Text("computing...", style="dim")
+            return Text(self.placeholder, style="dim")
         width, height = self.size.width, self.size.height
         margin = 6  # y labels
         cols = max(width - margin, 4)

@@ -1,0 +1,186 @@
+"""Damping in the terminal UI (issue 8): the input, the gauge against V*_R,
+the summary's contact interval and drag, the damped curves, and the tabs the
+damped solver does not serve. Numbers are checked against ``mp.solve``."""
+
+from __future__ import annotations
+
+import asyncio
+import functools
+import math
+from collections.abc import Callable, Coroutine
+from typing import Any, ParamSpec
+
+import numpy as np
+import pytest
+from textual.pilot import Pilot
+from textual.widgets import Input, Static
+
+import movingpunch as mp
+from movingpunch.damped import DampedSolution
+from movingpunch.scene import Scene
+from movingpunch.tui import MovingPunchApp, create_app, model
+from movingpunch.tui.model import Cache, Curves, Notice, Params, Request, TabName
+from movingpunch.tui.scenes import SceneState, from_scene, to_scene
+from movingpunch.tui.screens import MainScreen
+from movingpunch.tui.widgets import CurvePlot, Gauge, ParamsPanel, StressMap
+
+SIZE = (100, 32)
+P = ParamSpec("P")
+
+
+def sync(test: Callable[P, Coroutine[Any, Any, None]]) -> Callable[P, None]:
+    @functools.wraps(test)
+    def run(*args: P.args, **kwargs: P.kwargs) -> None:
+        asyncio.run(test(*args, **kwargs))
+
+    return run
+
+
+async def settle(pilot: Pilot[None]) -> None:
+    await pilot.app.workers.wait_for_complete()
+    await pilot.pause()
+    while any(w.is_running for w in pilot.app.workers):
+        await pilot.app.workers.wait_for_complete()
+        await pilot.pause()
+
+
+def screen_of(app: MovingPunchApp) -> MainScreen:
+    screen = app.screen
+    assert isinstance(screen, MainScreen), screen
+    return screen
+
+
+def summary_text(app: MovingPunchApp) -> str:
+    return str(screen_of(app).query_one("#summary", Static).render())
+
+
+async def paste(pilot: Pilot[None], name: str, text: str) -> None:
+    box = pilot.app.screen.query_one(f"#in-{name}", Input)
+    box.focus()
+    box.clear()
+    await pilot.pause()
+    box.insert_text_at_cursor(text)
+    await settle(pilot)
+
+
+def damped(vstar: float, damping: float) -> DampedSolution:
+    s = mp.solve(vstar=vstar, kw=1.0, radius=100.0, load=0.002, damping=damping)
+    assert isinstance(s, DampedSolution)
+    return s
+
+
+@sync
+async def test_damping_above_the_critical_speed_shows_interval_and_drag() -> None:
+    app = create_app()
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        screen = screen_of(app)
+        assert screen.params.damping == 0.0
+        assert "a/h 0.372881" in summary_text(app)
+        await paste(pilot, "damping", "0.1")
+        await paste(pilot, "vstar", "0.65")
+        assert screen.params == Params(vstar=0.65, damping=0.1)
+        s = damped(0.65, 0.1)
+        assert s.critical_vstar < 0.65 < s.rayleigh_vstar
+        text = summary_text(app)
+        start, end = s.contact_interval
+        assert f"(-b,a)/h ({start:.5g}, {end:.5g})" in text, text
+        assert f"drag/P {s.drag:.4g}" in text, text
+        assert "δ/h" not in text
+        assert "INVALID" not in text
+        gauge = screen.query_one(Gauge)
+        assert gauge.damped
+        rendered = str(gauge.render())
+        assert rendered.startswith("V*/V*_R ")
+        assert f"{0.65 / s.rayleigh_vstar:.2f}" in rendered
+        assert "damped: above V*_cr" in rendered
+        assert not gauge.has_class("-warning")
+        # The pressure tab plots the damped (asymmetric) pressure.
+        plot = screen.query_one("#plot-pressure", CurvePlot).curves
+        assert plot is not None
+        values = plot.series[0].values
+        np.testing.assert_allclose(values, s.pressure(plot.grid), atol=1e-12)
+        assert plot.grid[int(np.argmax(values))] > 0.0  # ahead of the punch
+        # The stress map is not computed with damping: a message, no crash.
+        await pilot.press("escape", "5")
+        await settle(pilot)
+        smap = screen.query_one("#plot-field", StressMap)
+        assert smap.field is None
+        assert "not computed with damping > 0" in smap.placeholder
+        assert "not computed with damping > 0" in str(smap.render())
+        # Back to damping 0 at that speed: the undamped limit applies again.
+        await paste(pilot, "damping", "0")
+        message = screen.query_one(ParamsPanel).message("vstar")
+        assert "V*_cr" in message
+        assert "need 0 <= V* < V*_cr" in message
+
+
+@sync
+async def test_invalid_damping_shows_the_range_and_keeps_the_last_result() -> None:
+    app = create_app()
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        screen = screen_of(app)
+        before = screen.result
+        shown = summary_text(app)
+        for text, words in (
+            ("-0.1", ("damping must satisfy", "0 <= damping < inf")),
+            ("abc", ("damping must be a real number",)),
+            ("inf", ("damping must satisfy",)),
+        ):
+            await paste(pilot, "damping", text)
+            message = screen.query_one(ParamsPanel).message("damping")
+            for word in words:
+                assert word in message, message
+            assert screen.query_one("#msg-damping").has_class("-shown")
+            assert screen.result is before
+            assert summary_text(app) == shown
+        await paste(pilot, "damping", "0")
+        assert screen.query_one(ParamsPanel).message("damping") == ""
+
+
+def test_depth_tab_of_a_damped_set_clips_and_uses_the_surface_value() -> None:
+    cache = Cache()
+    params = Params(vstar=0.4, damping=0.1)
+    result = model.compute(cache, Request(generation=1, params=params, tab="depth"))
+    assert result is not None
+    data = result.data
+    assert isinstance(data, Curves)
+    assert len(data.grid) == 41
+    s = model.solution(cache, params)
+    assert isinstance(s, DampedSolution)
+    values = data.series[0].values
+    assert values[-1] == float(s.surface_stress(0.0))
+    np.testing.assert_allclose(
+        values[:3], s.depth_stress(data.grid[:3]), rtol=1e-12, atol=0
+    )
+    summary = result.summary
+    assert summary.damped
+    assert summary.contact_interval == s.contact_interval
+    assert summary.drag == s.drag
+    assert math.isnan(summary.indentation)
+
+
+@pytest.mark.parametrize("tab", ["sweep", "field", "accuracy"])
+def test_tabs_the_damped_solver_does_not_serve_are_notices(tab: TabName) -> None:
+    cache = Cache()
+    params = Params(damping=0.5)
+    request = Request(generation=1, params=params, tab=tab)
+    result = model.compute(cache, request)
+    assert result is not None
+    assert isinstance(result.data, Notice)
+    assert "damping" in result.data.text
+    assert model.to_csv(result.data, params).splitlines()[1].startswith("# ")
+
+
+def test_a_damped_scene_round_trips_through_the_app_state() -> None:
+    state = from_scene(Scene.bundled("damped"))
+    assert state.params.damping == 0.1
+    assert state.overlay is not None
+    assert state.overlay.param == "vstar"
+    scene = to_scene(
+        SceneState(params=state.params, overlay=None, sweep=None, name="x")
+    )
+    assert scene.params["damping"] == 0.1
+    plain = to_scene(SceneState(params=Params(), overlay=None, sweep=None, name="y"))
+    assert "damping" not in plain.params
