@@ -290,11 +290,6 @@ def _cmd_solve_damped(args: argparse.Namespace) -> int:
     """``solve --damping D``: the damped foundation (movingpunch.damped)."""
     from movingpunch.damped import solve_damped
 
-    if args.stress:
-        _fail(
-            "--stress is not available with --damping (use the Python API's "
-            "DampedSolution.surface_stress and depth_stress)"
-        )
     d = solve_damped(
         vstar=args.vstar,
         kw=args.kw,
@@ -305,8 +300,12 @@ def _cmd_solve_damped(args: argparse.Namespace) -> int:
         tol=args.tol,
         allow_unphysical=args.allow_unphysical,
     )
+    peaks = d.stress_peaks() if args.stress else None
     if args.json:
-        print(json.dumps(d.to_dict(), indent=2))
+        data = d.to_dict()
+        if peaks is not None:
+            data["stress"] = dataclasses.asdict(peaks)
+        print(json.dumps(data, indent=2))
         return 0
     inputs = [
         ("V* = ρV²/μ", _fmt(d.vstar)),
@@ -331,7 +330,10 @@ def _cmd_solve_damped(args: argparse.Namespace) -> int:
         ("valid", "yes" if d.valid else "NO"),
         ("validity", d.validity or "-"),
     ]
-    print(_tables(("Inputs", inputs), ("Results", results)))
+    sections = [("Inputs", inputs), ("Results", results)]
+    if peaks is not None:
+        sections.append(("Stress sigma_x/(P/h)", _stress_rows(peaks)))
+    print(_tables(*sections))
     return 0
 
 

@@ -62,8 +62,9 @@ class StressField:
 
 @dataclass(frozen=True)
 class StressPeaks:
-    """Peak values of sigma_x/(P/h), with their positions x/h (x >= 0; the
-    distributions are even in x)."""
+    """Peak values of sigma_x/(P/h), with their positions x/h (x >= 0 for the
+    symmetric solver, whose distributions are even in x; of either sign for
+    the damped foundation's asymmetric ones)."""
 
     top_compressive: float
     """Most compressive (lowest) sigma_x on the top surface."""
@@ -79,4 +80,5 @@ class StressPeaks:
     centre_bottom: float
     """sigma_x(0, -h)."""
     search_extent: float
-    """The peaks were searched on 0 <= x <= search_extent."""
+    """The peaks were searched on 0 <= x <= search_extent (symmetric solver)
+    or -search_extent <= x <= search_extent (damped foundation)."""

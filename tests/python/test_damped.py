@@ -240,3 +240,44 @@ def test_cli_damping() -> None:
     assert bad.returncode == 2
     assert "damping" in bad.stderr
     assert "Traceback" not in bad.stderr
+    stress = run("solve", *case, "--damping", "0.1", "--stress", "--json")
+    assert stress.returncode == 0, stress.stderr
+    peaks = api.stress_peaks()
+    assert json.loads(stress.stdout)["stress"]["top_tensile"] == pytest.approx(
+        peaks.top_tensile, rel=1e-12
+    )
+    table = run("solve", *case, "--damping", "0.1", "--stress")
+    assert "Stress sigma_x/(P/h)" in table.stdout
+
+
+def test_stress_peaks_match_the_symmetric_solver_and_are_the_extremes() -> None:
+    # Independent anchor: with damping 1e-9 the peaks are the undamped
+    # solver's (found by its own, different search); at a supercritical speed
+    # the damped peaks are at least as extreme as a dense scan of the surface
+    # and of the bottom, and each is the field's value at its position.
+    args = {"vstar": 0.2, "kw": 1.0, "radius": 100.0, "load": 0.002}
+    undamped = mp.solve(**args).stress_peaks()
+    tiny = mp.solve(**args, damping=1e-9).stress_peaks()
+    for name in ("top_compressive", "top_tensile", "bottom_tensile"):
+        assert getattr(tiny, name) == pytest.approx(
+            getattr(undamped, name), rel=1e-6
+        ), name
+    assert abs(tiny.top_tensile_x) == pytest.approx(undamped.top_tensile_x, abs=0.01)
+    assert tiny.centre_top == pytest.approx(undamped.centre_top, rel=1e-6)
+    assert tiny.centre_bottom == pytest.approx(undamped.centre_bottom, rel=1e-6)
+
+    s = mp.solve(vstar=0.65, kw=1.0, radius=100.0, load=0.002, damping=0.1)
+    pk = s.stress_peaks()
+    assert pk.search_extent == pytest.approx(10.0)
+    x = np.linspace(-pk.search_extent, pk.search_extent, 601)
+    top = np.asarray(s.surface_stress(x))
+    bottom = s.stress_field(x, [-1.0]).sigma_x[0]
+    assert pk.top_tensile >= np.max(top) - 1e-12
+    assert pk.top_compressive <= np.min(top) + 1e-12
+    assert pk.bottom_tensile >= np.max(bottom) - 1e-12
+    assert pk.top_tensile == pytest.approx(
+        s.surface_stress(pk.top_tensile_x), abs=1e-13
+    )
+    assert pk.centre_top == pytest.approx(s.surface_stress(0.0), abs=1e-13)
+    with pytest.raises(mp.InvalidParameterError, match="extent"):
+        s.stress_peaks(extent=-1.0)

@@ -278,7 +278,7 @@ def _quantities(s: AnySolution, want_peaks: bool, stages: _Stages) -> dict[str, 
         "radius": s.radius,
     }
     if isinstance(s, DampedSolution):
-        # Validation refuses indentation and peaks for damped points.
+        # Validation refuses the indentation for damped points.
         q.update(
             p0=float(s.pressure(0.0)),
             indentation=math.nan,
@@ -286,14 +286,14 @@ def _quantities(s: AnySolution, want_peaks: bool, stages: _Stages) -> dict[str, 
             contact_start=s.contact_interval[0],
             contact_end=s.contact_interval[1],
         )
-        return q
-    q.update(
-        p0=s.p0,
-        indentation=s.indentation,
-        drag=0.0,
-        contact_start=-s.a,
-        contact_end=s.a,
-    )
+    else:
+        q.update(
+            p0=s.p0,
+            indentation=s.indentation,
+            drag=0.0,
+            contact_start=-s.a,
+            contact_end=s.a,
+        )
     if want_peaks:
         t0 = time.perf_counter()
         peaks = s.stress_peaks()

@@ -51,11 +51,6 @@ docs/damped.md) to 0 and is kept in ``params`` only when given."""
 DAMPED_UNAVAILABLE: dict[str, str] = {
     "displacement": "the damped solver gives no displacement of the layer",
     "indentation": "the damped solver gives no indentation",
-    "top_compressive": "the damped solver has no stress peaks",
-    "top_tensile": "the damped solver has no stress peaks",
-    "bottom_tensile": "the damped solver has no stress peaks",
-    "centre_top": "the damped solver has no stress peaks",
-    "centre_bottom": "the damped solver has no stress peaks",
 }
 """Outputs and sweep quantities a point with damping > 0 cannot give, with
 the reason (docs/damped.md, section 3)."""

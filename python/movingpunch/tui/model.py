@@ -271,7 +271,8 @@ class Summary:
     indentation: float
     """NaN with damping > 0 (the damped solver gives no indentation)."""
     top_tensile: float
-    """NaN with damping > 0 (no stress peaks)."""
+    """NaN with damping > 0 (the damped peaks take about a second: not in
+    the summary line; DampedSolution.stress_peaks gives them)."""
     bottom_tensile: float
     iterations: int
     error_estimate: float
