@@ -7,19 +7,14 @@ a faster punch or a softer foundation widens the contact).
 
 from __future__ import annotations
 
-import asyncio
-import functools
 import math
 import subprocess
 import sys
-from collections.abc import Callable, Coroutine
 from pathlib import Path
-from typing import Any, ParamSpec
 
 import numpy as np
 import pytest
-from textual.pilot import Pilot
-from textual.widgets import Input, Static
+from textual.widgets import Input
 
 import movingpunch as mp
 from movingpunch.errors import ConvergenceError
@@ -36,65 +31,15 @@ from movingpunch.tui.model import (
 )
 from movingpunch.tui.screens import MainScreen, OverlayPrompt, PathPrompt
 from movingpunch.tui.widgets import CurvePlot, Gauge, ParamsPanel, StressMap
+from tui_pilot import screen_of, settle, status_text, summary_text, sync, type_into
 
 SIZE = (100, 32)
-
-P = ParamSpec("P")
-
-
-def sync(test: Callable[P, Coroutine[Any, Any, None]]) -> Callable[P, None]:
-    """Runs an async pilot test in its own event loop (no pytest plugin)."""
-
-    @functools.wraps(test)
-    def run(*args: P.args, **kwargs: P.kwargs) -> None:
-        asyncio.run(test(*args, **kwargs))
-
-    return run
-
-
-async def settle(pilot: Pilot[None]) -> None:
-    """Waits until every worker is done and its messages are handled."""
-    await pilot.app.workers.wait_for_complete()
-    await pilot.pause()
-    while any(w.is_running for w in pilot.app.workers):
-        await pilot.app.workers.wait_for_complete()
-        await pilot.pause()
-
-
-def screen_of(app: MovingPunchApp) -> MainScreen:
-    screen = app.screen
-    assert isinstance(screen, MainScreen), screen
-    return screen
-
-
-def summary_text(app: MovingPunchApp) -> str:
-    return str(screen_of(app).query_one("#summary", Static).render())
-
-
-def status_text(app: MovingPunchApp) -> str:
-    return str(screen_of(app).query_one("#status", Static).render())
 
 
 def curves(app: MovingPunchApp, tab: str) -> Curves:
     data = screen_of(app).query_one(f"#plot-{tab}", CurvePlot).curves
     assert data is not None
     return data
-
-
-async def type_into(
-    pilot: Pilot[None], name: str, text: str, *, paste: bool = False
-) -> None:
-    """Types ``text`` into the input of ``name`` as a user would, key by key
-    (each prefix is checked and, if valid, solved), or pastes it at once."""
-    box = pilot.app.screen.query_one(f"#in-{name}", Input)
-    box.focus()
-    box.clear()
-    await pilot.pause()
-    if paste:
-        box.insert_text_at_cursor(text)
-    elif text:
-        await pilot.press(*text)
-    await settle(pilot)
 
 
 def a_on_screen(app: MovingPunchApp) -> float:

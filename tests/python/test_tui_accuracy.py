@@ -6,15 +6,10 @@ itself at another fixed collocation size (N = 96), not against the UI.
 
 from __future__ import annotations
 
-import asyncio
-import functools
-from collections.abc import Callable, Coroutine
 from pathlib import Path
-from typing import Any, ParamSpec
 
 import numpy as np
 import pytest
-from textual.pilot import Pilot
 from textual.widgets import Input
 
 import movingpunch as mp
@@ -23,45 +18,13 @@ from movingpunch.tui import MovingPunchApp, create_app
 from movingpunch.tui.model import AccuracyTable, Params
 from movingpunch.tui.screens import MainScreen, PathPrompt
 from movingpunch.tui.widgets import AccuracyView, ParamsPanel
-
-P = ParamSpec("P")
-
-
-def sync(test: Callable[P, Coroutine[Any, Any, None]]) -> Callable[P, None]:
-    @functools.wraps(test)
-    def run(*args: P.args, **kwargs: P.kwargs) -> None:
-        asyncio.run(test(*args, **kwargs))
-
-    return run
-
-
-async def settle(pilot: Pilot[None]) -> None:
-    await pilot.app.workers.wait_for_complete()
-    await pilot.pause()
-    while any(w.is_running for w in pilot.app.workers):
-        await pilot.app.workers.wait_for_complete()
-        await pilot.pause()
-
-
-def screen_of(app: MovingPunchApp) -> MainScreen:
-    screen = app.screen
-    assert isinstance(screen, MainScreen), screen
-    return screen
+from tui_pilot import screen_of, settle, sync, type_into
 
 
 def shown(app: MovingPunchApp) -> AccuracyTable:
     table = screen_of(app).query_one(AccuracyView).table
     assert table is not None
     return table
-
-
-async def type_into(pilot: Pilot[None], name: str, text: str) -> None:
-    box = pilot.app.screen.query_one(f"#in-{name}", Input)
-    box.focus()
-    box.clear()
-    await pilot.pause()
-    await pilot.press(*text)
-    await settle(pilot)
 
 
 def accuracy_builds(screen: MainScreen) -> int:

@@ -4,63 +4,21 @@ damped solver does not serve. Numbers are checked against ``mp.solve``."""
 
 from __future__ import annotations
 
-import asyncio
-import functools
 import math
-from collections.abc import Callable, Coroutine
-from typing import Any, ParamSpec
 
 import numpy as np
 import pytest
-from textual.pilot import Pilot
-from textual.widgets import Input, Static
 
 import movingpunch as mp
 from movingpunch.damped import DampedSolution
 from movingpunch.scene import Scene
-from movingpunch.tui import MovingPunchApp, create_app, model
+from movingpunch.tui import create_app, model
 from movingpunch.tui.model import Cache, Curves, Notice, Params, Request, TabName
 from movingpunch.tui.scenes import SceneState, from_scene, to_scene
-from movingpunch.tui.screens import MainScreen
 from movingpunch.tui.widgets import CurvePlot, Gauge, ParamsPanel, StressMap
+from tui_pilot import screen_of, settle, summary_text, sync, type_into
 
 SIZE = (100, 32)
-P = ParamSpec("P")
-
-
-def sync(test: Callable[P, Coroutine[Any, Any, None]]) -> Callable[P, None]:
-    @functools.wraps(test)
-    def run(*args: P.args, **kwargs: P.kwargs) -> None:
-        asyncio.run(test(*args, **kwargs))
-
-    return run
-
-
-async def settle(pilot: Pilot[None]) -> None:
-    await pilot.app.workers.wait_for_complete()
-    await pilot.pause()
-    while any(w.is_running for w in pilot.app.workers):
-        await pilot.app.workers.wait_for_complete()
-        await pilot.pause()
-
-
-def screen_of(app: MovingPunchApp) -> MainScreen:
-    screen = app.screen
-    assert isinstance(screen, MainScreen), screen
-    return screen
-
-
-def summary_text(app: MovingPunchApp) -> str:
-    return str(screen_of(app).query_one("#summary", Static).render())
-
-
-async def paste(pilot: Pilot[None], name: str, text: str) -> None:
-    box = pilot.app.screen.query_one(f"#in-{name}", Input)
-    box.focus()
-    box.clear()
-    await pilot.pause()
-    box.insert_text_at_cursor(text)
-    await settle(pilot)
 
 
 def damped(vstar: float, damping: float) -> DampedSolution:
@@ -77,8 +35,8 @@ async def test_damping_above_the_critical_speed_shows_interval_and_drag() -> Non
         screen = screen_of(app)
         assert screen.params.damping == 0.0
         assert "a/h 0.372881" in summary_text(app)
-        await paste(pilot, "damping", "0.1")
-        await paste(pilot, "vstar", "0.65")
+        await type_into(pilot, "damping", "0.1", paste=True)
+        await type_into(pilot, "vstar", "0.65", paste=True)
         assert screen.params == Params(vstar=0.65, damping=0.1)
         s = damped(0.65, 0.1)
         assert s.critical_vstar < 0.65 < s.rayleigh_vstar
@@ -109,7 +67,7 @@ async def test_damping_above_the_critical_speed_shows_interval_and_drag() -> Non
         assert "not computed with damping > 0" in smap.placeholder
         assert "not computed with damping > 0" in str(smap.render())
         # Back to damping 0 at that speed: the undamped limit applies again.
-        await paste(pilot, "damping", "0")
+        await type_into(pilot, "damping", "0", paste=True)
         message = screen.query_one(ParamsPanel).message("vstar")
         assert "V*_cr" in message
         assert "need 0 <= V* < V*_cr" in message
@@ -128,14 +86,14 @@ async def test_invalid_damping_shows_the_range_and_keeps_the_last_result() -> No
             ("abc", ("damping must be a real number",)),
             ("inf", ("damping must satisfy",)),
         ):
-            await paste(pilot, "damping", text)
+            await type_into(pilot, "damping", text, paste=True)
             message = screen.query_one(ParamsPanel).message("damping")
             for word in words:
                 assert word in message, message
             assert screen.query_one("#msg-damping").has_class("-shown")
             assert screen.result is before
             assert summary_text(app) == shown
-        await paste(pilot, "damping", "0")
+        await type_into(pilot, "damping", "0", paste=True)
         assert screen.query_one(ParamsPanel).message("damping") == ""
 
 

@@ -12,11 +12,11 @@ from __future__ import annotations
 from collections.abc import Callable
 
 import pytest
-from textual.pilot import Pilot
 
 import movingpunch as mp
 from movingpunch.tui import create_app
 from movingpunch.tui.model import TabName
+from tui_pilot import settle
 
 SnapCompare = Callable[..., bool]
 
@@ -26,14 +26,6 @@ def _cold_kernel_cache() -> None:
     # The summary shows the iteration count, which depends on whether an
     # earlier test left a (wider) kernel table in the process-wide cache.
     mp.clear_kernel_cache()
-
-
-async def settle(pilot: Pilot[None]) -> None:
-    await pilot.app.workers.wait_for_complete()
-    await pilot.pause()
-    while any(w.is_running for w in pilot.app.workers):
-        await pilot.app.workers.wait_for_complete()
-        await pilot.pause()
 
 
 def app(tab: TabName = "pressure") -> object:

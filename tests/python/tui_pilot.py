@@ -1,0 +1,66 @@
+"""Helpers shared by the terminal UI's pilot tests (test_tui*.py): run an
+async test, wait for the workers, read the screen, type into an input."""
+
+from __future__ import annotations
+
+import asyncio
+import functools
+from collections.abc import Callable, Coroutine
+from typing import Any, ParamSpec
+
+from textual.pilot import Pilot
+from textual.widgets import Input, Static
+
+from movingpunch.tui import MovingPunchApp
+from movingpunch.tui.screens import MainScreen
+
+P = ParamSpec("P")
+
+
+def sync(test: Callable[P, Coroutine[Any, Any, None]]) -> Callable[P, None]:
+    """Runs an async pilot test in its own event loop (no pytest plugin)."""
+
+    @functools.wraps(test)
+    def run(*args: P.args, **kwargs: P.kwargs) -> None:
+        asyncio.run(test(*args, **kwargs))
+
+    return run
+
+
+async def settle(pilot: Pilot[None]) -> None:
+    """Waits until every worker is done and its messages are handled."""
+    await pilot.app.workers.wait_for_complete()
+    await pilot.pause()
+    while any(w.is_running for w in pilot.app.workers):
+        await pilot.app.workers.wait_for_complete()
+        await pilot.pause()
+
+
+def screen_of(app: MovingPunchApp) -> MainScreen:
+    screen = app.screen
+    assert isinstance(screen, MainScreen), screen
+    return screen
+
+
+def summary_text(app: MovingPunchApp) -> str:
+    return str(screen_of(app).query_one("#summary", Static).render())
+
+
+def status_text(app: MovingPunchApp) -> str:
+    return str(screen_of(app).query_one("#status", Static).render())
+
+
+async def type_into(
+    pilot: Pilot[None], name: str, text: str, *, paste: bool = False
+) -> None:
+    """Types ``text`` into the input of ``name`` as a user would, key by key
+    (each prefix is checked and, if valid, solved), or pastes it at once."""
+    box = pilot.app.screen.query_one(f"#in-{name}", Input)
+    box.focus()
+    box.clear()
+    await pilot.pause()
+    if paste:
+        box.insert_text_at_cursor(text)
+    elif text:
+        await pilot.press(*text)
+    await settle(pilot)
