@@ -1,5 +1,7 @@
 #include "movingpunch/collocation.hpp"
 
+#include "bessel.hpp"
+
 #include <array>
 
 #include <cmath>
@@ -80,7 +82,7 @@ Eigen::Index last_even_term(const Eigen::VectorXd& b) {
   return last;
 }
 
-namespace {
+namespace detail {
 
 // J_0(w) .. J_kmax(w), w > 0, all at once: upward recurrence from the
 // library's J_0, J_1 while the order stays below w (stable there), Miller's
@@ -116,7 +118,9 @@ void bessel_orders(double w, int kmax, std::vector<double>& J) {
   for (double& v : J) v /= norm;
 }
 
-}  // namespace
+}  // namespace detail
+
+using detail::bessel_orders;
 
 double u_series_cosine_transform(const Eigen::VectorXd& b, double a, double alpha) {
   const double w = alpha * a;

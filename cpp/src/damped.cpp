@@ -11,7 +11,9 @@
 
 #include "movingpunch/collocation.hpp"
 #include "movingpunch/dispersion.hpp"
+#include "bessel.hpp"
 #include "gauss_kronrod.hpp"
+#include "layer_basis.hpp"
 #include "movingpunch/errors.hpp"
 
 namespace movingpunch {
@@ -25,6 +27,8 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 using detail::kWg;
 using detail::kWgk;
 using detail::kXgk;
+using detail::modal_columns;
+using detail::transfer_matrix;
 
 // Node j (0..14, ascending) of the rule on [c - h, c + h] and its Kronrod weight.
 double gk_node(int j, double c, double h) {
@@ -41,40 +45,6 @@ double g_weight(int j, double h) {
   return k % 2 == 1 ? kWg[k / 2] * h : 0.0;
 }
 
-Eigen::Vector4d shear_vector(double m) { return {1.0, -1.0 / m, (1.0 + m * m) / m, -2.0}; }
-
-// The regularised exponential basis of layer_response.cpp (columns: top shear
-// mode, top divided difference, bottom shear mode, bottom divided difference)
-// at depth y; real, since only the bottom condition is complex.
-Eigen::Matrix4d modal_columns(const WaveConstants& c, double t, double y) {
-  const double nT = c.nT, nL = c.nL, d = c.delta;
-  auto E = [d](double x) { return d > 0.0 ? std::expm1(d * x) / d : x; };
-  const Eigen::Vector4d vTp = shear_vector(nT), vTm = shear_vector(-nT);
-  const Eigen::Vector4d dvp(0.0, c.dW, c.dT, c.dS), dvm(0.0, -c.dW, -c.dT, c.dS);
-  Eigen::Matrix4d C;
-  const double et = std::exp(nT * t * y), el = std::exp(nL * t * y);
-  const double yb = y + 1.0;
-  const double ebt = std::exp(-nT * t * yb), ebl = std::exp(-nL * t * yb);
-  C.col(0) = et * vTp;
-  C.col(1) = el * dvp + vTp * (et * E(t * y));
-  C.col(2) = ebt * vTm;
-  C.col(3) = ebl * dvm + vTm * (ebt * E(-t * yb));
-  return C;
-}
-
-// exp(t y A) by its Taylor series (|t y| < 0.5).
-Eigen::Matrix4d transfer_matrix(const WaveConstants& c, double t, double y) {
-  Eigen::Matrix4d P = Eigen::Matrix4d::Identity();
-  Eigen::Matrix4d term = Eigen::Matrix4d::Identity();
-  const Eigen::Matrix4d B = (t * y) * c.A;
-  for (int k = 1; k < 80; ++k) {
-    term = term * B / static_cast<double>(k);
-    P += term;
-    if (term.cwiseAbs().maxCoeff() <= 1e-18 * P.cwiseAbs().maxCoeff() && k > 3) break;
-  }
-  return P;
-}
-
 // Bottom spring row t S - k W, normalised by t + |k| (no overflow for any k, t).
 Eigen::RowVector4cd spring_row(const Eigen::RowVector4d& S, const Eigen::RowVector4d& W,
                                double t, cplx k, bool rigid) {
@@ -83,45 +53,14 @@ Eigen::RowVector4cd spring_row(const Eigen::RowVector4d& S, const Eigen::RowVect
   return (t / n) * S.cast<cplx>() - (k / n) * W.cast<cplx>();
 }
 
-// J_0 .. J_{nmax+1} at x >= 0: upward recurrence from the exact J_0, J_1 when
-// x exceeds every order, else Miller's backward recurrence normalised by the
-// larger of the exact J_0, J_1.
+// J_0 .. J_{nmax+1} at x >= 0 (collocation.cpp's recurrences).
 void bessel_j(double x, int nmax, std::vector<double>& J) {
-  J.assign(static_cast<std::size_t>(nmax) + 2, 0.0);
   if (x == 0.0) {
+    J.assign(static_cast<std::size_t>(nmax) + 2, 0.0);
     J[0] = 1.0;
     return;
   }
-  if (x > nmax + 2.0) {
-    // Upward recurrence is stable for orders below the argument: O(nmax).
-    J[0] = std::cyl_bessel_j(0.0, x);
-    J[1] = std::cyl_bessel_j(1.0, x);
-    for (int k = 1; k <= nmax; ++k)
-      J[static_cast<std::size_t>(k + 1)] =
-          2.0 * k / x * J[static_cast<std::size_t>(k)] - J[static_cast<std::size_t>(k - 1)];
-    return;
-  }
-  const double top = std::max(static_cast<double>(nmax), x);
-  int m = static_cast<int>(top + 20.0 + std::sqrt(60.0 * top));
-  m += m % 2;
-  double jp1 = 0.0, j = 1e-280;
-  std::vector<double> tmp(static_cast<std::size_t>(m) + 1, 0.0);
-  tmp[static_cast<std::size_t>(m)] = j;
-  for (int k = m; k >= 1; --k) {
-    const double jm1 = 2.0 * k / x * j - jp1;
-    jp1 = j;
-    j = jm1;
-    tmp[static_cast<std::size_t>(k - 1)] = j;
-    if (std::fabs(j) > 1e250) {
-      for (int q = k - 1; q <= m; ++q) tmp[static_cast<std::size_t>(q)] *= 1e-250;
-      j *= 1e-250;
-      jp1 *= 1e-250;
-    }
-  }
-  const double J0 = std::cyl_bessel_j(0.0, x), J1 = std::cyl_bessel_j(1.0, x);
-  const double scale = std::fabs(J0) > std::fabs(J1) ? J0 / tmp[0] : J1 / tmp[1];
-  for (int k = 0; k <= nmax + 1 && k <= m; ++k)
-    J[static_cast<std::size_t>(k)] = tmp[static_cast<std::size_t>(k)] * scale;
+  detail::bessel_orders(x, nmax + 1, J);
 }
 
 }  // namespace

@@ -4,9 +4,51 @@
 #include <limits>
 #include <stdexcept>
 
+#include "layer_basis.hpp"
 #include "movingpunch/errors.hpp"
 
 namespace movingpunch {
+
+namespace detail {
+
+Eigen::Vector4d shear_vector(double m) { return {1.0, -1.0 / m, (1.0 + m * m) / m, -2.0}; }
+
+// The four columns of the regularised exponential basis at depth y.
+Eigen::Matrix4d modal_columns(const WaveConstants& c, double t, double y) {
+  const double nT = c.nT, nL = c.nL, d = c.delta;
+  auto E = [d](double x) { return d > 0.0 ? std::expm1(d * x) / d : x; };
+  const Eigen::Vector4d vTp = shear_vector(nT), vTm = shear_vector(-nT);
+  const Eigen::Vector4d dvp(0.0, c.dW, c.dT, c.dS), dvm(0.0, -c.dW, -c.dT, c.dS);
+  Eigen::Matrix4d C;
+  const double et = std::exp(nT * t * y), el = std::exp(nL * t * y);
+  const double yb = y + 1.0;
+  const double ebt = std::exp(-nT * t * yb), ebl = std::exp(-nL * t * yb);
+  C.col(0) = et * vTp;
+  C.col(1) = el * dvp + vTp * (et * E(t * y));
+  C.col(2) = ebt * vTm;
+  C.col(3) = ebl * dvm + vTm * (ebt * E(-t * yb));
+  return C;
+}
+
+// Transfer matrix exp(-t A) by its Taylor series (t < 0.5, |A| <= 6); with
+// depth y, exp(t y A) (z(y) = exp(t y A) z(0)).
+Eigen::Matrix4d transfer_matrix(const WaveConstants& c, double t, double y) {
+  Eigen::Matrix4d P = Eigen::Matrix4d::Identity();
+  Eigen::Matrix4d term = Eigen::Matrix4d::Identity();
+  const Eigen::Matrix4d B = (t * y) * c.A;
+  for (int k = 1; k < 80; ++k) {
+    term = term * B / static_cast<double>(k);
+    P += term;
+    if (term.cwiseAbs().maxCoeff() <= 1e-18 * P.cwiseAbs().maxCoeff() && k > 3) break;
+  }
+  return P;
+}
+
+}  // namespace detail
+
+using detail::modal_columns;
+using detail::shear_vector;
+using detail::transfer_matrix;
 
 namespace {
 
@@ -26,7 +68,6 @@ double c2_of(double nu) {
 }
 
 // Mode vector [U, W, tau/alpha, sigma_y/alpha] of the shear root m (U = 1).
-Eigen::Vector4d shear_vector(double m) { return {1.0, -1.0 / m, (1.0 + m * m) / m, -2.0}; }
 
 }  // namespace
 
@@ -108,22 +149,6 @@ namespace {
 double spring_weight_t(double t, double kw) { return 1.0 / (1.0 + kw / t); }
 double spring_weight_k(double t, double kw) { return 1.0 / (1.0 + t / kw); }
 
-// The four columns of the regularised exponential basis at depth y.
-Eigen::Matrix4d modal_columns(const WaveConstants& c, double t, double y) {
-  const double nT = c.nT, nL = c.nL, d = c.delta;
-  auto E = [d](double x) { return d > 0.0 ? std::expm1(d * x) / d : x; };
-  const Eigen::Vector4d vTp = shear_vector(nT), vTm = shear_vector(-nT);
-  const Eigen::Vector4d dvp(0.0, c.dW, c.dT, c.dS), dvm(0.0, -c.dW, -c.dT, c.dS);
-  Eigen::Matrix4d C;
-  const double et = std::exp(nT * t * y), el = std::exp(nL * t * y);
-  const double yb = y + 1.0;
-  const double ebt = std::exp(-nT * t * yb), ebl = std::exp(-nL * t * yb);
-  C.col(0) = et * vTp;
-  C.col(1) = el * dvp + vTp * (et * E(t * y));
-  C.col(2) = ebt * vTm;
-  C.col(3) = ebl * dvm + vTm * (ebt * E(-t * yb));
-  return C;
-}
 
 Eigen::Matrix4d modal_matrix(const WaveConstants& c, double kw, bool rigid, double t,
                              Eigen::Matrix4d* top_columns) {
@@ -140,19 +165,6 @@ Eigen::Matrix4d modal_matrix(const WaveConstants& c, double kw, bool rigid, doub
   return M;
 }
 
-// Transfer matrix exp(-t A) by its Taylor series (t < 0.5, |A| <= 6); with
-// depth y, exp(t y A) (z(y) = exp(t y A) z(0)).
-Eigen::Matrix4d transfer_matrix(const WaveConstants& c, double t, double y = -1.0) {
-  Eigen::Matrix4d P = Eigen::Matrix4d::Identity();
-  Eigen::Matrix4d term = Eigen::Matrix4d::Identity();
-  const Eigen::Matrix4d B = (t * y) * c.A;
-  for (int k = 1; k < 80; ++k) {
-    term = term * B / static_cast<double>(k);
-    P += term;
-    if (term.cwiseAbs().maxCoeff() <= 1e-18 * P.cwiseAbs().maxCoeff() && k > 3) break;
-  }
-  return P;
-}
 
 // Bottom conditions as two rows acting on z(-1) = P z(0).
 Eigen::Matrix<double, 2, 4> bottom_rows(const Eigen::Matrix4d& P, double kw, bool rigid,
@@ -200,7 +212,7 @@ Response LayerModel::response_transfer(double t) const {
     const double U0 = c_.A(2, 3) / c_.A(2, 0);
     return from_top(c_, U0, 0.0);
   }
-  const Eigen::Matrix4d P = transfer_matrix(c_, t);
+  const Eigen::Matrix4d P = transfer_matrix(c_, t, -1.0);
   const Eigen::Matrix<double, 2, 4> R = bottom_rows(P, kw_, rigid_, t);
   // z0 = [U0, W0, 0, -1]: R(:,0:1) [U0, W0] = R(:,3).
   Eigen::Matrix2d M = R.leftCols<2>();
@@ -247,7 +259,7 @@ double LayerModel::dispersion(double t) const {
   if (!(t > 0.0) || !std::isfinite(t))
     throw std::invalid_argument("dispersion: t = alpha h must be finite and > 0");
   if (t < kSmallT) {
-    const Eigen::Matrix4d P = transfer_matrix(c_, t);
+    const Eigen::Matrix4d P = transfer_matrix(c_, t, -1.0);
     const Eigen::Matrix<double, 2, 4> R = bottom_rows(P, kw_, rigid_, t);
     return R(0, 0) * R(1, 1) - R(0, 1) * R(1, 0);
   }

@@ -330,7 +330,6 @@ class MainScreen(Screen[None]):
         s = result.summary
         if s.damped:
             return self._damped_summary_text(result)
-        out = Text()
         parts = [
             ("a/h", fmt(s.a, 6)),
             ("p0", fmt(s.p0, 4)),
@@ -342,17 +341,7 @@ class MainScreen(Screen[None]):
         ]
         if self._show_timing:
             parts.append(("", f"{s.elapsed * 1e3:.1f} ms"))
-        for i, (label, value) in enumerate(parts):
-            if i:
-                out.append(" ")
-            if not label:
-                out.append(value, "dim")
-                continue
-            out.append(label + " ", "dim")
-            out.append(value, "bold")
-        if not s.valid:
-            out.append("  INVALID", "bold red")
-        return out
+        return _labelled(parts, s.valid)
 
     def _damped_summary_text(self, result: Result) -> Text:
         """Damping > 0: the contact (-b, a), the drag over P and p(0)."""
@@ -367,18 +356,7 @@ class MainScreen(Screen[None]):
         ]
         if self._show_timing:
             parts.append(("", f"{s.elapsed * 1e3:.0f} ms"))
-        out = Text()
-        for i, (label, value) in enumerate(parts):
-            if i:
-                out.append(" ")
-            if not label:
-                out.append(value, "dim")
-                continue
-            out.append(label + " ", "dim")
-            out.append(value, "bold")
-        if not s.valid:
-            out.append("  INVALID", "bold red")
-        return out
+        return _labelled(parts, s.valid)
 
     def _update_status(self) -> None:
         status = self.query_one("#status", Static)
@@ -595,3 +573,20 @@ def _parameter_named(message: str) -> str | None:
     """The parameter an InvalidParameterError message starts with."""
     first = message.split(" ", 1)[0]
     return first if first in PARAM_NAMES else None
+
+
+def _labelled(parts: list[tuple[str, str]], valid: bool) -> Text:
+    """The summary line: dim labels, bold values (an unlabelled part dim),
+    and INVALID in red for an unphysical solution."""
+    out = Text()
+    for i, (label, value) in enumerate(parts):
+        if i:
+            out.append(" ")
+        if not label:
+            out.append(value, "dim")
+            continue
+        out.append(label + " ", "dim")
+        out.append(value, "bold")
+    if not valid:
+        out.append("  INVALID", "bold red")
+    return out
