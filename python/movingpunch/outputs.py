@@ -28,7 +28,6 @@ Every failure is an ``OutputError`` (a ``MovingPunchError`` and an
 from __future__ import annotations
 
 import contextlib
-import errno as _errno
 import os
 import secrets
 import shutil
@@ -204,7 +203,7 @@ def _write_file(path: Path, data: bytes, mode: int | None) -> None:
     fd = os.open(path, flags, 0o666)
     with open(fd, "wb") as f:
         if mode is not None:
-            os.fchmod(f.fileno(), mode)
+            os.chmod(path, mode)
         f.write(data)
         f.flush()
         os.fsync(f.fileno())
@@ -220,9 +219,9 @@ def _keep_previous(target: Path, backup: Path) -> None:
     link; a copy where links are not supported)."""
     try:
         os.link(target, backup, follow_symlinks=False)
-    except OSError as exc:
-        if exc.errno == _errno.EEXIST:
-            raise
+    except FileExistsError:
+        raise
+    except (OSError, NotImplementedError):
         shutil.copy2(target, backup, follow_symlinks=False)
 
 
