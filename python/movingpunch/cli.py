@@ -677,11 +677,20 @@ def _stdout_closed() -> int:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``movingpunch`` command; returns the exit status."""
+    for name in ("stdout", "stderr"):
+        if getattr(sys, name) is None:  # started with the descriptor closed
+            setattr(sys, name, open(os.devnull, "w", encoding="utf-8"))  # noqa: SIM115
     if isinstance(sys.stdout, io.TextIOWrapper):
         # Labels use Greek letters; never fail on a terminal that lacks them.
         sys.stdout.reconfigure(errors="backslashreplace")
     parser = _build_parser()
-    args = parser.parse_args(argv)
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit:  # --help or a usage error
+        with contextlib.suppress(BrokenPipeError):
+            sys.stdout.flush()
+            raise
+        raise SystemExit(_stdout_closed()) from None
     handler: Callable[[argparse.Namespace], int] | None = getattr(args, "handler", None)
     if handler is None:
         handler = _cmd_tui  # no command: the terminal UI on the paper's Fig. 4
