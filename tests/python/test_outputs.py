@@ -398,6 +398,22 @@ def failing_on(
     return patched
 
 
+def full_disk_on(nth: int) -> Callable[[Path, bytes, int | None], None]:
+    """``outputs._write_file`` whose nth call writes half of its data and
+    then fails with ENOSPC, as a disk that fills up does."""
+    real = outputs._write_file
+    calls = [0]
+
+    def write(path: Path, data: bytes, mode: int | None) -> None:
+        calls[0] += 1
+        if calls[0] == nth:
+            real(path, data[: len(data) // 2], mode)
+            raise ENOSPC
+        real(path, data, mode)
+
+    return write
+
+
 @pytest.mark.parametrize("nth", [1, 3, 7])
 def test_a_full_disk_leaves_the_previous_results(
     nth: int,
@@ -410,9 +426,7 @@ def test_a_full_disk_leaves_the_previous_results(
     out = tmp_path / "out"
     old = stale_results(out, capsys)
     assert len(old) == 7  # 4 CSV, 3 PNG
-    monkeypatch.setattr(
-        outputs, "_write_file", failing_on(nth, ENOSPC, outputs._write_file)
-    )
+    monkeypatch.setattr(outputs, "_write_file", full_disk_on(nth))
     assert cli("run", "fig4", "--png", "--no-plot", "--out", str(out)) == 2
     captured = capsys.readouterr()
     assert captured.out == ""
@@ -425,6 +439,20 @@ def test_a_full_disk_leaves_the_previous_results(
     assert_unchanged(out, old)
 
 
+def test_save_on_a_full_disk_keeps_the_previous_file(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    target = tmp_path / "s.toml"
+    Scene.bundled("fig4").save(target)
+    before = target.read_bytes()
+    monkeypatch.setattr(outputs, "_write_file", full_disk_on(1))
+    with pytest.raises(mp.OutputError) as info:
+        Scene.bundled("table1").save(target)
+    assert str(info.value) == f"cannot write {target}: No space left on device"
+    assert target.read_bytes() == before
+    assert tree(tmp_path) == {"s.toml"}
+
+
 def test_a_full_disk_in_accuracy_leaves_the_previous_file(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
 ) -> None:
@@ -434,9 +462,7 @@ def test_a_full_disk_in_accuracy_leaves_the_previous_file(
     (f,) = out.iterdir()
     f.write_text("previous\n", encoding="utf-8")
     capsys.readouterr()
-    monkeypatch.setattr(
-        outputs, "_write_file", failing_on(1, ENOSPC, outputs._write_file)
-    )
+    monkeypatch.setattr(outputs, "_write_file", full_disk_on(1))
     assert cli(*args) == 2
     line = one_error_line(capsys.readouterr().err)
     assert line == f"movingpunch: error: cannot write {f}: No space left on device"
