@@ -19,6 +19,7 @@ from movingpunch.errors import (
     ConvergenceError,
     InvalidParameterError,
     MovingPunchError,
+    OutputError,
     SupercriticalSpeedError,
     UnphysicalContactError,
 )
@@ -58,6 +59,7 @@ __all__ = [
     "ConvergenceError",
     "InvalidParameterError",
     "MovingPunchError",
+    "OutputError",
     "Scene",
     "SceneError",
     "SceneResult",

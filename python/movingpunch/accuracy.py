@@ -28,7 +28,7 @@ import numpy.typing as npt
 
 from movingpunch.errors import InvalidParameterError, MovingPunchError
 from movingpunch.fields import StressPeaks
-from movingpunch.scene._export import atomic_write
+from movingpunch.outputs import publish, safe_name
 from movingpunch.scene._run import CORE_STAGES, is_damped
 from movingpunch.scene._spec import OutputSpec, Scene, load_scene
 from movingpunch.solver import Solution, clear_kernel_cache, solve
@@ -41,6 +41,7 @@ __all__ = [
     "accuracy_report",
     "ascii_plot",
     "format_table",
+    "render_csv",
     "write_csv",
 ]
 
@@ -545,16 +546,14 @@ def ascii_plot(
     return text if color else str(plt.uncolorize(text))
 
 
-def write_csv(report: AccuracyReport, out_dir: str | Path) -> Path:
-    """Writes ``<name>-accuracy.csv`` into ``out_dir`` atomically: ``#``
-    metadata lines (the version, the reference, the columns and the scene as
-    TOML, as scene exports have; ``movingpunch.scene.read_csv`` reads it),
-    then numbers only (``np.loadtxt(path, delimiter=",")``)."""
+def render_csv(report: AccuracyReport) -> tuple[str, bytes]:
+    """(file name, content) of the ladder's CSV: ``<name>-accuracy.csv``
+    (the name through ``safe_name``), ``#`` metadata lines (the version, the
+    reference, the columns and the scene as TOML, as scene exports have;
+    ``movingpunch.scene.read_csv`` reads it), then numbers only
+    (``np.loadtxt(path, delimiter=",")``)."""
     import movingpunch
 
-    directory = Path(out_dir)
-    directory.mkdir(parents=True, exist_ok=True)
-    path = directory / f"{report.name}-accuracy.csv"
     columns = report.columns()
     lines = [
         f"# movingpunch_version: {movingpunch.__version__}",
@@ -571,5 +570,12 @@ def write_csv(report: AccuracyReport, out_dir: str | Path) -> Path:
     arrays = list(columns.values())
     for i in range(len(report.rungs)):
         lines.append(",".join(repr(float(a[i])) for a in arrays))
-    atomic_write(path, ("\n".join(lines) + "\n").encode("utf-8"))
+    name = f"{safe_name(report.name)}-accuracy.csv"
+    return name, ("\n".join(lines) + "\n").encode("utf-8")
+
+
+def write_csv(report: AccuracyReport, out_dir: str | Path) -> Path:
+    """Writes ``render_csv(report)`` into ``out_dir`` (created if missing)
+    atomically (``movingpunch.outputs.publish``); returns its path."""
+    (path,) = publish(out_dir, [render_csv(report)])
     return path

@@ -13,16 +13,22 @@ NAME`` run, list and print scenes (``movingpunch.scene``, docs/scenes.md).
 (``movingpunch.accuracy``, docs/performance.md).
 
 Bad arguments and every MovingPunchError/ValueError end in one line
-``movingpunch: error: ...`` on stderr and exit status 2, never a traceback.
+``movingpunch: error: ...`` on stderr and exit status 2, never a traceback;
+so do output problems (``OutputError``: the path and the reason), which
+``run --out`` and ``accuracy --out`` check before computing. A reader that
+closes stdout early (``movingpunch run fig4 | head -1``) ends the command
+quietly with status 141 (128 + SIGPIPE), after any files were written.
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import dataclasses
 import io
 import json
 import math
+import os
 import shlex
 import sys
 from collections.abc import Callable, Sequence
@@ -41,6 +47,7 @@ from movingpunch.solver import (
 
 PROG = "movingpunch"
 EXIT_USAGE = 2
+EXIT_BROKEN_PIPE = 128 + 13  # 128 + SIGPIPE
 
 
 class _Parser(argparse.ArgumentParser):
@@ -496,31 +503,37 @@ def _jobs(text: str) -> int:
 def _cmd_run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
-    from movingpunch.scene import (
-        ascii_plots,
-        format_summary,
-        load_scene,
-        write_outputs,
-        write_pngs,
-    )
+    from movingpunch.outputs import prepare, publish
+    from movingpunch.scene import ascii_plots, format_summary, load_scene
+    from movingpunch.scene._export import pyplot, render_outputs, render_pngs
 
     scene = load_scene(args.scene)
+    # Output problems are found before the work: the folder, the PNG extra.
+    out_dir = None
+    if args.out is not None or args.format is not None or args.png:
+        out_dir = prepare(Path(args.out or "."))
+        if args.png:
+            pyplot()
     bar = _ProgressBar() if sys.stderr.isatty() else None
     try:
         result = scene.run(jobs=args.jobs, progress=bar, dask=args.dask)
     finally:
         if bar is not None:
             bar.close()
+    # The files first (all of them or none), then the text: a reader that
+    # closes stdout early (| head) does not cost the files.
+    written = []
+    if out_dir is not None:
+        files = render_outputs(result, args.format or "csv")
+        if args.png:
+            files += render_pngs(result)
+        written = publish(out_dir, files)
     print(format_summary(result))
     show_plot = args.plot if args.plot is not None else sys.stdout.isatty()
     if show_plot:
         print()
         print(ascii_plots(result, color=sys.stdout.isatty()))
-    if args.out is not None or args.format is not None or args.png:
-        out_dir = Path(args.out or ".")
-        written = write_outputs(result, out_dir, args.format or "csv")
-        if args.png:
-            written += write_pngs(result, out_dir)
+    if out_dir is not None:
         print()
         print("Files")
         for path in written:
@@ -622,7 +635,9 @@ def _cmd_accuracy(args: argparse.Namespace) -> int:
     from pathlib import Path
 
     from movingpunch import accuracy
+    from movingpunch.outputs import prepare, publish
 
+    out_dir = prepare(Path(args.out)) if args.out is not None else None
     bar = _ProgressBar() if sys.stderr.isatty() else None
     try:
         report = accuracy.accuracy_report(
@@ -632,32 +647,60 @@ def _cmd_accuracy(args: argparse.Namespace) -> int:
         if bar is not None:
             bar.close()
     assert report is not None  # never cancelled here
+    written = []
+    if out_dir is not None:
+        written = publish(out_dir, [accuracy.render_csv(report)])
     print(accuracy.format_table(report))
     show_plot = args.plot if args.plot is not None else sys.stdout.isatty()
     if show_plot:
         print()
         print(accuracy.ascii_plot(report, color=sys.stdout.isatty()))
-    if args.out is not None:
-        path = accuracy.write_csv(report, Path(args.out))
+    if written:
         print()
         print("Files")
-        print(f"  {path}")
+        print(f"  {written[0]}")
     return 0
+
+
+def _stdout_closed() -> int:
+    """stdout's reader went away (``| head``): point stdout at /dev/null so
+    that the interpreter's last flush cannot fail again, and end quietly
+    with 128 + SIGPIPE, the status a shell shows for ``yes | head -1``."""
+    with contextlib.suppress(OSError, ValueError):
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        try:
+            os.dup2(devnull, sys.stdout.fileno())
+        finally:
+            os.close(devnull)
+    return EXIT_BROKEN_PIPE
 
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``movingpunch`` command; returns the exit status."""
+    for name in ("stdout", "stderr"):
+        if getattr(sys, name) is None:  # started with the descriptor closed
+            setattr(sys, name, open(os.devnull, "w", encoding="utf-8"))  # noqa: SIM115
     if isinstance(sys.stdout, io.TextIOWrapper):
         # Labels use Greek letters; never fail on a terminal that lacks them.
         sys.stdout.reconfigure(errors="backslashreplace")
     parser = _build_parser()
-    args = parser.parse_args(argv)
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit:  # --help or a usage error
+        with contextlib.suppress(BrokenPipeError):
+            sys.stdout.flush()
+            raise
+        raise SystemExit(_stdout_closed()) from None
     handler: Callable[[argparse.Namespace], int] | None = getattr(args, "handler", None)
     if handler is None:
         handler = _cmd_tui  # no command: the terminal UI on the paper's Fig. 4
         args = argparse.Namespace(scene=None, no_timing=False)
     try:
-        return handler(args)
+        status = handler(args)
+        sys.stdout.flush()  # a closed pipe shows here, not at exit
+        return status
+    except BrokenPipeError:
+        return _stdout_closed()
     except (MovingPunchError, ValueError) as exc:
         _fail(str(exc))
     except KeyboardInterrupt:

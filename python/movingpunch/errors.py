@@ -11,6 +11,7 @@ __all__ = [
     "ConvergenceError",
     "InvalidParameterError",
     "MovingPunchError",
+    "OutputError",
     "SupercriticalSpeedError",
     "UnphysicalContactError",
 ]
@@ -58,3 +59,20 @@ class UnphysicalContactError(MovingPunchError, ValueError):
 
 class ConvergenceError(MovingPunchError, RuntimeError):
     """An iteration did not meet its tolerance within its budget."""
+
+
+class OutputError(MovingPunchError, OSError):
+    """A result file or folder cannot be written: an existing file where a
+    folder is wanted, a missing permission, a read-only filesystem, a full
+    disk. The message is one line naming the path and the reason.
+
+    Attributes ``path`` (the file or folder, a ``pathlib.Path`` or None) and
+    ``errno`` (the OS error number, or None).
+    """
+
+    def __init__(
+        self, message: str, *, path: object = None, errno: int | None = None
+    ) -> None:
+        super().__init__(message)
+        self.path = path
+        self.errno = errno

@@ -1,16 +1,15 @@
 """Showing and saving a scene's result: summary table, ASCII plots (plotext),
 CSV/JSON files with the scene and the package version as metadata, PNG
-figures (matplotlib, optional). Every file is written atomically."""
+figures (matplotlib, optional). File names come from ``safe_name`` (never a
+path outside the output folder); the files of one run are published together
+(``movingpunch.outputs.publish``: all of them or none)."""
 
 from __future__ import annotations
 
-import contextlib
 import importlib
 import io
 import json
 import math
-import os
-import tempfile
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
@@ -18,6 +17,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from movingpunch.outputs import atomic_write, publish, safe_name
 from movingpunch.scene._run import Curve, MissingExtraError, SceneResult
 from movingpunch.scene._spec import SWEEP_QUANTITIES, Scene
 
@@ -27,6 +27,8 @@ __all__ = [
     "format_summary",
     "read_csv",
     "read_json",
+    "render_outputs",
+    "render_pngs",
     "write_outputs",
     "write_pngs",
 ]
@@ -63,29 +65,6 @@ def _version() -> str:
     import movingpunch
 
     return str(movingpunch.__version__)
-
-
-# ----------------------------------------------------------------------------
-# Atomic files
-# ----------------------------------------------------------------------------
-
-
-def atomic_write(path: Path, data: bytes) -> None:
-    """Writes ``data`` to ``path`` through a temporary file in the same
-    directory and ``os.replace``: readers see the old file or the whole new
-    one, and a failure leaves no partial file behind."""
-    path = Path(path)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "wb") as f:
-            f.write(data)
-            f.flush()
-            os.fsync(f.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        with contextlib.suppress(OSError):
-            os.unlink(tmp)
-        raise
 
 
 # ----------------------------------------------------------------------------
@@ -264,9 +243,8 @@ def ascii_plots(
     return "\n".join(blocks)
 
 
-def write_pngs(result: SceneResult, out_dir: Path) -> list[Path]:
-    """One PNG figure per curve output and sweep quantity (and per stress
-    field); needs matplotlib (the ``png`` extra)."""
+def pyplot() -> Any:
+    """matplotlib.pyplot on the Agg backend, or MissingExtraError."""
     try:
         import matplotlib
 
@@ -276,8 +254,15 @@ def write_pngs(result: SceneResult, out_dir: Path) -> list[Path]:
         raise MissingExtraError(
             "--png needs matplotlib: pip install 'movingpunch[png]'"
         ) from None
+    return plt
+
+
+def render_pngs(result: SceneResult) -> list[tuple[str, bytes]]:
+    """(file name, PNG bytes) of one figure per curve output and sweep
+    quantity (and per stress field); needs matplotlib (the ``png`` extra)."""
+    plt = pyplot()
     stem = _stem(result.scene)
-    written: list[Path] = []
+    rendered: list[tuple[str, bytes]] = []
     figures: list[tuple[str, Any]] = []
     try:
         for key, title, xl, yl, curves, log_x in _plot_items(result):
@@ -308,22 +293,21 @@ def write_pngs(result: SceneResult, out_dir: Path) -> list[Path]:
         for name, fig in figures:
             buf = io.BytesIO()
             fig.savefig(buf, format="png", dpi=120)
-            path = out_dir / f"{stem}-{name}.png"
-            atomic_write(path, buf.getvalue())
-            written.append(path)
+            rendered.append((f"{stem}-{name}.png", buf.getvalue()))
     finally:
         for _, fig in figures:
             plt.close(fig)
-    return written
+    return rendered
 
 
-def _slug(text: str) -> str:
-    keep = [ch.lower() if ch.isalnum() else "-" for ch in text]
-    return "-".join(part for part in "".join(keep).split("-") if part)
+def write_pngs(result: SceneResult, out_dir: Path) -> list[Path]:
+    """Writes ``render_pngs(result)`` into ``out_dir`` (all or none);
+    returns the paths written."""
+    return publish(out_dir, render_pngs(result))
 
 
 def _stem(scene: Scene) -> str:
-    return _slug(scene.name) or "scene"
+    return safe_name(scene.name)
 
 
 # ----------------------------------------------------------------------------
@@ -351,28 +335,30 @@ def _metadata(result: SceneResult, output: str, title: str) -> dict[str, str]:
     }
 
 
-def write_outputs(result: SceneResult, out_dir: Path, fmt: str = "csv") -> list[Path]:
-    """Writes one ``<scene>-<output>.csv`` (or ``.json``) per output and one
-    for the sweep into ``out_dir``, each with the scene (as TOML) and the
-    package version as metadata. Returns the paths written."""
+def render_outputs(result: SceneResult, fmt: str = "csv") -> list[tuple[str, bytes]]:
+    """(file name, content) of one ``<scene>-<output>.csv`` (or ``.json``)
+    per output and one for the sweep, each with the scene (as TOML) and the
+    package version as metadata."""
     if fmt not in ("csv", "json"):
         raise ValueError(f"format must be 'csv' or 'json', got {fmt!r}")
-    out_dir = Path(out_dir)
-    out_dir.mkdir(parents=True, exist_ok=True)
     stem = _stem(result.scene)
     scene_toml = result.scene.to_toml()
-    # Render everything first: a failure leaves no file at all.
-    rendered: list[tuple[Path, bytes]] = []
+    rendered: list[tuple[str, bytes]] = []
     for output, title, columns in _tables(result):
         meta = _metadata(result, output, title)
         if fmt == "csv":
             body = _csv(meta, scene_toml, columns)
         else:
             body = _json(meta, scene_toml, columns)
-        rendered.append((out_dir / f"{stem}-{output}.{fmt}", body.encode("utf-8")))
-    for path, data in rendered:
-        atomic_write(path, data)
-    return [path for path, _ in rendered]
+        rendered.append((f"{stem}-{output}.{fmt}", body.encode("utf-8")))
+    return rendered
+
+
+def write_outputs(result: SceneResult, out_dir: Path, fmt: str = "csv") -> list[Path]:
+    """Writes ``render_outputs(result, fmt)`` into ``out_dir`` (created if
+    missing): every file or, on a failure, none (``publish``). Returns the
+    paths written."""
+    return publish(out_dir, render_outputs(result, fmt))
 
 
 def _csv(

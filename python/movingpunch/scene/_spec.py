@@ -492,8 +492,10 @@ class Scene:
         return _to_toml(self)
 
     def save(self, path: str | Path) -> None:
-        """Writes ``to_toml()`` to ``path`` atomically (temp file, then rename)."""
-        from movingpunch.scene._export import atomic_write
+        """Writes ``to_toml()`` to ``path`` atomically (temp file, then rename;
+        a new file gets the umask's mode, a replaced one keeps its mode).
+        Raises ``OutputError`` (the path and the reason)."""
+        from movingpunch.outputs import atomic_write
 
         atomic_write(Path(path), self.to_toml().encode("utf-8"))
 
