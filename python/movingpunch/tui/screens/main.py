@@ -34,7 +34,7 @@ from movingpunch.errors import (
     SupercriticalSpeedError,
     UnphysicalContactError,
 )
-from movingpunch.scene import atomic_write
+from movingpunch.scene import Scene, atomic_write
 from movingpunch.tui import model, scenes
 from movingpunch.tui.messages import Computed, Progressed
 from movingpunch.tui.model import (
@@ -501,8 +501,8 @@ class MainScreen(Screen[None]):
         self.app.exit()
 
     def action_figure(self, name: str) -> None:
-        try:
-            scene = scenes.load(name)
+        try:  # the bundled scene, never a file of that name in the cwd
+            scene = scenes.from_scene(Scene.bundled(name))
         except (MovingPunchError, OSError) as exc:
             self.notify(_one_line(exc), severity="error")
             return
