@@ -4,7 +4,8 @@
 
 ``movingpunch`` with no command, or ``movingpunch tui [SCENE]``, starts the
 terminal UI (``movingpunch.tui``, imported only then); ``movingpunch serve``
-serves it in a browser through textual-serve.
+serves it in a browser through textual-serve, behind a per-start token
+(``movingpunch.tui.serve``, docs/tui.md).
 
 ``movingpunch run SCENE``, ``movingpunch scenes`` and ``movingpunch scene show
 NAME`` run, list and print scenes (``movingpunch.scene``, docs/scenes.md).
