@@ -25,7 +25,9 @@ from pathlib import Path
 import aiohttp
 import pytest
 
-ANSI = re.compile(r"\x1b\[[0-9;?]*[A-Za-z]|\x1b\][^\x07]*\x07|\x1b[()][A-Z0-9]")
+ANSI = re.compile(
+    r"\x1b\[[0-9;?]*[A-Za-z]|\x1b\][^\x07]*\x07|\x1b[()][A-Z0-9]|\x1b[78=>]"
+)
 """Terminal escape sequences (the app's output to the browser)."""
 
 
