@@ -4,7 +4,8 @@
 
 ``movingpunch`` with no command, or ``movingpunch tui [SCENE]``, starts the
 terminal UI (``movingpunch.tui``, imported only then); ``movingpunch serve``
-serves it in a browser through textual-serve.
+serves it in a browser through textual-serve, behind a per-start token
+(``movingpunch.tui.serve``, docs/tui.md).
 
 ``movingpunch run SCENE``, ``movingpunch scenes`` and ``movingpunch scene show
 NAME`` run, list and print scenes (``movingpunch.scene``, docs/scenes.md).
@@ -29,7 +30,6 @@ import io
 import json
 import math
 import os
-import shlex
 import sys
 from collections.abc import Callable, Sequence
 from typing import Any, NoReturn
@@ -202,19 +202,44 @@ def _build_parser() -> argparse.ArgumentParser:
         action="store_true",
         help="hide the solve time (reproducible screens)",
     )
+    tui_p.add_argument(
+        "--root",
+        default=None,
+        metavar="DIR",
+        help="the working folder: Open, Save and Export stay inside it "
+        "(default: the current directory)",
+    )
     tui_p.set_defaults(handler=_cmd_tui)
 
     serve_p = sub.add_parser(
         "serve",
         help="serve the terminal UI in a web browser (needs the 'serve' extra)",
-        description="Serve the terminal UI on http://HOST:PORT through "
-        "textual-serve (pip install 'movingpunch[serve]').",
+        description="Serve the terminal UI through textual-serve (pip install "
+        "'movingpunch[serve]'). Each start prints one URL with a random "
+        "token, http://HOST:PORT/?token=...; requests without it get 403.",
     )
     serve_p.add_argument(
         "scene", nargs="?", default=None, help="a scene file or bundled name"
     )
-    serve_p.add_argument("--host", default="localhost", help="default localhost")
-    serve_p.add_argument("--port", type=int, default=8000, help="default 8000")
+    serve_p.add_argument(
+        "--host", default="127.0.0.1", help="default 127.0.0.1 (this machine only)"
+    )
+    serve_p.add_argument(
+        "--port", type=int, default=8000, help="default 8000; 0: any free port"
+    )
+    serve_p.add_argument(
+        "--allow-remote",
+        action="store_true",
+        help="allow a --host other machines can reach (e.g. 0.0.0.0); "
+        "without it such a host is refused",
+    )
+    serve_p.add_argument(
+        "--root",
+        default=None,
+        metavar="DIR",
+        help="the working folder of every visitor's app: Open, Save and "
+        "Export stay inside it (default: the current directory)",
+    )
     serve_p.set_defaults(handler=_cmd_serve)
     _add_scene_commands(sub)
     _add_accuracy_command(sub)
@@ -388,28 +413,34 @@ def _cmd_tui(args: argparse.Namespace) -> int:
     # Imported here: the numerical commands never load Textual.
     from movingpunch.tui import create_app
 
-    app = create_app(args.scene, show_timing=not args.no_timing)
+    app = create_app(args.scene, show_timing=not args.no_timing, root=args.root)
     app.run()
     return 0
 
 
 def _cmd_serve(args: argparse.Namespace) -> int:
     try:
-        from textual_serve.server import Server
+        from movingpunch.tui import serve
     except ImportError:
         _fail(
             "serve needs textual-serve: pip install 'movingpunch[serve]' "
             "(or pip install textual-serve)"
         )
-    if args.scene is not None:
-        from movingpunch.tui import scenes
+    from movingpunch.tui import scenes
+    from movingpunch.tui.paths import WorkingFolder
 
-        scenes.load(args.scene)  # a bad scene fails here, in one line
-    command = [sys.executable, "-m", "movingpunch", "tui"]
+    folder = WorkingFolder.at(args.root)  # a bad root fails here, in one line
+    command = [sys.executable, "-m", "movingpunch", "tui", "--root", str(folder.root)]
     if args.scene is not None:
-        command.append(args.scene)
-    server = Server(shlex.join(command), host=args.host, port=args.port, title=PROG)
-    server.serve()
+        scenes.load(args.scene)  # a bad scene fails here, in one line
+        command += ["--", args.scene]  # relative to this (the apps') directory
+    serve.serve(
+        command,
+        host=args.host,
+        port=args.port,
+        allow_remote=args.allow_remote,
+        title=PROG,
+    )
     return 0
 
 
@@ -694,7 +725,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     handler: Callable[[argparse.Namespace], int] | None = getattr(args, "handler", None)
     if handler is None:
         handler = _cmd_tui  # no command: the terminal UI on the paper's Fig. 4
-        args = argparse.Namespace(scene=None, no_timing=False)
+        args = argparse.Namespace(scene=None, no_timing=False, root=None)
     try:
         status = handler(args)
         sys.stdout.flush()  # a closed pipe shows here, not at exit

@@ -66,13 +66,25 @@ class OutputError(MovingPunchError, OSError):
     folder is wanted, a missing permission, a read-only filesystem, a full
     disk. The message is one line naming the path and the reason.
 
-    Attributes ``path`` (the file or folder, a ``pathlib.Path`` or None) and
-    ``errno`` (the OS error number, or None).
+    Attributes ``path`` (the file or folder, a ``pathlib.Path`` or None),
+    ``errno`` (the OS error number, or None) and ``strerror`` (the reason
+    alone, without the path, or None).
     """
 
     def __init__(
-        self, message: str, *, path: object = None, errno: int | None = None
+        self,
+        message: str,
+        *,
+        path: object = None,
+        errno: int | None = None,
+        reason: str | None = None,
     ) -> None:
         super().__init__(message)
+        self.message = message
         self.path = path
         self.errno = errno
+        self.strerror = reason
+
+    def __str__(self) -> str:
+        # OSError would print "[Errno N] strerror"; the message names the path.
+        return self.message

@@ -103,7 +103,9 @@ def _error(action: str, path: Path, exc: OSError | str) -> OutputError:
     """``cannot <action> <path>: <reason>`` as an OutputError."""
     reason = exc if isinstance(exc, str) else _reason(exc)
     code = None if isinstance(exc, str) else exc.errno
-    return OutputError(f"cannot {action} {path}: {reason}", path=path, errno=code)
+    return OutputError(
+        f"cannot {action} {path}: {reason}", path=path, errno=code, reason=reason
+    )
 
 
 # ----------------------------------------------------------------------------
@@ -285,6 +287,7 @@ def publish(out_dir: str | Path, files: Sequence[tuple[str, bytes]]) -> list[Pat
                         f"they are in {staging})",
                         path=targets[done],
                         errno=exc.errno,
+                        reason=message.strerror,
                     )
                 raise message from None
             raise

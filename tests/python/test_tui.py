@@ -354,7 +354,7 @@ async def test_overlay_from_the_prompt() -> None:
 
 @sync
 async def test_export_writes_a_csv_that_loads_back(tmp_path: Path) -> None:
-    app = create_app()
+    app = create_app(root=tmp_path)
     async with app.run_test(size=SIZE) as pilot:
         await settle(pilot)
         for key, tab in (("1", "pressure"), ("4", "sweep"), ("5", "field")):
@@ -442,7 +442,7 @@ async def test_figure_keys_load_the_bundled_scenes() -> None:
 async def test_open_and_save_a_scene_round_trip(tmp_path: Path) -> None:
     from movingpunch.scene import Scene
 
-    app = create_app("fig6")
+    app = create_app("fig6", root=tmp_path)
     async with app.run_test(size=SIZE) as pilot:
         await settle(pilot)
         screen = screen_of(app)

@@ -112,7 +112,7 @@ async def test_tol_input_takes_a_preset_name() -> None:
 
 @sync
 async def test_export_of_the_accuracy_tab(tmp_path: Path) -> None:
-    app = create_app(show_timing=False, tab="accuracy")
+    app = create_app(show_timing=False, tab="accuracy", root=tmp_path)
     async with app.run_test(size=(100, 32)) as pilot:
         await settle(pilot)
         target = tmp_path / "accuracy.csv"

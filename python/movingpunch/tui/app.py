@@ -12,6 +12,7 @@ from pathlib import Path
 from textual.app import App
 
 from movingpunch.tui.model import PAPER_FIG4, TabName
+from movingpunch.tui.paths import WorkingFolder
 from movingpunch.tui.scenes import SceneState
 from movingpunch.tui.screens.main import MainScreen
 
@@ -31,9 +32,11 @@ class MovingPunchApp(App[None]):
         show_timing: bool = True,
         cursor_blink: bool = True,
         tab: TabName = "pressure",
+        folder: WorkingFolder | None = None,
     ) -> None:
         super().__init__()
         self.scene = scene or SceneState(params=PAPER_FIG4, name="fig4")
+        self.folder = folder or WorkingFolder.at()
         self._show_timing = show_timing
         self._cursor_blink = cursor_blink
         self._tab = tab
@@ -49,6 +52,7 @@ class MovingPunchApp(App[None]):
             show_timing=self._show_timing,
             cursor_blink=self._cursor_blink,
             tab=self._tab,
+            folder=self.folder,
         )
 
 
@@ -58,13 +62,17 @@ def create_app(
     show_timing: bool = True,
     cursor_blink: bool = True,
     tab: TabName = "pressure",
+    root: str | Path | None = None,
 ) -> MovingPunchApp:
     """The app on a scene: a SceneState, a scene file, a bundled scene's name,
     or None for the paper's Fig. 4 case (V* = 0.2, kw h/μ = 1, R/h = 100,
     P/(μh) = 0.002, ν = 0.2). ``show_timing=False`` hides the solve time (for
     reproducible screenshots); ``cursor_blink=False`` freezes the cursor.
+    ``root``: the working folder Open, Save and Export stay in (default: the
+    current directory).
 
-    Raises SceneError if the scene cannot be read.
+    Raises SceneError if the scene cannot be read, InvalidParameterError if
+    ``root`` is not a directory.
     """
     from movingpunch.tui import scenes
 
@@ -72,13 +80,22 @@ def create_app(
         scene if isinstance(scene, SceneState) or scene is None else scenes.load(scene)
     )
     return MovingPunchApp(
-        state, show_timing=show_timing, cursor_blink=cursor_blink, tab=tab
+        state,
+        show_timing=show_timing,
+        cursor_blink=cursor_blink,
+        tab=tab,
+        folder=WorkingFolder.at(root),
     )
 
 
-def main(scene: str | None = None, *, show_timing: bool = True) -> int:
+def main(
+    scene: str | None = None,
+    *,
+    show_timing: bool = True,
+    root: str | Path | None = None,
+) -> int:
     """Runs the app in this terminal; returns the exit status."""
-    app = create_app(scene, show_timing=show_timing)
+    app = create_app(scene, show_timing=show_timing, root=root)
     app.run()
     return 0
 

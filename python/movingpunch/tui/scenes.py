@@ -9,8 +9,17 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
-from movingpunch.scene import OutputSpec, Scene, Sweep, Vary
+from movingpunch.scene import (
+    OutputSpec,
+    Scene,
+    SceneError,
+    Sweep,
+    Vary,
+    bundled_scene_text,
+    bundled_scenes,
+)
 from movingpunch.tui.model import SCENE_PARAMS, Overlay, Params, SweepSpec
+from movingpunch.tui.paths import WorkingFolder
 
 SAVED_OUTPUTS: tuple[str, ...] = (
     "contact_width",
@@ -44,6 +53,35 @@ def load(source: str | Path) -> SceneState:
         scene = Scene.load(path)
     else:
         scene = Scene.bundled(text)
+    return from_scene(scene)
+
+
+def load_in(folder: WorkingFolder, text: str) -> SceneState:
+    """What the Open prompt reads: a scene file inside the working folder
+    (a name that exists there, ends in .toml or has a folder in it) or a
+    bundled scene's name. Errors name the path as typed.
+
+    Raises SceneError, or OutsideFolderError for a path leaving the folder.
+    """
+    p = Path(text)
+    if p.suffix == ".toml" or len(p.parts) > 1 or (folder.root / text).exists():
+        real = folder.resolve(text)
+        try:
+            scene = Scene.load(real)
+        except SceneError as exc:
+            if exc.source != str(real):
+                raise
+            raise SceneError(text, exc.key, exc.problem, exc.allowed) from None
+    elif bundled_scene_text(text) is not None:
+        scene = Scene.bundled(text)
+    else:
+        raise SceneError(
+            text,
+            "(file)",
+            "no such scene file or bundled scene",
+            "a TOML file in the working folder, or one of "
+            + ", ".join(bundled_scenes()),
+        )
     return from_scene(scene)
 
 

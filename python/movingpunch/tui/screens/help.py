@@ -37,6 +37,10 @@ the last valid result stays on screen. kw accepts inf (rigid base).
 The gauge compares V* with the critical speed V*_cr(kw, ν); it turns red
 above 95 %.
 
+Files: open, save and export stay in the working folder (where the app
+started, or --root DIR); paths are relative to it and paths leading out are
+refused. Replacing an existing file needs a second enter.
+
 damp: foundation damping c_w c_T/μ >= 0 (dashpots; 0: the paper's model).
 With damping > 0 the gauge compares V* with the Rayleigh speed V*_R (V* may
 exceed V*_cr), the summary shows the contact (-b, a) and the drag over P,

@@ -8,7 +8,6 @@ dropped, so a stale result never overwrites a newer one.
 from __future__ import annotations
 
 import time
-from pathlib import Path
 from typing import ClassVar
 
 from rich.text import Text
@@ -35,6 +34,7 @@ from movingpunch.errors import (
     SupercriticalSpeedError,
     UnphysicalContactError,
 )
+from movingpunch.scene import Scene, atomic_write
 from movingpunch.tui import model, scenes
 from movingpunch.tui.messages import Computed, Progressed
 from movingpunch.tui.model import (
@@ -53,6 +53,7 @@ from movingpunch.tui.model import (
     TabName,
     fmt,
 )
+from movingpunch.tui.paths import WorkingFolder, write_error
 from movingpunch.tui.screens.help import HelpScreen
 from movingpunch.tui.screens.prompts import OverlayPrompt, PathPrompt
 from movingpunch.tui.widgets import (
@@ -123,8 +124,11 @@ class MainScreen(Screen[None]):
         show_timing: bool = True,
         cursor_blink: bool = True,
         tab: TabName = "pressure",
+        folder: WorkingFolder | None = None,
     ) -> None:
         super().__init__()
+        self.folder = folder or WorkingFolder.at()
+        """Where Open, Save and Export read and write (paths stay inside)."""
         self.params = params
         """The last complete, valid parameter set (what the result shows)."""
         self.overlay = overlay
@@ -497,8 +501,8 @@ class MainScreen(Screen[None]):
         self.app.exit()
 
     def action_figure(self, name: str) -> None:
-        try:
-            scene = scenes.load(name)
+        try:  # the bundled scene, never a file of that name in the cwd
+            scene = scenes.from_scene(Scene.bundled(name))
         except (MovingPunchError, OSError) as exc:
             self.notify(_one_line(exc), severity="error")
             return
@@ -520,8 +524,8 @@ class MainScreen(Screen[None]):
         self.request()
 
     def action_open_scene(self) -> None:
-        def attempt(path: str) -> str | None:
-            self.apply(scenes.load(path))
+        def attempt(path: str, _confirmed: bool) -> str | None:
+            self.apply(scenes.load_in(self.folder, path))
             return None
 
         self.app.push_screen(
@@ -535,8 +539,12 @@ class MainScreen(Screen[None]):
             params=self.params, overlay=self.overlay, sweep=self.sweep, name=""
         )
 
-        def attempt(path: str) -> str | None:
-            scenes.save(state, Path(path))
+        def attempt(path: str, confirmed: bool) -> str | None:
+            target = self.folder.target(path, overwrite=confirmed)
+            try:
+                scenes.save(state, target)
+            except OSError as exc:
+                return write_error(path, exc)
             self.notify(f"saved {path}")
             return None
 
@@ -547,10 +555,14 @@ class MainScreen(Screen[None]):
         if result is None or result.request.params != self.params:
             self.notify("nothing computed for this tab yet", severity="warning")
             return
-        text = model.to_csv(result.data, result.request.params)
+        data = model.to_csv(result.data, result.request.params).encode("utf-8")
 
-        def attempt(path: str) -> str | None:
-            Path(path).write_text(text, encoding="utf-8")
+        def attempt(path: str, confirmed: bool) -> str | None:
+            target = self.folder.target(path, overwrite=confirmed)
+            try:
+                atomic_write(target, data)
+            except OSError as exc:
+                return write_error(path, exc)
             self.notify(f"wrote {path}")
             return None
 

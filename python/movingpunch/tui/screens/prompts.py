@@ -13,10 +13,14 @@ from textual.widgets import Input, Label, Select, Static
 
 from movingpunch.errors import MovingPunchError
 from movingpunch.tui.model import SCENE_PARAMS, Overlay, parse_values
+from movingpunch.tui.paths import OverwriteNeeded
 from movingpunch.tui.widgets.params import LABELS
 
-Attempt = Callable[[str], str | None]
-"""Tries a path; returns an error message (the prompt stays open) or None."""
+Attempt = Callable[[str, bool], str | None]
+"""Tries a path (with ``True`` once the user confirmed overwriting it);
+returns an error message (the prompt stays open) or None. It may raise
+OverwriteNeeded: the prompt shows the message and a second enter on the same
+path tries again with ``True``."""
 
 
 class PathPrompt(ModalScreen[str | None]):
@@ -29,6 +33,8 @@ class PathPrompt(ModalScreen[str | None]):
         self._title = title
         self._default = default
         self._attempt = attempt
+        self._confirm: str | None = None
+        """The path whose overwriting the next enter confirms."""
 
     def compose(self) -> ComposeResult:
         with Vertical(classes="prompt-box"):
@@ -36,15 +42,28 @@ class PathPrompt(ModalScreen[str | None]):
             yield Input(self._default, id="path")
             yield Static("enter: ok   escape: cancel", id="prompt-msg")
 
+    def on_input_changed(self, event: Input.Changed) -> None:
+        event.stop()
+        if event.value.strip() != self._confirm:
+            self._confirm = None  # an edited path must be confirmed anew
+
     def on_input_submitted(self, event: Input.Submitted) -> None:
         event.stop()
         path = event.value.strip()
         if not path:
             self._show("give a path")
             return
+        confirmed = self._confirm == path
+        self._confirm = None
         try:
-            error = self._attempt(path)
-        except (OSError, MovingPunchError, ValueError) as exc:
+            error = self._attempt(path, confirmed)
+        except OverwriteNeeded as ask:
+            self._confirm = path
+            self._show(str(ask))
+            return
+        except OSError as exc:  # its file name may be a temporary one: not shown
+            error = f"{path}: {exc.strerror or type(exc).__name__}"
+        except (MovingPunchError, ValueError) as exc:
             error = " ".join(str(exc).split()) or type(exc).__name__
         if error:
             self._show(error)
