@@ -82,6 +82,9 @@ struct DampedQuadrature {
   AlphaQuadrature panels;      // nodes, weights, panel centres/half-widths
   std::vector<cplx> m1, m2, wb;
   double error_estimate = 0;   // of the integral of |M1 - phi1|/phi1
+  // QUADPACK's (qk15) estimate of the error of the Kronrod sums actually used
+  // (|K15 - G7| above bounds the Gauss rule's error, far larger once resolved).
+  double kronrod_error = 0;
 };
 DampedQuadrature build_damped_quadrature(const DampedLayerModel& model, double tol);
 
