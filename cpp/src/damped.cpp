@@ -644,24 +644,31 @@ DampedSolution solve_damped(const DampedParams& prm) {
   s.max_p_ = pmax;
   {
     const double scale_e = ws.w + std::fabs(ws.c);
-    auto note = [&](const char* what, double est, double scale, double floor) {
+    // The floors' kernel-quadrature parts (the rest is round-off).
+    const double quad_e = 4.0 * qerr * ws.w * ws.w, quad_p = 4.0 * qerr * ws.w * pmax;
+    auto note = [&](const char* what, double est, double scale, double floor, double quad) {
       const double want = prm.tol * scale;
       if (!(est <= want)) {
         std::ostringstream m;
         m.precision(3);
         m << what << " not met to tol = " << prm.tol << ": estimated relative error "
           << est / scale << " (" << est / want << " x tol) at N = " << nd.n;
-        if (floor > want)
+        if (floor > want && quad >= 0.5 * floor)
+          m << " (the kernel quadrature's error estimate " << quad / scale
+            << " exceeds tol: unresolved near-resonant peaks)";
+        else if (floor > want)
           m << " (round-off floor " << floor / scale << " exceeds tol)";
         else if (prm.n > 0)
           m << " (fixed n; raise n or leave it automatic)";
+        else if (stalled)
+          m << " (the changes between sizes stopped shrinking)";
         else
           m << " (the N ladder ended at " << nd.n << ")";
         s.warnings_.push_back(m.str());
       }
     };
-    note("contact ends (-b, a):", s.err_, scale_e, floor_e);
-    note("pressure p(x):", s.perr_, pmax, floor_p);
+    note("contact ends (-b, a):", s.err_, scale_e, floor_e, quad_e);
+    note("pressure p(x):", s.perr_, pmax, floor_p, quad_p);
   }
   s.n_ = nd.n;
   s.half_ = ws.w;

@@ -16,6 +16,7 @@ import math
 import numpy as np
 import pytest
 
+import movingpunch as mp
 from movingpunch.damped import DampedSolution, solve_damped
 
 # The round-off floors of docs/damped.md section 8 (relative to the scale).
@@ -146,8 +147,8 @@ SLOW_CASES = [
     "case", SLOW_CASES, ids=lambda c: f"v{c['vstar']}-kw{c['kw']}-d{c['damping']}"
 )
 def test_estimates_are_honest(case: dict[str, float]) -> None:
-    ref = reference(case, 64)
-    for tol in (1e-6, 1e-8, 1e-12):
+    ref = reference(case, 48)
+    for tol in (1e-8, 1e-12):
         s = solve(case, tol)
         check_honest(s, ref)
         if not s.warnings:
@@ -159,7 +160,7 @@ def test_estimates_are_honest(case: dict[str, float]) -> None:
 @pytest.mark.slow
 def test_fixed_n_estimates_are_honest() -> None:
     """With a fixed n the estimate comes from n/2, 3n/4 and n."""
-    ref = reference(ISSUE, 64)
+    ref = reference(ISSUE, 48)
     for n in (8, 12, 16, 24):
         check_honest(solve(ISSUE, 1e-8, n), ref)
 
@@ -218,6 +219,20 @@ def test_warnings_when_tol_is_below_round_off() -> None:
     assert any("round-off floor" in w for w in s.warnings), s.warnings
     # ... and the estimate says how far: above tol, at the floor.
     assert s.pressure_error_estimate > 1e-14 * s.max_pressure
+
+
+@pytest.mark.slow
+def test_warnings_near_the_critical_speed_with_tiny_damping() -> None:
+    """Peaks of width ~ damping in the kernel's integrand keep the kernel
+    quadrature's error estimate (~2e-6) above tol = 1e-8: warned, with the
+    amount, and error_estimate says the same."""
+    vcr = mp.critical_vstar(1.0, 0.2)
+    s = solve({"vstar": vcr * (1.0 - 1e-6), "kw": 1.0, "damping": 1e-8}, 1e-8)
+    assert s.valid
+    assert any("kernel quadrature" in w and "x tol" in w for w in s.warnings), (
+        s.warnings
+    )
+    assert s.error_estimate > 1e-8 * (s.half_width + abs(s.centre))
 
 
 def test_no_warnings_when_tol_is_met() -> None:
