@@ -536,6 +536,16 @@ DampedSolution solve_damped(const DampedParams& prm) {
 
   const double lambda = prm.radius * prm.load;
   const double aH = std::sqrt(2.0 * phi1 * lambda / kPi);
+  // The width iteration works on [1e-10, 50] h: a load that a half-plane
+  // carries on less than twice the lower end is refused up front (subnormal
+  // or tiny radius * load), naming the inputs, instead of failing every N.
+  if (!(aH >= 2e-10)) {
+    std::ostringstream msg;
+    msg << "radius * load = " << lambda << " gives a contact half-width of about " << aH
+        << " h, below the damped solver's range (>= 2e-10 h): radius * load must be >= "
+        << kPi * 4e-20 / (2.0 * phi1);
+    throw std::invalid_argument(msg.str());
+  }
   const double soft = std::isinf(prm.kw) ? 0.0 : 1.0 / prm.kw;
   const double aW = std::cbrt(1.5 * lambda * (soft + 0.5 * (1.0 - prm.nu)));
   double guess = (aH > 1.0 || aW > 1.0) ? aW : aH;

@@ -18,6 +18,7 @@ import pytest
 
 import movingpunch as mp
 from movingpunch.damped import DampedSolution, solve_damped
+from movingpunch.errors import InvalidParameterError
 
 # The round-off floors of docs/damped.md section 8 (relative to the scale).
 ENDS_FLOOR = 1e-13  # times (a + b)/2 + |a - b|/2
@@ -247,3 +248,16 @@ def test_no_warnings_when_tol_is_met() -> None:
     ):
         assert data[key] == getattr(s, key)
     assert data["warnings"] == []
+
+
+@pytest.mark.parametrize(
+    "inputs", [{"load": 5e-324}, {"load": 1e-300}, {"radius": 1e-310}]
+)
+def test_subnormal_inputs_are_refused_up_front(inputs: dict[str, float]) -> None:
+    """A contact narrower than the solver's 1e-10 h range: a clear error
+    naming the inputs and the bound, at once (it used to try every N for
+    15 s and then blame soft foundations)."""
+    args = {"vstar": 0.3, "kw": 1.0, "radius": 100.0, "load": 0.002, "damping": 0.1}
+    args.update(inputs)
+    with pytest.raises(InvalidParameterError, match=r"radius \* load .* must be >="):
+        solve_damped(**args)
