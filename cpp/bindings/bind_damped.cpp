@@ -55,7 +55,21 @@ void bind_damped(py::module_& m) {
       .def_property_readonly("phi1", &DampedSolution::phi1,
                              "Moving half-plane factor phi1(vstar, nu).")
       .def_property_readonly("error_estimate", &DampedSolution::error_estimate,
-                             "Absolute error estimate of the contact ends.")
+                             "Bound on the absolute error of each contact end (in h).")
+      .def_property_readonly("pressure_error_estimate", &DampedSolution::pressure_error_estimate,
+                             "Bound on the error of p/(P/h) at a fixed relative position "
+                             "r = (x - c)/w in the contact.")
+      .def_property_readonly("stress_error_estimate", &DampedSolution::stress_error_estimate,
+                             "Bound on the error of the surface sigma_x/(P/h) more than "
+                             "1e-3 (a + b)/2 from the contact ends.")
+      .def_property_readonly("max_pressure", &DampedSolution::max_pressure,
+                             "Maximum of p/(P/h) on the contact.")
+      .def_property_readonly("pressure_margin", &DampedSolution::pressure_margin,
+                             "min over r in (-1, 1) of p/((P/h) sqrt(1 - r^2)), r the "
+                             "position scaled to the contact: the margin before separation.")
+      .def_property_readonly(
+          "warnings", [](const DampedSolution& s) { return py::list(py::cast(s.warnings())); },
+          "One line per requested accuracy that was not met; empty when tol was met.")
       .def_property_readonly("iterations", &DampedSolution::iterations,
                              "Width evaluations over all collocation sizes.")
       .def_property_readonly("collocation_n", &DampedSolution::collocation_n,

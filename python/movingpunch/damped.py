@@ -99,7 +99,7 @@ class DampedSolution:
     damping: float
     """c_w c_T/mu."""
     tol: float
-    """Requested relative tolerance on the contact ends."""
+    """Requested relative tolerance on the contact ends and on the pressure."""
     contact_interval: tuple[float, float]
     """(-b/h, a/h): trailing and leading ends of the contact."""
     drag: float
@@ -116,7 +116,18 @@ class DampedSolution:
     collocation_n: int
     """Number N of collocation nodes of the final solve."""
     error_estimate: float
-    """Absolute error estimate of the contact ends."""
+    """Bound on the absolute error of each contact end, in h (within a factor
+    100 of the actual error or of the round-off floor; docs/damped.md §8)."""
+    pressure_error_estimate: float
+    """Bound on the error of p/(P/h) at a fixed relative position r = (x - c)/w
+    in the contact (pointwise in x add |dp/dx| error_estimate); the solver
+    refines N until it is at most tol * max_pressure."""
+    stress_error_estimate: float
+    """Bound on the error of the surface sigma_x/(P/h) at points more than
+    1e-3 (a + b)/2 from the contact ends (sigma_x has a square-root cusp
+    there)."""
+    max_pressure: float
+    """Maximum of p/(P/h) on the contact."""
     elapsed: float
     """Solve time in seconds."""
     valid: bool
@@ -124,13 +135,22 @@ class DampedSolution:
     validity: str
     """Account of the validity checks."""
     min_pressure: float
-    """Minimum of p/(P/h) on the contact."""
+    """Minimum of p/(P/h) on the contact (0 at the smooth ends: see
+    ``pressure_margin``)."""
+    pressure_margin: float
+    """min over r in (-1, 1) of p/((P/h) sqrt(1 - r^2)), r = (x - c)/w the
+    position scaled to the contact: the safety margin before the contact
+    separates (> 0 for a valid contact; 2/(pi a) for a narrow Hertz
+    contact)."""
     min_gap: float
     """Minimum gap/h within 2(a + b) beside the contact."""
     other_half_widths: tuple[float, ...]
     """Half-widths (a + b)/(2h) of other contacts that carry the same load
     (above V*_cr the steady solution need not be unique; to about 1 %).
     Empty when none was found on [w/8, 4w]."""
+    warnings: tuple[str, ...]
+    """One line per requested accuracy that was not met (what, and by how
+    much); empty when ``tol`` was met."""
     _impl: _core.DampedSolution = field(repr=False, compare=False)
 
     @property
@@ -307,6 +327,7 @@ class DampedSolution:
         }
         data["contact_interval"] = list(self.contact_interval)
         data["other_half_widths"] = list(self.other_half_widths)
+        data["warnings"] = list(self.warnings)
         data["dissipation"] = self.dissipation
         return data
 
@@ -362,12 +383,17 @@ def solve_damped(
         iterations=int(impl.iterations),
         collocation_n=int(impl.collocation_n),
         error_estimate=float(impl.error_estimate),
+        pressure_error_estimate=float(impl.pressure_error_estimate),
+        stress_error_estimate=float(impl.stress_error_estimate),
+        max_pressure=float(impl.max_pressure),
         elapsed=float(impl.elapsed),
         valid=bool(impl.valid),
         validity=str(impl.validity),
         min_pressure=float(impl.min_pressure),
+        pressure_margin=float(impl.pressure_margin),
         min_gap=float(impl.min_gap),
         other_half_widths=tuple(float(w) for w in impl.other_half_widths),
+        warnings=tuple(str(w) for w in impl.warnings),
         _impl=impl,
     )
 

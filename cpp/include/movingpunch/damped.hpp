@@ -82,6 +82,9 @@ struct DampedQuadrature {
   AlphaQuadrature panels;      // nodes, weights, panel centres/half-widths
   std::vector<cplx> m1, m2, wb;
   double error_estimate = 0;   // of the integral of |M1 - phi1|/phi1
+  // QUADPACK's (qk15) estimate of the error of the Kronrod sums actually used
+  // (|K15 - G7| above bounds the Gauss rule's error, far larger once resolved).
+  double kronrod_error = 0;
 };
 DampedQuadrature build_damped_quadrature(const DampedLayerModel& model, double tol);
 
@@ -93,7 +96,7 @@ struct DampedParams {
   double load = 0.002;  // P / (mu h) > 0
   double nu = 0.2;      // [0, 0.5)
   double damping = 0;   // c_w c_T / mu > 0 (finite)
-  double tol = 1e-8;    // relative tolerance on the contact ends, [1e-14, 1e-2]
+  double tol = 1e-8;    // relative tolerance on the contact ends and the pressure, [1e-14, 1e-2]
   bool allow_unphysical = false;
   int n = 0;            // fixed collocation size (even, 2..1024); 0: refine
 };
@@ -119,7 +122,24 @@ class DampedSolution {
   double critical_vstar() const noexcept { return vcr_; }
   double rayleigh_vstar() const noexcept { return vr_; }
   double phi1() const noexcept { return model_->phi1(); }
-  double error_estimate() const noexcept { return err_; }  // of the ends, absolute
+  // Absolute error estimate of the contact ends (-b, a), in h (a bound of
+  // |error| of each end; docs/damped.md section 8).
+  double error_estimate() const noexcept { return err_; }
+  // Bound on the error of the pressure shape, max over r in (-1, 1) of
+  // |p(c + w r) - p_exact(c_exact + w_exact r)|, in P/h (pointwise in x add
+  // |dp/dx| error_estimate()).
+  double pressure_error_estimate() const noexcept { return perr_; }
+  // Bound on the error of the surface sigma_x/(P/h) at points more than
+  // 1e-3 (a + b)/2 from the contact ends (sigma_x has a square-root cusp there).
+  double stress_error_estimate() const noexcept { return serr_; }
+  // Maximum of p/(P/h) on the contact.
+  double max_pressure() const noexcept { return max_p_; }
+  // min over r in (-1, 1) of p/((P/h) sqrt(1 - r^2)) = min g(r), r = (x - c)/w:
+  // the safety margin before the contact separates (> 0: both ends smooth).
+  double pressure_margin() const noexcept { return margin_; }
+  // One line per requested accuracy that was not met (what and by how much);
+  // empty when tol was met.
+  const std::vector<std::string>& warnings() const noexcept { return warnings_; }
   int iterations() const noexcept { return iterations_; }
   int collocation_n() const noexcept { return n_; }
   double elapsed() const noexcept { return elapsed_; }
@@ -162,6 +182,8 @@ class DampedSolution {
   friend DampedSolution solve_damped(const DampedParams& p);
   DampedParams params_{};
   double centre_ = 0, half_ = 0, drag_ = 0, vcr_ = 0, vr_ = 0, err_ = 0, elapsed_ = 0;
+  double perr_ = 0, serr_ = 0, max_p_ = 0, margin_ = 0;
+  std::vector<std::string> warnings_;
   int iterations_ = 0, n_ = 0;
   bool valid_ = true;
   std::string validity_;
@@ -190,6 +212,30 @@ class DampedSolution {
 // (bad input), SupercriticalSpeedError (vstar >= V*_R), UnphysicalContactError
 // (unless allow_unphysical) and ConvergenceError.
 DampedSolution solve_damped(const DampedParams& p);
+
+// Error estimate of the last member of a sequence x_0, x_1, ... computed at
+// sizes n_0 < n_1 < ..., from the changes d_k = |x_k - x_{k-1}| (changes[k-1]
+// belongs to sizes[k]; exposed for tests). Geometric convergence in N is
+// assumed: with q = rho^(n_k - n_{k-1}) from the last two changes the error
+// is d q/(1 - q), reported times a safety factor 10, plus `floor` (round-off).
+// A change within 4 floor, or two changes in a row that shrink by less than
+// 20 % (stagnation), mark the round-off level: the estimate is then the
+// larger of the last two changes plus the floor.
+struct RefinementEstimate {
+  double estimate = 0;
+  bool at_floor = false;   // the last change is round-off
+  bool stagnated = false;  // the changes stopped shrinking
+};
+RefinementEstimate refinement_estimate(const std::vector<int>& sizes,
+                                       const std::vector<double>& changes, double floor);
+
+// max over theta in [0, pi] of |sum_k b_k sin((k + 1) theta)| (= max over r of
+// |sqrt(1 - r^2) sum b_k U_k(r)|), sampled at 8 (len(b) + 1) + 64 angles.
+double max_abs_sine_series(const Eigen::VectorXd& b);
+
+// min over r in [-1, 1] of sum_k b_k U_k(r) (a dense scan refined by golden
+// section); `where` receives the minimiser.
+double min_u_series(const Eigen::VectorXd& b, double* where = nullptr);
 
 // The regular kernel of the damped equation,
 //   K(u) = (1/phi1) int_0^inf [Re(M1 - phi1) sin(alpha u) + Im(M1 - phi1) cos(alpha u)] d alpha,
