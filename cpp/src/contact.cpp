@@ -267,13 +267,17 @@ double solve_width(Problem& prob, const ContactParams& params, const ChebyshevNo
 // The N-truncation error of the last of a chain of widths a_k at sizes n_k
 // (the k-th solve failing resets the chain). Convergence in N is geometric,
 // and the change c_k = |a_k - a_{k-1}| is about the error of a_{k-1}: the error
-// of a_k is about c_k q, q the ratio per step c_k / c_{k-1}, or the larger of
-// the last two such ratios when there are three changes, taken 10 times and
-// never above c_k. Per step, not per node, and over two steps: the rate is
-// not steady before N resolves the kernel (kw = 1e-4: changes 1.4e-3, 2.5e-5,
-// 8.7e-9 at N = 12, 16, 24, then an error 6.4e-11 at 24, a ratio 7e-3). With
-// two sizes, the decay `rate` per index of g's Chebyshev coefficients over
-// the step stands in for q (1: unknown); infinite with a single size.
+// of a_k is about c_k q, q the ratio per step c_k / c_{k-1}, or, with three
+// changes, the geometric mean of the last two ratios if larger, or where the
+// two agree within 4 over equal steps (a steady rate) the larger per node
+// over the last step; taken 10 times and never above c_k. Per step, not per node, and over two steps: the
+// rate is not steady before N resolves the kernel (kw = 1e-4: changes 1.4e-3,
+// 2.5e-5, 8.7e-9 at N = 12, 16, 24, then an error 6.4e-11 at 24, a ratio
+// 7e-3), while the larger ratio alone overestimates a rate that speeds up
+// (kw = 0.1 near V*_cr) by 500. With two sizes, the decay `rate` per index of
+// g's Chebyshev coefficients over the step stands in for q (taken 3 times;
+// 1: unknown); infinite with a single size. (Calibrated against N = 256
+// references on 72 cases: docs/performance.md.)
 double collocation_error(const std::vector<int>& n, const std::vector<double>& a,
                          double rate = 1.0) {
   const std::size_t m = a.size();
@@ -281,14 +285,22 @@ double collocation_error(const std::vector<int>& n, const std::vector<double>& a
   const double c2 = std::fabs(a[m - 1] - a[m - 2]);
   if (m < 3) {
     const double qc = rate < 1.0 ? std::pow(rate, n[m - 1] - n[m - 2]) : 1.0;
-    return c2 * std::min(1.0, 10.0 * qc);
+    return c2 * std::min(1.0, 3.0 * qc);
   }
   const double c1 = std::fabs(a[m - 2] - a[m - 3]);
   if (!(c1 > c2)) return c2;
   double q = c2 / c1;
   if (m >= 4) {
     const double c0 = std::fabs(a[m - 3] - a[m - 4]);
-    q = c0 > c1 ? std::max(q, c1 / c0) : 1.0;
+    if (!(c0 > c1)) return c2;
+    const double q0 = c1 / c0;
+    if (q0 <= 4.0 * q && q <= 4.0 * q0 && n[m - 2] - n[m - 3] == n[m - 3] - n[m - 4]) {
+      // A steady rate over two equal steps: per node, over the last step.
+      q = std::pow(std::max(q, q0), static_cast<double>(n[m - 1] - n[m - 2]) /
+                                        static_cast<double>(n[m - 2] - n[m - 3]));
+    } else {
+      q = std::max(q, std::sqrt(q * q0));
+    }
   }
   return c2 * std::min(1.0, 10.0 * q);
 }

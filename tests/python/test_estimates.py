@@ -302,3 +302,34 @@ def test_pressure_margin_in_the_half_plane_limit() -> None:
     s = mp.solve(vstar=0.3, kw=INF, radius=1.0, load=1e-7)
     assert s.a < 1e-3
     assert s.pressure_margin == pytest.approx(2.0 / (math.pi * s.a), rel=2e-3)
+
+
+# ----------------------------------------------------------------------------
+# The terminal UI's status line
+# ----------------------------------------------------------------------------
+
+
+def test_tui_status_line_shows_every_warning() -> None:
+    from tui_pilot import settle, status_text, sync, type_into
+
+    from movingpunch.tui.app import create_app
+
+    @sync
+    async def run() -> None:
+        app = create_app()
+        async with app.run_test(size=(100, 32)) as pilot:
+            await settle(pilot)
+            assert "warning" not in status_text(app)
+            await type_into(pilot, "tol", "1e-12", paste=True)
+            await type_into(pilot, "vstar", repr(_vstar(1.0, 1e-14)), paste=True)
+            expected = mp.solve(
+                vstar=_vstar(1.0, 1e-14), kw=1.0, **PAPER, tol=1e-12
+            ).warnings
+            assert expected
+            text = status_text(app)
+            for line in expected:
+                assert f"warning: {line}" in text
+            await type_into(pilot, "vstar", "0.2", paste=True)
+            assert "warning" not in status_text(app)
+
+    run()
