@@ -310,9 +310,8 @@ def test_pressure_margin_in_the_half_plane_limit() -> None:
 
 
 def test_tui_status_line_shows_every_warning() -> None:
-    from tui_pilot import settle, status_text, sync, type_into
-
     from movingpunch.tui.app import create_app
+    from tui_pilot import settle, status_text, sync, type_into
 
     @sync
     async def run() -> None:
