@@ -6,6 +6,7 @@
 #include <Eigen/Dense>
 #include <pybind11/eigen.h>
 #include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
 
 #include "bindings.hpp"
 #include "movingpunch/contact.hpp"
@@ -65,6 +66,26 @@ void bind_contact(py::module_& m) {
                              "Human-readable account of the validity checks.")
       .def_property_readonly("min_pressure", &ContactSolution::min_pressure,
                              "Minimum of p/(P/h) on [-a, a].")
+      .def_property_readonly("pressure_margin", &ContactSolution::pressure_margin,
+                             "Minimum over -1 < r < 1 of p(a r)/((P/h) sqrt(1 - r^2)): "
+                             "the margin before the contact separates.")
+      .def_property_readonly(
+          "warnings",
+          [](const ContactSolution& s) { return py::list(py::cast(s.warnings())); },
+          "One line per requested accuracy that was not met (empty: none).")
+      .def_property_readonly(
+          "error_budget",
+          [](const ContactSolution& s) {
+            const auto& b = s.error_budget();
+            py::dict d;
+            d["collocation"] = b.collocation;
+            d["root"] = b.root;
+            d["kernel"] = b.kernel;
+            d["roundoff"] = b.roundoff;
+            return d;
+          },
+          "The parts of error_estimate (absolute, of a/h): collocation, root, kernel, "
+          "roundoff.")
       .def_property_readonly("min_gap", &ContactSolution::min_gap,
                              "Minimum gap/h between punch and surface on "
                              "a < |x| <= 3a.")

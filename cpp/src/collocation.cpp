@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <vector>
 #include <algorithm>
+#include <utility>
 
 namespace movingpunch {
 
@@ -41,22 +42,27 @@ Eigen::VectorXd solve_unit_collocation(const ChebyshevNodes& nodes, double a,
       nodes, a, [&kernel](double u, double v) { return kernel(u) + kernel(v); });
 }
 
-Eigen::VectorXd solve_unit_collocation_sum(
+Eigen::MatrixXd unit_collocation_matrix(
     const ChebyshevNodes& nodes, double a,
     const std::function<double(double, double)>& kernel_sum) {
-  const int n = nodes.n, h = n / 2;
+  const int h = nodes.n / 2;
   Eigen::MatrixXd M(h, h);
-  Eigen::VectorXd rhs(h);
   for (int k = 0; k < h; ++k) {  // s_k > 0 for k = 1..N/2
     const double s = nodes.s(k);
-    rhs(k) = s;
     for (int j = 0; j < h; ++j) {  // r_j > 0; its mirror -r_j carries the same g
       const double r = nodes.r(j);
       const double up = r - s, um = -r - s;
       M(k, j) = nodes.w(j) * (1.0 / up + 1.0 / um + a * kernel_sum(a * up, a * um));
     }
   }
-  return M.partialPivLu().solve(rhs);
+  return M;
+}
+
+Eigen::VectorXd solve_unit_collocation_sum(
+    const ChebyshevNodes& nodes, double a,
+    const std::function<double(double, double)>& kernel_sum) {
+  const int h = nodes.n / 2;
+  return unit_collocation_matrix(nodes, a, kernel_sum).partialPivLu().solve(nodes.s.head(h));
 }
 
 Eigen::VectorXd u_coefficients(const ChebyshevNodes& nodes, const Eigen::VectorXd& g_full) {
@@ -72,6 +78,48 @@ Eigen::VectorXd u_coefficients(const ChebyshevNodes& nodes, const Eigen::VectorX
     b(m) = 2.0 * sum / (n + 1);
   }
   return b;
+}
+
+double u_series_minimum(const Eigen::VectorXd& b, double* r_min) {
+  if (b.size() == 0) throw std::invalid_argument("u_series_minimum: no coefficients");
+  const int m = std::max(400, 8 * static_cast<int>(b.size()));
+  int best = 0;
+  double gbest = u_series(b, 1.0);
+  for (int i = 1; i <= m; ++i) {
+    const double g = u_series(b, std::cos(kPi * i / m));
+    if (g < gbest) {
+      gbest = g;
+      best = i;
+    }
+  }
+  // Golden section on the two sample intervals around the best sample.
+  double lo = std::cos(kPi * std::min(best + 1, m) / m), hi = std::cos(kPi * std::max(best - 1, 0) / m);
+  double rbest = std::cos(kPi * best / m);
+  const double gr = 0.5 * (std::sqrt(5.0) - 1.0);
+  double x1 = hi - gr * (hi - lo), x2 = lo + gr * (hi - lo);
+  double f1 = u_series(b, x1), f2 = u_series(b, x2);
+  for (int it = 0; it < 200 && hi - lo > 1e-13; ++it) {
+    if (f1 < f2) {
+      hi = x2;
+      x2 = x1;
+      f2 = f1;
+      x1 = hi - gr * (hi - lo);
+      f1 = u_series(b, x1);
+    } else {
+      lo = x1;
+      x1 = x2;
+      f1 = f2;
+      x2 = lo + gr * (hi - lo);
+      f2 = u_series(b, x2);
+    }
+  }
+  for (const auto& [x, f] : {std::pair<double, double>{x1, f1}, {x2, f2}})
+    if (f < gbest) {
+      gbest = f;
+      rbest = x;
+    }
+  if (r_min) *r_min = rbest;
+  return gbest;
 }
 
 Eigen::Index last_even_term(const Eigen::VectorXd& b) {

@@ -7,6 +7,8 @@
 #include <limits>
 #include <complex>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "movingpunch/collocation.hpp"
 #include "movingpunch/dispersion.hpp"
@@ -116,6 +118,27 @@ class Problem {
     const double sum = 2.0 * nodes.w.head(nodes.n / 2).dot(G);
     if (G_out) *G_out = G;
     return -kPi * a * a / (phi1_ * p_.radius) * sum;
+  }
+
+  // The final solve at a, with what the error estimate needs: the matrix M,
+  // the unit solution G (M G = s) and the adjoint lambda (M^T lambda = W), so
+  // that a change dM moves sum W G by -lambda^T dM G to first order.
+  struct Linearised {
+    Eigen::MatrixXd M;
+    Eigen::VectorXd G, lambda;
+    double load = 0;
+  };
+  Linearised linearise(const ChebyshevNodes& nodes, double a) {
+    const KernelK1& k = kernel(a);
+    ++evaluations_;
+    const int h = nodes.n / 2;
+    Linearised L;
+    L.M = unit_collocation_matrix(nodes, a, [&k](double u, double v) { return k.sum(u, v); });
+    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(L.M);
+    L.G = lu.solve(nodes.s.head(h));
+    L.lambda = lu.transpose().solve(nodes.w.head(h));
+    L.load = -kPi * a * a / (phi1_ * p_.radius) * 2.0 * nodes.w.head(h).dot(L.G);
+    return L;
   }
 
   int evaluations() const { return evaluations_; }
@@ -241,6 +264,181 @@ double solve_width(Problem& prob, const ContactParams& params, const ChebyshevNo
   throw ConvergenceError("contact width iteration did not converge in 200 steps");
 }
 
+// The N-truncation error of the last of a chain of widths a_k at sizes n_k
+// (the k-th solve failing resets the chain). Convergence in N is geometric,
+// and the change c_k = |a_k - a_{k-1}| is about the error of a_{k-1}: the error
+// of a_k is about c_k q, q the ratio per step c_k / c_{k-1}, or, with three
+// changes, the geometric mean of the last two ratios if larger, or where the
+// two agree within 4 over equal steps (a steady rate) the larger per node
+// over the last step; taken 10 times and never above c_k. Per step, not per node, and over two steps: the
+// rate is not steady before N resolves the kernel (kw = 1e-4: changes 1.4e-3,
+// 2.5e-5, 8.7e-9 at N = 12, 16, 24, then an error 6.4e-11 at 24, a ratio
+// 7e-3), while the larger ratio alone overestimates a rate that speeds up
+// (kw = 0.1 near V*_cr) by 500. With two sizes, the decay `rate` per index of
+// g's Chebyshev coefficients over the step stands in for q (taken 3 times;
+// 1: unknown); infinite with a single size. (Calibrated against N = 256
+// references on 72 cases: docs/performance.md.)
+double collocation_error(const std::vector<int>& n, const std::vector<double>& a,
+                         double rate = 1.0) {
+  const std::size_t m = a.size();
+  if (m < 2) return kInf;
+  const double c2 = std::fabs(a[m - 1] - a[m - 2]);
+  if (m < 3) {
+    const double qc = rate < 1.0 ? std::pow(rate, n[m - 1] - n[m - 2]) : 1.0;
+    return c2 * std::min(1.0, 3.0 * qc);
+  }
+  const double c1 = std::fabs(a[m - 2] - a[m - 3]);
+  if (!(c1 > c2)) return c2;
+  double q = c2 / c1;
+  if (m >= 4) {
+    const double c0 = std::fabs(a[m - 3] - a[m - 4]);
+    if (!(c0 > c1)) return c2;
+    const double q0 = c1 / c0;
+    if (q0 <= 4.0 * q && q <= 4.0 * q0 && n[m - 2] - n[m - 3] == n[m - 3] - n[m - 4]) {
+      // A steady rate over two equal steps: per node, over the last step.
+      q = std::pow(std::max(q, q0), static_cast<double>(n[m - 1] - n[m - 2]) /
+                                        static_cast<double>(n[m - 2] - n[m - 3]));
+    } else {
+      q = std::max(q, std::sqrt(q * q0));
+    }
+  }
+  return c2 * std::min(1.0, 10.0 * q);
+}
+
+// Decay rate per index of the even Chebyshev coefficients of g over their
+// last eight: (max|b_{N-2}|, |b_{N-4}| / max|b_{N-6}|, |b_{N-8}|)^(1/4), at
+// most 1 (1: too few coefficients to tell).
+double coefficient_rate(const Eigen::VectorXd& b) {
+  const Eigen::Index n = b.size();
+  if (n < 10) return 1.0;
+  const double top = std::max(std::fabs(b(n - 2)), std::fabs(b(n - 4)));
+  const double below = std::max(std::fabs(b(n - 6)), std::fabs(b(n - 8)));
+  if (!(below > 0.0)) return 1.0;
+  return std::min(1.0, std::pow(top / below, 0.25));
+}
+
+std::string format_g(double x, int precision = 3) {
+  std::ostringstream o;
+  o.precision(precision);
+  o << x;
+  return o.str();
+}
+
+// The parts of the error estimate of a/h (ContactSolution::ErrorBudget) from
+// the final solve at a. Every perturbation of the collocation matrix dM moves
+// S = sum W G by -lambda^T dM G; S moves the load by dS/S and a by
+// (dS/S)/slope, slope = d ln load/d ln a (measured here, about 2). k1 enters M
+// as a W_j (k1(a (r_j - s_k)) + k1(a (-r_j - s_k))); an error c sin(alpha u) of
+// k1 moves S by c |2 a (sum_k lambda_k sin(alpha a s_k)) (sum_j W_j G_j
+// cos(alpha a r_j))|, which is how each quadrature panel's error bound
+// counts (the largest over five points of the panel). Near V*_cr this is what
+// keeps the estimate honest: the resonance's round-off (eps |M1|^2 over a
+// width sqrt(eps)) lies where this sensitivity nearly vanishes.
+ContactSolution::ErrorBudget error_budget(Problem& prob, const ContactParams& p,
+                                          const ChebyshevNodes& nodes,
+                                          const Problem::Linearised& lin, double a,
+                                          double collocation, double roundoff) {
+  constexpr double eps = std::numeric_limits<double>::epsilon();
+  const int h = nodes.n / 2;
+  const Eigen::VectorXd w = nodes.w.head(h);
+  const double S = w.dot(lin.G);
+  // d ln load / d ln a from a second load a step 1e-6 wider.
+  const double step = 1e-6;
+  const double load2 = prob.load_of(nodes, a * (1.0 + step), nullptr);
+  double slope = (std::log(load2) - std::log(lin.load)) / std::log1p(step);
+  if (!std::isfinite(slope) || slope < 0.5) slope = 0.5;  // a flat curve: be cautious
+  const double to_a = a / (std::fabs(S) * slope);        // dS -> da
+
+  ContactSolution::ErrorBudget b;
+  b.collocation = collocation;
+  // Newton's step from the residual (the residual's own noise is the
+  // round-off part below).
+  b.root = a * std::fabs(std::log(lin.load / p.load)) / slope;
+
+  const KernelK1& k = prob.kernel(a);
+  const AlphaQuadrature& q = k.value_quadrature();
+  const double phi1 = k.model().phi1();
+  const Eigen::VectorXd wG = w.cwiseProduct(lin.G);
+  const double lam1 = lin.lambda.cwiseAbs().sum(), wg1 = wG.cwiseAbs().sum();
+  // Truncation errors are systematic: they add. Round-off is independent from
+  // panel to panel and from one u to the next: it adds in quadrature, taken 3
+  // times (3 sigma).
+  double dS = 0.0, dS_round2 = 0.0;
+  if (q.panel_error.size() == q.panel_centre.size() &&
+      q.panel_roundoff.size() == q.panel_centre.size()) {
+    const double worst = 2.0 * a * lam1 * wg1;  // |dS| per unit error of k1, any shape
+    for (std::size_t i = 0; i < q.panel_centre.size(); ++i) {
+      const double e = q.panel_error[i], r = q.panel_roundoff[i];
+      if (!((e + r) * worst > 1e-4 * eps * std::fabs(S))) continue;  // negligible
+      // |S| at the panel's ends and its 15 nodes; the systematic error takes
+      // the largest, each node's round-off (2 eps (1 + |f| + f^2) w) its own.
+      auto sens = [&](double alpha) {
+        const double al = a * alpha;
+        double s1 = 0.0, s2 = 0.0;
+        for (int j = 0; j < h; ++j) {
+          s1 += lin.lambda(j) * std::sin(al * nodes.s(j));
+          s2 += wG(j) * std::cos(al * nodes.r(j));
+        }
+        return 2.0 * a * std::fabs(s1 * s2);
+      };
+      double smax = std::max(sens(q.panel_centre[i] - q.panel_half[i]),
+                             sens(q.panel_centre[i] + q.panel_half[i]));
+      double round2 = 0.0;
+      for (std::size_t n = 15 * i; n < 15 * i + 15 && n < q.alpha.size(); ++n) {
+        const double sn = sens(q.alpha[n]);
+        smax = std::max(smax, sn);
+        const double f = std::fabs((q.m1[n] - phi1) / phi1);
+        const double sigma = 2.0 * eps * (1.0 + f + f * f) * q.weight[n];
+        round2 += (sigma * sn) * (sigma * sn);
+      }
+      (void)r;
+      dS += e * smax;
+      dS_round2 += round2;
+    }
+  } else {
+    dS += q.error_estimate * 2.0 * a * lam1 * wg1;
+  }
+  // The table: its truncation, of the shape of its first omitted Chebyshev
+  // terms T_m(u / range) (m = order, order + 2; 3 times the larger effect), or of
+  // any shape in the worst case for a piecewise table; its round-off,
+  // independent for each of the N^2/2 entries.
+  if (k.table_order() > 0) {
+    double tmax = 0.0;
+    for (int m : {k.table_order(), k.table_order() + 2}) {
+      double sum = 0.0;
+      for (int kk = 0; kk < h; ++kk)
+        for (int j = 0; j < h; ++j) {
+          const double up = a * (nodes.r(j) - nodes.s(kk)) / k.range();
+          const double um = a * (-nodes.r(j) - nodes.s(kk)) / k.range();
+          sum += lin.lambda(kk) * wG(j) *
+                 (std::cos(m * std::acos(std::clamp(up, -1.0, 1.0))) +
+                  std::cos(m * std::acos(std::clamp(um, -1.0, 1.0))));
+        }
+      tmax = std::max(tmax, std::fabs(a * sum));
+    }
+    dS += 3.0 * k.table_error() * tmax;
+  } else {
+    dS += k.table_error() * 2.0 * a * lam1 * wg1;
+  }
+  const double rms_entries = std::sqrt(2.0) * a * lin.lambda.norm() * wG.norm();
+  dS_round2 += (k.table_roundoff() * rms_entries) * (k.table_roundoff() * rms_entries);
+  dS += 3.0 * std::sqrt(dS_round2);
+  b.kernel = dS * to_a;
+
+  // Round-off: of the matrix entries and the solve's backward error, 2 eps
+  // |M_kj| each, independent (3 sigma), the relative round-off of phi1 near
+  // V*_R, and a floor of 2 eps a.
+  double solve2 = 0.0;
+  for (int kk = 0; kk < h; ++kk)
+    for (int j = 0; j < h; ++j) {
+      const double t = lin.lambda(kk) * lin.M(kk, j) * lin.G(j);
+      solve2 += t * t;
+    }
+  const double solve = 3.0 * 2.0 * eps * std::sqrt(solve2);
+  b.roundoff = solve * to_a + a * roundoff + 2.0 * eps * a;
+  return b;
+}
+
 }  // namespace
 
 ContactSolution solve_contact(const ContactParams& p) {
@@ -297,23 +495,41 @@ ContactSolution solve_contact(const ContactParams& p) {
 
   double a_prev = std::numeric_limits<double>::quiet_NaN();
   double change = kInf;
+  // The chain of sizes and widths the N error is read from (collocation_error).
+  std::vector<int> chain_n;
+  std::vector<double> chain_a;
   ChebyshevNodes nodes;
   if (p.n != 0) {
-    // Fixed N: the estimate compares with the solve at about half the size
-    // (infinite if that coarse solve has no root: an under-resolved load curve).
+    // Fixed N: the estimate compares with the solves at about a half and a
+    // quarter of the size (infinite if the half-size solve has no root: an
+    // under-resolved load curve).
     const int coarse = std::max(2, (p.n / 4) * 2);
-    double a_coarse = std::numeric_limits<double>::quiet_NaN();
-    if (coarse < p.n) {
+    const int coarser = std::max(2, (coarse / 4) * 2);
+    for (int m : {coarser, coarse}) {
+      if (m >= p.n || (!chain_n.empty() && m <= chain_n.back())) continue;
       try {
-        a_coarse = solve_width(prob, p, chebyshev_nodes(coarse), p.load, a, xtol);
-        a = a_coarse;
+        const double am = solve_width(prob, p, chebyshev_nodes(m), p.load, a, xtol);
+        a = am;
+        chain_n.push_back(m);
+        chain_a.push_back(am);
       } catch (const ConvergenceError&) {
+        chain_n.clear();
+        chain_a.clear();
       } catch (const std::invalid_argument&) {
+        chain_n.clear();
+        chain_a.clear();
       }
+    }
+    if (!chain_n.empty() && chain_n.back() != coarse) {
+      chain_n.clear();
+      chain_a.clear();
     }
     nodes = chebyshev_nodes(p.n);
     a = solve_width(prob, p, nodes, p.load, a, xtol);
-    change = coarse < p.n ? (std::isnan(a_coarse) ? kInf : std::fabs(a - a_coarse)) : 0.0;
+    chain_n.push_back(p.n);
+    chain_a.push_back(a);
+    // N = 2 has no coarser size: nothing to compare with (as before, 0).
+    change = coarse < p.n ? collocation_error(chain_n, chain_a) : 0.0;
   } else {
     // Refine N. A coarse N can under-resolve the load curve (it may even be
     // non-monotone, with no root): a failure there moves on to the next N;
@@ -329,18 +545,25 @@ ContactSolution solve_contact(const ContactParams& p) {
         // Not a failure of this problem: refine N (cheap, the kernel is kept).
         if (idx + 1 == kSizes.size()) throw;
         prev_ok = false;
+        chain_n.clear();
+        chain_a.clear();
         continue;
       } catch (const std::exception&) {
         if (++failures >= 2 || idx + 1 == kSizes.size()) throw;
         prev_ok = false;
+        chain_n.clear();
+        chain_a.clear();
         continue;
       }
       failures = 0;
       a = a_new;
+      chain_n.push_back(kSizes[idx]);
+      chain_a.push_back(a);
       if (prev_ok) {
         change = std::fabs(a - a_prev);
         if (change <= p.tol * a) {
           converged = true;
+          change = collocation_error(chain_n, chain_a);
           break;
         }
       }
@@ -376,8 +599,9 @@ ContactSolution solve_contact(const ContactParams& p) {
   sol.field_cache_ = std::make_shared<ContactSolution::FieldCache>();
 
   // Final unit solution at the converged a; g normalised by the load.
-  Eigen::VectorXd G;
-  const double load = prob.load_of(nodes, a, &G);
+  const Problem::Linearised lin = prob.linearise(nodes, a);
+  const Eigen::VectorXd& G = lin.G;
+  const double load = lin.load;
   const int h = nodes.n / 2;
   Eigen::VectorXd g_full(nodes.n);
   const double scale = -(a / (phi1 * p.radius)) / load;
@@ -389,8 +613,28 @@ ContactSolution solve_contact(const ContactParams& p) {
   for (Eigen::Index m = 1; m < sol.b_.size(); m += 2) sol.b_(m) = 0.0;  // g is even
   sol.p0_ = u_series(sol.b_, 0.0);
   sol.iterations_ = prob.evaluations();
-  const double root_err = a * xtol;
-  sol.err_ = change + root_err + a * a * sol.kernel_->quadrature().error_estimate + a * roundoff;
+  if (chain_a.size() >= 2 && std::isfinite(change))
+    change = collocation_error(chain_n, chain_a, coefficient_rate(sol.b_));
+  sol.budget_ = error_budget(prob, p, nodes, lin, a, change, roundoff);
+  const ContactSolution::ErrorBudget& eb = sol.budget_;
+  sol.err_ = eb.collocation + eb.root + eb.kernel + eb.roundoff;
+  if (!(sol.err_ <= p.tol * a)) {
+    // Name the largest part: that is what kept a/h from tol.
+    const double parts[4] = {eb.collocation, eb.root, eb.kernel, eb.roundoff};
+    const char* why[4] = {
+        p.n != 0 ? "the fixed collocation size N is too small" : "the collocation size N",
+        "the width iteration's residual",
+        "the k1 kernel's quadrature round-off (near V*_cr the resonance of M1 is "
+        "computed to ~eps |M1|)",
+        "round-off of the collocation solve and of phi1"};
+    int worst = 0;
+    for (int i = 1; i < 4; ++i)
+      if (!(parts[i] <= parts[worst])) worst = i;
+    sol.warnings_.push_back("tol not met: a/h error estimate " + format_g(sol.err_) +
+                            " is " + format_g(sol.err_ / a) + " relative, above tol = " +
+                            format_g(p.tol) + " (mostly " + why[worst] + ", N = " +
+                            std::to_string(nodes.n) + ")");
+  }
 
   // Indentation: delta = -v(0, 0).
   sol.prepare_displacement();
@@ -412,6 +656,7 @@ ContactSolution solve_contact(const ContactParams& p) {
     pmin = std::min(pmin, g * std::sqrt(std::max(0.0, 1.0 - r * r)));
   }
   sol.min_p_ = pmin;
+  sol.p_margin_ = u_series_minimum(sol.b_);
   double gap_min = kInf, x_gap = 0.0;
   for (int j = 1; j <= 48; ++j) {
     const double q = j / 48.0;

@@ -28,6 +28,8 @@ struct Panel {
   double resabs;      // integral of |f|
   double floor;       // round-off floor of the rule on this panel
   double truncation;  // QUADPACK's rescaled |K15 - G7|
+  double round_rms;   // rms round-off of the rule from independent nodal errors
+  double systematic;  // the part of truncation that is not round-off
 };
 
 Panel eval_panel(const LayerModel& model, double lo, double hi) {
@@ -70,6 +72,16 @@ Panel eval_panel(const LayerModel& model, double lo, double hi) {
   double fmax = 0.0;
   for (double v : fv) fmax = std::max(fmax, std::fabs(v));
   p.floor = 4.0 * eps * (2.0 * h + p.resabs * (1.0 + fmax));
+  // The same node by node, as independent errors of 2 eps (1 + |f| + f^2)
+  // (M1 near a resonance: about eps |M1| relative, measured against the
+  // transfer-matrix evaluation), added in quadrature.
+  double r2 = 0.0;
+  for (int j = 0; j < 15; ++j) {
+    const int k = j < 7 ? j : (j == 7 ? 7 : 14 - j);
+    const double e = kWgk[k] * h * 2.0 * eps * (1.0 + std::fabs(fv[j]) + fv[j] * fv[j]);
+    r2 += e * e;
+  }
+  p.round_rms = std::sqrt(r2);
   p.truncation = err;
   p.error = std::max(err, p.floor);
   return p;
@@ -107,6 +119,11 @@ AlphaQuadrature build_alpha_quadrature(const LayerModel& model, double tol,
     // Converged, or already at the round-off floor of the integrand.
     const bool fine = p.error <= std::max(panel_tol * len / w0, p.floor);
     if (fine || len < 1e-9 * w0 || evaluations > 20000) {
+      // A panel that stopped at its round-off floor (not at its tolerance):
+      // its |K15 - G7| is the nodal round-off's, already in round_rms, and
+      // its truncation is below what refining could show. It counts as
+      // meeting its share of tol, not as a systematic error of |K15 - G7|.
+      p.systematic = std::min(p.truncation, panel_tol * len / w0);
       done.push_back(p);
       continue;
     }
@@ -130,6 +147,8 @@ AlphaQuadrature build_alpha_quadrature(const LayerModel& model, double tol,
     // Truncation (QUADPACK's rescaled estimate, not the stopping floor) plus
     // the round-off of the sum itself.
     q.error_estimate += p.truncation + 16.0 * 2.220446049250313e-16 * p.resabs;
+    q.panel_error.push_back(p.systematic);
+    q.panel_roundoff.push_back(p.round_rms);
   }
   return q;
 }
@@ -351,6 +370,16 @@ FilonIntegrator::cplx FilonIntegrator::apply(const std::vector<cplx>& K,
   return sum;
 }
 
+namespace {
+// int |M1 - phi1| / |phi1| d alpha by the quadrature's own rule.
+double abs_integral(const AlphaQuadrature& q, double phi1) {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < q.alpha.size(); ++i)
+    sum += q.weight[i] * std::fabs((q.m1[i] - phi1) / phi1);
+  return sum;
+}
+}  // namespace
+
 KernelK1::KernelK1(const LayerModel& model, double tol, double range)
     : model_(model), tol_(tol), range_(range) {
   require_in_range("kernel tol", tol, 0.0, 1.0, true, false);
@@ -398,6 +427,13 @@ KernelK1::KernelK1(const LayerModel& model, double tol, double range)
       // Drop the negligible tail.
       std::size_t last = c.size();
       while (last > 1 && std::fabs(c[last - 1]) <= 1e-2 * goal) --last;
+      double dropped = 0.0;
+      for (std::size_t m = std::max<std::size_t>(last, 2); m < c.size(); ++m) dropped += std::fabs(c[m]);
+      // The table's error: the series' tail, what was dropped, and the
+      // round-off of the values (Filon sums of terms up to int |f|).
+      table_error_ = 2.0 * tail + dropped;
+      table_order_ = n + 1;
+      table_roundoff_ = 4.0 * eps * (abs_integral(quad_, model_.phi1()) + vmax);
       c.resize(std::max<std::size_t>(last, 2));
       coef_ = std::move(c);
       for (std::size_t m = 1; m < coef_.size(); m += 2) odd_.push_back(coef_[m]);
@@ -422,6 +458,7 @@ void KernelK1::build_pieces() {
   for (std::size_t i = 0; i < f.size(); ++i) f[i] = (coarse.m1[i] - model_.phi1()) / model_.phi1();
   const std::vector<double> fc = filon.coefficients(f);
   std::vector<FilonIntegrator::cplx> K;
+  double vmax = 0.0;
   auto value = [&](double u) {
     filon.weights(u, K);
     return FilonIntegrator::apply(K, fc).imag();
@@ -434,13 +471,22 @@ void KernelK1::build_pieces() {
   double vals[D + 1];
   for (std::size_t p = 0; p < pieces; ++p) {
     const double c0 = (static_cast<double>(p) + 0.5) * w;
-    for (int j = 0; j <= D; ++j) vals[j] = value(c0 + 0.5 * w * std::cos(kPi * (j + 0.5) / (D + 1)));
+    for (int j = 0; j <= D; ++j) {
+      vals[j] = value(c0 + 0.5 * w * std::cos(kPi * (j + 0.5) / (D + 1)));
+      vmax = std::max(vmax, std::fabs(vals[j]));
+    }
     for (int m = 0; m <= D; ++m) {
       double sum = 0.0;
       for (int j = 0; j <= D; ++j) sum += vals[j] * std::cos(kPi * m * (j + 0.5) / (D + 1));
       piece_coef_[p * (D + 1) + static_cast<std::size_t>(m)] = (m == 0 ? 1.0 : 2.0) * sum / (D + 1);
     }
   }
+  // Interpolation is exact to ~1e-17 relative; the values carry the round-off
+  // of Filon sums of terms up to int |f|.
+  constexpr double eps = 2.220446049250313e-16;
+  table_error_ = 0.0;
+  table_roundoff_ = 4.0 * eps * (abs_integral(coarse, model_.phi1()) + vmax);
+  value_quad_ = coarse;
 }
 
 double KernelK1::direct(double u) const {

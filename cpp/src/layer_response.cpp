@@ -16,7 +16,14 @@ Eigen::Vector4d shear_vector(double m) { return {1.0, -1.0 / m, (1.0 + m * m) / 
 // The four columns of the regularised exponential basis at depth y.
 Eigen::Matrix4d modal_columns(const WaveConstants& c, double t, double y) {
   const double nT = c.nT, nL = c.nL, d = c.delta;
-  auto E = [d](double x) { return d > 0.0 ? std::expm1(d * x) / d : x; };
+  // E(x) = (e^{d x} - 1)/d. For tiny d x its series, which holds at full
+  // precision down to d = 0: expm1(d x)/d loses every digit once d is
+  // subnormal (vstar < ~1e-308: d x is rounded to a few bits and divided
+  // back), which moved a/h by 1e-6 at vstar = 1e-320.
+  auto E = [d](double x) {
+    const double dx = d * x;
+    return std::fabs(dx) < 1e-5 ? x * (1.0 + dx * (0.5 + dx / 6.0)) : std::expm1(dx) / d;
+  };
   const Eigen::Vector4d vTp = shear_vector(nT), vTm = shear_vector(-nT);
   const Eigen::Vector4d dvp(0.0, c.dW, c.dT, c.dS), dvm(0.0, -c.dW, -c.dT, c.dS);
   Eigen::Matrix4d C;

@@ -42,6 +42,7 @@ from movingpunch.solver import (
     critical_vstar,
     critical_wavenumber,
     rayleigh_vstar,
+    result_warnings,
     solve,
 )
 
@@ -281,6 +282,7 @@ def _cmd_solve(args: argparse.Namespace) -> int:
         allow_unphysical=args.allow_unphysical,
     )
     peaks = s.stress_peaks() if args.stress else None
+    _print_warnings(s)
     if args.json:
         data = s.to_dict()
         if peaks is not None:
@@ -307,6 +309,8 @@ def _cmd_solve(args: argparse.Namespace) -> int:
         ("iterations", _fmt(s.iterations)),
         ("error estimate (a/h)", f"{s.error_estimate:.2e}"),
         ("error bound (σx/(P/h))", f"{s.stress_error_estimate:.2e}"),
+        ("pressure margin", _fmt(s.pressure_margin)),
+        ("warnings", str(len(s.warnings)) if s.warnings else "none"),
         ("solve time", f"{s.elapsed * 1e3:.1f} ms"),
         ("valid", "yes" if s.valid else "NO"),
         ("validity", s.validity or "-"),
@@ -333,8 +337,10 @@ def _cmd_solve_damped(args: argparse.Namespace) -> int:
         allow_unphysical=args.allow_unphysical,
     )
     peaks = d.stress_peaks() if args.stress else None
+    _print_warnings(d)
     if args.json:
         data = d.to_dict()
+        data["warnings"] = list(result_warnings(d))
         if peaks is not None:
             data["stress"] = dataclasses.asdict(peaks)
         print(json.dumps(data, indent=2))
@@ -367,6 +373,12 @@ def _cmd_solve_damped(args: argparse.Namespace) -> int:
         sections.append(("Stress sigma_x/(P/h)", _stress_rows(peaks)))
     print(_tables(*sections))
     return 0
+
+
+def _print_warnings(result: object) -> None:
+    """Every warning of a solution, one ``warning: ...`` line each on stderr."""
+    for line in result_warnings(result):
+        print(f"warning: {line}", file=sys.stderr)
 
 
 def _stress_rows(peaks: StressPeaks) -> list[tuple[str, str]]:

@@ -50,6 +50,7 @@ __all__ = [
     "phi1",
     "phi2",
     "rayleigh_vstar",
+    "result_warnings",
     "solve",
 ]
 
@@ -320,6 +321,14 @@ class Solution:
     """Minimum of p/(P/h) on [-a, a]."""
     min_gap: float
     """Minimum gap/h between punch and surface on a < |x| <= 3a."""
+    pressure_margin: float
+    """Minimum over the open contact -1 < r < 1 (r = x/a) of
+    p/((P/h) sqrt(1 - r^2)): the safety margin before the contact separates
+    (``min_pressure`` is 0 at the smooth ends whatever the margin). In the
+    half-plane limit it is 2/(pi a/h)."""
+    warnings: tuple[str, ...]
+    """One line per requested accuracy that was not met (empty: ``tol`` was
+    met), e.g. an a/h error estimate above tol * a, saying by how much."""
     kernel_builds: int = field(compare=False)
     """k1 kernel tables this solve built (0: all reused from the process-wide
     cache, as in a load or radius sweep at fixed vstar, kw, nu and tol)."""
@@ -507,6 +516,7 @@ class Solution:
             for f in fields(self)
             if not f.name.startswith("_")
         }
+        data["warnings"] = list(self.warnings)
         data["stress_error_estimate"] = self.stress_error_estimate
         return data
 
@@ -616,10 +626,20 @@ def solve(
         validity=impl.validity,
         min_pressure=impl.min_pressure,
         min_gap=impl.min_gap,
+        pressure_margin=impl.pressure_margin,
+        warnings=tuple(impl.warnings),
         kernel_builds=impl.kernel_builds,
         stage_times=MappingProxyType(dict(impl.stage_seconds)),
         _impl=impl,
     )
+
+
+def result_warnings(result: object) -> tuple[str, ...]:
+    """The ``warnings`` of a solution (Solution, DampedSolution or anything
+    with that attribute) as a tuple of one-line strings; () if it has none.
+    Every display (CLI, scenes, terminal UI) shows them through this."""
+    found = getattr(result, "warnings", ())
+    return tuple(str(w) for w in found) if found else ()
 
 
 _EPS = float(np.finfo(np.float64).eps)

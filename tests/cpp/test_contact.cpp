@@ -14,6 +14,7 @@ using namespace movingpunch;
 
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kPi = 3.14159265358979323846;
 using movingpunch::testing::paper;
 }  // namespace
 
@@ -165,4 +166,36 @@ TEST(Contact, WidthSearchStaysWithinTheSupportedRange) {
   EXPECT_THROW(solve_contact(p), std::invalid_argument);
   p.load = 2000.0;
   EXPECT_NEAR(solve_contact(p).a(), 49.1471030254, 1e-8);
+}
+
+TEST(Contact, ErrorBudgetAddsUpAndWarnsOnlyWhenTolIsNotMet) {
+  ContactParams p = paper(0.2, 1.0);
+  const ContactSolution s = solve_contact(p);
+  const auto& b = s.error_budget();
+  EXPECT_DOUBLE_EQ(s.error_estimate(), b.collocation + b.root + b.kernel + b.roundoff);
+  EXPECT_GT(b.roundoff, 0.0);
+  EXPECT_LE(s.error_estimate(), p.tol * s.a());
+  EXPECT_TRUE(s.warnings().empty());
+  // A fixed N far too small for tol: the estimate says so, and so does a warning.
+  p.n = 4;
+  p.tol = 1e-12;
+  const ContactSolution coarse = solve_contact(p);
+  EXPECT_GT(coarse.error_estimate(), 1e-12 * coarse.a());
+  ASSERT_EQ(coarse.warnings().size(), 1u);
+  EXPECT_NE(coarse.warnings()[0].find("tol not met"), std::string::npos);
+  EXPECT_NE(coarse.warnings()[0].find("N = 4"), std::string::npos);
+}
+
+TEST(Contact, PressureMarginIsHertzianForATinyContact) {
+  // Half-plane limit: p = (2P/(pi a^2)) sqrt(a^2 - x^2), so p/sqrt(1 - r^2) is
+  // the constant 2/(pi a) (in P/h, a in h).
+  ContactParams p;
+  p.kw = kInf;
+  p.radius = 1.0;
+  p.load = 1e-7;
+  const ContactSolution s = solve_contact(p);
+  ASSERT_LT(s.a(), 1e-3);
+  EXPECT_NEAR(s.pressure_margin(), 2.0 / (kPi * s.a()), 2e-3 * 2.0 / (kPi * s.a()));
+  EXPECT_NEAR(s.pressure_margin() * std::sqrt(1.0 - 0.25), s.pressure(0.5 * s.a()),
+              2e-3 * s.pressure(0.5 * s.a()));
 }

@@ -30,12 +30,23 @@ Eigen::VectorXd solve_unit_collocation_sum(
     const ChebyshevNodes& nodes, double a,
     const std::function<double(double, double)>& kernel_sum);
 
+// The folded N/2 x N/2 matrix of solve_unit_collocation_sum (right-hand side
+// s_1 .. s_{N/2}): M(k, j) = W_j [1/(r_j - s_k) + 1/(-r_j - s_k) + a (k(a (r_j - s_k))
+// + k(a (-r_j - s_k)))].
+Eigen::MatrixXd unit_collocation_matrix(const ChebyshevNodes& nodes, double a,
+                                        const std::function<double(double, double)>& kernel_sum);
+
 // Coefficients b_n (n = 0..N-1) of g(r) = sum b_n U_n(r) from the nodal values
 // at all N nodes (exact for polynomials of degree < N).
 Eigen::VectorXd u_coefficients(const ChebyshevNodes& nodes, const Eigen::VectorXd& g_full);
 
 // g(r) = sum b_n U_n(r) for |r| <= 1 (Clenshaw).
 double u_series(const Eigen::VectorXd& b, double r);
+
+// The minimum of g(r) = sum b_n U_n(r) on -1 <= r <= 1 (a dense scan of
+// max(401, 8 N + 1) Chebyshev points, then golden-section refinement between
+// the neighbours of the best one, to ~1e-12 in r); its abscissa in *r_min.
+double u_series_minimum(const Eigen::VectorXd& b, double* r_min = nullptr);
 
 // Highest even n with |b_n| above round-off of the largest coefficient.
 Eigen::Index last_even_term(const Eigen::VectorXd& b);

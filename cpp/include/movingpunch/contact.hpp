@@ -38,6 +38,18 @@ class ContactSolution {
   double rayleigh_vstar() const noexcept { return vr_; }
   double phi1() const noexcept { return phi1_; }
   double error_estimate() const noexcept { return err_; } // absolute, of a/h
+  // The parts of error_estimate (absolute, of a/h; they add up to it):
+  // collocation (the N truncation, extrapolated from the last sizes), root (the
+  // residual of the width iteration), kernel (the k1 table's quadrature and
+  // interpolation errors carried through the collocation solve to first
+  // order) and roundoff (of the solve, and of phi1 near V*_R).
+  struct ErrorBudget {
+    double collocation = 0, root = 0, kernel = 0, roundoff = 0;
+  };
+  const ErrorBudget& error_budget() const noexcept { return budget_; }
+  // One line per requested accuracy that was not met (empty: none); e.g. the
+  // error estimate of a/h above tol * a.
+  const std::vector<std::string>& warnings() const noexcept { return warnings_; }
   double elapsed() const noexcept { return elapsed_; }     // seconds
   int iterations() const noexcept { return iterations_; }  // load evaluations, all N
   int collocation_n() const noexcept { return n_; }
@@ -53,6 +65,9 @@ class ContactSolution {
   bool valid() const noexcept { return valid_; }
   const std::string& validity() const noexcept { return validity_; }
   double min_pressure() const noexcept { return min_p_; }  // min p/(P/h) on [-a, a]
+  // min over -1 < r < 1 of g(r) = p(a r)/((P/h) sqrt(1 - r^2)): how far the
+  // contact is from separating (0 or below: p < 0 somewhere, or at an edge).
+  double pressure_margin() const noexcept { return p_margin_; }
   double min_gap() const noexcept { return min_gap_; }     // min gap/h on a < |x| <= 3a
 
   // p(x)/(P/h) at x/h (0 outside the contact).
@@ -87,7 +102,9 @@ class ContactSolution {
   StageSeconds stage_seconds_{};
   bool valid_ = true;
   std::string validity_;
-  double min_p_ = 0, min_gap_ = 0;
+  double min_p_ = 0, min_gap_ = 0, p_margin_ = 0;
+  ErrorBudget budget_{};
+  std::vector<std::string> warnings_;
   Eigen::VectorXd b_;  // U_n coefficients of g, normalised by P/h
   std::shared_ptr<const KernelK1> kernel_;
   struct FieldCache;

@@ -21,6 +21,12 @@ struct AlphaQuadrature {
   std::vector<double> panel_centre, panel_half;  // panel p holds nodes 15p .. 15p+14
   double alpha_max = 0;        // M1 = phi1 to double precision beyond it
   double error_estimate = 0;   // sum of |K15 - G7| of (M1 - phi1)/phi1
+  // Per panel (same order as panel_centre), the error of the rule for
+  // f = (M1 - phi1)/phi1 on the panel: its truncation (QUADPACK's estimate, a
+  // bound; the panel's share of tol where it stopped at its round-off floor,
+  // its |K15 - G7| being round-off there) and the rms round-off of the nodal values (2 eps (1 + |f| + f^2)
+  // each, independent: eps |f|^2 near a resonance). Empty if not filled.
+  std::vector<double> panel_error, panel_roundoff;
 };
 
 // Adaptive quadrature nodes for integrals of (M1 - phi1) times an oscillation
@@ -76,6 +82,21 @@ class KernelK1 {
   bool piecewise() const noexcept { return !piece_coef_.empty(); }
   // Direct Filon quadrature (no Chebyshev table); any u.
   double direct(double u) const;
+  // Where the tabulated k1 can be wrong, for error estimates: the quadrature
+  // whose panels produced the table's values (its panel_error and
+  // panel_roundoff bound the error of each panel's share of k1(u) =
+  // int f sin(alpha u), f = (M1 - phi1)/phi1).
+  const AlphaQuadrature& value_quadrature() const noexcept {
+    return piece_coef_.empty() ? quad_ : value_quad_;
+  }
+  // The table's own error bounds (absolute, any |u| <= range): of its
+  // truncation (systematic) and of the round-off of its values (a few eps of
+  // the Filon sums, which vary from one u to the next).
+  double table_error() const noexcept { return table_error_; }
+  // The first omitted Chebyshev order of the global table (0 for a piecewise
+  // one): its truncation error has about the shape T_order(u / range).
+  int table_order() const noexcept { return table_order_; }
+  double table_roundoff() const noexcept { return table_roundoff_; }
   const FilonIntegrator& filon() const noexcept { return *filon_; }
 
  private:
@@ -95,6 +116,9 @@ class KernelK1 {
   static constexpr int kPieceDegree = 24;
   static constexpr double kPieceBandwidth = 600.0;
   std::vector<double> piece_coef_;  // (kPieceDegree + 1) per piece; empty: global series
+  AlphaQuadrature value_quad_;      // the coarse quadrature of a piecewise table
+  double table_error_ = 0, table_roundoff_ = 0;
+  int table_order_ = 0;
   double piece_width_ = 0;
   double global(double u) const;
   double piece(double u) const;

@@ -163,6 +163,10 @@ def format_summary(result: SceneResult) -> str:
     if files:
         out += ["", "Outputs: " + ", ".join(files)]
 
+    if result.warnings:
+        out += ["", f"Warnings ({len(result.warnings)})"]
+        out += [f"  warning: {w}" for w in result.warnings]
+
     out += [
         "",
         f"Stages (total {result.total_seconds:.3f} s, jobs {result.jobs or 'dask'})",
@@ -332,6 +336,8 @@ def _metadata(result: SceneResult, output: str, title: str) -> dict[str, str]:
         "scene_name": result.scene.name,
         "output": output,
         "title": title,
+        # Every point's unmet accuracy, " | "-separated ("none": all met).
+        "warnings": " | ".join(result.warnings) if result.warnings else "none",
     }
 
 

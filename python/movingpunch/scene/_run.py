@@ -38,7 +38,7 @@ from movingpunch.scene._spec import (
     Scene,
     critical_speed,
 )
-from movingpunch.solver import Solution, rayleigh_vstar, solve
+from movingpunch.solver import Solution, rayleigh_vstar, result_warnings, solve
 
 __all__ = [
     "Curve",
@@ -208,6 +208,9 @@ class SceneResult:
     """k1 kernel tables built in all (the ``kernel`` stage counts the solves
     that built any: a first solve may build two as it widens the table to the
     contact it finds)."""
+    warnings: tuple[str, ...] = ()
+    """Every warning of every solved point (``Solution.warnings``: a
+    requested accuracy not met), each prefixed by the point it came from."""
 
     def ran(self, name: str) -> bool:
         """Whether the stage ``name`` did any work (``count > 0``)."""
@@ -303,12 +306,21 @@ def _quantities(s: AnySolution, want_peaks: bool, stages: _Stages) -> dict[str, 
     return q
 
 
+def _point_text(p: Mapping[str, float]) -> str:
+    """The parameters of a solved point, for its warnings."""
+    names = ["vstar", "kw", "radius", "load", "nu"]
+    if _damping(p) > 0.0:
+        names.append("damping")
+    return ", ".join(f"{n}={p[n]:.6g}" for n in names)
+
+
 def _solve_group(task: Mapping[str, Any]) -> dict[str, Any]:
     """Solves one group of sweep points sharing (vstar, kw, nu, tol, damping), in
     descending lambda (the first solve builds the widest kernel; the rest
     reuse it). Runs in a worker process or on a Dask worker."""
     stages = _Stages()
     results: list[dict[str, float] | str] = []
+    warnings: list[list[str]] = []
     for radius, load in task["points"]:
         p = {
             "vstar": task["vstar"],
@@ -321,9 +333,11 @@ def _solve_group(task: Mapping[str, Any]) -> dict[str, Any]:
         try:
             s = _solve(p, task["tol"], stages)
             results.append(_quantities(s, task["peaks"], stages))
+            warnings.append(list(result_warnings(s)))
         except MovingPunchError as exc:
             results.append(str(exc))
-    return {"results": results, "stages": stages.records()}
+            warnings.append([])
+    return {"results": results, "stages": stages.records(), "warnings": warnings}
 
 
 # ----------------------------------------------------------------------------
@@ -336,6 +350,7 @@ class _Run:
     scene: Scene
     stages: _Stages = field(default_factory=_Stages)
     memo: dict[_Key, AnySolution] = field(default_factory=dict)
+    warnings: dict[_Key, list[str]] = field(default_factory=dict)
     done: int = 0
     total: int = 0
     progress: Callable[[int, int], None] | None = None
@@ -349,8 +364,15 @@ class _Run:
         key = _key(p, self.scene.tol)
         if key not in self.memo:
             self.memo[key] = _solve(p, self.scene.tol, self.stages)
+            self.note_warnings(key, p, result_warnings(self.memo[key]))
             self.tick()
         return self.memo[key]
+
+    def note_warnings(
+        self, key: _Key, p: Mapping[str, float], found: Sequence[str]
+    ) -> None:
+        if found:
+            self.warnings[key] = [f"{_point_text(p)}: {w}" for w in found]
 
     @contextlib.contextmanager
     def timed(self, name: str) -> Iterator[None]:
@@ -415,6 +437,7 @@ def run_scene(
         total_seconds=time.perf_counter() - t_start,
         jobs=used_jobs,
         kernel_tables=run.stages.kernel_tables,
+        warnings=tuple(w for found in run.warnings.values() for w in found),
     )
 
 
@@ -516,6 +539,8 @@ def _run_sweep(
             run.stages.merge(out["stages"])
             for key, res in zip(member_keys[index], out["results"], strict=True):
                 values[key] = res
+            for key, found in zip(member_keys[index], out["warnings"], strict=True):
+                run.note_warnings(key, plan.representative[key], found)
             run.tick(len(member_keys[index]))
         used_jobs = min(n_jobs, len(tasks)) if dask is None else 0
     return _sweep_table(scene, plan, values), used_jobs

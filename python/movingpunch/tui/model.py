@@ -24,7 +24,13 @@ from movingpunch.accuracy import LADDER, AccuracyReport, accuracy_report
 from movingpunch.damped import DampedSolution, check_damping
 from movingpunch.errors import InvalidParameterError, MovingPunchError
 from movingpunch.fields import StressPeaks
-from movingpunch.solver import Solution, critical_vstar, rayleigh_vstar, solve
+from movingpunch.solver import (
+    Solution,
+    critical_vstar,
+    rayleigh_vstar,
+    result_warnings,
+    solve,
+)
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -284,6 +290,8 @@ class Summary:
     """(-b/h, a/h); (-a/h, a/h) without damping."""
     drag: float = 0.0
     """Horizontal force on the punch over P (0 without damping)."""
+    warnings: tuple[str, ...] = ()
+    """The solution's warnings (a requested accuracy not met)."""
 
     @property
     def damped(self) -> bool:
@@ -395,6 +403,7 @@ def summary(cache: Cache, params: Params) -> Summary:
             rayleigh_vstar=s.rayleigh_vstar,
             contact_interval=s.contact_interval,
             drag=s.drag,
+            warnings=result_warnings(s),
         )
     peaks = cache.get_or_make(("peaks", params), s.stress_peaks)
     assert isinstance(peaks, StressPeaks)
@@ -412,6 +421,7 @@ def summary(cache: Cache, params: Params) -> Summary:
         critical_vstar=s.critical_vstar,
         rayleigh_vstar=s.rayleigh_vstar,
         contact_interval=(-s.a, s.a),
+        warnings=result_warnings(s),
     )
 
 

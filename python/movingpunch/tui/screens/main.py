@@ -150,6 +150,7 @@ class MainScreen(Screen[None]):
         self._invalid: set[str] = set()
         self._status_error = ""
         self._notes: tuple[str, ...] = ()
+        self._warnings: tuple[str, ...] = ()
 
     # -- layout -------------------------------------------------------------
 
@@ -238,6 +239,7 @@ class MainScreen(Screen[None]):
         self.results[result.request.tab] = result
         self._status_error = ""
         self._notes = result.notes
+        self._warnings = result.summary.warnings
         self._clear_solver_messages()
         self._show(result)
         self.query_one("#progress", ProgressBar).remove_class("-busy")
@@ -371,6 +373,9 @@ class MainScreen(Screen[None]):
             text.append(self._status_error, "bold red")
             text.append("; showing the last valid result", "yellow")
         else:
+            # Every warning of the shown solution (a requested accuracy not met).
+            for line in self._warnings:
+                text.append(f"warning: {line}  ", "bold yellow")
             extras = []
             if self.overlay is not None:
                 values = model.describe(self.overlay.values)
