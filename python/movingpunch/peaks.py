@@ -53,6 +53,7 @@ Field = Callable[[FloatArray], FloatArray]
 _GOLD = 0.3819660112501051  # 2 - golden ratio
 _MAX_ROUNDS = 90
 _MAX_CANDIDATES = 32
+_MAX_BATCHES = 8
 _MAX_SUBDIVIDE = 6
 
 
@@ -428,7 +429,7 @@ def _variable(x: float, seg: tuple[float, float], edges: Sequence[float]) -> _Va
     for e in seg:
         if e in edges and abs(x - e) < dist:
             dist = abs(x - e)
-            best = (True, e, 1.0 if x >= e else -1.0)
+            best = (True, e, 1.0 if e == seg[0] else -1.0)
     return best
 
 
@@ -501,7 +502,7 @@ def _refine(
     cuts = sorted({lo, hi, *edges})
     gap = _point_gaps(x, f, edges)
     # (reach, x_lo, x_b, x_hi, g_lo, g_b, g_hi, variable)
-    cands: list[tuple[float, float, float, float, float, float, float, _Var]] = []
+    cands: list[_Cand] = []
     for a, b in itertools.pairwise(cuts):
         sel = np.nonzero((x >= a) & (x <= b))[0]
         xs, gs = x[sel], g[sel]
@@ -527,9 +528,33 @@ def _refine(
                     var,
                 )
             )
-    cands.sort(key=lambda c: -c[0])
-    kept = cands[:_MAX_CANDIDATES]
-    left_out = [c[0] for c in cands[_MAX_CANDIDATES:]]
+    # Refine in batches, most promising first, until no candidate left can
+    # reach the best refined value.
+    pending = sorted(cands, key=lambda c: (-c[5], -c[0]))
+    value, where, reach_all = -math.inf, math.nan, -math.inf
+    for _ in range(_MAX_BATCHES):
+        batch = pending[:_MAX_CANDIDATES]
+        pending = pending[_MAX_CANDIDATES:]
+        v, w, r = _refine_batch(track, sign, batch, tol)
+        if v > value:
+            value, where = v, w
+        reach_all = max(reach_all, r)
+        pending = [c for c in pending if c[0] >= value - tol]
+        if not pending:
+            break
+    if pending:
+        reach_all = max(reach_all, max(c[0] for c in pending))
+    return Extremum(value=value, x=where, uncertainty=max(reach_all - value, 0.0))
+
+
+_Cand = tuple[float, float, float, float, float, float, float, _Var]
+
+
+def _refine_batch(
+    track: _Track, sign: float, kept: Sequence[_Cand], tol: float
+) -> tuple[float, float, float]:
+    """(best value, its x, the most any bracket may still hold) of a batch
+    of candidates refined together."""
     br = _Brackets(
         t_lo=np.array([_to_t(c[1], c[7]) for c in kept]),
         t_b=np.array([_to_t(c[2], c[7]) for c in kept]),
@@ -549,14 +574,10 @@ def _refine(
     _golden(track, sign, br, tol)
     spread = br.g_b - np.minimum(br.g_lo, br.g_hi)
     win = int(np.argmax(br.g_b))
-    value = float(br.g_b[win])
-    reach_all = float(np.max(br.g_b + 2.0 * spread))
-    if left_out:
-        reach_all = max(reach_all, max(left_out))
-    return Extremum(
-        value=value,
-        x=float(br.x(br.t_b)[win]),
-        uncertainty=max(reach_all - value, 0.0),
+    return (
+        float(br.g_b[win]),
+        float(br.x(br.t_b)[win]),
+        float(np.max(br.g_b + 2.0 * spread)),
     )
 
 
