@@ -99,14 +99,16 @@ def search_step(wavelength: float) -> float:
 class _Track:
     """Samples of one field: evaluated points, kept unsorted until asked."""
 
-    def __init__(self, field: Field) -> None:
+    def __init__(self, field: Field, lo: float, hi: float) -> None:
         self.field = field
+        self.lo, self.hi = lo, hi
         self.xs: list[FloatArray] = []
         self.fs: list[FloatArray] = []
         self.count = 0
 
     def eval(self, x: FloatArray) -> FloatArray:
-        x = np.ascontiguousarray(x, dtype=np.float64)
+        # Clipped: the sqrt variable of a bracket may round past an end.
+        x = np.ascontiguousarray(np.clip(x, self.lo, self.hi), dtype=np.float64)
         if x.size == 0:
             return np.empty(0)
         f = np.asarray(self.field(x), dtype=np.float64).reshape(-1)
@@ -183,8 +185,8 @@ class _Searcher:
         tolerance: float,
         budget: int,
     ) -> None:
-        self.top = _Track(top)
-        self.bottom = _Track(bottom)
+        self.top = _Track(top, lo, hi)
+        self.bottom = _Track(bottom, lo, hi)
         self.lo, self.hi = lo, hi
         self.e1, self.e2 = ends
         self.step = search_step(wavelength)
@@ -544,7 +546,11 @@ def _refine(
             break
     if pending:
         reach_all = max(reach_all, max(c[0] for c in pending))
-    return Extremum(value=value, x=where, uncertainty=max(reach_all - value, 0.0))
+    return Extremum(
+        value=value,
+        x=min(max(where, track.lo), track.hi),
+        uncertainty=max(reach_all - value, 0.0),
+    )
 
 
 _Cand = tuple[float, float, float, float, float, float, float, _Var]

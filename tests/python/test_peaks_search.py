@@ -478,3 +478,26 @@ def test_ctrl_c_stops_a_long_surface_stress() -> None:
     assert proc.returncode != 0
     assert "KeyboardInterrupt" in err
     assert took < 5.0
+
+
+def test_cli_stress_rows_show_the_bound_and_every_warning() -> None:
+    from movingpunch.cli import _stress_rows
+    from movingpunch.fields import StressPeaks
+
+    pk = StressPeaks(
+        top_compressive=-1.0,
+        top_compressive_x=0.0,
+        top_tensile=0.5,
+        top_tensile_x=1.0,
+        bottom_tensile=1.0,
+        bottom_tensile_x=0.0,
+        centre_top=-1.0,
+        centre_bottom=1.0,
+        search_extent=1e6,
+        error_bound=3e-8,
+        search_error=1e-9,
+        warnings=("first reason", "second reason"),
+    )
+    rows = _stress_rows(pk)
+    assert ("error bound (peaks)", "3.00e-08") in rows
+    assert [v for k, v in rows if k == "warning"] == ["first reason", "second reason"]
