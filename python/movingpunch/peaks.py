@@ -105,6 +105,8 @@ class _Track:
         self.xs: list[FloatArray] = []
         self.fs: list[FloatArray] = []
         self.count = 0
+        self.low = math.inf  # lowest and highest value seen
+        self.high = -math.inf
 
     def eval(self, x: FloatArray) -> FloatArray:
         # Clipped: the sqrt variable of a bracket may round past an end.
@@ -115,6 +117,8 @@ class _Track:
         self.xs.append(x)
         self.fs.append(f)
         self.count += x.size
+        self.low = min(self.low, float(np.min(f)))
+        self.high = max(self.high, float(np.max(f)))
         return f
 
     def sorted(self) -> tuple[FloatArray, FloatArray]:
@@ -195,6 +199,7 @@ class _Searcher:
         self.budget = budget
         self.warnings: list[str] = []
         self.searched = [lo, hi]
+        self.far = (0.0, 0.0)  # bound on |top|, |bottom| beyond the march
 
     # ---- the grid ---------------------------------------------------------
 
@@ -221,9 +226,7 @@ class _Searcher:
 
     def bests(self) -> tuple[float, float, float]:
         """Best sampled values of the three searches (as maxima of s f)."""
-        _, ft = self.top.sorted()
-        _, fb = self.bottom.sorted()
-        return float(np.max(-ft)), float(np.max(ft)), float(np.max(fb))
+        return -self.top.low, self.top.high, self.bottom.high
 
     def march(self, start: float, end: float) -> float:
         """Samples outwards from ``start`` towards ``end`` (either direction)
@@ -265,11 +268,17 @@ class _Searcher:
             last = env[-3:]
             if not (last[1] <= 1.05 * last[0] and last[2] <= 1.05 * last[1]):
                 return False
-        b_min, b_max, b_bot = self.bests()
+        # Beyond, |top| <= et and |bottom| <= eb: no peak there can beat a
+        # best value by more than the tolerance (a best below zero is beaten
+        # by values near zero, so then the envelope must be under tol).
         et, eb = 1.1 * env_top[-1], 1.1 * env_bot[-1]
-        return (
-            et <= b_min + self.tol and et <= b_max + self.tol and eb <= b_bot + self.tol
+        done = all(
+            e <= max(b, 0.0) + self.tol
+            for e, b in zip((et, et, eb), self.bests(), strict=True)
         )
+        if done:
+            self.far = (max(self.far[0], et), max(self.far[1], eb))
+        return done
 
     def check_far(
         self, start: float, end: float, envelope: tuple[float, float]
@@ -361,9 +370,9 @@ def search_peaks(
     edges = [e for e in (s.e1, s.e2) if lo < e < hi]
     _resolve(s.top, edges, tolerance, (-1.0, 1.0))
     _resolve(s.bottom, [], tolerance, (1.0,))
-    tmin = _refine(s.top, -1.0, edges, tolerance, s.lo, s.hi)
-    tmax = _refine(s.top, 1.0, edges, tolerance, s.lo, s.hi)
-    bmax = _refine(s.bottom, 1.0, [], tolerance, s.lo, s.hi)
+    tmin = _beyond(_refine(s.top, -1.0, edges, tolerance, s.lo, s.hi), s.far[0])
+    tmax = _beyond(_refine(s.top, 1.0, edges, tolerance, s.lo, s.hi), s.far[0])
+    bmax = _beyond(_refine(s.bottom, 1.0, [], tolerance, s.lo, s.hi), s.far[1])
     return PeakSearch(
         top_min=Extremum(-tmin.value, tmin.x, tmin.uncertainty),
         top_max=tmax,
@@ -372,6 +381,15 @@ def search_peaks(
         searched_to=(s.searched[0], s.searched[1]),
         warnings=tuple(s.warnings),
     )
+
+
+def _beyond(peak: Extremum, far: float) -> Extremum:
+    """``peak`` with the far field's bound (values up to ``far`` beyond the
+    march) in its uncertainty."""
+    extra = max(far - peak.value, 0.0)
+    if extra == 0.0:
+        return peak
+    return Extremum(peak.value, peak.x, max(peak.uncertainty, extra))
 
 
 def _resolve(
