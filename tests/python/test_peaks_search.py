@@ -229,6 +229,8 @@ def test_random_case_matches_a_dense_scan(index: int) -> None:
     [
         {"vstar": 0.65, "kw": 1.0, "radius": 100.0, "load": 0.002, "damping": 0.1},
         {"vstar": 0.3, "kw": 0.3, "radius": 50.0, "load": 0.004, "damping": 0.5},
+        # above V*_cr = 0.5717 (kw = 1): asymmetric, leading end far ahead
+        {"vstar": 0.62, "kw": 1.0, "radius": 100.0, "load": 0.002, "damping": 0.3},
     ],
 )
 def test_damped_peaks_match_a_dense_scan(args: dict[str, float]) -> None:
