@@ -393,6 +393,8 @@ def _stress_rows(peaks: StressPeaks) -> list[tuple[str, str]]:
         ("centre, top (0, 0)", _fmt(peaks.centre_top)),
         ("centre, bottom (0, -h)", _fmt(peaks.centre_bottom)),
         ("searched on 0 <= x/h <=", _fmt(peaks.search_extent)),
+        ("error bound (peaks)", f"{peaks.error_bound:.2e}"),
+        *(("warning", text) for text in peaks.warnings),
     ]
 
 

@@ -17,7 +17,6 @@ from __future__ import annotations
 import functools
 import math
 import numbers
-from collections.abc import Callable
 from dataclasses import dataclass, field, fields
 
 import numpy as np
@@ -26,6 +25,7 @@ import numpy.typing as npt
 from movingpunch import _core
 from movingpunch.errors import InvalidParameterError, SupercriticalSpeedError
 from movingpunch.fields import StressField, StressPeaks, derived_stresses
+from movingpunch.peaks import search_peaks
 from movingpunch.solver import (
     FloatArray,
     _as_points,
@@ -36,6 +36,7 @@ from movingpunch.solver import (
     _check_size,
     _check_tol,
     _check_vstar,
+    _chunked_grid,
     _flat,
     _is_scalar,
     _json_safe,
@@ -234,7 +235,7 @@ class DampedSolution:
                 "y must satisfy -1 <= y <= -1e-3 for the damped solver's stress "
                 f"field, got {float(ys[bad][0])!r}"
             )
-        sx, sy, txy = self._impl.stress_field(xs, ys)
+        sx, sy, txy = _chunked_grid(self._impl.stress_field, xs, ys)
         sz, vm, ms = derived_stresses(sx, sy, txy, self.nu)
         return StressField(
             x=xs,
@@ -251,11 +252,13 @@ class DampedSolution:
         """Peaks of sigma_x/(P/h), as ``Solution.stress_peaks``: most
         compressive and most tensile on the top surface, most tensile at the
         bottom, with their x/h, and sigma_x at (0, 0) and (0, -h). The damped
-        distributions are not even in x: the search covers -extent <= x <=
-        extent (default max(6 max(a, b), 10 h)), densest on the contact and at
-        both of its ends (where the surface peaks sit), and positions may be
-        negative (behind the punch's lowest point). About a second: each
-        surface point costs a Fourier integral."""
+        distributions are not even in x: the same search
+        (``movingpunch.peaks.search_peaks``) covers -extent <= x <= extent
+        (default max(6 max(a, b), 10 h)) with both contact ends as cusps, and
+        positions may be negative (behind the punch's lowest point). Each
+        value is refined to ``tol`` relative to the larger centre stress; the
+        damped solver has no stress error estimate, so ``error_bound`` is the
+        search's own. Seconds: each surface point costs a Fourier integral."""
         lo_end, hi_end = self.contact_interval
         reach = max(abs(lo_end), abs(hi_end))
         if extent is None:
@@ -266,56 +269,35 @@ class DampedSolution:
                 raise InvalidParameterError(
                     f"extent must be a finite number > 0, got {extent!r}"
                 )
-        width = hi_end - lo_end
-        grids = [
-            np.linspace(-span, span, 121),
-            np.linspace(lo_end - 0.5 * width, hi_end + 0.5 * width, 81),
-        ]
-        for end in (lo_end, hi_end):
-            grids.append(np.linspace(end - 0.02 * width, end + 0.02 * width, 17))
-        xs = np.unique(
-            np.clip(np.concatenate([*grids, [lo_end, hi_end, 0.0]]), -span, span)
+        depth = np.array([-1.0])
+        centre_top = float(self._impl.surface_stress(np.array([0.0]))[0])
+        centre_bottom = float(self._impl.stress_field(np.array([0.0]), depth)[0][0, 0])
+        alpha = _core.critical_speed(self.kw, self.nu)[1]
+        wave = 2.0 * math.pi / alpha if 0.0 < alpha < math.inf else math.inf
+        scale = max(abs(centre_top), abs(centre_bottom), 1e-300)
+        found = search_peaks(
+            self._impl.surface_stress,
+            lambda x: self._impl.stress_field(x, depth)[0][0],
+            lo=-float(span),
+            hi=float(span),
+            ends=(lo_end, hi_end),
+            wavelength=wave,
+            tolerance=self.tol * scale,
         )
-
-        def top_at(x: FloatArray) -> FloatArray:
-            return np.asarray(self._impl.surface_stress(x), dtype=np.float64)
-
-        def bottom_at(x: FloatArray) -> FloatArray:
-            return np.asarray(self._impl.stress_field(x, np.array([-1.0]))[0][0])
-
-        top = top_at(xs)
-        bottom = bottom_at(xs)
-
-        def refine(
-            values: FloatArray, sign: float, at: Callable[[FloatArray], FloatArray]
-        ) -> tuple[float, float]:
-            i = int(np.argmax(sign * values))
-            best, best_x = float(values[i]), float(xs[i])
-            lo, hi = xs[max(i - 1, 0)], xs[min(i + 1, len(xs) - 1)]
-            for _ in range(4):
-                fine = np.linspace(lo, hi, 11)
-                vals = at(fine)
-                j = int(np.argmax(sign * vals))
-                if sign * vals[j] > sign * best:
-                    best, best_x = float(vals[j]), float(fine[j])
-                step = fine[1] - fine[0]
-                lo, hi = max(fine[0], best_x - step), min(fine[-1], best_x + step)
-            return best, best_x
-
-        tc, tcx = refine(top, -1.0, top_at)
-        tt, ttx = refine(top, 1.0, top_at)
-        bt, btx = refine(bottom, 1.0, bottom_at)
-        centre = int(np.searchsorted(xs, 0.0))
+        search = max(p.uncertainty for p in found.peaks)
         return StressPeaks(
-            top_compressive=tc,
-            top_compressive_x=tcx,
-            top_tensile=tt,
-            top_tensile_x=ttx,
-            bottom_tensile=bt,
-            bottom_tensile_x=btx,
-            centre_top=float(top[centre]),
-            centre_bottom=float(bottom[centre]),
+            top_compressive=found.top_min.value,
+            top_compressive_x=found.top_min.x,
+            top_tensile=found.top_max.value,
+            top_tensile_x=found.top_max.x,
+            bottom_tensile=found.bottom_max.value,
+            bottom_tensile_x=found.bottom_max.x,
+            centre_top=centre_top,
+            centre_bottom=centre_bottom,
             search_extent=float(span),
+            error_bound=search,
+            search_error=search,
+            warnings=found.warnings,
         )
 
     def to_dict(self) -> dict[str, object]:

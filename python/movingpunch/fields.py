@@ -64,7 +64,17 @@ class StressField:
 class StressPeaks:
     """Peak values of sigma_x/(P/h), with their positions x/h (x >= 0 for the
     symmetric solver, whose distributions are even in x; of either sign for
-    the damped foundation's asymmetric ones)."""
+    the damped foundation's asymmetric ones).
+
+    Found by one search (``movingpunch.peaks``) whose grid resolves every
+    length of the problem (contact width, the square-root cusp at the contact
+    ends, layer thickness, the wavelength of the slowest free wave) and whose
+    march into the far field stops only where the decaying response can no
+    longer reach a peak; every local extreme that could be the global one is
+    refined. Each peak is a value of the field at its position, within
+    ``error_bound`` of the field's true extreme on the searched interval,
+    unless ``warnings`` says the search could not get there.
+    """
 
     top_compressive: float
     """Most compressive (lowest) sigma_x on the top surface."""
@@ -82,3 +92,16 @@ class StressPeaks:
     search_extent: float
     """The peaks were searched on 0 <= x <= search_extent (symmetric solver)
     or -search_extent <= x <= search_extent (damped foundation)."""
+    error_bound: float
+    """Bound on the absolute error of each peak value: ``search_error`` plus
+    the solution's stress error estimate (``Solution.stress_error_estimate``;
+    the damped solver has no stress error estimate, so for it this is the
+    search's part alone)."""
+    search_error: float
+    """The search's own part of ``error_bound``: how far the true extreme of
+    the computed field on the searched interval can lie beyond the reported
+    value (from the refinement brackets of every candidate peak)."""
+    warnings: tuple[str, ...] = ()
+    """Why the peaks may not be the extremes on the whole extent: the far
+    field decayed too slowly to be searched within the search's budget of
+    points, or did not decay as it should. Empty when the bound holds."""

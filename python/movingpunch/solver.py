@@ -24,6 +24,7 @@ from __future__ import annotations
 import functools
 import math
 import numbers
+import time
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, fields
 from types import MappingProxyType
@@ -35,6 +36,7 @@ import numpy.typing as npt
 from movingpunch import _core
 from movingpunch.errors import InvalidParameterError
 from movingpunch.fields import StressField, StressPeaks, derived_stresses
+from movingpunch.peaks import search_peaks
 
 if TYPE_CHECKING:
     from movingpunch.damped import DampedSolution
@@ -196,7 +198,13 @@ def _check_flag(name: str, value: object) -> bool:
 
 
 def _as_points(name: str, x: object) -> FloatArray:
-    """``x`` as a float64 array of finite values (any shape)."""
+    """``x`` as a float64 array of finite values (any shape). Masked arrays
+    are refused: their mask would be ignored."""
+    if isinstance(x, np.ma.MaskedArray):
+        raise InvalidParameterError(
+            f"{name} must be a plain array; masked arrays are not supported: "
+            f"use {name}.filled(...) or {name}.compressed()"
+        )
     try:
         raw = np.asarray(x)
     except (TypeError, ValueError) as exc:
@@ -253,8 +261,70 @@ def _pointwise(
     """Applies a vectorised core function to ``x``: a float for a scalar
     ``x``, else an array of the shape of ``x``."""
     pts = _as_points(name, x) if points is None else points
-    values = evaluate(_flat(pts))
+    values = _chunked(evaluate, _flat(pts))
     return float(values[0]) if _is_scalar(x) else values.reshape(pts.shape)
+
+
+_FIRST_CHUNK = 32
+"""Points of the first call of a chunked evaluation (which times it)."""
+_CHUNK_SECONDS = 0.2
+"""Target duration of each further call: Python takes control between calls,
+so Ctrl-C (KeyboardInterrupt) stops a long evaluation within about this."""
+
+
+def _chunked(
+    evaluate: Callable[[FloatArray], FloatArray], points: FloatArray
+) -> FloatArray:
+    """``evaluate(points)`` (a 1-d array in, one value per point out) in calls
+    of about ``_CHUNK_SECONDS`` each, sized by the measured cost per point,
+    so that the interpreter can raise KeyboardInterrupt in between. Small
+    calls take one call."""
+    parts = _chunk_calls(lambda lo, hi: evaluate(points[lo:hi]), len(points))
+    return parts[0] if len(parts) == 1 else np.concatenate(parts)
+
+
+def _chunk_calls(run: Callable[[int, int], FloatArray], n: int) -> list[FloatArray]:
+    """Calls ``run(lo, hi)`` over [0, n) in consecutive slices: first
+    ``_FIRST_CHUNK`` points, then slices that take about ``_CHUNK_SECONDS``
+    at the cost per point measured so far (the rest in one call if it would
+    take no longer). Returns the results in order."""
+    if n <= _FIRST_CHUNK:
+        return [run(0, n)]
+    parts: list[FloatArray] = []
+    done, spent = 0, 0.0
+    size = _FIRST_CHUNK
+    while done < n:
+        hi = min(n, done + size)
+        start = time.perf_counter()
+        parts.append(run(done, hi))
+        spent += time.perf_counter() - start
+        done = hi
+        per_point = max(spent / done, 1e-9)
+        size = max(_FIRST_CHUNK, int(_CHUNK_SECONDS / per_point))
+        if (n - done) * per_point <= 1.25 * _CHUNK_SECONDS:
+            size = n - done
+    return parts
+
+
+def _chunked_grid(
+    evaluate: Callable[[FloatArray, FloatArray], tuple[FloatArray, ...]],
+    xs: FloatArray,
+    ys: FloatArray,
+) -> tuple[FloatArray, ...]:
+    """A grid evaluation (arrays shaped (len(ys), len(xs))) in slices of
+    ``xs`` as ``_chunked`` does, joined along x."""
+    parts: list[tuple[FloatArray, ...]] = []
+
+    def run(lo: int, hi: int) -> FloatArray:
+        parts.append(evaluate(xs[lo:hi], ys))
+        return np.empty(0)
+
+    _chunk_calls(run, len(xs))
+    if len(parts) == 1:
+        return parts[0]
+    return tuple(
+        np.concatenate([p[k] for p in parts], axis=1) for k in range(len(parts[0]))
+    )
 
 
 def _is_scalar(x: npt.ArrayLike) -> bool:
@@ -405,7 +475,7 @@ class Solution:
         [-1, 0]); arrays shaped (len(y), len(x))."""
         xs = _flat(_as_points("x", x))
         ys = _flat(_depths(y))
-        sx, sy, txy = self._impl.stress_field(xs, ys)
+        sx, sy, txy = _chunked_grid(self._impl.stress_field, xs, ys)
         sz, vm, ms = derived_stresses(sx, sy, txy, self.nu)
         return StressField(
             x=xs,
@@ -450,63 +520,44 @@ class Solution:
         """Peaks of sigma_x/(P/h): most compressive and most tensile on the
         top surface, most tensile at the bottom (with their x/h >= 0), and
         sigma_x at (0, 0) and (0, -h). Searched on 0 <= x <= extent (default
-        max(6 a, 10 h)) on a fine grid, then refined."""
+        max(6 a, 10 h)) by ``movingpunch.peaks.search_peaks``: a grid on the
+        scales of the problem (contact, edge cusp, layer, the slowest free
+        wave), a march into the far field until the response has decayed
+        below the peaks, and a refinement of every candidate; each value is
+        within ``error_bound`` of the field's extreme (see StressPeaks)."""
         span = (
             max(6.0 * self.a, 10.0)
             if extent is None
             else _check_positive_extent(extent)
         )
-        # A coarse grid, denser on the contact and around its edge (where the
-        # tensile peaks sit, often at x = a exactly), then three rounds of 15
-        # points around the best point, each a step of the last grid wide.
-        a = self.a
-        xs = np.unique(
-            np.concatenate(
-                [
-                    np.linspace(0.0, span, 121),
-                    np.linspace(0.0, min(span, 2.0 * a), 81),
-                    np.linspace(min(span, 0.95 * a), min(span, 1.05 * a), 41),
-                    [min(span, a)],
-                ]
-            )
+        alpha = _core.critical_speed(self.kw, self.nu)[1]
+        wave = 2.0 * math.pi / alpha if 0.0 < alpha < math.inf else math.inf
+        bound = self.stress_error_estimate
+        depth = np.array([-1.0])
+        found = search_peaks(
+            self._impl.surface_stress,
+            lambda x: self._impl.stress_field(x, depth)[0][0],
+            lo=0.0,
+            hi=float(span),
+            ends=(-self.a, self.a),
+            wavelength=wave,
+            tolerance=0.25 * bound,
         )
-        top = self._impl.surface_stress(xs)
-        field = self._impl.stress_field(xs, np.array([-1.0]))[0][0]
-
-        def at(x: FloatArray, y: float) -> FloatArray:
-            if y == 0.0:
-                return self._impl.surface_stress(x)
-            row: FloatArray = self._impl.stress_field(x, np.array([y]))[0][0]
-            return row
-
-        def refine(values: FloatArray, sign: float, y: float) -> tuple[float, float]:
-            i = int(np.argmax(sign * values))
-            best, best_x = float(values[i]), float(xs[i])
-            lo, hi = xs[max(i - 1, 0)], xs[min(i + 1, len(xs) - 1)]
-            for _ in range(3):
-                fine = np.linspace(lo, hi, 15)
-                vals = at(fine, y)
-                j = int(np.argmax(sign * vals))
-                if sign * vals[j] > sign * best:
-                    best, best_x = float(vals[j]), float(fine[j])
-                step = fine[1] - fine[0]
-                lo, hi = max(fine[0], best_x - step), min(fine[-1], best_x + step)
-            return best, best_x
-
-        tc, tcx = refine(top, -1.0, 0.0)
-        tt, ttx = refine(top, 1.0, 0.0)
-        bt, btx = refine(field, 1.0, -1.0)
         centre = self._impl.depth_stress(np.array([0.0, -1.0]))
+        search = max(p.uncertainty for p in found.peaks)
         return StressPeaks(
-            top_compressive=tc,
-            top_compressive_x=tcx,
-            top_tensile=tt,
-            top_tensile_x=ttx,
-            bottom_tensile=bt,
-            bottom_tensile_x=btx,
+            top_compressive=found.top_min.value,
+            top_compressive_x=found.top_min.x,
+            top_tensile=found.top_max.value,
+            top_tensile_x=found.top_max.x,
+            bottom_tensile=found.bottom_max.value,
+            bottom_tensile_x=found.bottom_max.x,
             centre_top=float(centre[0]),
             centre_bottom=float(centre[1]),
             search_extent=float(span),
+            error_bound=bound + search,
+            search_error=search,
+            warnings=found.warnings,
         )
 
     def to_dict(self) -> dict[str, object]:
