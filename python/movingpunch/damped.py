@@ -256,9 +256,10 @@ class DampedSolution:
         (``movingpunch.peaks.search_peaks``) covers -extent <= x <= extent
         (default max(6 max(a, b), 10 h)) with both contact ends as cusps, and
         positions may be negative (behind the punch's lowest point). Each
-        value is refined to ``tol`` relative to the larger centre stress; the
-        damped solver has no stress error estimate, so ``error_bound`` is the
-        search's own. Seconds: each surface point costs a Fourier integral."""
+        value is refined to ``tol`` relative to the larger centre stress;
+        ``error_bound`` is ``stress_error_estimate`` (the solution's error)
+        plus the search's own uncertainty. Seconds: each surface point costs a
+        Fourier integral."""
         lo_end, hi_end = self.contact_interval
         reach = max(abs(lo_end), abs(hi_end))
         if extent is None:
@@ -295,7 +296,7 @@ class DampedSolution:
             centre_top=centre_top,
             centre_bottom=centre_bottom,
             search_extent=float(span),
-            error_bound=search,
+            error_bound=self.stress_error_estimate + search,
             search_error=search,
             warnings=found.warnings,
         )
