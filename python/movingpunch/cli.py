@@ -14,6 +14,11 @@ NAME`` run, list and print scenes (``movingpunch.scene``, docs/scenes.md).
 
 Bad arguments and every MovingPunchError/ValueError end in one line
 ``movingpunch: error: ...`` on stderr and exit status 2, never a traceback.
+
+``run`` and ``accuracy`` stop promptly on SIGINT (Ctrl-C) or SIGTERM: their
+worker processes are ended, nothing is written, and the process exits with
+one line ``movingpunch: interrupted`` (``... (SIGTERM)``) and status 130
+(143 for SIGTERM).
 """
 
 from __future__ import annotations
@@ -24,8 +29,11 @@ import io
 import json
 import math
 import shlex
+import signal
 import sys
+import threading
 from collections.abc import Callable, Sequence
+from types import FrameType
 from typing import Any, NoReturn
 
 from movingpunch.errors import MovingPunchError
@@ -41,6 +49,53 @@ from movingpunch.solver import (
 
 PROG = "movingpunch"
 EXIT_USAGE = 2
+_STOP_SIGNALS = (signal.SIGINT, signal.SIGTERM)
+
+
+class _Interrupted(KeyboardInterrupt):
+    """SIGINT or SIGTERM arrived (``signum``) while a command was working."""
+
+    def __init__(self, signum: int) -> None:
+        super().__init__(signum)
+        self.signum = signum
+
+
+class _StopSignals:
+    """SIGINT and SIGTERM handlers for a command that must stop promptly.
+
+    While ``armed``, the first signal raises _Interrupted in the main thread
+    (unwinding ends the worker processes: ``scene._run._pool_map``); any
+    signal after it, or one that arrives once the work is over, is only
+    recorded in ``received``, so that stopping and reporting are never cut
+    short. The previous handlers come back on ``restore()``."""
+
+    def __init__(self) -> None:
+        self.received: int | None = None
+        self.armed = False
+        self._old: dict[int, Any] = {}
+        if threading.current_thread() is threading.main_thread():
+            for sig in _STOP_SIGNALS:
+                self._old[sig] = signal.signal(sig, self._handle)
+
+    def _handle(self, signum: int, frame: FrameType | None) -> None:
+        first = self.received is None
+        if first:
+            self.received = signum
+        if first and self.armed:
+            raise _Interrupted(signum)
+
+    def restore(self) -> None:
+        for sig, old in self._old.items():
+            signal.signal(sig, old if old is not None else signal.SIG_DFL)
+        self._old.clear()
+
+
+def _interrupted(signum: int) -> int:
+    """Reports an interrupt in one line; the exit status, 128 + signum."""
+    name = "" if signum == signal.SIGINT else f" ({signal.Signals(signum).name})"
+    sys.stderr.write(f"{PROG}: interrupted{name}\n")
+    sys.stderr.flush()
+    return 128 + int(signum)
 
 
 class _Parser(argparse.ArgumentParser):
@@ -456,7 +511,7 @@ def _add_scene_commands(sub: Any) -> None:
         help="run the sweep on a Dask scheduler, e.g. tcp://host:8786 "
         "(needs the 'dask' extra)",
     )
-    run_p.set_defaults(handler=_cmd_run)
+    run_p.set_defaults(handler=_cmd_run, stop_on_signals=True)
 
     list_p = sub.add_parser(
         "scenes",
@@ -603,7 +658,7 @@ def _add_accuracy_command(sub: Any) -> None:
         help="log-log plot of error against time (default when stdout is a terminal)",
     )
     plot.add_argument("--no-plot", dest="plot", action="store_false", help="no plot")
-    acc_p.set_defaults(handler=_cmd_accuracy)
+    acc_p.set_defaults(handler=_cmd_accuracy, stop_on_signals=True)
 
 
 def _tol_list(text: str) -> list[float]:
@@ -656,10 +711,40 @@ def main(argv: Sequence[str] | None = None) -> int:
     if handler is None:
         handler = _cmd_tui  # no command: the terminal UI on the paper's Fig. 4
         args = argparse.Namespace(scene=None, no_timing=False)
+    signals = _StopSignals() if getattr(args, "stop_on_signals", False) else None
     try:
-        return handler(args)
+        return _call(handler, args, signals)
+    finally:
+        if signals is not None:
+            signals.restore()
+
+
+def _call(
+    handler: Callable[[argparse.Namespace], int],
+    args: argparse.Namespace,
+    signals: _StopSignals | None,
+) -> int:
+    """Runs a command: its status; one line on stderr for an error (status
+    2) or an interrupt (130 / 143), which wins over an error it caused."""
+    status, error = 0, None
+    try:
+        if signals is not None:
+            signals.armed = True
+        try:
+            status = handler(args)
+        finally:
+            if signals is not None:
+                signals.armed = False
+    except KeyboardInterrupt as exc:
+        signum = int(getattr(exc, "signum", signal.SIGINT))
+        if signals is None:
+            return _interrupted(signum)
+        if signals.received is None:
+            signals.received = signum
     except (MovingPunchError, ValueError) as exc:
-        _fail(str(exc))
-    except KeyboardInterrupt:
-        sys.stderr.write(f"{PROG}: interrupted\n")
-        return 130
+        error = str(exc)
+    if signals is not None and signals.received is not None:
+        return _interrupted(signals.received)
+    if error is not None:
+        _fail(error)
+    return status

@@ -1,0 +1,211 @@
+"""Real signals to real ``movingpunch run`` / ``accuracy`` processes: they end
+promptly with one line and status 130 (SIGINT) or 143 (SIGTERM), leave no
+process behind and no file changed; a parent killed with SIGKILL takes its
+worker processes with it (they watch a pipe only the parent holds open).
+
+Each test starts a process on a sweep that would take minutes and stops it
+after its workers are up; the timeouts below are hang guards, not
+performance assertions."""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import psutil
+import pytest
+from distributed import LocalCluster
+
+from movingpunch.scene import Scene
+
+pytestmark = pytest.mark.slow
+
+# About 20 000 cold solves: minutes of work at any --jobs on two cores.
+LONG_SWEEP = """\
+[params]
+kw = 1.0
+radius = 100
+load = 0.002
+
+[sweep]
+param = "vstar"
+start = 0.0
+stop = 0.5
+points = {points}
+"""
+
+START_TIMEOUT = 60.0  # hang guard: the workers of a run are up
+STOP_TIMEOUT = 5.0  # the process ends this soon after the signal
+GONE_TIMEOUT = 10.0  # and every process it started soon after
+
+
+def _scene_file(tmp_path: Path, points: int) -> Path:
+    path = tmp_path / "sweep.toml"
+    path.write_text(LONG_SWEEP.format(points=points), encoding="utf-8")
+    return path
+
+
+def _start(*args: str, cwd: Path) -> subprocess.Popen[str]:
+    return subprocess.Popen(
+        [sys.executable, "-m", "movingpunch", *args],
+        cwd=cwd,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        start_new_session=True,  # its own process group, as in a terminal
+    )
+
+
+def _wait_for_children(proc: subprocess.Popen[str], n: int) -> list[psutil.Process]:
+    """The descendants of ``proc`` once there are ``n`` of them (the
+    workers and the resource tracker), and a moment later (at work)."""
+    parent = psutil.Process(proc.pid)
+    deadline = time.monotonic() + START_TIMEOUT
+    while time.monotonic() < deadline:
+        assert proc.poll() is None, proc.communicate()
+        children = parent.children(recursive=True)
+        if len(children) >= n:
+            time.sleep(0.5)
+            return parent.children(recursive=True)
+        time.sleep(0.05)
+    raise AssertionError(f"fewer than {n} child processes after {START_TIMEOUT} s")
+
+
+def _assert_all_gone(processes: list[psutil.Process]) -> None:
+    deadline = time.monotonic() + GONE_TIMEOUT
+    alive = processes
+    while time.monotonic() < deadline:
+        alive = [
+            p
+            for p in processes
+            if p.is_running() and p.status() != psutil.STATUS_ZOMBIE
+        ]
+        if not alive:
+            return
+        time.sleep(0.05)
+    for p in alive:  # do not leave them to the next test
+        p.kill()
+    raise AssertionError(f"still running {GONE_TIMEOUT} s later: {alive}")
+
+
+def _stop(proc: subprocess.Popen[str], sig: int, *, group: bool) -> tuple[str, str]:
+    if group:  # a terminal's Ctrl-C reaches the whole foreground group
+        os.killpg(proc.pid, sig)
+    else:
+        proc.send_signal(sig)
+    try:
+        return proc.communicate(timeout=STOP_TIMEOUT)
+    except subprocess.TimeoutExpired:
+        os.killpg(proc.pid, signal.SIGKILL)
+        proc.communicate()
+        raise AssertionError(
+            f"still running {STOP_TIMEOUT} s after the signal"
+        ) from None
+
+
+def _snapshot(folder: Path) -> dict[str, bytes]:
+    return {p.name: p.read_bytes() for p in sorted(folder.iterdir())}
+
+
+@pytest.mark.parametrize(
+    ("sig", "status", "line", "group"),
+    [
+        (signal.SIGINT, 130, "movingpunch: interrupted\n", False),
+        (signal.SIGINT, 130, "movingpunch: interrupted\n", True),
+        (signal.SIGTERM, 143, "movingpunch: interrupted (SIGTERM)\n", False),
+    ],
+    ids=["SIGINT", "SIGINT-to-group", "SIGTERM"],
+)
+def test_signal_stops_a_run_with_workers(
+    tmp_path: Path, sig: int, status: int, line: str, group: bool
+) -> None:
+    # A previous result of the same scene, which the interrupted run must
+    # leave as it was.
+    scene = _scene_file(tmp_path, points=3)
+    out = tmp_path / "out"
+    done = subprocess.run(
+        [sys.executable, "-m", "movingpunch", "run", str(scene), "--out", str(out)],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        check=False,
+    )
+    assert done.returncode == 0, done.stderr
+    before = _snapshot(out)
+    assert "sweep-sweep.csv" in before
+
+    scene = _scene_file(tmp_path, points=20_000)
+    proc = _start("run", str(scene), "--jobs", "2", "--out", str(out), cwd=tmp_path)
+    children = _wait_for_children(proc, 3)  # two workers, the resource tracker
+    stdout, stderr = _stop(proc, sig, group=group)
+
+    assert proc.returncode == status, stderr
+    assert stderr == line
+    assert stdout == ""
+    _assert_all_gone(children)
+    assert _snapshot(out) == before  # no file written, none half-written
+
+
+def test_sigterm_stops_a_serial_run(tmp_path: Path) -> None:
+    scene = _scene_file(tmp_path, points=20_000)
+    proc = _start("run", str(scene), "--jobs", "1", cwd=tmp_path)
+    time.sleep(2.0)  # importing, validating, solving
+    assert proc.poll() is None
+    assert psutil.Process(proc.pid).children() == []  # serial: no worker
+    stdout, stderr = _stop(proc, signal.SIGTERM, group=False)
+    assert proc.returncode == 143, stderr
+    assert stderr == "movingpunch: interrupted (SIGTERM)\n"
+    assert stdout == ""
+
+
+def test_sigint_stops_accuracy(tmp_path: Path) -> None:
+    scene = _scene_file(tmp_path, points=2_000)
+    proc = _start("accuracy", str(scene), "--out", str(tmp_path), cwd=tmp_path)
+    time.sleep(2.0)
+    assert proc.poll() is None
+    stdout, stderr = _stop(proc, signal.SIGINT, group=True)
+    assert proc.returncode == 130, stderr
+    assert stderr == "movingpunch: interrupted\n"
+    assert stdout == ""
+    assert list(tmp_path.glob("*.csv")) == []
+
+
+def test_kill_9_of_the_parent_ends_its_workers(tmp_path: Path) -> None:
+    scene = _scene_file(tmp_path, points=20_000)
+    proc = _start("run", str(scene), "--jobs", "2", cwd=tmp_path)
+    children = _wait_for_children(proc, 3)
+    workers = [c for c in children if "resource_tracker" not in " ".join(c.cmdline())]
+    assert len(workers) == 2, children
+    proc.kill()
+    proc.communicate(timeout=STOP_TIMEOUT)
+    # Orphans are re-parented: wait on the processes recorded before the kill.
+    _assert_all_gone(children)
+
+
+def test_sigint_stops_a_dask_run(tmp_path: Path) -> None:
+    scene = _scene_file(tmp_path, points=20_000)
+    Scene.load(scene)  # valid
+    with LocalCluster(
+        n_workers=1,
+        threads_per_worker=1,
+        processes=False,
+        host="127.0.0.1",
+        protocol="tcp://",
+        dashboard_address=None,
+    ) as cluster:
+        proc = _start(
+            "run", str(scene), "--dask", cluster.scheduler_address, cwd=tmp_path
+        )
+        deadline = time.monotonic() + START_TIMEOUT
+        while not cluster.scheduler.tasks and time.monotonic() < deadline:
+            assert proc.poll() is None, proc.communicate()
+            time.sleep(0.05)
+        assert cluster.scheduler.tasks, "no task reached the scheduler"
+        stdout, stderr = _stop(proc, signal.SIGINT, group=False)
+    assert proc.returncode == 130, stderr
+    assert stderr == "movingpunch: interrupted\n"
+    assert stdout == ""
