@@ -560,6 +560,11 @@ def _cmd_run(args: argparse.Namespace) -> int:
     )
 
     scene = load_scene(args.scene)
+    if args.dask is not None and scene.sweep is None:
+        sys.stderr.write(
+            f"{PROG}: note: --dask: the scene has no [sweep], nothing to "
+            "distribute: running here\n"
+        )
     bar = _ProgressBar() if sys.stderr.isatty() else None
     try:
         result = scene.run(jobs=args.jobs, progress=bar, dask=args.dask)
