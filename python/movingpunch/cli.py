@@ -502,7 +502,8 @@ def _add_scene_commands(sub: Any) -> None:
         type=_jobs,
         default=None,
         metavar="N",
-        help="worker processes for a sweep (default: all cores; 1: none)",
+        help="worker processes for a sweep (default: the cores this process "
+        "may use, when the sweep is long enough to gain from them; 1: none)",
     )
     run_p.add_argument(
         "--dask",

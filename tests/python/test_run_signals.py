@@ -181,9 +181,10 @@ def test_kill_9_of_the_parent_ends_its_workers(tmp_path: Path) -> None:
     workers = [c for c in children if "resource_tracker" not in " ".join(c.cmdline())]
     assert len(workers) == 2, children
     proc.kill()
-    proc.communicate(timeout=STOP_TIMEOUT)
+    proc.wait(timeout=STOP_TIMEOUT)
     # Orphans are re-parented: wait on the processes recorded before the kill.
     _assert_all_gone(children)
+    proc.communicate(timeout=STOP_TIMEOUT)  # the pipes they shared are closed
 
 
 def test_sigint_stops_a_dask_run(tmp_path: Path) -> None:
@@ -209,3 +210,46 @@ def test_sigint_stops_a_dask_run(tmp_path: Path) -> None:
     assert proc.returncode == 130, stderr
     assert stderr == "movingpunch: interrupted\n"
     assert stdout == ""
+
+
+BUSY_WORKER = """\
+import time
+from movingpunch.scene import _run
+
+if __name__ == "__main__":
+    pool = _run._WorkerPool()
+    pool.start(1)
+    proc, conn = pool.workers[0]
+    # One chunk of 200 damped points: minutes of work without a look at its pipe.
+    task = {
+        "vstar": 0.2, "kw": 1.0, "nu": 0.2, "tol": 1e-8, "damping": 0.5,
+        "points": [(100.0, 0.002 * (1 + i / 200)) for i in range(200)],
+        "peaks": False,
+    }
+    conn.send((0, [task]))
+    print(proc.pid, flush=True)
+    time.sleep(600)
+"""
+
+
+def test_a_busy_worker_exits_when_its_parent_is_killed(tmp_path: Path) -> None:
+    """Mid-chunk, a worker reads no pipe: it is its watcher thread that sees
+    the parent go (the pipe only the parent holds open closes)."""
+    script = tmp_path / "busy.py"
+    script.write_text(BUSY_WORKER, encoding="utf-8")
+    proc = subprocess.Popen(
+        [sys.executable, str(script)],
+        stdout=subprocess.PIPE,
+        text=True,
+        start_new_session=True,
+    )
+    assert proc.stdout is not None
+    worker = psutil.Process(int(proc.stdout.readline()))
+    deadline = time.monotonic() + START_TIMEOUT
+    while worker.cpu_times().user < 1.0:  # imported, and solving
+        assert time.monotonic() < deadline, "the worker never got to work"
+        time.sleep(0.1)
+    proc.kill()
+    proc.wait(timeout=STOP_TIMEOUT)
+    proc.stdout.close()  # the worker shares it: do not wait for its end
+    _assert_all_gone([worker])
