@@ -140,7 +140,8 @@ def test_signal_stops_a_run_with_workers(
 
     scene = _scene_file(tmp_path, points=20_000)
     proc = _start("run", str(scene), "--jobs", "2", "--out", str(out), cwd=tmp_path)
-    children = _wait_for_children(proc, 3)  # two workers, the resource tracker
+    # --jobs 2: this process and one worker; and the resource tracker.
+    children = _wait_for_children(proc, 2)
     stdout, stderr = _stop(proc, sig, group=group)
 
     assert proc.returncode == status, stderr
@@ -174,12 +175,13 @@ def test_sigint_stops_accuracy(tmp_path: Path) -> None:
     assert list(tmp_path.glob("*.csv")) == []
 
 
-def test_kill_9_of_the_parent_ends_its_workers(tmp_path: Path) -> None:
+@pytest.mark.parametrize("jobs", [2, 3])
+def test_kill_9_of_the_parent_ends_its_workers(tmp_path: Path, jobs: int) -> None:
     scene = _scene_file(tmp_path, points=20_000)
-    proc = _start("run", str(scene), "--jobs", "2", cwd=tmp_path)
-    children = _wait_for_children(proc, 3)
+    proc = _start("run", str(scene), "--jobs", str(jobs), cwd=tmp_path)
+    children = _wait_for_children(proc, jobs)  # jobs - 1 workers, the tracker
     workers = [c for c in children if "resource_tracker" not in " ".join(c.cmdline())]
-    assert len(workers) == 2, children
+    assert len(workers) == jobs - 1, children
     proc.kill()
     proc.wait(timeout=STOP_TIMEOUT)
     # Orphans are re-parented: wait on the processes recorded before the kill.

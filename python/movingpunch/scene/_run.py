@@ -720,12 +720,18 @@ class _WorkerPool:
         self,
         messages: Sequence[Any],
         consume: Callable[[int, Any], None],
+        solve_here: Callable[[Any], Any] | None = None,
     ) -> None:
         """Sends ``(i, messages[i])`` to the workers and ``consume(i,
-        result)`` for each result, in the order they finish."""
+        result)`` for each result, in the order they finish. With
+        ``solve_here``, this process takes the next message itself whenever
+        every worker has _IN_FLIGHT: it is one of the jobs."""
         sent = 0
         in_flight = {id(conn): 0 for _, conn in self.workers}
         by_conn = {id(conn): (proc, conn) for proc, conn in self.workers}
+        conns = [conn for _, conn in self.workers]
+        if not conns and solve_here is None:
+            raise ValueError("no worker and no solve_here")
 
         def feed(proc: multiprocessing.process.BaseProcess, conn: Connection) -> None:
             nonlocal sent
@@ -737,11 +743,9 @@ class _WorkerPool:
                 in_flight[id(conn)] += 1
                 sent += 1
 
-        for proc, conn in self.workers:
-            feed(proc, conn)
-        remaining = len(messages)
-        while remaining:
-            for ready in connection_wait([conn for _, conn in self.workers]):
+        def collect(timeout: float | None) -> int:
+            done = 0
+            for ready in connection_wait(conns, timeout):
                 assert isinstance(ready, Connection)
                 proc, conn = by_conn[id(ready)]
                 try:
@@ -751,9 +755,24 @@ class _WorkerPool:
                 if error is not None:
                     raise WorkerError(f"a worker process failed: {error}")
                 in_flight[id(conn)] -= 1
-                remaining -= 1
+                done += 1
                 consume(index, result)
                 feed(proc, conn)
+            return done
+
+        for proc, conn in self.workers:
+            feed(proc, conn)
+        remaining = len(messages)
+        while remaining:
+            if solve_here is not None and sent < len(messages):
+                remaining -= collect(0.0) if conns else 0
+                if sent < len(messages):
+                    index = sent
+                    sent += 1
+                    consume(index, solve_here(messages[index]))
+                    remaining -= 1
+            else:
+                remaining -= collect(None)
 
     def close(self) -> None:
         """Tells the workers to stop and waits for them (briefly)."""
@@ -793,17 +812,19 @@ def _pool_map(
     n_jobs: int,
     consume: Callable[[_Chunk, Sequence[Mapping[str, Any]]], None],
 ) -> None:
-    """Solves ``chunks`` in ``n_jobs`` spawned worker processes (never
-    forked: this process may hold threads, the core's or Dask's), passing
-    each chunk's results to ``consume`` as they arrive. On any exception,
-    a KeyboardInterrupt included, the workers are terminated first."""
+    """Solves ``chunks`` in ``n_jobs`` processes: this one and ``n_jobs - 1``
+    spawned workers (never forked: this process may hold threads, the
+    core's or Dask's), passing each chunk's results to ``consume`` as they
+    arrive. On any exception, a KeyboardInterrupt included, the workers are
+    terminated first."""
     pool = _WorkerPool()
     finished = False
     try:
-        pool.start(n_jobs)
+        pool.start(n_jobs - 1)
         pool.run(
             [_tasks(plan, chunk) for chunk in chunks],
             lambda i, outs: consume(chunks[i], outs),
+            solve_here=_solve_chunk,
         )
         finished = True
     finally:
