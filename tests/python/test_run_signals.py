@@ -16,13 +16,13 @@ import sys
 import time
 from pathlib import Path
 
+import numpy as np
 import psutil
 import pytest
 from distributed import LocalCluster
 
-from movingpunch.scene import Scene
-
-pytestmark = pytest.mark.slow
+import movingpunch as mp
+from movingpunch.scene import Scene, Sweep, _run
 
 # About 20 000 cold solves: minutes of work at any --jobs on two cores.
 LONG_SWEEP = """\
@@ -111,6 +111,7 @@ def _snapshot(folder: Path) -> dict[str, bytes]:
     return {p.name: p.read_bytes() for p in sorted(folder.iterdir())}
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     ("sig", "status", "line", "group"),
     [
@@ -151,6 +152,7 @@ def test_signal_stops_a_run_with_workers(
     assert _snapshot(out) == before  # no file written, none half-written
 
 
+@pytest.mark.slow
 def test_sigterm_stops_a_serial_run(tmp_path: Path) -> None:
     scene = _scene_file(tmp_path, points=20_000)
     proc = _start("run", str(scene), "--jobs", "1", cwd=tmp_path)
@@ -163,6 +165,7 @@ def test_sigterm_stops_a_serial_run(tmp_path: Path) -> None:
     assert stdout == ""
 
 
+@pytest.mark.slow
 def test_sigint_stops_accuracy(tmp_path: Path) -> None:
     scene = _scene_file(tmp_path, points=2_000)
     proc = _start("accuracy", str(scene), "--out", str(tmp_path), cwd=tmp_path)
@@ -175,6 +178,7 @@ def test_sigint_stops_accuracy(tmp_path: Path) -> None:
     assert list(tmp_path.glob("*.csv")) == []
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("jobs", [2, 3])
 def test_kill_9_of_the_parent_ends_its_workers(tmp_path: Path, jobs: int) -> None:
     scene = _scene_file(tmp_path, points=20_000)
@@ -189,6 +193,7 @@ def test_kill_9_of_the_parent_ends_its_workers(tmp_path: Path, jobs: int) -> Non
     proc.communicate(timeout=STOP_TIMEOUT)  # the pipes they shared are closed
 
 
+@pytest.mark.slow
 def test_sigint_stops_a_dask_run(tmp_path: Path) -> None:
     scene = _scene_file(tmp_path, points=20_000)
     Scene.load(scene)  # valid
@@ -234,6 +239,7 @@ if __name__ == "__main__":
 """
 
 
+@pytest.mark.slow
 def test_a_busy_worker_exits_when_its_parent_is_killed(tmp_path: Path) -> None:
     """Mid-chunk, a worker reads no pipe: it is its watcher thread that sees
     the parent go (the pipe only the parent holds open closes)."""
@@ -255,3 +261,73 @@ def test_a_busy_worker_exits_when_its_parent_is_killed(tmp_path: Path) -> None:
     proc.wait(timeout=STOP_TIMEOUT)
     proc.stdout.close()  # the worker shares it: do not wait for its end
     _assert_all_gone([worker])
+
+
+# -- chunks: the unit of work of the pool (no process started) -------------------
+
+BASE = {"vstar": 0.2, "kw": 1.0, "radius": 100.0, "load": 0.002, "nu": 0.2}
+
+
+@pytest.mark.parametrize(
+    ("sweep", "jobs"),
+    [
+        (Sweep.range("vstar", 0.0, 0.5, 2000), 2),  # 2000 groups of one point
+        (Sweep.range("load", 1e-4, 4e-3, 20_000), 2),  # one group of 20 000
+        (Sweep.range("radius", 25.0, 100.0, 7), 4),  # tiny: a chunk per job
+    ],
+    ids=["cold", "one-group", "tiny"],
+)
+def test_chunks_cover_the_sweep_in_solve_order(sweep: Sweep, jobs: int) -> None:
+    plan = _run._plan_sweep(Scene(params=BASE, sweep=sweep))
+    target = _run._chunk_target(plan, jobs, _run._CHUNK_MIN, _run._CHUNK_MAX)
+    chunks = _run._chunks(plan, target)
+    # Every point once, in the plan's order (descending lambda in a group).
+    assert [k for chunk in chunks for _, keys in chunk for k in keys] == plan.keys
+    assert len(chunks) >= min(jobs, len(plan.keys))
+    for chunk in chunks:
+        assert len({group for group, _ in chunk}) == len(chunk)
+        for group, keys in chunk:
+            assert all(k[:5] == group for k in keys)
+        seconds = sum(
+            _run._point_seconds(plan, i == 0)
+            for _, keys in chunk
+            for i in range(len(keys))
+        )
+        assert seconds <= target + _run._point_seconds(plan, True)
+        assert sum(len(keys) for _, keys in chunk) <= _run._CHUNK_POINTS
+    # Never thousands of units: the in-flight bound makes the pool's waits
+    # O(jobs) whatever the sweep.
+    assert len(chunks) <= 4 * jobs + _run._sweep_seconds(plan) / _run._CHUNK_MIN
+
+
+def test_automatic_jobs_run_small_sweeps_here() -> None:
+    small = _run._plan_sweep(
+        Scene(params=BASE, sweep=Sweep.range("load", 1e-3, 4e-3, 200))
+    )
+    cold = _run._plan_sweep(
+        Scene(params=BASE, sweep=Sweep.range("vstar", 0.0, 0.5, 2000))
+    )
+    assert not _run._use_workers(small, 2, None, auto_jobs=True)
+    assert _run._use_workers(small, 2, None, auto_jobs=False)  # asked for
+    assert _run._use_workers(cold, 2, None, auto_jobs=True)
+    assert not _run._use_workers(cold, 1, None, auto_jobs=True)
+
+
+def test_a_group_split_across_workers_gives_the_serial_numbers() -> None:
+    """One load group in chunks on two processes: the numbers of the serial
+    run (each chunk rebuilds or reuses its kernel; the answer is the same)."""
+    scene = Scene(
+        params=BASE,
+        sweep=Sweep.range("load", 1e-4, 4e-3, 60, quantities=("a", "p0")),
+    )
+    mp.clear_kernel_cache()
+    serial = scene.run(jobs=1)
+    pooled = scene.run(jobs=2)
+    assert pooled.jobs == 2
+    assert serial.sweep is not None
+    assert pooled.sweep is not None
+    for q in ("a", "p0"):
+        np.testing.assert_allclose(
+            pooled.sweep.data[q], serial.sweep.data[q], rtol=1e-10
+        )
+    assert pooled.stage("contact").count == 60

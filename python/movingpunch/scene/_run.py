@@ -817,6 +817,10 @@ def _pool_map(
     core's or Dask's), passing each chunk's results to ``consume`` as they
     arrive. On any exception, a KeyboardInterrupt included, the workers are
     terminated first."""
+    if n_jobs <= 1:  # one chunk: no process to start
+        for chunk in chunks:
+            consume(chunk, _solve_chunk(_tasks(plan, chunk)))
+        return
     pool = _WorkerPool()
     finished = False
     try:
