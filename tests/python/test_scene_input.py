@@ -21,6 +21,7 @@ from typing import Any
 
 import numpy as np
 import pytest
+from distributed import LocalCluster
 
 import movingpunch as mp
 from movingpunch.scene import (
@@ -464,3 +465,21 @@ def test_dask_without_a_sweep_says_so_and_runs_here(mute_listener: str) -> None:
         "distribute: running here\n"
     )
     assert "a/h" in proc.stdout
+
+
+def test_a_scheduler_without_workers_is_a_clear_error(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    monkeypatch.setattr(_run, "DASK_CONNECT_TIMEOUT", 1.0)
+    scene = Scene(params=BASE, sweep=Sweep("load", (0.001, 0.002, 0.003)))
+    with LocalCluster(
+        n_workers=0,
+        processes=False,
+        host="127.0.0.1",
+        protocol="tcp://",
+        dashboard_address=None,
+    ) as cluster:
+        t0 = time.monotonic()
+        with pytest.raises(ClusterError, match="has no workers"):
+            scene.run(dask=cluster.scheduler_address)
+        assert time.monotonic() - t0 < 10 * 1.0  # hang guard, generous
