@@ -9,8 +9,11 @@
 3. Loading and validating a 20 000-point kw sweep (O(1) critical speeds).
 
 Each case is the best of --repeat runs, the kernel cache of this process
-cleared before each. The machine's load average is printed before and after:
-other processes on the cores distort the ratio. Never asserts a time.
+cleared before each. Beside the wall-clock time, the CPU time of this
+process and its (reaped) workers: CPU(jobs=N) / CPU(jobs=1) is the pool's
+overhead, which the load of other processes barely changes, while the
+wall-clock speed-up needs idle cores. The machine's load average is printed
+before and after. Never asserts a time.
 
     .venv/bin/python benchmarks/bench_jobs.py [--repeat 3] [--jobs 2]
 """
@@ -42,14 +45,26 @@ spacing = "log"
 """
 
 
-def best_of(fn: Callable[[], object], repeat: int) -> float:
-    best = float("inf")
+def cpu_seconds() -> float:
+    """CPU time of this process and of its reaped children."""
+    t = os.times()
+    return t.user + t.system + t.children_user + t.children_system
+
+
+def timed(fn: Callable[[], object], repeat: int) -> tuple[float, float]:
+    """(best wall-clock seconds, best CPU seconds) of ``repeat`` cold runs."""
+    wall = cpu = float("inf")
     for _ in range(repeat):
         mp.clear_kernel_cache()
-        t0 = time.perf_counter()
+        c0, t0 = cpu_seconds(), time.perf_counter()
         fn()
-        best = min(best, time.perf_counter() - t0)
-    return best
+        wall = min(wall, time.perf_counter() - t0)
+        cpu = min(cpu, cpu_seconds() - c0)
+    return wall, cpu
+
+
+def best_of(fn: Callable[[], object], repeat: int) -> float:
+    return timed(fn, repeat)[0]
 
 
 def load_average() -> str:
@@ -58,13 +73,16 @@ def load_average() -> str:
 
 
 def compare(name: str, scene: Scene, jobs: int, repeat: int) -> None:
-    serial = best_of(lambda: scene.run(jobs=1), repeat)
-    pooled = best_of(lambda: scene.run(jobs=jobs), repeat)
+    serial, serial_cpu = timed(lambda: scene.run(jobs=1), repeat)
+    pooled, pooled_cpu = timed(lambda: scene.run(jobs=jobs), repeat)
     auto_result = scene.run(jobs=None)
-    auto = best_of(lambda: scene.run(jobs=None), repeat)
+    auto, _ = timed(lambda: scene.run(jobs=None), repeat)
     print(f"{name}")
-    print(f"  jobs=1       {serial:8.3f} s")
-    print(f"  jobs={jobs:<7d} {pooled:8.3f} s   speed-up {serial / pooled:.2f}x")
+    print(f"  jobs=1       {serial:8.3f} s   CPU {serial_cpu:7.3f} s")
+    print(
+        f"  jobs={jobs:<7d} {pooled:8.3f} s   CPU {pooled_cpu:7.3f} s   "
+        f"speed-up {serial / pooled:.2f}x, CPU overhead {pooled_cpu / serial_cpu:.2f}x"
+    )
     print(f"  jobs=None    {auto:8.3f} s   (chose {auto_result.jobs} process(es))")
 
 
