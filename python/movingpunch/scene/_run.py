@@ -464,7 +464,9 @@ def _plan_sweep(scene: Scene) -> _SweepPlan:
 # Rough serial cost, in seconds, of a sweep point whose solve builds its kernel
 # table (cold) or reuses the table of the point before it (warm), of its stress
 # peaks, of a damped point; and of starting one worker process (its imports).
-_COLD_SECONDS, _WARM_SECONDS, _PEAKS_SECONDS = 2.5e-3, 7e-4, 3e-2
+# Measured as CPU time (benchmarks/bench_jobs.py): 2000 cold points of a vstar
+# sweep 1.8 s, of a kw sweep 1.3 s; 20 000 warm points of a load sweep 4.6 s.
+_COLD_SECONDS, _WARM_SECONDS, _PEAKS_SECONDS = 1.2e-3, 3e-4, 3e-2
 _DAMPED_SECONDS = 0.7
 _STARTUP_SECONDS = 0.6
 # A chunk (the unit of work a worker is sent) is sized to about
