@@ -217,6 +217,25 @@ def test_brackets_in_strings_and_comments_do_not_count(tmp_path: Path) -> None:
     assert Scene.load(path).description == "[" * 100
 
 
+@pytest.mark.parametrize(
+    "body",
+    [
+        '"' + '\\"' * 400_000 + '"',  # a basic string of escaped quotes
+        '"""' + '\\"' * 400_000 + '"""',
+        "'" + "x" * 900_000 + "'",
+        "[" + '"]",' * 200_000 + "]",
+    ],
+    ids=["escaped-quotes", "multiline-escapes", "long-literal", "many-strings"],
+)
+def test_the_scan_is_linear_on_hostile_strings(body: str, tmp_path: Path) -> None:
+    path = tmp_path / "strings.toml"
+    path.write_text(VALID + "[outputs]\ncontact_width = true\nx = " + body + "\n")
+    assert path.stat().st_size <= _spec.MAX_SCENE_BYTES
+    exc = _load_within_deadline(functools.partial(Scene.load, path))
+    assert isinstance(exc, SceneError)
+    assert exc.key == "outputs.x"  # parsed whole, then refused as a scene
+
+
 def test_nesting_at_the_cap_passes_the_scan() -> None:
     n = _spec.MAX_NESTING
     text = "x = " + "[" * n + "]" * n + "\n"

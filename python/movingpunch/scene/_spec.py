@@ -367,13 +367,12 @@ def _closing(text: str, start: int, quote: str) -> int:
     single-line string also ends at a newline (the parser reports it)."""
     escapes = quote[0] == '"'
     multiline = len(quote) == 3
+    nl = -1 if multiline else text.find("\n", start)  # once: linear in all
     i = start
     while True:
         j = text.find(quote, i)
-        if not multiline:
-            nl = text.find("\n", i)
-            if nl != -1 and (j == -1 or nl < j):
-                return nl + 1
+        if nl != -1 and (j == -1 or nl < j):
+            return nl + 1
         if j == -1:
             return len(text)
         k = j
