@@ -360,34 +360,32 @@ def _read_scene_file(path: Path, source: str) -> str:
 _TOML_TOKEN = re.compile(r"\"\"\"|'''|[\"'#\[\]{}]")
 
 
+# The body of each kind of TOML string, up to (not including) what ends it:
+# "unrolled" patterns (no nested repetition of alternatives), which the
+# regular-expression engine runs in time linear in the text.
+_STRING_BODY = {
+    '"': re.compile(r'[^"\\\n]*(?:\\.[^"\\\n]*)*'),
+    "'": re.compile(r"[^'\n]*"),
+    '"""': re.compile(r'[^"\\]*(?:(?:\\.|"(?!""))[^"\\]*)*', re.DOTALL),
+    "'''": re.compile(r"[^']*(?:'(?!'')[^']*)*"),
+}
+
+
 def _closing(text: str, start: int, quote: str) -> int:
-    """The index just past the closing ``quote`` of a string whose body starts
-    at ``start``: escaped quotes are skipped in basic (double-quoted)
-    strings, a multi-line string may end in up to two more quotes, and a
-    single-line string also ends at a newline (the parser reports it)."""
-    escapes = quote[0] == '"'
-    multiline = len(quote) == 3
-    nl = -1 if multiline else text.find("\n", start)  # once: linear in all
-    i = start
-    while True:
-        j = text.find(quote, i)
-        if nl != -1 and (j == -1 or nl < j):
-            return nl + 1
-        if j == -1:
-            return len(text)
-        k = j
-        while escapes and k > start and text[k - 1] == "\\":
-            k -= 1
-        if (j - k) % 2:  # an odd number of backslashes: an escaped quote
-            i = j + 1
-            continue
-        end = j + len(quote)
-        if multiline:
-            extra = 0
-            while extra < 2 and text.startswith(quote[0], end + extra):
-                extra += 1
-            end += extra
-        return end
+    """The index just past the string whose body starts at ``start``: past
+    its closing ``quote`` (escaped quotes are skipped in basic strings; a
+    multi-line string may end in up to two more quotes), or past the newline
+    that ends an unterminated single-line string (the parser reports it)."""
+    m = _STRING_BODY[quote].match(text, start)
+    assert m is not None  # each pattern matches the empty string
+    end = m.end()
+    if len(quote) == 1:
+        return end + 1  # past the quote, the newline, or a trailing backslash
+    end += len(quote)
+    extra = 0
+    while extra < 2 and text.startswith(quote[0], end + extra):
+        extra += 1
+    return min(end + extra, len(text))
 
 
 def _nesting_depth(text: str, limit: int) -> int:
