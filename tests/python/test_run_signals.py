@@ -22,7 +22,7 @@ import pytest
 from distributed import LocalCluster
 
 import movingpunch as mp
-from movingpunch.scene import Scene, Sweep, _run
+from movingpunch.scene import Scene, Sweep, Vary, _run
 
 # About 20 000 cold solves: minutes of work at any --jobs on two cores.
 LONG_SWEEP = """\
@@ -274,11 +274,13 @@ BASE = {"vstar": 0.2, "kw": 1.0, "radius": 100.0, "load": 0.002, "nu": 0.2}
         (Sweep.range("vstar", 0.0, 0.5, 2000), 2),  # 2000 groups of one point
         (Sweep.range("load", 1e-4, 4e-3, 20_000), 2),  # one group of 20 000
         (Sweep.range("radius", 25.0, 100.0, 7), 4),  # tiny: a chunk per job
+        (Sweep.range("load", 1e-3, 4e-3, 50), 2),  # with a vary: 4 groups
     ],
-    ids=["cold", "one-group", "tiny"],
+    ids=["cold", "one-group", "tiny", "groups"],
 )
 def test_chunks_cover_the_sweep_in_solve_order(sweep: Sweep, jobs: int) -> None:
-    plan = _run._plan_sweep(Scene(params=BASE, sweep=sweep))
+    vary = Vary("vstar", (0.0, 0.1, 0.2, 0.3)) if len(sweep.values) == 50 else None
+    plan = _run._plan_sweep(Scene(params=BASE, vary=vary, sweep=sweep))
     target = _run._chunk_target(plan, jobs, _run._CHUNK_MIN, _run._CHUNK_MAX)
     chunks = _run._chunks(plan, target)
     # Every point once, in the plan's order (descending lambda in a group).
@@ -295,6 +297,12 @@ def test_chunks_cover_the_sweep_in_solve_order(sweep: Sweep, jobs: int) -> None:
         )
         assert seconds <= target + _run._point_seconds(plan, True)
         assert sum(len(keys) for _, keys in chunk) <= _run._CHUNK_POINTS
+    # A group that fits in a chunk is in one chunk (one kernel build).
+    cold, warm = _run._point_seconds(plan, True), _run._point_seconds(plan, False)
+    for group, members in plan.groups.items():
+        if cold + (len(members) - 1) * warm <= target:
+            holders = [c for c in chunks if any(g == group for g, _ in c)]
+            assert len(holders) == 1, group
     # Never thousands of units: the in-flight bound makes the pool's waits
     # O(jobs) whatever the sweep.
     assert len(chunks) <= 4 * jobs + _run._sweep_seconds(plan) / _run._CHUNK_MIN

@@ -522,11 +522,24 @@ def _chunks(plan: _SweepPlan, target: float) -> list[_Chunk]:
     """The sweep's points in chunks of about ``target`` seconds, in solve
     order: a chunk holds contiguous points of one or more groups, so that a
     group split across chunks still reuses its kernel within each (the first
-    point of each piece, the widest contact, builds it)."""
+    point of each piece, the widest contact, builds it). A group that fits
+    in a chunk is never split: the chunk is closed before it instead."""
     chunks: list[_Chunk] = []
     pieces: _Chunk = []
     seconds, count = 0.0, 0
+    cold, warm = _point_seconds(plan, True), _point_seconds(plan, False)
     for group, members in plan.groups.items():
+        whole = cold + (len(members) - 1) * warm
+        if (
+            pieces
+            and whole <= target
+            and (
+                seconds + whole > target * (1 + 1e-9)
+                or count + len(members) > _CHUNK_POINTS
+            )
+        ):
+            chunks.append(pieces)
+            pieces, seconds, count = [], 0.0, 0
         piece: list[_Key] | None = None
         for key in members:
             if piece is None:
