@@ -19,6 +19,11 @@ so do output problems (``OutputError``: the path and the reason), which
 ``run --out`` and ``accuracy --out`` check before computing. A reader that
 closes stdout early (``movingpunch run fig4 | head -1``) ends the command
 quietly with status 141 (128 + SIGPIPE), after any files were written.
+
+``run`` and ``accuracy`` stop promptly on SIGINT (Ctrl-C) or SIGTERM: their
+worker processes are ended, nothing is written, and the process exits with
+one line ``movingpunch: interrupted`` (``... (SIGTERM)``) and status 130
+(143 for SIGTERM).
 """
 
 from __future__ import annotations
@@ -30,8 +35,11 @@ import io
 import json
 import math
 import os
+import signal
 import sys
+import threading
 from collections.abc import Callable, Sequence
+from types import FrameType
 from typing import Any, NoReturn
 
 from movingpunch.errors import MovingPunchError
@@ -49,6 +57,53 @@ from movingpunch.solver import (
 PROG = "movingpunch"
 EXIT_USAGE = 2
 EXIT_BROKEN_PIPE = 128 + 13  # 128 + SIGPIPE
+_STOP_SIGNALS = (signal.SIGINT, signal.SIGTERM)
+
+
+class _Interrupted(KeyboardInterrupt):
+    """SIGINT or SIGTERM arrived (``signum``) while a command was working."""
+
+    def __init__(self, signum: int) -> None:
+        super().__init__(signum)
+        self.signum = signum
+
+
+class _StopSignals:
+    """SIGINT and SIGTERM handlers for a command that must stop promptly.
+
+    While ``armed``, the first signal raises _Interrupted in the main thread
+    (unwinding ends the worker processes: ``scene._run._pool_map``); any
+    signal after it, or one that arrives once the work is over, is only
+    recorded in ``received``, so that stopping and reporting are never cut
+    short. The previous handlers come back on ``restore()``."""
+
+    def __init__(self) -> None:
+        self.received: int | None = None
+        self.armed = False
+        self._old: dict[int, Any] = {}
+        if threading.current_thread() is threading.main_thread():
+            for sig in _STOP_SIGNALS:
+                self._old[sig] = signal.signal(sig, self._handle)
+
+    def _handle(self, signum: int, frame: FrameType | None) -> None:
+        first = self.received is None
+        if first:
+            self.received = signum
+        if first and self.armed:
+            raise _Interrupted(signum)
+
+    def restore(self) -> None:
+        for sig, old in self._old.items():
+            signal.signal(sig, old if old is not None else signal.SIG_DFL)
+        self._old.clear()
+
+
+def _interrupted(signum: int) -> int:
+    """Reports an interrupt in one line; the exit status, 128 + signum."""
+    name = "" if signum == signal.SIGINT else f" ({signal.Signals(signum).name})"
+    sys.stderr.write(f"{PROG}: interrupted{name}\n")
+    sys.stderr.flush()
+    return 128 + int(signum)
 
 
 class _Parser(argparse.ArgumentParser):
@@ -499,7 +554,8 @@ def _add_scene_commands(sub: Any) -> None:
         type=_jobs,
         default=None,
         metavar="N",
-        help="worker processes for a sweep (default: all cores; 1: none)",
+        help="worker processes for a sweep (default: the cores this process "
+        "may use, when the sweep is long enough to gain from them; 1: none)",
     )
     run_p.add_argument(
         "--dask",
@@ -508,7 +564,7 @@ def _add_scene_commands(sub: Any) -> None:
         help="run the sweep on a Dask scheduler, e.g. tcp://host:8786 "
         "(needs the 'dask' extra)",
     )
-    run_p.set_defaults(handler=_cmd_run)
+    run_p.set_defaults(handler=_cmd_run, stop_on_signals=True)
 
     list_p = sub.add_parser(
         "scenes",
@@ -553,6 +609,11 @@ def _cmd_run(args: argparse.Namespace) -> int:
     from movingpunch.scene._export import pyplot, render_outputs, render_pngs
 
     scene = load_scene(args.scene)
+    if args.dask is not None and scene.sweep is None:
+        sys.stderr.write(
+            f"{PROG}: note: --dask: the scene has no [sweep], nothing to "
+            "distribute: running here\n"
+        )
     # Output problems are found before the work: the folder, the PNG extra.
     out_dir = None
     if args.out is not None or args.format is not None or args.png:
@@ -661,7 +722,7 @@ def _add_accuracy_command(sub: Any) -> None:
         help="log-log plot of error against time (default when stdout is a terminal)",
     )
     plot.add_argument("--no-plot", dest="plot", action="store_false", help="no plot")
-    acc_p.set_defaults(handler=_cmd_accuracy)
+    acc_p.set_defaults(handler=_cmd_accuracy, stop_on_signals=True)
 
 
 def _tol_list(text: str) -> list[float]:
@@ -740,14 +801,43 @@ def main(argv: Sequence[str] | None = None) -> int:
     if handler is None:
         handler = _cmd_tui  # no command: the terminal UI on the paper's Fig. 4
         args = argparse.Namespace(scene=None, no_timing=False, root=None)
+    signals = _StopSignals() if getattr(args, "stop_on_signals", False) else None
     try:
-        status = handler(args)
-        sys.stdout.flush()  # a closed pipe shows here, not at exit
-        return status
+        return _call(handler, args, signals)
+    finally:
+        if signals is not None:
+            signals.restore()
+
+
+def _call(
+    handler: Callable[[argparse.Namespace], int],
+    args: argparse.Namespace,
+    signals: _StopSignals | None,
+) -> int:
+    """Runs a command: its status; one line on stderr for an error (status
+    2) or an interrupt (130 / 143), which wins over an error it caused."""
+    status, error = 0, None
+    try:
+        if signals is not None:
+            signals.armed = True
+        try:
+            status = handler(args)
+            sys.stdout.flush()  # a closed pipe shows here, not at exit
+        finally:
+            if signals is not None:
+                signals.armed = False
     except BrokenPipeError:
         return _stdout_closed()
+    except KeyboardInterrupt as exc:
+        signum = int(getattr(exc, "signum", signal.SIGINT))
+        if signals is None:
+            return _interrupted(signum)
+        if signals.received is None:
+            signals.received = signum
     except (MovingPunchError, ValueError) as exc:
-        _fail(str(exc))
-    except KeyboardInterrupt:
-        sys.stderr.write(f"{PROG}: interrupted\n")
-        return 130
+        error = str(exc)
+    if signals is not None and signals.received is not None:
+        return _interrupted(signals.received)
+    if error is not None:
+        _fail(error)
+    return status

@@ -503,3 +503,53 @@ def test_cli_stress_rows_show_the_bound_and_every_warning() -> None:
     rows = _stress_rows(pk)
     assert ("error bound (peaks)", "3.00e-08") in rows
     assert [v for k, v in rows if k == "warning"] == ["first reason", "second reason"]
+
+
+def test_scene_sweeps_carry_the_peak_searchs_warnings(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """A warning of the peak search reaches SceneResult.warnings, prefixed with
+    the point, on the serial path and from a worker's group (_solve_group)."""
+    from dataclasses import replace
+
+    from movingpunch.scene import Scene
+    from movingpunch.scene import _run as scene_run
+    from movingpunch.solver import Solution
+
+    original = Solution.stress_peaks
+
+    def flagged(self: Solution, extent: float | None = None) -> mp.StressPeaks:
+        return replace(original(self, extent), warnings=("far field not searched",))
+
+    monkeypatch.setattr(Solution, "stress_peaks", flagged)
+    scene = Scene.from_toml(
+        """
+        name = "peaks-warn"
+        [params]
+        vstar = 0.2
+        kw = 1.0
+        radius = 100.0
+        load = 0.002
+        [sweep]
+        param = "load"
+        values = [0.001, 0.002]
+        quantities = ["a", "top_tensile"]
+        """,
+        "test",
+    )
+    result = scene.run(jobs=1)
+    assert len(result.warnings) == 2
+    for line in result.warnings:
+        assert line.startswith("vstar=0.2")
+        assert line.endswith("stress peaks: far field not searched")
+    task = {
+        "vstar": 0.2,
+        "kw": 1.0,
+        "nu": 0.2,
+        "tol": 1e-8,
+        "damping": 0.0,
+        "points": [(100.0, 0.002)],
+        "peaks": True,
+    }
+    out = scene_run._solve_group(task)
+    assert out["warnings"] == [["stress peaks: far field not searched"]]

@@ -32,6 +32,7 @@ from movingpunch.scene._run import (
     SceneResult,
     Stage,
     SweepTable,
+    WorkerError,
 )
 from movingpunch.scene._spec import (
     OUTPUT_KINDS,
@@ -63,6 +64,7 @@ __all__ = [
     "Sweep",
     "SweepTable",
     "Vary",
+    "WorkerError",
     "ascii_plots",
     "atomic_write",
     "bundled_scene_text",

@@ -19,11 +19,16 @@ import contextlib
 import importlib
 import math
 import multiprocessing
+import multiprocessing.process
 import os
+import signal
+import threading
 import time
 from collections.abc import Callable, Iterator, Mapping, Sequence
-from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
 from dataclasses import dataclass, field
+from multiprocessing import resource_tracker
+from multiprocessing.connection import Connection
+from multiprocessing.connection import wait as connection_wait
 from typing import Any
 
 import numpy as np
@@ -47,6 +52,7 @@ __all__ = [
     "SceneResult",
     "Stage",
     "SweepTable",
+    "WorkerError",
     "run_scene",
 ]
 
@@ -270,7 +276,11 @@ def _solve(p: Mapping[str, float], tol: float, stages: _Stages) -> AnySolution:
     return s
 
 
-def _quantities(s: AnySolution, want_peaks: bool, stages: _Stages) -> dict[str, float]:
+def _quantities(
+    s: AnySolution, want_peaks: bool, stages: _Stages, warnings: list[str]
+) -> dict[str, float]:
+    """The sweep's numbers of one solved point; the stress peak search's
+    warnings (``StressPeaks.warnings``) are appended to ``warnings``."""
     q: dict[str, float] = {
         "a": s.a,
         "min_pressure": s.min_pressure,
@@ -301,6 +311,7 @@ def _quantities(s: AnySolution, want_peaks: bool, stages: _Stages) -> dict[str, 
         t0 = time.perf_counter()
         peaks = s.stress_peaks()
         stages.add("stress_peaks", time.perf_counter() - t0)
+        warnings.extend(f"stress peaks: {w}" for w in peaks.warnings)
         for name in PEAK_QUANTITIES:
             q[name] = float(getattr(peaks, name))
     return q
@@ -332,8 +343,9 @@ def _solve_group(task: Mapping[str, Any]) -> dict[str, Any]:
         }
         try:
             s = _solve(p, task["tol"], stages)
-            results.append(_quantities(s, task["peaks"], stages))
-            warnings.append(list(result_warnings(s)))
+            found = list(result_warnings(s))
+            results.append(_quantities(s, task["peaks"], stages, found))
+            warnings.append(found)
         except MovingPunchError as exc:
             results.append(str(exc))
             warnings.append([])
@@ -371,8 +383,12 @@ class _Run:
     def note_warnings(
         self, key: _Key, p: Mapping[str, float], found: Sequence[str]
     ) -> None:
+        """Records the warnings of a solved point (its solution's and its
+        stress peaks'), each prefixed with the point's parameters."""
         if found:
-            self.warnings[key] = [f"{_point_text(p)}: {w}" for w in found]
+            self.warnings.setdefault(key, []).extend(
+                f"{_point_text(p)}: {w}" for w in found
+            )
 
     @contextlib.contextmanager
     def timed(self, name: str) -> Iterator[None]:
@@ -399,7 +415,7 @@ def run_scene(
         raise ValueError(
             f"jobs must be None (all cores) or an integer >= 1, got {jobs!r}"
         )
-    n_jobs = (os.cpu_count() or 1) if jobs is None else jobs
+    n_jobs = _default_jobs() if jobs is None else jobs
     t_start = time.perf_counter()
     run = _Run(scene, progress=progress)
 
@@ -478,26 +494,133 @@ def _plan_sweep(scene: Scene) -> _SweepPlan:
     return _SweepPlan(points, keys, groups, representative, want_peaks, damped)
 
 
-# Rough serial cost of a sweep point (a cold contact solve; with stress peaks;
-# a damped solve) and the cost of starting worker processes, in seconds.
-_SOLVE_SECONDS, _PEAKS_SECONDS, _STARTUP_SECONDS = 2e-3, 2e-2, 1.0
+# Rough serial cost, in seconds, of a sweep point whose solve builds its kernel
+# table (cold) or reuses the table of the point before it (warm), of its stress
+# peaks, of a damped point; and of starting one worker process (its imports).
+# Measured as CPU time (benchmarks/bench_jobs.py): 2000 cold points of a vstar
+# sweep 1.8 s, of a kw sweep 1.3 s; 20 000 warm points of a load sweep 4.6 s.
+_COLD_SECONDS, _WARM_SECONDS, _PEAKS_SECONDS = 1.2e-3, 3e-4, 3e-2
 _DAMPED_SECONDS = 0.7
+_STARTUP_SECONDS = 0.6
+# A chunk (the unit of work a worker is sent) is sized to about
+# 1/_CHUNKS_PER_JOB of a worker's share, within [_CHUNK_MIN, _CHUNK_MAX]
+# seconds (on Dask [_DASK_CHUNK_MIN, _DASK_CHUNK_MAX]) and _CHUNK_POINTS points.
+_CHUNKS_PER_JOB = 4
+_CHUNK_MIN, _CHUNK_MAX = 0.02, 0.2
+_DASK_CHUNK_MIN, _DASK_CHUNK_MAX = 0.05, 1.0
+_CHUNK_POINTS = 1000
+_IN_FLIGHT = 2  # chunks sent ahead to each worker: one computing, one queued
+_STOP_SECONDS = 2.0  # how long stopped workers get to exit before SIGKILL
+
+# One unit of work: (group, keys) pieces, each contiguous points of one group.
+_Chunk = list[tuple[tuple[float, ...], list[_Key]]]
+
+
+def _point_seconds(plan: _SweepPlan, cold: bool) -> float:
+    if plan.damped:
+        return _DAMPED_SECONDS
+    seconds = _COLD_SECONDS if cold else _WARM_SECONDS
+    return seconds + (_PEAKS_SECONDS if plan.want_peaks else 0.0)
+
+
+def _sweep_seconds(plan: _SweepPlan) -> float:
+    """The estimated serial time of the sweep."""
+    cold, warm = _point_seconds(plan, True), _point_seconds(plan, False)
+    return sum(cold + (len(m) - 1) * warm for m in plan.groups.values())
+
+
+def _default_jobs() -> int:
+    """The cores this process may run on."""
+    affinity = getattr(os, "sched_getaffinity", None)
+    if affinity is not None:
+        return max(len(affinity(0)), 1)
+    return os.cpu_count() or 1
 
 
 def _use_workers(
     plan: _SweepPlan, n_jobs: int, dask: str | None, *, auto_jobs: bool
 ) -> bool:
     """Whether the sweep goes to worker processes (or Dask): never for one
-    group or one job; with automatic jobs only when the sweep is long enough
-    to pay for starting the workers."""
+    point or one job; with automatic jobs only when the estimated time saved
+    pays for starting the workers."""
     if dask is not None:
         return True
-    if n_jobs <= 1 or len(plan.groups) <= 1:
+    if n_jobs <= 1 or len(plan.keys) <= 1:
         return False
-    per_point = _SOLVE_SECONDS + (_PEAKS_SECONDS if plan.want_peaks else 0.0)
-    if plan.damped:
-        per_point = _DAMPED_SECONDS
-    return not auto_jobs or len(plan.keys) * per_point > _STARTUP_SECONDS
+    saved = _sweep_seconds(plan) * (1.0 - 1.0 / n_jobs)
+    return not auto_jobs or saved > _STARTUP_SECONDS
+
+
+def _chunks(plan: _SweepPlan, target: float) -> list[_Chunk]:
+    """The sweep's points in chunks of about ``target`` seconds, in solve
+    order: a chunk holds contiguous points of one or more groups, so that a
+    group split across chunks still reuses its kernel within each (the first
+    point of each piece, the widest contact, builds it). A group that fits
+    in a chunk is never split: the chunk is closed before it instead."""
+    chunks: list[_Chunk] = []
+    pieces: _Chunk = []
+    seconds, count = 0.0, 0
+    cold, warm = _point_seconds(plan, True), _point_seconds(plan, False)
+    for group, members in plan.groups.items():
+        whole = cold + (len(members) - 1) * warm
+        if (
+            pieces
+            and whole <= target
+            and (
+                seconds + whole > target * (1 + 1e-9)
+                or count + len(members) > _CHUNK_POINTS
+            )
+        ):
+            chunks.append(pieces)
+            pieces, seconds, count = [], 0.0, 0
+        piece: list[_Key] | None = None
+        for key in members:
+            if piece is None:
+                piece = []
+                pieces.append((group, piece))
+            seconds += _point_seconds(plan, cold=not piece)
+            piece.append(key)
+            count += 1
+            if seconds >= target or count >= _CHUNK_POINTS:
+                chunks.append(pieces)
+                pieces, piece, seconds, count = [], None, 0.0, 0
+    if pieces:
+        chunks.append(pieces)
+    return chunks
+
+
+def _chunk_target(plan: _SweepPlan, n: int, lo: float, hi: float) -> float:
+    """Seconds of work per chunk for ``n`` workers: about 1/_CHUNKS_PER_JOB
+    of a worker's share within [lo, hi], and at most a worker's share (every
+    worker gets a chunk)."""
+    total = _sweep_seconds(plan)
+    target = min(max(total / (_CHUNKS_PER_JOB * n), lo), hi)
+    return min(target, total / n)
+
+
+def _tasks(plan: _SweepPlan, chunk: _Chunk) -> list[dict[str, Any]]:
+    """A chunk as the tasks ``_solve_chunk`` takes (plain data: it is
+    pickled to a worker)."""
+    return [
+        {
+            "vstar": group[0],
+            "kw": group[1],
+            "nu": group[2],
+            "tol": group[3],
+            "damping": group[4],
+            "points": [
+                (plan.representative[k]["radius"], plan.representative[k]["load"])
+                for k in keys
+            ],
+            "peaks": plan.want_peaks,
+        }
+        for group, keys in chunk
+    ]
+
+
+def _solve_chunk(tasks: Sequence[Mapping[str, Any]]) -> list[dict[str, Any]]:
+    """Solves the groups of a chunk (in a worker process or on Dask)."""
+    return [_solve_group(task) for task in tasks]
 
 
 def _run_sweep(
@@ -506,91 +629,363 @@ def _run_sweep(
     scene = run.scene
     assert scene.sweep is not None
     values: dict[_Key, dict[str, float] | str] = {}
-    used_jobs = 1
     if not remote:
         for key in plan.keys:
             try:
                 s = run.solution(plan.representative[key])
-                values[key] = _quantities(s, plan.want_peaks, run.stages)
+                found: list[str] = []
+                values[key] = _quantities(s, plan.want_peaks, run.stages, found)
+                run.note_warnings(key, plan.representative[key], found)
             except MovingPunchError as exc:
                 values[key] = str(exc)
                 run.tick()
-    else:
-        tasks = [
-            {
-                "vstar": g[0],
-                "kw": g[1],
-                "nu": g[2],
-                "tol": g[3],
-                "damping": g[4],
-                "points": [
-                    (plan.representative[k]["radius"], plan.representative[k]["load"])
-                    for k in members
-                ],
-                "peaks": plan.want_peaks,
-            }
-            for g, members in plan.groups.items()
-        ]
-        member_keys = list(plan.groups.values())
-        results = (
-            _dask_map(tasks, dask) if dask is not None else _pool_map(tasks, n_jobs)
-        )
-        for index, out in results:
+        return _sweep_table(scene, plan, values), 1
+
+    def make_chunks(n: int, lo: float, hi: float) -> list[_Chunk]:
+        return _chunks(plan, _chunk_target(plan, n, lo, hi))
+
+    def consume(chunk: _Chunk, outs: Sequence[Mapping[str, Any]]) -> None:
+        for (_, keys), out in zip(chunk, outs, strict=True):
             run.stages.merge(out["stages"])
-            for key, res in zip(member_keys[index], out["results"], strict=True):
+            for key, res in zip(keys, out["results"], strict=True):
                 values[key] = res
-            for key, found in zip(member_keys[index], out["warnings"], strict=True):
+            for key, found in zip(keys, out["warnings"], strict=True):
                 run.note_warnings(key, plan.representative[key], found)
-            run.tick(len(member_keys[index]))
-        used_jobs = min(n_jobs, len(tasks)) if dask is None else 0
+        run.tick(sum(len(keys) for _, keys in chunk))
+
+    if dask is not None:
+        _dask_map(plan, make_chunks, dask, consume)
+        used_jobs = 0
+    else:
+        chunks = make_chunks(n_jobs, _CHUNK_MIN, _CHUNK_MAX)
+        used_jobs = min(n_jobs, len(chunks))
+        _pool_map(plan, chunks, used_jobs, consume)
     return _sweep_table(scene, plan, values), used_jobs
 
 
-def _pool_map(
-    tasks: Sequence[Mapping[str, Any]], n_jobs: int
-) -> Iterator[tuple[int, dict[str, Any]]]:
-    # spawn: never fork a process that may hold threads (the core's, Dask's).
-    context = multiprocessing.get_context("spawn")
-    with ProcessPoolExecutor(
-        max_workers=min(n_jobs, len(tasks)), mp_context=context
-    ) as pool:
-        pending: dict[Future[dict[str, Any]], int] = {
-            pool.submit(_solve_group, task): i for i, task in enumerate(tasks)
-        }
+# ----------------------------------------------------------------------------
+# Worker processes
+# ----------------------------------------------------------------------------
+
+
+class WorkerError(MovingPunchError, RuntimeError):
+    """A worker process ended before it finished its work, or failed."""
+
+
+@contextlib.contextmanager
+def _signals_deferred(*, ignore_sigint: bool = False) -> Iterator[None]:
+    """SIGINT and SIGTERM wait (blocked in this thread) until the block
+    ends, so that starting or stopping workers is never cut in half. With
+    ``ignore_sigint`` (in the main thread only) SIGINT is also ignored
+    meanwhile: a process spawned then inherits that, so a Ctrl-C, which the
+    terminal sends to every process of the group, is left to the parent."""
+    mask = getattr(signal, "pthread_sigmask", None)
+    blocked = {signal.SIGINT, signal.SIGTERM}
+    old_mask = mask(signal.SIG_BLOCK, blocked) if mask is not None else None
+    main = threading.current_thread() is threading.main_thread()
+    old_int = (
+        signal.signal(signal.SIGINT, signal.SIG_IGN) if ignore_sigint and main else None
+    )
+    try:
+        yield
+    finally:
+        if ignore_sigint and main:
+            signal.signal(
+                signal.SIGINT, old_int if old_int is not None else signal.SIG_DFL
+            )
+        if mask is not None and old_mask is not None:
+            mask(signal.SIG_SETMASK, old_mask)
+
+
+def _exit_with_parent(parent_alive: Connection) -> None:
+    """Blocks until the parent is gone (nothing is ever sent on this pipe:
+    the read ends when the parent's end closes), then ends this process."""
+    with contextlib.suppress(EOFError, OSError):
+        parent_alive.recv_bytes()
+    os._exit(1)
+
+
+def _worker_main(conn: Connection, parent_alive: Connection) -> None:
+    """A worker process: solves the chunks it receives until told to stop
+    (None), until its pipe closes or, at once, when the parent dies."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent handles Ctrl-C
+    if hasattr(signal, "pthread_sigmask"):  # blocked while the parent spawned us
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT, signal.SIGTERM})
+    threading.Thread(
+        target=_exit_with_parent, args=(parent_alive,), daemon=True
+    ).start()
+    while True:
         try:
-            while pending:
-                finished, _ = wait(pending, return_when=FIRST_COMPLETED)
-                for fut in finished:
-                    index = pending.pop(fut)
-                    yield index, fut.result()
-        except BaseException:
-            for fut in pending:
-                fut.cancel()
-            raise
+            message = conn.recv()
+        except (EOFError, OSError):
+            return
+        if message is None:
+            return
+        index, tasks = message
+        try:
+            reply: tuple[int, Any, str | None] = (index, _solve_chunk(tasks), None)
+        except Exception as exc:  # a bug: reported by the parent
+            reply = (index, None, f"{type(exc).__name__}: {exc}")
+        conn.send(reply)
+
+
+class _WorkerPool:
+    """Spawned worker processes fed chunks over pipes.
+
+    Never more than _IN_FLIGHT chunks are sent ahead to a worker, so nothing
+    waits on thousands of futures. Each worker watches a pipe whose write end
+    only this process holds: when this process dies (even by SIGKILL) the
+    pipe closes and the workers exit. ``stop()`` terminates them (SIGTERM,
+    then SIGKILL) and reaps them."""
+
+    def __init__(self) -> None:
+        self.context = multiprocessing.get_context("spawn")
+        self.workers: list[tuple[multiprocessing.process.BaseProcess, Connection]] = []
+        self.alive_r, self.alive_w = self.context.Pipe(duplex=False)
+
+    def start(self, n: int) -> None:
+        if os.name == "posix":
+            # Started here, not inside the first proc.start(): starting it
+            # unblocks SIGINT and SIGTERM, which _signals_deferred blocks.
+            resource_tracker.ensure_running()
+        for _ in range(n):
+            conn, child_conn = self.context.Pipe()
+            proc = self.context.Process(
+                target=_worker_main,
+                args=(child_conn, self.alive_r),
+                name="movingpunch-worker",
+                daemon=True,
+            )
+            with _signals_deferred(ignore_sigint=True):
+                proc.start()
+                self.workers.append((proc, conn))
+            child_conn.close()
+        self.alive_r.close()  # the workers hold it; this process needs none
+
+    def died(self, proc: multiprocessing.process.BaseProcess) -> WorkerError:
+        proc.join(1.0)
+        code = proc.exitcode
+        how = f"exit status {code}" if code is None or code >= 0 else f"signal {-code}"
+        return WorkerError(f"a worker process ended before its work was done ({how})")
+
+    def run(
+        self,
+        messages: Sequence[Any],
+        consume: Callable[[int, Any], None],
+        solve_here: Callable[[Any], Any] | None = None,
+    ) -> None:
+        """Sends ``(i, messages[i])`` to the workers and ``consume(i,
+        result)`` for each result, in the order they finish. With
+        ``solve_here``, this process takes the next message itself whenever
+        every worker has _IN_FLIGHT: it is one of the jobs."""
+        sent = 0
+        in_flight = {id(conn): 0 for _, conn in self.workers}
+        by_conn = {id(conn): (proc, conn) for proc, conn in self.workers}
+        conns = [conn for _, conn in self.workers]
+        if not conns and solve_here is None:
+            raise ValueError("no worker and no solve_here")
+
+        def feed(proc: multiprocessing.process.BaseProcess, conn: Connection) -> None:
+            nonlocal sent
+            while in_flight[id(conn)] < _IN_FLIGHT and sent < len(messages):
+                try:
+                    conn.send((sent, messages[sent]))
+                except OSError:
+                    raise self.died(proc) from None
+                in_flight[id(conn)] += 1
+                sent += 1
+
+        def collect(timeout: float | None) -> int:
+            done = 0
+            for ready in connection_wait(conns, timeout):
+                assert isinstance(ready, Connection)
+                proc, conn = by_conn[id(ready)]
+                try:
+                    index, result, error = conn.recv()
+                except (EOFError, OSError):
+                    raise self.died(proc) from None
+                if error is not None:
+                    raise WorkerError(f"a worker process failed: {error}")
+                in_flight[id(conn)] -= 1
+                done += 1
+                consume(index, result)
+                feed(proc, conn)
+            return done
+
+        for proc, conn in self.workers:
+            feed(proc, conn)
+        remaining = len(messages)
+        while remaining:
+            if solve_here is not None and sent < len(messages):
+                remaining -= collect(0.0) if conns else 0
+                if sent < len(messages):
+                    index = sent
+                    sent += 1
+                    consume(index, solve_here(messages[index]))
+                    remaining -= 1
+            else:
+                remaining -= collect(None)
+
+    def close(self) -> None:
+        """Tells the workers to stop and waits for them (briefly)."""
+        for _, conn in self.workers:
+            with contextlib.suppress(OSError):
+                conn.send(None)
+        deadline = time.monotonic() + _STOP_SECONDS
+        for proc, _ in self.workers:
+            proc.join(max(deadline - time.monotonic(), 0.0))
+        self.stop()
+
+    def stop(self) -> None:
+        """Ends every worker still running (SIGTERM; SIGKILL if one has not
+        exited after _STOP_SECONDS) and reaps them all."""
+        with _signals_deferred():
+            alive = [proc for proc, _ in self.workers if proc.is_alive()]
+            for proc in alive:
+                proc.terminate()
+            deadline = time.monotonic() + _STOP_SECONDS
+            for proc in alive:
+                proc.join(max(deadline - time.monotonic(), 0.0))
+            for proc in alive:
+                if proc.is_alive():
+                    proc.kill()
+                    proc.join(_STOP_SECONDS)
+            for proc, conn in self.workers:
+                conn.close()
+                with contextlib.suppress(ValueError):  # not yet reaped
+                    proc.close()
+            self.alive_w.close()
+            self.alive_r.close()
+
+
+def _pool_map(
+    plan: _SweepPlan,
+    chunks: Sequence[_Chunk],
+    n_jobs: int,
+    consume: Callable[[_Chunk, Sequence[Mapping[str, Any]]], None],
+) -> None:
+    """Solves ``chunks`` in ``n_jobs`` processes: this one and ``n_jobs - 1``
+    spawned workers (never forked: this process may hold threads, the
+    core's or Dask's), passing each chunk's results to ``consume`` as they
+    arrive. On any exception, a KeyboardInterrupt included, the workers are
+    terminated first."""
+    if n_jobs <= 1:  # one chunk: no process to start
+        for chunk in chunks:
+            consume(chunk, _solve_chunk(_tasks(plan, chunk)))
+        return
+    pool = _WorkerPool()
+    finished = False
+    try:
+        pool.start(n_jobs - 1)
+        pool.run(
+            [_tasks(plan, chunk) for chunk in chunks],
+            lambda i, outs: consume(chunks[i], outs),
+            solve_here=_solve_chunk,
+        )
+        finished = True
+    finally:
+        if finished:
+            pool.close()
+        else:
+            pool.stop()
+
+
+# ----------------------------------------------------------------------------
+# Dask
+# ----------------------------------------------------------------------------
+
+
+def _dask_client(distributed: Any, address: str) -> Any:
+    """A client of the scheduler at ``address``; every step of connecting,
+    the handshake included, within DASK_CONNECT_TIMEOUT seconds (Client's own
+    ``timeout`` does not bound the handshake: a listener that accepts and
+    never answers would hang it)."""
+    timeout = DASK_CONNECT_TIMEOUT
+
+    class _BoundedClient(distributed.Client):  # type: ignore[misc]
+        def start(self, **kwargs: Any) -> None:
+            try:
+                super().start(callback_timeout=timeout, **kwargs)
+            except BaseException:
+                with contextlib.suppress(Exception):
+                    self.close(timeout=min(timeout, _STOP_SECONDS))
+                raise
+
+    try:
+        return _BoundedClient(address, timeout=timeout, set_as_default=False)
+    except (OSError, TimeoutError) as exc:
+        why = str(exc) or type(exc).__name__
+        raise ClusterError(
+            f"dask: cannot reach the scheduler at {address!r} within "
+            f"{timeout:g} s: {why}"
+        ) from None
 
 
 def _dask_map(
-    tasks: Sequence[Mapping[str, Any]], address: str
-) -> Iterator[tuple[int, dict[str, Any]]]:
+    plan: _SweepPlan,
+    make_chunks: Callable[[int, float, float], list[_Chunk]],
+    address: str,
+    consume: Callable[[_Chunk, Sequence[Mapping[str, Any]]], None],
+) -> None:
+    """Solves the sweep's chunks on the Dask scheduler at ``address``.
+
+    Every wait is bounded by DASK_CONNECT_TIMEOUT: connecting; and while
+    results are awaited, a stretch that long without one makes it ask the
+    scheduler (within the same timeout) whether it still answers and has
+    workers, and gives up with ClusterError if not."""
     try:
         distributed: Any = importlib.import_module("distributed")
     except ImportError:
         raise MissingExtraError(
             "--dask needs Dask distributed: pip install 'movingpunch[dask]'"
         ) from None
+    timeout = DASK_CONNECT_TIMEOUT
+    client = _dask_client(distributed, address)
     try:
-        client = distributed.Client(address, timeout=DASK_CONNECT_TIMEOUT)
+        workers = _dask_workers(client, address, timeout)
+        chunks = make_chunks(max(workers, 1), _DASK_CHUNK_MIN, _DASK_CHUNK_MAX)
+        futures = [
+            client.submit(_solve_chunk, _tasks(plan, chunk), pure=False)
+            for chunk in chunks
+        ]
+        index = {fut.key: i for i, fut in enumerate(futures)}
+        done = distributed.as_completed(futures, loop=client.loop, with_results=True)
+        remaining, last = len(futures), time.monotonic()
+        while remaining:
+            if not done.has_ready():
+                if time.monotonic() - last > timeout:
+                    if _dask_workers(client, address, timeout) == 0:
+                        raise ClusterError(
+                            f"dask: the scheduler at {address!r} has no workers "
+                            f"(no result for {timeout:g} s)"
+                        )
+                    last = time.monotonic()
+                time.sleep(0.02)
+                continue
+            fut, result = next(done)
+            if isinstance(result, BaseException):  # cancelled: the task was lost
+                raise ClusterError(f"dask: a task was lost: {result!r}")
+            remaining -= 1
+            last = time.monotonic()
+            consume(chunks[index[fut.key]], result)
     except (OSError, TimeoutError) as exc:
         raise ClusterError(
-            f"dask: cannot reach the scheduler at {address!r}: {exc}"
+            f"dask: the scheduler at {address!r} failed: {exc}"
         ) from None
-    try:
-        futures = [client.submit(_solve_group, task, pure=False) for task in tasks]
-        index = {fut.key: i for i, fut in enumerate(futures)}
-        for fut in distributed.as_completed(futures):
-            yield index[fut.key], fut.result()
     finally:
-        client.close()
+        with _signals_deferred(), contextlib.suppress(Exception):
+            client.close(timeout=_STOP_SECONDS)
+
+
+def _dask_workers(client: Any, address: str, timeout: float) -> int:
+    """The number of workers of the scheduler, asked within ``timeout``."""
+    try:
+        return len(client.nthreads(callback_timeout=timeout))
+    except (OSError, TimeoutError) as exc:
+        raise ClusterError(
+            f"dask: the scheduler at {address!r} does not answer within "
+            f"{timeout:g} s: {str(exc) or type(exc).__name__}"
+        ) from None
 
 
 def _sweep_table(

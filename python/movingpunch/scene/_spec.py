@@ -11,6 +11,9 @@ import functools
 import json
 import math
 import numbers
+import os
+import re
+import stat
 import sys
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
@@ -63,8 +66,8 @@ clipped to it."""
 _PARAM_ALLOWED: dict[str, str] = {
     "vstar": "a number, 0 <= vstar < V*_cr(kw, nu) (< V*_R(nu) with damping > 0)",
     "kw": 'a number 1e-12 <= kw <= inf, or "inf" (smooth rigid base)',
-    "radius": "a finite number > 0 (R/h)",
-    "load": "a finite number > 0 (P/(mu h))",
+    "radius": "a number 0 < radius <= 1e12 (R/h)",
+    "load": "a number 0 < load <= 1e6 (P/(mu h))",
     "nu": "a number, 0 <= nu < 0.5",
     "damping": "a finite number >= 0 (c_w c_T/mu; 0: no dashpots)",
 }
@@ -126,13 +129,24 @@ PEAK_QUANTITIES = frozenset(
 _MAX_POINTS = 100_000
 _MAX_GRID = 1001  # per axis of a stress field
 _MAX_SWEEP = 100_000
+"""Most points a sweep computes in all: sweep values times vary values."""
 _MAX_VARY = 20
+MAX_SCENE_BYTES = 1 << 20
+"""Largest scene file read (1 MiB); a long sweep is written as start, stop,
+points rather than as a list of values."""
+MAX_NESTING = 32
+"""Deepest nesting of TOML arrays and inline tables in a scene (a scene needs
+2); checked before parsing, which recurses."""
 _TOL_MIN, _TOL_MAX = 1e-14, 1e-2
 _DEFAULT_TOL = 1e-8
 _TOL_ALLOWED = "1e-14 <= tol <= 1e-2, or a preset: " + ", ".join(
     f'"{name}" ({value:.0e})' for name, value in PRESETS.items()
 )
 _DEFAULT_NU = 0.2
+RADIUS_MAX, LOAD_MAX = 1e12, 1e6
+"""The largest R/h and P/(mu h) the contact solver takes (its validate() in
+cpp/src/contact.cpp); a scene refuses larger ones before it runs
+(test_scene_input.py::test_radius_and_load_limits_are_the_solvers)."""
 
 
 class SceneError(InvalidParameterError):
@@ -253,7 +267,7 @@ def _grid(start: float, stop: float, points: int, spacing: str) -> tuple[float, 
         grid = np.geomspace(start, stop, points)
     else:
         grid = np.linspace(start, stop, points)
-    return tuple(float(v) for v in grid)
+    return tuple(grid.tolist())
 
 
 @functools.lru_cache(maxsize=4096)
@@ -270,6 +284,134 @@ def rayleigh_speed(nu: float) -> float:
     from movingpunch import _core
 
     return float(_core.rayleigh_vstar(nu))
+
+
+# ----------------------------------------------------------------------------
+# Reading a scene file
+# ----------------------------------------------------------------------------
+
+_FILE_KINDS: tuple[tuple[Callable[[int], bool], str], ...] = (
+    (stat.S_ISDIR, "a directory"),
+    (stat.S_ISFIFO, "a FIFO (named pipe)"),
+    (stat.S_ISCHR, "a character device"),
+    (stat.S_ISBLK, "a block device"),
+    (stat.S_ISSOCK, "a socket"),
+)
+
+
+def _file_kind(mode: int) -> str:
+    for test, name in _FILE_KINDS:
+        if test(mode):
+            return name
+    return "a special file"
+
+
+def _read_scene_file(path: Path, source: str) -> str:
+    """The text of a scene file: a regular file (checked before it is opened,
+    and again on the open descriptor) of at most MAX_SCENE_BYTES, UTF-8. It
+    is opened non-blocking, so that nothing here waits for a FIFO's writer;
+    at most MAX_SCENE_BYTES + 1 bytes are read."""
+    allowed = f"a regular file of at most {MAX_SCENE_BYTES >> 20} MiB"
+
+    def refuse(problem: str, what: str = allowed) -> SceneError:
+        return SceneError(source, "(file)", problem, what)
+
+    def check(st: os.stat_result) -> None:
+        if not stat.S_ISREG(st.st_mode):
+            raise refuse(f"cannot read {_file_kind(st.st_mode)}")
+        if st.st_size > MAX_SCENE_BYTES:
+            raise refuse(f"too large: {st.st_size} bytes")
+
+    flags = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_BINARY", 0)
+    try:
+        check(os.stat(path))
+        fd = os.open(path, flags)
+    except OSError as exc:
+        raise refuse(f"cannot read: {exc.strerror or exc}", "a readable file") from None
+    chunks: list[bytes] = []
+    size = 0
+    try:
+        check(os.fstat(fd))  # the file opened is the one checked
+        while size <= MAX_SCENE_BYTES:
+            chunk = os.read(fd, MAX_SCENE_BYTES + 1 - size)
+            if not chunk:
+                break
+            chunks.append(chunk)
+            size += len(chunk)
+    except OSError as exc:
+        raise refuse(f"cannot read: {exc.strerror or exc}", "a readable file") from None
+    finally:
+        os.close(fd)
+    if size > MAX_SCENE_BYTES:  # it grew while it was read
+        raise refuse(f"too large: more than {MAX_SCENE_BYTES} bytes")
+    try:
+        return b"".join(chunks).decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise SceneError(
+            source,
+            "(file)",
+            f"not valid TOML: not UTF-8 text (byte {exc.start})",
+            "a UTF-8 TOML document",
+        ) from None
+
+
+# Where the bracket depth of TOML text can change, and where strings and
+# comments (inside which brackets do not count) begin.
+_TOML_TOKEN = re.compile(r"\"\"\"|'''|[\"'#\[\]{}]")
+
+
+# The body of each kind of TOML string, up to (not including) what ends it:
+# "unrolled" patterns (no nested repetition of alternatives), which the
+# regular-expression engine runs in time linear in the text.
+_STRING_BODY = {
+    '"': re.compile(r'[^"\\\n]*(?:\\.[^"\\\n]*)*'),
+    "'": re.compile(r"[^'\n]*"),
+    '"""': re.compile(r'[^"\\]*(?:(?:\\.|"(?!""))[^"\\]*)*', re.DOTALL),
+    "'''": re.compile(r"[^']*(?:'(?!'')[^']*)*"),
+}
+
+
+def _closing(text: str, start: int, quote: str) -> int:
+    """The index just past the string whose body starts at ``start``: past
+    its closing ``quote`` (escaped quotes are skipped in basic strings; a
+    multi-line string may end in up to two more quotes), or past the newline
+    that ends an unterminated single-line string (the parser reports it)."""
+    m = _STRING_BODY[quote].match(text, start)
+    assert m is not None  # each pattern matches the empty string
+    end = m.end()
+    if len(quote) == 1:
+        return end + 1  # past the quote, the newline, or a trailing backslash
+    end += len(quote)
+    extra = 0
+    while extra < 2 and text.startswith(quote[0], end + extra):
+        extra += 1
+    return min(end + extra, len(text))
+
+
+def _nesting_depth(text: str, limit: int) -> int:
+    """The deepest nesting of arrays and inline tables (a table header counts
+    1 or 2); brackets in strings and comments do not count. Stops as soon as
+    the depth exceeds ``limit``. Linear in the text; never recurses."""
+    depth = deepest = 0
+    i = 0
+    while True:
+        m = _TOML_TOKEN.search(text, i)
+        if m is None:
+            return deepest
+        tok, i = m.group(), m.end()
+        if tok in "[{":
+            depth += 1
+            if depth > deepest:
+                deepest = depth
+                if deepest > limit:
+                    return deepest
+        elif tok in "]}":
+            depth = max(depth - 1, 0)
+        elif tok == "#":
+            nl = text.find("\n", i)
+            i = len(text) if nl == -1 else nl + 1
+        else:
+            i = _closing(text, i, tok)
 
 
 # ----------------------------------------------------------------------------
@@ -329,8 +471,8 @@ class _Checker:
         ok = {
             "vstar": math.isfinite(x) and x >= 0,
             "kw": x >= 1e-12,  # NaN fails
-            "radius": math.isfinite(x) and x > 0,
-            "load": math.isfinite(x) and x > 0,
+            "radius": 0 < x <= RADIUS_MAX,  # NaN fails
+            "load": 0 < x <= LOAD_MAX,
             "nu": math.isfinite(x) and 0 <= x < 0.5,
             "damping": math.isfinite(x) and x >= 0,
         }[name]
@@ -373,6 +515,8 @@ class _Checker:
             raise self.fail(key, f"out of range: [{_show(lo)}, {_show(hi)}]", allowed)
         if not lo < hi:
             raise self.fail(key, "low must be below high", allowed)
+        if not math.isfinite(hi - lo):
+            raise self.fail(key, "the span high - low overflows", allowed)
         return lo, hi
 
 
@@ -433,38 +577,32 @@ class Scene:
                 "missing: the file is empty",
                 "a TOML document with [params] and [outputs] or [sweep]",
             )
+        nesting = f"arrays and inline tables nested at most {MAX_NESTING} deep"
+        if _nesting_depth(text, MAX_NESTING) > MAX_NESTING:
+            raise SceneError(
+                source, "(file)", f"nested more than {MAX_NESTING} deep", nesting
+            )
         try:
             data = tomllib.loads(text)
         except tomllib.TOMLDecodeError as exc:
             raise SceneError(
                 source, "(file)", f"not valid TOML: {exc}", "a TOML document"
             ) from None
+        except RecursionError:  # a nesting the scan above did not see
+            raise SceneError(source, "(file)", "nested too deeply", nesting) from None
         return _from_mapping(data, source)
 
     @classmethod
     def load(cls, path: str | Path) -> Scene:
         """Reads and validates a scene file. The scene's name defaults to the
-        file's stem."""
+        file's stem.
+
+        Only a regular file of at most ``MAX_SCENE_BYTES`` is read (a FIFO,
+        a device such as /dev/zero or a directory is refused before it is
+        read from), UTF-8 text nested at most ``MAX_NESTING`` deep."""
         p = Path(path)
         source = str(path)
-        try:
-            raw = p.read_bytes()
-        except OSError as exc:
-            raise SceneError(
-                source,
-                "(file)",
-                f"cannot read: {exc.strerror or exc}",
-                "a readable file",
-            ) from None
-        try:
-            text = raw.decode("utf-8")
-        except UnicodeDecodeError as exc:
-            raise SceneError(
-                source,
-                "(file)",
-                f"not valid TOML: not UTF-8 text (byte {exc.start})",
-                "a UTF-8 TOML document",
-            ) from None
+        text = _read_scene_file(p, source)
         scene = cls.from_toml(text, source)
         if not scene.name:
             scene = _replace(scene, name=p.stem)
@@ -670,24 +808,59 @@ def _parse_sweep(c: _Checker, raw: object) -> Sweep:
             raise c.fail(
                 f"sweep.{k}", "missing", "either values = [...] or start, stop, points"
             )
-    start = c.param("sweep.start", param, t["start"])
-    stop = c.param("sweep.stop", param, t["stop"])
+    start, stop, points, spacing = _range_bounds(
+        c, param, t["start"], t["stop"], t["points"], t.get("spacing", "linear")
+    )
+    return Sweep.range(
+        param, start, stop, points, spacing=spacing, quantities=quantities
+    )
+
+
+def _range_bounds(
+    c: _Checker,
+    param: str,
+    start_: object,
+    stop_: object,
+    points_: object,
+    spacing_: object,
+) -> tuple[float, float, int, str]:
+    """The checked start, stop, points and spacing of a range sweep."""
+    start = c.param("sweep.start", param, start_)
+    stop = c.param("sweep.stop", param, stop_)
     for k, v in (("start", start), ("stop", stop)):
         if not math.isfinite(v):
             raise c.fail(
                 f"sweep.{k}", "must be finite", "finite numbers; list inf in values"
             )
-    points = c.integer("sweep.points", t["points"], 2, _MAX_SWEEP)
-    spacing = c.string("sweep.spacing", t.get("spacing", "linear"), ("linear", "log"))
+    points = c.integer("sweep.points", points_, 2, _MAX_SWEEP)
+    spacing = c.string("sweep.spacing", spacing_, ("linear", "log"))
     if start == stop:
         raise c.fail("sweep.stop", "equals sweep.start", "stop != start")
     if spacing == "log" and min(start, stop) <= 0:
         raise c.fail(
             "sweep.start", "log spacing needs positive bounds", "start, stop > 0"
         )
-    return Sweep.range(
-        param, start, stop, points, spacing=spacing, quantities=quantities
+    return start, stop, points, spacing
+
+
+def _check_range(c: _Checker, s: Sweep) -> None:
+    """A range sweep: its bounds, and its values the grid they span (which
+    lies between two valid bounds: no value needs a check of its own)."""
+    start, stop, points, spacing = _range_bounds(
+        c, s.param, s.start, s.stop, s.points, s.spacing
     )
+    if s.values != _grid(start, stop, points, spacing):
+        raise c.fail(
+            "sweep.values",
+            "do not match start, stop, points and spacing",
+            "the grid of Sweep.range(param, start, stop, points, spacing=...)",
+        )
+    if len(set(s.values)) != len(s.values):
+        raise c.fail(
+            "sweep.points",
+            f"{points} points between {start:g} and {stop:g} repeat values",
+            "fewer points, or bounds further apart",
+        )
 
 
 def _parse_output(c: _Checker, kind: str, raw: object) -> OutputSpec | None:
@@ -790,7 +963,18 @@ def _validate(scene: Scene, source: str) -> None:
         if not isinstance(s, Sweep):
             raise c.fail("sweep", "must be a Sweep")
         c.string("sweep.param", s.param, PARAMS)
-        _values_list(c, "sweep.values", s.param, list(s.values), _MAX_SWEEP)
+        if s.is_range:
+            _check_range(c, s)
+        else:
+            _values_list(c, "sweep.values", s.param, list(s.values), _MAX_SWEEP)
+        n_curves = len(scene.curve_values())
+        if n_curves * len(s.values) > _MAX_SWEEP:
+            raise c.fail(
+                "sweep.points" if s.is_range else "sweep.values",
+                f"{len(s.values)} sweep values times {n_curves} vary values are "
+                f"{n_curves * len(s.values)} points",
+                f"at most {_MAX_SWEEP} points in all",
+            )
         for i, q in enumerate(s.quantities):
             c.string(f"sweep.quantities[{i}]", q, tuple(SWEEP_QUANTITIES))
         if not s.quantities:
@@ -810,36 +994,44 @@ def _validate(scene: Scene, source: str) -> None:
     _check_speeds(scene, c)
 
 
+def _sweep_extremes(sweep: Sweep) -> list[int]:
+    """The indices of the smallest and the largest sweep value, in order.
+
+    They decide the speed checks of the whole sweep: the bound on vstar,
+    V*_cr(kw, nu), grows with kw and with nu, and V*_R(nu) with nu
+    (test_scene_input.py checks both on dense grids), so the tightest point
+    of a sweep over vstar, kw or nu is its largest vstar or its smallest kw
+    or nu; over damping, the smallest value is the only one that may be 0
+    (the undamped check) and the largest the one most surely > 0. Validation
+    thus solves O(1) critical speeds per sweep, not one per point."""
+    n = len(sweep.values)
+    if sweep.is_range:
+        return [0, n - 1]
+    values = np.asarray(sweep.values, dtype=np.float64)
+    return sorted({int(np.argmin(values)), int(np.argmax(values))})
+
+
 def _check_speeds(scene: Scene, c: _Checker) -> None:
     """vstar < V*_cr(kw, nu) for every combination the scene computes
     (vstar < V*_R(nu) where damping > 0), and no output or sweep quantity
-    the damped solver cannot give at a point with damping > 0."""
+    the damped solver cannot give at a point with damping > 0. Of a sweep
+    only its extremes are checked (``_sweep_extremes``)."""
     needs_contact = any(k != "critical_speed" for k in scene.outputs)
     combos: list[tuple[dict[str, float], dict[str, str]]] = []
-    curve_values = scene.curve_values()
-    sweep_values: tuple[float | None, ...] = (None,)
-    if scene.sweep is not None:
-        sweep_values = scene.sweep.values
-    for vi, v in enumerate(curve_values):
-        bases: list[tuple[float | None, int]] = []
-        if needs_contact:
-            bases.append((None, -1))
-        if scene.sweep is not None:
-            bases.extend((s, si) for si, s in enumerate(sweep_values))
-        for s, si in bases:
+    sw = scene.sweep
+    for vi, v in enumerate(scene.curve_values()):
+        bases: list[int] = [-1] if needs_contact else []
+        if sw is not None:
+            bases.extend(_sweep_extremes(sw))
+        for si in bases:
             p = scene.point(v)
             where = {name: f"params.{name}" for name in PARAMS}
             if scene.vary is not None:
                 where[scene.vary.param] = f"vary.values[{vi}]"
-            if scene.sweep is not None and s is not None:
-                p[scene.sweep.param] = s
-                sw = scene.sweep
+            if sw is not None and si >= 0:
+                p[sw.param] = sw.values[si]
                 where[sw.param] = (
-                    (
-                        f"sweep.{'start' if si == 0 else 'stop'}"
-                        if si in (0, len(sw.values) - 1)
-                        else "sweep.values"
-                    )
+                    f"sweep.{'start' if si == 0 else 'stop'}"
                     if sw.is_range
                     else f"sweep.values[{si}]"
                 )
