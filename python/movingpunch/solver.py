@@ -734,8 +734,8 @@ def _stress_error_estimate(s: Solution) -> float:
       d >= 1e-3 from it.
 
     Calibrated against N = 256 references (docs/performance.md, "Error
-    estimates"): 3 to 65 times the actual error on the near-V*_cr grid of
-    tests/python/test_estimates.py, 3 to 12 times away from it.
+    estimates"): at most 63 times the actual error on the near-V*_cr grid of
+    tests/python/test_estimates.py, 3 to 10 times away from it (tol <= 1e-8).
     """
     impl = s._impl
     b = np.asarray(impl.g_coefficients, dtype=np.float64)
