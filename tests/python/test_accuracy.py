@@ -120,6 +120,27 @@ def test_scene_accuracy_accepts_presets_and_numbers() -> None:
 # ----------------------------------------------------------------------------
 
 
+def _peak(s: mp.Solution, peaks: mp.StressPeaks, name: str) -> float:
+    """The peak ``name`` of ``s``: the search's value, improved by a dense
+    scan (401 points) over twice the search's final step around it. The
+    search (a grid, then 3 rounds of 15 points) stops within ~span/4e4 of the
+    maximum, which can miss its value by ~1e-9 at a smooth peak (kw = 0.1,
+    V* = 0.2, R P = 0.6, tol 1e-12: 1.5e-9 while sigma_x agrees with the
+    reference to 1e-15 around it): the search's resolution, not the solver's
+    error, which is what stress_error_estimate bounds."""
+    x0 = getattr(peaks, f"{name}_x")
+    half = 2.0 * peaks.search_extent / (120 * 7**3)
+    xs = np.clip(x0 + np.linspace(-half, half, 401), 0.0, peaks.search_extent)
+    if name.startswith("bottom"):
+        vals = np.asarray(s.stress_field(xs, [-1.0]).sigma_x[0])
+    else:
+        vals = np.asarray(s.surface_stress(xs))
+    found = float(getattr(peaks, name))
+    if name == "top_compressive":
+        return min(found, float(vals.min()))
+    return max(found, float(vals.max()))
+
+
 @pytest.mark.parametrize("case", CASES, ids=lambda c: f"{c}")
 def test_stress_error_estimate_bounds_the_actual_error(case: dict[str, float]) -> None:
     """sigma_x/(P/h) on the surface, at the bottom and through the depth (at
@@ -146,7 +167,7 @@ def test_stress_error_estimate_bounds_the_actual_error(case: dict[str, float]) -
         ]
         errors.append(float(np.max(np.abs(s.depth_stress(y) - ref_curves[2]))))
         errors += [
-            abs(getattr(peaks, f) - getattr(ref_peaks, f))
+            abs(_peak(s, peaks, f) - _peak(ref, ref_peaks, f))
             for f in ("top_tensile", "bottom_tensile", "top_compressive")
         ]
         assert 0 < s.stress_error_estimate < math.inf
