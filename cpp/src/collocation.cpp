@@ -82,7 +82,8 @@ Eigen::VectorXd u_coefficients(const ChebyshevNodes& nodes, const Eigen::VectorX
 
 double u_series_minimum(const Eigen::VectorXd& b, double* r_min) {
   if (b.size() == 0) throw std::invalid_argument("u_series_minimum: no coefficients");
-  const int m = std::max(400, 8 * static_cast<int>(b.size()));
+  // 16 (N + 1) + 256 angles resolve every extremum of the degree-N polynomial.
+  const int m = std::max(400, 16 * static_cast<int>(b.size() + 1) + 256);
   int best = 0;
   double gbest = u_series(b, 1.0);
   for (int i = 1; i <= m; ++i) {
@@ -98,7 +99,7 @@ double u_series_minimum(const Eigen::VectorXd& b, double* r_min) {
   const double gr = 0.5 * (std::sqrt(5.0) - 1.0);
   double x1 = hi - gr * (hi - lo), x2 = lo + gr * (hi - lo);
   double f1 = u_series(b, x1), f2 = u_series(b, x2);
-  for (int it = 0; it < 200 && hi - lo > 1e-13; ++it) {
+  for (int it = 0; it < 200 && hi - lo > 1e-15; ++it) {
     if (f1 < f2) {
       hi = x2;
       x2 = x1;

@@ -343,54 +343,6 @@ double max_abs_sine_series(const Eigen::VectorXd& b) {
   return best;
 }
 
-double min_u_series(const Eigen::VectorXd& b, double* where) {
-  if (b.size() == 0) {
-    if (where) *where = 0.0;
-    return 0.0;
-  }
-  // A scan at 16 (N + 1) + 256 angles (r = cos theta, the ends included)
-  // resolves every extremum of the degree-N polynomial; golden section then
-  // refines the best one between its neighbours.
-  const int m = 16 * static_cast<int>(b.size() + 1) + 256;
-  int jbest = 0;
-  double best = u_series(b, 1.0);
-  for (int j = 1; j <= m; ++j) {
-    const double v = u_series(b, std::cos(kPi * j / m));
-    if (v < best) {
-      best = v;
-      jbest = j;
-    }
-  }
-  double lo = std::cos(kPi * std::min(jbest + 1, m) / m);
-  double hi = std::cos(kPi * std::max(jbest - 1, 0) / m);
-  double rbest = std::cos(kPi * jbest / m);
-  const double gr = 0.5 * (std::sqrt(5.0) - 1.0);
-  double x1 = hi - gr * (hi - lo), x2 = lo + gr * (hi - lo);
-  double f1 = u_series(b, x1), f2 = u_series(b, x2);
-  for (int it = 0; it < 80 && hi - lo > 1e-15; ++it) {
-    if (f1 < f2) {
-      hi = x2;
-      x2 = x1;
-      f2 = f1;
-      x1 = hi - gr * (hi - lo);
-      f1 = u_series(b, x1);
-    } else {
-      lo = x1;
-      x1 = x2;
-      f1 = f2;
-      x2 = lo + gr * (hi - lo);
-      f2 = u_series(b, x2);
-    }
-  }
-  for (const auto& [x, f] : {std::pair{x1, f1}, std::pair{x2, f2}})
-    if (f < best) {
-      best = f;
-      rbest = x;
-    }
-  if (where) *where = rbest;
-  return best;
-}
-
 // ---------------------------------------------------------------------------
 // The contact solve
 
@@ -768,7 +720,7 @@ DampedSolution solve_damped(const DampedParams& prm) {
   }
 
   // The margin before separation: min over r of p/((P/h) sqrt(1 - r^2)) = g(r).
-  s.margin_ = min_u_series(s.b_);
+  s.margin_ = u_series_minimum(s.b_);
 
   // Validity: p >= 0 on the contact, no penetration beside it.
   s.min_p_ = kInf;

@@ -406,8 +406,8 @@ TEST(DampedRefinement, SeriesScans) {
   EXPECT_NEAR(mp::max_abs_sine_series(b), mx, 2e-3 * mx);
   EXPECT_LE(mp::max_abs_sine_series(b), mx * (1.0 + 1e-12));
   double where = 0.0;
-  EXPECT_NEAR(mp::min_u_series(b, &where), mn, 1e-9);
-  EXPECT_LE(mp::min_u_series(b), mn + 1e-15);
+  EXPECT_NEAR(mp::u_series_minimum(b, &where), mn, 1e-9);
+  EXPECT_LE(mp::u_series_minimum(b), mn + 1e-15);
   EXPECT_NEAR(where, arg, 1e-4);
 }
 

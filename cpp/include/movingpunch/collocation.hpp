@@ -44,8 +44,9 @@ Eigen::VectorXd u_coefficients(const ChebyshevNodes& nodes, const Eigen::VectorX
 double u_series(const Eigen::VectorXd& b, double r);
 
 // The minimum of g(r) = sum b_n U_n(r) on -1 <= r <= 1 (a dense scan of
-// max(401, 8 N + 1) Chebyshev points, then golden-section refinement between
-// the neighbours of the best one, to ~1e-12 in r); its abscissa in *r_min.
+// max(401, 16 (N + 1) + 257) Chebyshev points, then golden-section refinement
+// between the neighbours of the best one, to ~1e-15 in r); its abscissa in
+// *r_min. Both solvers' pressure_margin.
 double u_series_minimum(const Eigen::VectorXd& b, double* r_min = nullptr);
 
 // Highest even n with |b_n| above round-off of the largest coefficient.

@@ -233,9 +233,6 @@ RefinementEstimate refinement_estimate(const std::vector<int>& sizes,
 // |sqrt(1 - r^2) sum b_k U_k(r)|), sampled at 8 (len(b) + 1) + 64 angles.
 double max_abs_sine_series(const Eigen::VectorXd& b);
 
-// min over r in [-1, 1] of sum_k b_k U_k(r) (a dense scan refined by golden
-// section); `where` receives the minimiser.
-double min_u_series(const Eigen::VectorXd& b, double* where = nullptr);
 
 // The regular kernel of the damped equation,
 //   K(u) = (1/phi1) int_0^inf [Re(M1 - phi1) sin(alpha u) + Im(M1 - phi1) cos(alpha u)] d alpha,
