@@ -441,8 +441,12 @@ def test_chunked_calls_give_the_values_of_one_call() -> None:
     np.testing.assert_array_equal(grid.sigma_x, sx)
 
 
+# The child installs Python's own SIGINT handler: a test run started as a
+# background job (SIGINT ignored, inherited) would otherwise ignore the signal,
+# and the chunking is what is under test, not the inherited disposition.
 _INTERRUPT_SCRIPT = """
-import sys, time
+import signal, sys, time
+signal.signal(signal.SIGINT, signal.default_int_handler)
 import numpy as np
 import movingpunch as mp
 s = mp.solve(vstar=0.2, kw=1.0, radius=100.0, load=0.002)
