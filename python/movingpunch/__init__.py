@@ -12,9 +12,6 @@ See README.md for the parameters and docs/theory.md for the method.
 
 from __future__ import annotations
 
-from importlib.metadata import PackageNotFoundError
-from importlib.metadata import version as _distribution_version
-
 from movingpunch.errors import (
     ConvergenceError,
     InvalidParameterError,
@@ -49,10 +46,20 @@ from movingpunch.solver import (
     solve,
 )
 
-try:
-    __version__ = _distribution_version("movingpunch")
-except PackageNotFoundError:  # pragma: no cover - running from a source tree
-    __version__ = _core.__version__
+
+def __getattr__(name: str) -> str:
+    """``__version__``, looked up on first use: importlib.metadata costs
+    about 60 ms of import time, which every spawned sweep worker would pay."""
+    if name != "__version__":
+        raise AttributeError(f"module 'movingpunch' has no attribute {name!r}")
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        found = version("movingpunch")
+    except PackageNotFoundError:  # pragma: no cover - running from a source tree
+        found = _core.__version__
+    globals()["__version__"] = found
+    return found
 
 __all__ = [
     "PRESETS",

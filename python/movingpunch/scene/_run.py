@@ -497,19 +497,24 @@ def _plan_sweep(scene: Scene) -> _SweepPlan:
 # Rough serial cost, in seconds, of a sweep point whose solve builds its kernel
 # table (cold) or reuses the table of the point before it (warm), of its stress
 # peaks, of a damped point; and of starting one worker process (its imports).
-# Measured as CPU time (benchmarks/bench_jobs.py): 2000 cold points of a vstar
-# sweep 1.8 s, of a kw sweep 1.3 s; 20 000 warm points of a load sweep 4.6 s.
-_COLD_SECONDS, _WARM_SECONDS, _PEAKS_SECONDS = 1.2e-3, 3e-4, 3e-2
+# Measured as CPU time in fresh processes (benchmarks/bench_jobs.py): 2000
+# cold points of a vstar sweep 2.3 s, of a kw sweep 3.8 s (each kw its own
+# critical speed too); 20 000 warm points of a load sweep 6.5 s.
+_COLD_SECONDS, _WARM_SECONDS, _PEAKS_SECONDS = 1.5e-3, 3e-4, 3e-2
 _DAMPED_SECONDS = 0.7
 _STARTUP_SECONDS = 0.6
 # A chunk (the unit of work a worker is sent) is sized to about
 # 1/_CHUNKS_PER_JOB of a worker's share, within [_CHUNK_MIN, _CHUNK_MAX]
 # seconds (on Dask [_DASK_CHUNK_MIN, _DASK_CHUNK_MAX]) and _CHUNK_POINTS points.
-_CHUNKS_PER_JOB = 4
-_CHUNK_MIN, _CHUNK_MAX = 0.02, 0.2
+_CHUNKS_PER_JOB = 8
+_CHUNK_MIN, _CHUNK_MAX = 0.02, 0.1
 _DASK_CHUNK_MIN, _DASK_CHUNK_MAX = 0.05, 1.0
 _CHUNK_POINTS = 1000
-_IN_FLIGHT = 2  # chunks sent ahead to each worker: one computing, one queued
+# Chunks sent ahead to each worker: one computing, one queued, while more
+# than _TAIL chunks per process are left; then one, so that no process idles
+# at the end while a worker still holds a queued chunk.
+_IN_FLIGHT = 2
+_TAIL = 2
 _STOP_SECONDS = 2.0  # how long stopped workers get to exit before SIGKILL
 
 # One unit of work: (group, keys) pieces, each contiguous points of one group.
@@ -785,9 +790,13 @@ class _WorkerPool:
         if not conns and solve_here is None:
             raise ValueError("no worker and no solve_here")
 
+        processes = len(conns) + (solve_here is not None)
+
         def feed(proc: multiprocessing.process.BaseProcess, conn: Connection) -> None:
             nonlocal sent
-            while in_flight[id(conn)] < _IN_FLIGHT and sent < len(messages):
+            while sent < len(messages) and in_flight[id(conn)] < (
+                _IN_FLIGHT if len(messages) - sent > _TAIL * processes else 1
+            ):
                 try:
                     conn.send((sent, messages[sent]))
                 except OSError:
