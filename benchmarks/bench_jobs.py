@@ -32,7 +32,6 @@ import sys
 import time
 from collections.abc import Callable
 
-import movingpunch as mp
 from movingpunch.scene import Scene, Sweep
 
 PARAMS = {"vstar": 0.2, "kw": 1.0, "radius": 100.0, "load": 0.002, "nu": 0.2}
