@@ -727,13 +727,6 @@ def _chebyshev_tail(c: FloatArray) -> float:
     return first / (1.0 - rho)
 
 
-_LOOSE = 1e-7
-"""Above this tol the stress estimate keeps the a-priori kernel term
-1e-2 tol max(p0, sum |b_k|): a kernel table reused from a narrower contact
-there (the cache serves any width it covers) gave sigma_x a 1.4e-4 error at
-tol 1e-2 (kw = 0.1, V* = 0.2, R P = 0.6, after R P = 0.2) between the sample
-points of the measured change, 6 times the rest of the estimate."""
-
 _SIZES = (8, 12, 16, 24, 32, 48, 64, 96, 128, 192, 256, 384, 512, 640, 768, 896)
 """The collocation sizes the core tries in turn (cpp/src/contact.cpp kSizes,
 without its cap 1024)."""
@@ -778,7 +771,8 @@ def _stress_error_estimate(s: Solution) -> float:
       (the load's slope in a is about 2, and the stresses' own alpha integrals
       on the same panels err by as much again) and ``gain``; not the a-priori
       1e-2 tol the quadrature was asked for, which is 1e2 to 1e6 times what it
-      delivers, except above tol 1e-7 (_LOOSE), where that is kept;
+      delivers (the core never builds the kernel looser than 1e-10, so a
+      table reused from another solve at a loose tol is as good);
     * round-off, 64 eps N sum |b_k| times ``gain``;
     * the a/h error da (error_estimate): p moves by p0 da/a, and the edge's
       cusp -phi2 p by phi2 p0 (da/a)/sqrt(2 d) at a relative distance
@@ -795,8 +789,6 @@ def _stress_error_estimate(s: Solution) -> float:
     a = impl.a
     p0 = abs(impl.p0)
     kernel = 10.0 * total * impl.error_budget["kernel"] / a
-    if s.tol > _LOOSE:
-        kernel = max(kernel, 1e-2 * s.tol * max(p0, total))
     roundoff = 64.0 * _EPS * len(b) * total
     try:
         phi2_value = _core.phi2(s.vstar, s.nu)
@@ -813,7 +805,12 @@ def _stress_error_estimate(s: Solution) -> float:
                 radius=s.radius,
                 load=s.load,
                 nu=s.nu,
-                tol=max(1e-2 * s.tol, 1e-14),
+                # Its width and kernel well below this one's collocation
+                # error: at a loose tol the change would measure the root's
+                # own 1e-2 tol, and at N = 24 the 1e-10 kernel of a tol-1e-6
+                # solve moves sigma_x by 6e-10 where N = 16 is right to 1e-12
+                # (kw = 10, V* = 0.5).
+                tol=min(max(1e-2 * s.tol, 1e-14), 1e-10),
                 allow_unphysical=True,
                 n=finer,
             )

@@ -103,6 +103,30 @@ def test_error_estimate_is_honest_near_critical(
     check_honest(s, ref, u)
 
 
+@pytest.mark.parametrize(
+    ("kw", "eps"),
+    [
+        pytest.param(kw, eps, marks=() if (kw, eps) in FAST else pytest.mark.slow)
+        for kw in CASES
+        for eps in NEAR
+        if eps >= 1e-12
+    ],
+)
+@pytest.mark.parametrize("tol", [1e-4, 1e-6])
+def test_error_estimate_is_honest_near_critical_at_loose_tol(
+    kw: float, eps: float, tol: float
+) -> None:
+    """The same at a loose tol, within 1e-12 of V*_cr. (Within 1e-14, at
+    kw = 10 and tol 1e-6, the estimate is 2.9e-8 for an error of about 1e-10,
+    the reference's own uncertainty: 230 times, from N = 16's changes and
+    the kernel's round-off, both at the resonance's round-off scale; the
+    default tol refines N past that, docs/performance.md.)"""
+    ref, u = reference(kw, eps)
+    s = mp.solve(vstar=_vstar(kw, eps), kw=kw, tol=tol, **_params(kw))
+    assert s.valid
+    check_honest(s, ref, u)
+
+
 def test_estimate_at_the_issues_case_is_no_longer_absurd() -> None:
     """kw = 1 within 1e-12 of V*_cr: the estimate was 4.8e2 (a/h ~ 1.23)."""
     s = mp.solve(vstar=_vstar(1.0, 1e-12), kw=1.0, **PAPER)
@@ -126,8 +150,9 @@ AWAY = [
 def away_reference(key: tuple[tuple[str, float], ...]) -> tuple[mp.Solution, ...]:
     """As reference_solutions, for a case away from V*_cr given as items."""
     case = dict(key)
-    fine = mp.solve(**case, **PAPER, n=256, tol=1e-14)
-    other = mp.solve(**case, **PAPER, n=192, tol=1e-12)
+    params = {**PAPER, **case}
+    fine = mp.solve(**params, n=256, tol=1e-14)
+    other = mp.solve(**params, n=192, tol=1e-12)
     return fine, other
 
 
@@ -135,8 +160,30 @@ def away_reference(key: tuple[tuple[str, float], ...]) -> tuple[mp.Solution, ...
 def test_error_estimate_is_honest_away_from_critical(case: dict[str, float]) -> None:
     fine, other = away_reference(tuple(case.items()))
     u = abs(fine.a - other.a)
-    for tol in (1e-8, 1e-10, 1e-12):
+    for tol in (1e-3, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12):
         check_honest(mp.solve(**case, **PAPER, tol=tol), fine.a, u)
+
+
+@pytest.mark.parametrize("kw", [0.1, 1.0, 10.0])
+@pytest.mark.parametrize("fraction", [0.0, 0.3, 0.7, 0.95])
+@pytest.mark.parametrize("tol", [1e-3, 1e-4, 1e-6])
+def test_error_estimate_is_honest_at_loose_tol(
+    kw: float, fraction: float, tol: float
+) -> None:
+    """At a loose tol the estimate once exceeded the error 1e2 ... 1e4 times
+    (a kernel built to 1e-2 tol, whose QUADPACK and Chebyshev-tail estimates
+    overstate what it delivers; an N error read from two sizes only). The
+    kernel is now never looser than 1e-10, and N is refined over three sizes
+    unless the change is at round-off."""
+    v = mp.critical_vstar(kw) * fraction
+    fine, other = away_reference((("vstar", v), ("kw", kw), *_loads(kw)))
+    s = mp.solve(vstar=v, kw=kw, tol=tol, **_params(kw))
+    check_honest(s, fine.a, abs(fine.a - other.a))
+
+
+def _loads(kw: float) -> tuple[tuple[str, float], ...]:
+    """CASES' load overrides for kw as items (away_reference adds PAPER)."""
+    return tuple(CASES.get(kw, {}).items())
 
 
 def test_budget_parts_add_up_to_the_estimate() -> None:
@@ -174,11 +221,27 @@ def stress_values(s: mp.Solution, ref: mp.Solution) -> npt.NDArray[np.float64]:
     return np.concatenate([peaks, surface])
 
 
+_REFERENCE_STRESSES: dict[int, tuple[npt.NDArray[np.float64], float]] = {}
+
+
+def reference_stresses(
+    fine: mp.Solution, other: mp.Solution
+) -> tuple[npt.NDArray[np.float64], float]:
+    """stress_values of the reference and their uncertainty (its difference
+    from the other reference), computed once per reference: the peak search
+    on an N = 256 solution near V*_cr takes seconds."""
+    key = id(fine)
+    if key not in _REFERENCE_STRESSES:
+        ref = stress_values(fine, fine)
+        u = float(np.max(np.abs(stress_values(other, fine) - ref)))
+        _REFERENCE_STRESSES[key] = (ref, u)
+    return _REFERENCE_STRESSES[key]
+
+
 def check_stress_honest(s: mp.Solution, fine: mp.Solution, other: mp.Solution) -> None:
     """As check_honest, for stress_error_estimate; the floor is 64 eps
     times the largest |sigma_x|, the round-off scale of the stresses."""
-    ref = stress_values(fine, fine)
-    u = float(np.max(np.abs(stress_values(other, fine) - ref)))
+    ref, u = reference_stresses(fine, other)
     actual = float(np.max(np.abs(stress_values(s, fine) - ref)))
     est = s.stress_error_estimate
     where = (s.kw, s.vstar, s.tol, s.collocation_n, actual, u, est, s.warnings)
@@ -209,14 +272,28 @@ def test_stress_error_estimate_is_honest_near_critical(
     check_stress_honest(s, fine, other)
 
 
+@pytest.mark.parametrize(("kw", "eps"), sorted(FAST))
+@pytest.mark.parametrize("tol", [1e-3, 1e-4, 1e-6])
+def test_stress_error_estimate_is_honest_near_critical_at_loose_tol(
+    kw: float, eps: float, tol: float
+) -> None:
+    """The same at a loose tol (an a-priori kernel term once made it up to
+    6e7 times the actual error there)."""
+    fine, other = reference_solutions(kw, eps)
+    s = mp.solve(vstar=_vstar(kw, eps), kw=kw, tol=tol, **_params(kw))
+    assert s.valid
+    check_stress_honest(s, fine, other)
+
+
 @pytest.mark.parametrize("case", AWAY)
 def test_stress_error_estimate_is_honest_away_from_critical(
     case: dict[str, float],
 ) -> None:
-    """The same at tol 1e-8 ... 1e-12 away from V*_cr (it was 1400 times the
-    actual error at the paper's Fig. 4 case)."""
+    """The same at tol 1e-3 ... 1e-12 away from V*_cr (it was 1400 times the
+    actual error at the paper's Fig. 4 case, and up to 6e7 times at tol 1e-3
+    with the a-priori kernel term once kept above tol 1e-7)."""
     fine, other = away_reference(tuple(case.items()))
-    for tol in (1e-8, 1e-10, 1e-12):
+    for tol in (1e-3, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12):
         check_stress_honest(mp.solve(**case, **PAPER, tol=tol), fine, other)
 
 
