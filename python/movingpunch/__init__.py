@@ -30,6 +30,8 @@ except ImportError as exc:  # pragma: no cover - depends on how it was installed
         "`pip install .` from the repository or see README"
     ) from exc
 
+from movingpunch.contract import ContactSolution
+from movingpunch.damped import DampedSolution
 from movingpunch.fields import StressField, StressPeaks
 from movingpunch.scene import Scene, SceneError, SceneResult, bundled_scenes
 from movingpunch.solver import (
@@ -64,7 +66,9 @@ def __getattr__(name: str) -> str:
 
 __all__ = [
     "PRESETS",
+    "ContactSolution",
     "ConvergenceError",
+    "DampedSolution",
     "InvalidParameterError",
     "MovingPunchError",
     "OutputError",

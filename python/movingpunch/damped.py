@@ -23,12 +23,20 @@ import numpy as np
 import numpy.typing as npt
 
 from movingpunch import _core
+from movingpunch._evaluate import (
+    _as_points,
+    _chunked_grid,
+    _flat,
+    _is_scalar,
+    _json_safe,
+    _pointwise,
+    _real_any,
+)
 from movingpunch.errors import InvalidParameterError, SupercriticalSpeedError
 from movingpunch.fields import StressField, StressPeaks, derived_stresses
 from movingpunch.peaks import search_peaks
 from movingpunch.solver import (
     FloatArray,
-    _as_points,
     _check_flag,
     _check_kw,
     _check_nu,
@@ -36,13 +44,7 @@ from movingpunch.solver import (
     _check_size,
     _check_tol,
     _check_vstar,
-    _chunked_grid,
-    _flat,
-    _is_scalar,
-    _json_safe,
-    _pointwise,
     _real,
-    _real_any,
 )
 
 __all__ = ["DampedSolution", "check_damping", "damped_layer_response", "solve_damped"]

@@ -24,22 +24,29 @@ from __future__ import annotations
 import functools
 import math
 import numbers
-import time
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field, fields
 from types import MappingProxyType
-from typing import TYPE_CHECKING, Any, Literal, overload
+from typing import Any, Literal, overload
 
 import numpy as np
 import numpy.typing as npt
 
 from movingpunch import _core
+from movingpunch._evaluate import (
+    _as_points,
+    _check_positive_extent,
+    _chunked_grid,
+    _depths,
+    _flat,
+    _is_scalar,
+    _json_safe,
+    _pointwise,
+)
+from movingpunch.contract import ContactSolution
 from movingpunch.errors import InvalidParameterError
 from movingpunch.fields import StressField, StressPeaks, derived_stresses
 from movingpunch.peaks import search_peaks
-
-if TYPE_CHECKING:
-    from movingpunch.damped import DampedSolution
 
 __all__ = [
     "PRESETS",
@@ -197,153 +204,6 @@ def _check_flag(name: str, value: object) -> bool:
     return bool(value)
 
 
-def _as_points(name: str, x: object) -> FloatArray:
-    """``x`` as a float64 array of finite values (any shape). Masked arrays
-    are refused: their mask would be ignored."""
-    if isinstance(x, np.ma.MaskedArray):
-        raise InvalidParameterError(
-            f"{name} must be a plain array; masked arrays are not supported: "
-            f"use {name}.filled(...) or {name}.compressed()"
-        )
-    try:
-        raw = np.asarray(x)
-    except (TypeError, ValueError) as exc:
-        raise InvalidParameterError(
-            f"{name} must be a real number or an array of them, got {x!r}"
-        ) from exc
-    if raw.dtype.kind not in "iuf":
-        raise InvalidParameterError(
-            f"{name} must be a real number or an array of them, got {x!r}"
-        )
-    points = np.asarray(raw, dtype=np.float64)
-    bad = ~np.isfinite(points)
-    if bad.any():
-        first = float(points[bad].flat[0])
-        raise InvalidParameterError(
-            f"{name} must contain only finite numbers, got {first!r}"
-        )
-    return points
-
-
-def _depths(y: object) -> FloatArray:
-    """``y`` as float64 depths y/h, each in [-1, 0]."""
-    points = _as_points("y", y)
-    bad = (points < -1.0) | (points > 0.0)
-    if bad.any():
-        raise InvalidParameterError(
-            f"y must satisfy {_RANGES['y']}, got {float(points[bad].flat[0])!r}"
-        )
-    return points
-
-
-def _check_positive_extent(value: object) -> float:
-    x = _real_any("extent", value)
-    if not (math.isfinite(x) and x > 0):
-        raise InvalidParameterError(f"extent must be a finite x/h > 0, got {value!r}")
-    return x
-
-
-def _real_any(name: str, value: object) -> float:
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
-        raise InvalidParameterError(f"{name} must be a real number, got {value!r}")
-    try:
-        return float(value)
-    except OverflowError:
-        raise InvalidParameterError(f"{name} is too large for a float") from None
-
-
-def _pointwise(
-    name: str,
-    x: npt.ArrayLike,
-    evaluate: Callable[[FloatArray], FloatArray],
-    points: FloatArray | None = None,
-) -> float | FloatArray:
-    """Applies a vectorised core function to ``x``: a float for a scalar
-    ``x``, else an array of the shape of ``x``."""
-    pts = _as_points(name, x) if points is None else points
-    values = _chunked(evaluate, _flat(pts))
-    return float(values[0]) if _is_scalar(x) else values.reshape(pts.shape)
-
-
-_FIRST_CHUNK = 32
-"""Points of the first call of a chunked evaluation (which times it)."""
-_CHUNK_SECONDS = 0.2
-"""Target duration of each further call: Python takes control between calls,
-so Ctrl-C (KeyboardInterrupt) stops a long evaluation within about this."""
-
-
-def _chunked(
-    evaluate: Callable[[FloatArray], FloatArray], points: FloatArray
-) -> FloatArray:
-    """``evaluate(points)`` (a 1-d array in, one value per point out) in calls
-    of about ``_CHUNK_SECONDS`` each, sized by the measured cost per point,
-    so that the interpreter can raise KeyboardInterrupt in between. Small
-    calls take one call."""
-    parts = _chunk_calls(lambda lo, hi: evaluate(points[lo:hi]), len(points))
-    return parts[0] if len(parts) == 1 else np.concatenate(parts)
-
-
-def _chunk_calls(run: Callable[[int, int], FloatArray], n: int) -> list[FloatArray]:
-    """Calls ``run(lo, hi)`` over [0, n) in consecutive slices: first
-    ``_FIRST_CHUNK`` points, then slices that take about ``_CHUNK_SECONDS``
-    at the cost per point measured so far (the rest in one call if it would
-    take no longer). Returns the results in order."""
-    if n <= _FIRST_CHUNK:
-        return [run(0, n)]
-    parts: list[FloatArray] = []
-    done, spent = 0, 0.0
-    size = _FIRST_CHUNK
-    while done < n:
-        hi = min(n, done + size)
-        start = time.perf_counter()
-        parts.append(run(done, hi))
-        spent += time.perf_counter() - start
-        done = hi
-        per_point = max(spent / done, 1e-9)
-        size = max(_FIRST_CHUNK, int(_CHUNK_SECONDS / per_point))
-        if (n - done) * per_point <= 1.25 * _CHUNK_SECONDS:
-            size = n - done
-    return parts
-
-
-def _chunked_grid(
-    evaluate: Callable[[FloatArray, FloatArray], tuple[FloatArray, ...]],
-    xs: FloatArray,
-    ys: FloatArray,
-) -> tuple[FloatArray, ...]:
-    """A grid evaluation (arrays shaped (len(ys), len(xs))) in slices of
-    ``xs`` as ``_chunked`` does, joined along x."""
-    parts: list[tuple[FloatArray, ...]] = []
-
-    def run(lo: int, hi: int) -> FloatArray:
-        parts.append(evaluate(xs[lo:hi], ys))
-        return np.empty(0)
-
-    _chunk_calls(run, len(xs))
-    if len(parts) == 1:
-        return parts[0]
-    return tuple(
-        np.concatenate([p[k] for p in parts], axis=1) for k in range(len(parts[0]))
-    )
-
-
-def _is_scalar(x: npt.ArrayLike) -> bool:
-    """A plain scalar (not a 0-d array): results for it are floats."""
-    return not isinstance(x, np.ndarray) and np.ndim(x) == 0
-
-
-def _flat(points: FloatArray) -> FloatArray:
-    return np.ascontiguousarray(points.reshape(-1))
-
-
-def _json_safe(value: object) -> object:
-    if isinstance(value, Mapping):
-        return {str(k): _json_safe(v) for k, v in value.items()}
-    if isinstance(value, float) and not math.isfinite(value):
-        return str(value)  # "inf", "-inf", "nan"
-    return value
-
-
 @dataclass(frozen=True)
 class Solution:
     """Solution of the moving-punch contact problem (dimensionless).
@@ -420,6 +280,38 @@ class Solution:
         response (docs/performance.md). Computed on first access (it costs
         that second solve, sharing this one's kernel table)."""
         return _stress_error_estimate(self)
+
+    @property
+    def damping(self) -> float:
+        """c_w c_T/mu: 0.0, the paper's undamped foundation."""
+        return 0.0
+
+    @property
+    def contact_interval(self) -> tuple[float, float]:
+        """(x_back, x_front) = (-a/h, a/h): the contact is symmetric."""
+        return (-self.a, self.a)
+
+    @property
+    def half_width(self) -> float:
+        """Half the contact's width over h: a/h."""
+        return self.a
+
+    @property
+    def centre(self) -> float:
+        """Centre of the contact over h: 0.0 (symmetric)."""
+        return 0.0
+
+    @property
+    def drag(self) -> float:
+        """Horizontal force on the punch over P: 0.0 without damping (the
+        symmetric pressure does no work)."""
+        return 0.0
+
+    @property
+    def dissipation(self) -> float:
+        """Power dissipated over P V (equal to ``drag`` by the energy
+        balance): 0.0 without damping."""
+        return 0.0
 
     @property
     def mu_over_load(self) -> float:
@@ -570,6 +462,12 @@ class Solution:
         }
         data["warnings"] = list(self.warnings)
         data["stress_error_estimate"] = self.stress_error_estimate
+        data["damping"] = self.damping
+        data["contact_interval"] = list(self.contact_interval)
+        data["half_width"] = self.half_width
+        data["centre"] = self.centre
+        data["drag"] = self.drag
+        data["dissipation"] = self.dissipation
         return data
 
 
@@ -600,7 +498,7 @@ def solve(
     allow_unphysical: bool = ...,
     n: int | None = ...,
     damping: float,
-) -> Solution | DampedSolution: ...
+) -> ContactSolution: ...
 
 
 def solve(
@@ -614,7 +512,7 @@ def solve(
     allow_unphysical: bool = False,
     n: int | None = None,
     damping: float = 0.0,
-) -> Solution | DampedSolution:
+) -> ContactSolution:
     """Solves the contact problem of a rigid cylinder sliding over the layer.
 
     Parameters are dimensionless (see the module docstring). Raises

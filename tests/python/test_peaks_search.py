@@ -424,18 +424,18 @@ def test_masked_arrays_are_refused_by_the_damped_solution() -> None:
 def test_chunked_calls_give_the_values_of_one_call() -> None:
     # Below the first chunk the core is called once; above, in slices: the
     # values must not depend on the slicing.
-    from movingpunch import solver
+    from movingpunch import _evaluate
 
     s = mp.solve(vstar=0.2, kw=1.0, radius=100.0, load=0.002)
     x = np.linspace(-3.0, 3.0, 5000).reshape(50, 100)
     whole = s._impl.surface_stress(x.reshape(-1)).reshape(x.shape)
-    old = solver._CHUNK_SECONDS
+    old = _evaluate._CHUNK_SECONDS
     try:
-        solver._CHUNK_SECONDS = 1e-4  # many small slices
+        _evaluate._CHUNK_SECONDS = 1e-4  # many small slices
         sliced = s.surface_stress(x)
         grid = s.stress_field(x[0], [-1.0, -0.5, 0.0])
     finally:
-        solver._CHUNK_SECONDS = old
+        _evaluate._CHUNK_SECONDS = old
     np.testing.assert_array_equal(sliced, whole)
     sx, _, _ = s._impl.stress_field(x[0], np.array([-1.0, -0.5, 0.0]))
     np.testing.assert_array_equal(grid.sigma_x, sx)

@@ -1,0 +1,172 @@
+"""Evaluating a solution at user-given points: the shared plumbing of every
+result class (movingpunch.contract).
+
+Points are checked (finite reals; masked arrays refused; depths in the
+layer), evaluated by the core's vectorised functions in slices of about
+``_CHUNK_SECONDS`` (so Ctrl-C stops a long evaluation), and returned as a
+float for a scalar argument, else an array of the argument's shape.
+
+Pure NumPy: no _core import (callers pass the core's functions).
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+import time
+from collections.abc import Callable, Mapping
+
+import numpy as np
+import numpy.typing as npt
+
+from movingpunch.errors import InvalidParameterError
+from movingpunch.fields import FloatArray
+
+_Y_RANGE = "-1 <= y <= 0, y/h (the layer)"
+
+
+def _as_points(name: str, x: object) -> FloatArray:
+    """``x`` as a float64 array of finite values (any shape). Masked arrays
+    are refused: their mask would be ignored."""
+    if isinstance(x, np.ma.MaskedArray):
+        raise InvalidParameterError(
+            f"{name} must be a plain array; masked arrays are not supported: "
+            f"use {name}.filled(...) or {name}.compressed()"
+        )
+    try:
+        raw = np.asarray(x)
+    except (TypeError, ValueError) as exc:
+        raise InvalidParameterError(
+            f"{name} must be a real number or an array of them, got {x!r}"
+        ) from exc
+    if raw.dtype.kind not in "iuf":
+        raise InvalidParameterError(
+            f"{name} must be a real number or an array of them, got {x!r}"
+        )
+    points = np.asarray(raw, dtype=np.float64)
+    bad = ~np.isfinite(points)
+    if bad.any():
+        first = float(points[bad].flat[0])
+        raise InvalidParameterError(
+            f"{name} must contain only finite numbers, got {first!r}"
+        )
+    return points
+
+
+def _depths(y: object) -> FloatArray:
+    """``y`` as float64 depths y/h, each in [-1, 0]."""
+    points = _as_points("y", y)
+    bad = (points < -1.0) | (points > 0.0)
+    if bad.any():
+        raise InvalidParameterError(
+            f"y must satisfy {_Y_RANGE}, got {float(points[bad].flat[0])!r}"
+        )
+    return points
+
+
+def _check_positive_extent(value: object) -> float:
+    x = _real_any("extent", value)
+    if not (math.isfinite(x) and x > 0):
+        raise InvalidParameterError(f"extent must be a finite x/h > 0, got {value!r}")
+    return x
+
+
+def _real_any(name: str, value: object) -> float:
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
+        raise InvalidParameterError(f"{name} must be a real number, got {value!r}")
+    try:
+        return float(value)
+    except OverflowError:
+        raise InvalidParameterError(f"{name} is too large for a float") from None
+
+
+def _pointwise(
+    name: str,
+    x: npt.ArrayLike,
+    evaluate: Callable[[FloatArray], FloatArray],
+    points: FloatArray | None = None,
+) -> float | FloatArray:
+    """Applies a vectorised core function to ``x``: a float for a scalar
+    ``x``, else an array of the shape of ``x``."""
+    pts = _as_points(name, x) if points is None else points
+    values = _chunked(evaluate, _flat(pts))
+    return float(values[0]) if _is_scalar(x) else values.reshape(pts.shape)
+
+
+_FIRST_CHUNK = 32
+"""Points of the first call of a chunked evaluation (which times it)."""
+_CHUNK_SECONDS = 0.2
+"""Target duration of each further call: Python takes control between calls,
+so Ctrl-C (KeyboardInterrupt) stops a long evaluation within about this."""
+
+
+def _chunked(
+    evaluate: Callable[[FloatArray], FloatArray], points: FloatArray
+) -> FloatArray:
+    """``evaluate(points)`` (a 1-d array in, one value per point out) in calls
+    of about ``_CHUNK_SECONDS`` each, sized by the measured cost per point,
+    so that the interpreter can raise KeyboardInterrupt in between. Small
+    calls take one call."""
+    parts = _chunk_calls(lambda lo, hi: evaluate(points[lo:hi]), len(points))
+    return parts[0] if len(parts) == 1 else np.concatenate(parts)
+
+
+def _chunk_calls(run: Callable[[int, int], FloatArray], n: int) -> list[FloatArray]:
+    """Calls ``run(lo, hi)`` over [0, n) in consecutive slices: first
+    ``_FIRST_CHUNK`` points, then slices that take about ``_CHUNK_SECONDS``
+    at the cost per point measured so far (the rest in one call if it would
+    take no longer). Returns the results in order."""
+    if n <= _FIRST_CHUNK:
+        return [run(0, n)]
+    parts: list[FloatArray] = []
+    done, spent = 0, 0.0
+    size = _FIRST_CHUNK
+    while done < n:
+        hi = min(n, done + size)
+        start = time.perf_counter()
+        parts.append(run(done, hi))
+        spent += time.perf_counter() - start
+        done = hi
+        per_point = max(spent / done, 1e-9)
+        size = max(_FIRST_CHUNK, int(_CHUNK_SECONDS / per_point))
+        if (n - done) * per_point <= 1.25 * _CHUNK_SECONDS:
+            size = n - done
+    return parts
+
+
+def _chunked_grid(
+    evaluate: Callable[[FloatArray, FloatArray], tuple[FloatArray, ...]],
+    xs: FloatArray,
+    ys: FloatArray,
+) -> tuple[FloatArray, ...]:
+    """A grid evaluation (arrays shaped (len(ys), len(xs))) in slices of
+    ``xs`` as ``_chunked`` does, joined along x."""
+    parts: list[tuple[FloatArray, ...]] = []
+
+    def run(lo: int, hi: int) -> FloatArray:
+        parts.append(evaluate(xs[lo:hi], ys))
+        return np.empty(0)
+
+    _chunk_calls(run, len(xs))
+    if len(parts) == 1:
+        return parts[0]
+    return tuple(
+        np.concatenate([p[k] for p in parts], axis=1) for k in range(len(parts[0]))
+    )
+
+
+def _is_scalar(x: npt.ArrayLike) -> bool:
+    """A plain scalar (not a 0-d array): results for it are floats."""
+    return not isinstance(x, np.ndarray) and np.ndim(x) == 0
+
+
+def _flat(points: FloatArray) -> FloatArray:
+    return np.ascontiguousarray(points.reshape(-1))
+
+
+def _json_safe(value: object) -> object:
+    if isinstance(value, Mapping):
+        return {str(k): _json_safe(v) for k, v in value.items()}
+    if isinstance(value, float) and not math.isfinite(value):
+        return str(value)  # "inf", "-inf", "nan"
+    return value

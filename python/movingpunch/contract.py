@@ -1,0 +1,184 @@
+"""The result contract: what every contact solution offers.
+
+``movingpunch.solve`` returns a ``Solution`` (frictionless, undamped: the
+paper's model) or, with ``damping > 0``, a ``DampedSolution`` (an asymmetric
+contact with drag). Both satisfy ``ContactSolution``, and everything that
+consumes a solution — scenes, the CLI, the terminal UI — uses only this
+contract, never the concrete class. A new physical effect (a punch profile,
+friction, another foundation) returns a result that satisfies it too.
+
+Dimensionless throughout: lengths per layer thickness h, pressures and
+stresses per P/h, the punch moving towards +x.
+
+Pure typing: no _core import, no NumPy work.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from typing import Any, Protocol, overload, runtime_checkable
+
+import numpy.typing as npt
+
+from movingpunch.fields import FloatArray, StressField, StressPeaks
+
+__all__ = ["CONTRACT_FIELDS", "CONTRACT_METHODS", "ContactSolution", "Points"]
+
+Points = npt.NDArray[Any] | Sequence[Any]
+"""Several positions: an array or a sequence (a scalar gives a float)."""
+
+
+@runtime_checkable
+class ContactSolution(Protocol):
+    """Every solution's fields and evaluations (see the module docstring).
+
+    Parameters: ``vstar``, ``kw``, ``radius``, ``load``, ``nu``, ``tol``,
+    ``damping`` (0.0 for the paper's model). The contact: ``contact_interval``
+    (x_back, x_front), ``half_width``, ``centre``, ``a`` (the leading end;
+    the half-width of a symmetric contact), ``indentation``, ``drag`` (the
+    horizontal force over P; 0.0 without damping) and ``dissipation`` (the
+    power dissipated over P V, equal to ``drag`` by the energy balance).
+    Trust: ``error_estimate`` (of the contact ends), ``stress_error_estimate``,
+    ``valid``, ``validity``, ``warnings``. Cost:
+    ``stage_times``, ``kernel_builds``, ``iterations``, ``elapsed``,
+    ``collocation_n``.
+    """
+
+    # Data: read-only (results are immutable).
+    @property
+    def vstar(self) -> float: ...
+    @property
+    def kw(self) -> float: ...
+    @property
+    def radius(self) -> float: ...
+    @property
+    def load(self) -> float: ...
+    @property
+    def nu(self) -> float: ...
+    @property
+    def tol(self) -> float: ...
+    @property
+    def damping(self) -> float: ...
+    @property
+    def a(self) -> float: ...
+    @property
+    def contact_interval(self) -> tuple[float, float]: ...
+    @property
+    def half_width(self) -> float: ...
+    @property
+    def centre(self) -> float: ...
+    @property
+    def indentation(self) -> float: ...
+    @property
+    def drag(self) -> float: ...
+    @property
+    def dissipation(self) -> float: ...
+    @property
+    def critical_vstar(self) -> float: ...
+    @property
+    def rayleigh_vstar(self) -> float: ...
+    @property
+    def phi1(self) -> float: ...
+    @property
+    def iterations(self) -> int: ...
+    @property
+    def collocation_n(self) -> int: ...
+    @property
+    def error_estimate(self) -> float: ...
+    @property
+    def stress_error_estimate(self) -> float: ...
+    @property
+    def elapsed(self) -> float: ...
+    @property
+    def valid(self) -> bool: ...
+    @property
+    def validity(self) -> str: ...
+    @property
+    def min_pressure(self) -> float: ...
+    @property
+    def pressure_margin(self) -> float: ...
+    @property
+    def min_gap(self) -> float: ...
+    @property
+    def warnings(self) -> tuple[str, ...]: ...
+    @property
+    def kernel_builds(self) -> int: ...
+    @property
+    def stage_times(self) -> Mapping[str, float]: ...
+
+    # Evaluations: a float for a scalar argument, else an array of its shape.
+    @overload
+    def pressure(self, x: float) -> float: ...
+    @overload
+    def pressure(self, x: Points) -> FloatArray: ...
+    @overload
+    def surface_stress(self, x: float) -> float: ...
+    @overload
+    def surface_stress(self, x: Points) -> FloatArray: ...
+    @overload
+    def depth_stress(self, y: float) -> float: ...
+    @overload
+    def depth_stress(self, y: Points) -> FloatArray: ...
+    @overload
+    def displacement(self, x: float, y: float = 0.0) -> float: ...
+    @overload
+    def displacement(self, x: Points, y: float = 0.0) -> FloatArray: ...
+    @overload
+    def surface_displacement(self, x: float) -> float: ...
+    @overload
+    def surface_displacement(self, x: Points) -> FloatArray: ...
+    @overload
+    def foundation_reaction(self, x: float) -> float: ...
+    @overload
+    def foundation_reaction(self, x: Points) -> FloatArray: ...
+    def stress_field(self, x: npt.ArrayLike, y: npt.ArrayLike) -> StressField: ...
+    def stress_peaks(self, extent: float | None = None) -> StressPeaks: ...
+    def to_dict(self) -> dict[str, object]: ...
+
+
+CONTRACT_FIELDS: tuple[str, ...] = (
+    "vstar",
+    "kw",
+    "radius",
+    "load",
+    "nu",
+    "tol",
+    "damping",
+    "a",
+    "contact_interval",
+    "half_width",
+    "centre",
+    "indentation",
+    "drag",
+    "dissipation",
+    "critical_vstar",
+    "rayleigh_vstar",
+    "phi1",
+    "iterations",
+    "collocation_n",
+    "error_estimate",
+    "stress_error_estimate",
+    "elapsed",
+    "valid",
+    "validity",
+    "min_pressure",
+    "pressure_margin",
+    "min_gap",
+    "warnings",
+    "kernel_builds",
+    "stage_times",
+)
+"""The contract's data fields, each also a key of ``to_dict()``."""
+
+CONTRACT_METHODS: tuple[str, ...] = (
+    "pressure",
+    "surface_stress",
+    "depth_stress",
+    "stress_field",
+    "displacement",
+    "surface_displacement",
+    "foundation_reaction",
+    "stress_peaks",
+    "to_dict",
+)
+"""The contract's evaluations."""

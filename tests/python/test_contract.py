@@ -1,0 +1,189 @@
+"""One result contract (issue 13): every solve path returns an object with
+every field and evaluation of ``movingpunch.ContactSolution``, and the
+consumers (scenes, CLI, TUI) need nothing else.
+
+Anchors: the symmetric contact's interval is (-a, a) with no drag; a damped
+contact's dissipation equals its drag (the energy balance, computed from the
+bottom face independently of the drag integral); depth_stress at the
+surface equals surface_stress at x = 0; the surface displacement under the
+punch is the punch profile (the boundary condition); and a scene with
+damping 1e-12 gives the undamped scene's outputs to 1e-10 (the damped
+solver is an independent stack down to its kernel).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+import pytest
+
+import movingpunch as mp
+from movingpunch.contract import CONTRACT_FIELDS, CONTRACT_METHODS
+from movingpunch.scene import Scene
+
+PAPER = {"radius": 100.0, "load": 0.002}
+
+PATHS: dict[str, dict[str, Any]] = {
+    "undamped": {"vstar": 0.2, "kw": 1.0},
+    "rigid-base-static": {"vstar": 0.0, "kw": math.inf},
+    "fixed-n": {"vstar": 0.2, "kw": 1.0, "n": 24},
+    "preset": {"vstar": 0.5, "kw": 10.0, "tol": "draft"},
+    "unphysical": {
+        "vstar": 0.086,
+        "kw": 0.01,
+        "load": 0.02,
+        "allow_unphysical": True,
+    },
+    "damped": {"vstar": 0.2, "kw": 1.0, "damping": 0.1},
+    "damped-fast": {"vstar": 0.65, "kw": 1.0, "damping": 0.1},
+    "damped-tiny": {"vstar": 0.2, "kw": 1.0, "damping": 1e-12},
+}
+
+TYPES: dict[str, type | tuple[type, ...]] = {
+    "iterations": int,
+    "collocation_n": int,
+    "kernel_builds": int,
+    "valid": bool,
+    "validity": str,
+    "warnings": tuple,
+    "contact_interval": tuple,
+    "stage_times": Mapping,
+}
+
+
+@pytest.fixture(scope="module", params=sorted(PATHS))
+def solved(request: pytest.FixtureRequest) -> tuple[str, mp.ContactSolution]:
+    name = str(request.param)
+    return name, mp.solve(**{**PAPER, **PATHS[name]})
+
+
+def test_every_path_satisfies_the_contract(
+    solved: tuple[str, mp.ContactSolution],
+) -> None:
+    name, s = solved
+    assert isinstance(s, mp.ContactSolution), name
+    for field in CONTRACT_FIELDS:
+        value = getattr(s, field)
+        kind = TYPES.get(field, float)
+        assert isinstance(value, kind), (name, field, value)
+        if kind is float:
+            assert not math.isnan(value), (name, field)
+    for method in CONTRACT_METHODS:
+        assert callable(getattr(s, method)), (name, method)
+    back, front = s.contact_interval
+    assert back < front
+    assert s.a == front
+    assert s.half_width == pytest.approx(0.5 * (front - back), rel=1e-15)
+    assert s.centre == pytest.approx(0.5 * (front + back), abs=1e-15)
+    assert s.stage_times and all(t >= 0.0 for t in s.stage_times.values())
+    assert s.elapsed > 0.0
+    assert s.iterations > 0
+
+
+def test_evaluations_take_scalars_and_arrays(
+    solved: tuple[str, mp.ContactSolution],
+) -> None:
+    name, s = solved
+    x = np.array([[-2.0, -0.5 * s.half_width], [s.centre, 3.0]])
+    y = np.array([0.0, -0.25, -1.0])
+    for method in ("pressure", "surface_stress", "surface_displacement"):
+        scalar = getattr(s, method)(0.1)
+        assert isinstance(scalar, float) and math.isfinite(scalar), (name, method)
+        values = getattr(s, method)(x)
+        assert values.shape == x.shape and np.isfinite(values).all(), (name, method)
+    assert isinstance(s.foundation_reaction(0.0), float)
+    assert s.foundation_reaction(x).shape == x.shape
+    assert isinstance(s.depth_stress(-0.5), float)
+    assert np.isfinite(s.depth_stress(y)).all()
+    assert isinstance(s.displacement(0.0, -0.5), float)
+    assert s.displacement(x, -0.5).shape == x.shape
+    field = s.stress_field(np.linspace(-2.0, 2.0, 5), y)
+    assert field.sigma_x.shape == (3, 5) and np.isfinite(field.von_mises).all()
+    peaks = s.stress_peaks()
+    assert math.isfinite(peaks.top_compressive) and peaks.error_bound > 0.0
+
+
+def test_to_dict_has_every_field_and_is_json(
+    solved: tuple[str, mp.ContactSolution],
+) -> None:
+    name, s = solved
+    data = s.to_dict()
+    assert set(CONTRACT_FIELDS) <= set(data), (name, set(CONTRACT_FIELDS) - set(data))
+    json.dumps(data)
+
+
+def test_anchors_of_the_common_fields(
+    solved: tuple[str, mp.ContactSolution],
+) -> None:
+    """Each against something computed independently of the field."""
+    name, s = solved
+    # The surface under the punch follows its profile: v(x, 0) = -delta + x^2/(2R)
+    # (the boundary condition, from the displacement integral, not from g).
+    r = np.linspace(-0.9, 0.9, 7) * s.half_width + s.centre
+    profile = -s.indentation + r**2 / (2.0 * s.radius)
+    scale = max(abs(s.indentation), 1e-3)
+    np.testing.assert_allclose(
+        s.surface_displacement(r), profile, atol=1e-6 * scale, err_msg=name
+    )
+    # The surface is the top of the depth profile: sigma_x(0, 0).
+    assert s.depth_stress(0.0) == pytest.approx(
+        s.surface_stress(0.0), rel=1e-6, abs=1e-9
+    ), name
+    if s.damping == 0.0:
+        assert s.contact_interval == (-s.a, s.a)
+        assert s.drag == 0.0 and s.dissipation == 0.0
+    else:
+        # Dashpot dissipation (bottom face, Parseval) = drag: the energy balance.
+        assert s.dissipation == pytest.approx(s.drag, rel=1e-6, abs=1e-12), name
+
+
+SCENE = """\
+name = "contract"
+
+[params]
+vstar = 0.2
+kw = 1.0
+radius = 100.0
+load = 0.002
+nu = 0.2
+damping = {damping}
+
+[accuracy]
+tol = 1e-12
+
+[outputs]
+contact_width = true
+pressure = {{ points = 41 }}
+surface_stress = {{ x = [-3.0, 3.0], points = 41 }}
+depth_stress = {{ y = [-1.0, 0.0], points = 11 }}
+stress_field = {{ x = [-2.0, 2.0], y = [-1.0, 0.0], points = 9, depth_points = 5 }}
+displacement = {{ x = [-2.0, 2.0], points = 21, depth = -0.5 }}
+
+[vary]
+param = "load"
+values = [0.001, 0.002]
+"""
+
+
+def _outputs(damping: float) -> dict[str, dict[str, np.ndarray]]:
+    scene = Scene.from_toml(SCENE.format(damping=damping))
+    result = scene.run()
+    return {name: dict(out.columns) for name, out in result.outputs.items()}
+
+
+def test_damping_zero_and_tiny_give_the_same_outputs() -> None:
+    """The same scene with damping 0 (the undamped solver) and 1e-12 (the
+    damped one): every output column both have agrees to 1e-10."""
+    undamped, damped = _outputs(0.0), _outputs(1e-12)
+    assert set(undamped) == set(damped)
+    for name, columns in undamped.items():
+        assert set(columns) <= set(damped[name]), name
+        for key, values in columns.items():
+            other = damped[name][key]
+            np.testing.assert_allclose(
+                other, values, rtol=0.0, atol=1e-10, err_msg=f"{name}.{key}"
+            )
