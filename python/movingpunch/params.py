@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import math
 import numbers
-import re
 from collections.abc import Mapping
 from dataclasses import dataclass
 from types import MappingProxyType
@@ -44,8 +43,10 @@ def _num(x: float) -> str:
     """A bound as written in a range: 0, 0.5, 1e-12, 1e12, inf."""
     if math.isinf(x):
         return "inf" if x > 0 else "-inf"
-    text = f"{x:g}"
-    return re.sub(r"e\+?(-?)0*(\d)", r"e\1\2", text)
+    if x == 0 or 0.1 <= abs(x) < 1e4:
+        return f"{x:g}"
+    mantissa, exponent = f"{x:.12e}".split("e")
+    return f"{mantissa.rstrip('0').rstrip('.')}e{int(exponent)}"
 
 
 @dataclass(frozen=True)
@@ -106,7 +107,7 @@ class ParamSpec:
 
 def _presets_note() -> str:
     return "(relative, on a/h), or a preset: " + ", ".join(
-        f"{name} ({tol:.0e})" for name, tol in PRESETS.items()
+        f"{name} ({_num(tol)})" for name, tol in PRESETS.items()
     )
 
 

@@ -19,11 +19,11 @@ from typing import Literal
 import numpy as np
 import numpy.typing as npt
 
-from movingpunch import solver
 from movingpunch.accuracy import LADDER, AccuracyReport, accuracy_report
-from movingpunch.damped import DampedSolution, check_damping
+from movingpunch.damped import DampedSolution
 from movingpunch.errors import InvalidParameterError, MovingPunchError
 from movingpunch.fields import StressPeaks
+from movingpunch.params import check as check_param
 from movingpunch.solver import (
     Solution,
     critical_vstar,
@@ -66,18 +66,6 @@ TABS: tuple[TabName, ...] = (
 
 FieldQuantity = Literal["sigma_x", "von_mises"]
 
-# The same checks as movingpunch.solve, so the messages name the parameter and
-# its valid range exactly as the API's do (one source of truth for ranges).
-_CHECKS: dict[str, Callable[[object], float]] = {
-    "vstar": solver._check_vstar,
-    "kw": solver._check_kw,
-    "radius": lambda v: solver._check_positive("radius", v),
-    "load": lambda v: solver._check_positive("load", v),
-    "nu": solver._check_nu,
-    "damping": check_damping,
-    "tol": solver._check_tol,
-}
-
 SHORT: dict[str, str] = {
     "vstar": "V*",
     "kw": "kw",
@@ -109,7 +97,8 @@ def fmt(value: float, digits: int = 6) -> str:
 
 def parse_param(name: str, text: str) -> float:
     """The value typed for ``name``, checked as ``movingpunch.solve`` checks
-    it. Raises InvalidParameterError naming the parameter and its range.
+    it (the table ``movingpunch.params.SPECS``). Raises InvalidParameterError
+    naming the parameter and its range (``.parameter`` is ``name``).
 
     The bound vstar < V*_cr depends on kw and nu: the solve checks it.
     """
@@ -120,7 +109,7 @@ def parse_param(name: str, text: str) -> float:
         value = stripped  # the check rejects it with the usual message
     if not stripped:
         value = text
-    return _CHECKS[name](value)
+    return check_param(name, value)
 
 
 @dataclass(frozen=True)
