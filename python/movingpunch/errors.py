@@ -17,10 +17,6 @@ __all__ = [
 ]
 
 
-class MovingPunchError(Exception):
-    """Base class of every error movingpunch raises on purpose."""
-
-
 def _rebuild(
     cls: type[BaseException], args: tuple[object, ...], state: dict[str, object]
 ) -> BaseException:
@@ -29,6 +25,16 @@ def _rebuild(
     BaseException.__init__(error, *args)
     error.__dict__.update(state)
     return error
+
+
+class MovingPunchError(Exception):
+    """Base class of every error movingpunch raises on purpose."""
+
+    def __reduce__(self) -> tuple[object, ...]:
+        # Keeps keyword attributes (parameter, allowed, vstar, path, ...)
+        # across processes (a sweep's worker pool): pickle's default calls
+        # the class with ``args`` alone.
+        return (_rebuild, (type(self), self.args, dict(self.__dict__)))
 
 
 class InvalidParameterError(MovingPunchError, ValueError):
@@ -51,10 +57,6 @@ class InvalidParameterError(MovingPunchError, ValueError):
         super().__init__(message)
         self.parameter = parameter
         self.allowed = allowed
-
-    def __reduce__(self) -> tuple[object, ...]:
-        # Keeps the attributes across processes (a sweep's worker pool).
-        return (_rebuild, (type(self), self.args, dict(self.__dict__)))
 
 
 class SupercriticalSpeedError(MovingPunchError, ValueError):
@@ -90,9 +92,6 @@ class SupercriticalSpeedError(MovingPunchError, ValueError):
         if self.rayleigh_vstar is not None:
             return f"0 <= vstar < V*_R = {self.rayleigh_vstar!r}"
         return None
-
-    def __reduce__(self) -> tuple[object, ...]:
-        return (_rebuild, (type(self), self.args, dict(self.__dict__)))
 
 
 class UnphysicalContactError(MovingPunchError, ValueError):

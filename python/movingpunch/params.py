@@ -107,7 +107,7 @@ class ParamSpec:
 
 def _presets_note() -> str:
     return "(relative, on a/h), or a preset: " + ", ".join(
-        f"{name} ({_num(tol)})" for name, tol in PRESETS.items()
+        f'"{name}" ({_num(tol)})' for name, tol in PRESETS.items()
     )
 
 
