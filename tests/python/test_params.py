@@ -177,6 +177,14 @@ def test_core_errors_of_other_functions_name_the_parameter() -> None:
     with pytest.raises(InvalidParameterError) as info:
         _core.solve_damped(**damped, allow_unphysical=False)
     assert info.value.parameter == "damping"
+    with pytest.raises(InvalidParameterError) as info:
+        _core.solve_damped(**{**damped, "damping": 0.1, "n": 3}, allow_unphysical=False)
+    assert info.value.parameter == "n"
+    impl = _core.solve_contact(**GOOD, n=0, allow_unphysical=False)
+    for x, y, name in (([math.nan], [-0.5], "x"), ([0.0], [0.5], "y")):
+        with pytest.raises(InvalidParameterError) as info:
+            impl.stress_field(np.array(x), np.array(y))
+        assert info.value.parameter == name
 
 
 def _core_refuses(name: str, value: float) -> bool:
