@@ -10,6 +10,7 @@
 #include "movingpunch/errors.hpp"
 
 namespace py = pybind11;
+using namespace pybind11::literals;
 
 namespace movingpunch::bindings {
 namespace {
@@ -52,6 +53,11 @@ void bind_errors(py::module_& m) {
       raise("UnphysicalContactError", e.what());
     } catch (const movingpunch::ConvergenceError& e) {
       raise("ConvergenceError", e.what());
+    } catch (const movingpunch::InvalidParameter& e) {
+      py::object cls = errors_module().attr("InvalidParameterError");
+      py::object exc =
+          cls(e.what(), "parameter"_a = e.name(), "allowed"_a = e.allowed());
+      PyErr_SetObject(cls.ptr(), exc.ptr());
     } catch (const std::invalid_argument& e) {
       raise("InvalidParameterError", e.what());
     } catch (const std::domain_error& e) {

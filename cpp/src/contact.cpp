@@ -82,8 +82,10 @@ void validate(const ContactParams& p) {
   require_in_range("load", p.load, 0.0, 1e6, true, false);
   require_in_range("tol", p.tol, 1e-14, 1e-2, false, false);
   if (p.n != 0 && (p.n < 2 || p.n > 4096 || p.n % 2 != 0))
-    throw std::invalid_argument("n (collocation size) must be 0 (automatic) or even in [2, 4096], got " +
-                                std::to_string(p.n));
+    throw InvalidParameter(
+        "n", "0 (automatic) or even in [2, 4096]",
+        "n (collocation size) must be 0 (automatic) or even in [2, 4096], got " +
+            std::to_string(p.n));
 }
 
 namespace {

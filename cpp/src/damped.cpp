@@ -278,8 +278,10 @@ void validate(const DampedParams& p) {
   require_in_range("damping", p.damping, 0.0, kInf, true, true);
   require_in_range("tol", p.tol, 1e-14, 1e-2, false, false);
   if (p.n != 0 && (p.n < 2 || p.n > 1024 || p.n % 2 != 0))
-    throw std::invalid_argument("n must be 0 (automatic) or an even integer in [2, 1024], got " +
-                                std::to_string(p.n));
+    throw InvalidParameter(
+        "n", "0 (automatic) or an even integer in [2, 1024]",
+        "n must be 0 (automatic) or an even integer in [2, 1024], got " +
+            std::to_string(p.n));
 }
 
 // ---------------------------------------------------------------------------

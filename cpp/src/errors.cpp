@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 namespace movingpunch {
 
@@ -24,6 +25,10 @@ SupercriticalSpeedError::SupercriticalSpeedError(double vstar, double critical,
       critical_(critical),
       rayleigh_(rayleigh) {}
 
+InvalidParameter::InvalidParameter(std::string name, std::string allowed,
+                                   const std::string& message)
+    : std::invalid_argument(message), name_(std::move(name)), allowed_(std::move(allowed)) {}
+
 void require_in_range(const char* name, double value, double lo, double hi, bool lo_open,
                       bool hi_open, bool allow_inf_hi) {
   const bool inf_ok = allow_inf_hi && std::isinf(value) && value > 0;
@@ -32,15 +37,17 @@ void require_in_range(const char* name, double value, double lo, double hi, bool
     ok = (lo_open ? value > lo : value >= lo) && (hi_open ? value < hi : value <= hi);
   }
   if (ok) return;
+  std::ostringstream range;
+  range.precision(10);
+  range << (lo_open ? "(" : "[") << lo << ", ";
+  if (allow_inf_hi)
+    range << "inf]";
+  else
+    range << hi << (hi_open ? ")" : "]");
   std::ostringstream m;
   m.precision(10);
-  m << name << " must be in " << (lo_open ? "(" : "[") << lo << ", ";
-  if (allow_inf_hi)
-    m << "inf]";
-  else
-    m << hi << (hi_open ? ")" : "]");
-  m << ", got " << value;
-  throw std::invalid_argument(m.str());
+  m << name << " must be in " << range.str() << ", got " << value;
+  throw InvalidParameter(name, range.str(), m.str());
 }
 
 }  // namespace movingpunch

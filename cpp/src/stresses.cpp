@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "movingpunch/collocation.hpp"
+#include "movingpunch/errors.hpp"
 
 namespace movingpunch {
 
@@ -143,11 +144,12 @@ void check_grid(const Eigen::Ref<const Eigen::VectorXd>& x,
                 const Eigen::Ref<const Eigen::VectorXd>& y) {
   for (Eigen::Index i = 0; i < x.size(); ++i)
     if (!std::isfinite(x(i)))
-      throw std::invalid_argument("x must be finite, got " + std::to_string(x(i)));
+      throw InvalidParameter("x", "finite", "x must be finite, got " + std::to_string(x(i)));
   for (Eigen::Index j = 0; j < y.size(); ++j)
     if (!(y(j) >= -1.0 && y(j) <= 0.0))
-      throw std::invalid_argument("y must be in [-1, 0] (y/h, the layer), got " +
-                                  std::to_string(y(j)));
+      throw InvalidParameter("y", "[-1, 0]",
+                             "y must be in [-1, 0] (y/h, the layer), got " +
+                                 std::to_string(y(j)));
 }
 }  // namespace
 

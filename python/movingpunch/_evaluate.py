@@ -19,10 +19,9 @@ from collections.abc import Callable, Mapping
 import numpy as np
 import numpy.typing as npt
 
+from movingpunch import params
 from movingpunch.errors import InvalidParameterError
 from movingpunch.fields import FloatArray
-
-_Y_RANGE = "-1 <= y <= 0, y/h (the layer)"
 
 
 def _as_points(name: str, x: object) -> FloatArray:
@@ -31,24 +30,27 @@ def _as_points(name: str, x: object) -> FloatArray:
     if isinstance(x, np.ma.MaskedArray):
         raise InvalidParameterError(
             f"{name} must be a plain array; masked arrays are not supported: "
-            f"use {name}.filled(...) or {name}.compressed()"
+            f"use {name}.filled(...) or {name}.compressed()",
+            parameter=name,
         )
     try:
         raw = np.asarray(x)
     except (TypeError, ValueError) as exc:
         raise InvalidParameterError(
-            f"{name} must be a real number or an array of them, got {x!r}"
+            f"{name} must be a real number or an array of them, got {x!r}",
+            parameter=name,
         ) from exc
     if raw.dtype.kind not in "iuf":
         raise InvalidParameterError(
-            f"{name} must be a real number or an array of them, got {x!r}"
+            f"{name} must be a real number or an array of them, got {x!r}",
+            parameter=name,
         )
     points = np.asarray(raw, dtype=np.float64)
     bad = ~np.isfinite(points)
     if bad.any():
         first = float(points[bad].flat[0])
         raise InvalidParameterError(
-            f"{name} must contain only finite numbers, got {first!r}"
+            f"{name} must contain only finite numbers, got {first!r}", parameter=name
         )
     return points
 
@@ -58,26 +60,26 @@ def _depths(y: object) -> FloatArray:
     points = _as_points("y", y)
     bad = (points < -1.0) | (points > 0.0)
     if bad.any():
-        raise InvalidParameterError(
-            f"y must satisfy {_Y_RANGE}, got {float(points[bad].flat[0])!r}"
-        )
+        x = float(points[bad].flat[0])
+        raise params.fail("y", f"y must satisfy {params.range_text('y')}, got {x!r}")
     return points
 
 
 def _check_positive_extent(value: object) -> float:
-    x = _real_any("extent", value)
-    if not (math.isfinite(x) and x > 0):
-        raise InvalidParameterError(f"extent must be a finite x/h > 0, got {value!r}")
-    return x
+    return params.check("extent", value)
 
 
 def _real_any(name: str, value: object) -> float:
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
-        raise InvalidParameterError(f"{name} must be a real number, got {value!r}")
+        raise InvalidParameterError(
+            f"{name} must be a real number, got {value!r}", parameter=name
+        )
     try:
         return float(value)
     except OverflowError:
-        raise InvalidParameterError(f"{name} is too large for a float") from None
+        raise InvalidParameterError(
+            f"{name} is too large for a float", parameter=name
+        ) from None
 
 
 def _pointwise(

@@ -45,8 +45,8 @@ from typing import Any, NoReturn
 from movingpunch.contract import ContactSolution
 from movingpunch.errors import MovingPunchError
 from movingpunch.fields import StressPeaks
+from movingpunch.params import help_text, range_text
 from movingpunch.solver import (
-    PRESETS,
     critical_vstar,
     critical_wavenumber,
     rayleigh_vstar,
@@ -120,22 +120,20 @@ def _fail(message: str) -> NoReturn:
     raise SystemExit(EXIT_USAGE)
 
 
-def _number(what: str) -> Callable[[str], float]:
-    """argparse type: a float (``inf`` and ``nan`` parse; ranges are checked
-    by the solver, which names the parameter and its range)."""
+def _number(name: str) -> Callable[[str], float]:
+    """argparse type of the parameter ``name``: a float (``inf`` and ``nan``
+    parse; ranges are checked by the solver, which names the parameter and
+    its range from the table movingpunch.params.SPECS)."""
 
     def parse(text: str) -> float:
         try:
             return float(text)
         except ValueError:
             raise argparse.ArgumentTypeError(
-                f"must be a real number ({what}), got {text!r}"
+                f"{name} must be a real number ({range_text(name)}), got {text!r}"
             ) from None
 
     return parse
-
-
-_PRESETS_HELP = ", ".join(f"{name} ({tol:.0e})" for name, tol in PRESETS.items())
 
 
 def _tol(text: str) -> float | str:
@@ -162,48 +160,19 @@ def _build_parser() -> argparse.ArgumentParser:
         help="solve the contact problem",
         description="Solve the contact problem and print a/h, p0, indentation, ...",
     )
-    solve_p.add_argument(
-        "--vstar",
-        type=_number("0 <= V* < V*_cr"),
-        required=True,
-        help="V* = rho V^2/mu, 0 <= V* < V*_cr",
-    )
-    solve_p.add_argument(
-        "--kw",
-        type=_number("0 < k_w h/mu <= inf"),
-        required=True,
-        help="k_w h/mu in [1e-12, inf] ('inf': smooth rigid base)",
-    )
-    solve_p.add_argument(
-        "--radius", type=_number("R/h > 0"), required=True, help="R/h > 0"
-    )
-    solve_p.add_argument(
-        "--load",
-        type=_number("P/(mu h) > 0"),
-        required=True,
-        help="P/(mu h) > 0 (the paper's mu/(P/h) = 500 is 0.002)",
-    )
-    solve_p.add_argument(
-        "--nu",
-        type=_number("0 <= nu < 0.5"),
-        default=0.2,
-        help="Poisson's ratio in [0, 0.5) (default 0.2)",
-    )
-    solve_p.add_argument(
-        "--tol",
-        type=_tol,
-        default=1e-8,
-        help="relative tolerance on a/h in [1e-14, 1e-2], or a preset: "
-        + _PRESETS_HELP
-        + " (default 1e-8)",
-    )
+    # Help texts and ranges: the table of parameters (movingpunch.params).
+    for name in ("vstar", "kw", "radius", "load"):
+        solve_p.add_argument(
+            f"--{name}", type=_number(name), required=True, help=help_text(name)
+        )
+    solve_p.add_argument("--nu", type=_number("nu"), default=0.2, help=help_text("nu"))
+    solve_p.add_argument("--tol", type=_tol, default=1e-8, help=help_text("tol"))
     solve_p.add_argument(
         "--damping",
-        type=_number("damping >= 0"),
+        type=_number("damping"),
         default=0.0,
-        help="dashpots in the foundation, damping = c_w c_T/mu >= 0 (default 0: "
-        "the paper's model); > 0 gives the asymmetric contact (-b, a) and the "
-        "drag, at any speed below the Rayleigh speed (docs/damped.md)",
+        help=help_text("damping") + "; > 0 gives the asymmetric contact (-b, a) "
+        "and the drag, at any speed below the Rayleigh speed (docs/damped.md)",
     )
     solve_p.add_argument(
         "--allow-unphysical",
@@ -226,18 +195,8 @@ def _build_parser() -> argparse.ArgumentParser:
         help="critical speed of the layer on springs",
         description="Print V*_cr, alpha h at the minimum and the Rayleigh V*_R.",
     )
-    crit_p.add_argument(
-        "--kw",
-        type=_number("0 < k_w h/mu <= inf"),
-        required=True,
-        help="k_w h/mu in [1e-12, inf] ('inf': smooth rigid base)",
-    )
-    crit_p.add_argument(
-        "--nu",
-        type=_number("0 <= nu < 0.5"),
-        default=0.2,
-        help="Poisson's ratio in [0, 0.5) (default 0.2)",
-    )
+    crit_p.add_argument("--kw", type=_number("kw"), required=True, help=help_text("kw"))
+    crit_p.add_argument("--nu", type=_number("nu"), default=0.2, help=help_text("nu"))
     crit_p.add_argument("--json", action="store_true", help="print JSON")
     crit_p.set_defaults(handler=_cmd_critical)
 

@@ -16,13 +16,12 @@ from __future__ import annotations
 
 import functools
 import math
-import numbers
 from dataclasses import dataclass, field, fields
 
 import numpy as np
 import numpy.typing as npt
 
-from movingpunch import _core
+from movingpunch import _core, params
 from movingpunch._evaluate import (
     _as_points,
     _chunked_grid,
@@ -41,47 +40,35 @@ from movingpunch.solver import (
     _check_kw,
     _check_nu,
     _check_positive,
-    _check_size,
     _check_tol,
     _check_vstar,
+    _fail,
     _real,
 )
 
 __all__ = ["DampedSolution", "check_damping", "damped_layer_response", "solve_damped"]
 
-_DAMPING_RANGE = "0 <= damping < inf, damping = c_w c_T/mu"
 _N_MAX = 1024
 
 
 def check_damping(value: object, *, positive: bool = False) -> float:
     """``value`` as a float damping (finite, >= 0; > 0 when ``positive``).
 
-    Raises InvalidParameterError naming the parameter and its range.
+    Raises InvalidParameterError naming the parameter and its range
+    (``movingpunch.params.SPECS["damping"]``).
     """
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
-        raise InvalidParameterError(
-            f"damping must be a real number ({_DAMPING_RANGE}), got {value!r}"
+    x = params.check("damping", value)
+    if positive and x == 0:
+        raise params.fail(
+            "damping",
+            "damping must satisfy 0 < damping < inf for the damped solver "
+            f"(damping = 0: movingpunch.solve), got {value!r}",
         )
-    try:
-        x = float(value)
-    except OverflowError:
-        raise InvalidParameterError(
-            f"damping is too large for a float ({_DAMPING_RANGE})"
-        ) from None
-    if not math.isfinite(x) or x < 0 or (positive and x == 0):
-        bound = "0 < damping < inf" if positive else _DAMPING_RANGE
-        raise InvalidParameterError(f"damping must satisfy {bound}, got {value!r}")
     return x
 
 
 def _check_damped_size(value: object) -> int:
-    size = _check_size(value)
-    if size > _N_MAX:
-        raise InvalidParameterError(
-            f"n must be None (automatic) or an even integer in [2, {_N_MAX}] "
-            f"for the damped solver, got {value!r}"
-        )
-    return size
+    return params.check_size(value, _N_MAX, " for the damped solver")
 
 
 @dataclass(frozen=True)
@@ -392,7 +379,7 @@ def damped_layer_response(
     complex conjugates)."""
     tt = _real("t", t)
     if not (math.isfinite(tt) and tt >= 0):
-        raise InvalidParameterError(f"t must satisfy t = alpha h >= 0, got {t!r}")
+        raise _fail("t", tt)
     m1, m2, wb = _core.damped_layer_response(
         tt, _check_vstar(vstar), _check_kw(kw), _check_nu(nu), check_damping(damping)
     )

@@ -17,15 +17,46 @@ __all__ = [
 ]
 
 
+def _rebuild(
+    cls: type[BaseException], args: tuple[object, ...], state: dict[str, object]
+) -> BaseException:
+    """Unpickles an error with keyword attributes (``__reduce__`` below)."""
+    error = cls.__new__(cls)
+    BaseException.__init__(error, *args)
+    error.__dict__.update(state)
+    return error
+
+
 class MovingPunchError(Exception):
     """Base class of every error movingpunch raises on purpose."""
+
+    def __reduce__(self) -> tuple[object, ...]:
+        # Keeps keyword attributes (parameter, allowed, vstar, path, ...)
+        # across processes (a sweep's worker pool): pickle's default calls
+        # the class with ``args`` alone.
+        return (_rebuild, (type(self), self.args, dict(self.__dict__)))
 
 
 class InvalidParameterError(MovingPunchError, ValueError):
     """An input is of the wrong type or outside its valid range.
 
-    The message names the parameter and its valid range.
+    The message names the parameter and its valid range. Attributes:
+    ``parameter``, the name of the input at fault (``"vstar"``, ``"kw"``, ...,
+    as the API spells it; None when unknown) and ``allowed``, its valid range
+    as text (None when unknown). The API's checks (``movingpunch.params``),
+    scenes and the compiled core set both.
     """
+
+    def __init__(
+        self,
+        message: str = "",
+        *,
+        parameter: str | None = None,
+        allowed: str | None = None,
+    ) -> None:
+        super().__init__(message)
+        self.parameter = parameter
+        self.allowed = allowed
 
 
 class SupercriticalSpeedError(MovingPunchError, ValueError):
@@ -33,8 +64,12 @@ class SupercriticalSpeedError(MovingPunchError, ValueError):
 
     Attributes ``vstar`` (the requested V*), ``critical_vstar`` (V*_cr for the
     foundation and Poisson's ratio) and ``rayleigh_vstar`` (V*_R) are floats
-    when known, else None.
+    when known, else None. Like InvalidParameterError it names the input at
+    fault: ``parameter`` is always ``"vstar"`` and ``allowed`` the speed
+    range as text (None when neither speed is known).
     """
+
+    parameter = "vstar"
 
     def __init__(
         self,
@@ -48,6 +83,15 @@ class SupercriticalSpeedError(MovingPunchError, ValueError):
         self.vstar = vstar
         self.critical_vstar = critical_vstar
         self.rayleigh_vstar = rayleigh_vstar
+
+    @property
+    def allowed(self) -> str | None:
+        """``0 <= vstar < V*_cr`` (``< V*_R`` when only that is known)."""
+        if self.critical_vstar is not None:
+            return f"0 <= vstar < V*_cr = {self.critical_vstar!r}"
+        if self.rayleigh_vstar is not None:
+            return f"0 <= vstar < V*_R = {self.rayleigh_vstar!r}"
+        return None
 
 
 class UnphysicalContactError(MovingPunchError, ValueError):

@@ -1,19 +1,9 @@
 """Public Python API: validated wrappers around the compiled core.
 
 Every quantity is dimensionless (layer thickness h = 1, shear modulus mu = 1):
-
-========  ==============  =====================================
-name      meaning         valid range
-========  ==============  =====================================
-vstar     rho V^2 / mu    0 <= vstar < V*_cr(kw, nu)
-kw        k_w h / mu      1e-12 <= kw <= inf (inf: smooth rigid base)
-radius    R / h           > 0, finite
-load      P / (mu h)      > 0, finite (the paper's mu/(P/h) = 1/load)
-nu        Poisson's ratio 0 <= nu < 0.5
-tol       tolerance       1e-14 <= tol <= 1e-2 (relative, on a/h), or a
-                          preset: "draft" (1e-4), "default" (1e-8),
-                          "precise" (1e-12) (see PRESETS)
-========  ==============  =====================================
+vstar = rho V^2/mu, kw = k_w h/mu, radius = R/h, load = P/(mu h), nu, tol (or
+a preset name, see PRESETS). Their valid ranges, units and meanings are in one
+table, ``movingpunch.params.SPECS``.
 
 Inputs are checked here first so that messages name the parameter and its
 range; the core checks them again. Computations release the GIL.
@@ -23,7 +13,6 @@ from __future__ import annotations
 
 import functools
 import math
-import numbers
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field, fields
 from types import MappingProxyType
@@ -32,7 +21,7 @@ from typing import Any, Literal, overload
 import numpy as np
 import numpy.typing as npt
 
-from movingpunch import _core
+from movingpunch import _core, params
 from movingpunch._evaluate import (
     _as_points,
     _check_positive_extent,
@@ -46,6 +35,7 @@ from movingpunch._evaluate import (
 from movingpunch.contract import ContactSolution
 from movingpunch.errors import InvalidParameterError
 from movingpunch.fields import StressField, StressPeaks, derived_stresses
+from movingpunch.params import PRESETS
 from movingpunch.peaks import search_peaks
 
 __all__ = [
@@ -65,115 +55,47 @@ __all__ = [
 
 FloatArray = npt.NDArray[np.float64]
 
-# Valid range of each scalar parameter, as shown in error messages.
-_RANGES: dict[str, str] = {
-    "vstar": "0 <= vstar < V*_cr, vstar = rho V^2/mu",
-    "kw": "1e-12 <= kw <= inf, kw = k_w h/mu",
-    "radius": "R/h > 0",
-    "load": "P/(mu h) > 0",
-    "nu": "0 <= nu < 0.5",
-    "tol": "1e-14 <= tol <= 1e-2",
-    "t": "t = alpha h >= 0",
-    "y": "-1 <= y <= 0, y/h (the layer)",
-}
-
-_TOL_MIN = 1e-14
-_TOL_MAX = 1e-2
-
-PRESETS: Mapping[str, float] = MappingProxyType(
-    {"draft": 1e-4, "default": 1e-8, "precise": 1e-12}
-)
-"""Named accuracies: preset name -> tol (relative tolerance on a/h). ``tol``
-accepts a name wherever it accepts a number (solve, scene files, the CLI's
-``--tol``, the terminal UI)."""
-
-
-def _presets_text() -> str:
-    return ", ".join(f"{name} = {tol:.0e}" for name, tol in PRESETS.items())
-
 
 def _real(name: str, value: object) -> float:
     """``value`` as a float if it is a real number (bool, str, None, complex
-    and everything else are rejected; so are integers beyond float range)."""
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
-        raise InvalidParameterError(
-            f"{name} must be a real number ({_RANGES[name]}), got {value!r}"
-        )
-    try:
-        return float(value)
-    except OverflowError:
-        raise InvalidParameterError(
-            f"{name} is too large for a float ({_RANGES[name]})"
-        ) from None
+    and everything else are rejected; so are integers beyond float range).
+    The range of ``name`` is not checked (``movingpunch.params.check`` does)."""
+    x, problem = params.classify(name, value)
+    if problem in ("type", "overflow"):
+        params.check(name, value)  # raises, naming name and its range
+    return x
 
 
 def _fail(name: str, x: float) -> InvalidParameterError:
-    return InvalidParameterError(f"{name} must satisfy {_RANGES[name]}, got {x!r}")
-
-
-def _finite(name: str, value: object) -> float:
-    x = _real(name, value)
-    if not math.isfinite(x):
-        raise InvalidParameterError(
-            f"{name} must be a finite number ({_RANGES[name]}), got {x!r}"
-        )
-    return x
+    return params.fail(
+        name, f"{name} must satisfy {params.range_text(name)}, got {x!r}"
+    )
 
 
 def _check_vstar(value: object) -> float:
     # The upper bound V*_cr(kw, nu) is checked by the core, which raises
     # SupercriticalSpeedError with the critical and Rayleigh speeds.
-    x = _finite("vstar", value)
-    if x < 0:
-        raise _fail("vstar", x)
-    return x
+    return params.check("vstar", value)
 
 
 def _check_kw(value: object) -> float:
     # kw = 0 (no foundation) has no static equilibrium (V*_cr = 0); below 1e-12
     # the lowest free wave lies beyond the critical-speed search.
-    x = _real("kw", value)
-    if math.isnan(x) or x < 1e-12:
-        raise _fail("kw", x)
-    return x
+    return params.check("kw", value)
 
 
 def _check_positive(name: str, value: object) -> float:
-    x = _finite(name, value)
-    if x <= 0:
-        raise _fail(name, x)
-    return x
+    """radius or load (the name says which): its range in movingpunch.params."""
+    return params.check(name, value)
 
 
 def _check_nu(value: object) -> float:
-    x = _finite("nu", value)
-    if not 0 <= x < 0.5:
-        raise _fail("nu", x)
-    return x
+    return params.check("nu", value)
 
 
 def _check_tol(value: object) -> float:
     """A tolerance: a number in [1e-14, 1e-2] or the name of a preset."""
-    if isinstance(value, str):
-        key = value.strip().lower()
-        if key in PRESETS:
-            return PRESETS[key]
-        raise InvalidParameterError(
-            f"tol must be a number with {_RANGES['tol']} or a preset name "
-            f"({_presets_text()}), got {value!r}"
-        )
-    try:
-        x = _finite("tol", value)
-    except InvalidParameterError as exc:
-        raise InvalidParameterError(
-            f"{exc}; or a preset name ({_presets_text()})"
-        ) from None
-    if not _TOL_MIN <= x <= _TOL_MAX:
-        raise InvalidParameterError(
-            f"tol must satisfy {_RANGES['tol']} or be a preset name "
-            f"({_presets_text()}), got {x!r}"
-        )
-    return x
+    return params.check("tol", value)
 
 
 def resolve_tol(tol: float | str) -> float:
@@ -184,23 +106,16 @@ def resolve_tol(tol: float | str) -> float:
 
 def _check_size(value: object) -> int:
     """The collocation size: None (automatic) or an even int in [2, 4096]."""
-    if value is None:
-        return 0
-    if (
-        isinstance(value, (bool, np.bool_))
-        or not isinstance(value, (int, np.integer))
-        or not 2 <= int(value) <= 4096
-        or int(value) % 2
-    ):
-        raise InvalidParameterError(
-            f"n must be None (automatic) or an even integer in [2, 4096], got {value!r}"
-        )
-    return int(value)
+    return params.check_size(value)
 
 
 def _check_flag(name: str, value: object) -> bool:
     if not isinstance(value, (bool, np.bool_)):
-        raise InvalidParameterError(f"{name} must be True or False, got {value!r}")
+        raise InvalidParameterError(
+            f"{name} must be True or False, got {value!r}",
+            parameter=name,
+            allowed="True or False",
+        )
     return bool(value)
 
 
@@ -392,7 +307,7 @@ class Solution:
         (negative downwards)."""
         depth = _depths(y)
         if depth.ndim != 0:
-            raise InvalidParameterError(f"y must be one depth in [-1, 0], got {y!r}")
+            raise params.fail("y", f"y must be one depth in [-1, 0], got {y!r}")
         return _pointwise(
             "x", x, lambda xs: self._impl.displacement(xs, _flat(depth))[0]
         )
@@ -804,7 +719,9 @@ def layer_response(
         raise _fail("t", float(points[points < 0].flat[0]))
     if method not in ("auto", "modal", "transfer"):
         raise InvalidParameterError(
-            f"method must be 'auto', 'modal' or 'transfer', got {method!r}"
+            f"method must be 'auto', 'modal' or 'transfer', got {method!r}",
+            parameter="method",
+            allowed="'auto', 'modal' or 'transfer'",
         )
     m1, m2 = _core.layer_response(
         _flat(points), _check_vstar(vstar), _check_kw(kw), _check_nu(nu), method

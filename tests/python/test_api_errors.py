@@ -72,7 +72,9 @@ def test_solve_rejects_bad_parameter(name: str, value: Any) -> None:
 def test_type_message_names_parameter_and_range() -> None:
     with pytest.raises(mp.InvalidParameterError, match="radius") as info:
         mp.solve(**{**GOOD, "radius": "abc"})
-    assert str(info.value) == "radius must be a real number (R/h > 0), got 'abc'"
+    assert str(info.value) == (
+        "radius must be a real number (0 < radius <= 1e12, radius = R/h), got 'abc'"
+    )
 
 
 @pytest.mark.parametrize("value", ["yes", 1, None])

@@ -79,7 +79,8 @@ def test_every_path_satisfies_the_contract(
     assert s.a == front
     assert s.half_width == pytest.approx(0.5 * (front - back), rel=1e-15)
     assert s.centre == pytest.approx(0.5 * (front + back), abs=1e-15)
-    assert s.stage_times and all(t >= 0.0 for t in s.stage_times.values())
+    assert s.stage_times
+    assert all(t >= 0.0 for t in s.stage_times.values())
     assert s.elapsed > 0.0
     assert s.iterations > 0
 
@@ -92,9 +93,11 @@ def test_evaluations_take_scalars_and_arrays(
     y = np.array([0.0, -0.25, -1.0])
     for method in ("pressure", "surface_stress", "surface_displacement"):
         scalar = getattr(s, method)(0.1)
-        assert isinstance(scalar, float) and math.isfinite(scalar), (name, method)
+        assert isinstance(scalar, float), (name, method)
+        assert math.isfinite(scalar), (name, method)
         values = getattr(s, method)(x)
-        assert values.shape == x.shape and np.isfinite(values).all(), (name, method)
+        assert values.shape == x.shape, (name, method)
+        assert np.isfinite(values).all(), (name, method)
     assert isinstance(s.foundation_reaction(0.0), float)
     assert s.foundation_reaction(x).shape == x.shape
     assert isinstance(s.depth_stress(-0.5), float)
@@ -102,9 +105,11 @@ def test_evaluations_take_scalars_and_arrays(
     assert isinstance(s.displacement(0.0, -0.5), float)
     assert s.displacement(x, -0.5).shape == x.shape
     field = s.stress_field(np.linspace(-2.0, 2.0, 5), y)
-    assert field.sigma_x.shape == (3, 5) and np.isfinite(field.von_mises).all()
+    assert field.sigma_x.shape == (3, 5)
+    assert np.isfinite(field.von_mises).all()
     peaks = s.stress_peaks()
-    assert math.isfinite(peaks.top_compressive) and peaks.error_bound > 0.0
+    assert math.isfinite(peaks.top_compressive)
+    assert peaks.error_bound > 0.0
 
 
 def test_to_dict_has_every_field_and_is_json(
@@ -135,7 +140,8 @@ def test_anchors_of_the_common_fields(
     ), name
     if s.damping == 0.0:
         assert s.contact_interval == (-s.a, s.a)
-        assert s.drag == 0.0 and s.dissipation == 0.0
+        assert s.drag == 0.0
+        assert s.dissipation == 0.0
     else:
         # Dashpot dissipation (bottom face, Parseval) = drag: the energy balance.
         assert s.dissipation == pytest.approx(s.drag, rel=1e-6, abs=1e-12), name

@@ -194,7 +194,11 @@ def test_bad_damping_is_one_line_naming_file_and_key(value: str, problem: str) -
     assert "\n" not in message
     assert message.startswith(f"my.toml: params.damping: {problem}"), message
     assert info.value.key == "params.damping"
-    assert info.value.allowed == "a finite number >= 0 (c_w c_T/mu; 0: no dashpots)"
+    assert info.value.allowed == (
+        "a number, 0 <= damping < inf (0: no dashpots, the paper's model), "
+        "damping = c_w c_T/mu"
+    )
+    assert info.value.parameter == "damping"
 
 
 def test_bad_damping_in_vary_and_python() -> None:

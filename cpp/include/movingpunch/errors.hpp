@@ -30,7 +30,21 @@ class ConvergenceError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Throws std::invalid_argument naming `name` and the valid range unless
+// A named input outside its valid range: name() is the parameter as the
+// Python API spells it ("nu", "vstar", ...), allowed() its valid range as
+// text ("[0, 0.5)"); what() is the whole message. The bindings turn it into
+// movingpunch.InvalidParameterError with .parameter and .allowed set.
+class InvalidParameter : public std::invalid_argument {
+ public:
+  InvalidParameter(std::string name, std::string allowed, const std::string& message);
+  const std::string& name() const noexcept { return name_; }
+  const std::string& allowed() const noexcept { return allowed_; }
+
+ private:
+  std::string name_, allowed_;
+};
+
+// Throws InvalidParameter naming `name` and the valid range unless
 // lo <= value <= hi (open ends when the flags say so). NaN always fails.
 void require_in_range(const char* name, double value, double lo, double hi,
                       bool lo_open, bool hi_open, bool allow_inf_hi = false);

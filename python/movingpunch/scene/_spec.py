@@ -24,7 +24,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from movingpunch.errors import InvalidParameterError
-from movingpunch.solver import PRESETS
+from movingpunch.params import PRESETS, SPECS, classify
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -63,14 +63,13 @@ DAMPED_MAX_Y = -1e-3
 the damped solver is not used closer to the surface): depths above it are
 clipped to it."""
 
-_PARAM_ALLOWED: dict[str, str] = {
-    "vstar": "a number, 0 <= vstar < V*_cr(kw, nu) (< V*_R(nu) with damping > 0)",
-    "kw": 'a number 1e-12 <= kw <= inf, or "inf" (smooth rigid base)',
-    "radius": "a number 0 < radius <= 1e12 (R/h)",
-    "load": "a number 0 < load <= 1e6 (P/(mu h))",
-    "nu": "a number, 0 <= nu < 0.5",
-    "damping": "a finite number >= 0 (c_w c_T/mu; 0: no dashpots)",
-}
+
+def _allowed(name: str) -> str:
+    """What a scene accepts for the parameter ``name``: its range from the
+    table of parameters (``movingpunch.params.SPECS``)."""
+    text = f"a number, {SPECS[name].text}"
+    return text + ', or "inf"' if name == "kw" else text
+
 
 OUTPUT_KINDS: dict[str, str] = {
     "contact_width": "a/h, p0/(P/h), indentation and validity",
@@ -137,13 +136,9 @@ points rather than as a list of values."""
 MAX_NESTING = 32
 """Deepest nesting of TOML arrays and inline tables in a scene (a scene needs
 2); checked before parsing, which recurses."""
-_TOL_MIN, _TOL_MAX = 1e-14, 1e-2
-_DEFAULT_TOL = 1e-8
-_TOL_ALLOWED = "1e-14 <= tol <= 1e-2, or a preset: " + ", ".join(
-    f'"{name}" ({value:.0e})' for name, value in PRESETS.items()
-)
-_DEFAULT_NU = 0.2
-RADIUS_MAX, LOAD_MAX = 1e12, 1e6
+_DEFAULT_TOL = float(SPECS["tol"].default or 1e-8)
+_DEFAULT_NU = float(SPECS["nu"].default or 0.2)
+RADIUS_MAX, LOAD_MAX = SPECS["radius"].hi, SPECS["load"].hi
 """The largest R/h and P/(mu h) the contact solver takes (its validate() in
 cpp/src/contact.cpp); a scene refuses larger ones before it runs
 (test_scene_input.py::test_radius_and_load_limits_are_the_solvers)."""
@@ -153,18 +148,26 @@ class SceneError(InvalidParameterError):
     """A scene (file or object) is malformed or asks for something impossible.
 
     The message is one line, ``FILE: key: problem (allowed: ...)``; the
-    attributes ``source``, ``key``, ``problem`` and ``allowed`` hold its parts.
+    attributes ``source``, ``key``, ``problem`` and ``allowed`` hold its parts,
+    and ``parameter`` the model parameter at fault (``"vstar"``, ``"tol"``,
+    ...; None when the key is not one, e.g. an output's ``points``).
     """
 
-    def __init__(self, source: str, key: str, problem: str, allowed: str = "") -> None:
+    def __init__(
+        self,
+        source: str,
+        key: str,
+        problem: str,
+        allowed: str = "",
+        parameter: str | None = None,
+    ) -> None:
         self.source = source
         self.key = key
         self.problem = problem
-        self.allowed = allowed
         text = f"{source}: {key}: {problem}"
         if allowed:
             text += f" (allowed: {allowed})"
-        super().__init__(" ".join(text.split()))
+        super().__init__(" ".join(text.split()), parameter=parameter, allowed=allowed)
 
 
 @dataclass(frozen=True)
@@ -425,8 +428,10 @@ class _Checker:
     def __init__(self, source: str) -> None:
         self.source = source
 
-    def fail(self, key: str, problem: str, allowed: str = "") -> SceneError:
-        return SceneError(self.source, key, problem, allowed)
+    def fail(
+        self, key: str, problem: str, allowed: str = "", parameter: str | None = None
+    ) -> SceneError:
+        return SceneError(self.source, key, problem, allowed, parameter)
 
     def table(
         self, key: str, value: object, allowed_keys: Iterable[str]
@@ -454,30 +459,28 @@ class _Checker:
         if isinstance(value, str):
             preset = PRESETS.get(value.strip().lower())
             if preset is None:
-                raise self.fail(key, f"unknown preset {value!r}", _TOL_ALLOWED)
+                raise self.fail(
+                    key, f"unknown preset {value!r}", SPECS["tol"].text, "tol"
+                )
             return preset
-        x = self.number(key, value, _TOL_ALLOWED)
-        if not (math.isfinite(x) and _TOL_MIN <= x <= _TOL_MAX):
-            raise self.fail(key, f"out of range: {_show(x)}", _TOL_ALLOWED)
-        return x
+        return self.param(key, "tol", value)
 
     def param(self, key: str, name: str, value: object) -> float:
-        allowed = _PARAM_ALLOWED[name]
+        """``value`` checked against the table of parameters (SPECS)."""
+        allowed = SPECS[name].text if name == "tol" else _allowed(name)
         if name == "kw" and isinstance(value, str):
             if value.strip().lower() in ("inf", "+inf", "infinity"):
                 return math.inf
-            raise self.fail(key, f"must be a number or 'inf', got {value!r}", allowed)
-        x = self.number(key, value, allowed)
-        ok = {
-            "vstar": math.isfinite(x) and x >= 0,
-            "kw": x >= 1e-12,  # NaN fails
-            "radius": 0 < x <= RADIUS_MAX,  # NaN fails
-            "load": 0 < x <= LOAD_MAX,
-            "nu": math.isfinite(x) and 0 <= x < 0.5,
-            "damping": math.isfinite(x) and x >= 0,
-        }[name]
-        if not ok:
-            raise self.fail(key, f"out of range: {_show(x)}", allowed)
+            raise self.fail(
+                key, f"must be a number or 'inf', got {value!r}", allowed, name
+            )
+        x, problem = classify(name, value)
+        if problem == "type":
+            raise self.fail(key, f"must be a number, got {_show(value)}", allowed, name)
+        if problem == "overflow":
+            raise self.fail(key, "is too large for a float", allowed, name)
+        if problem:
+            raise self.fail(key, f"out of range: {_show(x)}", allowed, name)
         return x
 
     def integer(self, key: str, value: object, lo: int, hi: int) -> int:
@@ -718,7 +721,7 @@ def _from_mapping(data: Mapping[str, Any], source: str) -> Scene:
         elif sweep is not None and sweep.param == name_:
             params[name_] = sweep.values[0]
         elif name_ != "damping":  # damping: optional, 0
-            raise c.fail(key, "missing", _PARAM_ALLOWED[name_])
+            raise c.fail(key, "missing", _allowed(name_), name_)
 
     tol = _DEFAULT_TOL
     if "accuracy" in data:
@@ -753,7 +756,7 @@ def _values_list(
     c: _Checker, key: str, param: str, raw: object, limit: int
 ) -> tuple[float, ...]:
     if isinstance(raw, (str, bytes)) or not isinstance(raw, Sequence):
-        raise c.fail(key, f"must be a list, got {_show(raw)}", _PARAM_ALLOWED[param])
+        raise c.fail(key, f"must be a list, got {_show(raw)}", _allowed(param), param)
     if not 1 <= len(raw) <= limit:
         raise c.fail(key, f"has {len(raw)} values", f"1 to {limit} values")
     values = tuple(c.param(f"{key}[{i}]", param, v) for i, v in enumerate(raw))
@@ -768,7 +771,7 @@ def _parse_vary(c: _Checker, raw: object) -> Vary:
         raise c.fail("vary.param", "missing", ", ".join(PARAMS))
     param = c.string("vary.param", t["param"], PARAMS)
     if "values" not in t:
-        raise c.fail("vary.values", "missing", _PARAM_ALLOWED[param])
+        raise c.fail("vary.values", "missing", _allowed(param), param)
     return Vary(param, _values_list(c, "vary.values", param, t["values"], _MAX_VARY))
 
 
@@ -830,7 +833,10 @@ def _range_bounds(
     for k, v in (("start", start), ("stop", stop)):
         if not math.isfinite(v):
             raise c.fail(
-                f"sweep.{k}", "must be finite", "finite numbers; list inf in values"
+                f"sweep.{k}",
+                "must be finite",
+                "finite numbers; list inf in values",
+                param,
             )
     points = c.integer("sweep.points", points_, 2, _MAX_SWEEP)
     spacing = c.string("sweep.spacing", spacing_, ("linear", "log"))
@@ -903,7 +909,7 @@ def _in_layer(y: float) -> bool:
 
 
 def _finite_kw(kw: float) -> bool:
-    return math.isfinite(kw) and kw >= 1e-12
+    return math.isfinite(kw) and SPECS["kw"].contains(kw)
 
 
 # ----------------------------------------------------------------------------
@@ -924,7 +930,7 @@ def _validate(scene: Scene, source: str) -> None:
                 continue
             if name == "damping":  # optional, 0; kept only when given
                 continue
-            raise c.fail(f"params.{name}", "missing", _PARAM_ALLOWED[name])
+            raise c.fail(f"params.{name}", "missing", _allowed(name), name)
         params[name] = c.param(f"params.{name}", name, scene.params[name])
     object.__setattr__(scene, "params", params)
 
@@ -1051,27 +1057,29 @@ def _check_speeds(scene: Scene, c: _Checker) -> None:
         if damped:
             vr = rayleigh_speed(p["nu"])
             if not p["vstar"] < vr:
-                culprit = where["vstar"]
+                culprit, blamed = where["vstar"], "vstar"
                 if culprit.startswith("params.") and not where["nu"].startswith(
                     "params."
                 ):
-                    culprit = where["nu"]
+                    culprit, blamed = where["nu"], "nu"
                 raise c.fail(
                     culprit,
                     f"vstar = {p['vstar']:.10g} is at or above the Rayleigh speed "
                     f"V*_R = {vr:.10g} (nu = {p['nu']:g}): no steady solution, "
                     "even with damping",
                     f"0 <= vstar < {vr:.10g} with damping > 0",
+                    blamed,
                 )
             continue
         vcr, _ = critical_speed(p["kw"], p["nu"])
         if not p["vstar"] < vcr:
             # Blame the key that moved the point off the base parameters.
             culprit, allowed = where["vstar"], f"0 <= vstar < {vcr:.10g}"
+            blamed = "vstar"
             if culprit.startswith("params."):
                 for name in ("kw", "nu", "damping"):
                     if not where[name].startswith("params."):
-                        culprit = where[name]
+                        culprit, blamed = where[name], name
                         allowed = f"{name} with V*_cr(kw, nu) > vstar = {p['vstar']:g}"
                         if name == "damping":
                             allowed = "damping > 0 above V*_cr"
@@ -1083,6 +1091,7 @@ def _check_speeds(scene: Scene, c: _Checker) -> None:
                 f"{allowed}, or damping > 0 (then vstar < V*_R)"
                 if allowed.startswith("0 <=")
                 else allowed,
+                blamed,
             )
     if damped_where is not None:
         _check_damped_outputs(scene, c, damped_where)

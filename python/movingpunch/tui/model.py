@@ -19,12 +19,11 @@ from typing import Literal
 import numpy as np
 import numpy.typing as npt
 
-from movingpunch import solver
 from movingpunch.accuracy import LADDER, AccuracyReport, accuracy_report
 from movingpunch.contract import ContactSolution
-from movingpunch.damped import check_damping
 from movingpunch.errors import InvalidParameterError, MovingPunchError
 from movingpunch.fields import StressPeaks
+from movingpunch.params import check as check_param
 from movingpunch.solver import (
     critical_vstar,
     rayleigh_vstar,
@@ -61,18 +60,6 @@ TABS: tuple[TabName, ...] = (
 
 FieldQuantity = Literal["sigma_x", "von_mises"]
 
-# The same checks as movingpunch.solve, so the messages name the parameter and
-# its valid range exactly as the API's do (one source of truth for ranges).
-_CHECKS: dict[str, Callable[[object], float]] = {
-    "vstar": solver._check_vstar,
-    "kw": solver._check_kw,
-    "radius": lambda v: solver._check_positive("radius", v),
-    "load": lambda v: solver._check_positive("load", v),
-    "nu": solver._check_nu,
-    "damping": check_damping,
-    "tol": solver._check_tol,
-}
-
 SHORT: dict[str, str] = {
     "vstar": "V*",
     "kw": "kw",
@@ -104,7 +91,8 @@ def fmt(value: float, digits: int = 6) -> str:
 
 def parse_param(name: str, text: str) -> float:
     """The value typed for ``name``, checked as ``movingpunch.solve`` checks
-    it. Raises InvalidParameterError naming the parameter and its range.
+    it (the table ``movingpunch.params.SPECS``). Raises InvalidParameterError
+    naming the parameter and its range (``.parameter`` is ``name``).
 
     The bound vstar < V*_cr depends on kw and nu: the solve checks it.
     """
@@ -115,7 +103,7 @@ def parse_param(name: str, text: str) -> float:
         value = stripped  # the check rejects it with the usual message
     if not stripped:
         value = text
-    return _CHECKS[name](value)
+    return check_param(name, value)
 
 
 @dataclass(frozen=True)

@@ -71,7 +71,9 @@ def load_in(folder: WorkingFolder, text: str) -> SceneState:
         except SceneError as exc:
             if exc.source != str(real):
                 raise
-            raise SceneError(text, exc.key, exc.problem, exc.allowed) from None
+            raise SceneError(
+                text, exc.key, exc.problem, exc.allowed or "", exc.parameter
+            ) from None
     elif bundled_scene_text(text) is not None:
         scene = Scene.bundled(text)
     else:

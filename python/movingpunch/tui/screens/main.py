@@ -280,8 +280,8 @@ class MainScreen(Screen[None]):
                 panel.set_message("vstar", _one_line(error))
             self._status_error = "supercritical speed: no steady solution"
         elif isinstance(error, InvalidParameterError):
-            name = _parameter_named(str(error))
-            if name is not None:
+            name = error.parameter
+            if name in PARAM_NAMES:
                 panel.set_message(name, _one_line(error))
             self._status_error = _one_line(error)
         elif isinstance(error, UnphysicalContactError):
@@ -584,12 +584,6 @@ def _one_line(error: BaseException | None) -> str:
     if error is None:
         return "unknown error"
     return " ".join(str(error).split()) or type(error).__name__
-
-
-def _parameter_named(message: str) -> str | None:
-    """The parameter an InvalidParameterError message starts with."""
-    first = message.split(" ", 1)[0]
-    return first if first in PARAM_NAMES else None
 
 
 def _labelled(parts: list[tuple[str, str]], valid: bool) -> Text:

@@ -10,6 +10,7 @@ from textual.containers import Horizontal, VerticalScroll
 from textual.reactive import reactive
 from textual.widgets import Input, Label, Static
 
+from movingpunch.params import help_text
 from movingpunch.tui.model import PARAM_NAMES, Params, fmt
 
 LABELS: dict[str, str] = {
@@ -22,16 +23,8 @@ LABELS: dict[str, str] = {
     "tol": "tol",
 }
 
-TOOLTIPS: dict[str, str] = {
-    "vstar": "V* = ρV²/μ, 0 <= V* < V*_cr",
-    "kw": "foundation stiffness k_w h/μ, 1e-12 to inf (inf: rigid base)",
-    "radius": "punch radius R/h > 0",
-    "load": "load P/(μh) > 0; the paper's μ/(P/h) = 1/load",
-    "nu": "Poisson's ratio, 0 <= ν < 0.5",
-    "damping": "foundation damping c_w c_T/μ >= 0 (dashpots beside the springs; "
-    "0: the paper's model); with damping V* may exceed V*_cr, up to V*_R",
-    "tol": "relative tolerance on a/h, 1e-14 to 1e-2, or draft, default, precise",
-}
+TOOLTIPS: dict[str, str] = {name: help_text(name) for name in PARAM_NAMES}
+"""Meaning, valid range and default of each input: the table of parameters."""
 
 WARN_FRACTION = 0.95
 """The gauge turns to a warning above this fraction of V*_cr."""

@@ -1,0 +1,298 @@
+"""Every user input in one table: its range, unit, meaning and default.
+
+The API (``movingpunch.solve`` and the damped solve), scene validation, the
+CLI's ``--help`` and the terminal UI's inputs all read their ranges and texts
+from :data:`SPECS` and check values with :func:`check`, so a range is written
+once. Pure Python: this module imports only ``movingpunch.errors`` (never
+``_core``), so scenes, the CLI and the UI import it cheaply.
+
+Every quantity is dimensionless (layer thickness h = 1, shear modulus mu = 1).
+The speed bound vstar < V*_cr(kw, nu) depends on kw and nu: the core checks it
+(SupercriticalSpeedError, whose ``parameter`` is ``"vstar"`` too).
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+from collections.abc import Mapping
+from dataclasses import dataclass
+from types import MappingProxyType
+
+from movingpunch.errors import InvalidParameterError
+
+__all__ = [
+    "PRESETS",
+    "SPECS",
+    "ParamSpec",
+    "check",
+    "check_size",
+    "help_text",
+    "range_text",
+]
+
+PRESETS: Mapping[str, float] = MappingProxyType(
+    {"draft": 1e-4, "default": 1e-8, "precise": 1e-12}
+)
+"""Named accuracies: preset name -> tol (relative tolerance on a/h). ``tol``
+accepts a name wherever it accepts a number (solve, scene files, the CLI's
+``--tol``, the terminal UI)."""
+
+
+def _num(x: float) -> str:
+    """A bound as written in a range: 0, 0.5, 1e-12, 1e12, inf."""
+    if math.isinf(x):
+        return "inf" if x > 0 else "-inf"
+    if x == 0 or 0.1 <= abs(x) < 1e4:
+        return f"{x:g}"
+    mantissa, exponent = f"{x:.12e}".split("e")
+    return f"{mantissa.rstrip('0').rstrip('.')}e{int(exponent)}"
+
+
+@dataclass(frozen=True)
+class ParamSpec:
+    """One input: ``lo``/``hi`` with open or closed ends; ``inf_ok``: +inf is a
+    valid value (kw: the smooth rigid base). ``hi_text`` replaces ``hi`` in
+    the text when the bound is not a number (vstar < V*_cr(kw, nu))."""
+
+    name: str
+    lo: float
+    hi: float
+    lo_open: bool
+    hi_open: bool
+    unit: str
+    """The dimensionless group the number is (``R/h``), "" for a pure number."""
+    meaning: str
+    """One line: what the input is."""
+    default: float | None
+    """The API's default (None: required)."""
+    inf_ok: bool = False
+    hi_text: str = ""
+    note: str = ""
+    """Appended to the range in every text (presets, the meaning of inf)."""
+    integer: bool = False
+
+    @property
+    def range(self) -> str:
+        """The bounds alone: ``0 < radius <= 1e12``."""
+        if self.integer:
+            lo, hi = _num(self.lo), _num(self.hi)
+            return f"None (automatic) or an even integer in [{lo}, {hi}]"
+        lo_op = "<" if self.lo_open else "<="
+        hi_op = "<" if self.hi_open else "<="
+        hi = self.hi_text or _num(self.hi)
+        return f"{_num(self.lo)} {lo_op} {self.name} {hi_op} {hi}"
+
+    @property
+    def text(self) -> str:
+        """The valid range as every message, help line and tooltip shows it:
+        ``0 < radius <= 1e12, radius = R/h``."""
+        out = self.range
+        if self.note:
+            out += f" {self.note}"
+        if self.unit:
+            out += f", {self.name} = {self.unit}"
+        return out
+
+    def contains(self, x: float) -> bool:
+        """Whether the float ``x`` is in range (NaN never is)."""
+        if math.isnan(x):
+            return False
+        if math.isinf(x):
+            return self.inf_ok and x > 0
+        above = x > self.lo if self.lo_open else x >= self.lo
+        below = x < self.hi if self.hi_open else x <= self.hi
+        return above and below
+
+
+def _presets_note() -> str:
+    return "(relative, on a/h), or a preset: " + ", ".join(
+        f'"{name}" ({_num(tol)})' for name, tol in PRESETS.items()
+    )
+
+
+SIZE_MAX = 4096
+"""Largest collocation size n the undamped solver takes."""
+
+SPECS: Mapping[str, ParamSpec] = MappingProxyType(
+    {
+        s.name: s
+        for s in (
+            ParamSpec(
+                "vstar",
+                0.0,
+                math.inf,
+                False,
+                True,
+                "rho V^2/mu",
+                "speed of the punch",
+                None,
+                hi_text="V*_cr(kw, nu)",
+                note="(< V*_R(nu) with damping > 0)",
+            ),
+            ParamSpec(
+                "kw",
+                1e-12,
+                math.inf,
+                False,
+                False,
+                "k_w h/mu",
+                "stiffness of the Winkler foundation",
+                None,
+                inf_ok=True,
+                note="(inf: smooth rigid base)",
+            ),
+            ParamSpec(
+                "radius", 0.0, 1e12, True, False, "R/h", "radius of the punch", None
+            ),
+            ParamSpec(
+                "load",
+                0.0,
+                1e6,
+                True,
+                False,
+                "P/(mu h)",
+                "load per unit length (the paper's mu/(P/h) = 1/load)",
+                None,
+            ),
+            ParamSpec(
+                "nu", 0.0, 0.5, False, True, "", "Poisson's ratio of the layer", 0.2
+            ),
+            ParamSpec(
+                "damping",
+                0.0,
+                math.inf,
+                False,
+                True,
+                "c_w c_T/mu",
+                "dashpots beside the foundation's springs (Kelvin-Voigt)",
+                0.0,
+                note="(0: no dashpots, the paper's model)",
+            ),
+            ParamSpec(
+                "tol",
+                1e-14,
+                1e-2,
+                False,
+                False,
+                "",
+                "relative tolerance on the contact half-width a/h",
+                1e-8,
+                note=_presets_note(),
+            ),
+            ParamSpec(
+                "n",
+                2,
+                SIZE_MAX,
+                False,
+                False,
+                "",
+                "collocation size",
+                None,
+                integer=True,
+            ),
+            ParamSpec(
+                "y",
+                -1.0,
+                0.0,
+                False,
+                False,
+                "",
+                "depth in the layer",
+                0.0,
+                note="(y/h, the layer)",
+            ),
+            ParamSpec(
+                "extent",
+                0.0,
+                math.inf,
+                True,
+                True,
+                "x/h",
+                "half-length of the surface searched for stress peaks",
+                None,
+            ),
+            ParamSpec("t", 0.0, math.inf, False, True, "alpha h", "wavenumber", None),
+        )
+    }
+)
+"""Every user input, by the name the API, scenes and the CLI use."""
+
+
+def range_text(name: str) -> str:
+    """``SPECS[name].text``: the valid range of ``name`` as every message,
+    help line and tooltip shows it."""
+    return SPECS[name].text
+
+
+def help_text(name: str) -> str:
+    """One line for ``--help`` and tooltips: meaning, range, default."""
+    spec = SPECS[name]
+    out = f"{spec.meaning}; {spec.text}"
+    if spec.default is not None:
+        out += f" (default {_num(spec.default)})"
+    return out
+
+
+def fail(name: str, message: str) -> InvalidParameterError:
+    """An InvalidParameterError for ``name`` with its range as ``allowed``."""
+    spec = SPECS.get(name)
+    return InvalidParameterError(
+        message, parameter=name, allowed=spec.text if spec else None
+    )
+
+
+def classify(name: str, value: object) -> tuple[float, str]:
+    """``value`` as a float and what is wrong with it: "" (nothing),
+    "type" (not a real number: bool, str, None, complex, ...), "overflow"
+    (an integer beyond float range), "finite" (NaN or an infinity the
+    range refuses) or "range". Presets and integers are not handled here."""
+    spec = SPECS[name]
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        return math.nan, "type"
+    try:
+        x = float(value)
+    except OverflowError:
+        return math.nan, "overflow"
+    if math.isnan(x) or (math.isinf(x) and not (spec.inf_ok and x > 0)):
+        return x, "finite"
+    return x, "" if spec.contains(x) else "range"
+
+
+def check(name: str, value: object) -> float:
+    """``value`` as a float if it is valid for ``name`` (a preset name too for
+    ``tol``). Raises InvalidParameterError whose message names the parameter
+    and its range, with ``parameter`` and ``allowed`` set."""
+    spec = SPECS[name]
+    if name == "tol" and isinstance(value, str):
+        preset = PRESETS.get(value.strip().lower())
+        if preset is not None:
+            return preset
+        raise fail(name, f"tol must satisfy {spec.text}, got {value!r}")
+    x, problem = classify(name, value)
+    if problem == "type":
+        raise fail(name, f"{name} must be a real number ({spec.text}), got {value!r}")
+    if problem == "overflow":
+        raise fail(name, f"{name} is too large for a float ({spec.text})")
+    if problem == "finite":
+        kind = "number" if spec.inf_ok else "finite number"
+        raise fail(name, f"{name} must be a {kind} ({spec.text}), got {x!r}")
+    if problem == "range":
+        raise fail(name, f"{name} must satisfy {spec.text}, got {x!r}")
+    return x
+
+
+def check_size(value: object, most: int = SIZE_MAX, what: str = "") -> int:
+    """The collocation size: None (automatic) -> 0, or an even int in
+    [2, ``most``]. ``what`` is appended to the range in the message (the
+    damped solver takes at most 1024: " for the damped solver")."""
+    if value is None:
+        return 0
+    if not isinstance(value, bool) and isinstance(value, numbers.Integral):
+        size = int(value)
+        if 2 <= size <= most and size % 2 == 0:
+            return size
+    allowed = f"None (automatic) or an even integer in [2, {most}]"
+    raise InvalidParameterError(
+        f"n must be {allowed}{what}, got {value!r}", parameter="n", allowed=allowed
+    )
