@@ -11,10 +11,10 @@ one needs nothing. Only two things need `pip install -e`:
   editable install records which files make up the package, so it is
   re-registered (CMake then finds nothing to compile).
 
-Usage (from the repository root; stdlib only, any Python >= 3.8):
-    python scripts/build_stamp.py check STAMP   exit 0 if STAMP is current
-    python scripts/build_stamp.py write STAMP   record the current state
-    python scripts/build_stamp.py show          print both digests
+Usage (stdlib only, any Python >= 3.8; --root defaults to this repository):
+    python scripts/build_stamp.py [--root DIR] check STAMP   exit 0 if current
+    python scripts/build_stamp.py [--root DIR] write STAMP   record the state
+    python scripts/build_stamp.py [--root DIR] show          print the digests
 """
 
 from __future__ import annotations
@@ -93,6 +93,8 @@ def stale_parts(root: Path, stamp: Path) -> list[str]:
 
 def main(argv: list[str]) -> int:
     root = Path(__file__).resolve().parent.parent
+    if argv[:1] == ["--root"] and len(argv) >= 2:
+        root, argv = Path(argv[1]), argv[2:]
     if argv[:1] == ["show"]:
         sys.stdout.write(stamp_text(root))
         return 0

@@ -11,7 +11,7 @@ import json
 import math
 import os
 import subprocess
-import sys
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -536,7 +536,9 @@ def test_a_failed_write_leaves_no_file(
     assert list(tmp_path.iterdir()) == []
 
 
-def test_importing_scenes_loads_no_optional_dependency() -> None:
+def test_importing_scenes_loads_no_optional_dependency(
+    run_python: Callable[..., subprocess.CompletedProcess[str]],
+) -> None:
     """plotext, matplotlib and Dask load only when a plot, a PNG or a cluster
     is asked for (the CLI starts fast; the extras stay optional)."""
     code = (
@@ -547,11 +549,5 @@ def test_importing_scenes_loads_no_optional_dependency() -> None:
         "print(bad)\n"
         "sys.exit(1 if bad else 0)\n"
     )
-    proc = subprocess.run(
-        [sys.executable, "-c", code],
-        capture_output=True,
-        text=True,
-        timeout=120,
-        check=False,
-    )
+    proc = run_python(code)
     assert proc.returncode == 0, proc.stdout + proc.stderr
