@@ -306,9 +306,11 @@ def test_errors_module_does_not_import_core(
     run_python: Callable[..., subprocess.CompletedProcess[str]],
 ) -> None:
     code = (
-        "import importlib.util, sys\n"
+        "import importlib.util, os, sys\n"
         "spec = importlib.util.find_spec('movingpunch')\n"
-        "path = spec.submodule_search_locations[0] + '/errors.py'\n"
+        # Beside the package's __init__.py: in an editable install the first
+        # search location holds only the compiled _core.
+        "path = os.path.join(os.path.dirname(spec.origin), 'errors.py')\n"
         "s = importlib.util.spec_from_file_location('mp_errors', path)\n"
         "m = importlib.util.module_from_spec(s); s.loader.exec_module(m)\n"
         "sys.exit(1 if 'movingpunch._core' in sys.modules else 0)\n"
