@@ -23,6 +23,13 @@ done
 py=${PY:-.venv/bin/python}
 clang_format=${CLANG_FORMAT:-.venv/bin/clang-format}
 
+for tool in "$py" "$clang_format"; do
+  if ! command -v "$tool" >/dev/null 2>&1; then
+    echo "[format] $tool not found: run \`bash scripts/setup.sh\` (the dev extra brings ruff and a pinned clang-format)" >&2
+    exit 2
+  fi
+done
+
 status=0
 for lang in "${langs[@]}"; do
   if [[ $lang == cpp ]]; then
