@@ -8,6 +8,7 @@ install of scripts/setup.sh, or PYTHONPATH in a worktree).
 
 from __future__ import annotations
 
+import json
 import subprocess
 import sys
 from collections.abc import Callable
@@ -47,6 +48,15 @@ def _run_python(code: str, *args: str, timeout: float = CODE_TIMEOUT) -> Complet
     )
 
 
+def _modules_loaded_by(code: str) -> set[str]:
+    # The list goes last on stdout, after anything CODE prints.
+    proc = _run_python(
+        code + "\nimport json as _j, sys as _s\nprint(_j.dumps(sorted(_s.modules)))\n"
+    )
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    return set(json.loads(proc.stdout.splitlines()[-1]))
+
+
 def _assert_one_line_error(proc: Completed, *words: str) -> None:
     assert proc.returncode == 2, proc
     assert "Traceback" not in proc.stderr
@@ -72,6 +82,14 @@ def run_python() -> Callable[..., Completed]:
     ARGS`` in a fresh interpreter (e.g. to see which modules an import loads);
     output captured as text, the exit status not checked."""
     return _run_python
+
+
+@pytest.fixture
+def modules_loaded_by() -> Callable[[str], set[str]]:
+    """``modules_loaded_by(code)``: the names in ``sys.modules`` after CODE
+    ran in a fresh interpreter (which must succeed), e.g. to prove that an
+    import does not load Textual."""
+    return _modules_loaded_by
 
 
 @pytest.fixture
