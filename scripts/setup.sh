@@ -66,7 +66,9 @@ if ((current)); then
   log "movingpunch is up to date in .venv: $why"
 else
   log "installing movingpunch (editable) into .venv: ${why:-no working install}"
-  log "(the first build compiles the C++ core: a few minutes; later ones only what changed)"
+  if ! compgen -G 'build/*/CMakeCache.txt' >/dev/null; then
+    log "(the first build compiles the C++ core: a few minutes; later ones only what changed)"
+  fi
   rm -f "$stamp"
   # The build requirements, as in [build-system].requires of pyproject.toml
   # (tests/python/test_dev_loop.py checks they agree): without build isolation
