@@ -16,6 +16,32 @@ from pathlib import Path
 
 import pytest
 
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def pytest_sessionstart(session: pytest.Session) -> None:
+    """Stop before any test if movingpunch comes from another source checkout.
+
+    An editable install's import hook (scripts/setup.sh) takes precedence over
+    PYTHONPATH, so a checkout tested with another checkout's .venv would
+    silently test that other checkout's code. An installed copy (site-packages)
+    or this checkout's python/ are fine.
+    """
+    import movingpunch
+
+    here = Path(movingpunch.__file__).resolve().parent
+    ours = ROOT / "python" / "movingpunch"
+    checkout = here.parent.parent
+    if here != ours and (checkout / "pyproject.toml").exists():
+        pytest.exit(
+            f"these tests ({ROOT}) would run against movingpunch from another "
+            f"checkout ({here}): its editable install wins over PYTHONPATH. Use "
+            "this checkout's own .venv (bash scripts/setup.sh) or a non-editable "
+            "environment.",
+            returncode=4,
+        )
+
+
 #: Hang guard of one command (imports included; a solve takes milliseconds,
 #: the slowest bundled scene some seconds). Never a performance assertion.
 CLI_TIMEOUT = 300.0
