@@ -1,5 +1,8 @@
 """Fixtures shared by the Python tests: running movingpunch as a user would, in
-a subprocess, and the check every command-line error must pass.
+a subprocess (``run_cli``, ``run_python``), the modules a piece of code loads
+(``modules_loaded_by``) and the check every command-line error must pass
+(``assert_one_line_error``); and a guard that the tests run against this
+checkout's movingpunch.
 
 Subprocesses use this interpreter (``sys.executable``) and inherit the
 environment, so they import the same movingpunch as the tests (the editable
