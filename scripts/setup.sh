@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Installs everything movingpunch needs on a Debian machine, then the package
-# itself (non-editable, with its test extras) into .venv. Idempotent: system
-# packages are installed only if missing, and the package is rebuilt only when
-# its sources changed (MOVINGPUNCH_FORCE_INSTALL=1 forces a rebuild).
+# itself (editable, with all its extras) into .venv. Idempotent: system
+# packages are installed only if missing, and the package is reinstalled only
+# when a C++ build input changed or a Python file was added or removed
+# (MOVINGPUNCH_FORCE_INSTALL=1 forces it). The C++ objects and the GoogleTest
+# executable live in build/<cache_tag> (e.g. build/cpython-311), kept between runs.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
@@ -42,20 +44,38 @@ if ! .venv/bin/python -c 'import sys' >/dev/null 2>&1; then
   .venv/bin/python -m pip install --quiet --upgrade pip
 fi
 
-# --- The package (rebuilt only when its sources change) ----------------------
-stamp=.venv/.movingpunch-sources
-digest=$(
-  {
-    for f in pyproject.toml CMakeLists.txt README.md; do [[ -f $f ]] && echo "$f"; done
-    find cpp python -type f -not -path '*/__pycache__/*'
-  } | LC_ALL=C sort | xargs sha256sum | sha256sum | cut -d' ' -f1
-)
-if [[ "${MOVINGPUNCH_FORCE_INSTALL:-0}" != 1 && -f $stamp && $(<"$stamp") == "$digest" ]] \
-  && .venv/bin/python -c 'import movingpunch' >/dev/null 2>&1; then
-  log "movingpunch is up to date in .venv"
+# --- The package: editable, with a persistent build folder ------------------
+# `pip install -e` (scikit-build-core, build-dir build/<cache_tag> from
+# pyproject.toml) compiles _core and the C++ tests once; Python files are then
+# served from python/movingpunch, so a Python edit needs nothing here. It runs
+# again only when a C++ build input changed (CMake/ninja then recompile only
+# what changed) or a Python file was added or removed: scripts/build_stamp.py.
+py=.venv/bin/python
+stamp=.venv/.movingpunch-editable
+current=0
+if [[ "${MOVINGPUNCH_FORCE_INSTALL:-0}" == 1 ]]; then
+  why="forced (MOVINGPUNCH_FORCE_INSTALL=1)"
+elif why=$("$py" scripts/build_stamp.py check "$stamp"); then
+  if "$py" -c 'import movingpunch._core' >/dev/null 2>&1; then
+    current=1
+  else
+    why="movingpunch._core does not import from .venv"
+  fi
+fi
+if ((current)); then
+  log "movingpunch is up to date in .venv: $why"
 else
-  log "building and installing movingpunch into .venv (first build takes a few minutes)"
+  log "installing movingpunch (editable) into .venv: ${why:-no working install}"
+  if ! compgen -G 'build/*/CMakeCache.txt' >/dev/null; then
+    log "(the first build compiles the C++ core: a few minutes; later ones only what changed)"
+  fi
   rm -f "$stamp"
-  .venv/bin/python -m pip install --progress-bar off ".[test,dev,dask,png,serve]"
-  printf '%s\n' "$digest" >"$stamp"
+  # The build requirements, as in [build-system].requires of pyproject.toml
+  # (tests/python/test_dev_loop.py checks they agree): without build isolation
+  # they come from .venv, so the build folder's CMake cache stays valid.
+  "$py" -m pip install --progress-bar off "scikit-build-core>=0.10" "pybind11>=2.13"
+  "$py" -m pip install --progress-bar off --no-build-isolation \
+    -Ccmake.define.MOVINGPUNCH_BUILD_TESTS=ON \
+    -e ".[test,dev,dask,png,serve]"
+  "$py" scripts/build_stamp.py write "$stamp"
 fi

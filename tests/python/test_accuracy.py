@@ -12,8 +12,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import subprocess
-import sys
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any
 
@@ -322,19 +321,11 @@ def test_write_csv_is_read_back(tmp_path: Path) -> None:
 # ----------------------------------------------------------------------------
 
 
-def run(*args: str) -> subprocess.CompletedProcess[str]:
-    return subprocess.run(
-        [sys.executable, "-m", "movingpunch", *args],
-        capture_output=True,
-        text=True,
-        timeout=300,
-        check=False,
-    )
-
-
 @pytest.mark.parametrize("name", ["table1", "fig4"])
-def test_accuracy_command_on_a_bundled_scene(name: str, tmp_path: Path) -> None:
-    proc = run("accuracy", name, "--plot", "--out", str(tmp_path))
+def test_accuracy_command_on_a_bundled_scene(
+    name: str, tmp_path: Path, run_cli: Callable[..., subprocess.CompletedProcess[str]]
+) -> None:
+    proc = run_cli("accuracy", name, "--plot", "--out", str(tmp_path))
     assert proc.returncode == 0, proc.stderr
     out = proc.stdout
     assert f"Accuracy against time: {name}" in out
@@ -354,24 +345,28 @@ def test_accuracy_command_on_a_bundled_scene(name: str, tmp_path: Path) -> None:
         assert f"{err:.1e}" in row.split()
 
 
-def test_accuracy_command_tols_and_errors() -> None:
-    proc = run("accuracy", "--tols", "draft,1e-6,precise", "--no-plot")
+def test_accuracy_command_tols_and_errors(
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+) -> None:
+    proc = run_cli("accuracy", "--tols", "draft,1e-6,precise", "--no-plot")
     assert proc.returncode == 0, proc.stderr
     assert "log-log" not in proc.stdout
     for tol in ("1e-04 ", "1e-06 ", "1e-12 "):
         assert any(line.startswith(tol) for line in proc.stdout.splitlines())
-    bad = run("accuracy", "--tols", "fast")
+    bad = run_cli("accuracy", "--tols", "fast")
     assert bad.returncode == 2
     assert "Traceback" not in bad.stderr
     assert "precise" in bad.stderr
     assert "--tols" in bad.stderr
-    missing = run("accuracy", "no-such-scene")
+    missing = run_cli("accuracy", "no-such-scene")
     assert missing.returncode == 2
     assert missing.stderr.startswith("movingpunch: error: no-such-scene")
 
 
-def test_solve_command_takes_a_preset() -> None:
-    proc = run(
+def test_solve_command_takes_a_preset(
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+) -> None:
+    proc = run_cli(
         "solve",
         *("--vstar", "0.2", "--kw", "1", "--radius", "100", "--load", "0.002"),
         *("--tol", "precise"),
@@ -380,7 +375,7 @@ def test_solve_command_takes_a_preset() -> None:
     assert "tolerance" in proc.stdout
     assert "1e-12" in proc.stdout
     assert "error bound (σx/(P/h))" in proc.stdout
-    bad = run(
+    bad = run_cli(
         "solve",
         *("--vstar", "0.2", "--kw", "1", "--radius", "100", "--load", "0.002"),
         *("--tol", "fast"),

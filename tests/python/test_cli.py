@@ -8,6 +8,7 @@ import json
 import re
 import subprocess
 import sys
+from collections.abc import Callable
 from pathlib import Path
 
 import pytest
@@ -17,16 +18,6 @@ import movingpunch as mp
 PAPER_CASE = ["--vstar", "0.2", "--kw", "1", "--radius", "100", "--load", "0.002"]
 
 
-def run(*args: str) -> subprocess.CompletedProcess[str]:
-    return subprocess.run(
-        [sys.executable, "-m", "movingpunch", *args],
-        capture_output=True,
-        text=True,
-        timeout=300,
-        check=False,
-    )
-
-
 def number_after(label: str, table: str) -> float:
     """The value in the row of ``table`` whose label is ``label``."""
     match = re.search(rf"^\s*{re.escape(label)}\s+(\S+)", table, re.MULTILINE)
@@ -34,19 +25,10 @@ def number_after(label: str, table: str) -> float:
     return float(match.group(1))
 
 
-def assert_one_line_error(proc: subprocess.CompletedProcess[str], *words: str) -> None:
-    assert proc.returncode == 2, proc
-    assert "Traceback" not in proc.stderr
-    lines = proc.stderr.strip().splitlines()
-    assert len(lines) == 1, proc.stderr
-    assert lines[0].startswith("movingpunch: error: "), proc.stderr
-    for word in words:
-        assert word in lines[0], proc.stderr
-    assert proc.stdout == ""
-
-
-def test_solve_prints_a_table() -> None:
-    proc = run("solve", *PAPER_CASE)
+def test_solve_prints_a_table(
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+) -> None:
+    proc = run_cli("solve", *PAPER_CASE)
     assert proc.returncode == 0, proc.stderr
     out = proc.stdout
     for label in (
@@ -69,8 +51,8 @@ def test_solve_prints_a_table() -> None:
     assert a == pytest.approx(0.3, abs=0.1)
 
 
-def test_solve_json() -> None:
-    proc = run("solve", *PAPER_CASE, "--json")
+def test_solve_json(run_cli: Callable[..., subprocess.CompletedProcess[str]]) -> None:
+    proc = run_cli("solve", *PAPER_CASE, "--json")
     assert proc.returncode == 0, proc.stderr
     data = json.loads(proc.stdout)
     assert data["a"] == pytest.approx(0.3, abs=0.1)
@@ -98,8 +80,10 @@ def test_solve_json() -> None:
         assert key in data
 
 
-def test_solve_json_rigid_base_is_json_safe() -> None:
-    proc = run(
+def test_solve_json_rigid_base_is_json_safe(
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+) -> None:
+    proc = run_cli(
         "solve",
         "--vstar",
         "0",
@@ -134,8 +118,10 @@ def _peaks() -> dict[str, float]:
     return dataclasses.asdict(sol.stress_peaks())
 
 
-def test_solve_stress_table() -> None:
-    proc = run("solve", *PAPER_CASE, "--stress")
+def test_solve_stress_table(
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+) -> None:
+    proc = run_cli("solve", *PAPER_CASE, "--stress")
     assert proc.returncode == 0, proc.stderr
     out = proc.stdout
     assert "Stress sigma_x/(P/h)" in out
@@ -153,8 +139,10 @@ def test_solve_stress_table() -> None:
     assert number_after("a/h", out) == pytest.approx(0.37288, abs=1e-5)
 
 
-def test_solve_stress_json() -> None:
-    proc = run("solve", *PAPER_CASE, "--stress", "--json")
+def test_solve_stress_json(
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+) -> None:
+    proc = run_cli("solve", *PAPER_CASE, "--stress", "--json")
     assert proc.returncode == 0, proc.stderr
     data = json.loads(proc.stdout)
     assert data["a"] == pytest.approx(0.37288, abs=1e-5)
@@ -166,33 +154,39 @@ def test_solve_stress_json() -> None:
     assert stress["top_tensile_x"] > data["a"]
 
 
-def test_solve_without_stress_prints_no_stress() -> None:
-    proc = run("solve", *PAPER_CASE, "--json")
+def test_solve_without_stress_prints_no_stress(
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+) -> None:
+    proc = run_cli("solve", *PAPER_CASE, "--json")
     assert proc.returncode == 0, proc.stderr
     assert "stress" not in json.loads(proc.stdout)
-    table = run("solve", *PAPER_CASE)
+    table = run_cli("solve", *PAPER_CASE)
     assert "sigma_x" not in table.stdout
 
 
-def test_solve_stress_rigid_base_json() -> None:
+def test_solve_stress_rigid_base_json(
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+) -> None:
     rigid = replace(replace(PAPER_CASE, "--vstar", "0"), "--kw", "inf")
-    proc = run("solve", *rigid, "--stress", "--json")
+    proc = run_cli("solve", *rigid, "--stress", "--json")
     assert proc.returncode == 0, proc.stderr
     data = json.loads(proc.stdout)
     assert data["kw"] == "inf"
     assert data["stress"]["centre_top"] < 0
 
 
-def test_critical() -> None:
-    proc = run("critical", "--kw", "1")
+def test_critical(run_cli: Callable[..., subprocess.CompletedProcess[str]]) -> None:
+    proc = run_cli("critical", "--kw", "1")
     assert proc.returncode == 0, proc.stderr
     vcr = number_after("V*_cr", proc.stdout)
     assert vcr == pytest.approx(0.5716928, abs=1e-6)
     assert "0.8299135" in proc.stdout  # Rayleigh, nu = 0.2
 
 
-def test_critical_json_rigid_base() -> None:
-    proc = run("critical", "--kw", "inf", "--json")
+def test_critical_json_rigid_base(
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+) -> None:
+    proc = run_cli("critical", "--kw", "inf", "--json")
     assert proc.returncode == 0, proc.stderr
     data = json.loads(proc.stdout)
     assert data["critical_wavenumber"] == "inf"
@@ -200,8 +194,10 @@ def test_critical_json_rigid_base() -> None:
     assert data["rayleigh_vstar"] == pytest.approx(0.8299135134, rel=1e-9)
 
 
-def test_help_lists_the_commands() -> None:
-    proc = run("--help")
+def test_help_lists_the_commands(
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+) -> None:
+    proc = run_cli("--help")
     assert proc.returncode == 0
     for command in ("solve", "critical", "tui", "serve"):
         assert command in proc.stdout
@@ -228,9 +224,12 @@ def test_no_subcommand_starts_the_terminal_ui(monkeypatch: pytest.MonkeyPatch) -
     assert started[1].scene.overlay.param == "kw"
 
 
-def test_tui_bad_scene_is_one_line() -> None:
-    assert_one_line_error(run("tui", "no-such-scene"), "no-such-scene")
-    assert_one_line_error(run("serve", "no-such-scene"), "no-such-scene")
+def test_tui_bad_scene_is_one_line(
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+    assert_one_line_error: Callable[..., None],
+) -> None:
+    assert_one_line_error(run_cli("tui", "no-such-scene"), "no-such-scene")
+    assert_one_line_error(run_cli("serve", "no-such-scene"), "no-such-scene")
 
 
 def test_serve_without_textual_serve_is_one_line(
@@ -267,29 +266,48 @@ def replace(args: list[str], flag: str, value: str) -> list[str]:
         ("--vstar", "0.6", "critical"),  # supercritical at kw = 1
     ],
 )
-def test_bad_values_exit_2_with_one_line(flag: str, value: str, word: str) -> None:
-    assert_one_line_error(run("solve", *replace(PAPER_CASE, flag, value)), word)
+def test_bad_values_exit_2_with_one_line(
+    flag: str,
+    value: str,
+    word: str,
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+    assert_one_line_error: Callable[..., None],
+) -> None:
+    assert_one_line_error(run_cli("solve", *replace(PAPER_CASE, flag, value)), word)
 
 
 @pytest.mark.parametrize(
     "extra",
     [["--nu", "0.5"], ["--tol", "1"], ["--nu", "x"]],
 )
-def test_bad_optional_values(extra: list[str]) -> None:
-    assert_one_line_error(run("solve", *PAPER_CASE, *extra), extra[0].lstrip("-"))
+def test_bad_optional_values(
+    extra: list[str],
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+    assert_one_line_error: Callable[..., None],
+) -> None:
+    assert_one_line_error(run_cli("solve", *PAPER_CASE, *extra), extra[0].lstrip("-"))
 
 
-def test_missing_required_argument() -> None:
-    assert_one_line_error(run("solve", "--vstar", "0.2", "--kw", "1"), "--radius")
+def test_missing_required_argument(
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+    assert_one_line_error: Callable[..., None],
+) -> None:
+    assert_one_line_error(run_cli("solve", "--vstar", "0.2", "--kw", "1"), "--radius")
 
 
-def test_unknown_subcommand_and_option() -> None:
-    assert_one_line_error(run("frobnicate"))
-    assert_one_line_error(run("solve", *PAPER_CASE, "--bogus"), "--bogus")
+def test_unknown_subcommand_and_option(
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+    assert_one_line_error: Callable[..., None],
+) -> None:
+    assert_one_line_error(run_cli("frobnicate"))
+    assert_one_line_error(run_cli("solve", *PAPER_CASE, "--bogus"), "--bogus")
 
 
-def test_critical_bad_nu() -> None:
-    assert_one_line_error(run("critical", "--kw", "1", "--nu", "0.5"), "nu")
+def test_critical_bad_nu(
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+    assert_one_line_error: Callable[..., None],
+) -> None:
+    assert_one_line_error(run_cli("critical", "--kw", "1", "--nu", "0.5"), "nu")
 
 
 def test_console_script() -> None:

@@ -10,7 +10,7 @@ from __future__ import annotations
 import json
 import math
 import subprocess
-import sys
+from collections.abc import Callable
 
 import numpy as np
 import pytest
@@ -19,16 +19,6 @@ import movingpunch as mp
 from movingpunch.damped import DampedSolution, damped_layer_response, solve_damped
 
 PAPER = {"radius": 100.0, "load": 0.002, "nu": 0.2}
-
-
-def run(*args: str) -> subprocess.CompletedProcess[str]:
-    return subprocess.run(
-        [sys.executable, "-m", "movingpunch", *args],
-        capture_output=True,
-        text=True,
-        timeout=300,
-        check=False,
-    )
 
 
 def drag_by_quadrature(s: DampedSolution) -> float:
@@ -222,9 +212,9 @@ def test_unphysical_supercritical_contact_is_flagged() -> None:
     assert s.min_pressure < 0
 
 
-def test_cli_damping() -> None:
+def test_cli_damping(run_cli: Callable[..., subprocess.CompletedProcess[str]]) -> None:
     case = ["--vstar", "0.65", "--kw", "1", "--radius", "100", "--load", "0.002"]
-    proc = run("solve", *case, "--damping", "0.1", "--json")
+    proc = run_cli("solve", *case, "--damping", "0.1", "--json")
     assert proc.returncode == 0, proc.stderr
     data = json.loads(proc.stdout)
     api = solve_damped(vstar=0.65, kw=1.0, damping=0.1, **PAPER)
@@ -232,21 +222,21 @@ def test_cli_damping() -> None:
         list(api.contact_interval), abs=1e-12
     )
     assert data["drag"] == pytest.approx(api.drag, rel=1e-12)
-    table = run("solve", *case, "--damping", "0.1")
+    table = run_cli("solve", *case, "--damping", "0.1")
     assert table.returncode == 0, table.stderr
     assert "drag" in table.stdout
     assert "contact (-b/h, a/h)" in table.stdout
-    bad = run("solve", *case, "--damping", "-1")
+    bad = run_cli("solve", *case, "--damping", "-1")
     assert bad.returncode == 2
     assert "damping" in bad.stderr
     assert "Traceback" not in bad.stderr
-    stress = run("solve", *case, "--damping", "0.1", "--stress", "--json")
+    stress = run_cli("solve", *case, "--damping", "0.1", "--stress", "--json")
     assert stress.returncode == 0, stress.stderr
     peaks = api.stress_peaks()
     assert json.loads(stress.stdout)["stress"]["top_tensile"] == pytest.approx(
         peaks.top_tensile, rel=1e-12
     )
-    table = run("solve", *case, "--damping", "0.1", "--stress")
+    table = run_cli("solve", *case, "--damping", "0.1", "--stress")
     assert "Stress sigma_x/(P/h)" in table.stdout
 
 

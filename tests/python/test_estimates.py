@@ -22,7 +22,7 @@ import functools
 import json
 import math
 import subprocess
-import sys
+from collections.abc import Callable
 
 import numpy as np
 import numpy.typing as npt
@@ -332,35 +332,27 @@ def test_tight_tol_within_1e_14_of_critical_warns() -> None:
     assert s.error_estimate >= abs(s.a - ref) - u
 
 
-def _cli(*args: str) -> subprocess.CompletedProcess[str]:
-    return subprocess.run(
-        [sys.executable, "-m", "movingpunch", *args],
-        capture_output=True,
-        text=True,
-        timeout=120,
-        check=False,
-    )
-
-
 BASE_ARGS = ["--radius", "100", "--load", "0.002"]
 WARN_ARGS = ["--vstar", repr(_vstar(1.0, 1e-14)), "--kw", "1", "--tol", "1e-12"]
 WARN_ARGS += BASE_ARGS
 
 
-def test_cli_solve_shows_every_warning() -> None:
+def test_cli_solve_shows_every_warning(
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+) -> None:
     expected = mp.solve(vstar=_vstar(1.0, 1e-14), kw=1.0, **PAPER, tol=1e-12).warnings
     assert expected
-    table = _cli("solve", *WARN_ARGS)
+    table = run_cli("solve", *WARN_ARGS)
     assert table.returncode == 0, table.stderr
     shown = [ln for ln in table.stderr.splitlines() if ln.startswith("warning: ")]
     assert shown == [f"warning: {w}" for w in expected]
     assert "pressure margin" in table.stdout
-    doc = _cli("solve", *WARN_ARGS, "--json")
+    doc = run_cli("solve", *WARN_ARGS, "--json")
     assert doc.returncode == 0, doc.stderr
     data = json.loads(doc.stdout)
     assert data["warnings"] == list(expected)
     assert data["pressure_margin"] > 0.0
-    quiet = _cli("solve", "--vstar", "0.2", "--kw", "1", *BASE_ARGS)
+    quiet = run_cli("solve", "--vstar", "0.2", "--kw", "1", *BASE_ARGS)
     assert quiet.returncode == 0
     assert "warning" not in quiet.stderr
 

@@ -1273,18 +1273,12 @@ def test_cli_bad_command_lines(argv: list[str], word: str) -> None:
         ["critical", "--kw", "1e-400"],
     ],
 )
-def test_cli_hostile_in_a_subprocess(argv: list[str]) -> None:
-    proc = subprocess.run(
-        [sys.executable, "-m", "movingpunch", *argv],
-        capture_output=True,
-        text=True,
-        timeout=120,
-        check=False,
-    )
-    assert proc.returncode == 2, proc
-    assert "Traceback" not in proc.stderr
-    assert len(proc.stderr.strip().splitlines()) == 1, proc.stderr
-    assert proc.stdout == ""
+def test_cli_hostile_in_a_subprocess(
+    argv: list[str],
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+    assert_one_line_error: Callable[..., None],
+) -> None:
+    assert_one_line_error(run_cli(*argv))
 
 
 # --------------------------------------------------------------------------

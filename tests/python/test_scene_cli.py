@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 import re
 import subprocess
-import sys
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -26,30 +26,10 @@ TABLE1 = {
 VALID = "[params]\nvstar = 0.2\nkw = 1\nradius = 100\nload = 0.002\n"
 
 
-def run(*args: str, cwd: Path | None = None) -> subprocess.CompletedProcess[str]:
-    return subprocess.run(
-        [sys.executable, "-m", "movingpunch", *args],
-        capture_output=True,
-        text=True,
-        timeout=300,
-        check=False,
-        cwd=cwd,
-    )
-
-
-def assert_one_line_error(proc: subprocess.CompletedProcess[str], *words: str) -> None:
-    assert proc.returncode == 2, proc
-    assert "Traceback" not in proc.stderr
-    lines = proc.stderr.strip().splitlines()
-    assert len(lines) == 1, proc.stderr
-    assert lines[0].startswith("movingpunch: error: "), proc.stderr
-    for word in words:
-        assert word in lines[0], proc.stderr
-    assert proc.stdout == ""
-
-
-def test_run_table1_prints_both_columns() -> None:
-    proc = run("run", "table1", "--jobs", "1")
+def test_run_table1_prints_both_columns(
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+) -> None:
+    proc = run_cli("run", "table1", "--jobs", "1")
     assert proc.returncode == 0, proc.stderr
     header = next(line for line in proc.stdout.splitlines() if "a/h (vstar=0)" in line)
     assert "a/h (vstar=0.001)" in header
@@ -64,8 +44,10 @@ def test_run_table1_prints_both_columns() -> None:
     assert proc.stderr == ""
 
 
-def test_run_writes_csv_and_json_that_load_back(tmp_path: Path) -> None:
-    proc = run("run", "fig6", "--out", str(tmp_path), "--no-plot")
+def test_run_writes_csv_and_json_that_load_back(
+    tmp_path: Path, run_cli: Callable[..., subprocess.CompletedProcess[str]]
+) -> None:
+    proc = run_cli("run", "fig6", "--out", str(tmp_path), "--no-plot")
     assert proc.returncode == 0, proc.stderr
     names = sorted(p.name for p in tmp_path.iterdir())
     assert names == sorted(
@@ -83,7 +65,7 @@ def test_run_writes_csv_and_json_that_load_back(tmp_path: Path) -> None:
         5,
     )
 
-    proc = run("run", "table1", "--format", "json", "--jobs", "2", cwd=tmp_path)
+    proc = run_cli("run", "table1", "--format", "json", "--jobs", "2", cwd=tmp_path)
     assert proc.returncode == 0, proc.stderr
     meta, cols = read_json(tmp_path / "table1-sweep.json")
     assert meta["scene"] == Scene.bundled("table1")
@@ -93,8 +75,10 @@ def test_run_writes_csv_and_json_that_load_back(tmp_path: Path) -> None:
     )
 
 
-def test_run_plots_in_ascii() -> None:
-    proc = run("run", "fig2", "--plot", "--jobs", "1")
+def test_run_plots_in_ascii(
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+) -> None:
+    proc = run_cli("run", "fig2", "--plot", "--jobs", "1")
     assert proc.returncode == 0, proc.stderr
     assert "contact half-width a/h against R/h" in proc.stdout
     assert "vstar=0.5" in proc.stdout
@@ -102,9 +86,11 @@ def test_run_plots_in_ascii() -> None:
     assert "┤" in proc.stdout
 
 
-def test_png_writes_real_figures(tmp_path: Path) -> None:
+def test_png_writes_real_figures(
+    tmp_path: Path, run_cli: Callable[..., subprocess.CompletedProcess[str]]
+) -> None:
     # matplotlib is installed by scripts/setup.sh (the png extra).
-    proc = run("run", "fig4", "--png", "--no-plot", "--out", str(tmp_path))
+    proc = run_cli("run", "fig4", "--png", "--no-plot", "--out", str(tmp_path))
     assert proc.returncode == 0, proc.stderr
     pngs = sorted(tmp_path.glob("*.png"))
     assert pngs, proc.stdout
@@ -120,17 +106,15 @@ def test_png_writes_real_figures(tmp_path: Path) -> None:
     assert {p.suffix for p in tmp_path.iterdir()} <= {".png", ".csv"}
 
 
-def test_png_without_matplotlib_is_a_one_line_error(tmp_path: Path) -> None:
+def test_png_without_matplotlib_is_a_one_line_error(
+    tmp_path: Path, run_python: Callable[..., subprocess.CompletedProcess[str]]
+) -> None:
     code = (
         "import sys; sys.modules['matplotlib'] = None; "
         "from movingpunch.cli import main; raise SystemExit(main(sys.argv[1:]))"
     )
-    proc = subprocess.run(
-        [sys.executable, "-c", code, "run", "table1", "--png", "--out", str(tmp_path)],
-        capture_output=True,
-        text=True,
-        timeout=300,
-        check=False,
+    proc = run_python(
+        code, "run", "table1", "--png", "--out", str(tmp_path), timeout=300
     )
     assert proc.returncode == 2, proc.stderr
     assert "Traceback" not in proc.stderr
@@ -139,8 +123,10 @@ def test_png_without_matplotlib_is_a_one_line_error(tmp_path: Path) -> None:
     ]
 
 
-def test_scenes_lists_the_bundled_scenes() -> None:
-    proc = run("scenes")
+def test_scenes_lists_the_bundled_scenes(
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+) -> None:
+    proc = run_cli("scenes")
     assert proc.returncode == 0, proc.stderr
     lines = proc.stdout.splitlines()
     names = [line.split()[0] for line in lines]
@@ -149,8 +135,10 @@ def test_scenes_lists_the_bundled_scenes() -> None:
     assert all(len(line.split(maxsplit=1)) == 2 for line in lines)
 
 
-def test_scene_show_prints_loadable_toml() -> None:
-    proc = run("scene", "show", "fig3")
+def test_scene_show_prints_loadable_toml(
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+) -> None:
+    proc = run_cli("scene", "show", "fig3")
     assert proc.returncode == 0, proc.stderr
     assert Scene.from_toml(proc.stdout) == Scene.bundled("fig3")
     assert proc.stdout.startswith('name = "fig3"')
@@ -180,23 +168,35 @@ MALFORMED = {
 
 
 @pytest.mark.parametrize("case", sorted(MALFORMED))
-def test_malformed_scene_is_a_one_line_error(case: str, tmp_path: Path) -> None:
+def test_malformed_scene_is_a_one_line_error(
+    case: str,
+    tmp_path: Path,
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+    assert_one_line_error: Callable[..., None],
+) -> None:
     content, key = MALFORMED[case]
     path = tmp_path / "scene.toml"
     if isinstance(content, bytes):
         path.write_bytes(content)
     else:
         path.write_text(content, encoding="utf-8")
-    proc = run("run", str(path))
+    proc = run_cli("run", str(path))
     assert_one_line_error(proc, str(path), f": {key}: ")
     assert list(tmp_path.iterdir()) == [path]
 
 
-def test_unknown_scene_name() -> None:
-    proc = run("run", "fig7")
+def test_unknown_scene_name(
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+    assert_one_line_error: Callable[..., None],
+) -> None:
+    proc = run_cli("run", "fig7")
     assert_one_line_error(proc, "fig7", "table1", "near-critical")
 
 
 @pytest.mark.parametrize("jobs", ["0", "-2", "two"])
-def test_bad_jobs(jobs: str) -> None:
-    assert_one_line_error(run("run", "table1", "--jobs", jobs), "--jobs")
+def test_bad_jobs(
+    jobs: str,
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+    assert_one_line_error: Callable[..., None],
+) -> None:
+    assert_one_line_error(run_cli("run", "table1", "--jobs", jobs), "--jobs")

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import math
 import subprocess
-import sys
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -273,24 +273,18 @@ def test_outputs_the_damped_solver_cannot_give(
         Scene.from_toml(HEAD.format(vstar=0.2) + part)
 
 
-def test_cli_refuses_displacement_with_damping_in_one_line(tmp_path: Path) -> None:
+def test_cli_refuses_displacement_with_damping_in_one_line(
+    tmp_path: Path,
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+    assert_one_line_error: Callable[..., None],
+) -> None:
     path = tmp_path / "d.toml"
     path.write_text(
         HEAD.format(vstar=0.2) + "damping = 0.1\n[outputs]\ndisplacement = true\n"
     )
-    proc = subprocess.run(
-        [sys.executable, "-m", "movingpunch", "run", str(path)],
-        capture_output=True,
-        text=True,
-        timeout=120,
-        check=False,
-    )
-    assert proc.returncode == 2, proc
-    assert "Traceback" not in proc.stderr
-    lines = proc.stderr.strip().splitlines()
-    assert len(lines) == 1, proc.stderr
-    assert lines[0].startswith(f"movingpunch: error: {path}: outputs.displacement: ")
-    assert "not available with damping > 0" in lines[0]
+    proc = run_cli("run", str(path))
+    assert_one_line_error(proc, "not available with damping > 0")
+    assert proc.stderr.startswith(f"movingpunch: error: {path}: outputs.displacement: ")
 
 
 def test_damping_round_trips_and_stays_out_of_undamped_scenes() -> None:

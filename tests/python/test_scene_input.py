@@ -12,7 +12,6 @@ import os
 import random
 import socket
 import subprocess
-import sys
 import threading
 import time
 from collections.abc import Callable, Iterator
@@ -40,16 +39,6 @@ BASE = {"vstar": 0.2, "kw": 1.0, "radius": 100.0, "load": 0.002}
 VALID = "[params]\nvstar = 0.2\nkw = 1\nradius = 100\nload = 0.002\n"
 LOAD_DEADLINE = 2.0  # hang guard of an in-process load (it takes milliseconds)
 CLI_TIMEOUT = 60.0  # hang guard of a CLI subprocess (imports included)
-
-
-def _cli(*args: str) -> subprocess.CompletedProcess[str]:
-    return subprocess.run(
-        [sys.executable, "-m", "movingpunch", *args],
-        capture_output=True,
-        text=True,
-        timeout=CLI_TIMEOUT,
-        check=False,
-    )
 
 
 def _load_within_deadline(
@@ -128,10 +117,12 @@ def test_special_files_are_refused_promptly(
 
 @pytest.mark.parametrize("kind", sorted(WHY))
 def test_cli_refuses_special_files_in_one_line(
-    kind: str, special_files: dict[str, Path]
+    kind: str,
+    special_files: dict[str, Path],
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
 ) -> None:
     path = special_files[kind]
-    proc = _cli("run", str(path))
+    proc = run_cli("run", str(path), timeout=CLI_TIMEOUT)
     assert proc.returncode == 2, proc
     assert proc.stdout == ""
     assert proc.stderr.startswith(f"movingpunch: error: {path}: (file): {WHY[kind]}")
@@ -479,8 +470,12 @@ def test_a_mute_scheduler_is_a_clear_error_within_the_timeout(
     assert time.monotonic() - t0 < 10 * 1.5  # hang guard, generous
 
 
-def test_dask_without_a_sweep_says_so_and_runs_here(mute_listener: str) -> None:
-    proc = _cli("run", "fig4", "--dask", mute_listener, "--no-plot")
+def test_dask_without_a_sweep_says_so_and_runs_here(
+    mute_listener: str, run_cli: Callable[..., subprocess.CompletedProcess[str]]
+) -> None:
+    proc = run_cli(
+        "run", "fig4", "--dask", mute_listener, "--no-plot", timeout=CLI_TIMEOUT
+    )
     assert proc.returncode == 0, proc.stderr
     assert proc.stderr == (
         "movingpunch: note: --dask: the scene has no [sweep], nothing to "

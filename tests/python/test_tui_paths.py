@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import os
 import subprocess
-import sys
+from collections.abc import Callable
 from pathlib import Path
 
 import pytest
@@ -104,13 +104,10 @@ def test_the_folder_must_exist(tmp_path: Path) -> None:
     assert WorkingFolder.at().root == Path(os.path.realpath(os.getcwd()))
 
 
-def test_tui_with_a_bad_root_is_one_line_and_exit_2(tmp_path: Path) -> None:
-    proc = subprocess.run(
-        [sys.executable, "-m", "movingpunch", "tui", "--root", str(tmp_path / "no")],
-        capture_output=True,
-        text=True,
-        timeout=60,
-    )
+def test_tui_with_a_bad_root_is_one_line_and_exit_2(
+    tmp_path: Path, run_cli: Callable[..., subprocess.CompletedProcess[str]]
+) -> None:
+    proc = run_cli("tui", "--root", str(tmp_path / "no"), timeout=60)
     assert proc.returncode == 2
     assert proc.stdout == ""
     lines = proc.stderr.splitlines()

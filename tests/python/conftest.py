@@ -1,0 +1,129 @@
+"""Fixtures shared by the Python tests: running movingpunch as a user would, in
+a subprocess (``run_cli``, ``run_python``), the modules a piece of code loads
+(``modules_loaded_by``) and the check every command-line error must pass
+(``assert_one_line_error``); and a guard that the tests run against this
+checkout's movingpunch.
+
+Subprocesses use this interpreter (``sys.executable``) and inherit the
+environment, so they import the same movingpunch as the tests (the editable
+install of scripts/setup.sh, or PYTHONPATH in a worktree).
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from collections.abc import Callable
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def pytest_sessionstart(session: pytest.Session) -> None:
+    """Stop before any test if movingpunch comes from another source checkout.
+
+    An editable install's import hook (scripts/setup.sh) takes precedence over
+    PYTHONPATH, so a checkout tested with another checkout's .venv would
+    silently test that other checkout's code. An installed copy (site-packages)
+    or this checkout's python/ are fine.
+    """
+    import movingpunch
+
+    here = Path(movingpunch.__file__).resolve().parent
+    ours = ROOT / "python" / "movingpunch"
+    checkout = here.parent.parent
+    if here != ours and (checkout / "pyproject.toml").exists():
+        pytest.exit(
+            f"these tests ({ROOT}) would run against movingpunch from another "
+            f"checkout ({here}): its editable install wins over PYTHONPATH. Use "
+            "this checkout's own .venv (bash scripts/setup.sh) or a non-editable "
+            "environment.",
+            returncode=4,
+        )
+
+
+#: Hang guard of one command (imports included; a solve takes milliseconds,
+#: the slowest bundled scene some seconds). Never a performance assertion.
+CLI_TIMEOUT = 300.0
+#: Hang guard of a short Python snippet run in a fresh interpreter.
+CODE_TIMEOUT = 120.0
+
+Completed = subprocess.CompletedProcess[str]
+
+
+def _run_cli(
+    *args: str, cwd: Path | None = None, timeout: float = CLI_TIMEOUT
+) -> Completed:
+    return subprocess.run(
+        [sys.executable, "-m", "movingpunch", *args],
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+        check=False,
+        cwd=cwd,
+    )
+
+
+def _run_python(code: str, *args: str, timeout: float = CODE_TIMEOUT) -> Completed:
+    return subprocess.run(
+        [sys.executable, "-c", code, *args],
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+        check=False,
+    )
+
+
+def _modules_loaded_by(code: str) -> set[str]:
+    # The list goes last on stdout, after anything CODE prints.
+    proc = _run_python(
+        code + "\nimport json as _j, sys as _s\nprint(_j.dumps(sorted(_s.modules)))\n"
+    )
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    return set(json.loads(proc.stdout.splitlines()[-1]))
+
+
+def _assert_one_line_error(proc: Completed, *words: str) -> None:
+    assert proc.returncode == 2, proc
+    assert "Traceback" not in proc.stderr
+    lines = proc.stderr.strip().splitlines()
+    assert len(lines) == 1, proc.stderr
+    assert lines[0].startswith("movingpunch: error: "), proc.stderr
+    for word in words:
+        assert word in lines[0], proc.stderr
+    assert proc.stdout == ""
+
+
+@pytest.fixture
+def run_cli() -> Callable[..., Completed]:
+    """``run_cli(*args, cwd=None, timeout=CLI_TIMEOUT)``: ``python -m
+    movingpunch ARGS`` in a subprocess; stdout and stderr captured as text,
+    the exit status not checked."""
+    return _run_cli
+
+
+@pytest.fixture
+def run_python() -> Callable[..., Completed]:
+    """``run_python(code, *args, timeout=CODE_TIMEOUT)``: ``python -c CODE
+    ARGS`` in a fresh interpreter (e.g. to see which modules an import loads);
+    output captured as text, the exit status not checked."""
+    return _run_python
+
+
+@pytest.fixture
+def modules_loaded_by() -> Callable[[str], set[str]]:
+    """``modules_loaded_by(code)``: the names in ``sys.modules`` after CODE
+    ran in a fresh interpreter (which must succeed), e.g. to prove that an
+    import does not load Textual."""
+    return _modules_loaded_by
+
+
+@pytest.fixture
+def assert_one_line_error() -> Callable[..., None]:
+    """``assert_one_line_error(proc, *words)``: the command failed with exit
+    status 2, no traceback, nothing on stdout and one stderr line
+    ``movingpunch: error: ...`` that contains every word."""
+    return _assert_one_line_error
