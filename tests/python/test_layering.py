@@ -7,10 +7,12 @@ The layers, lowest first (``LAYERS`` below; a module may import modules of its
 own layer or of lower layers, never a higher one, and no import cycle may form):
 
 1. ``errors``: the exception family (imports nothing of movingpunch).
+   ``params``: the table of parameter specs (pure Python, on ``errors``).
 2. ``core``: the compiled extension ``movingpunch._core``.
 3. ``helpers``: pure-Python numerics and files on top of the core results:
    ``fields`` (stress fields), ``peaks`` (peak search), ``outputs`` (writing
-   result files).
+   result files), ``contract`` (the result contract every solution
+   satisfies), ``_evaluate`` (checking inputs and evaluating at points).
 4. ``solve``: the solves, ``solver`` and ``damped``.
 5. ``scene``: scene files, their runs and exports (``movingpunch.scene.*``).
 6. ``api``: the package itself (``movingpunch/__init__.py``, the public names).
@@ -46,10 +48,19 @@ SOURCE = Path(__file__).resolve().parents[2] / "python" / PACKAGE
 _TUI = "movingpunch.tui"
 LAYERS: tuple[tuple[str, frozenset[str]], ...] = (
     ("errors", frozenset({"movingpunch.errors"})),
+    ("params", frozenset({"movingpunch.params"})),
     ("core", frozenset({"movingpunch._core"})),
     (
         "helpers",
-        frozenset({"movingpunch.fields", "movingpunch.peaks", "movingpunch.outputs"}),
+        frozenset(
+            {
+                "movingpunch.fields",
+                "movingpunch.peaks",
+                "movingpunch.outputs",
+                "movingpunch.contract",
+                "movingpunch._evaluate",
+            }
+        ),
     ),
     ("solve", frozenset({"movingpunch.solver", "movingpunch.damped"})),
     (
