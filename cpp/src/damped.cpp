@@ -253,6 +253,7 @@ DampedQuadrature build_damped_quadrature(const DampedLayerModel& model, double t
       q.m1.push_back(p.r[j].M1);
       q.m2.push_back(p.r[j].M2);
       q.wb.push_back(p.r[j].Wb);
+      q.r.push_back(p.r[j]);
     }
     q.error_estimate += p.error;
     q.kronrod_error += p.sharp;
@@ -264,6 +265,98 @@ DampedQuadrature build_damped_quadrature(const DampedLayerModel& model, double t
 double damped_kernel(const FilonIntegrator& f, const std::vector<double>& kr,
                      const std::vector<double>& ki, double u) {
   return f.integral(u, kr).imag() + f.integral(u, ki).real();
+}
+
+// ---------------------------------------------------------------------------
+// The tabulated kernel
+
+DampedKernel::DampedKernel(std::shared_ptr<const DampedLayerModel> model, double range)
+    : range_(range) {
+  require_in_range("kernel range", range, 0.0, 1e6, true, false);
+  auto b = std::make_shared<Base>();
+  b->model = std::move(model);
+  // Built to round-off whatever tol (it costs no more: its panels are set by
+  // the floor already at tol = 1e-6), so that its error is part of the
+  // round-off floor of the estimates, not of tol.
+  b->quad = build_damped_quadrature(*b->model, 1e-15);
+  b->filon = std::make_shared<const FilonIntegrator>(b->quad.panels);
+  const double phi1 = b->model->phi1();
+  std::vector<double> re(b->quad.m1.size()), im(b->quad.m1.size());
+  for (std::size_t i = 0; i < re.size(); ++i) {
+    re[i] = (b->quad.m1[i].real() - phi1) / phi1;
+    im[i] = b->quad.m1[i].imag() / phi1;
+  }
+  b->kr = b->filon->coefficients(re);
+  b->ki = b->filon->coefficients(im);
+  base_ = std::move(b);
+  tabulate();
+}
+
+DampedKernel::DampedKernel(const DampedKernel& other, double range)
+    : base_(other.base_), range_(range) {
+  require_in_range("kernel range", range, 0.0, 1e6, true, false);
+  tabulate();
+}
+
+double DampedKernel::direct(double u) const {
+  return damped_kernel(*base_->filon, base_->kr, base_->ki, u);
+}
+
+void DampedKernel::tabulate() {
+  // K is analytic in the strip |Im u| < 2 nT (M1 - phi1 decays like
+  // exp(-2 nT alpha)): on pieces of width <= 1 a degree-24 interpolant is at
+  // round-off for nT >~ 0.5; each piece is checked by its last coefficients
+  // and the width halved until every piece passes.
+  constexpr int D = kDegree;
+  double abs_f = 0.0;  // int |f|: the scale of the Filon sums' round-off
+  const DampedQuadrature& q = base_->quad;
+  for (std::size_t i = 0; i < q.m1.size(); ++i)
+    abs_f += q.panels.weight[i] * std::abs(q.m1[i] - model().phi1()) / std::fabs(model().phi1());
+  for (double target = 1.0;; target *= 0.5) {
+    const std::size_t pieces =
+        static_cast<std::size_t>(std::max(1.0, std::ceil(2.0 * range_ / target)));
+    width_ = 2.0 * range_ / static_cast<double>(pieces);
+    coef_.assign(pieces * (D + 1), 0.0);
+    double tail = 0.0, vmax = 0.0;
+    double vals[D + 1];
+    for (std::size_t p = 0; p < pieces; ++p) {
+      const double c0 = -range_ + (static_cast<double>(p) + 0.5) * width_;
+      for (int j = 0; j <= D; ++j) {
+        vals[j] = direct(c0 + 0.5 * width_ * std::cos(kPi * (j + 0.5) / (D + 1)));
+        vmax = std::max(vmax, std::fabs(vals[j]));
+      }
+      double* c = coef_.data() + p * (D + 1);
+      for (int m = 0; m <= D; ++m) {
+        double sum = 0.0;
+        for (int j = 0; j <= D; ++j) sum += vals[j] * std::cos(kPi * m * (j + 0.5) / (D + 1));
+        c[m] = (m == 0 ? 1.0 : 2.0) * sum / (D + 1);
+      }
+      tail = std::max(tail, std::fabs(c[D - 1]) + std::fabs(c[D]));
+    }
+    // The values carry the round-off of Filon sums of terms up to int |f|.
+    const double roundoff = 4.0 * kEps * (abs_f + vmax);
+    if (tail <= 4.0 * roundoff || target < 1e-3) {
+      table_error_ = 2.0 * tail + roundoff;
+      return;
+    }
+  }
+}
+
+double DampedKernel::operator()(double u) const {
+  if (!(std::fabs(u) <= range_)) return direct(u);
+  constexpr int D = kDegree;
+  const std::size_t pieces = coef_.size() / (D + 1);
+  const std::size_t p = std::min(pieces - 1, static_cast<std::size_t>((u + range_) / width_));
+  const double x = 2.0 * (u + range_ - (static_cast<double>(p) + 0.5) * width_) / width_;
+  const double* c = coef_.data() + p * (D + 1);
+  double b1 = 0.0, b2 = 0.0;
+  const double x2 = 2.0 * x;
+  for (int m = D; m >= 1; --m) {
+    const double b0 = c[m] + x2 * b1 - b2;
+    b2 = b1;
+    b1 = b0;
+  }
+  return c[0] + x * b1 - b2;
 }
 
 // ---------------------------------------------------------------------------
@@ -358,15 +451,13 @@ struct WidthEval {
 // extra unknown is square and linear:
 //   sum_i W_i G_i [1/(r_i - s_k) - w K(w (s_k - r_i))] + gamma = s_k  (k = 1..N+1),
 // g = -(w/(phi1 lambda)) G and c = -w gamma; equilibrium gives lambda(w).
-WidthEval eval_width(const ChebyshevNodes& nd, double w, const FilonIntegrator& fi,
-                     const std::vector<double>& kr, const std::vector<double>& ki,
-                     double phi1) {
+WidthEval eval_width(const ChebyshevNodes& nd, double w, const DampedKernel& K, double phi1) {
   const int n = nd.n;
   Eigen::MatrixXd M(n + 1, n + 1);
   for (int k = 0; k <= n; ++k) {
     for (int i = 0; i < n; ++i) {
       const double d = nd.r(i) - nd.s(k);
-      M(k, i) = nd.w(i) * (1.0 / d - w * damped_kernel(fi, kr, ki, -w * d));
+      M(k, i) = nd.w(i) * (1.0 / d - w * K(-w * d));
     }
     M(k, n) = 1.0;
   }
@@ -385,12 +476,13 @@ struct WidthSolve {
 };
 
 // Secant (Illinois, safeguarded by a bracket) on ln lambda(w) = ln lambda_t in ln w.
+template <class Kernel>
 WidthSolve solve_width(const ChebyshevNodes& nd, double lambda_t, double w_guess,
-                       const FilonIntegrator& fi, const std::vector<double>& kr,
-                       const std::vector<double>& ki, double phi1) {
+                       Kernel&& kernel, double phi1) {
   WidthSolve out;
   auto F = [&](double lw, WidthEval& e) {
-    e = eval_width(nd, std::exp(lw), fi, kr, ki, phi1);
+    const double w = std::exp(lw);
+    e = eval_width(nd, w, kernel(2.0 * w), phi1);
     ++out.evaluations;
     if (!(e.lambda > 0.0) || !std::isfinite(e.lambda)) return std::nan("");
     return std::log(e.lambda) - std::log(lambda_t);
@@ -467,24 +559,26 @@ DampedSolution solve_damped(const DampedParams& prm) {
   s.vr_ = rayleigh_vstar(prm.nu);
   s.vcr_ = critical_vstar(prm.kw, prm.nu);
   if (!(prm.vstar < s.vr_)) throw SupercriticalSpeedError(prm.vstar, s.vcr_, s.vr_);
-  auto model = std::make_shared<DampedLayerModel>(prm.vstar, prm.kw, prm.nu, prm.damping);
-  s.model_ = model;
-  // The kernel quadrature is built to round-off whatever tol (it costs no
-  // more: its panels are set by the floor already at tol = 1e-6), so that its
-  // error is part of the round-off floor of the estimates, not of tol.
-  const double tolk = 1e-15;
-  auto quad = std::make_shared<DampedQuadrature>(build_damped_quadrature(*model, tolk));
-  s.quad_ = quad;
-  auto fi = std::make_shared<FilonIntegrator>(quad->panels);
-  s.filon_ = fi;
-  const double phi1 = model->phi1();
-  std::vector<double> re(quad->m1.size()), im(quad->m1.size());
-  for (std::size_t i = 0; i < re.size(); ++i) {
-    re[i] = (quad->m1[i].real() - phi1) / phi1;
-    im[i] = quad->m1[i].imag() / phi1;
-  }
-  s.kr_ = fi->coefficients(re);
-  s.ki_ = fi->coefficients(im);
+  const WaveConstants wc = wave_constants(prm.vstar, prm.nu);
+  const double phi1 = wc.phi1;
+  // The kernel table, fetched from the process-wide cache (or built) for the
+  // widths the solve needs: |u| <= 2w for a trial half-width w, 8 w_final for
+  // the scan of lambda(w) on [w/8, 4w], 4 w_final for the gap. Twice the need
+  // when built: a slightly wider contact (the next point of a sweep) reuses it.
+  std::shared_ptr<const DampedKernel> kern;
+  double kernel_seconds = 0.0;
+  auto kernel = [&](double need) -> const DampedKernel& {
+    if (!kern || kern->range() < need) {
+      const auto tk = std::chrono::steady_clock::now();
+      bool built = false;
+      kern = cached_damped_kernel(prm.vstar, prm.kw, prm.nu, prm.damping, need, 2.0 * need,
+                                  &built);
+      s.kernel_builds_ += built ? 1 : 0;
+      kernel_seconds +=
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - tk).count();
+    }
+    return *kern;
+  };
 
   const double lambda = prm.radius * prm.load;
   const double aH = std::sqrt(2.0 * phi1 * lambda / kPi);
@@ -501,6 +595,9 @@ DampedSolution solve_damped(const DampedParams& prm) {
   const double soft = std::isinf(prm.kw) ? 0.0 : 1.0 / prm.kw;
   const double aW = std::cbrt(1.5 * lambda * (soft + 0.5 * (1.0 - prm.nu)));
   double guess = (aH > 1.0 || aW > 1.0) ? aW : aH;
+  kernel(8.4 * guess);
+  s.model_ = kern->model_ptr();
+  const DampedLayerModel* model = s.model_.get();
 
   const std::vector<int> ladder = {8, 12, 16, 24, 32, 48, 64, 96, 128, 192, 256, 384, 512};
   std::vector<int> sizes;
@@ -525,11 +622,12 @@ DampedSolution solve_damped(const DampedParams& prm) {
   WidthSolve ws;
   ChebyshevNodes nd;
   Eigen::VectorXd bk;
-  const double qerr = quad->kronrod_error;
+  // The kernel's error: its quadrature's (QUADPACK's estimate) and its table's.
+  const double qerr = kern->quadrature().kronrod_error + kern->table_error();
   for (std::size_t k = 0; k < sizes.size(); ++k) {
     nd = chebyshev_nodes(sizes[k]);
     try {
-      ws = solve_width(nd, lambda, guess, *fi, s.kr_, s.ki_, phi1);
+      ws = solve_width(nd, lambda, guess, kernel, phi1);
     } catch (const ConvergenceError& e) {
       // Under-resolved at this N (a non-monotone or non-positive discrete
       // load curve): refine N, unless this was the last size.
@@ -646,13 +744,14 @@ DampedSolution solve_damped(const DampedParams& prm) {
   // lambda(w) on [w/8, 4w] (at N >= 32) for other roots and report them.
   {
     const ChebyshevNodes ns = chebyshev_nodes(std::max(32, nd.n));
+    const DampedKernel& K = kernel(8.4 * s.half_);
     const double lo = std::log(std::max(1e-10, s.half_ / 8.0));
     const double hi = std::log(std::min(50.0, 4.0 * s.half_));
     const int m = 48;
     double prev_x = lo, prev_f = std::nan("");
     for (int i = 0; i <= m; ++i) {
       const double x = lo + (hi - lo) * i / m;
-      const WidthEval e = eval_width(ns, std::exp(x), *fi, s.kr_, s.ki_, phi1);
+      const WidthEval e = eval_width(ns, std::exp(x), K, phi1);
       const double f = e.lambda > 0.0 ? std::log(e.lambda / lambda) : std::nan("");
       if (!std::isnan(f) && !std::isnan(prev_f) && (f > 0.0) != (prev_f > 0.0)) {
         const double xr = prev_x - prev_f * (x - prev_x) / (f - prev_f);  // linear estimate
@@ -664,6 +763,7 @@ DampedSolution solve_damped(const DampedParams& prm) {
     }
   }
 
+  s.kernel_ = kern;
   // Fine nodes for the Fourier integrals up to |x| <= 3 (a + b).
   s.fine_ = std::make_shared<DampedSolution::Fine>(s.build_fine(6.0 * s.half_ + std::fabs(s.centre_)));
 
@@ -708,8 +808,9 @@ DampedSolution solve_damped(const DampedParams& prm) {
       gain = std::max(std::fabs(phi2), dmax / d_p.back());
     } else {
       double im2 = 0.0;
-      for (std::size_t i = 0; i < quad->m2.size(); ++i)
-        im2 += quad->panels.weight[i] * std::abs(quad->m2[i] - phi2);
+      const DampedQuadrature& quad = kern->quadrature();
+      for (std::size_t i = 0; i < quad.m2.size(); ++i)
+        im2 += quad.panels.weight[i] * std::abs(quad.m2[i] - phi2);
       gain = std::fabs(phi2) + 2.0 * s.half_ * im2 / kPi;
     }
     double sabs = 0.0;
@@ -840,7 +941,7 @@ double DampedSolution::surface_slope(double x) const {
   for (int i = 1; i <= m; ++i) {
     const double th = i * kPi / (m + 1), r = std::cos(th);
     const double wi = std::sin(th) * std::sin(th) / (m + 1);
-    kern += wi * u_series(b_, r) * damped_kernel(*filon_, kr_, ki_, x - centre_ - w * r);
+    kern += wi * u_series(b_, r) * (*kernel_)(x - centre_ - w * r);
   }
   return params_.load * phi1 * (-cauchy + w * kern);
 }
@@ -848,7 +949,8 @@ double DampedSolution::surface_slope(double x) const {
 DampedSolution::Fine DampedSolution::build_fine(double freq) const {
   Fine f;
   f.freq = freq;
-  const auto& P = quad_->panels;
+  const DampedQuadrature& Q = kernel_->quadrature();
+  const auto& P = Q.panels;
   const double width = std::min(0.5, 1.5 / std::max(freq, 1e-300));
   for (std::size_t p = 0; p < P.panel_centre.size(); ++p) {
     const double lo = P.panel_centre[p] - P.panel_half[p];
@@ -857,10 +959,11 @@ DampedSolution::Fine DampedSolution::build_fine(double freq) const {
     for (int q = 0; q < m; ++q) {
       const double c = lo + (q + 0.5) * len / m, h = 0.5 * len / m;
       for (int j = 0; j < 15; ++j) {
-        const double a = gk_node(j, c, h);
+        // An unsplit panel: the quadrature's own nodes and responses.
+        const double a = m == 1 ? P.alpha[15 * p + static_cast<std::size_t>(j)] : gk_node(j, c, h);
         f.alpha.push_back(a);
-        f.weight.push_back(gk_weight(j, h));
-        f.r.push_back(model_->response(a));
+        f.weight.push_back(m == 1 ? P.weight[15 * p + static_cast<std::size_t>(j)] : gk_weight(j, h));
+        f.r.push_back(m == 1 ? Q.r[15 * p + static_cast<std::size_t>(j)] : model_->response(a));
         f.phat.push_back(pressure_transform(a));
       }
     }
@@ -925,7 +1028,7 @@ DampedStressGrid DampedSolution::stress_grid(const Eigen::Ref<const Eigen::Vecto
       if (f->alpha[k] > 0.0) add(f->alpha[k], f->weight[k], f->phat[k]);
     // The field decays like exp(nT alpha y): beyond the quadrature's
     // alpha_max extend with panels of width 1.5/freq up to 45/(nT |y|).
-    const double amax = quad_->panels.alpha_max, aend = 45.0 / (c.nT * std::fabs(y(i)));
+    const double amax = kernel_->quadrature().panels.alpha_max, aend = 45.0 / (c.nT * std::fabs(y(i)));
     if (aend > amax) {
       const double width = std::min(0.5, 1.5 / f->freq);
       const int m = static_cast<int>(std::ceil((aend - amax) / width));

@@ -81,12 +81,66 @@ class DampedLayerModel {
 struct DampedQuadrature {
   AlphaQuadrature panels;      // nodes, weights, panel centres/half-widths
   std::vector<cplx> m1, m2, wb;
+  std::vector<DampedResponse> r;  // the whole response at each node
   double error_estimate = 0;   // of the integral of |M1 - phi1|/phi1
   // QUADPACK's (qk15) estimate of the error of the Kronrod sums actually used
   // (|K15 - G7| above bounds the Gauss rule's error, far larger once resolved).
   double kronrod_error = 0;
 };
 DampedQuadrature build_damped_quadrature(const DampedLayerModel& model, double tol);
+
+// The regular kernel K(u) of the damped equation (damped_kernel() below) for
+// one (vstar, kw, nu, damping): the alpha quadrature and its Filon
+// coefficients (range-independent, shared by every table of these inputs) and
+// a piecewise Chebyshev table (degree 24 on equal pieces of width <= 1) on
+// |u| <= range(), built from direct Filon sums and checked piece by piece
+// (the last coefficients at round-off). Beyond the range: direct sums.
+// Immutable and shared between solves (cached_damped_kernel).
+class DampedKernel {
+ public:
+  DampedKernel(std::shared_ptr<const DampedLayerModel> model, double range);
+  // A wider table on the quadrature of `other` (no new layer responses).
+  DampedKernel(const DampedKernel& other, double range);
+
+  double operator()(double u) const;  // the table on |u| <= range(), direct() beyond
+  double direct(double u) const;      // Filon sums, any u
+  double range() const noexcept { return range_; }
+  // Bound on |table - direct| (truncation of the pieces plus their values'
+  // round-off), absolute.
+  double table_error() const noexcept { return table_error_; }
+  const DampedLayerModel& model() const noexcept { return *base_->model; }
+  const std::shared_ptr<const DampedLayerModel>& model_ptr() const noexcept { return base_->model; }
+  const DampedQuadrature& quadrature() const noexcept { return base_->quad; }
+  const FilonIntegrator& filon() const noexcept { return *base_->filon; }
+  const std::vector<double>& kr() const noexcept { return base_->kr; }
+  const std::vector<double>& ki() const noexcept { return base_->ki; }
+
+ private:
+  static constexpr int kDegree = 24;
+  struct Base {
+    std::shared_ptr<const DampedLayerModel> model;
+    DampedQuadrature quad;
+    std::shared_ptr<const FilonIntegrator> filon;
+    std::vector<double> kr, ki;  // Filon coefficients of Re, Im (M1 - phi1)/phi1
+  };
+  std::shared_ptr<const Base> base_;
+  double range_ = 0, width_ = 0, table_error_ = 0;
+  std::vector<double> coef_;  // (kDegree + 1) per piece, pieces from u = -range
+  void tabulate();
+};
+
+// Process-wide cache of damped kernel tables, keyed on (vstar, kw, nu,
+// damping) (the table is built to round-off whatever tol, so tol is not part
+// of the key): a table whose range is at least min_range, or one of range
+// build_range built and cached (kGrowth times that when a shorter table of
+// the same inputs exists: its quadrature is reused). Least recently used
+// evicted beyond kDampedKernelCacheCapacity; thread-safe; emptied by
+// clear_kernel_cache() (kernel.hpp).
+inline constexpr std::size_t kDampedKernelCacheCapacity = 16;
+std::shared_ptr<const DampedKernel> cached_damped_kernel(double vstar, double kw, double nu,
+                                                         double damping, double min_range,
+                                                         double build_range, bool* built = nullptr);
+KernelCacheInfo damped_kernel_cache_info();
 
 // Dimensionless inputs (h = 1, mu = 1).
 struct DampedParams {
@@ -141,6 +195,8 @@ class DampedSolution {
   // empty when tol was met.
   const std::vector<std::string>& warnings() const noexcept { return warnings_; }
   int iterations() const noexcept { return iterations_; }
+  // Kernel tables this solve built (0: all reused from the process-wide cache).
+  int kernel_builds() const noexcept { return kernel_builds_; }
   int collocation_n() const noexcept { return n_; }
   double elapsed() const noexcept { return elapsed_; }
   bool valid() const noexcept { return valid_; }
@@ -184,16 +240,14 @@ class DampedSolution {
   double centre_ = 0, half_ = 0, drag_ = 0, vcr_ = 0, vr_ = 0, err_ = 0, elapsed_ = 0;
   double perr_ = 0, serr_ = 0, max_p_ = 0, margin_ = 0;
   std::vector<std::string> warnings_;
-  int iterations_ = 0, n_ = 0;
+  int iterations_ = 0, n_ = 0, kernel_builds_ = 0;
   bool valid_ = true;
   std::string validity_;
   double min_p_ = 0, min_gap_ = 0;
   std::vector<double> other_widths_;
   Eigen::VectorXd b_;
   std::shared_ptr<const DampedLayerModel> model_;
-  std::shared_ptr<const DampedQuadrature> quad_;
-  std::shared_ptr<const FilonIntegrator> filon_;
-  std::vector<double> kr_, ki_;  // Filon coefficients of Re, Im (M1 - phi1)/phi1
+  std::shared_ptr<const DampedKernel> kernel_;
   // Fine Gauss-Kronrod nodes (the quadrature's panels split so that each
   // resolves oscillations of frequency `freq`), with the response and the
   // transformed pressure at each node.

@@ -129,7 +129,10 @@ class KernelK1 {
 // share a material and speed (a load or radius sweep) reuse one table.
 // Returns a cached table whose range is at least `min_range` (and at most
 // kMaxRangeRatio times it, so a tiny contact never pays for a huge table), or
-// builds one of range `build_range` (>= min_range) and caches it. `built`
+// builds one of range `build_range` (>= min_range) and caches it; when a
+// table of the same key exists but is shorter than min_range (a widening
+// sweep), of range kGrowth * build_range instead (geometric growth: a sweep
+// in any order builds a few tables). `built`
 // (optional) is set to whether a table was built. Thread-safe; the least
 // recently used tables are evicted beyond kCapacity.
 struct KernelCacheInfo {
@@ -139,10 +142,12 @@ struct KernelCacheInfo {
 };
 inline constexpr double kMaxRangeRatio = 24.0;
 inline constexpr std::size_t kKernelCacheCapacity = 32;
+inline constexpr double kGrowth = 2.0;
 std::shared_ptr<const KernelK1> cached_kernel(const LayerModel& model, double tol,
                                               double min_range, double build_range,
                                               bool* built = nullptr);
 KernelCacheInfo kernel_cache_info();
+// Clears the k1 tables and the damped kernel tables (damped.hpp).
 void clear_kernel_cache();
 
 }  // namespace movingpunch
