@@ -312,6 +312,10 @@ void DampedKernel::tabulate() {
   const DampedQuadrature& q = base_->quad;
   for (std::size_t i = 0; i < q.m1.size(); ++i)
     abs_f += q.panels.weight[i] * std::abs(q.m1[i] - model().phi1()) / std::fabs(model().phi1());
+  // Narrower pieces until the last coefficients are at the values' round-off,
+  // or stop shrinking (noise: near-resonant peaks make the Filon sums'
+  // round-off larger than this estimate of it), or the pieces reach 1/8.
+  double prev_tail = std::numeric_limits<double>::infinity();
   for (double target = 1.0;; target *= 0.5) {
     const std::size_t pieces =
         static_cast<std::size_t>(std::max(1.0, std::ceil(2.0 * range_ / target)));
@@ -335,11 +339,45 @@ void DampedKernel::tabulate() {
     }
     // The values carry the round-off of Filon sums of terms up to int |f|.
     const double roundoff = 4.0 * kEps * (abs_f + vmax);
-    if (tail <= 4.0 * roundoff || target < 1e-3) {
+    if (tail <= 4.0 * roundoff || tail > 0.25 * prev_tail || target <= 0.125) {
       table_error_ = 2.0 * tail + roundoff;
       return;
     }
+    prev_tail = tail;
   }
+}
+
+void DampedKernel::many(const double* u, double* out, std::size_t n) const {
+  // Four Clenshaw recurrences interleaved (each is a chain of dependent steps).
+  constexpr int D = kDegree, L = 4;
+  const std::size_t pieces = coef_.size() / (D + 1);
+  std::size_t i = 0;
+  for (; i + L <= n; i += L) {
+    const double* c[L];
+    double x2[L], b1[L] = {0, 0, 0, 0}, b2[L] = {0, 0, 0, 0};
+    bool inside = true;
+    for (int l = 0; l < L; ++l) {
+      const double v = u[i + static_cast<std::size_t>(l)];
+      inside = inside && std::fabs(v) <= range_;
+      const std::size_t p = std::min(
+          pieces - 1, static_cast<std::size_t>(std::max(0.0, (v + range_) / width_)));
+      x2[l] = 4.0 * (v + range_ - (static_cast<double>(p) + 0.5) * width_) / width_;
+      c[l] = coef_.data() + p * (D + 1);
+    }
+    if (!inside) {
+      for (int l = 0; l < L; ++l) out[i + static_cast<std::size_t>(l)] = (*this)(u[i + static_cast<std::size_t>(l)]);
+      continue;
+    }
+    for (int m = D; m >= 1; --m)
+      for (int l = 0; l < L; ++l) {
+        const double b0 = c[l][m] + x2[l] * b1[l] - b2[l];
+        b2[l] = b1[l];
+        b1[l] = b0;
+      }
+    for (int l = 0; l < L; ++l)
+      out[i + static_cast<std::size_t>(l)] = c[l][0] + 0.5 * x2[l] * b1[l] - b2[l];
+  }
+  for (; i < n; ++i) out[i] = (*this)(u[i]);
 }
 
 double DampedKernel::operator()(double u) const {
@@ -454,13 +492,19 @@ struct WidthEval {
 WidthEval eval_width(const ChebyshevNodes& nd, double w, const DampedKernel& K, double phi1) {
   const int n = nd.n;
   Eigen::MatrixXd M(n + 1, n + 1);
-  for (int k = 0; k <= n; ++k) {
-    for (int i = 0; i < n; ++i) {
+  // Column-major: the kernel's values column by column, in one batch.
+  thread_local std::vector<double> u, kv;
+  u.resize(static_cast<std::size_t>(n) * (n + 1));
+  kv.resize(u.size());
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k <= n; ++k) u[static_cast<std::size_t>(i) * (n + 1) + k] = -w * (nd.r(i) - nd.s(k));
+  K.many(u.data(), kv.data(), u.size());
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k <= n; ++k) {
       const double d = nd.r(i) - nd.s(k);
-      M(k, i) = nd.w(i) * (1.0 / d - w * K(-w * d));
+      M(k, i) = nd.w(i) * (1.0 / d - w * kv[static_cast<std::size_t>(i) * (n + 1) + k]);
     }
-    M(k, n) = 1.0;
-  }
+  M.col(n).setOnes();
   const Eigen::VectorXd x = M.partialPivLu().solve(nd.s);
   WidthEval e;
   e.G = x.head(n);
@@ -558,6 +602,10 @@ DampedSolution solve_damped(const DampedParams& prm) {
   s.params_ = prm;
   s.vr_ = rayleigh_vstar(prm.nu);
   s.vcr_ = critical_vstar(prm.kw, prm.nu);
+  auto since_start = [&t0] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  const double t_critical = since_start();
   if (!(prm.vstar < s.vr_)) throw SupercriticalSpeedError(prm.vstar, s.vcr_, s.vr_);
   const WaveConstants wc = wave_constants(prm.vstar, prm.nu);
   const double phi1 = wc.phi1;
@@ -594,8 +642,12 @@ DampedSolution solve_damped(const DampedParams& prm) {
   }
   const double soft = std::isinf(prm.kw) ? 0.0 : 1.0 / prm.kw;
   const double aW = std::cbrt(1.5 * lambda * (soft + 0.5 * (1.0 - prm.nu)));
-  double guess = (aH > 1.0 || aW > 1.0) ? aW : aH;
-  kernel(8.4 * guess);
+  const bool wide_guess = aH > 1.0 || aW > 1.0;
+  double guess = std::min(wide_guess ? aW : aH, 50.0);
+  // The first table: for the scan (8 w) too when the guess is the half-plane
+  // width (close); a wide guess can be far off (the dashpots alone: aW is
+  // thousands of h for a contact of 0.4 h), so only its own trial width.
+  kernel((wide_guess ? 2.0 : 8.4) * guess);
   s.model_ = kern->model_ptr();
   const DampedLayerModel* model = s.model_.get();
 
@@ -622,8 +674,10 @@ DampedSolution solve_damped(const DampedParams& prm) {
   WidthSolve ws;
   ChebyshevNodes nd;
   Eigen::VectorXd bk;
-  // The kernel's error: its quadrature's (QUADPACK's estimate) and its table's.
-  const double qerr = kern->quadrature().kronrod_error + kern->table_error();
+  // The kernel's error: its quadrature's (QUADPACK's estimate) and its
+  // table's (the pieces' tails and values' round-off: a round-off part).
+  const double qerr = kern->quadrature().kronrod_error;
+  const double terr = kern->table_error();
   for (std::size_t k = 0; k < sizes.size(); ++k) {
     nd = chebyshev_nodes(sizes[k]);
     try {
@@ -652,8 +706,8 @@ DampedSolution solve_damped(const DampedParams& prm) {
     // Round-off floors: a few hundred eps of the scale (growing slowly with
     // N: the collocation matrix's condition), plus the kernel quadrature's
     // error carried into the ends (dw ~ 4 w^2 dK, docs/damped.md section 8).
-    floor_e = 64.0 * kEps * scale_e + 4.0 * qerr * ws.w * ws.w;
-    floor_p = (512.0 * kEps * (1.0 + nd.n / 64.0) + 4.0 * qerr * ws.w) * pmax;
+    floor_e = 64.0 * kEps * scale_e + 4.0 * (qerr + terr) * ws.w * ws.w;
+    floor_p = (512.0 * kEps * (1.0 + nd.n / 64.0) + 4.0 * (qerr + terr) * ws.w) * pmax;
     done_n.push_back(nd.n);
     if (have_prev) {
       Eigen::VectorXd diff = Eigen::VectorXd::Zero(std::max(bk.size(), b_prev.size()));
@@ -699,6 +753,7 @@ DampedSolution solve_damped(const DampedParams& prm) {
         << " by N = " << sizes.back() << " (estimated error " << est_e.estimate << ")";
     throw ConvergenceError(msg.str());
   }
+  const double t_width = since_start();
   s.err_ = est_e.estimate;
   s.perr_ = est_p.estimate;
   s.max_p_ = pmax;
@@ -765,7 +820,7 @@ DampedSolution solve_damped(const DampedParams& prm) {
 
   s.kernel_ = kern;
   // Fine nodes for the Fourier integrals up to |x| <= 3 (a + b).
-  s.fine_ = std::make_shared<DampedSolution::Fine>(s.build_fine(6.0 * s.half_ + std::fabs(s.centre_)));
+  s.light_ = std::make_shared<const DampedSolution::Fine>(s.build_fine(2.0 * s.half_));
 
   // Surface sigma_x = -phi2 p - (1/pi) Re int_0^inf (M2 - phi2) p^ e^{i alpha x}
   // is linear in p: the change of sigma_x between the last two sizes, from
@@ -784,11 +839,12 @@ DampedSolution solve_damped(const DampedParams& prm) {
       Eigen::VectorXd db = Eigen::VectorXd::Zero(std::max(bk.size(), b_prev.size()));
       db.head(bk.size()) += bk;
       db.head(b_prev.size()) -= b_prev;
-      const DampedSolution::Fine& f = *s.fine_;
+      const DampedSolution::Fine& f = *s.light_;
       std::vector<cplx> amp(f.alpha.size());
       for (std::size_t i = 0; i < f.alpha.size(); ++i)
-        amp[i] = f.weight[i] * (f.r[i].M2 - phi2) *
-                 u_series_transform(db, s.centre_, s.half_, f.alpha[i]);
+        amp[i] = (f.r[i].M2 - phi2) * u_series_transform(db, 0.0, s.half_, f.alpha[i]);
+      std::vector<double> amp_re, amp_im;
+      f.coefficients(amp, amp_re, amp_im);
       double dmax = 0.0;
       for (int j = 0; j < 96; ++j) {
         double r;
@@ -799,9 +855,7 @@ DampedSolution solve_damped(const DampedParams& prm) {
           r = (q % 2 == 0 ? 1.0 : -1.0) * (1.0 + 5.0 * std::pow((q / 2 + 0.5) / 16.0, 2.0));
         }
         const double x = s.centre_ + s.half_ * r;
-        double sum = 0.0;
-        for (std::size_t i = 0; i < f.alpha.size(); ++i)
-          sum += (amp[i] * std::exp(cplx(0.0, f.alpha[i] * x))).real();
+        const double sum = f.fourier(amp_re, amp_im, x - s.centre_);
         const double dp = std::fabs(r) < 1.0 ? u_series(db, r) * std::sqrt(1.0 - r * r) : 0.0;
         dmax = std::max(dmax, std::fabs(-phi2 * dp - sum / kPi));
       }
@@ -814,12 +868,22 @@ DampedSolution solve_damped(const DampedParams& prm) {
       gain = std::fabs(phi2) + 2.0 * s.half_ * im2 / kPi;
     }
     double sabs = 0.0;
-    for (std::size_t i = 0; i < s.fine_->alpha.size(); ++i)
-      sabs += s.fine_->weight[i] * std::abs(s.fine_->r[i].M2 - phi2) * std::abs(s.fine_->phat[i]);
+    const DampedSolution::Fine& f = *s.light_;
+    for (std::size_t i = 0; i < f.alpha.size(); ++i)
+      sabs += f.weight[i] * std::abs(f.r[i].M2 - phi2) * std::abs(f.phat[i]);
     const double ends = s.max_p_ * (s.err_ / s.half_) * (1.0 + 1.0 / std::sqrt(2e-3));
     s.serr_ = gain * (s.perr_ + ends) + 64.0 * kEps * (std::fabs(phi2) * s.max_p_ + sabs / kPi);
   }
 
+  // Gauss-Chebyshev (U) nodes and weights times g for surface_slope.
+  {
+    const int m = std::max(64, 2 * static_cast<int>(s.b_.size()) + 2);
+    for (int i = 1; i <= m; ++i) {
+      const double th = i * kPi / (m + 1), r = std::cos(th);
+      s.slope_r_.push_back(r);
+      s.slope_wg_.push_back(std::sin(th) * std::sin(th) / (m + 1) * u_series(s.b_, r));
+    }
+  }
   // The margin before separation: min over r of p/((P/h) sqrt(1 - r^2)) = g(r).
   s.margin_ = u_series_minimum(s.b_);
 
@@ -841,10 +905,12 @@ DampedSolution solve_damped(const DampedParams& prm) {
       for (int seg = 0; seg < m; ++seg) {
         const double lo = qmax * seg / m, hi = qmax * (seg + 1) / m;
         const double c = 0.5 * (lo + hi), h = 0.5 * (hi - lo);
-        for (int j = 0; j < 15; ++j) {
+        // The 7 Gauss nodes (the integrand is smooth on the segment).
+        for (int j = 1; j < 15; j += 2) {
+          const double gw = g_weight(j, h);
           const double q = gk_node(j, c, h);
           const double x = edge + side * q * q;
-          gap += gk_weight(j, h) * 2.0 * q * (x / R - s.surface_slope(x)) * side;
+          gap += gw * 2.0 * q * (x / R - s.surface_slope(x)) * side;
         }
         s.min_gap_ = std::min(s.min_gap_, gap);
       }
@@ -872,7 +938,10 @@ DampedSolution solve_damped(const DampedParams& prm) {
     s.validity_ += note.str();
   }
   if (!s.valid_ && !prm.allow_unphysical) throw UnphysicalContactError(s.validity_);
-  s.elapsed_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  s.elapsed_ = since_start();
+  // The scan's kernel fetch (if any) is counted under kernel, not checks.
+  s.stage_seconds_ = {t_critical, kernel_seconds, t_width - t_critical - kernel_seconds,
+                      s.elapsed_ - t_width};
   return s;
 }
 
@@ -935,20 +1004,22 @@ double DampedSolution::surface_slope(double x) const {
       qk *= q;
     }
   }
-  // Kernel part by Gauss-Chebyshev (U) quadrature of p K: (1/pi) int sqrt(1-r^2) f ~ sum W_i f(r_i).
-  const int m = std::max(64, 2 * n + 2);
+  // Kernel part by Gauss-Chebyshev (U) quadrature of p K: (1/pi) int
+  // sqrt(1-r^2) f ~ sum W_i f(r_i), on the nodes prepared by the solve.
+  thread_local std::vector<double> u, kv;
+  u.resize(slope_r_.size());
+  kv.resize(u.size());
+  for (std::size_t i = 0; i < u.size(); ++i) u[i] = x - centre_ - w * slope_r_[i];
+  kernel_->many(u.data(), kv.data(), u.size());
   double kern = 0.0;
-  for (int i = 1; i <= m; ++i) {
-    const double th = i * kPi / (m + 1), r = std::cos(th);
-    const double wi = std::sin(th) * std::sin(th) / (m + 1);
-    kern += wi * u_series(b_, r) * (*kernel_)(x - centre_ - w * r);
-  }
+  for (std::size_t i = 0; i < u.size(); ++i) kern += slope_wg_[i] * kv[i];
   return params_.load * phi1 * (-cauchy + w * kern);
 }
 
 DampedSolution::Fine DampedSolution::build_fine(double freq) const {
   Fine f;
   f.freq = freq;
+  AlphaQuadrature panels;
   const DampedQuadrature& Q = kernel_->quadrature();
   const auto& P = Q.panels;
   const double width = std::min(0.5, 1.5 / std::max(freq, 1e-300));
@@ -958,6 +1029,8 @@ DampedSolution::Fine DampedSolution::build_fine(double freq) const {
     const int m = std::max(1, static_cast<int>(std::ceil(len / width)));
     for (int q = 0; q < m; ++q) {
       const double c = lo + (q + 0.5) * len / m, h = 0.5 * len / m;
+      panels.panel_centre.push_back(c);
+      panels.panel_half.push_back(h);
       for (int j = 0; j < 15; ++j) {
         // An unsplit panel: the quadrature's own nodes and responses.
         const double a = m == 1 ? P.alpha[15 * p + static_cast<std::size_t>(j)] : gk_node(j, c, h);
@@ -968,23 +1041,47 @@ DampedSolution::Fine DampedSolution::build_fine(double freq) const {
       }
     }
   }
+  f.filon = std::make_shared<const FilonIntegrator>(panels);
+  std::vector<cplx> g(f.alpha.size());
+  const double phi2 = model_->phi2();
+  for (std::size_t i = 0; i < g.size(); ++i)
+    g[i] = (f.r[i].M2 - phi2) * f.phat[i] * std::exp(cplx(0.0, f.alpha[i] * centre_));
+  f.coefficients(g, f.sx_re, f.sx_im);
   return f;
 }
 
+void DampedSolution::Fine::coefficients(const std::vector<cplx>& g, std::vector<double>& c_re,
+                                        std::vector<double>& c_im) const {
+  std::vector<double> re(g.size()), im(g.size());
+  for (std::size_t i = 0; i < g.size(); ++i) {
+    re[i] = g[i].real();
+    im[i] = g[i].imag();
+  }
+  c_re = filon->coefficients(re);
+  c_im = filon->coefficients(im);
+}
+
+double DampedSolution::Fine::fourier(const std::vector<double>& c_re,
+                                     const std::vector<double>& c_im, double x) const {
+  return filon->integral(x, c_re).real() - filon->integral(x, c_im).imag();
+}
+
+
 std::shared_ptr<const DampedSolution::Fine> DampedSolution::fine_for(double x) const {
   const double need = 2.0 * half_ + std::fabs(centre_) + std::fabs(x);
-  if (fine_ && need <= fine_->freq) return fine_;
+  {
+    std::lock_guard<std::mutex> lock(fine_cache_->mutex);
+    auto& f = fine_cache_->fine;
+    if (!f) f = std::make_shared<const Fine>(build_fine(6.0 * half_ + std::fabs(centre_)));
+    if (need <= f->freq) return f;
+  }
   return std::make_shared<const Fine>(build_fine(need));
 }
 
 double DampedSolution::surface_stress(double x) const {
-  const auto f = fine_for(x);
-  const double phi2 = model_->phi2();
-  double sum = 0.0;
-  for (std::size_t i = 0; i < f->alpha.size(); ++i)
-    sum += f->weight[i] *
-           ((f->r[i].M2 - phi2) * f->phat[i] * std::exp(cplx(0.0, f->alpha[i] * x))).real();
-  return -phi2 * pressure(x) - sum / kPi;
+  if (!std::isfinite(x)) throw std::invalid_argument("surface_stress: x must be finite");
+  const Fine& f = *light_;
+  return -model_->phi2() * pressure(x) - f.fourier(f.sx_re, f.sx_im, x - centre_) / kPi;
 }
 
 Eigen::Vector3d DampedSolution::stresses(double x, double y) const {
@@ -1079,8 +1176,9 @@ double DampedSolution::bottom_slope(double x) const {
 double DampedSolution::dissipation() const {
   // damping sqrt(s) int (v_b')^2 dx / load, with int (v_b')^2 = (load^2/pi) int_0^inf |Wb p^|^2.
   double sum = 0.0;
-  for (std::size_t i = 0; i < fine_->alpha.size(); ++i)
-    sum += fine_->weight[i] * std::norm(fine_->r[i].Wb * fine_->phat[i]);
+  const Fine& f = *light_;
+  for (std::size_t i = 0; i < f.alpha.size(); ++i)
+    sum += f.weight[i] * std::norm(f.r[i].Wb * f.phat[i]);
   return model_->damping() * std::sqrt(model_->vstar()) * params_.load * sum / kPi;
 }
 

@@ -16,6 +16,8 @@ namespace {
 
 // Tables of one kind, keyed on the inputs they depend on (compared exactly:
 // the same inputs give the same table) and covering |u| <= range().
+constexpr double kStep = 1.25;
+
 template <class Table>
 class RangeCache {
  public:
@@ -27,11 +29,14 @@ class RangeCache {
   // The shortest cached table of this key with min_range <= range <=
   // max_ratio min_range, or one built by build(range, shorter) and cached.
   // When a table of this key exists but is too short (a widening sweep), the
-  // new range is kGrowth times build_range: geometric growth, so a sweep in
-  // any order builds a few tables, not one per point. `shorter` is the
+  // new range is at least kGrowth times the longest such table's: geometric
+  // growth, so a sweep in any order builds a few tables, not one per point
+  // (and a solve whose width iteration overshoots its first guess builds
+  // the table it asks for, no wider). `shorter` is the
   // longest of those (its range-independent parts may be reused).
   template <class Build>
-  Ptr get(const Key& key, double min_range, double build_range, Build build, bool* built) {
+  Ptr get(const Key& key, double min_range, double build_range, Build build, bool* built,
+          double growth = kGrowth) {
     Ptr shorter;
     {
       std::lock_guard<std::mutex> lock(mutex_);
@@ -54,7 +59,10 @@ class RangeCache {
       }
     }
     double range = std::max(build_range, min_range);
-    if (shorter) range *= kGrowth;
+    // Only a sweep's small step (the need within kStep of the shorter
+    // table) grows: a far wider request is another problem, built as asked.
+    if (shorter && min_range <= kStep * shorter->range())
+      range = std::max(range, growth * shorter->range());
     // Built outside the lock: other threads keep using the cache meanwhile
     // (two threads may build the same table; both are equal and both kept
     // only until eviction).
@@ -109,13 +117,21 @@ RangeCache<DampedKernel>& damped_cache() {
 
 std::shared_ptr<const KernelK1> cached_kernel(const LayerModel& model, double tol,
                                               double min_range, double build_range,
-                                              bool* built) {
+                                              bool* built, bool grow) {
   return k1_cache().get(
       {model.vstar(), model.kw(), model.nu(), tol}, min_range, build_range,
-      [&](double range, const std::shared_ptr<const KernelK1>&) {
+      [&](double range, const std::shared_ptr<const KernelK1>& shorter) {
+        // Growth never turns a global table piecewise when the range needed
+        // fits a global one: a piecewise table's error bound is of any shape
+        // (a looser a/h estimate), and near V*_cr its gap check sits at its
+        // round-off floor (contact.cpp's table_range).
+        if (shorter && !shorter->piecewise()) {
+          const double global_max = KernelK1::kPieceBandwidth / shorter->quadrature().alpha_max;
+          if (std::max(build_range, min_range) <= global_max) range = std::min(range, global_max);
+        }
         return std::make_shared<const KernelK1>(model, tol, range);
       },
-      built);
+      built, grow ? kGrowth : 1.0);
 }
 
 std::shared_ptr<const DampedKernel> cached_damped_kernel(double vstar, double kw, double nu,

@@ -17,7 +17,9 @@ from __future__ import annotations
 import functools
 import math
 import numbers
+from collections.abc import Mapping
 from dataclasses import dataclass, field, fields
+from types import MappingProxyType
 
 import numpy as np
 import numpy.typing as npt
@@ -153,6 +155,21 @@ class DampedSolution:
     """One line per requested accuracy that was not met (what, and by how
     much); empty when ``tol`` was met."""
     _impl: _core.DampedSolution = field(repr=False, compare=False)
+
+    @property
+    def kernel_builds(self) -> int:
+        """Kernel tables this solve built (0: reused from the process-wide
+        cache, as in a load or radius sweep at fixed vstar, kw, nu, damping)."""
+        return int(self._impl.kernel_builds)
+
+    @property
+    def stage_times(self) -> Mapping[str, float]:
+        """Seconds per stage of the solve, as ``Solution.stage_times``:
+        ``critical_speed``, ``kernel`` (fetching or building the kernel table),
+        ``width`` (the iteration on the ends over the N ladder) and ``checks``
+        (the scan for other steady states, the estimates, validity). They sum
+        to ``elapsed``."""
+        return MappingProxyType(dict(self._impl.stage_seconds))
 
     @property
     def a(self) -> float:

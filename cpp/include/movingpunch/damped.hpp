@@ -15,11 +15,13 @@
 
 #include <complex>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
 #include <Eigen/Dense>
 
+#include "movingpunch/contact.hpp"
 #include "movingpunch/kernel.hpp"
 #include "movingpunch/layer_response.hpp"
 
@@ -103,6 +105,7 @@ class DampedKernel {
   DampedKernel(const DampedKernel& other, double range);
 
   double operator()(double u) const;  // the table on |u| <= range(), direct() beyond
+  void many(const double* u, double* out, std::size_t n) const;  // out[i] = (*this)(u[i])
   double direct(double u) const;      // Filon sums, any u
   double range() const noexcept { return range_; }
   // Bound on |table - direct| (truncation of the pieces plus their values'
@@ -132,8 +135,8 @@ class DampedKernel {
 // Process-wide cache of damped kernel tables, keyed on (vstar, kw, nu,
 // damping) (the table is built to round-off whatever tol, so tol is not part
 // of the key): a table whose range is at least min_range, or one of range
-// build_range built and cached (kGrowth times that when a shorter table of
-// the same inputs exists: its quadrature is reused). Least recently used
+// build_range built and cached (at least kGrowth times the longest shorter
+// table of the same inputs when one exists: its quadrature is reused). Least recently used
 // evicted beyond kDampedKernelCacheCapacity; thread-safe; emptied by
 // clear_kernel_cache() (kernel.hpp).
 inline constexpr std::size_t kDampedKernelCacheCapacity = 16;
@@ -197,6 +200,12 @@ class DampedSolution {
   int iterations() const noexcept { return iterations_; }
   // Kernel tables this solve built (0: all reused from the process-wide cache).
   int kernel_builds() const noexcept { return kernel_builds_; }
+  // Seconds spent in each stage (as ContactSolution's): the critical-speed
+  // lookup, fetching or building the kernel table, the width iteration over
+  // the N ladder (without the kernel), and the rest (the scan for other
+  // steady states, the estimates, the validity checks). They sum to elapsed().
+  using StageSeconds = ContactSolution::StageSeconds;
+  const StageSeconds& stage_seconds() const noexcept { return stage_seconds_; }
   int collocation_n() const noexcept { return n_; }
   double elapsed() const noexcept { return elapsed_; }
   bool valid() const noexcept { return valid_; }
@@ -241,6 +250,7 @@ class DampedSolution {
   double perr_ = 0, serr_ = 0, max_p_ = 0, margin_ = 0;
   std::vector<std::string> warnings_;
   int iterations_ = 0, n_ = 0, kernel_builds_ = 0;
+  StageSeconds stage_seconds_{};
   bool valid_ = true;
   std::string validity_;
   double min_p_ = 0, min_gap_ = 0;
@@ -248,6 +258,9 @@ class DampedSolution {
   Eigen::VectorXd b_;
   std::shared_ptr<const DampedLayerModel> model_;
   std::shared_ptr<const DampedKernel> kernel_;
+  // Gauss-Chebyshev (U) nodes r_i and weights times g(r_i) of surface_slope's
+  // kernel integral.
+  std::vector<double> slope_r_, slope_wg_;
   // Fine Gauss-Kronrod nodes (the quadrature's panels split so that each
   // resolves oscillations of frequency `freq`), with the response and the
   // transformed pressure at each node.
@@ -256,8 +269,29 @@ class DampedSolution {
     std::vector<double> alpha, weight;
     std::vector<DampedResponse> r;
     std::vector<cplx> phat;
+    // Filon rule on the fine panels, and the coefficients of the real and
+    // imaginary parts of (M2 - phi2) p^ e^{i alpha c} (the surface sigma_x
+    // integrand with the centre's phase taken out: evaluate at x - c).
+    std::shared_ptr<const FilonIntegrator> filon;
+    std::vector<double> sx_re, sx_im;
+    // Re int_0^amax (g_re + i g_im) e^{i alpha x} d alpha from coefficients.
+    double fourier(const std::vector<double>& c_re, const std::vector<double>& c_im,
+                   double x) const;
+    // Filon coefficients of Re and Im of g given at the nodes.
+    void coefficients(const std::vector<cplx>& g, std::vector<double>& c_re,
+                      std::vector<double>& c_im) const;
   };
-  std::shared_ptr<const Fine> fine_;  // built by solve_damped for |x| <= 3 (a + b)
+  // Resolving p^'s own oscillation (freq 2w; the centre's phase is shifted
+  // out): Filon integrals at any x (surface sigma_x, the estimates, the
+  // dissipation). Built by solve_damped.
+  std::shared_ptr<const Fine> light_;
+  // Resolving e^{i alpha x} for |x| <= 3 (a + b) too (the direct sums of the
+  // field and bottom outputs): built on first use, then shared.
+  struct FineCache {
+    std::mutex mutex;
+    std::shared_ptr<const Fine> fine;
+  };
+  std::shared_ptr<FineCache> fine_cache_ = std::make_shared<FineCache>();
   std::shared_ptr<const Fine> fine_for(double x) const;
   Fine build_fine(double freq) const;
 };
