@@ -135,7 +135,8 @@ void bind_damped(py::module_& m) {
           [](const DampedSolution& s, double x, const VectorRef& y) {
             return each(y, [&](double v) { return s.stress_x(x, v); });
           },
-          "x"_a, "y"_a, Release(), "sigma_x(x, y)/(P/h) at one x/h and each y/h in [-1, -1e-3].")
+          "x"_a, "y"_a, Release(),
+          "sigma_x(x, y)/(P/h) at one x/h and each y/h in [-1, -1e-3] or 0.")
       .def(
           "bottom_displacement",
           [](const DampedSolution& s, const VectorRef& x) {

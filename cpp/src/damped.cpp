@@ -1150,7 +1150,10 @@ DampedStressGrid DampedSolution::stress_grid(const Eigen::Ref<const Eigen::Vecto
   return g;
 }
 
-double DampedSolution::stress_x(double x, double y) const { return stresses(x, y)(0); }
+double DampedSolution::stress_x(double x, double y) const {
+  if (y == 0.0) return surface_stress(x);  // the surface: the local term split off
+  return stresses(x, y)(0);
+}
 
 double DampedSolution::bottom_displacement(double x) const {
   // v(x, -1) = (1/2pi) int (Wb/alpha) p^ e^{i alpha x}; Wb/alpha -> -1/kw at alpha -> 0.

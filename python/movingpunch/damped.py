@@ -215,14 +215,14 @@ class DampedSolution:
         return _pointwise("x", x, self._impl.surface_stress)
 
     def depth_stress(self, y: npt.ArrayLike, x: float = 0.0) -> float | FloatArray:
-        """sigma_x(x, y)/(P/h) for -1 <= y <= -1e-3 (the Fourier integral is
-        not used closer to the surface; use ``surface_stress`` at y = 0)."""
+        """sigma_x(x, y)/(P/h) for -1 <= y <= -1e-3 and at the surface y = 0
+        (``surface_stress``); the Fourier integral is not used in between."""
         pts = _as_points("y", y)
-        bad = (pts < -1.0) | (pts > -1e-3)
+        bad = (pts < -1.0) | ((pts > -1e-3) & (pts != 0.0))
         if bad.any():
             raise InvalidParameterError(
-                "y must satisfy -1 <= y <= -1e-3 for the damped solver's depth "
-                f"stress, got {float(pts[bad].flat[0])!r}"
+                "y must satisfy -1 <= y <= -1e-3 or y = 0 for the damped solver's "
+                f"depth stress, got {float(pts[bad].flat[0])!r}"
             )
         xs = _real_any("x", x)
         if not math.isfinite(xs):

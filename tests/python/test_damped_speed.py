@@ -72,3 +72,17 @@ def test_widening_load_sweep_builds_a_few_tables() -> None:
 def test_random_order_sweep_builds_a_few_tables() -> None:
     loads = np.random.default_rng(13).permutation(np.geomspace(0.001, 0.01, 200))
     assert 1 <= _sweep_builds(loads) <= 6
+
+
+def test_damped_depth_stress_includes_the_surface() -> None:
+    # Anchor: the undamped solver's field evaluator (closed-form half-plane
+    # part, an independent computation) at damping -> 0.
+    s = solve_damped(vstar=0.2, load=0.002, damping=1e-9, **PAPER)
+    u = mp.solve(vstar=0.2, load=0.002, **PAPER)
+    for x in (0.0, 0.2):
+        assert s.depth_stress(0.0, x=x) == s.surface_stress(x)
+    assert s.depth_stress(0.0) == pytest.approx(u.depth_stress(0.0), abs=1e-7)
+    values = s.depth_stress([0.0, -0.01, -0.5])
+    assert values == pytest.approx(u.depth_stress([0.0, -0.01, -0.5]), abs=1e-7)
+    with pytest.raises(mp.InvalidParameterError, match="y = 0"):
+        s.depth_stress(-1e-4)

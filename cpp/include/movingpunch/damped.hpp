@@ -225,7 +225,8 @@ class DampedSolution {
   // sigma_x(x, 0)/(P/h), any x.
   double surface_stress(double x) const;
   // sigma_x(x, y)/(P/h) for -1 <= y <= -1e-3 (below the surface layer of
-  // thickness 1e-3, where the Fourier integral converges fast enough).
+  // thickness 1e-3, where the Fourier integral converges fast enough) and at
+  // y = 0 (surface_stress).
   double stress_x(double x, double y) const;
   // (sigma_x, sigma_y, tau_xy)(x, y)/(P/h) for -1 <= y <= -1e-3.
   Eigen::Vector3d stresses(double x, double y) const;
