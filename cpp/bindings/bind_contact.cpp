@@ -45,15 +45,7 @@ void bind_contact(py::module_& m) {
                              "Number N of collocation nodes of the final solve.")
       .def_property_readonly(
           "stage_seconds",
-          [](const ContactSolution& s) {
-            const auto& t = s.stage_seconds();
-            py::dict d;
-            d["critical_speed"] = t.critical_speed;
-            d["kernel"] = t.kernel;
-            d["width"] = t.width;
-            d["checks"] = t.checks;
-            return d;
-          },
+          [](const ContactSolution& s) { return stage_dict(s.stage_seconds()); },
           "Seconds per stage: critical_speed, kernel (fetching or building the k1 "
           "table), width (the iteration on a), checks (indentation and validity).")
       .def_property_readonly("kernel_builds", &ContactSolution::kernel_builds,

@@ -72,6 +72,15 @@ void bind_damped(py::module_& m) {
           "One line per requested accuracy that was not met; empty when tol was met.")
       .def_property_readonly("iterations", &DampedSolution::iterations,
                              "Width evaluations over all collocation sizes.")
+      .def_property_readonly("kernel_builds", &DampedSolution::kernel_builds,
+                             "Kernel tables this solve built (0: reused from the "
+                             "process-wide cache).")
+      .def_property_readonly(
+          "stage_seconds",
+          [](const DampedSolution& s) { return stage_dict(s.stage_seconds()); },
+          "Seconds per stage: critical_speed, kernel (fetching or building the kernel "
+          "table), width (the iteration on the ends over the N ladder), checks (the "
+          "scan for other steady states, the estimates and validity).")
       .def_property_readonly("collocation_n", &DampedSolution::collocation_n,
                              "Number N of collocation nodes of the final solve.")
       .def_property_readonly("elapsed", &DampedSolution::elapsed,
@@ -126,7 +135,8 @@ void bind_damped(py::module_& m) {
           [](const DampedSolution& s, double x, const VectorRef& y) {
             return each(y, [&](double v) { return s.stress_x(x, v); });
           },
-          "x"_a, "y"_a, Release(), "sigma_x(x, y)/(P/h) at one x/h and each y/h in [-1, -1e-3].")
+          "x"_a, "y"_a, Release(),
+          "sigma_x(x, y)/(P/h) at one x/h and each y/h in [-1, -1e-3] or 0.")
       .def(
           "bottom_displacement",
           [](const DampedSolution& s, const VectorRef& x) {

@@ -253,6 +253,7 @@ DampedQuadrature build_damped_quadrature(const DampedLayerModel& model, double t
       q.m1.push_back(p.r[j].M1);
       q.m2.push_back(p.r[j].M2);
       q.wb.push_back(p.r[j].Wb);
+      q.r.push_back(p.r[j]);
     }
     q.error_estimate += p.error;
     q.kronrod_error += p.sharp;
@@ -264,6 +265,136 @@ DampedQuadrature build_damped_quadrature(const DampedLayerModel& model, double t
 double damped_kernel(const FilonIntegrator& f, const std::vector<double>& kr,
                      const std::vector<double>& ki, double u) {
   return f.integral(u, kr).imag() + f.integral(u, ki).real();
+}
+
+// ---------------------------------------------------------------------------
+// The tabulated kernel
+
+DampedKernel::DampedKernel(std::shared_ptr<const DampedLayerModel> model, double range)
+    : range_(range) {
+  require_in_range("kernel range", range, 0.0, 1e6, true, false);
+  auto b = std::make_shared<Base>();
+  b->model = std::move(model);
+  // Built to round-off whatever tol (it costs no more: its panels are set by
+  // the floor already at tol = 1e-6), so that its error is part of the
+  // round-off floor of the estimates, not of tol.
+  b->quad = build_damped_quadrature(*b->model, 1e-15);
+  b->filon = std::make_shared<const FilonIntegrator>(b->quad.panels);
+  const double phi1 = b->model->phi1();
+  std::vector<double> re(b->quad.m1.size()), im(b->quad.m1.size());
+  for (std::size_t i = 0; i < re.size(); ++i) {
+    re[i] = (b->quad.m1[i].real() - phi1) / phi1;
+    im[i] = b->quad.m1[i].imag() / phi1;
+  }
+  b->kr = b->filon->coefficients(re);
+  b->ki = b->filon->coefficients(im);
+  base_ = std::move(b);
+  tabulate();
+}
+
+DampedKernel::DampedKernel(const DampedKernel& other, double range)
+    : base_(other.base_), range_(range) {
+  require_in_range("kernel range", range, 0.0, 1e6, true, false);
+  tabulate();
+}
+
+double DampedKernel::direct(double u) const {
+  return damped_kernel(*base_->filon, base_->kr, base_->ki, u);
+}
+
+void DampedKernel::tabulate() {
+  // K is analytic in the strip |Im u| < 2 nT (M1 - phi1 decays like
+  // exp(-2 nT alpha)): on pieces of width <= 1 a degree-24 interpolant is at
+  // round-off for nT >~ 0.5; each piece is checked by its last coefficients
+  // and the width halved until every piece passes.
+  constexpr int D = kDegree;
+  double abs_f = 0.0;  // int |f|: the scale of the Filon sums' round-off
+  const DampedQuadrature& q = base_->quad;
+  for (std::size_t i = 0; i < q.m1.size(); ++i)
+    abs_f += q.panels.weight[i] * std::abs(q.m1[i] - model().phi1()) / std::fabs(model().phi1());
+  // Narrower pieces until the last coefficients are at the values' round-off,
+  // or stop shrinking (noise: near-resonant peaks make the Filon sums'
+  // round-off larger than this estimate of it), or the pieces reach 1/8.
+  double prev_tail = std::numeric_limits<double>::infinity();
+  for (double target = 1.0;; target *= 0.5) {
+    const std::size_t pieces =
+        static_cast<std::size_t>(std::max(1.0, std::ceil(2.0 * range_ / target)));
+    width_ = 2.0 * range_ / static_cast<double>(pieces);
+    coef_.assign(pieces * (D + 1), 0.0);
+    double tail = 0.0, vmax = 0.0;
+    double vals[D + 1];
+    for (std::size_t p = 0; p < pieces; ++p) {
+      const double c0 = -range_ + (static_cast<double>(p) + 0.5) * width_;
+      for (int j = 0; j <= D; ++j) {
+        vals[j] = direct(c0 + 0.5 * width_ * std::cos(kPi * (j + 0.5) / (D + 1)));
+        vmax = std::max(vmax, std::fabs(vals[j]));
+      }
+      double* c = coef_.data() + p * (D + 1);
+      for (int m = 0; m <= D; ++m) {
+        double sum = 0.0;
+        for (int j = 0; j <= D; ++j) sum += vals[j] * std::cos(kPi * m * (j + 0.5) / (D + 1));
+        c[m] = (m == 0 ? 1.0 : 2.0) * sum / (D + 1);
+      }
+      tail = std::max(tail, std::fabs(c[D - 1]) + std::fabs(c[D]));
+    }
+    // The values carry the round-off of Filon sums of terms up to int |f|.
+    const double roundoff = 4.0 * kEps * (abs_f + vmax);
+    if (tail <= 4.0 * roundoff || tail > 0.25 * prev_tail || target <= 0.125) {
+      table_error_ = 2.0 * tail + roundoff;
+      return;
+    }
+    prev_tail = tail;
+  }
+}
+
+void DampedKernel::many(const double* u, double* out, std::size_t n) const {
+  // Four Clenshaw recurrences interleaved (each is a chain of dependent steps).
+  constexpr int D = kDegree, L = 4;
+  const std::size_t pieces = coef_.size() / (D + 1);
+  std::size_t i = 0;
+  for (; i + L <= n; i += L) {
+    const double* c[L];
+    double x2[L], b1[L] = {0, 0, 0, 0}, b2[L] = {0, 0, 0, 0};
+    bool inside = true;
+    for (int l = 0; l < L; ++l) {
+      const double v = u[i + static_cast<std::size_t>(l)];
+      inside = inside && std::fabs(v) <= range_;
+      const std::size_t p = std::min(
+          pieces - 1, static_cast<std::size_t>(std::max(0.0, (v + range_) / width_)));
+      x2[l] = 4.0 * (v + range_ - (static_cast<double>(p) + 0.5) * width_) / width_;
+      c[l] = coef_.data() + p * (D + 1);
+    }
+    if (!inside) {
+      for (int l = 0; l < L; ++l) out[i + static_cast<std::size_t>(l)] = (*this)(u[i + static_cast<std::size_t>(l)]);
+      continue;
+    }
+    for (int m = D; m >= 1; --m)
+      for (int l = 0; l < L; ++l) {
+        const double b0 = c[l][m] + x2[l] * b1[l] - b2[l];
+        b2[l] = b1[l];
+        b1[l] = b0;
+      }
+    for (int l = 0; l < L; ++l)
+      out[i + static_cast<std::size_t>(l)] = c[l][0] + 0.5 * x2[l] * b1[l] - b2[l];
+  }
+  for (; i < n; ++i) out[i] = (*this)(u[i]);
+}
+
+double DampedKernel::operator()(double u) const {
+  if (!(std::fabs(u) <= range_)) return direct(u);
+  constexpr int D = kDegree;
+  const std::size_t pieces = coef_.size() / (D + 1);
+  const std::size_t p = std::min(pieces - 1, static_cast<std::size_t>((u + range_) / width_));
+  const double x = 2.0 * (u + range_ - (static_cast<double>(p) + 0.5) * width_) / width_;
+  const double* c = coef_.data() + p * (D + 1);
+  double b1 = 0.0, b2 = 0.0;
+  const double x2 = 2.0 * x;
+  for (int m = D; m >= 1; --m) {
+    const double b0 = c[m] + x2 * b1 - b2;
+    b2 = b1;
+    b1 = b0;
+  }
+  return c[0] + x * b1 - b2;
 }
 
 // ---------------------------------------------------------------------------
@@ -360,18 +491,22 @@ struct WidthEval {
 // extra unknown is square and linear:
 //   sum_i W_i G_i [1/(r_i - s_k) - w K(w (s_k - r_i))] + gamma = s_k  (k = 1..N+1),
 // g = -(w/(phi1 lambda)) G and c = -w gamma; equilibrium gives lambda(w).
-WidthEval eval_width(const ChebyshevNodes& nd, double w, const FilonIntegrator& fi,
-                     const std::vector<double>& kr, const std::vector<double>& ki,
-                     double phi1) {
+WidthEval eval_width(const ChebyshevNodes& nd, double w, const DampedKernel& K, double phi1) {
   const int n = nd.n;
   Eigen::MatrixXd M(n + 1, n + 1);
-  for (int k = 0; k <= n; ++k) {
-    for (int i = 0; i < n; ++i) {
+  // Column-major: the kernel's values column by column, in one batch.
+  thread_local std::vector<double> u, kv;
+  u.resize(static_cast<std::size_t>(n) * (n + 1));
+  kv.resize(u.size());
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k <= n; ++k) u[static_cast<std::size_t>(i) * (n + 1) + k] = -w * (nd.r(i) - nd.s(k));
+  K.many(u.data(), kv.data(), u.size());
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k <= n; ++k) {
       const double d = nd.r(i) - nd.s(k);
-      M(k, i) = nd.w(i) * (1.0 / d - w * damped_kernel(fi, kr, ki, -w * d));
+      M(k, i) = nd.w(i) * (1.0 / d - w * kv[static_cast<std::size_t>(i) * (n + 1) + k]);
     }
-    M(k, n) = 1.0;
-  }
+  M.col(n).setOnes();
   const Eigen::VectorXd x = M.partialPivLu().solve(nd.s);
   WidthEval e;
   e.G = x.head(n);
@@ -387,12 +522,13 @@ struct WidthSolve {
 };
 
 // Secant (Illinois, safeguarded by a bracket) on ln lambda(w) = ln lambda_t in ln w.
+template <class Kernel>
 WidthSolve solve_width(const ChebyshevNodes& nd, double lambda_t, double w_guess,
-                       const FilonIntegrator& fi, const std::vector<double>& kr,
-                       const std::vector<double>& ki, double phi1) {
+                       Kernel&& kernel, double phi1) {
   WidthSolve out;
   auto F = [&](double lw, WidthEval& e) {
-    e = eval_width(nd, std::exp(lw), fi, kr, ki, phi1);
+    const double w = std::exp(lw);
+    e = eval_width(nd, w, kernel(2.0 * w), phi1);
     ++out.evaluations;
     if (!(e.lambda > 0.0) || !std::isfinite(e.lambda)) return std::nan("");
     return std::log(e.lambda) - std::log(lambda_t);
@@ -468,25 +604,31 @@ DampedSolution solve_damped(const DampedParams& prm) {
   s.params_ = prm;
   s.vr_ = rayleigh_vstar(prm.nu);
   s.vcr_ = critical_vstar(prm.kw, prm.nu);
+  auto since_start = [&t0] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  const double t_critical = since_start();
   if (!(prm.vstar < s.vr_)) throw SupercriticalSpeedError(prm.vstar, s.vcr_, s.vr_);
-  auto model = std::make_shared<DampedLayerModel>(prm.vstar, prm.kw, prm.nu, prm.damping);
-  s.model_ = model;
-  // The kernel quadrature is built to round-off whatever tol (it costs no
-  // more: its panels are set by the floor already at tol = 1e-6), so that its
-  // error is part of the round-off floor of the estimates, not of tol.
-  const double tolk = 1e-15;
-  auto quad = std::make_shared<DampedQuadrature>(build_damped_quadrature(*model, tolk));
-  s.quad_ = quad;
-  auto fi = std::make_shared<FilonIntegrator>(quad->panels);
-  s.filon_ = fi;
-  const double phi1 = model->phi1();
-  std::vector<double> re(quad->m1.size()), im(quad->m1.size());
-  for (std::size_t i = 0; i < re.size(); ++i) {
-    re[i] = (quad->m1[i].real() - phi1) / phi1;
-    im[i] = quad->m1[i].imag() / phi1;
-  }
-  s.kr_ = fi->coefficients(re);
-  s.ki_ = fi->coefficients(im);
+  const WaveConstants wc = wave_constants(prm.vstar, prm.nu);
+  const double phi1 = wc.phi1;
+  // The kernel table, fetched from the process-wide cache (or built) for the
+  // widths the solve needs: |u| <= 2w for a trial half-width w, 8 w_final for
+  // the scan of lambda(w) on [w/8, 4w], 4 w_final for the gap. Twice the need
+  // when built: a slightly wider contact (the next point of a sweep) reuses it.
+  std::shared_ptr<const DampedKernel> kern;
+  double kernel_seconds = 0.0;
+  auto kernel = [&](double need) -> const DampedKernel& {
+    if (!kern || kern->range() < need) {
+      const auto tk = std::chrono::steady_clock::now();
+      bool built = false;
+      kern = cached_damped_kernel(prm.vstar, prm.kw, prm.nu, prm.damping, need, 2.0 * need,
+                                  &built);
+      s.kernel_builds_ += built ? 1 : 0;
+      kernel_seconds +=
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - tk).count();
+    }
+    return *kern;
+  };
 
   const double lambda = prm.radius * prm.load;
   const double aH = std::sqrt(2.0 * phi1 * lambda / kPi);
@@ -502,7 +644,14 @@ DampedSolution solve_damped(const DampedParams& prm) {
   }
   const double soft = std::isinf(prm.kw) ? 0.0 : 1.0 / prm.kw;
   const double aW = std::cbrt(1.5 * lambda * (soft + 0.5 * (1.0 - prm.nu)));
-  double guess = (aH > 1.0 || aW > 1.0) ? aW : aH;
+  const bool wide_guess = aH > 1.0 || aW > 1.0;
+  double guess = std::min(wide_guess ? aW : aH, 50.0);
+  // The first table: for the scan (8 w) too when the guess is the half-plane
+  // width (close); a wide guess can be far off (the dashpots alone: aW is
+  // thousands of h for a contact of 0.4 h), so only its own trial width.
+  kernel((wide_guess ? 2.0 : 8.4) * guess);
+  s.model_ = kern->model_ptr();
+  const DampedLayerModel* model = s.model_.get();
 
   const std::vector<int> ladder = {8, 12, 16, 24, 32, 48, 64, 96, 128, 192, 256, 384, 512};
   std::vector<int> sizes;
@@ -527,11 +676,14 @@ DampedSolution solve_damped(const DampedParams& prm) {
   WidthSolve ws;
   ChebyshevNodes nd;
   Eigen::VectorXd bk;
-  const double qerr = quad->kronrod_error;
+  // The kernel's error: its quadrature's (QUADPACK's estimate) and its
+  // table's (the pieces' tails and values' round-off: a round-off part).
+  const double qerr = kern->quadrature().kronrod_error;
+  const double terr = kern->table_error();
   for (std::size_t k = 0; k < sizes.size(); ++k) {
     nd = chebyshev_nodes(sizes[k]);
     try {
-      ws = solve_width(nd, lambda, guess, *fi, s.kr_, s.ki_, phi1);
+      ws = solve_width(nd, lambda, guess, kernel, phi1);
     } catch (const ConvergenceError& e) {
       // Under-resolved at this N (a non-monotone or non-positive discrete
       // load curve): refine N, unless this was the last size.
@@ -556,8 +708,8 @@ DampedSolution solve_damped(const DampedParams& prm) {
     // Round-off floors: a few hundred eps of the scale (growing slowly with
     // N: the collocation matrix's condition), plus the kernel quadrature's
     // error carried into the ends (dw ~ 4 w^2 dK, docs/damped.md section 8).
-    floor_e = 64.0 * kEps * scale_e + 4.0 * qerr * ws.w * ws.w;
-    floor_p = (512.0 * kEps * (1.0 + nd.n / 64.0) + 4.0 * qerr * ws.w) * pmax;
+    floor_e = 64.0 * kEps * scale_e + 4.0 * (qerr + terr) * ws.w * ws.w;
+    floor_p = (512.0 * kEps * (1.0 + nd.n / 64.0) + 4.0 * (qerr + terr) * ws.w) * pmax;
     done_n.push_back(nd.n);
     if (have_prev) {
       Eigen::VectorXd diff = Eigen::VectorXd::Zero(std::max(bk.size(), b_prev.size()));
@@ -603,6 +755,7 @@ DampedSolution solve_damped(const DampedParams& prm) {
         << " by N = " << sizes.back() << " (estimated error " << est_e.estimate << ")";
     throw ConvergenceError(msg.str());
   }
+  const double t_width = since_start();
   s.err_ = est_e.estimate;
   s.perr_ = est_p.estimate;
   s.max_p_ = pmax;
@@ -648,13 +801,14 @@ DampedSolution solve_damped(const DampedParams& prm) {
   // lambda(w) on [w/8, 4w] (at N >= 32) for other roots and report them.
   {
     const ChebyshevNodes ns = chebyshev_nodes(std::max(32, nd.n));
+    const DampedKernel& K = kernel(8.4 * s.half_);
     const double lo = std::log(std::max(1e-10, s.half_ / 8.0));
     const double hi = std::log(std::min(50.0, 4.0 * s.half_));
     const int m = 48;
     double prev_x = lo, prev_f = std::nan("");
     for (int i = 0; i <= m; ++i) {
       const double x = lo + (hi - lo) * i / m;
-      const WidthEval e = eval_width(ns, std::exp(x), *fi, s.kr_, s.ki_, phi1);
+      const WidthEval e = eval_width(ns, std::exp(x), K, phi1);
       const double f = e.lambda > 0.0 ? std::log(e.lambda / lambda) : std::nan("");
       if (!std::isnan(f) && !std::isnan(prev_f) && (f > 0.0) != (prev_f > 0.0)) {
         const double xr = prev_x - prev_f * (x - prev_x) / (f - prev_f);  // linear estimate
@@ -666,8 +820,9 @@ DampedSolution solve_damped(const DampedParams& prm) {
     }
   }
 
+  s.kernel_ = kern;
   // Fine nodes for the Fourier integrals up to |x| <= 3 (a + b).
-  s.fine_ = std::make_shared<DampedSolution::Fine>(s.build_fine(6.0 * s.half_ + std::fabs(s.centre_)));
+  s.light_ = std::make_shared<const DampedSolution::Fine>(s.build_fine(2.0 * s.half_));
 
   // Surface sigma_x = -phi2 p - (1/pi) Re int_0^inf (M2 - phi2) p^ e^{i alpha x}
   // is linear in p: the change of sigma_x between the last two sizes, from
@@ -686,11 +841,12 @@ DampedSolution solve_damped(const DampedParams& prm) {
       Eigen::VectorXd db = Eigen::VectorXd::Zero(std::max(bk.size(), b_prev.size()));
       db.head(bk.size()) += bk;
       db.head(b_prev.size()) -= b_prev;
-      const DampedSolution::Fine& f = *s.fine_;
+      const DampedSolution::Fine& f = *s.light_;
       std::vector<cplx> amp(f.alpha.size());
       for (std::size_t i = 0; i < f.alpha.size(); ++i)
-        amp[i] = f.weight[i] * (f.r[i].M2 - phi2) *
-                 u_series_transform(db, s.centre_, s.half_, f.alpha[i]);
+        amp[i] = (f.r[i].M2 - phi2) * u_series_transform(db, 0.0, s.half_, f.alpha[i]);
+      std::vector<double> amp_re, amp_im;
+      f.coefficients(amp, amp_re, amp_im);
       double dmax = 0.0;
       for (int j = 0; j < 96; ++j) {
         double r;
@@ -701,26 +857,35 @@ DampedSolution solve_damped(const DampedParams& prm) {
           r = (q % 2 == 0 ? 1.0 : -1.0) * (1.0 + 5.0 * std::pow((q / 2 + 0.5) / 16.0, 2.0));
         }
         const double x = s.centre_ + s.half_ * r;
-        double sum = 0.0;
-        for (std::size_t i = 0; i < f.alpha.size(); ++i)
-          sum += (amp[i] * std::exp(cplx(0.0, f.alpha[i] * x))).real();
+        const double sum = f.fourier(amp_re, amp_im, x - s.centre_);
         const double dp = std::fabs(r) < 1.0 ? u_series(db, r) * std::sqrt(1.0 - r * r) : 0.0;
         dmax = std::max(dmax, std::fabs(-phi2 * dp - sum / kPi));
       }
       gain = std::max(std::fabs(phi2), dmax / d_p.back());
     } else {
       double im2 = 0.0;
-      for (std::size_t i = 0; i < quad->m2.size(); ++i)
-        im2 += quad->panels.weight[i] * std::abs(quad->m2[i] - phi2);
+      const DampedQuadrature& quad = kern->quadrature();
+      for (std::size_t i = 0; i < quad.m2.size(); ++i)
+        im2 += quad.panels.weight[i] * std::abs(quad.m2[i] - phi2);
       gain = std::fabs(phi2) + 2.0 * s.half_ * im2 / kPi;
     }
     double sabs = 0.0;
-    for (std::size_t i = 0; i < s.fine_->alpha.size(); ++i)
-      sabs += s.fine_->weight[i] * std::abs(s.fine_->r[i].M2 - phi2) * std::abs(s.fine_->phat[i]);
+    const DampedSolution::Fine& f = *s.light_;
+    for (std::size_t i = 0; i < f.alpha.size(); ++i)
+      sabs += f.weight[i] * std::abs(f.r[i].M2 - phi2) * std::abs(f.phat[i]);
     const double ends = s.max_p_ * (s.err_ / s.half_) * (1.0 + 1.0 / std::sqrt(2e-3));
     s.serr_ = gain * (s.perr_ + ends) + 64.0 * kEps * (std::fabs(phi2) * s.max_p_ + sabs / kPi);
   }
 
+  // Gauss-Chebyshev (U) nodes and weights times g for surface_slope.
+  {
+    const int m = std::max(64, 2 * static_cast<int>(s.b_.size()) + 2);
+    for (int i = 1; i <= m; ++i) {
+      const double th = i * kPi / (m + 1), r = std::cos(th);
+      s.slope_r_.push_back(r);
+      s.slope_wg_.push_back(std::sin(th) * std::sin(th) / (m + 1) * u_series(s.b_, r));
+    }
+  }
   // The margin before separation: min over r of p/((P/h) sqrt(1 - r^2)) = g(r).
   s.margin_ = u_series_minimum(s.b_);
 
@@ -742,10 +907,12 @@ DampedSolution solve_damped(const DampedParams& prm) {
       for (int seg = 0; seg < m; ++seg) {
         const double lo = qmax * seg / m, hi = qmax * (seg + 1) / m;
         const double c = 0.5 * (lo + hi), h = 0.5 * (hi - lo);
-        for (int j = 0; j < 15; ++j) {
+        // The 7 Gauss nodes (the integrand is smooth on the segment).
+        for (int j = 1; j < 15; j += 2) {
+          const double gw = g_weight(j, h);
           const double q = gk_node(j, c, h);
           const double x = edge + side * q * q;
-          gap += gk_weight(j, h) * 2.0 * q * (x / R - s.surface_slope(x)) * side;
+          gap += gw * 2.0 * q * (x / R - s.surface_slope(x)) * side;
         }
         s.min_gap_ = std::min(s.min_gap_, gap);
       }
@@ -773,7 +940,10 @@ DampedSolution solve_damped(const DampedParams& prm) {
     s.validity_ += note.str();
   }
   if (!s.valid_ && !prm.allow_unphysical) throw UnphysicalContactError(s.validity_);
-  s.elapsed_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  s.elapsed_ = since_start();
+  // The scan's kernel fetch (if any) is counted under kernel, not checks.
+  s.stage_seconds_ = {t_critical, kernel_seconds, t_width - t_critical - kernel_seconds,
+                      s.elapsed_ - t_width};
   return s;
 }
 
@@ -836,21 +1006,24 @@ double DampedSolution::surface_slope(double x) const {
       qk *= q;
     }
   }
-  // Kernel part by Gauss-Chebyshev (U) quadrature of p K: (1/pi) int sqrt(1-r^2) f ~ sum W_i f(r_i).
-  const int m = std::max(64, 2 * n + 2);
+  // Kernel part by Gauss-Chebyshev (U) quadrature of p K: (1/pi) int
+  // sqrt(1-r^2) f ~ sum W_i f(r_i), on the nodes prepared by the solve.
+  thread_local std::vector<double> u, kv;
+  u.resize(slope_r_.size());
+  kv.resize(u.size());
+  for (std::size_t i = 0; i < u.size(); ++i) u[i] = x - centre_ - w * slope_r_[i];
+  kernel_->many(u.data(), kv.data(), u.size());
   double kern = 0.0;
-  for (int i = 1; i <= m; ++i) {
-    const double th = i * kPi / (m + 1), r = std::cos(th);
-    const double wi = std::sin(th) * std::sin(th) / (m + 1);
-    kern += wi * u_series(b_, r) * damped_kernel(*filon_, kr_, ki_, x - centre_ - w * r);
-  }
+  for (std::size_t i = 0; i < u.size(); ++i) kern += slope_wg_[i] * kv[i];
   return params_.load * phi1 * (-cauchy + w * kern);
 }
 
 DampedSolution::Fine DampedSolution::build_fine(double freq) const {
   Fine f;
   f.freq = freq;
-  const auto& P = quad_->panels;
+  AlphaQuadrature panels;
+  const DampedQuadrature& Q = kernel_->quadrature();
+  const auto& P = Q.panels;
   const double width = std::min(0.5, 1.5 / std::max(freq, 1e-300));
   for (std::size_t p = 0; p < P.panel_centre.size(); ++p) {
     const double lo = P.panel_centre[p] - P.panel_half[p];
@@ -858,32 +1031,59 @@ DampedSolution::Fine DampedSolution::build_fine(double freq) const {
     const int m = std::max(1, static_cast<int>(std::ceil(len / width)));
     for (int q = 0; q < m; ++q) {
       const double c = lo + (q + 0.5) * len / m, h = 0.5 * len / m;
+      panels.panel_centre.push_back(c);
+      panels.panel_half.push_back(h);
       for (int j = 0; j < 15; ++j) {
-        const double a = gk_node(j, c, h);
+        // An unsplit panel: the quadrature's own nodes and responses.
+        const double a = m == 1 ? P.alpha[15 * p + static_cast<std::size_t>(j)] : gk_node(j, c, h);
         f.alpha.push_back(a);
-        f.weight.push_back(gk_weight(j, h));
-        f.r.push_back(model_->response(a));
+        f.weight.push_back(m == 1 ? P.weight[15 * p + static_cast<std::size_t>(j)] : gk_weight(j, h));
+        f.r.push_back(m == 1 ? Q.r[15 * p + static_cast<std::size_t>(j)] : model_->response(a));
         f.phat.push_back(pressure_transform(a));
       }
     }
   }
+  f.filon = std::make_shared<const FilonIntegrator>(panels);
+  std::vector<cplx> g(f.alpha.size());
+  const double phi2 = model_->phi2();
+  for (std::size_t i = 0; i < g.size(); ++i)
+    g[i] = (f.r[i].M2 - phi2) * f.phat[i] * std::exp(cplx(0.0, f.alpha[i] * centre_));
+  f.coefficients(g, f.sx_re, f.sx_im);
   return f;
 }
 
+void DampedSolution::Fine::coefficients(const std::vector<cplx>& g, std::vector<double>& c_re,
+                                        std::vector<double>& c_im) const {
+  std::vector<double> re(g.size()), im(g.size());
+  for (std::size_t i = 0; i < g.size(); ++i) {
+    re[i] = g[i].real();
+    im[i] = g[i].imag();
+  }
+  c_re = filon->coefficients(re);
+  c_im = filon->coefficients(im);
+}
+
+double DampedSolution::Fine::fourier(const std::vector<double>& c_re,
+                                     const std::vector<double>& c_im, double x) const {
+  return filon->integral(x, c_re).real() - filon->integral(x, c_im).imag();
+}
+
+
 std::shared_ptr<const DampedSolution::Fine> DampedSolution::fine_for(double x) const {
   const double need = 2.0 * half_ + std::fabs(centre_) + std::fabs(x);
-  if (fine_ && need <= fine_->freq) return fine_;
+  {
+    std::lock_guard<std::mutex> lock(fine_cache_->mutex);
+    auto& f = fine_cache_->fine;
+    if (!f) f = std::make_shared<const Fine>(build_fine(6.0 * half_ + std::fabs(centre_)));
+    if (need <= f->freq) return f;
+  }
   return std::make_shared<const Fine>(build_fine(need));
 }
 
 double DampedSolution::surface_stress(double x) const {
-  const auto f = fine_for(x);
-  const double phi2 = model_->phi2();
-  double sum = 0.0;
-  for (std::size_t i = 0; i < f->alpha.size(); ++i)
-    sum += f->weight[i] *
-           ((f->r[i].M2 - phi2) * f->phat[i] * std::exp(cplx(0.0, f->alpha[i] * x))).real();
-  return -phi2 * pressure(x) - sum / kPi;
+  if (!std::isfinite(x)) throw std::invalid_argument("surface_stress: x must be finite");
+  const Fine& f = *light_;
+  return -model_->phi2() * pressure(x) - f.fourier(f.sx_re, f.sx_im, x - centre_) / kPi;
 }
 
 Eigen::Vector3d DampedSolution::stresses(double x, double y) const {
@@ -927,7 +1127,7 @@ DampedStressGrid DampedSolution::stress_grid(const Eigen::Ref<const Eigen::Vecto
       if (f->alpha[k] > 0.0) add(f->alpha[k], f->weight[k], f->phat[k]);
     // The field decays like exp(nT alpha y): beyond the quadrature's
     // alpha_max extend with panels of width 1.5/freq up to 45/(nT |y|).
-    const double amax = quad_->panels.alpha_max, aend = 45.0 / (c.nT * std::fabs(y(i)));
+    const double amax = kernel_->quadrature().panels.alpha_max, aend = 45.0 / (c.nT * std::fabs(y(i)));
     if (aend > amax) {
       const double width = std::min(0.5, 1.5 / f->freq);
       const int m = static_cast<int>(std::ceil((aend - amax) / width));
@@ -952,7 +1152,10 @@ DampedStressGrid DampedSolution::stress_grid(const Eigen::Ref<const Eigen::Vecto
   return g;
 }
 
-double DampedSolution::stress_x(double x, double y) const { return stresses(x, y)(0); }
+double DampedSolution::stress_x(double x, double y) const {
+  if (y == 0.0) return surface_stress(x);  // the surface: the local term split off
+  return stresses(x, y)(0);
+}
 
 double DampedSolution::bottom_displacement(double x) const {
   // v(x, -1) = (1/2pi) int (Wb/alpha) p^ e^{i alpha x}; Wb/alpha -> -1/kw at alpha -> 0.
@@ -978,8 +1181,9 @@ double DampedSolution::bottom_slope(double x) const {
 double DampedSolution::dissipation() const {
   // damping sqrt(s) int (v_b')^2 dx / load, with int (v_b')^2 = (load^2/pi) int_0^inf |Wb p^|^2.
   double sum = 0.0;
-  for (std::size_t i = 0; i < fine_->alpha.size(); ++i)
-    sum += fine_->weight[i] * std::norm(fine_->r[i].Wb * fine_->phat[i]);
+  const Fine& f = *light_;
+  for (std::size_t i = 0; i < f.alpha.size(); ++i)
+    sum += f.weight[i] * std::norm(f.r[i].Wb * f.phat[i]);
   return model_->damping() * std::sqrt(model_->vstar()) * params_.load * sum / kPi;
 }
 

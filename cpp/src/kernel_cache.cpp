@@ -1,32 +1,115 @@
-// The process-wide cache of k1 tables (see kernel.hpp).
+// The process-wide caches of kernel tables: the real k1 tables (kernel.hpp)
+// and the damped kernel tables (damped.hpp). One LRU policy for both.
 #include <algorithm>
+#include <array>
+#include <limits>
 #include <list>
 #include <memory>
 #include <mutex>
 
+#include "movingpunch/damped.hpp"
 #include "movingpunch/kernel.hpp"
 
 namespace movingpunch {
 
 namespace {
 
-struct Entry {
-  double vstar, kw, nu, tol;
-  std::shared_ptr<const KernelK1> kernel;
-  bool matches(const LayerModel& m, double t) const {
-    // Exact comparison: the same inputs give the same table.
-    return vstar == m.vstar() && kw == m.kw() && nu == m.nu() && tol == t;
+// Tables of one kind, keyed on the inputs they depend on (compared exactly:
+// the same inputs give the same table) and covering |u| <= range().
+constexpr double kStep = 1.25;
+
+template <class Table>
+class RangeCache {
+ public:
+  using Key = std::array<double, 4>;
+  using Ptr = std::shared_ptr<const Table>;
+
+  RangeCache(std::size_t capacity, double max_ratio) : capacity_(capacity), max_ratio_(max_ratio) {}
+
+  // The shortest cached table of this key with min_range <= range <=
+  // max_ratio min_range, or one built by build(range, shorter) and cached.
+  // When a table of this key exists but is too short (a widening sweep), the
+  // new range is at least kGrowth times the longest such table's: geometric
+  // growth, so a sweep in any order builds a few tables, not one per point
+  // (and a solve whose width iteration overshoots its first guess builds
+  // the table it asks for, no wider). `shorter` is the
+  // longest of those (its range-independent parts may be reused).
+  template <class Build>
+  Ptr get(const Key& key, double min_range, double build_range, Build build, bool* built,
+          double growth = kGrowth) {
+    Ptr shorter;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      auto best = entries_.end();
+      for (auto it = entries_.begin(); it != entries_.end(); ++it) {
+        if (it->key != key) continue;
+        const double r = it->table->range();
+        if (r < min_range) {
+          if (!shorter || r > shorter->range()) shorter = it->table;
+          continue;
+        }
+        if (r > max_ratio_ * min_range) continue;
+        if (best == entries_.end() || r < best->table->range()) best = it;
+      }
+      if (best != entries_.end()) {
+        entries_.splice(entries_.begin(), entries_, best);
+        ++info_.hits;
+        if (built) *built = false;
+        return entries_.front().table;
+      }
+    }
+    double range = std::max(build_range, min_range);
+    // Only a sweep's small step (the need within kStep of the shorter
+    // table) grows: a far wider request is another problem, built as asked.
+    if (shorter && min_range <= kStep * shorter->range())
+      range = std::max(range, growth * shorter->range());
+    // Built outside the lock: other threads keep using the cache meanwhile
+    // (two threads may build the same table; both are equal and both kept
+    // only until eviction).
+    Ptr t = build(range, shorter);
+    std::lock_guard<std::mutex> lock(mutex_);
+    entries_.push_front(Entry{key, t});
+    while (entries_.size() > capacity_) entries_.pop_back();
+    ++info_.misses;
+    if (built) *built = true;
+    return t;
   }
+
+  KernelCacheInfo info() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    KernelCacheInfo i = info_;
+    i.size = entries_.size();
+    return i;
+  }
+
+  void clear() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    entries_.clear();
+    info_ = KernelCacheInfo{};
+  }
+
+ private:
+  struct Entry {
+    Key key;
+    Ptr table;
+  };
+  std::size_t capacity_;
+  double max_ratio_;
+  std::mutex mutex_;
+  std::list<Entry> entries_;  // most recently used first
+  KernelCacheInfo info_;
 };
 
-struct Cache {
-  std::mutex mutex;
-  std::list<Entry> entries;  // most recently used first
-  KernelCacheInfo info;
-};
+RangeCache<KernelK1>& k1_cache() {
+  static RangeCache<KernelK1> c(kKernelCacheCapacity, kMaxRangeRatio);
+  return c;
+}
 
-Cache& cache() {
-  static Cache c;
+// A damped table's evaluation costs the same whatever its range (pieces):
+// no upper ratio.
+RangeCache<DampedKernel>& damped_cache() {
+  static RangeCache<DampedKernel> c(kDampedKernelCacheCapacity,
+                                    std::numeric_limits<double>::infinity());
   return c;
 }
 
@@ -34,49 +117,42 @@ Cache& cache() {
 
 std::shared_ptr<const KernelK1> cached_kernel(const LayerModel& model, double tol,
                                               double min_range, double build_range,
-                                              bool* built) {
-  Cache& c = cache();
-  {
-    std::lock_guard<std::mutex> lock(c.mutex);
-    auto best = c.entries.end();
-    for (auto it = c.entries.begin(); it != c.entries.end(); ++it) {
-      const double r = it->kernel->range();
-      if (!it->matches(model, tol) || r < min_range || r > kMaxRangeRatio * min_range) continue;
-      if (best == c.entries.end() || r < best->kernel->range()) best = it;
-    }
-    if (best != c.entries.end()) {
-      c.entries.splice(c.entries.begin(), c.entries, best);
-      ++c.info.hits;
-      if (built) *built = false;
-      return c.entries.front().kernel;
-    }
-  }
-  // Built outside the lock: other threads keep using the cache meanwhile (two
-  // threads may build the same table; both results are equal and both kept
-  // only until eviction).
-  auto k = std::make_shared<const KernelK1>(model, tol, std::max(build_range, min_range));
-  std::lock_guard<std::mutex> lock(c.mutex);
-  c.entries.push_front(Entry{model.vstar(), model.kw(), model.nu(), tol, k});
-  while (c.entries.size() > kKernelCacheCapacity) c.entries.pop_back();
-  ++c.info.misses;
-  c.info.size = c.entries.size();
-  if (built) *built = true;
-  return k;
+                                              bool* built, bool grow) {
+  return k1_cache().get(
+      {model.vstar(), model.kw(), model.nu(), tol}, min_range, build_range,
+      [&](double range, const std::shared_ptr<const KernelK1>& shorter) {
+        // Growth never turns a global table piecewise when the range needed
+        // fits a global one: a piecewise table's error bound is of any shape
+        // (a looser a/h estimate), and near V*_cr its gap check sits at its
+        // round-off floor (contact.cpp's table_range).
+        if (shorter && !shorter->piecewise()) {
+          const double global_max = KernelK1::kPieceBandwidth / shorter->quadrature().alpha_max;
+          if (std::max(build_range, min_range) <= global_max) range = std::min(range, global_max);
+        }
+        return std::make_shared<const KernelK1>(model, tol, range);
+      },
+      built, grow ? kGrowth : 1.0);
 }
 
-KernelCacheInfo kernel_cache_info() {
-  Cache& c = cache();
-  std::lock_guard<std::mutex> lock(c.mutex);
-  KernelCacheInfo i = c.info;
-  i.size = c.entries.size();
-  return i;
+std::shared_ptr<const DampedKernel> cached_damped_kernel(double vstar, double kw, double nu,
+                                                         double damping, double min_range,
+                                                         double build_range, bool* built) {
+  return damped_cache().get(
+      {vstar, kw, nu, damping}, min_range, build_range,
+      [&](double range, const std::shared_ptr<const DampedKernel>& shorter) {
+        if (shorter) return std::make_shared<const DampedKernel>(*shorter, range);
+        return std::make_shared<const DampedKernel>(
+            std::make_shared<const DampedLayerModel>(vstar, kw, nu, damping), range);
+      },
+      built);
 }
+
+KernelCacheInfo kernel_cache_info() { return k1_cache().info(); }
+KernelCacheInfo damped_kernel_cache_info() { return damped_cache().info(); }
 
 void clear_kernel_cache() {
-  Cache& c = cache();
-  std::lock_guard<std::mutex> lock(c.mutex);
-  c.entries.clear();
-  c.info = KernelCacheInfo{};
+  k1_cache().clear();
+  damped_cache().clear();
 }
 
 }  // namespace movingpunch

@@ -16,7 +16,9 @@ from __future__ import annotations
 
 import functools
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field, fields
+from types import MappingProxyType
 
 import numpy as np
 import numpy.typing as npt
@@ -144,6 +146,21 @@ class DampedSolution:
     _impl: _core.DampedSolution = field(repr=False, compare=False)
 
     @property
+    def kernel_builds(self) -> int:
+        """Kernel tables this solve built (0: reused from the process-wide
+        cache, as in a load or radius sweep at fixed vstar, kw, nu, damping)."""
+        return int(self._impl.kernel_builds)
+
+    @property
+    def stage_times(self) -> Mapping[str, float]:
+        """Seconds per stage of the solve, as ``Solution.stage_times``:
+        ``critical_speed``, ``kernel`` (fetching or building the kernel table),
+        ``width`` (the iteration on the ends over the N ladder) and ``checks``
+        (the scan for other steady states, the estimates, validity). They sum
+        to ``elapsed``."""
+        return MappingProxyType(dict(self._impl.stage_seconds))
+
+    @property
     def a(self) -> float:
         """Leading end a/h of the contact (-b, a)."""
         return self.contact_interval[1]
@@ -187,14 +204,14 @@ class DampedSolution:
         return _pointwise("x", x, self._impl.surface_stress)
 
     def depth_stress(self, y: npt.ArrayLike, x: float = 0.0) -> float | FloatArray:
-        """sigma_x(x, y)/(P/h) for -1 <= y <= -1e-3 (the Fourier integral is
-        not used closer to the surface; use ``surface_stress`` at y = 0)."""
+        """sigma_x(x, y)/(P/h) for -1 <= y <= -1e-3 and at the surface y = 0
+        (``surface_stress``); the Fourier integral is not used in between."""
         pts = _as_points("y", y)
-        bad = (pts < -1.0) | (pts > -1e-3)
+        bad = (pts < -1.0) | ((pts > -1e-3) & (pts != 0.0))
         if bad.any():
             raise InvalidParameterError(
-                "y must satisfy -1 <= y <= -1e-3 for the damped solver's depth "
-                f"stress, got {float(pts[bad].flat[0])!r}"
+                "y must satisfy -1 <= y <= -1e-3 or y = 0 for the damped solver's "
+                f"depth stress, got {float(pts[bad].flat[0])!r}"
             )
         xs = _real_any("x", x)
         if not math.isfinite(xs):

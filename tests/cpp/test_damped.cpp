@@ -4,7 +4,9 @@
 // energy balance per mode and for the whole contact, the paper's Table 1.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <memory>
 #include <complex>
 #include <limits>
 #include <string>
@@ -443,4 +445,69 @@ TEST(DampedRefinement, PressureMeetsTol) {
   const auto coarse = mp::solve_damped(f);
   ASSERT_FALSE(coarse.warnings().empty());
   EXPECT_NE(coarse.warnings().front().find("x tol"), std::string::npos);
+}
+
+// The tabulated kernel against its direct Filon sums (a second evaluation
+// of the same integral, point by point): within the table's own error bound,
+// and that bound at round-off, sub- and supercritical and near resonance.
+TEST(DampedKernelTable, MatchesDirectSumsWithinItsBound) {
+  struct Case {
+    double vstar, kw, damping;
+  };
+  for (const Case c : {Case{0.2, 1.0, 0.1}, Case{0.65, 1.0, 0.1}, Case{0.8, 1.0, 0.01},
+                       Case{0.3, 0.01, 1.0}}) {
+    const auto model = std::make_shared<const mp::DampedLayerModel>(c.vstar, c.kw, 0.2, c.damping);
+    const mp::DampedKernel k(model, 3.0);
+    EXPECT_LT(k.table_error(), 1e-13) << c.vstar;
+    double worst = 0.0;
+    std::vector<double> us, batch;
+    for (int i = 0; i <= 240; ++i) us.push_back(-3.0 + 6.0 * i / 240.0 + 1e-3 * std::sin(i));
+    us.push_back(3.0);
+    batch.resize(us.size());
+    k.many(us.data(), batch.data(), us.size());
+    for (std::size_t i = 0; i < us.size(); ++i) {
+      const double u = std::clamp(us[i], -3.0, 3.0);
+      const double d = k.direct(u);
+      worst = std::max(worst, std::fabs(k(u) - d));
+      EXPECT_EQ(batch[i], k(us[i])) << u;  // the batch is the same evaluation
+    }
+    EXPECT_LE(worst, k.table_error()) << c.vstar;
+    // Beyond the range: the direct sums.
+    EXPECT_EQ(k(7.5), k.direct(7.5));
+    // A wider table on the same quadrature agrees inside the narrower range.
+    const mp::DampedKernel wide(k, 9.0);
+    for (double u : {-2.9, -0.3, 0.0, 0.7, 2.5})
+      EXPECT_NEAR(wide(u), k(u), k.table_error() + wide.table_error()) << u;
+  }
+}
+
+// The process-wide cache: a second solve that changes only the load or the
+// radius builds nothing and equals a solve from an empty cache; other inputs
+// build their own table; clear_kernel_cache() empties it.
+TEST(DampedKernelTable, CachedAcrossSolves) {
+  mp::clear_kernel_cache();
+  const auto first = mp::solve_damped(damped(0.65, 1.0, 0.1));
+  EXPECT_GE(first.kernel_builds(), 1);
+  auto p = damped(0.65, 1.0, 0.1);
+  p.load = 0.0021;
+  const auto second = mp::solve_damped(p);
+  EXPECT_EQ(second.kernel_builds(), 0);
+  p.radius = 90.0;
+  EXPECT_EQ(mp::solve_damped(p).kernel_builds(), 0);
+  p.radius = 100.0;
+  mp::clear_kernel_cache();
+  EXPECT_EQ(mp::damped_kernel_cache_info().size, 0u);
+  const auto fresh = mp::solve_damped(p);
+  EXPECT_GE(fresh.kernel_builds(), 1);
+  EXPECT_NEAR(second.left(), fresh.left(), 1e-13);
+  EXPECT_NEAR(second.right(), fresh.right(), 1e-13);
+  EXPECT_NEAR(second.drag(), fresh.drag(), 1e-12 * fresh.drag());
+  bool built = false;
+  mp::cached_damped_kernel(0.65, 1.0, 0.2, 0.2, 1.0, 2.0, &built);  // another damping
+  EXPECT_TRUE(built);
+  // Stage times sum to the elapsed time.
+  const auto& t = fresh.stage_seconds();
+  EXPECT_NEAR(t.critical_speed + t.kernel + t.width + t.checks, fresh.elapsed(),
+              1e-3 * fresh.elapsed() + 1e-6);
+  mp::clear_kernel_cache();
 }

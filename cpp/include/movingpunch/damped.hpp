@@ -15,11 +15,13 @@
 
 #include <complex>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
 #include <Eigen/Dense>
 
+#include "movingpunch/contact.hpp"
 #include "movingpunch/kernel.hpp"
 #include "movingpunch/layer_response.hpp"
 
@@ -81,12 +83,67 @@ class DampedLayerModel {
 struct DampedQuadrature {
   AlphaQuadrature panels;      // nodes, weights, panel centres/half-widths
   std::vector<cplx> m1, m2, wb;
+  std::vector<DampedResponse> r;  // the whole response at each node
   double error_estimate = 0;   // of the integral of |M1 - phi1|/phi1
   // QUADPACK's (qk15) estimate of the error of the Kronrod sums actually used
   // (|K15 - G7| above bounds the Gauss rule's error, far larger once resolved).
   double kronrod_error = 0;
 };
 DampedQuadrature build_damped_quadrature(const DampedLayerModel& model, double tol);
+
+// The regular kernel K(u) of the damped equation (damped_kernel() below) for
+// one (vstar, kw, nu, damping): the alpha quadrature and its Filon
+// coefficients (range-independent, shared by every table of these inputs) and
+// a piecewise Chebyshev table (degree 24 on equal pieces of width <= 1) on
+// |u| <= range(), built from direct Filon sums and checked piece by piece
+// (the last coefficients at round-off). Beyond the range: direct sums.
+// Immutable and shared between solves (cached_damped_kernel).
+class DampedKernel {
+ public:
+  DampedKernel(std::shared_ptr<const DampedLayerModel> model, double range);
+  // A wider table on the quadrature of `other` (no new layer responses).
+  DampedKernel(const DampedKernel& other, double range);
+
+  double operator()(double u) const;  // the table on |u| <= range(), direct() beyond
+  void many(const double* u, double* out, std::size_t n) const;  // out[i] = (*this)(u[i])
+  double direct(double u) const;      // Filon sums, any u
+  double range() const noexcept { return range_; }
+  // Bound on |table - direct| (truncation of the pieces plus their values'
+  // round-off), absolute.
+  double table_error() const noexcept { return table_error_; }
+  const DampedLayerModel& model() const noexcept { return *base_->model; }
+  const std::shared_ptr<const DampedLayerModel>& model_ptr() const noexcept { return base_->model; }
+  const DampedQuadrature& quadrature() const noexcept { return base_->quad; }
+  const FilonIntegrator& filon() const noexcept { return *base_->filon; }
+  const std::vector<double>& kr() const noexcept { return base_->kr; }
+  const std::vector<double>& ki() const noexcept { return base_->ki; }
+
+ private:
+  static constexpr int kDegree = 24;
+  struct Base {
+    std::shared_ptr<const DampedLayerModel> model;
+    DampedQuadrature quad;
+    std::shared_ptr<const FilonIntegrator> filon;
+    std::vector<double> kr, ki;  // Filon coefficients of Re, Im (M1 - phi1)/phi1
+  };
+  std::shared_ptr<const Base> base_;
+  double range_ = 0, width_ = 0, table_error_ = 0;
+  std::vector<double> coef_;  // (kDegree + 1) per piece, pieces from u = -range
+  void tabulate();
+};
+
+// Process-wide cache of damped kernel tables, keyed on (vstar, kw, nu,
+// damping) (the table is built to round-off whatever tol, so tol is not part
+// of the key): a table whose range is at least min_range, or one of range
+// build_range built and cached (at least kGrowth times the longest shorter
+// table of the same inputs when one exists: its quadrature is reused). Least recently used
+// evicted beyond kDampedKernelCacheCapacity; thread-safe; emptied by
+// clear_kernel_cache() (kernel.hpp).
+inline constexpr std::size_t kDampedKernelCacheCapacity = 16;
+std::shared_ptr<const DampedKernel> cached_damped_kernel(double vstar, double kw, double nu,
+                                                         double damping, double min_range,
+                                                         double build_range, bool* built = nullptr);
+KernelCacheInfo damped_kernel_cache_info();
 
 // Dimensionless inputs (h = 1, mu = 1).
 struct DampedParams {
@@ -141,6 +198,14 @@ class DampedSolution {
   // empty when tol was met.
   const std::vector<std::string>& warnings() const noexcept { return warnings_; }
   int iterations() const noexcept { return iterations_; }
+  // Kernel tables this solve built (0: all reused from the process-wide cache).
+  int kernel_builds() const noexcept { return kernel_builds_; }
+  // Seconds spent in each stage (as ContactSolution's): the critical-speed
+  // lookup, fetching or building the kernel table, the width iteration over
+  // the N ladder (without the kernel), and the rest (the scan for other
+  // steady states, the estimates, the validity checks). They sum to elapsed().
+  using StageSeconds = ContactSolution::StageSeconds;
+  const StageSeconds& stage_seconds() const noexcept { return stage_seconds_; }
   int collocation_n() const noexcept { return n_; }
   double elapsed() const noexcept { return elapsed_; }
   bool valid() const noexcept { return valid_; }
@@ -160,7 +225,8 @@ class DampedSolution {
   // sigma_x(x, 0)/(P/h), any x.
   double surface_stress(double x) const;
   // sigma_x(x, y)/(P/h) for -1 <= y <= -1e-3 (below the surface layer of
-  // thickness 1e-3, where the Fourier integral converges fast enough).
+  // thickness 1e-3, where the Fourier integral converges fast enough) and at
+  // y = 0 (surface_stress).
   double stress_x(double x, double y) const;
   // (sigma_x, sigma_y, tau_xy)(x, y)/(P/h) for -1 <= y <= -1e-3.
   Eigen::Vector3d stresses(double x, double y) const;
@@ -184,16 +250,18 @@ class DampedSolution {
   double centre_ = 0, half_ = 0, drag_ = 0, vcr_ = 0, vr_ = 0, err_ = 0, elapsed_ = 0;
   double perr_ = 0, serr_ = 0, max_p_ = 0, margin_ = 0;
   std::vector<std::string> warnings_;
-  int iterations_ = 0, n_ = 0;
+  int iterations_ = 0, n_ = 0, kernel_builds_ = 0;
+  StageSeconds stage_seconds_{};
   bool valid_ = true;
   std::string validity_;
   double min_p_ = 0, min_gap_ = 0;
   std::vector<double> other_widths_;
   Eigen::VectorXd b_;
   std::shared_ptr<const DampedLayerModel> model_;
-  std::shared_ptr<const DampedQuadrature> quad_;
-  std::shared_ptr<const FilonIntegrator> filon_;
-  std::vector<double> kr_, ki_;  // Filon coefficients of Re, Im (M1 - phi1)/phi1
+  std::shared_ptr<const DampedKernel> kernel_;
+  // Gauss-Chebyshev (U) nodes r_i and weights times g(r_i) of surface_slope's
+  // kernel integral.
+  std::vector<double> slope_r_, slope_wg_;
   // Fine Gauss-Kronrod nodes (the quadrature's panels split so that each
   // resolves oscillations of frequency `freq`), with the response and the
   // transformed pressure at each node.
@@ -202,8 +270,29 @@ class DampedSolution {
     std::vector<double> alpha, weight;
     std::vector<DampedResponse> r;
     std::vector<cplx> phat;
+    // Filon rule on the fine panels, and the coefficients of the real and
+    // imaginary parts of (M2 - phi2) p^ e^{i alpha c} (the surface sigma_x
+    // integrand with the centre's phase taken out: evaluate at x - c).
+    std::shared_ptr<const FilonIntegrator> filon;
+    std::vector<double> sx_re, sx_im;
+    // Re int_0^amax (g_re + i g_im) e^{i alpha x} d alpha from coefficients.
+    double fourier(const std::vector<double>& c_re, const std::vector<double>& c_im,
+                   double x) const;
+    // Filon coefficients of Re and Im of g given at the nodes.
+    void coefficients(const std::vector<cplx>& g, std::vector<double>& c_re,
+                      std::vector<double>& c_im) const;
   };
-  std::shared_ptr<const Fine> fine_;  // built by solve_damped for |x| <= 3 (a + b)
+  // Resolving p^'s own oscillation (freq 2w; the centre's phase is shifted
+  // out): Filon integrals at any x (surface sigma_x, the estimates, the
+  // dissipation). Built by solve_damped.
+  std::shared_ptr<const Fine> light_;
+  // Resolving e^{i alpha x} for |x| <= 3 (a + b) too (the direct sums of the
+  // field and bottom outputs): built on first use, then shared.
+  struct FineCache {
+    std::mutex mutex;
+    std::shared_ptr<const Fine> fine;
+  };
+  std::shared_ptr<FineCache> fine_cache_ = std::make_shared<FineCache>();
   std::shared_ptr<const Fine> fine_for(double x) const;
   Fine build_fine(double freq) const;
 };

@@ -65,6 +65,8 @@ class FilonIntegrator {
 
 class KernelK1 {
  public:
+  // Tables with range * alpha_max above this are held piecewise (below).
+  static constexpr double kPieceBandwidth = 600.0;
   // Tabulates k1 on |u| <= range to tolerance tol (absolute, k1 is O(1)).
   KernelK1(const LayerModel& model, double tol, double range);
 
@@ -114,7 +116,6 @@ class KernelK1 {
   // values: building and evaluating them costs O(range) and O(kPieceDegree),
   // where one global series would need thousands of terms per evaluation.
   static constexpr int kPieceDegree = 24;
-  static constexpr double kPieceBandwidth = 600.0;
   std::vector<double> piece_coef_;  // (kPieceDegree + 1) per piece; empty: global series
   AlphaQuadrature value_quad_;      // the coarse quadrature of a piecewise table
   double table_error_ = 0, table_roundoff_ = 0;
@@ -129,7 +130,14 @@ class KernelK1 {
 // share a material and speed (a load or radius sweep) reuse one table.
 // Returns a cached table whose range is at least `min_range` (and at most
 // kMaxRangeRatio times it, so a tiny contact never pays for a huge table), or
-// builds one of range `build_range` (>= min_range) and caches it. `built`
+// builds one of range `build_range` (>= min_range) and caches it; when a
+// table of the same key exists but is shorter than min_range (a widening
+// sweep), of range at least kGrowth times the longest such table's
+// (geometric growth: a sweep in any order builds a few tables), unless that
+// would turn a global table piecewise where a global one suffices, or
+// `grow` is false (a solve that already built a table for a narrower trial
+// width: its own tables stay as it asks, which its error budget is
+// calibrated on). `built`
 // (optional) is set to whether a table was built. Thread-safe; the least
 // recently used tables are evicted beyond kCapacity.
 struct KernelCacheInfo {
@@ -139,10 +147,12 @@ struct KernelCacheInfo {
 };
 inline constexpr double kMaxRangeRatio = 24.0;
 inline constexpr std::size_t kKernelCacheCapacity = 32;
+inline constexpr double kGrowth = 2.0;
 std::shared_ptr<const KernelK1> cached_kernel(const LayerModel& model, double tol,
                                               double min_range, double build_range,
-                                              bool* built = nullptr);
+                                              bool* built = nullptr, bool grow = true);
 KernelCacheInfo kernel_cache_info();
+// Clears the k1 tables and the damped kernel tables (damped.hpp).
 void clear_kernel_cache();
 
 }  // namespace movingpunch
