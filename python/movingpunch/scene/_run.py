@@ -8,10 +8,9 @@ lambda) are solved once (displacements and the indentation scale with the
 load: v = load * V(x; lambda)). The drag of a damped point scales like
 1/radius at fixed lambda (drag = int p x/R dx / P).
 
-Every output reads a solution through the result contract
-(movingpunch.contract.ContactSolution) and never asks which model made it:
-points with damping > 0 (docs/damped.md) come from the damped solver, with
-an asymmetric contact (-b, a) and a drag, through the same fields.
+Points with damping > 0 (docs/damped.md) are solved by the damped solver:
+their contact is (-b, a), they have a drag, and stresses at y/h > -1e-3 are
+evaluated at y/h = -1e-3 (``DAMPED_MAX_Y``).
 """
 
 from __future__ import annotations
@@ -35,15 +34,16 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from movingpunch.contract import ContactSolution
+from movingpunch.damped import DampedSolution
 from movingpunch.errors import MovingPunchError
-from movingpunch.fields import StressField
+from movingpunch.fields import StressField, derived_stresses
 from movingpunch.scene._spec import (
+    DAMPED_MAX_Y,
     PEAK_QUANTITIES,
     Scene,
     critical_speed,
 )
-from movingpunch.solver import rayleigh_vstar, result_warnings, solve
+from movingpunch.solver import Solution, rayleigh_vstar, result_warnings, solve
 
 __all__ = [
     "Curve",
@@ -58,6 +58,7 @@ __all__ = [
 
 FloatArray = npt.NDArray[np.float64]
 
+AnySolution = Solution | DampedSolution
 """A contact solution: undamped, or on a damped foundation (damping > 0)."""
 
 # Stage names of the core solve (Solution.stage_times), nested in "contact".
@@ -96,10 +97,10 @@ class _Stages:
         entry[0] += seconds
         entry[1] += count
 
-    def add_solution(self, s: ContactSolution) -> None:
+    def add_solution(self, s: AnySolution) -> None:
         self.add("contact", s.elapsed)
-        times = s.stage_times
-        builds = s.kernel_builds
+        times = getattr(s, "stage_times", None) or {}
+        builds = int(getattr(s, "kernel_builds", 0))
         self.kernel_tables += builds
         for name in CORE_STAGES:
             if name in times:
@@ -201,7 +202,7 @@ class SceneResult:
     scene: Scene
     outputs: Mapping[str, OutputData]
     sweep: SweepTable | None
-    solutions: tuple[ContactSolution, ...]
+    solutions: tuple[AnySolution, ...]
     """Contact solutions computed in this process (sweep points solved in
     worker processes or on Dask return their numbers only)."""
     stages: list[Stage]
@@ -260,7 +261,7 @@ def _label(param: str | None, value: float | None) -> str:
     return f"{param}={'inf' if math.isinf(value) else format(value, '.6g')}"
 
 
-def _solve(p: Mapping[str, float], tol: float, stages: _Stages) -> ContactSolution:
+def _solve(p: Mapping[str, float], tol: float, stages: _Stages) -> AnySolution:
     s = solve(
         vstar=p["vstar"],
         kw=p["kw"],
@@ -276,7 +277,7 @@ def _solve(p: Mapping[str, float], tol: float, stages: _Stages) -> ContactSoluti
 
 
 def _quantities(
-    s: ContactSolution, want_peaks: bool, stages: _Stages, warnings: list[str]
+    s: AnySolution, want_peaks: bool, stages: _Stages, warnings: list[str]
 ) -> dict[str, float]:
     """The sweep's numbers of one solved point; the stress peak search's
     warnings (``StressPeaks.warnings``) are appended to ``warnings``."""
@@ -289,13 +290,23 @@ def _quantities(
         "load": s.load,
         "radius": s.radius,
     }
-    q.update(
-        p0=float(s.pressure(0.0)),
-        indentation=s.indentation,
-        drag=s.drag,
-        contact_start=s.contact_interval[0],
-        contact_end=s.contact_interval[1],
-    )
+    if isinstance(s, DampedSolution):
+        # Validation refuses the indentation for damped points.
+        q.update(
+            p0=float(s.pressure(0.0)),
+            indentation=math.nan,
+            drag=s.drag,
+            contact_start=s.contact_interval[0],
+            contact_end=s.contact_interval[1],
+        )
+    else:
+        q.update(
+            p0=s.p0,
+            indentation=s.indentation,
+            drag=0.0,
+            contact_start=-s.a,
+            contact_end=s.a,
+        )
     if want_peaks:
         t0 = time.perf_counter()
         peaks = s.stress_peaks()
@@ -350,7 +361,7 @@ def _solve_group(task: Mapping[str, Any]) -> dict[str, Any]:
 class _Run:
     scene: Scene
     stages: _Stages = field(default_factory=_Stages)
-    memo: dict[_Key, ContactSolution] = field(default_factory=dict)
+    memo: dict[_Key, AnySolution] = field(default_factory=dict)
     warnings: dict[_Key, list[str]] = field(default_factory=dict)
     done: int = 0
     total: int = 0
@@ -361,7 +372,7 @@ class _Run:
         if self.progress is not None:
             self.progress(self.done, self.total)
 
-    def solution(self, p: Mapping[str, float]) -> ContactSolution:
+    def solution(self, p: Mapping[str, float]) -> AnySolution:
         key = _key(p, self.scene.tol)
         if key not in self.memo:
             self.memo[key] = _solve(p, self.scene.tol, self.stages)
@@ -1027,7 +1038,7 @@ def _sweep_table(
 # Outputs
 # ----------------------------------------------------------------------------
 
-_Solutions = Mapping[float | None, ContactSolution]
+_Solutions = Mapping[float | None, AnySolution]
 
 
 def _curves(
@@ -1035,7 +1046,7 @@ def _curves(
     stage: str,
     solutions: _Solutions,
     x: FloatArray,
-    evaluate: Callable[[ContactSolution, Mapping[str, float]], FloatArray],
+    evaluate: Callable[[AnySolution, Mapping[str, float]], FloatArray],
 ) -> tuple[Curve, ...]:
     scene = run.scene
     param = scene.vary.param if scene.vary is not None else None
@@ -1080,14 +1091,20 @@ def _out_contact_width(run: _Run, spec: Any, solutions: _Solutions) -> OutputDat
         if scene.vary is not None:
             cols[scene.vary.param].append(float(v) if v is not None else math.nan)
         cols["a"].append(s.a)
-        cols["p0"].append(float(s.pressure(0.0)))
-        # A solution shared through lambda = radius * load: the indentation
-        # scales with the load, the drag (int p x/R dx / P) with 1/radius.
-        cols["indentation"].append(s.indentation * p["load"] / s.load)
-        if damped:
+        if isinstance(s, DampedSolution):
+            cols["p0"].append(float(s.pressure(0.0)))
+            cols["indentation"].append(math.nan)  # not given by the damped solver
             cols["contact_start"].append(s.contact_interval[0])
             cols["contact_end"].append(s.contact_interval[1])
+            # int p x/R dx / P: 1/radius at fixed lambda (shared solutions).
             cols["drag"].append(s.drag * s.radius / p["radius"])
+        else:
+            cols["p0"].append(s.p0)
+            cols["indentation"].append(s.indentation * p["load"] / s.load)
+            if damped:
+                cols["contact_start"].append(-s.a)
+                cols["contact_end"].append(s.a)
+                cols["drag"].append(0.0)
         cols["valid"].append(1.0 if s.valid else 0.0)
         cols["error_estimate"].append(s.error_estimate)
         cols["collocation_n"].append(float(s.collocation_n))
@@ -1101,9 +1118,13 @@ def _out_contact_width(run: _Run, spec: Any, solutions: _Solutions) -> OutputDat
 
 
 def _out_pressure(run: _Run, spec: Any, solutions: _Solutions) -> OutputData:
-    # 1.25 x the reach of every contact (a damped one is asymmetric).
-    reach = max(abs(e) for s in solutions.values() for e in s.contact_interval)
-    default = (-1.25 * reach, 1.25 * reach)
+    if is_damped(run.scene):  # 1.25 x the span of every (asymmetric) contact
+        ends = [e for s in solutions.values() for e in _interval(s)]
+        reach = max(abs(e) for e in ends)
+        default = (-1.25 * reach, 1.25 * reach)
+    else:
+        a_max = max(s.a for s in solutions.values())
+        default = (-1.25 * a_max, 1.25 * a_max)
     x = _x_grid(spec.x, default, spec.resolved_points())
     curves = _curves(
         run, "pressure", solutions, x, lambda s, p: np.asarray(s.pressure(x))
@@ -1116,6 +1137,78 @@ def _out_pressure(run: _Run, spec: Any, solutions: _Solutions) -> OutputData:
         _curve_columns("x", "p", curves),
         curves,
     )
+
+
+def _interval(s: AnySolution) -> tuple[float, float]:
+    """The contact (-b/h, a/h); (-a/h, a/h) for an undamped solution."""
+    if isinstance(s, DampedSolution):
+        return s.contact_interval
+    return (-s.a, s.a)
+
+
+def _clipped_depths(y: FloatArray) -> tuple[FloatArray, FloatArray, npt.NDArray[Any]]:
+    """For a damped point: (the depths evaluated: y, with DAMPED_MAX_Y < y < 0
+    clipped to DAMPED_MAX_Y; their distinct values below the surface; the
+    index of each depth among them, -1 at the surface y = 0)."""
+    clipped = np.where(y < 0.0, np.minimum(y, DAMPED_MAX_Y), 0.0)
+    below = clipped < 0.0
+    distinct, index = np.unique(clipped[below], return_inverse=True)
+    full = np.full(len(y), -1, dtype=np.intp)
+    full[below] = index
+    return clipped, distinct, full
+
+
+def _depth_stress(s: AnySolution, y: FloatArray) -> FloatArray:
+    """sigma_x(0, y); for a damped point at the clipped depths, and at y = 0
+    the surface value sigma_x(0, 0) (``surface_stress``)."""
+    if not isinstance(s, DampedSolution):
+        return np.asarray(s.depth_stress(y), dtype=np.float64)
+    _, distinct, index = _clipped_depths(y)
+    out = np.empty(len(y))
+    if len(distinct):
+        values = np.asarray(s.depth_stress(distinct), dtype=np.float64)
+        out[index >= 0] = values[index[index >= 0]]
+    if (index < 0).any():
+        out[index < 0] = float(np.asarray(s.surface_stress(0.0)))
+    return out
+
+
+def _stress_field(s: AnySolution, x: FloatArray, y: FloatArray) -> StressField:
+    """The stress field; for a damped point at the clipped depths, and on the
+    surface y = 0 from the surface values (sigma_x(x, 0), sigma_y = -p,
+    tau_xy = 0: the punch is frictionless)."""
+    if not isinstance(s, DampedSolution):
+        return s.stress_field(x, y)
+    clipped, distinct, index = _clipped_depths(y)
+    comps = {name: np.empty((len(y), len(x))) for name in ("sx", "sy", "txy")}
+    if len(distinct):
+        f = s.stress_field(x, distinct)
+        rows = index >= 0
+        comps["sx"][rows] = f.sigma_x[index[rows]]
+        comps["sy"][rows] = f.sigma_y[index[rows]]
+        comps["txy"][rows] = f.tau_xy[index[rows]]
+    top = index < 0
+    if top.any():
+        comps["sx"][top] = np.asarray(s.surface_stress(x), dtype=np.float64)
+        comps["sy"][top] = -np.asarray(s.pressure(x), dtype=np.float64)
+        comps["txy"][top] = 0.0
+    sz, vm, ms = derived_stresses(comps["sx"], comps["sy"], comps["txy"], s.nu)
+    return StressField(
+        x=np.asarray(x, dtype=np.float64),
+        y=clipped,
+        sigma_x=comps["sx"],
+        sigma_y=comps["sy"],
+        tau_xy=comps["txy"],
+        sigma_z=sz,
+        von_mises=vm,
+        max_shear=ms,
+    )
+
+
+def _undamped(s: AnySolution, output: str) -> Solution:
+    if isinstance(s, DampedSolution):  # refused by the scene's validation
+        raise MovingPunchError(f"{output} is not available with damping > 0")
+    return s
 
 
 def _out_surface_stress(run: _Run, spec: Any, solutions: _Solutions) -> OutputData:
@@ -1141,11 +1234,7 @@ def _out_depth_stress(run: _Run, spec: Any, solutions: _Solutions) -> OutputData
     lo, hi = spec.resolved_y()
     y = np.linspace(lo, hi, spec.resolved_points())
     curves = _curves(
-        run,
-        "depth_stress",
-        solutions,
-        y,
-        lambda s, p: np.asarray(s.depth_stress(y), dtype=np.float64),
+        run, "depth_stress", solutions, y, lambda s, p: _depth_stress(s, y)
     )
     return OutputData(
         "depth_stress",
@@ -1166,7 +1255,9 @@ def _out_displacement(run: _Run, spec: Any, solutions: _Solutions) -> OutputData
         solutions,
         x,
         # v = load * V(x; lambda): rescale a solution shared through lambda.
-        lambda s, p: s.displacement(x, depth) * (p["load"] / s.load),
+        lambda s, p: (
+            _undamped(s, "displacement").displacement(x, depth) * (p["load"] / s.load)
+        ),
     )
     return OutputData(
         "displacement",
@@ -1188,7 +1279,7 @@ def _out_stress_field(run: _Run, spec: Any, solutions: _Solutions) -> OutputData
     cols: dict[str, list[FloatArray]] = {}
     for v, s in solutions.items():
         with run.timed("stress_field"):
-            f = s.stress_field(x, y)
+            f = _stress_field(s, x, y)
         label = _label(param, v)
         fields_.append((label, f))
         gx, gy = np.meshgrid(f.x, f.y)

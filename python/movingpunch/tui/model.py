@@ -20,11 +20,12 @@ import numpy as np
 import numpy.typing as npt
 
 from movingpunch.accuracy import LADDER, AccuracyReport, accuracy_report
-from movingpunch.contract import ContactSolution
+from movingpunch.damped import DampedSolution
 from movingpunch.errors import InvalidParameterError, MovingPunchError
 from movingpunch.fields import StressPeaks
 from movingpunch.params import check as check_param
 from movingpunch.solver import (
+    Solution,
     critical_vstar,
     rayleigh_vstar,
     result_warnings,
@@ -47,6 +48,11 @@ PARAM_NAMES: tuple[str, ...] = (
 SCENE_PARAMS: tuple[str, ...] = ("vstar", "kw", "radius", "load", "nu", "damping")
 """The physical parameters (a scene's ``params``); ``tol`` is separate."""
 
+AnySolution = Solution | DampedSolution
+"""A contact solution: undamped, or on a damped foundation (damping > 0)."""
+
+DAMPED_MAX_Y = -1e-3
+"""A damped solution gives stresses at y/h <= this (and on the surface)."""
 
 TabName = Literal["pressure", "surface", "depth", "sweep", "field", "accuracy"]
 TABS: tuple[TabName, ...] = (
@@ -258,7 +264,10 @@ class Summary:
     a: float
     p0: float
     indentation: float
+    """NaN with damping > 0 (the damped solver gives no indentation)."""
     top_tensile: float
+    """NaN with damping > 0 (the damped peaks take about a second: not in
+    the summary line; DampedSolution.stress_peaks gives them)."""
     bottom_tensile: float
     iterations: int
     error_estimate: float
@@ -342,13 +351,13 @@ class Cache:
             self.misses.clear()
 
 
-def solution(cache: Cache, params: Params) -> ContactSolution:
+def solution(cache: Cache, params: Params) -> AnySolution:
     s = cache.get_or_make(("solution", params), lambda: _solve(params))
-    assert isinstance(s, ContactSolution)
+    assert isinstance(s, (Solution, DampedSolution))
     return s
 
 
-def _solve(params: Params) -> ContactSolution:
+def _solve(params: Params) -> AnySolution:
     return solve(
         vstar=params.vstar,
         kw=params.kw,
@@ -367,12 +376,30 @@ def limits(kw: float, nu: float) -> tuple[float, float]:
 
 def summary(cache: Cache, params: Params) -> Summary:
     s = solution(cache, params)
+    if isinstance(s, DampedSolution):
+        return Summary(
+            params=params,
+            a=s.a,
+            p0=float(np.asarray(s.pressure(0.0))),
+            indentation=math.nan,
+            top_tensile=math.nan,
+            bottom_tensile=math.nan,
+            iterations=s.iterations,
+            error_estimate=s.error_estimate,
+            elapsed=s.elapsed,
+            valid=s.valid,
+            critical_vstar=s.critical_vstar,
+            rayleigh_vstar=s.rayleigh_vstar,
+            contact_interval=s.contact_interval,
+            drag=s.drag,
+            warnings=result_warnings(s),
+        )
     peaks = cache.get_or_make(("peaks", params), s.stress_peaks)
     assert isinstance(peaks, StressPeaks)
     return Summary(
         params=params,
         a=s.a,
-        p0=float(s.pressure(0.0)),
+        p0=s.p0,
         indentation=s.indentation,
         top_tensile=peaks.top_tensile,
         bottom_tensile=peaks.bottom_tensile,
@@ -382,8 +409,7 @@ def summary(cache: Cache, params: Params) -> Summary:
         valid=s.valid,
         critical_vstar=s.critical_vstar,
         rayleigh_vstar=s.rayleigh_vstar,
-        contact_interval=s.contact_interval,
-        drag=s.drag,
+        contact_interval=(-s.a, s.a),
         warnings=result_warnings(s),
     )
 
@@ -421,7 +447,7 @@ def compute(
     stop = cancelled or (lambda: False)
     head = summary(cache, request.params)
     members = _members(request)
-    solved: list[tuple[str, Params, ContactSolution]] = []
+    solved: list[tuple[str, Params, AnySolution]] = []
     notes: list[str] = []
     for label, params in members:
         try:
@@ -476,11 +502,14 @@ def _one_line(exc: BaseException) -> str:
     return " ".join(str(exc).split()) or type(exc).__name__
 
 
-def _extent(
-    tab: TabName, solved: Sequence[tuple[str, Params, ContactSolution]]
-) -> float:
+def _extent(tab: TabName, solved: Sequence[tuple[str, Params, AnySolution]]) -> float:
     # The farthest contact end (the damped contact (-b, a) is asymmetric).
-    amax = max(max(abs(e) for e in s.contact_interval) for _, _, s in solved)
+    amax = max(
+        max(abs(e) for e in s.contact_interval)
+        if isinstance(s, DampedSolution)
+        else s.a
+        for _, _, s in solved
+    )
     if tab == "pressure":
         return _round_up(1.15 * amax)
     return _round_up(max(3.0, 4.0 * amax))
@@ -502,7 +531,7 @@ _LABELS = {
 def _curves(
     cache: Cache,
     tab: TabName,
-    solved: Sequence[tuple[str, Params, ContactSolution]],
+    solved: Sequence[tuple[str, Params, AnySolution]],
     report: Progress,
     stop: Callable[[], bool],
 ) -> Curves:
@@ -523,7 +552,7 @@ def _curves(
         make = {
             "pressure": lambda s=s: s.pressure(grid),
             "surface": lambda s=s: s.surface_stress(grid),
-            "depth": lambda s=s: s.depth_stress(grid),
+            "depth": lambda s=s: _depth_stress(s, grid),
         }[tab]
         values = cache.get_or_make((tab, params, *key), make)
         assert isinstance(values, np.ndarray)
@@ -540,10 +569,26 @@ def _curves(
     )
 
 
+def _depth_stress(s: AnySolution, y: FloatArray) -> FloatArray:
+    """sigma_x(0, y); a damped solution at y clipped to <= DAMPED_MAX_Y, and
+    at y = 0 its surface value sigma_x(0, 0)."""
+    if not isinstance(s, DampedSolution):
+        return np.asarray(s.depth_stress(y), dtype=np.float64)
+    clipped = np.minimum(y, DAMPED_MAX_Y)
+    below = y < 0.0
+    out = np.empty(len(y))
+    distinct, index = np.unique(clipped[below], return_inverse=True)
+    if len(distinct):
+        out[below] = np.asarray(s.depth_stress(distinct), dtype=np.float64)[index]
+    if not below.all():
+        out[~below] = float(np.asarray(s.surface_stress(0.0)))
+    return out
+
+
 def _sweep(
     cache: Cache,
     request: Request,
-    solved: Sequence[tuple[str, Params, ContactSolution]],
+    solved: Sequence[tuple[str, Params, AnySolution]],
     report: Progress,
     stop: Callable[[], bool],
 ) -> Curves | None:
@@ -585,6 +630,7 @@ def _a_or_nan(params: Params) -> float:
 
 def _field(cache: Cache, params: Params, quantity: FieldQuantity) -> FieldMap:
     s = solution(cache, params)
+    assert isinstance(s, Solution)  # damped: a Notice (_unsupported)
     extent = _round_up(max(2.0, 3.0 * s.a))
     x = np.linspace(-extent, extent, 97)
     y = np.linspace(-1.0, 0.0, 41)
