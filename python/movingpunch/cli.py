@@ -42,11 +42,11 @@ from collections.abc import Callable, Sequence
 from types import FrameType
 from typing import Any, NoReturn
 
-from movingpunch.contract import ContactSolution
 from movingpunch.errors import MovingPunchError
 from movingpunch.fields import StressPeaks
 from movingpunch.params import help_text, range_text
 from movingpunch.solver import (
+    Solution,
     critical_vstar,
     critical_wavenumber,
     rayleigh_vstar,
@@ -284,15 +284,14 @@ def _json_number(value: float) -> float | str:
 
 
 def _cmd_solve(args: argparse.Namespace) -> int:
-    """``solve``: one path for every model (the result contract,
-    movingpunch.contract); damping > 0 only adds its rows."""
-    s: ContactSolution = solve(
+    if args.damping != 0.0:
+        return _cmd_solve_damped(args)
+    s: Solution = solve(
         vstar=args.vstar,
         kw=args.kw,
         radius=args.radius,
         load=args.load,
         nu=args.nu,
-        damping=args.damping,
         tol=args.tol,
         allow_unphysical=args.allow_unphysical,
     )
@@ -304,50 +303,84 @@ def _cmd_solve(args: argparse.Namespace) -> int:
             data["stress"] = dataclasses.asdict(peaks)
         print(json.dumps(data, indent=2))
         return 0
-    damped = s.damping > 0.0
     inputs = [
         ("V* = ρV²/μ", _fmt(s.vstar)),
         ("k_w h/μ", _fmt(s.kw)),
-        *([("damping c_w c_T/μ", _fmt(s.damping))] if damped else []),
         ("R/h", _fmt(s.radius)),
         ("P/(μh)", _fmt(s.load)),
-        ("μ/(P/h)", _fmt(1.0 / s.load)),
+        ("μ/(P/h)", _fmt(s.mu_over_load)),
         ("ν", _fmt(s.nu)),
         ("tolerance", _fmt(s.tol)),
     ]
-    back, front = s.contact_interval
     results = [
         ("a/h", _fmt(s.a)),
-        *(
-            [("contact (-b/h, a/h)", f"({_fmt(back)}, {_fmt(front)})")]
-            if damped
-            else []
-        ),
-        ("p0/(P/h)", _fmt(float(s.pressure(0.0)))),
+        ("p0/(P/h)", _fmt(s.p0)),
         ("indentation δ/h", _fmt(s.indentation)),
-        *(
-            [
-                ("drag (∫p x/R dx)/P", _fmt(s.drag)),
-                ("dissipation/(P V)", _fmt(s.dissipation)),
-            ]
-            if damped
-            else []
-        ),
-        ("V*_cr" + (" (undamped)" if damped else ""), _fmt(s.critical_vstar)),
+        ("V*_cr", _fmt(s.critical_vstar)),
         ("V*_R", _fmt(s.rayleigh_vstar)),
         ("φ1", _fmt(s.phi1)),
         ("collocation N", _fmt(s.collocation_n)),
         ("iterations", _fmt(s.iterations)),
-        (
-            "error estimate (a/h)" if not damped else "error estimate (ends)",
-            f"{s.error_estimate:.2e}",
-        ),
+        ("error estimate (a/h)", f"{s.error_estimate:.2e}"),
         ("error bound (σx/(P/h))", f"{s.stress_error_estimate:.2e}"),
         ("pressure margin", _fmt(s.pressure_margin)),
         ("warnings", str(len(s.warnings)) if s.warnings else "none"),
         ("solve time", f"{s.elapsed * 1e3:.1f} ms"),
         ("valid", "yes" if s.valid else "NO"),
         ("validity", s.validity or "-"),
+    ]
+    sections = [("Inputs", inputs), ("Results", results)]
+    if peaks is not None:
+        sections.append(("Stress sigma_x/(P/h)", _stress_rows(peaks)))
+    print(_tables(*sections))
+    return 0
+
+
+def _cmd_solve_damped(args: argparse.Namespace) -> int:
+    """``solve --damping D``: the damped foundation (movingpunch.damped)."""
+    from movingpunch.damped import solve_damped
+
+    d = solve_damped(
+        vstar=args.vstar,
+        kw=args.kw,
+        radius=args.radius,
+        load=args.load,
+        nu=args.nu,
+        damping=args.damping,
+        tol=args.tol,
+        allow_unphysical=args.allow_unphysical,
+    )
+    peaks = d.stress_peaks() if args.stress else None
+    _print_warnings(d)
+    if args.json:
+        data = d.to_dict()
+        data["warnings"] = list(result_warnings(d))
+        if peaks is not None:
+            data["stress"] = dataclasses.asdict(peaks)
+        print(json.dumps(data, indent=2))
+        return 0
+    inputs = [
+        ("V* = ρV²/μ", _fmt(d.vstar)),
+        ("k_w h/μ", _fmt(d.kw)),
+        ("damping c_w c_T/μ", _fmt(d.damping)),
+        ("R/h", _fmt(d.radius)),
+        ("P/(μh)", _fmt(d.load)),
+        ("ν", _fmt(d.nu)),
+        ("tolerance", _fmt(d.tol)),
+    ]
+    results = [
+        ("contact (-b/h, a/h)", f"({_fmt(d.contact_interval[0])}, {_fmt(d.a)})"),
+        ("drag (∫p x/R dx)/P", _fmt(d.drag)),
+        ("dissipation/(P V)", _fmt(d.dissipation)),
+        ("V*_cr (undamped)", _fmt(d.critical_vstar)),
+        ("V*_R", _fmt(d.rayleigh_vstar)),
+        ("φ1", _fmt(d.phi1)),
+        ("collocation N", _fmt(d.collocation_n)),
+        ("iterations", _fmt(d.iterations)),
+        ("error estimate (ends)", f"{d.error_estimate:.2e}"),
+        ("solve time", f"{d.elapsed * 1e3:.1f} ms"),
+        ("valid", "yes" if d.valid else "NO"),
+        ("validity", d.validity or "-"),
     ]
     sections = [("Inputs", inputs), ("Results", results)]
     if peaks is not None:

@@ -211,7 +211,9 @@ class DampedSolution:
         if bad.any():
             raise InvalidParameterError(
                 "y must satisfy -1 <= y <= -1e-3 or y = 0 for the damped solver's "
-                f"depth stress, got {float(pts[bad].flat[0])!r}"
+                f"depth stress, got {float(pts[bad].flat[0])!r}",
+                parameter="y",
+                allowed="-1 <= y <= -1e-3 or y = 0",
             )
         xs = _real_any("x", x)
         if not math.isfinite(xs):
@@ -231,17 +233,30 @@ class DampedSolution:
 
     def stress_field(self, x: npt.ArrayLike, y: npt.ArrayLike) -> StressField:
         """All stresses over P/h on the grid ``x`` (x/h) by ``y`` (y/h in
-        [-1, -1e-3]); arrays shaped (len(y), len(x)). The cost grows like
-        1/|y| near the surface (use ``surface_stress`` at y = 0)."""
+        [-1, -1e-3], or 0); arrays shaped (len(y), len(x)). On the surface
+        y = 0 from the surface values (sigma_x = ``surface_stress``,
+        sigma_y = -p, tau_xy = 0: the punch is frictionless); the Fourier
+        integral, whose cost grows like 1/|y|, is not used above y = -1e-3."""
         xs = _flat(_as_points("x", x))
         ys = _flat(_as_points("y", y))
-        bad = (ys < -1.0) | (ys > -1e-3)
+        bad = (ys < -1.0) | ((ys > -1e-3) & (ys != 0.0))
         if bad.any():
             raise InvalidParameterError(
-                "y must satisfy -1 <= y <= -1e-3 for the damped solver's stress "
-                f"field, got {float(ys[bad][0])!r}"
+                "y must satisfy -1 <= y <= -1e-3 or y = 0 for the damped solver's "
+                f"stress field, got {float(ys[bad][0])!r}",
+                parameter="y",
+                allowed="-1 <= y <= -1e-3 or y = 0",
             )
-        sx, sy, txy = _chunked_grid(self._impl.stress_field, xs, ys)
+        top = ys == 0.0
+        shape = (len(ys), len(xs))
+        sx, sy, txy = np.empty(shape), np.empty(shape), np.empty(shape)
+        if (~top).any():
+            inside = _chunked_grid(self._impl.stress_field, xs, ys[~top])
+            sx[~top], sy[~top], txy[~top] = inside
+        if top.any():
+            sx[top] = np.asarray(self.surface_stress(xs), dtype=np.float64)
+            sy[top] = -np.asarray(self.pressure(xs), dtype=np.float64)
+            txy[top] = 0.0
         sz, vm, ms = derived_stresses(sx, sy, txy, self.nu)
         return StressField(
             x=xs,
@@ -318,6 +333,11 @@ class DampedSolution:
         data["other_half_widths"] = list(self.other_half_widths)
         data["warnings"] = list(self.warnings)
         data["dissipation"] = self.dissipation
+        data["a"] = self.a
+        data["half_width"] = self.half_width
+        data["centre"] = self.centre
+        data["kernel_builds"] = self.kernel_builds
+        data["stage_times"] = _json_safe(dict(self.stage_times))
         return data
 
 
