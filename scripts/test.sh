@@ -34,9 +34,10 @@ else
   status=1
 fi
 
-echo "[test] Lint and types: ruff, mypy --strict, stubtest (_core.pyi against the built module)"
+echo "[test] Lint and types: ruff, clang-format, mypy --strict, stubtest (_core.pyi against the built module)"
 if .venv/bin/python -m ruff check python tests benchmarks scripts \
   && .venv/bin/python -m ruff format --check python tests benchmarks scripts \
+  && bash scripts/format.sh --check --cpp \
   && .venv/bin/python -m mypy --strict python \
   && bash scripts/stubtest.sh; then
   echo "[test] lint and types clean"

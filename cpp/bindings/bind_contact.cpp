@@ -3,10 +3,10 @@
 #include <tuple>
 #include <utility>
 
-#include <Eigen/Dense>
 #include <pybind11/eigen.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <Eigen/Dense>
 
 #include "bindings.hpp"
 #include "movingpunch/contact.hpp"
@@ -25,8 +25,7 @@ void bind_contact(py::module_& m) {
       "Result of solve_contact (dimensionless: h = 1, mu = 1, pressures per P/h). "
       "Not constructible from Python.")
       .def_property_readonly("a", &ContactSolution::a, "Contact half-width a/h.")
-      .def_property_readonly("p0", &ContactSolution::p0,
-                             "Central pressure p(0)/(P/h).")
+      .def_property_readonly("p0", &ContactSolution::p0, "Central pressure p(0)/(P/h).")
       .def_property_readonly("indentation", &ContactSolution::indentation,
                              "Indentation delta/h of the punch.")
       .def_property_readonly("critical_vstar", &ContactSolution::critical_vstar,
@@ -44,8 +43,7 @@ void bind_contact(py::module_& m) {
       .def_property_readonly("collocation_n", &ContactSolution::collocation_n,
                              "Number N of collocation nodes of the final solve.")
       .def_property_readonly(
-          "stage_seconds",
-          [](const ContactSolution& s) { return stage_dict(s.stage_seconds()); },
+          "stage_seconds", [](const ContactSolution& s) { return stage_dict(s.stage_seconds()); },
           "Seconds per stage: critical_speed, kernel (fetching or building the k1 "
           "table), width (the iteration on a), checks (indentation and validity).")
       .def_property_readonly("kernel_builds", &ContactSolution::kernel_builds,
@@ -62,8 +60,7 @@ void bind_contact(py::module_& m) {
                              "Minimum over -1 < r < 1 of p(a r)/((P/h) sqrt(1 - r^2)): "
                              "the margin before the contact separates.")
       .def_property_readonly(
-          "warnings",
-          [](const ContactSolution& s) { return py::list(py::cast(s.warnings())); },
+          "warnings", [](const ContactSolution& s) { return py::list(py::cast(s.warnings())); },
           "One line per requested accuracy that was not met (empty: none).")
       .def_property_readonly(
           "error_budget",
@@ -105,8 +102,7 @@ void bind_contact(py::module_& m) {
           "stress_field",
           [](const ContactSolution& s, const VectorRef& x, const VectorRef& y) {
             StressField f = s.stress_field(x, y);
-            return std::make_tuple(std::move(f.sigma_x), std::move(f.sigma_y),
-                                   std::move(f.tau_xy));
+            return std::make_tuple(std::move(f.sigma_x), std::move(f.sigma_y), std::move(f.tau_xy));
           },
           "x"_a, "y"_a, Release(),
           "(sigma_x, sigma_y, tau_xy)/(P/h) on the grid x/h by y/h (-1 <= y <= 0), each "
@@ -125,8 +121,9 @@ void bind_contact(py::module_& m) {
           "y"_a, Release(), "sigma_x(0, y)/(P/h) at each y/h in [-1, 0].")
       .def(
           "displacement",
-          [](const ContactSolution& s, const VectorRef& x, const VectorRef& y)
-              -> Eigen::MatrixXd { return s.displacement(x, y); },
+          [](const ContactSolution& s, const VectorRef& x, const VectorRef& y) -> Eigen::MatrixXd {
+            return s.displacement(x, y);
+          },
           "x"_a, "y"_a, Release(),
           "Vertical displacement v/h on the grid x/h by y/h, shaped (len(y), len(x)).")
       .def(
@@ -170,8 +167,8 @@ void bind_contact(py::module_& m) {
         p.n = n;
         return solve_contact(p);
       },
-      py::kw_only(), "vstar"_a, "kw"_a, "radius"_a, "load"_a, "nu"_a, "tol"_a,
-      "allow_unphysical"_a, "n"_a = 0, Release(),
+      py::kw_only(), "vstar"_a, "kw"_a, "radius"_a, "load"_a, "nu"_a, "tol"_a, "allow_unphysical"_a,
+      "n"_a = 0, Release(),
       "Solves the moving-punch contact problem (dimensionless inputs: vstar = "
       "rho V^2/mu, kw = k_w h/mu, radius = R/h, load = P/(mu h), nu, tol on a/h). "
       "Raises InvalidParameterError, SupercriticalSpeedError, "

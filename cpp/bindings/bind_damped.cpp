@@ -4,11 +4,11 @@
 #include <tuple>
 #include <utility>
 
-#include <Eigen/Dense>
 #include <pybind11/complex.h>
 #include <pybind11/eigen.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <Eigen/Dense>
 
 #include "bindings.hpp"
 #include "movingpunch/damped.hpp"
@@ -43,8 +43,7 @@ void bind_damped(py::module_& m) {
       .def_property_readonly("right", &DampedSolution::right,
                              "Leading end a/h of the contact (-b, a).")
       .def_property_readonly("centre", &DampedSolution::centre, "Centre (a - b)/(2h).")
-      .def_property_readonly("half_width", &DampedSolution::half_width,
-                             "Half-width (a + b)/(2h).")
+      .def_property_readonly("half_width", &DampedSolution::half_width, "Half-width (a + b)/(2h).")
       .def_property_readonly("drag", &DampedSolution::drag,
                              "Horizontal force on the punch over P, int p x/R dx / P "
                              "(positive: opposes the motion).")
@@ -76,8 +75,7 @@ void bind_damped(py::module_& m) {
                              "Kernel tables this solve built (0: reused from the "
                              "process-wide cache).")
       .def_property_readonly(
-          "stage_seconds",
-          [](const DampedSolution& s) { return stage_dict(s.stage_seconds()); },
+          "stage_seconds", [](const DampedSolution& s) { return stage_dict(s.stage_seconds()); },
           "Seconds per stage: critical_speed, kernel (fetching or building the kernel "
           "table), width (the iteration on the ends over the N ladder), checks (the "
           "scan for other steady states, the estimates and validity).")
@@ -147,8 +145,7 @@ void bind_damped(py::module_& m) {
           "stress_field",
           [](const DampedSolution& s, const VectorRef& x, const VectorRef& y) {
             DampedStressGrid g = s.stress_grid(x, y);
-            return std::make_tuple(std::move(g.sigma_x), std::move(g.sigma_y),
-                                   std::move(g.tau_xy));
+            return std::make_tuple(std::move(g.sigma_x), std::move(g.sigma_y), std::move(g.tau_xy));
           },
           "x"_a, "y"_a, Release(),
           "(sigma_x, sigma_y, tau_xy)/(P/h) on the grid x/h by y/h (-1 <= y <= -1e-3), "
@@ -160,8 +157,8 @@ void bind_damped(py::module_& m) {
 
   m.def(
       "solve_damped",
-      [](double vstar, double kw, double radius, double load, double nu, double damping,
-         double tol, bool allow_unphysical, int n) {
+      [](double vstar, double kw, double radius, double load, double nu, double damping, double tol,
+         bool allow_unphysical, int n) {
         DampedParams p;
         p.vstar = vstar;
         p.kw = kw;

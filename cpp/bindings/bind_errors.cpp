@@ -55,8 +55,7 @@ void bind_errors(py::module_& m) {
       raise("ConvergenceError", e.what());
     } catch (const movingpunch::InvalidParameter& e) {
       py::object cls = errors_module().attr("InvalidParameterError");
-      py::object exc =
-          cls(e.what(), "parameter"_a = e.name(), "allowed"_a = e.allowed());
+      py::object exc = cls(e.what(), "parameter"_a = e.name(), "allowed"_a = e.allowed());
       PyErr_SetObject(cls.ptr(), exc.ptr());
     } catch (const std::invalid_argument& e) {
       raise("InvalidParameterError", e.what());

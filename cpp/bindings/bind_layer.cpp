@@ -5,10 +5,10 @@
 #include <tuple>
 #include <utility>
 
-#include <Eigen/Dense>
 #include <pybind11/eigen.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <Eigen/Dense>
 
 #include "bindings.hpp"
 #include "movingpunch/collocation.hpp"
@@ -26,8 +26,8 @@ using Vector = Eigen::VectorXd;
 using VectorRef = Eigen::Ref<const Eigen::VectorXd>;
 using Release = py::call_guard<py::gil_scoped_release>;
 
-std::pair<Vector, Vector> layer_response(const VectorRef& t, double vstar, double kw,
-                                         double nu, const std::string& method) {
+std::pair<Vector, Vector> layer_response(const VectorRef& t, double vstar, double kw, double nu,
+                                         const std::string& method) {
   Response (LayerModel::*evaluate)(double) const = nullptr;
   if (method == "auto") {
     evaluate = &LayerModel::response;
@@ -36,8 +36,8 @@ std::pair<Vector, Vector> layer_response(const VectorRef& t, double vstar, doubl
   } else if (method == "transfer") {
     evaluate = &LayerModel::response_transfer;
   } else {
-    throw std::invalid_argument("method must be 'auto', 'modal' or 'transfer', got '" +
-                                method + "'");
+    throw std::invalid_argument("method must be 'auto', 'modal' or 'transfer', got '" + method +
+                                "'");
   }
   const LayerModel model(vstar, kw, nu);
   Vector m1(t.size());
@@ -50,8 +50,8 @@ std::pair<Vector, Vector> layer_response(const VectorRef& t, double vstar, doubl
   return {std::move(m1), std::move(m2)};
 }
 
-Vector kernel_k1(const VectorRef& u, double vstar, double kw, double nu, double tol,
-                 double range, bool direct) {
+Vector kernel_k1(const VectorRef& u, double vstar, double kw, double nu, double tol, double range,
+                 bool direct) {
   const KernelK1 kernel(LayerModel(vstar, kw, nu), tol, range);
   Vector out(u.size());
   for (Eigen::Index i = 0; i < u.size(); ++i) {
@@ -84,12 +84,13 @@ void bind_layer(py::module_& m) {
       "Critical speed of the layer on springs: (V*_cr, alpha h at the minimum). "
       "For kw = inf it is (rayleigh_vstar(nu), inf).");
 
-  m.def("first_wave_vstar", static_cast<double (*)(double, double, double)>(&first_wave_vstar), "t"_a, "kw"_a, "nu"_a, Release(),
+  m.def("first_wave_vstar", static_cast<double (*)(double, double, double)>(&first_wave_vstar),
+        "t"_a, "kw"_a, "nu"_a, Release(),
         "Lowest vstar in (0, V*_R) at which a free wave of wavenumber t = alpha h "
         "exists; rayleigh_vstar(nu) when there is none below it.");
 
-  m.def("layer_response", &layer_response, "t"_a, "vstar"_a, "kw"_a, "nu"_a,
-        "method"_a = "auto", Release(),
+  m.def("layer_response", &layer_response, "t"_a, "vstar"_a, "kw"_a, "nu"_a, "method"_a = "auto",
+        Release(),
         "Surface responses (M1, M2) per unit transformed pressure at each "
         "t = alpha h. method: 'auto', 'modal' or 'transfer' (force one "
         "evaluation, for cross-checks).");
@@ -113,8 +114,7 @@ void bind_layer(py::module_& m) {
       "chebyshev_nodes",
       [](int n) {
         ChebyshevNodes nodes = chebyshev_nodes(n);
-        return std::make_tuple(std::move(nodes.r), std::move(nodes.s),
-                               std::move(nodes.w));
+        return std::make_tuple(std::move(nodes.r), std::move(nodes.s), std::move(nodes.w));
       },
       "n"_a, Release(),
       "Gauss-Chebyshev collocation nodes for even n >= 2: (r, s, w) with "

@@ -4,11 +4,11 @@
 
 #include <array>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
-#include <vector>
-#include <algorithm>
 #include <utility>
+#include <vector>
 
 namespace movingpunch {
 
@@ -42,9 +42,8 @@ Eigen::VectorXd solve_unit_collocation(const ChebyshevNodes& nodes, double a,
       nodes, a, [&kernel](double u, double v) { return kernel(u) + kernel(v); });
 }
 
-Eigen::MatrixXd unit_collocation_matrix(
-    const ChebyshevNodes& nodes, double a,
-    const std::function<double(double, double)>& kernel_sum) {
+Eigen::MatrixXd unit_collocation_matrix(const ChebyshevNodes& nodes, double a,
+                                        const std::function<double(double, double)>& kernel_sum) {
   const int h = nodes.n / 2;
   Eigen::MatrixXd M(h, h);
   for (int k = 0; k < h; ++k) {  // s_k > 0 for k = 1..N/2
@@ -94,7 +93,8 @@ double u_series_minimum(const Eigen::VectorXd& b, double* r_min) {
     }
   }
   // Golden section on the two sample intervals around the best sample.
-  double lo = std::cos(kPi * std::min(best + 1, m) / m), hi = std::cos(kPi * std::max(best - 1, 0) / m);
+  double lo = std::cos(kPi * std::min(best + 1, m) / m),
+         hi = std::cos(kPi * std::max(best - 1, 0) / m);
   double rbest = std::cos(kPi * best / m);
   const double gr = 0.5 * (std::sqrt(5.0) - 1.0);
   double x1 = hi - gr * (hi - lo), x2 = lo + gr * (hi - lo);
@@ -144,8 +144,8 @@ void bessel_orders(double w, int kmax, std::vector<double>& J) {
     J[0] = std::cyl_bessel_j(0.0, w);
     if (kmax >= 1) J[1] = std::cyl_bessel_j(1.0, w);
     for (int k = 1; k < kmax; ++k)
-      J[static_cast<std::size_t>(k) + 1] = 2.0 * k / w * J[static_cast<std::size_t>(k)] -
-                                           J[static_cast<std::size_t>(k) - 1];
+      J[static_cast<std::size_t>(k) + 1] =
+          2.0 * k / w * J[static_cast<std::size_t>(k)] - J[static_cast<std::size_t>(k) - 1];
     return;
   }
   const double top = std::max(static_cast<double>(kmax), w);

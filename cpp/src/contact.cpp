@@ -4,8 +4,8 @@
 #include <array>
 #include <chrono>
 #include <cmath>
-#include <limits>
 #include <complex>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -30,16 +30,15 @@ constexpr double kMinA = 1e-10, kMaxA = 50.0;
 [[noreturn]] void width_out_of_range(const ContactParams& p, bool too_wide) {
   std::ostringstream m;
   m.precision(6);
-  m << "radius * load = " << p.radius * p.load << " (radius " << p.radius << ", load "
-    << p.load << ") needs a contact half-width " << (too_wide ? "above" : "below")
-    << " the supported range " << kMinA << " <= a/h <= " << kMaxA << " for kw = " << p.kw
-    << ", vstar = " << p.vstar << ": " << (too_wide ? "reduce" : "increase")
-    << " the radius or the load";
+  m << "radius * load = " << p.radius * p.load << " (radius " << p.radius << ", load " << p.load
+    << ") needs a contact half-width " << (too_wide ? "above" : "below") << " the supported range "
+    << kMinA << " <= a/h <= " << kMaxA << " for kw = " << p.kw << ", vstar = " << p.vstar << ": "
+    << (too_wide ? "reduce" : "increase") << " the radius or the load";
   throw std::invalid_argument(m.str());
 }
 
 // Collocation sizes tried in turn; the last is the cap.
-constexpr std::array<int, 17> kSizes = {8,   12,  16,  24,  32,  48,  64,   96,  128,
+constexpr std::array<int, 17> kSizes = {8,   12,  16,  24,  32,  48,  64,  96,  128,
                                         192, 256, 384, 512, 640, 768, 896, 1024};
 
 // Table range of the kernel for a contact half-width a: covers the
@@ -82,10 +81,9 @@ void validate(const ContactParams& p) {
   require_in_range("load", p.load, 0.0, 1e6, true, false);
   require_in_range("tol", p.tol, 1e-14, 1e-2, false, false);
   if (p.n != 0 && (p.n < 2 || p.n > 4096 || p.n % 2 != 0))
-    throw InvalidParameter(
-        "n", "0 (automatic) or even in [2, 4096]",
-        "n (collocation size) must be 0 (automatic) or even in [2, 4096], got " +
-            std::to_string(p.n));
+    throw InvalidParameter("n", "0 (automatic) or even in [2, 4096]",
+                           "n (collocation size) must be 0 (automatic) or even in [2, 4096], got " +
+                               std::to_string(p.n));
 }
 
 namespace {
@@ -246,10 +244,12 @@ double solve_width(Problem& prob, const ContactParams& params, const ChebyshevNo
     } else {
       x2 = std::clamp(x2, x1 - 2.0, x1 + 2.0);  // expanding search for a bracket
     }
-    if (!std::isfinite(x2)) throw ConvergenceError("contact width iteration failed (non-finite step)");
+    if (!std::isfinite(x2))
+      throw ConvergenceError("contact width iteration failed (non-finite step)");
     // Outside the supported widths: the load there proves the target lies beyond.
     if (x2 > lmax) {
-      if (std::isfinite(hi) && hi <= lmax) x2 = 0.5 * (std::max(lo, x1) + hi);
+      if (std::isfinite(hi) && hi <= lmax)
+        x2 = 0.5 * (std::max(lo, x1) + hi);
       else {
         const double fmax = F(lmax);
         if (lmax - x1 >= 1e-2 && std::isfinite(f1) && fmax <= f1)
@@ -259,7 +259,8 @@ double solve_width(Problem& prob, const ContactParams& params, const ChebyshevNo
         x2 = lmax;
       }
     } else if (x2 < lmin) {
-      if (std::isfinite(lo) && lo >= lmin) x2 = 0.5 * (lo + std::min(hi, x1));
+      if (std::isfinite(lo) && lo >= lmin)
+        x2 = 0.5 * (lo + std::min(hi, x1));
       else {
         const double fmin = F(lmin);
         if (x1 - lmin >= 1e-2 && std::isfinite(f1) && fmin >= f1)
@@ -283,8 +284,8 @@ double solve_width(Problem& prob, const ContactParams& params, const ChebyshevNo
 // of a_k is about c_k q, q the ratio per step c_k / c_{k-1}, or, with three
 // changes, the geometric mean of the last two ratios if larger, or where the
 // two agree within 4 over equal steps (a steady rate) the larger per node
-// over the last step; taken 10 times and never above c_k. Per step, not per node, and over two steps: the
-// rate is not steady before N resolves the kernel (kw = 1e-4: changes 1.4e-3,
+// over the last step; taken 10 times and never above c_k. Per step, not per node, and over two
+// steps: the rate is not steady before N resolves the kernel (kw = 1e-4: changes 1.4e-3,
 // 2.5e-5, 8.7e-9 at N = 12, 16, 24, then an error 6.4e-11 at 24, a ratio
 // 7e-3), while the larger ratio alone overestimates a rate that speeds up
 // (kw = 0.1 near V*_cr) by 500. With two sizes, the decay `rate` per index of
@@ -360,7 +361,7 @@ ContactSolution::ErrorBudget error_budget(Problem& prob, const ContactParams& p,
   const double load2 = prob.load_of(nodes, a * (1.0 + step), nullptr);
   double slope = (std::log(load2) - std::log(lin.load)) / std::log1p(step);
   if (!std::isfinite(slope) || slope < 0.5) slope = 0.5;  // a flat curve: be cautious
-  const double to_a = a / (std::fabs(S) * slope);        // dS -> da
+  const double to_a = a / (std::fabs(S) * slope);         // dS -> da
 
   ContactSolution::ErrorBudget b;
   b.collocation = collocation;
@@ -475,10 +476,10 @@ ContactSolution solve_contact(const ContactParams& p) {
     std::ostringstream m;
     m.precision(10);
     m << "vstar = " << p.vstar << " (kw = " << p.kw << ", nu = " << p.nu
-      << ") is within a relative " << 1.0 - p.vstar / vr
-      << " of the Rayleigh speed V*_R = " << vr << ": the layer response there (phi1 = "
-      << phi1 << ") is computed with a round-off of ~eps*phi1, which limits a/h to a relative "
-      << roundoff << ", above tol = " << p.tol
+      << ") is within a relative " << 1.0 - p.vstar / vr << " of the Rayleigh speed V*_R = " << vr
+      << ": the layer response there (phi1 = " << phi1
+      << ") is computed with a round-off of ~eps*phi1, which limits a/h to a relative " << roundoff
+      << ", above tol = " << p.tol
       << "; this is unsupported in double precision: raise tol or lower vstar";
     throw ConvergenceError(m.str());
   }
@@ -652,18 +653,17 @@ ContactSolution solve_contact(const ContactParams& p) {
     int worst = 0;
     for (int i = 1; i < 4; ++i)
       if (!(parts[i] <= parts[worst])) worst = i;
-    sol.warnings_.push_back("tol not met: a/h error estimate " + format_g(sol.err_) +
-                            " is " + format_g(sol.err_ / a) + " relative, above tol = " +
-                            format_g(p.tol) + " (mostly " + why[worst] + ", N = " +
-                            std::to_string(nodes.n) + ")");
+    sol.warnings_.push_back("tol not met: a/h error estimate " + format_g(sol.err_) + " is " +
+                            format_g(sol.err_ / a) + " relative, above tol = " + format_g(p.tol) +
+                            " (mostly " + why[worst] + ", N = " + std::to_string(nodes.n) + ")");
   }
 
   // Indentation: delta = -v(0, 0).
   sol.prepare_displacement();
   sol.delta_ = -sol.surface_displacement(0.0);
   if (!std::isfinite(sol.delta_))
-    throw ConvergenceError("the indentation came out non-finite (N = " +
-                           std::to_string(nodes.n) + "); the solution is not trusted");
+    throw ConvergenceError("the indentation came out non-finite (N = " + std::to_string(nodes.n) +
+                           "); the solution is not trusted");
 
   // Validity: p >= 0 on the contact and no penetration on a < |x| <= 3a.
   double pmin = kInf, gmin = kInf, gmax = 0.0, x_pmin = 0.0;
@@ -690,7 +690,8 @@ ContactSolution solve_contact(const ContactParams& p) {
     }
   }
   if (!std::isfinite(gap_min))
-    throw ConvergenceError("the gap outside the contact came out non-finite; the solution is not trusted");
+    throw ConvergenceError(
+        "the gap outside the contact came out non-finite; the solution is not trusted");
   sol.min_gap_ = gap_min;
   const double rel = std::max(1e-6, 100.0 * p.tol);
   std::ostringstream why;
@@ -704,8 +705,8 @@ ContactSolution solve_contact(const ContactParams& p) {
     const double gap_scale = std::max(a * a / (2.0 * p.radius), std::fabs(sol.delta_));
     if (gap_min < -rel * gap_scale) {
       sol.valid_ = false;
-      why << "the layer surface rises above the punch at x/h = " << x_gap
-          << " (gap " << gap_min << " h): the punch would penetrate outside the contact "
+      why << "the layer surface rises above the punch at x/h = " << x_gap << " (gap " << gap_min
+          << " h): the punch would penetrate outside the contact "
              "and the single-contact solution is unphysical";
     }
   }
@@ -716,16 +717,14 @@ ContactSolution solve_contact(const ContactParams& p) {
     if (!p.allow_unphysical) {
       std::ostringstream m;
       m.precision(8);
-      m << "vstar=" << p.vstar << ", kw=" << p.kw << ", radius=" << p.radius
-        << ", load=" << p.load << ", nu=" << p.nu << ": " << sol.validity_
-        << " (a/h = " << a << ")";
+      m << "vstar=" << p.vstar << ", kw=" << p.kw << ", radius=" << p.radius << ", load=" << p.load
+        << ", nu=" << p.nu << ": " << sol.validity_ << " (a/h = " << a << ")";
       throw UnphysicalContactError(m.str());
     }
   }
   sol.elapsed_ = timer.seconds();
   sol.stage_seconds_ = {t_critical, prob.kernel_seconds(),
-                        t_width - t_critical - prob.kernel_seconds(),
-                        sol.elapsed_ - t_width};
+                        t_width - t_critical - prob.kernel_seconds(), sol.elapsed_ - t_width};
   return sol;
 }
 
@@ -798,8 +797,8 @@ void ContactSolution::prepare_displacement() {
   // beyond the degree of g. This m keeps it at round-off (checked against
   // m = 8000 for 0.37 <= a/h <= 35: 7.5e-16 relative).
   const double rho = 1.0 / a_ + std::sqrt(1.0 + 1.0 / (a_ * a_));
-  const int m = std::max(16, static_cast<int>(b_.size()) / 2 +
-                                 static_cast<int>(std::ceil(8.5 / std::log10(rho))) + 8);
+  const int m = std::max(
+      16, static_cast<int>(b_.size()) / 2 + static_cast<int>(std::ceil(8.5 / std::log10(rho))) + 8);
   log1p_r_.resize(static_cast<std::size_t>(m));
   log1p_w_.resize(static_cast<std::size_t>(m));
   for (int i = 1; i <= m; ++i) {

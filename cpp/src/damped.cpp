@@ -9,11 +9,11 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "movingpunch/collocation.hpp"
-#include "movingpunch/dispersion.hpp"
 #include "bessel.hpp"
 #include "gauss_kronrod.hpp"
 #include "layer_basis.hpp"
+#include "movingpunch/collocation.hpp"
+#include "movingpunch/dispersion.hpp"
 #include "movingpunch/errors.hpp"
 
 namespace movingpunch {
@@ -46,8 +46,8 @@ double g_weight(int j, double h) {
 }
 
 // Bottom spring row t S - k W, normalised by t + |k| (no overflow for any k, t).
-Eigen::RowVector4cd spring_row(const Eigen::RowVector4d& S, const Eigen::RowVector4d& W,
-                               double t, cplx k, bool rigid) {
+Eigen::RowVector4cd spring_row(const Eigen::RowVector4d& S, const Eigen::RowVector4d& W, double t,
+                               cplx k, bool rigid) {
   if (rigid) return W.cast<cplx>();
   const double n = t + std::abs(k);
   return (t / n) * S.cast<cplx>() - (k / n) * W.cast<cplx>();
@@ -359,13 +359,14 @@ void DampedKernel::many(const double* u, double* out, std::size_t n) const {
     for (int l = 0; l < L; ++l) {
       const double v = u[i + static_cast<std::size_t>(l)];
       inside = inside && std::fabs(v) <= range_;
-      const std::size_t p = std::min(
-          pieces - 1, static_cast<std::size_t>(std::max(0.0, (v + range_) / width_)));
+      const std::size_t p =
+          std::min(pieces - 1, static_cast<std::size_t>(std::max(0.0, (v + range_) / width_)));
       x2[l] = 4.0 * (v + range_ - (static_cast<double>(p) + 0.5) * width_) / width_;
       c[l] = coef_.data() + p * (D + 1);
     }
     if (!inside) {
-      for (int l = 0; l < L; ++l) out[i + static_cast<std::size_t>(l)] = (*this)(u[i + static_cast<std::size_t>(l)]);
+      for (int l = 0; l < L; ++l)
+        out[i + static_cast<std::size_t>(l)] = (*this)(u[i + static_cast<std::size_t>(l)]);
       continue;
     }
     for (int m = D; m >= 1; --m)
@@ -411,8 +412,7 @@ void validate(const DampedParams& p) {
   if (p.n != 0 && (p.n < 2 || p.n > 1024 || p.n % 2 != 0))
     throw InvalidParameter(
         "n", "0 (automatic) or an even integer in [2, 1024]",
-        "n must be 0 (automatic) or an even integer in [2, 1024], got " +
-            std::to_string(p.n));
+        "n must be 0 (automatic) or an even integer in [2, 1024], got " + std::to_string(p.n));
 }
 
 // ---------------------------------------------------------------------------
@@ -499,7 +499,8 @@ WidthEval eval_width(const ChebyshevNodes& nd, double w, const DampedKernel& K, 
   u.resize(static_cast<std::size_t>(n) * (n + 1));
   kv.resize(u.size());
   for (int i = 0; i < n; ++i)
-    for (int k = 0; k <= n; ++k) u[static_cast<std::size_t>(i) * (n + 1) + k] = -w * (nd.r(i) - nd.s(k));
+    for (int k = 0; k <= n; ++k)
+      u[static_cast<std::size_t>(i) * (n + 1) + k] = -w * (nd.r(i) - nd.s(k));
   K.many(u.data(), kv.data(), u.size());
   for (int i = 0; i < n; ++i)
     for (int k = 0; k <= n; ++k) {
@@ -523,8 +524,8 @@ struct WidthSolve {
 
 // Secant (Illinois, safeguarded by a bracket) on ln lambda(w) = ln lambda_t in ln w.
 template <class Kernel>
-WidthSolve solve_width(const ChebyshevNodes& nd, double lambda_t, double w_guess,
-                       Kernel&& kernel, double phi1) {
+WidthSolve solve_width(const ChebyshevNodes& nd, double lambda_t, double w_guess, Kernel&& kernel,
+                       double phi1) {
   WidthSolve out;
   auto F = [&](double lw, WidthEval& e) {
     const double w = std::exp(lw);
@@ -544,15 +545,18 @@ WidthSolve solve_width(const ChebyshevNodes& nd, double lambda_t, double w_guess
     f0 = F(x0, e0);
   }
   if (std::isnan(f0))
-    throw ConvergenceError("damped contact: the collocation system gives no positive load at "
-                           "any trial width (N = " + std::to_string(nd.n) + ")");
+    throw ConvergenceError(
+        "damped contact: the collocation system gives no positive load at "
+        "any trial width (N = " +
+        std::to_string(nd.n) + ")");
   // Bracket: lambda grows with w.
   double step = f0 > 0.0 ? -0.4 : 0.4;
   double x1 = x0, f1 = f0;
   for (int it = 0; it < 80; ++it) {
     x1 = std::clamp(x0 + step, lmin, lmax);
     f1 = F(x1, e1);
-    if (std::isnan(f1)) throw ConvergenceError("damped contact: non-positive load while bracketing");
+    if (std::isnan(f1))
+      throw ConvergenceError("damped contact: non-positive load while bracketing");
     if ((f1 > 0.0) != (f0 > 0.0)) break;
     if (x1 == lmin || x1 == lmax)
       throw ConvergenceError("damped contact: the contact width leaves [1e-10, 50] h");
@@ -569,7 +573,8 @@ WidthSolve solve_width(const ChebyshevNodes& nd, double lambda_t, double w_guess
     const double xn = (xa * fb - xb * fa) / (fb - fa);
     WidthEval en;
     const double fn = F(xn, en);
-    if (std::isnan(fn)) throw ConvergenceError("damped contact: non-positive load in the iteration");
+    if (std::isnan(fn))
+      throw ConvergenceError("damped contact: non-positive load in the iteration");
     if ((fn > 0.0) == (fb > 0.0)) {
       xb = xn;
       fb = fn;
@@ -621,8 +626,7 @@ DampedSolution solve_damped(const DampedParams& prm) {
     if (!kern || kern->range() < need) {
       const auto tk = std::chrono::steady_clock::now();
       bool built = false;
-      kern = cached_damped_kernel(prm.vstar, prm.kw, prm.nu, prm.damping, need, 2.0 * need,
-                                  &built);
+      kern = cached_damped_kernel(prm.vstar, prm.kw, prm.nu, prm.damping, need, 2.0 * need, &built);
       s.kernel_builds_ += built ? 1 : 0;
       kernel_seconds +=
           std::chrono::duration<double>(std::chrono::steady_clock::now() - tk).count();
@@ -720,16 +724,16 @@ DampedSolution solve_damped(const DampedParams& prm) {
       est_e = refinement_estimate(done_n, d_ends, floor_e);
       est_p = refinement_estimate(done_n, d_p, floor_p);
       if (prm.n == 0 && d_p.size() >= 2) {
-        // Stop (after at least three sizes, so that the rate is seen) when both meet tol, or when neither can improve further:
-        // the changes are round-off (at the floor) or stopped shrinking at
-        // a level that round-off amplification can explain (sqrt(eps)).
+        // Stop (after at least three sizes, so that the rate is seen) when both meet tol, or when
+        // neither can improve further: the changes are round-off (at the floor) or stopped
+        // shrinking at a level that round-off amplification can explain (sqrt(eps)).
         const bool ok_e = est_e.estimate <= prm.tol * scale_e;
         const bool ok_p = est_p.estimate <= prm.tol * pmax;
         const double root_eps = std::sqrt(kEps);
-        const bool end_e = ok_e || est_e.at_floor ||
-                           (est_e.stagnated && d_ends.back() <= root_eps * scale_e);
-        const bool end_p = ok_p || est_p.at_floor ||
-                           (est_p.stagnated && d_p.back() <= root_eps * pmax);
+        const bool end_e =
+            ok_e || est_e.at_floor || (est_e.stagnated && d_ends.back() <= root_eps * scale_e);
+        const bool end_p =
+            ok_p || est_p.at_floor || (est_p.stagnated && d_p.back() <= root_eps * pmax);
         if (ok_e && ok_p) {
           converged = true;
           break;
@@ -768,8 +772,8 @@ DampedSolution solve_damped(const DampedParams& prm) {
       if (!(est <= want)) {
         std::ostringstream m;
         m.precision(3);
-        m << what << " not met to tol = " << prm.tol << ": estimated relative error "
-          << est / scale << " (" << est / want << " x tol) at N = " << nd.n;
+        m << what << " not met to tol = " << prm.tol << ": estimated relative error " << est / scale
+          << " (" << est / want << " x tol) at N = " << nd.n;
         if (floor > want && quad >= 0.5 * floor)
           m << " (the kernel quadrature's error estimate " << quad / scale
             << " exceeds tol: unresolved near-resonant peaks)";
@@ -1037,7 +1041,8 @@ DampedSolution::Fine DampedSolution::build_fine(double freq) const {
         // An unsplit panel: the quadrature's own nodes and responses.
         const double a = m == 1 ? P.alpha[15 * p + static_cast<std::size_t>(j)] : gk_node(j, c, h);
         f.alpha.push_back(a);
-        f.weight.push_back(m == 1 ? P.weight[15 * p + static_cast<std::size_t>(j)] : gk_weight(j, h));
+        f.weight.push_back(m == 1 ? P.weight[15 * p + static_cast<std::size_t>(j)]
+                                  : gk_weight(j, h));
         f.r.push_back(m == 1 ? Q.r[15 * p + static_cast<std::size_t>(j)] : model_->response(a));
         f.phat.push_back(pressure_transform(a));
       }
@@ -1067,7 +1072,6 @@ double DampedSolution::Fine::fourier(const std::vector<double>& c_re,
                                      const std::vector<double>& c_im, double x) const {
   return filon->integral(x, c_re).real() - filon->integral(x, c_im).imag();
 }
-
 
 std::shared_ptr<const DampedSolution::Fine> DampedSolution::fine_for(double x) const {
   const double need = 2.0 * half_ + std::fabs(centre_) + std::fabs(x);
@@ -1127,7 +1131,8 @@ DampedStressGrid DampedSolution::stress_grid(const Eigen::Ref<const Eigen::Vecto
       if (f->alpha[k] > 0.0) add(f->alpha[k], f->weight[k], f->phat[k]);
     // The field decays like exp(nT alpha y): beyond the quadrature's
     // alpha_max extend with panels of width 1.5/freq up to 45/(nT |y|).
-    const double amax = kernel_->quadrature().panels.alpha_max, aend = 45.0 / (c.nT * std::fabs(y(i)));
+    const double amax = kernel_->quadrature().panels.alpha_max,
+                 aend = 45.0 / (c.nT * std::fabs(y(i)));
     if (aend > amax) {
       const double width = std::min(0.5, 1.5 / f->freq);
       const int m = static_cast<int>(std::ceil((aend - amax) / width));

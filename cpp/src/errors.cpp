@@ -12,14 +12,12 @@ std::string supercritical_message(double vstar, double critical, double rayleigh
   m.precision(10);
   m << "vstar = " << vstar << " is at or above the critical speed V*_cr = " << critical
     << " of this layer on its foundation (Rayleigh value V*_R = " << rayleigh
-    << "); no bounded steady solution exists there: vstar must be in [0, " << critical
-    << ")";
+    << "); no bounded steady solution exists there: vstar must be in [0, " << critical << ")";
   return m.str();
 }
 }  // namespace
 
-SupercriticalSpeedError::SupercriticalSpeedError(double vstar, double critical,
-                                                 double rayleigh)
+SupercriticalSpeedError::SupercriticalSpeedError(double vstar, double critical, double rayleigh)
     : std::domain_error(supercritical_message(vstar, critical, rayleigh)),
       vstar_(vstar),
       critical_(critical),

@@ -1,8 +1,8 @@
 #include "movingpunch/kernel.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <array>
+#include <cmath>
 
 #include <Eigen/Dense>
 #include <stdexcept>
@@ -94,8 +94,8 @@ double kronrod_weight(int j, double h) {
 
 }  // namespace
 
-AlphaQuadrature build_alpha_quadrature(const LayerModel& model, double tol,
-                                       double max_frequency, double decay) {
+AlphaQuadrature build_alpha_quadrature(const LayerModel& model, double tol, double max_frequency,
+                                       double decay) {
   if (!(tol > 0.0)) throw std::invalid_argument("kernel quadrature: tol must be > 0");
   if (!(max_frequency > 0.0) || !std::isfinite(max_frequency))
     throw std::invalid_argument("kernel quadrature: max_frequency must be finite and > 0");
@@ -132,8 +132,7 @@ AlphaQuadrature build_alpha_quadrature(const LayerModel& model, double tol,
     work.push_back(eval_panel(model, p.lo, mid));
     evaluations += 2;
   }
-  std::sort(done.begin(), done.end(),
-            [](const Panel& a, const Panel& b) { return a.lo < b.lo; });
+  std::sort(done.begin(), done.end(), [](const Panel& a, const Panel& b) { return a.lo < b.lo; });
   q.alpha.reserve(done.size() * 15);
   for (const Panel& p : done) {
     const double h = 0.5 * (p.hi - p.lo);
@@ -428,7 +427,8 @@ KernelK1::KernelK1(const LayerModel& model, double tol, double range)
       std::size_t last = c.size();
       while (last > 1 && std::fabs(c[last - 1]) <= 1e-2 * goal) --last;
       double dropped = 0.0;
-      for (std::size_t m = std::max<std::size_t>(last, 2); m < c.size(); ++m) dropped += std::fabs(c[m]);
+      for (std::size_t m = std::max<std::size_t>(last, 2); m < c.size(); ++m)
+        dropped += std::fabs(c[m]);
       // The table's error: the series' tail, what was dropped, and the
       // round-off of the values (Filon sums of terms up to int |f|).
       table_error_ = 2.0 * tail + dropped;
@@ -513,9 +513,7 @@ double KernelK1::piece(double u) const {
   return u < 0.0 ? -v : v;
 }
 
-double KernelK1::operator()(double u) const {
-  return piece_coef_.empty() ? global(u) : piece(u);
-}
+double KernelK1::operator()(double u) const { return piece_coef_.empty() ? global(u) : piece(u); }
 
 // The series is odd, sum_j c_{2j+1} T_{2j+1}(x): Clenshaw on the odd terms
 // with T_{m+2} = 2 T_2 T_m - T_{m-2}, T_2 = 2 x^2 - 1, gives x (b_0 - b_1)

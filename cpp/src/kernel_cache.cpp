@@ -115,9 +115,8 @@ RangeCache<DampedKernel>& damped_cache() {
 
 }  // namespace
 
-std::shared_ptr<const KernelK1> cached_kernel(const LayerModel& model, double tol,
-                                              double min_range, double build_range,
-                                              bool* built, bool grow) {
+std::shared_ptr<const KernelK1> cached_kernel(const LayerModel& model, double tol, double min_range,
+                                              double build_range, bool* built, bool grow) {
   return k1_cache().get(
       {model.vstar(), model.kw(), model.nu(), tol}, min_range, build_range,
       [&](double range, const std::shared_ptr<const KernelK1>& shorter) {

@@ -118,8 +118,8 @@ WaveConstants wave_constants(double vstar, double nu) {
     c.hp1 = c.dT / det;
     c.hp2 = -q / det;
   }
-  c.A << 0.0, 1.0, 1.0, 0.0,                                   //
-      -(c2 - 2.0) / c2, 0.0, 0.0, 1.0 / c2,                    //
+  c.A << 0.0, 1.0, 1.0, 0.0,                                 //
+      -(c2 - 2.0) / c2, 0.0, 0.0, 1.0 / c2,                  //
       4.0 * (c2 - 1.0) / c2 - s, 0.0, 0.0, (c2 - 2.0) / c2,  //
       0.0, -s, -1.0, 0.0;
   return c;
@@ -156,7 +156,6 @@ namespace {
 double spring_weight_t(double t, double kw) { return 1.0 / (1.0 + kw / t); }
 double spring_weight_k(double t, double kw) { return 1.0 / (1.0 + t / kw); }
 
-
 Eigen::Matrix4d modal_matrix(const WaveConstants& c, double kw, bool rigid, double t,
                              Eigen::Matrix4d* top_columns) {
   const Eigen::Matrix4d top = modal_columns(c, t, 0.0), bot = modal_columns(c, t, -1.0);
@@ -172,10 +171,8 @@ Eigen::Matrix4d modal_matrix(const WaveConstants& c, double kw, bool rigid, doub
   return M;
 }
 
-
 // Bottom conditions as two rows acting on z(-1) = P z(0).
-Eigen::Matrix<double, 2, 4> bottom_rows(const Eigen::Matrix4d& P, double kw, bool rigid,
-                                        double t) {
+Eigen::Matrix<double, 2, 4> bottom_rows(const Eigen::Matrix4d& P, double kw, bool rigid, double t) {
   Eigen::Matrix<double, 2, 4> R;
   R.row(0) = P.row(2);
   if (rigid)

@@ -132,7 +132,8 @@ Eigen::MatrixXd FieldEvaluator::transform(const Eigen::MatrixXd& values, bool si
       }
       filon_->weights(x(start + i), K);
       for (Eigen::Index j = 0; j < m; ++j)
-        W(i, j) = sine ? K[static_cast<std::size_t>(j)].imag() : K[static_cast<std::size_t>(j)].real();
+        W(i, j) =
+            sine ? K[static_cast<std::size_t>(j)].imag() : K[static_cast<std::size_t>(j)].real();
     }
     out.middleRows(start, nb) = W * coef;
   }
@@ -148,8 +149,7 @@ void check_grid(const Eigen::Ref<const Eigen::VectorXd>& x,
   for (Eigen::Index j = 0; j < y.size(); ++j)
     if (!(y(j) >= -1.0 && y(j) <= 0.0))
       throw InvalidParameter("y", "[-1, 0]",
-                             "y must be in [-1, 0] (y/h, the layer), got " +
-                                 std::to_string(y(j)));
+                             "y must be in [-1, 0] (y/h, the layer), got " + std::to_string(y(j)));
 }
 }  // namespace
 

@@ -107,7 +107,12 @@ def _interrupted(signum: int) -> int:
 
 
 class _Parser(argparse.ArgumentParser):
-    """An ArgumentParser whose errors are one line: ``movingpunch: error: ...``."""
+    """An ArgumentParser whose errors are one line: ``movingpunch: error: ...``,
+    and which takes no abbreviated options (``--n 8`` was read as ``--nu 8``)."""
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        kwargs.setdefault("allow_abbrev", False)
+        super().__init__(*args, **kwargs)
 
     def error(self, message: str) -> NoReturn:
         hint = f" (see `{self.prog} --help`)"

@@ -93,9 +93,8 @@ TEST(Collocation, CosineTransformHoldsAtHighBesselOrders) {
   const struct {
     int order;
     double j;
-  } ref[] = {{1, -0.0172582542424398}, {101, 0.0179036417657971},
-             {301, 0.0244519296645075}, {401, 0.0125424777145836},
-             {451, 0.013134375424562},  {491, -0.0136687069391376},
+  } ref[] = {{1, -0.0172582542424398},  {101, 0.0179036417657971}, {301, 0.0244519296645075},
+             {401, 0.0125424777145836}, {451, 0.013134375424562},  {491, -0.0136687069391376},
              {511, 0.012606647413878}};
   const double kPi = 3.14159265358979323846, w = 1098.0;
   for (const auto& r : ref) {
@@ -114,10 +113,8 @@ TEST(Collocation, CosineTransformHoldsAtHighBesselOrders) {
       Eigen::VectorXd b = Eigen::VectorXd::Zero(n + 1);
       b(n) = 1.0;
       const double sg = (n / 2) % 2 == 0 ? 1.0 : -1.0;
-      const double expect =
-          sg * (n + 1) * std::cyl_bessel_j(n + 1.0, w2) * 0.5 * kPi / w2;
-      EXPECT_NEAR(u_series_cosine_transform(b, 1.0, w2), expect, 1e-14 * (n + 1))
-          << n << " " << w2;
+      const double expect = sg * (n + 1) * std::cyl_bessel_j(n + 1.0, w2) * 0.5 * kPi / w2;
+      EXPECT_NEAR(u_series_cosine_transform(b, 1.0, w2), expect, 1e-14 * (n + 1)) << n << " " << w2;
     }
   }
 }
@@ -127,7 +124,8 @@ TEST(Collocation, CosineTransformHoldsAtHighBesselOrders) {
 TEST(Collocation, BatchedCosineTransformMatchesScalar) {
   for (double a : {1e-6, 0.37, 5.0, 40.0}) {
     Eigen::VectorXd b = Eigen::VectorXd::Zero(40);
-    for (Eigen::Index n = 0; n < b.size(); n += 2) b(n) = std::pow(-0.6, static_cast<double>(n / 2)) / (1.0 + static_cast<double>(n));
+    for (Eigen::Index n = 0; n < b.size(); n += 2)
+      b(n) = std::pow(-0.6, static_cast<double>(n / 2)) / (1.0 + static_cast<double>(n));
     std::vector<double> alpha;
     for (int i = 0; i < 203; ++i) alpha.push_back(1e-10 * std::pow(1.2, i));  // 1e-10 .. 1e6
     alpha.push_back(0.0);
@@ -136,7 +134,8 @@ TEST(Collocation, BatchedCosineTransformMatchesScalar) {
     u_series_cosine_transforms(b, a, alpha.data(), out.data(), alpha.size());
     for (std::size_t i = 0; i < alpha.size(); ++i) {
       const double want = u_series_cosine_transform(b, a, alpha[i]);
-      EXPECT_NEAR(out[i], want, 1e-14 * (std::fabs(want) + a)) << "a " << a << " alpha " << alpha[i];
+      EXPECT_NEAR(out[i], want, 1e-14 * (std::fabs(want) + a))
+          << "a " << a << " alpha " << alpha[i];
     }
   }
 }

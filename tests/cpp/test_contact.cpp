@@ -7,8 +7,8 @@
 
 #include "movingpunch/contact.hpp"
 #include "movingpunch/dispersion.hpp"
-#include "test_helpers.hpp"
 #include "movingpunch/errors.hpp"
+#include "test_helpers.hpp"
 
 using namespace movingpunch;
 

@@ -6,9 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <memory>
 #include <complex>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -48,7 +48,8 @@ TEST(DampedLayer, ZeroDampingIsTheUndampedResponse) {
       for (double t : kTs) {
         const auto a = d.response(t);
         const auto b = r.response(t);
-        EXPECT_NEAR(a.M1.real(), b.M1, 1e-13 * std::max(1.0, std::fabs(b.M1))) << s << " " << kw << " " << t;
+        EXPECT_NEAR(a.M1.real(), b.M1, 1e-13 * std::max(1.0, std::fabs(b.M1)))
+            << s << " " << kw << " " << t;
         EXPECT_NEAR(a.M2.real(), b.M2, 1e-13 * std::max(1.0, std::fabs(b.M2)));
         EXPECT_EQ(a.M1.imag(), 0.0);
       }
@@ -199,10 +200,10 @@ TEST(DampedContact, FaceConditionsInRealSpace) {
     }
     // Bottom slope against a central difference of the bottom displacement.
     const double hstep = 1e-3;
-    EXPECT_NEAR(s.bottom_slope(0.3),
-                (s.bottom_displacement(0.3 + hstep) - s.bottom_displacement(0.3 - hstep)) /
-                    (2 * hstep),
-                1e-8);
+    EXPECT_NEAR(
+        s.bottom_slope(0.3),
+        (s.bottom_displacement(0.3 + hstep) - s.bottom_displacement(0.3 - hstep)) / (2 * hstep),
+        1e-8);
     // Towards the top, sigma_y -> -p and tau -> 0 linearly in y.
     const double xc = s.centre();
     const Eigen::Vector3d t2 = s.stresses(xc, -2e-3), t4 = s.stresses(xc, -4e-3);
@@ -248,13 +249,16 @@ TEST(DampedContact, DragVanishesWithSpeed) {
 // drag P V = int c_w (V dv/dx(x, -h))^2 dx: the drag from the contact solution
 // against the dissipation from the layer's bottom response (Parseval).
 TEST(DampedContact, EnergyBalance) {
-  struct Case { double vstar, kw, damping; };
-  for (const Case c : {Case{0.2, 1.0, 0.1}, Case{0.2, 1.0, 1.0}, Case{0.2, 0.1, 3.0},
-                       Case{0.65, 1.0, 0.1}, Case{0.65, 1.0, 0.01}, Case{0.3, 0.01, 0.1},
-                       Case{0.8, 1.0, 0.01}}) {
+  struct Case {
+    double vstar, kw, damping;
+  };
+  for (const Case c :
+       {Case{0.2, 1.0, 0.1}, Case{0.2, 1.0, 1.0}, Case{0.2, 0.1, 3.0}, Case{0.65, 1.0, 0.1},
+        Case{0.65, 1.0, 0.01}, Case{0.3, 0.01, 0.1}, Case{0.8, 1.0, 0.01}}) {
     const auto s = mp::solve_damped(damped(c.vstar, c.kw, c.damping));
     EXPECT_GT(s.drag(), 0.0);
-    EXPECT_NEAR(s.dissipation() / s.drag(), 1.0, 1e-6) << c.vstar << " " << c.kw << " " << c.damping;
+    EXPECT_NEAR(s.dissipation() / s.drag(), 1.0, 1e-6)
+        << c.vstar << " " << c.kw << " " << c.damping;
     EXPECT_TRUE(s.valid()) << s.validity();
     // The punch profile is followed on the contact: slope x/R.
     for (double r : {-0.9, 0.0, 0.6})
@@ -454,8 +458,8 @@ TEST(DampedKernelTable, MatchesDirectSumsWithinItsBound) {
   struct Case {
     double vstar, kw, damping;
   };
-  for (const Case c : {Case{0.2, 1.0, 0.1}, Case{0.65, 1.0, 0.1}, Case{0.8, 1.0, 0.01},
-                       Case{0.3, 0.01, 1.0}}) {
+  for (const Case c :
+       {Case{0.2, 1.0, 0.1}, Case{0.65, 1.0, 0.1}, Case{0.8, 1.0, 0.01}, Case{0.3, 0.01, 1.0}}) {
     const auto model = std::make_shared<const mp::DampedLayerModel>(c.vstar, c.kw, 0.2, c.damping);
     const mp::DampedKernel k(model, 3.0);
     EXPECT_LT(k.table_error(), 1e-13) << c.vstar;

@@ -144,7 +144,8 @@ TEST(Kernel, PairSumMatchesTwoEvaluations) {
     const double L = k->range();
     for (int i = 0; i <= 200; ++i) {
       const double u = L * std::sin(0.37 * i), v = -L * std::cos(0.11 * i) * 0.999;
-      EXPECT_NEAR(k->sum(u, v), (*k)(u) + (*k)(v), 1e-14 * (1.0 + std::fabs((*k)(u)) + std::fabs((*k)(v))));
+      EXPECT_NEAR(k->sum(u, v), (*k)(u) + (*k)(v),
+                  1e-14 * (1.0 + std::fabs((*k)(u)) + std::fabs((*k)(v))));
     }
   }
   for (int i = -20; i <= 20; ++i) {

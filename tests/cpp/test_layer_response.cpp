@@ -86,8 +86,7 @@ TEST(LayerResponse, TransferAndModalEvaluationsAgree) {
 
 TEST(LayerResponse, ContinuousAtZeroSpeed) {
   for (double kw : {0.1, 1.0, kInf}) {
-    const LayerModel m0(0.0, kw, 0.2), m1(1e-14, kw, 0.2), m2(1e-3, kw, 0.2),
-        m3(2e-3, kw, 0.2);
+    const LayerModel m0(0.0, kw, 0.2), m1(1e-14, kw, 0.2), m2(1e-3, kw, 0.2), m3(2e-3, kw, 0.2);
     for (double t : {0.1, 0.7, 3.0, 30.0}) {
       EXPECT_NEAR(m0.response(t).M1, m1.response(t).M1, 1e-13 * (1 + m0.response(t).M1));
       // Linear in s for small s: the second difference is tiny.
@@ -136,7 +135,6 @@ TEST(LayerResponse, RejectsInvalidInput) {
     LayerModel(0.1, 1.0, 0.7);
     FAIL();
   } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("nu must be in [0, 0.5)"), std::string::npos)
-        << e.what();
+    EXPECT_NE(std::string(e.what()).find("nu must be in [0, 0.5)"), std::string::npos) << e.what();
   }
 }

@@ -325,3 +325,13 @@ def test_console_script() -> None:
     assert json.loads(proc.stdout)["critical_vstar"] == pytest.approx(
         0.5716928, abs=1e-6
     )
+
+
+def test_abbreviated_options_are_refused(
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+) -> None:
+    """``--n 8`` is not ``--nu 8`` (argparse's prefix matching is off): the
+    solve must not run with nu = 8's error or, worse, another value."""
+    proc = run_cli("solve", *PAPER_CASE, "--n", "8")
+    assert proc.returncode == 2, proc
+    assert "unrecognized arguments: --n 8" in proc.stderr

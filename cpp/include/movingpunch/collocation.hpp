@@ -26,9 +26,8 @@ ChebyshevNodes chebyshev_nodes(int n);
 Eigen::VectorXd solve_unit_collocation(const ChebyshevNodes& nodes, double a,
                                        const std::function<double(double)>& kernel);
 // The same with kernel_sum(u, v) = k(u) + k(v) (one call per matrix entry).
-Eigen::VectorXd solve_unit_collocation_sum(
-    const ChebyshevNodes& nodes, double a,
-    const std::function<double(double, double)>& kernel_sum);
+Eigen::VectorXd solve_unit_collocation_sum(const ChebyshevNodes& nodes, double a,
+                                           const std::function<double(double, double)>& kernel_sum);
 
 // The folded N/2 x N/2 matrix of solve_unit_collocation_sum (right-hand side
 // s_1 .. s_{N/2}): M(k, j) = W_j [1/(r_j - s_k) + 1/(-r_j - s_k) + a (k(a (r_j - s_k))

@@ -15,12 +15,12 @@ namespace movingpunch {
 
 // Dimensionless inputs (h = 1, mu = 1).
 struct ContactParams {
-  double vstar = 0;    // rho V^2 / mu, 0 <= vstar < V*_cr
-  double kw = 1;       // k_w h / mu in [1e-12, inf]
-  double radius = 100; // R / h > 0
-  double load = 0.002; // P / (mu h) > 0
-  double nu = 0.2;     // Poisson's ratio in [0, 0.5)
-  double tol = 1e-8;   // relative tolerance on a/h, in [1e-14, 1e-2]
+  double vstar = 0;               // rho V^2 / mu, 0 <= vstar < V*_cr
+  double kw = 1;                  // k_w h / mu in [1e-12, inf]
+  double radius = 100;            // R / h > 0
+  double load = 0.002;            // P / (mu h) > 0
+  double nu = 0.2;                // Poisson's ratio in [0, 0.5)
+  double tol = 1e-8;              // relative tolerance on a/h, in [1e-14, 1e-2]
   bool allow_unphysical = false;  // if true, return invalid solutions flagged
   int n = 0;  // fixed collocation size (even, 2..4096); 0: refine N until a/h converges
 };
@@ -31,13 +31,13 @@ void validate(const ContactParams& p);
 class ContactSolution {
  public:
   const ContactParams& params() const noexcept { return params_; }
-  double a() const noexcept { return a_; }               // a/h
-  double p0() const noexcept { return p0_; }             // p(0)/(P/h)
-  double indentation() const noexcept { return delta_; } // delta/h
+  double a() const noexcept { return a_; }                // a/h
+  double p0() const noexcept { return p0_; }              // p(0)/(P/h)
+  double indentation() const noexcept { return delta_; }  // delta/h
   double critical_vstar() const noexcept { return vcr_; }
   double rayleigh_vstar() const noexcept { return vr_; }
   double phi1() const noexcept { return phi1_; }
-  double error_estimate() const noexcept { return err_; } // absolute, of a/h
+  double error_estimate() const noexcept { return err_; }  // absolute, of a/h
   // The parts of error_estimate (absolute, of a/h; they add up to it):
   // collocation (the N truncation, extrapolated from the last sizes), root (the
   // residual of the width iteration), kernel (the k1 table's quadrature and
@@ -68,7 +68,7 @@ class ContactSolution {
   // min over -1 < r < 1 of g(r) = p(a r)/((P/h) sqrt(1 - r^2)): how far the
   // contact is from separating (0 or below: p < 0 somewhere, or at an edge).
   double pressure_margin() const noexcept { return p_margin_; }
-  double min_gap() const noexcept { return min_gap_; }     // min gap/h on a < |x| <= 3a
+  double min_gap() const noexcept { return min_gap_; }  // min gap/h on a < |x| <= 3a
 
   // p(x)/(P/h) at x/h (0 outside the contact).
   double pressure(double x) const;

@@ -81,10 +81,10 @@ class DampedLayerModel {
 // M1 - phi1, M2 - phi2 and Wb of a damped layer; nodes in the order of
 // kernel.hpp's AlphaQuadrature (so FilonIntegrator applies).
 struct DampedQuadrature {
-  AlphaQuadrature panels;      // nodes, weights, panel centres/half-widths
+  AlphaQuadrature panels;  // nodes, weights, panel centres/half-widths
   std::vector<cplx> m1, m2, wb;
   std::vector<DampedResponse> r;  // the whole response at each node
-  double error_estimate = 0;   // of the integral of |M1 - phi1|/phi1
+  double error_estimate = 0;      // of the integral of |M1 - phi1|/phi1
   // QUADPACK's (qk15) estimate of the error of the Kronrod sums actually used
   // (|K15 - G7| above bounds the Gauss rule's error, far larger once resolved).
   double kronrod_error = 0;
@@ -106,7 +106,7 @@ class DampedKernel {
 
   double operator()(double u) const;  // the table on |u| <= range(), direct() beyond
   void many(const double* u, double* out, std::size_t n) const;  // out[i] = (*this)(u[i])
-  double direct(double u) const;      // Filon sums, any u
+  double direct(double u) const;                                 // Filon sums, any u
   double range() const noexcept { return range_; }
   // Bound on |table - direct| (truncation of the pieces plus their values'
   // round-off), absolute.
@@ -155,7 +155,7 @@ struct DampedParams {
   double damping = 0;   // c_w c_T / mu > 0 (finite)
   double tol = 1e-8;    // relative tolerance on the contact ends and the pressure, [1e-14, 1e-2]
   bool allow_unphysical = false;
-  int n = 0;            // fixed collocation size (even, 2..1024); 0: refine
+  int n = 0;  // fixed collocation size (even, 2..1024); 0: refine
 };
 
 // Throws std::invalid_argument naming the parameter and its valid range.
@@ -321,7 +321,6 @@ RefinementEstimate refinement_estimate(const std::vector<int>& sizes,
 // max over theta in [0, pi] of |sum_k b_k sin((k + 1) theta)| (= max over r of
 // |sqrt(1 - r^2) sum b_k U_k(r)|), sampled at 8 (len(b) + 1) + 64 angles.
 double max_abs_sine_series(const Eigen::VectorXd& b);
-
 
 // The regular kernel of the damped equation,
 //   K(u) = (1/phi1) int_0^inf [Re(M1 - phi1) sin(alpha u) + Im(M1 - phi1) cos(alpha u)] d alpha,

@@ -46,7 +46,7 @@ class InvalidParameter : public std::invalid_argument {
 
 // Throws InvalidParameter naming `name` and the valid range unless
 // lo <= value <= hi (open ends when the flags say so). NaN always fails.
-void require_in_range(const char* name, double value, double lo, double hi,
-                      bool lo_open, bool hi_open, bool allow_inf_hi = false);
+void require_in_range(const char* name, double value, double lo, double hi, bool lo_open,
+                      bool hi_open, bool allow_inf_hi = false);
 
 }  // namespace movingpunch

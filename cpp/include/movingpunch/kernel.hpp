@@ -15,17 +15,17 @@
 namespace movingpunch {
 
 struct AlphaQuadrature {
-  std::vector<double> alpha;   // nodes, 15 per panel, ascending
-  std::vector<double> weight;  // weights
-  std::vector<double> m1;      // M1(alpha) at the nodes
+  std::vector<double> alpha;                     // nodes, 15 per panel, ascending
+  std::vector<double> weight;                    // weights
+  std::vector<double> m1;                        // M1(alpha) at the nodes
   std::vector<double> panel_centre, panel_half;  // panel p holds nodes 15p .. 15p+14
-  double alpha_max = 0;        // M1 = phi1 to double precision beyond it
-  double error_estimate = 0;   // sum of |K15 - G7| of (M1 - phi1)/phi1
+  double alpha_max = 0;                          // M1 = phi1 to double precision beyond it
+  double error_estimate = 0;                     // sum of |K15 - G7| of (M1 - phi1)/phi1
   // Per panel (same order as panel_centre), the error of the rule for
   // f = (M1 - phi1)/phi1 on the panel: its truncation (QUADPACK's estimate, a
   // bound; the panel's share of tol where it stopped at its round-off floor,
-  // its |K15 - G7| being round-off there) and the rms round-off of the nodal values (2 eps (1 + |f| + f^2)
-  // each, independent: eps |f|^2 near a resonance). Empty if not filled.
+  // its |K15 - G7| being round-off there) and the rms round-off of the nodal values (2 eps (1 + |f|
+  // + f^2) each, independent: eps |f|^2 near a resonance). Empty if not filled.
   std::vector<double> panel_error, panel_roundoff;
 };
 
@@ -33,8 +33,8 @@ struct AlphaQuadrature {
 // of frequency up to `max_frequency`, resolved to absolute tolerance `tol`,
 // on [0, alpha_max] where exp(-decay nT alpha) is negligible: decay = 2 for
 // M1 - phi1 at the surface, 1 for the field at the bottom of the layer.
-AlphaQuadrature build_alpha_quadrature(const LayerModel& model, double tol,
-                                       double max_frequency, double decay = 2.0);
+AlphaQuadrature build_alpha_quadrature(const LayerModel& model, double tol, double max_frequency,
+                                       double decay = 2.0);
 
 // Fourier integrals int g(alpha) e^{i alpha x} d alpha over the panels of a
 // quadrature, exact for the degree-14 interpolant of g on each panel (Filon):
@@ -148,9 +148,9 @@ struct KernelCacheInfo {
 inline constexpr double kMaxRangeRatio = 24.0;
 inline constexpr std::size_t kKernelCacheCapacity = 32;
 inline constexpr double kGrowth = 2.0;
-std::shared_ptr<const KernelK1> cached_kernel(const LayerModel& model, double tol,
-                                              double min_range, double build_range,
-                                              bool* built = nullptr, bool grow = true);
+std::shared_ptr<const KernelK1> cached_kernel(const LayerModel& model, double tol, double min_range,
+                                              double build_range, bool* built = nullptr,
+                                              bool grow = true);
 KernelCacheInfo kernel_cache_info();
 // Clears the k1 tables and the damped kernel tables (damped.hpp).
 void clear_kernel_cache();

@@ -20,14 +20,14 @@ namespace movingpunch {
 // Wave constants of the layer for one (vstar, nu); everything the layer
 // response and the closed forms need, computed without cancellation.
 struct WaveConstants {
-  double s = 0;       // vstar
-  double nu = 0;      // Poisson's ratio
-  double c2 = 0;      // c_L^2 / c_T^2 = (kappa + 1) / (kappa - 1)
-  double nT = 1;      // sqrt(1 - s)
-  double nL = 1;      // sqrt(1 - s / c2)
-  double delta = 0;   // nL - nT >= 0, computed without cancellation
-  double phi1 = 0;    // lim_{alpha -> inf} M1 (moving half-plane factor)
-  double phi2 = 0;    // lim_{alpha -> inf} M2
+  double s = 0;      // vstar
+  double nu = 0;     // Poisson's ratio
+  double c2 = 0;     // c_L^2 / c_T^2 = (kappa + 1) / (kappa - 1)
+  double nT = 1;     // sqrt(1 - s)
+  double nL = 1;     // sqrt(1 - s / c2)
+  double delta = 0;  // nL - nT >= 0, computed without cancellation
+  double phi1 = 0;   // lim_{alpha -> inf} M1 (moving half-plane factor)
+  double phi2 = 0;   // lim_{alpha -> inf} M2
   // Divided differences (v_L - v_T) / delta of the mode vectors [U, W, T, S].
   double dW = 0, dT = 0, dS = 0;
   // Rows of the first-order system z' = alpha A z, z = [U, W, tau/alpha, sigma_y/alpha].
