@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "bessel.hpp"
+#include "chebyshev.hpp"
 #include "gauss_kronrod.hpp"
 #include "layer_basis.hpp"
 #include "movingpunch/collocation.hpp"
@@ -387,15 +388,7 @@ double DampedKernel::operator()(double u) const {
   const std::size_t pieces = coef_.size() / (D + 1);
   const std::size_t p = std::min(pieces - 1, static_cast<std::size_t>((u + range_) / width_));
   const double x = 2.0 * (u + range_ - (static_cast<double>(p) + 0.5) * width_) / width_;
-  const double* c = coef_.data() + p * (D + 1);
-  double b1 = 0.0, b2 = 0.0;
-  const double x2 = 2.0 * x;
-  for (int m = D; m >= 1; --m) {
-    const double b0 = c[m] + x2 * b1 - b2;
-    b2 = b1;
-    b1 = b0;
-  }
-  return c[0] + x * b1 - b2;
+  return detail::chebyshev_sum(coef_.data() + p * (D + 1), D, x);
 }
 
 // ---------------------------------------------------------------------------

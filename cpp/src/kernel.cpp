@@ -7,6 +7,7 @@
 #include <Eigen/Dense>
 #include <stdexcept>
 
+#include "chebyshev.hpp"
 #include "gauss_kronrod.hpp"
 #include "movingpunch/errors.hpp"
 
@@ -501,15 +502,7 @@ double KernelK1::piece(double u) const {
   const std::size_t pieces = piece_coef_.size() / (D + 1);
   const std::size_t p = std::min(pieces - 1, static_cast<std::size_t>(au / piece_width_));
   const double x = 2.0 * (au - (static_cast<double>(p) + 0.5) * piece_width_) / piece_width_;
-  const double* c = piece_coef_.data() + p * (D + 1);
-  double b1 = 0.0, b2 = 0.0;
-  const double x2 = 2.0 * x;
-  for (int m = D; m >= 1; --m) {
-    const double b0 = c[m] + x2 * b1 - b2;
-    b2 = b1;
-    b1 = b0;
-  }
-  const double v = c[0] + x * b1 - b2;
+  const double v = detail::chebyshev_sum(piece_coef_.data() + p * (D + 1), D, x);
   return u < 0.0 ? -v : v;
 }
 
