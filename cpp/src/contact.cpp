@@ -90,6 +90,17 @@ namespace {
 
 constexpr double kLoosestKernelTol = 1e-10;
 
+// a/h is never solved looser than 1e-8 a (the N ladder's last change, 1e-2 of
+// it for the width iteration), as the kernel is never built looser than 1e-10.
+// Looser, the ladder stops at N = 16 or 24 and the iteration early: the rate
+// read from the chain is not yet steady, the iteration's residual is read to
+// first order only (10 % under the error at kw = 10, tol 1e-4), and near
+// V*_cr the kernel's round-off moves a/h by 1e-9 ... 5e-8 from one table to the
+// next, so an estimate that bounds the error can exceed a lucky one by
+// 100 ... 230 (kw = 0.1, eps = 1e-12, tol 1e-6: 6.3e-8 for 5.6e-10). The price
+// is ~0.1 ms at a loose tol (docs/performance.md).
+constexpr double kLoosestWidthTol = 1e-8;
+
 // Everything the iteration on a needs for one (vstar, kw, nu).
 class Problem {
  public:
@@ -509,7 +520,8 @@ ContactSolution solve_contact(const ContactParams& p) {
       std::cbrt(1.5 * lambda * ((std::isinf(p.kw) ? 0.0 : 1.0 / p.kw) + 0.5 * (1.0 - p.nu)));
   const bool wide_guess = a_hertz > 8.0 * a_wide || a_wide > std::max(1.0, a_hertz);
   double a = std::clamp(wide_guess ? a_wide : a_hertz, kMinA, kMaxA);
-  const double xtol = std::max(1e-2 * p.tol, 1e-15);
+  const double width_tol = std::min(p.tol, kLoosestWidthTol);
+  const double xtol = std::max(1e-2 * width_tol, 1e-15);
 
   double a_prev = std::numeric_limits<double>::quiet_NaN();
   double change = kInf;
@@ -584,7 +596,7 @@ ContactSolution solve_contact(const ContactParams& p) {
         // only bounded by the change itself, which overstates it by up to 1e3
         // where N converges fast.
         constexpr double eps = std::numeric_limits<double>::epsilon();
-        if (change <= p.tol * a && (chain_a.size() >= 3 || change <= 100.0 * eps * a)) {
+        if (change <= width_tol * a && (chain_a.size() >= 3 || change <= 100.0 * eps * a)) {
           converged = true;
           change = collocation_error(chain_n, chain_a);
           break;
