@@ -276,7 +276,14 @@ def test_stress_error_estimate_is_honest_near_critical(
     check_stress_honest(s, fine, other)
 
 
-@pytest.mark.parametrize(("kw", "eps"), sorted(FAST))
+@pytest.mark.parametrize(
+    ("kw", "eps"),
+    [
+        pytest.param(kw, eps, marks=() if (kw, eps) in FAST else pytest.mark.slow)
+        for kw in CASES
+        for eps in NEAR
+    ],
+)
 @pytest.mark.parametrize("tol", [1e-3, 1e-4, 1e-6])
 def test_stress_error_estimate_is_honest_near_critical_at_loose_tol(
     kw: float, eps: float, tol: float
