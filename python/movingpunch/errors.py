@@ -14,7 +14,9 @@ __all__ = [
     "MissingExtraError",
     "MovingPunchError",
     "OutputError",
+    "OutsideFolderError",
     "SceneError",
+    "ServeError",
     "SupercriticalSpeedError",
     "UnphysicalContactError",
     "WorkerError",
@@ -174,3 +176,14 @@ class ClusterError(MovingPunchError, RuntimeError):
 
 class WorkerError(MovingPunchError, RuntimeError):
     """A worker process ended before it finished its work, or failed."""
+
+
+class OutsideFolderError(InvalidParameterError):
+    """A path leaves the terminal UI's working folder (or is the folder
+    itself)."""
+
+
+class ServeError(MovingPunchError):
+    """``movingpunch serve`` cannot start (busy port, unknown host, remote
+    host without ``--allow-remote``): a one-line message for the command
+    line."""

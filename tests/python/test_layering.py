@@ -319,6 +319,31 @@ def test_numerical_modules_do_not_import_textual(
     assert sorted(m for m in loaded if m.split(".")[0] == "textual") == []
 
 
+def test_every_exception_class_is_in_the_errors_module() -> None:
+    # One home for the error family: a class deriving from an error (a base
+    # named ...Error) anywhere else fails, and so does a re-export that is not
+    # the same class.
+    import movingpunch.errors as errors
+    import movingpunch.scene as scene
+    import movingpunch.tui.paths as paths
+
+    elsewhere = []
+    for module, path in source_modules().items():
+        if module == "movingpunch.errors" or path.suffix != ".py":
+            continue
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.ClassDef) and any(
+                ast.unparse(base).endswith("Error") for base in node.bases
+            ):
+                elsewhere.append(f"{module}.{node.name}")
+    assert elsewhere == []
+    for name in ("SceneError", "ClusterError", "WorkerError", "MissingExtraError"):
+        assert getattr(scene, name) is getattr(errors, name), name
+        assert name in errors.__all__
+        assert name in scene.__all__
+    assert paths.OutsideFolderError is errors.OutsideFolderError
+
+
 def test_errors_module_does_not_import_core(
     run_python: Callable[..., subprocess.CompletedProcess[str]],
 ) -> None:

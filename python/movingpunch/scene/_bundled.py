@@ -17,10 +17,14 @@ BUNDLED_FOLDER = "bundled_scenes"
 
 
 def _bundled_dir() -> Any:
+    """The folder of the bundled files (a ``Traversable``: it may sit in a
+    zip)."""
     return resources.files("movingpunch").joinpath(BUNDLED_FOLDER)
 
 
 def bundled_names() -> list[str]:
+    """The names of the bundled scenes: Table 1 and Figs. 2-6 first, then the
+    others in alphabetical order."""
     names = [
         entry.name[: -len(".toml")]
         for entry in _bundled_dir().iterdir()
@@ -33,6 +37,8 @@ def bundled_names() -> list[str]:
 
 
 def bundled_text(name: str) -> str:
+    """The TOML text of the bundled scene ``name``; SceneError naming the
+    bundled scenes if there is none of that name."""
     names = bundled_names()
     if name not in names:
         raise SceneError(

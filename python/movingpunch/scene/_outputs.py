@@ -18,7 +18,7 @@ import numpy.typing as npt
 from movingpunch.damped import DampedSolution
 from movingpunch.errors import MovingPunchError
 from movingpunch.fields import StressField, derived_stresses
-from movingpunch.scene._model import DAMPED_MAX_Y
+from movingpunch.scene._model import DAMPED_MAX_Y, STRESS_COMPONENTS
 from movingpunch.scene._result import (
     AnySolution,
     Curve,
@@ -284,14 +284,7 @@ def _out_stress_field(run: RunState, spec: Any, solutions: _Solutions) -> Output
             )
         cols.setdefault("x", []).append(gx.ravel())
         cols.setdefault("y", []).append(gy.ravel())
-        for comp in (
-            "sigma_x",
-            "sigma_y",
-            "tau_xy",
-            "sigma_z",
-            "von_mises",
-            "max_shear",
-        ):
+        for comp in STRESS_COMPONENTS:
             cols.setdefault(comp, []).append(np.asarray(getattr(f, comp)).ravel())
     return OutputData(
         "stress_field",

@@ -17,9 +17,14 @@ from movingpunch.scene._model import PEAK_QUANTITIES, SceneData
 from movingpunch.scene._result import SweepTable
 from movingpunch.scene._solve import Key, curve_label, point_key
 
+__all__ = ["SweepPlan", "build_sweep_table", "plan_sweep", "split_chunks"]
+
 
 @dataclass
 class SweepPlan:
+    """A sweep's points and the unique keys to solve, grouped by shared
+    kernel (vstar, kw, nu, tol, damping), each group in descending lambda."""
+
     points: list[list[dict[str, float]]]  # [curve][grid] -> parameters
     keys: list[Key]  # unique keys, in solve order
     groups: dict[tuple[float, ...], list[Key]]
