@@ -22,7 +22,7 @@ from movingpunch.errors import (
 )
 
 try:
-    from movingpunch import _core  # the compiled extension
+    from movingpunch import _core  # noqa: F401  (the compiled extension: fails early)
 except ImportError as exc:  # pragma: no cover - depends on how it was installed
     raise ImportError(
         "movingpunch's compiled extension movingpunch._core is missing or "
@@ -50,16 +50,12 @@ from movingpunch.solver import (
 
 
 def __getattr__(name: str) -> str:
-    """``__version__``, looked up on first use: importlib.metadata costs
-    about 60 ms of import time, which every spawned sweep worker would pay."""
+    """``__version__``, looked up on first use (``movingpunch._version``)."""
     if name != "__version__":
         raise AttributeError(f"module 'movingpunch' has no attribute {name!r}")
-    from importlib.metadata import PackageNotFoundError, version
+    from movingpunch._version import version
 
-    try:
-        found = version("movingpunch")
-    except PackageNotFoundError:  # pragma: no cover - running from a source tree
-        found = _core.__version__
+    found = version()
     globals()["__version__"] = found
     return found
 

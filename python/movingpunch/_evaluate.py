@@ -82,6 +82,58 @@ def _real_any(name: str, value: object) -> float:
         ) from None
 
 
+def _real(name: str, value: object) -> float:
+    """``value`` as a float if it is a real number (bool, str, None, complex
+    and everything else are rejected; so are integers beyond float range).
+    The range of ``name`` is not checked (``movingpunch.params.check`` does)."""
+    x, problem = params.classify(name, value)
+    if problem in ("type", "overflow"):
+        params.check(name, value)  # raises, naming name and its range
+    return x
+
+
+def _fail(name: str, x: float) -> InvalidParameterError:
+    return params.fail(
+        name, f"{name} must satisfy {params.range_text(name)}, got {x!r}"
+    )
+
+
+def _check_vstar(value: object) -> float:
+    # The upper bound V*_cr(kw, nu) is checked by the core, which raises
+    # SupercriticalSpeedError with the critical and Rayleigh speeds.
+    return params.check("vstar", value)
+
+
+def _check_kw(value: object) -> float:
+    # kw = 0 (no foundation) has no static equilibrium (V*_cr = 0); below 1e-12
+    # the lowest free wave lies beyond the critical-speed search.
+    return params.check("kw", value)
+
+
+def _check_positive(name: str, value: object) -> float:
+    """radius or load (the name says which): its range in movingpunch.params."""
+    return params.check(name, value)
+
+
+def _check_nu(value: object) -> float:
+    return params.check("nu", value)
+
+
+def _check_tol(value: object) -> float:
+    """A tolerance: a number in [1e-14, 1e-2] or the name of a preset."""
+    return params.check("tol", value)
+
+
+def _check_flag(name: str, value: object) -> bool:
+    if not isinstance(value, (bool, np.bool_)):
+        raise InvalidParameterError(
+            f"{name} must be True or False, got {value!r}",
+            parameter=name,
+            allowed="True or False",
+        )
+    return bool(value)
+
+
 def _pointwise(
     name: str,
     x: npt.ArrayLike,

@@ -26,11 +26,13 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from movingpunch._version import version
 from movingpunch.errors import InvalidParameterError, MovingPunchError
 from movingpunch.fields import StressPeaks
 from movingpunch.outputs import publish, safe_name
-from movingpunch.scene._run import CORE_STAGES, is_damped
-from movingpunch.scene._spec import OutputSpec, Scene, load_scene
+from movingpunch.scene import OutputSpec, Scene, load_scene
+from movingpunch.scene._result import CORE_STAGES
+from movingpunch.scene._solve import is_damped
 from movingpunch.solver import Solution, clear_kernel_cache, solve
 
 __all__ = [
@@ -552,11 +554,9 @@ def render_csv(report: AccuracyReport) -> tuple[str, bytes]:
     reference, the columns and the scene as TOML, as scene exports have;
     ``movingpunch.scene.read_csv`` reads it), then numbers only
     (``np.loadtxt(path, delimiter=",")``)."""
-    import movingpunch
-
     columns = report.columns()
     lines = [
-        f"# movingpunch_version: {movingpunch.__version__}",
+        f"# movingpunch_version: {version()}",
         f"# scene_name: {report.scene.name}",
         "# output: accuracy",
         f"# title: accuracy against time ({report.name})",

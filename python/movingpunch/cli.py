@@ -72,7 +72,7 @@ class _StopSignals:
     """SIGINT and SIGTERM handlers for a command that must stop promptly.
 
     While ``armed``, the first signal raises _Interrupted in the main thread
-    (unwinding ends the worker processes: ``scene._run._pool_map``); any
+    (unwinding ends the worker processes: ``scene._executors.pool_map``); any
     signal after it, or one that arrives once the work is over, is only
     recorded in ``received``, so that stopping and reporting are never cut
     short. The previous handlers come back on ``restore()``."""
@@ -459,13 +459,13 @@ def _cmd_serve(args: argparse.Namespace) -> int:
             "serve needs textual-serve: pip install 'movingpunch[serve]' "
             "(or pip install textual-serve)"
         )
-    from movingpunch.tui import scenes
+    from movingpunch.tui import scene_files
     from movingpunch.tui.paths import WorkingFolder
 
     folder = WorkingFolder.at(args.root)  # a bad root fails here, in one line
     command = [sys.executable, "-m", "movingpunch", "tui", "--root", str(folder.root)]
     if args.scene is not None:
-        scenes.load(args.scene)  # a bad scene fails here, in one line
+        scene_files.load(args.scene)  # a bad scene fails here, in one line
         command += ["--", args.scene]  # relative to this (the apps') directory
     serve.serve(
         command,

@@ -26,27 +26,24 @@ import numpy.typing as npt
 from movingpunch import _core, params
 from movingpunch._evaluate import (
     _as_points,
-    _chunked_grid,
-    _flat,
-    _is_scalar,
-    _json_safe,
-    _pointwise,
-    _real_any,
-)
-from movingpunch.errors import InvalidParameterError, SupercriticalSpeedError
-from movingpunch.fields import StressField, StressPeaks, derived_stresses
-from movingpunch.peaks import search_peaks
-from movingpunch.solver import (
-    FloatArray,
     _check_flag,
     _check_kw,
     _check_nu,
     _check_positive,
     _check_tol,
     _check_vstar,
+    _chunked_grid,
     _fail,
+    _flat,
+    _is_scalar,
+    _json_safe,
+    _pointwise,
     _real,
+    _real_any,
 )
+from movingpunch.errors import InvalidParameterError, SupercriticalSpeedError
+from movingpunch.fields import FloatArray, StressField, StressPeaks, derived_stresses
+from movingpunch.peaks import search_peaks
 
 __all__ = ["DampedSolution", "check_damping", "damped_layer_response", "solve_damped"]
 

@@ -8,12 +8,18 @@ import ``_core``.
 from __future__ import annotations
 
 __all__ = [
+    "ClusterError",
     "ConvergenceError",
     "InvalidParameterError",
+    "MissingExtraError",
     "MovingPunchError",
     "OutputError",
+    "OutsideFolderError",
+    "SceneError",
+    "ServeError",
     "SupercriticalSpeedError",
     "UnphysicalContactError",
+    "WorkerError",
 ]
 
 
@@ -132,3 +138,52 @@ class OutputError(MovingPunchError, OSError):
     def __str__(self) -> str:
         # OSError would print "[Errno N] strerror"; the message names the path.
         return self.message
+
+
+class SceneError(InvalidParameterError):
+    """A scene (file or object) is malformed or asks for something impossible.
+
+    The message is one line, ``FILE: key: problem (allowed: ...)``; the
+    attributes ``source``, ``key``, ``problem`` and ``allowed`` hold its parts,
+    and ``parameter`` the model parameter at fault (``"vstar"``, ``"tol"``,
+    ...; None when the key is not one, e.g. an output's ``points``).
+    """
+
+    def __init__(
+        self,
+        source: str,
+        key: str,
+        problem: str,
+        allowed: str = "",
+        parameter: str | None = None,
+    ) -> None:
+        self.source = source
+        self.key = key
+        self.problem = problem
+        text = f"{source}: {key}: {problem}"
+        if allowed:
+            text += f" (allowed: {allowed})"
+        super().__init__(" ".join(text.split()), parameter=parameter, allowed=allowed)
+
+
+class MissingExtraError(MovingPunchError, ImportError):
+    """An optional dependency (an extra of the package) is not installed."""
+
+
+class ClusterError(MovingPunchError, RuntimeError):
+    """The Dask scheduler could not be reached or a task failed on it."""
+
+
+class WorkerError(MovingPunchError, RuntimeError):
+    """A worker process ended before it finished its work, or failed."""
+
+
+class OutsideFolderError(InvalidParameterError):
+    """A path leaves the terminal UI's working folder (or is the folder
+    itself)."""
+
+
+class ServeError(MovingPunchError):
+    """``movingpunch serve`` cannot start (busy port, unknown host, remote
+    host without ``--allow-remote``): a one-line message for the command
+    line."""

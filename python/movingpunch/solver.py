@@ -24,9 +24,16 @@ import numpy.typing as npt
 from movingpunch import _core, params
 from movingpunch._evaluate import (
     _as_points,
+    _check_flag,
+    _check_kw,
+    _check_nu,
+    _check_positive,
     _check_positive_extent,
+    _check_tol,
+    _check_vstar,
     _chunked_grid,
     _depths,
+    _fail,
     _flat,
     _is_scalar,
     _json_safe,
@@ -59,48 +66,6 @@ __all__ = [
 FloatArray = npt.NDArray[np.float64]
 
 
-def _real(name: str, value: object) -> float:
-    """``value`` as a float if it is a real number (bool, str, None, complex
-    and everything else are rejected; so are integers beyond float range).
-    The range of ``name`` is not checked (``movingpunch.params.check`` does)."""
-    x, problem = params.classify(name, value)
-    if problem in ("type", "overflow"):
-        params.check(name, value)  # raises, naming name and its range
-    return x
-
-
-def _fail(name: str, x: float) -> InvalidParameterError:
-    return params.fail(
-        name, f"{name} must satisfy {params.range_text(name)}, got {x!r}"
-    )
-
-
-def _check_vstar(value: object) -> float:
-    # The upper bound V*_cr(kw, nu) is checked by the core, which raises
-    # SupercriticalSpeedError with the critical and Rayleigh speeds.
-    return params.check("vstar", value)
-
-
-def _check_kw(value: object) -> float:
-    # kw = 0 (no foundation) has no static equilibrium (V*_cr = 0); below 1e-12
-    # the lowest free wave lies beyond the critical-speed search.
-    return params.check("kw", value)
-
-
-def _check_positive(name: str, value: object) -> float:
-    """radius or load (the name says which): its range in movingpunch.params."""
-    return params.check(name, value)
-
-
-def _check_nu(value: object) -> float:
-    return params.check("nu", value)
-
-
-def _check_tol(value: object) -> float:
-    """A tolerance: a number in [1e-14, 1e-2] or the name of a preset."""
-    return params.check("tol", value)
-
-
 def resolve_tol(tol: float | str) -> float:
     """``tol`` as a number: a preset's value, or the number checked against
     1e-14 <= tol <= 1e-2. Raises InvalidParameterError naming the presets."""
@@ -110,16 +75,6 @@ def resolve_tol(tol: float | str) -> float:
 def _check_size(value: object) -> int:
     """The collocation size: None (automatic) or an even int in [2, 4096]."""
     return params.check_size(value)
-
-
-def _check_flag(name: str, value: object) -> bool:
-    if not isinstance(value, (bool, np.bool_)):
-        raise InvalidParameterError(
-            f"{name} must be True or False, got {value!r}",
-            parameter=name,
-            allowed="True or False",
-        )
-    return bool(value)
 
 
 @dataclass(frozen=True)

@@ -12,9 +12,15 @@ own layer or of lower layers, never a higher one, and no import cycle may form):
 3. ``helpers``: pure-Python numerics and files on top of the core results:
    ``fields`` (stress fields), ``peaks`` (peak search), ``outputs`` (writing
    result files), ``contract`` (the result contract every solution
-   satisfies), ``_evaluate`` (checking inputs and evaluating at points).
-4. ``solve``: the solves, ``solver`` and ``damped``.
-5. ``scene``: scene files, their runs and exports (``movingpunch.scene.*``).
+   satisfies), ``_evaluate`` (checking inputs and evaluating at points),
+   ``_version`` (the package version, read without importing the package).
+4. ``solve``: the solves, ``solver`` and ``damped`` (neither imports the other
+   at module level; ``solver.solve`` hands damping > 0 to ``damped``).
+5. ``scene``: scene files, their runs and exports (``movingpunch.scene.*``), in
+   three sub-layers: the model (the parts, validation, TOML reading and
+   writing, the bundled files), the run (results, solving points, the sweep's
+   plan, the executors, the output evaluators, the run), and ``Scene`` with its
+   exports and the package's public names.
 6. ``api``: the package itself (``movingpunch/__init__.py``, the public names).
 7. ``accuracy``: convergence studies of a scene (``movingpunch.accuracy``).
 8. ``tui``: the Textual app, in four sub-layers: its model (plain Python, what
@@ -26,8 +32,7 @@ Every import counts: at module level, inside a function (lazy) or under
 ``TYPE_CHECKING``, since each is a dependency a reader must follow. The graph
 is read from the source files (``ast``), so the test needs no import. A module
 missing from ``LAYERS`` fails the test (no module escapes), and so does a stale
-entry. The import cycles that exist today are listed exactly in
-``KNOWN_CYCLES``: fixing one makes the test ask for its removal from the set.
+entry. No import cycle is allowed, within a layer either.
 """
 
 from __future__ import annotations
@@ -45,6 +50,7 @@ from movingpunch import _core
 PACKAGE = "movingpunch"
 SOURCE = Path(__file__).resolve().parents[2] / "python" / PACKAGE
 
+_SCENE = "movingpunch.scene"
 _TUI = "movingpunch.tui"
 LAYERS: tuple[tuple[str, frozenset[str]], ...] = (
     ("errors", frozenset({"movingpunch.errors"})),
@@ -59,27 +65,50 @@ LAYERS: tuple[tuple[str, frozenset[str]], ...] = (
                 "movingpunch.outputs",
                 "movingpunch.contract",
                 "movingpunch._evaluate",
+                "movingpunch._version",
             }
         ),
     ),
     ("solve", frozenset({"movingpunch.solver", "movingpunch.damped"})),
     (
-        "scene",
+        "scene model",
         frozenset(
             {
-                "movingpunch.scene",
-                "movingpunch.scene._spec",
-                "movingpunch.scene._run",
-                "movingpunch.scene._export",
+                f"{_SCENE}._model",
+                f"{_SCENE}._validate",
+                f"{_SCENE}._toml",
+                f"{_SCENE}._bundled",
             }
         ),
+    ),
+    (
+        "scene run",
+        frozenset(
+            {
+                f"{_SCENE}._result",
+                f"{_SCENE}._solve",
+                f"{_SCENE}._plan",
+                f"{_SCENE}._executors",
+                f"{_SCENE}._outputs",
+                f"{_SCENE}._run",
+            }
+        ),
+    ),
+    (
+        "scene",
+        frozenset({_SCENE, f"{_SCENE}._scene", f"{_SCENE}._export"}),
     ),
     ("api", frozenset({"movingpunch"})),
     ("accuracy", frozenset({"movingpunch.accuracy"})),
     (
         "tui model",
         frozenset(
-            {f"{_TUI}.model", f"{_TUI}.paths", f"{_TUI}.messages", f"{_TUI}.scenes"}
+            {
+                f"{_TUI}.model",
+                f"{_TUI}.paths",
+                f"{_TUI}.messages",
+                f"{_TUI}.scene_files",
+            }
         ),
     ),
     (
@@ -109,23 +138,6 @@ LAYERS: tuple[tuple[str, frozenset[str]], ...] = (
         frozenset({_TUI, f"{_TUI}.app", f"{_TUI}.__main__", f"{_TUI}.serve"}),
     ),
     ("cli", frozenset({"movingpunch.cli", "movingpunch.__main__"})),
-)
-
-# KNOWN CYCLES: import cycles (strongly connected groups of modules) that exist
-# today and are being removed by the issue-13 rewrites. Do not add to this set:
-# the test checks it exactly, so a fixed cycle must be deleted here.
-KNOWN_CYCLES: frozenset[frozenset[str]] = frozenset(
-    {
-        # solver imports damped lazily (damping > 0) and under TYPE_CHECKING;
-        # damped imports 14 private names from solver.
-        frozenset({"movingpunch.solver", "movingpunch.damped"}),
-        # _run imports the model from _spec; _spec imports SceneResult from
-        # _run under TYPE_CHECKING.
-        frozenset({"movingpunch.scene._spec", "movingpunch.scene._run"}),
-        # _export reads movingpunch.__version__ through `import movingpunch`
-        # (the package imports movingpunch.scene, which imports _export).
-        frozenset({"movingpunch", "movingpunch.scene", "movingpunch.scene._export"}),
-    }
 )
 
 
@@ -231,15 +243,12 @@ def layer_of() -> dict[str, int]:
 
 def upward_imports(graph: dict[str, set[str]]) -> Iterator[str]:
     ranks = layer_of()
-    in_known_cycle = {m: c for c in KNOWN_CYCLES for m in c}
     for module, targets in sorted(graph.items()):
         for target in sorted(targets):
             if module not in ranks or target not in ranks:
                 continue  # test_every_module_has_a_layer reports it
             if ranks[target] <= ranks[module]:
                 continue
-            if target in in_known_cycle.get(module, frozenset()):
-                continue  # reported through KNOWN_CYCLES
             yield (
                 f"{module} ({LAYERS[ranks[module]][0]}) imports {target} "
                 f"({LAYERS[ranks[target]][0]}), a higher layer"
@@ -258,8 +267,10 @@ def test_imports_go_down_the_layers() -> None:
     assert list(upward_imports(graph)) == []
 
 
-def test_import_cycles_are_exactly_the_known_ones() -> None:
-    assert cycles(import_graph()) == set(KNOWN_CYCLES)
+def test_no_import_cycles() -> None:
+    # Within a layer modules may import each other, but never in a circle:
+    # lazy and TYPE_CHECKING imports count too.
+    assert cycles(import_graph()) == set()
 
 
 def test_the_graph_reader_sees_every_kind_of_import(tmp_path: Path) -> None:
@@ -306,6 +317,31 @@ def test_numerical_modules_do_not_import_textual(
     )
     assert "movingpunch.cli" in loaded
     assert sorted(m for m in loaded if m.split(".")[0] == "textual") == []
+
+
+def test_every_exception_class_is_in_the_errors_module() -> None:
+    # One home for the error family: a class deriving from an error (a base
+    # named ...Error) anywhere else fails, and so does a re-export that is not
+    # the same class.
+    import movingpunch.errors as errors
+    import movingpunch.scene as scene
+    import movingpunch.tui.paths as paths
+
+    elsewhere = []
+    for module, path in source_modules().items():
+        if module == "movingpunch.errors" or path.suffix != ".py":
+            continue
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.ClassDef) and any(
+                ast.unparse(base).endswith("Error") for base in node.bases
+            ):
+                elsewhere.append(f"{module}.{node.name}")
+    assert elsewhere == []
+    for name in ("SceneError", "ClusterError", "WorkerError", "MissingExtraError"):
+        assert getattr(scene, name) is getattr(errors, name), name
+        assert name in errors.__all__
+        assert name in scene.__all__
+    assert paths.OutsideFolderError is errors.OutsideFolderError
 
 
 def test_errors_module_does_not_import_core(

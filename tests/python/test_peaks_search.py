@@ -513,11 +513,10 @@ def test_scene_sweeps_carry_the_peak_searchs_warnings(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
     """A warning of the peak search reaches SceneResult.warnings, prefixed with
-    the point, on the serial path and from a worker's group (_solve_group)."""
+    the point, on the serial path and from a worker's group (solve_group)."""
     from dataclasses import replace
 
-    from movingpunch.scene import Scene
-    from movingpunch.scene import _run as scene_run
+    from movingpunch.scene import Scene, _solve
     from movingpunch.solver import Solution
 
     original = Solution.stress_peaks
@@ -555,5 +554,5 @@ def test_scene_sweeps_carry_the_peak_searchs_warnings(
         "points": [(100.0, 0.002)],
         "peaks": True,
     }
-    out = scene_run._solve_group(task)
+    out = _solve.solve_group(task)
     assert out["warnings"] == [["stress peaks: far field not searched"]]

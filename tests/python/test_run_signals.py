@@ -22,7 +22,7 @@ import pytest
 from distributed import LocalCluster
 
 import movingpunch as mp
-from movingpunch.scene import Scene, Sweep, Vary, _run
+from movingpunch.scene import Scene, Sweep, Vary, _plan
 
 # About 20 000 cold solves: minutes of work at any --jobs on two cores.
 LONG_SWEEP = """\
@@ -221,10 +221,10 @@ def test_sigint_stops_a_dask_run(tmp_path: Path) -> None:
 
 BUSY_WORKER = """\
 import time
-from movingpunch.scene import _run
+from movingpunch.scene import _executors
 
 if __name__ == "__main__":
-    pool = _run._WorkerPool()
+    pool = _executors._WorkerPool()
     pool.start(1)
     proc, conn = pool.workers[0]
     # One chunk of 200 damped points: minutes of work without a look at its pipe.
@@ -280,9 +280,9 @@ BASE = {"vstar": 0.2, "kw": 1.0, "radius": 100.0, "load": 0.002, "nu": 0.2}
 )
 def test_chunks_cover_the_sweep_in_solve_order(sweep: Sweep, jobs: int) -> None:
     vary = Vary("vstar", (0.0, 0.1, 0.2, 0.3)) if len(sweep.values) == 50 else None
-    plan = _run._plan_sweep(Scene(params=BASE, vary=vary, sweep=sweep))
-    target = _run._chunk_target(plan, jobs, _run._CHUNK_MIN, _run._CHUNK_MAX)
-    chunks = _run._chunks(plan, target)
+    plan = _plan.plan_sweep(Scene(params=BASE, vary=vary, sweep=sweep))
+    target = _plan.chunk_target(plan, jobs, _plan.CHUNK_MIN, _plan.CHUNK_MAX)
+    chunks = _plan.split_chunks(plan, target)
     # Every point once, in the plan's order (descending lambda in a group).
     assert [k for chunk in chunks for _, keys in chunk for k in keys] == plan.keys
     assert len(chunks) >= min(jobs, len(plan.keys))
@@ -291,34 +291,34 @@ def test_chunks_cover_the_sweep_in_solve_order(sweep: Sweep, jobs: int) -> None:
         for group, keys in chunk:
             assert all(k[:5] == group for k in keys)
         seconds = sum(
-            _run._point_seconds(plan, i == 0)
+            _plan._point_seconds(plan, i == 0)
             for _, keys in chunk
             for i in range(len(keys))
         )
-        assert seconds <= target + _run._point_seconds(plan, True)
-        assert sum(len(keys) for _, keys in chunk) <= _run._CHUNK_POINTS
+        assert seconds <= target + _plan._point_seconds(plan, True)
+        assert sum(len(keys) for _, keys in chunk) <= _plan._CHUNK_POINTS
     # A group that fits in a chunk is in one chunk (one kernel build).
-    cold, warm = _run._point_seconds(plan, True), _run._point_seconds(plan, False)
+    cold, warm = _plan._point_seconds(plan, True), _plan._point_seconds(plan, False)
     for group, members in plan.groups.items():
         if cold + (len(members) - 1) * warm <= target:
             holders = [c for c in chunks if any(g == group for g, _ in c)]
             assert len(holders) == 1, group
     # Never thousands of units: the in-flight bound makes the pool's waits
     # O(jobs) whatever the sweep.
-    assert len(chunks) <= 4 * jobs + _run._sweep_seconds(plan) / _run._CHUNK_MIN
+    assert len(chunks) <= 4 * jobs + _plan._sweep_seconds(plan) / _plan.CHUNK_MIN
 
 
 def test_automatic_jobs_run_small_sweeps_here() -> None:
-    small = _run._plan_sweep(
+    small = _plan.plan_sweep(
         Scene(params=BASE, sweep=Sweep.range("load", 1e-3, 4e-3, 200))
     )
-    cold = _run._plan_sweep(
+    cold = _plan.plan_sweep(
         Scene(params=BASE, sweep=Sweep.range("vstar", 0.0, 0.5, 2000))
     )
-    assert not _run._use_workers(small, 2, None, auto_jobs=True)
-    assert _run._use_workers(small, 2, None, auto_jobs=False)  # asked for
-    assert _run._use_workers(cold, 2, None, auto_jobs=True)
-    assert not _run._use_workers(cold, 1, None, auto_jobs=True)
+    assert not _plan.use_workers(small, 2, None, auto_jobs=True)
+    assert _plan.use_workers(small, 2, None, auto_jobs=False)  # asked for
+    assert _plan.use_workers(cold, 2, None, auto_jobs=True)
+    assert not _plan.use_workers(cold, 1, None, auto_jobs=True)
 
 
 def test_a_group_split_across_workers_gives_the_serial_numbers() -> None:

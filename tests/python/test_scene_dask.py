@@ -10,7 +10,7 @@ import pytest
 from distributed import LocalCluster
 
 import movingpunch as mp
-from movingpunch.scene import ClusterError, Scene, Sweep, _run
+from movingpunch.scene import ClusterError, Scene, Sweep, _executors
 
 
 def _scene() -> Scene:
@@ -56,6 +56,6 @@ def test_dask_sweep_matches_the_local_sweep(processes: bool) -> None:
 def test_unreachable_scheduler_is_a_one_line_error(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
-    monkeypatch.setattr(_run, "DASK_CONNECT_TIMEOUT", 1.0)
+    monkeypatch.setattr(_executors, "DASK_CONNECT_TIMEOUT", 1.0)
     with pytest.raises(ClusterError, match="cannot reach the scheduler"):
         _scene().run(dask="tcp://127.0.0.1:9")

@@ -29,11 +29,14 @@ from movingpunch.scene import (
     Scene,
     SceneError,
     Sweep,
-    _run,
-    _spec,
+    _executors,
+    _model,
+    _toml,
+    _validate,
+    load_scene,
 )
-from movingpunch.scene._spec import tomllib
-from movingpunch.tui import scenes as tui_scenes
+from movingpunch.scene._toml import tomllib
+from movingpunch.tui import scene_files
 
 BASE = {"vstar": 0.2, "kw": 1.0, "radius": 100.0, "load": 0.002}
 VALID = "[params]\nvstar = 0.2\nkw = 1\nradius = 100\nload = 0.002\n"
@@ -104,8 +107,8 @@ def test_special_files_are_refused_promptly(
     path = special_files[kind]
     loaders: list[Callable[[Path], object]] = [
         Scene.load,
-        _spec.load_scene,
-        tui_scenes.load,  # the terminal UI's Open dialog
+        load_scene,
+        scene_files.load,  # the terminal UI's Open dialog
     ]
     for load in loaders:
         exc = _load_within_deadline(functools.partial(load, path))
@@ -133,9 +136,9 @@ def test_cli_refuses_special_files_in_one_line(
 def test_a_file_at_the_size_cap_is_read(tmp_path: Path) -> None:
     path = tmp_path / "padded.toml"
     text = VALID + "[outputs]\ncontact_width = true\n"
-    pad = _spec.MAX_SCENE_BYTES - len(text.encode()) - 3
+    pad = _model.MAX_SCENE_BYTES - len(text.encode()) - 3
     path.write_text(text + "# " + "x" * pad + "\n", encoding="utf-8")
-    assert path.stat().st_size == _spec.MAX_SCENE_BYTES
+    assert path.stat().st_size == _model.MAX_SCENE_BYTES
     assert Scene.load(path).params["vstar"] == 0.2
     with path.open("a") as f:
         f.write("\n")
@@ -194,7 +197,7 @@ def test_nesting_scan_agrees_with_the_parsed_document() -> None:
         except tomllib.TOMLDecodeError:
             continue  # an inline table's string lost its newline: not TOML
         expected = max(_object_depth(v) for v in data.values())
-        assert _spec._nesting_depth(text, 1000) == expected, text
+        assert _toml._nesting_depth(text, 1000) == expected, text
         checked += 1
     assert checked > 200
 
@@ -223,7 +226,7 @@ def test_brackets_in_strings_and_comments_do_not_count(tmp_path: Path) -> None:
 def test_the_scan_is_linear_on_hostile_strings(body: str, tmp_path: Path) -> None:
     path = tmp_path / "strings.toml"
     path.write_text(VALID + "[outputs]\ncontact_width = true\nx = " + body + "\n")
-    assert path.stat().st_size <= _spec.MAX_SCENE_BYTES
+    assert path.stat().st_size <= _model.MAX_SCENE_BYTES
     # About 1 s of parsing; a scan quadratic in the text takes minutes.
     exc = _load_within_deadline(functools.partial(Scene.load, path), 5.0)
     assert isinstance(exc, SceneError)
@@ -231,9 +234,9 @@ def test_the_scan_is_linear_on_hostile_strings(body: str, tmp_path: Path) -> Non
 
 
 def test_nesting_at_the_cap_passes_the_scan() -> None:
-    n = _spec.MAX_NESTING
+    n = _model.MAX_NESTING
     text = "x = " + "[" * n + "]" * n + "\n"
-    assert _spec._nesting_depth(text, n) == n
+    assert _toml._nesting_depth(text, n) == n
     with pytest.raises(SceneError, match=r"^<string>: x: unknown key"):
         Scene.from_toml(text)  # parsed, then refused as a scene
     deeper = "x = " + "[" * (n + 1) + "]" * (n + 1) + "\n"
@@ -294,10 +297,10 @@ class _Counted:
 def test_validating_a_sweep_costs_o1_critical_speeds(
     sweep: dict[str, Any], monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    vcr = _Counted(_spec.critical_speed)
-    vr = _Counted(_spec.rayleigh_speed)
-    monkeypatch.setattr(_spec, "critical_speed", vcr)
-    monkeypatch.setattr(_spec, "rayleigh_speed", vr)
+    vcr = _Counted(_validate.critical_speed)
+    vr = _Counted(_validate.rayleigh_speed)
+    monkeypatch.setattr(_validate, "critical_speed", vcr)
+    monkeypatch.setattr(_validate, "rayleigh_speed", vr)
     params = {k: v for k, v in BASE.items() if k != sweep["param"]}
     body = "\n".join(f"{k} = {v}" for k, v in params.items())
     text = "[params]\n" + body + "\n" + _sweep_toml(**sweep).split(VALID, 1)[1]
@@ -410,18 +413,21 @@ def test_values_that_overflow_downstream_are_refused(text: str, key: str) -> Non
 def test_radius_and_load_limits_are_the_solvers() -> None:
     """The scene's limits are those of the core's validation: the largest
     radius and load solve; the next float up is refused by the solver too."""
-    assert mp.solve(vstar=0.0, kw=1.0, radius=_spec.RADIUS_MAX, load=1e-13).valid
-    assert mp.solve(vstar=0.0, kw=1.0, radius=1e-7, load=_spec.LOAD_MAX).valid
+    assert mp.solve(vstar=0.0, kw=1.0, radius=_model.RADIUS_MAX, load=1e-13).valid
+    assert mp.solve(vstar=0.0, kw=1.0, radius=1e-7, load=_model.LOAD_MAX).valid
     with pytest.raises(mp.InvalidParameterError, match="radius"):
         mp.solve(
-            vstar=0.0, kw=1.0, radius=math.nextafter(_spec.RADIUS_MAX, 2e12), load=1e-13
+            vstar=0.0,
+            kw=1.0,
+            radius=math.nextafter(_model.RADIUS_MAX, 2e12),
+            load=1e-13,
         )
     with pytest.raises(mp.InvalidParameterError, match="load"):
         mp.solve(
-            vstar=0.0, kw=1.0, radius=1e-7, load=math.nextafter(_spec.LOAD_MAX, 2e6)
+            vstar=0.0, kw=1.0, radius=1e-7, load=math.nextafter(_model.LOAD_MAX, 2e6)
         )
     Scene(
-        params={**BASE, "radius": _spec.RADIUS_MAX, "load": 1e-13},
+        params={**BASE, "radius": _model.RADIUS_MAX, "load": 1e-13},
         outputs={"contact_width": OutputSpec("contact_width")},
     )
 
@@ -460,7 +466,7 @@ def mute_listener() -> Iterator[str]:
 def test_a_mute_scheduler_is_a_clear_error_within_the_timeout(
     mute_listener: str, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    monkeypatch.setattr(_run, "DASK_CONNECT_TIMEOUT", 1.5)
+    monkeypatch.setattr(_executors, "DASK_CONNECT_TIMEOUT", 1.5)
     scene = Scene(params=BASE, sweep=Sweep("load", (0.001, 0.002, 0.003)))
     t0 = time.monotonic()
     with pytest.raises(
@@ -487,7 +493,7 @@ def test_dask_without_a_sweep_says_so_and_runs_here(
 def test_a_scheduler_without_workers_is_a_clear_error(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
-    monkeypatch.setattr(_run, "DASK_CONNECT_TIMEOUT", 1.0)
+    monkeypatch.setattr(_executors, "DASK_CONNECT_TIMEOUT", 1.0)
     scene = Scene(params=BASE, sweep=Sweep("load", (0.001, 0.002, 0.003)))
     with LocalCluster(
         n_workers=0,

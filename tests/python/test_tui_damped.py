@@ -14,7 +14,7 @@ from movingpunch.damped import DampedSolution
 from movingpunch.scene import Scene
 from movingpunch.tui import create_app, model
 from movingpunch.tui.model import Cache, Curves, Notice, Params, Request, TabName
-from movingpunch.tui.scenes import SceneState, from_scene, to_scene
+from movingpunch.tui.scene_files import SceneState, from_scene, to_scene
 from movingpunch.tui.widgets import CurvePlot, Gauge, ParamsPanel, StressMap
 from tui_pilot import screen_of, settle, summary_text, sync, type_into
 

@@ -15,15 +15,16 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-import numpy.typing as npt
 
-from movingpunch.outputs import atomic_write, publish, safe_name
-from movingpunch.scene._run import Curve, MissingExtraError, SceneResult
-from movingpunch.scene._spec import SWEEP_QUANTITIES, Scene
+from movingpunch._version import version
+from movingpunch.errors import MissingExtraError
+from movingpunch.outputs import publish, safe_name
+from movingpunch.scene._model import SWEEP_QUANTITIES
+from movingpunch.scene._result import Curve, FloatArray
+from movingpunch.scene._scene import Scene, SceneResult
 
 __all__ = [
     "ascii_plots",
-    "atomic_write",
     "format_summary",
     "read_csv",
     "read_json",
@@ -33,7 +34,6 @@ __all__ = [
     "write_pngs",
 ]
 
-FloatArray = npt.NDArray[np.float64]
 
 _PARAM_LABELS = {
     "vstar": "V*",
@@ -59,12 +59,6 @@ _QUANTITY_LABELS = {
     "centre_top": "σx(0,0)",
     "centre_bottom": "σx(0,-h)",
 }
-
-
-def _version() -> str:
-    import movingpunch
-
-    return str(movingpunch.__version__)
 
 
 # ----------------------------------------------------------------------------
@@ -332,7 +326,7 @@ def _tables(result: SceneResult) -> list[tuple[str, str, Mapping[str, FloatArray
 
 def _metadata(result: SceneResult, output: str, title: str) -> dict[str, str]:
     return {
-        "movingpunch_version": _version(),
+        "movingpunch_version": version(),
         "scene_name": result.scene.name,
         "output": output,
         "title": title,

@@ -13,7 +13,7 @@ from textual.app import App
 
 from movingpunch.tui.model import PAPER_FIG4, TabName
 from movingpunch.tui.paths import WorkingFolder
-from movingpunch.tui.scenes import SceneState
+from movingpunch.tui.scene_files import SceneState
 from movingpunch.tui.screens.main import MainScreen
 
 
@@ -74,10 +74,12 @@ def create_app(
     Raises SceneError if the scene cannot be read, InvalidParameterError if
     ``root`` is not a directory.
     """
-    from movingpunch.tui import scenes
+    from movingpunch.tui import scene_files
 
     state = (
-        scene if isinstance(scene, SceneState) or scene is None else scenes.load(scene)
+        scene
+        if isinstance(scene, SceneState) or scene is None
+        else scene_files.load(scene)
     )
     return MovingPunchApp(
         state,

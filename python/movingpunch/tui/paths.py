@@ -15,11 +15,9 @@ import os
 from dataclasses import dataclass
 from pathlib import Path
 
-from movingpunch.errors import InvalidParameterError
+from movingpunch.errors import InvalidParameterError, OutsideFolderError
 
-
-class OutsideFolderError(InvalidParameterError):
-    """A path leaves the working folder (or is the folder itself)."""
+__all__ = ["OutsideFolderError", "OverwriteNeeded", "WorkingFolder", "write_error"]
 
 
 class OverwriteNeeded(Exception):

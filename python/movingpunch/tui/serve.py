@@ -38,7 +38,7 @@ import aiohttp_jinja2
 from aiohttp import web
 from textual_serve.server import Server, to_int
 
-from movingpunch.errors import MovingPunchError
+from movingpunch.errors import ServeError
 
 TOKEN_BYTES = 24
 """``secrets.token_urlsafe(TOKEN_BYTES)``: 192 random bits per start."""
@@ -50,11 +50,6 @@ SHUTDOWN_SECONDS = 3.0
 """How long open sessions get to end on Ctrl+C / SIGTERM."""
 
 Handler = Callable[[web.Request], Awaitable[web.StreamResponse]]
-
-
-class ServeError(MovingPunchError):
-    """The server cannot start (busy port, unknown host, remote host without
-    ``--allow-remote``): a one-line message for the command line."""
 
 
 def _url_host(host: str) -> str:

@@ -34,8 +34,9 @@ from movingpunch.errors import (
     SupercriticalSpeedError,
     UnphysicalContactError,
 )
-from movingpunch.scene import Scene, atomic_write
-from movingpunch.tui import model, scenes
+from movingpunch.outputs import atomic_write
+from movingpunch.scene import Scene
+from movingpunch.tui import model, scene_files
 from movingpunch.tui.messages import Computed, Progressed
 from movingpunch.tui.model import (
     PARAM_NAMES,
@@ -507,13 +508,13 @@ class MainScreen(Screen[None]):
 
     def action_figure(self, name: str) -> None:
         try:  # the bundled scene, never a file of that name in the cwd
-            scene = scenes.from_scene(Scene.bundled(name))
+            scene = scene_files.from_scene(Scene.bundled(name))
         except (MovingPunchError, OSError) as exc:
             self.notify(_one_line(exc), severity="error")
             return
         self.apply(scene, tab=FIGURE_TABS.get(name))
 
-    def apply(self, scene: scenes.SceneState, tab: TabName | None = None) -> None:
+    def apply(self, scene: scene_files.SceneState, tab: TabName | None = None) -> None:
         """Shows a scene: its parameters, overlay and sweep."""
         self._invalid.clear()
         self.params = scene.params
@@ -530,7 +531,7 @@ class MainScreen(Screen[None]):
 
     def action_open_scene(self) -> None:
         def attempt(path: str, _confirmed: bool) -> str | None:
-            self.apply(scenes.load_in(self.folder, path))
+            self.apply(scene_files.load_in(self.folder, path))
             return None
 
         self.app.push_screen(
@@ -540,14 +541,14 @@ class MainScreen(Screen[None]):
         )
 
     def action_save_scene(self) -> None:
-        state = scenes.SceneState(
+        state = scene_files.SceneState(
             params=self.params, overlay=self.overlay, sweep=self.sweep, name=""
         )
 
         def attempt(path: str, confirmed: bool) -> str | None:
             target = self.folder.target(path, overwrite=confirmed)
             try:
-                scenes.save(state, target)
+                scene_files.save(state, target)
             except OSError as exc:
                 return write_error(path, exc)
             self.notify(f"saved {path}")

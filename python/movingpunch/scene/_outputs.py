@@ -1,0 +1,345 @@
+"""The outputs of a scene: each ``_out_*`` evaluates one kind of output
+(``OUTPUT_KINDS``) on the solutions of the scene's curves, one per vary value,
+timing its work as a stage of the run.
+
+Points with damping > 0 (docs/damped.md) have the contact (-b, a), a drag,
+and stresses at y/h > -1e-3 evaluated at y/h = -1e-3 (``DAMPED_MAX_Y``).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Mapping, Sequence
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from movingpunch.damped import DampedSolution
+from movingpunch.errors import MovingPunchError
+from movingpunch.fields import StressField, derived_stresses
+from movingpunch.scene._model import DAMPED_MAX_Y, STRESS_COMPONENTS
+from movingpunch.scene._result import (
+    AnySolution,
+    Curve,
+    FloatArray,
+    OutputData,
+    column_name,
+)
+from movingpunch.scene._solve import RunState, curve_label, is_damped
+from movingpunch.scene._validate import critical_speed
+from movingpunch.solver import Solution, rayleigh_vstar
+
+__all__ = ["OUTPUTS"]
+
+
+_Solutions = Mapping[float | None, AnySolution]
+
+
+def _curves(
+    run: RunState,
+    stage: str,
+    solutions: _Solutions,
+    x: FloatArray,
+    evaluate: Callable[[AnySolution, Mapping[str, float]], FloatArray],
+) -> tuple[Curve, ...]:
+    scene = run.scene
+    param = scene.vary.param if scene.vary is not None else None
+    out = []
+    for v, s in solutions.items():
+        p = scene.point(v)
+        with run.timed(stage):
+            y = evaluate(s, p)
+        out.append(Curve(curve_label(param, v), v, x, np.asarray(y, dtype=np.float64)))
+    return tuple(out)
+
+
+def _curve_columns(
+    xname: str, yname: str, curves: Sequence[Curve]
+) -> dict[str, FloatArray]:
+    cols: dict[str, FloatArray] = {xname: curves[0].x}
+    for c in curves:
+        cols[column_name(yname, c.label)] = c.y
+    return cols
+
+
+def _x_grid(
+    spec_x: tuple[float, float] | None, default: tuple[float, float], n: int
+) -> FloatArray:
+    lo, hi = spec_x if spec_x is not None else default
+    return np.linspace(lo, hi, n)
+
+
+def _out_contact_width(run: RunState, spec: Any, solutions: _Solutions) -> OutputData:
+    scene = run.scene
+    cols: dict[str, list[float]] = {}
+    if scene.vary is not None:
+        cols[scene.vary.param] = []
+    damped = is_damped(scene)
+    names = ["a", "p0", "indentation", "valid", "error_estimate", "collocation_n"]
+    if damped:  # the contact interval (-b, a) and the drag
+        names[1:1] = ["contact_start", "contact_end", "drag"]
+    for name in names:
+        cols[name] = []
+    for v, s in solutions.items():
+        p = scene.point(v)
+        if scene.vary is not None:
+            cols[scene.vary.param].append(float(v) if v is not None else math.nan)
+        cols["a"].append(s.a)
+        if isinstance(s, DampedSolution):
+            cols["p0"].append(float(s.pressure(0.0)))
+            cols["indentation"].append(math.nan)  # not given by the damped solver
+            cols["contact_start"].append(s.contact_interval[0])
+            cols["contact_end"].append(s.contact_interval[1])
+            # int p x/R dx / P: 1/radius at fixed lambda (shared solutions).
+            cols["drag"].append(s.drag * s.radius / p["radius"])
+        else:
+            cols["p0"].append(s.p0)
+            cols["indentation"].append(s.indentation * p["load"] / s.load)
+            if damped:
+                cols["contact_start"].append(-s.a)
+                cols["contact_end"].append(s.a)
+                cols["drag"].append(0.0)
+        cols["valid"].append(1.0 if s.valid else 0.0)
+        cols["error_estimate"].append(s.error_estimate)
+        cols["collocation_n"].append(float(s.collocation_n))
+    return OutputData(
+        name="contact_width",
+        title="Contact half-width",
+        x_label=scene.vary.param if scene.vary is not None else "",
+        y_label="a/h",
+        columns={k: np.asarray(v, dtype=np.float64) for k, v in cols.items()},
+    )
+
+
+def _out_pressure(run: RunState, spec: Any, solutions: _Solutions) -> OutputData:
+    if is_damped(run.scene):  # 1.25 x the span of every (asymmetric) contact
+        ends = [e for s in solutions.values() for e in _interval(s)]
+        reach = max(abs(e) for e in ends)
+        default = (-1.25 * reach, 1.25 * reach)
+    else:
+        a_max = max(s.a for s in solutions.values())
+        default = (-1.25 * a_max, 1.25 * a_max)
+    x = _x_grid(spec.x, default, spec.resolved_points())
+    curves = _curves(
+        run, "pressure", solutions, x, lambda s, p: np.asarray(s.pressure(x))
+    )
+    return OutputData(
+        "pressure",
+        "Contact pressure",
+        "x/h",
+        "p/(P/h)",
+        _curve_columns("x", "p", curves),
+        curves,
+    )
+
+
+def _interval(s: AnySolution) -> tuple[float, float]:
+    """The contact (-b/h, a/h); (-a/h, a/h) for an undamped solution."""
+    if isinstance(s, DampedSolution):
+        return s.contact_interval
+    return (-s.a, s.a)
+
+
+def _clipped_depths(y: FloatArray) -> tuple[FloatArray, FloatArray, npt.NDArray[Any]]:
+    """For a damped point: (the depths evaluated: y, with DAMPED_MAX_Y < y < 0
+    clipped to DAMPED_MAX_Y; their distinct values below the surface; the
+    index of each depth among them, -1 at the surface y = 0)."""
+    clipped = np.where(y < 0.0, np.minimum(y, DAMPED_MAX_Y), 0.0)
+    below = clipped < 0.0
+    distinct, index = np.unique(clipped[below], return_inverse=True)
+    full = np.full(len(y), -1, dtype=np.intp)
+    full[below] = index
+    return clipped, distinct, full
+
+
+def _depth_stress(s: AnySolution, y: FloatArray) -> FloatArray:
+    """sigma_x(0, y); for a damped point at the clipped depths, and at y = 0
+    the surface value sigma_x(0, 0) (``surface_stress``)."""
+    if not isinstance(s, DampedSolution):
+        return np.asarray(s.depth_stress(y), dtype=np.float64)
+    _, distinct, index = _clipped_depths(y)
+    out = np.empty(len(y))
+    if len(distinct):
+        values = np.asarray(s.depth_stress(distinct), dtype=np.float64)
+        out[index >= 0] = values[index[index >= 0]]
+    if (index < 0).any():
+        out[index < 0] = float(np.asarray(s.surface_stress(0.0)))
+    return out
+
+
+def _stress_field(s: AnySolution, x: FloatArray, y: FloatArray) -> StressField:
+    """The stress field; for a damped point at the clipped depths, and on the
+    surface y = 0 from the surface values (sigma_x(x, 0), sigma_y = -p,
+    tau_xy = 0: the punch is frictionless)."""
+    if not isinstance(s, DampedSolution):
+        return s.stress_field(x, y)
+    clipped, distinct, index = _clipped_depths(y)
+    comps = {name: np.empty((len(y), len(x))) for name in ("sx", "sy", "txy")}
+    if len(distinct):
+        f = s.stress_field(x, distinct)
+        rows = index >= 0
+        comps["sx"][rows] = f.sigma_x[index[rows]]
+        comps["sy"][rows] = f.sigma_y[index[rows]]
+        comps["txy"][rows] = f.tau_xy[index[rows]]
+    top = index < 0
+    if top.any():
+        comps["sx"][top] = np.asarray(s.surface_stress(x), dtype=np.float64)
+        comps["sy"][top] = -np.asarray(s.pressure(x), dtype=np.float64)
+        comps["txy"][top] = 0.0
+    sz, vm, ms = derived_stresses(comps["sx"], comps["sy"], comps["txy"], s.nu)
+    return StressField(
+        x=np.asarray(x, dtype=np.float64),
+        y=clipped,
+        sigma_x=comps["sx"],
+        sigma_y=comps["sy"],
+        tau_xy=comps["txy"],
+        sigma_z=sz,
+        von_mises=vm,
+        max_shear=ms,
+    )
+
+
+def _undamped(s: AnySolution, output: str) -> Solution:
+    if isinstance(s, DampedSolution):  # refused by the scene's validation
+        raise MovingPunchError(f"{output} is not available with damping > 0")
+    return s
+
+
+def _out_surface_stress(run: RunState, spec: Any, solutions: _Solutions) -> OutputData:
+    x = _x_grid(spec.x, (-3.0, 3.0), spec.resolved_points())
+    curves = _curves(
+        run,
+        "surface_stress",
+        solutions,
+        x,
+        lambda s, p: np.asarray(s.surface_stress(x), dtype=np.float64),
+    )
+    return OutputData(
+        "surface_stress",
+        "In-plane stress on the top surface",
+        "x/h",
+        "sigma_x(x, 0)/(P/h)",
+        _curve_columns("x", "sigma_x", curves),
+        curves,
+    )
+
+
+def _out_depth_stress(run: RunState, spec: Any, solutions: _Solutions) -> OutputData:
+    lo, hi = spec.resolved_y()
+    y = np.linspace(lo, hi, spec.resolved_points())
+    curves = _curves(
+        run, "depth_stress", solutions, y, lambda s, p: _depth_stress(s, y)
+    )
+    return OutputData(
+        "depth_stress",
+        "In-plane stress under the centre",
+        "y/h",
+        "sigma_x(0, y)/(P/h)",
+        _curve_columns("y", "sigma_x", curves),
+        curves,
+    )
+
+
+def _out_displacement(run: RunState, spec: Any, solutions: _Solutions) -> OutputData:
+    x = _x_grid(spec.x, (-3.0, 3.0), spec.resolved_points())
+    depth = spec.resolved_depth()
+    curves = _curves(
+        run,
+        "displacement",
+        solutions,
+        x,
+        # v = load * V(x; lambda): rescale a solution shared through lambda.
+        lambda s, p: (
+            _undamped(s, "displacement").displacement(x, depth) * (p["load"] / s.load)
+        ),
+    )
+    return OutputData(
+        "displacement",
+        f"Vertical displacement at y/h = {depth:g}",
+        "x/h",
+        "v/h",
+        _curve_columns("x", "v", curves),
+        curves,
+    )
+
+
+def _out_stress_field(run: RunState, spec: Any, solutions: _Solutions) -> OutputData:
+    scene = run.scene
+    x = _x_grid(spec.x, (-2.0, 2.0), spec.resolved_points())
+    lo, hi = spec.resolved_y()
+    y = np.linspace(lo, hi, spec.resolved_depth_points())
+    param = scene.vary.param if scene.vary is not None else None
+    fields_: list[tuple[str, StressField]] = []
+    cols: dict[str, list[FloatArray]] = {}
+    for v, s in solutions.items():
+        with run.timed("stress_field"):
+            f = _stress_field(s, x, y)
+        label = curve_label(param, v)
+        fields_.append((label, f))
+        gx, gy = np.meshgrid(f.x, f.y)
+        if param is not None:
+            cols.setdefault(param, []).append(
+                np.full(gx.size, float(v) if v is not None else math.nan)
+            )
+        cols.setdefault("x", []).append(gx.ravel())
+        cols.setdefault("y", []).append(gy.ravel())
+        for comp in STRESS_COMPONENTS:
+            cols.setdefault(comp, []).append(np.asarray(getattr(f, comp)).ravel())
+    return OutputData(
+        "stress_field",
+        "Stresses in the layer",
+        "x/h",
+        "y/h",
+        {k: np.concatenate(v) for k, v in cols.items()},
+        (),
+        tuple(fields_),
+    )
+
+
+def _out_critical_speed(run: RunState, spec: Any, solutions: _Solutions) -> OutputData:
+    scene = run.scene
+    combos: list[tuple[float, float]] = []
+    for v in scene.curve_values():
+        p = scene.point(v)
+        if (p["kw"], p["nu"]) not in combos:
+            combos.append((p["kw"], p["nu"]))
+    nus = list(dict.fromkeys(nu for _, nu in combos))
+    curves: list[Curve] = []
+    if spec.kw is not None:
+        grid = np.geomspace(spec.kw[0], spec.kw[1], spec.resolved_points())
+        combos = [(float(k), nu) for nu in nus for k in grid]
+    rows = []
+    for kw, nu in combos:
+        with run.timed("critical_speed"):
+            vcr, alpha = critical_speed(kw, nu)
+        rows.append((kw, nu, vcr, alpha, rayleigh_vstar(nu)))
+    table = np.asarray(rows, dtype=np.float64).reshape(-1, 5)
+    if spec.kw is not None:
+        n = spec.resolved_points()
+        for i, nu in enumerate(nus):
+            block = table[i * n : (i + 1) * n]
+            label = curve_label("nu", nu) if len(nus) > 1 else ""
+            curves.append(
+                Curve(label, nu if len(nus) > 1 else None, block[:, 0], block[:, 2])
+            )
+    names = ("kw", "nu", "critical_vstar", "critical_wavenumber", "rayleigh_vstar")
+    return OutputData(
+        "critical_speed",
+        "Critical speed",
+        "kw = k_w h/mu",
+        "V*_cr",
+        {n: table[:, i] for i, n in enumerate(names)},
+        tuple(curves),
+    )
+
+
+OUTPUTS: dict[str, Callable[[RunState, Any, _Solutions], OutputData]] = {
+    "contact_width": _out_contact_width,
+    "pressure": _out_pressure,
+    "surface_stress": _out_surface_stress,
+    "depth_stress": _out_depth_stress,
+    "stress_field": _out_stress_field,
+    "displacement": _out_displacement,
+    "critical_speed": _out_critical_speed,
+}

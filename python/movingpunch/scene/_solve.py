@@ -1,0 +1,197 @@
+"""Solving the points of a scene: the key that identifies a solve, one solve,
+the numbers a sweep tabulates of a solved point, a group or chunk of sweep
+points (what a worker process or a Dask worker runs), and ``RunState``, the state
+of one run (solutions by key, their warnings, the stages, the progress).
+
+Sweep points that share (vstar, kw, nu, tol, damping) share the k1 kernel
+(the core caches it per process); and because a/h, p/(P/h) and sigma/(P/h)
+depend on radius and load only through lambda = radius * load, points with
+equal (vstar, kw, nu, tol, damping, lambda) share one key and are solved once.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import math
+import time
+from collections.abc import Callable, Iterator, Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+from movingpunch.damped import DampedSolution
+from movingpunch.errors import MovingPunchError
+from movingpunch.scene._model import PEAK_QUANTITIES, SceneData
+from movingpunch.scene._result import AnySolution, Stages
+from movingpunch.solver import result_warnings, solve
+
+__all__ = ["is_damped"]
+
+# vstar, kw, nu, tol, damping, lambda
+Key = tuple[float, float, float, float, float, float]
+
+
+def _damping(p: Mapping[str, float]) -> float:
+    return p.get("damping", 0.0)
+
+
+def point_key(p: Mapping[str, float], tol: float) -> Key:
+    return (p["vstar"], p["kw"], p["nu"], tol, _damping(p), p["radius"] * p["load"])
+
+
+def is_damped(scene: SceneData) -> bool:
+    """Whether any point the scene computes has damping > 0."""
+    values = [scene.params.get("damping", 0.0)]
+    for part in (scene.vary, scene.sweep):
+        if part is not None and part.param == "damping":
+            values += list(part.values)
+    return any(v > 0.0 for v in values)
+
+
+def curve_label(param: str | None, value: float | None) -> str:
+    if param is None or value is None:
+        return ""
+    return f"{param}={'inf' if math.isinf(value) else format(value, '.6g')}"
+
+
+def solve_point(p: Mapping[str, float], tol: float, stages: Stages) -> AnySolution:
+    s = solve(
+        vstar=p["vstar"],
+        kw=p["kw"],
+        radius=p["radius"],
+        load=p["load"],
+        nu=p["nu"],
+        tol=tol,
+        allow_unphysical=True,
+        damping=_damping(p),
+    )
+    stages.add_solution(s)
+    return s
+
+
+def point_quantities(
+    s: AnySolution, want_peaks: bool, stages: Stages, warnings: list[str]
+) -> dict[str, float]:
+    """The sweep's numbers of one solved point; the stress peak search's
+    warnings (``StressPeaks.warnings``) are appended to ``warnings``."""
+    q: dict[str, float] = {
+        "a": s.a,
+        "min_pressure": s.min_pressure,
+        "critical_vstar": s.critical_vstar,
+        "phi1": s.phi1,
+        "valid": 1.0 if s.valid else 0.0,
+        "load": s.load,
+        "radius": s.radius,
+    }
+    if isinstance(s, DampedSolution):
+        # Validation refuses the indentation for damped points.
+        q.update(
+            p0=float(s.pressure(0.0)),
+            indentation=math.nan,
+            drag=s.drag,
+            contact_start=s.contact_interval[0],
+            contact_end=s.contact_interval[1],
+        )
+    else:
+        q.update(
+            p0=s.p0,
+            indentation=s.indentation,
+            drag=0.0,
+            contact_start=-s.a,
+            contact_end=s.a,
+        )
+    if want_peaks:
+        t0 = time.perf_counter()
+        peaks = s.stress_peaks()
+        stages.add("stress_peaks", time.perf_counter() - t0)
+        warnings.extend(f"stress peaks: {w}" for w in peaks.warnings)
+        for name in PEAK_QUANTITIES:
+            q[name] = float(getattr(peaks, name))
+    return q
+
+
+def _point_text(p: Mapping[str, float]) -> str:
+    """The parameters of a solved point, for its warnings."""
+    names = ["vstar", "kw", "radius", "load", "nu"]
+    if _damping(p) > 0.0:
+        names.append("damping")
+    return ", ".join(f"{n}={p[n]:.6g}" for n in names)
+
+
+def solve_group(task: Mapping[str, Any]) -> dict[str, Any]:
+    """Solves one group of sweep points sharing (vstar, kw, nu, tol, damping), in
+    descending lambda (the first solve builds the widest kernel; the rest
+    reuse it). Runs in a worker process or on a Dask worker."""
+    stages = Stages()
+    results: list[dict[str, float] | str] = []
+    warnings: list[list[str]] = []
+    for radius, load in task["points"]:
+        p = {
+            "vstar": task["vstar"],
+            "kw": task["kw"],
+            "nu": task["nu"],
+            "damping": task["damping"],
+            "radius": radius,
+            "load": load,
+        }
+        try:
+            s = solve_point(p, task["tol"], stages)
+            found = list(result_warnings(s))
+            results.append(point_quantities(s, task["peaks"], stages, found))
+            warnings.append(found)
+        except MovingPunchError as exc:
+            results.append(str(exc))
+            warnings.append([])
+    return {"results": results, "stages": stages.records(), "warnings": warnings}
+
+
+def solve_chunk(tasks: Sequence[Mapping[str, Any]]) -> list[dict[str, Any]]:
+    """Solves the groups of a chunk (in a worker process or on Dask)."""
+    return [solve_group(task) for task in tasks]
+
+
+# ----------------------------------------------------------------------------
+# The state of a run
+# ----------------------------------------------------------------------------
+
+
+@dataclass
+class RunState:
+    """The state of one run: its solutions by key, their warnings, its
+    stages and its progress (``done`` of ``total`` points)."""
+
+    scene: SceneData
+    stages: Stages = field(default_factory=Stages)
+    memo: dict[Key, AnySolution] = field(default_factory=dict)
+    warnings: dict[Key, list[str]] = field(default_factory=dict)
+    done: int = 0
+    total: int = 0
+    progress: Callable[[int, int], None] | None = None
+
+    def tick(self, n: int = 1) -> None:
+        self.done += n
+        if self.progress is not None:
+            self.progress(self.done, self.total)
+
+    def solution(self, p: Mapping[str, float]) -> AnySolution:
+        key = point_key(p, self.scene.tol)
+        if key not in self.memo:
+            self.memo[key] = solve_point(p, self.scene.tol, self.stages)
+            self.note_warnings(key, p, result_warnings(self.memo[key]))
+            self.tick()
+        return self.memo[key]
+
+    def note_warnings(
+        self, key: Key, p: Mapping[str, float], found: Sequence[str]
+    ) -> None:
+        """Records the warnings of a solved point (its solution's and its
+        stress peaks'), each prefixed with the point's parameters."""
+        if found:
+            self.warnings.setdefault(key, []).extend(
+                f"{_point_text(p)}: {w}" for w in found
+            )
+
+    @contextlib.contextmanager
+    def timed(self, name: str) -> Iterator[None]:
+        t0 = time.perf_counter()
+        yield
+        self.stages.add(name, time.perf_counter() - t0)

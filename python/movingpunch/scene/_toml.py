@@ -1,0 +1,399 @@
+"""A scene's TOML form: reading a scene file (safely: only a regular file of
+bounded size and nesting), parsing its tables into a scene's fields, and
+writing a scene back as TOML text that reads back equal.
+
+A scene file is read with the standard library's ``tomllib`` (``tomli`` on
+Python 3.10) and written by hand here (no writer dependency).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import re
+import stat
+import sys
+from collections.abc import Callable, Mapping, Sequence
+from pathlib import Path
+from typing import Any
+
+from movingpunch.errors import SceneError
+from movingpunch.scene._model import (
+    DEFAULT_NU,
+    DEFAULT_TOL,
+    MAX_NESTING,
+    MAX_SCENE_BYTES,
+    MAX_SWEEP,
+    MAX_VARY,
+    OUTPUT_KINDS,
+    PARAMS,
+    SWEEP_QUANTITIES,
+    OutputSpec,
+    SceneData,
+    Sweep,
+    Vary,
+    allowed_text,
+    output_items,
+)
+from movingpunch.scene._validate import (
+    Checker,
+    parse_output,
+    range_bounds,
+    show,
+    values_list,
+)
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover - Python 3.10 only
+    import tomli as tomllib  # type: ignore[import-not-found, unused-ignore]
+
+__all__ = ["parse_toml", "read_scene_file", "to_toml", "tomllib"]
+
+_TOP_KEYS = ("name", "description", "params", "outputs", "vary", "sweep", "accuracy")
+
+
+# ----------------------------------------------------------------------------
+# Reading a scene file
+# ----------------------------------------------------------------------------
+
+_FILE_KINDS: tuple[tuple[Callable[[int], bool], str], ...] = (
+    (stat.S_ISDIR, "a directory"),
+    (stat.S_ISFIFO, "a FIFO (named pipe)"),
+    (stat.S_ISCHR, "a character device"),
+    (stat.S_ISBLK, "a block device"),
+    (stat.S_ISSOCK, "a socket"),
+)
+
+
+def _file_kind(mode: int) -> str:
+    for test, name in _FILE_KINDS:
+        if test(mode):
+            return name
+    return "a special file"
+
+
+def read_scene_file(path: Path, source: str) -> str:
+    """The text of a scene file: a regular file (checked before it is opened,
+    and again on the open descriptor) of at most MAX_SCENE_BYTES, UTF-8. It
+    is opened non-blocking, so that nothing here waits for a FIFO's writer;
+    at most MAX_SCENE_BYTES + 1 bytes are read."""
+    allowed = f"a regular file of at most {MAX_SCENE_BYTES >> 20} MiB"
+
+    def refuse(problem: str, what: str = allowed) -> SceneError:
+        return SceneError(source, "(file)", problem, what)
+
+    def check(st: os.stat_result) -> None:
+        if not stat.S_ISREG(st.st_mode):
+            raise refuse(f"cannot read {_file_kind(st.st_mode)}")
+        if st.st_size > MAX_SCENE_BYTES:
+            raise refuse(f"too large: {st.st_size} bytes")
+
+    flags = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_BINARY", 0)
+    try:
+        check(os.stat(path))
+        fd = os.open(path, flags)
+    except OSError as exc:
+        raise refuse(f"cannot read: {exc.strerror or exc}", "a readable file") from None
+    chunks: list[bytes] = []
+    size = 0
+    try:
+        check(os.fstat(fd))  # the file opened is the one checked
+        while size <= MAX_SCENE_BYTES:
+            chunk = os.read(fd, MAX_SCENE_BYTES + 1 - size)
+            if not chunk:
+                break
+            chunks.append(chunk)
+            size += len(chunk)
+    except OSError as exc:
+        raise refuse(f"cannot read: {exc.strerror or exc}", "a readable file") from None
+    finally:
+        os.close(fd)
+    if size > MAX_SCENE_BYTES:  # it grew while it was read
+        raise refuse(f"too large: more than {MAX_SCENE_BYTES} bytes")
+    try:
+        return b"".join(chunks).decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise SceneError(
+            source,
+            "(file)",
+            f"not valid TOML: not UTF-8 text (byte {exc.start})",
+            "a UTF-8 TOML document",
+        ) from None
+
+
+# Where the bracket depth of TOML text can change, and where strings and
+# comments (inside which brackets do not count) begin.
+_TOML_TOKEN = re.compile(r"\"\"\"|'''|[\"'#\[\]{}]")
+
+
+# The body of each kind of TOML string, up to (not including) what ends it:
+# "unrolled" patterns (no nested repetition of alternatives), which the
+# regular-expression engine runs in time linear in the text.
+_STRING_BODY = {
+    '"': re.compile(r'[^"\\\n]*(?:\\.[^"\\\n]*)*'),
+    "'": re.compile(r"[^'\n]*"),
+    '"""': re.compile(r'[^"\\]*(?:(?:\\.|"(?!""))[^"\\]*)*', re.DOTALL),
+    "'''": re.compile(r"[^']*(?:'(?!'')[^']*)*"),
+}
+
+
+def _closing(text: str, start: int, quote: str) -> int:
+    """The index just past the string whose body starts at ``start``: past
+    its closing ``quote`` (escaped quotes are skipped in basic strings; a
+    multi-line string may end in up to two more quotes), or past the newline
+    that ends an unterminated single-line string (the parser reports it)."""
+    m = _STRING_BODY[quote].match(text, start)
+    assert m is not None  # each pattern matches the empty string
+    end = m.end()
+    if len(quote) == 1:
+        return end + 1  # past the quote, the newline, or a trailing backslash
+    end += len(quote)
+    extra = 0
+    while extra < 2 and text.startswith(quote[0], end + extra):
+        extra += 1
+    return min(end + extra, len(text))
+
+
+def _nesting_depth(text: str, limit: int) -> int:
+    """The deepest nesting of arrays and inline tables (a table header counts
+    1 or 2); brackets in strings and comments do not count. Stops as soon as
+    the depth exceeds ``limit``. Linear in the text; never recurses."""
+    depth = deepest = 0
+    i = 0
+    while True:
+        m = _TOML_TOKEN.search(text, i)
+        if m is None:
+            return deepest
+        tok, i = m.group(), m.end()
+        if tok in "[{":
+            depth += 1
+            if depth > deepest:
+                deepest = depth
+                if deepest > limit:
+                    return deepest
+        elif tok in "]}":
+            depth = max(depth - 1, 0)
+        elif tok == "#":
+            nl = text.find("\n", i)
+            i = len(text) if nl == -1 else nl + 1
+        else:
+            i = _closing(text, i, tok)
+
+
+# ----------------------------------------------------------------------------
+# Validation of plain values
+# ----------------------------------------------------------------------------
+
+
+def parse_toml(text: str, source: str) -> dict[str, Any]:
+    """The fields of the scene in the TOML ``text`` (``source`` names it in
+    errors), each value checked; the scene built from them is validated as a
+    whole by ``Scene``."""
+    if not isinstance(text, str):
+        raise SceneError(source, "(file)", "must be text", "a TOML document")
+    if not text.strip():
+        raise SceneError(
+            source,
+            "params",
+            "missing: the file is empty",
+            "a TOML document with [params] and [outputs] or [sweep]",
+        )
+    nesting = f"arrays and inline tables nested at most {MAX_NESTING} deep"
+    if _nesting_depth(text, MAX_NESTING) > MAX_NESTING:
+        raise SceneError(
+            source, "(file)", f"nested more than {MAX_NESTING} deep", nesting
+        )
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise SceneError(
+            source, "(file)", f"not valid TOML: {exc}", "a TOML document"
+        ) from None
+    except RecursionError:  # a nesting the scan above did not see
+        raise SceneError(source, "(file)", "nested too deeply", nesting) from None
+    return _from_mapping(data, source)
+
+
+def _from_mapping(data: Mapping[str, Any], source: str) -> dict[str, Any]:
+    c = Checker(source)
+    c.table("", data, _TOP_KEYS)
+    name = c.string("name", data["name"]) if "name" in data else ""
+    description = (
+        c.string("description", data["description"]) if "description" in data else ""
+    )
+
+    vary = _parse_vary(c, data["vary"]) if "vary" in data else None
+    sweep = _parse_sweep(c, data["sweep"]) if "sweep" in data else None
+    if vary is not None and sweep is not None and vary.param == sweep.param:
+        raise c.fail(
+            "sweep.param",
+            f"{sweep.param!r} is already the vary parameter",
+            "a parameter other than vary.param",
+        )
+
+    if "params" not in data:
+        raise c.fail("params", "missing", "a table [params] with " + ", ".join(PARAMS))
+    raw_params = c.table("params", data["params"], PARAMS)
+    params: dict[str, float] = {}
+    for name_ in PARAMS:
+        key = f"params.{name_}"
+        if name_ in raw_params:
+            params[name_] = c.param(key, name_, raw_params[name_])
+        elif name_ == "nu":
+            params[name_] = DEFAULT_NU
+        elif vary is not None and vary.param == name_:
+            params[name_] = vary.values[0]
+        elif sweep is not None and sweep.param == name_:
+            params[name_] = sweep.values[0]
+        elif name_ != "damping":  # damping: optional, 0
+            raise c.fail(key, "missing", allowed_text(name_), name_)
+
+    tol = DEFAULT_TOL
+    if "accuracy" in data:
+        acc = c.table("accuracy", data["accuracy"], ("tol",))
+        if "tol" in acc:
+            tol = c.tol("accuracy.tol", acc["tol"])
+
+    outputs: dict[str, OutputSpec] = {}
+    if "outputs" in data:
+        raw_outputs = c.table("outputs", data["outputs"], OUTPUT_KINDS)
+        for kind, spec in raw_outputs.items():
+            parsed = parse_output(c, kind, spec)
+            if parsed is not None:
+                outputs[kind] = parsed
+
+    return {
+        "params": params,
+        "outputs": outputs,
+        "vary": vary,
+        "sweep": sweep,
+        "tol": tol,
+        "name": name,
+        "description": description,
+    }
+
+
+def _parse_vary(c: Checker, raw: object) -> Vary:
+    t = c.table("vary", raw, ("param", "values"))
+    if "param" not in t:
+        raise c.fail("vary.param", "missing", ", ".join(PARAMS))
+    param = c.string("vary.param", t["param"], PARAMS)
+    if "values" not in t:
+        raise c.fail("vary.values", "missing", allowed_text(param), param)
+    return Vary(param, values_list(c, "vary.values", param, t["values"], MAX_VARY))
+
+
+def _parse_sweep(c: Checker, raw: object) -> Sweep:
+    keys = ("param", "values", "start", "stop", "points", "spacing", "quantities")
+    t = c.table("sweep", raw, keys)
+    if "param" not in t:
+        raise c.fail("sweep.param", "missing", ", ".join(PARAMS))
+    param = c.string("sweep.param", t["param"], PARAMS)
+    quantities: tuple[str, ...] = ("a", "p0")
+    if "quantities" in t:
+        q = t["quantities"]
+        if isinstance(q, str) or not isinstance(q, Sequence) or not q:
+            raise c.fail(
+                "sweep.quantities",
+                f"must be a non-empty list, got {show(q)}",
+                ", ".join(SWEEP_QUANTITIES),
+            )
+        quantities = tuple(
+            c.string(f"sweep.quantities[{i}]", v, tuple(SWEEP_QUANTITIES))
+            for i, v in enumerate(q)
+        )
+        if len(set(quantities)) != len(quantities):
+            raise c.fail("sweep.quantities", "quantities repeat", "distinct names")
+    range_keys = [k for k in ("start", "stop", "points", "spacing") if k in t]
+    if "values" in t:
+        if range_keys:
+            raise c.fail(
+                f"sweep.{range_keys[0]}",
+                "cannot be combined with sweep.values",
+                "either values = [...] or start, stop, points (, spacing)",
+            )
+        values = values_list(c, "sweep.values", param, t["values"], MAX_SWEEP)
+        return Sweep(param, values, quantities)
+    for k in ("start", "stop", "points"):
+        if k not in t:
+            raise c.fail(
+                f"sweep.{k}", "missing", "either values = [...] or start, stop, points"
+            )
+    start, stop, points, spacing = range_bounds(
+        c, param, t["start"], t["stop"], t["points"], t.get("spacing", "linear")
+    )
+    return Sweep.range(
+        param, start, stop, points, spacing=spacing, quantities=quantities
+    )
+
+
+# ----------------------------------------------------------------------------
+# TOML writing
+# ----------------------------------------------------------------------------
+
+
+def _toml_value(value: object) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, float):
+        if math.isnan(value):
+            return "nan"
+        if math.isinf(value):
+            return "inf" if value > 0 else "-inf"
+        text = repr(value)
+        return text if any(ch in text for ch in ".en") else text + ".0"
+    if isinstance(value, str):
+        return json.dumps(value, ensure_ascii=False)
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(_toml_value(v) for v in value) + "]"
+    raise TypeError(f"cannot write {type(value).__name__} as TOML")
+
+
+def to_toml(scene: SceneData) -> str:
+    """``scene`` as TOML text that ``Scene.from_toml`` reads back equal."""
+    lines: list[str] = []
+    if scene.name:
+        lines.append(f"name = {_toml_value(scene.name)}")
+    if scene.description:
+        lines.append(f"description = {_toml_value(scene.description)}")
+    if lines:
+        lines.append("")
+    lines.append("[params]")
+    for name in PARAMS:
+        if name in scene.params:
+            lines.append(f"{name} = {_toml_value(scene.params[name])}")
+    lines += ["", "[accuracy]", f"tol = {_toml_value(scene.tol)}"]
+    if scene.outputs:
+        lines += ["", "[outputs]"]
+        for kind, spec in scene.outputs.items():
+            items = output_items(spec)
+            if items:
+                body = ", ".join(f"{k} = {_toml_value(v)}" for k, v in items)
+                lines.append(f"{kind} = {{ {body} }}")
+            else:
+                lines.append(f"{kind} = true")
+    if scene.vary is not None:
+        lines += [
+            "",
+            "[vary]",
+            f"param = {_toml_value(scene.vary.param)}",
+            f"values = {_toml_value(list(scene.vary.values))}",
+        ]
+    if scene.sweep is not None:
+        s = scene.sweep
+        lines += ["", "[sweep]", f"param = {_toml_value(s.param)}"]
+        if s.is_range:
+            lines += [
+                f"start = {_toml_value(s.start)}",
+                f"stop = {_toml_value(s.stop)}",
+                f"points = {_toml_value(s.points)}",
+                f"spacing = {_toml_value(s.spacing)}",
+            ]
+        else:
+            lines.append(f"values = {_toml_value(list(s.values))}")
+        lines.append(f"quantities = {_toml_value(list(s.quantities))}")
+    return "\n".join(lines) + "\n"

@@ -1,0 +1,503 @@
+"""Validation of a scene: of each raw (TOML or Python) value, naming the key
+at fault, and of the scene as a whole (also a scene built in Python): ranges,
+limits, and every speed below the critical speed (the Rayleigh speed with
+damping). Every problem is one ``SceneError`` line:
+``FILE: key: problem (allowed: ...)``.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+import numbers
+from collections.abc import Callable, Iterable, Mapping, Sequence
+from typing import Any
+
+import numpy as np
+
+from movingpunch.errors import SceneError
+from movingpunch.params import PRESETS, SPECS, classify
+from movingpunch.scene._model import (
+    DAMPED_MAX_Y,
+    DAMPED_UNAVAILABLE,
+    DEFAULT_NU,
+    MAX_GRID,
+    MAX_POINTS,
+    MAX_SWEEP,
+    MAX_VARY,
+    OUTPUT_KEYS,
+    OUTPUT_KINDS,
+    PARAMS,
+    STRESS_COMPONENTS,
+    SWEEP_QUANTITIES,
+    OutputSpec,
+    SceneData,
+    Sweep,
+    Vary,
+    allowed_text,
+    output_items,
+    sweep_grid,
+)
+
+__all__ = ["Checker", "critical_speed", "rayleigh_speed", "validate"]
+
+
+@functools.lru_cache(maxsize=4096)
+def critical_speed(kw: float, nu: float) -> tuple[float, float]:
+    """(V*_cr, alpha h at the minimum) for (kw, nu), computed once per process."""
+    from movingpunch import _core
+
+    return _core.critical_speed(kw, nu)
+
+
+@functools.lru_cache(maxsize=64)
+def rayleigh_speed(nu: float) -> float:
+    """V*_R(nu), computed once per process."""
+    from movingpunch import _core
+
+    return float(_core.rayleigh_vstar(nu))
+
+
+class Checker:
+    """Validates raw (TOML or Python) values; errors name ``source`` and key."""
+
+    def __init__(self, source: str) -> None:
+        self.source = source
+
+    def fail(
+        self, key: str, problem: str, allowed: str = "", parameter: str | None = None
+    ) -> SceneError:
+        return SceneError(self.source, key, problem, allowed, parameter)
+
+    def table(
+        self, key: str, value: object, allowed_keys: Iterable[str]
+    ) -> Mapping[str, Any]:
+        allowed = tuple(allowed_keys)
+        names = ", ".join(allowed) if allowed else "no keys"
+        if not isinstance(value, Mapping):
+            raise self.fail(key, f"must be a table, got {show(value)}", names)
+        for k in value:
+            if k not in allowed:
+                where = f"{key}.{k}" if key else str(k)
+                raise self.fail(where, "unknown key", names)
+        return value
+
+    def number(self, key: str, value: object, allowed: str) -> float:
+        if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
+            raise self.fail(key, f"must be a number, got {show(value)}", allowed)
+        try:
+            return float(value)
+        except OverflowError:
+            raise self.fail(key, "is too large for a float", allowed) from None
+
+    def tol(self, key: str, value: object) -> float:
+        """A tolerance: a number in [1e-14, 1e-2] or a preset name."""
+        if isinstance(value, str):
+            preset = PRESETS.get(value.strip().lower())
+            if preset is None:
+                raise self.fail(
+                    key, f"unknown preset {value!r}", SPECS["tol"].text, "tol"
+                )
+            return preset
+        return self.param(key, "tol", value)
+
+    def param(self, key: str, name: str, value: object) -> float:
+        """``value`` checked against the table of parameters (SPECS)."""
+        allowed = SPECS[name].text if name == "tol" else allowed_text(name)
+        if name == "kw" and isinstance(value, str):
+            if value.strip().lower() in ("inf", "+inf", "infinity"):
+                return math.inf
+            raise self.fail(
+                key, f"must be a number or 'inf', got {value!r}", allowed, name
+            )
+        x, problem = classify(name, value)
+        if problem == "type":
+            raise self.fail(key, f"must be a number, got {show(value)}", allowed, name)
+        if problem == "overflow":
+            raise self.fail(key, "is too large for a float", allowed, name)
+        if problem:
+            raise self.fail(key, f"out of range: {show(x)}", allowed, name)
+        return x
+
+    def integer(self, key: str, value: object, lo: int, hi: int) -> int:
+        allowed = f"an integer {lo} to {hi}"
+        if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+            raise self.fail(key, f"must be an integer, got {show(value)}", allowed)
+        if not lo <= int(value) <= hi:
+            raise self.fail(key, f"out of range: {value}", allowed)
+        return int(value)
+
+    def string(self, key: str, value: object, choices: Sequence[str] = ()) -> str:
+        allowed = ", ".join(choices) if choices else "a string"
+        if not isinstance(value, str):
+            raise self.fail(key, f"must be a string, got {show(value)}", allowed)
+        if choices and value not in choices:
+            raise self.fail(key, f"unknown value {value!r}", allowed)
+        return value
+
+    def pair(
+        self,
+        key: str,
+        value: object,
+        allowed: str,
+        ok: Callable[[float], bool] = math.isfinite,
+    ) -> tuple[float, float]:
+        if isinstance(value, (str, bytes)) or not isinstance(value, Sequence):
+            raise self.fail(
+                key, f"must be a list [low, high], got {show(value)}", allowed
+            )
+        if len(value) != 2:
+            raise self.fail(key, f"must have 2 numbers, got {len(value)}", allowed)
+        lo = self.number(f"{key}[0]", value[0], allowed)
+        hi = self.number(f"{key}[1]", value[1], allowed)
+        if not (ok(lo) and ok(hi)):
+            raise self.fail(key, f"out of range: [{show(lo)}, {show(hi)}]", allowed)
+        if not lo < hi:
+            raise self.fail(key, "low must be below high", allowed)
+        if not math.isfinite(hi - lo):
+            raise self.fail(key, "the span high - low overflows", allowed)
+        return lo, hi
+
+
+def show(value: object) -> str:
+    if isinstance(value, float):
+        return repr(value)
+    if isinstance(value, str):
+        return repr(value)
+    if isinstance(value, Mapping):
+        return "a table"
+    if isinstance(value, (list, tuple)):
+        return "a list"
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    return f"{type(value).__name__} {value!r}"[:60]
+
+
+def values_list(
+    c: Checker, key: str, param: str, raw: object, limit: int
+) -> tuple[float, ...]:
+    if isinstance(raw, (str, bytes)) or not isinstance(raw, Sequence):
+        raise c.fail(
+            key, f"must be a list, got {show(raw)}", allowed_text(param), param
+        )
+    if not 1 <= len(raw) <= limit:
+        raise c.fail(key, f"has {len(raw)} values", f"1 to {limit} values")
+    values = tuple(c.param(f"{key}[{i}]", param, v) for i, v in enumerate(raw))
+    if len(set(values)) != len(values):
+        raise c.fail(key, "values repeat", "distinct values")
+    return values
+
+
+def range_bounds(
+    c: Checker,
+    param: str,
+    start_: object,
+    stop_: object,
+    points_: object,
+    spacing_: object,
+) -> tuple[float, float, int, str]:
+    """The checked start, stop, points and spacing of a range sweep."""
+    start = c.param("sweep.start", param, start_)
+    stop = c.param("sweep.stop", param, stop_)
+    for k, v in (("start", start), ("stop", stop)):
+        if not math.isfinite(v):
+            raise c.fail(
+                f"sweep.{k}",
+                "must be finite",
+                "finite numbers; list inf in values",
+                param,
+            )
+    points = c.integer("sweep.points", points_, 2, MAX_SWEEP)
+    spacing = c.string("sweep.spacing", spacing_, ("linear", "log"))
+    if start == stop:
+        raise c.fail("sweep.stop", "equals sweep.start", "stop != start")
+    if spacing == "log" and min(start, stop) <= 0:
+        raise c.fail(
+            "sweep.start", "log spacing needs positive bounds", "start, stop > 0"
+        )
+    return start, stop, points, spacing
+
+
+def _check_range(c: Checker, s: Sweep) -> None:
+    """A range sweep: its bounds, and its values the grid they span (which
+    lies between two valid bounds: no value needs a check of its own)."""
+    start, stop, points, spacing = range_bounds(
+        c, s.param, s.start, s.stop, s.points, s.spacing
+    )
+    if s.values != sweep_grid(start, stop, points, spacing):
+        raise c.fail(
+            "sweep.values",
+            "do not match start, stop, points and spacing",
+            "the grid of Sweep.range(param, start, stop, points, spacing=...)",
+        )
+    if len(set(s.values)) != len(s.values):
+        raise c.fail(
+            "sweep.points",
+            f"{points} points between {start:g} and {stop:g} repeat values",
+            "fewer points, or bounds further apart",
+        )
+
+
+def parse_output(c: Checker, kind: str, raw: object) -> OutputSpec | None:
+    key = f"outputs.{kind}"
+    if isinstance(raw, bool):
+        return OutputSpec(kind) if raw else None
+    t = c.table(key, raw, OUTPUT_KEYS[kind])
+    spec: dict[str, Any] = {}
+    if "x" in t:
+        spec["x"] = c.pair(f"{key}.x", t["x"], "[low, high], finite x/h, low < high")
+    if "y" in t:
+        spec["y"] = c.pair(
+            f"{key}.y", t["y"], "[low, high], -1 <= y/h <= 0, low < high", _in_layer
+        )
+    if "points" in t:
+        hi = MAX_GRID if kind == "stress_field" else MAX_POINTS
+        spec["points"] = c.integer(f"{key}.points", t["points"], 2, hi)
+    if "depth_points" in t:
+        spec["depth_points"] = c.integer(
+            f"{key}.depth_points", t["depth_points"], 2, MAX_GRID
+        )
+    if "depth" in t:
+        d = c.number(f"{key}.depth", t["depth"], "-1 <= y/h <= 0")
+        if not _in_layer(d):
+            raise c.fail(f"{key}.depth", f"out of range: {show(d)}", "-1 <= y/h <= 0")
+        spec["depth"] = d
+    if "component" in t:
+        spec["component"] = c.string(
+            f"{key}.component", t["component"], STRESS_COMPONENTS
+        )
+    if "kw" in t:
+        spec["kw"] = c.pair(
+            f"{key}.kw", t["kw"], "[low, high], 1e-12 <= kw < inf", _finite_kw
+        )
+    return OutputSpec(kind, **spec)
+
+
+def _in_layer(y: float) -> bool:
+    return -1.0 <= y <= 0.0
+
+
+def _finite_kw(kw: float) -> bool:
+    return math.isfinite(kw) and SPECS["kw"].contains(kw)
+
+
+# ----------------------------------------------------------------------------
+# Whole-scene validation (also for scenes built in Python)
+# ----------------------------------------------------------------------------
+
+
+def validate(scene: SceneData, source: str) -> None:
+    c = Checker(source)
+    if not isinstance(scene.params, Mapping):
+        raise c.fail("params", "must be a mapping", ", ".join(PARAMS))
+    c.table("params", scene.params, PARAMS)
+    params: dict[str, float] = {}
+    for name in PARAMS:
+        if name not in scene.params:
+            if name == "nu":
+                params[name] = DEFAULT_NU
+                continue
+            if name == "damping":  # optional, 0; kept only when given
+                continue
+            raise c.fail(f"params.{name}", "missing", allowed_text(name), name)
+        params[name] = c.param(f"params.{name}", name, scene.params[name])
+    object.__setattr__(scene, "params", params)
+
+    tol = c.tol("accuracy.tol", scene.tol)
+    object.__setattr__(scene, "tol", tol)
+    c.string("name", scene.name)
+    c.string("description", scene.description)
+
+    if not isinstance(scene.outputs, Mapping):
+        raise c.fail("outputs", "must be a mapping", ", ".join(OUTPUT_KINDS))
+    outputs: dict[str, OutputSpec] = {}
+    for kind, spec in scene.outputs.items():
+        if kind not in OUTPUT_KINDS:
+            raise c.fail(f"outputs.{kind}", "unknown key", ", ".join(OUTPUT_KINDS))
+        if not isinstance(spec, OutputSpec) or spec.kind != kind:
+            raise c.fail(f"outputs.{kind}", "must be an OutputSpec of that kind")
+        as_toml = dict(output_items(spec))
+        checked = parse_output(c, kind, as_toml)
+        if checked != spec:
+            raise c.fail(
+                f"outputs.{kind}",
+                "has keys this output does not take",
+                ", ".join(OUTPUT_KEYS[kind]) or "no keys",
+            )
+        outputs[kind] = spec
+    object.__setattr__(scene, "outputs", outputs)
+
+    if scene.vary is not None:
+        v = scene.vary
+        if not isinstance(v, Vary):
+            raise c.fail("vary", "must be a Vary")
+        c.string("vary.param", v.param, PARAMS)
+        values_list(c, "vary.values", v.param, list(v.values), MAX_VARY)
+    if scene.sweep is not None:
+        s = scene.sweep
+        if not isinstance(s, Sweep):
+            raise c.fail("sweep", "must be a Sweep")
+        c.string("sweep.param", s.param, PARAMS)
+        if s.is_range:
+            _check_range(c, s)
+        else:
+            values_list(c, "sweep.values", s.param, list(s.values), MAX_SWEEP)
+        n_curves = len(scene.curve_values())
+        if n_curves * len(s.values) > MAX_SWEEP:
+            raise c.fail(
+                "sweep.points" if s.is_range else "sweep.values",
+                f"{len(s.values)} sweep values times {n_curves} vary values are "
+                f"{n_curves * len(s.values)} points",
+                f"at most {MAX_SWEEP} points in all",
+            )
+        for i, q in enumerate(s.quantities):
+            c.string(f"sweep.quantities[{i}]", q, tuple(SWEEP_QUANTITIES))
+        if not s.quantities:
+            raise c.fail("sweep.quantities", "is empty", ", ".join(SWEEP_QUANTITIES))
+        if scene.vary is not None and scene.vary.param == s.param:
+            raise c.fail(
+                "sweep.param",
+                f"{s.param!r} is already the vary parameter",
+                "a parameter other than vary.param",
+            )
+    if not outputs and scene.sweep is None:
+        raise c.fail(
+            "outputs",
+            "nothing to compute",
+            "at least one of " + ", ".join(OUTPUT_KINDS) + ", or a [sweep]",
+        )
+    _check_speeds(scene, c)
+
+
+def _sweep_extremes(sweep: Sweep) -> list[int]:
+    """The indices of the smallest and the largest sweep value, in order.
+
+    They decide the speed checks of the whole sweep: the bound on vstar,
+    V*_cr(kw, nu), grows with kw and with nu, and V*_R(nu) with nu
+    (test_scene_input.py checks both on dense grids), so the tightest point
+    of a sweep over vstar, kw or nu is its largest vstar or its smallest kw
+    or nu; over damping, the smallest value is the only one that may be 0
+    (the undamped check) and the largest the one most surely > 0. Validation
+    thus solves O(1) critical speeds per sweep, not one per point."""
+    n = len(sweep.values)
+    if sweep.is_range:
+        return [0, n - 1]
+    values = np.asarray(sweep.values, dtype=np.float64)
+    return sorted({int(np.argmin(values)), int(np.argmax(values))})
+
+
+def _check_speeds(scene: SceneData, c: Checker) -> None:
+    """vstar < V*_cr(kw, nu) for every combination the scene computes
+    (vstar < V*_R(nu) where damping > 0), and no output or sweep quantity
+    the damped solver cannot give at a point with damping > 0. Of a sweep
+    only its extremes are checked (``_sweep_extremes``)."""
+    needs_contact = any(k != "critical_speed" for k in scene.outputs)
+    combos: list[tuple[dict[str, float], dict[str, str]]] = []
+    sw = scene.sweep
+    for vi, v in enumerate(scene.curve_values()):
+        bases: list[int] = [-1] if needs_contact else []
+        if sw is not None:
+            bases.extend(_sweep_extremes(sw))
+        for si in bases:
+            p = scene.point(v)
+            where = {name: f"params.{name}" for name in PARAMS}
+            if scene.vary is not None:
+                where[scene.vary.param] = f"vary.values[{vi}]"
+            if sw is not None and si >= 0:
+                p[sw.param] = sw.values[si]
+                where[sw.param] = (
+                    f"sweep.{'start' if si == 0 else 'stop'}"
+                    if sw.is_range
+                    else f"sweep.values[{si}]"
+                )
+            combos.append((p, where))
+    seen: set[tuple[float, float, float, bool]] = set()
+    damped_where: str | None = None
+    for p, where in combos:
+        damped = p.get("damping", 0.0) > 0.0
+        if damped and damped_where is None:
+            damped_where = where["damping"]
+        key = (p["vstar"], p["kw"], p["nu"], damped)
+        if key in seen:
+            continue
+        seen.add(key)
+        if p["vstar"] == 0.0:
+            continue
+        if damped:
+            vr = rayleigh_speed(p["nu"])
+            if not p["vstar"] < vr:
+                culprit, blamed = where["vstar"], "vstar"
+                if culprit.startswith("params.") and not where["nu"].startswith(
+                    "params."
+                ):
+                    culprit, blamed = where["nu"], "nu"
+                raise c.fail(
+                    culprit,
+                    f"vstar = {p['vstar']:.10g} is at or above the Rayleigh speed "
+                    f"V*_R = {vr:.10g} (nu = {p['nu']:g}): no steady solution, "
+                    "even with damping",
+                    f"0 <= vstar < {vr:.10g} with damping > 0",
+                    blamed,
+                )
+            continue
+        vcr, _ = critical_speed(p["kw"], p["nu"])
+        if not p["vstar"] < vcr:
+            # Blame the key that moved the point off the base parameters.
+            culprit, allowed = where["vstar"], f"0 <= vstar < {vcr:.10g}"
+            blamed = "vstar"
+            if culprit.startswith("params."):
+                for name in ("kw", "nu", "damping"):
+                    if not where[name].startswith("params."):
+                        culprit, blamed = where[name], name
+                        allowed = f"{name} with V*_cr(kw, nu) > vstar = {p['vstar']:g}"
+                        if name == "damping":
+                            allowed = "damping > 0 above V*_cr"
+            raise c.fail(
+                culprit,
+                f"vstar = {p['vstar']:.10g} is at or above the critical speed "
+                f"V*_cr = {vcr:.10g} (kw = {_fmt_num(p['kw'])}, nu = {p['nu']:g}): "
+                "no steady solution without damping",
+                f"{allowed}, or damping > 0 (then vstar < V*_R)"
+                if allowed.startswith("0 <=")
+                else allowed,
+                blamed,
+            )
+    if damped_where is not None:
+        _check_damped_outputs(scene, c, damped_where)
+
+
+def _check_damped_outputs(scene: SceneData, c: Checker, damped_where: str) -> None:
+    """Outputs and sweep quantities a damped point cannot give, and depth
+    ranges that lie wholly above y/h = -1e-3 (``DAMPED_MAX_Y``)."""
+    why = f"damping > 0 at {damped_where}"
+    for kind, spec in scene.outputs.items():
+        if kind in DAMPED_UNAVAILABLE:
+            raise c.fail(
+                f"outputs.{kind}",
+                f"not available with {why}: {DAMPED_UNAVAILABLE[kind]}",
+                "contact_width, pressure, surface_stress, depth_stress, "
+                "stress_field, critical_speed",
+            )
+        if kind in ("depth_stress", "stress_field"):
+            lo, _ = spec.resolved_y()
+            if lo > DAMPED_MAX_Y:
+                raise c.fail(
+                    f"outputs.{kind}.y",
+                    f"lies above y/h = {DAMPED_MAX_Y:g}, where the damped solver "
+                    f"gives no stresses ({why})",
+                    f"a range reaching below y/h = {DAMPED_MAX_Y:g}",
+                )
+    if scene.sweep is not None:
+        for i, q in enumerate(scene.sweep.quantities):
+            if q in DAMPED_UNAVAILABLE:
+                raise c.fail(
+                    f"sweep.quantities[{i}]",
+                    f"{q!r} is not available with {why}: {DAMPED_UNAVAILABLE[q]}",
+                    ", ".join(
+                        k for k in SWEEP_QUANTITIES if k not in DAMPED_UNAVAILABLE
+                    ),
+                )
+
+
+def _fmt_num(x: float) -> str:
+    return "inf" if math.isinf(x) else f"{x:.10g}"
