@@ -141,6 +141,22 @@ void bind_damped(py::module_& m) {
             return each(x, [&](double v) { return s.bottom_displacement(v); });
           },
           "x"_a, Release(), "Displacement v(x, -h)/h of the bottom face at each x/h.")
+      .def_property_readonly("indentation", &DampedSolution::indentation,
+                             "Indentation delta/h of the punch (computed on first use).")
+      .def(
+          "surface_displacement",
+          [](const DampedSolution& s, const VectorRef& x) {
+            return each(x, [&](double v) { return s.surface_displacement(v); });
+          },
+          "x"_a, Release(),
+          "Vertical surface displacement v(x, 0)/h at each x/h (negative under the punch).")
+      .def(
+          "displacement",
+          [](const DampedSolution& s, const VectorRef& x, const VectorRef& y) -> Eigen::MatrixXd {
+            return s.displacement(x, y);
+          },
+          "x"_a, "y"_a, Release(),
+          "Vertical displacement v/h on the grid x/h by y/h, shaped (len(y), len(x)).")
       .def(
           "stress_field",
           [](const DampedSolution& s, const VectorRef& x, const VectorRef& y) {

@@ -236,6 +236,17 @@ class DampedSolution {
   // the displacement needs a finite kw).
   double bottom_slope(double x) const;
   double bottom_displacement(double x) const;
+  // Vertical surface displacement v(x, 0)/h (any finite x; negative under the
+  // punch; 0 beyond |x| > kFarField as the undamped ContactSolution's).
+  double surface_displacement(double x) const;
+  // Indentation delta/h, the punch's rigid approach: the gap
+  // -delta + x^2/(2R) - v(x, 0) vanishes on the contact; taken at its centre,
+  // delta = c^2/(2R) - v(c, 0) (= -v(0, 0) for a symmetric contact).
+  double indentation() const;
+  // Vertical displacement v(x, y)/h on the grid x (finite) by y (-1 <= y <= 0),
+  // shaped (len(y), len(x)); throws InvalidParameter naming x or y otherwise.
+  Eigen::MatrixXd displacement(const Eigen::Ref<const Eigen::VectorXd>& x,
+                               const Eigen::Ref<const Eigen::VectorXd>& y) const;
   // Power dissipated in the dashpots over P V: damping sqrt(vstar)/load *
   // int (dv/dx(x, -1))^2 dx, by Parseval on the layer's bottom response;
   // equals drag() by the energy balance.
@@ -295,6 +306,21 @@ class DampedSolution {
   std::shared_ptr<FineCache> fine_cache_ = std::make_shared<FineCache>();
   std::shared_ptr<const Fine> fine_for(double x) const;
   Fine build_fine(double freq) const;
+  // The surface displacement, prepared on first use (shared between copies):
+  // the Filon coefficients (on light_) of the smooth part
+  // [M1 - phi1 (1 - e^-alpha)]/alpha p^ e^{i alpha c}, the Gauss-Chebyshev rule
+  // of the ln(1 + u^2) part, and the indentation.
+  struct Surface {
+    std::vector<double> smooth_re, smooth_im, log1p_r, log1p_w;
+    double indentation = 0;
+  };
+  struct SurfaceCache {
+    std::mutex mutex;
+    std::shared_ptr<const Surface> surface;
+  };
+  std::shared_ptr<SurfaceCache> surface_cache_ = std::make_shared<SurfaceCache>();
+  std::shared_ptr<const Surface> surface() const;
+  double surface_value(const Surface& s, double x) const;  // v(x, 0)/(P/(mu h))
 };
 
 // Solves the damped contact problem (damping > 0). Throws std::invalid_argument
