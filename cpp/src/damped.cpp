@@ -949,7 +949,20 @@ DampedSolution solve_damped(const DampedParams& prm) {
 // ---------------------------------------------------------------------------
 // Outputs
 
+namespace {
+
+// out(i) = f(x(i)): the vector overloads of the pointwise outputs.
+template <class F>
+Eigen::VectorXd at_points(const Eigen::Ref<const Eigen::VectorXd>& x, F f) {
+  Eigen::VectorXd out(x.size());
+  for (Eigen::Index i = 0; i < x.size(); ++i) out(i) = f(x(i));
+  return out;
+}
+
+}  // namespace
+
 double DampedSolution::pressure(double x) const {
+  if (std::isnan(x)) throw InvalidParameter("x", "not NaN", "pressure: x must not be NaN");
   const double r = (x - centre_) / half_;
   if (!(std::fabs(r) < 1.0)) return 0.0;
   return u_series(b_, r) * std::sqrt(1.0 - r * r);
@@ -1079,6 +1092,19 @@ std::shared_ptr<const DampedSolution::Fine> DampedSolution::fine_for(double x) c
   return std::make_shared<const Fine>(build_fine(need));
 }
 
+Eigen::VectorXd DampedSolution::pressure(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  return at_points(x, [this](double v) { return pressure(v); });
+}
+
+Eigen::VectorXd DampedSolution::surface_stress(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  return at_points(x, [this](double v) { return surface_stress(v); });
+}
+
+Eigen::VectorXd DampedSolution::surface_displacement(
+    const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  return at_points(x, [this](double v) { return surface_displacement(v); });
+}
+
 double DampedSolution::surface_stress(double x) const {
   if (!std::isfinite(x)) throw std::invalid_argument("surface_stress: x must be finite");
   const Fine& f = *light_;
@@ -1088,12 +1114,12 @@ double DampedSolution::surface_stress(double x) const {
 Eigen::Vector3d DampedSolution::stresses(double x, double y) const {
   if (!std::isfinite(x)) throw std::invalid_argument("stresses: x must be finite");
   const Eigen::VectorXd xs = Eigen::VectorXd::Constant(1, x), ys = Eigen::VectorXd::Constant(1, y);
-  const DampedStressGrid g = stress_grid(xs, ys);
+  const StressField g = stress_field(xs, ys);
   return {g.sigma_x(0, 0), g.sigma_y(0, 0), g.tau_xy(0, 0)};
 }
 
-DampedStressGrid DampedSolution::stress_grid(const Eigen::Ref<const Eigen::VectorXd>& x,
-                                             const Eigen::Ref<const Eigen::VectorXd>& y) const {
+StressField DampedSolution::stress_field(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                         const Eigen::Ref<const Eigen::VectorXd>& y) const {
   double xmax = 0.0;
   for (Eigen::Index j = 0; j < x.size(); ++j) {
     if (!std::isfinite(x(j))) throw std::invalid_argument("stresses: x must be finite");
@@ -1105,7 +1131,7 @@ DampedStressGrid DampedSolution::stress_grid(const Eigen::Ref<const Eigen::Vecto
                                   std::to_string(y(i)));
   const auto f = fine_for(xmax);  // one set of nodes for the whole grid
   const WaveConstants& c = model_->constants();
-  DampedStressGrid g;
+  StressField g;
   g.sigma_x.resize(y.size(), x.size());
   g.sigma_y.resize(y.size(), x.size());
   g.tau_xy.resize(y.size(), x.size());

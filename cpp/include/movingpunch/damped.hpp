@@ -24,6 +24,7 @@
 #include "movingpunch/contact.hpp"
 #include "movingpunch/kernel.hpp"
 #include "movingpunch/layer_response.hpp"
+#include "movingpunch/stresses.hpp"
 
 namespace movingpunch {
 
@@ -161,11 +162,6 @@ struct DampedParams {
 // Throws std::invalid_argument naming the parameter and its valid range.
 void validate(const DampedParams& p);
 
-// Stresses over P/h on a grid, each shaped (len(y), len(x)).
-struct DampedStressGrid {
-  Eigen::MatrixXd sigma_x, sigma_y, tau_xy;
-};
-
 class DampedSolution {
  public:
   const DampedParams& params() const noexcept { return params_; }
@@ -216,22 +212,27 @@ class DampedSolution {
   // lambda(w) = lambda on [w/8, 4w], to about 1 %); empty when unique there.
   const std::vector<double>& other_half_widths() const noexcept { return other_widths_; }
 
-  // p(x)/(P/h) (0 outside the contact).
+  // p(x)/(P/h) (0 outside the contact; x not NaN). The overloads on a vector
+  // of points here and below are ContactSolution's (one binding for both).
   double pressure(double x) const;
+  Eigen::VectorXd pressure(const Eigen::Ref<const Eigen::VectorXd>& x) const;
   // Transformed pressure p^(alpha)/(P/h) = int p e^{-i alpha x} dx, any alpha.
   cplx pressure_transform(double alpha) const;
   // Surface slope dv/dx(x, 0) (any x; = x/R inside the contact).
   double surface_slope(double x) const;
   // sigma_x(x, 0)/(P/h), any x.
   double surface_stress(double x) const;
+  Eigen::VectorXd surface_stress(const Eigen::Ref<const Eigen::VectorXd>& x) const;
   // sigma_x(x, y)/(P/h) for -1 <= y <= -1e-3 (below the surface layer of
   // thickness 1e-3, where the Fourier integral converges fast enough) and at
   // y = 0 (surface_stress).
   double stress_x(double x, double y) const;
   // (sigma_x, sigma_y, tau_xy)(x, y)/(P/h) for -1 <= y <= -1e-3.
   Eigen::Vector3d stresses(double x, double y) const;
-  DampedStressGrid stress_grid(const Eigen::Ref<const Eigen::VectorXd>& x,
-                               const Eigen::Ref<const Eigen::VectorXd>& y) const;
+  // The three on the grid x by y (-1 <= y <= -1e-3), each shaped
+  // (len(y), len(x)) (the derived stresses are left empty).
+  StressField stress_field(const Eigen::Ref<const Eigen::VectorXd>& x,
+                           const Eigen::Ref<const Eigen::VectorXd>& y) const;
   // Slope dv/dx(x, -1) and displacement v(x, -1)/h of the bottom face (any x;
   // the displacement needs a finite kw).
   double bottom_slope(double x) const;
@@ -239,6 +240,7 @@ class DampedSolution {
   // Vertical surface displacement v(x, 0)/h (any finite x; negative under the
   // punch; 0 beyond |x| > kFarField as the undamped ContactSolution's).
   double surface_displacement(double x) const;
+  Eigen::VectorXd surface_displacement(const Eigen::Ref<const Eigen::VectorXd>& x) const;
   // Indentation delta/h, the punch's rigid approach: the gap
   // -delta + x^2/(2R) - v(x, 0) vanishes on the contact; taken at its centre,
   // delta = c^2/(2R) - v(c, 0) (= -v(0, 0) for a symmetric contact).
