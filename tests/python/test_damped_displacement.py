@@ -94,6 +94,20 @@ def test_at_rest_the_dashpots_change_nothing() -> None:
         )
 
 
+def test_on_a_rigid_base_the_dashpots_are_inert() -> None:
+    """kw = inf: the base does not move, so its dashpots do nothing; the
+    bottom stays put and the field is the undamped one (6e-16 seen)."""
+    undamped = mp.solve(vstar=0.2, kw=math.inf, **PAPER)
+    s = mp.solve(vstar=0.2, kw=math.inf, damping=0.1, **PAPER)
+    delta = undamped.indentation
+    assert s.indentation == pytest.approx(delta, rel=1e-12)
+    x = np.linspace(-3.0, 3.0, 7)
+    np.testing.assert_allclose(s.displacement(x, -1.0), 0.0, atol=1e-14 * delta)
+    np.testing.assert_allclose(
+        s.displacement(x, -0.5), undamped.displacement(x, -0.5), atol=1e-12 * delta
+    )
+
+
 def test_dashpots_alone_leave_the_wake_sunk_by_load_over_beta() -> None:
     """kw -> 0: the base carries P through the dashpots only,
     beta (v(+inf) - v(-inf)) = P with beta = damping sqrt(V*) (force balance
