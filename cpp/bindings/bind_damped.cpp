@@ -34,12 +34,13 @@ Eigen::VectorXd each(const VectorRef& x, F f) {
 void bind_damped(py::module_& m) {
   using Release = py::call_guard<py::gil_scoped_release>;
 
-  py::class_<DampedSolution>(
+  py::class_<DampedSolution> cls(
       m, "DampedSolution",
       "Result of solve_damped (dimensionless: h = 1, mu = 1, pressures per P/h). "
-      "Not constructible from Python.")
-      .def_property_readonly("left", &DampedSolution::left,
-                             "Trailing end -b/h of the contact (-b, a).")
+      "Not constructible from Python.");
+  bind_result_common(cls);
+  cls.def_property_readonly("left", &DampedSolution::left,
+                            "Trailing end -b/h of the contact (-b, a).")
       .def_property_readonly("right", &DampedSolution::right,
                              "Leading end a/h of the contact (-b, a).")
       .def_property_readonly("centre", &DampedSolution::centre, "Centre (a - b)/(2h).")
@@ -47,14 +48,6 @@ void bind_damped(py::module_& m) {
       .def_property_readonly("drag", &DampedSolution::drag,
                              "Horizontal force on the punch over P, int p x/R dx / P "
                              "(positive: opposes the motion).")
-      .def_property_readonly("critical_vstar", &DampedSolution::critical_vstar,
-                             "Critical speed V*_cr(kw, nu) of the undamped layer.")
-      .def_property_readonly("rayleigh_vstar", &DampedSolution::rayleigh_vstar,
-                             "Rayleigh speed V*_R(nu).")
-      .def_property_readonly("phi1", &DampedSolution::phi1,
-                             "Moving half-plane factor phi1(vstar, nu).")
-      .def_property_readonly("error_estimate", &DampedSolution::error_estimate,
-                             "Bound on the absolute error of each contact end (in h).")
       .def_property_readonly("pressure_error_estimate", &DampedSolution::pressure_error_estimate,
                              "Bound on the error of p/(P/h) at a fixed relative position "
                              "r = (x - c)/w in the contact.")
@@ -63,53 +56,14 @@ void bind_damped(py::module_& m) {
                              "1e-3 (a + b)/2 from the contact ends.")
       .def_property_readonly("max_pressure", &DampedSolution::max_pressure,
                              "Maximum of p/(P/h) on the contact.")
-      .def_property_readonly("pressure_margin", &DampedSolution::pressure_margin,
-                             "min over r in (-1, 1) of p/((P/h) sqrt(1 - r^2)), r the "
-                             "position scaled to the contact: the margin before separation.")
-      .def_property_readonly(
-          "warnings", [](const DampedSolution& s) { return py::list(py::cast(s.warnings())); },
-          "One line per requested accuracy that was not met; empty when tol was met.")
-      .def_property_readonly("iterations", &DampedSolution::iterations,
-                             "Width evaluations over all collocation sizes.")
-      .def_property_readonly("kernel_builds", &DampedSolution::kernel_builds,
-                             "Kernel tables this solve built (0: reused from the "
-                             "process-wide cache).")
-      .def_property_readonly(
-          "stage_seconds", [](const DampedSolution& s) { return stage_dict(s.stage_seconds()); },
-          "Seconds per stage: critical_speed, kernel (fetching or building the kernel "
-          "table), width (the iteration on the ends over the N ladder), checks (the "
-          "scan for other steady states, the estimates and validity).")
-      .def_property_readonly("collocation_n", &DampedSolution::collocation_n,
-                             "Number N of collocation nodes of the final solve.")
-      .def_property_readonly("elapsed", &DampedSolution::elapsed,
-                             "Wall-clock time of the solve in seconds.")
-      .def_property_readonly("valid", &DampedSolution::valid,
-                             "True if p >= 0 on the contact and the punch does not "
-                             "penetrate the surface beside it.")
-      .def_property_readonly("validity", &DampedSolution::validity,
-                             "Human-readable account of the validity checks.")
-      .def_property_readonly("min_pressure", &DampedSolution::min_pressure,
-                             "Minimum of p/(P/h) on the contact.")
-      .def_property_readonly("min_gap", &DampedSolution::min_gap,
-                             "Minimum gap/h within 2(a + b) beside the contact.")
       .def_property_readonly(
           "other_half_widths",
           [](const DampedSolution& s) { return py::tuple(py::cast(s.other_half_widths())); },
           "Half-widths (a+b)/(2h) of other contacts carrying the same load (above "
           "V*_cr the steady solution need not be unique); empty when unique.")
-      .def_property_readonly(
-          "g_coefficients",
-          [](const DampedSolution& s) -> Eigen::VectorXd { return s.g_coefficients(); },
-          "Chebyshev-U coefficients of g(r) = p(c + w r)/((P/h) sqrt(1 - r^2)).")
       .def(
           "dissipation", [](const DampedSolution& s) { return s.dissipation(); }, Release(),
           "Power dissipated in the dashpots over P V (equals drag by the energy balance).")
-      .def(
-          "pressure",
-          [](const DampedSolution& s, const VectorRef& x) {
-            return each(x, [&](double v) { return s.pressure(v); });
-          },
-          "x"_a, Release(), "Contact pressure p/(P/h) at each x/h (0 outside).")
       .def(
           "surface_slope",
           [](const DampedSolution& s, const VectorRef& x) {
@@ -123,12 +77,6 @@ void bind_damped(py::module_& m) {
           },
           "x"_a, Release(), "Slope dv/dx(x, -h) of the bottom face at each x/h.")
       .def(
-          "surface_stress",
-          [](const DampedSolution& s, const VectorRef& x) {
-            return each(x, [&](double v) { return s.surface_stress(v); });
-          },
-          "x"_a, Release(), "sigma_x(x, 0)/(P/h) at each x/h.")
-      .def(
           "stress_x",
           [](const DampedSolution& s, double x, const VectorRef& y) {
             return each(y, [&](double v) { return s.stress_x(x, v); });
@@ -141,15 +89,6 @@ void bind_damped(py::module_& m) {
             return each(x, [&](double v) { return s.bottom_displacement(v); });
           },
           "x"_a, Release(), "Displacement v(x, -h)/h of the bottom face at each x/h.")
-      .def(
-          "stress_field",
-          [](const DampedSolution& s, const VectorRef& x, const VectorRef& y) {
-            DampedStressGrid g = s.stress_grid(x, y);
-            return std::make_tuple(std::move(g.sigma_x), std::move(g.sigma_y), std::move(g.tau_xy));
-          },
-          "x"_a, "y"_a, Release(),
-          "(sigma_x, sigma_y, tau_xy)/(P/h) on the grid x/h by y/h (-1 <= y <= -1e-3), "
-          "each shaped (len(y), len(x)).")
       .def("__repr__", [](const DampedSolution& s) {
         return py::str("<movingpunch._core.DampedSolution left={!r} right={!r} drag={!r}>")
             .format(s.left(), s.right(), s.drag());

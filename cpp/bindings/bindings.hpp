@@ -2,9 +2,16 @@
 // wired together by module.cpp.
 #pragma once
 
+#include <tuple>
+#include <utility>
+
+#include <pybind11/eigen.h>
 #include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <Eigen/Dense>
 
 #include "movingpunch/contact.hpp"
+#include "movingpunch/stresses.hpp"
 
 namespace movingpunch::bindings {
 
@@ -16,6 +23,89 @@ inline pybind11::dict stage_dict(const ContactSolution::StageSeconds& t) {
   d["width"] = t.width;
   d["checks"] = t.checks;
   return d;
+}
+
+// The members every contact result binds alike (ContactSolution,
+// DampedSolution: the same C++ names and signatures), bound once here; each
+// bind_<area>() adds what only its result has. Docstrings say "the contact
+// ends" for both (-a, a) and (-b, a).
+template <class T>
+void bind_result_common(pybind11::class_<T>& cls) {
+  namespace py = pybind11;
+  using namespace pybind11::literals;
+  using VectorRef = Eigen::Ref<const Eigen::VectorXd>;
+  using Release = py::call_guard<py::gil_scoped_release>;
+  cls.def_property_readonly("critical_vstar", &T::critical_vstar,
+                            "Critical speed V*_cr(kw, nu) of the undamped layer.")
+      .def_property_readonly("rayleigh_vstar", &T::rayleigh_vstar, "Rayleigh speed V*_R(nu).")
+      .def_property_readonly("phi1", &T::phi1, "Moving half-plane factor phi1(vstar, nu).")
+      .def_property_readonly("error_estimate", &T::error_estimate,
+                             "Absolute error estimate (in h) of the contact ends.")
+      .def_property_readonly("elapsed", &T::elapsed, "Wall-clock time of the solve in seconds.")
+      .def_property_readonly("iterations", &T::iterations,
+                             "Width (load) evaluations over all collocation sizes.")
+      .def_property_readonly("collocation_n", &T::collocation_n,
+                             "Number N of collocation nodes of the final solve.")
+      .def_property_readonly(
+          "stage_seconds", [](const T& s) { return stage_dict(s.stage_seconds()); },
+          "Seconds per stage: critical_speed, kernel (fetching or building the kernel "
+          "table), width (the iteration on the contact's width), checks (the rest: "
+          "indentation or the scan for other steady states, estimates, validity).")
+      .def_property_readonly("kernel_builds", &T::kernel_builds,
+                             "Kernel tables this solve built (0: reused from the "
+                             "process-wide cache).")
+      .def_property_readonly("valid", &T::valid,
+                             "True if p >= 0 on the contact and the punch does not "
+                             "penetrate the surface beside it.")
+      .def_property_readonly("validity", &T::validity,
+                             "Human-readable account of the validity checks.")
+      .def_property_readonly("min_pressure", &T::min_pressure, "Minimum of p/(P/h) on the contact.")
+      .def_property_readonly("pressure_margin", &T::pressure_margin,
+                             "min over r in (-1, 1) of p/((P/h) sqrt(1 - r^2)), r the "
+                             "position scaled to the contact: the margin before separation.")
+      .def_property_readonly("min_gap", &T::min_gap,
+                             "Minimum gap/h between punch and surface beside the contact.")
+      .def_property_readonly(
+          "warnings", [](const T& s) { return py::list(py::cast(s.warnings())); },
+          "One line per requested accuracy that was not met (empty: none).")
+      .def_property_readonly("indentation", &T::indentation, "Indentation delta/h of the punch.")
+      .def_property_readonly(
+          "g_coefficients", [](const T& s) -> Eigen::VectorXd { return s.g_coefficients(); },
+          "Chebyshev-U coefficients of g(r) = p(c + w r)/((P/h) sqrt(1 - r^2)) (a copy; "
+          "c = 0, w = a for a symmetric contact).")
+      .def(
+          "pressure",
+          [](const T& s, const VectorRef& x) -> Eigen::VectorXd { return s.pressure(x); }, "x"_a,
+          Release(),
+          "Contact pressure p/(P/h) at each x/h (0 outside the contact). x: 1-D float64.")
+      .def(
+          "surface_displacement",
+          [](const T& s, const VectorRef& x) -> Eigen::VectorXd {
+            return s.surface_displacement(x);
+          },
+          "x"_a, Release(),
+          "Vertical surface displacement v(x, 0)/h at each x/h (negative under the punch).")
+      .def(
+          "surface_stress",
+          [](const T& s, const VectorRef& x) -> Eigen::VectorXd { return s.surface_stress(x); },
+          "x"_a, Release(), "sigma_x(x, 0)/(P/h) at each x/h.")
+      .def(
+          "displacement",
+          [](const T& s, const VectorRef& x, const VectorRef& y) -> Eigen::MatrixXd {
+            return s.displacement(x, y);
+          },
+          "x"_a, "y"_a, Release(),
+          "Vertical displacement v/h on the grid x/h by y/h (-1 <= y <= 0), shaped "
+          "(len(y), len(x)).")
+      .def(
+          "stress_field",
+          [](const T& s, const VectorRef& x, const VectorRef& y) {
+            StressField f = s.stress_field(x, y);
+            return std::make_tuple(std::move(f.sigma_x), std::move(f.sigma_y), std::move(f.tau_xy));
+          },
+          "x"_a, "y"_a, Release(),
+          "(sigma_x, sigma_y, tau_xy)/(P/h) on the grid x/h by y/h, each shaped (len(y), "
+          "len(x)) (the damped solver: -1 <= y <= -1e-3).");
 }
 
 void bind_errors(pybind11::module_& m);

@@ -13,6 +13,7 @@
 #include "movingpunch/collocation.hpp"
 #include "movingpunch/dispersion.hpp"
 #include "movingpunch/errors.hpp"
+#include "potentials.hpp"
 
 namespace movingpunch {
 
@@ -20,7 +21,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kLn2 = 0.69314718055994530942;
 // Below this the lowest free wave lies beyond the critical-speed search.
 constexpr double kMinKw = 1e-12;
 // Supported contact half-widths: the kernel's grid grows with a, and far
@@ -48,19 +48,7 @@ constexpr std::array<int, 17> kSizes = {8,   12,  16,  24,  32,  48,  64,  96,  
 // sits at its round-off floor and flagged a false penetration.)
 double table_range(double a) { return 4.2 * a; }
 
-// (1/pi) int_{-1}^{1} sqrt(1 - t^2) U_n(t) ln|x - t| dt.
-double log_potential(int n, double x) {
-  const double ax = std::fabs(x);
-  if (ax <= 1.0) {
-    if (n == 0) return 0.5 * x * x - 0.25 - 0.5 * kLn2;
-    const double th = std::acos(std::clamp(x, -1.0, 1.0));
-    return 0.5 * (std::cos((n + 2) * th) / (n + 2) - std::cos(n * th) / n);
-  }
-  const double th = std::acosh(ax);
-  if (n == 0) return 0.5 * th + 0.25 * std::exp(-2.0 * th) - 0.5 * kLn2;
-  const double sg = (x > 0.0 || n % 2 == 0) ? 1.0 : -1.0;
-  return sg * 0.5 * (-std::exp(-n * th) / n + std::exp(-(n + 2) * th) / (n + 2));
-}
+using detail::log_potential;
 
 struct Timer {
   std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
@@ -803,22 +791,8 @@ void ContactSolution::prepare_displacement() {
   }
   smooth_coef_ = kernel_->filon().coefficients(g);
   // (phi1 / (2 pi)) int p ln(1 + (x - xi)^2) d xi by Gauss-Chebyshev (U)
-  // quadrature: the nodes and g at them do not depend on x.
-  // The integrand is analytic but for ln(1 + (x - a r)^2) at r = (x +- i)/a:
-  // Gauss-Chebyshev converges like rho^(-2m), rho = 1/a + sqrt(1 + 1/a^2),
-  // beyond the degree of g. This m keeps it at round-off (checked against
-  // m = 8000 for 0.37 <= a/h <= 35: 7.5e-16 relative).
-  const double rho = 1.0 / a_ + std::sqrt(1.0 + 1.0 / (a_ * a_));
-  const int m = std::max(
-      16, static_cast<int>(b_.size()) / 2 + static_cast<int>(std::ceil(8.5 / std::log10(rho))) + 8);
-  log1p_r_.resize(static_cast<std::size_t>(m));
-  log1p_w_.resize(static_cast<std::size_t>(m));
-  for (int i = 1; i <= m; ++i) {
-    const double th = i * kPi / (m + 1);
-    const double r = std::cos(th), sn = std::sin(th);
-    log1p_r_[static_cast<std::size_t>(i - 1)] = r;
-    log1p_w_[static_cast<std::size_t>(i - 1)] = sn * sn * u_series(b_, r) * kPi / (m + 1);
-  }
+  // quadrature: the nodes and g at them do not depend on x (potentials.hpp).
+  detail::log1p_rule(b_, a_, log1p_r_, log1p_w_);
 }
 
 // (1/pi) int p(xi)/(P/h) G(x - xi) d xi with G(u) = int_0^inf (M1/alpha) cos(alpha u)
@@ -836,11 +810,7 @@ double ContactSolution::greens_integral(double x) const {
 
   // (phi1 / (2 pi)) int p ln(1 + (x - xi)^2) d xi on the precomputed nodes:
   // int sqrt(1 - r^2) g(r) ln(1 + (x - a r)^2) dr.
-  double l1 = 0.0;
-  for (std::size_t i = 0; i < log1p_r_.size(); ++i) {
-    const double d = x - a * log1p_r_[i];
-    l1 += log1p_w_[i] * std::log1p(d * d);
-  }
+  const double l1 = detail::log1p_sum(log1p_r_, log1p_w_, a, x);
   const double log1p_part = phi1_ / (2.0 * kPi) * a * l1;
 
   return smooth + log_part + log1p_part;

@@ -16,6 +16,8 @@
 #include "movingpunch/collocation.hpp"
 #include "movingpunch/dispersion.hpp"
 #include "movingpunch/errors.hpp"
+#include "movingpunch/stresses.hpp"
+#include "potentials.hpp"
 
 namespace movingpunch {
 
@@ -947,7 +949,20 @@ DampedSolution solve_damped(const DampedParams& prm) {
 // ---------------------------------------------------------------------------
 // Outputs
 
+namespace {
+
+// out(i) = f(x(i)): the vector overloads of the pointwise outputs.
+template <class F>
+Eigen::VectorXd at_points(const Eigen::Ref<const Eigen::VectorXd>& x, F f) {
+  Eigen::VectorXd out(x.size());
+  for (Eigen::Index i = 0; i < x.size(); ++i) out(i) = f(x(i));
+  return out;
+}
+
+}  // namespace
+
 double DampedSolution::pressure(double x) const {
+  if (std::isnan(x)) throw InvalidParameter("x", "not NaN", "pressure: x must not be NaN");
   const double r = (x - centre_) / half_;
   if (!(std::fabs(r) < 1.0)) return 0.0;
   return u_series(b_, r) * std::sqrt(1.0 - r * r);
@@ -1077,6 +1092,19 @@ std::shared_ptr<const DampedSolution::Fine> DampedSolution::fine_for(double x) c
   return std::make_shared<const Fine>(build_fine(need));
 }
 
+Eigen::VectorXd DampedSolution::pressure(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  return at_points(x, [this](double v) { return pressure(v); });
+}
+
+Eigen::VectorXd DampedSolution::surface_stress(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  return at_points(x, [this](double v) { return surface_stress(v); });
+}
+
+Eigen::VectorXd DampedSolution::surface_displacement(
+    const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  return at_points(x, [this](double v) { return surface_displacement(v); });
+}
+
 double DampedSolution::surface_stress(double x) const {
   if (!std::isfinite(x)) throw std::invalid_argument("surface_stress: x must be finite");
   const Fine& f = *light_;
@@ -1086,12 +1114,12 @@ double DampedSolution::surface_stress(double x) const {
 Eigen::Vector3d DampedSolution::stresses(double x, double y) const {
   if (!std::isfinite(x)) throw std::invalid_argument("stresses: x must be finite");
   const Eigen::VectorXd xs = Eigen::VectorXd::Constant(1, x), ys = Eigen::VectorXd::Constant(1, y);
-  const DampedStressGrid g = stress_grid(xs, ys);
+  const StressField g = stress_field(xs, ys);
   return {g.sigma_x(0, 0), g.sigma_y(0, 0), g.tau_xy(0, 0)};
 }
 
-DampedStressGrid DampedSolution::stress_grid(const Eigen::Ref<const Eigen::VectorXd>& x,
-                                             const Eigen::Ref<const Eigen::VectorXd>& y) const {
+StressField DampedSolution::stress_field(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                         const Eigen::Ref<const Eigen::VectorXd>& y) const {
   double xmax = 0.0;
   for (Eigen::Index j = 0; j < x.size(); ++j) {
     if (!std::isfinite(x(j))) throw std::invalid_argument("stresses: x must be finite");
@@ -1103,7 +1131,7 @@ DampedStressGrid DampedSolution::stress_grid(const Eigen::Ref<const Eigen::Vecto
                                   std::to_string(y(i)));
   const auto f = fine_for(xmax);  // one set of nodes for the whole grid
   const WaveConstants& c = model_->constants();
-  DampedStressGrid g;
+  StressField g;
   g.sigma_x.resize(y.size(), x.size());
   g.sigma_y.resize(y.size(), x.size());
   g.tau_xy.resize(y.size(), x.size());
@@ -1183,6 +1211,94 @@ double DampedSolution::dissipation() const {
   for (std::size_t i = 0; i < f.alpha.size(); ++i)
     sum += f.weight[i] * std::norm(f.r[i].Wb * f.phat[i]);
   return model_->damping() * std::sqrt(model_->vstar()) * params_.load * sum / kPi;
+}
+
+// ---------------------------------------------------------------------------
+// Displacements: v(x, y)/(P/(mu h)) = (1/pi) Re int_0^inf (W(alpha, y)/alpha) p^ e^{i alpha x},
+// W = alpha v^/p^ (state row 1; -M1 at the top). W/alpha behaves like
+// W_hp(alpha, y)/alpha at large alpha (log-singular at the surface), so it is
+// split as the undamped code splits it: the smooth [W - W_hp (1 - e^-alpha)]/alpha
+// by Filon sums on light_ (exact in x), and the half-plane part
+// W_hp (1 - e^-alpha)/alpha, which is real (it does not see the base), in
+// closed form from the U-series of p (potentials.hpp). W/alpha stays finite at
+// alpha -> 0 (kw > 0: v^(0) = -p^(0)/kw).
+
+std::shared_ptr<const DampedSolution::Surface> DampedSolution::surface() const {
+  std::lock_guard<std::mutex> lock(surface_cache_->mutex);
+  auto& sp = surface_cache_->surface;
+  if (sp) return sp;
+  auto s = std::make_shared<Surface>();
+  const Fine& f = *light_;
+  const double phi1 = model_->phi1();
+  std::vector<cplx> g(f.alpha.size());
+  for (std::size_t i = 0; i < g.size(); ++i) {
+    const double al = f.alpha[i];
+    g[i] =
+        (f.r[i].M1 + phi1 * std::expm1(-al)) / al * f.phat[i] * std::exp(cplx(0.0, al * centre_));
+  }
+  f.coefficients(g, s->smooth_re, s->smooth_im);
+  detail::log1p_rule(b_, half_, s->log1p_r, s->log1p_w);
+  s->indentation =
+      centre_ * centre_ / (2.0 * params_.radius) - params_.load * surface_value(*s, centre_);
+  if (!std::isfinite(s->indentation))
+    throw ConvergenceError("damped contact: the indentation came out non-finite (N = " +
+                           std::to_string(n_) + "); the displacement is not trusted");
+  sp = s;
+  return sp;
+}
+
+double DampedSolution::surface_value(const Surface& s, double x) const {
+  // -(1/pi) Re int [M1 - phi1 (1 - e^-a)]/a p^ e^{iax}
+  // - (phi1/(2 pi)) int p ln(1 + (x - xi)^2) + (phi1/pi) int p ln|x - xi|,
+  // the last = phi1 w [(b0/2) ln w + sum b_n L_n((x - c)/w)].
+  const Fine& f = *light_;
+  const double phi1 = model_->phi1(), w = half_, u = x - centre_;
+  const double smooth = f.fourier(s.smooth_re, s.smooth_im, u) / kPi;
+  const double l1 = detail::log1p_sum(s.log1p_r, s.log1p_w, w, u);
+  double lp = 0.5 * b_(0) * std::log(w);
+  for (Eigen::Index n = 0; n < b_.size(); ++n)
+    lp += b_(n) * detail::log_potential(static_cast<int>(n), u / w);
+  return -smooth - phi1 / (2.0 * kPi) * w * l1 + phi1 * w * lp;
+}
+
+double DampedSolution::surface_displacement(double x) const {
+  if (!std::isfinite(x))
+    throw InvalidParameter("x", "finite",
+                           "surface_displacement: x must be finite, got " + std::to_string(x));
+  if (std::fabs(x) > kFarField) return 0.0;  // as ContactSolution's (stresses.hpp)
+  return params_.load * surface_value(*surface(), x);
+}
+
+double DampedSolution::indentation() const { return surface()->indentation; }
+
+Eigen::MatrixXd DampedSolution::displacement(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                             const Eigen::Ref<const Eigen::VectorXd>& y) const {
+  detail::check_grid(x, y);
+  const Fine& f = *light_;
+  const WaveConstants& c = model_->constants();
+  Eigen::MatrixXd v(y.size(), x.size());
+  std::vector<cplx> g(f.alpha.size());
+  std::vector<double> g_re, g_im;
+  for (Eigen::Index i = 0; i < y.size(); ++i) {
+    for (std::size_t k = 0; k < g.size(); ++k) {
+      const double al = f.alpha[k];
+      const Eigen::Matrix4d C = detail::modal_columns(c, al, y(i));
+      const double w_hp = c.hp1 * C(1, 0) + c.hp2 * C(1, 1);
+      const cplx w = y(i) == 0.0 ? -f.r[k].M1 : model_->state(al, y(i))(1);
+      g[k] = (w + w_hp * std::expm1(-al)) / al * f.phat[k] * std::exp(cplx(0.0, al * centre_));
+    }
+    f.coefficients(g, g_re, g_im);
+    for (Eigen::Index j = 0; j < x.size(); ++j) {
+      if (std::fabs(x(j)) > kFarField) {
+        v(i, j) = 0.0;
+        continue;
+      }
+      const double u = x(j) - centre_;
+      v(i, j) = params_.load * (f.fourier(g_re, g_im, u) / kPi +
+                                detail::half_plane_displacement(c, b_, half_, u, y(i), 1));
+    }
+  }
+  return v;
 }
 
 }  // namespace movingpunch

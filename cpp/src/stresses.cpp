@@ -6,6 +6,7 @@
 
 #include "movingpunch/collocation.hpp"
 #include "movingpunch/errors.hpp"
+#include "potentials.hpp"
 
 namespace movingpunch {
 
@@ -13,79 +14,13 @@ namespace {
 
 using cplx = std::complex<double>;
 constexpr double kPi = 3.14159265358979323846;
-constexpr double kLn2 = 0.69314718055994530942;
 
-// w(z) = z - sqrt(z^2 - 1) on the branch ~ 1/(2z) at infinity (cut [-1, 1]),
-// written as 1/(z + sqrt(z^2-1)) to avoid cancellation; |w| <= 1 for Im z >= 0.
-cplx w_of(cplx z, cplx* root = nullptr) {
-  const cplx r = std::sqrt(z - 1.0) * std::sqrt(z + 1.0);
-  if (root) *root = r;
-  return 1.0 / (z + r);
-}
+using detail::divided_difference;
+using detail::z_of;
 
-// Phi(z) = sum b_n w^{n+1} = (1/pi) int p(a t)/(P/h) / (z - t) dt (even n only).
-cplx phi(const Eigen::VectorXd& b, cplx z) {
-  const cplx w = w_of(z), w2 = w * w;
-  cplx pw = w, sum = 0.0;
-  for (Eigen::Index n = 0; n < b.size(); n += 2) {
-    sum += b(n) * pw;
-    pw *= w2;
-  }
-  return sum;
-}
-
-// Phi'(z) = -sum b_n (n+1) w^{n+1} / sqrt(z^2 - 1).
-cplx dphi(const Eigen::VectorXd& b, cplx z) {
-  cplx r;
-  const cplx w = w_of(z, &r), w2 = w * w;
-  cplx pw = w, sum = 0.0;
-  for (Eigen::Index n = 0; n < b.size(); n += 2) {
-    sum += b(n) * static_cast<double>(n + 1) * pw;
-    pw *= w2;
-  }
-  return -sum / r;
-}
-
-// Lsum(z) = sum b_n L_n(z), L_n(z) = (1/pi) int sqrt(1-t^2) U_n(t) ln(z - t) dt.
-cplx log_potential(const Eigen::VectorXd& b, cplx z) {
-  const cplx w = w_of(z), w2 = w * w;
-  cplx sum = b(0) * (-0.5 * std::log(w) + 0.25 * w2 - 0.5 * kLn2);
-  cplx pw = w2;  // w^n for n = 2
-  for (Eigen::Index n = 2; n < b.size(); n += 2) {
-    const double dn = static_cast<double>(n);
-    sum += b(n) * 0.5 * (-pw / dn + pw * w2 / (dn + 2.0));
-    pw *= w2;
-  }
-  return sum;
-}
-
-// Gauss-Legendre, 8 points on [0, 1].
-constexpr double kGx[8] = {0.019855071751231856, 0.10166676129318664, 0.23723379504183550,
-                           0.40828267875217510,  0.59171732124782490, 0.76276620495816450,
-                           0.89833323870681340,  0.98014492824876810};
-constexpr double kGw[8] = {0.050614268145188130, 0.11119051722668724, 0.15685332293894364,
-                           0.18134189168918100,  0.18134189168918100, 0.15685332293894364,
-                           0.11119051722668724,  0.050614268145188130};
-
-// [F(zL) - F(zT)] / delta where zL - zT = h_over_delta * delta; uses the
-// average of F' along the segment when it is short (delta -> 0: F' h/delta).
-template <class F, class DF>
-cplx divided_difference(const F& f, const DF& df, cplx zT, cplx zL, double delta,
-                        cplx h_over_delta) {
-  const cplx h = zL - zT;
-  const double near = std::min(std::abs(zT - 1.0), std::abs(zT + 1.0));
-  if (delta > 0.0 && std::abs(h) >= 0.25 * near) return (f(zL) - f(zT)) / delta;
-  if (h_over_delta == 0.0) return 0.0;
-  cplx avg = 0.0;
-  for (int k = 0; k < 8; ++k) avg += kGw[k] * df(zT + kGx[k] * h);
-  return avg * h_over_delta;
-}
-
-// The point z_n = (x - i n y)/a with Im z >= +0 (y <= 0).
-cplx z_of(double x, double n, double y, double a) {
-  const double im = y < 0.0 ? -n * y / a : 0.0;  // +0.0 at the surface: upper side of the cut
-  return {x / a, im};
-}
+// Phi(z) = (1/pi) int p(a t)/(P/h) / (z - t) dt and its derivative (g even).
+cplx phi(const Eigen::VectorXd& b, cplx z) { return detail::cauchy_potential(b, z, 2); }
+cplx dphi(const Eigen::VectorXd& b, cplx z) { return detail::cauchy_potential_derivative(b, z, 2); }
 
 }  // namespace
 
@@ -140,18 +75,7 @@ Eigen::MatrixXd FieldEvaluator::transform(const Eigen::MatrixXd& values, bool si
   return out;
 }
 
-namespace {
-void check_grid(const Eigen::Ref<const Eigen::VectorXd>& x,
-                const Eigen::Ref<const Eigen::VectorXd>& y) {
-  for (Eigen::Index i = 0; i < x.size(); ++i)
-    if (!std::isfinite(x(i)))
-      throw InvalidParameter("x", "finite", "x must be finite, got " + std::to_string(x(i)));
-  for (Eigen::Index j = 0; j < y.size(); ++j)
-    if (!(y(j) >= -1.0 && y(j) <= 0.0))
-      throw InvalidParameter("y", "[-1, 0]",
-                             "y must be in [-1, 0] (y/h, the layer), got " + std::to_string(y(j)));
-}
-}  // namespace
+using detail::check_grid;
 
 StressField FieldEvaluator::stresses(const Eigen::Ref<const Eigen::VectorXd>& x,
                                      const Eigen::Ref<const Eigen::VectorXd>& y) const {
@@ -227,21 +151,11 @@ Eigen::MatrixXd FieldEvaluator::displacement(const Eigen::Ref<const Eigen::Vecto
     }
   }
   Eigen::MatrixXd v = transform(Rw, false, x).transpose();
-  // Half-plane part: int (1 - e^-alpha) e^{n alpha y} / alpha cos(alpha u) = Re ln((p+1)/p):
-  // V(z) = a sum b_n [L_n(z + i/a) - L_n(z)], V'(z) = a [Phi(z + i/a) - Phi(z)].
-  const double nT = c.nT, nL = c.nL, d = c.delta;
-  const double kT = c.hp1 * (-1.0 / nT), kL = c.hp2 * c.dW, kD = c.hp2 * (-1.0 / nT);
-  const cplx shift(0.0, 1.0 / a_);
-  auto V = [this, shift](cplx z) {
-    return a_ * (log_potential(b_, z + shift) - log_potential(b_, z));
-  };
-  auto dV = [this, shift](cplx z) { return a_ * (phi(b_, z + shift) - phi(b_, z)); };
+  // Half-plane part in closed form (potentials.hpp).
   for (Eigen::Index j = 0; j < ny; ++j)
     for (Eigen::Index i = 0; i < nx; ++i) {
       if (std::fabs(x(i)) > kFarField) continue;
-      const cplx zT = z_of(x(i), nT, y(j), a_), zL = z_of(x(i), nL, y(j), a_);
-      const cplx vD = divided_difference(V, dV, zT, zL, d, cplx(0.0, -y(j) / a_));
-      v(j, i) += kT * V(zT).real() + kL * V(zL).real() + kD * vD.real();
+      v(j, i) += detail::half_plane_displacement(c, b_, a_, x(i), y(j), 2);
     }
   return v;
 }

@@ -19,6 +19,7 @@ import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field, fields
 from types import MappingProxyType
+from typing import overload
 
 import numpy as np
 import numpy.typing as npt
@@ -33,6 +34,7 @@ from movingpunch._evaluate import (
     _check_tol,
     _check_vstar,
     _chunked_grid,
+    _depths,
     _fail,
     _flat,
     _is_scalar,
@@ -41,6 +43,7 @@ from movingpunch._evaluate import (
     _real,
     _real_any,
 )
+from movingpunch.contract import Points
 from movingpunch.errors import InvalidParameterError, SupercriticalSpeedError
 from movingpunch.fields import FloatArray, StressField, StressPeaks, derived_stresses
 from movingpunch.peaks import search_peaks
@@ -217,6 +220,38 @@ class DampedSolution:
             raise InvalidParameterError(f"x must be a finite number, got {x!r}")
         return _pointwise("y", y, lambda v: self._impl.stress_x(xs, v), pts)
 
+    @functools.cached_property
+    def indentation(self) -> float:
+        """Indentation delta/h: how far the punch's lowest point lies below
+        the undisturbed surface. The gap -delta + x^2/(2R) - v(x, 0) vanishes
+        on the contact (delta is taken at its centre c: c^2/(2R) - v(c, 0)).
+        Computed on first access (well under a millisecond)."""
+        return float(self._impl.indentation)
+
+    @overload
+    def surface_displacement(self, x: float) -> float: ...
+    @overload
+    def surface_displacement(self, x: Points) -> FloatArray: ...
+    def surface_displacement(self, x: npt.ArrayLike) -> float | FloatArray:
+        """Vertical surface displacement v(x, 0)/h at x/h (negative under the
+        punch), as ``Solution.surface_displacement``. A float for a scalar
+        ``x``, else an array of the shape of ``x``."""
+        return _pointwise("x", x, self._impl.surface_displacement)
+
+    @overload
+    def displacement(self, x: float, y: float = 0.0) -> float: ...
+    @overload
+    def displacement(self, x: Points, y: float = 0.0) -> FloatArray: ...
+    def displacement(self, x: npt.ArrayLike, y: float = 0.0) -> float | FloatArray:
+        """Vertical displacement v(x, y)/h at x/h and one depth y/h in [-1, 0]
+        (negative downwards), as ``Solution.displacement``: y = 0 is
+        ``surface_displacement``, y = -1 ``bottom_displacement``."""
+        depth = _depths(y)
+        if depth.ndim != 0:
+            raise params.fail("y", f"y must be one depth in [-1, 0], got {y!r}")
+        grid = self._impl.displacement
+        return _pointwise("x", x, lambda xs: grid(xs, _flat(depth))[0])
+
     def bottom_displacement(self, x: npt.ArrayLike) -> float | FloatArray:
         """Displacement v(x, -h)/h of the bottom face."""
         return _pointwise("x", x, self._impl.bottom_displacement)
@@ -330,6 +365,7 @@ class DampedSolution:
         data["other_half_widths"] = list(self.other_half_widths)
         data["warnings"] = list(self.warnings)
         data["dissipation"] = self.dissipation
+        data["indentation"] = self.indentation
         data["a"] = self.a
         data["half_width"] = self.half_width
         data["centre"] = self.centre

@@ -24,6 +24,7 @@
 #include "movingpunch/contact.hpp"
 #include "movingpunch/kernel.hpp"
 #include "movingpunch/layer_response.hpp"
+#include "movingpunch/stresses.hpp"
 
 namespace movingpunch {
 
@@ -161,11 +162,6 @@ struct DampedParams {
 // Throws std::invalid_argument naming the parameter and its valid range.
 void validate(const DampedParams& p);
 
-// Stresses over P/h on a grid, each shaped (len(y), len(x)).
-struct DampedStressGrid {
-  Eigen::MatrixXd sigma_x, sigma_y, tau_xy;
-};
-
 class DampedSolution {
  public:
   const DampedParams& params() const noexcept { return params_; }
@@ -216,26 +212,43 @@ class DampedSolution {
   // lambda(w) = lambda on [w/8, 4w], to about 1 %); empty when unique there.
   const std::vector<double>& other_half_widths() const noexcept { return other_widths_; }
 
-  // p(x)/(P/h) (0 outside the contact).
+  // p(x)/(P/h) (0 outside the contact; x not NaN). The overloads on a vector
+  // of points here and below are ContactSolution's (one binding for both).
   double pressure(double x) const;
+  Eigen::VectorXd pressure(const Eigen::Ref<const Eigen::VectorXd>& x) const;
   // Transformed pressure p^(alpha)/(P/h) = int p e^{-i alpha x} dx, any alpha.
   cplx pressure_transform(double alpha) const;
   // Surface slope dv/dx(x, 0) (any x; = x/R inside the contact).
   double surface_slope(double x) const;
   // sigma_x(x, 0)/(P/h), any x.
   double surface_stress(double x) const;
+  Eigen::VectorXd surface_stress(const Eigen::Ref<const Eigen::VectorXd>& x) const;
   // sigma_x(x, y)/(P/h) for -1 <= y <= -1e-3 (below the surface layer of
   // thickness 1e-3, where the Fourier integral converges fast enough) and at
   // y = 0 (surface_stress).
   double stress_x(double x, double y) const;
   // (sigma_x, sigma_y, tau_xy)(x, y)/(P/h) for -1 <= y <= -1e-3.
   Eigen::Vector3d stresses(double x, double y) const;
-  DampedStressGrid stress_grid(const Eigen::Ref<const Eigen::VectorXd>& x,
-                               const Eigen::Ref<const Eigen::VectorXd>& y) const;
+  // The three on the grid x by y (-1 <= y <= -1e-3), each shaped
+  // (len(y), len(x)) (the derived stresses are left empty).
+  StressField stress_field(const Eigen::Ref<const Eigen::VectorXd>& x,
+                           const Eigen::Ref<const Eigen::VectorXd>& y) const;
   // Slope dv/dx(x, -1) and displacement v(x, -1)/h of the bottom face (any x;
   // the displacement needs a finite kw).
   double bottom_slope(double x) const;
   double bottom_displacement(double x) const;
+  // Vertical surface displacement v(x, 0)/h (any finite x; negative under the
+  // punch; 0 beyond |x| > kFarField as the undamped ContactSolution's).
+  double surface_displacement(double x) const;
+  Eigen::VectorXd surface_displacement(const Eigen::Ref<const Eigen::VectorXd>& x) const;
+  // Indentation delta/h, the punch's rigid approach: the gap
+  // -delta + x^2/(2R) - v(x, 0) vanishes on the contact; taken at its centre,
+  // delta = c^2/(2R) - v(c, 0) (= -v(0, 0) for a symmetric contact).
+  double indentation() const;
+  // Vertical displacement v(x, y)/h on the grid x (finite) by y (-1 <= y <= 0),
+  // shaped (len(y), len(x)); throws InvalidParameter naming x or y otherwise.
+  Eigen::MatrixXd displacement(const Eigen::Ref<const Eigen::VectorXd>& x,
+                               const Eigen::Ref<const Eigen::VectorXd>& y) const;
   // Power dissipated in the dashpots over P V: damping sqrt(vstar)/load *
   // int (dv/dx(x, -1))^2 dx, by Parseval on the layer's bottom response;
   // equals drag() by the energy balance.
@@ -295,6 +308,21 @@ class DampedSolution {
   std::shared_ptr<FineCache> fine_cache_ = std::make_shared<FineCache>();
   std::shared_ptr<const Fine> fine_for(double x) const;
   Fine build_fine(double freq) const;
+  // The surface displacement, prepared on first use (shared between copies):
+  // the Filon coefficients (on light_) of the smooth part
+  // [M1 - phi1 (1 - e^-alpha)]/alpha p^ e^{i alpha c}, the Gauss-Chebyshev rule
+  // of the ln(1 + u^2) part, and the indentation.
+  struct Surface {
+    std::vector<double> smooth_re, smooth_im, log1p_r, log1p_w;
+    double indentation = 0;
+  };
+  struct SurfaceCache {
+    std::mutex mutex;
+    std::shared_ptr<const Surface> surface;
+  };
+  std::shared_ptr<SurfaceCache> surface_cache_ = std::make_shared<SurfaceCache>();
+  std::shared_ptr<const Surface> surface() const;
+  double surface_value(const Surface& s, double x) const;  // v(x, 0)/(P/(mu h))
 };
 
 // Solves the damped contact problem (damping > 0). Throws std::invalid_argument

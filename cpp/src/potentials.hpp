@@ -1,0 +1,183 @@
+// Private: logarithmic and Cauchy potentials of a Chebyshev-U pressure
+// p(a r) = sqrt(1 - r^2) sum_n b_n U_n(r) on (-a, a) (positions relative to
+// the contact's centre), the closed-form (half-plane, log-singular) parts of
+// the displacements and stresses. Shared by the undamped outputs
+// (contact.cpp, stresses.cpp: g even, `step` 2 sums the even terms only) and
+// the damped ones (damped.cpp: any g, `step` 1).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "movingpunch/collocation.hpp"
+#include "movingpunch/errors.hpp"
+#include "movingpunch/layer_response.hpp"
+
+namespace movingpunch::detail {
+
+namespace potentials {
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kLn2 = 0.69314718055994530942;
+}  // namespace potentials
+
+// Throws InvalidParameter naming x or y unless every x is finite and
+// -1 <= y <= 0 (the points of a field grid, either solver).
+inline void check_grid(const Eigen::Ref<const Eigen::VectorXd>& x,
+                       const Eigen::Ref<const Eigen::VectorXd>& y) {
+  for (Eigen::Index i = 0; i < x.size(); ++i)
+    if (!std::isfinite(x(i)))
+      throw InvalidParameter("x", "finite", "x must be finite, got " + std::to_string(x(i)));
+  for (Eigen::Index j = 0; j < y.size(); ++j)
+    if (!(y(j) >= -1.0 && y(j) <= 0.0))
+      throw InvalidParameter("y", "[-1, 0]",
+                             "y must be in [-1, 0] (y/h, the layer), got " + std::to_string(y(j)));
+}
+
+// (1/pi) int_{-1}^{1} sqrt(1 - t^2) U_n(t) ln|x - t| dt, real x, any n >= 0.
+inline double log_potential(int n, double x) {
+  using potentials::kLn2;
+  const double ax = std::fabs(x);
+  if (ax <= 1.0) {
+    if (n == 0) return 0.5 * x * x - 0.25 - 0.5 * kLn2;
+    const double th = std::acos(std::clamp(x, -1.0, 1.0));
+    return 0.5 * (std::cos((n + 2) * th) / (n + 2) - std::cos(n * th) / n);
+  }
+  const double th = std::acosh(ax);
+  if (n == 0) return 0.5 * th + 0.25 * std::exp(-2.0 * th) - 0.5 * kLn2;
+  const double sg = (x > 0.0 || n % 2 == 0) ? 1.0 : -1.0;
+  return sg * 0.5 * (-std::exp(-n * th) / n + std::exp(-(n + 2) * th) / (n + 2));
+}
+
+using cplx_t = std::complex<double>;
+
+// w(z) = z - sqrt(z^2 - 1) on the branch ~ 1/(2z) at infinity (cut [-1, 1]),
+// written as 1/(z + sqrt(z^2-1)) to avoid cancellation; |w| <= 1 for Im z >= 0.
+inline cplx_t w_of(cplx_t z, cplx_t* root = nullptr) {
+  const cplx_t r = std::sqrt(z - 1.0) * std::sqrt(z + 1.0);
+  if (root) *root = r;
+  return 1.0 / (z + r);
+}
+
+// Phi(z) = sum b_n w^{n+1} = (1/pi) int p(a t)/(P/h) / (z - t) dt (n = 0, step, 2 step, ...).
+inline cplx_t cauchy_potential(const Eigen::VectorXd& b, cplx_t z, int step) {
+  const cplx_t w = w_of(z), ws = step == 1 ? w : w * w;
+  cplx_t pw = w, sum = 0.0;
+  for (Eigen::Index n = 0; n < b.size(); n += step) {
+    sum += b(n) * pw;
+    pw *= ws;
+  }
+  return sum;
+}
+
+// Phi'(z) = -sum b_n (n+1) w^{n+1} / sqrt(z^2 - 1).
+inline cplx_t cauchy_potential_derivative(const Eigen::VectorXd& b, cplx_t z, int step) {
+  cplx_t r;
+  const cplx_t w = w_of(z, &r), ws = step == 1 ? w : w * w;
+  cplx_t pw = w, sum = 0.0;
+  for (Eigen::Index n = 0; n < b.size(); n += step) {
+    sum += b(n) * static_cast<double>(n + 1) * pw;
+    pw *= ws;
+  }
+  return -sum / r;
+}
+
+// Lsum(z) = sum b_n L_n(z), L_n(z) = (1/pi) int sqrt(1-t^2) U_n(t) ln(z - t) dt.
+inline cplx_t log_potential(const Eigen::VectorXd& b, cplx_t z, int step) {
+  const cplx_t w = w_of(z), w2 = w * w, ws = step == 1 ? w : w2;
+  cplx_t sum = b(0) * (-0.5 * std::log(w) + 0.25 * w2 - 0.5 * potentials::kLn2);
+  cplx_t pw = ws;  // w^n for n = step
+  for (Eigen::Index n = step; n < b.size(); n += step) {
+    const double dn = static_cast<double>(n);
+    sum += b(n) * 0.5 * (-pw / dn + pw * w2 / (dn + 2.0));
+    pw *= ws;
+  }
+  return sum;
+}
+
+// Gauss-Legendre, 8 points on [0, 1].
+constexpr double kGx[8] = {0.019855071751231856, 0.10166676129318664, 0.23723379504183550,
+                           0.40828267875217510,  0.59171732124782490, 0.76276620495816450,
+                           0.89833323870681340,  0.98014492824876810};
+constexpr double kGw[8] = {0.050614268145188130, 0.11119051722668724, 0.15685332293894364,
+                           0.18134189168918100,  0.18134189168918100, 0.15685332293894364,
+                           0.11119051722668724,  0.050614268145188130};
+
+// [F(zL) - F(zT)] / delta where zL - zT = h_over_delta * delta; uses the
+// average of F' along the segment when it is short (delta -> 0: F' h/delta).
+template <class F, class DF>
+cplx_t divided_difference(const F& f, const DF& df, cplx_t zT, cplx_t zL, double delta,
+                          cplx_t h_over_delta) {
+  const cplx_t h = zL - zT;
+  const double near = std::min(std::abs(zT - 1.0), std::abs(zT + 1.0));
+  if (delta > 0.0 && std::abs(h) >= 0.25 * near) return (f(zL) - f(zT)) / delta;
+  if (h_over_delta == 0.0) return 0.0;
+  cplx_t avg = 0.0;
+  for (int k = 0; k < 8; ++k) avg += kGw[k] * df(zT + kGx[k] * h);
+  return avg * h_over_delta;
+}
+
+// The point z_n = (x - i n y)/a with Im z >= +0 (y <= 0).
+inline cplx_t z_of(double x, double n, double y, double a) {
+  const double im = y < 0.0 ? -n * y / a : 0.0;  // +0.0 at the surface: upper side of the cut
+  return {x / a, im};
+}
+
+// The half-plane part of the vertical displacement v(x, y) mu/P,
+// (1/pi) int p(xi) int_0^inf W_hp(alpha, y) (1 - e^-alpha)/alpha cos(alpha (x - xi)) d alpha d xi
+// with W_hp the half-plane mode mix (WaveConstants::hp1, hp2), in closed form:
+// int_0^inf (1 - e^-alpha) e^{n alpha y}/alpha cos(alpha u) = Re ln((p+1)/p), so
+// V(z) = a sum b_n [L_n(z + i/a) - L_n(z)] at z = (x - i n y)/a, V'(z) = a [Phi(z + i/a) - Phi(z)].
+inline double half_plane_displacement(const WaveConstants& c, const Eigen::VectorXd& b, double a,
+                                      double x, double y, int step) {
+  const double nT = c.nT, nL = c.nL, d = c.delta;
+  const double kT = c.hp1 * (-1.0 / nT), kL = c.hp2 * c.dW, kD = c.hp2 * (-1.0 / nT);
+  const cplx_t shift(0.0, 1.0 / a);
+  auto V = [&](cplx_t z) {
+    return a * (log_potential(b, z + shift, step) - log_potential(b, z, step));
+  };
+  auto dV = [&](cplx_t z) {
+    return a * (cauchy_potential(b, z + shift, step) - cauchy_potential(b, z, step));
+  };
+  const cplx_t zT = z_of(x, nT, y, a), zL = z_of(x, nL, y, a);
+  const cplx_t vD = divided_difference(V, dV, zT, zL, d, cplx_t(0.0, -y / a));
+  return kT * V(zT).real() + kL * V(zL).real() + kD * vD.real();
+}
+
+// Gauss-Chebyshev (U) rule for int_{-1}^{1} sqrt(1 - r^2) g(r) ln(1 + (u - a r)^2) dr,
+// g = sum b_n U_n: nodes r_i and weights times g(r_i) (independent of u).
+// The integrand is analytic but for ln(1 + (u - a r)^2) at r = (u +- i)/a:
+// Gauss-Chebyshev converges like rho^(-2m), rho = 1/a + sqrt(1 + 1/a^2),
+// beyond the degree of g. This m keeps it at round-off (checked against
+// m = 8000 for 0.37 <= a/h <= 35: 7.5e-16 relative).
+inline void log1p_rule(const Eigen::VectorXd& b, double a, std::vector<double>& r,
+                       std::vector<double>& wg) {
+  const double rho = 1.0 / a + std::sqrt(1.0 + 1.0 / (a * a));
+  const int m = std::max(
+      16, static_cast<int>(b.size()) / 2 + static_cast<int>(std::ceil(8.5 / std::log10(rho))) + 8);
+  r.resize(static_cast<std::size_t>(m));
+  wg.resize(static_cast<std::size_t>(m));
+  for (int i = 1; i <= m; ++i) {
+    const double th = i * potentials::kPi / (m + 1);
+    const double ri = std::cos(th), sn = std::sin(th);
+    r[static_cast<std::size_t>(i - 1)] = ri;
+    wg[static_cast<std::size_t>(i - 1)] = sn * sn * u_series(b, ri) * potentials::kPi / (m + 1);
+  }
+}
+
+// The rule of log1p_rule at u.
+inline double log1p_sum(const std::vector<double>& r, const std::vector<double>& wg, double a,
+                        double u) {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    const double d = u - a * r[i];
+    sum += wg[i] * std::log1p(d * d);
+  }
+  return sum;
+}
+
+}  // namespace movingpunch::detail
