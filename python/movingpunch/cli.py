@@ -46,7 +46,6 @@ from movingpunch.errors import MovingPunchError
 from movingpunch.fields import StressPeaks
 from movingpunch.params import help_text, range_text
 from movingpunch.solver import (
-    Solution,
     critical_vstar,
     critical_wavenumber,
     rayleigh_vstar,
@@ -289,9 +288,7 @@ def _json_number(value: float) -> float | str:
 
 
 def _cmd_solve(args: argparse.Namespace) -> int:
-    if args.damping != 0.0:
-        return _cmd_solve_damped(args)
-    s: Solution = solve(
+    s = solve(
         vstar=args.vstar,
         kw=args.kw,
         radius=args.radius,
@@ -299,6 +296,7 @@ def _cmd_solve(args: argparse.Namespace) -> int:
         nu=args.nu,
         tol=args.tol,
         allow_unphysical=args.allow_unphysical,
+        damping=args.damping,
     )
     peaks = s.stress_peaks() if args.stress else None
     _print_warnings(s)
@@ -311,16 +309,21 @@ def _cmd_solve(args: argparse.Namespace) -> int:
     inputs = [
         ("V* = ρV²/μ", _fmt(s.vstar)),
         ("k_w h/μ", _fmt(s.kw)),
+        ("damping c_w c_T/μ", _fmt(s.damping)),
         ("R/h", _fmt(s.radius)),
         ("P/(μh)", _fmt(s.load)),
-        ("μ/(P/h)", _fmt(s.mu_over_load)),
+        ("μ/(P/h)", _fmt(1.0 / s.load)),
         ("ν", _fmt(s.nu)),
         ("tolerance", _fmt(s.tol)),
     ]
+    back, front = s.contact_interval
     results = [
         ("a/h", _fmt(s.a)),
+        ("contact (x_back/h, x_front/h)", f"({_fmt(back)}, {_fmt(front)})"),
         ("p0/(P/h)", _fmt(s.p0)),
         ("indentation δ/h", _fmt(s.indentation)),
+        ("drag (∫p x/R dx)/P", _fmt(s.drag)),
+        ("dissipation/(P V)", _fmt(s.dissipation)),
         ("V*_cr", _fmt(s.critical_vstar)),
         ("V*_R", _fmt(s.rayleigh_vstar)),
         ("φ1", _fmt(s.phi1)),
@@ -333,59 +336,6 @@ def _cmd_solve(args: argparse.Namespace) -> int:
         ("solve time", f"{s.elapsed * 1e3:.1f} ms"),
         ("valid", "yes" if s.valid else "NO"),
         ("validity", s.validity or "-"),
-    ]
-    sections = [("Inputs", inputs), ("Results", results)]
-    if peaks is not None:
-        sections.append(("Stress sigma_x/(P/h)", _stress_rows(peaks)))
-    print(_tables(*sections))
-    return 0
-
-
-def _cmd_solve_damped(args: argparse.Namespace) -> int:
-    """``solve --damping D``: the damped foundation (movingpunch.damped)."""
-    from movingpunch.damped import solve_damped
-
-    d = solve_damped(
-        vstar=args.vstar,
-        kw=args.kw,
-        radius=args.radius,
-        load=args.load,
-        nu=args.nu,
-        damping=args.damping,
-        tol=args.tol,
-        allow_unphysical=args.allow_unphysical,
-    )
-    peaks = d.stress_peaks() if args.stress else None
-    _print_warnings(d)
-    if args.json:
-        data = d.to_dict()
-        data["warnings"] = list(result_warnings(d))
-        if peaks is not None:
-            data["stress"] = dataclasses.asdict(peaks)
-        print(json.dumps(data, indent=2))
-        return 0
-    inputs = [
-        ("V* = ρV²/μ", _fmt(d.vstar)),
-        ("k_w h/μ", _fmt(d.kw)),
-        ("damping c_w c_T/μ", _fmt(d.damping)),
-        ("R/h", _fmt(d.radius)),
-        ("P/(μh)", _fmt(d.load)),
-        ("ν", _fmt(d.nu)),
-        ("tolerance", _fmt(d.tol)),
-    ]
-    results = [
-        ("contact (-b/h, a/h)", f"({_fmt(d.contact_interval[0])}, {_fmt(d.a)})"),
-        ("drag (∫p x/R dx)/P", _fmt(d.drag)),
-        ("dissipation/(P V)", _fmt(d.dissipation)),
-        ("V*_cr (undamped)", _fmt(d.critical_vstar)),
-        ("V*_R", _fmt(d.rayleigh_vstar)),
-        ("φ1", _fmt(d.phi1)),
-        ("collocation N", _fmt(d.collocation_n)),
-        ("iterations", _fmt(d.iterations)),
-        ("error estimate (ends)", f"{d.error_estimate:.2e}"),
-        ("solve time", f"{d.elapsed * 1e3:.1f} ms"),
-        ("valid", "yes" if d.valid else "NO"),
-        ("validity", d.validity or "-"),
     ]
     sections = [("Inputs", inputs), ("Results", results)]
     if peaks is not None:

@@ -35,7 +35,8 @@ class ContactSolution(Protocol):
     Parameters: ``vstar``, ``kw``, ``radius``, ``load``, ``nu``, ``tol``,
     ``damping`` (0.0 for the paper's model). The contact: ``contact_interval``
     (x_back, x_front), ``half_width``, ``centre``, ``a`` (the leading end;
-    the half-width of a symmetric contact), ``indentation``, ``drag`` (the
+    the half-width of a symmetric contact), ``p0`` (the pressure under the
+    punch's axis x = 0, over P/h), ``indentation``, ``drag`` (the
     horizontal force over P; 0.0 without damping) and ``dissipation`` (the
     power dissipated over P V, equal to ``drag`` by the energy balance).
     Trust: ``error_estimate`` (of the contact ends), ``stress_error_estimate``,
@@ -67,6 +68,8 @@ class ContactSolution(Protocol):
     def half_width(self) -> float: ...
     @property
     def centre(self) -> float: ...
+    @property
+    def p0(self) -> float: ...
     @property
     def indentation(self) -> float: ...
     @property
@@ -148,6 +151,7 @@ CONTRACT_FIELDS: tuple[str, ...] = (
     "contact_interval",
     "half_width",
     "centre",
+    "p0",
     "indentation",
     "drag",
     "dissipation",

@@ -187,22 +187,42 @@ class DampedSolution:
         slope by Parseval; equals ``drag`` by the energy balance."""
         return float(self._impl.dissipation())
 
+    @overload
+    def pressure(self, x: float) -> float: ...
+    @overload
+    def pressure(self, x: Points) -> FloatArray: ...
     def pressure(self, x: npt.ArrayLike) -> float | FloatArray:
         """p(x)/(P/h) (0 outside the contact)."""
         return _pointwise("x", x, self._impl.pressure)
 
+    @overload
+    def surface_slope(self, x: float) -> float: ...
+    @overload
+    def surface_slope(self, x: Points) -> FloatArray: ...
     def surface_slope(self, x: npt.ArrayLike) -> float | FloatArray:
         """Surface slope dv/dx(x, 0) (x/R on the contact)."""
         return _pointwise("x", x, self._impl.surface_slope)
 
+    @overload
+    def bottom_slope(self, x: float) -> float: ...
+    @overload
+    def bottom_slope(self, x: Points) -> FloatArray: ...
     def bottom_slope(self, x: npt.ArrayLike) -> float | FloatArray:
         """Slope dv/dx(x, -h) of the bottom face."""
         return _pointwise("x", x, self._impl.bottom_slope)
 
+    @overload
+    def surface_stress(self, x: float) -> float: ...
+    @overload
+    def surface_stress(self, x: Points) -> FloatArray: ...
     def surface_stress(self, x: npt.ArrayLike) -> float | FloatArray:
         """sigma_x(x, 0)/(P/h)."""
         return _pointwise("x", x, self._impl.surface_stress)
 
+    @overload
+    def depth_stress(self, y: float, x: float = ...) -> float: ...
+    @overload
+    def depth_stress(self, y: Points, x: float = ...) -> FloatArray: ...
     def depth_stress(self, y: npt.ArrayLike, x: float = 0.0) -> float | FloatArray:
         """sigma_x(x, y)/(P/h) for -1 <= y <= -1e-3 and at the surface y = 0
         (``surface_stress``); the Fourier integral is not used in between."""
@@ -219,6 +239,12 @@ class DampedSolution:
         if not math.isfinite(xs):
             raise InvalidParameterError(f"x must be a finite number, got {x!r}")
         return _pointwise("y", y, lambda v: self._impl.stress_x(xs, v), pts)
+
+    @property
+    def p0(self) -> float:
+        """Pressure p(0)/(P/h) under the punch's axis x = 0 (not the contact's
+        centre: the damped contact is asymmetric)."""
+        return self.pressure(0.0)
 
     @functools.cached_property
     def indentation(self) -> float:
@@ -252,10 +278,18 @@ class DampedSolution:
         grid = self._impl.displacement
         return _pointwise("x", x, lambda xs: grid(xs, _flat(depth))[0])
 
+    @overload
+    def bottom_displacement(self, x: float) -> float: ...
+    @overload
+    def bottom_displacement(self, x: Points) -> FloatArray: ...
     def bottom_displacement(self, x: npt.ArrayLike) -> float | FloatArray:
         """Displacement v(x, -h)/h of the bottom face."""
         return _pointwise("x", x, self._impl.bottom_displacement)
 
+    @overload
+    def foundation_reaction(self, x: float) -> float: ...
+    @overload
+    def foundation_reaction(self, x: Points) -> FloatArray: ...
     def foundation_reaction(self, x: npt.ArrayLike) -> float | FloatArray:
         """Pressure of the base on the layer, -sigma_y(x, -h)/(P/h)
         (springs and dashpots together)."""
@@ -366,6 +400,7 @@ class DampedSolution:
         data["warnings"] = list(self.warnings)
         data["dissipation"] = self.dissipation
         data["indentation"] = self.indentation
+        data["p0"] = self.p0
         data["a"] = self.a
         data["half_width"] = self.half_width
         data["centre"] = self.centre

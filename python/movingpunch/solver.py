@@ -46,7 +46,6 @@ from movingpunch.peaks import search_peaks
 
 if TYPE_CHECKING:
     from movingpunch.contract import ContactSolution
-    from movingpunch.damped import DampedSolution
 
 __all__ = [
     "PRESETS",
@@ -371,7 +370,7 @@ def solve(
     allow_unphysical: bool = ...,
     n: int | None = ...,
     damping: float,
-) -> Solution | DampedSolution: ...
+) -> ContactSolution: ...
 
 
 def solve(
@@ -385,7 +384,7 @@ def solve(
     allow_unphysical: bool = False,
     n: int | None = None,
     damping: float = 0.0,
-) -> Solution | DampedSolution:
+) -> ContactSolution:
     """Solves the contact problem of a rigid cylinder sliding over the layer.
 
     Parameters are dimensionless (see the module docstring). Raises
@@ -406,7 +405,8 @@ def solve(
     ``damping`` = c_w c_T/mu >= 0 adds dashpots to the springs (a Kelvin-Voigt
     foundation, docs/damped.md). 0 (the default) is the paper's model and
     returns a Solution; > 0 returns a ``movingpunch.damped.DampedSolution``
-    (asymmetric contact, drag; speeds up to the Rayleigh speed).
+    (asymmetric contact, drag; speeds up to the Rayleigh speed). Both satisfy
+    ``movingpunch.ContactSolution``, the one contract callers use.
     """
     from movingpunch.damped import check_damping, solve_damped
 

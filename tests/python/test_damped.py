@@ -225,7 +225,8 @@ def test_cli_damping(run_cli: Callable[..., subprocess.CompletedProcess[str]]) -
     table = run_cli("solve", *case, "--damping", "0.1")
     assert table.returncode == 0, table.stderr
     assert "drag" in table.stdout
-    assert "contact (-b/h, a/h)" in table.stdout
+    assert "contact (x_back/h, x_front/h)" in table.stdout
+    assert "indentation δ/h" in table.stdout
     bad = run_cli("solve", *case, "--damping", "-1")
     assert bad.returncode == 2
     assert "damping" in bad.stderr

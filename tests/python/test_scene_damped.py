@@ -7,9 +7,6 @@ separately, and the tiny-damping case against the undamped solver."""
 from __future__ import annotations
 
 import math
-import subprocess
-from collections.abc import Callable
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -51,7 +48,8 @@ def test_bundled_damped_scene_matches_the_api() -> None:
         assert cw["contact_end"][i] == pytest.approx(s.contact_interval[1], abs=1e-12)
         assert cw["a"][i] == pytest.approx(s.a, abs=1e-12)
         assert cw["drag"][i] == pytest.approx(s.drag, rel=1e-10)
-        assert math.isnan(cw["indentation"][i])
+        assert cw["indentation"][i] == pytest.approx(s.indentation, rel=1e-10)
+        assert cw["p0"][i] == pytest.approx(float(s.pressure(0.0)), rel=1e-10)
         curve = pressure.curves[i]
         np.testing.assert_allclose(curve.y, s.pressure(curve.x), atol=1e-12)
     # The pressure range spans every contact, the supercritical one included.
@@ -241,50 +239,43 @@ def test_supercritical_speed_needs_damping() -> None:
         )
 
 
-@pytest.mark.parametrize(
-    ("part", "key", "reason"),
-    [
-        ("[outputs]\ndisplacement = true\n", "outputs.displacement", "no displacement"),
-        (
-            '[sweep]\nparam = "radius"\nvalues = [50, 100]\n'
-            'quantities = ["indentation"]\n',
-            "sweep.quantities[0]",
-            "no indentation",
-        ),
-        (
-            "[outputs]\ndepth_stress = { y = [-0.0005, 0.0] }\n",
-            "outputs.depth_stress.y",
-            "-0.001",
-        ),
-    ],
-)
-def test_outputs_the_damped_solver_cannot_give(
-    part: str, key: str, reason: str
-) -> None:
-    text = HEAD.format(vstar=0.2) + "damping = 0.1\n" + part
+def test_outputs_the_damped_solver_cannot_give() -> None:
+    """Only a depth range wholly above y/h = -1e-3 is refused now."""
+    text = (
+        HEAD.format(vstar=0.2)
+        + "damping = 0.1\n[outputs]\ndepth_stress = { y = [-0.0005, 0.0] }\n"
+    )
     with pytest.raises(SceneError) as info:
         Scene.from_toml(text, "d.toml")
     message = str(info.value)
-    assert message.startswith(f"d.toml: {key}: "), message
-    assert reason in message
+    assert message.startswith("d.toml: outputs.depth_stress.y: "), message
+    assert "-0.001" in message
     assert "damping > 0 at params.damping" in message
-    # Without damping the same scene is fine (the depth range aside).
-    if "depth_stress" not in part:
-        Scene.from_toml(HEAD.format(vstar=0.2) + part)
 
 
-def test_cli_refuses_displacement_with_damping_in_one_line(
-    tmp_path: Path,
-    run_cli: Callable[..., subprocess.CompletedProcess[str]],
-    assert_one_line_error: Callable[..., None],
-) -> None:
-    path = tmp_path / "d.toml"
-    path.write_text(
-        HEAD.format(vstar=0.2) + "damping = 0.1\n[outputs]\ndisplacement = true\n"
+def test_damped_displacement_and_indentation_in_a_scene_match_the_api() -> None:
+    """The displacement output and the indentation sweep quantity, once
+    refused with damping > 0, now come from the contract's members; a radius
+    sweep shares solutions through lambda = R P, so the indentation scales
+    with the load (here fixed) and the drag as 1/R."""
+    text = (
+        HEAD.format(vstar=0.2)
+        + "damping = 0.1\n[outputs]\ndisplacement = { points = 7 }\n"
+        + '[sweep]\nparam = "radius"\nvalues = [50, 100]\n'
+        + 'quantities = ["indentation", "drag"]\n'
     )
-    proc = run_cli("run", str(path))
-    assert_one_line_error(proc, "not available with damping > 0")
-    assert proc.stderr.startswith(f"movingpunch: error: {path}: outputs.displacement: ")
+    result = Scene.from_toml(text).run()
+    curve = result.outputs["displacement"].curves[0]
+    s = damped(0.2, 0.1)
+    np.testing.assert_allclose(
+        curve.y, s.surface_displacement(curve.x), rtol=1e-12, atol=1e-15
+    )
+    assert result.sweep is not None
+    for j, radius in enumerate((50.0, 100.0)):
+        direct = mp.solve(vstar=0.2, kw=1.0, radius=radius, load=0.002, damping=0.1)
+        ind = result.sweep.data["indentation"][0, j]
+        assert ind == pytest.approx(direct.indentation, rel=1e-7)
+        assert result.sweep.data["drag"][0, j] == pytest.approx(direct.drag, rel=1e-7)
 
 
 def test_damping_round_trips_and_stays_out_of_undamped_scenes() -> None:

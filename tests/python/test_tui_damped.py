@@ -4,8 +4,6 @@ damped solver does not serve. Numbers are checked against ``mp.solve``."""
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 import pytest
 
@@ -116,10 +114,27 @@ def test_depth_tab_of_a_damped_set_clips_and_uses_the_surface_value() -> None:
     assert summary.damped
     assert summary.contact_interval == s.contact_interval
     assert summary.drag == s.drag
-    assert math.isnan(summary.indentation)
+    assert summary.indentation == s.indentation
+    assert summary.p0 == float(s.pressure(0.0))
 
 
-@pytest.mark.parametrize("tab", ["sweep", "field", "accuracy"])
+def test_damped_sweep_tab_is_computed() -> None:
+    """The a/h sweep with damping > 0 (once a Notice: damped solves took a
+    second) solves every point: each equals the API's solve."""
+    cache = Cache()
+    params = Params(vstar=0.2, damping=0.1)
+    result = model.compute(cache, Request(generation=1, params=params, tab="sweep"))
+    assert result is not None
+    data = result.data
+    assert isinstance(data, Curves)
+    values = data.series[0].values
+    assert np.isfinite(values).all()
+    for j in (0, len(values) - 1):
+        point = params.with_value("load", float(data.grid[j]))
+        assert values[j] == model.solution(cache, point).a
+
+
+@pytest.mark.parametrize("tab", ["field", "accuracy"])
 def test_tabs_the_damped_solver_does_not_serve_are_notices(tab: TabName) -> None:
     cache = Cache()
     params = Params(damping=0.5)

@@ -31,13 +31,6 @@ PARAMS: tuple[str, ...] = ("vstar", "kw", "radius", "load", "nu", "damping")
 ``nu`` defaults to 0.2; ``damping`` (c_w c_T/mu, the Kelvin-Voigt dashpots,
 docs/damped.md) to 0 and is kept in ``params`` only when given."""
 
-DAMPED_UNAVAILABLE: dict[str, str] = {
-    "displacement": "the damped solver gives no displacement of the layer",
-    "indentation": "the damped solver gives no indentation",
-}
-"""Outputs and sweep quantities a point with damping > 0 cannot give, with
-the reason (docs/damped.md, section 3)."""
-
 DAMPED_MAX_Y = -1e-3
 """Damped points evaluate stresses at y/h <= this (the Fourier integral of
 the damped solver is not used closer to the surface): depths above it are

@@ -15,25 +15,24 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from movingpunch.contract import ContactSolution
 from movingpunch.damped import DampedSolution
-from movingpunch.errors import MovingPunchError
 from movingpunch.fields import StressField, derived_stresses
 from movingpunch.scene._model import DAMPED_MAX_Y, STRESS_COMPONENTS
 from movingpunch.scene._result import (
-    AnySolution,
     Curve,
     FloatArray,
     OutputData,
     column_name,
 )
-from movingpunch.scene._solve import RunState, curve_label, is_damped
+from movingpunch.scene._solve import RunState, curve_label
 from movingpunch.scene._validate import critical_speed
-from movingpunch.solver import Solution, rayleigh_vstar
+from movingpunch.solver import rayleigh_vstar
 
 __all__ = ["OUTPUTS"]
 
 
-_Solutions = Mapping[float | None, AnySolution]
+_Solutions = Mapping[float | None, ContactSolution]
 
 
 def _curves(
@@ -41,7 +40,7 @@ def _curves(
     stage: str,
     solutions: _Solutions,
     x: FloatArray,
-    evaluate: Callable[[AnySolution, Mapping[str, float]], FloatArray],
+    evaluate: Callable[[ContactSolution, Mapping[str, float]], FloatArray],
 ) -> tuple[Curve, ...]:
     scene = run.scene
     param = scene.vary.param if scene.vary is not None else None
@@ -71,35 +70,27 @@ def _x_grid(
 
 
 def _out_contact_width(run: RunState, spec: Any, solutions: _Solutions) -> OutputData:
+    """The contact of every curve: its ends (x_back, x_front) = (-a, a) when
+    symmetric, the drag (0 without damping), p(0), the indentation."""
     scene = run.scene
     cols: dict[str, list[float]] = {}
     if scene.vary is not None:
         cols[scene.vary.param] = []
-    damped = is_damped(scene)
-    names = ["a", "p0", "indentation", "valid", "error_estimate", "collocation_n"]
-    if damped:  # the contact interval (-b, a) and the drag
-        names[1:1] = ["contact_start", "contact_end", "drag"]
-    for name in names:
+    names = ["a", "contact_start", "contact_end", "drag", "p0", "indentation"]
+    for name in [*names, "valid", "error_estimate", "collocation_n"]:
         cols[name] = []
     for v, s in solutions.items():
         p = scene.point(v)
         if scene.vary is not None:
             cols[scene.vary.param].append(float(v) if v is not None else math.nan)
         cols["a"].append(s.a)
-        if isinstance(s, DampedSolution):
-            cols["p0"].append(float(s.pressure(0.0)))
-            cols["indentation"].append(math.nan)  # not given by the damped solver
-            cols["contact_start"].append(s.contact_interval[0])
-            cols["contact_end"].append(s.contact_interval[1])
-            # int p x/R dx / P: 1/radius at fixed lambda (shared solutions).
-            cols["drag"].append(s.drag * s.radius / p["radius"])
-        else:
-            cols["p0"].append(s.p0)
-            cols["indentation"].append(s.indentation * p["load"] / s.load)
-            if damped:
-                cols["contact_start"].append(-s.a)
-                cols["contact_end"].append(s.a)
-                cols["drag"].append(0.0)
+        cols["contact_start"].append(s.contact_interval[0])
+        cols["contact_end"].append(s.contact_interval[1])
+        # Solutions are shared through lambda = radius * load: the drag
+        # (int p x/R dx / P) scales as 1/radius, the indentation as the load.
+        cols["drag"].append(s.drag * s.radius / p["radius"])
+        cols["p0"].append(s.p0)
+        cols["indentation"].append(s.indentation * p["load"] / s.load)
         cols["valid"].append(1.0 if s.valid else 0.0)
         cols["error_estimate"].append(s.error_estimate)
         cols["collocation_n"].append(float(s.collocation_n))
@@ -113,13 +104,9 @@ def _out_contact_width(run: RunState, spec: Any, solutions: _Solutions) -> Outpu
 
 
 def _out_pressure(run: RunState, spec: Any, solutions: _Solutions) -> OutputData:
-    if is_damped(run.scene):  # 1.25 x the span of every (asymmetric) contact
-        ends = [e for s in solutions.values() for e in _interval(s)]
-        reach = max(abs(e) for e in ends)
-        default = (-1.25 * reach, 1.25 * reach)
-    else:
-        a_max = max(s.a for s in solutions.values())
-        default = (-1.25 * a_max, 1.25 * a_max)
+    # 1.25 x the farthest contact end of every curve.
+    reach = max(abs(e) for s in solutions.values() for e in s.contact_interval)
+    default = (-1.25 * reach, 1.25 * reach)
     x = _x_grid(spec.x, default, spec.resolved_points())
     curves = _curves(
         run, "pressure", solutions, x, lambda s, p: np.asarray(s.pressure(x))
@@ -134,13 +121,6 @@ def _out_pressure(run: RunState, spec: Any, solutions: _Solutions) -> OutputData
     )
 
 
-def _interval(s: AnySolution) -> tuple[float, float]:
-    """The contact (-b/h, a/h); (-a/h, a/h) for an undamped solution."""
-    if isinstance(s, DampedSolution):
-        return s.contact_interval
-    return (-s.a, s.a)
-
-
 def _clipped_depths(y: FloatArray) -> tuple[FloatArray, FloatArray, npt.NDArray[Any]]:
     """For a damped point: (the depths evaluated: y, with DAMPED_MAX_Y < y < 0
     clipped to DAMPED_MAX_Y; their distinct values below the surface; the
@@ -153,7 +133,7 @@ def _clipped_depths(y: FloatArray) -> tuple[FloatArray, FloatArray, npt.NDArray[
     return clipped, distinct, full
 
 
-def _depth_stress(s: AnySolution, y: FloatArray) -> FloatArray:
+def _depth_stress(s: ContactSolution, y: FloatArray) -> FloatArray:
     """sigma_x(0, y); for a damped point at the clipped depths, and at y = 0
     the surface value sigma_x(0, 0) (``surface_stress``)."""
     if not isinstance(s, DampedSolution):
@@ -168,7 +148,7 @@ def _depth_stress(s: AnySolution, y: FloatArray) -> FloatArray:
     return out
 
 
-def _stress_field(s: AnySolution, x: FloatArray, y: FloatArray) -> StressField:
+def _stress_field(s: ContactSolution, x: FloatArray, y: FloatArray) -> StressField:
     """The stress field; for a damped point at the clipped depths, and on the
     surface y = 0 from the surface values (sigma_x(x, 0), sigma_y = -p,
     tau_xy = 0: the punch is frictionless)."""
@@ -198,12 +178,6 @@ def _stress_field(s: AnySolution, x: FloatArray, y: FloatArray) -> StressField:
         von_mises=vm,
         max_shear=ms,
     )
-
-
-def _undamped(s: AnySolution, output: str) -> Solution:
-    if isinstance(s, DampedSolution):  # refused by the scene's validation
-        raise MovingPunchError(f"{output} is not available with damping > 0")
-    return s
 
 
 def _out_surface_stress(run: RunState, spec: Any, solutions: _Solutions) -> OutputData:
@@ -250,9 +224,7 @@ def _out_displacement(run: RunState, spec: Any, solutions: _Solutions) -> Output
         solutions,
         x,
         # v = load * V(x; lambda): rescale a solution shared through lambda.
-        lambda s, p: (
-            _undamped(s, "displacement").displacement(x, depth) * (p["load"] / s.load)
-        ),
+        lambda s, p: s.displacement(x, depth) * (p["load"] / s.load),
     )
     return OutputData(
         "displacement",

@@ -11,17 +11,13 @@ from dataclasses import dataclass, field
 import numpy as np
 import numpy.typing as npt
 
-from movingpunch.damped import DampedSolution
+from movingpunch.contract import ContactSolution
 from movingpunch.fields import StressField
-from movingpunch.solver import Solution
 
 __all__ = ["Curve", "OutputData", "RunRecord", "Stage", "SweepTable"]
 
 
 FloatArray = npt.NDArray[np.float64]
-
-AnySolution = Solution | DampedSolution
-"""A contact solution: undamped, or on a damped foundation (damping > 0)."""
 
 # Stage names of the core solve (Solution.stage_times), nested in "contact".
 CORE_STAGES = ("critical_speed", "kernel", "width", "checks")
@@ -52,7 +48,7 @@ class Stages:
         entry[0] += seconds
         entry[1] += count
 
-    def add_solution(self, s: AnySolution) -> None:
+    def add_solution(self, s: ContactSolution) -> None:
         self.add("contact", s.elapsed)
         times = getattr(s, "stage_times", None) or {}
         builds = int(getattr(s, "kernel_builds", 0))
@@ -153,7 +149,7 @@ class RunRecord:
 
     outputs: Mapping[str, OutputData]
     sweep: SweepTable | None
-    solutions: tuple[AnySolution, ...]
+    solutions: tuple[ContactSolution, ...]
     """Contact solutions computed in this process (sweep points solved in
     worker processes or on Dask return their numbers only)."""
     stages: list[Stage]

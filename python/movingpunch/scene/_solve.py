@@ -18,10 +18,10 @@ from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
-from movingpunch.damped import DampedSolution
+from movingpunch.contract import ContactSolution
 from movingpunch.errors import MovingPunchError
 from movingpunch.scene._model import PEAK_QUANTITIES, SceneData
-from movingpunch.scene._result import AnySolution, Stages
+from movingpunch.scene._result import Stages
 from movingpunch.solver import result_warnings, solve
 
 __all__ = ["is_damped"]
@@ -53,7 +53,7 @@ def curve_label(param: str | None, value: float | None) -> str:
     return f"{param}={'inf' if math.isinf(value) else format(value, '.6g')}"
 
 
-def solve_point(p: Mapping[str, float], tol: float, stages: Stages) -> AnySolution:
+def solve_point(p: Mapping[str, float], tol: float, stages: Stages) -> ContactSolution:
     s = solve(
         vstar=p["vstar"],
         kw=p["kw"],
@@ -69,7 +69,7 @@ def solve_point(p: Mapping[str, float], tol: float, stages: Stages) -> AnySoluti
 
 
 def point_quantities(
-    s: AnySolution, want_peaks: bool, stages: Stages, warnings: list[str]
+    s: ContactSolution, want_peaks: bool, stages: Stages, warnings: list[str]
 ) -> dict[str, float]:
     """The sweep's numbers of one solved point; the stress peak search's
     warnings (``StressPeaks.warnings``) are appended to ``warnings``."""
@@ -82,23 +82,13 @@ def point_quantities(
         "load": s.load,
         "radius": s.radius,
     }
-    if isinstance(s, DampedSolution):
-        # Validation refuses the indentation for damped points.
-        q.update(
-            p0=float(s.pressure(0.0)),
-            indentation=math.nan,
-            drag=s.drag,
-            contact_start=s.contact_interval[0],
-            contact_end=s.contact_interval[1],
-        )
-    else:
-        q.update(
-            p0=s.p0,
-            indentation=s.indentation,
-            drag=0.0,
-            contact_start=-s.a,
-            contact_end=s.a,
-        )
+    q.update(
+        p0=s.p0,
+        indentation=s.indentation,
+        drag=s.drag,
+        contact_start=s.contact_interval[0],
+        contact_end=s.contact_interval[1],
+    )
     if want_peaks:
         t0 = time.perf_counter()
         peaks = s.stress_peaks()
@@ -161,7 +151,7 @@ class RunState:
 
     scene: SceneData
     stages: Stages = field(default_factory=Stages)
-    memo: dict[Key, AnySolution] = field(default_factory=dict)
+    memo: dict[Key, ContactSolution] = field(default_factory=dict)
     warnings: dict[Key, list[str]] = field(default_factory=dict)
     done: int = 0
     total: int = 0
@@ -172,7 +162,7 @@ class RunState:
         if self.progress is not None:
             self.progress(self.done, self.total)
 
-    def solution(self, p: Mapping[str, float]) -> AnySolution:
+    def solution(self, p: Mapping[str, float]) -> ContactSolution:
         key = point_key(p, self.scene.tol)
         if key not in self.memo:
             self.memo[key] = solve_point(p, self.scene.tol, self.stages)

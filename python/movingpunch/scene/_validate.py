@@ -19,7 +19,6 @@ from movingpunch.errors import SceneError
 from movingpunch.params import PRESETS, SPECS, classify
 from movingpunch.scene._model import (
     DAMPED_MAX_Y,
-    DAMPED_UNAVAILABLE,
     DEFAULT_NU,
     MAX_GRID,
     MAX_POINTS,
@@ -467,17 +466,9 @@ def _check_speeds(scene: SceneData, c: Checker) -> None:
 
 
 def _check_damped_outputs(scene: SceneData, c: Checker, damped_where: str) -> None:
-    """Outputs and sweep quantities a damped point cannot give, and depth
-    ranges that lie wholly above y/h = -1e-3 (``DAMPED_MAX_Y``)."""
+    """Depth ranges that lie wholly above y/h = -1e-3 (``DAMPED_MAX_Y``)."""
     why = f"damping > 0 at {damped_where}"
     for kind, spec in scene.outputs.items():
-        if kind in DAMPED_UNAVAILABLE:
-            raise c.fail(
-                f"outputs.{kind}",
-                f"not available with {why}: {DAMPED_UNAVAILABLE[kind]}",
-                "contact_width, pressure, surface_stress, depth_stress, "
-                "stress_field, critical_speed",
-            )
         if kind in ("depth_stress", "stress_field"):
             lo, _ = spec.resolved_y()
             if lo > DAMPED_MAX_Y:
@@ -486,16 +477,6 @@ def _check_damped_outputs(scene: SceneData, c: Checker, damped_where: str) -> No
                     f"lies above y/h = {DAMPED_MAX_Y:g}, where the damped solver "
                     f"gives no stresses ({why})",
                     f"a range reaching below y/h = {DAMPED_MAX_Y:g}",
-                )
-    if scene.sweep is not None:
-        for i, q in enumerate(scene.sweep.quantities):
-            if q in DAMPED_UNAVAILABLE:
-                raise c.fail(
-                    f"sweep.quantities[{i}]",
-                    f"{q!r} is not available with {why}: {DAMPED_UNAVAILABLE[q]}",
-                    ", ".join(
-                        k for k in SWEEP_QUANTITIES if k not in DAMPED_UNAVAILABLE
-                    ),
                 )
 
 

@@ -20,6 +20,7 @@ import numpy as np
 import numpy.typing as npt
 
 from movingpunch.accuracy import LADDER, AccuracyReport, accuracy_report
+from movingpunch.contract import ContactSolution
 from movingpunch.damped import DampedSolution
 from movingpunch.errors import InvalidParameterError, MovingPunchError
 from movingpunch.fields import StressPeaks
@@ -47,9 +48,6 @@ PARAM_NAMES: tuple[str, ...] = (
 
 SCENE_PARAMS: tuple[str, ...] = ("vstar", "kw", "radius", "load", "nu", "damping")
 """The physical parameters (a scene's ``params``); ``tol`` is separate."""
-
-AnySolution = Solution | DampedSolution
-"""A contact solution: undamped, or on a damped foundation (damping > 0)."""
 
 DAMPED_MAX_Y = -1e-3
 """A damped solution gives stresses at y/h <= this (and on the surface)."""
@@ -264,10 +262,7 @@ class Summary:
     a: float
     p0: float
     indentation: float
-    """NaN with damping > 0 (the damped solver gives no indentation)."""
     top_tensile: float
-    """NaN with damping > 0 (the damped peaks take about a second: not in
-    the summary line; DampedSolution.stress_peaks gives them)."""
     bottom_tensile: float
     iterations: int
     error_estimate: float
@@ -351,13 +346,13 @@ class Cache:
             self.misses.clear()
 
 
-def solution(cache: Cache, params: Params) -> AnySolution:
+def solution(cache: Cache, params: Params) -> ContactSolution:
     s = cache.get_or_make(("solution", params), lambda: _solve(params))
-    assert isinstance(s, (Solution, DampedSolution))
+    assert isinstance(s, ContactSolution)
     return s
 
 
-def _solve(params: Params) -> AnySolution:
+def _solve(params: Params) -> ContactSolution:
     return solve(
         vstar=params.vstar,
         kw=params.kw,
@@ -376,24 +371,6 @@ def limits(kw: float, nu: float) -> tuple[float, float]:
 
 def summary(cache: Cache, params: Params) -> Summary:
     s = solution(cache, params)
-    if isinstance(s, DampedSolution):
-        return Summary(
-            params=params,
-            a=s.a,
-            p0=float(np.asarray(s.pressure(0.0))),
-            indentation=math.nan,
-            top_tensile=math.nan,
-            bottom_tensile=math.nan,
-            iterations=s.iterations,
-            error_estimate=s.error_estimate,
-            elapsed=s.elapsed,
-            valid=s.valid,
-            critical_vstar=s.critical_vstar,
-            rayleigh_vstar=s.rayleigh_vstar,
-            contact_interval=s.contact_interval,
-            drag=s.drag,
-            warnings=result_warnings(s),
-        )
     peaks = cache.get_or_make(("peaks", params), s.stress_peaks)
     assert isinstance(peaks, StressPeaks)
     return Summary(
@@ -409,7 +386,8 @@ def summary(cache: Cache, params: Params) -> Summary:
         valid=s.valid,
         critical_vstar=s.critical_vstar,
         rayleigh_vstar=s.rayleigh_vstar,
-        contact_interval=(-s.a, s.a),
+        contact_interval=s.contact_interval,
+        drag=s.drag,
         warnings=result_warnings(s),
     )
 
@@ -447,7 +425,7 @@ def compute(
     stop = cancelled or (lambda: False)
     head = summary(cache, request.params)
     members = _members(request)
-    solved: list[tuple[str, Params, AnySolution]] = []
+    solved: list[tuple[str, Params, ContactSolution]] = []
     notes: list[str] = []
     for label, params in members:
         try:
@@ -478,8 +456,6 @@ def compute(
 
 
 _DAMPED_TABS: dict[TabName, str] = {
-    "sweep": "the a/h sweep is not computed with damping > 0 (13 damped solves "
-    "of 0.4-1.5 s each); use a scene with [sweep] (movingpunch run)",
     "field": "the stress map is not computed with damping > 0 (the damped "
     "solver's field integral is too slow for a map); see the σx(0,y) tab",
     "accuracy": "the accuracy ladder covers the undamped solver only; set damping = 0",
@@ -502,14 +478,11 @@ def _one_line(exc: BaseException) -> str:
     return " ".join(str(exc).split()) or type(exc).__name__
 
 
-def _extent(tab: TabName, solved: Sequence[tuple[str, Params, AnySolution]]) -> float:
+def _extent(
+    tab: TabName, solved: Sequence[tuple[str, Params, ContactSolution]]
+) -> float:
     # The farthest contact end (the damped contact (-b, a) is asymmetric).
-    amax = max(
-        max(abs(e) for e in s.contact_interval)
-        if isinstance(s, DampedSolution)
-        else s.a
-        for _, _, s in solved
-    )
+    amax = max(max(abs(e) for e in s.contact_interval) for _, _, s in solved)
     if tab == "pressure":
         return _round_up(1.15 * amax)
     return _round_up(max(3.0, 4.0 * amax))
@@ -531,7 +504,7 @@ _LABELS = {
 def _curves(
     cache: Cache,
     tab: TabName,
-    solved: Sequence[tuple[str, Params, AnySolution]],
+    solved: Sequence[tuple[str, Params, ContactSolution]],
     report: Progress,
     stop: Callable[[], bool],
 ) -> Curves:
@@ -569,7 +542,7 @@ def _curves(
     )
 
 
-def _depth_stress(s: AnySolution, y: FloatArray) -> FloatArray:
+def _depth_stress(s: ContactSolution, y: FloatArray) -> FloatArray:
     """sigma_x(0, y); a damped solution at y clipped to <= DAMPED_MAX_Y, and
     at y = 0 its surface value sigma_x(0, 0)."""
     if not isinstance(s, DampedSolution):
@@ -588,7 +561,7 @@ def _depth_stress(s: AnySolution, y: FloatArray) -> FloatArray:
 def _sweep(
     cache: Cache,
     request: Request,
-    solved: Sequence[tuple[str, Params, AnySolution]],
+    solved: Sequence[tuple[str, Params, ContactSolution]],
     report: Progress,
     stop: Callable[[], bool],
 ) -> Curves | None:
