@@ -68,7 +68,9 @@ void bessel_j(double x, int nmax, std::vector<double>& J) {
   detail::bessel_orders(x, nmax + 1, J);
 }
 
-cplx u_series_transform(const Eigen::VectorXd& b, double centre, double half, double alpha);
+cplx u_series_transform(const Eigen::VectorXd& b, double centre, double half, double alpha,
+                        const Eigen::VectorXd* b2 = nullptr, double centre2 = 0.0,
+                        cplx* t2 = nullptr);
 
 }  // namespace
 
@@ -587,8 +589,9 @@ WidthSolve solve_width(const ChebyshevNodes& nd, double lambda_t, double w_guess
   };
   // To |F| <= xftol (round-off) or a bracket of xftol.
   constexpr auto kSafeguard = detail::Safeguard::kStalledBracket;
-  const double x = x0 < x1 ? detail::bracketed_root(f, x0, x1, f0, f1, xftol, 200, xftol, kSafeguard)
-                           : detail::bracketed_root(f, x1, x0, f1, f0, xftol, 200, xftol, kSafeguard);
+  const double x = x0 < x1
+                       ? detail::bracketed_root(f, x0, x1, f0, f1, xftol, 200, xftol, kSafeguard)
+                       : detail::bracketed_root(f, x1, x0, f1, f0, xftol, 200, xftol, kSafeguard);
   if (!(last == x)) f(x);  // the solution at the root
   return finish(x);
 }
@@ -608,8 +611,8 @@ std::vector<double> scan_points(double lo, double hi) {
     return xs;
   }
   xs.push_back(lo);
-  for (auto i = static_cast<long>(std::floor(lo / kScanStep)) + 1; i * kScanStep < hi; ++i)
-    if (i * kScanStep > lo) xs.push_back(static_cast<double>(i) * kScanStep);
+  for (double k = std::floor(lo / kScanStep) + 1.0; k * kScanStep < hi; k += 1.0)
+    if (k * kScanStep > lo) xs.push_back(k * kScanStep);
   xs.push_back(hi);
   return xs;
 }
@@ -893,8 +896,20 @@ DampedSolution solve_damped(const DampedParams& prm) {
   }
 
   s.kernel_ = kern;
-  // Fine nodes for the Fourier integrals up to |x| <= 3 (a + b).
-  s.light_ = std::make_shared<const DampedSolution::Fine>(s.build_fine(2.0 * s.half_));
+  // The change of g's coefficients between the last two sizes (for the
+  // stress estimate below).
+  const bool have_change = !d_p.empty() && d_p.back() > 0.0 && b_prev.size() > 0;
+  Eigen::VectorXd db;
+  if (have_change) {
+    db = Eigen::VectorXd::Zero(std::max(bk.size(), b_prev.size()));
+    db.head(bk.size()) += bk;
+    db.head(b_prev.size()) -= b_prev;
+  }
+  // Fine nodes for the Fourier integrals up to |x| <= 3 (a + b), with the
+  // transform of db at them.
+  std::vector<cplx> dphat;
+  s.light_ = std::make_shared<const DampedSolution::Fine>(
+      s.build_fine(2.0 * s.half_, have_change ? &db : nullptr, &dphat));
 
   // Surface sigma_x = -phi2 p - (1/pi) Re int_0^inf (M2 - phi2) p^ e^{i alpha x}
   // is linear in p: the change of sigma_x between the last two sizes, from
@@ -909,14 +924,10 @@ DampedSolution solve_damped(const DampedParams& prm) {
   {
     const double phi2 = model->phi2();
     double gain = 0.0;
-    if (!d_p.empty() && d_p.back() > 0.0 && b_prev.size() > 0) {
-      Eigen::VectorXd db = Eigen::VectorXd::Zero(std::max(bk.size(), b_prev.size()));
-      db.head(bk.size()) += bk;
-      db.head(b_prev.size()) -= b_prev;
+    if (have_change) {
       const DampedSolution::Fine& f = *s.light_;
       std::vector<cplx> amp(f.alpha.size());
-      for (std::size_t i = 0; i < f.alpha.size(); ++i)
-        amp[i] = (f.r[i].M2 - phi2) * u_series_transform(db, 0.0, s.half_, f.alpha[i]);
+      for (std::size_t i = 0; i < f.alpha.size(); ++i) amp[i] = (f.r[i].M2 - phi2) * dphat[i];
       std::vector<double> amp_re, amp_im;
       f.coefficients(amp, amp_re, amp_im);
       double dmax = 0.0;
@@ -929,7 +940,10 @@ DampedSolution solve_damped(const DampedParams& prm) {
           r = (q % 2 == 0 ? 1.0 : -1.0) * (1.0 + 5.0 * std::pow((q / 2 + 0.5) / 16.0, 2.0));
         }
         const double x = s.centre_ + s.half_ * r;
-        const double sum = f.fourier(amp_re, amp_im, x - s.centre_);
+        // f.fourier(amp_re, amp_im, x - c), its two Filon sums sharing the
+        // Bessel functions and the phases.
+        const auto re_im = f.filon->integral_pair(x - s.centre_, amp_re, amp_im);
+        const double sum = re_im.first.real() - re_im.second.imag();
         const double dp = std::fabs(r) < 1.0 ? u_series(db, r) * std::sqrt(1.0 - r * r) : 0.0;
         dmax = std::max(dmax, std::fabs(-phi2 * dp - sum / kPi));
       }
@@ -1034,22 +1048,39 @@ cplx DampedSolution::pressure_transform(double alpha) const {
 
 namespace {
 
-// int p e^{-i alpha x} dx of p(c + w r) = sqrt(1 - r^2) sum b_k U_k(r).
-cplx u_series_transform(const Eigen::VectorXd& b_, double centre_, double half_, double alpha) {
+// int p e^{-i alpha x} dx of p(c + w r) = sqrt(1 - r^2) sum b_k U_k(r). With
+// b2 (as long as b) and t2: *t2 the same for the coefficients b2 and the
+// centre centre2, on the same Bessel functions (the same numbers as a call
+// of its own).
+cplx u_series_transform(const Eigen::VectorXd& b_, double centre_, double half_, double alpha,
+                        const Eigen::VectorXd* b2, double centre2, cplx* t2) {
   const double w = half_, om = std::fabs(alpha) * w;
   const int n = static_cast<int>(b_.size());
-  cplx sum = 0.0;
+  const bool two = b2 != nullptr && t2 != nullptr && b2->size() == b_.size();
+  cplx sum = 0.0, sum2 = 0.0;
   if (om < 1e-8) {
     sum = 0.5 * kPi * b_(0);  // J_1(om)/om -> 1/2; higher orders vanish
     if (n > 1) sum += kPi * 2.0 * cplx(0.0, -1.0) * b_(1) * (om / 8.0);
+    if (two) {
+      sum2 = 0.5 * kPi * (*b2)(0);
+      if (n > 1) sum2 += kPi * 2.0 * cplx(0.0, -1.0) * (*b2)(1) * (om / 8.0);
+    }
   } else {
     thread_local std::vector<double> J;
     bessel_j(om, n + 1, J);
     cplx ipow = 1.0;  // (-i)^k
     for (int k = 0; k < n; ++k) {
-      sum += b_(k) * kPi * (k + 1.0) * ipow * (J[static_cast<std::size_t>(k + 1)] / om);
+      const double jk = J[static_cast<std::size_t>(k + 1)] / om;
+      sum += b_(k) * kPi * (k + 1.0) * ipow * jk;
+      if (two) sum2 += (*b2)(k)*kPi * (k + 1.0) * ipow * jk;
       ipow *= cplx(0.0, -1.0);
     }
+  }
+  if (two) {
+    const cplx ph2 = w * std::exp(cplx(0.0, -std::fabs(alpha) * centre2)) * sum2;
+    *t2 = alpha < 0.0 ? std::conj(ph2) : ph2;
+  } else if (t2 != nullptr) {
+    *t2 = u_series_transform(*b2, centre2, half_, alpha);
   }
   cplx ph = w * std::exp(cplx(0.0, -std::fabs(alpha) * centre_)) * sum;
   return alpha < 0.0 ? std::conj(ph) : ph;
@@ -1090,7 +1121,8 @@ double DampedSolution::surface_slope(double x) const {
   return params_.load * phi1 * (-cauchy + w * kern);
 }
 
-DampedSolution::Fine DampedSolution::build_fine(double freq) const {
+DampedSolution::Fine DampedSolution::build_fine(double freq, const Eigen::VectorXd* db,
+                                                std::vector<cplx>* dphat) const {
   Fine f;
   f.freq = freq;
   AlphaQuadrature panels;
@@ -1112,7 +1144,10 @@ DampedSolution::Fine DampedSolution::build_fine(double freq) const {
         f.weight.push_back(m == 1 ? P.weight[15 * p + static_cast<std::size_t>(j)]
                                   : gk_weight(j, h));
         f.r.push_back(m == 1 ? Q.r[15 * p + static_cast<std::size_t>(j)] : model_->response(a));
-        f.phat.push_back(pressure_transform(a));
+        cplx dp = 0.0;
+        f.phat.push_back(db == nullptr ? pressure_transform(a)
+                                       : u_series_transform(b_, centre_, half_, a, db, 0.0, &dp));
+        if (db != nullptr) dphat->push_back(dp);
       }
     }
   }

@@ -46,10 +46,10 @@ inline std::vector<int> size_ladder(int max_n) {
 // (a_W > max(1, a_H)). A far guess builds kernel tables for widths never
 // needed. The guess is within [kMinA, kMaxA].
 struct WidthGuess {
-  double hertz = 0;   // a_H = sqrt(2 phi1 lambda / pi)
-  double wide = 0;    // a_W = (1.5 lambda (1/kw + (1 - nu)/2))^(1/3)
+  double hertz = 0;  // a_H = sqrt(2 phi1 lambda / pi)
+  double wide = 0;   // a_W = (1.5 lambda (1/kw + (1 - nu)/2))^(1/3)
   bool use_wide = false;
-  double a = 0;       // the guess
+  double a = 0;  // the guess
 };
 inline WidthGuess width_guess(double phi1, double lambda, double kw, double nu) {
   constexpr double kPi = 3.14159265358979323846;

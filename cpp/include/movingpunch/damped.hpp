@@ -294,7 +294,9 @@ class DampedSolution {
   };
   std::shared_ptr<FineCache> fine_cache_ = std::make_shared<FineCache>();
   std::shared_ptr<const Fine> fine_for(double x) const;
-  Fine build_fine(double freq) const;
+  // With db: dphat[i] = the transform of the U-series db (centre 0) at node i.
+  Fine build_fine(double freq, const Eigen::VectorXd* db = nullptr,
+                  std::vector<cplx>* dphat = nullptr) const;
 };
 
 // Solves the damped contact problem (damping > 0). Throws std::invalid_argument
