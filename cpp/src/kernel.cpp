@@ -351,10 +351,29 @@ void FilonIntegrator::integrals(double x, const std::array<const std::vector<dou
   thread_local std::vector<std::array<double, 15>> bessel;
   bessel_by_width(ax, bessel);
   out.fill(0.0);
+  // M > 1 (integral_pair): e^{i c x} of a panel adjoining the previous one is
+  // that panel's times e^{i h_prev x} e^{i h x} (one sin/cos per distinct
+  // half-width), re-anchored by sin/cos every 8 panels: a relative error of
+  // a few 1e-15 in place of 1e-16, half the time.
+  thread_local std::vector<cplx> rot;
+  if (M > 1) {
+    rot.resize(widths_.size());
+    for (std::size_t w = 0; w < widths_.size(); ++w)
+      rot[w] = cplx(std::cos(widths_[w] * x), std::sin(widths_[w] * x));
+  }
+  cplx e(1.0, 0.0);
   for (std::size_t p = 0; p < centre_.size(); ++p) {
     const std::array<double, 15>& j = bessel[width_of_[p]];
     const double arg = centre_[p] * x;
-    const cplx phase = (2.0 * half_[p]) * cplx(std::cos(arg), std::sin(arg));
+    const bool adjoins =
+        M > 1 && p % 8 != 0 &&
+        std::fabs(centre_[p - (p > 0 ? 1 : 0)] + half_[p - (p > 0 ? 1 : 0)] + half_[p] -
+                  centre_[p]) <= 1e-14 * std::fabs(centre_[p]);
+    if (adjoins)
+      e *= rot[width_of_[p - 1]] * rot[width_of_[p]];
+    else
+      e = cplx(std::cos(arg), std::sin(arg));
+    const cplx phase = (2.0 * half_[p]) * e;
     for (std::size_t v = 0; v < M; ++v) {
       const double* cp = c[v]->data() + 15 * p;
       double re = 0.0, im = 0.0;

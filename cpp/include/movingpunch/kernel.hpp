@@ -55,8 +55,8 @@ class FilonIntegrator {
   // The same as apply(weights(x), c), fused: no weight vector, one complex
   // multiplication per panel instead of one per coefficient.
   cplx integral(double x, const std::vector<double>& c) const;
-  // integral(x, c1) and integral(x, c2) (the same numbers) sharing the
-  // Bessel functions and the phases.
+  // integral(x, c1) and integral(x, c2) (to a few 1e-15 relative) sharing
+  // the Bessel functions and the phases, most phases by rotation.
   std::pair<cplx, cplx> integral_pair(double x, const std::vector<double>& c1,
                                       const std::vector<double>& c2) const;
 
