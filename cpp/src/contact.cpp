@@ -193,8 +193,7 @@ double solve_width(Problem& prob, const ContactParams& params, const ChebyshevNo
   const double lmin = std::log(kMinA), lmax = std::log(kMaxA);
   x1 = std::clamp(x1, lmin, lmax);
   if (x1 == x0) x1 = x0 >= lmax ? x0 - 1.0 : x0 + 1.0;
-  double ref_width = kInf;
-  int slow = 0;
+  detail::StallGuard stall(kInf);
   for (int it = 0; it < 200; ++it) {
     const double f1 = F(x1);
     if (f1 == 0.0) return std::exp(x1);
@@ -219,16 +218,7 @@ double solve_width(Problem& prob, const ContactParams& params, const ChebyshevNo
     if (bracketed) {
       // Safeguards: stay strictly inside the bracket, and bisect when the
       // bracket has not halved over three steps (a stalled secant).
-      const double w = hi - lo;
-      if (w <= 0.5 * ref_width) {
-        ref_width = w;
-        slow = 0;
-      } else if (++slow >= 3) {
-        ref_width = w;
-        slow = 0;
-        x2 = 0.5 * (lo + hi);
-      }
-      if (!(x2 > lo && x2 < hi)) x2 = 0.5 * (lo + hi);
+      x2 = stall(x2, lo, hi);
     } else {
       x2 = std::clamp(x2, x1 - 2.0, x1 + 2.0);  // expanding search for a bracket
     }

@@ -365,10 +365,9 @@ void FilonIntegrator::integrals(double x, const std::array<const std::vector<dou
   for (std::size_t p = 0; p < centre_.size(); ++p) {
     const std::array<double, 15>& j = bessel[width_of_[p]];
     const double arg = centre_[p] * x;
-    const bool adjoins =
-        M > 1 && p % 8 != 0 &&
-        std::fabs(centre_[p - (p > 0 ? 1 : 0)] + half_[p - (p > 0 ? 1 : 0)] + half_[p] -
-                  centre_[p]) <= 1e-14 * std::fabs(centre_[p]);
+    const bool adjoins = M > 1 && p % 8 != 0 &&
+                         std::fabs(centre_[p - (p > 0 ? 1 : 0)] + half_[p - (p > 0 ? 1 : 0)] +
+                                   half_[p] - centre_[p]) <= 1e-14 * std::fabs(centre_[p]);
     if (adjoins)
       e *= rot[width_of_[p - 1]] * rot[width_of_[p]];
     else

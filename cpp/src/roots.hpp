@@ -17,6 +17,31 @@ enum class Safeguard {
   kStalledBracket,
 };
 
+// The stalled-bracket safeguard of a secant or regula falsi on a bracket
+// [lo, hi]: the trial point x, or the midpoint when the bracket has not
+// halved over three steps or x is not strictly inside.
+class StallGuard {
+ public:
+  explicit StallGuard(double ref_width) : ref_width_(ref_width) {}
+  double operator()(double x, double lo, double hi) {
+    const double w = hi - lo;
+    if (w <= 0.5 * ref_width_) {
+      ref_width_ = w;
+      slow_ = 0;
+    } else if (++slow_ >= 3) {
+      ref_width_ = w;
+      slow_ = 0;
+      x = 0.5 * (lo + hi);
+    }
+    if (!(x > lo && x < hi)) x = 0.5 * (lo + hi);
+    return x;
+  }
+
+ private:
+  double ref_width_;
+  int slow_ = 0;
+};
+
 // Root of f in [lo, hi] (lo < hi) where f(lo) and f(hi) differ in sign
 // (Illinois regula falsi with a bisection safeguard). Stops when the bracket
 // is below xtol, |f| <= ftol at a trial point (returned), or lo and hi are
@@ -26,8 +51,8 @@ inline double bracketed_root(const std::function<double(double)>& f, double lo, 
                              double flo, double fhi, double xtol, int max_iter = 200,
                              double ftol = 0.0,
                              Safeguard safeguard = Safeguard::kFrequentBisection) {
-  int side = 0, slow = 0;
-  double ref_width = hi - lo;
+  int side = 0;
+  StallGuard stall(hi - lo);
   for (int i = 0; i < max_iter && std::fabs(hi - lo) > xtol; ++i) {
     double x = (lo * fhi - hi * flo) / (fhi - flo);
     const double w = hi - lo;
@@ -36,15 +61,7 @@ inline double bracketed_root(const std::function<double(double)>& f, double lo, 
     if (safeguard == Safeguard::kFrequentBisection) {
       if (!(x > lo + 0.01 * w && x < hi - 0.01 * w) || (i % 4 == 3)) x = mid;
     } else {
-      if (w <= 0.5 * ref_width) {
-        ref_width = w;
-        slow = 0;
-      } else if (++slow >= 3) {
-        ref_width = w;
-        slow = 0;
-        x = mid;
-      }
-      if (!(x > lo && x < hi)) x = mid;
+      x = stall(x, lo, hi);
     }
     const double fx = f(x);
     if (std::fabs(fx) <= ftol) return x;
