@@ -14,6 +14,7 @@
 #include "movingpunch/dispersion.hpp"
 #include "movingpunch/errors.hpp"
 #include "potentials.hpp"
+#include "solve_skeleton.hpp"
 
 namespace movingpunch {
 
@@ -23,23 +24,10 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 // Below this the lowest free wave lies beyond the critical-speed search.
 constexpr double kMinKw = 1e-12;
-// Supported contact half-widths: the kernel's grid grows with a, and far
-// beyond a = 50 h the layer is a plate on springs under a distributed load.
-constexpr double kMinA = 1e-10, kMaxA = 50.0;
-
-[[noreturn]] void width_out_of_range(const ContactParams& p, bool too_wide) {
-  std::ostringstream m;
-  m.precision(6);
-  m << "radius * load = " << p.radius * p.load << " (radius " << p.radius << ", load " << p.load
-    << ") needs a contact half-width " << (too_wide ? "above" : "below") << " the supported range "
-    << kMinA << " <= a/h <= " << kMaxA << " for kw = " << p.kw << ", vstar = " << p.vstar << ": "
-    << (too_wide ? "reduce" : "increase") << " the radius or the load";
-  throw std::invalid_argument(m.str());
-}
-
-// Collocation sizes tried in turn; the last is the cap.
-constexpr std::array<int, 17> kSizes = {8,   12,  16,  24,  32,  48,  64,  96,  128,
-                                        192, 256, 384, 512, 640, 768, 896, 1024};
+using detail::kMaxA;
+using detail::kMinA;
+using detail::kSizes;
+using detail::width_out_of_range;
 
 // Table range of the kernel for a contact half-width a: covers the
 // collocation (|u| <= 2a) and the displacement checks (|u| <= 4a). (A wider
@@ -204,8 +192,7 @@ double solve_width(Problem& prob, const ContactParams& params, const ChebyshevNo
   const double lmin = std::log(kMinA), lmax = std::log(kMaxA);
   x1 = std::clamp(x1, lmin, lmax);
   if (x1 == x0) x1 = x0 >= lmax ? x0 - 1.0 : x0 + 1.0;
-  double ref_width = kInf;
-  int slow = 0;
+  detail::StallGuard stall(kInf);
   for (int it = 0; it < 200; ++it) {
     const double f1 = F(x1);
     if (f1 == 0.0) return std::exp(x1);
@@ -230,16 +217,7 @@ double solve_width(Problem& prob, const ContactParams& params, const ChebyshevNo
     if (bracketed) {
       // Safeguards: stay strictly inside the bracket, and bisect when the
       // bracket has not halved over three steps (a stalled secant).
-      const double w = hi - lo;
-      if (w <= 0.5 * ref_width) {
-        ref_width = w;
-        slow = 0;
-      } else if (++slow >= 3) {
-        ref_width = w;
-        slow = 0;
-        x2 = 0.5 * (lo + hi);
-      }
-      if (!(x2 > lo && x2 < hi)) x2 = 0.5 * (lo + hi);
+      x2 = stall(x2, lo, hi);
     } else {
       x2 = std::clamp(x2, x1 - 2.0, x1 + 2.0);  // expanding search for a bracket
     }
@@ -494,20 +472,13 @@ ContactSolution solve_contact(const ContactParams& p) {
   // (a layer compressed under the punch, measured for 0 <= nu < 0.5); tiny
   // contacts are half-plane (Hertz) contacts.
   const double lambda = p.radius * p.load;
+  const detail::WidthGuess guess = detail::width_guess(phi1, lambda, p.kw, p.nu);
   if (0.5 * std::cbrt(0.75 * lambda) > kMaxA) width_out_of_range(p, true);
-  if (10.0 * std::sqrt(2.0 * phi1 * lambda / kPi) < kMinA) width_out_of_range(p, false);
+  if (10.0 * guess.hertz < kMinA) width_out_of_range(p, false);
 
-  // Start from the half-plane (Hertz) width a_H, unless the wide-contact
-  // width a_W of a layer squeezed on springs (docs/hard-cases.md §5) is far
-  // off it: near V*_R, phi1 (and a_H) grows without bound while the layer's
-  // thickness keeps the contact finite (a_H > 8 a_W), and on soft foundations
-  // the contact is wide (a_W > max(1, a_H)). A far guess builds kernel tables
-  // for widths never needed.
-  const double a_hertz = std::sqrt(2.0 * phi1 * lambda / kPi);
-  const double a_wide =
-      std::cbrt(1.5 * lambda * ((std::isinf(p.kw) ? 0.0 : 1.0 / p.kw) + 0.5 * (1.0 - p.nu)));
-  const bool wide_guess = a_hertz > 8.0 * a_wide || a_wide > std::max(1.0, a_hertz);
-  double a = std::clamp(wide_guess ? a_wide : a_hertz, kMinA, kMaxA);
+  // Start from the half-plane (Hertz) width, or the wide-contact width when
+  // that is far off it (solve_skeleton.hpp).
+  double a = guess.a;
   const double width_tol = std::min(p.tol, kLoosestWidthTol);
   const double xtol = std::max(1e-2 * width_tol, 1e-15);
 
@@ -594,10 +565,10 @@ ContactSolution solve_contact(const ContactParams& p) {
       prev_ok = true;
     }
     if (!converged) {
-      std::ostringstream m;
-      m << "a/h did not converge to tol = " << p.tol << " with N up to " << kSizes.back()
-        << " collocation points (last change " << change << ")";
-      throw ConvergenceError(m.str());
+      std::ostringstream last;
+      last << "last change " << change;
+      throw ConvergenceError(
+          detail::not_converged_message("a/h", p.tol, kSizes.back(), last.str()));
     }
   }
 

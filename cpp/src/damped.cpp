@@ -6,6 +6,8 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <mutex>
 #include <sstream>
 #include <stdexcept>
 
@@ -18,6 +20,8 @@
 #include "movingpunch/errors.hpp"
 #include "movingpunch/stresses.hpp"
 #include "potentials.hpp"
+#include "roots.hpp"
+#include "solve_skeleton.hpp"
 
 namespace movingpunch {
 
@@ -66,7 +70,9 @@ void bessel_j(double x, int nmax, std::vector<double>& J) {
   detail::bessel_orders(x, nmax + 1, J);
 }
 
-cplx u_series_transform(const Eigen::VectorXd& b, double centre, double half, double alpha);
+cplx u_series_transform(const Eigen::VectorXd& b, double centre, double half, double alpha,
+                        const Eigen::VectorXd* b2 = nullptr, double centre2 = 0.0,
+                        cplx* t2 = nullptr);
 
 }  // namespace
 
@@ -517,7 +523,9 @@ struct WidthSolve {
   int evaluations = 0;
 };
 
-// Secant (Illinois, safeguarded by a bracket) on ln lambda(w) = ln lambda_t in ln w.
+// The root of ln lambda(w) = ln lambda_t in ln w: a bracket by steps of 0.4
+// from the guess (lambda grows with w), then the shared bracketed root
+// (roots.hpp), and the solution at the root.
 template <class Kernel>
 WidthSolve solve_width(const ChebyshevNodes& nd, double lambda_t, double w_guess, Kernel&& kernel,
                        double phi1) {
@@ -529,71 +537,146 @@ WidthSolve solve_width(const ChebyshevNodes& nd, double lambda_t, double w_guess
     if (!(e.lambda > 0.0) || !std::isfinite(e.lambda)) return std::nan("");
     return std::log(e.lambda) - std::log(lambda_t);
   };
-  const double lmin = std::log(1e-10), lmax = std::log(50.0);
+  const double lmin = std::log(detail::kMinA), lmax = std::log(detail::kMaxA);
   double x0 = std::clamp(std::log(w_guess), lmin, lmax);
-  WidthEval e0, e1;
-  double f0 = F(x0, e0);
+  WidthEval e;
+  double f0 = F(x0, e);
   // A wide first guess can be under-resolved at this N (no positive load):
   // step down towards narrower contacts.
   for (int k = 0; k < 24 && std::isnan(f0) && x0 > lmin; ++k) {
     x0 = std::max(lmin, x0 - 0.7);
-    f0 = F(x0, e0);
+    f0 = F(x0, e);
   }
   if (std::isnan(f0))
     throw ConvergenceError(
         "damped contact: the collocation system gives no positive load at "
         "any trial width (N = " +
         std::to_string(nd.n) + ")");
-  // Bracket: lambda grows with w.
-  double step = f0 > 0.0 ? -0.4 : 0.4;
+  // Bracket: lambda grows with w. A trial width at round-off distance from
+  // the root (|F| <= xftol: the guess, a coarser size's root, often is) is
+  // the root.
+  constexpr double xftol = 1e-15;
+  double last = x0;  // where e was evaluated
+  auto finish = [&](double x) {
+    out.w = std::exp(x);
+    out.c = e.centre;
+    out.g = -(out.w / (phi1 * e.lambda)) * e.G;
+    return out;
+  };
+  if (std::fabs(f0) <= xftol) return finish(x0);
+  const double step = f0 > 0.0 ? -0.4 : 0.4;
   double x1 = x0, f1 = f0;
   for (int it = 0; it < 80; ++it) {
     x1 = std::clamp(x0 + step, lmin, lmax);
-    f1 = F(x1, e1);
+    f1 = F(x1, e);
+    last = x1;
     if (std::isnan(f1))
       throw ConvergenceError("damped contact: non-positive load while bracketing");
+    if (std::fabs(f1) <= xftol) return finish(x1);
     if ((f1 > 0.0) != (f0 > 0.0)) break;
-    if (x1 == lmin || x1 == lmax)
-      throw ConvergenceError("damped contact: the contact width leaves [1e-10, 50] h");
+    if (x1 == lmin || x1 == lmax) {
+      // At this N the width leaves the supported range (the caller refines N).
+      throw ConvergenceError("damped contact: the contact width leaves the supported range " +
+                             detail::supported_range_text() + " at N = " + std::to_string(nd.n));
+    }
     x0 = x1;
     f0 = f1;
-    e0 = e1;
   }
   if ((f1 > 0.0) == (f0 > 0.0)) throw ConvergenceError("damped contact: no bracket found");
-  // Illinois regula falsi on [x0, x1].
-  double xa = x0, fa = f0, xb = x1, fb = f1;
-  WidthEval eb = e1, ea = e0;
-  int side = 0;
-  for (int it = 0; it < 200; ++it) {
-    const double xn = (xa * fb - xb * fa) / (fb - fa);
-    WidthEval en;
-    const double fn = F(xn, en);
-    if (std::isnan(fn))
-      throw ConvergenceError("damped contact: non-positive load in the iteration");
-    if ((fn > 0.0) == (fb > 0.0)) {
-      xb = xn;
-      fb = fn;
-      eb = en;
-      if (side == -1) fa *= 0.5;
-      side = -1;
-    } else {
-      xa = xb;
-      fa = fb;
-      ea = eb;
-      xb = xn;
-      fb = fn;
-      eb = en;
-      side = +1;
-    }
-    if (std::fabs(fn) < 1e-15 || std::fabs(xb - xa) < 1e-15) break;
-  }
-  const WidthEval& e = std::fabs(fb) <= std::fabs(fa) ? eb : ea;
-  const double x = std::fabs(fb) <= std::fabs(fa) ? xb : xa;
-  out.w = std::exp(x);
-  out.c = e.centre;
-  out.g = -(out.w / (phi1 * e.lambda)) * e.G;
-  return out;
+  auto f = [&](double lw) {
+    const double v = F(lw, e);
+    last = lw;
+    if (std::isnan(v)) throw ConvergenceError("damped contact: non-positive load in the iteration");
+    return v;
+  };
+  // To |F| <= xftol (round-off) or a bracket of xftol.
+  constexpr auto kSafeguard = detail::Safeguard::kStalledBracket;
+  const double x = x0 < x1
+                       ? detail::bracketed_root(f, x0, x1, f0, f1, xftol, 200, xftol, kSafeguard)
+                       : detail::bracketed_root(f, x1, x0, f1, f0, xftol, 200, xftol, kSafeguard);
+  if (!(last == x)) f(x);  // the solution at the root
+  return finish(x);
 }
+
+// The points of the scan for other steady states on [lo, hi] in ln w: the
+// ends and, between them, the lattice i kScanStep (fixed, so that the solves
+// of a load sweep share their points; a gap is at most kScanStep). When an
+// end is clamped to the supported widths (hi - lo < ln 32) the interval is
+// shorter: 49 equal steps, finer than the lattice.
+constexpr int kScanSteps = 48;
+const double kScanStep = std::log(32.0) / kScanSteps;
+
+std::vector<double> scan_points(double lo, double hi) {
+  std::vector<double> xs;
+  if (hi - lo < std::log(32.0) * (1.0 - 1e-12)) {
+    for (int i = 0; i <= kScanSteps; ++i) xs.push_back(lo + (hi - lo) * i / kScanSteps);
+    return xs;
+  }
+  xs.push_back(lo);
+  for (double k = std::floor(lo / kScanStep) + 1.0; k * kScanStep < hi; k += 1.0)
+    if (k * kScanStep > lo) xs.push_back(k * kScanStep);
+  xs.push_back(hi);
+  return xs;
+}
+
+// lambda(w) at the lattice points of the scan, memoised per kernel table and
+// collocation size (lambda depends on nothing else, not on the load): the
+// solves of a load sweep, or a warm solve, share one scan. The ends of a
+// scan are computed afresh. Entries of tables no longer alive are dropped.
+class ScanMemo {
+ public:
+  static std::vector<double> lambdas(const std::shared_ptr<const DampedKernel>& K,
+                                     const ChebyshevNodes& ns, const std::vector<double>& xs,
+                                     double phi1) {
+    static ScanMemo memo;
+    std::vector<double> out(xs.size(), std::nan(""));
+    std::vector<long> keys(xs.size(), kNoKey);
+    for (std::size_t i = 1; i + 1 < xs.size(); ++i) {
+      const double k = std::round(xs[i] / kScanStep);
+      if (static_cast<double>(k) * kScanStep == xs[i]) keys[i] = static_cast<long>(k);
+    }
+    {
+      const std::lock_guard<std::mutex> lock(memo.mutex_);
+      const auto& values = memo.entry(K).values;
+      for (std::size_t i = 0; i < xs.size(); ++i) {
+        const auto it = keys[i] == kNoKey ? values.end() : values.find({ns.n, keys[i]});
+        if (it != values.end()) out[i] = it->second;
+      }
+    }
+    std::vector<std::pair<std::pair<int, long>, double>> fresh;
+    for (std::size_t i = 0; i < xs.size(); ++i) {
+      if (!std::isnan(out[i])) continue;
+      out[i] = eval_width(ns, std::exp(xs[i]), *K, phi1).lambda;
+      if (keys[i] != kNoKey) fresh.push_back({{ns.n, keys[i]}, out[i]});
+    }
+    if (!fresh.empty()) {
+      const std::lock_guard<std::mutex> lock(memo.mutex_);
+      auto& values = memo.entry(K).values;
+      for (const auto& kv : fresh) values.insert(kv);
+    }
+    return out;
+  }
+
+ private:
+  static constexpr long kNoKey = std::numeric_limits<long>::min();
+  struct Entry {
+    std::weak_ptr<const DampedKernel> table;
+    const DampedKernel* raw = nullptr;
+    std::map<std::pair<int, long>, double> values;
+  };
+  std::mutex mutex_;
+  std::vector<Entry> entries_;
+  // The entry of the live table K (mutex_ held).
+  Entry& entry(const std::shared_ptr<const DampedKernel>& K) {
+    entries_.erase(std::remove_if(entries_.begin(), entries_.end(),
+                                  [](const Entry& e) { return e.table.expired(); }),
+                   entries_.end());
+    for (Entry& e : entries_)
+      if (e.raw == K.get()) return e;
+    entries_.push_back({K, K.get(), {}});
+    return entries_.back();
+  }
+};
 
 }  // namespace
 
@@ -630,21 +713,15 @@ DampedSolution solve_damped(const DampedParams& prm) {
   };
 
   const double lambda = prm.radius * prm.load;
-  const double aH = std::sqrt(2.0 * phi1 * lambda / kPi);
-  // The width iteration works on [1e-10, 50] h: a load that a half-plane
-  // carries on less than twice the lower end is refused up front (subnormal
-  // or tiny radius * load), naming the inputs, instead of failing every N.
-  if (!(aH >= 2e-10)) {
-    std::ostringstream msg;
-    msg << "radius * load = " << lambda << " gives a contact half-width of about " << aH
-        << " h, below the damped solver's range (>= 2e-10 h): radius * load must be >= "
-        << kPi * 4e-20 / (2.0 * phi1);
-    throw std::invalid_argument(msg.str());
-  }
-  const double soft = std::isinf(prm.kw) ? 0.0 : 1.0 / prm.kw;
-  const double aW = std::cbrt(1.5 * lambda * (soft + 0.5 * (1.0 - prm.nu)));
-  const bool wide_guess = aH > 1.0 || aW > 1.0;
-  double guess = std::min(wide_guess ? aW : aH, 50.0);
+  // The first width guess (solve_skeleton.hpp). A load that a half-plane
+  // carries on less than twice the smallest supported width is refused up
+  // front (subnormal or tiny radius * load), naming the inputs, instead of
+  // failing every N.
+  const detail::WidthGuess wg = detail::width_guess(phi1, lambda, prm.kw, prm.nu);
+  if (!(wg.hertz >= 2.0 * detail::kMinA))
+    detail::width_out_of_range(prm, false, 2.0 * kPi * detail::kMinA * detail::kMinA / phi1);
+  const bool wide_guess = wg.use_wide;
+  double guess = wg.a;
   // The first table: for the scan (8 w) too when the guess is the half-plane
   // width (close); a wide guess can be far off (the dashpots alone: aW is
   // thousands of h for a contact of 0.4 h), so only its own trial width.
@@ -652,7 +729,7 @@ DampedSolution solve_damped(const DampedParams& prm) {
   s.model_ = kern->model_ptr();
   const DampedLayerModel* model = s.model_.get();
 
-  const std::vector<int> ladder = {8, 12, 16, 24, 32, 48, 64, 96, 128, 192, 256, 384, 512};
+  const std::vector<int> ladder = detail::size_ladder(512);
   std::vector<int> sizes;
   if (prm.n > 0) {
     // Three sizes n/2, 3n/4, n (even): the last two changes give the rate.
@@ -749,10 +826,10 @@ DampedSolution solve_damped(const DampedParams& prm) {
     est_p.estimate = std::numeric_limits<double>::infinity();
   }
   if (prm.n == 0 && !converged && !stalled && est_e.estimate > prm.tol * (ws.w + std::fabs(ws.c))) {
-    std::ostringstream msg;
-    msg << "damped contact: the contact ends did not converge to tol = " << prm.tol
-        << " by N = " << sizes.back() << " (estimated error " << est_e.estimate << ")";
-    throw ConvergenceError(msg.str());
+    std::ostringstream est;
+    est << "estimated error " << est_e.estimate;
+    throw ConvergenceError(detail::not_converged_message("damped contact: the contact ends",
+                                                         prm.tol, sizes.back(), est.str()));
   }
   const double t_width = since_start();
   s.err_ = est_e.estimate;
@@ -797,18 +874,19 @@ DampedSolution solve_damped(const DampedParams& prm) {
 
   // Above V*_cr lambda(w) need not be monotone: a load can be carried by
   // several contacts (the steady problem has several solutions). Scan
-  // lambda(w) on [w/8, 4w] (at N >= 32) for other roots and report them.
+  // lambda(w) on [w/8, 4w] (at N >= 32, steps of ln(32)/48 in ln w at most)
+  // for other roots and report them.
   {
     const ChebyshevNodes ns = chebyshev_nodes(std::max(32, nd.n));
-    const DampedKernel& K = kernel(8.4 * s.half_);
-    const double lo = std::log(std::max(1e-10, s.half_ / 8.0));
-    const double hi = std::log(std::min(50.0, 4.0 * s.half_));
-    const int m = 48;
+    kernel(8.4 * s.half_);
+    const double lo = std::log(std::max(detail::kMinA, s.half_ / 8.0));
+    const double hi = std::log(std::min(detail::kMaxA, 4.0 * s.half_));
+    const std::vector<double> xs = scan_points(lo, hi);
+    const std::vector<double> lam = ScanMemo::lambdas(kern, ns, xs, phi1);
     double prev_x = lo, prev_f = std::nan("");
-    for (int i = 0; i <= m; ++i) {
-      const double x = lo + (hi - lo) * i / m;
-      const WidthEval e = eval_width(ns, std::exp(x), K, phi1);
-      const double f = e.lambda > 0.0 ? std::log(e.lambda / lambda) : std::nan("");
+    for (std::size_t i = 0; i < xs.size(); ++i) {
+      const double x = xs[i];
+      const double f = lam[i] > 0.0 ? std::log(lam[i] / lambda) : std::nan("");
       if (!std::isnan(f) && !std::isnan(prev_f) && (f > 0.0) != (prev_f > 0.0)) {
         const double xr = prev_x - prev_f * (x - prev_x) / (f - prev_f);  // linear estimate
         const double wr = std::exp(xr);
@@ -820,8 +898,20 @@ DampedSolution solve_damped(const DampedParams& prm) {
   }
 
   s.kernel_ = kern;
-  // Fine nodes for the Fourier integrals up to |x| <= 3 (a + b).
-  s.light_ = std::make_shared<const DampedSolution::Fine>(s.build_fine(2.0 * s.half_));
+  // The change of g's coefficients between the last two sizes (for the
+  // stress estimate below).
+  const bool have_change = !d_p.empty() && d_p.back() > 0.0 && b_prev.size() > 0;
+  Eigen::VectorXd db;
+  if (have_change) {
+    db = Eigen::VectorXd::Zero(std::max(bk.size(), b_prev.size()));
+    db.head(bk.size()) += bk;
+    db.head(b_prev.size()) -= b_prev;
+  }
+  // Fine nodes for the Fourier integrals up to |x| <= 3 (a + b), with the
+  // transform of db at them.
+  std::vector<cplx> dphat;
+  s.light_ = std::make_shared<const DampedSolution::Fine>(
+      s.build_fine(2.0 * s.half_, have_change ? &db : nullptr, &dphat));
 
   // Surface sigma_x = -phi2 p - (1/pi) Re int_0^inf (M2 - phi2) p^ e^{i alpha x}
   // is linear in p: the change of sigma_x between the last two sizes, from
@@ -836,14 +926,10 @@ DampedSolution solve_damped(const DampedParams& prm) {
   {
     const double phi2 = model->phi2();
     double gain = 0.0;
-    if (!d_p.empty() && d_p.back() > 0.0 && b_prev.size() > 0) {
-      Eigen::VectorXd db = Eigen::VectorXd::Zero(std::max(bk.size(), b_prev.size()));
-      db.head(bk.size()) += bk;
-      db.head(b_prev.size()) -= b_prev;
+    if (have_change) {
       const DampedSolution::Fine& f = *s.light_;
       std::vector<cplx> amp(f.alpha.size());
-      for (std::size_t i = 0; i < f.alpha.size(); ++i)
-        amp[i] = (f.r[i].M2 - phi2) * u_series_transform(db, 0.0, s.half_, f.alpha[i]);
+      for (std::size_t i = 0; i < f.alpha.size(); ++i) amp[i] = (f.r[i].M2 - phi2) * dphat[i];
       std::vector<double> amp_re, amp_im;
       f.coefficients(amp, amp_re, amp_im);
       double dmax = 0.0;
@@ -856,7 +942,10 @@ DampedSolution solve_damped(const DampedParams& prm) {
           r = (q % 2 == 0 ? 1.0 : -1.0) * (1.0 + 5.0 * std::pow((q / 2 + 0.5) / 16.0, 2.0));
         }
         const double x = s.centre_ + s.half_ * r;
-        const double sum = f.fourier(amp_re, amp_im, x - s.centre_);
+        // f.fourier(amp_re, amp_im, x - c), its two Filon sums sharing the
+        // Bessel functions and the phases.
+        const auto re_im = f.filon->integral_pair(x - s.centre_, amp_re, amp_im);
+        const double sum = re_im.first.real() - re_im.second.imag();
         const double dp = std::fabs(r) < 1.0 ? u_series(db, r) * std::sqrt(1.0 - r * r) : 0.0;
         dmax = std::max(dmax, std::fabs(-phi2 * dp - sum / kPi));
       }
@@ -974,22 +1063,39 @@ cplx DampedSolution::pressure_transform(double alpha) const {
 
 namespace {
 
-// int p e^{-i alpha x} dx of p(c + w r) = sqrt(1 - r^2) sum b_k U_k(r).
-cplx u_series_transform(const Eigen::VectorXd& b_, double centre_, double half_, double alpha) {
+// int p e^{-i alpha x} dx of p(c + w r) = sqrt(1 - r^2) sum b_k U_k(r). With
+// b2 (as long as b) and t2: *t2 the same for the coefficients b2 and the
+// centre centre2, on the same Bessel functions (the same numbers as a call
+// of its own).
+cplx u_series_transform(const Eigen::VectorXd& b_, double centre_, double half_, double alpha,
+                        const Eigen::VectorXd* b2, double centre2, cplx* t2) {
   const double w = half_, om = std::fabs(alpha) * w;
   const int n = static_cast<int>(b_.size());
-  cplx sum = 0.0;
+  const bool two = b2 != nullptr && t2 != nullptr && b2->size() == b_.size();
+  cplx sum = 0.0, sum2 = 0.0;
   if (om < 1e-8) {
     sum = 0.5 * kPi * b_(0);  // J_1(om)/om -> 1/2; higher orders vanish
     if (n > 1) sum += kPi * 2.0 * cplx(0.0, -1.0) * b_(1) * (om / 8.0);
+    if (two) {
+      sum2 = 0.5 * kPi * (*b2)(0);
+      if (n > 1) sum2 += kPi * 2.0 * cplx(0.0, -1.0) * (*b2)(1) * (om / 8.0);
+    }
   } else {
     thread_local std::vector<double> J;
     bessel_j(om, n + 1, J);
     cplx ipow = 1.0;  // (-i)^k
     for (int k = 0; k < n; ++k) {
-      sum += b_(k) * kPi * (k + 1.0) * ipow * (J[static_cast<std::size_t>(k + 1)] / om);
+      const double jk = J[static_cast<std::size_t>(k + 1)] / om;
+      sum += b_(k) * kPi * (k + 1.0) * ipow * jk;
+      if (two) sum2 += (*b2)(k)*kPi * (k + 1.0) * ipow * jk;
       ipow *= cplx(0.0, -1.0);
     }
+  }
+  if (two) {
+    const cplx ph2 = w * std::exp(cplx(0.0, -std::fabs(alpha) * centre2)) * sum2;
+    *t2 = alpha < 0.0 ? std::conj(ph2) : ph2;
+  } else if (t2 != nullptr) {
+    *t2 = u_series_transform(*b2, centre2, half_, alpha);
   }
   cplx ph = w * std::exp(cplx(0.0, -std::fabs(alpha) * centre_)) * sum;
   return alpha < 0.0 ? std::conj(ph) : ph;
@@ -1030,7 +1136,8 @@ double DampedSolution::surface_slope(double x) const {
   return params_.load * phi1 * (-cauchy + w * kern);
 }
 
-DampedSolution::Fine DampedSolution::build_fine(double freq) const {
+DampedSolution::Fine DampedSolution::build_fine(double freq, const Eigen::VectorXd* db,
+                                                std::vector<cplx>* dphat) const {
   Fine f;
   f.freq = freq;
   AlphaQuadrature panels;
@@ -1052,7 +1159,10 @@ DampedSolution::Fine DampedSolution::build_fine(double freq) const {
         f.weight.push_back(m == 1 ? P.weight[15 * p + static_cast<std::size_t>(j)]
                                   : gk_weight(j, h));
         f.r.push_back(m == 1 ? Q.r[15 * p + static_cast<std::size_t>(j)] : model_->response(a));
-        f.phat.push_back(pressure_transform(a));
+        cplx dp = 0.0;
+        f.phat.push_back(db == nullptr ? pressure_transform(a)
+                                       : u_series_transform(b_, centre_, half_, a, db, 0.0, &dp));
+        if (db != nullptr) dphat->push_back(dp);
       }
     }
   }

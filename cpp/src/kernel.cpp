@@ -342,25 +342,60 @@ void FilonIntegrator::weights(double x, std::vector<cplx>& K) const {
   }
 }
 
-FilonIntegrator::cplx FilonIntegrator::integral(double x, const std::vector<double>& c) const {
+template <std::size_t M>
+void FilonIntegrator::integrals(double x, const std::array<const std::vector<double>*, M>& c,
+                                std::array<cplx, M>& out) const {
   // Per panel: h e^{i c x} sum_k c_k 2 i^k j_k(h x); i^k alternates between
   // the real (k even) and imaginary (k odd) axes with signs + + - -.
   const double ax = std::fabs(x), sgn = x < 0.0 ? -1.0 : 1.0;
   thread_local std::vector<std::array<double, 15>> bessel;
   bessel_by_width(ax, bessel);
-  cplx sum = 0.0;
+  out.fill(0.0);
+  // M > 1 (integral_pair): e^{i c x} of a panel adjoining the previous one is
+  // that panel's times e^{i h_prev x} e^{i h x} (one sin/cos per distinct
+  // half-width), re-anchored by sin/cos every 8 panels: a relative error of
+  // a few 1e-15 in place of 1e-16, half the time.
+  thread_local std::vector<cplx> rot;
+  if (M > 1) {
+    rot.resize(widths_.size());
+    for (std::size_t w = 0; w < widths_.size(); ++w)
+      rot[w] = cplx(std::cos(widths_[w] * x), std::sin(widths_[w] * x));
+  }
+  cplx e(1.0, 0.0);
   for (std::size_t p = 0; p < centre_.size(); ++p) {
     const std::array<double, 15>& j = bessel[width_of_[p]];
-    const double* cp = c.data() + 15 * p;
-    double re = 0.0, im = 0.0;
-    for (int k = 0; k < 15; k += 4) re += cp[k] * j[static_cast<std::size_t>(k)];
-    for (int k = 2; k < 15; k += 4) re -= cp[k] * j[static_cast<std::size_t>(k)];
-    for (int k = 1; k < 15; k += 4) im += cp[k] * j[static_cast<std::size_t>(k)];
-    for (int k = 3; k < 15; k += 4) im -= cp[k] * j[static_cast<std::size_t>(k)];
     const double arg = centre_[p] * x;
-    sum += (2.0 * half_[p]) * cplx(std::cos(arg), std::sin(arg)) * cplx(re, sgn * im);
+    const bool adjoins = M > 1 && p % 8 != 0 &&
+                         std::fabs(centre_[p - (p > 0 ? 1 : 0)] + half_[p - (p > 0 ? 1 : 0)] +
+                                   half_[p] - centre_[p]) <= 1e-14 * std::fabs(centre_[p]);
+    if (adjoins)
+      e *= rot[width_of_[p - 1]] * rot[width_of_[p]];
+    else
+      e = cplx(std::cos(arg), std::sin(arg));
+    const cplx phase = (2.0 * half_[p]) * e;
+    for (std::size_t v = 0; v < M; ++v) {
+      const double* cp = c[v]->data() + 15 * p;
+      double re = 0.0, im = 0.0;
+      for (int k = 0; k < 15; k += 4) re += cp[k] * j[static_cast<std::size_t>(k)];
+      for (int k = 2; k < 15; k += 4) re -= cp[k] * j[static_cast<std::size_t>(k)];
+      for (int k = 1; k < 15; k += 4) im += cp[k] * j[static_cast<std::size_t>(k)];
+      for (int k = 3; k < 15; k += 4) im -= cp[k] * j[static_cast<std::size_t>(k)];
+      out[v] += phase * cplx(re, sgn * im);
+    }
   }
-  return sum;
+}
+
+FilonIntegrator::cplx FilonIntegrator::integral(double x, const std::vector<double>& c) const {
+  std::array<cplx, 1> out;
+  integrals<1>(x, {&c}, out);
+  return out[0];
+}
+
+std::pair<FilonIntegrator::cplx, FilonIntegrator::cplx> FilonIntegrator::integral_pair(
+    double x, const std::vector<double>& c1, const std::vector<double>& c2) const {
+  std::array<cplx, 2> out;
+  integrals<2>(x, {&c1, &c2}, out);
+  return {out[0], out[1]};
 }
 
 FilonIntegrator::cplx FilonIntegrator::apply(const std::vector<cplx>& K,

@@ -307,7 +307,6 @@ class DampedSolution {
   };
   std::shared_ptr<FineCache> fine_cache_ = std::make_shared<FineCache>();
   std::shared_ptr<const Fine> fine_for(double x) const;
-  Fine build_fine(double freq) const;
   // The surface displacement, prepared on first use (shared between copies):
   // the Filon coefficients (on light_) of the smooth part
   // [M1 - phi1 (1 - e^-alpha)]/alpha p^ e^{i alpha c}, the Gauss-Chebyshev rule
@@ -323,6 +322,9 @@ class DampedSolution {
   std::shared_ptr<SurfaceCache> surface_cache_ = std::make_shared<SurfaceCache>();
   std::shared_ptr<const Surface> surface() const;
   double surface_value(const Surface& s, double x) const;  // v(x, 0)/(P/(mu h))
+  // With db: dphat[i] = the transform of the U-series db (centre 0) at node i.
+  Fine build_fine(double freq, const Eigen::VectorXd* db = nullptr,
+                  std::vector<cplx>* dphat = nullptr) const;
 };
 
 // Solves the damped contact problem (damping > 0). Throws std::invalid_argument

@@ -8,6 +8,7 @@
 #include <array>
 #include <complex>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "movingpunch/layer_response.hpp"
@@ -54,6 +55,10 @@ class FilonIntegrator {
   // The same as apply(weights(x), c), fused: no weight vector, one complex
   // multiplication per panel instead of one per coefficient.
   cplx integral(double x, const std::vector<double>& c) const;
+  // integral(x, c1) and integral(x, c2) (to a few 1e-15 relative) sharing
+  // the Bessel functions and the phases, most phases by rotation.
+  std::pair<cplx, cplx> integral_pair(double x, const std::vector<double>& c1,
+                                      const std::vector<double>& c2) const;
 
  private:
   std::vector<double> centre_, half_;
@@ -61,6 +66,9 @@ class FilonIntegrator {
   std::vector<std::size_t> width_of_;  // panel -> index into widths_
   // j_0 .. j_14 (h ax) for every distinct half-width h.
   void bessel_by_width(double ax, std::vector<std::array<double, 15>>& j) const;
+  template <std::size_t M>
+  void integrals(double x, const std::array<const std::vector<double>*, M>& c,
+                 std::array<cplx, M>& out) const;
 };
 
 class KernelK1 {

@@ -1,0 +1,103 @@
+// Internal: the parts of the contact-width solve shared by the symmetric
+// (undamped, contact.cpp) and the asymmetric (damped, damped.cpp) problems:
+// the supported widths, the collocation-size ladder, the first width guess
+// and the messages (the bracketed root on ln(width): roots.hpp). The two
+// problems differ only where the physics does (the kernel, one unknown end
+// or two, their error estimates). Not a public header.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "movingpunch/errors.hpp"
+#include "roots.hpp"
+
+namespace movingpunch::detail {
+
+// Supported contact half-widths (in h): the kernel's table grows with the
+// width, and far beyond 50 h the layer is a plate on springs under a
+// distributed load.
+inline constexpr double kMinA = 1e-10, kMaxA = 50.0;
+
+// Collocation sizes tried in turn; the last is the undamped solver's cap.
+inline constexpr std::array<int, 17> kSizes = {8,   12,  16,  24,  32,  48,  64,  96,  128,
+                                               192, 256, 384, 512, 640, 768, 896, 1024};
+
+// The ladder's sizes up to max_n (inclusive).
+inline std::vector<int> size_ladder(int max_n) {
+  std::vector<int> out;
+  for (int n : kSizes)
+    if (n <= max_n) out.push_back(n);
+  return out;
+}
+
+// The first width guess for a contact carrying lambda = R P/(mu h^2) on a
+// layer with phi1 (its half-plane compliance), Winkler kw and nu: the
+// half-plane (Hertz) width a_H, unless the wide-contact width a_W of a layer
+// squeezed on springs (docs/hard-cases.md section 5) is far off it: near V*_R
+// phi1 (and a_H) grows without bound while the layer's thickness keeps the
+// contact finite (a_H > 8 a_W), and on soft foundations the contact is wide
+// (a_W > max(1, a_H)). A far guess builds kernel tables for widths never
+// needed. The guess is within [kMinA, kMaxA].
+struct WidthGuess {
+  double hertz = 0;  // a_H = sqrt(2 phi1 lambda / pi)
+  double wide = 0;   // a_W = (1.5 lambda (1/kw + (1 - nu)/2))^(1/3)
+  bool use_wide = false;
+  double a = 0;  // the guess
+};
+inline WidthGuess width_guess(double phi1, double lambda, double kw, double nu) {
+  constexpr double kPi = 3.14159265358979323846;
+  WidthGuess g;
+  g.hertz = std::sqrt(2.0 * phi1 * lambda / kPi);
+  g.wide = std::cbrt(1.5 * lambda * ((std::isinf(kw) ? 0.0 : 1.0 / kw) + 0.5 * (1.0 - nu)));
+  g.use_wide = g.hertz > 8.0 * g.wide || g.wide > std::max(1.0, g.hertz);
+  g.a = std::clamp(g.use_wide ? g.wide : g.hertz, kMinA, kMaxA);
+  return g;
+}
+
+// "1e-10 <= a/h <= 50".
+inline std::string supported_range_text() {
+  std::ostringstream m;
+  m << kMinA << " <= a/h <= " << kMaxA;
+  return m.str();
+}
+
+// The refusal of a load whose contact lies outside [kMinA, kMaxA] (any
+// parameter struct with radius, load, kw and vstar); with a finite
+// lambda_bound, the bound radius * load must keep to as well.
+template <class Params>
+std::string width_out_of_range_message(const Params& p, bool too_wide,
+                                       double lambda_bound = std::nan("")) {
+  std::ostringstream m;
+  m.precision(6);
+  m << "radius * load = " << p.radius * p.load << " (radius " << p.radius << ", load " << p.load
+    << ") needs a contact half-width " << (too_wide ? "above" : "below") << " the supported range "
+    << supported_range_text() << " for kw = " << p.kw << ", vstar = " << p.vstar << ": "
+    << (too_wide ? "reduce" : "increase") << " the radius or the load";
+  if (std::isfinite(lambda_bound))
+    m << " (radius * load must be " << (too_wide ? "<= " : ">= ") << lambda_bound << ")";
+  return m.str();
+}
+template <class Params>
+[[noreturn]] void width_out_of_range(const Params& p, bool too_wide,
+                                     double lambda_bound = std::nan("")) {
+  throw std::invalid_argument(width_out_of_range_message(p, too_wide, lambda_bound));
+}
+
+// "did not converge" at the end of the ladder: what, to which tol, by which N,
+// and why (the last change or error estimate).
+inline std::string not_converged_message(const std::string& what, double tol, int max_n,
+                                         const std::string& detail) {
+  std::ostringstream m;
+  m << what << " did not converge to tol = " << tol << " with N up to " << max_n
+    << " collocation points (" << detail << ")";
+  return m.str();
+}
+
+}  // namespace movingpunch::detail
