@@ -15,6 +15,7 @@ import math
 import subprocess
 from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
@@ -311,6 +312,12 @@ def test_damped_ladder_against_an_independent_reference() -> None:
     ref = solve_damped(**WIDE, tol=1e-14, n=ref_n)
     assert ref_n != 256
     assert end_error(ref, ind) <= ref.error_estimate + ind.error_estimate
+    u_p = ref.pressure_error_estimate + ind.pressure_error_estimate
+    assert abs(ref.p0 - ind.p0) <= u_p
+    ref_peaks = ref.stress_peaks()
+    for name in ("top_tensile", "bottom_tensile"):
+        gap = abs(getattr(ref_peaks, name) - getattr(ind_peaks, name))
+        assert gap <= ref_peaks.error_bound + ind_peaks.error_bound
     assert [r.tol for r in report.rungs] == list(WIDE_TOLS)
     for r in report.rungs:
         assert not r.failure, r.failure
@@ -444,3 +451,43 @@ def test_the_tui_accuracy_tab_serves_a_damped_set() -> None:
         s = mp.solve(**params.physical(), tol=r.tol)
         assert end_error(s, ref) <= r.error_estimate + ref.error_estimate
     assert "accuracy against time" in model.to_csv(result.data, params)
+
+
+def test_the_reference_takes_2_n_auto_where_the_solver_refuses_4_n_auto(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """A solver whose largest size is below 4 N_auto (the damped one takes
+    at most 1024): the reference is solved at 2 N_auto instead; a refusal of
+    another parameter is not swallowed."""
+    real = mp.solve
+    case = {**accuracy.FIG4_CASE, "damping": 0.1}
+    n_auto = mp.solve(**case, tol=1e-14).collocation_n
+    largest = max(64, 2 * n_auto)
+    assert 4 * n_auto > largest  # 4 N_auto is what the reference would take
+
+    def small(**kwargs: Any) -> ContactSolution:
+        n = kwargs.get("n")
+        if n is not None and n > largest:
+            raise InvalidParameterError(
+                f"n must be at most {largest}", parameter="n", allowed="small"
+            )
+        return real(**kwargs)
+
+    monkeypatch.setattr(accuracy, "solve", small)
+    report = accuracy.accuracy_report(case, (1e-6,))
+    assert report is not None
+    assert report.reference == f"fixed N = {largest} at tol 1e-14"
+    (rung,) = report.rungs
+    assert rung.bounded
+    ref = solve_damped(**case, tol=1e-14, n=128)
+    s = solve_damped(**case, tol=1e-6)
+    assert rung.error_a <= end_error(s, ref) + ref.error_estimate + s.error_estimate
+
+    def refuses_nu(**kwargs: Any) -> ContactSolution:
+        if kwargs.get("n") is not None:
+            raise InvalidParameterError("nu is bad", parameter="nu", allowed="x")
+        return real(**kwargs)
+
+    monkeypatch.setattr(accuracy, "solve", refuses_nu)
+    with pytest.raises(InvalidParameterError, match="nu is bad"):
+        accuracy.accuracy_report(case, (1e-6,))
