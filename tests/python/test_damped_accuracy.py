@@ -12,13 +12,22 @@ from __future__ import annotations
 
 import functools
 import math
+import subprocess
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
 
 import movingpunch as mp
+from movingpunch import accuracy
+from movingpunch.contract import ContactSolution
 from movingpunch.damped import DampedSolution, solve_damped
 from movingpunch.errors import InvalidParameterError
+from movingpunch.scene import OutputSpec, Scene, Vary, read_csv
+from movingpunch.tui import model
+from movingpunch.tui.model import AccuracyTable, Cache, Params, Request
 
 # The round-off floors of docs/damped.md section 8 (relative to the scale).
 ENDS_FLOOR = 1e-13  # times (a + b)/2 + |a - b|/2
@@ -261,3 +270,224 @@ def test_subnormal_inputs_are_refused_up_front(inputs: dict[str, float]) -> None
     args.update(inputs)
     with pytest.raises(InvalidParameterError, match=r"radius \* load .* must be >="):
         solve_damped(**args)
+
+
+# --- the accuracy ladder (issue 13) ----------------------------------------------
+#
+# The ladder (movingpunch.accuracy) reads every solution through the contract:
+# a damped point is measured like an undamped one, its errors being those of
+# both contact ends. Its numbers are checked against an independent reference
+# solved here (fixed n = 256 at tol 1e-14, not the ladder's 4 N_auto).
+
+WIDE = {"vstar": 0.3, "kw": 0.1, "radius": 100.0, "load": 0.006, "damping": 0.1}
+"""A wide, asymmetric contact (-1.11, 2.66) where N matters: 16 at tol 1e-2
+(contact-end error 5e-12, p0 5e-8), 48 at 1e-12."""
+WIDE_TOLS = (1e-2, 1e-5, 1e-8, 1e-12)
+
+
+@functools.cache
+def ladder(
+    items: tuple[tuple[str, float], ...], tols: tuple[float, ...]
+) -> accuracy.AccuracyReport:
+    report = accuracy.accuracy_report(dict(items), tols)
+    assert report is not None
+    return report
+
+
+def end_error(s: ContactSolution, ref: ContactSolution) -> float:
+    """The worse contact end's error (written here apart from the ladder's)."""
+    diff = np.subtract(s.contact_interval, ref.contact_interval)
+    return float(np.max(np.abs(diff)))
+
+
+def test_damped_ladder_against_an_independent_reference() -> None:
+    report = ladder(tuple(WIDE.items()), WIDE_TOLS)
+    assert report.scene.params == {**WIDE, "nu": 0.2}
+    assert report.points == 1
+    assert report.reference.startswith("fixed N = ")
+    ind = solve_damped(**WIDE, tol=1e-14, n=256)
+    ind_peaks = ind.stress_peaks()
+    # The ladder's reference (4 N_auto) and this one agree to round-off.
+    ref_n = int(report.reference.split()[3])
+    ref = solve_damped(**WIDE, tol=1e-14, n=ref_n)
+    assert ref_n != 256
+    assert end_error(ref, ind) <= ref.error_estimate + ind.error_estimate
+    u_p = ref.pressure_error_estimate + ind.pressure_error_estimate
+    assert abs(ref.p0 - ind.p0) <= u_p
+    ref_peaks = ref.stress_peaks()
+    for name in ("top_tensile", "bottom_tensile"):
+        gap = abs(getattr(ref_peaks, name) - getattr(ind_peaks, name))
+        assert gap <= ref_peaks.error_bound + ind_peaks.error_bound
+    assert [r.tol for r in report.rungs] == list(WIDE_TOLS)
+    for r in report.rungs:
+        assert not r.failure, r.failure
+        assert r.bounded
+        s = solve_damped(**WIDE, tol=r.tol)  # what the rung solved
+        assert r.collocation_n == s.collocation_n
+        assert r.error_estimate == s.error_estimate
+        assert r.stress_error_estimate == s.stress_error_estimate
+        # The reported errors are the actual ones (both ends, p0, peaks) ...
+        u_ends = ref.error_estimate + ind.error_estimate
+        assert r.error_a == pytest.approx(end_error(s, ind), abs=u_ends)
+        assert r.error_p0 == pytest.approx(
+            abs(s.p0 - ind.p0), abs=ind.max_pressure * 1e-12
+        )
+        peaks = s.stress_peaks()
+        top = abs(peaks.top_tensile - ind_peaks.top_tensile)
+        bottom = abs(peaks.bottom_tensile - ind_peaks.bottom_tensile)
+        u_peaks = 2.0 * ind_peaks.error_bound
+        assert r.error_top_tensile == pytest.approx(top, abs=u_peaks)
+        assert r.error_bottom_tensile == pytest.approx(bottom, abs=u_peaks)
+        # ... within the reported estimates (the reference's own counted) ...
+        assert end_error(s, ind) <= r.error_estimate + ind.error_estimate
+        assert max(top, bottom) <= r.peak_error_bound + ind_peaks.error_bound
+        assert r.peak_error_bound == peaks.error_bound
+        # ... and each estimate honest: bounds and within 100x (or the floor).
+        check_honest(s, ind)
+    # N matters here: the loose rungs carry real errors, the tight ones not.
+    first, last = report.rungs[0], report.rungs[-1]
+    assert first.error_a > 1e-13
+    assert first.error_p0 > 1e-9
+    assert last.collocation_n > first.collocation_n
+    assert last.error_a < 1e-14
+
+
+def test_tiny_damping_ladder_equals_the_undamped_one() -> None:
+    """Damping 1e-12 (the damped solver) and 0 (the paper's): the same
+    rungs' errors agree within their estimates, and the two references agree
+    with each other (the damped contact's ends within 1e-10 of -+a)."""
+    tols = (1e-2, 1e-6, 1e-10)
+    zero = ladder(tuple(accuracy.FIG4_CASE.items()), tols)
+    tiny = ladder(tuple({**accuracy.FIG4_CASE, "damping": 1e-12}.items()), tols)
+    assert zero.name == "fig4-case"
+    assert tiny.scene.params["damping"] == 1e-12
+    for r0, r1 in zip(zero.rungs, tiny.rungs, strict=True):
+        assert r0.bounded
+        assert r1.bounded
+        assert abs(r1.error_a - r0.error_a) <= r0.error_estimate + r1.error_estimate
+        stress = r0.stress_error_estimate + r1.stress_error_estimate
+        assert abs(r1.error_p0 - r0.error_p0) <= stress
+        peaks = r0.peak_error_bound + r1.peak_error_bound
+        assert abs(r1.error_top_tensile - r0.error_top_tensile) <= peaks
+        assert abs(r1.error_bottom_tensile - r0.error_bottom_tensile) <= peaks
+    ref0 = mp.solve(**accuracy.FIG4_CASE, tol=1e-14, n=64)
+    ref1 = mp.solve(**accuracy.FIG4_CASE, damping=1e-12, tol=1e-14, n=96)
+    assert max(abs(x) for x in ref1.contact_interval) == pytest.approx(
+        ref0.a, abs=1e-10
+    )
+    assert end_error(ref1, ref0) <= 1e-10
+    assert ref1.p0 == pytest.approx(ref0.p0, abs=1e-9)
+
+
+def test_a_scene_mixing_damped_and_undamped_points() -> None:
+    """The points are told apart by their damping (in the ladder's key)."""
+    scene = Scene(
+        params={**accuracy.FIG4_CASE, "damping": 0.0},
+        outputs={"contact_width": OutputSpec("contact_width")},
+        vary=Vary("damping", (0.0, 0.1)),
+        name="mixed",
+    )
+    report = accuracy.accuracy_report(scene, (1e-6,))
+    assert report is not None
+    assert report.points == 2
+    assert report.peak_points == 2
+    (rung,) = report.rungs
+    assert not rung.failure, rung.failure
+    assert rung.bounded
+    damped = mp.solve(**accuracy.FIG4_CASE, damping=0.1, tol=1e-6)
+    undamped = mp.solve(**accuracy.FIG4_CASE, tol=1e-6)
+    assert rung.error_estimate == max(damped.error_estimate, undamped.error_estimate)
+
+
+def test_accuracy_command_on_the_bundled_damped_scene_file(
+    tmp_path: Path, run_cli: Callable[..., subprocess.CompletedProcess[str]]
+) -> None:
+    path = Path(mp.__file__).parent / "bundled_scenes" / "damped.toml"
+    proc = run_cli(
+        "accuracy",
+        str(path),
+        "--tols",
+        "1e-3,1e-8",
+        "--no-plot",
+        "--out",
+        str(tmp_path),
+    )
+    assert proc.returncode == 0, proc.stderr
+    assert "Accuracy against time: damped (3 contact solution(s), σx peaks of 3)" in (
+        proc.stdout
+    )
+    meta, columns = read_csv(tmp_path / "damped-accuracy.csv")
+    assert meta["scene"].params["damping"] == 0.1
+    np.testing.assert_array_equal(columns["tol"], [1e-3, 1e-8])
+    assert np.all(columns["bounded"] == 1.0)
+    assert np.all(columns["error_a"] <= columns["error_estimate_a"])
+    assert np.all(columns["error_top_tensile"] <= columns["peak_error_bound"])
+    # The contact ends against a reference solved here (n = 128, not 4 N_auto).
+    for tol, err in zip(columns["tol"], columns["error_a"], strict=True):
+        worst = 0.0
+        for vstar in (0.2, 0.4, 0.65):
+            case = {"vstar": vstar, "kw": 1.0, "damping": 0.1}
+            ref = solve(case, 1e-14, 128)
+            s = solve(case, float(tol), None)
+            worst = max(worst, end_error(s, ref) - ref.error_estimate)
+            assert end_error(s, ref) <= s.error_estimate + ref.error_estimate
+        assert err >= worst
+
+
+def test_the_tui_accuracy_tab_serves_a_damped_set() -> None:
+    params = Params(damping=0.5)
+    result = model.compute(
+        Cache(), Request(generation=1, params=params, tab="accuracy")
+    )
+    assert result is not None
+    assert isinstance(result.data, AccuracyTable)
+    report = result.data.report
+    assert report.scene.params["damping"] == 0.5
+    assert [r.tol for r in report.rungs] == list(accuracy.LADDER)
+    ref = mp.solve(**params.physical(), tol=1e-14, n=128)
+    for r in report.rungs:
+        assert not r.failure, r.failure
+        assert r.bounded
+        s = mp.solve(**params.physical(), tol=r.tol)
+        assert end_error(s, ref) <= r.error_estimate + ref.error_estimate
+    assert "accuracy against time" in model.to_csv(result.data, params)
+
+
+def test_the_reference_takes_2_n_auto_where_the_solver_refuses_4_n_auto(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """A solver whose largest size is below 4 N_auto (the damped one takes
+    at most 1024): the reference is solved at 2 N_auto instead; a refusal of
+    another parameter is not swallowed."""
+    real = mp.solve
+    case = {**accuracy.FIG4_CASE, "damping": 0.1}
+    n_auto = mp.solve(**case, tol=1e-14).collocation_n
+    largest = max(64, 2 * n_auto)
+    assert 4 * n_auto > largest  # 4 N_auto is what the reference would take
+
+    def small(**kwargs: Any) -> ContactSolution:
+        n = kwargs.get("n")
+        if n is not None and n > largest:
+            raise InvalidParameterError(
+                f"n must be at most {largest}", parameter="n", allowed="small"
+            )
+        return real(**kwargs)
+
+    monkeypatch.setattr(accuracy, "solve", small)
+    report = accuracy.accuracy_report(case, (1e-6,))
+    assert report is not None
+    assert report.reference == f"fixed N = {largest} at tol 1e-14"
+    (rung,) = report.rungs
+    assert rung.bounded
+    ref = solve_damped(**case, tol=1e-14, n=128)
+    s = solve_damped(**case, tol=1e-6)
+    assert rung.error_a <= end_error(s, ref) + ref.error_estimate + s.error_estimate
+
+    def refuses_nu(**kwargs: Any) -> ContactSolution:
+        if kwargs.get("n") is not None:
+            raise InvalidParameterError("nu is bad", parameter="nu", allowed="x")
+        return real(**kwargs)
+
+    monkeypatch.setattr(accuracy, "solve", refuses_nu)
+    with pytest.raises(InvalidParameterError, match="nu is bad"):
+        accuracy.accuracy_report(case, (1e-6,))

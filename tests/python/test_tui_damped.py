@@ -134,7 +134,7 @@ def test_damped_sweep_tab_is_computed() -> None:
         assert values[j] == model.solution(cache, point).a
 
 
-@pytest.mark.parametrize("tab", ["field", "accuracy"])
+@pytest.mark.parametrize("tab", ["field"])
 def test_tabs_the_damped_solver_does_not_serve_are_notices(tab: TabName) -> None:
     cache = Cache()
     params = Params(damping=0.5)

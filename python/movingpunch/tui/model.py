@@ -458,7 +458,6 @@ def compute(
 _DAMPED_TABS: dict[TabName, str] = {
     "field": "the stress map is not computed with damping > 0 (the damped "
     "solver's field integral is too slow for a map); see the σx(0,y) tab",
-    "accuracy": "the accuracy ladder covers the undamped solver only; set damping = 0",
 }
 
 
