@@ -832,6 +832,7 @@ DampedSolution solve_damped(const DampedParams& prm) {
                                                          prm.tol, sizes.back(), est.str()));
   }
   const double t_width = since_start();
+  const double kernel_by_width = kernel_seconds;  // the checks may fetch more
   s.err_ = est_e.estimate;
   s.perr_ = est_p.estimate;
   s.max_p_ = pmax;
@@ -1029,9 +1030,10 @@ DampedSolution solve_damped(const DampedParams& prm) {
   }
   if (!s.valid_ && !prm.allow_unphysical) throw UnphysicalContactError(s.validity_);
   s.elapsed_ = since_start();
-  // The scan's kernel fetch (if any) is counted under kernel, not checks.
-  s.stage_seconds_ = {t_critical, kernel_seconds, t_width - t_critical - kernel_seconds,
-                      s.elapsed_ - t_width};
+  // A kernel fetch by the checks (the scan, the gap) is counted under kernel,
+  // not checks; one before t_width under kernel, not width.
+  s.stage_seconds_ = {t_critical, kernel_seconds, t_width - t_critical - kernel_by_width,
+                      s.elapsed_ - t_width - (kernel_seconds - kernel_by_width)};
   return s;
 }
 
