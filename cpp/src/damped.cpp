@@ -1112,67 +1112,65 @@ double DampedSolution::surface_stress(double x) const {
 }
 
 Eigen::Vector3d DampedSolution::stresses(double x, double y) const {
-  if (!std::isfinite(x)) throw std::invalid_argument("stresses: x must be finite");
   const Eigen::VectorXd xs = Eigen::VectorXd::Constant(1, x), ys = Eigen::VectorXd::Constant(1, y);
   const StressField g = stress_field(xs, ys);
   return {g.sigma_x(0, 0), g.sigma_y(0, 0), g.tau_xy(0, 0)};
 }
 
+// Stresses: sigma(x, y)/(P/h) = (1/pi) Re int_0^inf [Sigma_x, S, -iT](alpha, y) p^ e^{i alpha x},
+// from the state [U, W, T, S] (DampedLayerModel::state; tau ~ sin(alpha x) has
+// the complex amplitude -iT). At large alpha the amplitudes tend to the
+// half-plane mode mix's (real, e^{n alpha y}: the base does not matter), whose
+// integral decays only like e^{nT alpha y}, so it is split off as for the
+// displacements: the remainder (which decays like e^{-nT alpha (2 + y)} at
+// every depth) by Filon sums on light_'s nodes (exact in x; [0, alpha_max]
+// covers e^{-nT alpha} to 1e-18, the slowest, at y = -1), and the half-plane
+// part in closed form from the U-series of p (potentials.hpp, all n). At
+// y = 0 the remainder is (-(M2 - phi2), 0, 0) (surface_stress's) and the
+// closed form -phi2 p, -p, 0.
 StressField DampedSolution::stress_field(const Eigen::Ref<const Eigen::VectorXd>& x,
                                          const Eigen::Ref<const Eigen::VectorXd>& y) const {
-  double xmax = 0.0;
-  for (Eigen::Index j = 0; j < x.size(); ++j) {
-    if (!std::isfinite(x(j))) throw std::invalid_argument("stresses: x must be finite");
-    xmax = std::max(xmax, std::fabs(x(j)));
-  }
-  for (Eigen::Index i = 0; i < y.size(); ++i)
-    if (!(y(i) >= -1.0) || !(y(i) <= -1e-3))
-      throw std::invalid_argument("stresses: y must be in [-1, -1e-3], got " +
-                                  std::to_string(y(i)));
-  const auto f = fine_for(xmax);  // one set of nodes for the whole grid
+  detail::check_grid(x, y);
+  const Fine& f = *light_;
   const WaveConstants& c = model_->constants();
+  const double phi2 = model_->phi2();
   StressField g;
   g.sigma_x.resize(y.size(), x.size());
   g.sigma_y.resize(y.size(), x.size());
   g.tau_xy.resize(y.size(), x.size());
-  std::vector<double> alpha;
-  std::vector<Eigen::Vector3cd> amp;
+  const std::size_t nq = f.alpha.size();
+  std::vector<cplx> gx(nq), gy(nq), gt(nq);
+  std::vector<double> cx_re, cx_im, cy_re, cy_im, ct_re, ct_im;
   for (Eigen::Index i = 0; i < y.size(); ++i) {
-    // Per node: weight * (sigma_x, sigma_y, tau_xy amplitudes) * p^; tau ~
-    // sin(alpha x) has the complex amplitude -i T.
-    alpha.clear();
-    amp.clear();
-    auto add = [&](double a, double wgt, const cplx& ph) {
-      const Eigen::Vector4cd z = model_->state(a, y(i));
-      const cplx sx = 4.0 * (c.c2 - 1.0) / c.c2 * z(0) + (c.c2 - 2.0) / c.c2 * z(3);
-      alpha.push_back(a);
-      amp.emplace_back(wgt * sx * ph, wgt * z(3) * ph, wgt * cplx(0.0, -1.0) * z(2) * ph);
-    };
-    for (std::size_t k = 0; k < f->alpha.size(); ++k)
-      if (f->alpha[k] > 0.0) add(f->alpha[k], f->weight[k], f->phat[k]);
-    // The field decays like exp(nT alpha y): beyond the quadrature's
-    // alpha_max extend with panels of width 1.5/freq up to 45/(nT |y|).
-    const double amax = kernel_->quadrature().panels.alpha_max,
-                 aend = 45.0 / (c.nT * std::fabs(y(i)));
-    if (aend > amax) {
-      const double width = std::min(0.5, 1.5 / f->freq);
-      const int m = static_cast<int>(std::ceil((aend - amax) / width));
-      const double h = 0.5 * (aend - amax) / m;
-      for (int q = 0; q < m; ++q) {
-        const double cc = amax + (2 * q + 1) * h;
-        for (int j = 0; j < 15; ++j) {
-          const double a = gk_node(j, cc, h);
-          add(a, gk_weight(j, h), pressure_transform(a));
-        }
+    const double yi = y(i);
+    for (std::size_t k = 0; k < nq; ++k) {
+      const double al = f.alpha[k];
+      const cplx ph = f.phat[k] * std::exp(cplx(0.0, al * centre_));
+      if (yi == 0.0) {
+        gx[k] = -(f.r[k].M2 - phi2) * ph;
+        gy[k] = gt[k] = 0.0;
+        continue;
       }
+      const Eigen::Matrix4d C = detail::modal_columns(c, al, yi);
+      const Eigen::Vector4cd r =
+          model_->state(al, yi) - (c.hp1 * C.col(0) + c.hp2 * C.col(1)).cast<cplx>();
+      gx[k] = (4.0 * (c.c2 - 1.0) / c.c2 * r(0) + (c.c2 - 2.0) / c.c2 * r(3)) * ph;
+      gy[k] = r(3) * ph;
+      gt[k] = cplx(0.0, -1.0) * r(2) * ph;
     }
+    f.coefficients(gx, cx_re, cx_im);
+    f.coefficients(gy, cy_re, cy_im);
+    f.coefficients(gt, ct_re, ct_im);
     for (Eigen::Index j = 0; j < x.size(); ++j) {
-      Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-      for (std::size_t k = 0; k < alpha.size(); ++k)
-        sum += (amp[k] * std::exp(cplx(0.0, alpha[k] * x(j)))).real();
-      g.sigma_x(i, j) = sum(0) / kPi;
-      g.sigma_y(i, j) = sum(1) / kPi;
-      g.tau_xy(i, j) = sum(2) / kPi;
+      if (std::fabs(x(j)) > kFarField) {
+        g.sigma_x(i, j) = g.sigma_y(i, j) = g.tau_xy(i, j) = 0.0;
+        continue;
+      }
+      const double u = x(j) - centre_;
+      const Eigen::Vector3d hp = detail::half_plane_stresses(c, b_, half_, u, yi, 1);
+      g.sigma_x(i, j) = f.fourier(cx_re, cx_im, u) / kPi + hp(0);
+      g.sigma_y(i, j) = f.fourier(cy_re, cy_im, u) / kPi + hp(1);
+      g.tau_xy(i, j) = f.fourier(ct_re, ct_im, u) / kPi + hp(2);
     }
   }
   return g;

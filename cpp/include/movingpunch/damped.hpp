@@ -223,14 +223,15 @@ class DampedSolution {
   // sigma_x(x, 0)/(P/h), any x.
   double surface_stress(double x) const;
   Eigen::VectorXd surface_stress(const Eigen::Ref<const Eigen::VectorXd>& x) const;
-  // sigma_x(x, y)/(P/h) for -1 <= y <= -1e-3 (below the surface layer of
-  // thickness 1e-3, where the Fourier integral converges fast enough) and at
-  // y = 0 (surface_stress).
+  // sigma_x(x, y)/(P/h) for -1 <= y <= 0 (y = 0: surface_stress).
   double stress_x(double x, double y) const;
-  // (sigma_x, sigma_y, tau_xy)(x, y)/(P/h) for -1 <= y <= -1e-3.
+  // (sigma_x, sigma_y, tau_xy)(x, y)/(P/h) for finite x and -1 <= y <= 0.
   Eigen::Vector3d stresses(double x, double y) const;
-  // The three on the grid x by y (-1 <= y <= -1e-3), each shaped
-  // (len(y), len(x)) (the derived stresses are left empty).
+  // The three on the grid x (finite) by y (-1 <= y <= 0, the surface
+  // included), each shaped (len(y), len(x)) (the derived stresses are left
+  // empty); throws InvalidParameter naming x or y otherwise. The half-plane
+  // part in closed form, the rest by Filon sums: the cost does not depend on
+  // y. 0 beyond |x| > kFarField.
   StressField stress_field(const Eigen::Ref<const Eigen::VectorXd>& x,
                            const Eigen::Ref<const Eigen::VectorXd>& y) const;
   // Slope dv/dx(x, -1) and displacement v(x, -1)/h of the bottom face (any x;
