@@ -150,10 +150,17 @@ DampedResponse DampedLayerModel::response(double t) const {
 Eigen::Vector4cd DampedLayerModel::state(double t, double y) const {
   if (!(t > 0.0) || !std::isfinite(t) || !(y >= -1.0) || !(y <= 0.0))
     throw std::invalid_argument("damped state: need t > 0 finite and -1 <= y <= 0");
+  const Eigen::Vector4cd z = state_coefficients(t);
+  if (t < kSmallT) return transfer_matrix(c_, t, y).cast<cplx>() * z;
+  return modal_columns(c_, t, y).cast<cplx>() * z;
+}
+
+Eigen::Vector4cd DampedLayerModel::state_coefficients(double t) const {
+  if (!(t > 0.0) || !std::isfinite(t))
+    throw std::invalid_argument("damped state: need t > 0 finite");
   if (t < kSmallT) {
     const DampedResponse r = response_transfer(t);
-    const Eigen::Vector4cd z0(r.U0, r.W0, 0.0, -1.0);
-    return transfer_matrix(c_, t, y).cast<cplx>() * z0;
+    return {r.U0, r.W0, 0.0, -1.0};
   }
   const Eigen::Matrix4d top = modal_columns(c_, t, 0.0), bot = modal_columns(c_, t, -1.0);
   Eigen::Matrix4cd M;
@@ -161,8 +168,7 @@ Eigen::Vector4cd DampedLayerModel::state(double t, double y) const {
   M.row(1) = top.row(3).cast<cplx>();
   M.row(2) = bot.row(2).cast<cplx>();
   M.row(3) = spring_row(bot.row(3), bot.row(1), t, foundation(t), rigid_);
-  const Eigen::Vector4cd amp = M.partialPivLu().solve(Eigen::Vector4cd(0.0, -1.0, 0.0, 0.0));
-  return modal_columns(c_, t, y).cast<cplx>() * amp;
+  return M.partialPivLu().solve(Eigen::Vector4cd(0.0, -1.0, 0.0, 0.0));
 }
 
 // ---------------------------------------------------------------------------
@@ -1125,54 +1131,100 @@ Eigen::Vector3d DampedSolution::stresses(double x, double y) const {
 // displacements: the remainder (which decays like e^{-nT alpha (2 + y)} at
 // every depth) by Filon sums on light_'s nodes (exact in x; [0, alpha_max]
 // covers e^{-nT alpha} to 1e-18, the slowest, at y = -1), and the half-plane
-// part in closed form from the U-series of p (potentials.hpp, all n). At
-// y = 0 the remainder is (-(M2 - phi2), 0, 0) (surface_stress's) and the
-// closed form -phi2 p, -p, 0.
+// part in closed form from the U-series of p (potentials.hpp, all n). The
+// surface row y = 0 is surface_stress, -p and 0 (the same split: the
+// remainder there is -(M2 - phi2), the closed form -phi2 p, -p, 0).
+
+std::shared_ptr<const DampedSolution::FieldNodes> DampedSolution::field_nodes() const {
+  std::lock_guard<std::mutex> lock(field_cache_->mutex);
+  auto& np = field_cache_->nodes;
+  if (np) return np;
+  auto n = std::make_shared<FieldNodes>();
+  const Fine& f = *light_;
+  n->z.resize(4, static_cast<Eigen::Index>(f.alpha.size()));
+  n->ph.resize(f.alpha.size());
+  for (std::size_t k = 0; k < f.alpha.size(); ++k) {
+    n->z.col(static_cast<Eigen::Index>(k)) = model_->state_coefficients(f.alpha[k]);
+    n->ph[k] = f.phat[k] * std::exp(cplx(0.0, f.alpha[k] * centre_));
+  }
+  np = n;
+  return np;
+}
+
 StressField DampedSolution::stress_field(const Eigen::Ref<const Eigen::VectorXd>& x,
                                          const Eigen::Ref<const Eigen::VectorXd>& y) const {
   detail::check_grid(x, y);
   const Fine& f = *light_;
+  const auto nodes = field_nodes();
   const WaveConstants& c = model_->constants();
-  const double phi2 = model_->phi2();
-  StressField g;
-  g.sigma_x.resize(y.size(), x.size());
-  g.sigma_y.resize(y.size(), x.size());
-  g.tau_xy.resize(y.size(), x.size());
-  const std::size_t nq = f.alpha.size();
-  std::vector<cplx> gx(nq), gy(nq), gt(nq);
-  std::vector<double> cx_re, cx_im, cy_re, cy_im, ct_re, ct_im;
-  for (Eigen::Index i = 0; i < y.size(); ++i) {
+  const Eigen::Index nx = x.size(), ny = y.size(), nq = static_cast<Eigen::Index>(f.alpha.size());
+  // Remainder integrands, columns [sigma_x, sigma_y, tau] x depth, real parts
+  // then imaginary parts (zero on the surface row, which is done apart).
+  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(nq, 6 * ny);
+  const double ax = 4.0 * (c.c2 - 1.0) / c.c2, ay = (c.c2 - 2.0) / c.c2;
+  for (Eigen::Index i = 0; i < ny; ++i) {
     const double yi = y(i);
-    for (std::size_t k = 0; k < nq; ++k) {
-      const double al = f.alpha[k];
-      const cplx ph = f.phat[k] * std::exp(cplx(0.0, al * centre_));
-      if (yi == 0.0) {
-        gx[k] = -(f.r[k].M2 - phi2) * ph;
-        gy[k] = gt[k] = 0.0;
+    if (yi == 0.0) continue;
+    for (Eigen::Index k = 0; k < nq; ++k) {
+      const double al = f.alpha[static_cast<std::size_t>(k)];
+      const Eigen::Matrix4d C = detail::modal_columns(c, al, yi);
+      const Eigen::Vector4cd z =
+          al < DampedLayerModel::kSmallT
+              ? Eigen::Vector4cd(detail::transfer_matrix(c, al, yi).cast<cplx>() * nodes->z.col(k))
+              : Eigen::Vector4cd(C.cast<cplx>() * nodes->z.col(k));
+      const Eigen::Vector4cd r = z - (c.hp1 * C.col(0) + c.hp2 * C.col(1)).cast<cplx>();
+      const cplx ph = nodes->ph[static_cast<std::size_t>(k)];
+      const cplx gx = (ax * r(0) + ay * r(3)) * ph, gy = r(3) * ph,
+                 gt = cplx(0.0, -1.0) * r(2) * ph;
+      G(k, i) = gx.real();
+      G(k, ny + i) = gy.real();
+      G(k, 2 * ny + i) = gt.real();
+      G(k, 3 * ny + i) = gx.imag();
+      G(k, 4 * ny + i) = gy.imag();
+      G(k, 5 * ny + i) = gt.imag();
+    }
+  }
+  // Filon: Re int (g_re + i g_im) e^{i alpha u} = K_re . c_re - K_im . c_im.
+  Eigen::MatrixXd coef(nq, 6 * ny);
+  std::vector<double> col(static_cast<std::size_t>(nq));
+  for (Eigen::Index m = 0; m < 6 * ny; ++m) {
+    Eigen::Map<Eigen::VectorXd>(col.data(), nq) = G.col(m);
+    const std::vector<double> cm = f.filon->coefficients(col);
+    coef.col(m) = Eigen::Map<const Eigen::VectorXd>(cm.data(), nq);
+  }
+  Eigen::MatrixXd Wre = Eigen::MatrixXd::Zero(nx, nq), Wim = Eigen::MatrixXd::Zero(nx, nq);
+  std::vector<cplx> K;
+  for (Eigen::Index j = 0; j < nx; ++j) {
+    if (std::fabs(x(j)) > kFarField) continue;
+    f.filon->weights(x(j) - centre_, K);
+    for (Eigen::Index k = 0; k < nq; ++k) {
+      Wre(j, k) = K[static_cast<std::size_t>(k)].real();
+      Wim(j, k) = K[static_cast<std::size_t>(k)].imag();
+    }
+  }
+  const Eigen::MatrixXd rem =
+      (Wre * coef.leftCols(3 * ny) - Wim * coef.rightCols(3 * ny)) / kPi;  // (nx, 3 ny)
+  StressField g;
+  g.sigma_x.resize(ny, nx);
+  g.sigma_y.resize(ny, nx);
+  g.tau_xy.resize(ny, nx);
+  for (Eigen::Index i = 0; i < ny; ++i)
+    for (Eigen::Index j = 0; j < nx; ++j) {
+      if (y(i) == 0.0) {
+        g.sigma_x(i, j) = surface_stress(x(j));
+        g.sigma_y(i, j) = -pressure(x(j));
+        g.tau_xy(i, j) = 0.0;
         continue;
       }
-      const Eigen::Matrix4d C = detail::modal_columns(c, al, yi);
-      const Eigen::Vector4cd r =
-          model_->state(al, yi) - (c.hp1 * C.col(0) + c.hp2 * C.col(1)).cast<cplx>();
-      gx[k] = (4.0 * (c.c2 - 1.0) / c.c2 * r(0) + (c.c2 - 2.0) / c.c2 * r(3)) * ph;
-      gy[k] = r(3) * ph;
-      gt[k] = cplx(0.0, -1.0) * r(2) * ph;
-    }
-    f.coefficients(gx, cx_re, cx_im);
-    f.coefficients(gy, cy_re, cy_im);
-    f.coefficients(gt, ct_re, ct_im);
-    for (Eigen::Index j = 0; j < x.size(); ++j) {
       if (std::fabs(x(j)) > kFarField) {
         g.sigma_x(i, j) = g.sigma_y(i, j) = g.tau_xy(i, j) = 0.0;
         continue;
       }
-      const double u = x(j) - centre_;
-      const Eigen::Vector3d hp = detail::half_plane_stresses(c, b_, half_, u, yi, 1);
-      g.sigma_x(i, j) = f.fourier(cx_re, cx_im, u) / kPi + hp(0);
-      g.sigma_y(i, j) = f.fourier(cy_re, cy_im, u) / kPi + hp(1);
-      g.tau_xy(i, j) = f.fourier(ct_re, ct_im, u) / kPi + hp(2);
+      const Eigen::Vector3d hp = detail::half_plane_stresses(c, b_, half_, x(j) - centre_, y(i), 1);
+      g.sigma_x(i, j) = rem(j, i) + hp(0);
+      g.sigma_y(i, j) = rem(j, ny + i) + hp(1);
+      g.tau_xy(i, j) = rem(j, 2 * ny + i) + hp(2);
     }
-  }
   return g;
 }
 

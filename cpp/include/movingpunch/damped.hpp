@@ -69,6 +69,10 @@ class DampedLayerModel {
   // normalised by sigma_y/alpha = -1, tau = 0 at y = 0 (complex amplitudes of
   // u = -i U e^{i alpha x}, v = W e^{i alpha x}, ...), t > 0.
   Eigen::Vector4cd state(double t, double y) const;
+  // state's part independent of y, z(t) (t > 0): for t < kSmallT the top
+  // state (state = exp(t y A) z), else the amplitudes of the regularised
+  // modal columns (state = modal_columns(t, y) z).
+  Eigen::Vector4cd state_coefficients(double t) const;
 
  private:
   WaveConstants c_;
@@ -323,6 +327,18 @@ class DampedSolution {
   };
   std::shared_ptr<SurfaceCache> surface_cache_ = std::make_shared<SurfaceCache>();
   std::shared_ptr<const Surface> surface() const;
+  // The stress field's y-independent node data (on light_), prepared on first
+  // use: DampedLayerModel::state_coefficients (columns) and p^ e^{i alpha c}.
+  struct FieldNodes {
+    Eigen::Matrix4Xcd z;
+    std::vector<cplx> ph;
+  };
+  struct FieldCache {
+    std::mutex mutex;
+    std::shared_ptr<const FieldNodes> nodes;
+  };
+  std::shared_ptr<FieldCache> field_cache_ = std::make_shared<FieldCache>();
+  std::shared_ptr<const FieldNodes> field_nodes() const;
   double surface_value(const Surface& s, double x) const;  // v(x, 0)/(P/(mu h))
 };
 
