@@ -75,7 +75,9 @@ def test_stresses_tend_to_the_surface_values(vstar: float, damping: float) -> No
     s = mp.solve(vstar=vstar, kw=1.0, damping=damping, **PAPER)
     lo, hi = s.contact_interval
     c, w = s.centre, s.half_width
-    r = np.concatenate([np.linspace(-0.99, 0.99, 41), [-3.0, -1.5, -1.01, 1.01, 1.5, 3.0]])
+    r = np.concatenate(
+        [np.linspace(-0.99, 0.99, 41), [-3.0, -1.5, -1.01, 1.01, 1.5, 3.0]]
+    )
     x = c + w * r
     f = s.stress_field(x, [0.0, -1e-9, -1e-8])
     top = (
