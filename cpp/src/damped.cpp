@@ -1141,12 +1141,33 @@ std::shared_ptr<const DampedSolution::FieldNodes> DampedSolution::field_nodes() 
   if (np) return np;
   auto n = std::make_shared<FieldNodes>();
   const Fine& f = *light_;
-  n->z.resize(4, static_cast<Eigen::Index>(f.alpha.size()));
+  const WaveConstants& c = model_->constants();
+  const auto nq = static_cast<Eigen::Index>(f.alpha.size());
+  // |entries| of v_T(+-nT) and dv(+-), the columns' vectors (modal_columns).
+  const double kc = std::max({2.0, 1.0 / c.nT, (1.0 + c.nT * c.nT) / c.nT, std::fabs(c.dW),
+                              std::fabs(c.dT), std::fabs(c.dS)});
+  n->d_re.resize(4, nq);
+  n->d_im.resize(4, nq);
   n->ph.resize(f.alpha.size());
-  for (std::size_t k = 0; k < f.alpha.size(); ++k) {
-    n->z.col(static_cast<Eigen::Index>(k)) = model_->state_coefficients(f.alpha[k]);
-    n->ph[k] = f.phat[k] * std::exp(cplx(0.0, f.alpha[k] * centre_));
+  n->top_bound.resize(f.alpha.size());
+  n->bottom_bound.resize(f.alpha.size());
+  double ref = 0.0;
+  for (Eigen::Index k = 0; k < nq; ++k) {
+    const auto q = static_cast<std::size_t>(k);
+    const double al = f.alpha[q];
+    Eigen::Vector4cd d = model_->state_coefficients(al);
+    if (al >= DampedLayerModel::kSmallT) d -= Eigen::Vector4cd(c.hp1, c.hp2, 0.0, 0.0);
+    n->d_re.col(k) = d.real();
+    n->d_im.col(k) = d.imag();
+    n->ph[q] = f.phat[q] * std::exp(cplx(0.0, al * centre_));
+    const double m = std::abs(n->ph[q]) * kc;
+    n->top_bound[q] = m * (std::abs(d(0)) + std::abs(d(1)));
+    n->bottom_bound[q] = m * (std::abs(d(2)) + std::abs(d(3)));
+    ref = std::max(ref, std::abs(n->ph[q]));
   }
+  // The stresses are O(p^(0)) = O(ref) (p^(0) = int p); a node's weight is
+  // at most 0.5 and there are nq of them.
+  n->negligible = 1e-18 * ref / static_cast<double>(std::max<Eigen::Index>(nq, 1));
   np = n;
   return np;
 }
@@ -1159,29 +1180,42 @@ StressField DampedSolution::stress_field(const Eigen::Ref<const Eigen::VectorXd>
   const WaveConstants& c = model_->constants();
   const Eigen::Index nx = x.size(), ny = y.size(), nq = static_cast<Eigen::Index>(f.alpha.size());
   // Remainder integrands, columns [sigma_x, sigma_y, tau] x depth, real parts
-  // then imaginary parts (zero on the surface row, which is done apart).
+  // then imaginary parts (zero on the surface row, which is done apart, and
+  // at nodes whose bound is negligible).
   Eigen::MatrixXd G = Eigen::MatrixXd::Zero(nq, 6 * ny);
   const double ax = 4.0 * (c.c2 - 1.0) / c.c2, ay = (c.c2 - 2.0) / c.c2;
   for (Eigen::Index i = 0; i < ny; ++i) {
-    const double yi = y(i);
+    const double yi = y(i), yb = yi + 1.0;
     if (yi == 0.0) continue;
     for (Eigen::Index k = 0; k < nq; ++k) {
-      const double al = f.alpha[static_cast<std::size_t>(k)];
-      const Eigen::Matrix4d C = detail::modal_columns(c, al, yi);
-      const Eigen::Vector4cd z =
-          al < DampedLayerModel::kSmallT
-              ? Eigen::Vector4cd(detail::transfer_matrix(c, al, yi).cast<cplx>() * nodes->z.col(k))
-              : Eigen::Vector4cd(C.cast<cplx>() * nodes->z.col(k));
-      const Eigen::Vector4cd r = z - (c.hp1 * C.col(0) + c.hp2 * C.col(1)).cast<cplx>();
-      const cplx ph = nodes->ph[static_cast<std::size_t>(k)];
-      const cplx gx = (ax * r(0) + ay * r(3)) * ph, gy = r(3) * ph,
-                 gt = cplx(0.0, -1.0) * r(2) * ph;
-      G(k, i) = gx.real();
-      G(k, ny + i) = gy.real();
-      G(k, 2 * ny + i) = gt.real();
-      G(k, 3 * ny + i) = gx.imag();
-      G(k, 4 * ny + i) = gy.imag();
-      G(k, 5 * ny + i) = gt.imag();
+      const auto q = static_cast<std::size_t>(k);
+      const double al = f.alpha[q];
+      Eigen::Vector4d r_re, r_im;
+      if (al < DampedLayerModel::kSmallT) {
+        const Eigen::Matrix4d T = detail::transfer_matrix(c, al, yi);
+        const Eigen::Matrix4d C = detail::modal_columns(c, al, yi);
+        r_re = T * nodes->d_re.col(k) - (c.hp1 * C.col(0) + c.hp2 * C.col(1));
+        r_im = T * nodes->d_im.col(k);
+      } else {
+        // |columns 0, 1| <= kc e^{nT al y} (1 + al |y|), |columns 2, 3| <= kc
+        // e^{-nT al (y + 1)} (1 + al (y + 1)) (|E(x)| <= |x| in modal_columns).
+        const double bound =
+            nodes->top_bound[q] * std::exp(c.nT * al * yi) * (1.0 - al * yi) +
+            nodes->bottom_bound[q] * std::exp(-c.nT * al * yb) * (1.0 + al * yb);
+        if (bound < nodes->negligible) continue;
+        const Eigen::Matrix4d C = detail::modal_columns(c, al, yi);
+        r_re = C * nodes->d_re.col(k);
+        r_im = C * nodes->d_im.col(k);
+      }
+      const cplx ph = nodes->ph[q];
+      const cplx sx = cplx(ax * r_re(0) + ay * r_re(3), ax * r_im(0) + ay * r_im(3)) * ph;
+      const cplx sy = cplx(r_re(3), r_im(3)) * ph, tau = cplx(r_im(2), -r_re(2)) * ph;
+      G(k, i) = sx.real();
+      G(k, ny + i) = sy.real();
+      G(k, 2 * ny + i) = tau.real();
+      G(k, 3 * ny + i) = sx.imag();
+      G(k, 4 * ny + i) = sy.imag();
+      G(k, 5 * ny + i) = tau.imag();
     }
   }
   // Filon: Re int (g_re + i g_im) e^{i alpha u} = K_re . c_re - K_im . c_im.

@@ -328,10 +328,17 @@ class DampedSolution {
   std::shared_ptr<SurfaceCache> surface_cache_ = std::make_shared<SurfaceCache>();
   std::shared_ptr<const Surface> surface() const;
   // The stress field's y-independent node data (on light_), prepared on first
-  // use: DampedLayerModel::state_coefficients (columns) and p^ e^{i alpha c}.
+  // use: per node p^ e^{i alpha c} and d (real and imaginary parts): for
+  // alpha < kSmallT the top state z(0) (DampedLayerModel::state_coefficients),
+  // else the modal amplitudes minus the half-plane mix's (hp1, hp2, 0, 0), so
+  // that the remainder state is modal_columns(alpha, y) d; with bounds
+  // |p^| kc (|d0| + |d1|), |p^| kc (|d2| + |d3|) (kc the largest entry of the
+  // columns' vectors) that let stress_field skip negligible nodes.
   struct FieldNodes {
-    Eigen::Matrix4Xcd z;
+    Eigen::Matrix4Xd d_re, d_im;
     std::vector<cplx> ph;
+    std::vector<double> top_bound, bottom_bound;
+    double negligible = 0;  // a node's contribution below this is dropped
   };
   struct FieldCache {
     std::mutex mutex;
