@@ -219,7 +219,7 @@ TEST(DampedContact, StressFieldMatchesUndampedSolver) {
   const auto s = mp::solve_damped(damped(0.2, 1.0, 1e-9));
   const auto u = mp::solve_contact(mp::testing::paper(0.2, 1.0));
   const Eigen::VectorXd xs = mp::testing::vec({-0.6, 0.0, 0.2, 0.37, 1.0});
-  const Eigen::VectorXd ys = mp::testing::vec({-1.0, -0.5, -0.05, -0.002});
+  const Eigen::VectorXd ys = mp::testing::vec({-1.0, -0.5, -0.05, -0.002, -1e-5, 0.0});
   const auto f = u.stress_field(xs, ys);
   for (Eigen::Index i = 0; i < ys.size(); ++i)
     for (Eigen::Index j = 0; j < xs.size(); ++j) {
