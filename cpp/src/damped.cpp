@@ -1199,9 +1199,8 @@ StressField DampedSolution::stress_field(const Eigen::Ref<const Eigen::VectorXd>
       } else {
         // |columns 0, 1| <= kc e^{nT al y} (1 + al |y|), |columns 2, 3| <= kc
         // e^{-nT al (y + 1)} (1 + al (y + 1)) (|E(x)| <= |x| in modal_columns).
-        const double bound =
-            nodes->top_bound[q] * std::exp(c.nT * al * yi) * (1.0 - al * yi) +
-            nodes->bottom_bound[q] * std::exp(-c.nT * al * yb) * (1.0 + al * yb);
+        const double bound = nodes->top_bound[q] * std::exp(c.nT * al * yi) * (1.0 - al * yi) +
+                             nodes->bottom_bound[q] * std::exp(-c.nT * al * yb) * (1.0 + al * yb);
         if (bound < nodes->negligible) continue;
         const Eigen::Matrix4d C = detail::modal_columns(c, al, yi);
         r_re = C * nodes->d_re.col(k);

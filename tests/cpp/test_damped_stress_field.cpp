@@ -9,6 +9,7 @@
 #include <cmath>
 #include <complex>
 #include <limits>
+#include <vector>
 
 #include <Eigen/Dense>
 
@@ -28,8 +29,7 @@ constexpr double kPi = 3.14159265358979323846;
 // on panels of width 0.02 below alpha = 10 (the resonant peaks) and 0.25
 // beyond (|x| <= 2: with p^ at most 1 radian per panel).
 // Returns one row per x: (sigma_x, sigma_y, tau_xy).
-Eigen::MatrixXd direct_stresses(const mp::DampedSolution& s, const Eigen::VectorXd& xs,
-                                double y) {
+Eigen::MatrixXd direct_stresses(const mp::DampedSolution& s, const Eigen::VectorXd& xs, double y) {
   static const double gx[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267,
                                0.9602898564975363};
   static const double gw[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745,
@@ -77,14 +77,14 @@ TEST(DampedStressField, DepthFieldEqualsDirectFourierSum) {
   };
   // Subcritical, and above V*_cr(kw = 1) = 0.5717 (the contact lies ahead);
   // y = -1e-3 is the depth the old plain Fourier integral stopped at.
-  for (const Case& cs : {Case{0.2, 1.0, {-1e-3, -0.15, -0.5, -1.0}},
-                         Case{0.65, 0.1, {-0.02, -0.3, -0.85, -1.0}}}) {
+  for (const Case& cs :
+       {Case{0.2, 1.0, {-1e-3, -0.15, -0.5, -1.0}}, Case{0.65, 0.1, {-0.02, -0.3, -0.85, -1.0}}}) {
     const mp::DampedSolution s = solve(cs.vstar, cs.damping);
     Eigen::VectorXd xs(6);
     xs << -2.0, s.left() + 0.01 * s.half_width(), s.left() + 0.3 * s.half_width(), s.centre(),
         s.right() - 0.01 * s.half_width(), 1.5;
-    const Eigen::VectorXd ys = Eigen::Map<const Eigen::VectorXd>(
-        cs.ys.data(), static_cast<Eigen::Index>(cs.ys.size()));
+    const Eigen::VectorXd ys =
+        Eigen::Map<const Eigen::VectorXd>(cs.ys.data(), static_cast<Eigen::Index>(cs.ys.size()));
     const mp::StressField f = s.stress_field(xs, ys);
     const double scale = s.max_pressure();
     ASSERT_GT(scale, 0.0);
