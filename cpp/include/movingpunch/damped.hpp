@@ -305,7 +305,7 @@ class DampedSolution {
   // dissipation). Built by solve_damped.
   std::shared_ptr<const Fine> light_;
   // Resolving e^{i alpha x} for |x| <= 3 (a + b) too (the direct sums of the
-  // field and bottom outputs): built on first use, then shared.
+  // bottom outputs): built on first use, then shared.
   struct FineCache {
     std::mutex mutex;
     std::shared_ptr<const Fine> fine;
