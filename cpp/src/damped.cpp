@@ -156,10 +156,17 @@ DampedResponse DampedLayerModel::response(double t) const {
 Eigen::Vector4cd DampedLayerModel::state(double t, double y) const {
   if (!(t > 0.0) || !std::isfinite(t) || !(y >= -1.0) || !(y <= 0.0))
     throw std::invalid_argument("damped state: need t > 0 finite and -1 <= y <= 0");
+  const Eigen::Vector4cd z = state_coefficients(t);
+  if (t < kSmallT) return transfer_matrix(c_, t, y).cast<cplx>() * z;
+  return modal_columns(c_, t, y).cast<cplx>() * z;
+}
+
+Eigen::Vector4cd DampedLayerModel::state_coefficients(double t) const {
+  if (!(t > 0.0) || !std::isfinite(t))
+    throw std::invalid_argument("damped state: need t > 0 finite");
   if (t < kSmallT) {
     const DampedResponse r = response_transfer(t);
-    const Eigen::Vector4cd z0(r.U0, r.W0, 0.0, -1.0);
-    return transfer_matrix(c_, t, y).cast<cplx>() * z0;
+    return {r.U0, r.W0, 0.0, -1.0};
   }
   const Eigen::Matrix4d top = modal_columns(c_, t, 0.0), bot = modal_columns(c_, t, -1.0);
   Eigen::Matrix4cd M;
@@ -167,8 +174,7 @@ Eigen::Vector4cd DampedLayerModel::state(double t, double y) const {
   M.row(1) = top.row(3).cast<cplx>();
   M.row(2) = bot.row(2).cast<cplx>();
   M.row(3) = spring_row(bot.row(3), bot.row(1), t, foundation(t), rigid_);
-  const Eigen::Vector4cd amp = M.partialPivLu().solve(Eigen::Vector4cd(0.0, -1.0, 0.0, 0.0));
-  return modal_columns(c_, t, y).cast<cplx>() * amp;
+  return M.partialPivLu().solve(Eigen::Vector4cd(0.0, -1.0, 0.0, 0.0));
 }
 
 // ---------------------------------------------------------------------------
@@ -1224,69 +1230,146 @@ double DampedSolution::surface_stress(double x) const {
 }
 
 Eigen::Vector3d DampedSolution::stresses(double x, double y) const {
-  if (!std::isfinite(x)) throw std::invalid_argument("stresses: x must be finite");
   const Eigen::VectorXd xs = Eigen::VectorXd::Constant(1, x), ys = Eigen::VectorXd::Constant(1, y);
   const StressField g = stress_field(xs, ys);
   return {g.sigma_x(0, 0), g.sigma_y(0, 0), g.tau_xy(0, 0)};
 }
 
+// Stresses: sigma(x, y)/(P/h) = (1/pi) Re int_0^inf [Sigma_x, S, -iT](alpha, y) p^ e^{i alpha x},
+// from the state [U, W, T, S] (DampedLayerModel::state; tau ~ sin(alpha x) has
+// the complex amplitude -iT). At large alpha the amplitudes tend to the
+// half-plane mode mix's (real, e^{n alpha y}: the base does not matter), whose
+// integral decays only like e^{nT alpha y}, so it is split off as for the
+// displacements: the remainder (which decays like e^{-nT alpha (2 + y)} at
+// every depth) by Filon sums on light_'s nodes (exact in x; [0, alpha_max]
+// covers e^{-nT alpha} to 1e-18, the slowest, at y = -1), and the half-plane
+// part in closed form from the U-series of p (potentials.hpp, all n). The
+// surface row y = 0 is surface_stress, -p and 0 (the same split: the
+// remainder there is -(M2 - phi2), the closed form -phi2 p, -p, 0).
+
+std::shared_ptr<const DampedSolution::FieldNodes> DampedSolution::field_nodes() const {
+  std::lock_guard<std::mutex> lock(field_cache_->mutex);
+  auto& np = field_cache_->nodes;
+  if (np) return np;
+  auto n = std::make_shared<FieldNodes>();
+  const Fine& f = *light_;
+  const WaveConstants& c = model_->constants();
+  const auto nq = static_cast<Eigen::Index>(f.alpha.size());
+  // |entries| of v_T(+-nT) and dv(+-), the columns' vectors (modal_columns).
+  const double kc = std::max({2.0, 1.0 / c.nT, (1.0 + c.nT * c.nT) / c.nT, std::fabs(c.dW),
+                              std::fabs(c.dT), std::fabs(c.dS)});
+  n->d_re.resize(4, nq);
+  n->d_im.resize(4, nq);
+  n->ph.resize(f.alpha.size());
+  n->top_bound.resize(f.alpha.size());
+  n->bottom_bound.resize(f.alpha.size());
+  double ref = 0.0;
+  for (Eigen::Index k = 0; k < nq; ++k) {
+    const auto q = static_cast<std::size_t>(k);
+    const double al = f.alpha[q];
+    Eigen::Vector4cd d = model_->state_coefficients(al);
+    if (al >= DampedLayerModel::kSmallT) d -= Eigen::Vector4cd(c.hp1, c.hp2, 0.0, 0.0);
+    n->d_re.col(k) = d.real();
+    n->d_im.col(k) = d.imag();
+    n->ph[q] = f.phat[q] * std::exp(cplx(0.0, al * centre_));
+    const double m = std::abs(n->ph[q]) * kc;
+    n->top_bound[q] = m * (std::abs(d(0)) + std::abs(d(1)));
+    n->bottom_bound[q] = m * (std::abs(d(2)) + std::abs(d(3)));
+    ref = std::max(ref, std::abs(n->ph[q]));
+  }
+  // The stresses are O(p^(0)) = O(ref) (p^(0) = int p); a node's weight is
+  // at most 0.5 and there are nq of them.
+  n->negligible = 1e-18 * ref / static_cast<double>(std::max<Eigen::Index>(nq, 1));
+  np = n;
+  return np;
+}
+
 StressField DampedSolution::stress_field(const Eigen::Ref<const Eigen::VectorXd>& x,
                                          const Eigen::Ref<const Eigen::VectorXd>& y) const {
-  double xmax = 0.0;
-  for (Eigen::Index j = 0; j < x.size(); ++j) {
-    if (!std::isfinite(x(j))) throw std::invalid_argument("stresses: x must be finite");
-    xmax = std::max(xmax, std::fabs(x(j)));
-  }
-  for (Eigen::Index i = 0; i < y.size(); ++i)
-    if (!(y(i) >= -1.0) || !(y(i) <= -1e-3))
-      throw std::invalid_argument("stresses: y must be in [-1, -1e-3], got " +
-                                  std::to_string(y(i)));
-  const auto f = fine_for(xmax);  // one set of nodes for the whole grid
+  detail::check_grid(x, y);
+  const Fine& f = *light_;
+  const auto nodes = field_nodes();
   const WaveConstants& c = model_->constants();
-  StressField g;
-  g.sigma_x.resize(y.size(), x.size());
-  g.sigma_y.resize(y.size(), x.size());
-  g.tau_xy.resize(y.size(), x.size());
-  std::vector<double> alpha;
-  std::vector<Eigen::Vector3cd> amp;
-  for (Eigen::Index i = 0; i < y.size(); ++i) {
-    // Per node: weight * (sigma_x, sigma_y, tau_xy amplitudes) * p^; tau ~
-    // sin(alpha x) has the complex amplitude -i T.
-    alpha.clear();
-    amp.clear();
-    auto add = [&](double a, double wgt, const cplx& ph) {
-      const Eigen::Vector4cd z = model_->state(a, y(i));
-      const cplx sx = 4.0 * (c.c2 - 1.0) / c.c2 * z(0) + (c.c2 - 2.0) / c.c2 * z(3);
-      alpha.push_back(a);
-      amp.emplace_back(wgt * sx * ph, wgt * z(3) * ph, wgt * cplx(0.0, -1.0) * z(2) * ph);
-    };
-    for (std::size_t k = 0; k < f->alpha.size(); ++k)
-      if (f->alpha[k] > 0.0) add(f->alpha[k], f->weight[k], f->phat[k]);
-    // The field decays like exp(nT alpha y): beyond the quadrature's
-    // alpha_max extend with panels of width 1.5/freq up to 45/(nT |y|).
-    const double amax = kernel_->quadrature().panels.alpha_max,
-                 aend = 45.0 / (c.nT * std::fabs(y(i)));
-    if (aend > amax) {
-      const double width = std::min(0.5, 1.5 / f->freq);
-      const int m = static_cast<int>(std::ceil((aend - amax) / width));
-      const double h = 0.5 * (aend - amax) / m;
-      for (int q = 0; q < m; ++q) {
-        const double cc = amax + (2 * q + 1) * h;
-        for (int j = 0; j < 15; ++j) {
-          const double a = gk_node(j, cc, h);
-          add(a, gk_weight(j, h), pressure_transform(a));
-        }
+  const Eigen::Index nx = x.size(), ny = y.size(), nq = static_cast<Eigen::Index>(f.alpha.size());
+  // Remainder integrands, columns [sigma_x, sigma_y, tau] x depth, real parts
+  // then imaginary parts (zero on the surface row, which is done apart, and
+  // at nodes whose bound is negligible).
+  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(nq, 6 * ny);
+  const double ax = 4.0 * (c.c2 - 1.0) / c.c2, ay = (c.c2 - 2.0) / c.c2;
+  for (Eigen::Index i = 0; i < ny; ++i) {
+    const double yi = y(i), yb = yi + 1.0;
+    if (yi == 0.0) continue;
+    for (Eigen::Index k = 0; k < nq; ++k) {
+      const auto q = static_cast<std::size_t>(k);
+      const double al = f.alpha[q];
+      Eigen::Vector4d r_re, r_im;
+      if (al < DampedLayerModel::kSmallT) {
+        const Eigen::Matrix4d T = detail::transfer_matrix(c, al, yi);
+        const Eigen::Matrix4d C = detail::modal_columns(c, al, yi);
+        r_re = T * nodes->d_re.col(k) - (c.hp1 * C.col(0) + c.hp2 * C.col(1));
+        r_im = T * nodes->d_im.col(k);
+      } else {
+        // |columns 0, 1| <= kc e^{nT al y} (1 + al |y|), |columns 2, 3| <= kc
+        // e^{-nT al (y + 1)} (1 + al (y + 1)) (|E(x)| <= |x| in modal_columns).
+        const double bound = nodes->top_bound[q] * std::exp(c.nT * al * yi) * (1.0 - al * yi) +
+                             nodes->bottom_bound[q] * std::exp(-c.nT * al * yb) * (1.0 + al * yb);
+        if (bound < nodes->negligible) continue;
+        const Eigen::Matrix4d C = detail::modal_columns(c, al, yi);
+        r_re = C * nodes->d_re.col(k);
+        r_im = C * nodes->d_im.col(k);
       }
-    }
-    for (Eigen::Index j = 0; j < x.size(); ++j) {
-      Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-      for (std::size_t k = 0; k < alpha.size(); ++k)
-        sum += (amp[k] * std::exp(cplx(0.0, alpha[k] * x(j)))).real();
-      g.sigma_x(i, j) = sum(0) / kPi;
-      g.sigma_y(i, j) = sum(1) / kPi;
-      g.tau_xy(i, j) = sum(2) / kPi;
+      const cplx ph = nodes->ph[q];
+      const cplx sx = cplx(ax * r_re(0) + ay * r_re(3), ax * r_im(0) + ay * r_im(3)) * ph;
+      const cplx sy = cplx(r_re(3), r_im(3)) * ph, tau = cplx(r_im(2), -r_re(2)) * ph;
+      G(k, i) = sx.real();
+      G(k, ny + i) = sy.real();
+      G(k, 2 * ny + i) = tau.real();
+      G(k, 3 * ny + i) = sx.imag();
+      G(k, 4 * ny + i) = sy.imag();
+      G(k, 5 * ny + i) = tau.imag();
     }
   }
+  // Filon: Re int (g_re + i g_im) e^{i alpha u} = K_re . c_re - K_im . c_im.
+  Eigen::MatrixXd coef(nq, 6 * ny);
+  std::vector<double> col(static_cast<std::size_t>(nq));
+  for (Eigen::Index m = 0; m < 6 * ny; ++m) {
+    Eigen::Map<Eigen::VectorXd>(col.data(), nq) = G.col(m);
+    const std::vector<double> cm = f.filon->coefficients(col);
+    coef.col(m) = Eigen::Map<const Eigen::VectorXd>(cm.data(), nq);
+  }
+  Eigen::MatrixXd Wre = Eigen::MatrixXd::Zero(nx, nq), Wim = Eigen::MatrixXd::Zero(nx, nq);
+  std::vector<cplx> K;
+  for (Eigen::Index j = 0; j < nx; ++j) {
+    if (std::fabs(x(j)) > kFarField) continue;
+    f.filon->weights(x(j) - centre_, K);
+    for (Eigen::Index k = 0; k < nq; ++k) {
+      Wre(j, k) = K[static_cast<std::size_t>(k)].real();
+      Wim(j, k) = K[static_cast<std::size_t>(k)].imag();
+    }
+  }
+  const Eigen::MatrixXd rem =
+      (Wre * coef.leftCols(3 * ny) - Wim * coef.rightCols(3 * ny)) / kPi;  // (nx, 3 ny)
+  StressField g;
+  g.sigma_x.resize(ny, nx);
+  g.sigma_y.resize(ny, nx);
+  g.tau_xy.resize(ny, nx);
+  for (Eigen::Index i = 0; i < ny; ++i)
+    for (Eigen::Index j = 0; j < nx; ++j) {
+      if (y(i) == 0.0) {
+        g.sigma_x(i, j) = surface_stress(x(j));
+        g.sigma_y(i, j) = -pressure(x(j));
+        g.tau_xy(i, j) = 0.0;
+        continue;
+      }
+      if (std::fabs(x(j)) > kFarField) {
+        g.sigma_x(i, j) = g.sigma_y(i, j) = g.tau_xy(i, j) = 0.0;
+        continue;
+      }
+      const Eigen::Vector3d hp = detail::half_plane_stresses(c, b_, half_, x(j) - centre_, y(i), 1);
+      g.sigma_x(i, j) = rem(j, i) + hp(0);
+      g.sigma_y(i, j) = rem(j, ny + i) + hp(1);
+      g.tau_xy(i, j) = rem(j, 2 * ny + i) + hp(2);
+    }
   return g;
 }
 

@@ -148,6 +148,36 @@ inline double half_plane_displacement(const WaveConstants& c, const Eigen::Vecto
   return kT * V(zT).real() + kL * V(zL).real() + kD * vD.real();
 }
 
+// The half-plane part of the stresses (sigma_x, sigma_y, tau_xy)/(P/h) at
+// (x, y), y <= 0, x from the contact's centre: (1/pi) Re int_0^inf
+// [Sigma_x, S, -i T]_hp(alpha, y) p^ e^{i alpha x} d alpha with the half-plane
+// mode mix hp1 e_T v_T + hp2 [e_L dv + v_T (e_L - e_T)/delta] (its stresses
+// per unit p^, independent of the base), in closed form: a cos-type term
+// e^{n alpha y} gives Re F(z_n), the sin-type tau Im F(z_n), F = i Phi,
+// z_n = (x - i n y)/a. At y = 0 (upper side of the cut) sigma_x = -phi2 p,
+// sigma_y = -p, tau = 0.
+inline Eigen::Vector3d half_plane_stresses(const WaveConstants& c, const Eigen::VectorXd& b,
+                                           double a, double x, double y, int step) {
+  const double nT = c.nT, nL = c.nL, d = c.delta;
+  const Eigen::Vector4d vT(1.0, -1.0 / nT, (1.0 + nT * nT) / nT, -2.0);
+  const Eigen::Vector4d dv(0.0, c.dW, c.dT, c.dS);
+  // Coefficients of e_T, e_L and the divided difference for [sigma_x, sigma_y, tau].
+  const double kT[3] = {c.hp1 * sigma_x_hat(c, vT), c.hp1 * vT(3), c.hp1 * vT(2)};
+  const double kL[3] = {c.hp2 * sigma_x_hat(c, dv), c.hp2 * dv(3), c.hp2 * dv(2)};
+  const double kD[3] = {c.hp2 * sigma_x_hat(c, vT), c.hp2 * vT(3), c.hp2 * vT(2)};
+  auto F = [&b, step](cplx_t z) { return cplx_t(0.0, 1.0) * cauchy_potential(b, z, step); };
+  auto dF = [&b, step](cplx_t z) {
+    return cplx_t(0.0, 1.0) * cauchy_potential_derivative(b, z, step);
+  };
+  const cplx_t zT = z_of(x, nT, y, a), zL = z_of(x, nL, y, a);
+  const cplx_t fT = F(zT), fL = F(zL);
+  const cplx_t fD = divided_difference(F, dF, zT, zL, d, cplx_t(0.0, -y / a));
+  // cos-type (sigma_x, sigma_y): Re; sin-type (tau): Im.
+  return {kT[0] * fT.real() + kL[0] * fL.real() + kD[0] * fD.real(),
+          kT[1] * fT.real() + kL[1] * fL.real() + kD[1] * fD.real(),
+          kT[2] * fT.imag() + kL[2] * fL.imag() + kD[2] * fD.imag()};
+}
+
 // Gauss-Chebyshev (U) rule for int_{-1}^{1} sqrt(1 - r^2) g(r) ln(1 + (u - a r)^2) dr,
 // g = sum b_n U_n: nodes r_i and weights times g(r_i) (independent of u).
 // The integrand is analytic but for ln(1 + (u - a r)^2) at r = (u +- i)/a:

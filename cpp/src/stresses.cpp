@@ -15,13 +15,6 @@ namespace {
 using cplx = std::complex<double>;
 constexpr double kPi = 3.14159265358979323846;
 
-using detail::divided_difference;
-using detail::z_of;
-
-// Phi(z) = (1/pi) int p(a t)/(P/h) / (z - t) dt and its derivative (g even).
-cplx phi(const Eigen::VectorXd& b, cplx z) { return detail::cauchy_potential(b, z, 2); }
-cplx dphi(const Eigen::VectorXd& b, cplx z) { return detail::cauchy_potential_derivative(b, z, 2); }
-
 }  // namespace
 
 FieldEvaluator::FieldEvaluator(const LayerModel& model, double a, const Eigen::VectorXd& b,
@@ -107,28 +100,14 @@ StressField FieldEvaluator::stresses(const Eigen::Ref<const Eigen::VectorXd>& x,
   f.sigma_y = cos_part.rightCols(ny).transpose();
   f.tau_xy = transform(Rt, true, x).transpose();
 
-  // Half-plane part in closed form. State of the half-plane mode mix:
-  // hp1 e_T v_T + hp2 [e_L dv + v_T (e_L - e_T)/delta].
-  const double nT = c.nT, nL = c.nL, d = c.delta;
-  const Eigen::Vector4d vT(1.0, -1.0 / nT, (1.0 + nT * nT) / nT, -2.0);
-  const Eigen::Vector4d dv(0.0, c.dW, c.dT, c.dS);
-  auto sx = [&c](const Eigen::Vector4d& z) { return sigma_x_hat(c, z); };
-  // Coefficients of e_T, e_L and the divided difference for [sigma_x, sigma_y, tau].
-  const double kT[3] = {c.hp1 * sx(vT), c.hp1 * vT(3), c.hp1 * vT(2)};
-  const double kL[3] = {c.hp2 * sx(dv), c.hp2 * dv(3), c.hp2 * dv(2)};
-  const double kD[3] = {c.hp2 * sx(vT), c.hp2 * vT(3), c.hp2 * vT(2)};
-  auto F = [this](cplx z) { return cplx(0.0, 1.0) * phi(b_, z); };
-  auto dF = [this](cplx z) { return cplx(0.0, 1.0) * dphi(b_, z); };
+  // Half-plane part in closed form (potentials.hpp; g even).
   for (Eigen::Index j = 0; j < ny; ++j)
     for (Eigen::Index i = 0; i < nx; ++i) {
       if (std::fabs(x(i)) > kFarField) continue;
-      const cplx zT = z_of(x(i), nT, y(j), a_), zL = z_of(x(i), nL, y(j), a_);
-      const cplx fT = F(zT), fL = F(zL);
-      const cplx fD = divided_difference(F, dF, zT, zL, d, cplx(0.0, -y(j) / a_));
-      // cos-type (sigma_x, sigma_y): Re; sin-type (tau): Im.
-      f.sigma_x(j, i) += kT[0] * fT.real() + kL[0] * fL.real() + kD[0] * fD.real();
-      f.sigma_y(j, i) += kT[1] * fT.real() + kL[1] * fL.real() + kD[1] * fD.real();
-      f.tau_xy(j, i) += kT[2] * fT.imag() + kL[2] * fL.imag() + kD[2] * fD.imag();
+      const Eigen::Vector3d hp = detail::half_plane_stresses(c, b_, a_, x(i), y(j), 2);
+      f.sigma_x(j, i) += hp(0);
+      f.sigma_y(j, i) += hp(1);
+      f.tau_xy(j, i) += hp(2);
     }
   return f;
 }

@@ -224,21 +224,16 @@ class DampedSolution:
     @overload
     def depth_stress(self, y: Points, x: float = ...) -> FloatArray: ...
     def depth_stress(self, y: npt.ArrayLike, x: float = 0.0) -> float | FloatArray:
-        """sigma_x(x, y)/(P/h) for -1 <= y <= -1e-3 and at the surface y = 0
-        (``surface_stress``); the Fourier integral is not used in between."""
-        pts = _as_points("y", y)
-        bad = (pts < -1.0) | ((pts > -1e-3) & (pts != 0.0))
-        if bad.any():
-            raise InvalidParameterError(
-                "y must satisfy -1 <= y <= -1e-3 or y = 0 for the damped solver's "
-                f"depth stress, got {float(pts[bad].flat[0])!r}",
-                parameter="y",
-                allowed="-1 <= y <= -1e-3 or y = 0",
-            )
+        """sigma_x(x, y)/(P/h) at depths y/h in [-1, 0] (y = 0:
+        ``surface_stress``), as ``Solution.depth_stress`` (which is at x = 0).
+        The cost does not depend on y (the half-plane part is in closed form)."""
+        pts = _depths(y)
         xs = _real_any("x", x)
         if not math.isfinite(xs):
             raise InvalidParameterError(f"x must be a finite number, got {x!r}")
-        return _pointwise("y", y, lambda v: self._impl.stress_x(xs, v), pts)
+        column = np.array([xs])
+        grid = self._impl.stress_field
+        return _pointwise("y", y, lambda ys: grid(column, ys)[0][:, 0], pts)
 
     @property
     def p0(self) -> float:
@@ -299,30 +294,12 @@ class DampedSolution:
 
     def stress_field(self, x: npt.ArrayLike, y: npt.ArrayLike) -> StressField:
         """All stresses over P/h on the grid ``x`` (x/h) by ``y`` (y/h in
-        [-1, -1e-3], or 0); arrays shaped (len(y), len(x)). On the surface
-        y = 0 from the surface values (sigma_x = ``surface_stress``,
-        sigma_y = -p, tau_xy = 0: the punch is frictionless); the Fourier
-        integral, whose cost grows like 1/|y|, is not used above y = -1e-3."""
+        [-1, 0]); arrays shaped (len(y), len(x)), as ``Solution.stress_field``.
+        On the surface y = 0: sigma_x = ``surface_stress``, sigma_y = -p,
+        tau_xy = 0 (the punch is frictionless)."""
         xs = _flat(_as_points("x", x))
-        ys = _flat(_as_points("y", y))
-        bad = (ys < -1.0) | ((ys > -1e-3) & (ys != 0.0))
-        if bad.any():
-            raise InvalidParameterError(
-                "y must satisfy -1 <= y <= -1e-3 or y = 0 for the damped solver's "
-                f"stress field, got {float(ys[bad][0])!r}",
-                parameter="y",
-                allowed="-1 <= y <= -1e-3 or y = 0",
-            )
-        top = ys == 0.0
-        shape = (len(ys), len(xs))
-        sx, sy, txy = np.empty(shape), np.empty(shape), np.empty(shape)
-        if (~top).any():
-            inside = _chunked_grid(self._impl.stress_field, xs, ys[~top])
-            sx[~top], sy[~top], txy[~top] = inside
-        if top.any():
-            sx[top] = np.asarray(self.surface_stress(xs), dtype=np.float64)
-            sy[top] = -np.asarray(self.pressure(xs), dtype=np.float64)
-            txy[top] = 0.0
+        ys = _flat(_depths(y))
+        sx, sy, txy = _chunked_grid(self._impl.stress_field, xs, ys)
         sz, vm, ms = derived_stresses(sx, sy, txy, self.nu)
         return StressField(
             x=xs,

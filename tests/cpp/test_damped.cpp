@@ -175,13 +175,15 @@ TEST(DampedContact, TinyDampingReproducesTable1) {
 TEST(DampedContact, DepthStressMatchesUndampedSolver) {
   const auto s = mp::solve_damped(damped(0.2, 1.0, 1e-9));
   const auto u = mp::solve_contact(mp::testing::paper(0.2, 1.0));
-  // Direct Fourier integral (damped) against half-plane closed form plus
-  // remainder (undamped), down to near the surface.
-  const Eigen::VectorXd ys = mp::testing::vec({-1.0, -0.75, -0.5, -0.1, -0.01, -0.002});
+  // The damped and the undamped evaluations (each a closed-form half-plane
+  // part plus a remainder, on their own nodes), down to and at the surface.
+  const Eigen::VectorXd ys =
+      mp::testing::vec({-1.0, -0.75, -0.5, -0.1, -0.01, -0.002, -1e-4, -1e-7, 0.0});
   const Eigen::VectorXd sx = u.depth_stress(ys);
   for (Eigen::Index j = 0; j < ys.size(); ++j)
     EXPECT_NEAR(s.stress_x(0.0, ys(j)), sx(j), 1e-8) << ys(j);
-  EXPECT_THROW((void)s.stress_x(0.0, -1e-4), std::invalid_argument);
+  EXPECT_THROW((void)s.stress_x(0.0, 1e-4), std::invalid_argument);
+  EXPECT_THROW((void)s.stress_x(0.0, -1.5), std::invalid_argument);
 }
 
 // The field at the faces, in real space: traction-free top (tau = 0,
@@ -217,7 +219,7 @@ TEST(DampedContact, StressFieldMatchesUndampedSolver) {
   const auto s = mp::solve_damped(damped(0.2, 1.0, 1e-9));
   const auto u = mp::solve_contact(mp::testing::paper(0.2, 1.0));
   const Eigen::VectorXd xs = mp::testing::vec({-0.6, 0.0, 0.2, 0.37, 1.0});
-  const Eigen::VectorXd ys = mp::testing::vec({-1.0, -0.5, -0.05, -0.002});
+  const Eigen::VectorXd ys = mp::testing::vec({-1.0, -0.5, -0.05, -0.002, -1e-5, 0.0});
   const auto f = u.stress_field(xs, ys);
   for (Eigen::Index i = 0; i < ys.size(); ++i)
     for (Eigen::Index j = 0; j < xs.size(); ++j) {

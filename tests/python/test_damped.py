@@ -195,7 +195,7 @@ def test_bad_damping_is_named(bad: object) -> None:
 def test_bad_depth_and_size() -> None:
     s = solve_damped(vstar=0.2, kw=1.0, damping=0.1, **PAPER)
     with pytest.raises(mp.InvalidParameterError, match="y must satisfy"):
-        s.depth_stress(-1e-4)
+        s.depth_stress(1e-4)
     with pytest.raises(mp.InvalidParameterError, match="n must be"):
         solve_damped(vstar=0.2, kw=1.0, damping=0.1, n=2048, **PAPER)
     fixed = solve_damped(vstar=0.2, kw=1.0, damping=0.1, n=32, **PAPER)

@@ -96,5 +96,7 @@ def test_damped_depth_stress_includes_the_surface() -> None:
     assert s.depth_stress(0.0) == pytest.approx(u.depth_stress(0.0), abs=1e-7)
     values = s.depth_stress([0.0, -0.01, -0.5])
     assert values == pytest.approx(u.depth_stress([0.0, -0.01, -0.5]), abs=1e-7)
-    with pytest.raises(mp.InvalidParameterError, match="y = 0"):
-        s.depth_stress(-1e-4)
+    near = s.depth_stress([-1e-6, -1e-4])  # the surface layer too (issue 13)
+    assert near == pytest.approx(u.depth_stress([-1e-6, -1e-4]), abs=1e-7)
+    with pytest.raises(mp.InvalidParameterError, match="y must satisfy"):
+        s.depth_stress(1e-4)

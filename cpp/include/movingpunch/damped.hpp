@@ -69,6 +69,10 @@ class DampedLayerModel {
   // normalised by sigma_y/alpha = -1, tau = 0 at y = 0 (complex amplitudes of
   // u = -i U e^{i alpha x}, v = W e^{i alpha x}, ...), t > 0.
   Eigen::Vector4cd state(double t, double y) const;
+  // state's part independent of y, z(t) (t > 0): for t < kSmallT the top
+  // state (state = exp(t y A) z), else the amplitudes of the regularised
+  // modal columns (state = modal_columns(t, y) z).
+  Eigen::Vector4cd state_coefficients(double t) const;
 
  private:
   WaveConstants c_;
@@ -223,14 +227,15 @@ class DampedSolution {
   // sigma_x(x, 0)/(P/h), any x.
   double surface_stress(double x) const;
   Eigen::VectorXd surface_stress(const Eigen::Ref<const Eigen::VectorXd>& x) const;
-  // sigma_x(x, y)/(P/h) for -1 <= y <= -1e-3 (below the surface layer of
-  // thickness 1e-3, where the Fourier integral converges fast enough) and at
-  // y = 0 (surface_stress).
+  // sigma_x(x, y)/(P/h) for -1 <= y <= 0 (y = 0: surface_stress).
   double stress_x(double x, double y) const;
-  // (sigma_x, sigma_y, tau_xy)(x, y)/(P/h) for -1 <= y <= -1e-3.
+  // (sigma_x, sigma_y, tau_xy)(x, y)/(P/h) for finite x and -1 <= y <= 0.
   Eigen::Vector3d stresses(double x, double y) const;
-  // The three on the grid x by y (-1 <= y <= -1e-3), each shaped
-  // (len(y), len(x)) (the derived stresses are left empty).
+  // The three on the grid x (finite) by y (-1 <= y <= 0, the surface
+  // included), each shaped (len(y), len(x)) (the derived stresses are left
+  // empty); throws InvalidParameter naming x or y otherwise. The half-plane
+  // part in closed form, the rest by Filon sums: the cost does not depend on
+  // y. 0 beyond |x| > kFarField.
   StressField stress_field(const Eigen::Ref<const Eigen::VectorXd>& x,
                            const Eigen::Ref<const Eigen::VectorXd>& y) const;
   // Slope dv/dx(x, -1) and displacement v(x, -1)/h of the bottom face (any x;
@@ -300,7 +305,7 @@ class DampedSolution {
   // dissipation). Built by solve_damped.
   std::shared_ptr<const Fine> light_;
   // Resolving e^{i alpha x} for |x| <= 3 (a + b) too (the direct sums of the
-  // field and bottom outputs): built on first use, then shared.
+  // bottom outputs): built on first use, then shared.
   struct FineCache {
     std::mutex mutex;
     std::shared_ptr<const Fine> fine;
@@ -321,6 +326,25 @@ class DampedSolution {
   };
   std::shared_ptr<SurfaceCache> surface_cache_ = std::make_shared<SurfaceCache>();
   std::shared_ptr<const Surface> surface() const;
+  // The stress field's y-independent node data (on light_), prepared on first
+  // use: per node p^ e^{i alpha c} and d (real and imaginary parts): for
+  // alpha < kSmallT the top state z(0) (DampedLayerModel::state_coefficients),
+  // else the modal amplitudes minus the half-plane mix's (hp1, hp2, 0, 0), so
+  // that the remainder state is modal_columns(alpha, y) d; with bounds
+  // |p^| kc (|d0| + |d1|), |p^| kc (|d2| + |d3|) (kc the largest entry of the
+  // columns' vectors) that let stress_field skip negligible nodes.
+  struct FieldNodes {
+    Eigen::Matrix4Xd d_re, d_im;
+    std::vector<cplx> ph;
+    std::vector<double> top_bound, bottom_bound;
+    double negligible = 0;  // a node's contribution below this is dropped
+  };
+  struct FieldCache {
+    std::mutex mutex;
+    std::shared_ptr<const FieldNodes> nodes;
+  };
+  std::shared_ptr<FieldCache> field_cache_ = std::make_shared<FieldCache>();
+  std::shared_ptr<const FieldNodes> field_nodes() const;
   double surface_value(const Surface& s, double x) const;  // v(x, 0)/(P/(mu h))
   // With db: dphat[i] = the transform of the U-series db (centre 0) at node i.
   Fine build_fine(double freq, const Eigen::VectorXd* db = nullptr,
