@@ -11,7 +11,7 @@ import movingpunch as mp
 from movingpunch.damped import DampedSolution
 from movingpunch.scene import Scene
 from movingpunch.tui import create_app, model
-from movingpunch.tui.model import Cache, Curves, Notice, Params, Request, TabName
+from movingpunch.tui.model import Cache, Curves, Params, Request, fmt
 from movingpunch.tui.scene_files import SceneState, from_scene, to_scene
 from movingpunch.tui.widgets import CurvePlot, Gauge, ParamsPanel, StressMap
 from tui_pilot import screen_of, settle, summary_text, sync, type_into
@@ -42,7 +42,7 @@ async def test_damping_above_the_critical_speed_shows_interval_and_drag() -> Non
         start, end = s.contact_interval
         assert f"(-b,a)/h ({start:.5g}, {end:.5g})" in text, text
         assert f"drag/P {s.drag:.4g}" in text, text
-        assert "δ/h" not in text
+        assert f"δ/h {fmt(s.indentation, 3)}" in text, text
         assert "INVALID" not in text
         gauge = screen.query_one(Gauge)
         assert gauge.damped
@@ -57,13 +57,14 @@ async def test_damping_above_the_critical_speed_shows_interval_and_drag() -> Non
         values = plot.series[0].values
         np.testing.assert_allclose(values, s.pressure(plot.grid), atol=1e-12)
         assert plot.grid[int(np.argmax(values))] > 0.0  # ahead of the punch
-        # The stress map is not computed with damping: a message, no crash.
+        # The stress map is the damped solution's own field.
         await pilot.press("escape", "5")
         await settle(pilot)
         smap = screen.query_one("#plot-field", StressMap)
-        assert smap.field is None
-        assert "not computed with damping > 0" in smap.placeholder
-        assert "not computed with damping > 0" in str(smap.render())
+        assert smap.field is not None
+        np.testing.assert_array_equal(
+            smap.field.values, s.stress_field(smap.field.x, smap.field.y).sigma_x
+        )
         # Back to damping 0 at that speed: the undamped limit applies again.
         await type_into(pilot, "damping", "0", paste=True)
         message = screen.query_one(ParamsPanel).message("vstar")
@@ -95,20 +96,23 @@ async def test_invalid_damping_shows_the_range_and_keeps_the_last_result() -> No
         assert screen.query_one(ParamsPanel).message("damping") == ""
 
 
-def test_depth_tab_of_a_damped_set_clips_and_uses_the_surface_value() -> None:
+def test_depth_tab_of_a_damped_set_reaches_the_surface() -> None:
+    """101 depths down to the surface like the undamped tab (the damped
+    depth stresses no longer cost ~1/|y|): the last is the surface value,
+    the one above it (y = -0.01) the solution's own depth_stress."""
     cache = Cache()
     params = Params(vstar=0.4, damping=0.1)
     result = model.compute(cache, Request(generation=1, params=params, tab="depth"))
     assert result is not None
     data = result.data
     assert isinstance(data, Curves)
-    assert len(data.grid) == 41
+    assert len(data.grid) == 101
     s = model.solution(cache, params)
     assert isinstance(s, DampedSolution)
     values = data.series[0].values
-    assert values[-1] == float(s.surface_stress(0.0))
+    assert values[-1] == pytest.approx(float(s.surface_stress(0.0)), rel=1e-12)
     np.testing.assert_allclose(
-        values[:3], s.depth_stress(data.grid[:3]), rtol=1e-12, atol=0
+        values[-2:], s.depth_stress(data.grid[-2:]), rtol=1e-12, atol=0
     )
     summary = result.summary
     assert summary.damped
@@ -134,16 +138,23 @@ def test_damped_sweep_tab_is_computed() -> None:
         assert values[j] == model.solution(cache, point).a
 
 
-@pytest.mark.parametrize("tab", ["field"])
-def test_tabs_the_damped_solver_does_not_serve_are_notices(tab: TabName) -> None:
+def test_damped_field_tab_is_the_solutions_stress_field() -> None:
+    """The stress map with damping > 0 (once a Notice): the solution's own
+    stress_field over the whole layer, spanning the asymmetric contact."""
     cache = Cache()
-    params = Params(damping=0.5)
-    request = Request(generation=1, params=params, tab=tab)
+    params = Params(vstar=0.65, damping=0.5)
+    request = Request(generation=1, params=params, tab="field")
     result = model.compute(cache, request)
     assert result is not None
-    assert isinstance(result.data, Notice)
-    assert "damping" in result.data.text
-    assert model.to_csv(result.data, params).splitlines()[1].startswith("# ")
+    data = result.data
+    assert isinstance(data, model.FieldMap)
+    s = model.solution(cache, params)
+    assert data.x[-1] >= 3.0 * max(abs(e) for e in s.contact_interval)
+    assert data.y[0] == -1.0
+    assert data.y[-1] == 0.0
+    f = s.stress_field(data.x, data.y)
+    np.testing.assert_array_equal(data.values, f.sigma_x)
+    assert model.to_csv(data, params).splitlines()[0].startswith("# movingpunch")
 
 
 def test_a_damped_scene_round_trips_through_the_app_state() -> None:

@@ -31,11 +31,6 @@ PARAMS: tuple[str, ...] = ("vstar", "kw", "radius", "load", "nu", "damping")
 ``nu`` defaults to 0.2; ``damping`` (c_w c_T/mu, the Kelvin-Voigt dashpots,
 docs/damped.md) to 0 and is kept in ``params`` only when given."""
 
-DAMPED_MAX_Y = -1e-3
-"""Damped points evaluate stresses at y/h <= this (the Fourier integral of
-the damped solver is not used closer to the surface): depths above it are
-clipped to it."""
-
 
 def allowed_text(name: str) -> str:
     """What a scene accepts for the parameter ``name``: its range from the

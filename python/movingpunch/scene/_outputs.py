@@ -2,8 +2,9 @@
 (``OUTPUT_KINDS``) on the solutions of the scene's curves, one per vary value,
 timing its work as a stage of the run.
 
-Points with damping > 0 (docs/damped.md) have the contact (-b, a), a drag,
-and stresses at y/h > -1e-3 evaluated at y/h = -1e-3 (``DAMPED_MAX_Y``).
+Every output reads the solutions through the contract (``ContactSolution``):
+damped points (docs/damped.md) differ only in their values (an asymmetric
+contact, a drag).
 """
 
 from __future__ import annotations
@@ -13,12 +14,10 @@ from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
 import numpy as np
-import numpy.typing as npt
 
 from movingpunch.contract import ContactSolution
-from movingpunch.damped import DampedSolution
-from movingpunch.fields import StressField, derived_stresses
-from movingpunch.scene._model import DAMPED_MAX_Y, STRESS_COMPONENTS
+from movingpunch.fields import StressField
+from movingpunch.scene._model import STRESS_COMPONENTS
 from movingpunch.scene._result import (
     Curve,
     FloatArray,
@@ -121,65 +120,6 @@ def _out_pressure(run: RunState, spec: Any, solutions: _Solutions) -> OutputData
     )
 
 
-def _clipped_depths(y: FloatArray) -> tuple[FloatArray, FloatArray, npt.NDArray[Any]]:
-    """For a damped point: (the depths evaluated: y, with DAMPED_MAX_Y < y < 0
-    clipped to DAMPED_MAX_Y; their distinct values below the surface; the
-    index of each depth among them, -1 at the surface y = 0)."""
-    clipped = np.where(y < 0.0, np.minimum(y, DAMPED_MAX_Y), 0.0)
-    below = clipped < 0.0
-    distinct, index = np.unique(clipped[below], return_inverse=True)
-    full = np.full(len(y), -1, dtype=np.intp)
-    full[below] = index
-    return clipped, distinct, full
-
-
-def _depth_stress(s: ContactSolution, y: FloatArray) -> FloatArray:
-    """sigma_x(0, y); for a damped point at the clipped depths, and at y = 0
-    the surface value sigma_x(0, 0) (``surface_stress``)."""
-    if not isinstance(s, DampedSolution):
-        return np.asarray(s.depth_stress(y), dtype=np.float64)
-    _, distinct, index = _clipped_depths(y)
-    out = np.empty(len(y))
-    if len(distinct):
-        values = np.asarray(s.depth_stress(distinct), dtype=np.float64)
-        out[index >= 0] = values[index[index >= 0]]
-    if (index < 0).any():
-        out[index < 0] = float(np.asarray(s.surface_stress(0.0)))
-    return out
-
-
-def _stress_field(s: ContactSolution, x: FloatArray, y: FloatArray) -> StressField:
-    """The stress field; for a damped point at the clipped depths, and on the
-    surface y = 0 from the surface values (sigma_x(x, 0), sigma_y = -p,
-    tau_xy = 0: the punch is frictionless)."""
-    if not isinstance(s, DampedSolution):
-        return s.stress_field(x, y)
-    clipped, distinct, index = _clipped_depths(y)
-    comps = {name: np.empty((len(y), len(x))) for name in ("sx", "sy", "txy")}
-    if len(distinct):
-        f = s.stress_field(x, distinct)
-        rows = index >= 0
-        comps["sx"][rows] = f.sigma_x[index[rows]]
-        comps["sy"][rows] = f.sigma_y[index[rows]]
-        comps["txy"][rows] = f.tau_xy[index[rows]]
-    top = index < 0
-    if top.any():
-        comps["sx"][top] = np.asarray(s.surface_stress(x), dtype=np.float64)
-        comps["sy"][top] = -np.asarray(s.pressure(x), dtype=np.float64)
-        comps["txy"][top] = 0.0
-    sz, vm, ms = derived_stresses(comps["sx"], comps["sy"], comps["txy"], s.nu)
-    return StressField(
-        x=np.asarray(x, dtype=np.float64),
-        y=clipped,
-        sigma_x=comps["sx"],
-        sigma_y=comps["sy"],
-        tau_xy=comps["txy"],
-        sigma_z=sz,
-        von_mises=vm,
-        max_shear=ms,
-    )
-
-
 def _out_surface_stress(run: RunState, spec: Any, solutions: _Solutions) -> OutputData:
     x = _x_grid(spec.x, (-3.0, 3.0), spec.resolved_points())
     curves = _curves(
@@ -203,7 +143,11 @@ def _out_depth_stress(run: RunState, spec: Any, solutions: _Solutions) -> Output
     lo, hi = spec.resolved_y()
     y = np.linspace(lo, hi, spec.resolved_points())
     curves = _curves(
-        run, "depth_stress", solutions, y, lambda s, p: _depth_stress(s, y)
+        run,
+        "depth_stress",
+        solutions,
+        y,
+        lambda s, p: np.asarray(s.depth_stress(y), dtype=np.float64),
     )
     return OutputData(
         "depth_stress",
@@ -246,7 +190,7 @@ def _out_stress_field(run: RunState, spec: Any, solutions: _Solutions) -> Output
     cols: dict[str, list[FloatArray]] = {}
     for v, s in solutions.items():
         with run.timed("stress_field"):
-            f = _stress_field(s, x, y)
+            f = s.stress_field(x, y)
         label = curve_label(param, v)
         fields_.append((label, f))
         gx, gy = np.meshgrid(f.x, f.y)

@@ -24,7 +24,7 @@ from movingpunch.scene._model import PEAK_QUANTITIES, SceneData
 from movingpunch.scene._result import Stages
 from movingpunch.solver import result_warnings, solve
 
-__all__ = ["is_damped"]
+__all__ = ["RunState", "point_key", "solve_point"]
 
 # vstar, kw, nu, tol, damping, lambda
 Key = tuple[float, float, float, float, float, float]
@@ -36,15 +36,6 @@ def _damping(p: Mapping[str, float]) -> float:
 
 def point_key(p: Mapping[str, float], tol: float) -> Key:
     return (p["vstar"], p["kw"], p["nu"], tol, _damping(p), p["radius"] * p["load"])
-
-
-def is_damped(scene: SceneData) -> bool:
-    """Whether any point the scene computes has damping > 0."""
-    values = [scene.params.get("damping", 0.0)]
-    for part in (scene.vary, scene.sweep):
-        if part is not None and part.param == "damping":
-            values += list(part.values)
-    return any(v > 0.0 for v in values)
 
 
 def curve_label(param: str | None, value: float | None) -> str:

@@ -18,7 +18,6 @@ import numpy as np
 from movingpunch.errors import SceneError
 from movingpunch.params import PRESETS, SPECS, classify
 from movingpunch.scene._model import (
-    DAMPED_MAX_Y,
     DEFAULT_NU,
     MAX_GRID,
     MAX_POINTS,
@@ -387,9 +386,8 @@ def _sweep_extremes(sweep: Sweep) -> list[int]:
 
 def _check_speeds(scene: SceneData, c: Checker) -> None:
     """vstar < V*_cr(kw, nu) for every combination the scene computes
-    (vstar < V*_R(nu) where damping > 0), and no output or sweep quantity
-    the damped solver cannot give at a point with damping > 0. Of a sweep
-    only its extremes are checked (``_sweep_extremes``)."""
+    (vstar < V*_R(nu) where damping > 0). Of a sweep only its extremes are
+    checked (``_sweep_extremes``)."""
     needs_contact = any(k != "critical_speed" for k in scene.outputs)
     combos: list[tuple[dict[str, float], dict[str, str]]] = []
     sw = scene.sweep
@@ -411,11 +409,8 @@ def _check_speeds(scene: SceneData, c: Checker) -> None:
                 )
             combos.append((p, where))
     seen: set[tuple[float, float, float, bool]] = set()
-    damped_where: str | None = None
     for p, where in combos:
         damped = p.get("damping", 0.0) > 0.0
-        if damped and damped_where is None:
-            damped_where = where["damping"]
         key = (p["vstar"], p["kw"], p["nu"], damped)
         if key in seen:
             continue
@@ -461,23 +456,6 @@ def _check_speeds(scene: SceneData, c: Checker) -> None:
                 else allowed,
                 blamed,
             )
-    if damped_where is not None:
-        _check_damped_outputs(scene, c, damped_where)
-
-
-def _check_damped_outputs(scene: SceneData, c: Checker, damped_where: str) -> None:
-    """Depth ranges that lie wholly above y/h = -1e-3 (``DAMPED_MAX_Y``)."""
-    why = f"damping > 0 at {damped_where}"
-    for kind, spec in scene.outputs.items():
-        if kind in ("depth_stress", "stress_field"):
-            lo, _ = spec.resolved_y()
-            if lo > DAMPED_MAX_Y:
-                raise c.fail(
-                    f"outputs.{kind}.y",
-                    f"lies above y/h = {DAMPED_MAX_Y:g}, where the damped solver "
-                    f"gives no stresses ({why})",
-                    f"a range reaching below y/h = {DAMPED_MAX_Y:g}",
-                )
 
 
 def _fmt_num(x: float) -> str:

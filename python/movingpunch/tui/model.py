@@ -21,12 +21,10 @@ import numpy.typing as npt
 
 from movingpunch.accuracy import LADDER, AccuracyReport, accuracy_report
 from movingpunch.contract import ContactSolution
-from movingpunch.damped import DampedSolution
 from movingpunch.errors import InvalidParameterError, MovingPunchError
 from movingpunch.fields import StressPeaks
 from movingpunch.params import check as check_param
 from movingpunch.solver import (
-    Solution,
     critical_vstar,
     rayleigh_vstar,
     result_warnings,
@@ -48,9 +46,6 @@ PARAM_NAMES: tuple[str, ...] = (
 
 SCENE_PARAMS: tuple[str, ...] = ("vstar", "kw", "radius", "load", "nu", "damping")
 """The physical parameters (a scene's ``params``); ``tol`` is separate."""
-
-DAMPED_MAX_Y = -1e-3
-"""A damped solution gives stresses at y/h <= this (and on the surface)."""
 
 TabName = Literal["pressure", "surface", "depth", "sweep", "field", "accuracy"]
 TABS: tuple[TabName, ...] = (
@@ -244,16 +239,7 @@ class AccuracyTable:
     tab: TabName = "accuracy"
 
 
-@dataclass(frozen=True)
-class Notice:
-    """A tab the current parameters cannot show (e.g. the stress map with
-    damping > 0): the reason, shown in the tab instead of a plot."""
-
-    tab: TabName
-    text: str
-
-
-TabData = Curves | FieldMap | AccuracyTable | Notice
+TabData = Curves | FieldMap | AccuracyTable
 
 
 @dataclass(frozen=True)
@@ -435,10 +421,7 @@ def compute(
     if stop():
         return None
     data: TabData
-    notice = _unsupported(request, [params for _, params, _ in solved])
-    if notice is not None:
-        data = notice
-    elif request.tab == "accuracy":
+    if request.tab == "accuracy":
         table = _accuracy(cache, request.params, report, stop)
         if table is None:
             return None
@@ -453,24 +436,6 @@ def compute(
     else:
         data = _curves(cache, request.tab, solved, report, stop)
     return Result(request=request, summary=head, data=data, notes=tuple(notes))
-
-
-_DAMPED_TABS: dict[TabName, str] = {
-    "field": "the stress map is not computed with damping > 0 (the damped "
-    "solver's field integral is too slow for a map); see the σx(0,y) tab",
-}
-
-
-def _unsupported(request: Request, members: Sequence[Params]) -> Notice | None:
-    """A Notice if the tab cannot be shown with damping > 0: the current set
-    (field, accuracy) or any member (sweep) is damped."""
-    reason = _DAMPED_TABS.get(request.tab)
-    if reason is None:
-        return None
-    damped = (
-        any(m.damped for m in members) if request.tab == "sweep" else False
-    ) or request.params.damped
-    return Notice(request.tab, reason) if damped else None
 
 
 def _one_line(exc: BaseException) -> str:
@@ -509,8 +474,7 @@ def _curves(
 ) -> Curves:
     title, grid_label, value_label = _LABELS[tab]
     if tab == "depth":
-        # Damped depth stresses cost ~1/|y| each: a coarser grid then.
-        n = 41 if any(params.damped for _, params, _ in solved) else 101
+        n = 101
         grid = np.linspace(-1.0, 0.0, n)
         key: tuple[object, ...] = (n,)
     else:
@@ -524,7 +488,7 @@ def _curves(
         make = {
             "pressure": lambda s=s: s.pressure(grid),
             "surface": lambda s=s: s.surface_stress(grid),
-            "depth": lambda s=s: _depth_stress(s, grid),
+            "depth": lambda s=s: s.depth_stress(grid),
         }[tab]
         values = cache.get_or_make((tab, params, *key), make)
         assert isinstance(values, np.ndarray)
@@ -539,22 +503,6 @@ def _curves(
         series=tuple(series),
         vertical_grid=tab == "depth",
     )
-
-
-def _depth_stress(s: ContactSolution, y: FloatArray) -> FloatArray:
-    """sigma_x(0, y); a damped solution at y clipped to <= DAMPED_MAX_Y, and
-    at y = 0 its surface value sigma_x(0, 0)."""
-    if not isinstance(s, DampedSolution):
-        return np.asarray(s.depth_stress(y), dtype=np.float64)
-    clipped = np.minimum(y, DAMPED_MAX_Y)
-    below = y < 0.0
-    out = np.empty(len(y))
-    distinct, index = np.unique(clipped[below], return_inverse=True)
-    if len(distinct):
-        out[below] = np.asarray(s.depth_stress(distinct), dtype=np.float64)[index]
-    if not below.all():
-        out[~below] = float(np.asarray(s.surface_stress(0.0)))
-    return out
 
 
 def _sweep(
@@ -602,8 +550,8 @@ def _a_or_nan(params: Params) -> float:
 
 def _field(cache: Cache, params: Params, quantity: FieldQuantity) -> FieldMap:
     s = solution(cache, params)
-    assert isinstance(s, Solution)  # damped: a Notice (_unsupported)
-    extent = _round_up(max(2.0, 3.0 * s.a))
+    reach = max(abs(e) for e in s.contact_interval)
+    extent = _round_up(max(2.0, 3.0 * reach))
     x = np.linspace(-extent, extent, 97)
     y = np.linspace(-1.0, 0.0, 41)
 
@@ -646,9 +594,7 @@ def to_csv(data: TabData, source: Params) -> str:
     """The tab's data as CSV that ``numpy.loadtxt(..., delimiter=",")``
     reads back: ``#`` comment lines, then numbers only."""
     lines = [f"# movingpunch {source.label()} tol={fmt(source.tol)}"]
-    if isinstance(data, Notice):
-        lines.append(f"# {data.text}")
-    elif isinstance(data, AccuracyTable):
+    if isinstance(data, AccuracyTable):
         lines.append(f"# accuracy against time; reference {data.report.reference}")
         table = data.report.columns()
         lines.append("# " + ", ".join(table))

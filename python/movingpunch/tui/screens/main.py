@@ -45,7 +45,6 @@ from movingpunch.tui.model import (
     Cache,
     FieldMap,
     FieldQuantity,
-    Notice,
     Overlay,
     Params,
     Request,
@@ -308,9 +307,7 @@ class MainScreen(Screen[None]):
         gauge.limits = (s.params.vstar, s.critical_vstar, s.rayleigh_vstar)
         self.query_one("#summary", Static).update(self._summary_text(result))
         data = result.data
-        if isinstance(data, Notice):
-            self._show_notice(data)
-        elif isinstance(data, AccuracyTable):
+        if isinstance(data, AccuracyTable):
             self.query_one("#plot-accuracy", AccuracyView).table = data
         elif isinstance(data, FieldMap):
             self.query_one("#plot-field", StressMap).field = data
@@ -318,51 +315,28 @@ class MainScreen(Screen[None]):
             self.query_one(f"#plot-{data.tab}", CurvePlot).curves = data
         self._update_status()
 
-    def _show_notice(self, notice: Notice) -> None:
-        """A tab the current parameters cannot show: its reason, in the tab."""
-        if notice.tab == "accuracy":
-            view = self.query_one("#plot-accuracy", AccuracyView)
-            view.table = None
-            view.placeholder = notice.text
-        elif notice.tab == "field":
-            smap = self.query_one("#plot-field", StressMap)
-            smap.field = None
-            smap.placeholder = notice.text
-        else:
-            plot = self.query_one(f"#plot-{notice.tab}", CurvePlot)
-            plot.curves = None
-            plot.placeholder = notice.text
-
     def _summary_text(self, result: Result) -> Text:
+        """One line for every solution: the contact (a/h, or its ends when
+        asymmetric), p0, δ/h, the σx peaks, the drag where there is one."""
         s = result.summary
-        if s.damped:
-            return self._damped_summary_text(result)
+        start, end = s.contact_interval
+        contact = (
+            ("a/h", fmt(s.a, 6))
+            if start == -end
+            else ("(-b,a)/h", f"({fmt(start, 5)}, {fmt(end, 5)})")
+        )
         parts = [
-            ("a/h", fmt(s.a, 6)),
+            contact,
             ("p0", fmt(s.p0, 4)),
             ("δ/h", fmt(s.indentation, 3)),
             ("σx⁺ top", fmt(s.top_tensile, 3)),
             ("bot", fmt(s.bottom_tensile, 3)),
-            ("it", str(s.iterations)),
-            ("err", f"{s.error_estimate:.0e}"),
         ]
+        if s.drag != 0.0:
+            parts.append(("drag/P", fmt(s.drag, 4)))
+        parts += [("it", str(s.iterations)), ("err", f"{s.error_estimate:.0e}")]
         if self._show_timing:
             parts.append(("", f"{s.elapsed * 1e3:.1f} ms"))
-        return _labelled(parts, s.valid)
-
-    def _damped_summary_text(self, result: Result) -> Text:
-        """Damping > 0: the contact (-b, a), the drag over P and p(0)."""
-        s = result.summary
-        start, end = s.contact_interval
-        parts = [
-            ("(-b,a)/h", f"({fmt(start, 5)}, {fmt(end, 5)})"),
-            ("drag/P", fmt(s.drag, 4)),
-            ("p(0)", fmt(s.p0, 4)),
-            ("it", str(s.iterations)),
-            ("err", f"{s.error_estimate:.0e}"),
-        ]
-        if self._show_timing:
-            parts.append(("", f"{s.elapsed * 1e3:.0f} ms"))
         return _labelled(parts, s.valid)
 
     def _update_status(self) -> None:
