@@ -46,8 +46,11 @@ else
   status=1
 fi
 
-echo "[test] Python: pytest"
-if .venv/bin/python -m pytest "$@"; then
+# pytest-xdist: one worker per core (MOVINGPUNCH_PYTEST_WORKERS=0 runs in
+# this process, e.g. to debug; arguments after the script's go to pytest).
+workers=${MOVINGPUNCH_PYTEST_WORKERS:-auto}
+echo "[test] Python: pytest (workers: $workers)"
+if .venv/bin/python -m pytest -n "$workers" "$@"; then
   echo "[test] Python tests passed"
 else
   echo "[test] Python tests FAILED" >&2
