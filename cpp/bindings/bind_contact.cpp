@@ -76,16 +76,8 @@ void bind_contact(py::module_& m) {
       "solve_contact",
       [](double vstar, double kw, double radius, double load, double nu, double tol,
          bool allow_unphysical, int n) {
-        ContactParams p;
-        p.vstar = vstar;
-        p.kw = kw;
-        p.radius = radius;
-        p.load = load;
-        p.nu = nu;
-        p.tol = tol;
-        p.allow_unphysical = allow_unphysical;
-        p.n = n;
-        return solve_contact(p);
+        return solve_contact(
+            solve_params<ContactParams>(vstar, kw, radius, load, nu, tol, allow_unphysical, n));
       },
       py::kw_only(), "vstar"_a, "kw"_a, "radius"_a, "load"_a, "nu"_a, "tol"_a, "allow_unphysical"_a,
       "n"_a = 0, Release(),

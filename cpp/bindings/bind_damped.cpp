@@ -98,16 +98,8 @@ void bind_damped(py::module_& m) {
       "solve_damped",
       [](double vstar, double kw, double radius, double load, double nu, double damping, double tol,
          bool allow_unphysical, int n) {
-        DampedParams p;
-        p.vstar = vstar;
-        p.kw = kw;
-        p.radius = radius;
-        p.load = load;
-        p.nu = nu;
+        auto p = solve_params<DampedParams>(vstar, kw, radius, load, nu, tol, allow_unphysical, n);
         p.damping = damping;
-        p.tol = tol;
-        p.allow_unphysical = allow_unphysical;
-        p.n = n;
         return solve_damped(p);
       },
       py::kw_only(), "vstar"_a, "kw"_a, "radius"_a, "load"_a, "nu"_a, "damping"_a, "tol"_a,

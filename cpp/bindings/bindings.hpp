@@ -25,6 +25,23 @@ inline pybind11::dict stage_dict(const ContactSolution::StageSeconds& t) {
   return d;
 }
 
+// The inputs every solve takes (ContactParams, DampedParams: the same names),
+// from the keyword arguments of solve_contact / solve_damped.
+template <class P>
+P solve_params(double vstar, double kw, double radius, double load, double nu, double tol,
+               bool allow_unphysical, int n) {
+  P p;
+  p.vstar = vstar;
+  p.kw = kw;
+  p.radius = radius;
+  p.load = load;
+  p.nu = nu;
+  p.tol = tol;
+  p.allow_unphysical = allow_unphysical;
+  p.n = n;
+  return p;
+}
+
 // The members every contact result binds alike (ContactSolution,
 // DampedSolution: the same C++ names and signatures), bound once here; each
 // bind_<area>() adds what only its result has. Docstrings say "the contact

@@ -17,7 +17,7 @@ from __future__ import annotations
 import functools
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import overload
 
@@ -33,20 +33,18 @@ from movingpunch._evaluate import (
     _check_positive,
     _check_tol,
     _check_vstar,
-    _chunked_grid,
     _depths,
     _fail,
     _flat,
     _is_scalar,
-    _json_safe,
     _pointwise,
     _real,
     _real_any,
 )
+from movingpunch._evaluations import Evaluations
 from movingpunch.contract import Points
 from movingpunch.errors import InvalidParameterError, SupercriticalSpeedError
-from movingpunch.fields import FloatArray, StressField, StressPeaks, derived_stresses
-from movingpunch.peaks import search_peaks
+from movingpunch.fields import FloatArray
 
 __all__ = ["DampedSolution", "check_damping", "damped_layer_response", "solve_damped"]
 
@@ -74,7 +72,7 @@ def _check_damped_size(value: object) -> int:
 
 
 @dataclass(frozen=True)
-class DampedSolution:
+class DampedSolution(Evaluations):
     """Solution on a damped foundation (dimensionless: lengths per h,
     pressures and stresses per P/h). The punch moves towards +x."""
 
@@ -188,14 +186,6 @@ class DampedSolution:
         return float(self._impl.dissipation())
 
     @overload
-    def pressure(self, x: float) -> float: ...
-    @overload
-    def pressure(self, x: Points) -> FloatArray: ...
-    def pressure(self, x: npt.ArrayLike) -> float | FloatArray:
-        """p(x)/(P/h) (0 outside the contact)."""
-        return _pointwise("x", x, self._impl.pressure)
-
-    @overload
     def surface_slope(self, x: float) -> float: ...
     @overload
     def surface_slope(self, x: Points) -> FloatArray: ...
@@ -210,14 +200,6 @@ class DampedSolution:
     def bottom_slope(self, x: npt.ArrayLike) -> float | FloatArray:
         """Slope dv/dx(x, -h) of the bottom face."""
         return _pointwise("x", x, self._impl.bottom_slope)
-
-    @overload
-    def surface_stress(self, x: float) -> float: ...
-    @overload
-    def surface_stress(self, x: Points) -> FloatArray: ...
-    def surface_stress(self, x: npt.ArrayLike) -> float | FloatArray:
-        """sigma_x(x, 0)/(P/h)."""
-        return _pointwise("x", x, self._impl.surface_stress)
 
     @overload
     def depth_stress(self, y: float, x: float = ...) -> float: ...
@@ -250,30 +232,6 @@ class DampedSolution:
         return float(self._impl.indentation)
 
     @overload
-    def surface_displacement(self, x: float) -> float: ...
-    @overload
-    def surface_displacement(self, x: Points) -> FloatArray: ...
-    def surface_displacement(self, x: npt.ArrayLike) -> float | FloatArray:
-        """Vertical surface displacement v(x, 0)/h at x/h (negative under the
-        punch), as ``Solution.surface_displacement``. A float for a scalar
-        ``x``, else an array of the shape of ``x``."""
-        return _pointwise("x", x, self._impl.surface_displacement)
-
-    @overload
-    def displacement(self, x: float, y: float = 0.0) -> float: ...
-    @overload
-    def displacement(self, x: Points, y: float = 0.0) -> FloatArray: ...
-    def displacement(self, x: npt.ArrayLike, y: float = 0.0) -> float | FloatArray:
-        """Vertical displacement v(x, y)/h at x/h and one depth y/h in [-1, 0]
-        (negative downwards), as ``Solution.displacement``: y = 0 is
-        ``surface_displacement``, y = -1 ``bottom_displacement``."""
-        depth = _depths(y)
-        if depth.ndim != 0:
-            raise params.fail("y", f"y must be one depth in [-1, 0], got {y!r}")
-        grid = self._impl.displacement
-        return _pointwise("x", x, lambda xs: grid(xs, _flat(depth))[0])
-
-    @overload
     def bottom_displacement(self, x: float) -> float: ...
     @overload
     def bottom_displacement(self, x: Points) -> FloatArray: ...
@@ -292,98 +250,10 @@ class DampedSolution:
         values = -field.sigma_y[0]
         return float(values[0]) if _is_scalar(x) else values.reshape(np.shape(x))
 
-    def stress_field(self, x: npt.ArrayLike, y: npt.ArrayLike) -> StressField:
-        """All stresses over P/h on the grid ``x`` (x/h) by ``y`` (y/h in
-        [-1, 0]); arrays shaped (len(y), len(x)), as ``Solution.stress_field``.
-        On the surface y = 0: sigma_x = ``surface_stress``, sigma_y = -p,
-        tau_xy = 0 (the punch is frictionless)."""
-        xs = _flat(_as_points("x", x))
-        ys = _flat(_depths(y))
-        sx, sy, txy = _chunked_grid(self._impl.stress_field, xs, ys)
-        sz, vm, ms = derived_stresses(sx, sy, txy, self.nu)
-        return StressField(
-            x=xs,
-            y=ys,
-            sigma_x=sx,
-            sigma_y=sy,
-            tau_xy=txy,
-            sigma_z=sz,
-            von_mises=vm,
-            max_shear=ms,
-        )
-
-    def stress_peaks(self, extent: float | None = None) -> StressPeaks:
-        """Peaks of sigma_x/(P/h), as ``Solution.stress_peaks``: most
-        compressive and most tensile on the top surface, most tensile at the
-        bottom, with their x/h, and sigma_x at (0, 0) and (0, -h). The damped
-        distributions are not even in x: the same search
-        (``movingpunch.peaks.search_peaks``) covers -extent <= x <= extent
-        (default max(6 max(a, b), 10 h)) with both contact ends as cusps, and
-        positions may be negative (behind the punch's lowest point). Each
-        value is refined to ``tol`` relative to the larger centre stress;
-        ``error_bound`` is ``stress_error_estimate`` (the solution's error)
-        plus the search's own uncertainty. Seconds: each surface point costs a
-        Fourier integral."""
-        lo_end, hi_end = self.contact_interval
-        reach = max(abs(lo_end), abs(hi_end))
-        if extent is None:
-            span = max(6.0 * reach, 10.0)
-        else:
-            span = _real_any("extent", extent)
-            if not (math.isfinite(span) and span > 0.0):
-                raise InvalidParameterError(
-                    f"extent must be a finite number > 0, got {extent!r}"
-                )
-        depth = np.array([-1.0])
-        centre_top = float(self._impl.surface_stress(np.array([0.0]))[0])
-        centre_bottom = float(self._impl.stress_field(np.array([0.0]), depth)[0][0, 0])
-        alpha = _core.critical_speed(self.kw, self.nu)[1]
-        wave = 2.0 * math.pi / alpha if 0.0 < alpha < math.inf else math.inf
-        scale = max(abs(centre_top), abs(centre_bottom), 1e-300)
-        found = search_peaks(
-            self._impl.surface_stress,
-            lambda x: self._impl.stress_field(x, depth)[0][0],
-            lo=-float(span),
-            hi=float(span),
-            ends=(lo_end, hi_end),
-            wavelength=wave,
-            tolerance=self.tol * scale,
-        )
-        search = max(p.uncertainty for p in found.peaks)
-        return StressPeaks(
-            top_compressive=found.top_min.value,
-            top_compressive_x=found.top_min.x,
-            top_tensile=found.top_max.value,
-            top_tensile_x=found.top_max.x,
-            bottom_tensile=found.bottom_max.value,
-            bottom_tensile_x=found.bottom_max.x,
-            centre_top=centre_top,
-            centre_bottom=centre_bottom,
-            search_extent=float(span),
-            error_bound=self.stress_error_estimate + search,
-            search_error=search,
-            warnings=found.warnings,
-        )
-
-    def to_dict(self) -> dict[str, object]:
-        """Every public field, JSON-safe."""
-        data = {
-            f.name: _json_safe(getattr(self, f.name))
-            for f in fields(self)
-            if not f.name.startswith("_")
-        }
-        data["contact_interval"] = list(self.contact_interval)
-        data["other_half_widths"] = list(self.other_half_widths)
-        data["warnings"] = list(self.warnings)
-        data["dissipation"] = self.dissipation
-        data["indentation"] = self.indentation
-        data["p0"] = self.p0
-        data["a"] = self.a
-        data["half_width"] = self.half_width
-        data["centre"] = self.centre
-        data["kernel_builds"] = self.kernel_builds
-        data["stage_times"] = _json_safe(dict(self.stage_times))
-        return data
+    def _peak_tolerance(self, centre: FloatArray) -> float:
+        # tol relative to the larger centre stress: each surface point costs
+        # a Fourier integral, so the search stops there.
+        return self.tol * max(float(np.max(np.abs(centre))), 1e-300)
 
 
 def solve_damped(

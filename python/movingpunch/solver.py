@@ -14,7 +14,7 @@ from __future__ import annotations
 import functools
 import math
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import TYPE_CHECKING, Any, Literal, overload
 
@@ -28,21 +28,17 @@ from movingpunch._evaluate import (
     _check_kw,
     _check_nu,
     _check_positive,
-    _check_positive_extent,
     _check_tol,
     _check_vstar,
-    _chunked_grid,
     _depths,
     _fail,
     _flat,
     _is_scalar,
-    _json_safe,
     _pointwise,
 )
+from movingpunch._evaluations import Evaluations
 from movingpunch.errors import InvalidParameterError
-from movingpunch.fields import StressField, StressPeaks, derived_stresses
 from movingpunch.params import PRESETS
-from movingpunch.peaks import search_peaks
 
 if TYPE_CHECKING:
     from movingpunch.contract import ContactSolution
@@ -77,7 +73,7 @@ def _check_size(value: object) -> int:
 
 
 @dataclass(frozen=True)
-class Solution:
+class Solution(Evaluations):
     """Solution of the moving-punch contact problem (dimensionless).
 
     Lengths are in units of the layer thickness h, pressures in units of P/h.
@@ -196,78 +192,12 @@ class Solution:
         return self._impl.g_coefficients
 
     @overload
-    def pressure(self, x: float) -> float: ...
-    @overload
-    def pressure(self, x: npt.NDArray[Any] | Sequence[Any]) -> FloatArray: ...
-    def pressure(self, x: npt.ArrayLike) -> float | FloatArray:
-        """Contact pressure p/(P/h) at x/h (0 outside the contact).
-
-        A float for a scalar ``x``, else an array of the shape of ``x``.
-        """
-        return _pointwise("x", x, self._impl.pressure)
-
-    @overload
-    def surface_displacement(self, x: float) -> float: ...
-    @overload
-    def surface_displacement(
-        self, x: npt.NDArray[Any] | Sequence[Any]
-    ) -> FloatArray: ...
-    def surface_displacement(self, x: npt.ArrayLike) -> float | FloatArray:
-        """Vertical surface displacement v(x, 0)/h at x/h (negative under the
-        punch). A float for a scalar ``x``, else an array of the shape of ``x``.
-        """
-        return _pointwise("x", x, self._impl.surface_displacement)
-
-    @overload
-    def surface_stress(self, x: float) -> float: ...
-    @overload
-    def surface_stress(self, x: npt.NDArray[Any] | Sequence[Any]) -> FloatArray: ...
-    def surface_stress(self, x: npt.ArrayLike) -> float | FloatArray:
-        """sigma_x(x, 0)/(P/h) on the top surface at x/h, inside and outside
-        the contact (tension positive)."""
-        return _pointwise("x", x, self._impl.surface_stress)
-
-    @overload
     def depth_stress(self, y: float) -> float: ...
     @overload
     def depth_stress(self, y: npt.NDArray[Any] | Sequence[Any]) -> FloatArray: ...
     def depth_stress(self, y: npt.ArrayLike) -> float | FloatArray:
         """sigma_x(0, y)/(P/h) under the centre of the punch, y/h in [-1, 0]."""
         return _pointwise("y", y, self._impl.depth_stress, points=_depths(y))
-
-    def stress_field(self, x: npt.ArrayLike, y: npt.ArrayLike) -> StressField:
-        """All stresses over P/h on the grid ``x`` (x/h) by ``y`` (y/h in
-        [-1, 0]); arrays shaped (len(y), len(x))."""
-        xs = _flat(_as_points("x", x))
-        ys = _flat(_depths(y))
-        sx, sy, txy = _chunked_grid(self._impl.stress_field, xs, ys)
-        sz, vm, ms = derived_stresses(sx, sy, txy, self.nu)
-        return StressField(
-            x=xs,
-            y=ys,
-            sigma_x=sx,
-            sigma_y=sy,
-            tau_xy=txy,
-            sigma_z=sz,
-            von_mises=vm,
-            max_shear=ms,
-        )
-
-    @overload
-    def displacement(self, x: float, y: float = 0.0) -> float: ...
-    @overload
-    def displacement(
-        self, x: npt.NDArray[Any] | Sequence[Any], y: float = 0.0
-    ) -> FloatArray: ...
-    def displacement(self, x: npt.ArrayLike, y: float = 0.0) -> float | FloatArray:
-        """Vertical displacement v(x, y)/h at x/h and one depth y/h in [-1, 0]
-        (negative downwards)."""
-        depth = _depths(y)
-        if depth.ndim != 0:
-            raise params.fail("y", f"y must be one depth in [-1, 0], got {y!r}")
-        return _pointwise(
-            "x", x, lambda xs: self._impl.displacement(xs, _flat(depth))[0]
-        )
 
     @overload
     def foundation_reaction(self, x: float) -> float: ...
@@ -281,66 +211,10 @@ class Solution:
         contact pressure for kw = inf). Integrates to 1 over x."""
         return _pointwise("x", x, self._impl.foundation_reaction)
 
-    def stress_peaks(self, extent: float | None = None) -> StressPeaks:
-        """Peaks of sigma_x/(P/h): most compressive and most tensile on the
-        top surface, most tensile at the bottom (with their x/h >= 0), and
-        sigma_x at (0, 0) and (0, -h). Searched on 0 <= x <= extent (default
-        max(6 a, 10 h)) by ``movingpunch.peaks.search_peaks``: a grid on the
-        scales of the problem (contact, edge cusp, layer, the slowest free
-        wave), a march into the far field until the response has decayed
-        below the peaks, and a refinement of every candidate; each value is
-        within ``error_bound`` of the field's extreme (see StressPeaks)."""
-        span = (
-            max(6.0 * self.a, 10.0)
-            if extent is None
-            else _check_positive_extent(extent)
-        )
-        alpha = _core.critical_speed(self.kw, self.nu)[1]
-        wave = 2.0 * math.pi / alpha if 0.0 < alpha < math.inf else math.inf
-        bound = self.stress_error_estimate
-        depth = np.array([-1.0])
-        found = search_peaks(
-            self._impl.surface_stress,
-            lambda x: self._impl.stress_field(x, depth)[0][0],
-            lo=0.0,
-            hi=float(span),
-            ends=(-self.a, self.a),
-            wavelength=wave,
-            tolerance=0.25 * bound,
-        )
-        centre = self._impl.depth_stress(np.array([0.0, -1.0]))
-        search = max(p.uncertainty for p in found.peaks)
-        return StressPeaks(
-            top_compressive=found.top_min.value,
-            top_compressive_x=found.top_min.x,
-            top_tensile=found.top_max.value,
-            top_tensile_x=found.top_max.x,
-            bottom_tensile=found.bottom_max.value,
-            bottom_tensile_x=found.bottom_max.x,
-            centre_top=float(centre[0]),
-            centre_bottom=float(centre[1]),
-            search_extent=float(span),
-            error_bound=bound + search,
-            search_error=search,
-            warnings=found.warnings,
-        )
-
-    def to_dict(self) -> dict[str, object]:
-        """Every public field, JSON-safe (non-finite floats become "inf" etc.)."""
-        data = {
-            f.name: _json_safe(getattr(self, f.name))
-            for f in fields(self)
-            if not f.name.startswith("_")
-        }
-        data["warnings"] = list(self.warnings)
-        data["stress_error_estimate"] = self.stress_error_estimate
-        data["damping"] = self.damping
-        data["contact_interval"] = list(self.contact_interval)
-        data["half_width"] = self.half_width
-        data["centre"] = self.centre
-        data["drag"] = self.drag
-        data["dissipation"] = self.dissipation
-        return data
+    def _peak_tolerance(self, centre: FloatArray) -> float:
+        # A quarter of the solution's own sigma_x error: the search adds
+        # little to the bound.
+        return 0.25 * self.stress_error_estimate
 
 
 @overload

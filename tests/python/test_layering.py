@@ -69,6 +69,7 @@ LAYERS: tuple[tuple[str, frozenset[str]], ...] = (
             }
         ),
     ),
+    ("evaluations", frozenset({"movingpunch._evaluations"})),
     ("solve", frozenset({"movingpunch.solver", "movingpunch.damped"})),
     (
         "scene model",

@@ -120,42 +120,44 @@ def _out_pressure(run: RunState, spec: Any, solutions: _Solutions) -> OutputData
     )
 
 
+def _curve_output(
+    run: RunState,
+    solutions: _Solutions,
+    kind: str,
+    labels: tuple[str, str, str],
+    grid: tuple[str, FloatArray],
+    evaluate: Callable[[ContactSolution, Mapping[str, float]], FloatArray],
+) -> OutputData:
+    """One curve per solution of ``evaluate`` on the grid, as the output
+    ``kind`` with (title, x label, y label) and the column names
+    (grid name, "sigma_x")."""
+    name, x = grid
+    curves = _curves(run, kind, solutions, x, evaluate)
+    return OutputData(kind, *labels, _curve_columns(name, "sigma_x", curves), curves)
+
+
 def _out_surface_stress(run: RunState, spec: Any, solutions: _Solutions) -> OutputData:
     x = _x_grid(spec.x, (-3.0, 3.0), spec.resolved_points())
-    curves = _curves(
+    return _curve_output(
         run,
-        "surface_stress",
         solutions,
-        x,
-        lambda s, p: np.asarray(s.surface_stress(x), dtype=np.float64),
-    )
-    return OutputData(
         "surface_stress",
-        "In-plane stress on the top surface",
-        "x/h",
-        "sigma_x(x, 0)/(P/h)",
-        _curve_columns("x", "sigma_x", curves),
-        curves,
+        ("In-plane stress on the top surface", "x/h", "sigma_x(x, 0)/(P/h)"),
+        ("x", x),
+        lambda s, p: np.asarray(s.surface_stress(x), dtype=np.float64),
     )
 
 
 def _out_depth_stress(run: RunState, spec: Any, solutions: _Solutions) -> OutputData:
     lo, hi = spec.resolved_y()
     y = np.linspace(lo, hi, spec.resolved_points())
-    curves = _curves(
+    return _curve_output(
         run,
-        "depth_stress",
         solutions,
-        y,
-        lambda s, p: np.asarray(s.depth_stress(y), dtype=np.float64),
-    )
-    return OutputData(
         "depth_stress",
-        "In-plane stress under the centre",
-        "y/h",
-        "sigma_x(0, y)/(P/h)",
-        _curve_columns("y", "sigma_x", curves),
-        curves,
+        ("In-plane stress under the centre", "y/h", "sigma_x(0, y)/(P/h)"),
+        ("y", y),
+        lambda s, p: np.asarray(s.depth_stress(y), dtype=np.float64),
     )
 
 

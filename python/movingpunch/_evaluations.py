@@ -1,0 +1,180 @@
+"""The evaluations every solution computes the same way from its compiled
+result (``_impl``): the pressure, the surface stress and displacement, the
+displacement at a depth, the stress field, the stress peaks and
+``to_dict``. ``Solution`` and
+``DampedSolution`` both inherit them (one implementation of the contract's
+shared members; the compiled results bind the same members once,
+``bind_result_common`` in cpp/bindings/bindings.hpp)."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from typing import TYPE_CHECKING, Any, overload
+
+import numpy as np
+import numpy.typing as npt
+
+from movingpunch import _core, params
+from movingpunch._evaluate import (
+    _as_points,
+    _check_positive_extent,
+    _chunked_grid,
+    _depths,
+    _flat,
+    _json_safe,
+    _pointwise,
+)
+from movingpunch.contract import CONTRACT_FIELDS, Points
+from movingpunch.fields import FloatArray, StressField, StressPeaks, derived_stresses
+from movingpunch.peaks import search_peaks
+
+__all__ = ["Evaluations"]
+
+
+class Evaluations:
+    """Mixin: the shared evaluations, on ``self._impl`` and ``self.nu``."""
+
+    __slots__ = ()
+
+    if TYPE_CHECKING:
+        _impl: Any
+        nu: float
+        kw: float
+
+        @property
+        def stress_error_estimate(self) -> float: ...
+        @property
+        def contact_interval(self) -> tuple[float, float]: ...
+
+    def _peak_tolerance(self, centre: FloatArray) -> float:
+        """How closely the peak search refines each peak, given sigma_x at
+        (0, 0) and (0, -h) (each solution says what its evaluations cost)."""
+        raise NotImplementedError
+
+    @overload
+    def pressure(self, x: float) -> float: ...
+    @overload
+    def pressure(self, x: Points) -> FloatArray: ...
+    def pressure(self, x: npt.ArrayLike) -> float | FloatArray:
+        """Contact pressure p/(P/h) at x/h (0 outside the contact).
+
+        A float for a scalar ``x``, else an array of the shape of ``x``.
+        """
+        return _pointwise("x", x, self._impl.pressure)
+
+    @overload
+    def surface_stress(self, x: float) -> float: ...
+    @overload
+    def surface_stress(self, x: Points) -> FloatArray: ...
+    def surface_stress(self, x: npt.ArrayLike) -> float | FloatArray:
+        """sigma_x(x, 0)/(P/h) on the top surface at x/h, inside and outside
+        the contact (tension positive)."""
+        return _pointwise("x", x, self._impl.surface_stress)
+
+    @overload
+    def surface_displacement(self, x: float) -> float: ...
+    @overload
+    def surface_displacement(self, x: Points) -> FloatArray: ...
+    def surface_displacement(self, x: npt.ArrayLike) -> float | FloatArray:
+        """Vertical surface displacement v(x, 0)/h at x/h (negative under the
+        punch). A float for a scalar ``x``, else an array of the shape of ``x``.
+        """
+        return _pointwise("x", x, self._impl.surface_displacement)
+
+    @overload
+    def displacement(self, x: float, y: float = 0.0) -> float: ...
+    @overload
+    def displacement(self, x: Points, y: float = 0.0) -> FloatArray: ...
+    def displacement(self, x: npt.ArrayLike, y: float = 0.0) -> float | FloatArray:
+        """Vertical displacement v(x, y)/h at x/h and one depth y/h in [-1, 0]
+        (negative downwards)."""
+        depth = _depths(y)
+        if depth.ndim != 0:
+            raise params.fail("y", f"y must be one depth in [-1, 0], got {y!r}")
+        grid = self._impl.displacement
+        return _pointwise("x", x, lambda xs: grid(xs, _flat(depth))[0])
+
+    def stress_field(self, x: npt.ArrayLike, y: npt.ArrayLike) -> StressField:
+        """All stresses over P/h on the grid ``x`` (x/h) by ``y`` (y/h in
+        [-1, 0]); arrays shaped (len(y), len(x)). On the surface y = 0:
+        sigma_x = ``surface_stress``, sigma_y = -p, tau_xy = 0 (the punch is
+        frictionless)."""
+        xs = _flat(_as_points("x", x))
+        ys = _flat(_depths(y))
+        sx, sy, txy = _chunked_grid(self._impl.stress_field, xs, ys)
+        sz, vm, ms = derived_stresses(sx, sy, txy, self.nu)
+        return StressField(
+            x=xs,
+            y=ys,
+            sigma_x=sx,
+            sigma_y=sy,
+            tau_xy=txy,
+            sigma_z=sz,
+            von_mises=vm,
+            max_shear=ms,
+        )
+
+    def stress_peaks(self, extent: float | None = None) -> StressPeaks:
+        """Peaks of sigma_x/(P/h): most compressive and most tensile on the
+        top surface, most tensile at the bottom, with their x/h, and sigma_x
+        at (0, 0) and (0, -h). Searched by ``movingpunch.peaks.search_peaks``
+        on -extent <= x <= extent (0 <= x <= extent for a symmetric contact,
+        whose distributions are even; default extent max(6 max(|x_back|,
+        |x_front|), 10 h)): a grid on the scales of the problem (the contact,
+        the cusps at both ends, the layer, the slowest free wave), a march
+        into the far field until the response has decayed below the peaks,
+        and a refinement of every candidate; each value is within
+        ``error_bound`` (``stress_error_estimate`` plus the search's own
+        uncertainty) of the field's extreme (see StressPeaks)."""
+        back, front = self.contact_interval
+        span = (
+            max(6.0 * max(abs(back), abs(front)), 10.0)
+            if extent is None
+            else _check_positive_extent(extent)
+        )
+        alpha = _core.critical_speed(self.kw, self.nu)[1]
+        wave = 2.0 * math.pi / alpha if 0.0 < alpha < math.inf else math.inf
+        depth = np.array([-1.0])
+        centre = self._impl.stress_field(np.array([0.0]), np.array([0.0, -1.0]))[0][
+            :, 0
+        ]
+        found = search_peaks(
+            self._impl.surface_stress,
+            lambda x: self._impl.stress_field(x, depth)[0][0],
+            lo=0.0 if back == -front else -float(span),
+            hi=float(span),
+            ends=(back, front),
+            wavelength=wave,
+            tolerance=self._peak_tolerance(centre),
+        )
+        search = max(p.uncertainty for p in found.peaks)
+        return StressPeaks(
+            top_compressive=found.top_min.value,
+            top_compressive_x=found.top_min.x,
+            top_tensile=found.top_max.value,
+            top_tensile_x=found.top_max.x,
+            bottom_tensile=found.bottom_max.value,
+            bottom_tensile_x=found.bottom_max.x,
+            centre_top=float(centre[0]),
+            centre_bottom=float(centre[1]),
+            search_extent=float(span),
+            error_bound=self.stress_error_estimate + search,
+            search_error=search,
+            warnings=found.warnings,
+        )
+
+    def to_dict(self) -> dict[str, object]:
+        """Every public field and every field of the contract, JSON-safe
+        (tuples become lists, non-finite floats "inf", "-inf", "nan")."""
+        names = [f.name for f in dataclasses.fields(self)]  # type: ignore[arg-type]
+        names += [n for n in CONTRACT_FIELDS if n not in names]
+        return {
+            n: _json_safe(_listed(getattr(self, n)))
+            for n in names
+            if not n.startswith("_")
+        }
+
+
+def _listed(value: object) -> object:
+    return list(value) if isinstance(value, tuple) else value
