@@ -9,6 +9,7 @@ performance assertions."""
 
 from __future__ import annotations
 
+import contextlib
 import os
 import signal
 import subprocess
@@ -227,11 +228,12 @@ if __name__ == "__main__":
     pool = _executors._WorkerPool()
     pool.start(1)
     proc, conn = pool.workers[0]
-    # One chunk of 200 damped points: minutes of work without a look at its pipe.
+    # One chunk of 4000 damped points with their stress peaks (~30 ms each):
+    # minutes of work without a look at its pipe.
     task = {
         "vstar": 0.2, "kw": 1.0, "nu": 0.2, "tol": 1e-8, "damping": 0.5,
-        "points": [(100.0, 0.002 * (1 + i / 200)) for i in range(200)],
-        "peaks": False,
+        "points": [(100.0, 0.002 * (1 + i / 4000)) for i in range(4000)],
+        "peaks": True,
     }
     conn.send((0, [task]))
     print(proc.pid, flush=True)
@@ -254,9 +256,18 @@ def test_a_busy_worker_exits_when_its_parent_is_killed(tmp_path: Path) -> None:
     assert proc.stdout is not None
     worker = psutil.Process(int(proc.stdout.readline()))
     deadline = time.monotonic() + START_TIMEOUT
-    while worker.cpu_times().user < 1.0:  # imported, and solving
-        assert time.monotonic() < deadline, "the worker never got to work"
-        time.sleep(0.1)
+    try:
+        while worker.cpu_times().user < 1.0:  # imported, and solving
+            assert time.monotonic() < deadline, "the worker never got to work"
+            time.sleep(0.1)
+        assert worker.is_running()  # still busy with the chunk
+    except BaseException:
+        for p in (worker, psutil.Process(proc.pid)):
+            with contextlib.suppress(psutil.NoSuchProcess):
+                p.kill()
+        proc.wait(timeout=STOP_TIMEOUT)
+        proc.stdout.close()
+        raise
     proc.kill()
     proc.wait(timeout=STOP_TIMEOUT)
     proc.stdout.close()  # the worker shares it: do not wait for its end
