@@ -1284,6 +1284,65 @@ std::shared_ptr<const DampedSolution::FieldNodes> DampedSolution::field_nodes() 
   return np;
 }
 
+std::shared_ptr<const Eigen::MatrixXd> DampedSolution::depth_coefficients(const FieldNodes& nodes,
+                                                                          double y) const {
+  constexpr std::size_t kDepthsKept = 4;
+  {
+    std::lock_guard<std::mutex> lock(field_cache_->mutex);
+    for (const auto& [depth, coef] : field_cache_->depths)
+      if (depth == y) return coef;
+  }
+  const Fine& f = *light_;
+  const WaveConstants& c = model_->constants();
+  const auto nq = static_cast<Eigen::Index>(f.alpha.size());
+  // Remainder integrands [sigma_x, sigma_y, tau] real parts, then imaginary
+  // parts (zero at nodes whose bound is negligible).
+  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(nq, 6);
+  const double ax = 4.0 * (c.c2 - 1.0) / c.c2, ay = (c.c2 - 2.0) / c.c2;
+  const double yb = y + 1.0;
+  for (Eigen::Index k = 0; k < nq; ++k) {
+    const auto q = static_cast<std::size_t>(k);
+    const double al = f.alpha[q];
+    Eigen::Vector4d r_re, r_im;
+    if (al < DampedLayerModel::kSmallT) {
+      const Eigen::Matrix4d T = detail::transfer_matrix(c, al, y);
+      const Eigen::Matrix4d C = detail::modal_columns(c, al, y);
+      r_re = T * nodes.d_re.col(k) - (c.hp1 * C.col(0) + c.hp2 * C.col(1));
+      r_im = T * nodes.d_im.col(k);
+    } else {
+      // |columns 0, 1| <= kc e^{nT al y} (1 + al |y|), |columns 2, 3| <= kc
+      // e^{-nT al (y + 1)} (1 + al (y + 1)) (|E(x)| <= |x| in modal_columns).
+      const double bound = nodes.top_bound[q] * std::exp(c.nT * al * y) * (1.0 - al * y) +
+                           nodes.bottom_bound[q] * std::exp(-c.nT * al * yb) * (1.0 + al * yb);
+      if (bound < nodes.negligible) continue;
+      const Eigen::Matrix4d C = detail::modal_columns(c, al, y);
+      r_re = C * nodes.d_re.col(k);
+      r_im = C * nodes.d_im.col(k);
+    }
+    const cplx ph = nodes.ph[q];
+    const cplx sx = cplx(ax * r_re(0) + ay * r_re(3), ax * r_im(0) + ay * r_im(3)) * ph;
+    const cplx sy = cplx(r_re(3), r_im(3)) * ph, tau = cplx(r_im(2), -r_re(2)) * ph;
+    G(k, 0) = sx.real();
+    G(k, 1) = sy.real();
+    G(k, 2) = tau.real();
+    G(k, 3) = sx.imag();
+    G(k, 4) = sy.imag();
+    G(k, 5) = tau.imag();
+  }
+  auto coef = std::make_shared<Eigen::MatrixXd>(nq, 6);
+  std::vector<double> col(static_cast<std::size_t>(nq));
+  for (Eigen::Index m = 0; m < 6; ++m) {
+    Eigen::Map<Eigen::VectorXd>(col.data(), nq) = G.col(m);
+    const std::vector<double> cm = f.filon->coefficients(col);
+    coef->col(m) = Eigen::Map<const Eigen::VectorXd>(cm.data(), nq);
+  }
+  std::lock_guard<std::mutex> lock(field_cache_->mutex);
+  auto& kept = field_cache_->depths;
+  if (kept.size() >= kDepthsKept) kept.erase(kept.begin());
+  kept.emplace_back(y, coef);
+  return coef;
+}
+
 StressField DampedSolution::stress_field(const Eigen::Ref<const Eigen::VectorXd>& x,
                                          const Eigen::Ref<const Eigen::VectorXd>& y) const {
   detail::check_grid(x, y);
@@ -1291,51 +1350,14 @@ StressField DampedSolution::stress_field(const Eigen::Ref<const Eigen::VectorXd>
   const auto nodes = field_nodes();
   const WaveConstants& c = model_->constants();
   const Eigen::Index nx = x.size(), ny = y.size(), nq = static_cast<Eigen::Index>(f.alpha.size());
-  // Remainder integrands, columns [sigma_x, sigma_y, tau] x depth, real parts
-  // then imaginary parts (zero on the surface row, which is done apart, and
-  // at nodes whose bound is negligible).
-  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(nq, 6 * ny);
-  const double ax = 4.0 * (c.c2 - 1.0) / c.c2, ay = (c.c2 - 2.0) / c.c2;
+  // The Filon coefficients of the remainder, columns [sigma_x, sigma_y, tau] x
+  // depth, real parts then imaginary parts (zero on the surface row, which is
+  // done apart).
+  Eigen::MatrixXd coef = Eigen::MatrixXd::Zero(nq, 6 * ny);
   for (Eigen::Index i = 0; i < ny; ++i) {
-    const double yi = y(i), yb = yi + 1.0;
-    if (yi == 0.0) continue;
-    for (Eigen::Index k = 0; k < nq; ++k) {
-      const auto q = static_cast<std::size_t>(k);
-      const double al = f.alpha[q];
-      Eigen::Vector4d r_re, r_im;
-      if (al < DampedLayerModel::kSmallT) {
-        const Eigen::Matrix4d T = detail::transfer_matrix(c, al, yi);
-        const Eigen::Matrix4d C = detail::modal_columns(c, al, yi);
-        r_re = T * nodes->d_re.col(k) - (c.hp1 * C.col(0) + c.hp2 * C.col(1));
-        r_im = T * nodes->d_im.col(k);
-      } else {
-        // |columns 0, 1| <= kc e^{nT al y} (1 + al |y|), |columns 2, 3| <= kc
-        // e^{-nT al (y + 1)} (1 + al (y + 1)) (|E(x)| <= |x| in modal_columns).
-        const double bound = nodes->top_bound[q] * std::exp(c.nT * al * yi) * (1.0 - al * yi) +
-                             nodes->bottom_bound[q] * std::exp(-c.nT * al * yb) * (1.0 + al * yb);
-        if (bound < nodes->negligible) continue;
-        const Eigen::Matrix4d C = detail::modal_columns(c, al, yi);
-        r_re = C * nodes->d_re.col(k);
-        r_im = C * nodes->d_im.col(k);
-      }
-      const cplx ph = nodes->ph[q];
-      const cplx sx = cplx(ax * r_re(0) + ay * r_re(3), ax * r_im(0) + ay * r_im(3)) * ph;
-      const cplx sy = cplx(r_re(3), r_im(3)) * ph, tau = cplx(r_im(2), -r_re(2)) * ph;
-      G(k, i) = sx.real();
-      G(k, ny + i) = sy.real();
-      G(k, 2 * ny + i) = tau.real();
-      G(k, 3 * ny + i) = sx.imag();
-      G(k, 4 * ny + i) = sy.imag();
-      G(k, 5 * ny + i) = tau.imag();
-    }
-  }
-  // Filon: Re int (g_re + i g_im) e^{i alpha u} = K_re . c_re - K_im . c_im.
-  Eigen::MatrixXd coef(nq, 6 * ny);
-  std::vector<double> col(static_cast<std::size_t>(nq));
-  for (Eigen::Index m = 0; m < 6 * ny; ++m) {
-    Eigen::Map<Eigen::VectorXd>(col.data(), nq) = G.col(m);
-    const std::vector<double> cm = f.filon->coefficients(col);
-    coef.col(m) = Eigen::Map<const Eigen::VectorXd>(cm.data(), nq);
+    if (y(i) == 0.0) continue;
+    const auto ci = depth_coefficients(*nodes, y(i));
+    for (Eigen::Index m = 0; m < 6; ++m) coef.col(m * ny + i) = ci->col(m);
   }
   Eigen::MatrixXd Wre = Eigen::MatrixXd::Zero(nx, nq), Wim = Eigen::MatrixXd::Zero(nx, nq);
   std::vector<cplx> K;

@@ -134,3 +134,19 @@ def test_depth_stress_accepts_the_whole_layer() -> None:
             assert e.value.parameter == "y"
             with pytest.raises(InvalidParameterError, match="y must"):
                 sol.stress_field([0.0], [bad])
+
+
+def test_a_depth_evaluated_again_gives_the_same_stresses() -> None:
+    """The remainder's Filon coefficients of the last few depths are kept
+    (a search along the bottom computes them once): values from the kept
+    coefficients equal a fresh solution's, bit for bit, whatever the order
+    of the depths and after more depths than are kept."""
+    args = {"vstar": 0.65, "kw": 1.0, "radius": 100.0, "load": 0.002, "damping": 0.1}
+    x = np.linspace(-3.0, 3.0, 13)
+    depths = [-1.0, -0.5, -1e-4, -0.25, -0.75, -0.1, -1.0]
+    s = mp.solve(**args)
+    seen = [s.stress_field(x, [y]).sigma_x[0] for y in depths]
+    for y, values in zip(depths, seen, strict=True):
+        fresh = mp.solve(**args)
+        np.testing.assert_array_equal(values, fresh.stress_field(x, [y]).sigma_x[0])
+        np.testing.assert_array_equal(values, s.stress_field(x, [y]).sigma_x[0])

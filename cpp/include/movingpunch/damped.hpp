@@ -342,7 +342,14 @@ class DampedSolution {
   struct FieldCache {
     std::mutex mutex;
     std::shared_ptr<const FieldNodes> nodes;
+    // The Filon coefficients of the remainder at the last few depths
+    // (nq x 6: sigma_x, sigma_y, tau real parts, then imaginary parts): they do
+    // not depend on x, so a search along one depth (the bottom's peaks, the
+    // foundation reaction) computes them once.
+    std::vector<std::pair<double, std::shared_ptr<const Eigen::MatrixXd>>> depths;
   };
+  std::shared_ptr<const Eigen::MatrixXd> depth_coefficients(const FieldNodes& nodes,
+                                                            double y) const;
   std::shared_ptr<FieldCache> field_cache_ = std::make_shared<FieldCache>();
   std::shared_ptr<const FieldNodes> field_nodes() const;
   double surface_value(const Surface& s, double x) const;  // v(x, 0)/(P/(mu h))
