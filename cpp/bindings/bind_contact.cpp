@@ -20,11 +20,10 @@ void bind_contact(py::module_& m) {
   using VectorRef = Eigen::Ref<const Eigen::VectorXd>;
   using Release = py::call_guard<py::gil_scoped_release>;
 
-  py::class_<ContactSolution> cls(
+  auto cls = bind_result_class<ContactSolution>(
       m, "ContactSolution",
       "Result of solve_contact (dimensionless: h = 1, mu = 1, pressures per P/h). "
       "Not constructible from Python.");
-  bind_result_common(cls);
   cls.def_property_readonly("a", &ContactSolution::a, "Contact half-width a/h.")
       .def_property_readonly("p0", &ContactSolution::p0, "Central pressure p(0)/(P/h).")
       .def_property_readonly(

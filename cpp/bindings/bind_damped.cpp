@@ -34,11 +34,10 @@ Eigen::VectorXd each(const VectorRef& x, F f) {
 void bind_damped(py::module_& m) {
   using Release = py::call_guard<py::gil_scoped_release>;
 
-  py::class_<DampedSolution> cls(
+  auto cls = bind_result_class<DampedSolution>(
       m, "DampedSolution",
       "Result of solve_damped (dimensionless: h = 1, mu = 1, pressures per P/h). "
       "Not constructible from Python.");
-  bind_result_common(cls);
   cls.def_property_readonly("left", &DampedSolution::left,
                             "Trailing end -b/h of the contact (-b, a).")
       .def_property_readonly("right", &DampedSolution::right,

@@ -25,6 +25,17 @@ inline pybind11::dict stage_dict(const ContactSolution::StageSeconds& t) {
   return d;
 }
 
+template <class T>
+void bind_result_common(pybind11::class_<T>& cls);
+
+// A result class with the members every contact result has (below).
+template <class T>
+pybind11::class_<T> bind_result_class(pybind11::module_& m, const char* name, const char* doc) {
+  pybind11::class_<T> cls(m, name, doc);
+  bind_result_common(cls);
+  return cls;
+}
+
 // The inputs every solve takes (ContactParams, DampedParams: the same names),
 // from the keyword arguments of solve_contact / solve_damped.
 template <class P>

@@ -224,3 +224,18 @@ def _json_safe(value: object) -> object:
     if isinstance(value, float) and not math.isfinite(value):
         return str(value)  # "inf", "-inf", "nan"
     return value
+
+
+def _check_solve_inputs(
+    vstar: object, kw: object, radius: object, load: object, nu: object, tol: object
+) -> dict[str, float]:
+    """The inputs every solve takes, checked (InvalidParameterError names the
+    first bad one and its range), as keyword arguments of the core's solve."""
+    return {
+        "vstar": _check_vstar(vstar),
+        "kw": _check_kw(kw),
+        "radius": _check_positive("radius", radius),
+        "load": _check_positive("load", load),
+        "nu": _check_nu(nu),
+        "tol": _check_tol(tol),
+    }

@@ -30,8 +30,7 @@ from movingpunch._evaluate import (
     _check_flag,
     _check_kw,
     _check_nu,
-    _check_positive,
-    _check_tol,
+    _check_solve_inputs,
     _check_vstar,
     _depths,
     _fail,
@@ -275,15 +274,8 @@ def solve_damped(
     V*_R), UnphysicalContactError (unless ``allow_unphysical``) and
     ConvergenceError.
     """
-    inputs = {
-        "vstar": _check_vstar(vstar),
-        "kw": _check_kw(kw),
-        "radius": _check_positive("radius", radius),
-        "load": _check_positive("load", load),
-        "nu": _check_nu(nu),
-        "damping": check_damping(damping, positive=True),
-        "tol": _check_tol(tol),
-    }
+    inputs = _check_solve_inputs(vstar, kw, radius, load, nu, tol)
+    inputs["damping"] = check_damping(damping, positive=True)
     flag = _check_flag("allow_unphysical", allow_unphysical)
     size = _check_damped_size(n)
     vr = float(_core.rayleigh_vstar(inputs["nu"]))

@@ -27,7 +27,7 @@ from movingpunch._evaluate import (
     _check_flag,
     _check_kw,
     _check_nu,
-    _check_positive,
+    _check_solve_inputs,
     _check_tol,
     _check_vstar,
     _depths,
@@ -296,14 +296,7 @@ def solve(
             allow_unphysical=allow_unphysical,
             n=n,
         )
-    inputs = {
-        "vstar": _check_vstar(vstar),
-        "kw": _check_kw(kw),
-        "radius": _check_positive("radius", radius),
-        "load": _check_positive("load", load),
-        "nu": _check_nu(nu),
-        "tol": _check_tol(tol),
-    }
+    inputs = _check_solve_inputs(vstar, kw, radius, load, nu, tol)
     flag = _check_flag("allow_unphysical", allow_unphysical)
     size = _check_size(n)
     impl = _core.solve_contact(**inputs, allow_unphysical=flag, n=size)
