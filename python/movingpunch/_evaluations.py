@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, overload
 
 import numpy as np
@@ -29,7 +30,7 @@ from movingpunch.contract import CONTRACT_FIELDS, Points
 from movingpunch.fields import FloatArray, StressField, StressPeaks, derived_stresses
 from movingpunch.peaks import search_peaks
 
-__all__ = ["Evaluations"]
+__all__ = ["Evaluations", "ResultFields"]
 
 
 class Evaluations:
@@ -178,3 +179,54 @@ class Evaluations:
 
 def _listed(value: object) -> object:
     return list(value) if isinstance(value, tuple) else value
+
+
+@dataclass(frozen=True)
+class ResultFields(Evaluations):
+    """The data fields every solution has (docs: ``ContactSolution``);
+    each solution adds its own after them."""
+
+    vstar: float
+    """V* = rho V^2/mu."""
+    kw: float
+    """k_w h/mu (inf: smooth rigid base)."""
+    radius: float
+    """R/h."""
+    load: float
+    """P/(mu h)."""
+    nu: float
+    """Poisson's ratio."""
+    tol: float
+    """Requested relative tolerance on the contact ends (a/h when symmetric)."""
+    critical_vstar: float
+    """Critical speed V*_cr(kw, nu) of the undamped layer (damping lifts it)."""
+    rayleigh_vstar: float
+    """Rayleigh speed V*_R(nu)."""
+    phi1: float
+    """Moving half-plane factor phi1(vstar, nu)."""
+    iterations: int
+    """Width (load) evaluations over all collocation sizes."""
+    collocation_n: int
+    """Number N of collocation nodes of the final solve."""
+    error_estimate: float
+    """Absolute error estimate of the contact ends (of a/h when symmetric),
+    in h."""
+    elapsed: float
+    """Solve time in seconds."""
+    valid: bool
+    """True if p >= 0 on the contact and the punch does not penetrate the
+    surface beside it."""
+    validity: str
+    """Account of the validity checks."""
+    min_pressure: float
+    """Minimum of p/(P/h) on the contact (0 at the smooth ends: see
+    ``pressure_margin``)."""
+    min_gap: float
+    """Minimum gap/h between punch and surface beside the contact."""
+    pressure_margin: float
+    """Minimum over the open contact -1 < r < 1 (r the position scaled to the
+    contact) of p/((P/h) sqrt(1 - r^2)): the safety margin before the contact
+    separates (> 0 for a valid contact; 2/(pi a/h) in the half-plane limit)."""
+    warnings: tuple[str, ...]
+    """One line per requested accuracy that was not met (what, and by how
+    much); empty when ``tol`` was met."""

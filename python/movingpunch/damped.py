@@ -40,7 +40,7 @@ from movingpunch._evaluate import (
     _real,
     _real_any,
 )
-from movingpunch._evaluations import Evaluations
+from movingpunch._evaluations import ResultFields
 from movingpunch.contract import Points
 from movingpunch.errors import InvalidParameterError, SupercriticalSpeedError
 from movingpunch.fields import FloatArray
@@ -71,42 +71,17 @@ def _check_damped_size(value: object) -> int:
 
 
 @dataclass(frozen=True)
-class DampedSolution(Evaluations):
+class DampedSolution(ResultFields):
     """Solution on a damped foundation (dimensionless: lengths per h,
     pressures and stresses per P/h). The punch moves towards +x."""
 
-    vstar: float
-    """V* = rho V^2/mu."""
-    kw: float
-    """k_w h/mu."""
-    radius: float
-    """R/h."""
-    load: float
-    """P/(mu h)."""
-    nu: float
-    """Poisson's ratio."""
     damping: float
     """c_w c_T/mu."""
-    tol: float
-    """Requested relative tolerance on the contact ends and on the pressure."""
     contact_interval: tuple[float, float]
     """(-b/h, a/h): trailing and leading ends of the contact."""
     drag: float
     """Horizontal force on the punch over P, int p x/R dx / P; positive when it
     opposes the motion."""
-    critical_vstar: float
-    """Critical speed V*_cr(kw, nu) of the undamped layer (may be exceeded)."""
-    rayleigh_vstar: float
-    """Rayleigh speed V*_R(nu) (the upper limit)."""
-    phi1: float
-    """Moving half-plane factor phi1(vstar, nu)."""
-    iterations: int
-    """Width evaluations over all collocation sizes."""
-    collocation_n: int
-    """Number N of collocation nodes of the final solve."""
-    error_estimate: float
-    """Bound on the absolute error of each contact end, in h (within a factor
-    100 of the actual error or of the round-off floor; docs/damped.md §8)."""
     pressure_error_estimate: float
     """Bound on the error of p/(P/h) at a fixed relative position r = (x - c)/w
     in the contact (pointwise in x add |dp/dx| error_estimate); the solver
@@ -117,29 +92,10 @@ class DampedSolution(Evaluations):
     there)."""
     max_pressure: float
     """Maximum of p/(P/h) on the contact."""
-    elapsed: float
-    """Solve time in seconds."""
-    valid: bool
-    """True if p >= 0 on the contact and no penetration beside it."""
-    validity: str
-    """Account of the validity checks."""
-    min_pressure: float
-    """Minimum of p/(P/h) on the contact (0 at the smooth ends: see
-    ``pressure_margin``)."""
-    pressure_margin: float
-    """min over r in (-1, 1) of p/((P/h) sqrt(1 - r^2)), r = (x - c)/w the
-    position scaled to the contact: the safety margin before the contact
-    separates (> 0 for a valid contact; 2/(pi a) for a narrow Hertz
-    contact)."""
-    min_gap: float
-    """Minimum gap/h within 2(a + b) beside the contact."""
     other_half_widths: tuple[float, ...]
     """Half-widths (a + b)/(2h) of other contacts that carry the same load
     (above V*_cr the steady solution need not be unique; to about 1 %).
     Empty when none was found on [w/8, 4w]."""
-    warnings: tuple[str, ...]
-    """One line per requested accuracy that was not met (what, and by how
-    much); empty when ``tol`` was met."""
     _impl: _core.DampedSolution = field(repr=False, compare=False)
 
     @property

@@ -36,7 +36,7 @@ from movingpunch._evaluate import (
     _is_scalar,
     _pointwise,
 )
-from movingpunch._evaluations import Evaluations
+from movingpunch._evaluations import ResultFields
 from movingpunch.errors import InvalidParameterError
 from movingpunch.params import PRESETS
 
@@ -73,60 +73,18 @@ def _check_size(value: object) -> int:
 
 
 @dataclass(frozen=True)
-class Solution(Evaluations):
+class Solution(ResultFields):
     """Solution of the moving-punch contact problem (dimensionless).
 
     Lengths are in units of the layer thickness h, pressures in units of P/h.
     """
 
-    vstar: float
-    """V* = rho V^2/mu."""
-    kw: float
-    """k_w h/mu (inf: smooth rigid base)."""
-    radius: float
-    """R/h."""
-    load: float
-    """P/(mu h)."""
-    nu: float
-    """Poisson's ratio."""
-    tol: float
-    """Requested relative tolerance on a/h."""
     a: float
     """Contact half-width a/h."""
     p0: float
     """Central pressure p(0)/(P/h)."""
     indentation: float
     """Indentation delta/h."""
-    critical_vstar: float
-    """Critical speed V*_cr(kw, nu)."""
-    rayleigh_vstar: float
-    """Rayleigh speed V*_R(nu)."""
-    phi1: float
-    """Moving half-plane factor phi1(vstar, nu)."""
-    iterations: int
-    """Load evaluations over all collocation sizes."""
-    collocation_n: int
-    """Number N of collocation nodes of the final solve."""
-    error_estimate: float
-    """Absolute error estimate of a/h."""
-    elapsed: float
-    """Solve time in seconds."""
-    valid: bool
-    """True if p >= 0 on (-a, a) and the punch does not penetrate outside it."""
-    validity: str
-    """Account of the validity checks."""
-    min_pressure: float
-    """Minimum of p/(P/h) on [-a, a]."""
-    min_gap: float
-    """Minimum gap/h between punch and surface on a < |x| <= 3a."""
-    pressure_margin: float
-    """Minimum over the open contact -1 < r < 1 (r = x/a) of
-    p/((P/h) sqrt(1 - r^2)): the safety margin before the contact separates
-    (``min_pressure`` is 0 at the smooth ends whatever the margin). In the
-    half-plane limit it is 2/(pi a/h)."""
-    warnings: tuple[str, ...]
-    """One line per requested accuracy that was not met (empty: ``tol`` was
-    met), e.g. an a/h error estimate above tol * a, saying by how much."""
     kernel_builds: int = field(compare=False)
     """k1 kernel tables this solve built (0: all reused from the process-wide
     cache, as in a load or radius sweep at fixed vstar, kw, nu and tol)."""
