@@ -28,6 +28,7 @@ from movingpunch.errors import InvalidParameterError
 from movingpunch.scene import OutputSpec, Scene, Vary, read_csv
 from movingpunch.tui import model
 from movingpunch.tui.model import AccuracyTable, Cache, Params, Request
+from movingpunch.tui.widgets.accuracy import COLUMNS, table_lines
 
 # The round-off floors of docs/damped.md section 8 (relative to the scale).
 ENDS_FLOOR = 1e-13  # times (a + b)/2 + |a - b|/2
@@ -451,6 +452,13 @@ def test_the_tui_accuracy_tab_serves_a_damped_set() -> None:
         s = mp.solve(**params.physical(), tol=r.tol)
         assert end_error(s, ref) <= r.error_estimate + ref.error_estimate
     assert "accuracy against time" in model.to_csv(result.data, params)
+    # The tab's table shows each sigma_x error next to the bound it is held
+    # to: the estimate column is never below the error column (it showed
+    # stress_error_estimate, 2e-12, beside peak errors of 2e-4).
+    assert "est σx" in table_lines(result.data, 200)[0]
+    cell = dict(COLUMNS)
+    for r in report.rungs:
+        assert float(cell["est σx"](r)) >= float(cell["err σx"](r)), r
 
 
 def test_the_reference_takes_2_n_auto_where_the_solver_refuses_4_n_auto(

@@ -36,7 +36,9 @@ COLUMNS: tuple[Column, ...] = (
     ("N", lambda r: str(r.collocation_n)),
     ("est a/h", lambda r: _e(r.error_estimate)),
     ("err a/h", lambda r: _e(r.error_a)),
-    ("est σx", lambda r: _e(r.stress_error_estimate)),
+    # The sigma_x peaks' error next to their own bound (the solution's
+    # stress_error_estimate plus the peak search's uncertainty).
+    ("est σx", lambda r: _e(r.peak_error_bound)),
     ("err σx", lambda r: _e(max(r.error_top_tensile, r.error_bottom_tensile))),
     ("cold ms", lambda r: _ms(r.seconds)),
     ("warm ms", lambda r: _ms(r.warm_seconds)),
