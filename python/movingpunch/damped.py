@@ -205,11 +205,6 @@ class DampedSolution(ResultFields):
         values = -field.sigma_y[0]
         return float(values[0]) if _is_scalar(x) else values.reshape(np.shape(x))
 
-    def _peak_tolerance(self, centre: FloatArray) -> float:
-        # tol relative to the larger centre stress: each surface point costs
-        # a Fourier integral, so the search stops there.
-        return self.tol * max(float(np.max(np.abs(centre))), 1e-300)
-
 
 def solve_damped(
     *,

@@ -169,11 +169,6 @@ class Solution(ResultFields):
         contact pressure for kw = inf). Integrates to 1 over x."""
         return _pointwise("x", x, self._impl.foundation_reaction)
 
-    def _peak_tolerance(self, centre: FloatArray) -> float:
-        # A quarter of the solution's own sigma_x error: the search adds
-        # little to the bound.
-        return 0.25 * self.stress_error_estimate
-
 
 @overload
 def solve(
