@@ -28,6 +28,8 @@ Points = npt.NDArray[Any] | Sequence[Any]
 """Several positions: an array or a sequence (a scalar gives a float)."""
 
 
+# runtime_checkable for the contract test; on Python 3.11 isinstance reads
+# every member and so computes the lazy ones: not for hot paths.
 @runtime_checkable
 class ContactSolution(Protocol):
     """Every solution's fields and evaluations (see the module docstring).
