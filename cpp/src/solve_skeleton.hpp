@@ -61,6 +61,17 @@ inline WidthGuess width_guess(double phi1, double lambda, double kw, double nu) 
   return g;
 }
 
+// The foundation as messages name it: "kw = 1" for springs alone, "kw = 1,
+// kp = 0.2" with a Pasternak shear layer (any parameter struct with kw, kp).
+template <class Params>
+std::string foundation_text(const Params& p) {
+  std::ostringstream m;
+  m.precision(6);
+  m << "kw = " << p.kw;
+  if (p.kp != 0.0) m << ", kp = " << p.kp;
+  return m.str();
+}
+
 // "1e-10 <= a/h <= 50".
 inline std::string supported_range_text() {
   std::ostringstream m;
@@ -78,7 +89,7 @@ std::string width_out_of_range_message(const Params& p, bool too_wide,
   m.precision(6);
   m << "radius * load = " << p.radius * p.load << " (radius " << p.radius << ", load " << p.load
     << ") needs a contact half-width " << (too_wide ? "above" : "below") << " the supported range "
-    << supported_range_text() << " for kw = " << p.kw << ", vstar = " << p.vstar << ": "
+    << supported_range_text() << " for " << foundation_text(p) << ", vstar = " << p.vstar << ": "
     << (too_wide ? "reduce" : "increase") << " the radius or the load";
   if (std::isfinite(lambda_bound))
     m << " (radius * load must be " << (too_wide ? "<= " : ">= ") << lambda_bound << ")";
