@@ -477,7 +477,7 @@ ContactSolution solve_contact(const ContactParams& p) {
   // (a layer compressed under the punch, measured for 0 <= nu < 0.5); tiny
   // contacts are half-plane (Hertz) contacts.
   const double lambda = p.radius * p.load;
-  const detail::WidthGuess guess = detail::width_guess(phi1, lambda, p.kw, p.nu);
+  const detail::WidthGuess guess = detail::width_guess(phi1, lambda, p.kw, p.nu, p.kp);
   if (0.5 * std::cbrt(0.75 * lambda) > kMaxA) width_out_of_range(p, true);
   if (10.0 * guess.hertz < kMinA) width_out_of_range(p, false);
 

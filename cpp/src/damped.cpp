@@ -733,7 +733,7 @@ DampedSolution solve_damped(const DampedParams& prm) {
   // carries on less than twice the smallest supported width is refused up
   // front (subnormal or tiny radius * load), naming the inputs, instead of
   // failing every N.
-  const detail::WidthGuess wg = detail::width_guess(phi1, lambda, prm.kw, prm.nu);
+  const detail::WidthGuess wg = detail::width_guess(phi1, lambda, prm.kw, prm.nu, prm.kp);
   if (!(wg.hertz >= 2.0 * detail::kMinA))
     detail::width_out_of_range(prm, false, 2.0 * kPi * detail::kMinA * detail::kMinA / phi1);
   const bool wide_guess = wg.use_wide;
