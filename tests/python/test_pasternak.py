@@ -12,6 +12,7 @@ sinking P/(2 sqrt(kw kp)); the base condition itself by finite differences.
 from __future__ import annotations
 
 import itertools
+import json
 import math
 from decimal import Decimal, localcontext
 
@@ -20,10 +21,14 @@ import pytest
 from scipy.optimize import brentq, minimize_scalar
 
 import movingpunch as mp
-from movingpunch import _core
+from movingpunch import _core, cli
 from movingpunch.damped import damped_layer_response
 from movingpunch.errors import InvalidParameterError, SupercriticalSpeedError
 from movingpunch.params import SPECS, range_text
+from movingpunch.scene import Scene, SceneError, bundled_scenes
+from movingpunch.tui import create_app
+from movingpunch.tui.widgets import ParamsPanel
+from tui_pilot import screen_of, settle, sync, type_into
 
 CASE = {"vstar": 0.2, "kw": 1.0, "radius": 100.0, "load": 0.002}
 
@@ -379,3 +384,105 @@ def test_damped_with_vanishing_damping_is_the_undamped_pasternak() -> None:
     assert d.a == pytest.approx(s.a, rel=1e-6)
     assert d.contact_interval[0] == pytest.approx(-s.a, rel=1e-6)
     assert d.indentation == pytest.approx(s.indentation, rel=1e-6)
+
+
+# -- the bundled scene, scenes, the CLI, the TUI --------------------------------------
+
+
+def test_bundled_pasternak_scene_matches_the_api_and_the_paper() -> None:
+    assert "pasternak" in bundled_scenes()
+    scene = Scene.bundled("pasternak")
+    assert scene.sweep is not None
+    assert scene.vary is not None
+    assert scene.sweep.param == "kp"
+    kps = scene.sweep.values
+    result = scene.run()
+    data = result.sweep.data
+    for i, vstar in enumerate(scene.vary.values):
+        for j, kp in enumerate(kps):
+            s = mp.solve(vstar=vstar, kw=1.0, radius=100.0, load=0.002, kp=kp)
+            assert data["a"][i, j] == pytest.approx(s.a, abs=1e-12)
+            assert data["p0"][i, j] == pytest.approx(s.p0, rel=1e-10)
+            assert data["critical_vstar"][i, j] == mp.critical_vstar(1.0, 0.2, kp)
+        # The shear layer narrows the contact, towards the rigid base's.
+        assert all(b < a for a, b in itertools.pairwise(data["a"][i]))
+        rigid = mp.solve(vstar=vstar, kw=math.inf, radius=100.0, load=0.002).a
+        assert data["a"][i, -1] > rigid
+    # kp = 0 is the paper's Winkler case (Table 1, Comez 2013: 0.330419) and a
+    # stiff shear layer nears its rigid base (0.311557).
+    assert kps[0] == 0.0
+    assert data["a"][0, 0] == pytest.approx(0.330419, abs=1e-6)
+    assert data["a"][0, -1] == pytest.approx(0.311557, abs=5e-4)
+    assert data["critical_vstar"][0, -1] == pytest.approx(RAYLEIGH_02, rel=1e-12)
+
+
+RAYLEIGH_02 = 0.8299135133739661
+
+
+def test_scene_kp_param_vary_and_errors() -> None:
+    text = (
+        "[params]\nvstar = 0.6\nkw = 1.0\nradius = 100.0\nload = 0.002\nkp = 0.2\n"
+        "[outputs]\ncontact_width = true\n"
+    )
+    scene = Scene.from_toml(text)
+    assert scene.params["kp"] == 0.2
+    assert Scene.from_toml(scene.to_toml()) == scene
+    # V* = 0.6 is above V*_cr of the springs alone (0.5717), below V*_cr(kp).
+    cw = scene.run().outputs["contact_width"].columns
+    assert cw["a"][0] == mp.solve(vstar=0.6, kw=1.0, radius=100.0, load=0.002, kp=0.2).a
+    # Without kp the same speed is refused, naming the critical speed.
+    with pytest.raises(SceneError, match="V\\*_cr"):
+        Scene.from_toml(text.replace("kp = 0.2\n", ""))
+    # A vary over kp whose smallest value is too soft blames that value.
+    with pytest.raises(SceneError) as info:
+        Scene.from_toml(text + '[vary]\nparam = "kp"\nvalues = [0.0, 0.2]\n')
+    assert info.value.parameter == "kp"
+    assert info.value.key == "vary.values[0]"
+    for bad in ("-0.1", '"abc"', "nan", "inf", "1e13"):
+        with pytest.raises(SceneError) as info:
+            Scene.from_toml(text.replace("kp = 0.2", f"kp = {bad}"))
+        assert info.value.parameter == "kp"
+        assert info.value.key == "params.kp"
+        assert range_text("kp") in str(info.value)
+
+
+def test_cli_takes_kp(capsys: pytest.CaptureFixture[str]) -> None:
+    args = ["--vstar", "0.6", "--kw", "1", "--radius", "100", "--load", "0.002"]
+    assert cli.main(["solve", *args, "--kp", "0.2", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["kp"] == 0.2
+    want = mp.solve(vstar=0.6, kw=1.0, radius=100.0, load=0.002, kp=0.2)
+    assert data["a"] == want.a
+    assert cli.main(["critical", "--kw", "1", "--kp", "0.2", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["critical_vstar"] == mp.critical_vstar(1.0, 0.2, 0.2)
+    for bad in ("abc", "-1", "nan"):
+        with pytest.raises(SystemExit):
+            cli.main(["solve", *args, "--kp", bad])
+        err = capsys.readouterr().err
+        assert "kp" in err
+        assert range_text("kp") in err
+
+
+@sync
+async def test_tui_kp_input_validates_and_lifts_the_critical_speed() -> None:
+    app = create_app()
+    async with app.run_test(size=(100, 32)) as pilot:
+        await settle(pilot)
+        screen = screen_of(app)
+        panel = screen.query_one(ParamsPanel)
+        for garbage in ("abc", "-1", "nan"):
+            before = screen.result
+            await type_into(pilot, "kp", garbage, paste=True)
+            assert "kp" in panel.message("kp")
+            assert range_text("kp") in panel.message("kp")
+            assert screen.result is before
+        await type_into(pilot, "kp", "0.2", paste=True)
+        assert panel.message("kp") == ""
+        # V* = 0.6: above V*_cr of the springs alone, below V*_cr with kp.
+        await type_into(pilot, "vstar", "0.6", paste=True)
+        assert panel.message("vstar") == ""
+        assert screen.result is not None
+        summary = screen.result.summary
+        assert summary.params.kp == 0.2
+        assert summary.critical_vstar == mp.critical_vstar(1.0, 0.2, 0.2)
