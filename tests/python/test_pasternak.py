@@ -22,6 +22,7 @@ from scipy.optimize import brentq, minimize_scalar
 
 import movingpunch as mp
 from movingpunch import _core, cli
+from movingpunch.accuracy import accuracy_report
 from movingpunch.damped import damped_layer_response
 from movingpunch.errors import InvalidParameterError, SupercriticalSpeedError
 from movingpunch.params import SPECS, range_text
@@ -486,3 +487,96 @@ async def test_tui_kp_input_validates_and_lifts_the_critical_speed() -> None:
         summary = screen.result.summary
         assert summary.params.kp == 0.2
         assert summary.critical_vstar == mp.critical_vstar(1.0, 0.2, 0.2)
+
+
+# -- hard cases ---------------------------------------------------------------------
+
+PAPER = {"radius": 100.0, "load": 0.002, "nu": 0.2}
+
+
+@pytest.mark.parametrize("eps", [1e-2, 1e-4, 1e-6])
+@pytest.mark.parametrize(("kw", "kp"), [(1.0, 0.1), (0.1, 0.3), (10.0, 0.1)])
+def test_near_the_pasternak_critical_speed(kw: float, kp: float, eps: float) -> None:
+    # Just below V*_cr(kw, nu, kp) (above the springs' own V*_cr): the
+    # solve converges, its error estimate bounds the error against a tight
+    # solve and is within 10 tol.
+    vcr = mp.critical_vstar(kw, 0.2, kp)
+    assert vcr > mp.critical_vstar(kw, 0.2)
+    args = {"vstar": vcr * (1 - eps), "kw": kw, "kp": kp, "allow_unphysical": True}
+    s = mp.solve(**args, **PAPER)
+    ref = mp.solve(**args, **PAPER, tol=1e-12)
+    assert math.isfinite(s.a)
+    assert s.error_estimate >= abs(s.a - ref.a)
+    assert s.error_estimate <= 10 * 1e-8 * s.a
+    # The contact widens towards V*_cr (and stays finite).
+    assert s.a > mp.solve(vstar=0.0, kw=kw, kp=kp, **PAPER).a
+
+
+def test_near_rayleigh_on_a_stiff_shear_layer_is_the_rigid_base() -> None:
+    # kp = 10: V*_cr = V*_R; near it the base acts as a rigid one for the
+    # short waves that matter, and a stiffer kp converges to the rigid base.
+    # (The rigid base penetrates there: physics, test_hard_cases.py.)
+    vstar = RAYLEIGH_02 * (1 - 1e-6)
+    args = {"vstar": vstar, "allow_unphysical": True, **PAPER}
+    rigid = mp.solve(kw=math.inf, **args).a
+    stiff = mp.solve(kw=1.0, kp=10.0, **args).a
+    stiffer = mp.solve(kw=1.0, kp=1e12, **args).a
+    assert rigid < stiffer < stiff
+    assert stiffer == pytest.approx(rigid, rel=1e-8)
+
+
+@pytest.mark.parametrize("damping", [0.0, 0.2])
+def test_tiny_kp_is_continuous_with_winkler(damping: float) -> None:
+    springs = mp.solve(**CASE, damping=damping)
+    tiny = mp.solve(**CASE, damping=damping, kp=1e-12)
+    assert tiny.a == pytest.approx(springs.a, rel=1e-10)
+    assert tiny.indentation == pytest.approx(springs.indentation, rel=1e-10)
+    assert tiny.critical_vstar - springs.critical_vstar == pytest.approx(0.0, abs=1e-11)
+    assert mp.critical_vstar(1e-12, 0.2, 1e-12) > mp.critical_vstar(1e-12, 0.2)
+
+
+@pytest.mark.parametrize("kw", [1e-12, 1.0, 1e6])
+@pytest.mark.parametrize("kp", [1e6, 1e9, 1e12])
+def test_huge_kp_is_the_rigid_base(kw: float, kp: float) -> None:
+    # The shear layer makes the base rigid for waves shorter than
+    # sqrt(kp/kw): a/h nears the rigid base's like 1/kp (0.024/kp at kw = 1).
+    rigid = mp.solve(**{**CASE, "kw": math.inf})
+    s = mp.solve(**{**CASE, "kw": kw, "kp": kp})
+    assert s.valid
+    assert abs(s.a - rigid.a) <= 0.05 / kp + 1e-8 * rigid.a
+    assert s.critical_vstar == rigid.critical_vstar
+    # The membrane sinks P/(2 sqrt(kw kp)) on top of the rigid base's indentation.
+    sinking = CASE["load"] / (2 * math.sqrt(kw * kp))
+    assert s.indentation - rigid.indentation == pytest.approx(
+        sinking, rel=5 * math.sqrt(kw / kp) + 1e-6, abs=1e-7 * rigid.indentation
+    )
+
+
+@pytest.mark.parametrize("vstar", [0.3, 0.7])
+def test_kp_with_damping_balances_energy(vstar: float) -> None:
+    # kw = 1, kp = 0.1: V*_cr = 0.6316; 0.7 is above it (damping solves there).
+    s = mp.solve(**{**CASE, "vstar": vstar}, kp=0.1, damping=0.1)
+    assert (vstar > s.critical_vstar) == (vstar == 0.7)
+    assert s.drag > 0.0
+    # The dashpots' power (from the bottom face's response) equals the
+    # towing force's (from the collocation solution): an independent balance.
+    assert s.dissipation == pytest.approx(s.drag, rel=1e-9)
+    # Above V*_cr the waves behind the punch decay only through the dashpots.
+    x = np.linspace(-400.0, 400.0, 8001)
+    assert np.trapezoid(s.foundation_reaction(x), x) == pytest.approx(1.0, abs=1e-7)
+    # A stiffer shear layer carries the same load with less drag.
+    stiffer = mp.solve(**{**CASE, "vstar": vstar}, kp=1.0, damping=0.1)
+    assert stiffer.drag < s.drag
+
+
+def test_accuracy_ladder_with_kp_is_bounded() -> None:
+    vstar = 0.99 * mp.critical_vstar(1.0, 0.2, 0.3)
+    report = accuracy_report(
+        {"vstar": vstar, "kw": 1.0, "radius": 100.0, "load": 0.002, "kp": 0.3},
+        tols=(1e-4, 1e-8),
+    )
+    assert report is not None
+    assert report.scene.params["kp"] == 0.3
+    for rung in report.rungs:
+        assert not rung.failure
+        assert rung.bounded, rung
