@@ -28,7 +28,7 @@ from movingpunch.errors import InvalidParameterError, SupercriticalSpeedError
 from movingpunch.params import SPECS, range_text
 from movingpunch.scene import Scene, SceneError, bundled_scenes
 from movingpunch.tui import create_app
-from movingpunch.tui.widgets import ParamsPanel
+from movingpunch.tui.widgets import CurvePlot, ParamsPanel
 from tui_pilot import screen_of, settle, sync, type_into
 
 CASE = {"vstar": 0.2, "kw": 1.0, "radius": 100.0, "load": 0.002}
@@ -580,3 +580,24 @@ def test_accuracy_ladder_with_kp_is_bounded() -> None:
     for rung in report.rungs:
         assert not rung.failure
         assert rung.bounded, rung
+
+
+@sync
+async def test_tui_opens_the_bundled_pasternak_scene() -> None:
+    app = create_app("pasternak", tab="sweep")
+    async with app.run_test(size=(100, 32)) as pilot:
+        await settle(pilot)
+        screen = screen_of(app)
+        assert screen.sweep.param == "kp"
+        data = screen.query_one("#plot-sweep", CurvePlot).curves
+        assert data is not None
+        assert data.grid_label == "k_p/(μh)"
+        scene = Scene.bundled("pasternak")
+        assert scene.sweep is not None
+        np.testing.assert_array_equal(data.grid, scene.sweep.values)
+        current = data.series[0].values
+        want = [
+            mp.solve(vstar=0.0, kw=1.0, radius=100.0, load=0.002, kp=kp).a
+            for kp in scene.sweep.values
+        ]
+        np.testing.assert_allclose(current, want, rtol=1e-12)
