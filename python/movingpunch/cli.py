@@ -171,20 +171,21 @@ def _build_parser() -> argparse.ArgumentParser:
         )
     solve_p.add_argument("--nu", type=_number("nu"), default=0.2, help=help_text("nu"))
     solve_p.add_argument("--tol", type=_tol, default=1e-8, help=help_text("tol"))
-    solve_p.add_argument(
-        "--damping",
-        type=_number("damping"),
-        default=0.0,
-        help=help_text("damping") + "; > 0 gives the asymmetric contact (-b, a) "
-        "and the drag, at any speed below the Rayleigh speed (docs/damped.md)",
-    )
-    solve_p.add_argument(
-        "--kp",
-        type=_number("kp"),
-        default=0.0,
-        help=help_text("kp") + "; the base condition sigma_y = kw v - kp v'' "
-        "(docs/theory.md section 12)",
-    )
+    # The foundation's optional terms, 0 by default (the paper's model).
+    for name, more in (
+        (
+            "damping",
+            "; > 0 gives the asymmetric contact (-b, a) and the drag, at any "
+            "speed below the Rayleigh speed (docs/damped.md)",
+        ),
+        (
+            "kp",
+            "; the base condition sigma_y = kw v - kp v'' (docs/theory.md section 12)",
+        ),
+    ):
+        solve_p.add_argument(
+            f"--{name}", type=_number(name), default=0.0, help=help_text(name) + more
+        )
     solve_p.add_argument(
         "--allow-unphysical",
         action="store_true",
