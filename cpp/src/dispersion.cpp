@@ -66,7 +66,7 @@ CriticalSpeed compute_critical(double kw, double nu, double kp) {
   // the whole branch (by about kp on soft foundations) without moving the
   // minimum of a soft foundation (t^4 ~ kw/D as for springs alone); as kp
   // grows the dip becomes shallow and moves to larger t (kw = 10, nu = 0.2,
-  // kp = 0.3: 5e-5 relative at t = 7.7), and beyond kp ~ 1 no free wave is
+  // kp = 0.3: 6e-5 relative at t = 7.2), and beyond kp ~ 1 no free wave is
   // slower than the Rayleigh wave of the top face: V*_cr = V*_R, t = inf
   // (a dip shallower than the scan's 1e-13 below V*_R counts as none). The
   // grid's range 1e-5 <= t <= 1e5 covers both.

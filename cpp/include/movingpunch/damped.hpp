@@ -164,10 +164,10 @@ struct DampedParams {
   double load = 0.002;  // P / (mu h) > 0
   double nu = 0.2;      // [0, 0.5)
   double damping = 0;   // c_w c_T / mu > 0 (finite)
-  double kp = 0;        // k_p / (mu h) in [0, kMaxKp]: Pasternak shear layer (0: Winkler)
   double tol = 1e-8;    // relative tolerance on the contact ends and the pressure, [1e-14, 1e-2]
   bool allow_unphysical = false;
   int n = 0;  // fixed collocation size (even, 2..1024); 0: refine
+  double kp = 0;  // k_p / (mu h) in [0, kMaxKp]: Pasternak shear layer (0: Winkler)
 };
 
 // Throws std::invalid_argument naming the parameter and its valid range.
