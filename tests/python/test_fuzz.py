@@ -130,8 +130,13 @@ class Draw:
             elif s < 0.9:
                 # Right up to V*_cr for kw <= 10. For stiffer foundations V*_cr
                 # is within 1e-4 of the Rayleigh speed and solves there take
-                # seconds (test_hard_cases.py covers them): stop at 1e-4.
-                closest = 15.0 if kw <= 10.0 else 4.0
+                # seconds (test_hard_cases.py covers them): stop at 1e-4. So for
+                # a shear layer kp that lifts V*_cr to within 1 % of V*_R
+                # (test_pasternak.py covers them).
+                stiff = kw > 10.0 or (
+                    kp > 0.0 and vcr > 0.99 * _core.rayleigh_vstar(nu)
+                )
+                closest = 4.0 if stiff else 15.0
                 frac = 1.0 - 10.0 ** -self.rng.uniform(2.0, closest)
             else:
                 frac = float(self._pick([1.0, 1.0 + 1e-9, 1.01, 0.0]))
