@@ -74,14 +74,16 @@ void bind_contact(py::module_& m) {
   m.def(
       "solve_contact",
       [](double vstar, double kw, double radius, double load, double nu, double tol,
-         bool allow_unphysical, int n) {
-        return solve_contact(
-            solve_params<ContactParams>(vstar, kw, radius, load, nu, tol, allow_unphysical, n));
+         bool allow_unphysical, int n, double kp) {
+        auto p = solve_params<ContactParams>(vstar, kw, radius, load, nu, tol, allow_unphysical, n);
+        p.kp = kp;
+        return solve_contact(p);
       },
       py::kw_only(), "vstar"_a, "kw"_a, "radius"_a, "load"_a, "nu"_a, "tol"_a, "allow_unphysical"_a,
-      "n"_a = 0, Release(),
+      "n"_a = 0, "kp"_a = 0.0, Release(),
       "Solves the moving-punch contact problem (dimensionless inputs: vstar = "
-      "rho V^2/mu, kw = k_w h/mu, radius = R/h, load = P/(mu h), nu, tol on a/h). "
+      "rho V^2/mu, kw = k_w h/mu, radius = R/h, load = P/(mu h), nu, tol on a/h, "
+      "kp = k_p/(mu h) the Pasternak shear layer, 0: springs alone). "
       "Raises InvalidParameterError, SupercriticalSpeedError, "
       "UnphysicalContactError (unless allow_unphysical) or ConvergenceError.");
 }

@@ -24,6 +24,7 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 // Below this the lowest free wave lies beyond the critical-speed search.
 constexpr double kMinKw = 1e-12;
+using detail::foundation_text;
 using detail::kMaxA;
 using detail::kMinA;
 using detail::kSizes;
@@ -53,6 +54,7 @@ void validate(const ContactParams& p) {
   // is SupercriticalSpeedError (raised by solve_contact with both speeds).
   require_in_range("vstar", p.vstar, 0.0, 1e300, false, false);
   require_in_range("kw", p.kw, kMinKw, kInf, false, false, true);
+  require_in_range("kp", p.kp, 0.0, kMaxKp, false, false);
   require_in_range("radius", p.radius, 0.0, 1e12, true, false);
   require_in_range("load", p.load, 0.0, 1e6, true, false);
   require_in_range("tol", p.tol, 1e-14, 1e-2, false, false);
@@ -436,11 +438,14 @@ ContactSolution solve_contact(const ContactParams& p) {
   Timer timer;
   validate(p);
   const double vr = rayleigh_vstar(p.nu);
-  const CriticalSpeed crit = critical_speed(p.kw, p.nu);
+  const CriticalSpeed crit = critical_speed(p.kw, p.nu, p.kp);
   const double t_critical = timer.seconds();
-  if (p.vstar >= crit.vstar) throw SupercriticalSpeedError(p.vstar, crit.vstar, vr);
+  if (p.vstar >= crit.vstar) {
+    if (p.kp > 0.0) throw SupercriticalSpeedError(p.vstar, crit.vstar, vr, foundation_text(p));
+    throw SupercriticalSpeedError(p.vstar, crit.vstar, vr);
+  }
 
-  const LayerModel model(p.vstar, p.kw, p.nu);
+  const LayerModel model(p.vstar, p.kw, p.nu, p.kp);
   const double phi1 = model.phi1();
   // Round-off of a/h (relative) from the layer response: within a hair of the
   // Rayleigh speed phi1 = nL / R(vstar) carries a relative error of about
@@ -472,7 +477,7 @@ ContactSolution solve_contact(const ContactParams& p) {
   // (a layer compressed under the punch, measured for 0 <= nu < 0.5); tiny
   // contacts are half-plane (Hertz) contacts.
   const double lambda = p.radius * p.load;
-  const detail::WidthGuess guess = detail::width_guess(phi1, lambda, p.kw, p.nu);
+  const detail::WidthGuess guess = detail::width_guess(phi1, lambda, p.kw, p.nu, p.kp);
   if (0.5 * std::cbrt(0.75 * lambda) > kMaxA) width_out_of_range(p, true);
   if (10.0 * guess.hertz < kMinA) width_out_of_range(p, false);
 

@@ -1,7 +1,8 @@
 """Public Python API: validated wrappers around the compiled core.
 
 Every quantity is dimensionless (layer thickness h = 1, shear modulus mu = 1):
-vstar = rho V^2/mu, kw = k_w h/mu, radius = R/h, load = P/(mu h), nu, tol (or
+vstar = rho V^2/mu, kw = k_w h/mu, kp = k_p/(mu h) (a Pasternak shear layer on
+the springs; 0: Winkler), radius = R/h, load = P/(mu h), nu, tol (or
 a preset name, see PRESETS). Their valid ranges, units and meanings are in one
 table, ``movingpunch.params.SPECS``.
 
@@ -25,6 +26,7 @@ from movingpunch import _core, params
 from movingpunch._evaluate import (
     _as_points,
     _check_flag,
+    _check_kp,
     _check_kw,
     _check_nu,
     _check_solve_inputs,
@@ -165,7 +167,7 @@ class Solution(ResultFields):
     ) -> FloatArray: ...
     def foundation_reaction(self, x: npt.ArrayLike) -> float | FloatArray:
         """Pressure the base exerts on the layer, -sigma_y(x, -h)/(P/h)
-        (= -kw v(x, -h)/(P/h) for a finite foundation; the rigid base's
+        (= -(kw v - kp v'')(x, -h)/(P/h) for a finite foundation; the rigid base's
         contact pressure for kw = inf). Integrates to 1 over x."""
         return _pointwise("x", x, self._impl.foundation_reaction)
 
@@ -182,6 +184,7 @@ def solve(
     allow_unphysical: bool = ...,
     n: int | None = ...,
     damping: Literal[0] = ...,
+    kp: float = ...,
 ) -> Solution: ...
 
 
@@ -197,6 +200,7 @@ def solve(
     allow_unphysical: bool = ...,
     n: int | None = ...,
     damping: float,
+    kp: float = ...,
 ) -> ContactSolution: ...
 
 
@@ -211,6 +215,7 @@ def solve(
     allow_unphysical: bool = False,
     n: int | None = None,
     damping: float = 0.0,
+    kp: float = 0.0,
 ) -> ContactSolution:
     """Solves the contact problem of a rigid cylinder sliding over the layer.
 
@@ -234,6 +239,12 @@ def solve(
     returns a Solution; > 0 returns a ``movingpunch.damped.DampedSolution``
     (asymmetric contact, drag; speeds up to the Rayleigh speed). Both satisfy
     ``movingpunch.ContactSolution``, the one contract callers use.
+
+    ``kp`` = k_p/(mu h) >= 0 adds a Pasternak shear layer to the springs
+    (a two-parameter foundation: sigma_y(x, -h) = kw v - kp v'', the stiffness
+    kw + kp (alpha h)^2 per wavenumber; docs/theory.md section 12). 0 (the
+    default) is the Winkler foundation, bit for bit. It raises the critical
+    speed (``critical_vstar(kw, nu, kp)``).
     """
     from movingpunch.damped import check_damping, solve_damped
 
@@ -248,8 +259,9 @@ def solve(
             tol=tol,
             allow_unphysical=allow_unphysical,
             n=n,
+            kp=kp,
         )
-    inputs = _check_solve_inputs(vstar, kw, radius, load, nu, tol)
+    inputs = _check_solve_inputs(vstar, kw, radius, load, nu, tol, kp)
     flag = _check_flag("allow_unphysical", allow_unphysical)
     size = _check_size(n)
     impl = _core.solve_contact(**inputs, allow_unphysical=flag, n=size)
@@ -400,6 +412,7 @@ def _stress_error_estimate(s: Solution) -> float:
             other = _core.solve_contact(
                 vstar=s.vstar,
                 kw=s.kw,
+                kp=s.kp,
                 radius=s.radius,
                 load=s.load,
                 nu=s.nu,
@@ -427,7 +440,7 @@ def kernel_cache_info() -> dict[str, int]:
     """The process-wide cache of k1 kernel tables: ``size`` (tables held),
     ``hits`` (solves that reused a table), ``misses`` (tables built).
 
-    Tables are keyed on (vstar, kw, nu, tol), so solves that change only the
+    Tables are keyed on (vstar, kw, nu, tol, kp), so solves that change only the
     radius or the load reuse one table (when the cached table covers the new
     contact width).
     """
@@ -439,15 +452,18 @@ def clear_kernel_cache() -> None:
     _core.clear_kernel_cache()
 
 
-def critical_vstar(kw: float, nu: float = 0.2) -> float:
-    """Critical speed V*_cr(kw, nu): the minimum phase speed of free waves in
-    the layer on springs (the Rayleigh speed for kw = inf)."""
-    return _core.critical_speed(_check_kw(kw), _check_nu(nu))[0]
+def critical_vstar(kw: float, nu: float = 0.2, kp: float = 0.0) -> float:
+    """Critical speed V*_cr(kw, nu, kp): the minimum phase speed of free waves
+    in the layer on springs (and a Pasternak shear layer kp; the Rayleigh
+    speed for kw = inf, and once kp is so stiff that no free wave is slower
+    than the Rayleigh wave). Grows with kw and with kp."""
+    return _core.critical_speed(_check_kw(kw), _check_nu(nu), _check_kp(kp))[0]
 
 
-def critical_wavenumber(kw: float, nu: float = 0.2) -> float:
-    """alpha h at which the phase speed is minimal (inf for kw = inf)."""
-    return _core.critical_speed(_check_kw(kw), _check_nu(nu))[1]
+def critical_wavenumber(kw: float, nu: float = 0.2, kp: float = 0.0) -> float:
+    """alpha h at which the phase speed is minimal (inf for kw = inf, and
+    when V*_cr is the Rayleigh speed)."""
+    return _core.critical_speed(_check_kw(kw), _check_nu(nu), _check_kp(kp))[1]
 
 
 def rayleigh_vstar(nu: float = 0.2) -> float:
@@ -475,6 +491,7 @@ def layer_response(
     kw: float,
     nu: float = ...,
     method: Literal["auto", "modal", "transfer"] = ...,
+    kp: float = ...,
 ) -> tuple[float, float]: ...
 @overload
 def layer_response(
@@ -484,6 +501,7 @@ def layer_response(
     kw: float,
     nu: float = ...,
     method: Literal["auto", "modal", "transfer"] = ...,
+    kp: float = ...,
 ) -> tuple[FloatArray, FloatArray]: ...
 def layer_response(
     t: npt.ArrayLike,
@@ -492,6 +510,7 @@ def layer_response(
     kw: float,
     nu: float = 0.2,
     method: Literal["auto", "modal", "transfer"] = "auto",
+    kp: float = 0.0,
 ) -> tuple[float, float] | tuple[FloatArray, FloatArray]:
     """Surface responses (M1, M2) of the layer per unit transformed pressure
     at wavenumbers t = alpha h >= 0 (M1 -> phi1, M2 -> phi2 as t -> inf).
@@ -509,7 +528,12 @@ def layer_response(
             allowed="'auto', 'modal' or 'transfer'",
         )
     m1, m2 = _core.layer_response(
-        _flat(points), _check_vstar(vstar), _check_kw(kw), _check_nu(nu), method
+        _flat(points),
+        _check_vstar(vstar),
+        _check_kw(kw),
+        _check_nu(nu),
+        method,
+        _check_kp(kp),
     )
     if _is_scalar(t):
         return float(m1[0]), float(m2[0])

@@ -23,6 +23,7 @@ struct ContactParams {
   double tol = 1e-8;              // relative tolerance on a/h, in [1e-14, 1e-2]
   bool allow_unphysical = false;  // if true, return invalid solutions flagged
   int n = 0;  // fixed collocation size (even, 2..4096); 0: refine N until a/h converges
+  double kp = 0;  // k_p / (mu h) in [0, kMaxKp]: Pasternak shear layer (0: Winkler)
 };
 
 // Throws std::invalid_argument naming the parameter and its valid range.

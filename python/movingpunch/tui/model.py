@@ -36,6 +36,7 @@ FloatArray = npt.NDArray[np.float64]
 PARAM_NAMES: tuple[str, ...] = (
     "vstar",
     "kw",
+    "kp",
     "radius",
     "load",
     "nu",
@@ -44,7 +45,15 @@ PARAM_NAMES: tuple[str, ...] = (
 )
 """Every input of the parameters panel, in order."""
 
-SCENE_PARAMS: tuple[str, ...] = ("vstar", "kw", "radius", "load", "nu", "damping")
+SCENE_PARAMS: tuple[str, ...] = (
+    "vstar",
+    "kw",
+    "radius",
+    "load",
+    "nu",
+    "damping",
+    "kp",
+)
 """The physical parameters (a scene's ``params``); ``tol`` is separate."""
 
 TabName = Literal["pressure", "surface", "depth", "sweep", "field", "accuracy"]
@@ -66,6 +75,7 @@ SHORT: dict[str, str] = {
     "load": "P/μh",
     "nu": "ν",
     "damping": "damping",
+    "kp": "kp",
     "tol": "tol",
 }
 """Short labels of the parameters, for legends."""
@@ -77,6 +87,7 @@ GRID_LABELS: dict[str, str] = {
     "load": "P/(μh)",
     "nu": "ν",
     "damping": "damping c_w c_T/μ",
+    "kp": "k_p/(μh)",
 }
 """Axis labels of a swept parameter (the paper's normalisations)."""
 
@@ -117,6 +128,9 @@ class Params:
     tol: float = 1e-8
     damping: float = 0.0
     """c_w c_T/mu: dashpots in the foundation (docs/damped.md); 0: none."""
+    kp: float = 0.0
+    """k_p/(mu h): the Pasternak shear layer on the springs (docs/theory.md
+    section 12); 0: springs alone."""
 
     @property
     def damped(self) -> bool:
@@ -131,21 +145,22 @@ class Params:
             raise InvalidParameterError(f"unknown parameter {name!r}")
         return replace(self, **{name: value})
 
+    def _shown(self, name: str) -> bool:
+        """damping and kp only when > 0 (0 is the paper's model)."""
+        return name not in ("damping", "kp") or self.get(name) > 0.0
+
     def physical(self) -> dict[str, float]:
-        """The scene's ``params`` mapping (without tol; damping only if > 0)."""
-        return {
-            name: self.get(name)
-            for name in SCENE_PARAMS
-            if name != "damping" or self.damped
-        }
+        """The scene's ``params`` mapping (without tol; damping and kp only
+        if > 0)."""
+        return {name: self.get(name) for name in SCENE_PARAMS if self._shown(name)}
 
     def label(self, against: Params | None = None) -> str:
         """``V*=0.2 kw=1 ...``; only the values that differ from ``against``
-        (damping 0 is not shown)."""
+        (damping 0 and kp 0 are not shown)."""
         names = [
             n
             for n in SCENE_PARAMS
-            if (against is None and (n != "damping" or self.damped))
+            if (against is None and self._shown(n))
             or (against is not None and self.get(n) != against.get(n))
         ]
         if not names:
@@ -350,12 +365,13 @@ def _solve(params: Params) -> ContactSolution:
         nu=params.nu,
         tol=params.tol,
         damping=params.damping,
+        kp=params.kp,
     )
 
 
-def limits(kw: float, nu: float) -> tuple[float, float]:
+def limits(kw: float, nu: float, kp: float = 0.0) -> tuple[float, float]:
     """(V*_cr, V*_R) for the foundation and Poisson's ratio."""
-    return critical_vstar(kw, nu), rayleigh_vstar(nu)
+    return critical_vstar(kw, nu, kp), rayleigh_vstar(nu)
 
 
 def summary(cache: Cache, params: Params) -> Summary:

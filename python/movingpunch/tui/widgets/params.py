@@ -16,6 +16,7 @@ from movingpunch.tui.model import PARAM_NAMES, Params, fmt
 LABELS: dict[str, str] = {
     "vstar": "V*",
     "kw": "kw h/μ",
+    "kp": "kp/(μh)",
     "radius": "R/h",
     "load": "P/(μh)",
     "nu": "ν",
