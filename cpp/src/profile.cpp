@@ -24,7 +24,7 @@ std::string num(double v) {
 }
 
 [[noreturn]] void bad_table(const char* name, const std::string& allowed, const std::string& why) {
-  throw InvalidParameter(name, allowed, std::string("profile table: ") + why);
+  throw InvalidParameter(name, allowed, std::string(name) + ": " + why);
 }
 
 }  // namespace
@@ -259,16 +259,20 @@ std::vector<double> PunchProfile::slope_chebyshev(double a, int count) const {
       return d;
     }
     case ProfileKind::table: {
+      // Midpoint rule: per angle, cos(m th) for odd m by the recurrence
+      // cos((m + 2) th) = 2 cos(2 th) cos(m th) - cos((m - 2) th).
       const int M = std::max(16 * count + 64, 256);
-      std::vector<double> f(static_cast<std::size_t>(M));
-      for (int j = 0; j < M; ++j)
-        f[static_cast<std::size_t>(j)] = slope(a * std::cos((j + 0.5) * kPi / M));
-      for (int q = 0; q < count; ++q) {
-        const double m = 2.0 * q + 1.0;
-        double sum = 0.0;
-        for (int j = 0; j < M; ++j)
-          sum += f[static_cast<std::size_t>(j)] * std::cos(m * (j + 0.5) * kPi / M);
-        d[static_cast<std::size_t>(q)] = 2.0 * sum / M;
+      for (int j = 0; j < M; ++j) {
+        const double th = (j + 0.5) * kPi / M;
+        const double f = slope(a * std::cos(th)) * 2.0 / M;
+        const double c2 = 2.0 * std::cos(2.0 * th);
+        double prev = std::cos(-th), cur = std::cos(th);  // cos(-th), cos(th)
+        for (int q = 0; q < count; ++q) {
+          d[static_cast<std::size_t>(q)] += f * cur;
+          const double next = c2 * cur - prev;
+          prev = cur;
+          cur = next;
+        }
       }
       return d;
     }
