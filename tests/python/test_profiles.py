@@ -442,3 +442,102 @@ def test_profile_round_trips_through_its_dict() -> None:
     with pytest.raises(mp.InvalidParameterError) as info:
         profile_from_dict({"kind": "flat", "half_width": -1})
     assert info.value.parameter == "profile.half_width"
+
+
+def test_bundled_flat_punch_scene() -> None:
+    """The bundled flat punch (b = 0.01 h) against the half-plane closed form,
+    at rest and moving: within 1e-3 (the layer's O((b/h)^2) correction,
+    largest near V*_cr), and the scene round-trips through TOML."""
+    from movingpunch.scene import Scene
+
+    scene = Scene.bundled("flat-punch")
+    assert scene.profile == mp.Flat(0.01)
+    assert Scene.from_toml(scene.to_toml()) == scene
+    result = scene.run()
+    curves = result.outputs["pressure"].curves
+    assert len(curves) == 3
+    for curve in curves:
+        exact = flat_closed_form(0.01, curve.x)
+        assert np.max(np.abs(curve.y / exact - 1.0)) < 1e-3, curve.label
+    widths = result.outputs["contact_width"].columns["a"]
+    assert np.all(widths == 0.01)
+
+
+SCENE = """
+[params]
+vstar = 0.2
+kw = 1.0
+load = 0.002
+{extra}
+[outputs]
+contact_width = true
+"""
+
+
+@pytest.mark.parametrize(
+    ("extra", "key"),
+    [
+        ('[params.profile]\nkind = "flta"\nhalf_width = 0.5', "params.profile.kind"),
+        (
+            '[params.profile]\nkind = "flat"\nhalf_width = -0.5',
+            "params.profile.half_width",
+        ),
+        (
+            '[params.profile]\nkind = "flat"\nhalf_width = "a"',
+            "params.profile.half_width",
+        ),
+        ('[params.profile]\nkind = "flat"\nradius = 1.0', "params.profile.radius"),
+        (
+            '[params.profile]\nkind = "rounded_flat"\nhalf_width = 0.5',
+            "params.profile.radius",
+        ),
+        (
+            '[params.profile]\nkind = "table"\nx = [0, 1, 2]\ny = [0, 1, 4]',
+            "params.profile.x",
+        ),
+        (
+            '[params.profile]\nkind = "table"\n'
+            "x = [-2, -1, 0, 1, 2]\ny = [1, 2, 0, 2, 1]",
+            "params.profile.y",
+        ),
+        (
+            '[params.profile]\nkind = "flat"\nhalf_width = 0.5\nfoo = 1',
+            "params.profile.foo",
+        ),
+        (
+            "radius = 3.0\n[params.profile]\nkind = 'flat'\nhalf_width = 0.5",
+            "params.radius",
+        ),
+    ],
+)
+def test_scene_profile_errors_name_the_key(extra: str, key: str) -> None:
+    from movingpunch.scene import Scene, SceneError
+
+    with pytest.raises(SceneError) as info:
+        Scene.from_toml(SCENE.format(extra=extra), "s.toml")
+    assert key in str(info.value)
+
+
+def test_scene_profiles_round_trip_and_run() -> None:
+    from movingpunch.scene import Scene, SceneError
+
+    for extra in (
+        '[params.profile]\nkind = "rounded_flat"\nhalf_width = 0.2\nradius = 100.0',
+        '[params.profile]\nkind = "table"\nx = [-2, -1, 0, 1, 2]\n'
+        "y = [0.02, 0.005, 0, 0.005, 0.02]",
+        '[params.profile]\nkind = "cylinder"\nradius = 100.0',
+    ):
+        scene = Scene.from_toml(SCENE.format(extra=extra))
+        assert Scene.from_toml(scene.to_toml()) == scene
+        a = scene.run().outputs["contact_width"].columns["a"][0]
+        assert a > 0.2
+    cylinder = Scene.from_toml(
+        SCENE.format(extra='[params.profile]\nkind = "cylinder"\nradius = 100.0')
+    )
+    assert cylinder.profile is None
+    assert cylinder.params["radius"] == 100.0
+    with pytest.raises(SceneError, match=r"vary\.param"):
+        Scene.from_toml(
+            SCENE.format(extra='[params.profile]\nkind = "flat"\nhalf_width = 0.5')
+            + '\n[vary]\nparam = "radius"\nvalues = [1.0, 2.0]\n'
+        )
