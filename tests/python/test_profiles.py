@@ -541,3 +541,49 @@ def test_scene_profiles_round_trip_and_run() -> None:
             SCENE.format(extra='[params.profile]\nkind = "flat"\nhalf_width = 0.5')
             + '\n[vary]\nparam = "radius"\nvalues = [1.0, 2.0]\n'
         )
+
+
+def test_tui_profile_selector() -> None:
+    """The panel's punch input: flat (b/h), rounded flat, garbage refused
+    inline; the summary shows K for the flat punch; the pressure plot shows
+    the flat punch's pressure (the API's, at the plot's grid)."""
+    import asyncio
+
+    from movingpunch.tui import create_app
+    from movingpunch.tui.widgets import CurvePlot, ParamsPanel
+    from tui_pilot import screen_of, settle, status_text, summary_text, type_into
+
+    async def run() -> None:
+        app = create_app()
+        async with app.run_test(size=(100, 32)) as pilot:
+            await settle(pilot)
+            screen = screen_of(app)
+            await type_into(pilot, "half_width", "0.4", paste=True)
+            await settle(pilot)
+            await type_into(pilot, "profile", "flat", paste=True)
+            await settle(pilot)
+            assert screen.params.profile == "flat"
+            assert "K " in summary_text(app)
+            assert "a/h 0.4" in summary_text(app)
+            expected = mp.solve(vstar=0.2, kw=1.0, load=0.002, profile=mp.Flat(0.4))
+            data = screen.query_one("#plot-pressure", CurvePlot).curves
+            assert data is not None
+            np.testing.assert_allclose(
+                data.series[0].values, expected.pressure(data.grid), rtol=1e-12
+            )
+            await type_into(pilot, "profile", "rounded flat", paste=True)
+            await settle(pilot)
+            assert screen.params.profile == "rounded_flat"
+            assert "K " not in summary_text(app)
+            for text in ("flta", "", "∞", "table"):
+                await type_into(pilot, "profile", text, paste=True)
+                await settle(pilot)
+                assert screen.query_one(ParamsPanel).message("profile"), text
+            assert app.is_running
+            assert "profile" in status_text(app) or "invalid" in status_text(app)
+            await type_into(pilot, "profile", "cylinder", paste=True)
+            await settle(pilot)
+            assert screen.query_one(ParamsPanel).message("profile") == ""
+            assert screen.params.shape() is None
+
+    asyncio.run(run())

@@ -24,6 +24,7 @@ from movingpunch.contract import ContactSolution
 from movingpunch.errors import InvalidParameterError, MovingPunchError
 from movingpunch.fields import StressPeaks
 from movingpunch.params import check as check_param
+from movingpunch.profiles import PROFILE_KINDS, Flat, Profile, PunchProfile, RoundedFlat
 from movingpunch.solver import (
     critical_vstar,
     rayleigh_vstar,
@@ -37,12 +38,33 @@ PARAM_NAMES: tuple[str, ...] = (
     "vstar",
     "kw",
     "radius",
+    "half_width",
     "load",
     "nu",
     "damping",
     "tol",
 )
-"""Every input of the parameters panel, in order."""
+"""Every numeric input of the parameters panel, in order (the punch's
+kind, ``profile``, is a text input above them: ``parse_profile_kind``)."""
+
+TUI_PROFILES: tuple[str, ...] = PROFILE_KINDS
+"""The punch shapes the panel's ``profile`` input takes (a table comes from
+a scene file)."""
+
+
+def parse_profile_kind(text: str) -> str:
+    """The punch's kind typed in the panel: cylinder, flat, rounded_flat or
+    table (case and "-"/" " for "_" forgiven). Raises InvalidParameterError
+    (``.parameter`` "profile") naming the kinds."""
+    kind = "_".join(text.strip().lower().replace("-", " ").split())
+    if kind not in TUI_PROFILES:
+        raise InvalidParameterError(
+            f"profile must be one of {', '.join(TUI_PROFILES)}, got {text.strip()!r}",
+            parameter="profile",
+            allowed=", ".join(TUI_PROFILES),
+        )
+    return kind
+
 
 SCENE_PARAMS: tuple[str, ...] = ("vstar", "kw", "radius", "load", "nu", "damping")
 """The physical parameters (a scene's ``params``); ``tol`` is separate."""
@@ -63,6 +85,7 @@ SHORT: dict[str, str] = {
     "vstar": "V*",
     "kw": "kw",
     "radius": "R/h",
+    "half_width": "b/h",
     "load": "P/μh",
     "nu": "ν",
     "damping": "damping",
@@ -117,10 +140,35 @@ class Params:
     tol: float = 1e-8
     damping: float = 0.0
     """c_w c_T/mu: dashpots in the foundation (docs/damped.md); 0: none."""
+    profile: str = "cylinder"
+    """The punch's kind (``TUI_PROFILES``): a cylinder of ``radius``, a flat
+    face of ``half_width``, a rounded flat (``half_width``, corners of
+    ``radius``) or the ``table`` of a scene file."""
+    half_width: float = 0.5
+    """b/h of a flat or rounded flat punch (unused by the others)."""
+    table: Profile | None = None
+    """The tabulated profile of a scene file (kind "table")."""
 
     @property
     def damped(self) -> bool:
         return self.damping > 0.0
+
+    def shape(self) -> PunchProfile | None:
+        """The punch solve() takes (None: the cylinder of ``radius``).
+        Raises InvalidParameterError naming the input at fault."""
+        if self.profile == "flat":
+            return Flat(self.half_width)
+        if self.profile == "rounded_flat":
+            return RoundedFlat(self.half_width, self.radius)
+        if self.profile == "table":
+            if self.table is None:
+                raise InvalidParameterError(
+                    "profile table: open a scene file with a [params.profile] "
+                    "table (the panel has no table editor)",
+                    parameter="profile",
+                )
+            return self.table
+        return None
 
     def get(self, name: str) -> float:
         value: float = getattr(self, name)
@@ -129,14 +177,17 @@ class Params:
     def with_value(self, name: str, value: float) -> Params:
         if name not in PARAM_NAMES:
             raise InvalidParameterError(f"unknown parameter {name!r}")
-        return replace(self, **{name: value})
+        changes: dict[str, object] = {name: value}
+        return replace(self, **changes)  # type: ignore[arg-type]
 
     def physical(self) -> dict[str, float]:
-        """The scene's ``params`` mapping (without tol; damping only if > 0)."""
+        """The scene's ``params`` mapping (without tol; damping only if > 0;
+        radius only for a cylinder or a rounded flat)."""
         return {
             name: self.get(name)
             for name in SCENE_PARAMS
-            if name != "damping" or self.damped
+            if (name != "damping" or self.damped)
+            and (name != "radius" or self.profile in ("cylinder", "rounded_flat"))
         }
 
     def label(self, against: Params | None = None) -> str:
@@ -148,9 +199,25 @@ class Params:
             if (against is None and (n != "damping" or self.damped))
             or (against is not None and self.get(n) != against.get(n))
         ]
-        if not names:
+        shape = self.shape_label()
+        if against is not None and shape == against.shape_label():
+            shape = ""
+        if not names and not shape:
             return "same"
-        return " ".join(f"{SHORT[n]}={fmt(self.get(n), 4)}" for n in names)
+        return " ".join(
+            [f"{SHORT[n]}={fmt(self.get(n), 4)}" for n in names]
+            + ([shape] if shape else [])
+        )
+
+    def shape_label(self) -> str:
+        """ "" for a cylinder, else the punch in a few characters."""
+        if self.profile == "flat":
+            return f"flat b={fmt(self.half_width, 4)}"
+        if self.profile == "rounded_flat":
+            return f"rflat b={fmt(self.half_width, 4)}"
+        if self.profile == "table":
+            return "table"
+        return ""
 
 
 PAPER_FIG4 = Params()
@@ -260,6 +327,8 @@ class Summary:
     """(-b/h, a/h); (-a/h, a/h) without damping."""
     drag: float = 0.0
     """Horizontal force on the punch over P (0 without damping)."""
+    end_coefficient: float = 0.0
+    """A flat punch's end coefficient K/((P/h) sqrt(h)) (0: bounded ends)."""
     warnings: tuple[str, ...] = ()
     """The solution's warnings (a requested accuracy not met)."""
 
@@ -342,10 +411,12 @@ def solution(cache: Cache, params: Params) -> ContactSolution:
 
 
 def _solve(params: Params) -> ContactSolution:
+    shape = params.shape()
     return solve(
         vstar=params.vstar,
         kw=params.kw,
-        radius=params.radius,
+        radius=params.radius if shape is None else None,
+        profile=shape,
         load=params.load,
         nu=params.nu,
         tol=params.tol,
@@ -377,6 +448,7 @@ def summary(cache: Cache, params: Params) -> Summary:
         rayleigh_vstar=s.rayleigh_vstar,
         contact_interval=s.contact_interval,
         drag=s.drag,
+        end_coefficient=s.end_coefficients[1],
         warnings=result_warnings(s),
     )
 
