@@ -587,3 +587,23 @@ def test_tui_profile_selector() -> None:
             assert screen.params.shape() is None
 
     asyncio.run(run())
+
+
+@pytest.mark.parametrize(
+    "profile", [mp.Flat(0.5), mp.RoundedFlat(0.2, 100.0)], ids=["flat", "rounded"]
+)
+def test_accuracy_ladder_of_a_profile(profile: Any) -> None:
+    """The accuracy ladder takes a profile: every rung's errors against the
+    fixed-N reference lie within its estimates (the flat punch's ends are
+    exact: error 0)."""
+    from movingpunch.accuracy import accuracy_report
+
+    report = accuracy_report(
+        {"vstar": 0.2, "kw": 1.0, "load": LOAD}, (1e-4, 1e-8), profile=profile
+    )
+    assert report is not None
+    assert report.scene.profile == profile
+    for rung in report.rungs:
+        assert rung.failure == ""
+        assert rung.bounded
+        assert rung.error_a <= max(rung.error_estimate, 1e-15)

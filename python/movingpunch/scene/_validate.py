@@ -78,8 +78,9 @@ def _check_profile(
             "movingpunch.Cylinder, Flat, RoundedFlat or Profile",
         )
     if "radius" in raw:
-        own = getattr(profile, "radius", None)
-        if own is None or raw["radius"] != own:
+        # The profile's own radius (a validated scene holds its nominal
+        # radius, inf for a flat punch or a table) is no conflict.
+        if raw["radius"] != profile.nominal_radius:
             raise c.fail(
                 "params.radius",
                 f"is given beside [params.profile] ({profile.describe()}), which "

@@ -657,7 +657,13 @@ def _accuracy(
     known = cache.peek(key)
     if isinstance(known, AccuracyTable):
         return known
-    out = accuracy_report(params.physical(), LADDER, progress=report, cancelled=stop)
+    out = accuracy_report(
+        params.physical(),
+        LADDER,
+        progress=report,
+        cancelled=stop,
+        profile=params.shape(),
+    )
     if out is None:
         return None
     table = cache.get_or_make(key, lambda: AccuracyTable(out))
