@@ -370,6 +370,90 @@ std::string format_g(double x, int precision = 3) {
   return o.str();
 }
 
+// The kernel part of an error budget: a first-order bound on |lambda^T dM G|
+// for the errors dk of the k1 kernel, where the folded matrix has entries
+// w_j [... + a (k(a (c_j - r_k)) + k(a (-c_j - r_k)))] (rows at r_k =
+// row_nodes, columns at c_j = col_nodes, wG_j = w_j G_j, lambda the adjoint of
+// the quantity S whose error this is). An error c sin(alpha u) of k1 moves it
+// by c |2 a (sum_k lambda_k sin(alpha a r_k)) (sum_j wG_j cos(alpha a c_j))|
+// (rank one in alpha), which weights each quadrature panel's error bound
+// (the largest over its ends and nodes) and each node's round-off
+// 2 eps (1 + |f| + f^2) w (independent, in quadrature, 3 sigma); the table's
+// truncation (its first omitted Chebyshev terms) and round-off follow.
+double kernel_perturbation(const KernelK1& k, double a, const Eigen::VectorXd& lambda,
+                           const Eigen::VectorXd& row_nodes, const Eigen::VectorXd& wG,
+                           const Eigen::VectorXd& col_nodes, double S) {
+  constexpr double eps = std::numeric_limits<double>::epsilon();
+  const AlphaQuadrature& q = k.value_quadrature();
+  const double phi1 = k.model().phi1();
+  const Eigen::Index rows = lambda.size(), cols = wG.size();
+  const double lam1 = lambda.cwiseAbs().sum(), wg1 = wG.cwiseAbs().sum();
+  // Truncation errors are systematic: they add. Round-off is independent from
+  // panel to panel and from one u to the next: it adds in quadrature, taken 3
+  // times (3 sigma).
+  double dS = 0.0, dS_round2 = 0.0;
+  if (q.panel_error.size() == q.panel_centre.size() &&
+      q.panel_roundoff.size() == q.panel_centre.size()) {
+    const double worst = 2.0 * a * lam1 * wg1;  // |dS| per unit error of k1, any shape
+    for (std::size_t i = 0; i < q.panel_centre.size(); ++i) {
+      const double e = q.panel_error[i], r = q.panel_roundoff[i];
+      if (!((e + r) * worst > 1e-4 * eps * std::fabs(S))) continue;  // negligible
+      // |S| at the panel's ends and its 15 nodes; the systematic error takes
+      // the largest, each node's round-off (2 eps (1 + |f| + f^2) w) its own.
+      auto sens = [&](double alpha) {
+        const double al = a * alpha;
+        double s1 = 0.0, s2 = 0.0;
+        for (Eigen::Index j = 0; j < std::max(rows, cols); ++j) {
+          if (j < rows) s1 += lambda(j) * std::sin(al * row_nodes(j));
+          if (j < cols) s2 += wG(j) * std::cos(al * col_nodes(j));
+        }
+        return 2.0 * a * std::fabs(s1 * s2);
+      };
+      double smax = std::max(sens(q.panel_centre[i] - q.panel_half[i]),
+                             sens(q.panel_centre[i] + q.panel_half[i]));
+      double round2 = 0.0;
+      for (std::size_t n = 15 * i; n < 15 * i + 15 && n < q.alpha.size(); ++n) {
+        const double sn = sens(q.alpha[n]);
+        smax = std::max(smax, sn);
+        const double f = std::fabs((q.m1[n] - phi1) / phi1);
+        const double sigma = 2.0 * eps * (1.0 + f + f * f) * q.weight[n];
+        round2 += (sigma * sn) * (sigma * sn);
+      }
+      (void)r;
+      dS += e * smax;
+      dS_round2 += round2;
+    }
+  } else {
+    dS += q.error_estimate * 2.0 * a * lam1 * wg1;
+  }
+  // The table: its truncation, of the shape of its first omitted Chebyshev
+  // terms T_m(u / range) (m = order, order + 2; 3 times the larger effect), or of
+  // any shape in the worst case for a piecewise table; its round-off,
+  // independent for each of the N^2/2 entries.
+  if (k.table_order() > 0) {
+    double tmax = 0.0;
+    for (int m : {k.table_order(), k.table_order() + 2}) {
+      double sum = 0.0;
+      for (Eigen::Index kk = 0; kk < rows; ++kk)
+        for (Eigen::Index j = 0; j < cols; ++j) {
+          const double up = a * (col_nodes(j) - row_nodes(kk)) / k.range();
+          const double um = a * (-col_nodes(j) - row_nodes(kk)) / k.range();
+          sum += lambda(kk) * wG(j) *
+                 (std::cos(m * std::acos(std::clamp(up, -1.0, 1.0))) +
+                  std::cos(m * std::acos(std::clamp(um, -1.0, 1.0))));
+        }
+      tmax = std::max(tmax, std::fabs(a * sum));
+    }
+    dS += 3.0 * k.table_error() * tmax;
+  } else {
+    dS += k.table_error() * 2.0 * a * lam1 * wg1;
+  }
+  const double rms_entries = std::sqrt(2.0) * a * lambda.norm() * wG.norm();
+  dS_round2 += (k.table_roundoff() * rms_entries) * (k.table_roundoff() * rms_entries);
+  dS += 3.0 * std::sqrt(dS_round2);
+  return dS;
+}
+
 // The parts of the error estimate of a/h (ContactSolution::ErrorBudget) from
 // the final solve at a. Every perturbation of the collocation matrix dM moves
 // S = sum W G by -lambda^T dM G; S moves the load by dS/S and a by
@@ -402,73 +486,9 @@ ContactSolution::ErrorBudget error_budget(Problem& prob, const ContactParams& p,
   b.root = a * std::fabs(std::log(lin.load / p.load)) / slope;
 
   const KernelK1& k = prob.kernel(a);
-  const AlphaQuadrature& q = k.value_quadrature();
-  const double phi1 = k.model().phi1();
   const Eigen::VectorXd wG = w.cwiseProduct(lin.G);
-  const double lam1 = lin.lambda.cwiseAbs().sum(), wg1 = wG.cwiseAbs().sum();
-  // Truncation errors are systematic: they add. Round-off is independent from
-  // panel to panel and from one u to the next: it adds in quadrature, taken 3
-  // times (3 sigma).
-  double dS = 0.0, dS_round2 = 0.0;
-  if (q.panel_error.size() == q.panel_centre.size() &&
-      q.panel_roundoff.size() == q.panel_centre.size()) {
-    const double worst = 2.0 * a * lam1 * wg1;  // |dS| per unit error of k1, any shape
-    for (std::size_t i = 0; i < q.panel_centre.size(); ++i) {
-      const double e = q.panel_error[i], r = q.panel_roundoff[i];
-      if (!((e + r) * worst > 1e-4 * eps * std::fabs(S))) continue;  // negligible
-      // |S| at the panel's ends and its 15 nodes; the systematic error takes
-      // the largest, each node's round-off (2 eps (1 + |f| + f^2) w) its own.
-      auto sens = [&](double alpha) {
-        const double al = a * alpha;
-        double s1 = 0.0, s2 = 0.0;
-        for (int j = 0; j < h; ++j) {
-          s1 += lin.lambda(j) * std::sin(al * nodes.s(j));
-          s2 += wG(j) * std::cos(al * nodes.r(j));
-        }
-        return 2.0 * a * std::fabs(s1 * s2);
-      };
-      double smax = std::max(sens(q.panel_centre[i] - q.panel_half[i]),
-                             sens(q.panel_centre[i] + q.panel_half[i]));
-      double round2 = 0.0;
-      for (std::size_t n = 15 * i; n < 15 * i + 15 && n < q.alpha.size(); ++n) {
-        const double sn = sens(q.alpha[n]);
-        smax = std::max(smax, sn);
-        const double f = std::fabs((q.m1[n] - phi1) / phi1);
-        const double sigma = 2.0 * eps * (1.0 + f + f * f) * q.weight[n];
-        round2 += (sigma * sn) * (sigma * sn);
-      }
-      (void)r;
-      dS += e * smax;
-      dS_round2 += round2;
-    }
-  } else {
-    dS += q.error_estimate * 2.0 * a * lam1 * wg1;
-  }
-  // The table: its truncation, of the shape of its first omitted Chebyshev
-  // terms T_m(u / range) (m = order, order + 2; 3 times the larger effect), or of
-  // any shape in the worst case for a piecewise table; its round-off,
-  // independent for each of the N^2/2 entries.
-  if (k.table_order() > 0) {
-    double tmax = 0.0;
-    for (int m : {k.table_order(), k.table_order() + 2}) {
-      double sum = 0.0;
-      for (int kk = 0; kk < h; ++kk)
-        for (int j = 0; j < h; ++j) {
-          const double up = a * (nodes.r(j) - nodes.s(kk)) / k.range();
-          const double um = a * (-nodes.r(j) - nodes.s(kk)) / k.range();
-          sum += lin.lambda(kk) * wG(j) *
-                 (std::cos(m * std::acos(std::clamp(up, -1.0, 1.0))) +
-                  std::cos(m * std::acos(std::clamp(um, -1.0, 1.0))));
-        }
-      tmax = std::max(tmax, std::fabs(a * sum));
-    }
-    dS += 3.0 * k.table_error() * tmax;
-  } else {
-    dS += k.table_error() * 2.0 * a * lam1 * wg1;
-  }
-  const double rms_entries = std::sqrt(2.0) * a * lin.lambda.norm() * wG.norm();
-  dS_round2 += (k.table_roundoff() * rms_entries) * (k.table_roundoff() * rms_entries);
-  dS += 3.0 * std::sqrt(dS_round2);
+  const double dS = kernel_perturbation(k, a, lin.lambda, nodes.s.head(h), wG,
+                                        nodes.r.head(h), S);
   b.kernel = dS * to_a;
 
   // Round-off: of the matrix entries and the solve's backward error, 2 eps
@@ -620,6 +640,30 @@ FlatSolve solve_flat(Problem& prob, const ContactParams& p, double a) {
   }
   const double scale = std::max(half_plane, std::fabs(chain_k.back()));
   out.error += 64.0 * eps * out.n * scale;
+  // The kernel's error, through the adjoint of g(1) (kernel_perturbation):
+  // g(1) = w1^T G for the nodal values G, lambda = M^-T w1 (the equilibrium
+  // row has no kernel).
+  {
+    const int n = out.n, h = n / 2;
+    const FirstKindNodes nd = first_kind_nodes(n);
+    const KernelK1& k = prob.kernel(a);
+    const Eigen::MatrixXd M =
+        flat_collocation_matrix(nd, a, [&k](double u, double v) { return k.sum(u, v); });
+    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(M);
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(h);
+    rhs(h - 1) = 1.0;
+    const Eigen::VectorXd G = lu.solve(rhs);
+    Eigen::VectorXd w1(h);
+    for (int j = 0; j < h; ++j) {
+      const double th = (2 * j + 1) * kPi / (2.0 * n);
+      double sum = 1.0 / n;
+      for (int m = 2; m < n; m += 2) sum += 2.0 / n * std::cos(m * th);
+      w1(j) = 2.0 * sum;  // the node and its mirror
+    }
+    const Eigen::VectorXd lambda = lu.transpose().solve(w1);
+    out.error += kernel_perturbation(k, a, lambda.head(h - 1), nd.x.head(h - 1), G / n,
+                                     nd.t.head(h), std::fabs(w1.dot(G)));
+  }
   return out;
 }
 
