@@ -58,7 +58,9 @@ def parse_profile(c: Checker, raw: object) -> PunchProfile:
         return profile_from_dict(t, "params.profile")
     except InvalidParameterError as exc:
         key = exc.parameter or "params.profile"
-        problem = str(exc).removeprefix(f"{key}: ").removeprefix("params.profile: ")
+        problem = str(exc)
+        for prefix in ("params.profile: ", f"{key}: ", f"{key} "):
+            problem = problem.removeprefix(prefix)
         raise c.fail(key, problem, exc.allowed or "", exc.parameter) from exc
 
 
