@@ -312,25 +312,28 @@ void series_cosine_transforms(const Eigen::VectorXd& b, SeriesKind kind, double 
   }
 }
 
-double u_series(const Eigen::VectorXd& b, double r) {
-  // Clenshaw for U_n: U_{n+1} = 2 r U_n - U_{n-1}, U_0 = 1, U_{-1} = 0.
+namespace {
+// Clenshaw's recurrence b_m = c_m + 2 r b_{m+1} - b_{m+2} down to m = last
+// (both Chebyshev kinds share it): (b_last, b_{last+1}).
+std::pair<double, double> clenshaw(const Eigen::VectorXd& c, double r, Eigen::Index last) {
   double b1 = 0.0, b2 = 0.0;
-  for (Eigen::Index m = b.size() - 1; m >= 0; --m) {
-    const double b0 = b(m) + 2.0 * r * b1 - b2;
+  for (Eigen::Index m = c.size() - 1; m >= last; --m) {
+    const double b0 = c(m) + 2.0 * r * b1 - b2;
     b2 = b1;
     b1 = b0;
   }
-  return b1;
+  return {b1, b2};
+}
+}  // namespace
+
+double u_series(const Eigen::VectorXd& b, double r) {
+  // U_{n+1} = 2 r U_n - U_{n-1}, U_0 = 1, U_{-1} = 0: the sum is b_0.
+  return clenshaw(b, r, 0).first;
 }
 
 double t_series(const Eigen::VectorXd& b, double r) {
-  // Clenshaw for T_n: T_{n+1} = 2 r T_n - T_{n-1}, T_0 = 1, T_1 = r.
-  double b1 = 0.0, b2 = 0.0;
-  for (Eigen::Index m = b.size() - 1; m >= 1; --m) {
-    const double b0 = b(m) + 2.0 * r * b1 - b2;
-    b2 = b1;
-    b1 = b0;
-  }
+  // T_{n+1} = 2 r T_n - T_{n-1}, T_0 = 1, T_1 = r: c_0 + r b_1 - b_2.
+  const auto [b1, b2] = clenshaw(b, r, 1);
   return (b.size() > 0 ? b(0) : 0.0) + r * b1 - b2;
 }
 

@@ -835,13 +835,7 @@ BoundedSolve solve_bounded(Problem& prob, const ContactParams& p, const PunchPro
     a = solve_width(prob, p, nodes, p.load, a, xtol, range);
   }
 
-  BoundedSolve out;
-  out.a = a;
-  out.nodes = nodes;
-  out.chain_n = chain_n;
-  out.chain_a = chain_a;
-  out.change = change;
-  return out;
+  return BoundedSolve{a, nodes, chain_n, chain_a, change};
 }
 
 }  // namespace

@@ -73,14 +73,23 @@ class _Shape:
     kind: ClassVar[str]
 
     def core_args(self) -> dict[str, Any]:
-        """Keyword arguments of ``_core.solve_contact`` for this shape."""
-        raise NotImplementedError  # pragma: no cover - every shape overrides
+        """Keyword arguments of ``_core.solve_contact`` for this shape: its
+        kind and its parameters (radius 1.0 where unused)."""
+        x = getattr(self, "x", ())
+        y = getattr(self, "y", ())
+        return {
+            "profile": self.kind,
+            "radius": float(getattr(self, "radius", 1.0)),
+            "half_width": float(getattr(self, "half_width", 0.0)),
+            "table_x": list(x),
+            "table_y": list(y),
+        }
 
     @property
     def nominal_radius(self) -> float:
         """What ``Solution.radius`` shows: the cylinder's or the corners'
         radius R/h; inf for a flat punch or a table."""
-        return math.inf
+        return float(getattr(self, "radius", math.inf))
 
     def describe(self) -> str:
         """One line, e.g. "flat punch, half-width b/h = 0.5"."""
@@ -126,19 +135,6 @@ class Cylinder(_Shape):
     def __post_init__(self) -> None:
         object.__setattr__(self, "radius", params.check("radius", self.radius))
 
-    def core_args(self) -> dict[str, Any]:
-        return {
-            "profile": "cylinder",
-            "radius": self.radius,
-            "half_width": 0.0,
-            "table_x": [],
-            "table_y": [],
-        }
-
-    @property
-    def nominal_radius(self) -> float:
-        return self.radius
-
     def describe(self) -> str:
         return f"cylinder, R/h = {self.radius:g}"
 
@@ -162,15 +158,6 @@ class Flat(_Shape):
             self, "half_width", _half_width(self.half_width, FLAT_MIN_HALF_WIDTH)
         )
 
-    def core_args(self) -> dict[str, Any]:
-        return {
-            "profile": "flat",
-            "radius": 1.0,
-            "half_width": self.half_width,
-            "table_x": [],
-            "table_y": [],
-        }
-
     def describe(self) -> str:
         return f"flat punch, half-width b/h = {self.half_width:g}"
 
@@ -193,19 +180,6 @@ class RoundedFlat(_Shape):
     def __post_init__(self) -> None:
         object.__setattr__(self, "half_width", _half_width(self.half_width, 0.0))
         object.__setattr__(self, "radius", params.check("radius", self.radius))
-
-    def core_args(self) -> dict[str, Any]:
-        return {
-            "profile": "rounded_flat",
-            "radius": self.radius,
-            "half_width": self.half_width,
-            "table_x": [],
-            "table_y": [],
-        }
-
-    @property
-    def nominal_radius(self) -> float:
-        return self.radius
 
     def describe(self) -> str:
         return (
@@ -294,15 +268,6 @@ class Profile(_Shape):
                 parameter="profile.y",
             )
         return cls(tuple(xs.tolist()), tuple(ys.tolist()))
-
-    def core_args(self) -> dict[str, Any]:
-        return {
-            "profile": "table",
-            "radius": 1.0,
-            "half_width": 0.0,
-            "table_x": list(self.x),
-            "table_y": list(self.y),
-        }
 
     @property
     def half_extent(self) -> float:
