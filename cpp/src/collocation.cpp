@@ -14,12 +14,17 @@ namespace movingpunch {
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;
-}
 
-ChebyshevNodes chebyshev_nodes(int n) {
+// Both node sets take an even N in [2, 100000].
+void check_size(int n) {
   if (n < 2 || n % 2 != 0 || n > 100000)
     throw std::invalid_argument("collocation N must be even and in [2, 100000], got " +
                                 std::to_string(n));
+}
+}  // namespace
+
+ChebyshevNodes chebyshev_nodes(int n) {
+  check_size(n);
   ChebyshevNodes c;
   c.n = n;
   c.r.resize(n);
@@ -342,9 +347,7 @@ double series(const Eigen::VectorXd& b, double r, SeriesKind kind) {
 }
 
 FirstKindNodes first_kind_nodes(int n) {
-  if (n < 2 || n % 2 != 0 || n > 100000)
-    throw std::invalid_argument("collocation N must be even and in [2, 100000], got " +
-                                std::to_string(n));
+  check_size(n);
   FirstKindNodes c;
   c.n = n;
   c.t.resize(n);
