@@ -261,7 +261,7 @@ std::vector<double> PunchProfile::slope_chebyshev(double a, int count) const {
     case ProfileKind::table: {
       // Midpoint rule: per angle, cos(m th) for odd m by the recurrence
       // cos((m + 2) th) = 2 cos(2 th) cos(m th) - cos((m - 2) th).
-      const int M = std::max(16 * count + 64, 256);
+      const int M = std::max(16 * count + 64, 8192);
       for (int j = 0; j < M; ++j) {
         const double th = (j + 0.5) * kPi / M;
         const double f = slope(a * std::cos(th)) * 2.0 / M;
