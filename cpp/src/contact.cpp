@@ -675,7 +675,7 @@ FlatSolve solve_flat(Problem& prob, const ContactParams& p, double a) {
 // m >> alpha_max a). A slope with a kink (the rounded flat at |x| = b) has
 // d_m ~ m^-2, so g converges pointwise only like 1/m: the series is extended
 // with the half-plane tail to 4096 terms (rounded flat; a table's spline, whose
-// slope is C^1, to 1024), and `truncation` bounds what is left,
+// slope is C^1, to 256), and `truncation` bounds what is left,
 // sum_{n >= length} |b_n| (|sqrt(1 - r^2) U_n(r)| <= 1, so this bounds the
 // pressure's error over P/h): d_m summed to 4 times the length and the rest
 // extrapolated as m^-2.
@@ -683,7 +683,7 @@ void extend_series(Eigen::VectorXd& b, double& truncation, const PunchProfile& p
                    double phi1_load) {
   const Eigen::Index n = b.size();
   const Eigen::Index len =
-      std::max<Eigen::Index>(n, prof.kind() == ProfileKind::rounded_flat ? 4096 : 1024);
+      std::max<Eigen::Index>(n, prof.kind() == ProfileKind::rounded_flat ? 4096 : 256);
   const std::vector<double> d = prof.slope_chebyshev(a, static_cast<int>(2 * len));
   if (len > n) {
     b.conservativeResize(len);
