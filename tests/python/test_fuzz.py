@@ -404,5 +404,5 @@ def test_fuzz_profiles_150() -> None:
 
 
 @pytest.mark.slow
-def test_fuzz_profiles_1000() -> None:
-    fuzz_profiles(1000, seed=1310, budget=600.0)
+def test_fuzz_profiles_600() -> None:
+    fuzz_profiles(600, seed=1310, budget=300.0)
