@@ -126,10 +126,12 @@ void bind_contact(py::module_& m) {
   m.def(
       "solve_contact",
       [](double vstar, double kw, double radius, double load, double nu, double tol,
-         bool allow_unphysical, int n, const std::string& profile, double half_width,
-         const std::vector<double>& table_x, const std::vector<double>& table_y) {
+         bool allow_unphysical, int n, double kp, const std::string& profile,
+         double half_width, const std::vector<double>& table_x,
+         const std::vector<double>& table_y) {
         ContactParams p =
             solve_params<ContactParams>(vstar, kw, radius, load, nu, tol, allow_unphysical, n);
+        p.kp = kp;
         p.profile = profile_kind(profile);
         p.half_width = half_width;
         p.table_x = table_x;
@@ -137,10 +139,13 @@ void bind_contact(py::module_& m) {
         return solve_contact(p);
       },
       py::kw_only(), "vstar"_a, "kw"_a, "radius"_a, "load"_a, "nu"_a, "tol"_a, "allow_unphysical"_a,
-      "n"_a = 0, "profile"_a = "cylinder", "half_width"_a = 0.0,
+      "n"_a = 0, "kp"_a = 0.0, "profile"_a = "cylinder", "half_width"_a = 0.0,
       "table_x"_a = std::vector<double>{}, "table_y"_a = std::vector<double>{}, Release(),
       "Solves the moving-punch contact problem (dimensionless inputs: vstar = "
-      "rho V^2/mu, kw = k_w h/mu, radius = R/h, load = P/(mu h), nu, tol on a/h). "
+      "rho V^2/mu, kw = k_w h/mu, radius = R/h, load = P/(mu h), nu, tol on a/h, "
+      "kp = k_p/(mu h) the Pasternak shear layer, 0: springs alone; profile: the "
+      "punch's shape, 'cylinder' (radius), 'flat' (half_width), 'rounded_flat' "
+      "(half_width, radius) or 'table' (table_x, table_y)). "
       "Raises InvalidParameterError, SupercriticalSpeedError, "
       "UnphysicalContactError (unless allow_unphysical) or ConvergenceError.");
 }

@@ -96,24 +96,25 @@ void bind_damped(py::module_& m) {
   m.def(
       "solve_damped",
       [](double vstar, double kw, double radius, double load, double nu, double damping, double tol,
-         bool allow_unphysical, int n) {
+         bool allow_unphysical, int n, double kp) {
         auto p = solve_params<DampedParams>(vstar, kw, radius, load, nu, tol, allow_unphysical, n);
         p.damping = damping;
+        p.kp = kp;
         return solve_damped(p);
       },
       py::kw_only(), "vstar"_a, "kw"_a, "radius"_a, "load"_a, "nu"_a, "damping"_a, "tol"_a,
-      "allow_unphysical"_a, "n"_a = 0, Release(),
+      "allow_unphysical"_a, "n"_a = 0, "kp"_a = 0.0, Release(),
       "Solves the contact problem on a damped (Kelvin-Voigt) foundation, damping = "
       "c_w c_T/mu > 0. Raises InvalidParameterError, SupercriticalSpeedError (vstar >= "
       "V*_R), UnphysicalContactError (unless allow_unphysical) or ConvergenceError.");
 
   m.def(
       "damped_layer_response",
-      [](double t, double vstar, double kw, double nu, double damping) {
-        const DampedResponse r = DampedLayerModel(vstar, kw, nu, damping).response(t);
+      [](double t, double vstar, double kw, double nu, double damping, double kp) {
+        const DampedResponse r = DampedLayerModel(vstar, kw, nu, damping, kp).response(t);
         return py::make_tuple(r.M1, r.M2, r.Wb);
       },
-      "t"_a, "vstar"_a, "kw"_a, "nu"_a, "damping"_a,
+      "t"_a, "vstar"_a, "kw"_a, "nu"_a, "damping"_a, "kp"_a = 0.0,
       "(M1, M2, Wb) of the damped layer at t = alpha h >= 0 (complex; alpha < 0 gives "
       "the conjugates).");
 }

@@ -27,7 +27,7 @@ using VectorRef = Eigen::Ref<const Eigen::VectorXd>;
 using Release = py::call_guard<py::gil_scoped_release>;
 
 std::pair<Vector, Vector> layer_response(const VectorRef& t, double vstar, double kw, double nu,
-                                         const std::string& method) {
+                                         const std::string& method, double kp) {
   Response (LayerModel::*evaluate)(double) const = nullptr;
   if (method == "auto") {
     evaluate = &LayerModel::response;
@@ -39,7 +39,7 @@ std::pair<Vector, Vector> layer_response(const VectorRef& t, double vstar, doubl
     throw std::invalid_argument("method must be 'auto', 'modal' or 'transfer', got '" + method +
                                 "'");
   }
-  const LayerModel model(vstar, kw, nu);
+  const LayerModel model(vstar, kw, nu, kp);
   Vector m1(t.size());
   Vector m2(t.size());
   for (Eigen::Index i = 0; i < t.size(); ++i) {
@@ -51,8 +51,8 @@ std::pair<Vector, Vector> layer_response(const VectorRef& t, double vstar, doubl
 }
 
 Vector kernel_k1(const VectorRef& u, double vstar, double kw, double nu, double tol, double range,
-                 bool direct) {
-  const KernelK1 kernel(LayerModel(vstar, kw, nu), tol, range);
+                 bool direct, double kp) {
+  const KernelK1 kernel(LayerModel(vstar, kw, nu, kp), tol, range);
   Vector out(u.size());
   for (Eigen::Index i = 0; i < u.size(); ++i) {
     out[i] = direct ? kernel.direct(u[i]) : kernel(u[i]);
@@ -76,36 +76,39 @@ void bind_layer(py::module_& m) {
 
   m.def(
       "critical_speed",
-      [](double kw, double nu) {
-        const CriticalSpeed c = critical_speed(kw, nu);
+      [](double kw, double nu, double kp) {
+        const CriticalSpeed c = critical_speed(kw, nu, kp);
         return std::make_tuple(c.vstar, c.t);
       },
-      "kw"_a, "nu"_a, Release(),
-      "Critical speed of the layer on springs: (V*_cr, alpha h at the minimum). "
-      "For kw = inf it is (rayleigh_vstar(nu), inf).");
+      "kw"_a, "nu"_a, "kp"_a = 0.0, Release(),
+      "Critical speed of the layer on springs (and a Pasternak shear layer kp): "
+      "(V*_cr, alpha h at the minimum). For kw = inf, or when no free wave is "
+      "slower than the Rayleigh wave, it is (rayleigh_vstar(nu), inf).");
 
-  m.def("first_wave_vstar", static_cast<double (*)(double, double, double)>(&first_wave_vstar),
-        "t"_a, "kw"_a, "nu"_a, Release(),
-        "Lowest vstar in (0, V*_R) at which a free wave of wavenumber t = alpha h "
-        "exists; rayleigh_vstar(nu) when there is none below it.");
+  m.def(
+      "first_wave_vstar",
+      [](double t, double kw, double nu, double kp) { return first_wave_vstar(t, kw, nu, kp); },
+      "t"_a, "kw"_a, "nu"_a, "kp"_a = 0.0, Release(),
+      "Lowest vstar in (0, V*_R) at which a free wave of wavenumber t = alpha h "
+      "exists; rayleigh_vstar(nu) when there is none below it.");
 
   m.def("layer_response", &layer_response, "t"_a, "vstar"_a, "kw"_a, "nu"_a, "method"_a = "auto",
-        Release(),
+        "kp"_a = 0.0, Release(),
         "Surface responses (M1, M2) per unit transformed pressure at each "
         "t = alpha h. method: 'auto', 'modal' or 'transfer' (force one "
         "evaluation, for cross-checks).");
 
   m.def(
       "layer_dispersion",
-      [](double t, double vstar, double kw, double nu) {
-        return LayerModel(vstar, kw, nu).dispersion(t);
+      [](double t, double vstar, double kw, double nu, double kp) {
+        return LayerModel(vstar, kw, nu, kp).dispersion(t);
       },
-      "t"_a, "vstar"_a, "kw"_a, "nu"_a, Release(),
+      "t"_a, "vstar"_a, "kw"_a, "nu"_a, "kp"_a = 0.0, Release(),
       "A function of (t, vstar) that changes sign where a free wave of "
       "wavenumber t exists (arbitrary sign convention).");
 
   m.def("kernel_k1", &kernel_k1, "u"_a, "vstar"_a, "kw"_a, "nu"_a, "tol"_a, "range"_a,
-        "direct"_a = false, Release(),
+        "direct"_a = false, "kp"_a = 0.0, Release(),
         "Regular kernel k1(u) of the singular integral equation at each u "
         "(|u| <= range), from a KernelK1 tabulated to absolute tolerance tol; "
         "direct=True sums the alpha quadrature instead of the Chebyshev table.");

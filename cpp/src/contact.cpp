@@ -25,6 +25,7 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 // Below this the lowest free wave lies beyond the critical-speed search.
 constexpr double kMinKw = 1e-12;
+using detail::foundation_text;
 using detail::kMaxA;
 using detail::kMinA;
 using detail::kSizes;
@@ -53,6 +54,7 @@ void validate(const ContactParams& p) {
   // is SupercriticalSpeedError (raised by solve_contact with both speeds).
   require_in_range("vstar", p.vstar, 0.0, 1e300, false, false);
   require_in_range("kw", p.kw, kMinKw, kInf, false, false, true);
+  require_in_range("kp", p.kp, 0.0, kMaxKp, false, false);
   // The shape's parameters (the cylinder's radius, a flat face's half-width,
   // a table), named as the API names them.
   (void)PunchProfile(p.profile, p.radius, p.half_width, p.table_x, p.table_y);
@@ -724,7 +726,7 @@ BoundedSolve solve_bounded(Problem& prob, const ContactParams& p, const PunchPro
   double a = 0.0;
   if (prof.kind() == ProfileKind::cylinder) {
     const double lambda = p.radius * p.load;
-    const detail::WidthGuess guess = detail::width_guess(phi1, lambda, p.kw, p.nu);
+    const detail::WidthGuess guess = detail::width_guess(phi1, lambda, p.kw, p.nu, p.kp);
     if (0.5 * std::cbrt(0.75 * lambda) > kMaxA) detail::width_out_of_range(p, true);
     if (10.0 * guess.hertz < kMinA) detail::width_out_of_range(p, false);
 
@@ -944,11 +946,14 @@ ContactSolution solve_contact(const ContactParams& p) {
   Timer timer;
   validate(p);
   const double vr = rayleigh_vstar(p.nu);
-  const CriticalSpeed crit = critical_speed(p.kw, p.nu);
+  const CriticalSpeed crit = critical_speed(p.kw, p.nu, p.kp);
   const double t_critical = timer.seconds();
-  if (p.vstar >= crit.vstar) throw SupercriticalSpeedError(p.vstar, crit.vstar, vr);
+  if (p.vstar >= crit.vstar) {
+    if (p.kp > 0.0) throw SupercriticalSpeedError(p.vstar, crit.vstar, vr, foundation_text(p));
+    throw SupercriticalSpeedError(p.vstar, crit.vstar, vr);
+  }
 
-  const LayerModel model(p.vstar, p.kw, p.nu);
+  const LayerModel model(p.vstar, p.kw, p.nu, p.kp);
   const double phi1 = model.phi1();
   // Round-off of a/h (relative) from the layer response: within a hair of the
   // Rayleigh speed phi1 = nL / R(vstar) carries a relative error of about

@@ -79,14 +79,17 @@ cplx u_series_transform(const Eigen::VectorXd& b, double centre, double half, do
 // ---------------------------------------------------------------------------
 // Complex layer response
 
-DampedLayerModel::DampedLayerModel(double vstar, double kw, double nu, double damping)
-    : c_(wave_constants(vstar, nu)), kw_(kw), damping_(damping), rigid_(std::isinf(kw)) {
+DampedLayerModel::DampedLayerModel(double vstar, double kw, double nu, double damping, double kp)
+    : c_(wave_constants(vstar, nu)), kw_(kw), damping_(damping), rigid_(std::isinf(kw)), kp_(kp) {
   require_in_range("kw", kw, 0.0, kInf, true, false, true);
   require_in_range("damping", damping, 0.0, kInf, false, true);
+  require_in_range("kp", kp, 0.0, kMaxKp, false, false);
   beta_ = damping * std::sqrt(vstar);
 }
 
-cplx DampedLayerModel::foundation(double t) const noexcept { return {kw_, -beta_ * t}; }
+cplx DampedLayerModel::foundation(double t) const noexcept {
+  return {kw_ + kp_ * t * t, -beta_ * t};
+}
 
 DampedResponse DampedLayerModel::response_modal(double t) const {
   if (!(t > 0.0)) throw std::invalid_argument("damped layer response: t must be > 0");
@@ -239,9 +242,14 @@ DampedQuadrature build_damped_quadrature(const DampedLayerModel& model, double t
   const int n0 = static_cast<int>(std::ceil(amax / w0));
   amax = n0 * w0;  // the panels cover [0, alpha_max] exactly
   std::vector<DPanel> work, done;
-  for (int i = n0 - 1; i >= 0; --i) work.push_back(eval_dpanel(model, i * w0, (i + 1) * w0));
+  for (int i = n0 - 1; i >= 1; --i) work.push_back(eval_dpanel(model, i * w0, (i + 1) * w0));
+  // The first panel, split down to a Pasternak base's long-wave scale
+  // (layer_basis.hpp; one panel for springs alone).
+  const std::vector<double> first = detail::foundation_panel_edges(model.kw(), model.kp(), w0);
+  for (std::size_t i = first.size() - 1; i >= 1; --i)
+    work.push_back(eval_dpanel(model, first[i - 1], first[i]));
   const double panel_tol = tol / n0;
-  int evaluations = n0;
+  int evaluations = n0 + static_cast<int>(first.size()) - 2;
   while (!work.empty()) {
     DPanel p = work.back();
     work.pop_back();
@@ -415,6 +423,7 @@ void validate(const DampedParams& p) {
   require_in_range("load", p.load, 0.0, kInf, true, true);
   require_in_range("nu", p.nu, 0.0, 0.5, false, true);
   require_in_range("damping", p.damping, 0.0, kInf, true, true);
+  require_in_range("kp", p.kp, 0.0, kMaxKp, false, false);
   require_in_range("tol", p.tol, 1e-14, 1e-2, false, false);
   if (p.n != 0 && (p.n < 2 || p.n > 1024 || p.n % 2 != 0))
     throw InvalidParameter(
@@ -692,7 +701,7 @@ DampedSolution solve_damped(const DampedParams& prm) {
   DampedSolution s;
   s.params_ = prm;
   s.vr_ = rayleigh_vstar(prm.nu);
-  s.vcr_ = critical_vstar(prm.kw, prm.nu);
+  s.vcr_ = critical_vstar(prm.kw, prm.nu, prm.kp);
   auto since_start = [&t0] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   };
@@ -710,7 +719,8 @@ DampedSolution solve_damped(const DampedParams& prm) {
     if (!kern || kern->range() < need) {
       const auto tk = std::chrono::steady_clock::now();
       bool built = false;
-      kern = cached_damped_kernel(prm.vstar, prm.kw, prm.nu, prm.damping, need, 2.0 * need, &built);
+      kern = cached_damped_kernel(prm.vstar, prm.kw, prm.nu, prm.damping, need, 2.0 * need, &built,
+                                  prm.kp);
       s.kernel_builds_ += built ? 1 : 0;
       kernel_seconds +=
           std::chrono::duration<double>(std::chrono::steady_clock::now() - tk).count();
@@ -723,7 +733,7 @@ DampedSolution solve_damped(const DampedParams& prm) {
   // carries on less than twice the smallest supported width is refused up
   // front (subnormal or tiny radius * load), naming the inputs, instead of
   // failing every N.
-  const detail::WidthGuess wg = detail::width_guess(phi1, lambda, prm.kw, prm.nu);
+  const detail::WidthGuess wg = detail::width_guess(phi1, lambda, prm.kw, prm.nu, prm.kp);
   if (!(wg.hertz >= 2.0 * detail::kMinA))
     detail::width_out_of_range(prm, false, 2.0 * kPi * detail::kMinA * detail::kMinA / phi1);
   const bool wide_guess = wg.use_wide;

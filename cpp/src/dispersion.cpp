@@ -5,6 +5,8 @@
 #include <limits>
 #include <map>
 #include <mutex>
+#include <stdexcept>
+#include <tuple>
 #include <utility>
 
 #include "movingpunch/errors.hpp"
@@ -18,16 +20,18 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kPi = 3.14159265358979323846;
 }  // namespace
 
-double first_wave_vstar(double t, double kw, double nu) {
-  return first_wave_vstar(t, kw, nu, kFirstWaveScan);
+double first_wave_vstar(double t, double kw, double nu, double kp) {
+  return first_wave_vstar(t, kw, nu, kp, kFirstWaveScan);
 }
 
-double first_wave_vstar(double t, double kw, double nu, int scan) {
+double first_wave_vstar(double t, double kw, double nu, double kp, int scan) {
   require_in_range("kw", kw, 0.0, kInf, true, false, true);
+  require_in_range("kp", kp, 0.0, kMaxKp, false, false);
+  if (scan < 2) throw std::invalid_argument("first_wave_vstar: scan must be >= 2");
   const double vr = rayleigh_vstar(nu);
   if (!(t > 0.0) || !std::isfinite(t))
     throw std::invalid_argument("first_wave_vstar: t = alpha h must be finite and > 0");
-  auto D = [&](double s) { return LayerModel(s, kw, nu).dispersion(t); };
+  auto D = [&](double s) { return LayerModel(s, kw, nu, kp).dispersion(t); };
   // Scan with points clustered at both ends (waves near 0 for soft
   // foundations, near the Rayleigh value for short waves); the lowest branch
   // is the first sign change.
@@ -48,7 +52,7 @@ double first_wave_vstar(double t, double kw, double nu, int scan) {
 
 namespace {
 
-CriticalSpeed compute_critical(double kw, double nu) {
+CriticalSpeed compute_critical(double kw, double nu, double kp) {
   const double vr = rayleigh_vstar(nu);
   if (std::isinf(kw)) return {vr, kInf};
   // The lowest branch c1(t) falls from the foundation-dominated long waves to
@@ -58,6 +62,14 @@ CriticalSpeed compute_critical(double kw, double nu) {
   // On stiff foundations (kw >~ 30) the dip below the Rayleigh value is
   // shallow (2.6e-10 relative at kw = 100, nu = 0) and narrow: a dip shallower
   // than 1e-6 is searched again on a grid of 20 points per decade.
+  // A Pasternak layer (kp > 0) adds kp t^2 to the base's stiffness: it lifts
+  // the whole branch (by about kp on soft foundations) without moving the
+  // minimum of a soft foundation (t^4 ~ kw/D as for springs alone); as kp
+  // grows the dip becomes shallow and moves to larger t (kw = 10, nu = 0.2,
+  // kp = 0.3: 6e-5 relative at t = 7.2), and beyond kp ~ 1 no free wave is
+  // slower than the Rayleigh wave of the top face: V*_cr = V*_R, t = inf
+  // (a dip shallower than the scan's 1e-13 below V*_R counts as none). The
+  // grid's range 1e-5 <= t <= 1e5 covers both.
   const double lt0 = std::log(1e-5), lt1 = std::log(1e5);
   int n = 0, best = 0;
   double best_s = kInf;
@@ -66,7 +78,7 @@ CriticalSpeed compute_critical(double kw, double nu) {
     best = 0;
     best_s = kInf;
     for (int i = 0; i < n; ++i) {
-      const double v = first_wave_vstar(std::exp(lt0 + (lt1 - lt0) * i / (n - 1)), kw, nu);
+      const double v = first_wave_vstar(std::exp(lt0 + (lt1 - lt0) * i / (n - 1)), kw, nu, kp);
       if (v < best_s) {
         best_s = v;
         best = i;
@@ -76,7 +88,7 @@ CriticalSpeed compute_critical(double kw, double nu) {
   }
   if (best_s >= vr) return {vr, kInf};
   const double h = (lt1 - lt0) / (n - 1);
-  auto F = [&](double lt) { return first_wave_vstar(std::exp(lt), kw, nu); };
+  auto F = [&](double lt) { return first_wave_vstar(std::exp(lt), kw, nu, kp); };
   // Brent (1973), "localmin": golden section with parabolic steps.
   const double cg = 0.5 * (3.0 - std::sqrt(5.0));
   double a = lt0 + h * std::max(best - 1, 0), b = lt0 + h * std::min(best + 1, n - 1);
@@ -136,19 +148,22 @@ CriticalSpeed compute_critical(double kw, double nu) {
 
 }  // namespace
 
-CriticalSpeed critical_speed(double kw, double nu) {
+CriticalSpeed critical_speed(double kw, double nu, double kp) {
   // The search grid reaches t = 1e-5: enough for kw >= 1e-12 (t_min ~ kw^(1/4)).
   require_in_range("kw", kw, 1e-12, kInf, false, false, true);
   require_in_range("nu", nu, 0.0, 0.5, false, true);
+  require_in_range("kp", kp, 0.0, kMaxKp, false, false);
+  // kp is irrelevant on a rigid base: one cache entry for it.
+  if (std::isinf(kw)) kp = 0.0;
   static std::mutex mutex;
-  static std::map<std::pair<double, double>, CriticalSpeed> cache;
-  const auto key = std::make_pair(kw, nu);
+  static std::map<std::tuple<double, double, double>, CriticalSpeed> cache;
+  const auto key = std::make_tuple(kw, nu, kp);
   {
     std::lock_guard<std::mutex> lock(mutex);
     const auto it = cache.find(key);
     if (it != cache.end()) return it->second;
   }
-  const CriticalSpeed c = compute_critical(kw, nu);
+  const CriticalSpeed c = compute_critical(kw, nu, kp);
   std::lock_guard<std::mutex> lock(mutex);
   if (cache.size() > 4096) cache.clear();
   cache[key] = c;

@@ -7,11 +7,14 @@
 namespace movingpunch {
 
 namespace {
-std::string supercritical_message(double vstar, double critical, double rayleigh) {
+std::string supercritical_message(double vstar, double critical, double rayleigh,
+                                  const std::string& foundation = "") {
   std::ostringstream m;
   m.precision(10);
   m << "vstar = " << vstar << " is at or above the critical speed V*_cr = " << critical
-    << " of this layer on its foundation (Rayleigh value V*_R = " << rayleigh
+    << " of this layer on its foundation";
+  if (!foundation.empty()) m << " (" << foundation << ")";
+  m << " (Rayleigh value V*_R = " << rayleigh
     << "); no bounded steady solution exists there: vstar must be in [0, " << critical << ")";
   return m.str();
 }
@@ -19,6 +22,13 @@ std::string supercritical_message(double vstar, double critical, double rayleigh
 
 SupercriticalSpeedError::SupercriticalSpeedError(double vstar, double critical, double rayleigh)
     : std::domain_error(supercritical_message(vstar, critical, rayleigh)),
+      vstar_(vstar),
+      critical_(critical),
+      rayleigh_(rayleigh) {}
+
+SupercriticalSpeedError::SupercriticalSpeedError(double vstar, double critical, double rayleigh,
+                                                 const std::string& foundation)
+    : std::domain_error(supercritical_message(vstar, critical, rayleigh, foundation)),
       vstar_(vstar),
       critical_(critical),
       rayleigh_(rayleigh) {}

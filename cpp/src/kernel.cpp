@@ -9,6 +9,7 @@
 
 #include "chebyshev.hpp"
 #include "gauss_kronrod.hpp"
+#include "layer_basis.hpp"
 #include "movingpunch/errors.hpp"
 
 namespace movingpunch {
@@ -110,9 +111,14 @@ AlphaQuadrature build_alpha_quadrature(const LayerModel& model, double tol, doub
   const int n0 = std::max(1, static_cast<int>(std::ceil(q.alpha_max / width)));
   const double w0 = q.alpha_max / n0;
   std::vector<Panel> work, done;
-  for (int i = n0 - 1; i >= 0; --i) work.push_back(eval_panel(model, i * w0, (i + 1) * w0));
+  for (int i = n0 - 1; i >= 1; --i) work.push_back(eval_panel(model, i * w0, (i + 1) * w0));
+  // The first panel, split down to a Pasternak base's long-wave scale
+  // (layer_basis.hpp; one panel for springs alone).
+  const std::vector<double> first = detail::foundation_panel_edges(model.kw(), model.kp(), w0);
+  for (std::size_t i = first.size() - 1; i >= 1; --i)
+    work.push_back(eval_panel(model, first[i - 1], first[i]));
   const double panel_tol = tol / n0;
-  int evaluations = n0;
+  int evaluations = n0 + static_cast<int>(first.size()) - 2;
   while (!work.empty()) {
     Panel p = work.back();
     work.pop_back();

@@ -2,6 +2,7 @@
 // and the damped kernel tables (damped.hpp). One LRU policy for both.
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
 #include <list>
 #include <memory>
@@ -21,7 +22,7 @@ constexpr double kStep = 1.25;
 template <class Table>
 class RangeCache {
  public:
-  using Key = std::array<double, 4>;
+  using Key = std::array<double, 5>;
   using Ptr = std::shared_ptr<const Table>;
 
   RangeCache(std::size_t capacity, double max_ratio) : capacity_(capacity), max_ratio_(max_ratio) {}
@@ -118,7 +119,9 @@ RangeCache<DampedKernel>& damped_cache() {
 std::shared_ptr<const KernelK1> cached_kernel(const LayerModel& model, double tol, double min_range,
                                               double build_range, bool* built, bool grow) {
   return k1_cache().get(
-      {model.vstar(), model.kw(), model.nu(), tol}, min_range, build_range,
+      // kp is irrelevant on a rigid base: one key for it.
+      {model.vstar(), model.kw(), model.nu(), tol, model.rigid_base() ? 0.0 : model.kp()},
+      min_range, build_range,
       [&](double range, const std::shared_ptr<const KernelK1>& shorter) {
         // Growth never turns a global table piecewise when the range needed
         // fits a global one: a piecewise table's error bound is of any shape
@@ -135,13 +138,14 @@ std::shared_ptr<const KernelK1> cached_kernel(const LayerModel& model, double to
 
 std::shared_ptr<const DampedKernel> cached_damped_kernel(double vstar, double kw, double nu,
                                                          double damping, double min_range,
-                                                         double build_range, bool* built) {
+                                                         double build_range, bool* built,
+                                                         double kp) {
   return damped_cache().get(
-      {vstar, kw, nu, damping}, min_range, build_range,
+      {vstar, kw, nu, damping, std::isinf(kw) ? 0.0 : kp}, min_range, build_range,
       [&](double range, const std::shared_ptr<const DampedKernel>& shorter) {
         if (shorter) return std::make_shared<const DampedKernel>(*shorter, range);
         return std::make_shared<const DampedKernel>(
-            std::make_shared<const DampedLayerModel>(vstar, kw, nu, damping), range);
+            std::make_shared<const DampedLayerModel>(vstar, kw, nu, damping, kp), range);
       },
       built);
 }

@@ -141,9 +141,10 @@ double phi2(double vstar, double nu) {
   return wave_constants(vstar, nu).phi2;
 }
 
-LayerModel::LayerModel(double vstar, double kw, double nu)
-    : c_(wave_constants(vstar, nu)), kw_(kw), rigid_(std::isinf(kw)) {
+LayerModel::LayerModel(double vstar, double kw, double nu, double kp)
+    : c_(wave_constants(vstar, nu)), kw_(kw), rigid_(std::isinf(kw)), kp_(kp) {
   require_in_range("kw", kw, 0.0, kInf, true, false, true);
+  require_in_range("kp", kp, 0.0, kMaxKp, false, false);
 }
 
 namespace {
@@ -153,6 +154,7 @@ namespace {
 // difference); rows: tau(0), sigma(0), tau(-1), bottom condition.
 // The bottom condition t sigma/alpha - kw W = 0 normalised as
 // [t/(t+kw)] sigma/alpha - [kw/(t+kw)] W, without overflow for any kw, t.
+// `kw` here is the stiffness of the mode, kw + kp t^2 (LayerModel::foundation).
 double spring_weight_t(double t, double kw) { return 1.0 / (1.0 + kw / t); }
 double spring_weight_k(double t, double kw) { return 1.0 / (1.0 + t / kw); }
 
@@ -201,7 +203,7 @@ Response LayerModel::response_modal(double t) const {
     return from_top(c_, U0, -c_.phi1);
   }
   Eigen::Matrix4d top;
-  const Eigen::Matrix4d M = modal_matrix(c_, kw_, rigid_, t, &top);
+  const Eigen::Matrix4d M = modal_matrix(c_, foundation(t), rigid_, t, &top);
   const Eigen::Vector4d rhs(0.0, -1.0, 0.0, 0.0);
   const Eigen::Vector4d amp = M.partialPivLu().solve(rhs);
   const Eigen::Vector4d z0 = top * amp;
@@ -217,7 +219,7 @@ Response LayerModel::response_transfer(double t) const {
     return from_top(c_, U0, 0.0);
   }
   const Eigen::Matrix4d P = transfer_matrix(c_, t, -1.0);
-  const Eigen::Matrix<double, 2, 4> R = bottom_rows(P, kw_, rigid_, t);
+  const Eigen::Matrix<double, 2, 4> R = bottom_rows(P, foundation(t), rigid_, t);
   // z0 = [U0, W0, 0, -1]: R(:,0:1) [U0, W0] = R(:,3).
   Eigen::Matrix2d M = R.leftCols<2>();
   const Eigen::Vector2d rhs = R.col(3);
@@ -243,7 +245,7 @@ ModeField LayerModel::mode_field(double t) const {
     f.transfer_ = true;
     f.top_ = Eigen::Vector4d(r.U0, r.W0, 0.0, -1.0);
   } else {
-    const Eigen::Matrix4d M = modal_matrix(c_, kw_, rigid_, t, nullptr);
+    const Eigen::Matrix4d M = modal_matrix(c_, foundation(t), rigid_, t, nullptr);
     f.amp_ = M.partialPivLu().solve(Eigen::Vector4d(0.0, -1.0, 0.0, 0.0));
   }
   return f;
@@ -264,10 +266,10 @@ double LayerModel::dispersion(double t) const {
     throw std::invalid_argument("dispersion: t = alpha h must be finite and > 0");
   if (t < kSmallT) {
     const Eigen::Matrix4d P = transfer_matrix(c_, t, -1.0);
-    const Eigen::Matrix<double, 2, 4> R = bottom_rows(P, kw_, rigid_, t);
+    const Eigen::Matrix<double, 2, 4> R = bottom_rows(P, foundation(t), rigid_, t);
     return R(0, 0) * R(1, 1) - R(0, 1) * R(1, 0);
   }
-  return modal_matrix(c_, kw_, rigid_, t, nullptr).partialPivLu().determinant();
+  return modal_matrix(c_, foundation(t), rigid_, t, nullptr).partialPivLu().determinant();
 }
 
 }  // namespace movingpunch

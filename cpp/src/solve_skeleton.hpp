@@ -45,20 +45,51 @@ inline std::vector<int> size_ladder(int max_n) {
 // contact finite (a_H > 8 a_W), and on soft foundations the contact is wide
 // (a_W > max(1, a_H)). A far guess builds kernel tables for widths never
 // needed. The guess is within [kMinA, kMaxA].
+//
+// A Pasternak layer kp (the base's stiffness kw + kp t^2 per mode) stiffens
+// the waves of the contact's own length: a_W then solves
+// a = (1.5 lambda (1/(kw + kp (3/a)^2) + (1 - nu)/2))^(1/3) (a fixed point,
+// decreasing in a). The 3 is fitted (kw = 1e-3 ... 0.1, kp = 0.01 ... 10,
+// lambda = 0.2 ... 1): the guess is then within the factor 1 to 3.3 of the
+// true width, as a_W is for springs alone (1.9 to 5); a_W of the springs
+// alone was 21 times too wide at kw = 1e-3, kp = 10.
 struct WidthGuess {
   double hertz = 0;  // a_H = sqrt(2 phi1 lambda / pi)
   double wide = 0;   // a_W = (1.5 lambda (1/kw + (1 - nu)/2))^(1/3)
   bool use_wide = false;
   double a = 0;  // the guess
 };
-inline WidthGuess width_guess(double phi1, double lambda, double kw, double nu) {
+inline WidthGuess width_guess(double phi1, double lambda, double kw, double nu,
+                              double kp = 0.0) {
   constexpr double kPi = 3.14159265358979323846;
   WidthGuess g;
   g.hertz = std::sqrt(2.0 * phi1 * lambda / kPi);
   g.wide = std::cbrt(1.5 * lambda * ((std::isinf(kw) ? 0.0 : 1.0 / kw) + 0.5 * (1.0 - nu)));
+  if (kp > 0.0 && std::isfinite(kw)) {
+    for (int i = 0; i < 100; ++i) {
+      const double stiff = kw + kp * 9.0 / (g.wide * g.wide);
+      const double next = std::cbrt(1.5 * lambda * (1.0 / stiff + 0.5 * (1.0 - nu)));
+      const bool done = std::fabs(next - g.wide) <= 1e-3 * next;
+      // Averaged: the plain iteration can overshoot where the stiffness
+      // changes fast with a.
+      g.wide = 0.5 * (g.wide + next);
+      if (done) break;
+    }
+  }
   g.use_wide = g.hertz > 8.0 * g.wide || g.wide > std::max(1.0, g.hertz);
   g.a = std::clamp(g.use_wide ? g.wide : g.hertz, kMinA, kMaxA);
   return g;
+}
+
+// The foundation as messages name it: "kw = 1" for springs alone, "kw = 1,
+// kp = 0.2" with a Pasternak shear layer (any parameter struct with kw, kp).
+template <class Params>
+std::string foundation_text(const Params& p) {
+  std::ostringstream m;
+  m.precision(6);
+  m << "kw = " << p.kw;
+  if (p.kp != 0.0) m << ", kp = " << p.kp;
+  return m.str();
 }
 
 // "1e-10 <= a/h <= 50".
@@ -78,7 +109,7 @@ std::string width_out_of_range_message(const Params& p, bool too_wide,
   m.precision(6);
   m << "radius * load = " << p.radius * p.load << " (radius " << p.radius << ", load " << p.load
     << ") needs a contact half-width " << (too_wide ? "above" : "below") << " the supported range "
-    << supported_range_text() << " for kw = " << p.kw << ", vstar = " << p.vstar << ": "
+    << supported_range_text() << " for " << foundation_text(p) << ", vstar = " << p.vstar << ": "
     << (too_wide ? "reduce" : "increase") << " the radius or the load";
   if (std::isfinite(lambda_bound))
     m << " (radius * load must be " << (too_wide ? "<= " : ">= ") << lambda_bound << ")";

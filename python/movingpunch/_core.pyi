@@ -13,12 +13,19 @@ _errors: ModuleType
 def rayleigh_vstar(nu: float) -> float: ...
 def phi1(vstar: float, nu: float) -> float: ...
 def phi2(vstar: float, nu: float) -> float: ...
-def critical_speed(kw: float, nu: float) -> tuple[float, float]: ...
-def first_wave_vstar(t: float, kw: float, nu: float) -> float: ...
+def critical_speed(kw: float, nu: float, kp: float = 0.0) -> tuple[float, float]: ...
+def first_wave_vstar(t: float, kw: float, nu: float, kp: float = 0.0) -> float: ...
 def layer_response(
-    t: npt.ArrayLike, vstar: float, kw: float, nu: float, method: str = "auto"
+    t: npt.ArrayLike,
+    vstar: float,
+    kw: float,
+    nu: float,
+    method: str = "auto",
+    kp: float = 0.0,
 ) -> tuple[_Array, _Array]: ...
-def layer_dispersion(t: float, vstar: float, kw: float, nu: float) -> float: ...
+def layer_dispersion(
+    t: float, vstar: float, kw: float, nu: float, kp: float = 0.0
+) -> float: ...
 def kernel_k1(
     u: npt.ArrayLike,
     vstar: float,
@@ -27,6 +34,7 @@ def kernel_k1(
     tol: float,
     range: float,
     direct: bool = False,
+    kp: float = 0.0,
 ) -> _Array: ...
 def chebyshev_nodes(n: int) -> tuple[_Array, _Array, _Array]: ...
 def kernel_cache_info() -> dict[str, int]: ...
@@ -41,6 +49,7 @@ def solve_contact(
     tol: float,
     allow_unphysical: bool,
     n: int = 0,
+    kp: float = 0.0,
     profile: str = "cylinder",
     half_width: float = 0.0,
     table_x: list[float] = ...,
@@ -130,9 +139,10 @@ def solve_damped(
     tol: float,
     allow_unphysical: bool,
     n: int = 0,
+    kp: float = 0.0,
 ) -> DampedSolution: ...
 def damped_layer_response(
-    t: float, vstar: float, kw: float, nu: float, damping: float
+    t: float, vstar: float, kw: float, nu: float, damping: float, kp: float = 0.0
 ) -> tuple[complex, complex, complex]: ...
 
 class DampedSolution:

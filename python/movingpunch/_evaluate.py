@@ -110,6 +110,11 @@ def _check_kw(value: object) -> float:
     return params.check("kw", value)
 
 
+def _check_kp(value: object) -> float:
+    # The Pasternak layer's shear stiffness: finite, >= 0 (0: springs alone).
+    return params.check("kp", value)
+
+
 def _check_positive(name: str, value: object) -> float:
     """radius or load (the name says which): its range in movingpunch.params."""
     return params.check(name, value)
@@ -227,13 +232,20 @@ def _json_safe(value: object) -> object:
 
 
 def _check_solve_inputs(
-    vstar: object, kw: object, radius: object, load: object, nu: object, tol: object
+    vstar: object,
+    kw: object,
+    radius: object,
+    load: object,
+    nu: object,
+    tol: object,
+    kp: object = 0.0,
 ) -> dict[str, float]:
     """The inputs every solve takes, checked (InvalidParameterError names the
     first bad one and its range), as keyword arguments of the core's solve."""
     return {
         "vstar": _check_vstar(vstar),
         "kw": _check_kw(kw),
+        "kp": _check_kp(kp),
         "radius": _check_positive("radius", radius),
         "load": _check_positive("load", load),
         "nu": _check_nu(nu),

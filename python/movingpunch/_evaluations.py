@@ -46,6 +46,7 @@ class Evaluations:
         nu: float
         kw: float
         radius: float
+        kp: float
 
         @property
         def stress_error_estimate(self) -> float: ...
@@ -162,7 +163,7 @@ class Evaluations:
             if extent is None
             else _check_positive_extent(extent)
         )
-        alpha = _core.critical_speed(self.kw, self.nu)[1]
+        alpha = _core.critical_speed(self.kw, self.nu, self.kp)[1]
         wave = 2.0 * math.pi / alpha if 0.0 < alpha < math.inf else math.inf
         depth = np.array([-1.0])
         centre = self._impl.stress_field(np.array([0.0]), np.array([0.0, -1.0]))[0][
@@ -249,6 +250,8 @@ class ResultFields(Evaluations):
     """V* = rho V^2/mu."""
     kw: float
     """k_w h/mu (inf: smooth rigid base)."""
+    kp: float
+    """k_p/(mu h): the Pasternak shear layer on the springs (0.0: Winkler)."""
     radius: float
     """R/h."""
     load: float
@@ -258,7 +261,7 @@ class ResultFields(Evaluations):
     tol: float
     """Requested relative tolerance on the contact ends (a/h when symmetric)."""
     critical_vstar: float
-    """Critical speed V*_cr(kw, nu) of the undamped layer (damping lifts it)."""
+    """Critical speed V*_cr(kw, nu, kp) of the undamped layer (damping lifts it)."""
     rayleigh_vstar: float
     """Rayleigh speed V*_R(nu)."""
     phi1: float

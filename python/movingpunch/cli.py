@@ -205,13 +205,21 @@ def _build_parser() -> argparse.ArgumentParser:
     )
     solve_p.add_argument("--nu", type=_number("nu"), default=0.2, help=help_text("nu"))
     solve_p.add_argument("--tol", type=_tol, default=1e-8, help=help_text("tol"))
-    solve_p.add_argument(
-        "--damping",
-        type=_number("damping"),
-        default=0.0,
-        help=help_text("damping") + "; > 0 gives the asymmetric contact (-b, a) "
-        "and the drag, at any speed below the Rayleigh speed (docs/damped.md)",
-    )
+    # The foundation's optional terms, 0 by default (the paper's model).
+    for name, more in (
+        (
+            "damping",
+            "; > 0 gives the asymmetric contact (-b, a) and the drag, at any "
+            "speed below the Rayleigh speed (docs/damped.md)",
+        ),
+        (
+            "kp",
+            "; the base condition sigma_y = kw v - kp v'' (docs/theory.md section 12)",
+        ),
+    ):
+        solve_p.add_argument(
+            f"--{name}", type=_number(name), default=0.0, help=help_text(name) + more
+        )
     solve_p.add_argument(
         "--allow-unphysical",
         action="store_true",
@@ -235,6 +243,7 @@ def _build_parser() -> argparse.ArgumentParser:
     )
     crit_p.add_argument("--kw", type=_number("kw"), required=True, help=help_text("kw"))
     crit_p.add_argument("--nu", type=_number("nu"), default=0.2, help=help_text("nu"))
+    crit_p.add_argument("--kp", type=_number("kp"), default=0.0, help=help_text("kp"))
     crit_p.add_argument("--json", action="store_true", help="print JSON")
     crit_p.set_defaults(handler=_cmd_critical)
 
@@ -394,6 +403,7 @@ def _cmd_solve(args: argparse.Namespace) -> int:
         tol=args.tol,
         allow_unphysical=args.allow_unphysical,
         damping=args.damping,
+        kp=args.kp,
     )
     peaks = s.stress_peaks() if args.stress else None
     _print_warnings(s)
@@ -406,6 +416,7 @@ def _cmd_solve(args: argparse.Namespace) -> int:
     inputs = [
         ("V* = ρV²/μ", _fmt(s.vstar)),
         ("k_w h/μ", _fmt(s.kw)),
+        ("k_p/(μh) (Pasternak)", _fmt(s.kp)),
         ("damping c_w c_T/μ", _fmt(s.damping)),
         ("R/h", _fmt(s.radius)),
         ("profile", s.profile.describe()),
@@ -471,13 +482,14 @@ def _stress_rows(peaks: StressPeaks) -> list[tuple[str, str]]:
 
 
 def _cmd_critical(args: argparse.Namespace) -> int:
-    vcr = critical_vstar(args.kw, args.nu)
-    t = critical_wavenumber(args.kw, args.nu)
+    vcr = critical_vstar(args.kw, args.nu, args.kp)
+    t = critical_wavenumber(args.kw, args.nu, args.kp)
     vr = rayleigh_vstar(args.nu)
     if args.json:
         data = {
             "kw": _json_number(args.kw),
             "nu": args.nu,
+            "kp": args.kp,
             "critical_vstar": _json_number(vcr),
             "critical_wavenumber": _json_number(t),
             "rayleigh_vstar": _json_number(vr),
@@ -487,6 +499,7 @@ def _cmd_critical(args: argparse.Namespace) -> int:
     rows = [
         ("k_w h/μ", _fmt(float(args.kw))),
         ("ν", _fmt(float(args.nu))),
+        ("k_p/(μh)", _fmt(float(args.kp))),
         ("V*_cr", _fmt(vcr)),
         ("αh at the minimum", _fmt(t)),
         ("V*_R (Rayleigh)", _fmt(vr)),

@@ -37,8 +37,9 @@ Points = npt.NDArray[Any] | Sequence[Any]
 class ContactSolution(Protocol):
     """Every solution's fields and evaluations (see the module docstring).
 
-    Parameters: ``vstar``, ``kw``, ``radius``, ``load``, ``nu``, ``tol``,
-    ``damping`` (0.0 for the paper's model). The contact: ``contact_interval``
+    Parameters: ``vstar``, ``kw``, ``kp`` (0.0 for the paper's Winkler
+    springs), ``radius``, ``load``, ``nu``, ``tol``, ``damping`` (0.0 for the
+    paper's model). The contact: ``contact_interval``
     (x_back, x_front), ``half_width``, ``centre``, ``a`` (the leading end;
     the half-width of a symmetric contact), ``p0`` (the pressure under the
     punch's axis x = 0, over P/h), ``indentation``, ``drag`` (the
@@ -59,6 +60,8 @@ class ContactSolution(Protocol):
     def vstar(self) -> float: ...
     @property
     def kw(self) -> float: ...
+    @property
+    def kp(self) -> float: ...
     @property
     def radius(self) -> float: ...
     @property
@@ -155,6 +158,7 @@ class ContactSolution(Protocol):
 CONTRACT_FIELDS: tuple[str, ...] = (
     "vstar",
     "kw",
+    "kp",
     "radius",
     "load",
     "nu",

@@ -28,6 +28,7 @@ from movingpunch import _core, params
 from movingpunch._evaluate import (
     _as_points,
     _check_flag,
+    _check_kp,
     _check_kw,
     _check_nu,
     _check_solve_inputs,
@@ -217,6 +218,7 @@ def solve_damped(
     tol: float | str = 1e-8,
     allow_unphysical: bool = False,
     n: int | None = None,
+    kp: float = 0.0,
 ) -> DampedSolution:
     """Solves the contact problem on a damped foundation (``damping`` > 0).
 
@@ -225,7 +227,7 @@ def solve_damped(
     V*_R), UnphysicalContactError (unless ``allow_unphysical``) and
     ConvergenceError.
     """
-    inputs = _check_solve_inputs(vstar, kw, radius, load, nu, tol)
+    inputs = _check_solve_inputs(vstar, kw, radius, load, nu, tol, kp)
     inputs["damping"] = check_damping(damping, positive=True)
     flag = _check_flag("allow_unphysical", allow_unphysical)
     size = _check_damped_size(n)
@@ -266,7 +268,13 @@ def solve_damped(
 
 
 def damped_layer_response(
-    t: float, *, vstar: float, kw: float, nu: float = 0.2, damping: float
+    t: float,
+    *,
+    vstar: float,
+    kw: float,
+    nu: float = 0.2,
+    damping: float,
+    kp: float = 0.0,
 ) -> tuple[complex, complex, complex]:
     """(M1, M2, Wb) of the damped layer per unit transformed pressure at
     t = alpha h >= 0: M1 = -alpha v^(alpha, 0)/p^, M2 = -sigma_x^(alpha, 0)/p^,
@@ -276,6 +284,11 @@ def damped_layer_response(
     if not (math.isfinite(tt) and tt >= 0):
         raise _fail("t", tt)
     m1, m2, wb = _core.damped_layer_response(
-        tt, _check_vstar(vstar), _check_kw(kw), _check_nu(nu), check_damping(damping)
+        tt,
+        _check_vstar(vstar),
+        _check_kw(kw),
+        _check_nu(nu),
+        check_damping(damping),
+        _check_kp(kp),
     )
     return complex(m1), complex(m2), complex(wb)

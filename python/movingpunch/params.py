@@ -7,7 +7,7 @@ once. Pure Python: this module imports only ``movingpunch.errors`` (never
 ``_core``), so scenes, the CLI and the UI import it cheaply.
 
 Every quantity is dimensionless (layer thickness h = 1, shear modulus mu = 1).
-The speed bound vstar < V*_cr(kw, nu) depends on kw and nu: the core checks it
+The speed bound vstar < V*_cr(kw, nu, kp) depends on kw, nu and kp: the core checks it
 (SupercriticalSpeedError, whose ``parameter`` is ``"vstar"`` too).
 """
 
@@ -127,7 +127,7 @@ SPECS: Mapping[str, ParamSpec] = MappingProxyType(
                 "rho V^2/mu",
                 "speed of the punch",
                 None,
-                hi_text="V*_cr(kw, nu)",
+                hi_text="V*_cr(kw, nu, kp)",
                 note="(< V*_R(nu) with damping > 0)",
             ),
             ParamSpec(
@@ -141,6 +141,18 @@ SPECS: Mapping[str, ParamSpec] = MappingProxyType(
                 None,
                 inf_ok=True,
                 note="(inf: smooth rigid base)",
+            ),
+            ParamSpec(
+                "kp",
+                0.0,
+                1e12,
+                False,
+                False,
+                "k_p/(mu h)",
+                "shear stiffness of a Pasternak layer on the springs "
+                "(two-parameter foundation)",
+                0.0,
+                note="(0: Winkler springs alone)",
             ),
             ParamSpec(
                 "radius", 0.0, 1e12, True, False, "R/h", "radius of the punch", None

@@ -1,7 +1,8 @@
 """Public Python API: validated wrappers around the compiled core.
 
 Every quantity is dimensionless (layer thickness h = 1, shear modulus mu = 1):
-vstar = rho V^2/mu, kw = k_w h/mu, radius = R/h, load = P/(mu h), nu, tol (or
+vstar = rho V^2/mu, kw = k_w h/mu, kp = k_p/(mu h) (a Pasternak shear layer on
+the springs; 0: Winkler), radius = R/h, load = P/(mu h), nu, tol (or
 a preset name, see PRESETS). Their valid ranges, units and meanings are in one
 table, ``movingpunch.params.SPECS``.
 
@@ -25,6 +26,7 @@ from movingpunch import _core, params
 from movingpunch._evaluate import (
     _as_points,
     _check_flag,
+    _check_kp,
     _check_kw,
     _check_nu,
     _check_solve_inputs,
@@ -167,7 +169,7 @@ class Solution(ResultFields):
     ) -> FloatArray: ...
     def foundation_reaction(self, x: npt.ArrayLike) -> float | FloatArray:
         """Pressure the base exerts on the layer, -sigma_y(x, -h)/(P/h)
-        (= -kw v(x, -h)/(P/h) for a finite foundation; the rigid base's
+        (= -(kw v - kp v'')(x, -h)/(P/h) for a finite foundation; the rigid base's
         contact pressure for kw = inf). Integrates to 1 over x."""
         return _pointwise("x", x, self._impl.foundation_reaction)
 
@@ -184,6 +186,7 @@ def solve(
     allow_unphysical: bool = ...,
     n: int | None = ...,
     damping: Literal[0] = ...,
+    kp: float = ...,
     profile: PunchProfile | None = ...,
 ) -> Solution: ...
 
@@ -200,6 +203,7 @@ def solve(
     allow_unphysical: bool = ...,
     n: int | None = ...,
     damping: float,
+    kp: float = ...,
     profile: PunchProfile | None = ...,
 ) -> ContactSolution: ...
 
@@ -215,6 +219,7 @@ def solve(
     allow_unphysical: bool = False,
     n: int | None = None,
     damping: float = 0.0,
+    kp: float = 0.0,
     profile: PunchProfile | None = None,
 ) -> ContactSolution:
     """Solves the contact problem of a rigid punch sliding over the layer.
@@ -239,6 +244,12 @@ def solve(
     returns a Solution; > 0 returns a ``movingpunch.damped.DampedSolution``
     (asymmetric contact, drag; speeds up to the Rayleigh speed). Both satisfy
     ``movingpunch.ContactSolution``, the one contract callers use.
+
+    ``kp`` = k_p/(mu h) >= 0 adds a Pasternak shear layer to the springs
+    (a two-parameter foundation: sigma_y(x, -h) = kw v - kp v'', the stiffness
+    kw + kp (alpha h)^2 per wavenumber; docs/theory.md section 12). 0 (the
+    default) is the Winkler foundation, bit for bit. It raises the critical
+    speed (``critical_vstar(kw, nu, kp)``).
 
     ``profile`` is the punch's shape (``movingpunch.profiles``): a
     ``Cylinder(radius)`` (the default: ``radius=R`` is its shorthand),
@@ -272,8 +283,9 @@ def solve(
             tol=tol,
             allow_unphysical=allow_unphysical,
             n=n,
+            kp=kp,
         )
-    return _solve_profile(shape, vstar, kw, load, nu, tol, allow_unphysical, n)
+    return _solve_profile(shape, vstar, kw, load, nu, tol, allow_unphysical, n, kp)
 
 
 def resolve_profile(radius: object, profile: object) -> PunchProfile:
@@ -314,12 +326,13 @@ def _solve_profile(
     tol: object,
     allow_unphysical: object,
     n: object,
+    kp: object = 0.0,
 ) -> Solution:
     """The undamped solve of ``shape`` (validated inputs, the core's solve,
     the Solution)."""
     # The shape's own parameters are checked by it; radius shows its nominal
     # radius (inf for a flat punch or a table).
-    inputs = _check_solve_inputs(vstar, kw, 1.0, load, nu, tol)
+    inputs = _check_solve_inputs(vstar, kw, 1.0, load, nu, tol, kp)
     inputs["radius"] = shape.nominal_radius
     flag = _check_flag("allow_unphysical", allow_unphysical)
     size = _check_size(n)
@@ -481,7 +494,7 @@ def _stress_error_estimate(s: Solution) -> float:
             shape = s._profile if s._profile is not None else Cylinder(s.radius)
             inputs = {"vstar": s.vstar, "kw": s.kw, "load": s.load, "nu": s.nu}
             other = _core.solve_contact(
-                **_core_inputs(inputs, shape),
+                **_core_inputs({**inputs, "kp": s.kp}, shape),
                 # Its width and kernel well below this one's collocation
                 # error: at a loose tol the change would measure the root's
                 # own 1e-2 tol, and at N = 24 the 1e-10 kernel of a tol-1e-6
@@ -509,7 +522,7 @@ def kernel_cache_info() -> dict[str, int]:
     """The process-wide cache of k1 kernel tables: ``size`` (tables held),
     ``hits`` (solves that reused a table), ``misses`` (tables built).
 
-    Tables are keyed on (vstar, kw, nu, tol), so solves that change only the
+    Tables are keyed on (vstar, kw, nu, tol, kp), so solves that change only the
     radius or the load reuse one table (when the cached table covers the new
     contact width).
     """
@@ -521,15 +534,18 @@ def clear_kernel_cache() -> None:
     _core.clear_kernel_cache()
 
 
-def critical_vstar(kw: float, nu: float = 0.2) -> float:
-    """Critical speed V*_cr(kw, nu): the minimum phase speed of free waves in
-    the layer on springs (the Rayleigh speed for kw = inf)."""
-    return _core.critical_speed(_check_kw(kw), _check_nu(nu))[0]
+def critical_vstar(kw: float, nu: float = 0.2, kp: float = 0.0) -> float:
+    """Critical speed V*_cr(kw, nu, kp): the minimum phase speed of free waves
+    in the layer on springs (and a Pasternak shear layer kp; the Rayleigh
+    speed for kw = inf, and once kp is so stiff that no free wave is slower
+    than the Rayleigh wave). Grows with kw and with kp."""
+    return _core.critical_speed(_check_kw(kw), _check_nu(nu), _check_kp(kp))[0]
 
 
-def critical_wavenumber(kw: float, nu: float = 0.2) -> float:
-    """alpha h at which the phase speed is minimal (inf for kw = inf)."""
-    return _core.critical_speed(_check_kw(kw), _check_nu(nu))[1]
+def critical_wavenumber(kw: float, nu: float = 0.2, kp: float = 0.0) -> float:
+    """alpha h at which the phase speed is minimal (inf for kw = inf, and
+    when V*_cr is the Rayleigh speed)."""
+    return _core.critical_speed(_check_kw(kw), _check_nu(nu), _check_kp(kp))[1]
 
 
 def rayleigh_vstar(nu: float = 0.2) -> float:
@@ -557,6 +573,7 @@ def layer_response(
     kw: float,
     nu: float = ...,
     method: Literal["auto", "modal", "transfer"] = ...,
+    kp: float = ...,
 ) -> tuple[float, float]: ...
 @overload
 def layer_response(
@@ -566,6 +583,7 @@ def layer_response(
     kw: float,
     nu: float = ...,
     method: Literal["auto", "modal", "transfer"] = ...,
+    kp: float = ...,
 ) -> tuple[FloatArray, FloatArray]: ...
 def layer_response(
     t: npt.ArrayLike,
@@ -574,6 +592,7 @@ def layer_response(
     kw: float,
     nu: float = 0.2,
     method: Literal["auto", "modal", "transfer"] = "auto",
+    kp: float = 0.0,
 ) -> tuple[float, float] | tuple[FloatArray, FloatArray]:
     """Surface responses (M1, M2) of the layer per unit transformed pressure
     at wavenumbers t = alpha h >= 0 (M1 -> phi1, M2 -> phi2 as t -> inf).
@@ -591,7 +610,12 @@ def layer_response(
             allowed="'auto', 'modal' or 'transfer'",
         )
     m1, m2 = _core.layer_response(
-        _flat(points), _check_vstar(vstar), _check_kw(kw), _check_nu(nu), method
+        _flat(points),
+        _check_vstar(vstar),
+        _check_kw(kw),
+        _check_nu(nu),
+        method,
+        _check_kp(kp),
     )
     if _is_scalar(t):
         return float(m1[0]), float(m2[0])

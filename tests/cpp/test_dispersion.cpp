@@ -95,7 +95,7 @@ TEST(CriticalSpeed, DefaultScanFindsTheLowestBranch) {
       for (int i = 0; i <= 80; ++i) {
         const double t = std::pow(10.0, -5.0 + 0.125 * i);
         const double coarse = first_wave_vstar(t, kw, nu);
-        const double dense = first_wave_vstar(t, kw, nu, 6 * kFirstWaveScan);
+        const double dense = first_wave_vstar(t, kw, nu, 0.0, 6 * kFirstWaveScan);
         EXPECT_NEAR(coarse, dense, 1e-12 * std::max(dense, 1e-3))
             << "nu " << nu << " kw " << kw << " t " << t;
       }

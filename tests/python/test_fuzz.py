@@ -55,6 +55,20 @@ SIZE_EXTREME = [
     INF,
     -INF,
 ]
+# kp (the Pasternak shear layer): 0, the paper's springs alone, half the time.
+KP_POOL = [0.0, 0.0, 0.0, 1e-12, 0.01, 0.3, 10.0, 1e12]
+KP_EXTREME = [
+    -0.0,
+    -1e-300,
+    -1.0,
+    5e-324,
+    1e12 * (1 + 1e-15),
+    1e13,
+    1e308,
+    NAN,
+    INF,
+    -INF,
+]
 TOL_EXTREME = [0.0, 1e-15, 1e-14, 1e-2, 0.011, 1.0, -1e-8, 1e-300, NAN, INF, -INF]
 N_EXTREME = [-2, -1, 1, 3, 4097, 4098, 2**31 - 1, -(2**31), 1001]
 
@@ -64,7 +78,7 @@ class Draw:
 
     def __init__(self, seed: int) -> None:
         self.rng = np.random.default_rng(seed)
-        self._vcr: dict[tuple[float, float], float] = {}
+        self._vcr: dict[tuple[float, float, float], float] = {}
 
     def _pick(self, values: list[Any]) -> Any:
         return values[int(self.rng.integers(len(values)))]
@@ -88,19 +102,27 @@ class Draw:
             return float(self.rng.uniform(0.0, 0.5))
         return float(self._pick(NU_EXTREME))
 
-    def critical(self, kw: float, nu: float) -> float | None:
-        key = (kw, nu)
+    def kp(self) -> float:
+        r = self.rng.random()
+        if r < 0.9:
+            return float(self._pick(KP_POOL))
+        if r < 0.95:
+            return self._loguniform(1e-12, 1e12)
+        return float(self._pick(KP_EXTREME))
+
+    def critical(self, kw: float, nu: float, kp: float = 0.0) -> float | None:
+        key = (kw, nu, kp)
         if key not in self._vcr:
             try:
-                self._vcr[key] = _core.critical_speed(kw, nu)[0]
+                self._vcr[key] = _core.critical_speed(kw, nu, kp)[0]
             except errors.MovingPunchError:
                 self._vcr[key] = NAN
         vcr = self._vcr[key]
         return None if math.isnan(vcr) else vcr
 
-    def vstar(self, kw: float, nu: float) -> float:
+    def vstar(self, kw: float, nu: float, kp: float = 0.0) -> float:
         r = self.rng.random()
-        vcr = self.critical(kw, nu)
+        vcr = self.critical(kw, nu, kp)
         if r < 0.65 and vcr is not None:
             s = self.rng.random()
             if s < 0.7:
@@ -108,8 +130,13 @@ class Draw:
             elif s < 0.9:
                 # Right up to V*_cr for kw <= 10. For stiffer foundations V*_cr
                 # is within 1e-4 of the Rayleigh speed and solves there take
-                # seconds (test_hard_cases.py covers them): stop at 1e-4.
-                closest = 15.0 if kw <= 10.0 else 4.0
+                # seconds (test_hard_cases.py covers them): stop at 1e-4. So for
+                # a shear layer kp that lifts V*_cr to within 1 % of V*_R
+                # (test_pasternak.py covers them).
+                stiff = kw > 10.0 or (
+                    kp > 0.0 and vcr > 0.99 * _core.rayleigh_vstar(nu)
+                )
+                closest = 4.0 if stiff else 15.0
                 frac = 1.0 - 10.0 ** -self.rng.uniform(2.0, closest)
             else:
                 frac = float(self._pick([1.0, 1.0 + 1e-9, 1.01, 0.0]))
@@ -152,10 +179,11 @@ class Draw:
         return int(self._pick(N_EXTREME))
 
     def call(self) -> dict[str, Any]:
-        kw, nu = self.kw(), self.nu()
+        kw, nu, kp = self.kw(), self.nu(), self.kp()
         radius, load = self.radius_load()
         return {
-            "vstar": self.vstar(kw, nu),
+            "vstar": self.vstar(kw, nu, kp),
+            "kp": kp,
             "kw": kw,
             "radius": radius,
             "load": load,
@@ -295,7 +323,7 @@ ODD_VALUES: list[Any] = [
 def test_fuzz_public_api_every_type() -> None:
     rng = np.random.default_rng(77)
     draw = Draw(78)
-    names = ["vstar", "kw", "radius", "load", "nu", "tol"]
+    names = ["vstar", "kw", "radius", "load", "nu", "tol", "kp"]
     outcomes: collections.Counter[str] = collections.Counter()
     for _ in range(2000):
         args: dict[str, Any] = draw.call()

@@ -930,6 +930,7 @@ GOOD: dict[str, Any] = {
     "load": 0.002,
     "nu": 0.2,
     "tol": 1e-8,
+    "kp": 0.0,
 }
 
 
@@ -986,6 +987,7 @@ NUMBER_LIKE_OK: list[tuple[str, Any]] = [
     ("kw", np.float32(1.0)),
     ("kw", np.float64(math.inf)),
     ("kw", Fraction(3, 2)),
+    ("kp", np.float32(0.5)),
     ("radius", np.int16(100)),
     ("radius", np.uint64(100)),
     ("radius", np.float32(100.0)),
@@ -1055,6 +1057,7 @@ def test_solve_hostile_flag(value: Any) -> None:
 HELPERS: list[tuple[str, Callable[[Any], Any], str]] = [
     ("critical_vstar kw", lambda v: mp.critical_vstar(v), "kw"),
     ("critical_vstar nu", lambda v: mp.critical_vstar(1.0, v), "nu"),
+    ("critical_vstar kp", lambda v: mp.critical_vstar(1.0, 0.2, v), "kp"),
     ("critical_wavenumber kw", lambda v: mp.critical_wavenumber(v), "kw"),
     ("rayleigh_vstar nu", lambda v: mp.rayleigh_vstar(v), "nu"),
     ("phi1 vstar", lambda v: mp.phi1(v), "vstar"),

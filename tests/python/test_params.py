@@ -41,6 +41,7 @@ OUT_OF_RANGE: dict[str, object] = {
     "load": -1.0,
     "nu": 0.5,
     "damping": -0.5,
+    "kp": -0.5,
     "tol": 0.1,
 }
 CASES = list(OUT_OF_RANGE.items()) + [(n, "abc") for n in OUT_OF_RANGE if n != "tol"]
@@ -206,7 +207,7 @@ def _core_refuses(name: str, value: float) -> bool:
     return refused
 
 
-@pytest.mark.parametrize("name", ["kw", "radius", "load", "nu", "tol"])
+@pytest.mark.parametrize("name", ["kw", "kp", "radius", "load", "nu", "tol"])
 def test_table_bounds_are_the_cores(name: str) -> None:
     spec = SPECS[name]
     probes = [spec.lo, math.nextafter(spec.lo, -math.inf), math.nan]
@@ -329,7 +330,9 @@ async def test_tui_shows_a_core_error_at_the_input_it_names() -> None:
 # -- one source -------------------------------------------------------------------
 
 
-@pytest.mark.parametrize("name", ["vstar", "kw", "radius", "load", "nu", "damping"])
+@pytest.mark.parametrize(
+    "name", ["vstar", "kw", "radius", "load", "nu", "damping", "kp"]
+)
 def test_every_surface_shows_the_tables_range(
     name: str, capsys: pytest.CaptureFixture[str]
 ) -> None:

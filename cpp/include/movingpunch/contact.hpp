@@ -32,6 +32,7 @@ struct ContactParams {
   ProfileKind profile = ProfileKind::cylinder;
   double half_width = 0;                 // b/h (flat, rounded_flat)
   std::vector<double> table_x, table_y;  // the table's x/h and heights y/h (table)
+  double kp = 0;  // k_p / (mu h) in [0, kMaxKp]: Pasternak shear layer (0: Winkler)
 };
 
 // Throws std::invalid_argument naming the parameter and its valid range.

@@ -6,7 +6,9 @@
 // modes e^{i alpha x} (f^(alpha) = int f e^{-i alpha x} dx) the foundation
 // becomes the complex, alpha-dependent stiffness
 //   kw(alpha) = kw - i damping sqrt(vstar) alpha,
-// so the layer response is complex: M1(-alpha) = conj(M1(alpha)). The
+// so the layer response is complex: M1(-alpha) = conj(M1(alpha)). A
+// Pasternak shear layer kp adds kp alpha^2 to it (- kp d^2v/dx^2 in the base
+// condition; docs/theory.md section 12). The
 // contact (-b, a) is asymmetric and both ends are unknown; see docs/damped.md.
 //
 // damping = 0 is the paper's model and is NOT handled here: solve_contact()
@@ -45,19 +47,21 @@ class DampedLayerModel {
  public:
   static constexpr double kSmallT = 0.5;
 
-  // vstar in [0, 1), kw in (0, inf], nu in [0, 0.5), damping >= 0 finite;
+  // vstar in [0, 1), kw in (0, inf], nu in [0, 0.5), damping >= 0 finite,
+  // kp in [0, kMaxKp] (the Pasternak shear layer; 0: springs alone);
   // throws std::invalid_argument naming the parameter otherwise.
-  DampedLayerModel(double vstar, double kw, double nu, double damping);
+  DampedLayerModel(double vstar, double kw, double nu, double damping, double kp = 0.0);
 
   const WaveConstants& constants() const noexcept { return c_; }
   double vstar() const noexcept { return c_.s; }
   double kw() const noexcept { return kw_; }
   double nu() const noexcept { return c_.nu; }
   double damping() const noexcept { return damping_; }
+  double kp() const noexcept { return kp_; }
   double phi1() const noexcept { return c_.phi1; }
   double phi2() const noexcept { return c_.phi2; }
   bool rigid_base() const noexcept { return rigid_; }
-  // kw(alpha) = kw - i damping sqrt(vstar) t for alpha = t > 0.
+  // kw(alpha) = kw + kp t^2 - i damping sqrt(vstar) t for alpha = t > 0.
   cplx foundation(double t) const noexcept;
 
   // Response at t = alpha h >= 0 (t = 0: the exact limit M1 = 0, Wb = 0).
@@ -80,6 +84,7 @@ class DampedLayerModel {
   double damping_;
   bool rigid_;
   double beta_;  // damping sqrt(vstar)
+  double kp_ = 0.0;
 };
 
 // Adaptive (Gauss-Kronrod 7/15) panels on [0, alpha_max] resolving
@@ -138,7 +143,7 @@ class DampedKernel {
 };
 
 // Process-wide cache of damped kernel tables, keyed on (vstar, kw, nu,
-// damping) (the table is built to round-off whatever tol, so tol is not part
+// damping, kp) (the table is built to round-off whatever tol, so tol is not part
 // of the key): a table whose range is at least min_range, or one of range
 // build_range built and cached (at least kGrowth times the longest shorter
 // table of the same inputs when one exists: its quadrature is reused). Least recently used
@@ -147,7 +152,8 @@ class DampedKernel {
 inline constexpr std::size_t kDampedKernelCacheCapacity = 16;
 std::shared_ptr<const DampedKernel> cached_damped_kernel(double vstar, double kw, double nu,
                                                          double damping, double min_range,
-                                                         double build_range, bool* built = nullptr);
+                                                         double build_range, bool* built = nullptr,
+                                                         double kp = 0.0);
 KernelCacheInfo damped_kernel_cache_info();
 
 // Dimensionless inputs (h = 1, mu = 1).
@@ -161,6 +167,7 @@ struct DampedParams {
   double tol = 1e-8;    // relative tolerance on the contact ends and the pressure, [1e-14, 1e-2]
   bool allow_unphysical = false;
   int n = 0;  // fixed collocation size (even, 2..1024); 0: refine
+  double kp = 0;  // k_p / (mu h) in [0, kMaxKp]: Pasternak shear layer (0: Winkler)
 };
 
 // Throws std::invalid_argument naming the parameter and its valid range.

@@ -10,6 +10,10 @@ namespace movingpunch {
 class SupercriticalSpeedError : public std::domain_error {
  public:
   SupercriticalSpeedError(double vstar, double critical, double rayleigh);
+  // The same naming the foundation in the message, e.g. "kw = 1, kp = 0.2"
+  // (a Pasternak base: V*_cr depends on kp too).
+  SupercriticalSpeedError(double vstar, double critical, double rayleigh,
+                          const std::string& foundation);
   double vstar() const noexcept { return vstar_; }
   double critical() const noexcept { return critical_; }
   double rayleigh() const noexcept { return rayleigh_; }

@@ -134,7 +134,7 @@ class KernelK1 {
   void build_pieces();
 };
 
-// Process-wide cache of k1 tables, keyed on (vstar, kw, nu, tol): solves that
+// Process-wide cache of k1 tables, keyed on (vstar, kw, nu, tol, kp): solves that
 // share a material and speed (a load or radius sweep) reuse one table.
 // Returns a cached table whose range is at least `min_range` (and at most
 // kMaxRangeRatio times it, so a tiny contact never pays for a huge table), or

@@ -2,7 +2,9 @@
 // surface pressure, p(x) = cos(alpha x), in units h = 1, mu = 1.
 //
 // The layer occupies -1 <= y <= 0 (y up). Top: sigma_y = -p, tau_xy = 0. Bottom:
-// tau_xy = 0 and sigma_y = kw * v (kw = inf: v = 0, a smooth rigid base).
+// tau_xy = 0 and sigma_y = kw * v (kw = inf: v = 0, a smooth rigid base); with
+// a two-parameter (Pasternak) foundation sigma_y = kw v - kp d^2v/dx^2, i.e. the
+// stiffness kw + kp t^2 per mode (docs/theory.md section 12).
 // The steady motion at speed V enters through vstar = rho V^2 / mu.
 //
 // Two independent evaluations are used (see docs/theory.md):
@@ -88,12 +90,16 @@ class LayerModel {
   static constexpr double kSmallT = 0.5;
 
   // kw = k_w h / mu in (0, inf] (0, no foundation, has no equilibrium);
-  // throws std::invalid_argument otherwise.
-  LayerModel(double vstar, double kw, double nu);
+  // kp = k_p / (mu h) in [0, kMaxKp], the Pasternak shear layer (0: Winkler;
+  // irrelevant for kw = inf); throws std::invalid_argument otherwise.
+  LayerModel(double vstar, double kw, double nu, double kp = 0.0);
 
   const WaveConstants& constants() const noexcept { return c_; }
   double vstar() const noexcept { return c_.s; }
   double kw() const noexcept { return kw_; }
+  double kp() const noexcept { return kp_; }
+  // The base's stiffness per mode, kw + kp t^2 (t = alpha h; inf: rigid).
+  double foundation(double t) const noexcept { return kw_ + kp_ * t * t; }
   double nu() const noexcept { return c_.nu; }
   double phi1() const noexcept { return c_.phi1; }
   double phi2() const noexcept { return c_.phi2; }
@@ -120,6 +126,14 @@ class LayerModel {
   WaveConstants c_;
   double kw_;
   bool rigid_;
+  double kp_ = 0.0;
 };
+
+// Largest Pasternak stiffness kp = k_p/(mu h) accepted. Beyond ~1 the
+// critical speed is already the Rayleigh speed and the base acts as a rigid
+// one for every wave shorter than sqrt(kp/kw) h; 1e12 keeps kp t^2 finite
+// for every t the layer response evaluates (t nT < 400) and its effect on
+// the long waves resolved. Shared by every validation of kp.
+inline constexpr double kMaxKp = 1e12;
 
 }  // namespace movingpunch

@@ -42,6 +42,7 @@ _PARAM_LABELS = {
     "load": "P/(μh)",
     "nu": "ν",
     "damping": "damping",
+    "kp": "k_p/(μh)",
 }
 _QUANTITY_LABELS = {
     "a": "a/h",
@@ -123,7 +124,10 @@ def format_summary(result: SceneResult) -> str:
             [_fmt(float(cs.columns[n][i])) for n in cs.columns]
             for i in range(len(cs.columns["kw"]))
         ]
-        out += _table(["k_w h/μ", "ν", "V*_cr", "αh at min", "V*_R"], rows)
+        header = ["k_w h/μ", "ν", "V*_cr", "αh at min", "V*_R"]
+        if "kp" in cs.columns:  # a scene with a Pasternak shear layer
+            header.append(_PARAM_LABELS["kp"])
+        out += _table(header, rows)
 
     sw = result.sweep
     if sw is not None:

@@ -27,10 +27,11 @@ __all__ = [
     "Vary",
 ]
 
-PARAMS: tuple[str, ...] = ("vstar", "kw", "radius", "load", "nu", "damping")
+PARAMS: tuple[str, ...] = ("vstar", "kw", "radius", "load", "nu", "damping", "kp")
 """The physical parameters of a scene, in the order they are written.
 ``nu`` defaults to 0.2; ``damping`` (c_w c_T/mu, the Kelvin-Voigt dashpots,
-docs/damped.md) to 0 and is kept in ``params`` only when given."""
+docs/damped.md) and ``kp`` (k_p/(mu h), the Pasternak shear layer,
+docs/theory.md section 12) to 0 and are kept in ``params`` only when given."""
 
 
 def allowed_text(name: str) -> str:
@@ -77,7 +78,7 @@ SWEEP_QUANTITIES: dict[str, str] = {
     "p0": "central pressure p(0)/(P/h)",
     "indentation": "indentation delta/h",
     "min_pressure": "minimum of p/(P/h) on the contact",
-    "critical_vstar": "critical speed V*_cr(kw, nu)",
+    "critical_vstar": "critical speed V*_cr(kw, nu, kp)",
     "phi1": "moving half-plane factor phi1",
     "drag": "horizontal force on the punch over P (0 without damping)",
     "contact_start": "trailing end -b/h of the contact (-a/h without damping)",

@@ -217,31 +217,45 @@ def _out_stress_field(run: RunState, spec: Any, solutions: _Solutions) -> Output
 
 def _out_critical_speed(run: RunState, spec: Any, solutions: _Solutions) -> OutputData:
     scene = run.scene
-    combos: list[tuple[float, float]] = []
+    # (kw, nu, kp): kp (the Pasternak shear layer) 0 unless the scene sets it.
+    combos: list[tuple[float, float, float]] = []
     for v in scene.curve_values():
         p = scene.point(v)
-        if (p["kw"], p["nu"]) not in combos:
-            combos.append((p["kw"], p["nu"]))
-    nus = list(dict.fromkeys(nu for _, nu in combos))
+        if (p["kw"], p["nu"], p.get("kp", 0.0)) not in combos:
+            combos.append((p["kw"], p["nu"], p.get("kp", 0.0)))
+    pairs = list(dict.fromkeys((nu, kp) for _, nu, kp in combos))
+    pasternak = any(kp for _, _, kp in combos)
     curves: list[Curve] = []
     if spec.kw is not None:
         grid = np.geomspace(spec.kw[0], spec.kw[1], spec.resolved_points())
-        combos = [(float(k), nu) for nu in nus for k in grid]
+        combos = [(float(k), nu, kp) for nu, kp in pairs for k in grid]
     rows = []
-    for kw, nu in combos:
+    for kw, nu, kp in combos:
         with run.timed("critical_speed"):
-            vcr, alpha = critical_speed(kw, nu)
-        rows.append((kw, nu, vcr, alpha, rayleigh_vstar(nu)))
-    table = np.asarray(rows, dtype=np.float64).reshape(-1, 5)
+            vcr, alpha = critical_speed(kw, nu, kp)
+        rows.append((kw, nu, vcr, alpha, rayleigh_vstar(nu), kp))
+    table = np.asarray(rows, dtype=np.float64).reshape(-1, 6)
     if spec.kw is not None:
         n = spec.resolved_points()
-        for i, nu in enumerate(nus):
+        kps = list(dict.fromkeys(kp for _, kp in pairs))
+        for i, (nu, kp) in enumerate(pairs):
             block = table[i * n : (i + 1) * n]
-            label = curve_label("nu", nu) if len(nus) > 1 else ""
+            # One curve per nu (and per kp where a scene varies it).
+            param, value = ("kp", kp) if len(kps) > 1 else ("nu", nu)
+            several = len(pairs) > 1
+            label = curve_label(param, value) if several else ""
             curves.append(
-                Curve(label, nu if len(nus) > 1 else None, block[:, 0], block[:, 2])
+                Curve(label, value if several else None, block[:, 0], block[:, 2])
             )
-    names = ("kw", "nu", "critical_vstar", "critical_wavenumber", "rayleigh_vstar")
+    names: tuple[str, ...] = (
+        "kw",
+        "nu",
+        "critical_vstar",
+        "critical_wavenumber",
+        "rayleigh_vstar",
+    )
+    if pasternak:  # the kp column only where the scene sets kp
+        names += ("kp",)
     return OutputData(
         "critical_speed",
         "Critical speed",

@@ -24,7 +24,7 @@ __all__ = ["SweepPlan", "build_sweep_table", "plan_sweep", "split_chunks"]
 @dataclass
 class SweepPlan:
     """A sweep's points and the unique keys to solve, grouped by shared
-    kernel (vstar, kw, nu, tol, damping), each group in descending lambda."""
+    kernel (vstar, kw, nu, tol, damping, kp), each group in descending lambda."""
 
     points: list[list[dict[str, float]]]  # [curve][grid] -> parameters
     keys: list[Key]  # unique keys, in solve order
@@ -48,9 +48,9 @@ def plan_sweep(scene: SceneData) -> SweepPlan:
             representative.setdefault(point_key(p, scene.tol), p)
     groups: dict[tuple[float, ...], list[Key]] = {}
     for key in representative:
-        groups.setdefault(key[:5], []).append(key)
+        groups.setdefault(key[:6], []).append(key)
     for members in groups.values():
-        members.sort(key=lambda k: -k[5])  # descending lambda: widest kernel first
+        members.sort(key=lambda k: -k[6])  # descending lambda: widest kernel first
     keys = [k for members in groups.values() for k in members]
     want_peaks = any(q in PEAK_QUANTITIES for q in sw.quantities)
     damped = any(k[4] > 0.0 for k in keys)
@@ -172,6 +172,7 @@ def chunk_tasks(plan: SweepPlan, chunk: Chunk) -> list[dict[str, Any]]:
             "nu": group[2],
             "tol": group[3],
             "damping": group[4],
+            "kp": group[5],
             "points": [
                 (plan.representative[k]["radius"], plan.representative[k]["load"])
                 for k in keys

@@ -3,10 +3,11 @@ the numbers a sweep tabulates of a solved point, a group or chunk of sweep
 points (what a worker process or a Dask worker runs), and ``RunState``, the state
 of one run (solutions by key, their warnings, the stages, the progress).
 
-Sweep points that share (vstar, kw, nu, tol, damping) share the k1 kernel
+Sweep points that share (vstar, kw, nu, tol, damping, kp) share the k1 kernel
 (the core caches it per process); and because a/h, p/(P/h) and sigma/(P/h)
 depend on radius and load only through lambda = radius * load, points with
-equal (vstar, kw, nu, tol, damping, lambda) share one key and are solved once.
+equal (vstar, kw, nu, tol, damping, kp, lambda) share one key and are solved
+once.
 """
 
 from __future__ import annotations
@@ -27,19 +28,23 @@ from movingpunch.solver import result_warnings, solve
 
 __all__ = ["RunState", "point_key", "solve_point"]
 
-# vstar, kw, nu, tol, damping, lambda
-Key = tuple[float, float, float, float, float, float]
+# vstar, kw, nu, tol, damping, kp, lambda
+Key = tuple[float, float, float, float, float, float, float]
 
 
 def _damping(p: Mapping[str, float]) -> float:
     return p.get("damping", 0.0)
 
 
+def _kp(p: Mapping[str, float]) -> float:
+    return p.get("kp", 0.0)
+
+
 def point_key(p: Mapping[str, float], tol: float) -> Key:
     # Beside a flat punch or a table (radius inf) the load alone tells the
     # points apart (negated: never a cylinder's lambda).
     lam = p["radius"] * p["load"] if math.isfinite(p["radius"]) else -p["load"]
-    return (p["vstar"], p["kw"], p["nu"], tol, _damping(p), lam)
+    return (p["vstar"], p["kw"], p["nu"], tol, _damping(p), _kp(p), lam)
 
 
 def radius_ratio(solved: float, wanted: float) -> float:
@@ -71,6 +76,7 @@ def solve_point(
         tol=tol,
         allow_unphysical=True,
         damping=_damping(p),
+        kp=_kp(p),
     )
     stages.add_solution(s)
     return s
@@ -112,11 +118,13 @@ def _point_text(p: Mapping[str, float]) -> str:
     names = ["vstar", "kw", "radius", "load", "nu"]
     if _damping(p) > 0.0:
         names.append("damping")
+    if _kp(p) > 0.0:
+        names.append("kp")
     return ", ".join(f"{n}={p[n]:.6g}" for n in names)
 
 
 def solve_group(task: Mapping[str, Any]) -> dict[str, Any]:
-    """Solves one group of sweep points sharing (vstar, kw, nu, tol, damping), in
+    """Solves one group of sweep points sharing (vstar, kw, nu, tol, damping, kp), in
     descending lambda (the first solve builds the widest kernel; the rest
     reuse it). Runs in a worker process or on a Dask worker."""
     stages = Stages()
@@ -128,6 +136,7 @@ def solve_group(task: Mapping[str, Any]) -> dict[str, Any]:
             "kw": task["kw"],
             "nu": task["nu"],
             "damping": task["damping"],
+            "kp": task.get("kp", 0.0),
             "radius": radius,
             "load": load,
         }

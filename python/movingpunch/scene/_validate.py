@@ -98,11 +98,12 @@ def _check_profile(
 
 
 @functools.lru_cache(maxsize=4096)
-def critical_speed(kw: float, nu: float) -> tuple[float, float]:
-    """(V*_cr, alpha h at the minimum) for (kw, nu), computed once per process."""
+def critical_speed(kw: float, nu: float, kp: float = 0.0) -> tuple[float, float]:
+    """(V*_cr, alpha h at the minimum) for (kw, nu, kp), computed once per
+    process."""
     from movingpunch import _core
 
-    return _core.critical_speed(kw, nu)
+    return _core.critical_speed(kw, nu, kp)
 
 
 @functools.lru_cache(maxsize=64)
@@ -357,7 +358,7 @@ def validate(scene: SceneData, source: str) -> None:
             if name == "nu":
                 params[name] = DEFAULT_NU
                 continue
-            if name == "damping":  # optional, 0; kept only when given
+            if name in ("damping", "kp"):  # optional, 0; kept only when given
                 continue
             raise c.fail(f"params.{name}", "missing", allowed_text(name), name)
         params[name] = c.param(f"params.{name}", name, raw[name])
@@ -443,12 +444,13 @@ def _sweep_extremes(sweep: Sweep) -> list[int]:
     """The indices of the smallest and the largest sweep value, in order.
 
     They decide the speed checks of the whole sweep: the bound on vstar,
-    V*_cr(kw, nu), grows with kw and with nu, and V*_R(nu) with nu
-    (test_scene_input.py checks both on dense grids), so the tightest point
-    of a sweep over vstar, kw or nu is its largest vstar or its smallest kw
-    or nu; over damping, the smallest value is the only one that may be 0
-    (the undamped check) and the largest the one most surely > 0. Validation
-    thus solves O(1) critical speeds per sweep, not one per point."""
+    V*_cr(kw, nu, kp), grows with kw, with nu and with kp, and V*_R(nu) with
+    nu (test_scene_input.py checks both on dense grids, test_pasternak.py kp),
+    so the tightest point of a sweep over vstar, kw, nu or kp is its largest
+    vstar or its smallest kw, nu or kp; over damping, the smallest value is
+    the only one that may be 0 (the undamped check) and the largest the one
+    most surely > 0. Validation thus solves O(1) critical speeds per sweep,
+    not one per point."""
     n = len(sweep.values)
     if sweep.is_range:
         return [0, n - 1]
@@ -480,10 +482,11 @@ def _check_speeds(scene: SceneData, c: Checker) -> None:
                     else f"sweep.values[{si}]"
                 )
             combos.append((p, where))
-    seen: set[tuple[float, float, float, bool]] = set()
+    seen: set[tuple[float, float, float, bool, float]] = set()
     for p, where in combos:
         damped = p.get("damping", 0.0) > 0.0
-        key = (p["vstar"], p["kw"], p["nu"], damped)
+        kp = p.get("kp", 0.0)
+        key = (p["vstar"], p["kw"], p["nu"], damped, kp)
         if key in seen:
             continue
         seen.add(key)
@@ -506,22 +509,25 @@ def _check_speeds(scene: SceneData, c: Checker) -> None:
                     blamed,
                 )
             continue
-        vcr, _ = critical_speed(p["kw"], p["nu"])
+        vcr, _ = critical_speed(p["kw"], p["nu"], kp)
         if not p["vstar"] < vcr:
             # Blame the key that moved the point off the base parameters.
             culprit, allowed = where["vstar"], f"0 <= vstar < {vcr:.10g}"
             blamed = "vstar"
             if culprit.startswith("params."):
-                for name in ("kw", "nu", "damping"):
+                for name in ("kw", "nu", "damping", "kp"):
                     if not where[name].startswith("params."):
                         culprit, blamed = where[name], name
-                        allowed = f"{name} with V*_cr(kw, nu) > vstar = {p['vstar']:g}"
+                        allowed = (
+                            f"{name} with V*_cr(kw, nu, kp) > vstar = {p['vstar']:g}"
+                        )
                         if name == "damping":
                             allowed = "damping > 0 above V*_cr"
             raise c.fail(
                 culprit,
                 f"vstar = {p['vstar']:.10g} is at or above the critical speed "
-                f"V*_cr = {vcr:.10g} (kw = {_fmt_num(p['kw'])}, nu = {p['nu']:g}): "
+                f"V*_cr = {vcr:.10g} (kw = {_fmt_num(p['kw'])}, nu = {p['nu']:g}"
+                f"{f', kp = {kp:g}' if kp else ''}): "
                 "no steady solution without damping",
                 f"{allowed}, or damping > 0 (then vstar < V*_R)"
                 if allowed.startswith("0 <=")

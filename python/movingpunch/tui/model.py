@@ -37,6 +37,7 @@ FloatArray = npt.NDArray[np.float64]
 PARAM_NAMES: tuple[str, ...] = (
     "vstar",
     "kw",
+    "kp",
     "radius",
     "half_width",
     "load",
@@ -66,7 +67,15 @@ def parse_profile_kind(text: str) -> str:
     return kind
 
 
-SCENE_PARAMS: tuple[str, ...] = ("vstar", "kw", "radius", "load", "nu", "damping")
+SCENE_PARAMS: tuple[str, ...] = (
+    "vstar",
+    "kw",
+    "radius",
+    "load",
+    "nu",
+    "damping",
+    "kp",
+)
 """The physical parameters (a scene's ``params``); ``tol`` is separate."""
 
 TabName = Literal["pressure", "surface", "depth", "sweep", "field", "accuracy"]
@@ -89,6 +98,7 @@ SHORT: dict[str, str] = {
     "load": "P/μh",
     "nu": "ν",
     "damping": "damping",
+    "kp": "kp",
     "tol": "tol",
 }
 """Short labels of the parameters, for legends."""
@@ -100,6 +110,7 @@ GRID_LABELS: dict[str, str] = {
     "load": "P/(μh)",
     "nu": "ν",
     "damping": "damping c_w c_T/μ",
+    "kp": "k_p/(μh)",
 }
 """Axis labels of a swept parameter (the paper's normalisations)."""
 
@@ -140,6 +151,9 @@ class Params:
     tol: float = 1e-8
     damping: float = 0.0
     """c_w c_T/mu: dashpots in the foundation (docs/damped.md); 0: none."""
+    kp: float = 0.0
+    """k_p/(mu h): the Pasternak shear layer on the springs (docs/theory.md
+    section 12); 0: springs alone."""
     profile: str = "cylinder"
     """The punch's kind (``TUI_PROFILES``): a cylinder of ``radius``, a flat
     face of ``half_width``, a rounded flat (``half_width``, corners of
@@ -180,23 +194,27 @@ class Params:
         changes: dict[str, object] = {name: value}
         return replace(self, **changes)  # type: ignore[arg-type]
 
+    def _shown(self, name: str) -> bool:
+        """damping and kp only when > 0 (0 is the paper's model)."""
+        return name not in ("damping", "kp") or self.get(name) > 0.0
+
     def physical(self) -> dict[str, float]:
-        """The scene's ``params`` mapping (without tol; damping only if > 0;
-        radius only for a cylinder or a rounded flat)."""
+        """The scene's ``params`` mapping (without tol; damping and kp only
+        if > 0; radius only for a cylinder or a rounded flat)."""
         return {
             name: self.get(name)
             for name in SCENE_PARAMS
-            if (name != "damping" or self.damped)
+            if self._shown(name)
             and (name != "radius" or self.profile in ("cylinder", "rounded_flat"))
         }
 
     def label(self, against: Params | None = None) -> str:
         """``V*=0.2 kw=1 ...``; only the values that differ from ``against``
-        (damping 0 is not shown)."""
+        (damping 0 and kp 0 are not shown)."""
         names = [
             n
             for n in SCENE_PARAMS
-            if (against is None and (n != "damping" or self.damped))
+            if (against is None and self._shown(n))
             or (against is not None and self.get(n) != against.get(n))
         ]
         shape = self.shape_label()
@@ -421,12 +439,13 @@ def _solve(params: Params) -> ContactSolution:
         nu=params.nu,
         tol=params.tol,
         damping=params.damping,
+        kp=params.kp,
     )
 
 
-def limits(kw: float, nu: float) -> tuple[float, float]:
+def limits(kw: float, nu: float, kp: float = 0.0) -> tuple[float, float]:
     """(V*_cr, V*_R) for the foundation and Poisson's ratio."""
-    return critical_vstar(kw, nu), rayleigh_vstar(nu)
+    return critical_vstar(kw, nu, kp), rayleigh_vstar(nu)
 
 
 def summary(cache: Cache, params: Params) -> Summary:

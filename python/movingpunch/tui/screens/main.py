@@ -271,11 +271,13 @@ class MainScreen(Screen[None]):
             if vcr is not None and vr is not None:
                 self.query_one(Gauge).damped = False
                 self.query_one(Gauge).limits = (self.params.vstar, vcr, vr)
+                kp = self.params.kp
                 panel.set_message(
                     "vstar",
                     f"V* = {fmt(self.params.vstar, 5)} is at or above V*_cr = "
                     f"{fmt(vcr, 6)} (kw {fmt(self.params.kw, 4)}, ν "
-                    f"{fmt(self.params.nu, 4)}): need 0 <= V* < V*_cr",
+                    f"{fmt(self.params.nu, 4)}{f', kp {fmt(kp, 4)}' if kp else ''}): "
+                    "need 0 <= V* < V*_cr",
                 )
             else:
                 panel.set_message("vstar", _one_line(error))
