@@ -117,11 +117,14 @@ def test_wide_flat_punch_indentation_is_the_long_wave_compliance(kw: float) -> N
     assert gaps[0] / gaps[1] == pytest.approx(2.0, rel=0.05)
 
 
-def test_flat_punch_surface_follows_the_face() -> None:
+@pytest.mark.parametrize("kp", [0.0, 0.5])
+def test_flat_punch_surface_follows_the_face(kp: float) -> None:
     """The displacement integral (not the collocation's slope condition)
     gives v(x, 0) = -delta all over the face, and the field's displacement
-    (a second, closed-form evaluation) agrees with it."""
-    s = mp.solve(vstar=0.3, kw=1.0, load=LOAD, profile=mp.Flat(0.6))
+    (a second, closed-form evaluation) agrees with it; on springs alone and
+    with a Pasternak layer."""
+    s = mp.solve(vstar=0.3, kw=1.0, kp=kp, load=LOAD, profile=mp.Flat(0.6))
+    assert s.kp == kp
     x = 0.6 * np.linspace(-0.98, 0.98, 9)
     np.testing.assert_allclose(
         s.surface_displacement(x), -s.indentation, rtol=1e-8, atol=0.0
