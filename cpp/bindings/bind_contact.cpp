@@ -1,6 +1,7 @@
 // The contact solve and its result. Adapters only.
 #include <string>
 #include <tuple>
+#include <vector>
 #include <utility>
 
 #include <pybind11/eigen.h>
@@ -10,11 +11,25 @@
 
 #include "bindings.hpp"
 #include "movingpunch/contact.hpp"
+#include "movingpunch/profile.hpp"
+#include "movingpunch/errors.hpp"
 
 namespace py = pybind11;
 using namespace py::literals;
 
 namespace movingpunch::bindings {
+
+namespace {
+// The profile kind from its API name.
+ProfileKind profile_kind(const std::string& name) {
+  for (ProfileKind k : {ProfileKind::cylinder, ProfileKind::flat, ProfileKind::rounded_flat,
+                        ProfileKind::table})
+    if (name == profile_kind_name(k)) return k;
+  throw InvalidParameter("profile", "'cylinder', 'flat', 'rounded_flat' or 'table'",
+                         "profile must be 'cylinder', 'flat', 'rounded_flat' or 'table', got '" +
+                             name + "'");
+}
+}  // namespace
 
 void bind_contact(py::module_& m) {
   using VectorRef = Eigen::Ref<const Eigen::VectorXd>;
@@ -26,6 +41,23 @@ void bind_contact(py::module_& m) {
       "Not constructible from Python.");
   cls.def_property_readonly("a", &ContactSolution::a, "Contact half-width a/h.")
       .def_property_readonly("p0", &ContactSolution::p0, "Central pressure p(0)/(P/h).")
+      .def_property_readonly(
+          "series_kind",
+          [](const ContactSolution& s) {
+            return std::string(s.series_kind() == SeriesKind::T ? "T" : "U");
+          },
+          "'U': g_coefficients are Chebyshev-U of p(a r)/((P/h) sqrt(1 - r^2)) (bounded "
+          "ends); 'T' (flat punch): Chebyshev-T of p(a r) sqrt(1 - r^2)/(P/h).")
+      .def_property_readonly("end_coefficient", &ContactSolution::end_coefficient,
+                             "K = lim sqrt(2 pi (a - x)) p(x) over (P/h) sqrt(h) at each end of "
+                             "a flat punch (0 for bounded ends).")
+      .def_property_readonly("end_coefficient_error", &ContactSolution::end_coefficient_error,
+                             "Estimated absolute error of end_coefficient.")
+      .def_property_readonly("series_truncation", &ContactSolution::series_truncation,
+                             "Bound on the pressure's error over P/h from the truncation of "
+                             "its Chebyshev series (0 for the cylinder and the flat punch).")
+      .def_property_readonly("profile_description", &ContactSolution::profile_description,
+                             "The punch's shape, one line.")
       .def_property_readonly(
           "error_budget",
           [](const ContactSolution& s) {
@@ -72,18 +104,48 @@ void bind_contact(py::module_& m) {
         "Empties the process-wide k1 kernel cache and resets its counters.");
 
   m.def(
+      "check_profile_table", &check_profile_table, "x"_a, "y"_a,
+      "Raises InvalidParameterError unless (x, y) is a valid profile table: at least 5 "
+      "points, finite, x strictly ascending, symmetric about x = 0 and convex.");
+  m.def(
+      "profile_shape",
+      [](const std::string& kind, double radius, double half_width, const std::vector<double>& tx,
+         const std::vector<double>& ty, const VectorRef& x) {
+        const PunchProfile prof(profile_kind(kind), radius, half_width, tx, ty);
+        Eigen::VectorXd f(x.size()), df(x.size());
+        for (Eigen::Index i = 0; i < x.size(); ++i) {
+          f(i) = prof.height(x(i));
+          df(i) = prof.slope(x(i));
+        }
+        return std::make_tuple(f, df);
+      },
+      py::kw_only(), "kind"_a, "radius"_a, "half_width"_a, "table_x"_a, "table_y"_a, "x"_a,
+      "The profile's height f(x) - f(0) and slope f'(x) at each x/h, as the solver uses them "
+      "(a table through its not-a-knot cubic spline).");
+
+  m.def(
       "solve_contact",
       [](double vstar, double kw, double radius, double load, double nu, double tol,
-         bool allow_unphysical, int n, double kp) {
-        auto p = solve_params<ContactParams>(vstar, kw, radius, load, nu, tol, allow_unphysical, n);
+         bool allow_unphysical, int n, double kp, const std::string& profile,
+         double half_width, const std::vector<double>& table_x,
+         const std::vector<double>& table_y) {
+        ContactParams p =
+            solve_params<ContactParams>(vstar, kw, radius, load, nu, tol, allow_unphysical, n);
         p.kp = kp;
+        p.profile = profile_kind(profile);
+        p.half_width = half_width;
+        p.table_x = table_x;
+        p.table_y = table_y;
         return solve_contact(p);
       },
       py::kw_only(), "vstar"_a, "kw"_a, "radius"_a, "load"_a, "nu"_a, "tol"_a, "allow_unphysical"_a,
-      "n"_a = 0, "kp"_a = 0.0, Release(),
+      "n"_a = 0, "kp"_a = 0.0, "profile"_a = "cylinder", "half_width"_a = 0.0,
+      "table_x"_a = std::vector<double>{}, "table_y"_a = std::vector<double>{}, Release(),
       "Solves the moving-punch contact problem (dimensionless inputs: vstar = "
       "rho V^2/mu, kw = k_w h/mu, radius = R/h, load = P/(mu h), nu, tol on a/h, "
-      "kp = k_p/(mu h) the Pasternak shear layer, 0: springs alone). "
+      "kp = k_p/(mu h) the Pasternak shear layer, 0: springs alone; profile: the "
+      "punch's shape, 'cylinder' (radius), 'flat' (half_width), 'rounded_flat' "
+      "(half_width, radius) or 'table' (table_x, table_y)). "
       "Raises InvalidParameterError, SupercriticalSpeedError, "
       "UnphysicalContactError (unless allow_unphysical) or ConvergenceError.");
 }

@@ -14,12 +14,17 @@ namespace movingpunch {
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;
-}
 
-ChebyshevNodes chebyshev_nodes(int n) {
+// Both node sets take an even N in [2, 100000].
+void check_size(int n) {
   if (n < 2 || n % 2 != 0 || n > 100000)
     throw std::invalid_argument("collocation N must be even and in [2, 100000], got " +
                                 std::to_string(n));
+}
+}  // namespace
+
+ChebyshevNodes chebyshev_nodes(int n) {
+  check_size(n);
   ChebyshevNodes c;
   c.n = n;
   c.r.resize(n);
@@ -79,14 +84,15 @@ Eigen::VectorXd u_coefficients(const ChebyshevNodes& nodes, const Eigen::VectorX
   return b;
 }
 
-double u_series_minimum(const Eigen::VectorXd& b, double* r_min) {
-  if (b.size() == 0) throw std::invalid_argument("u_series_minimum: no coefficients");
+double series_minimum(const Eigen::VectorXd& b, SeriesKind kind, double* r_min) {
+  if (b.size() == 0) throw std::invalid_argument("series_minimum: no coefficients");
+  auto g_of = [kind](const Eigen::VectorXd& c, double r) { return series(c, r, kind); };
   // 16 (N + 1) + 256 angles resolve every extremum of the degree-N polynomial.
   const int m = std::max(400, 16 * static_cast<int>(b.size() + 1) + 256);
   int best = 0;
-  double gbest = u_series(b, 1.0);
+  double gbest = g_of(b, 1.0);
   for (int i = 1; i <= m; ++i) {
-    const double g = u_series(b, std::cos(kPi * i / m));
+    const double g = g_of(b, std::cos(kPi * i / m));
     if (g < gbest) {
       gbest = g;
       best = i;
@@ -98,20 +104,20 @@ double u_series_minimum(const Eigen::VectorXd& b, double* r_min) {
   double rbest = std::cos(kPi * best / m);
   const double gr = 0.5 * (std::sqrt(5.0) - 1.0);
   double x1 = hi - gr * (hi - lo), x2 = lo + gr * (hi - lo);
-  double f1 = u_series(b, x1), f2 = u_series(b, x2);
+  double f1 = g_of(b, x1), f2 = g_of(b, x2);
   for (int it = 0; it < 200 && hi - lo > 1e-15; ++it) {
     if (f1 < f2) {
       hi = x2;
       x2 = x1;
       f2 = f1;
       x1 = hi - gr * (hi - lo);
-      f1 = u_series(b, x1);
+      f1 = g_of(b, x1);
     } else {
       lo = x1;
       x1 = x2;
       f1 = f2;
       x2 = lo + gr * (hi - lo);
-      f2 = u_series(b, x2);
+      f2 = g_of(b, x2);
     }
   }
   for (const auto& [x, f] : {std::pair<double, double>{x1, f1}, {x2, f2}})
@@ -121,6 +127,10 @@ double u_series_minimum(const Eigen::VectorXd& b, double* r_min) {
     }
   if (r_min) *r_min = rbest;
   return gbest;
+}
+
+double u_series_minimum(const Eigen::VectorXd& b, double* r_min) {
+  return series_minimum(b, SeriesKind::U, r_min);
 }
 
 Eigen::Index last_even_term(const Eigen::VectorXd& b) {
@@ -173,9 +183,14 @@ void bessel_orders(double w, int kmax, std::vector<double>& J) {
 
 using detail::bessel_orders;
 
-double u_series_cosine_transform(const Eigen::VectorXd& b, double a, double alpha) {
+double series_cosine_transform(const Eigen::VectorXd& b, SeriesKind kind, double a,
+                               double alpha) {
+  const bool t_kind = kind == SeriesKind::T;
   const double w = alpha * a;
-  if (w < 1e-8) return 0.5 * b(0) * 0.5 * kPi * a;  // J_1(w)/w -> 1/2, higher orders vanish
+  if (w < 1e-8) {
+    // U: J_1(w)/w -> 1/2; T: J_0(w) -> 1; higher orders vanish.
+    return t_kind ? 0.5 * b(0) * kPi * a : 0.5 * b(0) * 0.5 * kPi * a;
+  }
   Eigen::Index last = last_even_term(b);
   // J_nu(w) <= (w/2)^nu / nu!: negligible once the order exceeds the argument
   // by 40; higher orders are smaller.
@@ -185,14 +200,27 @@ double u_series_cosine_transform(const Eigen::VectorXd& b, double a, double alph
   double sum = 0.0;
   for (Eigen::Index n = 0; n <= last; n += 2) {
     const double sg = (n / 2) % 2 == 0 ? 1.0 : -1.0;
-    sum += b(n) * static_cast<double>(n + 1) * sg * J[static_cast<std::size_t>(n) + 1];
+    if (t_kind)
+      sum += b(n) * sg * J[static_cast<std::size_t>(n)];
+    else
+      sum += b(n) * static_cast<double>(n + 1) * sg * J[static_cast<std::size_t>(n) + 1];
   }
-  return sum * 0.5 * kPi * a / w;
+  return t_kind ? sum * 0.5 * kPi * a : sum * 0.5 * kPi * a / w;
+}
+
+double u_series_cosine_transform(const Eigen::VectorXd& b, double a, double alpha) {
+  return series_cosine_transform(b, SeriesKind::U, a, alpha);
 }
 
 void u_series_cosine_transforms(const Eigen::VectorXd& b, double a, const double* alpha,
                                 double* out, std::size_t count) {
+  series_cosine_transforms(b, SeriesKind::U, a, alpha, out, count);
+}
+
+void series_cosine_transforms(const Eigen::VectorXd& b, SeriesKind kind, double a,
+                              const double* alpha, double* out, std::size_t count) {
   constexpr int L = 4;
+  const bool t_kind = kind == SeriesKind::T;
   const Eigen::Index last_all = last_even_term(b);
   std::size_t i = 0;
   while (i < count) {
@@ -211,7 +239,7 @@ void u_series_cosine_transforms(const Eigen::VectorXd& b, double a, const double
       // J_0 + 2 sum J_2k = 1 it stays within 5e-15 of scipy's J_n up to w =
       // 200, and avoids the library's slow J_0, J_1 of the upward branch.
       if (wi < 1e-8 || wi > 200.0) {
-        out[i] = u_series_cosine_transform(b, a, alpha[i]);
+        out[i] = series_cosine_transform(b, kind, a, alpha[i]);
       } else {
         idx[static_cast<std::size_t>(lanes)] = i;
         w[static_cast<std::size_t>(lanes)] = wi;
@@ -228,30 +256,41 @@ void u_series_cosine_transforms(const Eigen::VectorXd& b, double a, const double
     const double top = std::max(static_cast<double>(kmax), wmax);
     int start = static_cast<int>(top + 20.0 + 4.0 * std::sqrt(top));
     start += start % 2;
-    // coef[m]: the weight b_n (n+1) (-1)^{n/2} of J_m, m = n + 1 odd.
+    // coef[m]: the weight of J_m: U, b_n (n+1) (-1)^{n/2} at m = n + 1 (odd);
+    // T, b_n (-1)^{n/2} at m = n (even).
     thread_local std::vector<double> coef;
     coef.assign(static_cast<std::size_t>(start) + 1, 0.0);
-    for (int m = 1; m <= kmax; m += 2)
-      coef[static_cast<std::size_t>(m)] =
-          b(m - 1) * static_cast<double>(m) * (((m - 1) / 2) % 2 == 0 ? 1.0 : -1.0);
+    if (t_kind) {
+      for (int m = 0; m < kmax; m += 2)
+        coef[static_cast<std::size_t>(m)] = b(m) * ((m / 2) % 2 == 0 ? 1.0 : -1.0);
+    } else {
+      for (int m = 1; m <= kmax; m += 2)
+        coef[static_cast<std::size_t>(m)] =
+            b(m - 1) * static_cast<double>(m) * (((m - 1) / 2) % 2 == 0 ? 1.0 : -1.0);
+    }
     std::array<double, L> up{}, cur{}, norm{}, sum{}, inv{};
     for (int l = 0; l < L; ++l) {
       cur[static_cast<std::size_t>(l)] = 1e-280;
       inv[static_cast<std::size_t>(l)] = 2.0 / w[static_cast<std::size_t>(l)];
     }
-    // Steps in pairs (start is even): J_{k-1} (odd order, into the sum) then
-    // J_{k-2} (even order, into the normalisation, J_0 included twice and
-    // taken out below). Rescaled when large: two steps grow by at most
-    // (2 start / w)^2 < 1e30, far from overflow above 1e250.
+    // Steps in pairs (start is even): J_{k-1} (odd order) then J_{k-2} (even
+    // order, into the normalisation, J_0 included twice and taken out below);
+    // the sum takes the odd orders (U) or the even ones (T). Rescaled when
+    // large: two steps grow by at most (2 start / w)^2 < 1e30, far from
+    // overflow above 1e250.
     for (int k = start; k >= 2; k -= 2) {
       const double c = coef[static_cast<std::size_t>(k) - 1];
+      const double ce = coef[static_cast<std::size_t>(k) - 2];
       const double f1 = static_cast<double>(k), f2 = static_cast<double>(k - 1);
       bool big = false;
       for (int l = 0; l < L; ++l) {
         const std::size_t q = static_cast<std::size_t>(l);
         const double odd = f1 * inv[q] * cur[q] - up[q];
         const double even = f2 * inv[q] * odd - cur[q];
-        sum[q] += c * odd;
+        if (t_kind)
+          sum[q] += ce * even;
+        else
+          sum[q] += c * odd;
         norm[q] += 2.0 * even;
         up[q] = odd;
         cur[q] = even;
@@ -272,20 +311,79 @@ void u_series_cosine_transforms(const Eigen::VectorXd& b, double a, const double
     for (int l = 0; l < lanes; ++l) {
       const std::size_t q = static_cast<std::size_t>(l);
       const double total = norm[q] - cur[q];  // J_0 + 2 sum J_2k
-      out[idx[q]] = sum[q] / total * 0.5 * kPi * a / w[q];
+      out[idx[q]] = t_kind ? sum[q] / total * 0.5 * kPi * a
+                           : sum[q] / total * 0.5 * kPi * a / w[q];
     }
   }
 }
 
-double u_series(const Eigen::VectorXd& b, double r) {
-  // Clenshaw for U_n: U_{n+1} = 2 r U_n - U_{n-1}, U_0 = 1, U_{-1} = 0.
+namespace {
+// Clenshaw's recurrence b_m = c_m + 2 r b_{m+1} - b_{m+2} down to m = last
+// (both Chebyshev kinds share it): (b_last, b_{last+1}).
+std::pair<double, double> clenshaw(const Eigen::VectorXd& c, double r, Eigen::Index last) {
   double b1 = 0.0, b2 = 0.0;
-  for (Eigen::Index m = b.size() - 1; m >= 0; --m) {
-    const double b0 = b(m) + 2.0 * r * b1 - b2;
+  for (Eigen::Index m = c.size() - 1; m >= last; --m) {
+    const double b0 = c(m) + 2.0 * r * b1 - b2;
     b2 = b1;
     b1 = b0;
   }
-  return b1;
+  return {b1, b2};
+}
+}  // namespace
+
+double u_series(const Eigen::VectorXd& b, double r) {
+  // U_{n+1} = 2 r U_n - U_{n-1}, U_0 = 1, U_{-1} = 0: the sum is b_0.
+  return clenshaw(b, r, 0).first;
+}
+
+double t_series(const Eigen::VectorXd& b, double r) {
+  // T_{n+1} = 2 r T_n - T_{n-1}, T_0 = 1, T_1 = r: c_0 + r b_1 - b_2.
+  const auto [b1, b2] = clenshaw(b, r, 1);
+  return (b.size() > 0 ? b(0) : 0.0) + r * b1 - b2;
+}
+
+double series(const Eigen::VectorXd& b, double r, SeriesKind kind) {
+  return kind == SeriesKind::T ? t_series(b, r) : u_series(b, r);
+}
+
+FirstKindNodes first_kind_nodes(int n) {
+  check_size(n);
+  FirstKindNodes c;
+  c.n = n;
+  c.t.resize(n);
+  c.x.resize(n - 1);
+  for (int i = 1; i <= n; ++i) c.t(i - 1) = std::cos((2 * i - 1) * kPi / (2.0 * n));
+  for (int k = 1; k <= n - 1; ++k) c.x(k - 1) = std::cos(k * kPi / n);
+  c.x(n / 2 - 1) = 0.0;  // the middle point exactly
+  return c;
+}
+
+Eigen::MatrixXd flat_collocation_matrix(const FirstKindNodes& nodes, double a,
+                                        const std::function<double(double, double)>& kernel_sum) {
+  const int h = nodes.n / 2;
+  const double wq = 1.0 / nodes.n;
+  Eigen::MatrixXd M(h, h);
+  for (int k = 0; k + 1 < h; ++k) {  // x_k > 0 for k = 1..N/2-1
+    const double x = nodes.x(k);
+    for (int j = 0; j < h; ++j) {  // t_j > 0; its mirror -t_j carries the same g
+      const double t = nodes.t(j);
+      const double up = t - x, um = -t - x;
+      M(k, j) = wq * (1.0 / up + 1.0 / um + a * kernel_sum(a * up, a * um));
+    }
+  }
+  M.row(h - 1).setConstant(2.0 * kPi * a * wq);  // equilibrium
+  return M;
+}
+
+Eigen::VectorXd t_coefficients(const FirstKindNodes& nodes, const Eigen::VectorXd& g_full) {
+  const int n = nodes.n;
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(n);
+  for (int m = 0; m < n; ++m) {
+    double sum = 0.0;
+    for (int i = 1; i <= n; ++i) sum += std::cos(m * (2 * i - 1) * kPi / (2.0 * n)) * g_full(i - 1);
+    b(m) = (m == 0 ? 1.0 : 2.0) * sum / n;
+  }
+  return b;
 }
 
 }  // namespace movingpunch

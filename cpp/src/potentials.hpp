@@ -3,7 +3,9 @@
 // the contact's centre), the closed-form (half-plane, log-singular) parts of
 // the displacements and stresses. Shared by the undamped outputs
 // (contact.cpp, stresses.cpp: g even, `step` 2 sums the even terms only) and
-// the damped ones (damped.cpp: any g, `step` 1).
+// the damped ones (damped.cpp: any g, `step` 1). A flat punch's pressure
+// p(a r) = sum_n b_n T_n(r)/sqrt(1 - r^2) (square-root singular ends) has its
+// own closed forms, chosen by the trailing SeriesKind argument (default U).
 #pragma once
 
 #include <algorithm>
@@ -38,10 +40,22 @@ inline void check_grid(const Eigen::Ref<const Eigen::VectorXd>& x,
                              "y must be in [-1, 0] (y/h, the layer), got " + std::to_string(y(j)));
 }
 
-// (1/pi) int_{-1}^{1} sqrt(1 - t^2) U_n(t) ln|x - t| dt, real x, any n >= 0.
-inline double log_potential(int n, double x) {
+// (1/pi) int_{-1}^{1} sqrt(1 - t^2) U_n(t) ln|x - t| dt, real x, any n >= 0;
+// for kind T, (1/pi) int T_n(t)/sqrt(1 - t^2) ln|x - t| dt: -ln 2 (n = 0),
+// -T_n(x)/n (n >= 1) for |x| <= 1, and Re of -ln(2 w), -w^n/n beyond.
+inline double log_potential(int n, double x, SeriesKind kind = SeriesKind::U) {
   using potentials::kLn2;
   const double ax = std::fabs(x);
+  if (kind == SeriesKind::T) {
+    if (ax <= 1.0) {
+      if (n == 0) return -kLn2;
+      return -std::cos(n * std::acos(std::clamp(x, -1.0, 1.0))) / n;
+    }
+    const double th = std::acosh(ax);  // |w| = e^{-th}
+    if (n == 0) return th - kLn2;
+    const double sg = (x > 0.0 || n % 2 == 0) ? 1.0 : -1.0;
+    return -sg * std::exp(-n * th) / n;
+  }
   if (ax <= 1.0) {
     if (n == 0) return 0.5 * x * x - 0.25 - 0.5 * kLn2;
     const double th = std::acos(std::clamp(x, -1.0, 1.0));
@@ -63,8 +77,20 @@ inline cplx_t w_of(cplx_t z, cplx_t* root = nullptr) {
   return 1.0 / (z + r);
 }
 
-// Phi(z) = sum b_n w^{n+1} = (1/pi) int p(a t)/(P/h) / (z - t) dt (n = 0, step, 2 step, ...).
-inline cplx_t cauchy_potential(const Eigen::VectorXd& b, cplx_t z, int step) {
+// Phi(z) = sum b_n w^{n+1} = (1/pi) int p(a t)/(P/h) / (z - t) dt (n = 0, step, 2 step, ...);
+// kind T: Phi(z) = sum b_n w^n / sqrt(z^2 - 1).
+inline cplx_t cauchy_potential(const Eigen::VectorXd& b, cplx_t z, int step,
+                               SeriesKind kind = SeriesKind::U) {
+  if (kind == SeriesKind::T) {
+    cplx_t r;
+    const cplx_t w = w_of(z, &r), ws = step == 1 ? w : w * w;
+    cplx_t pw = 1.0, sum = 0.0;
+    for (Eigen::Index n = 0; n < b.size(); n += step) {
+      sum += b(n) * pw;
+      pw *= ws;
+    }
+    return sum / r;
+  }
   const cplx_t w = w_of(z), ws = step == 1 ? w : w * w;
   cplx_t pw = w, sum = 0.0;
   for (Eigen::Index n = 0; n < b.size(); n += step) {
@@ -74,10 +100,20 @@ inline cplx_t cauchy_potential(const Eigen::VectorXd& b, cplx_t z, int step) {
   return sum;
 }
 
-// Phi'(z) = -sum b_n (n+1) w^{n+1} / sqrt(z^2 - 1).
-inline cplx_t cauchy_potential_derivative(const Eigen::VectorXd& b, cplx_t z, int step) {
+// Phi'(z) = -sum b_n (n+1) w^{n+1} / sqrt(z^2 - 1); kind T:
+// Phi'(z) = -sum b_n w^n (n sqrt(z^2 - 1) + z) / sqrt(z^2 - 1)^3.
+inline cplx_t cauchy_potential_derivative(const Eigen::VectorXd& b, cplx_t z, int step,
+                                          SeriesKind kind = SeriesKind::U) {
   cplx_t r;
   const cplx_t w = w_of(z, &r), ws = step == 1 ? w : w * w;
+  if (kind == SeriesKind::T) {
+    cplx_t pw = 1.0, sum = 0.0;
+    for (Eigen::Index n = 0; n < b.size(); n += step) {
+      sum += b(n) * pw * (static_cast<double>(n) * r + z);
+      pw *= ws;
+    }
+    return -sum / (r * r * r);
+  }
   cplx_t pw = w, sum = 0.0;
   for (Eigen::Index n = 0; n < b.size(); n += step) {
     sum += b(n) * static_cast<double>(n + 1) * pw;
@@ -86,9 +122,21 @@ inline cplx_t cauchy_potential_derivative(const Eigen::VectorXd& b, cplx_t z, in
   return -sum / r;
 }
 
-// Lsum(z) = sum b_n L_n(z), L_n(z) = (1/pi) int sqrt(1-t^2) U_n(t) ln(z - t) dt.
-inline cplx_t log_potential(const Eigen::VectorXd& b, cplx_t z, int step) {
+// Lsum(z) = sum b_n L_n(z), L_n(z) = (1/pi) int sqrt(1-t^2) U_n(t) ln(z - t) dt;
+// kind T: L_n(z) = (1/pi) int T_n(t)/sqrt(1-t^2) ln(z - t) dt = -ln(2 w) (n = 0),
+// -w^n/n (n >= 1) (their derivatives are w^n/sqrt(z^2 - 1)).
+inline cplx_t log_potential(const Eigen::VectorXd& b, cplx_t z, int step,
+                            SeriesKind kind = SeriesKind::U) {
   const cplx_t w = w_of(z), w2 = w * w, ws = step == 1 ? w : w2;
+  if (kind == SeriesKind::T) {
+    cplx_t sum = b(0) * (-std::log(w) - potentials::kLn2);
+    cplx_t pw = ws;
+    for (Eigen::Index n = step; n < b.size(); n += step) {
+      sum -= b(n) * pw / static_cast<double>(n);
+      pw *= ws;
+    }
+    return sum;
+  }
   cplx_t sum = b(0) * (-0.5 * std::log(w) + 0.25 * w2 - 0.5 * potentials::kLn2);
   cplx_t pw = ws;  // w^n for n = step
   for (Eigen::Index n = step; n < b.size(); n += step) {
@@ -133,15 +181,16 @@ inline cplx_t z_of(double x, double n, double y, double a) {
 // int_0^inf (1 - e^-alpha) e^{n alpha y}/alpha cos(alpha u) = Re ln((p+1)/p), so
 // V(z) = a sum b_n [L_n(z + i/a) - L_n(z)] at z = (x - i n y)/a, V'(z) = a [Phi(z + i/a) - Phi(z)].
 inline double half_plane_displacement(const WaveConstants& c, const Eigen::VectorXd& b, double a,
-                                      double x, double y, int step) {
+                                      double x, double y, int step,
+                                      SeriesKind kind = SeriesKind::U) {
   const double nT = c.nT, nL = c.nL, d = c.delta;
   const double kT = c.hp1 * (-1.0 / nT), kL = c.hp2 * c.dW, kD = c.hp2 * (-1.0 / nT);
   const cplx_t shift(0.0, 1.0 / a);
   auto V = [&](cplx_t z) {
-    return a * (log_potential(b, z + shift, step) - log_potential(b, z, step));
+    return a * (log_potential(b, z + shift, step, kind) - log_potential(b, z, step, kind));
   };
   auto dV = [&](cplx_t z) {
-    return a * (cauchy_potential(b, z + shift, step) - cauchy_potential(b, z, step));
+    return a * (cauchy_potential(b, z + shift, step, kind) - cauchy_potential(b, z, step, kind));
   };
   const cplx_t zT = z_of(x, nT, y, a), zL = z_of(x, nL, y, a);
   const cplx_t vD = divided_difference(V, dV, zT, zL, d, cplx_t(0.0, -y / a));
@@ -157,7 +206,8 @@ inline double half_plane_displacement(const WaveConstants& c, const Eigen::Vecto
 // z_n = (x - i n y)/a. At y = 0 (upper side of the cut) sigma_x = -phi2 p,
 // sigma_y = -p, tau = 0.
 inline Eigen::Vector3d half_plane_stresses(const WaveConstants& c, const Eigen::VectorXd& b,
-                                           double a, double x, double y, int step) {
+                                           double a, double x, double y, int step,
+                                           SeriesKind kind = SeriesKind::U) {
   const double nT = c.nT, nL = c.nL, d = c.delta;
   const Eigen::Vector4d vT(1.0, -1.0 / nT, (1.0 + nT * nT) / nT, -2.0);
   const Eigen::Vector4d dv(0.0, c.dW, c.dT, c.dS);
@@ -165,9 +215,11 @@ inline Eigen::Vector3d half_plane_stresses(const WaveConstants& c, const Eigen::
   const double kT[3] = {c.hp1 * sigma_x_hat(c, vT), c.hp1 * vT(3), c.hp1 * vT(2)};
   const double kL[3] = {c.hp2 * sigma_x_hat(c, dv), c.hp2 * dv(3), c.hp2 * dv(2)};
   const double kD[3] = {c.hp2 * sigma_x_hat(c, vT), c.hp2 * vT(3), c.hp2 * vT(2)};
-  auto F = [&b, step](cplx_t z) { return cplx_t(0.0, 1.0) * cauchy_potential(b, z, step); };
-  auto dF = [&b, step](cplx_t z) {
-    return cplx_t(0.0, 1.0) * cauchy_potential_derivative(b, z, step);
+  auto F = [&b, step, kind](cplx_t z) {
+    return cplx_t(0.0, 1.0) * cauchy_potential(b, z, step, kind);
+  };
+  auto dF = [&b, step, kind](cplx_t z) {
+    return cplx_t(0.0, 1.0) * cauchy_potential_derivative(b, z, step, kind);
   };
   const cplx_t zT = z_of(x, nT, y, a), zL = z_of(x, nL, y, a);
   const cplx_t fT = F(zT), fL = F(zL);
@@ -184,13 +236,23 @@ inline Eigen::Vector3d half_plane_stresses(const WaveConstants& c, const Eigen::
 // Gauss-Chebyshev converges like rho^(-2m), rho = 1/a + sqrt(1 + 1/a^2),
 // beyond the degree of g. This m keeps it at round-off (checked against
 // m = 8000 for 0.37 <= a/h <= 35: 7.5e-16 relative).
+// Kind T: int g(r)/sqrt(1 - r^2) ln(1 + (u - a r)^2) dr, g = sum b_n T_n, by
+// Gauss-Chebyshev of the first kind (nodes cos((2i - 1) pi/(2m)), weights pi/m).
 inline void log1p_rule(const Eigen::VectorXd& b, double a, std::vector<double>& r,
-                       std::vector<double>& wg) {
+                       std::vector<double>& wg, SeriesKind kind = SeriesKind::U) {
   const double rho = 1.0 / a + std::sqrt(1.0 + 1.0 / (a * a));
   const int m = std::max(
       16, static_cast<int>(b.size()) / 2 + static_cast<int>(std::ceil(8.5 / std::log10(rho))) + 8);
   r.resize(static_cast<std::size_t>(m));
   wg.resize(static_cast<std::size_t>(m));
+  if (kind == SeriesKind::T) {
+    for (int i = 1; i <= m; ++i) {
+      const double ri = std::cos((2 * i - 1) * potentials::kPi / (2.0 * m));
+      r[static_cast<std::size_t>(i - 1)] = ri;
+      wg[static_cast<std::size_t>(i - 1)] = t_series(b, ri) * potentials::kPi / m;
+    }
+    return;
+  }
   for (int i = 1; i <= m; ++i) {
     const double th = i * potentials::kPi / (m + 1);
     const double ri = std::cos(th), sn = std::sin(th);

@@ -18,8 +18,8 @@ constexpr double kPi = 3.14159265358979323846;
 }  // namespace
 
 FieldEvaluator::FieldEvaluator(const LayerModel& model, double a, const Eigen::VectorXd& b,
-                               double tol)
-    : model_(std::make_shared<const LayerModel>(model)), a_(a), b_(b) {
+                               double tol, SeriesKind kind)
+    : model_(std::make_shared<const LayerModel>(model)), a_(a), b_(b), kind_(kind) {
   if (!(a > 0.0) || !std::isfinite(a)) throw std::invalid_argument("field: a must be > 0");
   for (Eigen::Index n = 1; n < b_.size(); n += 2) b_(n) = 0.0;
   // Panels resolve the remainder and the transform of p (frequency a); the
@@ -29,7 +29,7 @@ FieldEvaluator::FieldEvaluator(const LayerModel& model, double a, const Eigen::V
   const std::size_t nq = quad_.alpha.size();
   ptilde_.resize(nq);
   modes_.reserve(nq);
-  u_series_cosine_transforms(b_, a_, quad_.alpha.data(), ptilde_.data(), nq);
+  series_cosine_transforms(b_, kind_, a_, quad_.alpha.data(), ptilde_.data(), nq);
   for (std::size_t q = 0; q < nq; ++q) {
     ptilde_[q] *= 2.0 / kPi;
     modes_.push_back(model_->mode_field(quad_.alpha[q]));
@@ -104,7 +104,17 @@ StressField FieldEvaluator::stresses(const Eigen::Ref<const Eigen::VectorXd>& x,
   for (Eigen::Index j = 0; j < ny; ++j)
     for (Eigen::Index i = 0; i < nx; ++i) {
       if (std::fabs(x(i)) > kFarField) continue;
-      const Eigen::Vector3d hp = detail::half_plane_stresses(c, b_, a_, x(i), y(j), 2);
+      if (kind_ == SeriesKind::T && y(j) == 0.0 && std::fabs(x(i)) == a_) {
+        // A flat punch's edge: p, and so sigma_x = -phi2 p + ... and
+        // sigma_y = -p, are infinite there (square-root singular ends).
+        const double g1 = t_series(b_, 1.0);
+        const double inf = g1 == 0.0 ? 0.0 : -std::copysign(HUGE_VAL, g1);
+        f.sigma_x(j, i) = inf;
+        f.sigma_y(j, i) = inf;
+        f.tau_xy(j, i) = 0.0;
+        continue;
+      }
+      const Eigen::Vector3d hp = detail::half_plane_stresses(c, b_, a_, x(i), y(j), 2, kind_);
       f.sigma_x(j, i) += hp(0);
       f.sigma_y(j, i) += hp(1);
       f.tau_xy(j, i) += hp(2);
@@ -134,7 +144,7 @@ Eigen::MatrixXd FieldEvaluator::displacement(const Eigen::Ref<const Eigen::Vecto
   for (Eigen::Index j = 0; j < ny; ++j)
     for (Eigen::Index i = 0; i < nx; ++i) {
       if (std::fabs(x(i)) > kFarField) continue;
-      v(j, i) += detail::half_plane_displacement(c, b_, a_, x(i), y(j), 2);
+      v(j, i) += detail::half_plane_displacement(c, b_, a_, x(i), y(j), 2, kind_);
     }
   return v;
 }

@@ -33,6 +33,7 @@ except ImportError as exc:  # pragma: no cover - depends on how it was installed
 from movingpunch.contract import ContactSolution
 from movingpunch.damped import DampedSolution
 from movingpunch.fields import StressField, StressPeaks
+from movingpunch.profiles import Cylinder, Flat, Profile, PunchProfile, RoundedFlat
 from movingpunch.scene import Scene, SceneError, SceneResult, bundled_scenes
 from movingpunch.solver import (
     PRESETS,
@@ -64,10 +65,15 @@ __all__ = [
     "PRESETS",
     "ContactSolution",
     "ConvergenceError",
+    "Cylinder",
     "DampedSolution",
+    "Flat",
     "InvalidParameterError",
     "MovingPunchError",
     "OutputError",
+    "Profile",
+    "PunchProfile",
+    "RoundedFlat",
     "Scene",
     "SceneError",
     "SceneResult",

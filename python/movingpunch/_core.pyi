@@ -50,11 +50,35 @@ def solve_contact(
     allow_unphysical: bool,
     n: int = 0,
     kp: float = 0.0,
+    profile: str = "cylinder",
+    half_width: float = 0.0,
+    table_x: list[float] = ...,
+    table_y: list[float] = ...,
 ) -> ContactSolution: ...
+def check_profile_table(x: list[float], y: list[float]) -> None: ...
+def profile_shape(
+    *,
+    kind: str,
+    radius: float,
+    half_width: float,
+    table_x: list[float],
+    table_y: list[float],
+    x: npt.ArrayLike,
+) -> tuple[_Array, _Array]: ...
 
 class ContactSolution:
     @property
     def a(self) -> float: ...
+    @property
+    def series_kind(self) -> str: ...
+    @property
+    def end_coefficient(self) -> float: ...
+    @property
+    def end_coefficient_error(self) -> float: ...
+    @property
+    def series_truncation(self) -> float: ...
+    @property
+    def profile_description(self) -> str: ...
     @property
     def p0(self) -> float: ...
     @property

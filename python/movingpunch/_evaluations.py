@@ -29,6 +29,9 @@ from movingpunch._evaluate import (
 from movingpunch.contract import CONTRACT_FIELDS, Points
 from movingpunch.fields import FloatArray, StressField, StressPeaks, derived_stresses
 from movingpunch.peaks import search_peaks
+from movingpunch.profiles import Cylinder, Flat, Profile, PunchProfile, RoundedFlat
+
+_PROFILE_TYPES = (Flat, RoundedFlat, Profile)
 
 __all__ = ["Evaluations", "ResultFields"]
 
@@ -42,6 +45,7 @@ class Evaluations:
         _impl: Any
         nu: float
         kw: float
+        radius: float
         kp: float
 
         @property
@@ -49,12 +53,30 @@ class Evaluations:
         @property
         def contact_interval(self) -> tuple[float, float]: ...
 
+    @property
+    def profile(self) -> PunchProfile:
+        """The punch's shape (``movingpunch.profiles``): the solve's
+        ``profile``, or ``Cylinder(radius)``."""
+        found = getattr(self, "_profile", None)
+        return found if found is not None else Cylinder(self.radius)
+
+    @property
+    def end_coefficients(self) -> tuple[float, float]:
+        """(K_back, K_front): the stress-intensity-like coefficients of a
+        pressure that is square-root singular at the contact's ends (a flat
+        punch), K = lim sqrt(2 pi d) p over (P/h) sqrt(h) as the distance d
+        to that end goes to 0 (1/sqrt(pi b/h) each on a half-plane:
+        p = P/(pi sqrt(b^2 - x^2))). (0.0, 0.0) for bounded ends."""
+        k = float(getattr(self._impl, "end_coefficient", 0.0))
+        return (k, k)
+
     @overload
     def pressure(self, x: float) -> float: ...
     @overload
     def pressure(self, x: Points) -> FloatArray: ...
     def pressure(self, x: npt.ArrayLike) -> float | FloatArray:
-        """Contact pressure p/(P/h) at x/h (0 outside the contact).
+        """Contact pressure p/(P/h) at x/h (0 outside the contact; +inf at
+        a flat punch's edges |x| = b, where it is square-root singular).
 
         A float for a scalar ``x``, else an array of the shape of ``x``.
         """
@@ -125,6 +147,17 @@ class Evaluations:
         ``error_bound`` (``stress_error_estimate`` plus the search's own
         uncertainty) of the field's extreme (see StressPeaks)."""
         back, front = self.contact_interval
+        k_back, k_front = self.end_coefficients
+        singular = k_back != 0.0 or k_front != 0.0
+        surface = self._impl.surface_stress
+        if singular:
+            # A flat punch: sigma_x(x, 0) ~ -phi2 K/sqrt(2 pi d) at its edges.
+            # The search sees it capped (its other peaks are finite); the
+            # singular extreme is reported as such below.
+            def surface(x: FloatArray) -> FloatArray:
+                values = np.asarray(self._impl.surface_stress(x), dtype=np.float64)
+                return np.clip(values, -_SINGULAR_CAP, _SINGULAR_CAP)
+
         span = (
             max(6.0 * max(abs(back), abs(front)), 10.0)
             if extent is None
@@ -137,7 +170,7 @@ class Evaluations:
             :, 0
         ]
         found = search_peaks(
-            self._impl.surface_stress,
+            surface,
             lambda x: self._impl.stress_field(x, depth)[0][0],
             lo=0.0 if back == -front else -float(span),
             hi=float(span),
@@ -149,11 +182,32 @@ class Evaluations:
             tolerance=0.25 * self.stress_error_estimate,
         )
         search = max(p.uncertainty for p in found.peaks)
+        top_min, top_max, warnings = found.top_min, found.top_max, found.warnings
+        if singular:
+            inf = math.inf
+            k = k_front
+            edge = (front, 0.0)
+            if k > 0:
+                top_min = type(top_min)(-inf, edge[0], 0.0)
+            else:
+                top_max = type(top_max)(inf, edge[0], 0.0)
+            search = max(
+                p.uncertainty for p in (found.bottom_max, top_max if k > 0 else top_min)
+            )
+            warnings = (
+                *warnings,
+                f"sigma_x(x, 0) is singular at the flat punch's edges x/h = "
+                f"+-{front:g}: it goes like -phi2 K/sqrt(2 pi (b - |x|)) inside the "
+                f"contact (end coefficient K = {k:.6g} (P/h) sqrt(h)), so the top "
+                f"surface's most {'compressive' if k > 0 else 'tensile'} sigma_x is "
+                f"{'-inf' if k > 0 else '+inf'} at the edges (see end_coefficients); "
+                "the other peaks are finite",
+            )
         return StressPeaks(
-            top_compressive=found.top_min.value,
-            top_compressive_x=found.top_min.x,
-            top_tensile=found.top_max.value,
-            top_tensile_x=found.top_max.x,
+            top_compressive=top_min.value,
+            top_compressive_x=top_min.x,
+            top_tensile=top_max.value,
+            top_tensile_x=top_max.x,
             bottom_tensile=found.bottom_max.value,
             bottom_tensile_x=found.bottom_max.x,
             centre_top=float(centre[0]),
@@ -161,7 +215,7 @@ class Evaluations:
             search_extent=float(span),
             error_bound=self.stress_error_estimate + search,
             search_error=search,
-            warnings=found.warnings,
+            warnings=warnings,
         )
 
     def to_dict(self) -> dict[str, object]:
@@ -177,7 +231,14 @@ class Evaluations:
 
 
 def _listed(value: object) -> object:
+    if isinstance(value, (Cylinder, *_PROFILE_TYPES)):
+        return value.to_dict()  # a punch profile: its scene-file form
     return list(value) if isinstance(value, tuple) else value
+
+
+_SINGULAR_CAP = 1e6
+"""|sigma_x|/(P/h) beyond which the peak search sees a flat punch's singular
+edge values capped (stress_peaks reports that extreme as infinite)."""
 
 
 @dataclass(frozen=True)

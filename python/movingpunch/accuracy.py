@@ -36,6 +36,7 @@ from movingpunch.contract import ContactSolution
 from movingpunch.errors import InvalidParameterError, MovingPunchError
 from movingpunch.fields import StressPeaks
 from movingpunch.outputs import publish, safe_name
+from movingpunch.profiles import PunchProfile
 from movingpunch.scene import OutputSpec, Scene, load_scene
 from movingpunch.scene._result import CORE_STAGES
 from movingpunch.solver import clear_kernel_cache, solve
@@ -181,12 +182,16 @@ def _key(p: Mapping[str, float]) -> Point:
     )
 
 
-def _solve_point(key: Point, tol: float, n: int | None = None) -> ContactSolution:
+def _solve_point(
+    key: Point, tol: float, n: int | None = None, profile: PunchProfile | None = None
+) -> ContactSolution:
+    """The point ``key`` (a cylinder of its radius, or ``profile``)."""
     vstar, kw, radius, load, nu, damping, kp = key
     return solve(
         vstar=vstar,
         kw=kw,
-        radius=radius,
+        radius=radius if profile is None else None,
+        profile=profile,
         load=load,
         nu=nu,
         damping=damping,
@@ -197,7 +202,9 @@ def _solve_point(key: Point, tol: float, n: int | None = None) -> ContactSolutio
     )
 
 
-def _reference(key: Point) -> tuple[ContactSolution, int, float]:
+def _reference(
+    key: Point, profile: PunchProfile | None = None
+) -> tuple[ContactSolution, int, float]:
     """The reference solution: fixed N = max(64, 4 N_auto) at tol 1e-14 (or
     1e-13, 1e-12 if tighter tolerances are out of reach). If the solver does
     not take that N (each solver has its largest size: 4096, the damped one
@@ -205,7 +212,7 @@ def _reference(key: Point) -> tuple[ContactSolution, int, float]:
     last: MovingPunchError | None = None
     for tol in _REF_TOLS:
         try:
-            auto = _solve_point(key, tol)
+            auto = _solve_point(key, tol, profile=profile)
         except MovingPunchError as exc:
             last = exc
             continue
@@ -215,7 +222,7 @@ def _reference(key: Point) -> tuple[ContactSolution, int, float]:
         ]
         for n in dict.fromkeys(sizes):
             try:
-                return _solve_point(key, tol, n), n, tol
+                return _solve_point(key, tol, n, profile), n, tol
             except InvalidParameterError as exc:
                 if exc.parameter != "n":
                     raise
@@ -258,7 +265,7 @@ class _Target:
         """(solutions by point, base points, seconds, stages, kernel tables)."""
         if self.single:
             key = _key(self.scene.params)
-            s = _solve_point(key, tol)
+            s = _solve_point(key, tol, profile=self.scene.profile)
             parts = {name: float(s.stage_times.get(name, 0.0)) for name in CORE_STAGES}
             return {key: s}, [key], s.elapsed, parts, s.kernel_builds
         scene = replace(self.scene, tol=tol)
@@ -284,7 +291,10 @@ def _params_of(s: ContactSolution) -> dict[str, float]:
     return {name: float(getattr(s, name)) for name in _PARAMS}
 
 
-def _target(target: Scene | Mapping[str, float] | str | Path | None) -> _Target:
+def _target(
+    target: Scene | Mapping[str, float] | str | Path | None,
+    profile: PunchProfile | None = None,
+) -> _Target:
     if target is None:
         target = FIG4_CASE
     if isinstance(target, (str, Path)):
@@ -296,11 +306,16 @@ def _target(target: Scene | Mapping[str, float] | str | Path | None) -> _Target:
     params.setdefault("nu", 0.2)
     scene = Scene(
         params=params,
+        profile=profile,
         outputs={"contact_width": OutputSpec("contact_width")},
         name="case",
         description="one parameter set: solve and the sigma_x peaks",
     )
-    name = "fig4-case" if _key(params) == _key(FIG4_CASE) else "case"
+    name = (
+        "fig4-case"
+        if profile is None and _key(scene.params) == _key(FIG4_CASE)
+        else "case"
+    )
     return _Target(name, replace(scene, name=name), single=True)
 
 
@@ -310,17 +325,19 @@ def accuracy_report(
     *,
     progress: Progress | None = None,
     cancelled: Callable[[], bool] | None = None,
+    profile: PunchProfile | None = None,
 ) -> AccuracyReport | None:
     """The accuracy ladder of ``target``: None (the paper's Fig. 4 case), a
     parameter mapping (vstar, kw, radius, load, optional nu, damping and kp), a
     ``Scene`` (damped points included), or
     a scene file / bundled scene name. Each rung is run cold (the kernel
     cache cleared first: this empties the process-wide cache) and then warm.
-    Returns None if ``cancelled()`` turns true.
+    Returns None if ``cancelled()`` turns true. ``profile``: the punch of
+    a parameter mapping (a scene carries its own; docs/theory.md section 13).
     """
     report = progress or (lambda done, total: None)
     stop = cancelled or (lambda: False)
-    tgt = _target(target)
+    tgt = _target(target, profile)
     ladder = [float(t) for t in tols]
     total = len(ladder)
     # The points are those of the first rung that runs (the same set at every
@@ -356,7 +373,7 @@ def accuracy_report(
             ref_n: list[int] = []
             ref_tol: list[float] = []
             for k in sols:
-                ref, n, rtol = _reference(k)
+                ref, n, rtol = _reference(k, tgt.scene.profile)
                 refs[k] = ref
                 ref_n.append(n)
                 ref_tol.append(rtol)

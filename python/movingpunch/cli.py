@@ -42,9 +42,16 @@ from collections.abc import Callable, Sequence
 from types import FrameType
 from typing import Any, NoReturn
 
-from movingpunch.errors import MovingPunchError
+from movingpunch.errors import InvalidParameterError, MovingPunchError
 from movingpunch.fields import StressPeaks
 from movingpunch.params import help_text, range_text
+from movingpunch.profiles import (
+    PROFILE_KINDS,
+    Flat,
+    Profile,
+    PunchProfile,
+    RoundedFlat,
+)
 from movingpunch.solver import (
     critical_vstar,
     critical_wavenumber,
@@ -165,10 +172,37 @@ def _build_parser() -> argparse.ArgumentParser:
         description="Solve the contact problem and print a/h, p0, indentation, ...",
     )
     # Help texts and ranges: the table of parameters (movingpunch.params).
-    for name in ("vstar", "kw", "radius", "load"):
+    for name in ("vstar", "kw", "load"):
         solve_p.add_argument(
             f"--{name}", type=_number(name), required=True, help=help_text(name)
         )
+    solve_p.add_argument(
+        "--radius",
+        type=_number("radius"),
+        default=None,
+        help=help_text("radius") + " (of a cylinder, or of a rounded flat's corners)",
+    )
+    solve_p.add_argument(
+        "--profile",
+        choices=PROFILE_KINDS,
+        default="cylinder",
+        help="the punch's shape (docs/theory.md section 13): cylinder (--radius), "
+        "flat (--half-width: a flat face, singular ends), rounded_flat "
+        "(--half-width, --radius of the corners) or table (--table FILE)",
+    )
+    solve_p.add_argument(
+        "--half-width",
+        type=_number("half_width"),
+        default=None,
+        help=help_text("half_width"),
+    )
+    solve_p.add_argument(
+        "--table",
+        default=None,
+        metavar="FILE",
+        help="the profile table of --profile table: two columns x/h and y/h "
+        "(whitespace or comma separated; # comments), symmetric and convex",
+    )
     solve_p.add_argument("--nu", type=_number("nu"), default=0.2, help=help_text("nu"))
     solve_p.add_argument("--tol", type=_tol, default=1e-8, help=help_text("tol"))
     # The foundation's optional terms, 0 by default (the paper's model).
@@ -296,11 +330,74 @@ def _json_number(value: float) -> float | str:
     return value if math.isfinite(value) else str(value)
 
 
+def _cli_profile(args: argparse.Namespace) -> PunchProfile | None:
+    """The punch of ``solve``'s options (None: a cylinder of --radius).
+    Options a shape does not take are errors naming them."""
+    kind = args.profile
+    needs = {
+        "cylinder": ("radius",),
+        "flat": ("half_width",),
+        "rounded_flat": ("half_width", "radius"),
+        "table": ("table",),
+    }[kind]
+    for name in ("radius", "half_width", "table"):
+        given = getattr(args, name) is not None
+        option = "--" + name.replace("_", "-")
+        if given and name not in needs:
+            raise InvalidParameterError(
+                f"{option} is not an option of --profile {kind} "
+                f"(it takes {', '.join('--' + n.replace('_', '-') for n in needs)})",
+                parameter=name,
+            )
+        if not given and name in needs:
+            raise InvalidParameterError(
+                f"--profile {kind} needs {option}", parameter=name
+            )
+    if kind == "cylinder":
+        return None
+    if kind == "flat":
+        return Flat(args.half_width)
+    if kind == "rounded_flat":
+        return RoundedFlat(args.half_width, args.radius)
+    return _read_table(args.table)
+
+
+def _read_table(path: str) -> Profile:
+    """A profile table from a text file of two columns x/h, y/h."""
+    from pathlib import Path
+
+    try:
+        text = Path(path).read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InvalidParameterError(
+            f"--table {path}: cannot read it ({exc})", parameter="table"
+        ) from None
+    xs: list[float] = []
+    ys: list[float] = []
+    for number, line in enumerate(text.splitlines(), 1):
+        body = line.split("#", 1)[0].replace(",", " ").split()
+        if not body:
+            continue
+        try:
+            x, y = (float(v) for v in body)
+        except ValueError:
+            raise InvalidParameterError(
+                f"--table {path}: line {number} must hold two numbers x y, "
+                f"got {line.strip()!r}",
+                parameter="table",
+            ) from None
+        xs.append(x)
+        ys.append(y)
+    return Profile(tuple(xs), tuple(ys))
+
+
 def _cmd_solve(args: argparse.Namespace) -> int:
+    profile = _cli_profile(args)
     s = solve(
         vstar=args.vstar,
         kw=args.kw,
-        radius=args.radius,
+        radius=args.radius if profile is None else None,
+        profile=profile,
         load=args.load,
         nu=args.nu,
         tol=args.tol,
@@ -322,6 +419,7 @@ def _cmd_solve(args: argparse.Namespace) -> int:
         ("k_p/(μh) (Pasternak)", _fmt(s.kp)),
         ("damping c_w c_T/μ", _fmt(s.damping)),
         ("R/h", _fmt(s.radius)),
+        ("profile", s.profile.describe()),
         ("P/(μh)", _fmt(s.load)),
         ("μ/(P/h)", _fmt(1.0 / s.load)),
         ("ν", _fmt(s.nu)),
@@ -343,6 +441,11 @@ def _cmd_solve(args: argparse.Namespace) -> int:
         ("error estimate (a/h)", f"{s.error_estimate:.2e}"),
         ("error bound (σx/(P/h))", f"{s.stress_error_estimate:.2e}"),
         ("pressure margin", _fmt(s.pressure_margin)),
+        *(
+            [("end coefficient K/((P/h)√h)", _fmt(s.end_coefficients[1]))]
+            if s.end_coefficients != (0.0, 0.0)
+            else []
+        ),
         ("warnings", str(len(s.warnings)) if s.warnings else "none"),
         ("solve time", f"{s.elapsed * 1e3:.1f} ms"),
         ("valid", "yes" if s.valid else "NO"),

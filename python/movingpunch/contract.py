@@ -16,11 +16,14 @@ Pure typing: no _core import, no NumPy work.
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from typing import Any, Protocol, overload, runtime_checkable
+from typing import TYPE_CHECKING, Any, Protocol, overload, runtime_checkable
 
 import numpy.typing as npt
 
 from movingpunch.fields import FloatArray, StressField, StressPeaks
+
+if TYPE_CHECKING:
+    from movingpunch.profiles import PunchProfile
 
 __all__ = ["CONTRACT_FIELDS", "CONTRACT_METHODS", "ContactSolution", "Points"]
 
@@ -43,7 +46,11 @@ class ContactSolution(Protocol):
     horizontal force over P; 0.0 without damping) and ``dissipation`` (the
     power dissipated over P V, equal to ``drag`` by the energy balance).
     Trust: ``error_estimate`` (of the contact ends), ``stress_error_estimate``,
-    ``valid``, ``validity``, ``warnings``. Cost:
+    ``valid``, ``validity``, ``warnings``. The punch: ``profile`` (its
+    shape, ``movingpunch.profiles``; ``radius`` is the cylinder's or the
+    rounded corners' R/h, inf for a flat punch or a table) and
+    ``end_coefficients`` (K_back, K_front) of a pressure square-root
+    singular at the ends (a flat punch; (0.0, 0.0) for bounded ends). Cost:
     ``stage_times``, ``kernel_builds``, ``iterations``, ``elapsed``,
     ``collocation_n``.
     """
@@ -112,6 +119,10 @@ class ContactSolution(Protocol):
     @property
     def kernel_builds(self) -> int: ...
     @property
+    def profile(self) -> PunchProfile: ...
+    @property
+    def end_coefficients(self) -> tuple[float, float]: ...
+    @property
     def stage_times(self) -> Mapping[str, float]: ...
 
     # Evaluations: a float for a scalar argument, else an array of its shape.
@@ -177,8 +188,11 @@ CONTRACT_FIELDS: tuple[str, ...] = (
     "warnings",
     "kernel_builds",
     "stage_times",
+    "profile",
+    "end_coefficients",
 )
-"""The contract's data fields, each also a key of ``to_dict()``."""
+"""The contract's data fields, each also a key of ``to_dict()`` (``profile``
+as its scene-file form ``{"kind": ..., ...}``)."""
 
 CONTRACT_METHODS: tuple[str, ...] = (
     "pressure",

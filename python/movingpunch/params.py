@@ -158,6 +158,17 @@ SPECS: Mapping[str, ParamSpec] = MappingProxyType(
                 "radius", 0.0, 1e12, True, False, "R/h", "radius of the punch", None
             ),
             ParamSpec(
+                "half_width",
+                0.0,
+                50.0,
+                False,
+                False,
+                "b/h",
+                "half-width of a flat punch's face (flat, rounded_flat profiles)",
+                None,
+                note="(>= 1e-10 for a flat punch; 0: a rounded flat is a cylinder)",
+            ),
+            ParamSpec(
                 "load",
                 0.0,
                 1e6,

@@ -41,6 +41,7 @@ from movingpunch._evaluate import (
 from movingpunch._evaluations import ResultFields
 from movingpunch.errors import InvalidParameterError
 from movingpunch.params import PRESETS
+from movingpunch.profiles import Cylinder, PunchProfile, check_profile
 
 if TYPE_CHECKING:
     from movingpunch.contract import ContactSolution
@@ -96,6 +97,7 @@ class Solution(ResultFields):
     ``checks`` (indentation and validity). They sum to ``elapsed`` up to the
     cost of reading the clock."""
     _impl: _core.ContactSolution = field(repr=False, compare=False)
+    _profile: PunchProfile | None = field(default=None, repr=False, compare=False)
 
     @functools.cached_property
     def stress_error_estimate(self) -> float:
@@ -177,7 +179,7 @@ def solve(
     *,
     vstar: float,
     kw: float,
-    radius: float,
+    radius: float | None = ...,
     load: float,
     nu: float = ...,
     tol: float | str = ...,
@@ -185,6 +187,7 @@ def solve(
     n: int | None = ...,
     damping: Literal[0] = ...,
     kp: float = ...,
+    profile: PunchProfile | None = ...,
 ) -> Solution: ...
 
 
@@ -193,7 +196,7 @@ def solve(
     *,
     vstar: float,
     kw: float,
-    radius: float,
+    radius: float | None = ...,
     load: float,
     nu: float = ...,
     tol: float | str = ...,
@@ -201,6 +204,7 @@ def solve(
     n: int | None = ...,
     damping: float,
     kp: float = ...,
+    profile: PunchProfile | None = ...,
 ) -> ContactSolution: ...
 
 
@@ -208,7 +212,7 @@ def solve(
     *,
     vstar: float,
     kw: float,
-    radius: float,
+    radius: float | None = None,
     load: float,
     nu: float = 0.2,
     tol: float | str = 1e-8,
@@ -216,8 +220,9 @@ def solve(
     n: int | None = None,
     damping: float = 0.0,
     kp: float = 0.0,
+    profile: PunchProfile | None = None,
 ) -> ContactSolution:
-    """Solves the contact problem of a rigid cylinder sliding over the layer.
+    """Solves the contact problem of a rigid punch sliding over the layer.
 
     Parameters are dimensionless (see the module docstring). Raises
     InvalidParameterError (bad input), SupercriticalSpeedError (vstar at or
@@ -245,14 +250,33 @@ def solve(
     kw + kp (alpha h)^2 per wavenumber; docs/theory.md section 12). 0 (the
     default) is the Winkler foundation, bit for bit. It raises the critical
     speed (``critical_vstar(kw, nu, kp)``).
+
+    ``profile`` is the punch's shape (``movingpunch.profiles``): a
+    ``Cylinder(radius)`` (the default: ``radius=R`` is its shorthand),
+    ``Flat(half_width)`` (a flat face: its end coefficients in
+    ``end_coefficients``), ``RoundedFlat(half_width, radius)`` or a
+    symmetric convex table ``Profile(x, y)``. Give ``radius`` or
+    ``profile``; both only if they agree (a Cylinder or a RoundedFlat of that
+    very radius), else InvalidParameterError naming ``radius``. A profile
+    other than a cylinder is refused with ``damping > 0`` (not supported
+    yet). ``tol`` is on a/h (on the end coefficient for a flat punch, whose
+    contact is its face).
     """
     from movingpunch.damped import check_damping, solve_damped
 
+    shape = resolve_profile(radius, profile)
     if check_damping(damping) > 0:
+        if not isinstance(shape, Cylinder):
+            raise InvalidParameterError(
+                f"profile {shape.describe()} with damping > 0 is not supported yet; "
+                "use damping = 0 or a Cylinder",
+                parameter="profile",
+                allowed="a Cylinder when damping > 0",
+            )
         return solve_damped(
             vstar=vstar,
             kw=kw,
-            radius=radius,
+            radius=shape.radius,
             load=load,
             nu=nu,
             damping=damping,
@@ -261,10 +285,59 @@ def solve(
             n=n,
             kp=kp,
         )
-    inputs = _check_solve_inputs(vstar, kw, radius, load, nu, tol, kp)
+    return _solve_profile(shape, vstar, kw, load, nu, tol, allow_unphysical, n, kp)
+
+
+def resolve_profile(radius: object, profile: object) -> PunchProfile:
+    """The punch of ``solve(radius=..., profile=...)``: ``profile`` (checked),
+    or ``Cylinder(radius)``. Both given: only if the profile has that very
+    radius (a Cylinder or a RoundedFlat's corners), else InvalidParameterError
+    naming ``radius``; neither: InvalidParameterError naming ``radius``."""
+    if profile is None:
+        if radius is None:
+            raise InvalidParameterError(
+                f"radius must be given ({params.range_text('radius')}, a cylinder) "
+                "unless profile is (mp.Cylinder, Flat, RoundedFlat or Profile)",
+                parameter="radius",
+                allowed=params.range_text("radius"),
+            )
+        return Cylinder(radius)  # type: ignore[arg-type]
+    shape = check_profile(profile)
+    if radius is not None:
+        r = params.check("radius", radius)
+        own = getattr(shape, "radius", None)
+        if own is None or own != r:
+            raise InvalidParameterError(
+                f"radius = {r!r} disagrees with profile = {shape.describe()}: give "
+                "radius (a cylinder) or profile, or both only when the profile has "
+                "that radius (a Cylinder or a RoundedFlat's corners)",
+                parameter="radius",
+                allowed="None when profile is given (or the profile's own radius)",
+            )
+    return shape
+
+
+def _solve_profile(
+    shape: PunchProfile,
+    vstar: object,
+    kw: object,
+    load: object,
+    nu: object,
+    tol: object,
+    allow_unphysical: object,
+    n: object,
+    kp: object = 0.0,
+) -> Solution:
+    """The undamped solve of ``shape`` (validated inputs, the core's solve,
+    the Solution)."""
+    # The shape's own parameters are checked by it; radius shows its nominal
+    # radius (inf for a flat punch or a table).
+    inputs = _check_solve_inputs(vstar, kw, 1.0, load, nu, tol, kp)
+    inputs["radius"] = shape.nominal_radius
     flag = _check_flag("allow_unphysical", allow_unphysical)
     size = _check_size(n)
-    impl = _core.solve_contact(**inputs, allow_unphysical=flag, n=size)
+    core = _core_inputs(inputs, shape)
+    impl = _core.solve_contact(**core, allow_unphysical=flag, n=size)
     return Solution(
         **inputs,
         a=impl.a,
@@ -286,7 +359,14 @@ def solve(
         kernel_builds=impl.kernel_builds,
         stage_times=MappingProxyType(dict(impl.stage_seconds)),
         _impl=impl,
+        _profile=shape,
     )
+
+
+def _core_inputs(inputs: Mapping[str, float], shape: PunchProfile) -> dict[str, Any]:
+    """The keyword arguments of ``_core.solve_contact`` for the checked
+    ``inputs`` and the punch ``shape`` (its radius replaces ``radius``)."""
+    return {**inputs, **shape.core_args()}
 
 
 if TYPE_CHECKING:
@@ -393,7 +473,9 @@ def _stress_error_estimate(s: Solution) -> float:
     tests/python/test_estimates.py, 3 to 10 times away from it (tol <= 1e-8).
     """
     impl = s._impl
-    b = np.asarray(impl.g_coefficients, dtype=np.float64)
+    # The collocated coefficients (a rounded flat's series goes on with the
+    # half-plane tail, bounded by series_truncation: counted below).
+    b = np.asarray(impl.g_coefficients, dtype=np.float64)[: impl.collocation_n]
     c = np.abs(b[::2])
     total = float(c.sum())
     a = impl.a
@@ -409,13 +491,10 @@ def _stress_error_estimate(s: Solution) -> float:
     finer = _finer_size(len(b))
     if finer:
         try:
+            shape = s._profile if s._profile is not None else Cylinder(s.radius)
+            inputs = {"vstar": s.vstar, "kw": s.kw, "load": s.load, "nu": s.nu}
             other = _core.solve_contact(
-                vstar=s.vstar,
-                kw=s.kw,
-                kp=s.kp,
-                radius=s.radius,
-                load=s.load,
-                nu=s.nu,
+                **_core_inputs({**inputs, "kp": s.kp}, shape),
                 # Its width and kernel well below this one's collocation
                 # error: at a loose tol the change would measure the root's
                 # own 1e-2 tol, and at N = 24 the 1e-10 kernel of a tol-1e-6
@@ -433,7 +512,10 @@ def _stress_error_estimate(s: Solution) -> float:
     # phi2 p0 (da/a)/sqrt(2 d) at a relative distance d >= 1e-3 from it.
     edge = abs(phi2_value) / math.sqrt(2.0 * _EDGE)
     width = p0 * (impl.error_estimate / a) * (gain + edge)
-    return gain * (tail + kernel + roundoff) + width
+    # A kinked slope's series truncation (rounded flat, table): a bound on
+    # the pressure's error, carried into sigma_x like the tail.
+    truncation = impl.series_truncation
+    return gain * (tail + kernel + roundoff + truncation) + width
 
 
 def kernel_cache_info() -> dict[str, int]:

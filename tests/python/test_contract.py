@@ -44,6 +44,19 @@ PATHS: dict[str, dict[str, Any]] = {
     "damped": {"vstar": 0.2, "kw": 1.0, "damping": 0.1},
     "damped-fast": {"vstar": 0.65, "kw": 1.0, "damping": 0.1},
     "damped-tiny": {"vstar": 0.2, "kw": 1.0, "damping": 1e-12},
+    "flat": {"vstar": 0.2, "kw": 1.0, "radius": None, "profile": mp.Flat(0.3)},
+    "rounded-flat": {
+        "vstar": 0.2,
+        "kw": 1.0,
+        "radius": None,
+        "profile": mp.RoundedFlat(0.2, 100.0),
+    },
+    "table": {
+        "vstar": 0.2,
+        "kw": 1.0,
+        "radius": None,
+        "profile": mp.Profile.from_function(lambda x: x * x / 200.0, 2.0, 101),
+    },
 }
 
 TYPES: dict[str, type | tuple[type, ...]] = {
@@ -55,6 +68,8 @@ TYPES: dict[str, type | tuple[type, ...]] = {
     "warnings": tuple,
     "contact_interval": tuple,
     "stage_times": Mapping,
+    "profile": (mp.Cylinder, mp.Flat, mp.RoundedFlat, mp.Profile),
+    "end_coefficients": tuple,
 }
 
 
@@ -113,7 +128,14 @@ def test_evaluations_take_scalars_and_arrays(solved: tuple[str, Any]) -> None:
     assert field.sigma_x.shape == (3, 5)
     assert np.isfinite(field.von_mises).all()
     peaks = s.stress_peaks()
-    assert math.isfinite(peaks.top_compressive)
+    if s.end_coefficients == (0.0, 0.0):
+        assert math.isfinite(peaks.top_compressive)
+    else:  # a flat punch: singular at its edges, and said so
+        assert peaks.top_compressive == -math.inf
+        assert peaks.top_compressive_x == s.a
+        assert any("singular" in w for w in peaks.warnings)
+    assert math.isfinite(peaks.top_tensile)
+    assert math.isfinite(peaks.bottom_tensile)
     assert peaks.error_bound > 0.0
 
 
@@ -129,10 +151,11 @@ def test_anchors_of_the_common_fields(solved: tuple[str, Any]) -> None:
     """Each against something computed independently of the field."""
     name, s = solved
     # The surface under the punch follows its profile: v(x, 0) =
-    # -delta + x^2/(2R) (the boundary condition, from the displacement
-    # integral, not from g), on every path (the damped contact is off-centre).
+    # -delta + f(x) (x^2/(2R) for a cylinder; the boundary condition, from the
+    # displacement integral, not from g), on every path (the damped contact
+    # is off-centre).
     r = np.linspace(-0.9, 0.9, 7) * s.half_width + s.centre
-    profile = -s.indentation + r**2 / (2.0 * s.radius)
+    profile = -s.indentation + s.profile.height(r)
     scale = max(abs(s.indentation), 1e-3)
     np.testing.assert_allclose(
         s.surface_displacement(r), profile, atol=1e-6 * scale, err_msg=name

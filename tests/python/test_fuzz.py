@@ -344,3 +344,93 @@ def test_fuzz_public_api_every_type() -> None:
             assert math.isfinite(sol.p0), args
             outcomes["solved"] += 1
     assert outcomes["solved"] >= 300, outcomes
+
+
+# --------------------------------------------------------------------------
+# punch profiles (docs/theory.md section 13) through the binding
+
+
+def _draw_profile(draw: Draw) -> dict[str, Any]:
+    """A random profile as the binding takes it: mostly valid, some broken
+    (asymmetric, non-convex, short, non-finite tables; extreme sizes)."""
+    rng = draw.rng
+    r = rng.random()
+    if r < 0.35:
+        b = (
+            draw._loguniform(1e-6, 20.0)
+            if rng.random() < 0.9
+            else draw._pick(SIZE_EXTREME)
+        )
+        return {"profile": "flat", "half_width": float(b)}
+    if r < 0.65:
+        b = (
+            draw._loguniform(1e-6, 5.0)
+            if rng.random() < 0.9
+            else draw._pick(SIZE_EXTREME)
+        )
+        radius = (
+            draw._loguniform(1e-3, 1e4)
+            if rng.random() < 0.9
+            else draw._pick(SIZE_EXTREME)
+        )
+        return {
+            "profile": "rounded_flat",
+            "half_width": float(b),
+            "radius": float(radius),
+        }
+    extent = draw._loguniform(0.05, 20.0)
+    m = int(rng.integers(2, 60))
+    x = extent * np.linspace(-1.0, 1.0, 2 * m + 1)
+    power = float(rng.uniform(1.2, 4.0))
+    y = (np.abs(x) ** power) / float(draw._loguniform(1e-2, 1e3))
+    s = rng.random()
+    if s < 0.05:
+        y[1] += 0.5 * float(np.max(y))  # asymmetric and non-convex
+    elif s < 0.08:
+        y[m] = NAN
+    elif s < 0.1:
+        x, y = x[:3], y[:3]
+    elif s < 0.12:
+        x = x[::-1].copy()
+    return {"profile": "table", "table_x": x.tolist(), "table_y": y.tolist()}
+
+
+def fuzz_profiles(calls: int, seed: int, budget: float) -> collections.Counter[str]:
+    draw = Draw(seed)
+    outcomes: collections.Counter[str] = collections.Counter()
+
+    def work() -> None:
+        for _ in range(calls):
+            args = draw.call()
+            args.update(_draw_profile(draw))
+            args.setdefault("radius", 1.0)
+            if args["n"] > 1024:  # large fixed N: covered by the cylinder's fuzz
+                args["n"] = 0
+            sol, exc = _attempt(lambda args=args: _core.solve_contact(**args))
+            if exc is not None:
+                _check_error(exc, args)
+                outcomes[type(exc).__name__] += 1
+                continue
+            _check_solution(sol, args)
+            assert math.isfinite(sol.end_coefficient), args
+            assert (sol.end_coefficient != 0.0) == (args["profile"] == "flat"), args
+            if args["profile"] == "flat":
+                assert sol.a == args["half_width"], args
+            if args["profile"] == "rounded_flat":
+                assert sol.a > args["half_width"], args
+            outcomes["valid" if sol.valid else "flagged"] += 1
+
+    _run_with_watchdog(work, budget)
+    assert sum(outcomes.values()) == calls
+    assert outcomes["valid"] + outcomes["flagged"] >= 0.25 * calls, outcomes
+    assert outcomes["InvalidParameterError"] >= 0.03 * calls, outcomes
+    return outcomes
+
+
+def test_fuzz_profiles_150() -> None:
+    fuzz_profiles(150, seed=1309, budget=120.0)
+
+
+@pytest.mark.slow
+def test_fuzz_profiles_600() -> None:
+    fuzz_profiles(600, seed=1310, budget=300.0)

@@ -1435,3 +1435,81 @@ def _measure() -> Iterator[str]:  # pragma: no cover - run by hand
 if __name__ == "__main__":  # pragma: no cover
     for line in _measure():
         print(line, flush=True)
+
+
+# --------------------------------------------------------------------------
+# Punch profiles (docs/theory.md section 13)
+
+
+@pytest.mark.parametrize("kw", [1.0, 10.0, INF])
+@pytest.mark.parametrize("eps", [1e-2, 1e-4, 1e-6])
+def test_flat_punch_near_critical(kw: float, eps: float) -> None:
+    """A flat punch (b = 0.5 h) approaching V*_cr: it solves (kw = 1: the
+    face separates there, p < 0 mid-face, reported), and the end
+    coefficient's estimate bounds its error against a reference at 4 times
+    the size and tol 1e-12 (not N = 512: the index +1 matrix's round-off
+    grows with N, 1.7e-11 there)."""
+    vstar = (1.0 - eps) * mp.critical_vstar(kw, NU)
+    args: dict[str, Any] = {"vstar": vstar, "kw": kw, "load": 0.002, "nu": NU}
+    s = mp.solve(**args, profile=mp.Flat(0.5), allow_unphysical=True)
+    ref = mp.solve(
+        **args,
+        profile=mp.Flat(0.5),
+        allow_unphysical=True,
+        tol=1e-12,
+        n=4 * s.collocation_n,
+    )
+    assert s.a == 0.5
+    actual = abs(s.end_coefficients[1] - ref.end_coefficients[1])
+    assert actual <= s._impl.end_coefficient_error + 1e-14
+    assert s._impl.end_coefficient_error <= 1e4 * max(actual, 1e-14)
+    if not s.valid:
+        with pytest.raises(mp.UnphysicalContactError, match="negative"):
+            mp.solve(**args, profile=mp.Flat(0.5))
+
+
+@pytest.mark.parametrize("b", [1e-9, 1e-7, 1e-5])
+def test_flat_punch_tiny_face_is_the_half_plane(b: float) -> None:
+    """Tiny faces: K sqrt(pi b) = 1 (the half-plane's P/sqrt(pi b)) to
+    1e-12 plus the layer's O(b^2), and p = P/(pi sqrt(b^2 - x^2))."""
+    s = mp.solve(vstar=0.2, kw=1.0, load=0.002, profile=mp.Flat(b))
+    assert s.end_coefficients[1] * math.sqrt(math.pi * b) == pytest.approx(
+        1.0, abs=1e-12 + 2.0 * b * b
+    )
+    x = b * np.array([0.0, 0.5, 0.9])
+    exact = 1.0 / (math.pi * np.sqrt(b * b - x * x))
+    np.testing.assert_allclose(s.pressure(x), exact, rtol=1e-9)
+
+
+@pytest.mark.parametrize("b", [10.0, 30.0, 50.0])
+def test_flat_punch_huge_face(b: float) -> None:
+    """Faces of 10 to 50 h: the ladder goes to N = 512 (the kernel
+    oscillates across the face), within a second; the total is the load
+    (the pressure integrates to P: Gauss-Chebyshev of the T-series) and the
+    pressure is nearly uniform mid-face, P/(2b) times a factor near 1."""
+    t0 = time.perf_counter()
+    s = mp.solve(vstar=0.2, kw=1.0, load=0.002, profile=mp.Flat(b))
+    assert time.perf_counter() - t0 < 30.0  # does not hang (measured 0.2 s at 50)
+    assert s.valid
+    c = np.asarray(s.g_coefficients)
+    assert c[0] * math.pi * b == pytest.approx(1.0, rel=1e-12)  # int p = P
+    mid = s.pressure(np.array([0.0, 0.25 * b]))
+    assert np.all(np.abs(mid * 2.0 * b - 1.0) < 0.1)
+
+
+@pytest.mark.parametrize("radius", [1e-3, 1e-6, 1e-8])
+def test_rounded_flat_with_tiny_corners(radius: float) -> None:
+    """Corners of radius 1e-3 to 1e-8 h on a 0.5 h face: a - b falls like
+    R^(2/3) (a > b always), a/h stays converged, and once the corner zone is
+    too narrow for the series the solution says so (series_truncation and a
+    warning naming the flat punch as the better model)."""
+    s = mp.solve(vstar=0.2, kw=1.0, load=0.002, profile=mp.RoundedFlat(0.5, radius))
+    assert s.a > 0.5
+    assert s.error_estimate < 1e-12
+    truncation = s._impl.series_truncation
+    warned = any("flat punch" in w for w in s.warnings)
+    assert warned == (truncation > 1e-3 * s.p0)
+    if radius <= 1e-6:
+        assert warned
+    flat = mp.solve(vstar=0.2, kw=1.0, load=0.002, profile=mp.Flat(0.5))
+    assert s.indentation == pytest.approx(flat.indentation, rel=20 * radius ** (2 / 3))

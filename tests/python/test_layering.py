@@ -62,6 +62,7 @@ LAYERS: tuple[tuple[str, frozenset[str]], ...] = (
             {
                 "movingpunch.fields",
                 "movingpunch.peaks",
+                "movingpunch.profiles",
                 "movingpunch.outputs",
                 "movingpunch.contract",
                 "movingpunch._evaluate",

@@ -10,6 +10,12 @@
 
 namespace movingpunch {
 
+// The kind of Chebyshev series a contact pressure is written in (docs/theory.md
+// section 13): U, bounded at both ends (index -1), p(a r) = sqrt(1 - r^2) sum b_n U_n(r);
+// T, square-root singular at both ends (index +1, a flat punch),
+// p(a r) = sum b_n T_n(r) / sqrt(1 - r^2).
+enum class SeriesKind { U, T };
+
 struct ChebyshevNodes {
   int n = 0;
   Eigen::VectorXd r;  // r_i = cos(i pi / (N + 1)), i = 1..N (zeros of U_N)
@@ -60,5 +66,44 @@ double u_series_cosine_transform(const Eigen::VectorXd& b, double a, double alph
 // accumulated on the way down): several times faster than one by one.
 void u_series_cosine_transforms(const Eigen::VectorXd& b, double a, const double* alpha,
                                 double* out, std::size_t count);
+
+// g(r) = sum b_n T_n(r) for |r| <= 1 (Clenshaw).
+double t_series(const Eigen::VectorXd& b, double r);
+// g(r) = sum b_n U_n(r) or sum b_n T_n(r).
+double series(const Eigen::VectorXd& b, double r, SeriesKind kind);
+// The minimum of series(b, r, kind) on -1 <= r <= 1 (the scan and refinement
+// of u_series_minimum); its abscissa in *r_min.
+double series_minimum(const Eigen::VectorXd& b, SeriesKind kind, double* r_min = nullptr);
+
+// Exact cosine transform int_0^a p(x) cos(alpha x) dx of an even pressure of
+// either kind (odd coefficients ignored): U as u_series_cosine_transform;
+// T: (a/2) sum_n b_n pi (-1)^{n/2} J_n(alpha a), from
+// int_{-1}^{1} T_n(r)/sqrt(1 - r^2) e^{i w r} dr = pi i^n J_n(w).
+double series_cosine_transform(const Eigen::VectorXd& b, SeriesKind kind, double a,
+                               double alpha);
+void series_cosine_transforms(const Eigen::VectorXd& b, SeriesKind kind, double a,
+                              const double* alpha, double* out, std::size_t count);
+
+// Gauss-Chebyshev collocation of the first kind for the index +1 equation
+// (a flat punch: the density p(a r) = g(r)/sqrt(1 - r^2), unbounded at both
+// ends): nodes t_i = cos((2i - 1) pi/(2N)) (i = 1..N, zeros of T_N) and
+// collocation points x_k = cos(k pi/N) (k = 1..N-1, zeros of U_{N-1}):
+// (1/pi) int g(t)/sqrt(1-t^2) f(t) dt ~ (1/N) sum g(t_i) f(t_i).
+struct FirstKindNodes {
+  int n = 0;
+  Eigen::VectorXd t;  // t_i, i = 1..N
+  Eigen::VectorXd x;  // x_k, k = 1..N-1
+};
+// N must be even and >= 2; throws std::invalid_argument otherwise.
+FirstKindNodes first_kind_nodes(int n);
+// The folded N/2 x N/2 system of an even g: the N/2 - 1 points x_k > 0,
+// M(k, j) = (1/N) [1/(t_j - x_k) + 1/(-t_j - x_k) + a (k(a (t_j - x_k)) + k(a (-t_j - x_k)))]
+// (right-hand side 0, the slope of a flat face), and the equilibrium row
+// (2 pi a / N) sum_j g_j = 1 (int p = P, g over P/h). Returns the matrix.
+Eigen::MatrixXd flat_collocation_matrix(const FirstKindNodes& nodes, double a,
+                                        const std::function<double(double, double)>& kernel_sum);
+// Coefficients b_n (n = 0..N-1) of g(r) = sum b_n T_n(r) from its values at
+// all N nodes t_i (exact for polynomials of degree < N).
+Eigen::VectorXd t_coefficients(const FirstKindNodes& nodes, const Eigen::VectorXd& g_full);
 
 }  // namespace movingpunch

@@ -8,7 +8,9 @@
 
 #include <Eigen/Dense>
 
+#include "movingpunch/collocation.hpp"
 #include "movingpunch/kernel.hpp"
+#include "movingpunch/profile.hpp"
 #include "movingpunch/stresses.hpp"
 
 namespace movingpunch {
@@ -23,6 +25,13 @@ struct ContactParams {
   double tol = 1e-8;              // relative tolerance on a/h, in [1e-14, 1e-2]
   bool allow_unphysical = false;  // if true, return invalid solutions flagged
   int n = 0;  // fixed collocation size (even, 2..4096); 0: refine N until a/h converges
+  // The punch's shape (profile.hpp, docs/theory.md section 13): a cylinder of
+  // `radius`; a flat face of half-width `half_width` (b/h); a rounded flat
+  // (half_width, corners of `radius`); a symmetric convex table (table_x,
+  // table_y). `radius` is unused by the flat punch and the table.
+  ProfileKind profile = ProfileKind::cylinder;
+  double half_width = 0;                 // b/h (flat, rounded_flat)
+  std::vector<double> table_x, table_y;  // the table's x/h and heights y/h (table)
   double kp = 0;  // k_p / (mu h) in [0, kMaxKp]: Pasternak shear layer (0: Winkler)
 };
 
@@ -91,12 +100,32 @@ class ContactSolution {
   // The field evaluator (built on first use, then shared).
   std::shared_ptr<const FieldEvaluator> field() const;
 
-  // Chebyshev-U coefficients of g(r) = p(a r) / ((P/h) sqrt(1 - r^2)).
+  // Chebyshev-U coefficients of g(r) = p(a r) / ((P/h) sqrt(1 - r^2)); for a
+  // flat punch (series_kind() T) Chebyshev-T coefficients of
+  // g(r) = p(a r) sqrt(1 - r^2) / (P/h).
   const Eigen::VectorXd& g_coefficients() const noexcept { return b_; }
+  // U (bounded ends) or T (the flat punch's square-root singular ends).
+  SeriesKind series_kind() const noexcept { return kind_; }
+  // The flat punch's end coefficient K = lim_{x -> a} sqrt(2 pi (a - x)) p(x)
+  // over (P/h) sqrt(h) (= g(1) sqrt(pi a); 1/sqrt(pi a) on a half-plane); the
+  // same at both ends (symmetric). 0 for bounded ends.
+  double end_coefficient() const noexcept { return end_k_; }
+  // Estimated absolute error of end_coefficient() (0 for bounded ends).
+  double end_coefficient_error() const noexcept { return end_k_err_; }
+  // A bound on the pressure's error over P/h from the Chebyshev series'
+  // truncation (the rounded flat's and a table's slopes have kinks: their g
+  // converges algebraically; 0 for the cylinder and the flat punch, whose
+  // series converge geometrically and whose estimates cover it).
+  double series_truncation() const noexcept { return trunc_; }
+  // The punch's shape, one line (PunchProfile::describe).
+  const std::string& profile_description() const noexcept { return profile_text_; }
   const KernelK1& kernel() const noexcept { return *kernel_; }
 
  private:
   friend ContactSolution solve_contact(const ContactParams& p);
+  // The indentation and validity checks of a solved contact (contact.cpp).
+  friend void finish_checks(ContactSolution& sol, const ContactParams& p,
+                            const PunchProfile& profile);
   ContactParams params_{};
   double a_ = 0, p0_ = 0, delta_ = 0, vcr_ = 0, vr_ = 0, phi1_ = 0, err_ = 0, elapsed_ = 0;
   int iterations_ = 0, n_ = 0, kernel_builds_ = 0;
@@ -106,7 +135,10 @@ class ContactSolution {
   double min_p_ = 0, min_gap_ = 0, p_margin_ = 0;
   ErrorBudget budget_{};
   std::vector<std::string> warnings_;
-  Eigen::VectorXd b_;  // U_n coefficients of g, normalised by P/h
+  Eigen::VectorXd b_;  // U_n (or T_n) coefficients of g, normalised by P/h
+  SeriesKind kind_ = SeriesKind::U;
+  double end_k_ = 0, end_k_err_ = 0, trunc_ = 0;
+  std::string profile_text_;
   std::shared_ptr<const KernelK1> kernel_;
   struct FieldCache;
   std::shared_ptr<FieldCache> field_cache_;

@@ -18,6 +18,7 @@
 
 #include <Eigen/Dense>
 
+#include "movingpunch/collocation.hpp"
 #include "movingpunch/kernel.hpp"
 
 namespace movingpunch {
@@ -34,9 +35,11 @@ struct StressField {
 
 class FieldEvaluator {
  public:
-  // a: contact half-width; b: Chebyshev-U coefficients of p/(P/h) (even);
-  // tol: quadrature tolerance.
-  FieldEvaluator(const LayerModel& model, double a, const Eigen::VectorXd& b, double tol);
+  // a: contact half-width; b: Chebyshev coefficients of p/(P/h) (even) of
+  // the series `kind` (U: bounded ends; T: a flat punch's square-root
+  // singular ends, collocation.hpp); tol: quadrature tolerance.
+  FieldEvaluator(const LayerModel& model, double a, const Eigen::VectorXd& b, double tol,
+                 SeriesKind kind = SeriesKind::U);
 
   // Stresses on the grid x (any finite x) by y (-1 <= y <= 0).
   StressField stresses(const Eigen::Ref<const Eigen::VectorXd>& x,
@@ -50,6 +53,7 @@ class FieldEvaluator {
   std::shared_ptr<const LayerModel> model_;  // stable address for the mode fields
   double a_;
   Eigen::VectorXd b_;
+  SeriesKind kind_ = SeriesKind::U;
   AlphaQuadrature quad_;
   std::unique_ptr<FilonIntegrator> filon_;
   std::vector<double> ptilde_;  // (2/pi) ptilde(alpha_q) at the nodes

@@ -14,6 +14,7 @@ from typing import Protocol
 import numpy as np
 
 from movingpunch.params import SPECS
+from movingpunch.profiles import PunchProfile
 
 __all__ = [
     "OUTPUT_KINDS",
@@ -238,6 +239,8 @@ class SceneData(Protocol):
 
     @property
     def params(self) -> Mapping[str, float]: ...
+    @property
+    def profile(self) -> PunchProfile | None: ...
     @property
     def outputs(self) -> Mapping[str, OutputSpec]: ...
     @property

@@ -24,7 +24,7 @@ from movingpunch.scene._result import (
     OutputData,
     column_name,
 )
-from movingpunch.scene._solve import RunState, curve_label
+from movingpunch.scene._solve import RunState, curve_label, radius_ratio
 from movingpunch.scene._validate import critical_speed
 from movingpunch.solver import rayleigh_vstar
 
@@ -87,7 +87,7 @@ def _out_contact_width(run: RunState, spec: Any, solutions: _Solutions) -> Outpu
         cols["contact_end"].append(s.contact_interval[1])
         # Solutions are shared through lambda = radius * load: the drag
         # (int p x/R dx / P) scales as 1/radius, the indentation as the load.
-        cols["drag"].append(s.drag * s.radius / p["radius"])
+        cols["drag"].append(s.drag * radius_ratio(s.radius, p["radius"]))
         cols["p0"].append(s.p0)
         cols["indentation"].append(s.indentation * p["load"] / s.load)
         cols["valid"].append(1.0 if s.valid else 0.0)

@@ -13,9 +13,10 @@ from typing import Any
 
 import numpy as np
 
+from movingpunch.profiles import PunchProfile
 from movingpunch.scene._model import PEAK_QUANTITIES, SceneData
 from movingpunch.scene._result import SweepTable
-from movingpunch.scene._solve import Key, curve_label, point_key
+from movingpunch.scene._solve import Key, curve_label, point_key, radius_ratio
 
 __all__ = ["SweepPlan", "build_sweep_table", "plan_sweep", "split_chunks"]
 
@@ -31,6 +32,7 @@ class SweepPlan:
     representative: dict[Key, dict[str, float]]
     want_peaks: bool
     damped: bool
+    profile: PunchProfile | None = None
 
 
 def plan_sweep(scene: SceneData) -> SweepPlan:
@@ -52,7 +54,9 @@ def plan_sweep(scene: SceneData) -> SweepPlan:
     keys = [k for members in groups.values() for k in members]
     want_peaks = any(q in PEAK_QUANTITIES for q in sw.quantities)
     damped = any(k[4] > 0.0 for k in keys)
-    return SweepPlan(points, keys, groups, representative, want_peaks, damped)
+    return SweepPlan(
+        points, keys, groups, representative, want_peaks, damped, scene.profile
+    )
 
 
 # Rough serial cost, in seconds, of a sweep point whose solve builds its kernel
@@ -174,6 +178,7 @@ def chunk_tasks(plan: SweepPlan, chunk: Chunk) -> list[dict[str, Any]]:
                 for k in keys
             ],
             "peaks": plan.want_peaks,
+            "profile": plan.profile,
         }
         for group, keys in chunk
     ]
@@ -199,7 +204,7 @@ def build_sweep_table(
                 if q == "indentation":  # v = load * V(lambda)
                     value *= p["load"] / res["load"]
                 elif q == "drag":  # int p x/R dx / P at fixed lambda
-                    value *= res["radius"] / p["radius"]
+                    value *= radius_ratio(res["radius"], p["radius"])
                 data[q][i, j] = value
             valid[i, j] = bool(res["valid"])
     vary_param = scene.vary.param if scene.vary is not None else None

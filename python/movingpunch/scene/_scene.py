@@ -17,6 +17,7 @@ from typing import Any
 
 from movingpunch.errors import SceneError
 from movingpunch.outputs import atomic_write
+from movingpunch.profiles import PunchProfile
 from movingpunch.scene._bundled import bundled_names, bundled_text
 from movingpunch.scene._model import (
     DEFAULT_TOL,
@@ -50,6 +51,11 @@ class Scene:
     tol: float = DEFAULT_TOL
     name: str = ""
     description: str = ""
+    profile: PunchProfile | None = None
+    """The punch's shape (``[params.profile]``); None: a cylinder of
+    ``params.radius`` (a Cylinder profile becomes that). Beside another
+    profile ``params.radius`` is its nominal radius (inf for a flat punch or
+    a table) and cannot vary."""
 
     def __post_init__(self) -> None:
         validate(self, "<Scene>")

@@ -21,6 +21,7 @@ from typing import Any
 
 from movingpunch.contract import ContactSolution
 from movingpunch.errors import MovingPunchError
+from movingpunch.profiles import PunchProfile
 from movingpunch.scene._model import PEAK_QUANTITIES, SceneData
 from movingpunch.scene._result import Stages
 from movingpunch.solver import result_warnings, solve
@@ -40,8 +41,16 @@ def _kp(p: Mapping[str, float]) -> float:
 
 
 def point_key(p: Mapping[str, float], tol: float) -> Key:
-    lam = p["radius"] * p["load"]
+    # Beside a flat punch or a table (radius inf) the load alone tells the
+    # points apart (negated: never a cylinder's lambda).
+    lam = p["radius"] * p["load"] if math.isfinite(p["radius"]) else -p["load"]
     return (p["vstar"], p["kw"], p["nu"], tol, _damping(p), _kp(p), lam)
+
+
+def radius_ratio(solved: float, wanted: float) -> float:
+    """solved/wanted radius (the lambda rescaling of a shared solution); 1
+    when they are equal, inf included (a flat punch, a table)."""
+    return 1.0 if solved == wanted else solved / wanted
 
 
 def curve_label(param: str | None, value: float | None) -> str:
@@ -50,11 +59,18 @@ def curve_label(param: str | None, value: float | None) -> str:
     return f"{param}={'inf' if math.isinf(value) else format(value, '.6g')}"
 
 
-def solve_point(p: Mapping[str, float], tol: float, stages: Stages) -> ContactSolution:
+def solve_point(
+    p: Mapping[str, float],
+    tol: float,
+    stages: Stages,
+    profile: PunchProfile | None = None,
+) -> ContactSolution:
+    """One point of a scene: a cylinder of p["radius"], or ``profile``."""
     s = solve(
         vstar=p["vstar"],
         kw=p["kw"],
-        radius=p["radius"],
+        radius=p["radius"] if profile is None else None,
+        profile=profile,
         load=p["load"],
         nu=p["nu"],
         tol=tol,
@@ -125,7 +141,7 @@ def solve_group(task: Mapping[str, Any]) -> dict[str, Any]:
             "load": load,
         }
         try:
-            s = solve_point(p, task["tol"], stages)
+            s = solve_point(p, task["tol"], stages, task.get("profile"))
             found = list(result_warnings(s))
             results.append(point_quantities(s, task["peaks"], stages, found))
             warnings.append(found)
@@ -166,7 +182,9 @@ class RunState:
     def solution(self, p: Mapping[str, float]) -> ContactSolution:
         key = point_key(p, self.scene.tol)
         if key not in self.memo:
-            self.memo[key] = solve_point(p, self.scene.tol, self.stages)
+            self.memo[key] = solve_point(
+                p, self.scene.tol, self.stages, self.scene.profile
+            )
             self.note_warnings(key, p, result_warnings(self.memo[key]))
             self.tick()
         return self.memo[key]

@@ -39,6 +39,7 @@ from movingpunch.scene._model import (
 from movingpunch.scene._validate import (
     Checker,
     parse_output,
+    parse_profile,
     range_bounds,
     show,
     values_list,
@@ -235,10 +236,15 @@ def _from_mapping(data: Mapping[str, Any], source: str) -> dict[str, Any]:
 
     if "params" not in data:
         raise c.fail("params", "missing", "a table [params] with " + ", ".join(PARAMS))
-    raw_params = c.table("params", data["params"], PARAMS)
+    raw_params = c.table("params", data["params"], (*PARAMS, "profile"))
+    profile = (
+        parse_profile(c, raw_params["profile"]) if "profile" in raw_params else None
+    )
     params: dict[str, float] = {}
     for name_ in PARAMS:
         key = f"params.{name_}"
+        if name_ == "radius" and profile is not None and name_ not in raw_params:
+            continue  # the profile's (validate sets it)
         if name_ in raw_params:
             params[name_] = c.param(key, name_, raw_params[name_])
         elif name_ == "nu":
@@ -266,6 +272,7 @@ def _from_mapping(data: Mapping[str, Any], source: str) -> dict[str, Any]:
 
     return {
         "params": params,
+        "profile": profile,
         "outputs": outputs,
         "vary": vary,
         "sweep": sweep,
@@ -363,9 +370,15 @@ def to_toml(scene: SceneData) -> str:
     if lines:
         lines.append("")
     lines.append("[params]")
+    profile = getattr(scene, "profile", None)
     for name in PARAMS:
+        if name == "radius" and profile is not None:
+            continue  # the profile carries its own shape
         if name in scene.params:
             lines.append(f"{name} = {_toml_value(scene.params[name])}")
+    if profile is not None:
+        lines += ["", "[params.profile]"]
+        lines += [f"{k} = {_toml_value(v)}" for k, v in profile.to_dict().items()]
     lines += ["", "[accuracy]", f"tol = {_toml_value(scene.tol)}"]
     if scene.outputs:
         lines += ["", "[outputs]"]

@@ -15,8 +15,16 @@ from typing import Any
 
 import numpy as np
 
-from movingpunch.errors import SceneError
+from movingpunch.errors import InvalidParameterError, SceneError
 from movingpunch.params import PRESETS, SPECS, classify
+from movingpunch.profiles import (
+    Cylinder,
+    Flat,
+    Profile,
+    PunchProfile,
+    RoundedFlat,
+    profile_from_dict,
+)
 from movingpunch.scene._model import (
     DEFAULT_NU,
     MAX_GRID,
@@ -37,7 +45,56 @@ from movingpunch.scene._model import (
     sweep_grid,
 )
 
-__all__ = ["Checker", "critical_speed", "rayleigh_speed", "validate"]
+__all__ = ["Checker", "critical_speed", "parse_profile", "rayleigh_speed", "validate"]
+
+_PROFILE_KEYS = ("kind", "radius", "half_width", "x", "y")
+
+
+def parse_profile(c: Checker, raw: object) -> PunchProfile:
+    """A scene's ``[params.profile]`` table (``kind`` = "cylinder",
+    "flat", "rounded_flat" or "table" and its keys); errors name the key."""
+    t = c.table("params.profile", raw, _PROFILE_KEYS)
+    try:
+        return profile_from_dict(t, "params.profile")
+    except InvalidParameterError as exc:
+        key = exc.parameter or "params.profile"
+        problem = str(exc)
+        for prefix in ("params.profile: ", f"{key}: ", f"{key} "):
+            problem = problem.removeprefix(prefix)
+        raise c.fail(key, problem, exc.allowed or "", exc.parameter) from exc
+
+
+def _check_profile(
+    c: Checker, scene: SceneData, raw: dict[str, Any]
+) -> PunchProfile | None:
+    """The scene's profile (None: a cylinder of params.radius, which a
+    Cylinder profile becomes); ``raw`` (the params) loses a radius the
+    profile carries. A radius beside another profile must be its own."""
+    profile = getattr(scene, "profile", None)
+    if profile is None:
+        return None
+    if not isinstance(profile, (Cylinder, Flat, RoundedFlat, Profile)):
+        raise c.fail(
+            "params.profile",
+            f"must be a punch profile, got {show(profile)}",
+            "movingpunch.Cylinder, Flat, RoundedFlat or Profile",
+        )
+    if "radius" in raw:
+        # The profile's own radius (a validated scene holds its nominal
+        # radius, inf for a flat punch or a table) is no conflict.
+        if raw["radius"] != profile.nominal_radius:
+            raise c.fail(
+                "params.radius",
+                f"is given beside [params.profile] ({profile.describe()}), which "
+                "carries its own shape",
+                "no radius beside a profile (or the profile's own radius)",
+                "radius",
+            )
+        del raw["radius"]
+    if isinstance(profile, Cylinder):
+        raw["radius"] = profile.radius
+        return None
+    return profile
 
 
 @functools.lru_cache(maxsize=4096)
@@ -290,17 +347,23 @@ def validate(scene: SceneData, source: str) -> None:
     if not isinstance(scene.params, Mapping):
         raise c.fail("params", "must be a mapping", ", ".join(PARAMS))
     c.table("params", scene.params, PARAMS)
+    raw = dict(scene.params)
+    profile = _check_profile(c, scene, raw)
     params: dict[str, float] = {}
     for name in PARAMS:
-        if name not in scene.params:
+        if name == "radius" and profile is not None:
+            params[name] = profile.nominal_radius  # inf: a flat punch or a table
+            continue
+        if name not in raw:
             if name == "nu":
                 params[name] = DEFAULT_NU
                 continue
             if name in ("damping", "kp"):  # optional, 0; kept only when given
                 continue
             raise c.fail(f"params.{name}", "missing", allowed_text(name), name)
-        params[name] = c.param(f"params.{name}", name, scene.params[name])
+        params[name] = c.param(f"params.{name}", name, raw[name])
     object.__setattr__(scene, "params", params)
+    object.__setattr__(scene, "profile", profile)
 
     tol = c.tol("accuracy.tol", scene.tol)
     object.__setattr__(scene, "tol", tol)
@@ -359,6 +422,15 @@ def validate(scene: SceneData, source: str) -> None:
                 f"{s.param!r} is already the vary parameter",
                 "a parameter other than vary.param",
             )
+    if profile is not None:
+        for part, axis in (("vary", scene.vary), ("sweep", scene.sweep)):
+            if axis is not None and axis.param == "radius":
+                raise c.fail(
+                    f"{part}.param",
+                    f"radius cannot vary beside [params.profile] "
+                    f"({profile.describe()}): the profile carries its shape",
+                    "vstar, kw, load, nu or damping",
+                )
     if not outputs and scene.sweep is None:
         raise c.fail(
             "outputs",

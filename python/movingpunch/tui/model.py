@@ -24,6 +24,7 @@ from movingpunch.contract import ContactSolution
 from movingpunch.errors import InvalidParameterError, MovingPunchError
 from movingpunch.fields import StressPeaks
 from movingpunch.params import check as check_param
+from movingpunch.profiles import PROFILE_KINDS, Flat, Profile, PunchProfile, RoundedFlat
 from movingpunch.solver import (
     critical_vstar,
     rayleigh_vstar,
@@ -38,12 +39,33 @@ PARAM_NAMES: tuple[str, ...] = (
     "kw",
     "kp",
     "radius",
+    "half_width",
     "load",
     "nu",
     "damping",
     "tol",
 )
-"""Every input of the parameters panel, in order."""
+"""Every numeric input of the parameters panel, in order (the punch's
+kind, ``profile``, is a text input above them: ``parse_profile_kind``)."""
+
+TUI_PROFILES: tuple[str, ...] = PROFILE_KINDS
+"""The punch shapes the panel's ``profile`` input takes (a table comes from
+a scene file)."""
+
+
+def parse_profile_kind(text: str) -> str:
+    """The punch's kind typed in the panel: cylinder, flat, rounded_flat or
+    table (case and "-"/" " for "_" forgiven). Raises InvalidParameterError
+    (``.parameter`` "profile") naming the kinds."""
+    kind = "_".join(text.strip().lower().replace("-", " ").split())
+    if kind not in TUI_PROFILES:
+        raise InvalidParameterError(
+            f"profile must be one of {', '.join(TUI_PROFILES)}, got {text.strip()!r}",
+            parameter="profile",
+            allowed=", ".join(TUI_PROFILES),
+        )
+    return kind
+
 
 SCENE_PARAMS: tuple[str, ...] = (
     "vstar",
@@ -72,6 +94,7 @@ SHORT: dict[str, str] = {
     "vstar": "V*",
     "kw": "kw",
     "radius": "R/h",
+    "half_width": "b/h",
     "load": "P/μh",
     "nu": "ν",
     "damping": "damping",
@@ -131,10 +154,35 @@ class Params:
     kp: float = 0.0
     """k_p/(mu h): the Pasternak shear layer on the springs (docs/theory.md
     section 12); 0: springs alone."""
+    profile: str = "cylinder"
+    """The punch's kind (``TUI_PROFILES``): a cylinder of ``radius``, a flat
+    face of ``half_width``, a rounded flat (``half_width``, corners of
+    ``radius``) or the ``table`` of a scene file."""
+    half_width: float = 0.5
+    """b/h of a flat or rounded flat punch (unused by the others)."""
+    table: Profile | None = None
+    """The tabulated profile of a scene file (kind "table")."""
 
     @property
     def damped(self) -> bool:
         return self.damping > 0.0
+
+    def shape(self) -> PunchProfile | None:
+        """The punch solve() takes (None: the cylinder of ``radius``).
+        Raises InvalidParameterError naming the input at fault."""
+        if self.profile == "flat":
+            return Flat(self.half_width)
+        if self.profile == "rounded_flat":
+            return RoundedFlat(self.half_width, self.radius)
+        if self.profile == "table":
+            if self.table is None:
+                raise InvalidParameterError(
+                    "profile table: open a scene file with a [params.profile] "
+                    "table (the panel has no table editor)",
+                    parameter="profile",
+                )
+            return self.table
+        return None
 
     def get(self, name: str) -> float:
         value: float = getattr(self, name)
@@ -143,7 +191,8 @@ class Params:
     def with_value(self, name: str, value: float) -> Params:
         if name not in PARAM_NAMES:
             raise InvalidParameterError(f"unknown parameter {name!r}")
-        return replace(self, **{name: value})
+        changes: dict[str, object] = {name: value}
+        return replace(self, **changes)  # type: ignore[arg-type]
 
     def _shown(self, name: str) -> bool:
         """damping and kp only when > 0 (0 is the paper's model)."""
@@ -151,8 +200,13 @@ class Params:
 
     def physical(self) -> dict[str, float]:
         """The scene's ``params`` mapping (without tol; damping and kp only
-        if > 0)."""
-        return {name: self.get(name) for name in SCENE_PARAMS if self._shown(name)}
+        if > 0; radius only for a cylinder or a rounded flat)."""
+        return {
+            name: self.get(name)
+            for name in SCENE_PARAMS
+            if self._shown(name)
+            and (name != "radius" or self.profile in ("cylinder", "rounded_flat"))
+        }
 
     def label(self, against: Params | None = None) -> str:
         """``V*=0.2 kw=1 ...``; only the values that differ from ``against``
@@ -163,9 +217,25 @@ class Params:
             if (against is None and self._shown(n))
             or (against is not None and self.get(n) != against.get(n))
         ]
-        if not names:
+        shape = self.shape_label()
+        if against is not None and shape == against.shape_label():
+            shape = ""
+        if not names and not shape:
             return "same"
-        return " ".join(f"{SHORT[n]}={fmt(self.get(n), 4)}" for n in names)
+        return " ".join(
+            [f"{SHORT[n]}={fmt(self.get(n), 4)}" for n in names]
+            + ([shape] if shape else [])
+        )
+
+    def shape_label(self) -> str:
+        """ "" for a cylinder, else the punch in a few characters."""
+        if self.profile == "flat":
+            return f"flat b={fmt(self.half_width, 4)}"
+        if self.profile == "rounded_flat":
+            return f"rflat b={fmt(self.half_width, 4)}"
+        if self.profile == "table":
+            return "table"
+        return ""
 
 
 PAPER_FIG4 = Params()
@@ -275,6 +345,8 @@ class Summary:
     """(-b/h, a/h); (-a/h, a/h) without damping."""
     drag: float = 0.0
     """Horizontal force on the punch over P (0 without damping)."""
+    end_coefficient: float = 0.0
+    """A flat punch's end coefficient K/((P/h) sqrt(h)) (0: bounded ends)."""
     warnings: tuple[str, ...] = ()
     """The solution's warnings (a requested accuracy not met)."""
 
@@ -357,10 +429,12 @@ def solution(cache: Cache, params: Params) -> ContactSolution:
 
 
 def _solve(params: Params) -> ContactSolution:
+    shape = params.shape()
     return solve(
         vstar=params.vstar,
         kw=params.kw,
-        radius=params.radius,
+        radius=params.radius if shape is None else None,
+        profile=shape,
         load=params.load,
         nu=params.nu,
         tol=params.tol,
@@ -393,6 +467,7 @@ def summary(cache: Cache, params: Params) -> Summary:
         rayleigh_vstar=s.rayleigh_vstar,
         contact_interval=s.contact_interval,
         drag=s.drag,
+        end_coefficient=s.end_coefficients[1],
         warnings=result_warnings(s),
     )
 
@@ -601,7 +676,13 @@ def _accuracy(
     known = cache.peek(key)
     if isinstance(known, AccuracyTable):
         return known
-    out = accuracy_report(params.physical(), LADDER, progress=report, cancelled=stop)
+    out = accuracy_report(
+        params.physical(),
+        LADDER,
+        progress=report,
+        cancelled=stop,
+        profile=params.shape(),
+    )
     if out is None:
         return None
     table = cache.get_or_make(key, lambda: AccuracyTable(out))

@@ -6,9 +6,12 @@ and sweep; saving writes them back with the outputs the app shows.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from pathlib import Path
 
+from movingpunch.errors import InvalidParameterError
+from movingpunch.profiles import Profile
 from movingpunch.scene import (
     OutputSpec,
     Scene,
@@ -89,7 +92,16 @@ def load_in(folder: WorkingFolder, text: str) -> SceneState:
 
 def from_scene(scene: Scene) -> SceneState:
     values = {name: float(scene.params.get(name, 0.0)) for name in SCENE_PARAMS}
-    params = Params(**values, tol=float(scene.tol))
+    shape = scene.profile
+    if not math.isfinite(values["radius"]):  # a flat punch or a table: no radius
+        values["radius"] = Params.radius
+    params = Params(
+        **values,
+        tol=float(scene.tol),
+        profile=shape.kind if shape is not None else "cylinder",
+        half_width=float(getattr(shape, "half_width", Params.half_width)),
+        table=shape if isinstance(shape, Profile) else None,
+    )
     overlay = (
         None
         if scene.vary is None
@@ -124,8 +136,13 @@ def to_scene(state: SceneState) -> Scene:
     if spec is not None and (vary is None or vary.param != spec.param):
         grid = tuple(float(v) for v in spec.grid(state.params))
         sweep = Sweep(param=spec.param, values=grid, quantities=("a",))
+    try:
+        shape = state.params.shape()
+    except InvalidParameterError as exc:
+        raise SceneError("<terminal UI>", "params.profile", str(exc)) from exc
     return Scene(
         params=state.params.physical(),
+        profile=shape,
         outputs={kind: OutputSpec(kind) for kind in SAVED_OUTPUTS},
         vary=vary,
         sweep=sweep,

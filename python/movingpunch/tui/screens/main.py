@@ -8,6 +8,7 @@ dropped, so a stale result never overwrites a newer one.
 from __future__ import annotations
 
 import time
+from dataclasses import replace
 from typing import ClassVar
 
 from rich.text import Text
@@ -283,7 +284,7 @@ class MainScreen(Screen[None]):
             self._status_error = "supercritical speed: no steady solution"
         elif isinstance(error, InvalidParameterError):
             name = error.parameter
-            if name in PARAM_NAMES:
+            if name in PARAM_NAMES or name == "profile":
                 panel.set_message(name, _one_line(error))
             self._status_error = _one_line(error)
         elif isinstance(error, UnphysicalContactError):
@@ -336,6 +337,8 @@ class MainScreen(Screen[None]):
         ]
         if s.drag != 0.0:
             parts.append(("drag/P", fmt(s.drag, 4)))
+        if s.end_coefficient != 0.0:  # a flat punch: singular ends
+            parts.append(("K", fmt(s.end_coefficient, 4)))
         parts += [("it", str(s.iterations)), ("err", f"{s.error_estimate:.0e}")]
         if self._show_timing:
             parts.append(("", f"{s.elapsed * 1e3:.1f} ms"))
@@ -373,6 +376,9 @@ class MainScreen(Screen[None]):
         event.stop()
         name = box_id.removeprefix("in-")
         panel = self.query_one(ParamsPanel)
+        if name == "profile":
+            self._profile_changed(event.value)
+            return
         try:
             value = model.parse_param(name, event.value)
         except InvalidParameterError as exc:
@@ -387,6 +393,26 @@ class MainScreen(Screen[None]):
             panel.show_load(value)
         changed = self.params.get(name) != value
         self.params = self.params.with_value(name, value)
+        self._update_status()
+        if changed or (was_invalid and not self._invalid):
+            self.request()
+
+    def _profile_changed(self, text: str) -> None:
+        """The punch's kind typed in the panel (cylinder, flat, rounded_flat,
+        table): checked, then solved like any parameter change."""
+        panel = self.query_one(ParamsPanel)
+        try:
+            kind = model.parse_profile_kind(text)
+        except InvalidParameterError as exc:
+            self._invalid.add("profile")
+            panel.set_message("profile", _one_line(exc))
+            self._update_status()
+            return
+        was_invalid = "profile" in self._invalid
+        self._invalid.discard("profile")
+        panel.set_message("profile", "")
+        changed = kind != self.params.profile
+        self.params = replace(self.params, profile=kind)
         self._update_status()
         if changed or (was_invalid and not self._invalid):
             self.request()

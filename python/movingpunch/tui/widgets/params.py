@@ -11,13 +11,15 @@ from textual.reactive import reactive
 from textual.widgets import Input, Label, Static
 
 from movingpunch.params import help_text
-from movingpunch.tui.model import PARAM_NAMES, Params, fmt
+from movingpunch.tui.model import PARAM_NAMES, TUI_PROFILES, Params, fmt
 
 LABELS: dict[str, str] = {
     "vstar": "V*",
     "kw": "kw h/μ",
     "kp": "kp/(μh)",
     "radius": "R/h",
+    "half_width": "b/h",
+    "profile": "punch",
     "load": "P/(μh)",
     "nu": "ν",
     "damping": "damp",
@@ -25,6 +27,12 @@ LABELS: dict[str, str] = {
 }
 
 TOOLTIPS: dict[str, str] = {name: help_text(name) for name in PARAM_NAMES}
+TOOLTIPS["profile"] = (
+    "the punch's shape: "
+    + ", ".join(TUI_PROFILES)
+    + " (R/h is the cylinder's or the rounded corners' radius, b/h the flat face's "
+    "half-width; a table comes from a scene file)"
+)
 """Meaning, valid range and default of each input: the table of parameters."""
 
 WARN_FRACTION = 0.95
@@ -90,15 +98,17 @@ class ParamsPanel(VerticalScroll):
         super().__init__(id="params")
         self._initial = params
         self._blink = cursor_blink
-        self._messages: dict[str, str] = dict.fromkeys(PARAM_NAMES, "")
+        self._messages: dict[str, str] = dict.fromkeys(("profile", *PARAM_NAMES), "")
 
     def compose(self) -> ComposeResult:
         yield Label("Parameters", classes="panel-title")
-        for name in PARAM_NAMES:
+        for name in ("profile", *PARAM_NAMES):
             with Horizontal(classes="param-row"):
                 yield Label(LABELS[name], classes="param-label")
                 box = Input(
-                    fmt(self._initial.get(name), 10),
+                    self._initial.profile
+                    if name == "profile"
+                    else fmt(self._initial.get(name), 10),
                     id=f"in-{name}",
                     compact=True,
                     select_on_focus=False,
@@ -132,6 +142,9 @@ class ParamsPanel(VerticalScroll):
         return self.query_one(f"#in-{name}", Input).value
 
     def set_values(self, params: Params) -> None:
+        profile = self.query_one("#in-profile", Input)
+        if profile.value != params.profile:
+            profile.value = params.profile
         for name in PARAM_NAMES:
             box = self.query_one(f"#in-{name}", Input)
             text = fmt(params.get(name), 10)

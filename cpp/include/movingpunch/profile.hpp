@@ -1,0 +1,69 @@
+// The shape of the punch (docs/theory.md section 13): its surface height f(x)
+// above its lowest point (f(0) = 0 for the symmetric shapes here) and the
+// slope f'(x), the right-hand side of the contact equation.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace movingpunch {
+
+enum class ProfileKind {
+  cylinder,      // f = x^2/(2 R) (the parabolic approximation of a circle)
+  flat,          // a flat face |x| <= b with square corners: the contact is the face
+  rounded_flat,  // flat on |x| <= b, corners of radius R: f = (|x| - b)^2/(2 R) beyond
+  table,         // a symmetric convex table (x_i, y_i), interpolated by a cubic spline
+};
+
+// "cylinder", "flat", "rounded_flat", "table".
+const char* profile_kind_name(ProfileKind kind);
+
+class PunchProfile {
+ public:
+  // Validates the parameters of `kind` (throws InvalidParameter naming them):
+  // cylinder: 0 < radius <= 1e12; flat: 1e-10 <= half_width <= 50;
+  // rounded_flat: 0 <= half_width <= 50 and 0 < radius <= 1e12; table: x, y of
+  // equal length >= 5, finite, x strictly ascending, the table symmetric
+  // (x_i = -x_{n-1-i} and y_i = y_{n-1-i} to 1e-9 of max |x| and of the
+  // range of y) and convex (the slopes of its chords never fall by more than
+  // 1e-9 of their largest magnitude).
+  PunchProfile(ProfileKind kind, double radius, double half_width,
+               const std::vector<double>& x = {}, const std::vector<double>& y = {});
+
+  ProfileKind kind() const noexcept { return kind_; }
+  // f'(x). Throws std::domain_error beyond extent().
+  double slope(double x) const;
+  // f(x) - f(0). Throws std::domain_error beyond extent().
+  double height(double x) const;
+  // The largest |x| the shape is defined to: the table's last x (inf otherwise).
+  double extent() const noexcept { return extent_; }
+  // The flat face's half-width b (0 for a cylinder or a table).
+  double face() const noexcept { return face_; }
+  // True for the flat punch: the contact is the face, its ends are
+  // square-root singular (index +1, SeriesKind::T).
+  bool singular_ends() const noexcept { return kind_ == ProfileKind::flat; }
+  // The Chebyshev-T coefficients d_1, d_3, ..., d_{2 count - 1} of the slope
+  // on a contact of half-width a, f'(a s) = sum_m d_m T_m(s) (odd in s):
+  // d_m = (2/pi) int_0^pi f'(a cos th) cos(m th) d th; in closed form for the
+  // cylinder and the rounded flat (whose slope has a kink at |x| = b), by a
+  // midpoint rule on max(16 count + 64, 8192) angles for a table (its spline's
+  // slope is C^1: the aliased error, ~ d_{2M}, is independent of the count
+  // below 500 terms, so a/h does not drift with N).
+  std::vector<double> slope_chebyshev(double a, int count) const;
+  // One line: e.g. "flat punch, half-width b/h = 0.5".
+  std::string describe() const;
+
+ private:
+  ProfileKind kind_;
+  double radius_ = 0, face_ = 0, extent_ = 0;
+  // The table's not-a-knot cubic spline: knots, values, second derivatives.
+  std::vector<double> x_, y_, m_;
+  double y0_ = 0;  // the spline at x = 0
+  double spline(double x, double* slope) const;
+};
+
+// Checks a profile table as PunchProfile does (the same messages), without
+// solving anything: the API checks a table when it is made.
+void check_profile_table(const std::vector<double>& x, const std::vector<double>& y);
+
+}  // namespace movingpunch

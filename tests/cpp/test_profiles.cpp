@@ -1,0 +1,154 @@
+// Punch profiles: the table's spline, its checks, the slope's Chebyshev
+// projection, and the flat punch's T-series closed forms (transform, log and
+// Cauchy potentials) against direct quadrature.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <complex>
+#include <vector>
+
+#include "movingpunch/collocation.hpp"
+#include "movingpunch/errors.hpp"
+#include "movingpunch/profile.hpp"
+#include "potentials.hpp"
+
+using namespace movingpunch;
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+
+// (1/pi) int_{-1}^{1} f(t)/sqrt(1 - t^2) dt by Gauss-Chebyshev with m nodes.
+template <class F>
+double gauss_t(const F& f, int m) {
+  double s = 0.0;
+  for (int i = 1; i <= m; ++i) s += f(std::cos((2 * i - 1) * kPi / (2.0 * m)));
+  return s / m;
+}
+}  // namespace
+
+TEST(Profiles, SplineReproducesCubicsAndParabolas) {
+  std::vector<double> x, y;
+  for (int i = -6; i <= 6; ++i) {
+    const double xi = 0.25 * i + 0.01 * (i * i % 3) * (i < 0 ? -1 : 1);
+    x.push_back(xi);
+  }
+  // make it exactly symmetric
+  for (std::size_t i = 0; i < x.size() / 2; ++i) x[x.size() - 1 - i] = -x[i];
+  for (double xi : x) y.push_back(xi * xi / 7.0);
+  const PunchProfile p(ProfileKind::table, 0.0, 0.0, x, y);
+  for (double t : {-1.3, -0.4, 0.0, 0.11, 0.9, 1.49}) {
+    EXPECT_NEAR(p.height(t), t * t / 7.0, 1e-14);
+    EXPECT_NEAR(p.slope(t), 2.0 * t / 7.0, 1e-14);
+  }
+  EXPECT_THROW(p.slope(2.0), std::domain_error);
+}
+
+TEST(Profiles, TableChecksNameTheirParameter) {
+  const std::vector<double> x = {-2, -1, 0, 1, 2};
+  auto name_of = [](const std::vector<double>& tx, const std::vector<double>& ty) {
+    try {
+      check_profile_table(tx, ty);
+    } catch (const InvalidParameter& e) {
+      return e.name();
+    }
+    return std::string("none");
+  };
+  EXPECT_EQ(name_of(x, {4, 1, 0, 1, 4}), "none");
+  EXPECT_EQ(name_of({-1, 0, 1}, {1, 0, 1}), "profile.x");           // short
+  EXPECT_EQ(name_of({-2, -1, 0, 2, 1}, {4, 1, 0, 1, 4}), "profile.x");  // unsorted
+  EXPECT_EQ(name_of(x, {4, 1, 0, 1}), "profile.y");                   // length
+  EXPECT_EQ(name_of(x, {4, 1, 0, 1.5, 4}), "profile.y");              // asymmetric
+  EXPECT_EQ(name_of(x, {1, 2, 0, 2, 1}), "profile.y");                // not convex
+  EXPECT_EQ(name_of({-2, -1, 0, 1, 3}, {4, 1, 0, 1, 4}), "profile.x");  // asymmetric x
+  EXPECT_EQ(name_of(x, {4, 1, std::nan(""), 1, 4}), "profile.y");
+}
+
+TEST(Profiles, SlopeProjectionMatchesQuadrature) {
+  // d_m = (2/pi) int_0^pi f'(a cos th) cos(m th) dth: the rounded flat's
+  // closed form and a table's midpoint rule against a fine quadrature.
+  const double a = 0.7, b = 0.3, R = 2.0;
+  const PunchProfile rf(ProfileKind::rounded_flat, R, b);
+  const std::vector<double> d = rf.slope_chebyshev(a, 6);
+  for (int q = 0; q < 6; ++q) {
+    const int m = 2 * q + 1;
+    const int M = 400000;
+    double s = 0.0;
+    for (int j = 0; j < M; ++j) {
+      const double th = (j + 0.5) * kPi / M;
+      s += rf.slope(a * std::cos(th)) * std::cos(m * th);
+    }
+    EXPECT_NEAR(d[static_cast<std::size_t>(q)], 2.0 * s / M, 1e-10) << m;
+  }
+  // The cylinder: a single term a/R.
+  const PunchProfile cyl(ProfileKind::cylinder, R, 0.0);
+  const std::vector<double> dc = cyl.slope_chebyshev(a, 3);
+  EXPECT_DOUBLE_EQ(dc[0], a / R);
+  EXPECT_EQ(dc[1], 0.0);
+}
+
+TEST(Profiles, TSeriesCosineTransformIsExact) {
+  // int_0^a p cos(alpha x) dx for p(a r) = g(r)/sqrt(1 - r^2), g = sum b_n T_n.
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(7);
+  b << 0.8, 0.0, -0.3, 0.0, 0.05, 0.0, 0.01;
+  const double a = 0.9;
+  for (double alpha : {0.0, 1e-9, 0.5, 3.0, 17.0, 250.0}) {
+    // (a/2) int_{-1}^{1} g(r)/sqrt(1 - r^2) cos(alpha a r) dr
+    const double direct =
+        0.5 * a * kPi * gauss_t([&](double r) { return t_series(b, r) * std::cos(alpha * a * r); },
+                                4000);
+    const double one = series_cosine_transform(b, SeriesKind::T, a, alpha);
+    double many = 0.0;
+    series_cosine_transforms(b, SeriesKind::T, a, &alpha, &many, 1);
+    EXPECT_NEAR(one, direct, 1e-13 * (1.0 + std::fabs(direct))) << alpha;
+    EXPECT_NEAR(many, direct, 1e-13 * (1.0 + std::fabs(direct))) << alpha;
+  }
+}
+
+TEST(Profiles, TSeriesPotentialsAgreeWithQuadrature) {
+  // log: (1/pi) int T_n/sqrt(1-t^2) ln|x - t| = -ln 2 (n = 0), -T_n(x)/n;
+  // beyond the face against quadrature. Cauchy: (1/pi) int T_n/(sqrt(1-t^2)(z - t))
+  // = w^n/sqrt(z^2 - 1) off the real axis.
+  for (int n : {0, 1, 2, 4}) {
+    for (double x : {-2.5, -1.2, 1.7, 3.0}) {
+      const double q = gauss_t(
+          [&](double t) { return std::cos(n * std::acos(t)) * std::log(std::fabs(x - t)); }, 20000);
+      EXPECT_NEAR(detail::log_potential(n, x, SeriesKind::T), q, 1e-12) << n << " " << x;
+    }
+    EXPECT_NEAR(detail::log_potential(n, 0.3, SeriesKind::T),
+                n == 0 ? -std::log(2.0) : -std::cos(n * std::acos(0.3)) / n, 1e-15);
+  }
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(5);
+  b << 0.7, 0.0, 0.2, 0.0, -0.1;
+  for (std::complex<double> z : {std::complex<double>(0.3, 0.4), {1.5, 0.2}, {-0.8, 1.1}}) {
+    std::complex<double> direct = 0.0, dlog = 0.0;
+    const int m = 20000;
+    for (int i = 1; i <= m; ++i) {
+      const double t = std::cos((2 * i - 1) * kPi / (2.0 * m));
+      direct += t_series(b, t) / (z - t);
+      dlog += t_series(b, t) * std::log(z - t);
+    }
+    direct /= m;
+    dlog /= m;
+    EXPECT_LT(std::abs(detail::cauchy_potential(b, z, 2, SeriesKind::T) - direct), 1e-10);
+    EXPECT_LT(std::abs(detail::log_potential(b, z, 2, SeriesKind::T) - dlog), 1e-10);
+    // The derivative by a central difference.
+    const double h = 1e-6;
+    const std::complex<double> fd = (detail::cauchy_potential(b, z + h, 2, SeriesKind::T) -
+                                     detail::cauchy_potential(b, z - h, 2, SeriesKind::T)) /
+                                    (2.0 * h);
+    EXPECT_LT(std::abs(detail::cauchy_potential_derivative(b, z, 2, SeriesKind::T) - fd), 1e-7);
+  }
+}
+
+TEST(Profiles, FlatCollocationWithoutKernelIsTheHalfPlanePunch) {
+  // k1 = 0: g = 1/(pi a) (p = P/(pi sqrt(a^2 - x^2))) at every N.
+  for (int n : {2, 8, 32}) {
+    const FirstKindNodes nd = first_kind_nodes(n);
+    const double a = 0.37;
+    const Eigen::MatrixXd M = flat_collocation_matrix(nd, a, [](double, double) { return 0.0; });
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n / 2);
+    rhs(n / 2 - 1) = 1.0;
+    const Eigen::VectorXd g = M.partialPivLu().solve(rhs);
+    for (int j = 0; j < n / 2; ++j) EXPECT_NEAR(g(j), 1.0 / (kPi * a), 1e-13);
+  }
+}
