@@ -84,6 +84,7 @@ DampedLayerModel::DampedLayerModel(double vstar, double kw, double nu, double da
   require_in_range("kw", kw, 0.0, kInf, true, false, true);
   require_in_range("damping", damping, 0.0, kInf, false, true);
   beta_ = damping * std::sqrt(vstar);
+  tq_ = tangential_half_plane(c_);
 }
 
 cplx DampedLayerModel::foundation(double t) const noexcept { return {kw_, -beta_ * t}; }
@@ -98,6 +99,8 @@ DampedResponse DampedLayerModel::response_modal(double t) const {
     r.M1 = c_.phi1;
     r.M2 = c_.phi2;
     r.Wb = 0.0;
+    r.Uq = tq_.Uq;
+    r.Wq = tq_.Wq;
     return r;
   }
   const Eigen::Matrix4d top = modal_columns(c_, t, 0.0), bot = modal_columns(c_, t, -1.0);
@@ -107,7 +110,12 @@ DampedResponse DampedLayerModel::response_modal(double t) const {
   M.row(2) = bot.row(2).cast<cplx>();
   M.row(3) = spring_row(bot.row(3), bot.row(1), t, foundation(t), rigid_);
   const Eigen::Vector4cd rhs(0.0, -1.0, 0.0, 0.0);
-  const Eigen::Vector4cd amp = M.partialPivLu().solve(rhs);
+  const Eigen::PartialPivLU<Eigen::Matrix4cd> lu = M.partialPivLu();
+  const Eigen::Vector4cd amp = lu.solve(rhs);
+  // The unit tangential load (top T = 1, S = 0) on the same factorisation.
+  const Eigen::Vector4cd zq = top.cast<cplx>() * lu.solve(Eigen::Vector4cd(1.0, 0.0, 0.0, 0.0));
+  r.Uq = zq(0);
+  r.Wq = zq(1);
   const Eigen::Vector4cd z0 = top.cast<cplx>() * amp;
   r.U0 = z0(0);
   r.W0 = z0(1);
@@ -128,6 +136,9 @@ DampedResponse DampedLayerModel::response_transfer(double t) const {
     r.M1 = 0.0;
     r.M2 = (c2 - 2.0) / c2 - 4.0 * (c2 - 1.0) / c2 * r.U0;
     r.Wb = 0.0;
+    // The tangential response has a pole at t = 0 (Uq ~ C0/(Ep t), the
+    // layer carries the net horizontal force as a bar): not defined there.
+    r.Uq = r.Wq = std::nan("");
     return r;
   }
   const Eigen::Matrix4d P = transfer_matrix(c_, t, -1.0);
@@ -136,7 +147,11 @@ DampedResponse DampedLayerModel::response_transfer(double t) const {
   R.row(1) = spring_row(P.row(3), P.row(1), t, foundation(t), rigid_);
   const Eigen::Matrix2cd M = R.leftCols<2>();
   const Eigen::Vector2cd rhs = R.col(3);
-  const Eigen::Vector2cd x = M.fullPivLu().solve(rhs);
+  const Eigen::FullPivLU<Eigen::Matrix2cd> lu = M.fullPivLu();
+  const Eigen::Vector2cd x = lu.solve(rhs);
+  const Eigen::Vector2cd xq = lu.solve(Eigen::Vector2cd(-R.col(2)));
+  r.Uq = xq(0);
+  r.Wq = xq(1);
   const Eigen::Vector4cd z0(x(0), x(1), 0.0, -1.0);
   r.U0 = x(0);
   r.W0 = x(1);
@@ -182,6 +197,15 @@ Eigen::Vector4cd DampedLayerModel::state_coefficients(double t) const {
 
 namespace {
 
+// The kernel's integrand (M1 - phi1)/phi1; with friction f > 0 that of the
+// effective response M1 - i f Wq less its half-plane limit phi1 - i f Wq_inf
+// (docs/theory.md section 14).
+cplx kernel_integrand(const DampedLayerModel& m, const DampedResponse& r, double friction) {
+  const double phi1 = m.phi1();
+  if (!(friction > 0.0)) return (r.M1 - phi1) / phi1;
+  return (r.M1 - phi1 - cplx(0.0, friction) * (r.Wq - m.tangential().Wq)) / phi1;
+}
+
 struct DPanel {
   double lo = 0, hi = 0;
   DampedResponse r[15];
@@ -189,16 +213,16 @@ struct DPanel {
   double sharp = 0;  // QUADPACK's estimate of the Kronrod result's error
 };
 
-DPanel eval_dpanel(const DampedLayerModel& m, double lo, double hi) {
+DPanel eval_dpanel(const DampedLayerModel& m, double lo, double hi, double friction) {
   DPanel p;
   p.lo = lo;
   p.hi = hi;
-  const double c = 0.5 * (lo + hi), h = 0.5 * (hi - lo), phi1 = m.phi1();
+  const double c = 0.5 * (lo + hi), h = 0.5 * (hi - lo);
   cplx kf = 0.0, gf = 0.0, kb = 0.0, gb = 0.0;
   double fmax = 0.0;
   for (int j = 0; j < 15; ++j) {
     p.r[j] = m.response(gk_node(j, c, h));
-    const cplx f = (p.r[j].M1 - phi1) / phi1;
+    const cplx f = kernel_integrand(m, p.r[j], friction);
     const cplx b = p.r[j].Wb;
     kf += gk_weight(j, h) * f;
     gf += g_weight(j, h) * f;
@@ -213,7 +237,7 @@ DPanel eval_dpanel(const DampedLayerModel& m, double lo, double hi) {
   // resasc = int |f - mean f| by the same rule.
   double ra_f = 0.0, ra_b = 0.0;
   for (int j = 0; j < 15; ++j) {
-    ra_f += gk_weight(j, h) * std::abs((p.r[j].M1 - phi1) / phi1 - kf / (2.0 * h));
+    ra_f += gk_weight(j, h) * std::abs(kernel_integrand(m, p.r[j], friction) - kf / (2.0 * h));
     ra_b += gk_weight(j, h) * std::abs(p.r[j].Wb - kb / (2.0 * h));
   }
   auto qk = [](double e, double resasc) {
@@ -228,7 +252,8 @@ DPanel eval_dpanel(const DampedLayerModel& m, double lo, double hi) {
 
 }  // namespace
 
-DampedQuadrature build_damped_quadrature(const DampedLayerModel& model, double tol) {
+DampedQuadrature build_damped_quadrature(const DampedLayerModel& model, double tol,
+                                         double friction) {
   if (!(tol > 0.0)) throw std::invalid_argument("damped quadrature: tol must be > 0");
   const double nT = model.constants().nT;
   DampedQuadrature q;
@@ -239,7 +264,7 @@ DampedQuadrature build_damped_quadrature(const DampedLayerModel& model, double t
   const int n0 = static_cast<int>(std::ceil(amax / w0));
   amax = n0 * w0;  // the panels cover [0, alpha_max] exactly
   std::vector<DPanel> work, done;
-  for (int i = n0 - 1; i >= 0; --i) work.push_back(eval_dpanel(model, i * w0, (i + 1) * w0));
+  for (int i = n0 - 1; i >= 0; --i) work.push_back(eval_dpanel(model, i * w0, (i + 1) * w0, friction));
   const double panel_tol = tol / n0;
   int evaluations = n0;
   while (!work.empty()) {
@@ -252,8 +277,8 @@ DampedQuadrature build_damped_quadrature(const DampedLayerModel& model, double t
       continue;
     }
     const double mid = 0.5 * (p.lo + p.hi);
-    work.push_back(eval_dpanel(model, mid, p.hi));
-    work.push_back(eval_dpanel(model, p.lo, mid));
+    work.push_back(eval_dpanel(model, mid, p.hi, friction));
+    work.push_back(eval_dpanel(model, p.lo, mid, friction));
     evaluations += 2;
   }
   std::sort(done.begin(), done.end(), [](const DPanel& a, const DPanel& b) { return a.lo < b.lo; });
@@ -285,21 +310,29 @@ double damped_kernel(const FilonIntegrator& f, const std::vector<double>& kr,
 // ---------------------------------------------------------------------------
 // The tabulated kernel
 
-DampedKernel::DampedKernel(std::shared_ptr<const DampedLayerModel> model, double range)
+DampedKernel::DampedKernel(std::shared_ptr<const DampedLayerModel> model, double range,
+                           double friction)
     : range_(range) {
   require_in_range("kernel range", range, 0.0, 1e6, true, false);
+  require_in_range("friction", friction, 0.0, kInf, false, true);
   auto b = std::make_shared<Base>();
   b->model = std::move(model);
+  b->friction = friction;
   // Built to round-off whatever tol (it costs no more: its panels are set by
   // the floor already at tol = 1e-6), so that its error is part of the
   // round-off floor of the estimates, not of tol.
-  b->quad = build_damped_quadrature(*b->model, 1e-15);
+  b->quad = build_damped_quadrature(*b->model, 1e-15, friction);
   b->filon = std::make_shared<const FilonIntegrator>(b->quad.panels);
   const double phi1 = b->model->phi1();
   std::vector<double> re(b->quad.m1.size()), im(b->quad.m1.size());
   for (std::size_t i = 0; i < re.size(); ++i) {
     re[i] = (b->quad.m1[i].real() - phi1) / phi1;
     im[i] = b->quad.m1[i].imag() / phi1;
+    if (friction > 0.0) {  // M1 - i f (Wq - Wq_inf)
+      const cplx k = kernel_integrand(*b->model, b->quad.r[i], friction);
+      re[i] = k.real();
+      im[i] = k.imag();
+    }
   }
   b->kr = b->filon->coefficients(re);
   b->ki = b->filon->coefficients(im);
@@ -414,7 +447,9 @@ void validate(const DampedParams& p) {
   require_in_range("radius", p.radius, 0.0, kInf, true, true);
   require_in_range("load", p.load, 0.0, kInf, true, true);
   require_in_range("nu", p.nu, 0.0, 0.5, false, true);
-  require_in_range("damping", p.damping, 0.0, kInf, true, true);
+  require_in_range("friction", p.friction, 0.0, kInf, false, true);
+  // Without friction damping = 0 is the undamped solver's (contact.hpp).
+  require_in_range("damping", p.damping, 0.0, kInf, !(p.friction > 0.0), true);
   require_in_range("tol", p.tol, 1e-14, 1e-2, false, false);
   if (p.n != 0 && (p.n < 2 || p.n > 1024 || p.n % 2 != 0))
     throw InvalidParameter(
@@ -698,8 +733,19 @@ DampedSolution solve_damped(const DampedParams& prm) {
   };
   const double t_critical = since_start();
   if (!(prm.vstar < s.vr_)) throw SupercriticalSpeedError(prm.vstar, s.vcr_, s.vr_);
+  // Friction without damping: the undamped layer's steady problem, bounded
+  // only below V*_cr (real poles above it).
+  if (!(prm.damping > 0.0) && !(prm.vstar < s.vcr_))
+    throw SupercriticalSpeedError(prm.vstar, s.vcr_, s.vr_);
   const WaveConstants wc = wave_constants(prm.vstar, prm.nu);
   const double phi1 = wc.phi1;
+  // Friction: Gauss-Jacobi collocation with the end exponents of
+  // cot(pi back) = f Phi (docs/theory.md section 14); none: Gauss-Chebyshev.
+  const bool frictional = prm.friction > 0.0;
+  if (frictional) s.exps_ = end_exponents(prm.friction, tangential_half_plane(wc).Phi);
+  auto nodes_of = [&](int n) {
+    return frictional ? jacobi_collocation_nodes(n, s.exps_.front) : chebyshev_nodes(n);
+  };
   // The kernel table, fetched from the process-wide cache (or built) for the
   // widths the solve needs: |u| <= 2w for a trial half-width w, 8 w_final for
   // the scan of lambda(w) on [w/8, 4w], 4 w_final for the gap. Twice the need
@@ -710,7 +756,8 @@ DampedSolution solve_damped(const DampedParams& prm) {
     if (!kern || kern->range() < need) {
       const auto tk = std::chrono::steady_clock::now();
       bool built = false;
-      kern = cached_damped_kernel(prm.vstar, prm.kw, prm.nu, prm.damping, need, 2.0 * need, &built);
+      kern = cached_damped_kernel(prm.vstar, prm.kw, prm.nu, prm.damping, need, 2.0 * need, &built,
+                                  prm.friction);
       s.kernel_builds_ += built ? 1 : 0;
       kernel_seconds +=
           std::chrono::duration<double>(std::chrono::steady_clock::now() - tk).count();
@@ -751,6 +798,7 @@ DampedSolution solve_damped(const DampedParams& prm) {
   std::vector<int> done_n;
   std::vector<double> d_ends, d_p;
   Eigen::VectorXd b_prev;
+  JacobiSeries js, js_prev;  // friction: g's Jacobi series at this size and the previous one
   double w_prev = 0, c_prev = 0;
   bool have_prev = false, converged = false, stalled = false;
   RefinementEstimate est_e, est_p;
@@ -763,7 +811,7 @@ DampedSolution solve_damped(const DampedParams& prm) {
   const double qerr = kern->quadrature().kronrod_error;
   const double terr = kern->table_error();
   for (std::size_t k = 0; k < sizes.size(); ++k) {
-    nd = chebyshev_nodes(sizes[k]);
+    nd = nodes_of(sizes[k]);
     try {
       ws = solve_width(nd, lambda, guess, kernel, phi1);
     } catch (const ConvergenceError& e) {
@@ -784,8 +832,14 @@ DampedSolution solve_damped(const DampedParams& prm) {
     }
     s.iterations_ += ws.evaluations;
     guess = ws.w;
-    bk = u_coefficients(nd, ws.g);
-    pmax = max_abs_sine_series(bk);
+    if (frictional) {
+      js = JacobiSeries::from_nodes(s.exps_.front, nd.r, ws.g);
+      bk = js.coefficients();
+      pmax = js.max_abs_density();
+    } else {
+      bk = u_coefficients(nd, ws.g);
+      pmax = max_abs_sine_series(bk);
+    }
     const double scale_e = ws.w + std::fabs(ws.c);
     // Round-off floors: a few hundred eps of the scale (growing slowly with
     // N: the collocation matrix's condition), plus the kernel quadrature's
@@ -798,7 +852,7 @@ DampedSolution solve_damped(const DampedParams& prm) {
       diff.head(bk.size()) += bk;
       diff.head(b_prev.size()) -= b_prev;
       d_ends.push_back(std::fabs(ws.w - w_prev) + std::fabs(ws.c - c_prev));
-      d_p.push_back(max_abs_sine_series(diff));
+      d_p.push_back(frictional ? js.minus(js_prev).max_abs_density() : max_abs_sine_series(diff));
       est_e = refinement_estimate(done_n, d_ends, floor_e);
       est_p = refinement_estimate(done_n, d_p, floor_p);
       if (prm.n == 0 && d_p.size() >= 2) {
@@ -825,6 +879,7 @@ DampedSolution solve_damped(const DampedParams& prm) {
     w_prev = ws.w;
     c_prev = ws.c;
     b_prev = bk;
+    if (frictional) js_prev = js;
     have_prev = true;
   }
   if (d_ends.empty()) {  // a single size (n = 2) or every smaller size failed
@@ -878,13 +933,18 @@ DampedSolution solve_damped(const DampedParams& prm) {
   // int sqrt(1-r^2) U_n = pi/2 delta_n0, int r sqrt(1-r^2) U_n = pi/4 delta_n1.
   const double b1 = s.b_.size() > 1 ? s.b_(1) : 0.0;
   s.drag_ = (s.centre_ + 0.25 * kPi * s.half_ * s.half_ * b1) / prm.radius;
+  if (frictional) {
+    // int p xi d xi = c w m0 + w^2 m1 (w m0 = int p = 1), by the Jacobi moments.
+    s.jac_ = std::make_shared<const JacobiSeries>(js);
+    s.drag_ = (s.centre_ * s.half_ * js.moment0() + s.half_ * s.half_ * js.moment1()) / prm.radius;
+  }
 
   // Above V*_cr lambda(w) need not be monotone: a load can be carried by
   // several contacts (the steady problem has several solutions). Scan
   // lambda(w) on [w/8, 4w] (at N >= 32, steps of ln(32)/48 in ln w at most)
   // for other roots and report them.
   {
-    const ChebyshevNodes ns = chebyshev_nodes(std::max(32, nd.n));
+    const ChebyshevNodes ns = nodes_of(std::max(32, nd.n));
     kernel(8.4 * s.half_);
     const double lo = std::log(std::max(detail::kMinA, s.half_ / 8.0));
     const double hi = std::log(std::min(detail::kMaxA, 4.0 * s.half_));
@@ -917,6 +977,12 @@ DampedSolution solve_damped(const DampedParams& prm) {
   // Fine nodes for the Fourier integrals up to |x| <= 3 (a + b), with the
   // transform of db at them.
   std::vector<cplx> dphat;
+  JacobiSeries dseries;
+  if (frictional) {
+    if (have_change) dseries = js.minus(js_prev);
+    s.jtr_ = std::make_shared<const JacobiTransform>(
+        js, kern->quadrature().panels.alpha_max * s.half_, have_change ? &dseries : nullptr);
+  }
   s.light_ = std::make_shared<const DampedSolution::Fine>(
       s.build_fine(2.0 * s.half_, have_change ? &db : nullptr, &dphat));
 
@@ -936,7 +1002,8 @@ DampedSolution solve_damped(const DampedParams& prm) {
     if (have_change) {
       const DampedSolution::Fine& f = *s.light_;
       std::vector<cplx> amp(f.alpha.size());
-      for (std::size_t i = 0; i < f.alpha.size(); ++i) amp[i] = (f.r[i].M2 - phi2) * dphat[i];
+      for (std::size_t i = 0; i < f.alpha.size(); ++i)
+        amp[i] = s.surface_stress_integrand(f.r[i], f.alpha[i]) * dphat[i];
       std::vector<double> amp_re, amp_im;
       f.coefficients(amp, amp_re, amp_im);
       double dmax = 0.0;
@@ -953,27 +1020,47 @@ DampedSolution solve_damped(const DampedParams& prm) {
         // Bessel functions and the phases.
         const auto re_im = f.filon->integral_pair(x - s.centre_, amp_re, amp_im);
         const double sum = re_im.first.real() - re_im.second.imag();
-        const double dp = std::fabs(r) < 1.0 ? u_series(db, r) * std::sqrt(1.0 - r * r) : 0.0;
-        dmax = std::max(dmax, std::fabs(-phi2 * dp - sum / kPi));
+        double dp = std::fabs(r) < 1.0 ? u_series(db, r) * std::sqrt(1.0 - r * r) : 0.0;
+        double local = 0.0;
+        if (frictional) {
+          dp = dseries.density(r);
+          local = s.friction_surface_terms(x, dseries, s.centre_, s.half_);
+        }
+        dmax = std::max(dmax, std::fabs(-phi2 * dp - sum / kPi + local));
       }
       gain = std::max(std::fabs(phi2), dmax / d_p.back());
     } else {
       double im2 = 0.0;
       const DampedQuadrature& quad = kern->quadrature();
       for (std::size_t i = 0; i < quad.m2.size(); ++i)
-        im2 += quad.panels.weight[i] * std::abs(quad.m2[i] - phi2);
+        im2 += quad.panels.weight[i] *
+               std::abs(s.surface_stress_integrand(quad.r[i], quad.panels.alpha[i]));
       gain = std::fabs(phi2) + 2.0 * s.half_ * im2 / kPi;
+      // Friction: the Cauchy and arctan terms are not bounded by max |dp|:
+      // no estimate from a single size.
+      if (frictional) gain = std::numeric_limits<double>::infinity();
     }
     double sabs = 0.0;
     const DampedSolution::Fine& f = *s.light_;
     for (std::size_t i = 0; i < f.alpha.size(); ++i)
-      sabs += f.weight[i] * std::abs(f.r[i].M2 - phi2) * std::abs(f.phat[i]);
-    const double ends = s.max_p_ * (s.err_ / s.half_) * (1.0 + 1.0 / std::sqrt(2e-3));
+      sabs += f.weight[i] * std::abs(s.surface_stress_integrand(f.r[i], f.alpha[i])) *
+              std::abs(f.phat[i]);
+    // The end's cusp p ~ d^gamma (gamma = 1/2 without friction).
+    const double gmin = std::min(s.exps_.back, s.exps_.front);
+    const double ends = s.max_p_ * (s.err_ / s.half_) * (1.0 + std::pow(2e-3, gmin - 1.0));
     s.serr_ = gain * (s.perr_ + ends) + 64.0 * kEps * (std::fabs(phi2) * s.max_p_ + sabs / kPi);
   }
 
-  // Gauss-Chebyshev (U) nodes and weights times g for surface_slope.
-  {
+  // Gauss-Chebyshev (U) nodes and weights times g for surface_slope (friction:
+  // Gauss-Jacobi).
+  if (frictional) {
+    const int m = std::max(64, 2 * static_cast<int>(s.b_.size()) + 2);
+    const JacobiRule rule = gauss_jacobi(m, s.exps_.front, s.exps_.back);
+    for (int i = 0; i < m; ++i) {
+      s.slope_r_.push_back(rule.x(i));
+      s.slope_wg_.push_back(rule.w(i) / kPi * js.g(rule.x(i)));
+    }
+  } else {
     const int m = std::max(64, 2 * static_cast<int>(s.b_.size()) + 2);
     for (int i = 1; i <= m; ++i) {
       const double th = i * kPi / (m + 1), r = std::cos(th);
@@ -982,13 +1069,14 @@ DampedSolution solve_damped(const DampedParams& prm) {
     }
   }
   // The margin before separation: min over r of p/((P/h) sqrt(1 - r^2)) = g(r).
-  s.margin_ = u_series_minimum(s.b_);
+  s.margin_ = frictional ? js.min_g() : u_series_minimum(s.b_);
 
   // Validity: p >= 0 on the contact, no penetration beside it.
   s.min_p_ = kInf;
   for (int i = 0; i <= 400; ++i) {
     const double r = -1.0 + 2.0 * i / 400.0;
-    s.min_p_ = std::min(s.min_p_, u_series(s.b_, r) * std::sqrt(std::max(0.0, 1.0 - r * r)));
+    s.min_p_ = std::min(s.min_p_, frictional ? js.density(r)
+                                             : u_series(s.b_, r) * std::sqrt(std::max(0.0, 1.0 - r * r)));
   }
   // gap(x) = int_edge^x (xi/R - v'(xi)) d xi beside each end, with xi = edge +- q^2.
   s.min_gap_ = kInf;
@@ -1062,11 +1150,50 @@ double DampedSolution::pressure(double x) const {
   if (std::isnan(x)) throw InvalidParameter("x", "not NaN", "pressure: x must not be NaN");
   const double r = (x - centre_) / half_;
   if (!(std::fabs(r) < 1.0)) return 0.0;
+  if (jac_) return jac_->density(r);
   return u_series(b_, r) * std::sqrt(1.0 - r * r);
 }
 
 cplx DampedSolution::pressure_transform(double alpha) const {
+  if (jac_) {
+    // w e^{-i alpha c} int w(r) g(r) e^{-i alpha w r} dr by Gauss-Jacobi (jtr_
+    // resolves alpha up to the quadrature's alpha_max; beyond, a rule of its own).
+    const double a = std::fabs(alpha), om = a * half_;
+    const cplx t = om <= jtr_omega_ ? (*jtr_)(om) : JacobiTransform(*jac_, om)(om);
+    const cplx ph = half_ * std::exp(cplx(0.0, -a * centre_)) * t;
+    return alpha < 0.0 ? std::conj(ph) : ph;
+  }
   return u_series_transform(b_, centre_, half_, alpha);
+}
+
+void DampedSolution::require_frictionless(const char* what) const {
+  if (params_.friction > 0.0)
+    throw std::domain_error(std::string(what) +
+                            " is not yet available with friction > 0 (the shear traction's "
+                            "contribution is not implemented there); friction = " +
+                            std::to_string(params_.friction));
+}
+
+cplx DampedSolution::surface_stress_integrand(const DampedResponse& r, double alpha) const {
+  const double phi2 = model_->phi2();
+  if (!(params_.friction > 0.0)) return r.M2 - phi2;
+  const WaveConstants& c = model_->constants();
+  const double ep = 4.0 * (c.c2 - 1.0) / c.c2, c0 = ep / (ep - c.s);
+  const cplx tq = ep * (r.Uq - model_->tangential().Uq) - c0 * std::exp(-alpha) / alpha;
+  return r.M2 - phi2 - cplx(0.0, params_.friction) * tq;
+}
+
+double DampedSolution::friction_surface_terms(double x, const JacobiSeries& ser, double c,
+                                              double w) const {
+  // f Cq (1/pi) int p/(xi - x) - (f C0/pi) int p(xi) arctan(x - xi) d xi for p(c + w r) = w(r) g(r).
+  const WaveConstants& wc = model_->constants();
+  const double ep = 4.0 * (wc.c2 - 1.0) / wc.c2, c0 = ep / (ep - wc.s);
+  const double cq = ep * model_->tangential().Uq, f = params_.friction;
+  const double r = (x - c) / w;
+  double at = 0.0;
+  for (Eigen::Index j = 0; j < atan_rule_.x.size(); ++j)
+    at += atan_rule_.w(j) * ser.g(atan_rule_.x(j)) * std::atan(x - c - w * atan_rule_.x(j));
+  return f * cq * ser.cauchy(r) - f * c0 / kPi * w * at;
 }
 
 namespace {
@@ -1116,7 +1243,10 @@ double DampedSolution::surface_slope(double x) const {
   const double phi1 = model_->phi1(), w = half_, z = (x - centre_) / w;
   double cauchy = 0.0;  // sum b_n (1/pi) int sqrt(1-r^2) U_n/(r - z) dr
   const int n = static_cast<int>(b_.size());
-  if (std::fabs(z) < 1.0) {
+  if (jac_) {
+    // (1/pi) int w g/(r - z) plus the local term f Phi p of the frictional equation.
+    cauchy = jac_->cauchy(z) + params_.friction * model_->tangential().Phi * jac_->density(z);
+  } else if (std::fabs(z) < 1.0) {
     double tkm1 = 1.0, tk = z;  // T_0, T_1
     for (int k = 0; k < n; ++k) {
       cauchy -= b_(k) * tk;
@@ -1168,8 +1298,13 @@ DampedSolution::Fine DampedSolution::build_fine(double freq, const Eigen::Vector
                                   : gk_weight(j, h));
         f.r.push_back(m == 1 ? Q.r[15 * p + static_cast<std::size_t>(j)] : model_->response(a));
         cplx dp = 0.0;
-        f.phat.push_back(db == nullptr ? pressure_transform(a)
-                                       : u_series_transform(b_, centre_, half_, a, db, 0.0, &dp));
+        if (jac_) {
+          f.phat.push_back(pressure_transform(a));
+          if (db != nullptr) dp = half_ * jtr_->second(a * half_);
+        } else {
+          f.phat.push_back(db == nullptr ? pressure_transform(a)
+                                         : u_series_transform(b_, centre_, half_, a, db, 0.0, &dp));
+        }
         if (db != nullptr) dphat->push_back(dp);
       }
     }
@@ -1178,7 +1313,8 @@ DampedSolution::Fine DampedSolution::build_fine(double freq, const Eigen::Vector
   std::vector<cplx> g(f.alpha.size());
   const double phi2 = model_->phi2();
   for (std::size_t i = 0; i < g.size(); ++i)
-    g[i] = (f.r[i].M2 - phi2) * f.phat[i] * std::exp(cplx(0.0, f.alpha[i] * centre_));
+    g[i] = (jac_ ? surface_stress_integrand(f.r[i], f.alpha[i]) : f.r[i].M2 - phi2) * f.phat[i] *
+           std::exp(cplx(0.0, f.alpha[i] * centre_));
   f.coefficients(g, f.sx_re, f.sx_im);
   return f;
 }
@@ -1226,7 +1362,9 @@ Eigen::VectorXd DampedSolution::surface_displacement(
 double DampedSolution::surface_stress(double x) const {
   if (!std::isfinite(x)) throw std::invalid_argument("surface_stress: x must be finite");
   const Fine& f = *light_;
-  return -model_->phi2() * pressure(x) - f.fourier(f.sx_re, f.sx_im, x - centre_) / kPi;
+  const double s = -model_->phi2() * pressure(x) - f.fourier(f.sx_re, f.sx_im, x - centre_) / kPi;
+  if (jac_) return s + friction_surface_terms(x, *jac_, centre_, half_);
+  return s;
 }
 
 Eigen::Vector3d DampedSolution::stresses(double x, double y) const {
@@ -1346,6 +1484,8 @@ std::shared_ptr<const Eigen::MatrixXd> DampedSolution::depth_coefficients(const 
 StressField DampedSolution::stress_field(const Eigen::Ref<const Eigen::VectorXd>& x,
                                          const Eigen::Ref<const Eigen::VectorXd>& y) const {
   detail::check_grid(x, y);
+  for (Eigen::Index i = 0; i < y.size(); ++i)
+    if (y(i) != 0.0) require_frictionless("stress_field below the surface (y < 0)");
   const Fine& f = *light_;
   const auto nodes = field_nodes();
   const WaveConstants& c = model_->constants();
@@ -1380,7 +1520,8 @@ StressField DampedSolution::stress_field(const Eigen::Ref<const Eigen::VectorXd>
       if (y(i) == 0.0) {
         g.sigma_x(i, j) = surface_stress(x(j));
         g.sigma_y(i, j) = -pressure(x(j));
-        g.tau_xy(i, j) = 0.0;
+        // The shear traction on the layer, f p (towards +x).
+        g.tau_xy(i, j) = params_.friction > 0.0 ? params_.friction * pressure(x(j)) : 0.0;
         continue;
       }
       if (std::fabs(x(j)) > kFarField) {
@@ -1401,6 +1542,7 @@ double DampedSolution::stress_x(double x, double y) const {
 }
 
 double DampedSolution::bottom_displacement(double x) const {
+  require_frictionless("bottom_displacement");
   // v(x, -1) = (1/2pi) int (Wb/alpha) p^ e^{i alpha x}; Wb/alpha -> -1/kw at alpha -> 0.
   const auto f = fine_for(x);
   double sum = 0.0;
@@ -1412,6 +1554,7 @@ double DampedSolution::bottom_displacement(double x) const {
 }
 
 double DampedSolution::bottom_slope(double x) const {
+  require_frictionless("bottom_slope");
   // dv/dx(x, -1) = (1/2pi) int i alpha (Wb/alpha) p^ e^{i alpha x}, per P/h times load.
   const auto f = fine_for(x);
   double sum = 0.0;
@@ -1422,6 +1565,7 @@ double DampedSolution::bottom_slope(double x) const {
 }
 
 double DampedSolution::dissipation() const {
+  require_frictionless("dissipation");
   // damping sqrt(s) int (v_b')^2 dx / load, with int (v_b')^2 = (load^2/pi) int_0^inf |Wb p^|^2.
   double sum = 0.0;
   const Fine& f = *light_;
@@ -1479,6 +1623,7 @@ double DampedSolution::surface_value(const Surface& s, double x) const {
 }
 
 double DampedSolution::surface_displacement(double x) const {
+  require_frictionless("surface_displacement");
   if (!std::isfinite(x))
     throw InvalidParameter("x", "finite",
                            "surface_displacement: x must be finite, got " + std::to_string(x));
@@ -1486,10 +1631,14 @@ double DampedSolution::surface_displacement(double x) const {
   return params_.load * surface_value(*surface(), x);
 }
 
-double DampedSolution::indentation() const { return surface()->indentation; }
+double DampedSolution::indentation() const {
+  require_frictionless("indentation");
+  return surface()->indentation;
+}
 
 Eigen::MatrixXd DampedSolution::displacement(const Eigen::Ref<const Eigen::VectorXd>& x,
                                              const Eigen::Ref<const Eigen::VectorXd>& y) const {
+  require_frictionless("displacement");
   detail::check_grid(x, y);
   const Fine& f = *light_;
   const WaveConstants& c = model_->constants();

@@ -22,6 +22,7 @@
 #include <Eigen/Dense>
 
 #include "movingpunch/contact.hpp"
+#include "movingpunch/jacobi.hpp"
 #include "movingpunch/kernel.hpp"
 #include "movingpunch/layer_response.hpp"
 #include "movingpunch/stresses.hpp"
@@ -39,6 +40,11 @@ struct DampedResponse {
   cplx U0{0.0, 0.0};
   cplx W0{0.0, 0.0};
   cplx Wb{0.0, 0.0};
+  // The top state of the unit tangential load (state [Uq, Wq, 1, 0] at
+  // y = 0: tau_xy/alpha = 1, sigma_y = 0; the physical amplitudes of a load
+  // tau_xy = q^ e^{i alpha x} are i q^ times these: docs/theory.md section 14).
+  cplx Uq{0.0, 0.0};
+  cplx Wq{0.0, 0.0};
 };
 
 class DampedLayerModel {
@@ -62,6 +68,8 @@ class DampedLayerModel {
 
   // Response at t = alpha h >= 0 (t = 0: the exact limit M1 = 0, Wb = 0).
   DampedResponse response(double t) const;
+  // The moving half-plane's tangential response (jacobi.hpp).
+  const TangentialHalfPlane& tangential() const noexcept { return tq_; }
   // Forcing one of the two evaluations (cross-checks in tests).
   DampedResponse response_modal(double t) const;
   DampedResponse response_transfer(double t) const;
@@ -80,6 +88,7 @@ class DampedLayerModel {
   double damping_;
   bool rigid_;
   double beta_;  // damping sqrt(vstar)
+  TangentialHalfPlane tq_;
 };
 
 // Adaptive (Gauss-Kronrod 7/15) panels on [0, alpha_max] resolving
@@ -94,7 +103,9 @@ struct DampedQuadrature {
   // (|K15 - G7| above bounds the Gauss rule's error, far larger once resolved).
   double kronrod_error = 0;
 };
-DampedQuadrature build_damped_quadrature(const DampedLayerModel& model, double tol);
+// friction > 0: the panels resolve friction (Wq - Wq_inf)/phi1 too.
+DampedQuadrature build_damped_quadrature(const DampedLayerModel& model, double tol,
+                                         double friction = 0.0);
 
 // The regular kernel K(u) of the damped equation (damped_kernel() below) for
 // one (vstar, kw, nu, damping): the alpha quadrature and its Filon
@@ -105,7 +116,10 @@ DampedQuadrature build_damped_quadrature(const DampedLayerModel& model, double t
 // Immutable and shared between solves (cached_damped_kernel).
 class DampedKernel {
  public:
-  DampedKernel(std::shared_ptr<const DampedLayerModel> model, double range);
+  // friction > 0: the kernel of the frictional equation, K - f K_t with the
+  // effective response M1 - i f Wq (docs/theory.md section 14).
+  DampedKernel(std::shared_ptr<const DampedLayerModel> model, double range,
+               double friction = 0.0);
   // A wider table on the quadrature of `other` (no new layer responses).
   DampedKernel(const DampedKernel& other, double range);
 
@@ -113,6 +127,7 @@ class DampedKernel {
   void many(const double* u, double* out, std::size_t n) const;  // out[i] = (*this)(u[i])
   double direct(double u) const;                                 // Filon sums, any u
   double range() const noexcept { return range_; }
+  double friction() const noexcept { return base_->friction; }
   // Bound on |table - direct| (truncation of the pieces plus their values'
   // round-off), absolute.
   double table_error() const noexcept { return table_error_; }
@@ -130,6 +145,7 @@ class DampedKernel {
     DampedQuadrature quad;
     std::shared_ptr<const FilonIntegrator> filon;
     std::vector<double> kr, ki;  // Filon coefficients of Re, Im (M1 - phi1)/phi1
+    double friction = 0.0;
   };
   std::shared_ptr<const Base> base_;
   double range_ = 0, width_ = 0, table_error_ = 0;
@@ -147,7 +163,8 @@ class DampedKernel {
 inline constexpr std::size_t kDampedKernelCacheCapacity = 16;
 std::shared_ptr<const DampedKernel> cached_damped_kernel(double vstar, double kw, double nu,
                                                          double damping, double min_range,
-                                                         double build_range, bool* built = nullptr);
+                                                         double build_range, bool* built = nullptr,
+                                                         double friction = 0.0);
 KernelCacheInfo damped_kernel_cache_info();
 
 // Dimensionless inputs (h = 1, mu = 1).
@@ -157,7 +174,8 @@ struct DampedParams {
   double radius = 100;  // R / h > 0
   double load = 0.002;  // P / (mu h) > 0
   double nu = 0.2;      // [0, 0.5)
-  double damping = 0;   // c_w c_T / mu > 0 (finite)
+  double damping = 0;   // c_w c_T / mu > 0 (finite); >= 0 when friction > 0
+  double friction = 0;  // Coulomb coefficient f >= 0 (finite): tau_xy = f p, in the direction of motion
   double tol = 1e-8;    // relative tolerance on the contact ends and the pressure, [1e-14, 1e-2]
   bool allow_unphysical = false;
   int n = 0;  // fixed collocation size (even, 2..1024); 0: refine
@@ -179,6 +197,15 @@ class DampedSolution {
   double critical_vstar() const noexcept { return vcr_; }
   double rayleigh_vstar() const noexcept { return vr_; }
   double phi1() const noexcept { return model_->phi1(); }
+  // Coulomb friction f (the shear traction on the layer is f p, towards +x,
+  // the direction of motion); the tangential force on the punch over P, f
+  // (it opposes the motion, as drag() when positive); the end exponents
+  // (back, front): p ~ (x + b)^back (a - x)^front, (0.5, 0.5) without
+  // friction; the coupling constant Phi(V*, nu) of the local term f Phi p.
+  double friction() const noexcept { return params_.friction; }
+  double tangential_force() const noexcept { return params_.friction; }
+  EndExponents end_exponents() const noexcept { return exps_; }
+  double coupling() const noexcept { return model_->tangential().Phi; }
   // Absolute error estimate of the contact ends (-b, a), in h (a bound of
   // |error| of each end; docs/damped.md section 8).
   double error_estimate() const noexcept { return err_; }
@@ -259,6 +286,7 @@ class DampedSolution {
   // equals drag() by the energy balance.
   double dissipation() const;
 
+  // g's coefficients: Chebyshev U_n without friction, Jacobi P_n^(front, back) with it.
   const Eigen::VectorXd& g_coefficients() const noexcept { return b_; }
   const DampedLayerModel& model() const noexcept { return *model_; }
 
@@ -275,6 +303,20 @@ class DampedSolution {
   double min_p_ = 0, min_gap_ = 0;
   std::vector<double> other_widths_;
   Eigen::VectorXd b_;
+  // Friction > 0: the Jacobi series of g and its transform rule (light_'s
+  // alpha range); the outputs not yet derived for a shear traction refuse.
+  EndExponents exps_{};
+  std::shared_ptr<const JacobiSeries> jac_;
+  std::shared_ptr<const JacobiTransform> jtr_;
+  double jtr_omega_ = 0;  // the largest alpha w jtr_ resolves
+  JacobiRule atan_rule_;  // Gauss-Jacobi rule of friction_surface_terms' arctan integral
+  void require_frictionless(const char* what) const;
+  // The surface sigma_x integrand's regular part per unit p^ at alpha > 0:
+  // M2 - phi2, with friction less i f (Ep Uq - Ep Uq_inf - C0 e^-alpha/alpha).
+  cplx surface_stress_integrand(const DampedResponse& r, double alpha) const;
+  // The surface sigma_x's parts that are closed forms of p with friction:
+  // f Cq (1/pi) int p/(xi - x) - (f C0/pi) int p arctan(x - xi) (theory.md section 14).
+  double friction_surface_terms(double x, const JacobiSeries& s, double c, double w) const;
   std::shared_ptr<const DampedLayerModel> model_;
   std::shared_ptr<const DampedKernel> kernel_;
   // Gauss-Chebyshev (U) nodes r_i and weights times g(r_i) of surface_slope's
