@@ -170,6 +170,18 @@ SPECS: Mapping[str, ParamSpec] = MappingProxyType(
                 note="(0: no dashpots, the paper's model)",
             ),
             ParamSpec(
+                "friction",
+                0.0,
+                math.inf,
+                False,
+                True,
+                "",
+                "Coulomb friction coefficient between punch and layer (shear "
+                "traction f p on the layer, in the direction of motion)",
+                0.0,
+                note="(0: frictionless, the paper's model)",
+            ),
+            ParamSpec(
                 "tol",
                 1e-14,
                 1e-2,

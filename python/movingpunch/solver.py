@@ -113,6 +113,22 @@ class Solution(ResultFields):
         return 0.0
 
     @property
+    def friction(self) -> float:
+        """Coulomb friction f: 0.0, the paper's frictionless punch."""
+        return 0.0
+
+    @property
+    def tangential_force(self) -> float:
+        """Friction force on the punch over P: 0.0 (frictionless)."""
+        return 0.0
+
+    @property
+    def end_exponents(self) -> tuple[float, float]:
+        """(gamma_back, gamma_front) of p ~ (a + x)^gamma_back (a - x)^gamma_front:
+        (0.5, 0.5), the frictionless cylinder."""
+        return (0.5, 0.5)
+
+    @property
     def contact_interval(self) -> tuple[float, float]:
         """(x_back, x_front) = (-a/h, a/h): the contact is symmetric."""
         return (-self.a, self.a)
@@ -182,6 +198,7 @@ def solve(
     allow_unphysical: bool = ...,
     n: int | None = ...,
     damping: Literal[0] = ...,
+    friction: Literal[0] = ...,
 ) -> Solution: ...
 
 
@@ -197,6 +214,23 @@ def solve(
     allow_unphysical: bool = ...,
     n: int | None = ...,
     damping: float,
+    friction: float = ...,
+) -> ContactSolution: ...
+
+
+@overload
+def solve(
+    *,
+    vstar: float,
+    kw: float,
+    radius: float,
+    load: float,
+    nu: float = ...,
+    tol: float | str = ...,
+    allow_unphysical: bool = ...,
+    n: int | None = ...,
+    damping: float = ...,
+    friction: float,
 ) -> ContactSolution: ...
 
 
@@ -211,6 +245,7 @@ def solve(
     allow_unphysical: bool = False,
     n: int | None = None,
     damping: float = 0.0,
+    friction: float = 0.0,
 ) -> ContactSolution:
     """Solves the contact problem of a rigid cylinder sliding over the layer.
 
@@ -234,10 +269,16 @@ def solve(
     returns a Solution; > 0 returns a ``movingpunch.damped.DampedSolution``
     (asymmetric contact, drag; speeds up to the Rayleigh speed). Both satisfy
     ``movingpunch.ContactSolution``, the one contract callers use.
-    """
-    from movingpunch.damped import check_damping, solve_damped
 
-    if check_damping(damping) > 0:
+    ``friction`` = f >= 0 is Coulomb friction between punch and layer (the
+    punch moves towards +x and drags the surface with a shear traction f p;
+    docs/theory.md section 14). f > 0 takes the asymmetric path (a
+    ``DampedSolution``, with damping >= 0): Gauss-Jacobi collocation with
+    the end exponents of cot(pi gamma_back) = f Phi(vstar, nu).
+    """
+    from movingpunch.damped import check_damping, check_friction, solve_damped
+
+    if check_damping(damping) > 0 or check_friction(friction) > 0:
         return solve_damped(
             vstar=vstar,
             kw=kw,
@@ -248,6 +289,7 @@ def solve(
             tol=tol,
             allow_unphysical=allow_unphysical,
             n=n,
+            friction=friction,
         )
     inputs = _check_solve_inputs(vstar, kw, radius, load, nu, tol)
     flag = _check_flag("allow_unphysical", allow_unphysical)
