@@ -54,6 +54,7 @@ TYPES: dict[str, type | tuple[type, ...]] = {
     "validity": str,
     "warnings": tuple,
     "contact_interval": tuple,
+    "end_exponents": tuple,
     "stage_times": Mapping,
 }
 

@@ -14,6 +14,7 @@ pressure (equilibrium, Cauchy principal values).
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import numpy as np
@@ -101,9 +102,9 @@ def _independent_ends(
     x, wl = roots_legendre(16)
     edges = np.linspace(0.0, 45.0 / nt, 401)
     alpha = np.concatenate(
-        [0.5 * (b - a) * x + 0.5 * (a + b) for a, b in zip(edges[:-1], edges[1:])]
+        [0.5 * (b - a) * x + 0.5 * (a + b) for a, b in itertools.pairwise(edges)]
     )
-    weight = np.concatenate([0.5 * (b - a) * wl for a, b in zip(edges[:-1], edges[1:])])
+    weight = np.concatenate([0.5 * (b - a) * wl for a, b in itertools.pairwise(edges)])
     g = np.empty(alpha.size, complex)
     for j, t in enumerate(alpha):
         zn, zq = _top_states(float(t), s, kw, nu, damping)
@@ -151,7 +152,7 @@ def test_coupling_constant_moving_matches_the_layer_at_large_alpha(
     """Phi(V*) in closed form equals the Rayleigh-function form and the
     numerical large-alpha limit Wq/phi1 of an independent 4x4 layer solve;
     continuous towards the static value."""
-    phi1, _, phi = _half_plane(vstar, 0.2)
+    _, _, phi = _half_plane(vstar, 0.2)
     assert coupling_constant(vstar, 0.2) == pytest.approx(phi, rel=1e-9)
     if vstar >= 0.01:  # the eigenvector basis is ill-conditioned near V = 0
         zn, zq = _top_states(40.0, vstar, 1.0, 0.2, 0.0)
@@ -166,7 +167,7 @@ def test_coupling_constant_moving_matches_the_layer_at_large_alpha(
 
 def test_tangential_response_matches_an_independent_layer_with_damping() -> None:
     for t in (0.05, 0.3, 1.0, 3.0, 12.0):
-        zn, zq = _top_states(t, 0.4, 0.3, 0.25, 0.7)
+        _, zq = _top_states(t, 0.4, 0.3, 0.25, 0.7)
         uq, wq = _core.damped_tangential_response(t, 0.4, 0.3, 0.25, 0.7)
         assert abs(uq - zq[0]) < 1e-10 * abs(zq[0])
         assert abs(wq - zq[1]) < 1e-10 * max(abs(zq[1]), 1e-3)
@@ -242,11 +243,14 @@ def test_equilibrium_and_tangential_force() -> None:
         total = (
             w
             * w
-            * sum(float(q) * _smooth(s, s.centre + w * float(t)) for t, q in zip(r, wr))
+            * sum(
+                float(q) * _smooth(s, s.centre + w * float(t))
+                for t, q in zip(r, wr, strict=True)
+            )
         )
         assert total == pytest.approx(1.0, abs=1e-12)
         adaptive = quad(
-            lambda x: _smooth(s, x), back, front, weight="alg", wvar=(gb, gf)
+            lambda x, s=s: _smooth(s, x), back, front, weight="alg", wvar=(gb, gf)
         )[0]
         assert adaptive == pytest.approx(1.0, abs=1e-10)
         assert s.tangential_force == 0.4
@@ -257,8 +261,10 @@ def test_f_zero_is_bit_identical() -> None:
     plain = mp.solve(vstar=0.2, kw=1.0, radius=100, load=0.002)
     zero = mp.solve(vstar=0.2, kw=1.0, radius=100, load=0.002, friction=0.0)
     assert type(zero) is type(plain)
-    assert zero.a == plain.a and zero.error_estimate == plain.error_estimate
-    assert zero.friction == 0.0 and zero.tangential_force == 0.0
+    assert zero.a == plain.a
+    assert zero.error_estimate == plain.error_estimate
+    assert zero.friction == 0.0
+    assert zero.tangential_force == 0.0
     assert zero.end_exponents == (0.5, 0.5)
     d0 = mp.solve(vstar=0.2, kw=1.0, radius=100, load=0.002, damping=0.1)
     d1 = mp.solve(vstar=0.2, kw=1.0, radius=100, load=0.002, damping=0.1, friction=0.0)
@@ -349,9 +355,11 @@ def test_error_estimates_are_honest() -> None:
     ref = mp.solve(vstar=0.3, kw=1.0, radius=100, load=0.002, friction=0.5, tol=1e-12)
     for tol in (1e-3, 1e-6):
         s = mp.solve(vstar=0.3, kw=1.0, radius=100, load=0.002, friction=0.5, tol=tol)
-        assert isinstance(s, DampedSolution) and isinstance(ref, DampedSolution)
+        assert isinstance(s, DampedSolution)
+        assert isinstance(ref, DampedSolution)
         actual = max(
-            abs(u - v) for u, v in zip(s.contact_interval, ref.contact_interval)
+            abs(u - v)
+            for u, v in zip(s.contact_interval, ref.contact_interval, strict=True)
         )
         assert actual <= s.error_estimate + ref.error_estimate
         r = np.linspace(-0.99, 0.99, 199)
@@ -395,8 +403,10 @@ def test_unavailable_outputs_refuse_clearly() -> None:
         ):
             call()
     d = s.to_dict()
-    assert d["indentation"] is None and d["dissipation"] is None
-    assert d["tangential_force"] == 0.3 and d["end_exponents"] == list(s.end_exponents)
+    assert d["indentation"] is None
+    assert d["dissipation"] is None
+    assert d["tangential_force"] == 0.3
+    assert d["end_exponents"] == list(s.end_exponents)
     top = s.stress_field([0.0, 0.1], [0.0])
     assert top.tau_xy[0] == pytest.approx(
         0.3 * s.pressure(np.array([0.0, 0.1])), rel=1e-15
