@@ -148,7 +148,7 @@ double jacobi_sum(const Eigen::VectorXd& c, double a, double b, double x, int sh
   const int n = static_cast<int>(c.size());
   if (n == 0) return 0.0;
   double p0 = 1.0, p1 = 0.5 * ((a + b + 2.0) * x + (a - b));
-  double sum = shift == 0 ? c(0) * p0 : c(0) * p1;
+  double sum = shift == 0 ? c(0) * p0 + (n > 1 ? c(1) * p1 : 0.0) : c(0) * p1;
   for (int k = 1; k < n + shift; ++k) {
     const double kk = k, s = 2.0 * kk + a + b;
     const double c0 = 2.0 * (kk + 1.0) * (kk + a + b + 1.0) * s;
