@@ -179,6 +179,13 @@ def _build_parser() -> argparse.ArgumentParser:
         "and the drag, at any speed below the Rayleigh speed (docs/damped.md)",
     )
     solve_p.add_argument(
+        "--friction",
+        type=_number("friction"),
+        default=0.0,
+        help=help_text("friction") + "; > 0 gives the asymmetric contact (-b, a), "
+        "the end exponents and the tangential force (docs/theory.md section 14)",
+    )
+    solve_p.add_argument(
         "--allow-unphysical",
         action="store_true",
         help="return a solution with p < 0 or penetration, flagged invalid, "
@@ -287,6 +294,17 @@ def _json_number(value: float) -> float | str:
     return value if math.isfinite(value) else str(value)
 
 
+def _available(value: Callable[[], str]) -> str:
+    """``value()``, or why the solution cannot give it (friction > 0: an
+    output not yet derived for the shear traction)."""
+    try:
+        return value()
+    except MovingPunchError as err:
+        if "not yet available" not in str(err):
+            raise
+        return "not yet available with friction > 0"
+
+
 def _cmd_solve(args: argparse.Namespace) -> int:
     s = solve(
         vstar=args.vstar,
@@ -297,6 +315,7 @@ def _cmd_solve(args: argparse.Namespace) -> int:
         tol=args.tol,
         allow_unphysical=args.allow_unphysical,
         damping=args.damping,
+        friction=args.friction,
     )
     peaks = s.stress_peaks() if args.stress else None
     _print_warnings(s)
@@ -310,6 +329,7 @@ def _cmd_solve(args: argparse.Namespace) -> int:
         ("V* = ρV²/μ", _fmt(s.vstar)),
         ("k_w h/μ", _fmt(s.kw)),
         ("damping c_w c_T/μ", _fmt(s.damping)),
+        ("friction f", _fmt(s.friction)),
         ("R/h", _fmt(s.radius)),
         ("P/(μh)", _fmt(s.load)),
         ("μ/(P/h)", _fmt(1.0 / s.load)),
@@ -321,9 +341,11 @@ def _cmd_solve(args: argparse.Namespace) -> int:
         ("a/h", _fmt(s.a)),
         ("contact (x_back/h, x_front/h)", f"({_fmt(back)}, {_fmt(front)})"),
         ("p0/(P/h)", _fmt(s.p0)),
-        ("indentation δ/h", _fmt(s.indentation)),
+        ("indentation δ/h", _available(lambda: _fmt(s.indentation))),
         ("drag (∫p x/R dx)/P", _fmt(s.drag)),
-        ("dissipation/(P V)", _fmt(s.dissipation)),
+        ("tangential force/P", _fmt(s.tangential_force)),
+        ("end exponents (back, front)", "({}, {})".format(*map(_fmt, s.end_exponents))),
+        ("dissipation/(P V)", _available(lambda: _fmt(s.dissipation))),
         ("V*_cr", _fmt(s.critical_vstar)),
         ("V*_R", _fmt(s.rayleigh_vstar)),
         ("φ1", _fmt(s.phi1)),

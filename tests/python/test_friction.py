@@ -24,7 +24,7 @@ from scipy.optimize import brentq
 from scipy.special import roots_jacobi, roots_legendre
 
 import movingpunch as mp
-from movingpunch import _core
+from movingpunch import _core, params
 from movingpunch.damped import DampedSolution, coupling_constant, end_exponents
 from movingpunch.errors import (
     InvalidParameterError,
@@ -438,3 +438,72 @@ def test_surface_follows_the_punch_and_separates_beside_it(damping: float) -> No
     assert np.max(np.abs(slope - x / 100.0)) < 1e-12 * s.half_width / 100.0
     assert s.min_gap >= 0.0
     assert s.valid
+
+
+def test_trailing_edge_tension_is_two_f_p0_when_uncoupled() -> None:
+    """nu -> 1/2 decouples friction from the pressure (Phi -> 0: Hertz
+    pressure, exponents 1/2); the surface sigma_x of a half-plane under the
+    Hertz pressure and the traction f p is then -p - 2 f p0 x/a on the
+    contact: +2 f p0 at the trailing edge, -2 f p0 at the leading edge
+    (Smith & Liu, J. Appl. Mech. 20 (1953) 157; Johnson 1985, section 7.1)."""
+    f = 0.25
+    s = mp.solve(vstar=0.0, kw=math.inf, radius=100.0, load=2e-9, nu=0.4999, friction=f)
+    assert isinstance(s, DampedSolution)
+    back, front = s.contact_interval
+    p0 = s.max_pressure
+    assert s.surface_stress(back) == pytest.approx(2 * f * p0, rel=2e-3)
+    assert s.surface_stress(front) == pytest.approx(-2 * f * p0, rel=2e-3)
+
+
+def test_bundled_friction_scene() -> None:
+    """The bundled friction sweep: the f = 0 curve is the frictionless
+    solve's (symmetric), the trailing-edge tension grows with f and the
+    tension ahead of the leading edge falls; the points equal direct solves."""
+    from movingpunch.scene import Scene
+
+    result = Scene.bundled("friction").run()
+    width = result.outputs["contact_width"].columns
+    assert list(width["friction"]) == [0.0, 0.2, 0.4, 0.6]
+    stress = result.outputs["surface_stress"].columns
+    x = stress["x"]
+    behind, ahead = [], []
+    for f in (0.0, 0.2, 0.4, 0.6):
+        sx = stress[f"sigma_x[friction={f:g}]"]
+        behind.append(float(sx[x < 0].max()))
+        ahead.append(float(sx[x > 0].max()))
+        s = mp.solve(vstar=0.2, kw=1.0, radius=100, load=0.002, friction=f)
+        assert np.allclose(sx, s.surface_stress(x), rtol=0, atol=1e-12)
+    assert behind[0] == pytest.approx(ahead[0], abs=1e-9)
+    assert all(b2 > b1 for b1, b2 in itertools.pairwise(behind))
+    assert all(a2 < a1 for a1, a2 in itertools.pairwise(ahead))
+    assert math.isnan(width["indentation"][1])
+
+
+def test_friction_bounds_are_the_cores() -> None:
+    """The table's range of friction, [0, 10], is the core's (each probe is
+    refused by both or by neither), and the message names the parameter."""
+    spec = params.SPECS["friction"]
+    probes = [0.0, math.nextafter(0.0, -1.0), -0.0, 10.0, math.nextafter(10.0, 11.0)]
+    probes += [math.nextafter(10.0, 0.0), math.nan, math.inf]
+
+    def call(x: float) -> None:
+        _core.solve_damped(
+            vstar=0.2,
+            kw=1.0,
+            radius=100.0,
+            load=0.002,
+            nu=0.2,
+            damping=0.1,
+            tol=1e-4,
+            allow_unphysical=True,
+            n=8,
+            friction=x,
+        )
+
+    for x in probes:
+        if spec.contains(x):
+            call(x)
+        else:
+            with pytest.raises(InvalidParameterError) as info:
+                call(x)
+            assert info.value.parameter == "friction"

@@ -42,6 +42,7 @@ _PARAM_LABELS = {
     "load": "P/(μh)",
     "nu": "ν",
     "damping": "damping",
+    "friction": "friction f",
 }
 _QUANTITY_LABELS = {
     "a": "a/h",

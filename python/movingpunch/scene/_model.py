@@ -26,10 +26,19 @@ __all__ = [
     "Vary",
 ]
 
-PARAMS: tuple[str, ...] = ("vstar", "kw", "radius", "load", "nu", "damping")
+PARAMS: tuple[str, ...] = (
+    "vstar",
+    "kw",
+    "radius",
+    "load",
+    "nu",
+    "damping",
+    "friction",
+)
 """The physical parameters of a scene, in the order they are written.
 ``nu`` defaults to 0.2; ``damping`` (c_w c_T/mu, the Kelvin-Voigt dashpots,
-docs/damped.md) to 0 and is kept in ``params`` only when given."""
+docs/damped.md) and ``friction`` (Coulomb f, docs/theory.md section 14) to 0,
+each kept in ``params`` only when given."""
 
 
 def allowed_text(name: str) -> str:
@@ -78,7 +87,8 @@ SWEEP_QUANTITIES: dict[str, str] = {
     "min_pressure": "minimum of p/(P/h) on the contact",
     "critical_vstar": "critical speed V*_cr(kw, nu)",
     "phi1": "moving half-plane factor phi1",
-    "drag": "horizontal force on the punch over P (0 without damping)",
+    "drag": "horizontal force of the pressure on the punch over P (0 without "
+    "damping or friction)",
     "contact_start": "trailing end -b/h of the contact (-a/h without damping)",
     "contact_end": "leading end a/h of the contact",
     "top_compressive": "most compressive sigma_x/(P/h) on the top surface",

@@ -23,7 +23,8 @@ __all__ = ["SweepPlan", "build_sweep_table", "plan_sweep", "split_chunks"]
 @dataclass
 class SweepPlan:
     """A sweep's points and the unique keys to solve, grouped by shared
-    kernel (vstar, kw, nu, tol, damping), each group in descending lambda."""
+    kernel (vstar, kw, nu, tol, damping, friction), each group in descending
+    lambda."""
 
     points: list[list[dict[str, float]]]  # [curve][grid] -> parameters
     keys: list[Key]  # unique keys, in solve order
@@ -46,12 +47,12 @@ def plan_sweep(scene: SceneData) -> SweepPlan:
             representative.setdefault(point_key(p, scene.tol), p)
     groups: dict[tuple[float, ...], list[Key]] = {}
     for key in representative:
-        groups.setdefault(key[:5], []).append(key)
+        groups.setdefault(key[:6], []).append(key)
     for members in groups.values():
-        members.sort(key=lambda k: -k[5])  # descending lambda: widest kernel first
+        members.sort(key=lambda k: -k[6])  # descending lambda: widest kernel first
     keys = [k for members in groups.values() for k in members]
     want_peaks = any(q in PEAK_QUANTITIES for q in sw.quantities)
-    damped = any(k[4] > 0.0 for k in keys)
+    damped = any(k[4] > 0.0 or k[5] > 0.0 for k in keys)  # the asymmetric solver
     return SweepPlan(points, keys, groups, representative, want_peaks, damped)
 
 
@@ -168,6 +169,7 @@ def chunk_tasks(plan: SweepPlan, chunk: Chunk) -> list[dict[str, Any]]:
             "nu": group[2],
             "tol": group[3],
             "damping": group[4],
+            "friction": group[5],
             "points": [
                 (plan.representative[k]["radius"], plan.representative[k]["load"])
                 for k in keys

@@ -26,16 +26,28 @@ from movingpunch.solver import result_warnings, solve
 
 __all__ = ["RunState", "point_key", "solve_point"]
 
-# vstar, kw, nu, tol, damping, lambda
-Key = tuple[float, float, float, float, float, float]
+# vstar, kw, nu, tol, damping, friction, lambda
+Key = tuple[float, float, float, float, float, float, float]
 
 
 def _damping(p: Mapping[str, float]) -> float:
     return p.get("damping", 0.0)
 
 
+def _friction(p: Mapping[str, float]) -> float:
+    return p.get("friction", 0.0)
+
+
 def point_key(p: Mapping[str, float], tol: float) -> Key:
-    return (p["vstar"], p["kw"], p["nu"], tol, _damping(p), p["radius"] * p["load"])
+    return (
+        p["vstar"],
+        p["kw"],
+        p["nu"],
+        tol,
+        _damping(p),
+        _friction(p),
+        p["radius"] * p["load"],
+    )
 
 
 def curve_label(param: str | None, value: float | None) -> str:
@@ -54,6 +66,7 @@ def solve_point(p: Mapping[str, float], tol: float, stages: Stages) -> ContactSo
         tol=tol,
         allow_unphysical=True,
         damping=_damping(p),
+        friction=_friction(p),
     )
     stages.add_solution(s)
     return s
@@ -73,9 +86,14 @@ def point_quantities(
         "load": s.load,
         "radius": s.radius,
     }
+    indentation = math.nan
+    try:
+        indentation = s.indentation
+    except MovingPunchError as exc:  # friction > 0: not yet available
+        warnings.append(f"indentation: {exc}")
     q.update(
         p0=s.p0,
-        indentation=s.indentation,
+        indentation=indentation,
         drag=s.drag,
         contact_start=s.contact_interval[0],
         contact_end=s.contact_interval[1],
@@ -95,6 +113,8 @@ def _point_text(p: Mapping[str, float]) -> str:
     names = ["vstar", "kw", "radius", "load", "nu"]
     if _damping(p) > 0.0:
         names.append("damping")
+    if _friction(p) > 0.0:
+        names.append("friction")
     return ", ".join(f"{n}={p[n]:.6g}" for n in names)
 
 
@@ -111,6 +131,7 @@ def solve_group(task: Mapping[str, Any]) -> dict[str, Any]:
             "kw": task["kw"],
             "nu": task["nu"],
             "damping": task["damping"],
+            "friction": task["friction"],
             "radius": radius,
             "load": load,
         }

@@ -295,7 +295,7 @@ def validate(scene: SceneData, source: str) -> None:
             if name == "nu":
                 params[name] = DEFAULT_NU
                 continue
-            if name == "damping":  # optional, 0; kept only when given
+            if name in ("damping", "friction"):  # optional, 0; kept only when given
                 continue
             raise c.fail(f"params.{name}", "missing", allowed_text(name), name)
         params[name] = c.param(f"params.{name}", name, scene.params[name])
