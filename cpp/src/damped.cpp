@@ -192,6 +192,23 @@ Eigen::Vector4cd DampedLayerModel::state_coefficients(double t) const {
   return M.partialPivLu().solve(Eigen::Vector4cd(0.0, -1.0, 0.0, 0.0));
 }
 
+Eigen::Vector4cd DampedLayerModel::tangential_state(double t, double y) const {
+  if (!(t > 0.0) || !std::isfinite(t) || !(y >= -1.0) || !(y <= 0.0))
+    throw std::invalid_argument("tangential state: need t > 0 finite and -1 <= y <= 0");
+  if (t < kSmallT) {
+    const DampedResponse r = response_transfer(t);
+    return transfer_matrix(c_, t, y).cast<cplx>() * Eigen::Vector4cd(r.Uq, r.Wq, 1.0, 0.0);
+  }
+  const Eigen::Matrix4d top = modal_columns(c_, t, 0.0), bot = modal_columns(c_, t, -1.0);
+  Eigen::Matrix4cd M;
+  M.row(0) = top.row(2).cast<cplx>();
+  M.row(1) = top.row(3).cast<cplx>();
+  M.row(2) = bot.row(2).cast<cplx>();
+  M.row(3) = spring_row(bot.row(3), bot.row(1), t, foundation(t), rigid_);
+  const Eigen::Vector4cd amp = M.partialPivLu().solve(Eigen::Vector4cd(1.0, 0.0, 0.0, 0.0));
+  return modal_columns(c_, t, y).cast<cplx>() * amp;
+}
+
 // ---------------------------------------------------------------------------
 // Quadrature in alpha
 
@@ -984,6 +1001,9 @@ DampedSolution solve_damped(const DampedParams& prm) {
     if (have_change) dseries = js.minus(js_prev);
     s.jtr_ = std::make_shared<const JacobiTransform>(
         js, kern->quadrature().panels.alpha_max * s.half_, have_change ? &dseries : nullptr);
+    s.jtr_omega_ = kern->quadrature().panels.alpha_max * s.half_;
+    s.atan_rule_ = gauss_jacobi(js.size() + 64 + static_cast<int>(std::ceil(8.0 * s.half_)),
+                                s.exps_.front, s.exps_.back);
   }
   s.light_ = std::make_shared<const DampedSolution::Fine>(
       s.build_fine(2.0 * s.half_, have_change ? &db : nullptr, &dphat));
@@ -1191,11 +1211,46 @@ double DampedSolution::friction_surface_terms(double x, const JacobiSeries& ser,
   const WaveConstants& wc = model_->constants();
   const double ep = 4.0 * (wc.c2 - 1.0) / wc.c2, c0 = ep / (ep - wc.s);
   const double cq = ep * model_->tangential().Uq, f = params_.friction;
-  const double r = (x - c) / w;
+  (void)c0;
+  return f * cq * ser.cauchy((x - c) / w) + bar_term(x, ser, c, w);
+}
+
+double DampedSolution::bar_term(double x, const JacobiSeries& ser, double c, double w) const {
+  const WaveConstants& wc = model_->constants();
+  const double ep = 4.0 * (wc.c2 - 1.0) / wc.c2, c0 = ep / (ep - wc.s);
   double at = 0.0;
   for (Eigen::Index j = 0; j < atan_rule_.x.size(); ++j)
     at += atan_rule_.w(j) * ser.g(atan_rule_.x(j)) * std::atan(x - c - w * atan_rule_.x(j));
-  return f * cq * ser.cauchy(r) - f * c0 / kPi * w * at;
+  return -params_.friction * c0 / kPi * w * at;
+}
+
+std::shared_ptr<const DampedSolution::BottomFriction> DampedSolution::bottom_friction() const {
+  std::lock_guard<std::mutex> lock(bottom_friction_cache_->mutex);
+  auto& bp = bottom_friction_cache_->data;
+  if (bp) return bp;
+  auto b = std::make_shared<BottomFriction>();
+  const Fine& f = *light_;
+  const WaveConstants& c = model_->constants();
+  const double ep = 4.0 * (c.c2 - 1.0) / c.c2, c0 = ep / (ep - c.s), fr = params_.friction;
+  const cplx i(0.0, 1.0);
+  std::vector<cplx> gx(f.alpha.size()), gy(f.alpha.size()), gt(f.alpha.size());
+  for (std::size_t k = 0; k < f.alpha.size(); ++k) {
+    const double al = f.alpha[k];
+    const Eigen::Vector4cd z = model_->tangential_state(al, -1.0);
+    const Eigen::Vector4cd zn = model_->state(al, -1.0);  // the normal load's
+    const cplx ph = f.phat[k] * std::exp(cplx(0.0, al * centre_));
+    const cplx sx = ep * z(0) + (c.c2 - 2.0) / c.c2 * z(3);
+    const cplx sxn = ep * zn(0) + (c.c2 - 2.0) / c.c2 * zn(3);
+    // Normal: [Sigma_x, S, -i T]; tangential: i f [Sigma_x, S, -i T].
+    gx[k] = (sxn + i * fr * (sx - c0 * std::exp(-al) / al)) * ph;
+    gy[k] = (zn(3) + i * fr * z(3)) * ph;
+    gt[k] = (-i * zn(2) + fr * z(2)) * ph;
+  }
+  f.coefficients(gx, b->sx_re, b->sx_im);
+  f.coefficients(gy, b->sy_re, b->sy_im);
+  f.coefficients(gt, b->t_re, b->t_im);
+  bp = b;
+  return bp;
 }
 
 namespace {
@@ -1487,9 +1542,10 @@ StressField DampedSolution::stress_field(const Eigen::Ref<const Eigen::VectorXd>
                                          const Eigen::Ref<const Eigen::VectorXd>& y) const {
   detail::check_grid(x, y);
   for (Eigen::Index i = 0; i < y.size(); ++i)
-    if (y(i) != 0.0) require_frictionless("stress_field below the surface (y < 0)");
+    if (y(i) != 0.0 && y(i) != -1.0)
+      require_frictionless("stress_field inside the layer (-1 < y < 0)");
   const Fine& f = *light_;
-  const auto nodes = field_nodes();
+  const auto nodes = jac_ ? nullptr : field_nodes();
   const WaveConstants& c = model_->constants();
   const Eigen::Index nx = x.size(), ny = y.size(), nq = static_cast<Eigen::Index>(f.alpha.size());
   // The Filon coefficients of the remainder, columns [sigma_x, sigma_y, tau] x
@@ -1497,7 +1553,7 @@ StressField DampedSolution::stress_field(const Eigen::Ref<const Eigen::VectorXd>
   // done apart).
   Eigen::MatrixXd coef = Eigen::MatrixXd::Zero(nq, 6 * ny);
   for (Eigen::Index i = 0; i < ny; ++i) {
-    if (y(i) == 0.0) continue;
+    if (y(i) == 0.0 || jac_) continue;
     const auto ci = depth_coefficients(*nodes, y(i));
     for (Eigen::Index m = 0; m < 6; ++m) coef.col(m * ny + i) = ci->col(m);
   }
@@ -1528,6 +1584,18 @@ StressField DampedSolution::stress_field(const Eigen::Ref<const Eigen::VectorXd>
       }
       if (std::fabs(x(j)) > kFarField) {
         g.sigma_x(i, j) = g.sigma_y(i, j) = g.tau_xy(i, j) = 0.0;
+        continue;
+      }
+      if (jac_) {
+        // Friction (only y = -1 here): the normal load's field by a direct
+        // Filon sum (the half-plane split is for U-series only; at y = -1 the
+        // integrand decays like e^{-nT alpha}), plus the shear traction's.
+        const BottomFriction& bf = *bottom_friction();
+        const double u = x(j) - centre_;
+        g.sigma_x(i, j) =
+            f.fourier(bf.sx_re, bf.sx_im, u) / kPi + bar_term(x(j), *jac_, centre_, half_);
+        g.sigma_y(i, j) = f.fourier(bf.sy_re, bf.sy_im, u) / kPi;
+        g.tau_xy(i, j) = f.fourier(bf.t_re, bf.t_im, u) / kPi;
         continue;
       }
       const Eigen::Vector3d hp = detail::half_plane_stresses(c, b_, half_, x(j) - centre_, y(i), 1);

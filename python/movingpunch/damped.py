@@ -157,7 +157,7 @@ class DampedSolution(ResultFields):
 
     def _unavailable(self) -> tuple[str, ...]:
         if self.friction > 0:
-            return ("indentation", "dissipation", "stress_peaks")
+            return ("indentation", "dissipation")
         return ()
 
     def _refuse(self, what: str) -> None:

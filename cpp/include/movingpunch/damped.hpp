@@ -81,6 +81,9 @@ class DampedLayerModel {
   // state (state = exp(t y A) z), else the amplitudes of the regularised
   // modal columns (state = modal_columns(t, y) z).
   Eigen::Vector4cd state_coefficients(double t) const;
+  // The state of the unit tangential load (top T = 1, S = 0; the physical
+  // amplitudes of tau_xy = e^{i alpha x} are i times it) at -1 <= y <= 0, t > 0.
+  Eigen::Vector4cd tangential_state(double t, double y) const;
 
  private:
   WaveConstants c_;
@@ -393,6 +396,24 @@ class DampedSolution {
   std::shared_ptr<const Eigen::MatrixXd> depth_coefficients(const FieldNodes& nodes,
                                                             double y) const;
   std::shared_ptr<FieldCache> field_cache_ = std::make_shared<FieldCache>();
+  // Friction: the stresses on the bottom face y = -1 by the direct Fourier
+  // integral (it converges there like e^{-nT alpha}: no half-plane part to
+  // split off), the normal load's and the shear traction's together: Filon
+  // coefficients of sigma_x (the bar pole C0/alpha taken out), sigma_y and
+  // tau on light_, built on first use.
+  struct BottomFriction {
+    std::vector<double> sx_re, sx_im, sy_re, sy_im, t_re, t_im;
+  };
+  struct BottomFrictionCache {
+    std::mutex mutex;
+    std::shared_ptr<const BottomFriction> data;
+  };
+  std::shared_ptr<BottomFrictionCache> bottom_friction_cache_ =
+      std::make_shared<BottomFrictionCache>();
+  std::shared_ptr<const BottomFriction> bottom_friction() const;
+  // -(f C0/pi) int p(xi) arctan(x - xi) d xi: the layer's bar term (the
+  // shear-free base carries no horizontal force; theory.md section 14).
+  double bar_term(double x, const JacobiSeries& ser, double c, double w) const;
   std::shared_ptr<const FieldNodes> field_nodes() const;
   double surface_value(const Surface& s, double x) const;  // v(x, 0)/(P/(mu h))
   // With db: dphat[i] = the transform of the U-series db (centre 0) at node i.
