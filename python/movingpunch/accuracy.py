@@ -70,9 +70,9 @@ _REF_TOLS = (1e-14, 1e-13, 1e-12)
 _REF_MIN_N = 64
 _REF_MAX_N = 4096
 _REF_FACTORS = (4, 2)
-_PARAMS = ("vstar", "kw", "radius", "load", "nu", "damping")
+_PARAMS = ("vstar", "kw", "radius", "load", "nu", "damping", "friction")
 
-Point = tuple[float, float, float, float, float, float]
+Point = tuple[float, float, float, float, float, float, float]
 Progress = Callable[[int, int], None]
 
 
@@ -168,8 +168,8 @@ class AccuracyReport:
 
 
 def _key(p: Mapping[str, float]) -> Point:
-    """The parameters of a point (damping 0.0 when not given: the paper's
-    model)."""
+    """The parameters of a point (damping and friction 0.0 when not given:
+    the paper's model)."""
     return (
         p["vstar"],
         p["kw"],
@@ -177,11 +177,12 @@ def _key(p: Mapping[str, float]) -> Point:
         p["load"],
         p["nu"],
         p.get("damping", 0.0),
+        p.get("friction", 0.0),
     )
 
 
 def _solve_point(key: Point, tol: float, n: int | None = None) -> ContactSolution:
-    vstar, kw, radius, load, nu, damping = key
+    vstar, kw, radius, load, nu, damping, friction = key
     return solve(
         vstar=vstar,
         kw=kw,
@@ -189,6 +190,7 @@ def _solve_point(key: Point, tol: float, n: int | None = None) -> ContactSolutio
         load=load,
         nu=nu,
         damping=damping,
+        friction=friction,
         tol=tol,
         n=n,
         allow_unphysical=True,
@@ -310,7 +312,8 @@ def accuracy_report(
     cancelled: Callable[[], bool] | None = None,
 ) -> AccuracyReport | None:
     """The accuracy ladder of ``target``: None (the paper's Fig. 4 case), a
-    parameter mapping (vstar, kw, radius, load, optional nu and damping), a
+    parameter mapping (vstar, kw, radius, load, optional nu, damping and
+    friction), a
     ``Scene`` (damped points included), or
     a scene file / bundled scene name. Each rung is run cold (the kernel
     cache cleared first: this empties the process-wide cache) and then warm.

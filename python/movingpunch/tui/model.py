@@ -40,11 +40,20 @@ PARAM_NAMES: tuple[str, ...] = (
     "load",
     "nu",
     "damping",
+    "friction",
     "tol",
 )
 """Every input of the parameters panel, in order."""
 
-SCENE_PARAMS: tuple[str, ...] = ("vstar", "kw", "radius", "load", "nu", "damping")
+SCENE_PARAMS: tuple[str, ...] = (
+    "vstar",
+    "kw",
+    "radius",
+    "load",
+    "nu",
+    "damping",
+    "friction",
+)
 """The physical parameters (a scene's ``params``); ``tol`` is separate."""
 
 TabName = Literal["pressure", "surface", "depth", "sweep", "field", "accuracy"]
@@ -66,6 +75,7 @@ SHORT: dict[str, str] = {
     "load": "P/μh",
     "nu": "ν",
     "damping": "damping",
+    "friction": "f",
     "tol": "tol",
 }
 """Short labels of the parameters, for legends."""
@@ -77,6 +87,7 @@ GRID_LABELS: dict[str, str] = {
     "load": "P/(μh)",
     "nu": "ν",
     "damping": "damping c_w c_T/μ",
+    "friction": "friction f",
 }
 """Axis labels of a swept parameter (the paper's normalisations)."""
 
@@ -117,6 +128,8 @@ class Params:
     tol: float = 1e-8
     damping: float = 0.0
     """c_w c_T/mu: dashpots in the foundation (docs/damped.md); 0: none."""
+    friction: float = 0.0
+    """Coulomb friction f (docs/theory.md section 14); 0: frictionless."""
 
     @property
     def damped(self) -> bool:
@@ -132,20 +145,24 @@ class Params:
         return replace(self, **{name: value})
 
     def physical(self) -> dict[str, float]:
-        """The scene's ``params`` mapping (without tol; damping only if > 0)."""
+        """The scene's ``params`` mapping (without tol; damping and friction
+        only if > 0)."""
         return {
             name: self.get(name)
             for name in SCENE_PARAMS
-            if name != "damping" or self.damped
+            if name not in ("damping", "friction") or self.get(name) > 0.0
         }
 
     def label(self, against: Params | None = None) -> str:
         """``V*=0.2 kw=1 ...``; only the values that differ from ``against``
-        (damping 0 is not shown)."""
+        (damping and friction 0 are not shown)."""
         names = [
             n
             for n in SCENE_PARAMS
-            if (against is None and (n != "damping" or self.damped))
+            if (
+                against is None
+                and (n not in ("damping", "friction") or self.get(n) > 0.0)
+            )
             or (against is not None and self.get(n) != against.get(n))
         ]
         if not names:
@@ -262,6 +279,8 @@ class Summary:
     """Horizontal force on the punch over P (0 without damping)."""
     warnings: tuple[str, ...] = ()
     """The solution's warnings (a requested accuracy not met)."""
+    tangential_force: float = 0.0
+    """Friction force on the punch over P (f; 0 without friction)."""
 
     @property
     def damped(self) -> bool:
@@ -350,6 +369,7 @@ def _solve(params: Params) -> ContactSolution:
         nu=params.nu,
         tol=params.tol,
         damping=params.damping,
+        friction=params.friction,
     )
 
 
@@ -366,7 +386,8 @@ def summary(cache: Cache, params: Params) -> Summary:
         params=params,
         a=s.a,
         p0=s.p0,
-        indentation=s.indentation,
+        # Not yet available with friction (docs/theory.md section 14): NaN.
+        indentation=s.indentation if s.friction == 0.0 else math.nan,
         top_tensile=peaks.top_tensile,
         bottom_tensile=peaks.bottom_tensile,
         iterations=s.iterations,
@@ -378,6 +399,7 @@ def summary(cache: Cache, params: Params) -> Summary:
         contact_interval=s.contact_interval,
         drag=s.drag,
         warnings=result_warnings(s),
+        tangential_force=s.tangential_force,
     )
 
 

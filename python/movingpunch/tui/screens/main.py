@@ -334,6 +334,8 @@ class MainScreen(Screen[None]):
         ]
         if s.drag != 0.0:
             parts.append(("drag/P", fmt(s.drag, 4)))
+        if s.tangential_force != 0.0:
+            parts.append(("friction/P", fmt(s.tangential_force, 4)))
         parts += [("it", str(s.iterations)), ("err", f"{s.error_estimate:.0e}")]
         if self._show_timing:
             parts.append(("", f"{s.elapsed * 1e3:.1f} ms"))
