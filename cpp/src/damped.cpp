@@ -1224,6 +1224,99 @@ double DampedSolution::bar_term(double x, const JacobiSeries& ser, double c, dou
   return -params_.friction * c0 / kPi * w * at;
 }
 
+namespace {
+
+// The half-plane mode mix of the unit tangential load (top T = 1, S = 0) on
+// the regularised basis of the normal load's (WaveConstants::hp1, hp2):
+// h1 v_T e_T + h2 [e_L dv + v_T (e_L - e_T)/delta].
+std::pair<double, double> tangential_mix(const WaveConstants& c) {
+  const double q = (1.0 + c.nT * c.nT) / c.nT;  // v_T's T entry
+  const double h2 = 1.0 / (0.5 * q * c.dS + c.dT);
+  return {0.5 * c.dS * h2, h2};
+}
+
+// The half-plane parts (sigma_x, sigma_y, tau_xy)/(P/h) at (u, y), u from the
+// contact's centre, y < 0, of the normal load p and of the shear traction f p
+// for a Jacobi density (as detail::half_plane_stresses for a U-series):
+// F = i Phi, Phi(z) = (1/pi) int w g/(z - t) = -cauchy_upper(z), at
+// z_n = (u - i n y)/w. The normal mix's cos-type terms take Re F, its tau
+// Im F; the shear traction's amplitudes are i f [Sigma_x, S] and f T:
+// -f Im F and f Re F.
+Eigen::Vector3d jacobi_half_plane(const WaveConstants& c, const JacobiSeries& js, double w,
+                                  double u, double y, double f) {
+  const double nT = c.nT, nL = c.nL, d = c.delta;
+  const Eigen::Vector4d vT(1.0, -1.0 / nT, (1.0 + nT * nT) / nT, -2.0);
+  const Eigen::Vector4d dv(0.0, c.dW, c.dT, c.dS);
+  auto F = [&js](cplx z) { return cplx(0.0, -1.0) * js.cauchy_upper(z); };
+  auto dF = [&js](cplx z) {
+    cplx der;
+    js.cauchy_upper(z, &der);
+    return cplx(0.0, -1.0) * der;
+  };
+  const cplx zT = detail::z_of(u, nT, y, w), zL = detail::z_of(u, nL, y, w);
+  const cplx fT = F(zT), fL = F(zL);
+  const cplx fD = detail::divided_difference(F, dF, zT, zL, d, cplx(0.0, -y / w));
+  Eigen::Vector3d out = Eigen::Vector3d::Zero();
+  const auto [q1, q2] = tangential_mix(c);
+  for (int load = 0; load < 2; ++load) {
+    const double h1 = load == 0 ? c.hp1 : q1, h2 = load == 0 ? c.hp2 : q2;
+    if (load == 1 && !(f > 0.0)) break;
+    const double kT[3] = {h1 * sigma_x_hat(c, vT), h1 * vT(3), h1 * vT(2)};
+    const double kL[3] = {h2 * sigma_x_hat(c, dv), h2 * dv(3), h2 * dv(2)};
+    const double kD[3] = {h2 * sigma_x_hat(c, vT), h2 * vT(3), h2 * vT(2)};
+    for (int m = 0; m < 3; ++m) {
+      const bool cos_type = m < 2;
+      if (load == 0) {
+        out(m) += cos_type ? kT[m] * fT.real() + kL[m] * fL.real() + kD[m] * fD.real()
+                           : kT[m] * fT.imag() + kL[m] * fL.imag() + kD[m] * fD.imag();
+      } else {
+        out(m) += cos_type ? -f * (kT[m] * fT.imag() + kL[m] * fL.imag() + kD[m] * fD.imag())
+                           : f * (kT[m] * fT.real() + kL[m] * fL.real() + kD[m] * fD.real());
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+std::shared_ptr<const Eigen::MatrixXd> DampedSolution::friction_depth_coefficients(double y) const {
+  // The shear traction's remainder (state i f z_q less its half-plane mix,
+  // the bar pole C0 e^-alpha/alpha out of sigma_x) at depth y: Filon
+  // coefficients, columns [sigma_x, sigma_y, tau] real parts, then imaginary.
+  const Fine& f = *light_;
+  const WaveConstants& c = model_->constants();
+  const auto nq = static_cast<Eigen::Index>(f.alpha.size());
+  const double ep = 4.0 * (c.c2 - 1.0) / c.c2, c0 = ep / (ep - c.s), fr = params_.friction;
+  const auto [q1, q2] = tangential_mix(c);
+  const cplx i(0.0, 1.0);
+  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(nq, 6);
+  for (Eigen::Index k = 0; k < nq; ++k) {
+    const auto q = static_cast<std::size_t>(k);
+    const double al = f.alpha[q];
+    const Eigen::Matrix4d C = detail::modal_columns(c, al, y);
+    const Eigen::Vector4cd z = model_->tangential_state(al, y) -
+                               (q1 * C.col(0) + q2 * C.col(1)).cast<cplx>();
+    const cplx ph = f.phat[q] * std::exp(cplx(0.0, al * centre_));
+    const cplx sx = i * fr * (ep * z(0) + (c.c2 - 2.0) / c.c2 * z(3) - c0 * std::exp(-al) / al) * ph;
+    const cplx sy = i * fr * z(3) * ph, tau = fr * z(2) * ph;
+    G(k, 0) = sx.real();
+    G(k, 1) = sy.real();
+    G(k, 2) = tau.real();
+    G(k, 3) = sx.imag();
+    G(k, 4) = sy.imag();
+    G(k, 5) = tau.imag();
+  }
+  auto coef = std::make_shared<Eigen::MatrixXd>(nq, 6);
+  std::vector<double> col(static_cast<std::size_t>(nq));
+  for (Eigen::Index m = 0; m < 6; ++m) {
+    Eigen::Map<Eigen::VectorXd>(col.data(), nq) = G.col(m);
+    const std::vector<double> cm = f.filon->coefficients(col);
+    coef->col(m) = Eigen::Map<const Eigen::VectorXd>(cm.data(), nq);
+  }
+  return coef;
+}
+
 std::shared_ptr<const DampedSolution::BottomFriction> DampedSolution::bottom_friction() const {
   std::lock_guard<std::mutex> lock(bottom_friction_cache_->mutex);
   auto& bp = bottom_friction_cache_->data;
@@ -1541,21 +1634,24 @@ std::shared_ptr<const Eigen::MatrixXd> DampedSolution::depth_coefficients(const 
 StressField DampedSolution::stress_field(const Eigen::Ref<const Eigen::VectorXd>& x,
                                          const Eigen::Ref<const Eigen::VectorXd>& y) const {
   detail::check_grid(x, y);
-  for (Eigen::Index i = 0; i < y.size(); ++i)
-    if (y(i) != 0.0 && y(i) != -1.0)
-      require_frictionless("stress_field inside the layer (-1 < y < 0)");
   const Fine& f = *light_;
-  const auto nodes = jac_ ? nullptr : field_nodes();
+  const auto nodes = field_nodes();
   const WaveConstants& c = model_->constants();
   const Eigen::Index nx = x.size(), ny = y.size(), nq = static_cast<Eigen::Index>(f.alpha.size());
   // The Filon coefficients of the remainder, columns [sigma_x, sigma_y, tau] x
   // depth, real parts then imaginary parts (zero on the surface row, which is
   // done apart).
   Eigen::MatrixXd coef = Eigen::MatrixXd::Zero(nq, 6 * ny);
+  // Friction: the shear traction's remainder too (columns after the normal's).
+  Eigen::MatrixXd fcoef = jac_ ? Eigen::MatrixXd::Zero(nq, 6 * ny) : Eigen::MatrixXd();
   for (Eigen::Index i = 0; i < ny; ++i) {
-    if (y(i) == 0.0 || jac_) continue;
+    if (y(i) == 0.0 || (jac_ && y(i) == -1.0)) continue;
     const auto ci = depth_coefficients(*nodes, y(i));
     for (Eigen::Index m = 0; m < 6; ++m) coef.col(m * ny + i) = ci->col(m);
+    if (jac_) {
+      const auto fi = friction_depth_coefficients(y(i));
+      for (Eigen::Index m = 0; m < 6; ++m) fcoef.col(m * ny + i) = fi->col(m);
+    }
   }
   Eigen::MatrixXd Wre = Eigen::MatrixXd::Zero(nx, nq), Wim = Eigen::MatrixXd::Zero(nx, nq);
   std::vector<cplx> K;
@@ -1567,8 +1663,9 @@ StressField DampedSolution::stress_field(const Eigen::Ref<const Eigen::VectorXd>
       Wim(j, k) = K[static_cast<std::size_t>(k)].imag();
     }
   }
-  const Eigen::MatrixXd rem =
+  Eigen::MatrixXd rem =
       (Wre * coef.leftCols(3 * ny) - Wim * coef.rightCols(3 * ny)) / kPi;  // (nx, 3 ny)
+  if (jac_) rem += (Wre * fcoef.leftCols(3 * ny) - Wim * fcoef.rightCols(3 * ny)) / kPi;
   StressField g;
   g.sigma_x.resize(ny, nx);
   g.sigma_y.resize(ny, nx);
@@ -1586,8 +1683,8 @@ StressField DampedSolution::stress_field(const Eigen::Ref<const Eigen::VectorXd>
         g.sigma_x(i, j) = g.sigma_y(i, j) = g.tau_xy(i, j) = 0.0;
         continue;
       }
-      if (jac_) {
-        // Friction (only y = -1 here): the normal load's field by a direct
+      if (jac_ && y(i) == -1.0) {
+        // Friction at y = -1: the normal load's field by a direct
         // Filon sum (the half-plane split is for U-series only; at y = -1 the
         // integrand decays like e^{-nT alpha}), plus the shear traction's.
         const BottomFriction& bf = *bottom_friction();
@@ -1596,6 +1693,14 @@ StressField DampedSolution::stress_field(const Eigen::Ref<const Eigen::VectorXd>
             f.fourier(bf.sx_re, bf.sx_im, u) / kPi + bar_term(x(j), *jac_, centre_, half_);
         g.sigma_y(i, j) = f.fourier(bf.sy_re, bf.sy_im, u) / kPi;
         g.tau_xy(i, j) = f.fourier(bf.t_re, bf.t_im, u) / kPi;
+        continue;
+      }
+      if (jac_) {
+        const Eigen::Vector3d hp =
+            jacobi_half_plane(c, *jac_, half_, x(j) - centre_, y(i), params_.friction);
+        g.sigma_x(i, j) = rem(j, i) + hp(0) + bar_term(x(j), *jac_, centre_, half_);
+        g.sigma_y(i, j) = rem(j, ny + i) + hp(1);
+        g.tau_xy(i, j) = rem(j, 2 * ny + i) + hp(2);
         continue;
       }
       const Eigen::Vector3d hp = detail::half_plane_stresses(c, b_, half_, x(j) - centre_, y(i), 1);

@@ -234,6 +234,71 @@ double JacobiSeries::cauchy(double x) const {
   return sum / kPi;
 }
 
+namespace {
+// sum c_n P_{n + shift}^(a, b)(z) and its derivative, complex z (forward recurrence).
+std::complex<double> jacobi_sum_c(const Eigen::VectorXd& c, double a, double b,
+                                  std::complex<double> z, int shift, std::complex<double>* dsum) {
+  using C = std::complex<double>;
+  const int n = static_cast<int>(c.size());
+  C p0 = 1.0, p1 = 0.5 * ((a + b + 2.0) * z + (a - b)), d0 = 0.0, d1 = 0.5 * (a + b + 2.0);
+  C sum = 0.0, ds = 0.0;
+  // k-th term uses P_{k + shift}.
+  auto add = [&](int degree, const C& p, const C& d) {
+    const int k = degree - shift;
+    if (k >= 0 && k < n) {
+      sum += c(k) * p;
+      ds += c(k) * d;
+    }
+  };
+  add(0, p0, d0);
+  add(1, p1, d1);
+  for (int k = 1; k < n + shift; ++k) {
+    const double kk = k, s = 2.0 * kk + a + b;
+    const double c0 = 2.0 * (kk + 1.0) * (kk + a + b + 1.0) * s;
+    const C c1 = (s + 1.0) * ((s + 2.0) * s * z + a * a - b * b);
+    const double c1x = (s + 1.0) * (s + 2.0) * s;
+    const double c2 = 2.0 * (kk + a) * (kk + b) * (s + 2.0);
+    const C p2 = (c1 * p1 - c2 * p0) / c0;
+    const C d2 = (c1 * d1 + c1x * p1 - c2 * d0) / c0;
+    p0 = p1;
+    p1 = p2;
+    d0 = d1;
+    d1 = d2;
+    add(k + 1, p1, d1);
+  }
+  if (dsum) *dsum = ds;
+  return sum;
+}
+}  // namespace
+
+std::complex<double> JacobiSeries::cauchy_upper(std::complex<double> z,
+                                                std::complex<double>* derivative) const {
+  using C = std::complex<double>;
+  const double a = alpha_, b = beta();
+  const C root = std::sqrt(z - 1.0) * std::sqrt(z + 1.0);
+  const double rho = std::max(std::abs(z + root), std::abs(z - root));
+  if (rho < 1.86) {
+    const double sa = std::sin(kPi * a);
+    const C Z = std::pow(z - 1.0, a) * std::pow(z + 1.0, b);
+    C dg, dpoly;
+    const C gz = jacobi_sum_c(c_, a, b, z, 0, &dg);
+    const C poly = jacobi_sum_c(c_, -a, -b, z, 1, &dpoly);
+    if (derivative) {
+      const C dZ = Z * (a / (z - 1.0) + b / (z + 1.0));
+      *derivative = (dZ * gz + Z * dg - 2.0 * dpoly) / sa;
+    }
+    return (Z * gz - 2.0 * poly) / sa;
+  }
+  C sum = 0.0, dsum = 0.0;
+  for (Eigen::Index i = 0; i < far_x_.size(); ++i) {
+    const C d = 1.0 / (far_x_(i) - z);
+    sum += far_wg_(i) * d;
+    dsum += far_wg_(i) * d * d;
+  }
+  if (derivative) *derivative = dsum / kPi;
+  return sum / kPi;
+}
+
 JacobiSeries JacobiSeries::minus(const JacobiSeries& other) const {
   const Eigen::Index n = std::max(c_.size(), other.c_.size());
   Eigen::VectorXd d = Eigen::VectorXd::Zero(n);

@@ -393,8 +393,6 @@ def test_unavailable_outputs_refuse_clearly() -> None:
         lambda: s.dissipation,
         lambda: s.surface_displacement(0.0),
         lambda: s.displacement(0.0, -0.5),
-        lambda: s.stress_field([0.0], [-0.5]),
-        lambda: s.depth_stress(-0.5),
     ):
         with pytest.raises(
             MovingPunchError, match="not yet available with friction > 0"
@@ -507,11 +505,14 @@ def test_friction_bounds_are_the_cores() -> None:
             assert info.value.parameter == "friction"
 
 
-def _bottom_direct(s: DampedSolution, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _bottom_direct(
+    s: DampedSolution, x: np.ndarray, y: float = -1.0
+) -> tuple[np.ndarray, np.ndarray]:
     """sigma_x and sigma_y on the bottom face y = -1 by the direct Fourier
     integral (1/pi) Re int_0^inf [Sigma_x, S](normal + i f tangential) p^
     e^{i alpha x} d alpha, from the independent 4x4 layer (eigenvectors) and
-    p^ by SciPy's Gauss-Jacobi rule on the solution's pressure. The bar pole
+    p^ by SciPy's Gauss-Jacobi rule on the solution's pressure (any depth
+    y; it converges like exp(nT alpha y)). The bar pole
     C0/alpha of the tangential Sigma_x makes Re(...) ~ sin(alpha x)/alpha:
     integrable as it stands (graded panels near 0)."""
     c2, a = _system(s.vstar, s.nu)
@@ -523,7 +524,10 @@ def _bottom_direct(s: DampedSolution, x: np.ndarray) -> tuple[np.ndarray, np.nda
     xs = s.centre + s.half_width * r
     smooth = s.pressure(xs) / ((xs - back) ** gb * (front - xs) ** gf)
     x0, wl = roots_legendre(20)
-    edges = np.concatenate([[0.0], np.logspace(-7, 0, 50), np.linspace(1.1, 60.0, 500)])
+    top = 60.0 / min(1.0, -y)  # the integrand decays like exp(nT alpha y)
+    edges = np.concatenate(
+        [[0.0], np.logspace(-7, 0, 50), np.linspace(1.1, top, int(8 * top) + 20)]
+    )
     alpha = np.concatenate(
         [0.5 * (b - a) * x0 + 0.5 * (a + b) for a, b in itertools.pairwise(edges)]
     )
@@ -534,13 +538,15 @@ def _bottom_direct(s: DampedSolution, x: np.ndarray) -> tuple[np.ndarray, np.nda
     for j, t in enumerate(alpha):
         e0 = np.where(ev > 0, 1.0, np.exp(t * ev))
         e1 = np.where(ev > 0, np.exp(-t * ev), 1.0)
+        ey = np.where(ev > 0, np.exp(t * ev * y), np.exp(t * ev * (y + 1)))
         top, bot = vec * e0[None, :], vec * e1[None, :]
+        at = vec * ey[None, :]
         m = np.zeros((4, 4), complex)
         m[0], m[1], m[2] = top[2], top[3], bot[2]
         k = s.kw - 1j * s.damping * math.sqrt(s.vstar) * t
         m[3] = (t * bot[3] - k * bot[1]) / (t + abs(k))
-        zn = bot @ np.linalg.solve(m, np.array([0, -1, 0, 0], complex))
-        zq = bot @ np.linalg.solve(m, np.array([1, 0, 0, 0], complex))
+        zn = at @ np.linalg.solve(m, np.array([0, -1, 0, 0], complex))
+        zq = at @ np.linalg.solve(m, np.array([1, 0, 0, 0], complex))
         ph = s.half_width**2 * np.sum(wr * smooth * np.exp(-1j * t * xs))
         sxn = ep * zn[0] + (c2 - 2) / c2 * zn[3]
         sxq = ep * zq[0] + (c2 - 2) / c2 * zq[3]
@@ -591,3 +597,44 @@ def test_far_field_is_the_bar_carrying_the_friction_force(
         )
     if damping == 0.0:  # below V*_cr: the top tension peaks behind the punch
         assert s.stress_peaks().top_tensile_x < 0
+
+
+@pytest.mark.parametrize(("y", "damping"), [(-0.3, 0.0), (-0.6, 0.3)])
+def test_interior_field_against_a_direct_fourier_sum(y: float, damping: float) -> None:
+    """Inside the layer the field is the remainder (Filon) plus the
+    half-plane parts of the normal load and of the shear traction in closed
+    form from the Jacobi density's complex Cauchy potential: checked against
+    the direct sum of the independent layer, where it converges."""
+    s = mp.solve(
+        vstar=0.2, kw=1.0, radius=100, load=0.002, friction=0.4, damping=damping
+    )
+    assert isinstance(s, DampedSolution)
+    x = np.array([-3.0, -0.8, -0.2, 0.0, 0.3, 1.1, 4.0])
+    sx, sy = _bottom_direct(s, x, y)
+    field = s.stress_field(x, [y])
+    scale = float(np.max(np.abs(sx)))
+    assert np.max(np.abs(field.sigma_x[0] - sx)) < 1e-8 * scale
+    assert np.max(np.abs(field.sigma_y[0] - sy)) < 1e-8 * scale
+
+
+def test_interior_field_is_continuous_to_both_faces() -> None:
+    """y -> 0: sigma_y -> -p, tau_xy -> f p (the shear traction), sigma_x ->
+    surface_stress; y -> -1: the interior path (half-plane split) meets the
+    bottom face's direct sum; the vertical force balance int sigma_y dx = -P
+    holds at depth."""
+    f = 0.3
+    s = mp.solve(vstar=0.2, kw=1.0, radius=100, load=0.002, friction=f)
+    assert isinstance(s, DampedSolution)
+    x = np.array([-1.0, -0.2, 0.0, 0.2, 0.5, 1.5])
+    near = s.stress_field(x, [-1e-9])
+    p = s.pressure(x)
+    assert np.max(np.abs(near.sigma_y[0] + p)) < 1e-6
+    assert np.max(np.abs(near.tau_xy[0] - f * p)) < 1e-6
+    assert np.max(np.abs(near.sigma_x[0] - s.surface_stress(x))) < 1e-6
+    inner = s.stress_field(x, [-1.0 + 1e-10])
+    face = s.stress_field(x, [-1.0])
+    assert np.max(np.abs(inner.sigma_x - face.sigma_x)) < 1e-8
+    assert np.max(np.abs(inner.sigma_y - face.sigma_y)) < 1e-8
+    xs = np.linspace(-60.0, 60.0, 24001)
+    sy = s.stress_field(xs, [-0.5]).sigma_y[0]
+    assert float(np.sum(sy) * (xs[1] - xs[0])) == pytest.approx(-1.0, abs=1e-6)

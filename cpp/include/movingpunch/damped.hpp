@@ -411,6 +411,9 @@ class DampedSolution {
   std::shared_ptr<BottomFrictionCache> bottom_friction_cache_ =
       std::make_shared<BottomFrictionCache>();
   std::shared_ptr<const BottomFriction> bottom_friction() const;
+  // Friction, -1 < y < 0: the shear traction's remainder at depth y (Filon
+  // coefficients, columns [sigma_x, sigma_y, tau] real then imaginary parts).
+  std::shared_ptr<const Eigen::MatrixXd> friction_depth_coefficients(double y) const;
   // -(f C0/pi) int p(xi) arctan(x - xi) d xi: the layer's bar term (the
   // shear-free base carries no horizontal force; theory.md section 14).
   double bar_term(double x, const JacobiSeries& ser, double c, double w) const;

@@ -89,6 +89,12 @@ class JacobiSeries {
   // the cut): the closed form inside and near the cut, Gauss-Jacobi
   // quadrature (converging like (|x| + sqrt(x^2 - 1))^(-2M)) for |x| >= 1.2.
   double cauchy(double x) const;
+  // (1/pi) int_{-1}^{1} w(t) g(t)/(t - z) dt and its derivative in z, for
+  // Im z >= 0 (z off the cut or on its upper side): the closed form
+  // [Z(z) g(z) - 2 sum c_n P_{n+1}^(-alpha,-beta)(z)]/sin(pi alpha), Z = (z-1)^alpha
+  // (z+1)^beta, inside the Bernstein ellipse rho(z) < 1.86, else the rule of cauchy().
+  std::complex<double> cauchy_upper(std::complex<double> z,
+                                    std::complex<double>* derivative = nullptr) const;
   // The same for series with other coefficients: this - other (same alpha).
   JacobiSeries minus(const JacobiSeries& other) const;
   // max over [-1, 1] of |w g| sampled at 8 (N + 1) + 64 Chebyshev angles (the ends included).
