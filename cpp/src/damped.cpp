@@ -101,6 +101,7 @@ DampedResponse DampedLayerModel::response_modal(double t) const {
     r.Wb = 0.0;
     r.Uq = tq_.Uq;
     r.Wq = tq_.Wq;
+    r.Wqb = 0.0;
     return r;
   }
   const Eigen::Matrix4d top = modal_columns(c_, t, 0.0), bot = modal_columns(c_, t, -1.0);
@@ -113,9 +114,11 @@ DampedResponse DampedLayerModel::response_modal(double t) const {
   const Eigen::PartialPivLU<Eigen::Matrix4cd> lu = M.partialPivLu();
   const Eigen::Vector4cd amp = lu.solve(rhs);
   // The unit tangential load (top T = 1, S = 0) on the same factorisation.
-  const Eigen::Vector4cd zq = top.cast<cplx>() * lu.solve(Eigen::Vector4cd(1.0, 0.0, 0.0, 0.0));
+  const Eigen::Vector4cd ampq = lu.solve(Eigen::Vector4cd(1.0, 0.0, 0.0, 0.0));
+  const Eigen::Vector4cd zq = top.cast<cplx>() * ampq;
   r.Uq = zq(0);
   r.Wq = zq(1);
+  r.Wqb = (bot.row(1).cast<cplx>() * ampq)(0);
   const Eigen::Vector4cd z0 = top.cast<cplx>() * amp;
   r.U0 = z0(0);
   r.W0 = z0(1);
@@ -139,6 +142,7 @@ DampedResponse DampedLayerModel::response_transfer(double t) const {
     // The tangential response has a pole at t = 0 (Uq ~ C0/(Ep t), the
     // layer carries the net horizontal force as a bar): not defined there.
     r.Uq = r.Wq = std::nan("");
+    r.Wqb = 0.0;
     return r;
   }
   const Eigen::Matrix4d P = transfer_matrix(c_, t, -1.0);
@@ -152,6 +156,7 @@ DampedResponse DampedLayerModel::response_transfer(double t) const {
   const Eigen::Vector2cd xq = lu.solve(Eigen::Vector2cd(-R.col(2)));
   r.Uq = xq(0);
   r.Wq = xq(1);
+  r.Wqb = (P.row(1).cast<cplx>() * Eigen::Vector4cd(xq(0), xq(1), 1.0, 0.0))(0);
   const Eigen::Vector4cd z0(x(0), x(1), 0.0, -1.0);
   r.U0 = x(0);
   r.W0 = x(1);
@@ -1188,12 +1193,9 @@ cplx DampedSolution::pressure_transform(double alpha) const {
   return u_series_transform(b_, centre_, half_, alpha);
 }
 
-void DampedSolution::require_frictionless(const char* what) const {
-  if (params_.friction > 0.0)
-    throw std::domain_error(std::string(what) +
-                            " is not yet available with friction > 0 (the shear traction's "
-                            "contribution is not implemented there); friction = " +
-                            std::to_string(params_.friction));
+cplx DampedSolution::bottom_w(const DampedResponse& r) const {
+  if (!(params_.friction > 0.0)) return r.Wb;
+  return r.Wb + cplx(0.0, params_.friction) * r.Wqb;
 }
 
 cplx DampedSolution::surface_stress_integrand(const DampedResponse& r, double alpha) const {
@@ -1717,35 +1719,35 @@ double DampedSolution::stress_x(double x, double y) const {
 }
 
 double DampedSolution::bottom_displacement(double x) const {
-  require_frictionless("bottom_displacement");
   // v(x, -1) = (1/2pi) int (Wb/alpha) p^ e^{i alpha x}; Wb/alpha -> -1/kw at alpha -> 0.
+  // Friction: Wb + i f Wqb (the shear traction's bottom W vanishes at alpha -> 0).
   const auto f = fine_for(x);
   double sum = 0.0;
   for (std::size_t i = 0; i < f->alpha.size(); ++i)
     if (f->alpha[i] > 0.0)
-      sum += f->weight[i] *
-             (f->r[i].Wb / f->alpha[i] * f->phat[i] * std::exp(cplx(0.0, f->alpha[i] * x))).real();
+      sum += f->weight[i] * (bottom_w(f->r[i]) / f->alpha[i] * f->phat[i] *
+                             std::exp(cplx(0.0, f->alpha[i] * x)))
+                                .real();
   return params_.load * sum / kPi;
 }
 
 double DampedSolution::bottom_slope(double x) const {
-  require_frictionless("bottom_slope");
   // dv/dx(x, -1) = (1/2pi) int i alpha (Wb/alpha) p^ e^{i alpha x}, per P/h times load.
   const auto f = fine_for(x);
   double sum = 0.0;
   for (std::size_t i = 0; i < f->alpha.size(); ++i)
-    sum += f->weight[i] *
-           (cplx(0.0, 1.0) * f->r[i].Wb * f->phat[i] * std::exp(cplx(0.0, f->alpha[i] * x))).real();
+    sum += f->weight[i] * (cplx(0.0, 1.0) * bottom_w(f->r[i]) * f->phat[i] *
+                           std::exp(cplx(0.0, f->alpha[i] * x)))
+                              .real();
   return params_.load * sum / kPi;
 }
 
 double DampedSolution::dissipation() const {
-  require_frictionless("dissipation");
   // damping sqrt(s) int (v_b')^2 dx / load, with int (v_b')^2 = (load^2/pi) int_0^inf |Wb p^|^2.
   double sum = 0.0;
   const Fine& f = *light_;
   for (std::size_t i = 0; i < f.alpha.size(); ++i)
-    sum += f.weight[i] * std::norm(f.r[i].Wb * f.phat[i]);
+    sum += f.weight[i] * std::norm(bottom_w(f.r[i]) * f.phat[i]);
   return model_->damping() * std::sqrt(model_->vstar()) * params_.load * sum / kPi;
 }
 
@@ -1758,6 +1760,83 @@ double DampedSolution::dissipation() const {
 // W_hp (1 - e^-alpha)/alpha, which is real (it does not see the base), in
 // closed form from the U-series of p (potentials.hpp). W/alpha stays finite at
 // alpha -> 0 (kw > 0: v^(0) = -p^(0)/kw).
+
+double DampedSolution::arctan_integral(double x) const {
+  // int p(xi) arctan(x - xi) d xi / (P/h) by atan_rule_ (friction only).
+  double at = 0.0;
+  for (Eigen::Index j = 0; j < atan_rule_.x.size(); ++j)
+    at += atan_rule_.w(j) * jac_->g(atan_rule_.x(j)) *
+          std::atan(x - centre_ - half_ * atan_rule_.x(j));
+  return half_ * at;
+}
+
+Eigen::VectorXd DampedSolution::friction_displacement(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                                      double y) const {
+  // v(x, y)/h = load (1/pi) Re int [W_n + i f W_q]/alpha p^ e^{i alpha x}, split as
+  // the frictionless displacement is (the half-plane mixes times (1 - e^-alpha)
+  // in closed form), and the shear traction's pole W_q(0, y)/alpha (the bar's
+  // Poisson thinning: a step in v) as e^-alpha/alpha, in closed form through
+  // int p arctan(x - xi). The half-plane part: V(z) = w [Lambda(z + i/w) -
+  // Lambda(z)], Lambda' = Phi = -cauchy_upper, by a graded Gauss-Legendre
+  // rule on the vertical segment; V' = w [Phi(z + i/w) - Phi(z)].
+  const Fine& f = *light_;
+  const WaveConstants& c = model_->constants();
+  const double fr = params_.friction, w = half_;
+  const auto [q1, q2] = tangential_mix(c);
+  // W_q(0, y) by Richardson from two small wavenumbers (error O(t^2)).
+  const double t0 = 1e-5;
+  const double w0 = 2.0 * model_->tangential_state(t0, y)(1).real() -
+                    model_->tangential_state(2.0 * t0, y)(1).real();
+  std::vector<cplx> g(f.alpha.size());
+  for (std::size_t k = 0; k < g.size(); ++k) {
+    const double al = f.alpha[k];
+    const Eigen::Matrix4d C = detail::modal_columns(c, al, y);
+    const double wn_hp = c.hp1 * C(1, 0) + c.hp2 * C(1, 1);
+    const double wq_hp = q1 * C(1, 0) + q2 * C(1, 1);
+    const cplx wn = y == 0.0 ? -f.r[k].M1 : model_->state(al, y)(1);
+    const cplx wq = y == 0.0 ? f.r[k].Wq : model_->tangential_state(al, y)(1);
+    const cplx rn = (wn + wn_hp * std::expm1(-al)) / al;
+    const cplx rq = (wq + wq_hp * std::expm1(-al) - w0 * std::exp(-al)) / al;
+    g[k] = (rn + cplx(0.0, fr) * rq) * f.phat[k] * std::exp(cplx(0.0, al * centre_));
+  }
+  std::vector<double> g_re, g_im;
+  f.coefficients(g, g_re, g_im);
+  const JacobiSeries& js = *jac_;
+  auto Phi = [&js](cplx z) { return -js.cauchy_upper(z); };
+  auto V = [&](cplx z) {
+    // w int_0^{1/w} Phi(z + i tau) i d tau, panels graded towards tau = 0.
+    cplx sum = 0.0;
+    double lo = 0.0;
+    for (int k = 64; k >= 0; --k) {  // ratio 10^(1/4.5): each panel resolves
+      const double hi = std::pow(10.0, -k / 4.5) / w;  // a singularity its length away
+      for (int j = 0; j < 8; ++j)
+        sum += detail::kGw[j] * (hi - lo) * Phi(z + cplx(0.0, lo + detail::kGx[j] * (hi - lo)));
+      lo = hi;
+    }
+    return cplx(0.0, w) * sum;
+  };
+  auto dV = [&](cplx z) { return w * (Phi(z + cplx(0.0, 1.0 / w)) - Phi(z)); };
+  Eigen::VectorXd v(x.size());
+  for (Eigen::Index j = 0; j < x.size(); ++j) {
+    if (std::fabs(x(j)) > kFarField) {
+      v(j) = 0.0;
+      continue;
+    }
+    const double u = x(j) - centre_;
+    const cplx zT = detail::z_of(u, c.nT, y, w), zL = detail::z_of(u, c.nL, y, w);
+    const cplx vT = V(zT), vL = V(zL);
+    const cplx vD = detail::divided_difference(V, dV, zT, zL, c.delta, cplx(0.0, -y / w));
+    double hp = 0.0;
+    for (int load = 0; load < 2; ++load) {
+      const double h1 = load == 0 ? c.hp1 : q1, h2 = load == 0 ? c.hp2 : q2;
+      const cplx sum = h1 * (-1.0 / c.nT) * vT + h2 * c.dW * vL + h2 * (-1.0 / c.nT) * vD;
+      hp += load == 0 ? sum.real() : -fr * sum.imag();
+    }
+    const double pole = -fr * w0 / kPi * arctan_integral(x(j));
+    v(j) = params_.load * (f.fourier(g_re, g_im, u) / kPi + hp + pole);
+  }
+  return v;
+}
 
 std::shared_ptr<const DampedSolution::Surface> DampedSolution::surface() const {
   std::lock_guard<std::mutex> lock(surface_cache_->mutex);
@@ -1798,23 +1877,33 @@ double DampedSolution::surface_value(const Surface& s, double x) const {
 }
 
 double DampedSolution::surface_displacement(double x) const {
-  require_frictionless("surface_displacement");
   if (!std::isfinite(x))
     throw InvalidParameter("x", "finite",
                            "surface_displacement: x must be finite, got " + std::to_string(x));
   if (std::fabs(x) > kFarField) return 0.0;  // as ContactSolution's (stresses.hpp)
+  if (jac_) return friction_displacement(Eigen::VectorXd::Constant(1, x), 0.0)(0);
   return params_.load * surface_value(*surface(), x);
 }
 
 double DampedSolution::indentation() const {
-  require_frictionless("indentation");
+  if (jac_) {  // the punch's rigid approach at the contact's centre
+    std::lock_guard<std::mutex> lock(surface_cache_->mutex);
+    if (!std::isnan(friction_indentation_)) return friction_indentation_;
+    friction_indentation_ = centre_ * centre_ / (2.0 * params_.radius) -
+                            friction_displacement(Eigen::VectorXd::Constant(1, centre_), 0.0)(0);
+    return friction_indentation_;
+  }
   return surface()->indentation;
 }
 
 Eigen::MatrixXd DampedSolution::displacement(const Eigen::Ref<const Eigen::VectorXd>& x,
                                              const Eigen::Ref<const Eigen::VectorXd>& y) const {
-  require_frictionless("displacement");
   detail::check_grid(x, y);
+  if (jac_) {
+    Eigen::MatrixXd v(y.size(), x.size());
+    for (Eigen::Index i = 0; i < y.size(); ++i) v.row(i) = friction_displacement(x, y(i));
+    return v;
+  }
   const Fine& f = *light_;
   const WaveConstants& c = model_->constants();
   Eigen::MatrixXd v(y.size(), x.size());

@@ -27,7 +27,6 @@ from movingpunch._evaluate import (
     _pointwise,
 )
 from movingpunch.contract import CONTRACT_FIELDS, Points
-from movingpunch.errors import MovingPunchError
 from movingpunch.fields import FloatArray, StressField, StressPeaks, derived_stresses
 from movingpunch.peaks import search_peaks
 
@@ -96,8 +95,7 @@ class Evaluations:
         """All stresses over P/h on the grid ``x`` (x/h) by ``y`` (y/h in
         [-1, 0]); arrays shaped (len(y), len(x)). On the surface y = 0:
         sigma_x = ``surface_stress``, sigma_y = -p, tau_xy = f p (0 for a
-        frictionless punch). With friction > 0 only the surface row y = 0 is
-        available yet (below it: an error)."""
+        frictionless punch)."""
         xs = _flat(_as_points("x", x))
         ys = _flat(_depths(y))
         sx, sy, txy = _chunked_grid(self._impl.stress_field, xs, ys)
@@ -125,12 +123,6 @@ class Evaluations:
         and a refinement of every candidate; each value is within
         ``error_bound`` (``stress_error_estimate`` plus the search's own
         uncertainty) of the field's extreme (see StressPeaks)."""
-        if "stress_peaks" in self._unavailable():
-            raise MovingPunchError(
-                "stress_peaks is not yet available with friction > 0 (the bottom "
-                "face's stresses need the shear traction's field in depth); "
-                "surface_stress(x) gives the surface sigma_x with it"
-            )
         back, front = self.contact_interval
         span = (
             max(6.0 * max(abs(back), abs(front)), 10.0)
@@ -171,21 +163,13 @@ class Evaluations:
             warnings=found.warnings,
         )
 
-    def _unavailable(self) -> tuple[str, ...]:
-        """Fields this solution cannot compute (they raise): None in
-        ``to_dict``. With friction > 0: those not yet derived for a shear
-        traction."""
-        return ()
-
     def to_dict(self) -> dict[str, object]:
         """Every public field and every field of the contract, JSON-safe
-        (tuples become lists, non-finite floats "inf", "-inf", "nan"; a field
-        this solution cannot compute yet is None)."""
+        (tuples become lists, non-finite floats "inf", "-inf", "nan")."""
         names = [f.name for f in dataclasses.fields(self)]  # type: ignore[arg-type]
         names += [n for n in CONTRACT_FIELDS if n not in names]
-        missing = self._unavailable()
         return {
-            n: None if n in missing else _json_safe(_listed(getattr(self, n)))
+            n: _json_safe(_listed(getattr(self, n)))
             for n in names
             if not n.startswith("_")
         }

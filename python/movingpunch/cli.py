@@ -294,17 +294,6 @@ def _json_number(value: float) -> float | str:
     return value if math.isfinite(value) else str(value)
 
 
-def _available(value: Callable[[], str]) -> str:
-    """``value()``, or why the solution cannot give it (friction > 0: an
-    output not yet derived for the shear traction)."""
-    try:
-        return value()
-    except MovingPunchError as err:
-        if "not yet available" not in str(err):
-            raise
-        return "not yet available with friction > 0"
-
-
 def _cmd_solve(args: argparse.Namespace) -> int:
     s = solve(
         vstar=args.vstar,
@@ -341,11 +330,11 @@ def _cmd_solve(args: argparse.Namespace) -> int:
         ("a/h", _fmt(s.a)),
         ("contact (x_back/h, x_front/h)", f"({_fmt(back)}, {_fmt(front)})"),
         ("p0/(P/h)", _fmt(s.p0)),
-        ("indentation δ/h", _available(lambda: _fmt(s.indentation))),
+        ("indentation δ/h", _fmt(s.indentation)),
         ("drag (∫p x/R dx)/P", _fmt(s.drag)),
         ("tangential force/P", _fmt(s.tangential_force)),
         ("end exponents (back, front)", "({}, {})".format(*map(_fmt, s.end_exponents))),
-        ("dissipation/(P V)", _available(lambda: _fmt(s.dissipation))),
+        ("dissipation/(P V)", _fmt(s.dissipation)),
         ("V*_cr", _fmt(s.critical_vstar)),
         ("V*_R", _fmt(s.rayleigh_vstar)),
         ("φ1", _fmt(s.phi1)),

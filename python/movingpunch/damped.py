@@ -49,11 +49,7 @@ from movingpunch._evaluate import (
 )
 from movingpunch._evaluations import ResultFields
 from movingpunch.contract import Points
-from movingpunch.errors import (
-    InvalidParameterError,
-    MovingPunchError,
-    SupercriticalSpeedError,
-)
+from movingpunch.errors import InvalidParameterError, SupercriticalSpeedError
 from movingpunch.fields import FloatArray
 
 __all__ = [
@@ -155,19 +151,6 @@ class DampedSolution(ResultFields):
     Empty when none was found on [w/8, 4w]."""
     _impl: _core.DampedSolution = field(repr=False, compare=False)
 
-    def _unavailable(self) -> tuple[str, ...]:
-        if self.friction > 0:
-            return ("indentation", "dissipation")
-        return ()
-
-    def _refuse(self, what: str) -> None:
-        if what in self._unavailable():
-            raise MovingPunchError(
-                f"{what} is not yet available with friction > 0 (the shear "
-                f"traction's contribution is not implemented there); "
-                f"friction = {self.friction!r}"
-            )
-
     @property
     def kernel_builds(self) -> int:
         """Kernel tables this solve built (0: reused from the process-wide
@@ -207,9 +190,8 @@ class DampedSolution(ResultFields):
     @functools.cached_property
     def dissipation(self) -> float:
         """Power dissipated in the dashpots over P V, from the bottom face's
-        slope by Parseval; equals ``drag`` by the energy balance. Not yet
-        available with friction > 0 (an error)."""
-        self._refuse("dissipation")
+        slope by Parseval; equals ``drag`` by the energy balance without
+        friction (with it the shear traction's power adds)."""
         return float(self._impl.dissipation())
 
     @overload
@@ -255,9 +237,7 @@ class DampedSolution(ResultFields):
         """Indentation delta/h: how far the punch's lowest point lies below
         the undisturbed surface. The gap -delta + x^2/(2R) - v(x, 0) vanishes
         on the contact (delta is taken at its centre c: c^2/(2R) - v(c, 0)).
-        Computed on first access (well under a millisecond). Not yet
-        available with friction > 0 (an error)."""
-        self._refuse("indentation")
+        Computed on first access (well under a millisecond)."""
         return float(self._impl.indentation)
 
     @overload

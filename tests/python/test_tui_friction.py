@@ -9,7 +9,7 @@ import numpy as np
 import movingpunch as mp
 from movingpunch.damped import DampedSolution
 from movingpunch.tui import create_app
-from movingpunch.tui.model import Params
+from movingpunch.tui.model import Params, fmt
 from movingpunch.tui.widgets import CurvePlot, ParamsPanel
 from tui_pilot import screen_of, settle, summary_text, sync, type_into
 
@@ -31,7 +31,7 @@ async def test_friction_input_summary_and_pressure() -> None:
         start, end = s.contact_interval
         assert f"(-b,a)/h ({start:.5g}, {end:.5g})" in text, text
         assert "friction/P 0.3" in text, text
-        assert "δ/h nan" in text, text  # not yet available with friction
+        assert f"δ/h {fmt(s.indentation, 3)}" in text, text
         plot = screen.query_one("#plot-pressure", CurvePlot).curves
         assert plot is not None
         values = plot.series[0].values

@@ -45,6 +45,7 @@ struct DampedResponse {
   // tau_xy = q^ e^{i alpha x} are i q^ times these: docs/theory.md section 14).
   cplx Uq{0.0, 0.0};
   cplx Wq{0.0, 0.0};
+  cplx Wqb{0.0, 0.0};  // its W at the bottom y = -1
 };
 
 class DampedLayerModel {
@@ -307,13 +308,14 @@ class DampedSolution {
   std::vector<double> other_widths_;
   Eigen::VectorXd b_;
   // Friction > 0: the Jacobi series of g and its transform rule (light_'s
-  // alpha range); the outputs not yet derived for a shear traction refuse.
+  // alpha range).
   EndExponents exps_{};
   std::shared_ptr<const JacobiSeries> jac_;
   std::shared_ptr<const JacobiTransform> jtr_;
   double jtr_omega_ = 0;  // the largest alpha w jtr_ resolves
   JacobiRule atan_rule_;  // Gauss-Jacobi rule of friction_surface_terms' arctan integral
-  void require_frictionless(const char* what) const;
+  // alpha v^(alpha, -1)/p^ of the loads together: Wb (+ i f Wqb with friction).
+  cplx bottom_w(const DampedResponse& r) const;
   // The surface sigma_x integrand's regular part per unit p^ at alpha > 0:
   // M2 - phi2, with friction less i f (Ep Uq - Ep Uq_inf - C0 e^-alpha/alpha).
   cplx surface_stress_integrand(const DampedResponse& r, double alpha) const;
@@ -414,6 +416,12 @@ class DampedSolution {
   // Friction, -1 < y < 0: the shear traction's remainder at depth y (Filon
   // coefficients, columns [sigma_x, sigma_y, tau] real then imaginary parts).
   std::shared_ptr<const Eigen::MatrixXd> friction_depth_coefficients(double y) const;
+  // Friction: v(x, y)/h at one depth (the surface included), and
+  // int p(xi) arctan(x - xi) d xi/(P/h); the indentation, computed on first use.
+  Eigen::VectorXd friction_displacement(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                        double y) const;
+  double arctan_integral(double x) const;
+  mutable double friction_indentation_ = std::nan("");
   // -(f C0/pi) int p(xi) arctan(x - xi) d xi: the layer's bar term (the
   // shear-free base carries no horizontal force; theory.md section 14).
   double bar_term(double x, const JacobiSeries& ser, double c, double w) const;

@@ -68,14 +68,6 @@ def _x_grid(
     return np.linspace(lo, hi, n)
 
 
-def _indentation(s: ContactSolution) -> float:
-    """The indentation, or NaN where the solution cannot give it yet
-    (friction > 0: docs/theory.md section 14; the run's warnings say so)."""
-    if s.friction > 0.0:
-        return math.nan
-    return s.indentation
-
-
 def _out_contact_width(run: RunState, spec: Any, solutions: _Solutions) -> OutputData:
     """The contact of every curve: its ends (x_back, x_front) = (-a, a) when
     symmetric, the drag (0 without damping), p(0), the indentation."""
@@ -97,7 +89,7 @@ def _out_contact_width(run: RunState, spec: Any, solutions: _Solutions) -> Outpu
         # (int p x/R dx / P) scales as 1/radius, the indentation as the load.
         cols["drag"].append(s.drag * s.radius / p["radius"])
         cols["p0"].append(s.p0)
-        cols["indentation"].append(_indentation(s) * p["load"] / s.load)
+        cols["indentation"].append(s.indentation * p["load"] / s.load)
         cols["valid"].append(1.0 if s.valid else 0.0)
         cols["error_estimate"].append(s.error_estimate)
         cols["collocation_n"].append(float(s.collocation_n))

@@ -86,14 +86,9 @@ def point_quantities(
         "load": s.load,
         "radius": s.radius,
     }
-    indentation = math.nan
-    try:
-        indentation = s.indentation
-    except MovingPunchError as exc:  # friction > 0: not yet available
-        warnings.append(f"indentation: {exc}")
     q.update(
         p0=s.p0,
-        indentation=indentation,
+        indentation=s.indentation,
         drag=s.drag,
         contact_start=s.contact_interval[0],
         contact_end=s.contact_interval[1],

@@ -386,8 +386,7 @@ def summary(cache: Cache, params: Params) -> Summary:
         params=params,
         a=s.a,
         p0=s.p0,
-        # Not yet available with friction (docs/theory.md section 14): NaN.
-        indentation=s.indentation if s.friction == 0.0 else math.nan,
+        indentation=s.indentation,
         top_tensile=peaks.top_tensile,
         bottom_tensile=peaks.bottom_tensile,
         iterations=s.iterations,
