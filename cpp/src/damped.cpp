@@ -1309,14 +1309,7 @@ std::shared_ptr<const Eigen::MatrixXd> DampedSolution::friction_depth_coefficien
     G(k, 4) = sy.imag();
     G(k, 5) = tau.imag();
   }
-  auto coef = std::make_shared<Eigen::MatrixXd>(nq, 6);
-  std::vector<double> col(static_cast<std::size_t>(nq));
-  for (Eigen::Index m = 0; m < 6; ++m) {
-    Eigen::Map<Eigen::VectorXd>(col.data(), nq) = G.col(m);
-    const std::vector<double> cm = f.filon->coefficients(col);
-    coef->col(m) = Eigen::Map<const Eigen::VectorXd>(cm.data(), nq);
-  }
-  return coef;
+  return f.filon_columns(G);
 }
 
 std::shared_ptr<const DampedSolution::BottomFriction> DampedSolution::bottom_friction() const {
@@ -1471,6 +1464,19 @@ DampedSolution::Fine DampedSolution::build_fine(double freq, const Eigen::Vector
   return f;
 }
 
+std::shared_ptr<Eigen::MatrixXd> DampedSolution::Fine::filon_columns(
+    const Eigen::MatrixXd& G) const {
+  const Eigen::Index nq = G.rows();
+  auto coef = std::make_shared<Eigen::MatrixXd>(nq, G.cols());
+  std::vector<double> col(static_cast<std::size_t>(nq));
+  for (Eigen::Index m = 0; m < G.cols(); ++m) {
+    Eigen::Map<Eigen::VectorXd>(col.data(), nq) = G.col(m);
+    const std::vector<double> cm = filon->coefficients(col);
+    coef->col(m) = Eigen::Map<const Eigen::VectorXd>(cm.data(), nq);
+  }
+  return coef;
+}
+
 void DampedSolution::Fine::coefficients(const std::vector<cplx>& g, std::vector<double>& c_re,
                                         std::vector<double>& c_im) const {
   std::vector<double> re(g.size()), im(g.size());
@@ -1619,13 +1625,7 @@ std::shared_ptr<const Eigen::MatrixXd> DampedSolution::depth_coefficients(const 
     G(k, 4) = sy.imag();
     G(k, 5) = tau.imag();
   }
-  auto coef = std::make_shared<Eigen::MatrixXd>(nq, 6);
-  std::vector<double> col(static_cast<std::size_t>(nq));
-  for (Eigen::Index m = 0; m < 6; ++m) {
-    Eigen::Map<Eigen::VectorXd>(col.data(), nq) = G.col(m);
-    const std::vector<double> cm = f.filon->coefficients(col);
-    coef->col(m) = Eigen::Map<const Eigen::VectorXd>(cm.data(), nq);
-  }
+  auto coef = f.filon_columns(G);
   std::lock_guard<std::mutex> lock(field_cache_->mutex);
   auto& kept = field_cache_->depths;
   if (kept.size() >= kDepthsKept) kept.erase(kept.begin());

@@ -39,29 +39,46 @@ EndExponents end_exponents(double f, double Phi) {
   return e;
 }
 
-void jacobi_p(int n, double a, double b, double x, double* p, double* dp) {
-  double p0 = 1.0, d0 = 0.0;
-  if (n == 0) {
-    *p = p0;
-    if (dp) *dp = d0;
-    return;
-  }
-  double p1 = 0.5 * ((a + b + 2.0) * x + (a - b)), d1 = 0.5 * (a + b + 2.0);
-  for (int k = 1; k < n; ++k) {
+namespace {
+// sum_k c_k P_{k + shift}^(a, b)(z) and its derivative (*dsum, if given) by
+// the three-term recurrence, real or complex z; any a, b with a + b != -2.
+template <class T>
+T jacobi_series(const Eigen::VectorXd& c, double a, double b, T z, int shift, T* dsum) {
+  const int n = static_cast<int>(c.size());
+  T p0 = 1.0, p1 = 0.5 * ((a + b + 2.0) * z + (a - b)), d0 = 0.0, d1 = 0.5 * (a + b + 2.0);
+  T sum = 0.0, ds = 0.0;
+  auto add = [&](int degree, const T& p, const T& d) {
+    const int k = degree - shift;
+    if (k >= 0 && k < n) {
+      sum += c(k) * p;
+      ds += c(k) * d;
+    }
+  };
+  add(0, p0, d0);
+  add(1, p1, d1);
+  for (int k = 1; k < n + shift - 1; ++k) {
     const double kk = k, s = 2.0 * kk + a + b;
     const double c0 = 2.0 * (kk + 1.0) * (kk + a + b + 1.0) * s;
-    const double c1 = (s + 1.0) * ((s + 2.0) * s * x + a * a - b * b);
+    const T c1 = (s + 1.0) * ((s + 2.0) * s * z + a * a - b * b);
     const double c1x = (s + 1.0) * (s + 2.0) * s;
     const double c2 = 2.0 * (kk + a) * (kk + b) * (s + 2.0);
-    const double p2 = (c1 * p1 - c2 * p0) / c0;
-    const double d2 = (c1 * d1 + c1x * p1 - c2 * d0) / c0;
+    const T p2 = (c1 * p1 - c2 * p0) / c0;
+    const T d2 = (c1 * d1 + c1x * p1 - c2 * d0) / c0;
     p0 = p1;
     p1 = p2;
     d0 = d1;
     d1 = d2;
+    add(k + 1, p1, d1);
   }
-  *p = p1;
-  if (dp) *dp = d1;
+  if (dsum) *dsum = ds;
+  return sum;
+}
+}  // namespace
+
+void jacobi_p(int n, double a, double b, double x, double* p, double* dp) {
+  Eigen::VectorXd unit = Eigen::VectorXd::Zero(n + 1);
+  unit(n) = 1.0;
+  *p = jacobi_series(unit, a, b, x, 0, dp);
 }
 
 Eigen::VectorXd jacobi_zeros(int n, double a, double b) {
@@ -142,27 +159,6 @@ double jacobi_norm(int n, double a, double b) {
                   std::lgamma(n + a + b + 1.0) - std::lgamma(n + 1.0));
 }
 
-// sum c_n P_n^(a, b)(x) by the forward recurrence.
-double jacobi_sum(const Eigen::VectorXd& c, double a, double b, double x, int shift = 0) {
-  // shift = 1: sum c_n P_{n+1}^(a, b)(x).
-  const int n = static_cast<int>(c.size());
-  if (n == 0) return 0.0;
-  double p0 = 1.0, p1 = 0.5 * ((a + b + 2.0) * x + (a - b));
-  double sum = shift == 0 ? c(0) * p0 + (n > 1 ? c(1) * p1 : 0.0) : c(0) * p1;
-  for (int k = 1; k < n + shift; ++k) {
-    const double kk = k, s = 2.0 * kk + a + b;
-    const double c0 = 2.0 * (kk + 1.0) * (kk + a + b + 1.0) * s;
-    const double c1 = (s + 1.0) * ((s + 2.0) * s * x + a * a - b * b);
-    const double c2 = 2.0 * (kk + a) * (kk + b) * (s + 2.0);
-    const double p2 = (c1 * p1 - c2 * p0) / c0;
-    p0 = p1;
-    p1 = p2;
-    // p1 = P_{k+1}
-    if (shift == 0 && k + 1 < n) sum += c(k + 1) * p1;
-    if (shift == 1 && k < n) sum += c(k) * p1;
-  }
-  return sum;
-}
 }  // namespace
 
 JacobiSeries::JacobiSeries(double alpha, Eigen::VectorXd c) : alpha_(alpha), c_(std::move(c)) {
@@ -197,7 +193,7 @@ JacobiSeries JacobiSeries::from_nodes(double alpha, const Eigen::VectorXd& r,
   return JacobiSeries(alpha, c);
 }
 
-double JacobiSeries::g(double r) const { return jacobi_sum(c_, alpha_, beta(), r); }
+double JacobiSeries::g(double r) const { return jacobi_series(c_, alpha_, beta(), r, 0, static_cast<double*>(nullptr)); }
 
 double JacobiSeries::weight(double r) const {
   if (!(std::fabs(r) <= 1.0)) return 0.0;
@@ -222,7 +218,7 @@ double JacobiSeries::moment1() const {
 double JacobiSeries::cauchy(double x) const {
   const double a = alpha_, b = beta();
   const double sa = std::sin(kPi * a);
-  const double poly = jacobi_sum(c_, -a, -b, x, 1);  // sum c_n P_{n+1}^(-a,-b)(x)
+  const double poly = jacobi_series(c_, -a, -b, x, 1, static_cast<double*>(nullptr));  // sum c_n P_{n+1}^(-a,-b)(x)
   if (std::fabs(x) <= 1.0) return std::cos(kPi * a) / sa * density(x) - 2.0 / sa * poly;
   if (std::fabs(x) < 1.2) {
     const double Z = (x > 0 ? 1.0 : -1.0) * std::pow(std::fabs(x - 1.0), a) *
@@ -234,42 +230,6 @@ double JacobiSeries::cauchy(double x) const {
   return sum / kPi;
 }
 
-namespace {
-// sum c_n P_{n + shift}^(a, b)(z) and its derivative, complex z (forward recurrence).
-std::complex<double> jacobi_sum_c(const Eigen::VectorXd& c, double a, double b,
-                                  std::complex<double> z, int shift, std::complex<double>* dsum) {
-  using C = std::complex<double>;
-  const int n = static_cast<int>(c.size());
-  C p0 = 1.0, p1 = 0.5 * ((a + b + 2.0) * z + (a - b)), d0 = 0.0, d1 = 0.5 * (a + b + 2.0);
-  C sum = 0.0, ds = 0.0;
-  // k-th term uses P_{k + shift}.
-  auto add = [&](int degree, const C& p, const C& d) {
-    const int k = degree - shift;
-    if (k >= 0 && k < n) {
-      sum += c(k) * p;
-      ds += c(k) * d;
-    }
-  };
-  add(0, p0, d0);
-  add(1, p1, d1);
-  for (int k = 1; k < n + shift; ++k) {
-    const double kk = k, s = 2.0 * kk + a + b;
-    const double c0 = 2.0 * (kk + 1.0) * (kk + a + b + 1.0) * s;
-    const C c1 = (s + 1.0) * ((s + 2.0) * s * z + a * a - b * b);
-    const double c1x = (s + 1.0) * (s + 2.0) * s;
-    const double c2 = 2.0 * (kk + a) * (kk + b) * (s + 2.0);
-    const C p2 = (c1 * p1 - c2 * p0) / c0;
-    const C d2 = (c1 * d1 + c1x * p1 - c2 * d0) / c0;
-    p0 = p1;
-    p1 = p2;
-    d0 = d1;
-    d1 = d2;
-    add(k + 1, p1, d1);
-  }
-  if (dsum) *dsum = ds;
-  return sum;
-}
-}  // namespace
 
 std::complex<double> JacobiSeries::cauchy_upper(std::complex<double> z,
                                                 std::complex<double>* derivative) const {
@@ -281,8 +241,8 @@ std::complex<double> JacobiSeries::cauchy_upper(std::complex<double> z,
     const double sa = std::sin(kPi * a);
     const C Z = std::pow(z - 1.0, a) * std::pow(z + 1.0, b);
     C dg, dpoly;
-    const C gz = jacobi_sum_c(c_, a, b, z, 0, &dg);
-    const C poly = jacobi_sum_c(c_, -a, -b, z, 1, &dpoly);
+    const C gz = jacobi_series(c_, a, b, z, 0, &dg);
+    const C poly = jacobi_series(c_, -a, -b, z, 1, &dpoly);
     if (derivative) {
       const C dZ = Z * (a / (z - 1.0) + b / (z + 1.0));
       *derivative = (dZ * gz + Z * dg - 2.0 * dpoly) / sa;

@@ -343,6 +343,8 @@ class DampedSolution {
     // Re int_0^amax (g_re + i g_im) e^{i alpha x} d alpha from coefficients.
     double fourier(const std::vector<double>& c_re, const std::vector<double>& c_im,
                    double x) const;
+    // The Filon coefficients of each column of G (one row per node).
+    std::shared_ptr<Eigen::MatrixXd> filon_columns(const Eigen::MatrixXd& G) const;
     // Filon coefficients of Re and Im of g given at the nodes.
     void coefficients(const std::vector<cplx>& g, std::vector<double>& c_re,
                       std::vector<double>& c_im) const;
