@@ -12,6 +12,7 @@
 
 #include "bindings.hpp"
 #include "movingpunch/damped.hpp"
+#include "movingpunch/jacobi.hpp"
 
 namespace py = pybind11;
 using namespace py::literals;
@@ -47,6 +48,20 @@ void bind_damped(py::module_& m) {
       .def_property_readonly("drag", &DampedSolution::drag,
                              "Horizontal force on the punch over P, int p x/R dx / P "
                              "(positive: opposes the motion).")
+      .def_property_readonly("friction", &DampedSolution::friction,
+                             "Coulomb friction f: the shear traction on the layer is f p, "
+                             "towards +x (the direction of motion).")
+      .def_property_readonly("tangential_force", &DampedSolution::tangential_force,
+                             "Tangential (friction) force on the punch over P, f "
+                             "(positive: opposes the motion).")
+      .def_property_readonly(
+          "end_exponents",
+          [](const DampedSolution& s) {
+            return std::make_tuple(s.end_exponents().back, s.end_exponents().front);
+          },
+          "(gamma_back, gamma_front): p ~ (x + b)^gamma_back (a - x)^gamma_front.")
+      .def_property_readonly("coupling", &DampedSolution::coupling,
+                             "Coupling constant Phi(vstar, nu) of the local term f Phi p.")
       .def_property_readonly("pressure_error_estimate", &DampedSolution::pressure_error_estimate,
                              "Bound on the error of p/(P/h) at a fixed relative position "
                              "r = (x - c)/w in the contact.")
@@ -96,17 +111,44 @@ void bind_damped(py::module_& m) {
   m.def(
       "solve_damped",
       [](double vstar, double kw, double radius, double load, double nu, double damping, double tol,
-         bool allow_unphysical, int n, double kp) {
+         bool allow_unphysical, int n, double kp, double friction) {
         auto p = solve_params<DampedParams>(vstar, kw, radius, load, nu, tol, allow_unphysical, n);
         p.damping = damping;
         p.kp = kp;
+        p.friction = friction;
         return solve_damped(p);
       },
       py::kw_only(), "vstar"_a, "kw"_a, "radius"_a, "load"_a, "nu"_a, "damping"_a, "tol"_a,
-      "allow_unphysical"_a, "n"_a = 0, "kp"_a = 0.0, Release(),
+      "allow_unphysical"_a, "n"_a = 0, "kp"_a = 0.0, "friction"_a = 0.0, Release(),
       "Solves the contact problem on a damped (Kelvin-Voigt) foundation, damping = "
       "c_w c_T/mu > 0. Raises InvalidParameterError, SupercriticalSpeedError (vstar >= "
-      "V*_R), UnphysicalContactError (unless allow_unphysical) or ConvergenceError.");
+      "V*_R), UnphysicalContactError (unless allow_unphysical) or ConvergenceError. "
+      "friction = f >= 0: Coulomb friction (damping may then be 0).");
+
+  m.def(
+      "tangential_half_plane",
+      [](double vstar, double nu) {
+        const TangentialHalfPlane t = tangential_half_plane(wave_constants(vstar, nu));
+        return py::make_tuple(t.Uq, t.Wq, t.Phi);
+      },
+      "vstar"_a, "nu"_a,
+      "(Uq, Wq, Phi) of the moving half-plane under a unit tangential surface load: Phi = "
+      "Wq/phi1 = (2 - s - 2 nL nT)/(s nL) couples friction into the normal problem.");
+  m.def(
+      "end_exponents",
+      [](double friction, double coupling) {
+        const EndExponents e = end_exponents(friction, coupling);
+        return py::make_tuple(e.back, e.front);
+      },
+      "friction"_a, "coupling"_a, "(gamma_back, gamma_front) with cot(pi gamma_back) = f Phi.");
+  m.def(
+      "damped_tangential_response",
+      [](double t, double vstar, double kw, double nu, double damping, double kp) {
+        const DampedResponse r = DampedLayerModel(vstar, kw, nu, damping, kp).response(t);
+        return py::make_tuple(r.Uq, r.Wq);
+      },
+      "t"_a, "vstar"_a, "kw"_a, "nu"_a, "damping"_a, "kp"_a = 0.0,
+      "(Uq, Wq): the top state [Uq, Wq, 1, 0] of a unit tangential load at t = alpha h > 0.");
 
   m.def(
       "damped_layer_response",

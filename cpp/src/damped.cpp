@@ -85,6 +85,7 @@ DampedLayerModel::DampedLayerModel(double vstar, double kw, double nu, double da
   require_in_range("damping", damping, 0.0, kInf, false, true);
   require_in_range("kp", kp, 0.0, kMaxKp, false, false);
   beta_ = damping * std::sqrt(vstar);
+  tq_ = tangential_half_plane(c_);
 }
 
 cplx DampedLayerModel::foundation(double t) const noexcept {
@@ -101,6 +102,9 @@ DampedResponse DampedLayerModel::response_modal(double t) const {
     r.M1 = c_.phi1;
     r.M2 = c_.phi2;
     r.Wb = 0.0;
+    r.Uq = tq_.Uq;
+    r.Wq = tq_.Wq;
+    r.Wqb = 0.0;
     return r;
   }
   const Eigen::Matrix4d top = modal_columns(c_, t, 0.0), bot = modal_columns(c_, t, -1.0);
@@ -110,7 +114,14 @@ DampedResponse DampedLayerModel::response_modal(double t) const {
   M.row(2) = bot.row(2).cast<cplx>();
   M.row(3) = spring_row(bot.row(3), bot.row(1), t, foundation(t), rigid_);
   const Eigen::Vector4cd rhs(0.0, -1.0, 0.0, 0.0);
-  const Eigen::Vector4cd amp = M.partialPivLu().solve(rhs);
+  const Eigen::PartialPivLU<Eigen::Matrix4cd> lu = M.partialPivLu();
+  const Eigen::Vector4cd amp = lu.solve(rhs);
+  // The unit tangential load (top T = 1, S = 0) on the same factorisation.
+  const Eigen::Vector4cd ampq = lu.solve(Eigen::Vector4cd(1.0, 0.0, 0.0, 0.0));
+  const Eigen::Vector4cd zq = top.cast<cplx>() * ampq;
+  r.Uq = zq(0);
+  r.Wq = zq(1);
+  r.Wqb = (bot.row(1).cast<cplx>() * ampq)(0);
   const Eigen::Vector4cd z0 = top.cast<cplx>() * amp;
   r.U0 = z0(0);
   r.W0 = z0(1);
@@ -131,6 +142,10 @@ DampedResponse DampedLayerModel::response_transfer(double t) const {
     r.M1 = 0.0;
     r.M2 = (c2 - 2.0) / c2 - 4.0 * (c2 - 1.0) / c2 * r.U0;
     r.Wb = 0.0;
+    // The tangential response has a pole at t = 0 (Uq ~ C0/(Ep t), the
+    // layer carries the net horizontal force as a bar): not defined there.
+    r.Uq = r.Wq = std::nan("");
+    r.Wqb = 0.0;
     return r;
   }
   const Eigen::Matrix4d P = transfer_matrix(c_, t, -1.0);
@@ -139,7 +154,12 @@ DampedResponse DampedLayerModel::response_transfer(double t) const {
   R.row(1) = spring_row(P.row(3), P.row(1), t, foundation(t), rigid_);
   const Eigen::Matrix2cd M = R.leftCols<2>();
   const Eigen::Vector2cd rhs = R.col(3);
-  const Eigen::Vector2cd x = M.fullPivLu().solve(rhs);
+  const Eigen::FullPivLU<Eigen::Matrix2cd> lu = M.fullPivLu();
+  const Eigen::Vector2cd x = lu.solve(rhs);
+  const Eigen::Vector2cd xq = lu.solve(Eigen::Vector2cd(-R.col(2)));
+  r.Uq = xq(0);
+  r.Wq = xq(1);
+  r.Wqb = (P.row(1).cast<cplx>() * Eigen::Vector4cd(xq(0), xq(1), 1.0, 0.0))(0);
   const Eigen::Vector4cd z0(x(0), x(1), 0.0, -1.0);
   r.U0 = x(0);
   r.W0 = x(1);
@@ -180,10 +200,36 @@ Eigen::Vector4cd DampedLayerModel::state_coefficients(double t) const {
   return M.partialPivLu().solve(Eigen::Vector4cd(0.0, -1.0, 0.0, 0.0));
 }
 
+Eigen::Vector4cd DampedLayerModel::tangential_state(double t, double y) const {
+  if (!(t > 0.0) || !std::isfinite(t) || !(y >= -1.0) || !(y <= 0.0))
+    throw std::invalid_argument("tangential state: need t > 0 finite and -1 <= y <= 0");
+  if (t < kSmallT) {
+    const DampedResponse r = response_transfer(t);
+    return transfer_matrix(c_, t, y).cast<cplx>() * Eigen::Vector4cd(r.Uq, r.Wq, 1.0, 0.0);
+  }
+  const Eigen::Matrix4d top = modal_columns(c_, t, 0.0), bot = modal_columns(c_, t, -1.0);
+  Eigen::Matrix4cd M;
+  M.row(0) = top.row(2).cast<cplx>();
+  M.row(1) = top.row(3).cast<cplx>();
+  M.row(2) = bot.row(2).cast<cplx>();
+  M.row(3) = spring_row(bot.row(3), bot.row(1), t, foundation(t), rigid_);
+  const Eigen::Vector4cd amp = M.partialPivLu().solve(Eigen::Vector4cd(1.0, 0.0, 0.0, 0.0));
+  return modal_columns(c_, t, y).cast<cplx>() * amp;
+}
+
 // ---------------------------------------------------------------------------
 // Quadrature in alpha
 
 namespace {
+
+// The kernel's integrand (M1 - phi1)/phi1; with friction f > 0 that of the
+// effective response M1 - i f Wq less its half-plane limit phi1 - i f Wq_inf
+// (docs/theory.md section 14).
+cplx kernel_integrand(const DampedLayerModel& m, const DampedResponse& r, double friction) {
+  const double phi1 = m.phi1();
+  if (!(friction > 0.0)) return (r.M1 - phi1) / phi1;
+  return (r.M1 - phi1 - cplx(0.0, friction) * (r.Wq - m.tangential().Wq)) / phi1;
+}
 
 struct DPanel {
   double lo = 0, hi = 0;
@@ -192,16 +238,16 @@ struct DPanel {
   double sharp = 0;  // QUADPACK's estimate of the Kronrod result's error
 };
 
-DPanel eval_dpanel(const DampedLayerModel& m, double lo, double hi) {
+DPanel eval_dpanel(const DampedLayerModel& m, double lo, double hi, double friction) {
   DPanel p;
   p.lo = lo;
   p.hi = hi;
-  const double c = 0.5 * (lo + hi), h = 0.5 * (hi - lo), phi1 = m.phi1();
+  const double c = 0.5 * (lo + hi), h = 0.5 * (hi - lo);
   cplx kf = 0.0, gf = 0.0, kb = 0.0, gb = 0.0;
   double fmax = 0.0;
   for (int j = 0; j < 15; ++j) {
     p.r[j] = m.response(gk_node(j, c, h));
-    const cplx f = (p.r[j].M1 - phi1) / phi1;
+    const cplx f = kernel_integrand(m, p.r[j], friction);
     const cplx b = p.r[j].Wb;
     kf += gk_weight(j, h) * f;
     gf += g_weight(j, h) * f;
@@ -216,7 +262,7 @@ DPanel eval_dpanel(const DampedLayerModel& m, double lo, double hi) {
   // resasc = int |f - mean f| by the same rule.
   double ra_f = 0.0, ra_b = 0.0;
   for (int j = 0; j < 15; ++j) {
-    ra_f += gk_weight(j, h) * std::abs((p.r[j].M1 - phi1) / phi1 - kf / (2.0 * h));
+    ra_f += gk_weight(j, h) * std::abs(kernel_integrand(m, p.r[j], friction) - kf / (2.0 * h));
     ra_b += gk_weight(j, h) * std::abs(p.r[j].Wb - kb / (2.0 * h));
   }
   auto qk = [](double e, double resasc) {
@@ -231,7 +277,8 @@ DPanel eval_dpanel(const DampedLayerModel& m, double lo, double hi) {
 
 }  // namespace
 
-DampedQuadrature build_damped_quadrature(const DampedLayerModel& model, double tol) {
+DampedQuadrature build_damped_quadrature(const DampedLayerModel& model, double tol,
+                                         double friction) {
   if (!(tol > 0.0)) throw std::invalid_argument("damped quadrature: tol must be > 0");
   const double nT = model.constants().nT;
   DampedQuadrature q;
@@ -242,12 +289,13 @@ DampedQuadrature build_damped_quadrature(const DampedLayerModel& model, double t
   const int n0 = static_cast<int>(std::ceil(amax / w0));
   amax = n0 * w0;  // the panels cover [0, alpha_max] exactly
   std::vector<DPanel> work, done;
-  for (int i = n0 - 1; i >= 1; --i) work.push_back(eval_dpanel(model, i * w0, (i + 1) * w0));
+  for (int i = n0 - 1; i >= 1; --i)
+    work.push_back(eval_dpanel(model, i * w0, (i + 1) * w0, friction));
   // The first panel, split down to a Pasternak base's long-wave scale
   // (layer_basis.hpp; one panel for springs alone).
   const std::vector<double> first = detail::foundation_panel_edges(model.kw(), model.kp(), w0);
   for (std::size_t i = first.size() - 1; i >= 1; --i)
-    work.push_back(eval_dpanel(model, first[i - 1], first[i]));
+    work.push_back(eval_dpanel(model, first[i - 1], first[i], friction));
   const double panel_tol = tol / n0;
   int evaluations = n0 + static_cast<int>(first.size()) - 2;
   while (!work.empty()) {
@@ -260,8 +308,8 @@ DampedQuadrature build_damped_quadrature(const DampedLayerModel& model, double t
       continue;
     }
     const double mid = 0.5 * (p.lo + p.hi);
-    work.push_back(eval_dpanel(model, mid, p.hi));
-    work.push_back(eval_dpanel(model, p.lo, mid));
+    work.push_back(eval_dpanel(model, mid, p.hi, friction));
+    work.push_back(eval_dpanel(model, p.lo, mid, friction));
     evaluations += 2;
   }
   std::sort(done.begin(), done.end(), [](const DPanel& a, const DPanel& b) { return a.lo < b.lo; });
@@ -293,21 +341,29 @@ double damped_kernel(const FilonIntegrator& f, const std::vector<double>& kr,
 // ---------------------------------------------------------------------------
 // The tabulated kernel
 
-DampedKernel::DampedKernel(std::shared_ptr<const DampedLayerModel> model, double range)
+DampedKernel::DampedKernel(std::shared_ptr<const DampedLayerModel> model, double range,
+                           double friction)
     : range_(range) {
   require_in_range("kernel range", range, 0.0, 1e6, true, false);
+  require_in_range("friction", friction, 0.0, kInf, false, true);
   auto b = std::make_shared<Base>();
   b->model = std::move(model);
+  b->friction = friction;
   // Built to round-off whatever tol (it costs no more: its panels are set by
   // the floor already at tol = 1e-6), so that its error is part of the
   // round-off floor of the estimates, not of tol.
-  b->quad = build_damped_quadrature(*b->model, 1e-15);
+  b->quad = build_damped_quadrature(*b->model, 1e-15, friction);
   b->filon = std::make_shared<const FilonIntegrator>(b->quad.panels);
   const double phi1 = b->model->phi1();
   std::vector<double> re(b->quad.m1.size()), im(b->quad.m1.size());
   for (std::size_t i = 0; i < re.size(); ++i) {
     re[i] = (b->quad.m1[i].real() - phi1) / phi1;
     im[i] = b->quad.m1[i].imag() / phi1;
+    if (friction > 0.0) {  // M1 - i f (Wq - Wq_inf)
+      const cplx k = kernel_integrand(*b->model, b->quad.r[i], friction);
+      re[i] = k.real();
+      im[i] = k.imag();
+    }
   }
   b->kr = b->filon->coefficients(re);
   b->ki = b->filon->coefficients(im);
@@ -422,7 +478,11 @@ void validate(const DampedParams& p) {
   require_in_range("radius", p.radius, 0.0, kInf, true, true);
   require_in_range("load", p.load, 0.0, kInf, true, true);
   require_in_range("nu", p.nu, 0.0, 0.5, false, true);
-  require_in_range("damping", p.damping, 0.0, kInf, true, true);
+  // Real Coulomb coefficients lie below about 2; at f = 10 the trailing
+  // exponent is below 0.08 (a near-jump) and larger f costs minutes.
+  require_in_range("friction", p.friction, 0.0, 10.0, false, false);
+  // Without friction damping = 0 is the undamped solver's (contact.hpp).
+  require_in_range("damping", p.damping, 0.0, kInf, !(p.friction > 0.0), true);
   require_in_range("kp", p.kp, 0.0, kMaxKp, false, false);
   require_in_range("tol", p.tol, 1e-14, 1e-2, false, false);
   if (p.n != 0 && (p.n < 2 || p.n > 1024 || p.n % 2 != 0))
@@ -707,8 +767,19 @@ DampedSolution solve_damped(const DampedParams& prm) {
   };
   const double t_critical = since_start();
   if (!(prm.vstar < s.vr_)) throw SupercriticalSpeedError(prm.vstar, s.vcr_, s.vr_);
+  // Friction without damping: the undamped layer's steady problem, bounded
+  // only below V*_cr (real poles above it).
+  if (!(prm.damping > 0.0) && !(prm.vstar < s.vcr_))
+    throw SupercriticalSpeedError(prm.vstar, s.vcr_, s.vr_);
   const WaveConstants wc = wave_constants(prm.vstar, prm.nu);
   const double phi1 = wc.phi1;
+  // Friction: Gauss-Jacobi collocation with the end exponents of
+  // cot(pi back) = f Phi (docs/theory.md section 14); none: Gauss-Chebyshev.
+  const bool frictional = prm.friction > 0.0;
+  if (frictional) s.exps_ = end_exponents(prm.friction, tangential_half_plane(wc).Phi);
+  auto nodes_of = [&](int n) {
+    return frictional ? jacobi_collocation_nodes(n, s.exps_.front) : chebyshev_nodes(n);
+  };
   // The kernel table, fetched from the process-wide cache (or built) for the
   // widths the solve needs: |u| <= 2w for a trial half-width w, 8 w_final for
   // the scan of lambda(w) on [w/8, 4w], 4 w_final for the gap. Twice the need
@@ -720,7 +791,7 @@ DampedSolution solve_damped(const DampedParams& prm) {
       const auto tk = std::chrono::steady_clock::now();
       bool built = false;
       kern = cached_damped_kernel(prm.vstar, prm.kw, prm.nu, prm.damping, need, 2.0 * need, &built,
-                                  prm.kp);
+                                  prm.kp, prm.friction);
       s.kernel_builds_ += built ? 1 : 0;
       kernel_seconds +=
           std::chrono::duration<double>(std::chrono::steady_clock::now() - tk).count();
@@ -761,6 +832,7 @@ DampedSolution solve_damped(const DampedParams& prm) {
   std::vector<int> done_n;
   std::vector<double> d_ends, d_p;
   Eigen::VectorXd b_prev;
+  JacobiSeries js, js_prev;  // friction: g's Jacobi series at this size and the previous one
   double w_prev = 0, c_prev = 0;
   bool have_prev = false, converged = false, stalled = false;
   RefinementEstimate est_e, est_p;
@@ -773,7 +845,7 @@ DampedSolution solve_damped(const DampedParams& prm) {
   const double qerr = kern->quadrature().kronrod_error;
   const double terr = kern->table_error();
   for (std::size_t k = 0; k < sizes.size(); ++k) {
-    nd = chebyshev_nodes(sizes[k]);
+    nd = nodes_of(sizes[k]);
     try {
       ws = solve_width(nd, lambda, guess, kernel, phi1);
     } catch (const ConvergenceError& e) {
@@ -794,8 +866,14 @@ DampedSolution solve_damped(const DampedParams& prm) {
     }
     s.iterations_ += ws.evaluations;
     guess = ws.w;
-    bk = u_coefficients(nd, ws.g);
-    pmax = max_abs_sine_series(bk);
+    if (frictional) {
+      js = JacobiSeries::from_nodes(s.exps_.front, nd.r, ws.g);
+      bk = js.coefficients();
+      pmax = js.max_abs_density();
+    } else {
+      bk = u_coefficients(nd, ws.g);
+      pmax = max_abs_sine_series(bk);
+    }
     const double scale_e = ws.w + std::fabs(ws.c);
     // Round-off floors: a few hundred eps of the scale (growing slowly with
     // N: the collocation matrix's condition), plus the kernel quadrature's
@@ -808,7 +886,7 @@ DampedSolution solve_damped(const DampedParams& prm) {
       diff.head(bk.size()) += bk;
       diff.head(b_prev.size()) -= b_prev;
       d_ends.push_back(std::fabs(ws.w - w_prev) + std::fabs(ws.c - c_prev));
-      d_p.push_back(max_abs_sine_series(diff));
+      d_p.push_back(frictional ? js.minus(js_prev).max_abs_density() : max_abs_sine_series(diff));
       est_e = refinement_estimate(done_n, d_ends, floor_e);
       est_p = refinement_estimate(done_n, d_p, floor_p);
       if (prm.n == 0 && d_p.size() >= 2) {
@@ -835,6 +913,7 @@ DampedSolution solve_damped(const DampedParams& prm) {
     w_prev = ws.w;
     c_prev = ws.c;
     b_prev = bk;
+    if (frictional) js_prev = js;
     have_prev = true;
   }
   if (d_ends.empty()) {  // a single size (n = 2) or every smaller size failed
@@ -888,13 +967,18 @@ DampedSolution solve_damped(const DampedParams& prm) {
   // int sqrt(1-r^2) U_n = pi/2 delta_n0, int r sqrt(1-r^2) U_n = pi/4 delta_n1.
   const double b1 = s.b_.size() > 1 ? s.b_(1) : 0.0;
   s.drag_ = (s.centre_ + 0.25 * kPi * s.half_ * s.half_ * b1) / prm.radius;
+  if (frictional) {
+    // int p xi d xi = c w m0 + w^2 m1 (w m0 = int p = 1), by the Jacobi moments.
+    s.jac_ = std::make_shared<const JacobiSeries>(js);
+    s.drag_ = (s.centre_ * s.half_ * js.moment0() + s.half_ * s.half_ * js.moment1()) / prm.radius;
+  }
 
   // Above V*_cr lambda(w) need not be monotone: a load can be carried by
   // several contacts (the steady problem has several solutions). Scan
   // lambda(w) on [w/8, 4w] (at N >= 32, steps of ln(32)/48 in ln w at most)
   // for other roots and report them.
   {
-    const ChebyshevNodes ns = chebyshev_nodes(std::max(32, nd.n));
+    const ChebyshevNodes ns = nodes_of(std::max(32, nd.n));
     kernel(8.4 * s.half_);
     const double lo = std::log(std::max(detail::kMinA, s.half_ / 8.0));
     const double hi = std::log(std::min(detail::kMaxA, 4.0 * s.half_));
@@ -927,6 +1011,15 @@ DampedSolution solve_damped(const DampedParams& prm) {
   // Fine nodes for the Fourier integrals up to |x| <= 3 (a + b), with the
   // transform of db at them.
   std::vector<cplx> dphat;
+  JacobiSeries dseries;
+  if (frictional) {
+    if (have_change) dseries = js.minus(js_prev);
+    s.jtr_ = std::make_shared<const JacobiTransform>(
+        js, kern->quadrature().panels.alpha_max * s.half_, have_change ? &dseries : nullptr);
+    s.jtr_omega_ = kern->quadrature().panels.alpha_max * s.half_;
+    s.atan_rule_ = gauss_jacobi(js.size() + 64 + static_cast<int>(std::ceil(8.0 * s.half_)),
+                                s.exps_.front, s.exps_.back);
+  }
   s.light_ = std::make_shared<const DampedSolution::Fine>(
       s.build_fine(2.0 * s.half_, have_change ? &db : nullptr, &dphat));
 
@@ -946,7 +1039,8 @@ DampedSolution solve_damped(const DampedParams& prm) {
     if (have_change) {
       const DampedSolution::Fine& f = *s.light_;
       std::vector<cplx> amp(f.alpha.size());
-      for (std::size_t i = 0; i < f.alpha.size(); ++i) amp[i] = (f.r[i].M2 - phi2) * dphat[i];
+      for (std::size_t i = 0; i < f.alpha.size(); ++i)
+        amp[i] = s.surface_stress_integrand(f.r[i], f.alpha[i]) * dphat[i];
       std::vector<double> amp_re, amp_im;
       f.coefficients(amp, amp_re, amp_im);
       double dmax = 0.0;
@@ -963,27 +1057,47 @@ DampedSolution solve_damped(const DampedParams& prm) {
         // Bessel functions and the phases.
         const auto re_im = f.filon->integral_pair(x - s.centre_, amp_re, amp_im);
         const double sum = re_im.first.real() - re_im.second.imag();
-        const double dp = std::fabs(r) < 1.0 ? u_series(db, r) * std::sqrt(1.0 - r * r) : 0.0;
-        dmax = std::max(dmax, std::fabs(-phi2 * dp - sum / kPi));
+        double dp = std::fabs(r) < 1.0 ? u_series(db, r) * std::sqrt(1.0 - r * r) : 0.0;
+        double local = 0.0;
+        if (frictional) {
+          dp = dseries.density(r);
+          local = s.friction_surface_terms(x, dseries, s.centre_, s.half_);
+        }
+        dmax = std::max(dmax, std::fabs(-phi2 * dp - sum / kPi + local));
       }
       gain = std::max(std::fabs(phi2), dmax / d_p.back());
     } else {
       double im2 = 0.0;
       const DampedQuadrature& quad = kern->quadrature();
       for (std::size_t i = 0; i < quad.m2.size(); ++i)
-        im2 += quad.panels.weight[i] * std::abs(quad.m2[i] - phi2);
+        im2 += quad.panels.weight[i] *
+               std::abs(s.surface_stress_integrand(quad.r[i], quad.panels.alpha[i]));
       gain = std::fabs(phi2) + 2.0 * s.half_ * im2 / kPi;
+      // Friction: the Cauchy and arctan terms are not bounded by max |dp|:
+      // no estimate from a single size.
+      if (frictional) gain = std::numeric_limits<double>::infinity();
     }
     double sabs = 0.0;
     const DampedSolution::Fine& f = *s.light_;
     for (std::size_t i = 0; i < f.alpha.size(); ++i)
-      sabs += f.weight[i] * std::abs(f.r[i].M2 - phi2) * std::abs(f.phat[i]);
-    const double ends = s.max_p_ * (s.err_ / s.half_) * (1.0 + 1.0 / std::sqrt(2e-3));
+      sabs += f.weight[i] * std::abs(s.surface_stress_integrand(f.r[i], f.alpha[i])) *
+              std::abs(f.phat[i]);
+    // The end's cusp p ~ d^gamma (gamma = 1/2 without friction).
+    const double gmin = std::min(s.exps_.back, s.exps_.front);
+    const double ends = s.max_p_ * (s.err_ / s.half_) * (1.0 + std::pow(2e-3, gmin - 1.0));
     s.serr_ = gain * (s.perr_ + ends) + 64.0 * kEps * (std::fabs(phi2) * s.max_p_ + sabs / kPi);
   }
 
-  // Gauss-Chebyshev (U) nodes and weights times g for surface_slope.
-  {
+  // Gauss-Chebyshev (U) nodes and weights times g for surface_slope (friction:
+  // Gauss-Jacobi).
+  if (frictional) {
+    const int m = std::max(64, 2 * static_cast<int>(s.b_.size()) + 2);
+    const JacobiRule rule = gauss_jacobi(m, s.exps_.front, s.exps_.back);
+    for (int i = 0; i < m; ++i) {
+      s.slope_r_.push_back(rule.x(i));
+      s.slope_wg_.push_back(rule.w(i) / kPi * js.g(rule.x(i)));
+    }
+  } else {
     const int m = std::max(64, 2 * static_cast<int>(s.b_.size()) + 2);
     for (int i = 1; i <= m; ++i) {
       const double th = i * kPi / (m + 1), r = std::cos(th);
@@ -992,13 +1106,14 @@ DampedSolution solve_damped(const DampedParams& prm) {
     }
   }
   // The margin before separation: min over r of p/((P/h) sqrt(1 - r^2)) = g(r).
-  s.margin_ = u_series_minimum(s.b_);
+  s.margin_ = frictional ? js.min_g() : u_series_minimum(s.b_);
 
   // Validity: p >= 0 on the contact, no penetration beside it.
   s.min_p_ = kInf;
   for (int i = 0; i <= 400; ++i) {
     const double r = -1.0 + 2.0 * i / 400.0;
-    s.min_p_ = std::min(s.min_p_, u_series(s.b_, r) * std::sqrt(std::max(0.0, 1.0 - r * r)));
+    s.min_p_ = std::min(s.min_p_, frictional ? js.density(r)
+                                             : u_series(s.b_, r) * std::sqrt(std::max(0.0, 1.0 - r * r)));
   }
   // gap(x) = int_edge^x (xi/R - v'(xi)) d xi beside each end, with xi = edge +- q^2.
   s.min_gap_ = kInf;
@@ -1072,11 +1187,168 @@ double DampedSolution::pressure(double x) const {
   if (std::isnan(x)) throw InvalidParameter("x", "not NaN", "pressure: x must not be NaN");
   const double r = (x - centre_) / half_;
   if (!(std::fabs(r) < 1.0)) return 0.0;
+  if (jac_) return jac_->density(r);
   return u_series(b_, r) * std::sqrt(1.0 - r * r);
 }
 
 cplx DampedSolution::pressure_transform(double alpha) const {
+  if (jac_) {
+    // w e^{-i alpha c} int w(r) g(r) e^{-i alpha w r} dr by Gauss-Jacobi (jtr_
+    // resolves alpha up to the quadrature's alpha_max; beyond, a rule of its own).
+    const double a = std::fabs(alpha), om = a * half_;
+    const cplx t = om <= jtr_omega_ ? (*jtr_)(om) : JacobiTransform(*jac_, om)(om);
+    const cplx ph = half_ * std::exp(cplx(0.0, -a * centre_)) * t;
+    return alpha < 0.0 ? std::conj(ph) : ph;
+  }
   return u_series_transform(b_, centre_, half_, alpha);
+}
+
+cplx DampedSolution::bottom_w(const DampedResponse& r) const {
+  if (!(params_.friction > 0.0)) return r.Wb;
+  return r.Wb + cplx(0.0, params_.friction) * r.Wqb;
+}
+
+cplx DampedSolution::surface_stress_integrand(const DampedResponse& r, double alpha) const {
+  const double phi2 = model_->phi2();
+  if (!(params_.friction > 0.0)) return r.M2 - phi2;
+  const WaveConstants& c = model_->constants();
+  const double ep = 4.0 * (c.c2 - 1.0) / c.c2, c0 = ep / (ep - c.s);
+  const cplx tq = ep * (r.Uq - model_->tangential().Uq) - c0 * std::exp(-alpha) / alpha;
+  return r.M2 - phi2 - cplx(0.0, params_.friction) * tq;
+}
+
+double DampedSolution::friction_surface_terms(double x, const JacobiSeries& ser, double c,
+                                              double w) const {
+  // f Cq (1/pi) int p/(xi - x) - (f C0/pi) int p(xi) arctan(x - xi) d xi for p(c + w r) = w(r) g(r).
+  const WaveConstants& wc = model_->constants();
+  const double ep = 4.0 * (wc.c2 - 1.0) / wc.c2, c0 = ep / (ep - wc.s);
+  const double cq = ep * model_->tangential().Uq, f = params_.friction;
+  (void)c0;
+  return f * cq * ser.cauchy((x - c) / w) + bar_term(x, ser, c, w);
+}
+
+double DampedSolution::bar_term(double x, const JacobiSeries& ser, double c, double w) const {
+  const WaveConstants& wc = model_->constants();
+  const double ep = 4.0 * (wc.c2 - 1.0) / wc.c2, c0 = ep / (ep - wc.s);
+  double at = 0.0;
+  for (Eigen::Index j = 0; j < atan_rule_.x.size(); ++j)
+    at += atan_rule_.w(j) * ser.g(atan_rule_.x(j)) * std::atan(x - c - w * atan_rule_.x(j));
+  return -params_.friction * c0 / kPi * w * at;
+}
+
+namespace {
+
+// The half-plane mode mix of the unit tangential load (top T = 1, S = 0) on
+// the regularised basis of the normal load's (WaveConstants::hp1, hp2):
+// h1 v_T e_T + h2 [e_L dv + v_T (e_L - e_T)/delta].
+std::pair<double, double> tangential_mix(const WaveConstants& c) {
+  const double q = (1.0 + c.nT * c.nT) / c.nT;  // v_T's T entry
+  const double h2 = 1.0 / (0.5 * q * c.dS + c.dT);
+  return {0.5 * c.dS * h2, h2};
+}
+
+// The half-plane parts (sigma_x, sigma_y, tau_xy)/(P/h) at (u, y), u from the
+// contact's centre, y < 0, of the normal load p and of the shear traction f p
+// for a Jacobi density (as detail::half_plane_stresses for a U-series):
+// F = i Phi, Phi(z) = (1/pi) int w g/(z - t) = -cauchy_upper(z), at
+// z_n = (u - i n y)/w. The normal mix's cos-type terms take Re F, its tau
+// Im F; the shear traction's amplitudes are i f [Sigma_x, S] and f T:
+// -f Im F and f Re F.
+Eigen::Vector3d jacobi_half_plane(const WaveConstants& c, const JacobiSeries& js, double w,
+                                  double u, double y, double f) {
+  const double nT = c.nT, nL = c.nL, d = c.delta;
+  const Eigen::Vector4d vT(1.0, -1.0 / nT, (1.0 + nT * nT) / nT, -2.0);
+  const Eigen::Vector4d dv(0.0, c.dW, c.dT, c.dS);
+  auto F = [&js](cplx z) { return cplx(0.0, -1.0) * js.cauchy_upper(z); };
+  auto dF = [&js](cplx z) {
+    cplx der;
+    js.cauchy_upper(z, &der);
+    return cplx(0.0, -1.0) * der;
+  };
+  const cplx zT = detail::z_of(u, nT, y, w), zL = detail::z_of(u, nL, y, w);
+  const cplx fT = F(zT), fL = F(zL);
+  const cplx fD = detail::divided_difference(F, dF, zT, zL, d, cplx(0.0, -y / w));
+  Eigen::Vector3d out = Eigen::Vector3d::Zero();
+  const auto [q1, q2] = tangential_mix(c);
+  for (int load = 0; load < 2; ++load) {
+    const double h1 = load == 0 ? c.hp1 : q1, h2 = load == 0 ? c.hp2 : q2;
+    if (load == 1 && !(f > 0.0)) break;
+    const double kT[3] = {h1 * sigma_x_hat(c, vT), h1 * vT(3), h1 * vT(2)};
+    const double kL[3] = {h2 * sigma_x_hat(c, dv), h2 * dv(3), h2 * dv(2)};
+    const double kD[3] = {h2 * sigma_x_hat(c, vT), h2 * vT(3), h2 * vT(2)};
+    for (int m = 0; m < 3; ++m) {
+      const bool cos_type = m < 2;
+      if (load == 0) {
+        out(m) += cos_type ? kT[m] * fT.real() + kL[m] * fL.real() + kD[m] * fD.real()
+                           : kT[m] * fT.imag() + kL[m] * fL.imag() + kD[m] * fD.imag();
+      } else {
+        out(m) += cos_type ? -f * (kT[m] * fT.imag() + kL[m] * fL.imag() + kD[m] * fD.imag())
+                           : f * (kT[m] * fT.real() + kL[m] * fL.real() + kD[m] * fD.real());
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+std::shared_ptr<const Eigen::MatrixXd> DampedSolution::friction_depth_coefficients(double y) const {
+  // The shear traction's remainder (state i f z_q less its half-plane mix,
+  // the bar pole C0 e^-alpha/alpha out of sigma_x) at depth y: Filon
+  // coefficients, columns [sigma_x, sigma_y, tau] real parts, then imaginary.
+  const Fine& f = *light_;
+  const WaveConstants& c = model_->constants();
+  const auto nq = static_cast<Eigen::Index>(f.alpha.size());
+  const double ep = 4.0 * (c.c2 - 1.0) / c.c2, c0 = ep / (ep - c.s), fr = params_.friction;
+  const auto [q1, q2] = tangential_mix(c);
+  const cplx i(0.0, 1.0);
+  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(nq, 6);
+  for (Eigen::Index k = 0; k < nq; ++k) {
+    const auto q = static_cast<std::size_t>(k);
+    const double al = f.alpha[q];
+    const Eigen::Matrix4d C = detail::modal_columns(c, al, y);
+    const Eigen::Vector4cd z = model_->tangential_state(al, y) -
+                               (q1 * C.col(0) + q2 * C.col(1)).cast<cplx>();
+    const cplx ph = f.phat[q] * std::exp(cplx(0.0, al * centre_));
+    const cplx sx = i * fr * (ep * z(0) + (c.c2 - 2.0) / c.c2 * z(3) - c0 * std::exp(-al) / al) * ph;
+    const cplx sy = i * fr * z(3) * ph, tau = fr * z(2) * ph;
+    G(k, 0) = sx.real();
+    G(k, 1) = sy.real();
+    G(k, 2) = tau.real();
+    G(k, 3) = sx.imag();
+    G(k, 4) = sy.imag();
+    G(k, 5) = tau.imag();
+  }
+  return f.filon_columns(G);
+}
+
+std::shared_ptr<const DampedSolution::BottomFriction> DampedSolution::bottom_friction() const {
+  std::lock_guard<std::mutex> lock(bottom_friction_cache_->mutex);
+  auto& bp = bottom_friction_cache_->data;
+  if (bp) return bp;
+  auto b = std::make_shared<BottomFriction>();
+  const Fine& f = *light_;
+  const WaveConstants& c = model_->constants();
+  const double ep = 4.0 * (c.c2 - 1.0) / c.c2, c0 = ep / (ep - c.s), fr = params_.friction;
+  const cplx i(0.0, 1.0);
+  std::vector<cplx> gx(f.alpha.size()), gy(f.alpha.size()), gt(f.alpha.size());
+  for (std::size_t k = 0; k < f.alpha.size(); ++k) {
+    const double al = f.alpha[k];
+    const Eigen::Vector4cd z = model_->tangential_state(al, -1.0);
+    const Eigen::Vector4cd zn = model_->state(al, -1.0);  // the normal load's
+    const cplx ph = f.phat[k] * std::exp(cplx(0.0, al * centre_));
+    const cplx sx = ep * z(0) + (c.c2 - 2.0) / c.c2 * z(3);
+    const cplx sxn = ep * zn(0) + (c.c2 - 2.0) / c.c2 * zn(3);
+    // Normal: [Sigma_x, S, -i T]; tangential: i f [Sigma_x, S, -i T].
+    gx[k] = (sxn + i * fr * (sx - c0 * std::exp(-al) / al)) * ph;
+    gy[k] = (zn(3) + i * fr * z(3)) * ph;
+    gt[k] = (-i * zn(2) + fr * z(2)) * ph;
+  }
+  f.coefficients(gx, b->sx_re, b->sx_im);
+  f.coefficients(gy, b->sy_re, b->sy_im);
+  f.coefficients(gt, b->t_re, b->t_im);
+  bp = b;
+  return bp;
 }
 
 namespace {
@@ -1126,7 +1398,10 @@ double DampedSolution::surface_slope(double x) const {
   const double phi1 = model_->phi1(), w = half_, z = (x - centre_) / w;
   double cauchy = 0.0;  // sum b_n (1/pi) int sqrt(1-r^2) U_n/(r - z) dr
   const int n = static_cast<int>(b_.size());
-  if (std::fabs(z) < 1.0) {
+  if (jac_) {
+    // (1/pi) int w g/(r - z) plus the local term f Phi p of the frictional equation.
+    cauchy = jac_->cauchy(z) + params_.friction * model_->tangential().Phi * jac_->density(z);
+  } else if (std::fabs(z) < 1.0) {
     double tkm1 = 1.0, tk = z;  // T_0, T_1
     for (int k = 0; k < n; ++k) {
       cauchy -= b_(k) * tk;
@@ -1178,8 +1453,13 @@ DampedSolution::Fine DampedSolution::build_fine(double freq, const Eigen::Vector
                                   : gk_weight(j, h));
         f.r.push_back(m == 1 ? Q.r[15 * p + static_cast<std::size_t>(j)] : model_->response(a));
         cplx dp = 0.0;
-        f.phat.push_back(db == nullptr ? pressure_transform(a)
-                                       : u_series_transform(b_, centre_, half_, a, db, 0.0, &dp));
+        if (jac_) {
+          f.phat.push_back(pressure_transform(a));
+          if (db != nullptr) dp = half_ * jtr_->second(a * half_);
+        } else {
+          f.phat.push_back(db == nullptr ? pressure_transform(a)
+                                         : u_series_transform(b_, centre_, half_, a, db, 0.0, &dp));
+        }
         if (db != nullptr) dphat->push_back(dp);
       }
     }
@@ -1188,9 +1468,23 @@ DampedSolution::Fine DampedSolution::build_fine(double freq, const Eigen::Vector
   std::vector<cplx> g(f.alpha.size());
   const double phi2 = model_->phi2();
   for (std::size_t i = 0; i < g.size(); ++i)
-    g[i] = (f.r[i].M2 - phi2) * f.phat[i] * std::exp(cplx(0.0, f.alpha[i] * centre_));
+    g[i] = (jac_ ? surface_stress_integrand(f.r[i], f.alpha[i]) : f.r[i].M2 - phi2) * f.phat[i] *
+           std::exp(cplx(0.0, f.alpha[i] * centre_));
   f.coefficients(g, f.sx_re, f.sx_im);
   return f;
+}
+
+std::shared_ptr<Eigen::MatrixXd> DampedSolution::Fine::filon_columns(
+    const Eigen::MatrixXd& G) const {
+  const Eigen::Index nq = G.rows();
+  auto coef = std::make_shared<Eigen::MatrixXd>(nq, G.cols());
+  std::vector<double> col(static_cast<std::size_t>(nq));
+  for (Eigen::Index m = 0; m < G.cols(); ++m) {
+    Eigen::Map<Eigen::VectorXd>(col.data(), nq) = G.col(m);
+    const std::vector<double> cm = filon->coefficients(col);
+    coef->col(m) = Eigen::Map<const Eigen::VectorXd>(cm.data(), nq);
+  }
+  return coef;
 }
 
 void DampedSolution::Fine::coefficients(const std::vector<cplx>& g, std::vector<double>& c_re,
@@ -1236,7 +1530,9 @@ Eigen::VectorXd DampedSolution::surface_displacement(
 double DampedSolution::surface_stress(double x) const {
   if (!std::isfinite(x)) throw std::invalid_argument("surface_stress: x must be finite");
   const Fine& f = *light_;
-  return -model_->phi2() * pressure(x) - f.fourier(f.sx_re, f.sx_im, x - centre_) / kPi;
+  const double s = -model_->phi2() * pressure(x) - f.fourier(f.sx_re, f.sx_im, x - centre_) / kPi;
+  if (jac_) return s + friction_surface_terms(x, *jac_, centre_, half_);
+  return s;
 }
 
 Eigen::Vector3d DampedSolution::stresses(double x, double y) const {
@@ -1339,13 +1635,7 @@ std::shared_ptr<const Eigen::MatrixXd> DampedSolution::depth_coefficients(const 
     G(k, 4) = sy.imag();
     G(k, 5) = tau.imag();
   }
-  auto coef = std::make_shared<Eigen::MatrixXd>(nq, 6);
-  std::vector<double> col(static_cast<std::size_t>(nq));
-  for (Eigen::Index m = 0; m < 6; ++m) {
-    Eigen::Map<Eigen::VectorXd>(col.data(), nq) = G.col(m);
-    const std::vector<double> cm = f.filon->coefficients(col);
-    coef->col(m) = Eigen::Map<const Eigen::VectorXd>(cm.data(), nq);
-  }
+  auto coef = f.filon_columns(G);
   std::lock_guard<std::mutex> lock(field_cache_->mutex);
   auto& kept = field_cache_->depths;
   if (kept.size() >= kDepthsKept) kept.erase(kept.begin());
@@ -1364,10 +1654,16 @@ StressField DampedSolution::stress_field(const Eigen::Ref<const Eigen::VectorXd>
   // depth, real parts then imaginary parts (zero on the surface row, which is
   // done apart).
   Eigen::MatrixXd coef = Eigen::MatrixXd::Zero(nq, 6 * ny);
+  // Friction: the shear traction's remainder too (columns after the normal's).
+  Eigen::MatrixXd fcoef = jac_ ? Eigen::MatrixXd::Zero(nq, 6 * ny) : Eigen::MatrixXd();
   for (Eigen::Index i = 0; i < ny; ++i) {
-    if (y(i) == 0.0) continue;
+    if (y(i) == 0.0 || (jac_ && y(i) == -1.0)) continue;
     const auto ci = depth_coefficients(*nodes, y(i));
     for (Eigen::Index m = 0; m < 6; ++m) coef.col(m * ny + i) = ci->col(m);
+    if (jac_) {
+      const auto fi = friction_depth_coefficients(y(i));
+      for (Eigen::Index m = 0; m < 6; ++m) fcoef.col(m * ny + i) = fi->col(m);
+    }
   }
   Eigen::MatrixXd Wre = Eigen::MatrixXd::Zero(nx, nq), Wim = Eigen::MatrixXd::Zero(nx, nq);
   std::vector<cplx> K;
@@ -1379,8 +1675,9 @@ StressField DampedSolution::stress_field(const Eigen::Ref<const Eigen::VectorXd>
       Wim(j, k) = K[static_cast<std::size_t>(k)].imag();
     }
   }
-  const Eigen::MatrixXd rem =
+  Eigen::MatrixXd rem =
       (Wre * coef.leftCols(3 * ny) - Wim * coef.rightCols(3 * ny)) / kPi;  // (nx, 3 ny)
+  if (jac_) rem += (Wre * fcoef.leftCols(3 * ny) - Wim * fcoef.rightCols(3 * ny)) / kPi;
   StressField g;
   g.sigma_x.resize(ny, nx);
   g.sigma_y.resize(ny, nx);
@@ -1390,11 +1687,32 @@ StressField DampedSolution::stress_field(const Eigen::Ref<const Eigen::VectorXd>
       if (y(i) == 0.0) {
         g.sigma_x(i, j) = surface_stress(x(j));
         g.sigma_y(i, j) = -pressure(x(j));
-        g.tau_xy(i, j) = 0.0;
+        // The shear traction on the layer, f p (towards +x).
+        g.tau_xy(i, j) = params_.friction > 0.0 ? params_.friction * pressure(x(j)) : 0.0;
         continue;
       }
       if (std::fabs(x(j)) > kFarField) {
         g.sigma_x(i, j) = g.sigma_y(i, j) = g.tau_xy(i, j) = 0.0;
+        continue;
+      }
+      if (jac_ && y(i) == -1.0) {
+        // Friction at y = -1: the normal load's field by a direct
+        // Filon sum (the half-plane split is for U-series only; at y = -1 the
+        // integrand decays like e^{-nT alpha}), plus the shear traction's.
+        const BottomFriction& bf = *bottom_friction();
+        const double u = x(j) - centre_;
+        g.sigma_x(i, j) =
+            f.fourier(bf.sx_re, bf.sx_im, u) / kPi + bar_term(x(j), *jac_, centre_, half_);
+        g.sigma_y(i, j) = f.fourier(bf.sy_re, bf.sy_im, u) / kPi;
+        g.tau_xy(i, j) = f.fourier(bf.t_re, bf.t_im, u) / kPi;
+        continue;
+      }
+      if (jac_) {
+        const Eigen::Vector3d hp =
+            jacobi_half_plane(c, *jac_, half_, x(j) - centre_, y(i), params_.friction);
+        g.sigma_x(i, j) = rem(j, i) + hp(0) + bar_term(x(j), *jac_, centre_, half_);
+        g.sigma_y(i, j) = rem(j, ny + i) + hp(1);
+        g.tau_xy(i, j) = rem(j, 2 * ny + i) + hp(2);
         continue;
       }
       const Eigen::Vector3d hp = detail::half_plane_stresses(c, b_, half_, x(j) - centre_, y(i), 1);
@@ -1412,12 +1730,14 @@ double DampedSolution::stress_x(double x, double y) const {
 
 double DampedSolution::bottom_displacement(double x) const {
   // v(x, -1) = (1/2pi) int (Wb/alpha) p^ e^{i alpha x}; Wb/alpha -> -1/kw at alpha -> 0.
+  // Friction: Wb + i f Wqb (the shear traction's bottom W vanishes at alpha -> 0).
   const auto f = fine_for(x);
   double sum = 0.0;
   for (std::size_t i = 0; i < f->alpha.size(); ++i)
     if (f->alpha[i] > 0.0)
-      sum += f->weight[i] *
-             (f->r[i].Wb / f->alpha[i] * f->phat[i] * std::exp(cplx(0.0, f->alpha[i] * x))).real();
+      sum += f->weight[i] * (bottom_w(f->r[i]) / f->alpha[i] * f->phat[i] *
+                             std::exp(cplx(0.0, f->alpha[i] * x)))
+                                .real();
   return params_.load * sum / kPi;
 }
 
@@ -1426,8 +1746,9 @@ double DampedSolution::bottom_slope(double x) const {
   const auto f = fine_for(x);
   double sum = 0.0;
   for (std::size_t i = 0; i < f->alpha.size(); ++i)
-    sum += f->weight[i] *
-           (cplx(0.0, 1.0) * f->r[i].Wb * f->phat[i] * std::exp(cplx(0.0, f->alpha[i] * x))).real();
+    sum += f->weight[i] * (cplx(0.0, 1.0) * bottom_w(f->r[i]) * f->phat[i] *
+                           std::exp(cplx(0.0, f->alpha[i] * x)))
+                              .real();
   return params_.load * sum / kPi;
 }
 
@@ -1436,7 +1757,7 @@ double DampedSolution::dissipation() const {
   double sum = 0.0;
   const Fine& f = *light_;
   for (std::size_t i = 0; i < f.alpha.size(); ++i)
-    sum += f.weight[i] * std::norm(f.r[i].Wb * f.phat[i]);
+    sum += f.weight[i] * std::norm(bottom_w(f.r[i]) * f.phat[i]);
   return model_->damping() * std::sqrt(model_->vstar()) * params_.load * sum / kPi;
 }
 
@@ -1449,6 +1770,83 @@ double DampedSolution::dissipation() const {
 // W_hp (1 - e^-alpha)/alpha, which is real (it does not see the base), in
 // closed form from the U-series of p (potentials.hpp). W/alpha stays finite at
 // alpha -> 0 (kw > 0: v^(0) = -p^(0)/kw).
+
+double DampedSolution::arctan_integral(double x) const {
+  // int p(xi) arctan(x - xi) d xi / (P/h) by atan_rule_ (friction only).
+  double at = 0.0;
+  for (Eigen::Index j = 0; j < atan_rule_.x.size(); ++j)
+    at += atan_rule_.w(j) * jac_->g(atan_rule_.x(j)) *
+          std::atan(x - centre_ - half_ * atan_rule_.x(j));
+  return half_ * at;
+}
+
+Eigen::VectorXd DampedSolution::friction_displacement(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                                      double y) const {
+  // v(x, y)/h = load (1/pi) Re int [W_n + i f W_q]/alpha p^ e^{i alpha x}, split as
+  // the frictionless displacement is (the half-plane mixes times (1 - e^-alpha)
+  // in closed form), and the shear traction's pole W_q(0, y)/alpha (the bar's
+  // Poisson thinning: a step in v) as e^-alpha/alpha, in closed form through
+  // int p arctan(x - xi). The half-plane part: V(z) = w [Lambda(z + i/w) -
+  // Lambda(z)], Lambda' = Phi = -cauchy_upper, by a graded Gauss-Legendre
+  // rule on the vertical segment; V' = w [Phi(z + i/w) - Phi(z)].
+  const Fine& f = *light_;
+  const WaveConstants& c = model_->constants();
+  const double fr = params_.friction, w = half_;
+  const auto [q1, q2] = tangential_mix(c);
+  // W_q(0, y) by Richardson from two small wavenumbers (error O(t^2)).
+  const double t0 = 1e-5;
+  const double w0 = 2.0 * model_->tangential_state(t0, y)(1).real() -
+                    model_->tangential_state(2.0 * t0, y)(1).real();
+  std::vector<cplx> g(f.alpha.size());
+  for (std::size_t k = 0; k < g.size(); ++k) {
+    const double al = f.alpha[k];
+    const Eigen::Matrix4d C = detail::modal_columns(c, al, y);
+    const double wn_hp = c.hp1 * C(1, 0) + c.hp2 * C(1, 1);
+    const double wq_hp = q1 * C(1, 0) + q2 * C(1, 1);
+    const cplx wn = y == 0.0 ? -f.r[k].M1 : model_->state(al, y)(1);
+    const cplx wq = y == 0.0 ? f.r[k].Wq : model_->tangential_state(al, y)(1);
+    const cplx rn = (wn + wn_hp * std::expm1(-al)) / al;
+    const cplx rq = (wq + wq_hp * std::expm1(-al) - w0 * std::exp(-al)) / al;
+    g[k] = (rn + cplx(0.0, fr) * rq) * f.phat[k] * std::exp(cplx(0.0, al * centre_));
+  }
+  std::vector<double> g_re, g_im;
+  f.coefficients(g, g_re, g_im);
+  const JacobiSeries& js = *jac_;
+  auto Phi = [&js](cplx z) { return -js.cauchy_upper(z); };
+  auto V = [&](cplx z) {
+    // w int_0^{1/w} Phi(z + i tau) i d tau, panels graded towards tau = 0.
+    cplx sum = 0.0;
+    double lo = 0.0;
+    for (int k = 64; k >= 0; --k) {  // ratio 10^(1/4.5): each panel resolves
+      const double hi = std::pow(10.0, -k / 4.5) / w;  // a singularity its length away
+      for (int j = 0; j < 8; ++j)
+        sum += detail::kGw[j] * (hi - lo) * Phi(z + cplx(0.0, lo + detail::kGx[j] * (hi - lo)));
+      lo = hi;
+    }
+    return cplx(0.0, w) * sum;
+  };
+  auto dV = [&](cplx z) { return w * (Phi(z + cplx(0.0, 1.0 / w)) - Phi(z)); };
+  Eigen::VectorXd v(x.size());
+  for (Eigen::Index j = 0; j < x.size(); ++j) {
+    if (std::fabs(x(j)) > kFarField) {
+      v(j) = 0.0;
+      continue;
+    }
+    const double u = x(j) - centre_;
+    const cplx zT = detail::z_of(u, c.nT, y, w), zL = detail::z_of(u, c.nL, y, w);
+    const cplx vT = V(zT), vL = V(zL);
+    const cplx vD = detail::divided_difference(V, dV, zT, zL, c.delta, cplx(0.0, -y / w));
+    double hp = 0.0;
+    for (int load = 0; load < 2; ++load) {
+      const double h1 = load == 0 ? c.hp1 : q1, h2 = load == 0 ? c.hp2 : q2;
+      const cplx sum = h1 * (-1.0 / c.nT) * vT + h2 * c.dW * vL + h2 * (-1.0 / c.nT) * vD;
+      hp += load == 0 ? sum.real() : -fr * sum.imag();
+    }
+    const double pole = -fr * w0 / kPi * arctan_integral(x(j));
+    v(j) = params_.load * (f.fourier(g_re, g_im, u) / kPi + hp + pole);
+  }
+  return v;
+}
 
 std::shared_ptr<const DampedSolution::Surface> DampedSolution::surface() const {
   std::lock_guard<std::mutex> lock(surface_cache_->mutex);
@@ -1493,14 +1891,29 @@ double DampedSolution::surface_displacement(double x) const {
     throw InvalidParameter("x", "finite",
                            "surface_displacement: x must be finite, got " + std::to_string(x));
   if (std::fabs(x) > kFarField) return 0.0;  // as ContactSolution's (stresses.hpp)
+  if (jac_) return friction_displacement(Eigen::VectorXd::Constant(1, x), 0.0)(0);
   return params_.load * surface_value(*surface(), x);
 }
 
-double DampedSolution::indentation() const { return surface()->indentation; }
+double DampedSolution::indentation() const {
+  if (jac_) {  // the punch's rigid approach at the contact's centre
+    std::lock_guard<std::mutex> lock(surface_cache_->mutex);
+    if (!std::isnan(friction_indentation_)) return friction_indentation_;
+    friction_indentation_ = centre_ * centre_ / (2.0 * params_.radius) -
+                            friction_displacement(Eigen::VectorXd::Constant(1, centre_), 0.0)(0);
+    return friction_indentation_;
+  }
+  return surface()->indentation;
+}
 
 Eigen::MatrixXd DampedSolution::displacement(const Eigen::Ref<const Eigen::VectorXd>& x,
                                              const Eigen::Ref<const Eigen::VectorXd>& y) const {
   detail::check_grid(x, y);
+  if (jac_) {
+    Eigen::MatrixXd v(y.size(), x.size());
+    for (Eigen::Index i = 0; i < y.size(); ++i) v.row(i) = friction_displacement(x, y(i));
+    return v;
+  }
   const Fine& f = *light_;
   const WaveConstants& c = model_->constants();
   Eigen::MatrixXd v(y.size(), x.size());

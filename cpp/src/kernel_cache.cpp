@@ -19,10 +19,10 @@ namespace {
 // the same inputs give the same table) and covering |u| <= range().
 constexpr double kStep = 1.25;
 
-template <class Table>
+template <class Table, std::size_t KeySize>
 class RangeCache {
  public:
-  using Key = std::array<double, 5>;
+  using Key = std::array<double, KeySize>;
   using Ptr = std::shared_ptr<const Table>;
 
   RangeCache(std::size_t capacity, double max_ratio) : capacity_(capacity), max_ratio_(max_ratio) {}
@@ -101,15 +101,15 @@ class RangeCache {
   KernelCacheInfo info_;
 };
 
-RangeCache<KernelK1>& k1_cache() {
-  static RangeCache<KernelK1> c(kKernelCacheCapacity, kMaxRangeRatio);
+RangeCache<KernelK1, 5>& k1_cache() {
+  static RangeCache<KernelK1, 5> c(kKernelCacheCapacity, kMaxRangeRatio);
   return c;
 }
 
 // A damped table's evaluation costs the same whatever its range (pieces):
-// no upper ratio.
-RangeCache<DampedKernel>& damped_cache() {
-  static RangeCache<DampedKernel> c(kDampedKernelCacheCapacity,
+// no upper ratio. Keyed on (vstar, kw, nu, damping, friction).
+RangeCache<DampedKernel, 6>& damped_cache() {
+  static RangeCache<DampedKernel, 6> c(kDampedKernelCacheCapacity,
                                     std::numeric_limits<double>::infinity());
   return c;
 }
@@ -139,13 +139,13 @@ std::shared_ptr<const KernelK1> cached_kernel(const LayerModel& model, double to
 std::shared_ptr<const DampedKernel> cached_damped_kernel(double vstar, double kw, double nu,
                                                          double damping, double min_range,
                                                          double build_range, bool* built,
-                                                         double kp) {
+                                                         double kp, double friction) {
   return damped_cache().get(
-      {vstar, kw, nu, damping, std::isinf(kw) ? 0.0 : kp}, min_range, build_range,
+      {vstar, kw, nu, damping, std::isinf(kw) ? 0.0 : kp, friction}, min_range, build_range,
       [&](double range, const std::shared_ptr<const DampedKernel>& shorter) {
         if (shorter) return std::make_shared<const DampedKernel>(*shorter, range);
         return std::make_shared<const DampedKernel>(
-            std::make_shared<const DampedLayerModel>(vstar, kw, nu, damping, kp), range);
+            std::make_shared<const DampedLayerModel>(vstar, kw, nu, damping, kp), range, friction);
       },
       built);
 }

@@ -117,8 +117,8 @@ class Evaluations:
     def stress_field(self, x: npt.ArrayLike, y: npt.ArrayLike) -> StressField:
         """All stresses over P/h on the grid ``x`` (x/h) by ``y`` (y/h in
         [-1, 0]); arrays shaped (len(y), len(x)). On the surface y = 0:
-        sigma_x = ``surface_stress``, sigma_y = -p, tau_xy = 0 (the punch is
-        frictionless)."""
+        sigma_x = ``surface_stress``, sigma_y = -p, tau_xy = f p (0 for a
+        frictionless punch)."""
         xs = _flat(_as_points("x", x))
         ys = _flat(_depths(y))
         sx, sy, txy = _chunked_grid(self._impl.stress_field, xs, ys)

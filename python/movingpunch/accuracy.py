@@ -71,9 +71,9 @@ _REF_TOLS = (1e-14, 1e-13, 1e-12)
 _REF_MIN_N = 64
 _REF_MAX_N = 4096
 _REF_FACTORS = (4, 2)
-_PARAMS = ("vstar", "kw", "radius", "load", "nu", "damping", "kp")
+_PARAMS = ("vstar", "kw", "radius", "load", "nu", "damping", "kp", "friction")
 
-Point = tuple[float, float, float, float, float, float, float]
+Point = tuple[float, float, float, float, float, float, float, float]
 Progress = Callable[[int, int], None]
 
 
@@ -169,8 +169,8 @@ class AccuracyReport:
 
 
 def _key(p: Mapping[str, float]) -> Point:
-    """The parameters of a point (damping and kp 0.0 when not given: the
-    paper's model)."""
+    """The parameters of a point (damping, kp and friction 0.0 when not
+    given: the paper's model)."""
     return (
         p["vstar"],
         p["kw"],
@@ -179,6 +179,7 @@ def _key(p: Mapping[str, float]) -> Point:
         p["nu"],
         p.get("damping", 0.0),
         p.get("kp", 0.0),
+        p.get("friction", 0.0),
     )
 
 
@@ -186,7 +187,7 @@ def _solve_point(
     key: Point, tol: float, n: int | None = None, profile: PunchProfile | None = None
 ) -> ContactSolution:
     """The point ``key`` (a cylinder of its radius, or ``profile``)."""
-    vstar, kw, radius, load, nu, damping, kp = key
+    vstar, kw, radius, load, nu, damping, kp, friction = key
     return solve(
         vstar=vstar,
         kw=kw,
@@ -196,6 +197,7 @@ def _solve_point(
         nu=nu,
         damping=damping,
         kp=kp,
+        friction=friction,
         tol=tol,
         n=n,
         allow_unphysical=True,
@@ -328,7 +330,8 @@ def accuracy_report(
     profile: PunchProfile | None = None,
 ) -> AccuracyReport | None:
     """The accuracy ladder of ``target``: None (the paper's Fig. 4 case), a
-    parameter mapping (vstar, kw, radius, load, optional nu, damping and kp), a
+    parameter mapping (vstar, kw, radius, load, optional nu, damping, kp and
+    friction), a
     ``Scene`` (damped points included), or
     a scene file / bundled scene name. Each rung is run cold (the kernel
     cache cleared first: this empties the process-wide cache) and then warm.

@@ -221,6 +221,13 @@ def _build_parser() -> argparse.ArgumentParser:
             f"--{name}", type=_number(name), default=0.0, help=help_text(name) + more
         )
     solve_p.add_argument(
+        "--friction",
+        type=_number("friction"),
+        default=0.0,
+        help=help_text("friction") + "; > 0 gives the asymmetric contact (-b, a), "
+        "the end exponents and the tangential force (docs/theory.md section 14)",
+    )
+    solve_p.add_argument(
         "--allow-unphysical",
         action="store_true",
         help="return a solution with p < 0 or penetration, flagged invalid, "
@@ -404,6 +411,7 @@ def _cmd_solve(args: argparse.Namespace) -> int:
         allow_unphysical=args.allow_unphysical,
         damping=args.damping,
         kp=args.kp,
+        friction=args.friction,
     )
     peaks = s.stress_peaks() if args.stress else None
     _print_warnings(s)
@@ -418,6 +426,7 @@ def _cmd_solve(args: argparse.Namespace) -> int:
         ("k_w h/μ", _fmt(s.kw)),
         ("k_p/(μh) (Pasternak)", _fmt(s.kp)),
         ("damping c_w c_T/μ", _fmt(s.damping)),
+        ("friction f", _fmt(s.friction)),
         ("R/h", _fmt(s.radius)),
         ("profile", s.profile.describe()),
         ("P/(μh)", _fmt(s.load)),
@@ -432,6 +441,8 @@ def _cmd_solve(args: argparse.Namespace) -> int:
         ("p0/(P/h)", _fmt(s.p0)),
         ("indentation δ/h", _fmt(s.indentation)),
         ("drag (∫p x/R dx)/P", _fmt(s.drag)),
+        ("tangential force/P", _fmt(s.tangential_force)),
+        ("end exponents (back, front)", "({}, {})".format(*map(_fmt, s.end_exponents))),
         ("dissipation/(P V)", _fmt(s.dissipation)),
         ("V*_cr", _fmt(s.critical_vstar)),
         ("V*_R", _fmt(s.rayleigh_vstar)),

@@ -39,11 +39,16 @@ class ContactSolution(Protocol):
 
     Parameters: ``vstar``, ``kw``, ``kp`` (0.0 for the paper's Winkler
     springs), ``radius``, ``load``, ``nu``, ``tol``, ``damping`` (0.0 for the
-    paper's model). The contact: ``contact_interval``
+    paper's model), ``friction`` (Coulomb f, 0.0 for the paper's model). The
+    contact: ``contact_interval``
     (x_back, x_front), ``half_width``, ``centre``, ``a`` (the leading end;
     the half-width of a symmetric contact), ``p0`` (the pressure under the
     punch's axis x = 0, over P/h), ``indentation``, ``drag`` (the
-    horizontal force over P; 0.0 without damping) and ``dissipation`` (the
+    horizontal force of the normal pressure over P; 0.0 without damping),
+    ``tangential_force`` (the friction force on the punch over P, f; positive:
+    it opposes the motion towards +x), ``end_exponents`` ((gamma_back,
+    gamma_front): p ~ (x - x_back)^gamma_back (x_front - x)^gamma_front;
+    (0.5, 0.5) without friction) and ``dissipation`` (the
     power dissipated over P V, equal to ``drag`` by the energy balance).
     Trust: ``error_estimate`` (of the contact ends), ``stress_error_estimate``,
     ``valid``, ``validity``, ``warnings``. The punch: ``profile`` (its
@@ -72,6 +77,12 @@ class ContactSolution(Protocol):
     def tol(self) -> float: ...
     @property
     def damping(self) -> float: ...
+    @property
+    def friction(self) -> float: ...
+    @property
+    def tangential_force(self) -> float: ...
+    @property
+    def end_exponents(self) -> tuple[float, float]: ...
     @property
     def a(self) -> float: ...
     @property
@@ -164,6 +175,9 @@ CONTRACT_FIELDS: tuple[str, ...] = (
     "nu",
     "tol",
     "damping",
+    "friction",
+    "tangential_force",
+    "end_exponents",
     "a",
     "contact_interval",
     "half_width",

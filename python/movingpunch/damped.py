@@ -1,4 +1,5 @@
-"""The punch on a damped (Kelvin-Voigt) Winkler foundation.
+"""The asymmetric solution: the punch on a damped (Kelvin-Voigt) Winkler
+foundation and/or sliding with Coulomb friction.
 
 The base condition becomes sigma_y(x, -h) = k_w v + c_w dv/dt, i.e. in the
 moving frame and in units h = mu = c_T = 1::
@@ -10,6 +11,12 @@ asymmetric, a drag force appears without friction, and speeds at or above the
 critical speed V*_cr solve; speeds at or above the Rayleigh speed V*_R do not.
 ``damping = 0`` is the paper's model: use :func:`movingpunch.solve`, which
 takes the undamped path then. See docs/damped.md.
+
+Coulomb friction (``friction`` = f > 0, with any damping >= 0): the punch
+moves towards +x and the layer's surface under it carries the shear traction
+f p in the direction of motion; the contact (-b, a) is asymmetric, the
+pressure ends like (x + b)^gamma_back (a - x)^gamma_front with
+cot(pi gamma_back) = f Phi(vstar, nu) (docs/theory.md section 14).
 """
 
 from __future__ import annotations
@@ -46,7 +53,15 @@ from movingpunch.contract import Points
 from movingpunch.errors import InvalidParameterError, SupercriticalSpeedError
 from movingpunch.fields import FloatArray
 
-__all__ = ["DampedSolution", "check_damping", "damped_layer_response", "solve_damped"]
+__all__ = [
+    "DampedSolution",
+    "check_damping",
+    "check_friction",
+    "coupling_constant",
+    "damped_layer_response",
+    "end_exponents",
+    "solve_damped",
+]
 
 _N_MAX = 1024
 
@@ -67,22 +82,60 @@ def check_damping(value: object, *, positive: bool = False) -> float:
     return x
 
 
+def check_friction(value: object) -> float:
+    """``value`` as a float Coulomb friction coefficient (finite, >= 0).
+
+    Raises InvalidParameterError naming the parameter and its range
+    (``movingpunch.params.SPECS["friction"]``)."""
+    return params.check("friction", value)
+
+
+def coupling_constant(vstar: float, nu: float = 0.2) -> float:
+    """Phi(V*, nu) = (2 - s - 2 nL nT)/(s nL): the factor of the local term
+    f Phi p(x) that friction adds to the moving half-plane's equation
+    ((1 - 2 nu)/(2 (1 - nu)) at rest; finite at the Rayleigh speed)."""
+    return float(_core.tangential_half_plane(_check_vstar(vstar), _check_nu(nu))[2])
+
+
+def end_exponents(
+    friction: float, vstar: float, nu: float = 0.2
+) -> tuple[float, float]:
+    """(gamma_back, gamma_front) of a cylinder sliding with friction f on the
+    moving half-plane (and on the layer, whose regular kernels do not change
+    them): cot(pi gamma_back) = f Phi(V*, nu), gamma_front = 1 - gamma_back."""
+    back, front = _core.end_exponents(
+        check_friction(friction), coupling_constant(vstar, nu)
+    )
+    return (float(back), float(front))
+
+
 def _check_damped_size(value: object) -> int:
     return params.check_size(value, _N_MAX, " for the damped solver")
 
 
 @dataclass(frozen=True)
 class DampedSolution(ResultFields):
-    """Solution on a damped foundation (dimensionless: lengths per h,
-    pressures and stresses per P/h). The punch moves towards +x."""
+    """The asymmetric solution: a damped foundation and/or Coulomb friction
+    (dimensionless: lengths per h, pressures and stresses per P/h). The punch
+    moves towards +x; (-b, a) are its trailing and leading ends."""
 
     damping: float
-    """c_w c_T/mu."""
+    """c_w c_T/mu (0 allowed with friction > 0)."""
+    friction: float
+    """Coulomb coefficient f: the shear traction on the layer is f p, towards
+    +x (the direction of motion)."""
+    tangential_force: float
+    """Friction force on the punch over P, f (positive: it opposes the
+    motion, as ``drag``)."""
+    end_exponents: tuple[float, float]
+    """(gamma_back, gamma_front): p ~ (x + b)^gamma_back (a - x)^gamma_front
+    at the trailing and leading ends; (0.5, 0.5) without friction."""
     contact_interval: tuple[float, float]
     """(-b/h, a/h): trailing and leading ends of the contact."""
     drag: float
-    """Horizontal force on the punch over P, int p x/R dx / P; positive when it
-    opposes the motion."""
+    """Horizontal force of the normal pressure on the punch over P,
+    int p x/R dx / P; positive when it opposes the motion (the friction force
+    is ``tangential_force`` apart)."""
     pressure_error_estimate: float
     """Bound on the error of p/(P/h) at a fixed relative position r = (x - c)/w
     in the contact (pointwise in x add |dp/dx| error_estimate); the solver
@@ -138,7 +191,8 @@ class DampedSolution(ResultFields):
     @functools.cached_property
     def dissipation(self) -> float:
         """Power dissipated in the dashpots over P V, from the bottom face's
-        slope by Parseval; equals ``drag`` by the energy balance."""
+        slope by Parseval; equals ``drag`` by the energy balance without
+        friction (with it the shear traction's power adds)."""
         return float(self._impl.dissipation())
 
     @overload
@@ -219,8 +273,11 @@ def solve_damped(
     allow_unphysical: bool = False,
     n: int | None = None,
     kp: float = 0.0,
+    friction: float = 0.0,
 ) -> DampedSolution:
-    """Solves the contact problem on a damped foundation (``damping`` > 0).
+    """Solves the asymmetric contact problem: a damped foundation
+    (``damping`` > 0) and/or Coulomb friction (``friction`` > 0, then
+    ``damping`` >= 0).
 
     Speeds up to (not including) the Rayleigh speed solve, above the critical
     speed too. Raises InvalidParameterError, SupercriticalSpeedError (vstar >=
@@ -228,7 +285,8 @@ def solve_damped(
     ConvergenceError.
     """
     inputs = _check_solve_inputs(vstar, kw, radius, load, nu, tol, kp)
-    inputs["damping"] = check_damping(damping, positive=True)
+    inputs["friction"] = check_friction(friction)
+    inputs["damping"] = check_damping(damping, positive=inputs["friction"] == 0)
     flag = _check_flag("allow_unphysical", allow_unphysical)
     size = _check_damped_size(n)
     vr = float(_core.rayleigh_vstar(inputs["nu"]))
@@ -242,8 +300,11 @@ def solve_damped(
             rayleigh_vstar=vr,
         )
     impl = _core.solve_damped(**inputs, allow_unphysical=flag, n=size)
+    back, front = impl.end_exponents
     return DampedSolution(
         **inputs,
+        tangential_force=float(impl.tangential_force),
+        end_exponents=(float(back), float(front)),
         contact_interval=(float(impl.left), float(impl.right)),
         drag=float(impl.drag),
         critical_vstar=float(impl.critical_vstar),

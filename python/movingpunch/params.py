@@ -111,6 +111,12 @@ def _presets_note() -> str:
     )
 
 
+FRICTION_MAX = 10.0
+"""Largest Coulomb friction coefficient taken (cpp/src/damped.cpp validate):
+real coefficients lie below about 2; at f = 10 the trailing end's exponent
+is already below 0.08 (a near-jump of the pressure) and beyond it the
+contact grows and the solve's cost with it (f = 100: minutes)."""
+
 SIZE_MAX = 4096
 """Largest collocation size n the undamped solver takes."""
 
@@ -191,6 +197,18 @@ SPECS: Mapping[str, ParamSpec] = MappingProxyType(
                 "dashpots beside the foundation's springs (Kelvin-Voigt)",
                 0.0,
                 note="(0: no dashpots, the paper's model)",
+            ),
+            ParamSpec(
+                "friction",
+                0.0,
+                FRICTION_MAX,
+                False,
+                False,
+                "",
+                "Coulomb friction coefficient between punch and layer (shear "
+                "traction f p on the layer, in the direction of motion)",
+                0.0,
+                note="(0: frictionless, the paper's model)",
             ),
             ParamSpec(
                 "tol",

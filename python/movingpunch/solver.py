@@ -117,6 +117,22 @@ class Solution(ResultFields):
         return 0.0
 
     @property
+    def friction(self) -> float:
+        """Coulomb friction f: 0.0, the paper's frictionless punch."""
+        return 0.0
+
+    @property
+    def tangential_force(self) -> float:
+        """Friction force on the punch over P: 0.0 (frictionless)."""
+        return 0.0
+
+    @property
+    def end_exponents(self) -> tuple[float, float]:
+        """(gamma_back, gamma_front) of p ~ (a + x)^gamma_back (a - x)^gamma_front:
+        (0.5, 0.5), the frictionless cylinder."""
+        return (0.5, 0.5)
+
+    @property
     def contact_interval(self) -> tuple[float, float]:
         """(x_back, x_front) = (-a/h, a/h): the contact is symmetric."""
         return (-self.a, self.a)
@@ -188,6 +204,7 @@ def solve(
     damping: Literal[0] = ...,
     kp: float = ...,
     profile: PunchProfile | None = ...,
+    friction: Literal[0] = ...,
 ) -> Solution: ...
 
 
@@ -205,6 +222,25 @@ def solve(
     damping: float,
     kp: float = ...,
     profile: PunchProfile | None = ...,
+    friction: float = ...,
+) -> ContactSolution: ...
+
+
+@overload
+def solve(
+    *,
+    vstar: float,
+    kw: float,
+    radius: float | None = ...,
+    load: float,
+    nu: float = ...,
+    tol: float | str = ...,
+    allow_unphysical: bool = ...,
+    n: int | None = ...,
+    damping: float = ...,
+    kp: float = ...,
+    profile: PunchProfile | None = ...,
+    friction: float,
 ) -> ContactSolution: ...
 
 
@@ -221,6 +257,7 @@ def solve(
     damping: float = 0.0,
     kp: float = 0.0,
     profile: PunchProfile | None = None,
+    friction: float = 0.0,
 ) -> ContactSolution:
     """Solves the contact problem of a rigid punch sliding over the layer.
 
@@ -258,20 +295,27 @@ def solve(
     symmetric convex table ``Profile(x, y)``. Give ``radius`` or
     ``profile``; both only if they agree (a Cylinder or a RoundedFlat of that
     very radius), else InvalidParameterError naming ``radius``. A profile
-    other than a cylinder is refused with ``damping > 0`` (not supported
-    yet). ``tol`` is on a/h (on the end coefficient for a flat punch, whose
-    contact is its face).
+    other than a cylinder is refused with ``damping > 0`` or ``friction > 0``
+    (not supported yet). ``tol`` is on a/h (on the end coefficient for a flat
+    punch, whose contact is its face).
+
+    ``friction`` = f >= 0 is Coulomb friction between punch and layer (the
+    punch moves towards +x and drags the surface with a shear traction f p;
+    docs/theory.md section 14). f > 0 takes the asymmetric path (a
+    ``DampedSolution``, with damping >= 0): Gauss-Jacobi collocation with
+    the end exponents of cot(pi gamma_back) = f Phi(vstar, nu).
     """
-    from movingpunch.damped import check_damping, solve_damped
+    from movingpunch.damped import check_damping, check_friction, solve_damped
 
     shape = resolve_profile(radius, profile)
-    if check_damping(damping) > 0:
+    if check_damping(damping) > 0 or check_friction(friction) > 0:
         if not isinstance(shape, Cylinder):
+            what = "damping > 0" if damping > 0 else "friction > 0"
             raise InvalidParameterError(
-                f"profile {shape.describe()} with damping > 0 is not supported yet; "
-                "use damping = 0 or a Cylinder",
+                f"profile {shape.describe()} with {what} is not supported yet; "
+                "use damping = 0, friction = 0 or a Cylinder",
                 parameter="profile",
-                allowed="a Cylinder when damping > 0",
+                allowed="a Cylinder when damping > 0 or friction > 0",
             )
         return solve_damped(
             vstar=vstar,
@@ -284,6 +328,7 @@ def solve(
             allow_unphysical=allow_unphysical,
             n=n,
             kp=kp,
+            friction=friction,
         )
     return _solve_profile(shape, vstar, kw, load, nu, tol, allow_unphysical, n, kp)
 

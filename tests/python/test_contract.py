@@ -57,6 +57,8 @@ PATHS: dict[str, dict[str, Any]] = {
         "radius": None,
         "profile": mp.Profile.from_function(lambda x: x * x / 200.0, 2.0, 101),
     },
+    "friction": {"vstar": 0.2, "kw": 1.0, "friction": 0.3},
+    "friction-damped": {"vstar": 0.65, "kw": 1.0, "damping": 0.1, "friction": 0.3},
 }
 
 TYPES: dict[str, type | tuple[type, ...]] = {
@@ -67,6 +69,7 @@ TYPES: dict[str, type | tuple[type, ...]] = {
     "validity": str,
     "warnings": tuple,
     "contact_interval": tuple,
+    "end_exponents": tuple,
     "stage_times": Mapping,
     "profile": (mp.Cylinder, mp.Flat, mp.RoundedFlat, mp.Profile),
     "end_coefficients": tuple,
@@ -178,7 +181,13 @@ def test_anchors_of_the_common_fields(solved: tuple[str, Any]) -> None:
     assert s.depth_stress(0.0) == pytest.approx(
         s.surface_stress(0.0), rel=1e-6, abs=1e-9
     ), name
-    if s.damping == 0.0:
+    if s.friction > 0.0:
+        # Coulomb friction (docs/theory.md section 14): asymmetric, the
+        # friction force f P; the dashpots take the shear traction's power too.
+        assert s.end_exponents[0] < 0.5 < s.end_exponents[1]
+        assert s.tangential_force == s.friction
+        assert s.dissipation >= 0.0
+    elif s.damping == 0.0:
         assert s.contact_interval == (-s.a, s.a)
         assert s.drag == 0.0
         assert s.dissipation == 0.0

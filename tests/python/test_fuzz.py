@@ -434,3 +434,67 @@ def test_fuzz_profiles_150() -> None:
 @pytest.mark.slow
 def test_fuzz_profiles_600() -> None:
     fuzz_profiles(600, seed=1310, budget=300.0)
+
+
+# Coulomb friction (issue 14): drawn with damping, through the public API
+
+FRICTION_POOL = [0.0, 1e-300, 1e-12, 0.05, 0.3, 1.0, 3.0, 10.0]
+FRICTION_BAD: list[Any] = [-1e-300, -0.1, 10.000001, 1e308, NAN, INF, -INF, "0.3", None]
+
+
+def fuzz_friction(calls: int, seed: int) -> collections.Counter[str]:
+    """Each call: a friction from the pool (or a bad value), damping 0 or
+    0.1, kw and nu from small pools (kernel tables are cached per inputs),
+    the rest as the binding fuzz draws them. A solution must be finite with
+    exponents summing to 1, cot(pi gamma_back) = f Phi; an error must be the
+    package's."""
+    draw = Draw(seed)
+    rng = np.random.default_rng(seed + 1)
+    outcomes: collections.Counter[str] = collections.Counter()
+    for _ in range(calls):
+        args = draw.call()
+        args["kw"] = float(draw._pick([0.1, 1.0, 10.0, INF]))
+        args["nu"] = float(draw._pick([0.2, 0.3]))
+        vcr = draw.critical(args["kw"], args["nu"]) or 0.5
+        args["vstar"] = float(rng.uniform(0.0, 1.05)) * vcr
+        args["n"] = None
+        args["tol"] = 1e-8 if rng.random() < 0.8 else float(draw._pick([1e-4, 1e-12]))
+        lam = draw._loguniform(1e-6, 0.05)
+        args["radius"], args["load"] = 100.0, lam / 100.0
+        args["damping"] = 0.0 if rng.random() < 0.6 else 0.1
+        bad = rng.random() < 0.15
+        args["friction"] = draw._pick(FRICTION_BAD if bad else FRICTION_POOL)
+        sol, exc = _attempt(lambda args=args: mp.solve(**args))
+        if exc is not None:
+            _check_error(exc, args)
+            if bad:
+                assert isinstance(exc, mp.InvalidParameterError), args
+                assert exc.parameter == "friction", args
+            outcomes[type(exc).__name__] += 1
+            continue
+        assert not bad, args
+        back, front = sol.contact_interval
+        assert math.isfinite(back), args
+        assert math.isfinite(front), args
+        assert back < front, args
+        gb, gf = sol.end_exponents
+        assert gb + gf == pytest.approx(1.0, abs=1e-15), args
+        f = float(args["friction"])
+        if f > 0.0:
+            phi = mp.damped.coupling_constant(args["vstar"], args["nu"])
+            assert math.atan2(1.0, f * phi) / math.pi == pytest.approx(gb, abs=1e-15)
+        assert sol.tangential_force == f, args
+        assert math.isfinite(sol.pressure(0.5 * (back + front))), args
+        outcomes["solved"] += 1
+    assert outcomes["solved"] >= 0.5 * calls, outcomes
+    assert outcomes["InvalidParameterError"] >= 0.05 * calls, outcomes
+    return outcomes
+
+
+def test_fuzz_friction_20() -> None:
+    _run_with_watchdog(lambda: fuzz_friction(20, seed=14), 240.0)
+
+
+@pytest.mark.slow
+def test_fuzz_friction_400() -> None:
+    _run_with_watchdog(lambda: fuzz_friction(400, seed=1414), 1200.0)

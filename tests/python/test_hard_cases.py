@@ -1289,6 +1289,99 @@ def test_cli_hostile_in_a_subprocess(
 #   .venv/bin/python tests/python/test_hard_cases.py
 
 
+# --------------------------------------------------------------------------
+# Coulomb friction (issue 14; docs/theory.md section 14)
+
+
+def _jacobi_total_load(s: Any) -> float:
+    """int p dx / P by SciPy's 96-point Gauss-Jacobi rule on the pressure's
+    smooth factor p / ((x + b)^gb (a - x)^gf)."""
+    back, front = s.contact_interval
+    gb, gf = s.end_exponents
+    r, w = special.roots_jacobi(96, gf, gb)
+    x = s.centre + s.half_width * r
+    smooth = s.pressure(x) / ((x - back) ** gb * (front - x) ** gf)
+    return float(s.half_width**2 * np.sum(w * smooth))
+
+
+@pytest.mark.parametrize("damping", [0.0, 0.5])
+def test_friction_at_the_largest_coefficient(damping: float) -> None:
+    """f = 10 (the largest taken: the trailing exponent is 0.076, a near-jump
+    of the pressure) solves, is valid, carries the load and follows the
+    punch; the contact lies mostly behind the punch's axis."""
+    s = mp.solve(vstar=0.2, kw=1.0, friction=10.0, damping=damping, **PAPER)
+    gb = s.end_exponents[0]
+    assert gb == pytest.approx(
+        math.atan2(1.0, 10.0 * mp.damped.coupling_constant(0.2)) / math.pi
+    )
+    assert gb < 0.08
+    assert s.valid
+    assert _jacobi_total_load(s) == pytest.approx(1.0, abs=1e-12)
+    x = s.centre + s.half_width * np.linspace(-0.99, 0.99, 21)
+    assert np.max(np.abs(s.surface_slope(x) - x / 100.0)) < 1e-12 * s.half_width
+    assert -s.contact_interval[0] > 2 * s.contact_interval[1]
+    ref = mp.solve(
+        vstar=0.2, kw=1.0, friction=10.0, damping=damping, tol=1e-12, **PAPER
+    )
+    diff = max(
+        abs(u - v)
+        for u, v in zip(s.contact_interval, ref.contact_interval, strict=True)
+    )
+    assert diff <= s.error_estimate + ref.error_estimate
+
+
+@pytest.mark.parametrize("f", [1e-300, 1e-14, 1e-10])
+def test_tiny_friction_is_the_frictionless_solution(f: float) -> None:
+    """f -> 0 is continuous: the Gauss-Jacobi path at exponents 1/2 +- O(f)
+    gives the frictionless (Gauss-Chebyshev) ends to O(f) + round-off."""
+    base = mp.solve(vstar=0.2, kw=1.0, **PAPER)
+    s = mp.solve(vstar=0.2, kw=1.0, friction=f, **PAPER)
+    assert s.contact_interval == pytest.approx(
+        base.contact_interval, abs=1e-13 + 10 * f
+    )
+    assert s.end_exponents == pytest.approx((0.5, 0.5), abs=f)
+
+
+@pytest.mark.parametrize("eps", [1e-4, 1e-6])
+def test_friction_near_the_critical_speed(eps: float) -> None:
+    """Without damping friction keeps V*_cr (real poles above it). Close to
+    it the kernel's resonant peak sharpens: a tiny f gives the undamped
+    solver's ends within the solution's own error estimate, and an estimate
+    above tol comes with a warning (never a silent miss)."""
+    vcr = mp.critical_vstar(1.0, NU)
+    v = vcr * (1.0 - eps)
+    base = mp.solve(vstar=v, kw=1.0, **PAPER)
+    tiny = mp.solve(vstar=v, kw=1.0, friction=1e-9, **PAPER)
+    diff = max(
+        abs(u - w)
+        for u, w in zip(tiny.contact_interval, base.contact_interval, strict=True)
+    )
+    assert diff <= tiny.error_estimate + base.error_estimate + 1e-8
+    s = mp.solve(vstar=v, kw=1.0, friction=0.3, **PAPER)
+    assert s.valid
+    if s.error_estimate > 1e-8 * (s.half_width + abs(s.centre)):
+        assert s.warnings
+    with pytest.raises(mp.SupercriticalSpeedError):
+        mp.solve(vstar=vcr, kw=1.0, friction=0.3, **PAPER)
+
+
+@pytest.mark.parametrize(("vstar", "damping"), [(0.65, 0.1), (0.8, 0.01)])
+def test_friction_with_damping_above_the_critical_speed(
+    vstar: float, damping: float
+) -> None:
+    """Friction with damping above V*_cr (and near V*_R): solves, carries the
+    load, follows the punch; friction moves the trailing end back."""
+    s = mp.solve(vstar=vstar, kw=1.0, friction=0.5, damping=damping, **PAPER)
+    d = mp.solve(vstar=vstar, kw=1.0, damping=damping, **PAPER)
+    assert s.valid
+    assert _jacobi_total_load(s) == pytest.approx(1.0, abs=1e-12)
+    x = s.centre + s.half_width * np.linspace(-0.99, 0.99, 21)
+    # tol (1e-8) of the slope scale w/R: near V*_R the kernel's round-off grows
+    # like eps phi1 (measured 8e-10 at V* = 0.8)
+    assert np.max(np.abs(s.surface_slope(x) - x / 100.0)) < 1e-8 * s.half_width / 100.0
+    assert s.contact_interval[0] < d.contact_interval[0]
+
+
 def _measure() -> Iterator[str]:  # pragma: no cover - run by hand
     def run(fn: Callable[[], mp.Solution]) -> tuple[Any, float]:
         t0 = time.perf_counter()

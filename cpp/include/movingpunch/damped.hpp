@@ -24,6 +24,7 @@
 #include <Eigen/Dense>
 
 #include "movingpunch/contact.hpp"
+#include "movingpunch/jacobi.hpp"
 #include "movingpunch/kernel.hpp"
 #include "movingpunch/layer_response.hpp"
 #include "movingpunch/stresses.hpp"
@@ -41,6 +42,12 @@ struct DampedResponse {
   cplx U0{0.0, 0.0};
   cplx W0{0.0, 0.0};
   cplx Wb{0.0, 0.0};
+  // The top state of the unit tangential load (state [Uq, Wq, 1, 0] at
+  // y = 0: tau_xy/alpha = 1, sigma_y = 0; the physical amplitudes of a load
+  // tau_xy = q^ e^{i alpha x} are i q^ times these: docs/theory.md section 14).
+  cplx Uq{0.0, 0.0};
+  cplx Wq{0.0, 0.0};
+  cplx Wqb{0.0, 0.0};  // its W at the bottom y = -1
 };
 
 class DampedLayerModel {
@@ -66,6 +73,8 @@ class DampedLayerModel {
 
   // Response at t = alpha h >= 0 (t = 0: the exact limit M1 = 0, Wb = 0).
   DampedResponse response(double t) const;
+  // The moving half-plane's tangential response (jacobi.hpp).
+  const TangentialHalfPlane& tangential() const noexcept { return tq_; }
   // Forcing one of the two evaluations (cross-checks in tests).
   DampedResponse response_modal(double t) const;
   DampedResponse response_transfer(double t) const;
@@ -77,6 +86,9 @@ class DampedLayerModel {
   // state (state = exp(t y A) z), else the amplitudes of the regularised
   // modal columns (state = modal_columns(t, y) z).
   Eigen::Vector4cd state_coefficients(double t) const;
+  // The state of the unit tangential load (top T = 1, S = 0; the physical
+  // amplitudes of tau_xy = e^{i alpha x} are i times it) at -1 <= y <= 0, t > 0.
+  Eigen::Vector4cd tangential_state(double t, double y) const;
 
  private:
   WaveConstants c_;
@@ -85,6 +97,7 @@ class DampedLayerModel {
   bool rigid_;
   double beta_;  // damping sqrt(vstar)
   double kp_ = 0.0;
+  TangentialHalfPlane tq_;
 };
 
 // Adaptive (Gauss-Kronrod 7/15) panels on [0, alpha_max] resolving
@@ -99,7 +112,9 @@ struct DampedQuadrature {
   // (|K15 - G7| above bounds the Gauss rule's error, far larger once resolved).
   double kronrod_error = 0;
 };
-DampedQuadrature build_damped_quadrature(const DampedLayerModel& model, double tol);
+// friction > 0: the panels resolve friction (Wq - Wq_inf)/phi1 too.
+DampedQuadrature build_damped_quadrature(const DampedLayerModel& model, double tol,
+                                         double friction = 0.0);
 
 // The regular kernel K(u) of the damped equation (damped_kernel() below) for
 // one (vstar, kw, nu, damping): the alpha quadrature and its Filon
@@ -110,7 +125,10 @@ DampedQuadrature build_damped_quadrature(const DampedLayerModel& model, double t
 // Immutable and shared between solves (cached_damped_kernel).
 class DampedKernel {
  public:
-  DampedKernel(std::shared_ptr<const DampedLayerModel> model, double range);
+  // friction > 0: the kernel of the frictional equation, K - f K_t with the
+  // effective response M1 - i f Wq (docs/theory.md section 14).
+  DampedKernel(std::shared_ptr<const DampedLayerModel> model, double range,
+               double friction = 0.0);
   // A wider table on the quadrature of `other` (no new layer responses).
   DampedKernel(const DampedKernel& other, double range);
 
@@ -118,6 +136,7 @@ class DampedKernel {
   void many(const double* u, double* out, std::size_t n) const;  // out[i] = (*this)(u[i])
   double direct(double u) const;                                 // Filon sums, any u
   double range() const noexcept { return range_; }
+  double friction() const noexcept { return base_->friction; }
   // Bound on |table - direct| (truncation of the pieces plus their values'
   // round-off), absolute.
   double table_error() const noexcept { return table_error_; }
@@ -135,6 +154,7 @@ class DampedKernel {
     DampedQuadrature quad;
     std::shared_ptr<const FilonIntegrator> filon;
     std::vector<double> kr, ki;  // Filon coefficients of Re, Im (M1 - phi1)/phi1
+    double friction = 0.0;
   };
   std::shared_ptr<const Base> base_;
   double range_ = 0, width_ = 0, table_error_ = 0;
@@ -153,7 +173,7 @@ inline constexpr std::size_t kDampedKernelCacheCapacity = 16;
 std::shared_ptr<const DampedKernel> cached_damped_kernel(double vstar, double kw, double nu,
                                                          double damping, double min_range,
                                                          double build_range, bool* built = nullptr,
-                                                         double kp = 0.0);
+                                                         double kp = 0.0, double friction = 0.0);
 KernelCacheInfo damped_kernel_cache_info();
 
 // Dimensionless inputs (h = 1, mu = 1).
@@ -163,7 +183,8 @@ struct DampedParams {
   double radius = 100;  // R / h > 0
   double load = 0.002;  // P / (mu h) > 0
   double nu = 0.2;      // [0, 0.5)
-  double damping = 0;   // c_w c_T / mu > 0 (finite)
+  double damping = 0;   // c_w c_T / mu > 0 (finite); >= 0 when friction > 0
+  double friction = 0;  // Coulomb coefficient f >= 0 (finite): tau_xy = f p, in the direction of motion
   double tol = 1e-8;    // relative tolerance on the contact ends and the pressure, [1e-14, 1e-2]
   bool allow_unphysical = false;
   int n = 0;  // fixed collocation size (even, 2..1024); 0: refine
@@ -186,6 +207,15 @@ class DampedSolution {
   double critical_vstar() const noexcept { return vcr_; }
   double rayleigh_vstar() const noexcept { return vr_; }
   double phi1() const noexcept { return model_->phi1(); }
+  // Coulomb friction f (the shear traction on the layer is f p, towards +x,
+  // the direction of motion); the tangential force on the punch over P, f
+  // (it opposes the motion, as drag() when positive); the end exponents
+  // (back, front): p ~ (x + b)^back (a - x)^front, (0.5, 0.5) without
+  // friction; the coupling constant Phi(V*, nu) of the local term f Phi p.
+  double friction() const noexcept { return params_.friction; }
+  double tangential_force() const noexcept { return params_.friction; }
+  EndExponents end_exponents() const noexcept { return exps_; }
+  double coupling() const noexcept { return model_->tangential().Phi; }
   // Absolute error estimate of the contact ends (-b, a), in h (a bound of
   // |error| of each end; docs/damped.md section 8).
   double error_estimate() const noexcept { return err_; }
@@ -266,6 +296,7 @@ class DampedSolution {
   // equals drag() by the energy balance.
   double dissipation() const;
 
+  // g's coefficients: Chebyshev U_n without friction, Jacobi P_n^(front, back) with it.
   const Eigen::VectorXd& g_coefficients() const noexcept { return b_; }
   const DampedLayerModel& model() const noexcept { return *model_; }
 
@@ -282,6 +313,21 @@ class DampedSolution {
   double min_p_ = 0, min_gap_ = 0;
   std::vector<double> other_widths_;
   Eigen::VectorXd b_;
+  // Friction > 0: the Jacobi series of g and its transform rule (light_'s
+  // alpha range).
+  EndExponents exps_{};
+  std::shared_ptr<const JacobiSeries> jac_;
+  std::shared_ptr<const JacobiTransform> jtr_;
+  double jtr_omega_ = 0;  // the largest alpha w jtr_ resolves
+  JacobiRule atan_rule_;  // Gauss-Jacobi rule of friction_surface_terms' arctan integral
+  // alpha v^(alpha, -1)/p^ of the loads together: Wb (+ i f Wqb with friction).
+  cplx bottom_w(const DampedResponse& r) const;
+  // The surface sigma_x integrand's regular part per unit p^ at alpha > 0:
+  // M2 - phi2, with friction less i f (Ep Uq - Ep Uq_inf - C0 e^-alpha/alpha).
+  cplx surface_stress_integrand(const DampedResponse& r, double alpha) const;
+  // The surface sigma_x's parts that are closed forms of p with friction:
+  // f Cq (1/pi) int p/(xi - x) - (f C0/pi) int p arctan(x - xi) (theory.md section 14).
+  double friction_surface_terms(double x, const JacobiSeries& s, double c, double w) const;
   std::shared_ptr<const DampedLayerModel> model_;
   std::shared_ptr<const DampedKernel> kernel_;
   // Gauss-Chebyshev (U) nodes r_i and weights times g(r_i) of surface_slope's
@@ -303,6 +349,8 @@ class DampedSolution {
     // Re int_0^amax (g_re + i g_im) e^{i alpha x} d alpha from coefficients.
     double fourier(const std::vector<double>& c_re, const std::vector<double>& c_im,
                    double x) const;
+    // The Filon coefficients of each column of G (one row per node).
+    std::shared_ptr<Eigen::MatrixXd> filon_columns(const Eigen::MatrixXd& G) const;
     // Filon coefficients of Re and Im of g given at the nodes.
     void coefficients(const std::vector<cplx>& g, std::vector<double>& c_re,
                       std::vector<double>& c_im) const;
@@ -358,6 +406,33 @@ class DampedSolution {
   std::shared_ptr<const Eigen::MatrixXd> depth_coefficients(const FieldNodes& nodes,
                                                             double y) const;
   std::shared_ptr<FieldCache> field_cache_ = std::make_shared<FieldCache>();
+  // Friction: the stresses on the bottom face y = -1 by the direct Fourier
+  // integral (it converges there like e^{-nT alpha}: no half-plane part to
+  // split off), the normal load's and the shear traction's together: Filon
+  // coefficients of sigma_x (the bar pole C0/alpha taken out), sigma_y and
+  // tau on light_, built on first use.
+  struct BottomFriction {
+    std::vector<double> sx_re, sx_im, sy_re, sy_im, t_re, t_im;
+  };
+  struct BottomFrictionCache {
+    std::mutex mutex;
+    std::shared_ptr<const BottomFriction> data;
+  };
+  std::shared_ptr<BottomFrictionCache> bottom_friction_cache_ =
+      std::make_shared<BottomFrictionCache>();
+  std::shared_ptr<const BottomFriction> bottom_friction() const;
+  // Friction, -1 < y < 0: the shear traction's remainder at depth y (Filon
+  // coefficients, columns [sigma_x, sigma_y, tau] real then imaginary parts).
+  std::shared_ptr<const Eigen::MatrixXd> friction_depth_coefficients(double y) const;
+  // Friction: v(x, y)/h at one depth (the surface included), and
+  // int p(xi) arctan(x - xi) d xi/(P/h); the indentation, computed on first use.
+  Eigen::VectorXd friction_displacement(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                        double y) const;
+  double arctan_integral(double x) const;
+  mutable double friction_indentation_ = std::nan("");
+  // -(f C0/pi) int p(xi) arctan(x - xi) d xi: the layer's bar term (the
+  // shear-free base carries no horizontal force; theory.md section 14).
+  double bar_term(double x, const JacobiSeries& ser, double c, double w) const;
   std::shared_ptr<const FieldNodes> field_nodes() const;
   double surface_value(const Surface& s, double x) const;  // v(x, 0)/(P/(mu h))
   // With db: dphat[i] = the transform of the U-series db (centre 0) at node i.

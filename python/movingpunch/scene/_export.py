@@ -43,6 +43,7 @@ _PARAM_LABELS = {
     "nu": "ν",
     "damping": "damping",
     "kp": "k_p/(μh)",
+    "friction": "friction f",
 }
 _QUANTITY_LABELS = {
     "a": "a/h",

@@ -27,11 +27,21 @@ __all__ = [
     "Vary",
 ]
 
-PARAMS: tuple[str, ...] = ("vstar", "kw", "radius", "load", "nu", "damping", "kp")
+PARAMS: tuple[str, ...] = (
+    "vstar",
+    "kw",
+    "radius",
+    "load",
+    "nu",
+    "damping",
+    "kp",
+    "friction",
+)
 """The physical parameters of a scene, in the order they are written.
 ``nu`` defaults to 0.2; ``damping`` (c_w c_T/mu, the Kelvin-Voigt dashpots,
-docs/damped.md) and ``kp`` (k_p/(mu h), the Pasternak shear layer,
-docs/theory.md section 12) to 0 and are kept in ``params`` only when given."""
+docs/damped.md), ``kp`` (k_p/(mu h), the Pasternak shear layer,
+docs/theory.md section 12) and ``friction`` (Coulomb f, docs/theory.md
+section 14) to 0, each kept in ``params`` only when given."""
 
 
 def allowed_text(name: str) -> str:
@@ -80,7 +90,8 @@ SWEEP_QUANTITIES: dict[str, str] = {
     "min_pressure": "minimum of p/(P/h) on the contact",
     "critical_vstar": "critical speed V*_cr(kw, nu, kp)",
     "phi1": "moving half-plane factor phi1",
-    "drag": "horizontal force on the punch over P (0 without damping)",
+    "drag": "horizontal force of the pressure on the punch over P (0 without "
+    "damping or friction)",
     "contact_start": "trailing end -b/h of the contact (-a/h without damping)",
     "contact_end": "leading end a/h of the contact",
     "top_compressive": "most compressive sigma_x/(P/h) on the top surface",

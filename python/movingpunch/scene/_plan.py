@@ -24,7 +24,8 @@ __all__ = ["SweepPlan", "build_sweep_table", "plan_sweep", "split_chunks"]
 @dataclass
 class SweepPlan:
     """A sweep's points and the unique keys to solve, grouped by shared
-    kernel (vstar, kw, nu, tol, damping, kp), each group in descending lambda."""
+    kernel (vstar, kw, nu, tol, damping, kp, friction), each group in
+    descending lambda."""
 
     points: list[list[dict[str, float]]]  # [curve][grid] -> parameters
     keys: list[Key]  # unique keys, in solve order
@@ -48,12 +49,12 @@ def plan_sweep(scene: SceneData) -> SweepPlan:
             representative.setdefault(point_key(p, scene.tol), p)
     groups: dict[tuple[float, ...], list[Key]] = {}
     for key in representative:
-        groups.setdefault(key[:6], []).append(key)
+        groups.setdefault(key[:7], []).append(key)
     for members in groups.values():
-        members.sort(key=lambda k: -k[6])  # descending lambda: widest kernel first
+        members.sort(key=lambda k: -k[7])  # descending lambda: widest kernel first
     keys = [k for members in groups.values() for k in members]
     want_peaks = any(q in PEAK_QUANTITIES for q in sw.quantities)
-    damped = any(k[4] > 0.0 for k in keys)
+    damped = any(k[4] > 0.0 or k[6] > 0.0 for k in keys)  # the asymmetric solver
     return SweepPlan(
         points, keys, groups, representative, want_peaks, damped, scene.profile
     )
@@ -173,6 +174,7 @@ def chunk_tasks(plan: SweepPlan, chunk: Chunk) -> list[dict[str, Any]]:
             "tol": group[3],
             "damping": group[4],
             "kp": group[5],
+            "friction": group[6],
             "points": [
                 (plan.representative[k]["radius"], plan.representative[k]["load"])
                 for k in keys

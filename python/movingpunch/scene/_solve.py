@@ -28,8 +28,8 @@ from movingpunch.solver import result_warnings, solve
 
 __all__ = ["RunState", "point_key", "solve_point"]
 
-# vstar, kw, nu, tol, damping, kp, lambda
-Key = tuple[float, float, float, float, float, float, float]
+# vstar, kw, nu, tol, damping, kp, friction, lambda
+Key = tuple[float, float, float, float, float, float, float, float]
 
 
 def _damping(p: Mapping[str, float]) -> float:
@@ -40,11 +40,15 @@ def _kp(p: Mapping[str, float]) -> float:
     return p.get("kp", 0.0)
 
 
+def _friction(p: Mapping[str, float]) -> float:
+    return p.get("friction", 0.0)
+
+
 def point_key(p: Mapping[str, float], tol: float) -> Key:
     # Beside a flat punch or a table (radius inf) the load alone tells the
     # points apart (negated: never a cylinder's lambda).
     lam = p["radius"] * p["load"] if math.isfinite(p["radius"]) else -p["load"]
-    return (p["vstar"], p["kw"], p["nu"], tol, _damping(p), _kp(p), lam)
+    return (p["vstar"], p["kw"], p["nu"], tol, _damping(p), _kp(p), _friction(p), lam)
 
 
 def radius_ratio(solved: float, wanted: float) -> float:
@@ -77,6 +81,7 @@ def solve_point(
         allow_unphysical=True,
         damping=_damping(p),
         kp=_kp(p),
+        friction=_friction(p),
     )
     stages.add_solution(s)
     return s
@@ -120,13 +125,15 @@ def _point_text(p: Mapping[str, float]) -> str:
         names.append("damping")
     if _kp(p) > 0.0:
         names.append("kp")
+    if _friction(p) > 0.0:
+        names.append("friction")
     return ", ".join(f"{n}={p[n]:.6g}" for n in names)
 
 
 def solve_group(task: Mapping[str, Any]) -> dict[str, Any]:
-    """Solves one group of sweep points sharing (vstar, kw, nu, tol, damping, kp), in
-    descending lambda (the first solve builds the widest kernel; the rest
-    reuse it). Runs in a worker process or on a Dask worker."""
+    """Solves one group of sweep points sharing (vstar, kw, nu, tol, damping,
+    kp, friction), in descending lambda (the first solve builds the widest
+    kernel; the rest reuse it). Runs in a worker process or on a Dask worker."""
     stages = Stages()
     results: list[dict[str, float] | str] = []
     warnings: list[list[str]] = []
@@ -137,6 +144,7 @@ def solve_group(task: Mapping[str, Any]) -> dict[str, Any]:
             "nu": task["nu"],
             "damping": task["damping"],
             "kp": task.get("kp", 0.0),
+            "friction": task["friction"],
             "radius": radius,
             "load": load,
         }

@@ -253,7 +253,7 @@ def _from_mapping(data: Mapping[str, Any], source: str) -> dict[str, Any]:
             params[name_] = vary.values[0]
         elif sweep is not None and sweep.param == name_:
             params[name_] = sweep.values[0]
-        elif name_ not in ("damping", "kp"):  # damping, kp: optional, 0
+        elif name_ not in ("damping", "kp", "friction"):  # optional, 0
             raise c.fail(key, "missing", allowed_text(name_), name_)
 
     tol = DEFAULT_TOL

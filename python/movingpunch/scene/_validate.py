@@ -358,7 +358,11 @@ def validate(scene: SceneData, source: str) -> None:
             if name == "nu":
                 params[name] = DEFAULT_NU
                 continue
-            if name in ("damping", "kp"):  # optional, 0; kept only when given
+            if name in (
+                "damping",
+                "kp",
+                "friction",
+            ):  # optional, 0; kept only when given
                 continue
             raise c.fail(f"params.{name}", "missing", allowed_text(name), name)
         params[name] = c.param(f"params.{name}", name, raw[name])

@@ -43,6 +43,7 @@ PARAM_NAMES: tuple[str, ...] = (
     "load",
     "nu",
     "damping",
+    "friction",
     "tol",
 )
 """Every numeric input of the parameters panel, in order (the punch's
@@ -75,6 +76,7 @@ SCENE_PARAMS: tuple[str, ...] = (
     "nu",
     "damping",
     "kp",
+    "friction",
 )
 """The physical parameters (a scene's ``params``); ``tol`` is separate."""
 
@@ -99,6 +101,7 @@ SHORT: dict[str, str] = {
     "nu": "ν",
     "damping": "damping",
     "kp": "kp",
+    "friction": "f",
     "tol": "tol",
 }
 """Short labels of the parameters, for legends."""
@@ -111,6 +114,7 @@ GRID_LABELS: dict[str, str] = {
     "nu": "ν",
     "damping": "damping c_w c_T/μ",
     "kp": "k_p/(μh)",
+    "friction": "friction f",
 }
 """Axis labels of a swept parameter (the paper's normalisations)."""
 
@@ -162,6 +166,8 @@ class Params:
     """b/h of a flat or rounded flat punch (unused by the others)."""
     table: Profile | None = None
     """The tabulated profile of a scene file (kind "table")."""
+    friction: float = 0.0
+    """Coulomb friction f (docs/theory.md section 14); 0: frictionless."""
 
     @property
     def damped(self) -> bool:
@@ -195,12 +201,12 @@ class Params:
         return replace(self, **changes)  # type: ignore[arg-type]
 
     def _shown(self, name: str) -> bool:
-        """damping and kp only when > 0 (0 is the paper's model)."""
-        return name not in ("damping", "kp") or self.get(name) > 0.0
+        """damping, kp and friction only when > 0 (0 is the paper's model)."""
+        return name not in ("damping", "kp", "friction") or self.get(name) > 0.0
 
     def physical(self) -> dict[str, float]:
-        """The scene's ``params`` mapping (without tol; damping and kp only
-        if > 0; radius only for a cylinder or a rounded flat)."""
+        """The scene's ``params`` mapping (without tol; damping, kp and
+        friction only if > 0; radius only for a cylinder or a rounded flat)."""
         return {
             name: self.get(name)
             for name in SCENE_PARAMS
@@ -210,7 +216,7 @@ class Params:
 
     def label(self, against: Params | None = None) -> str:
         """``V*=0.2 kw=1 ...``; only the values that differ from ``against``
-        (damping 0 and kp 0 are not shown)."""
+        (damping, kp and friction 0 are not shown)."""
         names = [
             n
             for n in SCENE_PARAMS
@@ -349,6 +355,8 @@ class Summary:
     """A flat punch's end coefficient K/((P/h) sqrt(h)) (0: bounded ends)."""
     warnings: tuple[str, ...] = ()
     """The solution's warnings (a requested accuracy not met)."""
+    tangential_force: float = 0.0
+    """Friction force on the punch over P (f; 0 without friction)."""
 
     @property
     def damped(self) -> bool:
@@ -440,6 +448,7 @@ def _solve(params: Params) -> ContactSolution:
         tol=params.tol,
         damping=params.damping,
         kp=params.kp,
+        friction=params.friction,
     )
 
 
@@ -469,6 +478,7 @@ def summary(cache: Cache, params: Params) -> Summary:
         drag=s.drag,
         end_coefficient=s.end_coefficients[1],
         warnings=result_warnings(s),
+        tangential_force=s.tangential_force,
     )
 
 

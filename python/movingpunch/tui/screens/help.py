@@ -42,6 +42,8 @@ started, or --root DIR); paths are relative to it and paths leading out are
 refused. Replacing an existing file needs a second enter.
 
 damp: foundation damping c_w c_T/μ >= 0 (dashpots; 0: the paper's model).
+fric: Coulomb friction f in [0, 10] (0: frictionless); > 0 gives the asymmetric
+contact, the end exponents and the friction force f P.
 With damping > 0 the gauge compares V* with the Rayleigh speed V*_R (V* may
 exceed V*_cr), the summary shows the contact (-b, a) and the drag over P,
 and the p(x), σx(x,0) and σx(0,y) tabs plot the asymmetric solution; the

@@ -339,6 +339,8 @@ class MainScreen(Screen[None]):
             parts.append(("drag/P", fmt(s.drag, 4)))
         if s.end_coefficient != 0.0:  # a flat punch: singular ends
             parts.append(("K", fmt(s.end_coefficient, 4)))
+        if s.tangential_force != 0.0:
+            parts.append(("friction/P", fmt(s.tangential_force, 4)))
         parts += [("it", str(s.iterations)), ("err", f"{s.error_estimate:.0e}")]
         if self._show_timing:
             parts.append(("", f"{s.elapsed * 1e3:.1f} ms"))

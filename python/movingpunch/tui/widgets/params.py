@@ -23,6 +23,7 @@ LABELS: dict[str, str] = {
     "load": "P/(μh)",
     "nu": "ν",
     "damping": "damp",
+    "friction": "fric",
     "tol": "tol",
 }
 

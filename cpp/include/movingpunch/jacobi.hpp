@@ -1,0 +1,128 @@
+// Gauss-Jacobi collocation for the singular integral equation of the second
+// kind of a punch sliding with Coulomb friction (docs/theory.md section 14):
+//   f Phi p(x) + (1/pi) int p(xi)/(xi - x) d xi + (regular) = (slope term),
+// whose bounded solution is p(c + w r) = (1 - r)^alpha (1 + r)^beta g(r),
+// alpha + beta = 1, cot(pi beta) = f Phi (alpha: the leading end r = +1).
+//
+// The rule (Erdogan, Gupta & Cook 1973; Krenk 1975): with r_i the zeros of
+// P_N^(alpha, beta), W_i the Gauss-Jacobi weights and s_k the N + 1 zeros of
+// P_{N+1}^(-alpha, -beta),
+//   f Phi w(s_k) g(s_k) + (1/pi) int w g/(t - s_k) dt = (1/pi) sum_i W_i g(r_i)/(r_i - s_k)
+// exactly for polynomials g of degree < N, because
+//   (1/pi) int w P_n^(alpha,beta)/(t - x) dt = cot(pi alpha) w P_n^(alpha,beta)(x)
+//       - 2/sin(pi alpha) P_{n+1}^(-alpha,-beta)(x)   (-1 < x < 1)
+// and cot(pi alpha) = -f Phi. alpha = beta = 1/2 is Gauss-Chebyshev.
+#pragma once
+
+#include <complex>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "movingpunch/collocation.hpp"
+#include "movingpunch/layer_response.hpp"
+
+namespace movingpunch {
+
+// The moving half-plane's response to a unit tangential surface load (top
+// state [U, W, T, S] = [Uq, Wq, 1, 0]; the physical amplitudes of a load
+// tau_xy = e^{i alpha x} are i times these) and the coupling constant
+//   Phi = Wq / phi1 = (2 - s - 2 nL nT) / (s nL) = (2X/(1 + Y) - 1)/nL,
+// (1 - 2 nu)/(2 (1 - nu)) at s = 0; finite at the Rayleigh speed.
+struct TangentialHalfPlane {
+  double Uq = 0;   // nT / D', D' = 4 - s - 4X/(1 + Y)
+  double Wq = 0;   // (2X/(1 + Y) - 1) / D'
+  double Phi = 0;  // Wq / phi1
+};
+TangentialHalfPlane tangential_half_plane(const WaveConstants& c);
+
+// The end exponents for friction f >= 0 and coupling Phi: p ~ (a - x)^front
+// (x + b)^back, front = 1/2 + atan(f Phi)/pi, back = 1 - front (cot(pi back)
+// = f Phi). Throws std::invalid_argument unless f Phi is finite.
+struct EndExponents {
+  double back = 0.5, front = 0.5;
+};
+EndExponents end_exponents(double f, double Phi);
+
+// P_n^(a, b)(x) and its derivative by the three-term recurrence (any a, b
+// with a + b != -2, including a + b = -1).
+void jacobi_p(int n, double a, double b, double x, double* p, double* dp = nullptr);
+
+// The n zeros of P_n^(a, b) (ascending), a, b > -1 or a + b = -1 with
+// -1 < a, b < 1: eigenvalues of the Jacobi matrix, polished by Newton steps.
+Eigen::VectorXd jacobi_zeros(int n, double a, double b);
+
+// Gauss-Jacobi rule: int_{-1}^{1} (1-x)^a (1+x)^b f ~ sum w_i f(x_i), a, b > -1.
+struct JacobiRule {
+  Eigen::VectorXd x, w;
+};
+JacobiRule gauss_jacobi(int n, double a, double b);
+
+// The collocation nodes of the rule above in ChebyshevNodes' layout (so that
+// the damped solver's width evaluation applies unchanged): r = zeros of
+// P_N^(alpha, 1 - alpha), s = zeros of P_{N+1}^(-alpha, alpha - 1), w =
+// Gauss-Jacobi weights / pi. alpha = 1/2 gives chebyshev_nodes(n) up to round-off.
+ChebyshevNodes jacobi_collocation_nodes(int n, double alpha);
+
+// g(r) = sum_n c_n P_n^(alpha, beta)(r) with alpha + beta = 1, the density
+// w(r) g(r), w = (1 - r)^alpha (1 + r)^beta, and its integrals in closed form.
+class JacobiSeries {
+ public:
+  JacobiSeries() = default;
+  JacobiSeries(double alpha, Eigen::VectorXd c);
+  // From the values g(r_i) at the zeros r_i of P_N^(alpha, beta) (exact for
+  // polynomials of degree < N).
+  static JacobiSeries from_nodes(double alpha, const Eigen::VectorXd& r, const Eigen::VectorXd& g);
+
+  double alpha() const noexcept { return alpha_; }
+  double beta() const noexcept { return 1.0 - alpha_; }
+  const Eigen::VectorXd& coefficients() const noexcept { return c_; }
+  int size() const noexcept { return static_cast<int>(c_.size()); }
+
+  double g(double r) const;        // the series (any real r)
+  double weight(double r) const;   // (1 - r)^alpha (1 + r)^beta on [-1, 1], 0 outside
+  double density(double r) const;  // weight(r) g(r)
+  // int_{-1}^{1} w g dr (= int p / (P/h) / half-width) and int w g r dr.
+  double moment0() const;
+  double moment1() const;
+  // (1/pi) int_{-1}^{1} w(t) g(t)/(t - x) dt for real x (principal value on
+  // the cut): the closed form inside and near the cut, Gauss-Jacobi
+  // quadrature (converging like (|x| + sqrt(x^2 - 1))^(-2M)) for |x| >= 1.2.
+  double cauchy(double x) const;
+  // (1/pi) int_{-1}^{1} w(t) g(t)/(t - z) dt and its derivative in z, for
+  // Im z >= 0 (z off the cut or on its upper side): the closed form
+  // [Z(z) g(z) - 2 sum c_n P_{n+1}^(-alpha,-beta)(z)]/sin(pi alpha), Z = (z-1)^alpha
+  // (z+1)^beta, inside the Bernstein ellipse rho(z) < 1.86, else the rule of cauchy().
+  std::complex<double> cauchy_upper(std::complex<double> z,
+                                    std::complex<double>* derivative = nullptr) const;
+  // The same for series with other coefficients: this - other (same alpha).
+  JacobiSeries minus(const JacobiSeries& other) const;
+  // max over [-1, 1] of |w g| sampled at 8 (N + 1) + 64 Chebyshev angles (the ends included).
+  double max_abs_density() const;
+  // min over (-1, 1) of g (the margin before separation), scanned and refined.
+  double min_g() const;
+
+ private:
+  double alpha_ = 0.5;
+  Eigen::VectorXd c_;
+  // cauchy()'s Gauss-Jacobi rule for |x| >= 1.2 (N + 60 nodes) times g there.
+  Eigen::VectorXd far_x_, far_wg_;
+};
+
+// int_{-1}^{1} w(r) g(r) e^{-i omega r} dr at many omega (|omega| <= omega_max)
+// by one Gauss-Jacobi rule of N + omega_max + 40 nodes (exact to round-off:
+// the integrand is entire, the rule resolves the oscillation).
+class JacobiTransform {
+ public:
+  // With `second` (same alpha, at most as long as s): its transform too (second()).
+  JacobiTransform(const JacobiSeries& s, double omega_max, const JacobiSeries* second = nullptr);
+  std::complex<double> operator()(double omega) const { return sum(gw_, omega); }
+  std::complex<double> second(double omega) const { return sum(gw2_, omega); }
+
+ private:
+  JacobiRule rule_;
+  Eigen::VectorXd gw_, gw2_;
+  std::complex<double> sum(const Eigen::VectorXd& gw, double omega) const;
+};
+
+}  // namespace movingpunch

@@ -1,0 +1,125 @@
+// Gauss-Jacobi collocation (cpp/src/jacobi.cpp) against independent anchors:
+// Gauss-Chebyshev at alpha = 1/2, polynomial exactness, brute-force
+// quadrature of the Cauchy integral, the discrete rule at the companion zeros.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <complex>
+
+#include "movingpunch/collocation.hpp"
+#include "movingpunch/jacobi.hpp"
+
+namespace mp = movingpunch;
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+
+// int_{-1}^{1} f by composite Gauss-Legendre after t = cos(theta) (smooths the
+// end behaviour of the Jacobi weight): 4000 midpoint panels in theta.
+template <class F>
+double by_theta(F f) {
+  const int m = 20000;
+  double sum = 0.0;
+  for (int j = 0; j < m; ++j) {
+    const double th = kPi * (j + 0.5) / m;
+    sum += f(std::cos(th)) * std::sin(th) * kPi / m;
+  }
+  return sum;
+}
+}  // namespace
+
+TEST(Jacobi, HalfIsGaussChebyshev) {
+  for (int n : {2, 8, 24, 64}) {
+    const mp::ChebyshevNodes c = mp::chebyshev_nodes(n);
+    const mp::ChebyshevNodes j = mp::jacobi_collocation_nodes(n, 0.5);
+    for (int i = 0; i < n; ++i) {
+      EXPECT_NEAR(j.r(i), c.r(i), 1e-14);
+      EXPECT_NEAR(j.w(i), c.w(i), 1e-14);
+    }
+    for (int k = 0; k <= n; ++k) EXPECT_NEAR(j.s(k), c.s(k), 1e-14);
+  }
+}
+
+TEST(Jacobi, RuleIsExactForPolynomials) {
+  // int (1-x)^a (1+x)^b x^k against the Beta-function closed form for k = 0, 1, 2.
+  const double a = 0.3, b = 0.7;
+  const mp::JacobiRule r = mp::gauss_jacobi(12, a, b);
+  auto mom = [&](int k) {
+    double s = 0.0;
+    for (int i = 0; i < 12; ++i) s += r.w(i) * std::pow(r.x(i), k);
+    return s;
+  };
+  const double m0 = std::exp((a + b + 1) * std::log(2.0) + std::lgamma(a + 1) + std::lgamma(b + 1) -
+                             std::lgamma(a + b + 2));
+  EXPECT_NEAR(mom(0), m0, 1e-14 * m0);
+  EXPECT_NEAR(mom(1), m0 * (b - a) / (a + b + 2), 1e-14);
+  // E[x^2] for the Beta-distributed (1 + x)/2.
+  const double mu = (b + 1) / (a + b + 2), var = (a + 1) * (b + 1) / ((a + b + 2) * (a + b + 2) * (a + b + 3));
+  EXPECT_NEAR(mom(2), m0 * (4 * (var + mu * mu) - 4 * mu + 1), 1e-14);
+}
+
+TEST(Jacobi, CauchyIntegralMatchesBruteForce) {
+  // (1/pi) PV int w g/(t - x) with g = 1 + 0.5 P_1 - 0.2 P_3 at points inside,
+  // near and far outside the cut, against a subtracted singularity by quadrature.
+  const double a = 0.62;
+  Eigen::VectorXd c(4);
+  c << 1.0, 0.5, 0.0, -0.2;
+  const mp::JacobiSeries s(a, c);
+  for (double x : {-0.93, -0.2, 0.41, 0.999, 1.05, 1.19, 1.21, 3.0, -1.1, -7.0}) {
+    const double fx = std::fabs(x) < 1.0 ? s.density(x) : 0.0;
+    const double pv = by_theta([&](double t) { return (s.density(t) - fx) / (t - x); });
+    // f(x) PV int dt/(t - x) = f(x) ln((1 - x)/(1 + x)).
+    const double rest = std::fabs(x) < 1.0 ? fx * std::log((1.0 - x) / (1.0 + x)) : 0.0;
+    EXPECT_NEAR(s.cauchy(x), (pv + rest) / kPi, 2e-7) << x;
+  }
+}
+
+TEST(Jacobi, DiscreteRuleAtTheCompanionZeros) {
+  // (1/pi) sum W_i g(r_i)/(r_i - s_k) = f Phi w g + (1/pi) PV int w g/(t - s_k)
+  // with cot(pi alpha) = -f Phi, for g of degree < N.
+  const double a = 0.37;
+  const int n = 10;
+  const mp::ChebyshevNodes nd = mp::jacobi_collocation_nodes(n, a);
+  Eigen::VectorXd c(5);
+  c << 0.3, -1.0, 0.25, 0.0, 0.1;
+  const mp::JacobiSeries s(a, c);
+  const double fphi = -std::cos(kPi * a) / std::sin(kPi * a);
+  for (int k = 0; k <= n; ++k) {
+    double lhs = 0.0;
+    for (int i = 0; i < n; ++i) lhs += nd.w(i) * s.g(nd.r(i)) / (nd.r(i) - nd.s(k));
+    EXPECT_NEAR(lhs, fphi * s.density(nd.s(k)) + s.cauchy(nd.s(k)), 1e-12);
+  }
+}
+
+TEST(Jacobi, TransformMatchesQuadrature) {
+  Eigen::VectorXd c(3);
+  c << 1.0, 0.4, -0.3;
+  const mp::JacobiSeries s(0.7, c);
+  const mp::JacobiTransform tr(s, 60.0);
+  for (double om : {0.0, 1.0, 7.5, 59.0}) {
+    const double re = by_theta([&](double t) { return s.density(t) * std::cos(om * t); });
+    const double im = -by_theta([&](double t) { return s.density(t) * std::sin(om * t); });
+    EXPECT_NEAR(tr(om).real(), re, 1e-7);
+    EXPECT_NEAR(tr(om).imag(), im, 1e-7);
+  }
+  EXPECT_NEAR(s.moment0(), tr(0.0).real(), 1e-12);
+}
+
+TEST(Jacobi, SeriesFromNodesInterpolates) {
+  const double a = 0.45;
+  const mp::ChebyshevNodes nd = mp::jacobi_collocation_nodes(8, a);
+  Eigen::VectorXd g(8);
+  for (int i = 0; i < 8; ++i) g(i) = 1.0 + nd.r(i) - 2.0 * std::pow(nd.r(i), 5);
+  const mp::JacobiSeries s = mp::JacobiSeries::from_nodes(a, nd.r, g);
+  for (double r : {-0.9, 0.0, 0.33, 0.8}) EXPECT_NEAR(s.g(r), 1.0 + r - 2.0 * std::pow(r, 5), 1e-13);
+}
+
+TEST(Jacobi, ExponentsAndCoupling) {
+  const mp::EndExponents e = mp::end_exponents(0.3, 0.375);
+  EXPECT_NEAR(1.0 / std::tan(kPi * e.back), 0.3 * 0.375, 1e-14);
+  EXPECT_NEAR(e.back + e.front, 1.0, 1e-15);
+  const mp::TangentialHalfPlane t0 = mp::tangential_half_plane(mp::wave_constants(0.0, 0.2));
+  EXPECT_NEAR(t0.Phi, 0.6 / 1.6, 1e-15);  // (1 - 2 nu)/(2 (1 - nu))
+  EXPECT_NEAR(t0.Wq, 0.3, 1e-15);         // (1 - 2 nu)/2
+  EXPECT_NEAR(t0.Uq, 0.8, 1e-15);         // c2/(2 (c2 - 1)), c2 = 8/3
+}
