@@ -144,7 +144,7 @@ def solve_group(task: Mapping[str, Any]) -> dict[str, Any]:
             "nu": task["nu"],
             "damping": task["damping"],
             "kp": task.get("kp", 0.0),
-            "friction": task["friction"],
+            "friction": task.get("friction", 0.0),
             "radius": radius,
             "load": load,
         }
