@@ -444,7 +444,7 @@ FRICTION_BAD: list[Any] = [-1e-300, -0.1, 10.000001, 1e308, NAN, INF, -INF, "0.3
 
 def fuzz_friction(calls: int, seed: int) -> collections.Counter[str]:
     """Each call: a friction from the pool (or a bad value), damping 0 or
-    0.1, kw and nu from small pools (kernel tables are cached per inputs),
+    0.1, kw, nu and kp from small pools (kernel tables are cached per inputs),
     the rest as the binding fuzz draws them. A solution must be finite with
     exponents summing to 1, cot(pi gamma_back) = f Phi; an error must be the
     package's."""
@@ -455,7 +455,8 @@ def fuzz_friction(calls: int, seed: int) -> collections.Counter[str]:
         args = draw.call()
         args["kw"] = float(draw._pick([0.1, 1.0, 10.0, INF]))
         args["nu"] = float(draw._pick([0.2, 0.3]))
-        vcr = draw.critical(args["kw"], args["nu"]) or 0.5
+        args["kp"] = float(draw._pick([0.0, 0.0, 0.3]))  # Pasternak too
+        vcr = draw.critical(args["kw"], args["nu"], args["kp"]) or 0.5
         args["vstar"] = float(rng.uniform(0.0, 1.05)) * vcr
         args["n"] = None
         args["tol"] = 1e-8 if rng.random() < 0.8 else float(draw._pick([1e-4, 1e-12]))
