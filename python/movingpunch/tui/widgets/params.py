@@ -16,7 +16,7 @@ from movingpunch.tui.model import PARAM_NAMES, TUI_PROFILES, Params, fmt
 LABELS: dict[str, str] = {
     "vstar": "V*",
     "kw": "kw h/μ",
-    "kp": "kp/(μh)",
+    "kp": "kp/μh",
     "radius": "R/h",
     "half_width": "b/h",
     "profile": "punch",
