@@ -1,8 +1,8 @@
 // The contact solve and its result. Adapters only.
 #include <string>
 #include <tuple>
-#include <vector>
 #include <utility>
+#include <vector>
 
 #include <pybind11/eigen.h>
 #include <pybind11/pybind11.h>
@@ -11,8 +11,8 @@
 
 #include "bindings.hpp"
 #include "movingpunch/contact.hpp"
-#include "movingpunch/profile.hpp"
 #include "movingpunch/errors.hpp"
+#include "movingpunch/profile.hpp"
 
 namespace py = pybind11;
 using namespace py::literals;
@@ -22,12 +22,12 @@ namespace movingpunch::bindings {
 namespace {
 // The profile kind from its API name.
 ProfileKind profile_kind(const std::string& name) {
-  for (ProfileKind k : {ProfileKind::cylinder, ProfileKind::flat, ProfileKind::rounded_flat,
-                        ProfileKind::table})
+  for (ProfileKind k :
+       {ProfileKind::cylinder, ProfileKind::flat, ProfileKind::rounded_flat, ProfileKind::table})
     if (name == profile_kind_name(k)) return k;
-  throw InvalidParameter("profile", "'cylinder', 'flat', 'rounded_flat' or 'table'",
-                         "profile must be 'cylinder', 'flat', 'rounded_flat' or 'table', got '" +
-                             name + "'");
+  throw InvalidParameter(
+      "profile", "'cylinder', 'flat', 'rounded_flat' or 'table'",
+      "profile must be 'cylinder', 'flat', 'rounded_flat' or 'table', got '" + name + "'");
 }
 }  // namespace
 
@@ -103,10 +103,9 @@ void bind_contact(py::module_& m) {
   m.def("clear_kernel_cache", &clear_kernel_cache, Release(),
         "Empties the process-wide k1 kernel cache and resets its counters.");
 
-  m.def(
-      "check_profile_table", &check_profile_table, "x"_a, "y"_a,
-      "Raises InvalidParameterError unless (x, y) is a valid profile table: at least 5 "
-      "points, finite, x strictly ascending, symmetric about x = 0 and convex.");
+  m.def("check_profile_table", &check_profile_table, "x"_a, "y"_a,
+        "Raises InvalidParameterError unless (x, y) is a valid profile table: at least 5 "
+        "points, finite, x strictly ascending, symmetric about x = 0 and convex.");
   m.def(
       "profile_shape",
       [](const std::string& kind, double radius, double half_width, const std::vector<double>& tx,
@@ -126,9 +125,8 @@ void bind_contact(py::module_& m) {
   m.def(
       "solve_contact",
       [](double vstar, double kw, double radius, double load, double nu, double tol,
-         bool allow_unphysical, int n, double kp, const std::string& profile,
-         double half_width, const std::vector<double>& table_x,
-         const std::vector<double>& table_y) {
+         bool allow_unphysical, int n, double kp, const std::string& profile, double half_width,
+         const std::vector<double>& table_x, const std::vector<double>& table_y) {
         ContactParams p =
             solve_params<ContactParams>(vstar, kw, radius, load, nu, tol, allow_unphysical, n);
         p.kp = kp;

@@ -183,8 +183,7 @@ void bessel_orders(double w, int kmax, std::vector<double>& J) {
 
 using detail::bessel_orders;
 
-double series_cosine_transform(const Eigen::VectorXd& b, SeriesKind kind, double a,
-                               double alpha) {
+double series_cosine_transform(const Eigen::VectorXd& b, SeriesKind kind, double a, double alpha) {
   const bool t_kind = kind == SeriesKind::T;
   const double w = alpha * a;
   if (w < 1e-8) {
@@ -311,8 +310,7 @@ void series_cosine_transforms(const Eigen::VectorXd& b, SeriesKind kind, double 
     for (int l = 0; l < lanes; ++l) {
       const std::size_t q = static_cast<std::size_t>(l);
       const double total = norm[q] - cur[q];  // J_0 + 2 sum J_2k
-      out[idx[q]] = t_kind ? sum[q] / total * 0.5 * kPi * a
-                           : sum[q] / total * 0.5 * kPi * a / w[q];
+      out[idx[q]] = t_kind ? sum[q] / total * 0.5 * kPi * a : sum[q] / total * 0.5 * kPi * a / w[q];
     }
   }
 }

@@ -114,9 +114,10 @@ class Problem {
     ++evaluations_;
     const auto ksum = [&k](double u, double v) { return k.sum(u, v); };
     const Eigen::VectorXd G =
-        cylinder() ? solve_unit_collocation_sum(nodes, a, ksum)
-                   : Eigen::VectorXd(
-                         unit_collocation_matrix(nodes, a, ksum).partialPivLu().solve(rhs(nodes, a)));
+        cylinder()
+            ? solve_unit_collocation_sum(nodes, a, ksum)
+            : Eigen::VectorXd(
+                  unit_collocation_matrix(nodes, a, ksum).partialPivLu().solve(rhs(nodes, a)));
     const double sum = 2.0 * nodes.w.head(nodes.n / 2).dot(G);
     if (G_out) *G_out = G;
     return load_factor(a) * sum;
@@ -489,8 +490,7 @@ ContactSolution::ErrorBudget error_budget(Problem& prob, const ContactParams& p,
 
   const KernelK1& k = prob.kernel(a);
   const Eigen::VectorXd wG = w.cwiseProduct(lin.G);
-  const double dS = kernel_perturbation(k, a, lin.lambda, nodes.s.head(h), wG,
-                                        nodes.r.head(h), S);
+  const double dS = kernel_perturbation(k, a, lin.lambda, nodes.s.head(h), wG, nodes.r.head(h), S);
   b.kernel = dS * to_a;
 
   // Round-off: of the matrix entries and the solve's backward error, 2 eps
@@ -534,8 +534,7 @@ WidthRange profile_range(const ContactParams& p, const PunchProfile& prof) {
         << " (a > b always: the rounded corners always carry some load): increase the load, or "
            "use a flat punch (square corners)";
     else
-      m << "below the supported range " << detail::supported_range_text()
-        << ": increase the load";
+      m << "below the supported range " << detail::supported_range_text() << ": increase the load";
     throw std::invalid_argument(m.str());
   };
   return r;
@@ -693,8 +692,7 @@ void extend_series(Eigen::VectorXd& b, double& truncation, const PunchProfile& p
       b(m) = m % 2 == 0 ? d[static_cast<std::size_t>(m / 2)] / phi1_load : 0.0;
   }
   double sum = 0.0;
-  for (std::size_t q = static_cast<std::size_t>(len / 2); q < d.size(); ++q)
-    sum += std::fabs(d[q]);
+  for (std::size_t q = static_cast<std::size_t>(len / 2); q < d.size(); ++q) sum += std::fabs(d[q]);
   // The rest beyond m = 4 len, as ~m^-2: about the last term times its index.
   const double last = std::fabs(d.back()) + std::fabs(d[d.size() - 2]);
   sum += last * static_cast<double>(d.size());
@@ -904,8 +902,8 @@ void finish_checks(ContactSolution& sol, const ContactParams& p, const PunchProf
   why.precision(6);
   if (t_kind && sol.p_margin_ < -rel * gmax && std::fabs(r_margin) > 0.999) {
     sol.valid_ = false;
-    why << "the pressure at the flat punch's edges is tensile (end coefficient "
-        << sol.end_k_ << "): the face lifts off at its edges and the single-contact "
+    why << "the pressure at the flat punch's edges is tensile (end coefficient " << sol.end_k_
+        << "): the face lifts off at its edges and the single-contact "
         << "solution (the whole face in contact) is unphysical";
   } else if (gmin < -rel * gmax) {
     sol.valid_ = false;
@@ -1009,10 +1007,10 @@ ContactSolution solve_contact(const ContactParams& p) {
     const double scale = 1.0 / (kPi * a);  // g of the half-plane
     if (!(fs.error <= p.tol * std::max(scale, std::fabs(t_series(sol.b_, 1.0)))))
       sol.warnings_.push_back(
-          "tol not met: the end coefficient's error estimate " + format_g(sol.end_k_err_) +
-          " is " + format_g(fs.error / std::max(scale, std::fabs(t_series(sol.b_, 1.0)))) +
-          " relative, above tol = " + format_g(p.tol) + " (the collocation size N = " +
-          std::to_string(fs.n) + ")");
+          "tol not met: the end coefficient's error estimate " + format_g(sol.end_k_err_) + " is " +
+          format_g(fs.error / std::max(scale, std::fabs(t_series(sol.b_, 1.0)))) +
+          " relative, above tol = " + format_g(p.tol) +
+          " (the collocation size N = " + std::to_string(fs.n) + ")");
   } else {
     const BoundedSolve bs = solve_bounded(prob, p, prof, phi1);
     const double a = bs.a;

@@ -1112,8 +1112,9 @@ DampedSolution solve_damped(const DampedParams& prm) {
   s.min_p_ = kInf;
   for (int i = 0; i <= 400; ++i) {
     const double r = -1.0 + 2.0 * i / 400.0;
-    s.min_p_ = std::min(s.min_p_, frictional ? js.density(r)
-                                             : u_series(s.b_, r) * std::sqrt(std::max(0.0, 1.0 - r * r)));
+    s.min_p_ =
+        std::min(s.min_p_, frictional ? js.density(r)
+                                      : u_series(s.b_, r) * std::sqrt(std::max(0.0, 1.0 - r * r)));
   }
   // gap(x) = int_edge^x (xi/R - v'(xi)) d xi beside each end, with xi = edge +- q^2.
   s.min_gap_ = kInf;
@@ -1219,7 +1220,8 @@ cplx DampedSolution::surface_stress_integrand(const DampedResponse& r, double al
 
 double DampedSolution::friction_surface_terms(double x, const JacobiSeries& ser, double c,
                                               double w) const {
-  // f Cq (1/pi) int p/(xi - x) - (f C0/pi) int p(xi) arctan(x - xi) d xi for p(c + w r) = w(r) g(r).
+  // f Cq (1/pi) int p/(xi - x) - (f C0/pi) int p(xi) arctan(x - xi) d xi for p(c + w r) = w(r)
+  // g(r).
   const WaveConstants& wc = model_->constants();
   const double ep = 4.0 * (wc.c2 - 1.0) / wc.c2, c0 = ep / (ep - wc.s);
   const double cq = ep * model_->tangential().Uq, f = params_.friction;
@@ -1307,10 +1309,11 @@ std::shared_ptr<const Eigen::MatrixXd> DampedSolution::friction_depth_coefficien
     const auto q = static_cast<std::size_t>(k);
     const double al = f.alpha[q];
     const Eigen::Matrix4d C = detail::modal_columns(c, al, y);
-    const Eigen::Vector4cd z = model_->tangential_state(al, y) -
-                               (q1 * C.col(0) + q2 * C.col(1)).cast<cplx>();
+    const Eigen::Vector4cd z =
+        model_->tangential_state(al, y) - (q1 * C.col(0) + q2 * C.col(1)).cast<cplx>();
     const cplx ph = f.phat[q] * std::exp(cplx(0.0, al * centre_));
-    const cplx sx = i * fr * (ep * z(0) + (c.c2 - 2.0) / c.c2 * z(3) - c0 * std::exp(-al) / al) * ph;
+    const cplx sx =
+        i * fr * (ep * z(0) + (c.c2 - 2.0) / c.c2 * z(3) - c0 * std::exp(-al) / al) * ph;
     const cplx sy = i * fr * z(3) * ph, tau = fr * z(2) * ph;
     G(k, 0) = sx.real();
     G(k, 1) = sy.real();
@@ -1735,9 +1738,9 @@ double DampedSolution::bottom_displacement(double x) const {
   double sum = 0.0;
   for (std::size_t i = 0; i < f->alpha.size(); ++i)
     if (f->alpha[i] > 0.0)
-      sum += f->weight[i] * (bottom_w(f->r[i]) / f->alpha[i] * f->phat[i] *
-                             std::exp(cplx(0.0, f->alpha[i] * x)))
-                                .real();
+      sum += f->weight[i] *
+             (bottom_w(f->r[i]) / f->alpha[i] * f->phat[i] * std::exp(cplx(0.0, f->alpha[i] * x)))
+                 .real();
   return params_.load * sum / kPi;
 }
 
@@ -1746,9 +1749,9 @@ double DampedSolution::bottom_slope(double x) const {
   const auto f = fine_for(x);
   double sum = 0.0;
   for (std::size_t i = 0; i < f->alpha.size(); ++i)
-    sum += f->weight[i] * (cplx(0.0, 1.0) * bottom_w(f->r[i]) * f->phat[i] *
-                           std::exp(cplx(0.0, f->alpha[i] * x)))
-                              .real();
+    sum += f->weight[i] *
+           (cplx(0.0, 1.0) * bottom_w(f->r[i]) * f->phat[i] * std::exp(cplx(0.0, f->alpha[i] * x)))
+               .real();
   return params_.load * sum / kPi;
 }
 
@@ -1817,7 +1820,7 @@ Eigen::VectorXd DampedSolution::friction_displacement(const Eigen::Ref<const Eig
     // w int_0^{1/w} Phi(z + i tau) i d tau, panels graded towards tau = 0.
     cplx sum = 0.0;
     double lo = 0.0;
-    for (int k = 64; k >= 0; --k) {  // ratio 10^(1/4.5): each panel resolves
+    for (int k = 64; k >= 0; --k) {                    // ratio 10^(1/4.5): each panel resolves
       const double hi = std::pow(10.0, -k / 4.5) / w;  // a singularity its length away
       for (int j = 0; j < 8; ++j)
         sum += detail::kGw[j] * (hi - lo) * Phi(z + cplx(0.0, lo + detail::kGx[j] * (hi - lo)));

@@ -193,7 +193,9 @@ JacobiSeries JacobiSeries::from_nodes(double alpha, const Eigen::VectorXd& r,
   return JacobiSeries(alpha, c);
 }
 
-double JacobiSeries::g(double r) const { return jacobi_series(c_, alpha_, beta(), r, 0, static_cast<double*>(nullptr)); }
+double JacobiSeries::g(double r) const {
+  return jacobi_series(c_, alpha_, beta(), r, 0, static_cast<double*>(nullptr));
+}
 
 double JacobiSeries::weight(double r) const {
   if (!(std::fabs(r) <= 1.0)) return 0.0;
@@ -205,7 +207,9 @@ double JacobiSeries::density(double r) const {
   return w == 0.0 ? 0.0 : w * g(r);
 }
 
-double JacobiSeries::moment0() const { return c_.size() ? c_(0) * jacobi_norm(0, alpha_, beta()) : 0.0; }
+double JacobiSeries::moment0() const {
+  return c_.size() ? c_(0) * jacobi_norm(0, alpha_, beta()) : 0.0;
+}
 
 double JacobiSeries::moment1() const {
   // r = (2 P_1 - (a - b))/(a + b + 2) = (2 P_1 - (a - b))/3.
@@ -218,18 +222,18 @@ double JacobiSeries::moment1() const {
 double JacobiSeries::cauchy(double x) const {
   const double a = alpha_, b = beta();
   const double sa = std::sin(kPi * a);
-  const double poly = jacobi_series(c_, -a, -b, x, 1, static_cast<double*>(nullptr));  // sum c_n P_{n+1}^(-a,-b)(x)
+  const double poly =
+      jacobi_series(c_, -a, -b, x, 1, static_cast<double*>(nullptr));  // sum c_n P_{n+1}^(-a,-b)(x)
   if (std::fabs(x) <= 1.0) return std::cos(kPi * a) / sa * density(x) - 2.0 / sa * poly;
   if (std::fabs(x) < 1.2) {
-    const double Z = (x > 0 ? 1.0 : -1.0) * std::pow(std::fabs(x - 1.0), a) *
-                     std::pow(std::fabs(x + 1.0), b);
+    const double Z =
+        (x > 0 ? 1.0 : -1.0) * std::pow(std::fabs(x - 1.0), a) * std::pow(std::fabs(x + 1.0), b);
     return (Z * g(x) - 2.0 * poly) / sa;
   }
   double sum = 0.0;
   for (Eigen::Index i = 0; i < far_x_.size(); ++i) sum += far_wg_(i) / (far_x_(i) - x);
   return sum / kPi;
 }
-
 
 std::complex<double> JacobiSeries::cauchy_upper(std::complex<double> z,
                                                 std::complex<double>* derivative) const {
@@ -323,7 +327,8 @@ JacobiTransform::JacobiTransform(const JacobiSeries& s, double omega_max,
 std::complex<double> JacobiTransform::sum(const Eigen::VectorXd& gw, double omega) const {
   std::complex<double> out = 0.0;
   for (Eigen::Index i = 0; i < gw.size(); ++i)
-    out += gw(i) * std::complex<double>(std::cos(omega * rule_.x(i)), -std::sin(omega * rule_.x(i)));
+    out +=
+        gw(i) * std::complex<double>(std::cos(omega * rule_.x(i)), -std::sin(omega * rule_.x(i)));
   return out;
 }
 

@@ -110,7 +110,7 @@ RangeCache<KernelK1, 5>& k1_cache() {
 // no upper ratio. Keyed on (vstar, kw, nu, damping, friction).
 RangeCache<DampedKernel, 6>& damped_cache() {
   static RangeCache<DampedKernel, 6> c(kDampedKernelCacheCapacity,
-                                    std::numeric_limits<double>::infinity());
+                                       std::numeric_limits<double>::infinity());
   return c;
 }
 
@@ -138,8 +138,8 @@ std::shared_ptr<const KernelK1> cached_kernel(const LayerModel& model, double to
 
 std::shared_ptr<const DampedKernel> cached_damped_kernel(double vstar, double kw, double nu,
                                                          double damping, double min_range,
-                                                         double build_range, bool* built,
-                                                         double kp, double friction) {
+                                                         double build_range, bool* built, double kp,
+                                                         double friction) {
   return damped_cache().get(
       {vstar, kw, nu, damping, std::isinf(kw) ? 0.0 : kp, friction}, min_range, build_range,
       [&](double range, const std::shared_ptr<const DampedKernel>& shorter) {

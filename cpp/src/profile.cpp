@@ -62,8 +62,8 @@ void check_profile_table(const std::vector<double>& x, const std::vector<double>
                 "y must be finite, got y[" + std::to_string(i) + "] = " + num(y[i]));
     if (i > 0 && !(x[i] > x[i - 1]))
       bad_table("profile.x", "finite, strictly ascending",
-                "x must be strictly ascending, got x[" + std::to_string(i - 1) + "] = " +
-                    num(x[i - 1]) + " then x[" + std::to_string(i) + "] = " + num(x[i]));
+                "x must be strictly ascending, got x[" + std::to_string(i - 1) +
+                    "] = " + num(x[i - 1]) + " then x[" + std::to_string(i) + "] = " + num(x[i]));
   }
   const double xmax = std::max(std::fabs(x.front()), std::fabs(x.back()));
   const auto [ylo, yhi] = std::minmax_element(y.begin(), y.end());
@@ -185,15 +185,14 @@ double PunchProfile::spline(double x, double* slope) const {
   i = std::min(i, x_.size() - 2);
   const double h = x_[i + 1] - x_[i], l = x_[i + 1] - x, r = x - x_[i];
   const double A = y_[i] / h - m_[i] * h / 6.0, B = y_[i + 1] / h - m_[i + 1] * h / 6.0;
-  if (slope)
-    *slope = (-m_[i] * l * l + m_[i + 1] * r * r) / (2.0 * h) - A + B;
+  if (slope) *slope = (-m_[i] * l * l + m_[i + 1] * r * r) / (2.0 * h) - A + B;
   return (m_[i] * l * l * l + m_[i + 1] * r * r * r) / (6.0 * h) + A * l + B * r;
 }
 
 namespace {
 [[noreturn]] void beyond(double x, double extent) {
-  throw std::domain_error("the profile table covers |x| <= " + num(extent) + ", asked at x = " +
-                          num(x));
+  throw std::domain_error("the profile table covers |x| <= " + num(extent) +
+                          ", asked at x = " + num(x));
 }
 }  // namespace
 
@@ -287,11 +286,11 @@ std::string PunchProfile::describe() const {
     case ProfileKind::flat:
       return "flat punch, half-width b/h = " + num(face_);
     case ProfileKind::rounded_flat:
-      return "rounded flat punch, half-width b/h = " + num(face_) + ", corner radius R/h = " +
-             num(radius_);
+      return "rounded flat punch, half-width b/h = " + num(face_) +
+             ", corner radius R/h = " + num(radius_);
     case ProfileKind::table:
-      return "tabulated profile of " + std::to_string(x_.size()) + " points, |x|/h <= " +
-             num(extent_);
+      return "tabulated profile of " + std::to_string(x_.size()) +
+             " points, |x|/h <= " + num(extent_);
   }
   return "?";
 }

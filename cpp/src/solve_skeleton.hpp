@@ -59,8 +59,7 @@ struct WidthGuess {
   bool use_wide = false;
   double a = 0;  // the guess
 };
-inline WidthGuess width_guess(double phi1, double lambda, double kw, double nu,
-                              double kp = 0.0) {
+inline WidthGuess width_guess(double phi1, double lambda, double kw, double nu, double kp = 0.0) {
   constexpr double kPi = 3.14159265358979323846;
   WidthGuess g;
   g.hertz = std::sqrt(2.0 * phi1 * lambda / kPi);

@@ -54,7 +54,8 @@ TEST(Jacobi, RuleIsExactForPolynomials) {
   EXPECT_NEAR(mom(0), m0, 1e-14 * m0);
   EXPECT_NEAR(mom(1), m0 * (b - a) / (a + b + 2), 1e-14);
   // E[x^2] for the Beta-distributed (1 + x)/2.
-  const double mu = (b + 1) / (a + b + 2), var = (a + 1) * (b + 1) / ((a + b + 2) * (a + b + 2) * (a + b + 3));
+  const double mu = (b + 1) / (a + b + 2),
+               var = (a + 1) * (b + 1) / ((a + b + 2) * (a + b + 2) * (a + b + 3));
   EXPECT_NEAR(mom(2), m0 * (4 * (var + mu * mu) - 4 * mu + 1), 1e-14);
 }
 
@@ -111,7 +112,8 @@ TEST(Jacobi, SeriesFromNodesInterpolates) {
   Eigen::VectorXd g(8);
   for (int i = 0; i < 8; ++i) g(i) = 1.0 + nd.r(i) - 2.0 * std::pow(nd.r(i), 5);
   const mp::JacobiSeries s = mp::JacobiSeries::from_nodes(a, nd.r, g);
-  for (double r : {-0.9, 0.0, 0.33, 0.8}) EXPECT_NEAR(s.g(r), 1.0 + r - 2.0 * std::pow(r, 5), 1e-13);
+  for (double r : {-0.9, 0.0, 0.33, 0.8})
+    EXPECT_NEAR(s.g(r), 1.0 + r - 2.0 * std::pow(r, 5), 1e-13);
 }
 
 TEST(Jacobi, ExponentsAndCoupling) {

@@ -8,13 +8,13 @@
 #include <limits>
 #include <stdexcept>
 
+#include "layer_basis.hpp"
 #include "movingpunch/contact.hpp"
 #include "movingpunch/damped.hpp"
 #include "movingpunch/dispersion.hpp"
 #include "movingpunch/errors.hpp"
 #include "movingpunch/kernel.hpp"
 #include "movingpunch/layer_response.hpp"
-#include "layer_basis.hpp"
 #include "solve_skeleton.hpp"
 
 using namespace movingpunch;

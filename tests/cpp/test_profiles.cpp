@@ -54,11 +54,11 @@ TEST(Profiles, TableChecksNameTheirParameter) {
     return std::string("none");
   };
   EXPECT_EQ(name_of(x, {4, 1, 0, 1, 4}), "none");
-  EXPECT_EQ(name_of({-1, 0, 1}, {1, 0, 1}), "profile.x");           // short
+  EXPECT_EQ(name_of({-1, 0, 1}, {1, 0, 1}), "profile.x");               // short
   EXPECT_EQ(name_of({-2, -1, 0, 2, 1}, {4, 1, 0, 1, 4}), "profile.x");  // unsorted
-  EXPECT_EQ(name_of(x, {4, 1, 0, 1}), "profile.y");                   // length
-  EXPECT_EQ(name_of(x, {4, 1, 0, 1.5, 4}), "profile.y");              // asymmetric
-  EXPECT_EQ(name_of(x, {1, 2, 0, 2, 1}), "profile.y");                // not convex
+  EXPECT_EQ(name_of(x, {4, 1, 0, 1}), "profile.y");                     // length
+  EXPECT_EQ(name_of(x, {4, 1, 0, 1.5, 4}), "profile.y");                // asymmetric
+  EXPECT_EQ(name_of(x, {1, 2, 0, 2, 1}), "profile.y");                  // not convex
   EXPECT_EQ(name_of({-2, -1, 0, 1, 3}, {4, 1, 0, 1, 4}), "profile.x");  // asymmetric x
   EXPECT_EQ(name_of(x, {4, 1, std::nan(""), 1, 4}), "profile.y");
 }
@@ -94,8 +94,8 @@ TEST(Profiles, TSeriesCosineTransformIsExact) {
   for (double alpha : {0.0, 1e-9, 0.5, 3.0, 17.0, 250.0}) {
     // (a/2) int_{-1}^{1} g(r)/sqrt(1 - r^2) cos(alpha a r) dr
     const double direct =
-        0.5 * a * kPi * gauss_t([&](double r) { return t_series(b, r) * std::cos(alpha * a * r); },
-                                4000);
+        0.5 * a * kPi *
+        gauss_t([&](double r) { return t_series(b, r) * std::cos(alpha * a * r); }, 4000);
     const double one = series_cosine_transform(b, SeriesKind::T, a, alpha);
     double many = 0.0;
     series_cosine_transforms(b, SeriesKind::T, a, &alpha, &many, 1);

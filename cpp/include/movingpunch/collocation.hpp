@@ -79,8 +79,7 @@ double series_minimum(const Eigen::VectorXd& b, SeriesKind kind, double* r_min =
 // either kind (odd coefficients ignored): U as u_series_cosine_transform;
 // T: (a/2) sum_n b_n pi (-1)^{n/2} J_n(alpha a), from
 // int_{-1}^{1} T_n(r)/sqrt(1 - r^2) e^{i w r} dr = pi i^n J_n(w).
-double series_cosine_transform(const Eigen::VectorXd& b, SeriesKind kind, double a,
-                               double alpha);
+double series_cosine_transform(const Eigen::VectorXd& b, SeriesKind kind, double a, double alpha);
 void series_cosine_transforms(const Eigen::VectorXd& b, SeriesKind kind, double a,
                               const double* alpha, double* out, std::size_t count);
 

@@ -127,8 +127,7 @@ class DampedKernel {
  public:
   // friction > 0: the kernel of the frictional equation, K - f K_t with the
   // effective response M1 - i f Wq (docs/theory.md section 14).
-  DampedKernel(std::shared_ptr<const DampedLayerModel> model, double range,
-               double friction = 0.0);
+  DampedKernel(std::shared_ptr<const DampedLayerModel> model, double range, double friction = 0.0);
   // A wider table on the quadrature of `other` (no new layer responses).
   DampedKernel(const DampedKernel& other, double range);
 
@@ -184,10 +183,11 @@ struct DampedParams {
   double load = 0.002;  // P / (mu h) > 0
   double nu = 0.2;      // [0, 0.5)
   double damping = 0;   // c_w c_T / mu > 0 (finite); >= 0 when friction > 0
-  double friction = 0;  // Coulomb coefficient f >= 0 (finite): tau_xy = f p, in the direction of motion
-  double tol = 1e-8;    // relative tolerance on the contact ends and the pressure, [1e-14, 1e-2]
+  double friction =
+      0;  // Coulomb coefficient f >= 0 (finite): tau_xy = f p, in the direction of motion
+  double tol = 1e-8;  // relative tolerance on the contact ends and the pressure, [1e-14, 1e-2]
   bool allow_unphysical = false;
-  int n = 0;  // fixed collocation size (even, 2..1024); 0: refine
+  int n = 0;      // fixed collocation size (even, 2..1024); 0: refine
   double kp = 0;  // k_p / (mu h) in [0, kMaxKp]: Pasternak shear layer (0: Winkler)
 };
 
@@ -426,8 +426,7 @@ class DampedSolution {
   std::shared_ptr<const Eigen::MatrixXd> friction_depth_coefficients(double y) const;
   // Friction: v(x, y)/h at one depth (the surface included), and
   // int p(xi) arctan(x - xi) d xi/(P/h); the indentation, computed on first use.
-  Eigen::VectorXd friction_displacement(const Eigen::Ref<const Eigen::VectorXd>& x,
-                                        double y) const;
+  Eigen::VectorXd friction_displacement(const Eigen::Ref<const Eigen::VectorXd>& x, double y) const;
   double arctan_integral(double x) const;
   mutable double friction_indentation_ = std::nan("");
   // -(f C0/pi) int p(xi) arctan(x - xi) d xi: the layer's bar term (the
