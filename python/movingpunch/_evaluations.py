@@ -70,6 +70,14 @@ class Evaluations:
         k = float(getattr(self._impl, "end_coefficient", 0.0))
         return (k, k)
 
+    @property
+    def end_coefficient_error(self) -> float:
+        """Estimated bound on the absolute error of each of
+        ``end_coefficients`` (from the change between collocation sizes, the
+        kernel's error carried through the solve and round-off); 0.0 for
+        bounded ends, whose coefficients are exactly 0."""
+        return float(getattr(self._impl, "end_coefficient_error", 0.0))
+
     @overload
     def pressure(self, x: float) -> float: ...
     @overload

@@ -453,7 +453,12 @@ def _cmd_solve(args: argparse.Namespace) -> int:
         ("error bound (σx/(P/h))", f"{s.stress_error_estimate:.2e}"),
         ("pressure margin", _fmt(s.pressure_margin)),
         *(
-            [("end coefficient K/((P/h)√h)", _fmt(s.end_coefficients[1]))]
+            [
+                (
+                    "end coefficient K/((P/h)√h)",
+                    f"{_fmt(s.end_coefficients[1])} ± {s.end_coefficient_error:.1e}",
+                )
+            ]
             if s.end_coefficients != (0.0, 0.0)
             else []
         ),

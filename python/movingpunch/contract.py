@@ -55,7 +55,8 @@ class ContactSolution(Protocol):
     shape, ``movingpunch.profiles``; ``radius`` is the cylinder's or the
     rounded corners' R/h, inf for a flat punch or a table) and
     ``end_coefficients`` (K_back, K_front) of a pressure square-root
-    singular at the ends (a flat punch; (0.0, 0.0) for bounded ends). Cost:
+    singular at the ends (a flat punch; (0.0, 0.0) for bounded ends) with
+    ``end_coefficient_error``, the bound on their error. Cost:
     ``stage_times``, ``kernel_builds``, ``iterations``, ``elapsed``,
     ``collocation_n``.
     """
@@ -134,6 +135,8 @@ class ContactSolution(Protocol):
     @property
     def end_coefficients(self) -> tuple[float, float]: ...
     @property
+    def end_coefficient_error(self) -> float: ...
+    @property
     def stage_times(self) -> Mapping[str, float]: ...
 
     # Evaluations: a float for a scalar argument, else an array of its shape.
@@ -204,6 +207,7 @@ CONTRACT_FIELDS: tuple[str, ...] = (
     "stage_times",
     "profile",
     "end_coefficients",
+    "end_coefficient_error",
 )
 """The contract's data fields, each also a key of ``to_dict()`` (``profile``
 as its scene-file form ``{"kind": ..., ...}``)."""

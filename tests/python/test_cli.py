@@ -315,6 +315,12 @@ def test_solve_takes_a_profile(
     assert data["profile"] == {"kind": "flat", "half_width": 0.5}
     assert data["a"] == 0.5
     assert data["end_coefficients"][0] > 0.0
+    # K's error bar: bounded by the tolerance's scale, shown beside K.
+    assert 0.0 < data["end_coefficient_error"] <= 1e-6 * data["end_coefficients"][0]
+    out = run_cli(*base, "--profile", "flat", "--half-width", "0.5")
+    assert out.returncode == 0, out.stderr
+    line = next(x for x in out.stdout.splitlines() if "end coefficient" in x)
+    assert "±" in line
     out = run_cli(
         *base, "--profile", "rounded_flat", "--half-width", "0.2", "--radius", "100"
     )

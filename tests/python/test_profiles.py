@@ -99,7 +99,7 @@ def test_flat_on_the_layer_against_a_numpy_solve(
     # The end coefficient's own estimate bounds its error (N = 48 numpy
     # reference, spectrally converged).
     assert abs(s.end_coefficients[1] - g1 * math.sqrt(math.pi * b)) <= max(
-        s._impl.end_coefficient_error, 1e-13
+        s.end_coefficient_error, 1e-13
     )
 
 
