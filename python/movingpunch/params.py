@@ -118,6 +118,19 @@ is already below 0.08 (a near-jump of the pressure) and beyond it the
 contact grows and the solve's cost with it (f = 100: minutes)."""
 
 SIZE_MAX = 4096
+
+PHYSICAL: tuple[str, ...] = (
+    "vstar",
+    "kw",
+    "radius",
+    "load",
+    "nu",
+    "damping",
+    "kp",
+    "friction",
+)
+"""The physical parameters of a point, in the order scenes write them (the
+punch's shape beyond a cylinder's radius is a profile, not a number here)."""
 """Largest collocation size n the undamped solver takes."""
 
 SPECS: Mapping[str, ParamSpec] = MappingProxyType(

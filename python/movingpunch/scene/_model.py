@@ -13,7 +13,7 @@ from typing import Protocol
 
 import numpy as np
 
-from movingpunch.params import SPECS
+from movingpunch.params import PHYSICAL, SPECS
 from movingpunch.profiles import PunchProfile
 
 __all__ = [
@@ -27,16 +27,7 @@ __all__ = [
     "Vary",
 ]
 
-PARAMS: tuple[str, ...] = (
-    "vstar",
-    "kw",
-    "radius",
-    "load",
-    "nu",
-    "damping",
-    "kp",
-    "friction",
-)
+PARAMS: tuple[str, ...] = PHYSICAL
 """The physical parameters of a scene, in the order they are written.
 ``nu`` defaults to 0.2; ``damping`` (c_w c_T/mu, the Kelvin-Voigt dashpots,
 docs/damped.md), ``kp`` (k_p/(mu h), the Pasternak shear layer,

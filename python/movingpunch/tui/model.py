@@ -23,6 +23,7 @@ from movingpunch.accuracy import LADDER, AccuracyReport, accuracy_report
 from movingpunch.contract import ContactSolution
 from movingpunch.errors import InvalidParameterError, MovingPunchError
 from movingpunch.fields import StressPeaks
+from movingpunch.params import PHYSICAL
 from movingpunch.params import check as check_param
 from movingpunch.profiles import PROFILE_KINDS, Flat, Profile, PunchProfile, RoundedFlat
 from movingpunch.solver import (
@@ -68,16 +69,7 @@ def parse_profile_kind(text: str) -> str:
     return kind
 
 
-SCENE_PARAMS: tuple[str, ...] = (
-    "vstar",
-    "kw",
-    "radius",
-    "load",
-    "nu",
-    "damping",
-    "kp",
-    "friction",
-)
+SCENE_PARAMS: tuple[str, ...] = PHYSICAL
 """The physical parameters (a scene's ``params``); ``tol`` is separate."""
 
 TabName = Literal["pressure", "surface", "depth", "sweep", "field", "accuracy"]
