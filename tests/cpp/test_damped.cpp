@@ -26,14 +26,7 @@ using mp::cplx;
 namespace {
 
 mp::DampedParams damped(double vstar, double kw, double damping) {
-  mp::DampedParams p;
-  p.vstar = vstar;
-  p.kw = kw;
-  p.radius = 100.0;
-  p.load = 0.002;
-  p.nu = 0.2;
-  p.damping = damping;
-  return p;
+  return mp::testing::paper_asymmetric(vstar, kw, damping);
 }
 
 const double kTs[] = {1e-3, 0.2, 0.49, 0.5, 0.8, 2.0, 5.0, 30.0, 500.0};

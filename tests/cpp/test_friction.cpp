@@ -9,6 +9,7 @@
 #include "movingpunch/damped.hpp"
 #include "movingpunch/errors.hpp"
 #include "movingpunch/jacobi.hpp"
+#include "test_helpers.hpp"
 
 namespace mp = movingpunch;
 
@@ -16,15 +17,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 mp::DampedParams sliding(double vstar, double kw, double damping, double f) {
-  mp::DampedParams p;
-  p.vstar = vstar;
-  p.kw = kw;
-  p.radius = 100.0;
-  p.load = 0.002;
-  p.nu = 0.2;
-  p.damping = damping;
-  p.friction = f;
-  return p;
+  return mp::testing::paper_asymmetric(vstar, kw, damping, f);
 }
 }  // namespace
 

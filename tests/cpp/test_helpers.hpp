@@ -6,6 +6,7 @@
 #include <Eigen/Dense>
 
 #include "movingpunch/contact.hpp"
+#include "movingpunch/damped.hpp"
 
 namespace movingpunch::testing {
 
@@ -17,6 +18,19 @@ inline ContactParams paper(double vstar, double kw) {
   p.radius = 100.0;
   p.load = 0.002;
   p.nu = 0.2;
+  return p;
+}
+
+// The same on the asymmetric solver: damping and Coulomb friction f.
+inline DampedParams paper_asymmetric(double vstar, double kw, double damping, double f = 0.0) {
+  DampedParams p;
+  p.vstar = vstar;
+  p.kw = kw;
+  p.radius = 100.0;
+  p.load = 0.002;
+  p.nu = 0.2;
+  p.damping = damping;
+  p.friction = f;
   return p;
 }
 
