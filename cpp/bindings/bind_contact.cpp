@@ -11,6 +11,7 @@
 
 #include "bindings.hpp"
 #include "movingpunch/contact.hpp"
+#include "movingpunch/damped.hpp"
 #include "movingpunch/errors.hpp"
 #include "movingpunch/profile.hpp"
 
@@ -96,6 +97,10 @@ void bind_contact(py::module_& m) {
         d["size"] = i.size;
         d["hits"] = i.hits;
         d["misses"] = i.misses;
+        const KernelCacheInfo j = damped_kernel_cache_info();
+        d["damped_size"] = j.size;
+        d["damped_hits"] = j.hits;
+        d["damped_misses"] = j.misses;
         return d;
       },
       "Process-wide k1 kernel cache: tables held (size), requests served (hits), "

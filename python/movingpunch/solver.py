@@ -565,7 +565,9 @@ def _stress_error_estimate(s: Solution) -> float:
 
 def kernel_cache_info() -> dict[str, int]:
     """The process-wide cache of k1 kernel tables: ``size`` (tables held),
-    ``hits`` (solves that reused a table), ``misses`` (tables built).
+    ``hits`` (solves that reused a table), ``misses`` (tables built); and the
+    same for the asymmetric solver's (damped and/or frictional) kernel
+    tables: ``damped_size``, ``damped_hits``, ``damped_misses``.
 
     Tables are keyed on (vstar, kw, nu, tol, kp), so solves that change only the
     radius or the load reuse one table (when the cached table covers the new

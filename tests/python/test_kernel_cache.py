@@ -33,6 +33,28 @@ def test_load_sweep_builds_the_kernel_once() -> None:
     assert fresh.a == pytest.approx(sols[-1].a, rel=1e-11)
 
 
+def test_the_asymmetric_solvers_tables_are_counted_apart() -> None:
+    """A damped or frictional solve builds (then reuses) a table of the
+    asymmetric solver's cache, counted under damped_*, not under k1's."""
+    args = {"vstar": 0.3, "kw": 1.0, "radius": 100.0, "load": 0.002}
+    first = mp.solve(**args, damping=0.1)
+    info = mp.kernel_cache_info()
+    assert first.kernel_builds >= 1
+    assert info["damped_misses"] == first.kernel_builds
+    assert info["damped_size"] >= 1
+    assert (info["size"], info["misses"]) == (0, 0)
+    again = mp.solve(**args, damping=0.1)
+    assert again.kernel_builds == 0
+    assert mp.kernel_cache_info()["damped_hits"] > info["damped_hits"]
+    frictional = mp.solve(**args, friction=0.3)  # its own key: (.., friction)
+    assert frictional.kernel_builds >= 1
+    assert mp.kernel_cache_info()["damped_misses"] == (
+        first.kernel_builds + frictional.kernel_builds
+    )
+    mp.clear_kernel_cache()
+    assert mp.kernel_cache_info()["damped_size"] == 0
+
+
 def test_a_different_material_or_tolerance_builds_its_own() -> None:
     mp.solve(vstar=0.3, kw=1.0, radius=100.0, load=0.002)
     for change in ({"vstar": 0.31}, {"kw": 2.0}, {"nu": 0.3}, {"tol": 1e-9}):

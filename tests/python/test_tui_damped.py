@@ -153,7 +153,11 @@ def test_damped_field_tab_is_the_solutions_stress_field() -> None:
     assert data.y[0] == -1.0
     assert data.y[-1] == 0.0
     f = s.stress_field(data.x, data.y)
-    np.testing.assert_array_equal(data.values, f.sigma_x)
+    # The map is computed in time-sliced chunks of rows and columns, whose
+    # Filon sums may round differently from one call on the whole grid (seen
+    # once at 1e-15 under load): equal to round-off, not bit for bit.
+    scale = float(np.max(np.abs(f.sigma_x)))
+    np.testing.assert_allclose(data.values, f.sigma_x, rtol=0.0, atol=1e-12 * scale)
     assert model.to_csv(data, params).splitlines()[0].startswith("# movingpunch")
 
 
