@@ -36,6 +36,7 @@ from movingpunch.contract import ContactSolution
 from movingpunch.errors import InvalidParameterError, MovingPunchError
 from movingpunch.fields import StressPeaks
 from movingpunch.outputs import publish, safe_name
+from movingpunch.params import PHYSICAL
 from movingpunch.profiles import PunchProfile
 from movingpunch.scene import OutputSpec, Scene, load_scene
 from movingpunch.scene._result import CORE_STAGES
@@ -71,7 +72,7 @@ _REF_TOLS = (1e-14, 1e-13, 1e-12)
 _REF_MIN_N = 64
 _REF_MAX_N = 4096
 _REF_FACTORS = (4, 2)
-_PARAMS = ("vstar", "kw", "radius", "load", "nu", "damping", "kp", "friction")
+_PARAMS = PHYSICAL
 
 Point = tuple[float, float, float, float, float, float, float, float]
 Progress = Callable[[int, int], None]

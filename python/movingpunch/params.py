@@ -131,6 +131,10 @@ PHYSICAL: tuple[str, ...] = (
 )
 """The physical parameters of a point, in the order scenes write them (the
 punch's shape beyond a cylinder's radius is a profile, not a number here)."""
+
+OPTIONAL: tuple[str, ...] = ("damping", "kp", "friction")
+"""The physical parameters that default to 0 (the paper's model: no dashpots,
+springs alone, no friction); scenes and the TUI show them only when > 0."""
 """Largest collocation size n the undamped solver takes."""
 
 SPECS: Mapping[str, ParamSpec] = MappingProxyType(

@@ -19,6 +19,7 @@ from pathlib import Path
 from typing import Any
 
 from movingpunch.errors import SceneError
+from movingpunch.params import OPTIONAL
 from movingpunch.scene._model import (
     DEFAULT_NU,
     DEFAULT_TOL,
@@ -253,7 +254,7 @@ def _from_mapping(data: Mapping[str, Any], source: str) -> dict[str, Any]:
             params[name_] = vary.values[0]
         elif sweep is not None and sweep.param == name_:
             params[name_] = sweep.values[0]
-        elif name_ not in ("damping", "kp", "friction"):  # optional, 0
+        elif name_ not in OPTIONAL:  # optional, 0
             raise c.fail(key, "missing", allowed_text(name_), name_)
 
     tol = DEFAULT_TOL

@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from movingpunch.errors import InvalidParameterError, SceneError
-from movingpunch.params import PRESETS, SPECS, classify
+from movingpunch.params import OPTIONAL, PRESETS, SPECS, classify
 from movingpunch.profiles import (
     Cylinder,
     Flat,
@@ -358,11 +358,7 @@ def validate(scene: SceneData, source: str) -> None:
             if name == "nu":
                 params[name] = DEFAULT_NU
                 continue
-            if name in (
-                "damping",
-                "kp",
-                "friction",
-            ):  # optional, 0; kept only when given
+            if name in OPTIONAL:  # 0; kept only when given
                 continue
             raise c.fail(f"params.{name}", "missing", allowed_text(name), name)
         params[name] = c.param(f"params.{name}", name, raw[name])

@@ -23,7 +23,7 @@ from movingpunch.accuracy import LADDER, AccuracyReport, accuracy_report
 from movingpunch.contract import ContactSolution
 from movingpunch.errors import InvalidParameterError, MovingPunchError
 from movingpunch.fields import StressPeaks
-from movingpunch.params import PHYSICAL
+from movingpunch.params import OPTIONAL, PHYSICAL
 from movingpunch.params import check as check_param
 from movingpunch.profiles import PROFILE_KINDS, Flat, Profile, PunchProfile, RoundedFlat
 from movingpunch.solver import (
@@ -194,7 +194,7 @@ class Params:
 
     def _shown(self, name: str) -> bool:
         """damping, kp and friction only when > 0 (0 is the paper's model)."""
-        return name not in ("damping", "kp", "friction") or self.get(name) > 0.0
+        return name not in OPTIONAL or self.get(name) > 0.0
 
     def physical(self) -> dict[str, float]:
         """The scene's ``params`` mapping (without tol; damping, kp and
