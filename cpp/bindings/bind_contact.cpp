@@ -20,7 +20,6 @@ using namespace py::literals;
 
 namespace movingpunch::bindings {
 
-namespace {
 // The profile kind from its API name.
 ProfileKind profile_kind(const std::string& name) {
   for (ProfileKind k :
@@ -30,7 +29,6 @@ ProfileKind profile_kind(const std::string& name) {
       "profile", "'cylinder', 'flat', 'rounded_flat' or 'table'",
       "profile must be 'cylinder', 'flat', 'rounded_flat' or 'table', got '" + name + "'");
 }
-}  // namespace
 
 void bind_contact(py::module_& m) {
   using VectorRef = Eigen::Ref<const Eigen::VectorXd>;
@@ -108,9 +106,13 @@ void bind_contact(py::module_& m) {
   m.def("clear_kernel_cache", &clear_kernel_cache, Release(),
         "Empties the process-wide k1 kernel cache and resets its counters.");
 
-  m.def("check_profile_table", &check_profile_table, "x"_a, "y"_a,
+  m.def("check_profile_table", &check_profile_table, "x"_a, "y"_a, "require_symmetric"_a = false,
         "Raises InvalidParameterError unless (x, y) is a valid profile table: at least 5 "
-        "points, finite, x strictly ascending, symmetric about x = 0 and convex.");
+        "points, finite, x strictly ascending with x_0 < 0 < x_{n-1}, convex (and symmetric "
+        "about x = 0 with require_symmetric).");
+  m.def("profile_table_symmetric", &profile_table_symmetric, "x"_a, "y"_a,
+        "True when the table is symmetric about x = 0 (to 1e-9 of max |x| and of the range "
+        "of y).");
   m.def(
       "profile_shape",
       [](const std::string& kind, double radius, double half_width, const std::vector<double>& tx,
@@ -135,10 +137,7 @@ void bind_contact(py::module_& m) {
         ContactParams p =
             solve_params<ContactParams>(vstar, kw, radius, load, nu, tol, allow_unphysical, n);
         p.kp = kp;
-        p.profile = profile_kind(profile);
-        p.half_width = half_width;
-        p.table_x = table_x;
-        p.table_y = table_y;
+        set_profile(p, profile, half_width, table_x, table_y);
         return solve_contact(p);
       },
       py::kw_only(), "vstar"_a, "kw"_a, "radius"_a, "load"_a, "nu"_a, "tol"_a, "allow_unphysical"_a,

@@ -2,8 +2,10 @@
 // wired together by module.cpp.
 #pragma once
 
+#include <string>
 #include <tuple>
 #include <utility>
+#include <vector>
 
 #include <pybind11/eigen.h>
 #include <pybind11/pybind11.h>
@@ -11,6 +13,7 @@
 #include <Eigen/Dense>
 
 #include "movingpunch/contact.hpp"
+#include "movingpunch/profile.hpp"
 #include "movingpunch/stresses.hpp"
 
 namespace movingpunch::bindings {
@@ -34,6 +37,20 @@ pybind11::class_<T> bind_result_class(pybind11::module_& m, const char* name, co
   pybind11::class_<T> cls(m, name, doc);
   bind_result_common(cls);
   return cls;
+}
+
+// The profile kind from its API name ('cylinder', 'flat', 'rounded_flat',
+// 'table'); InvalidParameter naming profile otherwise.
+ProfileKind profile_kind(const std::string& name);
+
+// The punch's shape of either solver's parameters (the same names).
+template <class P>
+void set_profile(P& p, const std::string& profile, double half_width,
+                 const std::vector<double>& table_x, const std::vector<double>& table_y) {
+  p.profile = profile_kind(profile);
+  p.half_width = half_width;
+  p.table_x = table_x;
+  p.table_y = table_y;
 }
 
 // The inputs every solve takes (ContactParams, DampedParams: the same names),

@@ -58,6 +58,9 @@ void validate(const ContactParams& p) {
   // The shape's parameters (the cylinder's radius, a flat face's half-width,
   // a table), named as the API names them.
   (void)PunchProfile(p.profile, p.radius, p.half_width, p.table_x, p.table_y);
+  // The undamped solver is symmetric: an asymmetric table takes the
+  // asymmetric one (solve_damped; movingpunch.solve routes it there).
+  if (p.profile == ProfileKind::table) check_profile_table(p.table_x, p.table_y, true);
   require_in_range("load", p.load, 0.0, 1e6, true, false);
   require_in_range("tol", p.tol, 1e-14, 1e-2, false, false);
   if (p.n != 0 && (p.n < 2 || p.n > 4096 || p.n % 2 != 0))

@@ -475,14 +475,24 @@ double DampedKernel::operator()(double u) const {
 void validate(const DampedParams& p) {
   require_in_range("vstar", p.vstar, 0.0, 1.0, false, true);
   require_in_range("kw", p.kw, 1e-12, kInf, false, false, true);
-  require_in_range("radius", p.radius, 0.0, kInf, true, true);
+  // The shape's parameters (the cylinder's radius, a face's half-width, a
+  // table), named as the API names them; an asymmetric table needs no
+  // damping or friction to be asymmetric.
+  const PunchProfile prof = p.punch();
+  const bool asymmetric_shape = prof.kind() == ProfileKind::table && !prof.symmetric();
+  if (prof.kind() == ProfileKind::flat)
+    throw InvalidParameter("profile", "a bounded profile (cylinder, rounded_flat or table)",
+                           "profile: a " + prof.describe() +
+                               " on the asymmetric solver (damping > 0 or friction > 0) is "
+                               "not supported yet");
   require_in_range("load", p.load, 0.0, kInf, true, true);
   require_in_range("nu", p.nu, 0.0, 0.5, false, true);
   // Real Coulomb coefficients lie below about 2; at f = 10 the trailing
   // exponent is below 0.08 (a near-jump) and larger f costs minutes.
   require_in_range("friction", p.friction, 0.0, 10.0, false, false);
   // Without friction damping = 0 is the undamped solver's (contact.hpp).
-  require_in_range("damping", p.damping, 0.0, kInf, !(p.friction > 0.0), true);
+  require_in_range("damping", p.damping, 0.0, kInf, !(p.friction > 0.0) && !asymmetric_shape,
+                   true);
   require_in_range("kp", p.kp, 0.0, kMaxKp, false, false);
   require_in_range("tol", p.tol, 1e-14, 1e-2, false, false);
   if (p.n != 0 && (p.n < 2 || p.n > 1024 || p.n % 2 != 0))
@@ -758,6 +768,9 @@ class ScanMemo {
 DampedSolution solve_damped(const DampedParams& prm) {
   const auto t0 = std::chrono::steady_clock::now();
   validate(prm);
+  if (prm.profile != ProfileKind::cylinder)
+    throw InvalidParameter("profile", "cylinder",
+                           "profile: only the cylinder solves on the asymmetric solver yet");
   DampedSolution s;
   s.params_ = prm;
   s.vr_ = rayleigh_vstar(prm.nu);

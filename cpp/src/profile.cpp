@@ -43,11 +43,26 @@ const char* profile_kind_name(ProfileKind kind) {
   return "?";
 }
 
-void check_profile_table(const std::vector<double>& x, const std::vector<double>& y) {
+bool profile_table_symmetric(const std::vector<double>& x, const std::vector<double>& y) {
+  const std::size_t n = x.size();
+  if (n == 0 || y.size() != n) return false;
+  const double xmax = std::max(std::fabs(x.front()), std::fabs(x.back()));
+  const auto [ylo, yhi] = std::minmax_element(y.begin(), y.end());
+  const double yrange = *yhi - *ylo;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t j = n - 1 - i;
+    if (std::fabs(x[i] + x[j]) > 1e-9 * xmax || std::fabs(y[i] - y[j]) > 1e-9 * yrange)
+      return false;
+  }
+  return true;
+}
+
+void check_profile_table(const std::vector<double>& x, const std::vector<double>& y,
+                         bool require_symmetric) {
   const std::size_t n = x.size();
   if (n < 5)
     bad_table("profile.x", "at least 5 points",
-              "x must have at least 5 points (a cubic spline through a symmetric table), got " +
+              "x must have at least 5 points (a cubic spline through the table), got " +
                   std::to_string(n));
   if (y.size() != n)
     bad_table("profile.y", "as many values as x",
@@ -65,25 +80,32 @@ void check_profile_table(const std::vector<double>& x, const std::vector<double>
                 "x must be strictly ascending, got x[" + std::to_string(i - 1) +
                     "] = " + num(x[i - 1]) + " then x[" + std::to_string(i) + "] = " + num(x[i]));
   }
-  const double xmax = std::max(std::fabs(x.front()), std::fabs(x.back()));
+  if (!(x.front() < 0.0 && x.back() > 0.0))
+    bad_table("profile.x", "x_0 < 0 < x_{n-1} (the table spans the punch's axis x = 0)",
+              "the table must span the punch's axis x = 0 (x_0 < 0 < x_{n-1}: heights are "
+              "taken relative to x = 0), got x from " +
+                  num(x.front()) + " to " + num(x.back()));
   const auto [ylo, yhi] = std::minmax_element(y.begin(), y.end());
   const double yrange = *yhi - *ylo;
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t j = n - 1 - i;
-    if (std::fabs(x[i] + x[j]) > 1e-9 * xmax)
-      bad_table("profile.x", "symmetric about 0 (x_i = -x_{n-1-i} to 1e-9 max|x|)",
-                "x must be symmetric about 0 (x[i] = -x[n-1-i] to 1e-9 of max |x|): x[" +
-                    std::to_string(i) + "] = " + num(x[i]) + " but x[" + std::to_string(j) +
-                    "] = " + num(x[j]) +
-                    "; the undamped solver is symmetric, an asymmetric punch needs the "
-                    "asymmetric solver (not yet available)");
-    if (std::fabs(y[i] - y[j]) > 1e-9 * yrange)
-      bad_table("profile.y", "symmetric (y_i = y_{n-1-i} to 1e-9 of the range of y)",
-                "the profile must be symmetric, y(-x) = y(x) (to 1e-9 of the range of y): y[" +
-                    std::to_string(i) + "] = " + num(y[i]) + " but y[" + std::to_string(j) +
-                    "] = " + num(y[j]) +
-                    "; the undamped solver is symmetric, an asymmetric punch needs the "
-                    "asymmetric solver (not yet available)");
+  if (require_symmetric) {
+    const double xmax = std::max(std::fabs(x.front()), std::fabs(x.back()));
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t j = n - 1 - i;
+      if (std::fabs(x[i] + x[j]) > 1e-9 * xmax)
+        bad_table("profile.x", "symmetric about 0 (x_i = -x_{n-1-i} to 1e-9 max|x|)",
+                  "x must be symmetric about 0 (x[i] = -x[n-1-i] to 1e-9 of max |x|): x[" +
+                      std::to_string(i) + "] = " + num(x[i]) + " but x[" + std::to_string(j) +
+                      "] = " + num(x[j]) +
+                      "; the undamped solver is symmetric, an asymmetric punch takes the "
+                      "asymmetric solver (movingpunch.solve routes it there)");
+      if (std::fabs(y[i] - y[j]) > 1e-9 * yrange)
+        bad_table("profile.y", "symmetric (y_i = y_{n-1-i} to 1e-9 of the range of y)",
+                  "the profile must be symmetric, y(-x) = y(x) (to 1e-9 of the range of y): y[" +
+                      std::to_string(i) + "] = " + num(y[i]) + " but y[" + std::to_string(j) +
+                      "] = " + num(y[j]) +
+                      "; the undamped solver is symmetric, an asymmetric punch takes the "
+                      "asymmetric solver (movingpunch.solve routes it there)");
+    }
   }
   if (!(yrange > 0.0))
     bad_table("profile.y", "not constant",
@@ -105,7 +127,7 @@ void check_profile_table(const std::vector<double>& x, const std::vector<double>
 
 PunchProfile::PunchProfile(ProfileKind kind, double radius, double half_width,
                            const std::vector<double>& x, const std::vector<double>& y)
-    : kind_(kind), extent_(kInf) {
+    : kind_(kind), extent_(kInf), lower_(-kInf), upper_(kInf) {
   switch (kind) {
     case ProfileKind::cylinder:
       require_in_range("radius", radius, 0.0, 1e12, true, false);
@@ -126,6 +148,9 @@ PunchProfile::PunchProfile(ProfileKind kind, double radius, double half_width,
       x_ = x;
       y_ = y;
       extent_ = std::min(-x.front(), x.back());
+      lower_ = x.front();
+      upper_ = x.back();
+      symmetric_ = profile_table_symmetric(x, y);
       // Not-a-knot cubic spline (it reproduces cubics exactly): second
       // derivatives M_1 .. M_{n-2} from the interior rows, M_0 and M_{n-1} from
       // the continuity of the third derivative at x_1 and x_{n-2}.
@@ -190,9 +215,13 @@ double PunchProfile::spline(double x, double* slope) const {
 }
 
 namespace {
-[[noreturn]] void beyond(double x, double extent) {
-  throw std::domain_error("the profile table covers |x| <= " + num(extent) +
+[[noreturn]] void beyond(double x, double lo, double hi) {
+  throw std::domain_error("the profile table covers " + num(lo) + " <= x <= " + num(hi) +
                           ", asked at x = " + num(x));
+}
+bool outside(double x, double lo, double hi) {
+  const double slack = 1e-12 * std::max(-lo, hi);
+  return x < lo - slack || x > hi + slack;
 }
 }  // namespace
 
@@ -207,9 +236,9 @@ double PunchProfile::slope(double x) const {
       return ax <= face_ ? 0.0 : std::copysign((ax - face_) / radius_, x);
     }
     case ProfileKind::table: {
-      if (std::fabs(x) > extent_ * (1.0 + 1e-12)) beyond(x, extent_);
+      if (outside(x, lower_, upper_)) beyond(x, lower_, upper_);
       double s = 0.0;
-      spline(std::clamp(x, -extent_, extent_), &s);
+      spline(std::clamp(x, lower_, upper_), &s);
       return s;
     }
   }
@@ -227,8 +256,8 @@ double PunchProfile::height(double x) const {
       return e * e / (2.0 * radius_);
     }
     case ProfileKind::table:
-      if (std::fabs(x) > extent_ * (1.0 + 1e-12)) beyond(x, extent_);
-      return spline(std::clamp(x, -extent_, extent_), nullptr) - y0_;
+      if (outside(x, lower_, upper_)) beyond(x, lower_, upper_);
+      return spline(std::clamp(x, lower_, upper_), nullptr) - y0_;
   }
   return 0.0;
 }
@@ -279,6 +308,75 @@ std::vector<double> PunchProfile::slope_chebyshev(double a, int count) const {
   return d;
 }
 
+std::vector<double> PunchProfile::kinks() const {
+  if (kind_ == ProfileKind::rounded_flat) return {-face_, face_};
+  return {};
+}
+
+namespace {
+// int_{t0}^{t1} (A + w cos th) cos(m th) d th in closed form.
+double linear_cos_integral(int m, double A, double w, double t0, double t1) {
+  auto F = [&](double t) {
+    if (m == 0) return A * t + w * std::sin(t);
+    if (m == 1) return A * std::sin(t) + w * (0.5 * t + 0.25 * std::sin(2.0 * t));
+    const double mm = m;
+    return A * std::sin(mm * t) / mm +
+           w * (std::sin((mm - 1.0) * t) / (2.0 * (mm - 1.0)) +
+                std::sin((mm + 1.0) * t) / (2.0 * (mm + 1.0)));
+  };
+  return F(t1) - F(t0);
+}
+}  // namespace
+
+std::vector<double> PunchProfile::slope_chebyshev_at(double c, double w, int count) const {
+  constexpr double kPi = 3.14159265358979323846;
+  std::vector<double> d(static_cast<std::size_t>(std::max(count, 0)), 0.0);
+  if (count <= 0) return d;
+  switch (kind_) {
+    case ProfileKind::cylinder:
+      // f'(c + w cos th) = (c + w cos th)/R.
+      d[0] = 2.0 * c / radius_;
+      if (count > 1) d[1] = w / radius_;
+      return d;
+    case ProfileKind::flat:
+      return d;
+    case ProfileKind::rounded_flat: {
+      // f' = (x - b)/R for x > b, (x + b)/R for x < -b, 0 between: with
+      // x = c + w cos th, x > b for th < t1 = acos((b - c)/w) and x < -b for
+      // th > t2 = acos((-b - c)/w).
+      auto angle = [&](double x) { return std::acos(std::clamp((x - c) / w, -1.0, 1.0)); };
+      const double t1 = angle(face_), t2 = angle(-face_);
+      for (int m = 0; m < count; ++m)
+        d[static_cast<std::size_t>(m)] =
+            2.0 / (kPi * radius_) *
+            (linear_cos_integral(m, c - face_, w, 0.0, t1) +
+             linear_cos_integral(m, c + face_, w, t2, kPi));
+      return d;
+    }
+    case ProfileKind::table: {
+      if (outside(c - w, lower_, upper_)) beyond(c - w, lower_, upper_);
+      if (outside(c + w, lower_, upper_)) beyond(c + w, lower_, upper_);
+      const int M = std::max(16 * count + 64, 8192);
+      for (int j = 0; j < M; ++j) {
+        const double th = (j + 0.5) * kPi / M;
+        double f = 0.0;
+        spline(std::clamp(c + w * std::cos(th), lower_, upper_), &f);
+        f *= 2.0 / M;
+        const double c1 = std::cos(th), c2 = 2.0 * c1;
+        double prev = c1, cur = 1.0;  // cos(-th), cos(0)
+        for (int m = 0; m < count; ++m) {
+          d[static_cast<std::size_t>(m)] += f * cur;
+          const double next = c2 * cur - prev;
+          prev = cur;
+          cur = next;
+        }
+      }
+      return d;
+    }
+  }
+  return d;
+}
+
 std::string PunchProfile::describe() const {
   switch (kind_) {
     case ProfileKind::cylinder:
@@ -289,8 +387,11 @@ std::string PunchProfile::describe() const {
       return "rounded flat punch, half-width b/h = " + num(face_) +
              ", corner radius R/h = " + num(radius_);
     case ProfileKind::table:
-      return "tabulated profile of " + std::to_string(x_.size()) +
-             " points, |x|/h <= " + num(extent_);
+      if (symmetric_)
+        return "tabulated profile of " + std::to_string(x_.size()) +
+               " points, |x|/h <= " + num(extent_);
+      return "asymmetric tabulated profile of " + std::to_string(x_.size()) + " points, " +
+             num(lower_) + " <= x/h <= " + num(upper_);
   }
   return "?";
 }

@@ -55,7 +55,10 @@ def solve_contact(
     table_x: list[float] = ...,
     table_y: list[float] = ...,
 ) -> ContactSolution: ...
-def check_profile_table(x: list[float], y: list[float]) -> None: ...
+def check_profile_table(
+    x: list[float], y: list[float], require_symmetric: bool = False
+) -> None: ...
+def profile_table_symmetric(x: list[float], y: list[float]) -> bool: ...
 def profile_shape(
     *,
     kind: str,
@@ -141,6 +144,10 @@ def solve_damped(
     n: int = 0,
     kp: float = 0.0,
     friction: float = 0.0,
+    profile: str = "cylinder",
+    half_width: float = 0.0,
+    table_x: list[float] = ...,
+    table_y: list[float] = ...,
 ) -> DampedSolution: ...
 def damped_layer_response(
     t: float, vstar: float, kw: float, nu: float, damping: float, kp: float = 0.0

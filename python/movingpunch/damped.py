@@ -52,6 +52,7 @@ from movingpunch._evaluations import ResultFields
 from movingpunch.contract import Points
 from movingpunch.errors import InvalidParameterError, SupercriticalSpeedError
 from movingpunch.fields import FloatArray
+from movingpunch.profiles import Profile, PunchProfile
 
 __all__ = [
     "DampedSolution",
@@ -151,6 +152,7 @@ class DampedSolution(ResultFields):
     (above V*_cr the steady solution need not be unique; to about 1 %).
     Empty when none was found on [w/8, 4w]."""
     _impl: _core.DampedSolution = field(repr=False, compare=False)
+    _profile: PunchProfile | None = field(default=None, repr=False, compare=False)
 
     @property
     def kernel_builds(self) -> int:
@@ -265,7 +267,7 @@ def solve_damped(
     *,
     vstar: float,
     kw: float,
-    radius: float,
+    radius: float | None = None,
     load: float,
     nu: float = 0.2,
     damping: float,
@@ -274,6 +276,7 @@ def solve_damped(
     n: int | None = None,
     kp: float = 0.0,
     friction: float = 0.0,
+    profile: PunchProfile | None = None,
 ) -> DampedSolution:
     """Solves the asymmetric contact problem: a damped foundation
     (``damping`` > 0) and/or Coulomb friction (``friction`` > 0, then
@@ -283,10 +286,21 @@ def solve_damped(
     speed too. Raises InvalidParameterError, SupercriticalSpeedError (vstar >=
     V*_R), UnphysicalContactError (unless ``allow_unphysical``) and
     ConvergenceError.
+
+    ``radius`` and ``profile`` as in :func:`movingpunch.solve`: a cylinder,
+    a rounded flat or a table (an asymmetric table needs neither damping nor
+    friction); a flat punch is refused (not supported yet).
     """
-    inputs = _check_solve_inputs(vstar, kw, radius, load, nu, tol, kp)
+    from movingpunch.solver import resolve_profile
+
+    shape = resolve_profile(radius, profile)
+    inputs = _check_solve_inputs(vstar, kw, 1.0, load, nu, tol, kp)
+    inputs["radius"] = shape.nominal_radius
     inputs["friction"] = check_friction(friction)
-    inputs["damping"] = check_damping(damping, positive=inputs["friction"] == 0)
+    asymmetric_shape = isinstance(shape, Profile) and not shape.symmetric
+    inputs["damping"] = check_damping(
+        damping, positive=inputs["friction"] == 0 and not asymmetric_shape
+    )
     flag = _check_flag("allow_unphysical", allow_unphysical)
     size = _check_damped_size(n)
     vr = float(_core.rayleigh_vstar(inputs["nu"]))
@@ -299,7 +313,9 @@ def solve_damped(
             critical_vstar=None,
             rayleigh_vstar=vr,
         )
-    impl = _core.solve_damped(**inputs, allow_unphysical=flag, n=size)
+    impl = _core.solve_damped(
+        **{**inputs, **shape.core_args()}, allow_unphysical=flag, n=size
+    )
     back, front = impl.end_exponents
     return DampedSolution(
         **inputs,
@@ -325,6 +341,7 @@ def solve_damped(
         other_half_widths=tuple(float(w) for w in impl.other_half_widths),
         warnings=tuple(str(w) for w in impl.warnings),
         _impl=impl,
+        _profile=shape,
     )
 
 

@@ -12,10 +12,11 @@
   corners have the radius R, in the parabolic approximation the cylinder
   uses: f = 0 on |x| <= b, (|x| - b)^2/(2R) beyond. The contact (-a, a) is
   wider than the face (a > b for every load > 0) and its pressure bounded;
-* ``Profile(x, y)``: a symmetric convex table of heights y(x) (x ascending,
-  symmetric about 0), interpolated by a not-a-knot cubic spline (which
-  reproduces cubics, so a parabola exactly); ``Profile.from_function`` samples
-  a callable.
+* ``Profile(x, y)``: a convex table of heights y(x) (x ascending, spanning
+  the punch's axis x = 0; symmetric or not), interpolated by a not-a-knot
+  cubic spline (which reproduces cubics, so a parabola exactly);
+  ``Profile.from_function`` samples a callable. An asymmetric table takes
+  the asymmetric solver (as damping or friction do).
 
 Each is a frozen dataclass, validated when made (InvalidParameterError names
 the parameter and its range); ``to_dict()`` gives the scene-file form
@@ -214,11 +215,13 @@ def _table(name: str, values: object) -> tuple[float, ...]:
 
 @dataclass(frozen=True)
 class Profile(_Shape):
-    """A tabulated punch: heights ``y`` (over h, above its lowest point) at
-    positions ``x`` (over h, strictly ascending), symmetric about x = 0
+    """A tabulated punch: heights ``y`` (over h) at positions ``x`` (over h,
+    strictly ascending, x_0 < 0 < x_{n-1}: heights count from the punch's
+    axis x = 0) and convex (chord slopes non-decreasing to 1e-9 of the
+    largest). At least 5 points. A table symmetric about x = 0
     (x_i = -x_{n-1-i}, y_i = y_{n-1-i} to 1e-9 of max|x| and of the range of
-    y: the undamped solver is symmetric) and convex (chord slopes
-    non-decreasing to 1e-9 of the largest). At least 5 points. The solver
+    y) solves on the undamped (symmetric) solver when damping and friction
+    are 0; any other takes the asymmetric solver. The solver
     uses the slope of the table's not-a-knot cubic spline (exact for a
     parabola; a C^2 interpolant of smooth data, error O(spacing^4) in the
     height). The contact must stay within the table: a load that needs a
@@ -244,7 +247,8 @@ class Profile(_Shape):
         """The table of ``f`` (heights over h, vectorised over x/h) at
         ``points`` (odd, >= 5) equally spaced x in [-half_extent,
         half_extent], mirrored exactly about 0; f is called once on all of
-        them (an asymmetric f is refused by the symmetry check)."""
+        them (f need not be even: an asymmetric table takes the asymmetric
+        solver)."""
         extent = params.check("half_width", half_extent)
         if extent <= 0:
             raise params.fail("half_width", f"half_extent must be > 0, got {extent!r}")
@@ -271,10 +275,22 @@ class Profile(_Shape):
 
     @property
     def half_extent(self) -> float:
-        """The table's extent max|x| (the contact must stay within it)."""
-        return self.x[-1]
+        """The table's extent on both sides, min(-x_0, x_{n-1}) (a symmetric
+        contact must stay within it)."""
+        return min(-self.x[0], self.x[-1])
+
+    @property
+    def symmetric(self) -> bool:
+        """True when the table is symmetric about x = 0 (to 1e-9 of max|x|
+        and of the range of y)."""
+        return bool(_core.profile_table_symmetric(list(self.x), list(self.y)))
 
     def describe(self) -> str:
+        if not self.symmetric:
+            return (
+                f"asymmetric tabulated profile of {len(self.x)} points, "
+                f"{self.x[0]:g} <= x/h <= {self.x[-1]:g}"
+            )
         return (
             f"tabulated profile of {len(self.x)} points, |x|/h <= {self.half_extent:g}"
         )

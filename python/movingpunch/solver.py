@@ -41,7 +41,13 @@ from movingpunch._evaluate import (
 from movingpunch._evaluations import ResultFields
 from movingpunch.errors import InvalidParameterError
 from movingpunch.params import PRESETS
-from movingpunch.profiles import Cylinder, PunchProfile, check_profile
+from movingpunch.profiles import (
+    Cylinder,
+    Flat,
+    Profile,
+    PunchProfile,
+    check_profile,
+)
 
 if TYPE_CHECKING:
     from movingpunch.contract import ContactSolution
@@ -294,9 +300,11 @@ def solve(
     ``end_coefficients``), ``RoundedFlat(half_width, radius)`` or a
     symmetric convex table ``Profile(x, y)``. Give ``radius`` or
     ``profile``; both only if they agree (a Cylinder or a RoundedFlat of that
-    very radius), else InvalidParameterError naming ``radius``. A profile
-    other than a cylinder is refused with ``damping > 0`` or ``friction > 0``
-    (not supported yet). ``tol`` is on a/h (on the end coefficient for a flat
+    very radius), else InvalidParameterError naming ``radius``. With
+    ``damping > 0`` or ``friction > 0`` a cylinder, a rounded flat or a table
+    solves on the asymmetric solver (a flat punch is refused there: not
+    supported yet); an asymmetric table takes the asymmetric solver even
+    without them. ``tol`` is on a/h (on the end coefficient for a flat
     punch, whose contact is its face).
 
     ``friction`` = f >= 0 is Coulomb friction between punch and layer (the
@@ -308,19 +316,20 @@ def solve(
     from movingpunch.damped import check_damping, check_friction, solve_damped
 
     shape = resolve_profile(radius, profile)
-    if check_damping(damping) > 0 or check_friction(friction) > 0:
-        if not isinstance(shape, Cylinder):
+    asymmetric_shape = isinstance(shape, Profile) and not shape.symmetric
+    if check_damping(damping) > 0 or check_friction(friction) > 0 or asymmetric_shape:
+        if isinstance(shape, Flat):
             what = "damping > 0" if damping > 0 else "friction > 0"
             raise InvalidParameterError(
                 f"profile {shape.describe()} with {what} is not supported yet; "
-                "use damping = 0, friction = 0 or a Cylinder",
+                "use damping = 0 and friction = 0, or a bounded profile (Cylinder, "
+                "RoundedFlat or Profile)",
                 parameter="profile",
-                allowed="a Cylinder when damping > 0 or friction > 0",
+                allowed="a bounded profile when damping > 0 or friction > 0",
             )
         return solve_damped(
             vstar=vstar,
             kw=kw,
-            radius=shape.radius,
             load=load,
             nu=nu,
             damping=damping,
@@ -329,6 +338,7 @@ def solve(
             n=n,
             kp=kp,
             friction=friction,
+            profile=shape,
         )
     return _solve_profile(shape, vstar, kw, load, nu, tol, allow_unphysical, n, kp)
 

@@ -189,6 +189,15 @@ struct DampedParams {
   bool allow_unphysical = false;
   int n = 0;      // fixed collocation size (even, 2..1024); 0: refine
   double kp = 0;  // k_p / (mu h) in [0, kMaxKp]: Pasternak shear layer (0: Winkler)
+  // The punch's shape, as ContactParams' (profile.hpp, docs/theory.md
+  // section 13): a cylinder of `radius` (the default); a rounded flat
+  // (half_width, corners of `radius`); a convex table (table_x, table_y),
+  // symmetric or not (an asymmetric table solves here with damping = 0 and
+  // friction = 0 too). `radius` is unused by a table.
+  ProfileKind profile = ProfileKind::cylinder;
+  double half_width = 0;
+  std::vector<double> table_x, table_y;
+  PunchProfile punch() const { return PunchProfile(profile, radius, half_width, table_x, table_y); }
 };
 
 // Throws std::invalid_argument naming the parameter and its valid range.

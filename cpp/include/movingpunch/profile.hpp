@@ -12,7 +12,7 @@ enum class ProfileKind {
   cylinder,      // f = x^2/(2 R) (the parabolic approximation of a circle)
   flat,          // a flat face |x| <= b with square corners: the contact is the face
   rounded_flat,  // flat on |x| <= b, corners of radius R: f = (|x| - b)^2/(2 R) beyond
-  table,         // a symmetric convex table (x_i, y_i), interpolated by a cubic spline
+  table,         // a convex table (x_i, y_i), interpolated by a cubic spline
 };
 
 // "cylinder", "flat", "rounded_flat", "table".
@@ -23,10 +23,11 @@ class PunchProfile {
   // Validates the parameters of `kind` (throws InvalidParameter naming them):
   // cylinder: 0 < radius <= 1e12; flat: 1e-10 <= half_width <= 50;
   // rounded_flat: 0 <= half_width <= 50 and 0 < radius <= 1e12; table: x, y of
-  // equal length >= 5, finite, x strictly ascending, the table symmetric
-  // (x_i = -x_{n-1-i} and y_i = y_{n-1-i} to 1e-9 of max |x| and of the
-  // range of y) and convex (the slopes of its chords never fall by more than
-  // 1e-9 of their largest magnitude).
+  // equal length >= 5, finite, x strictly ascending with x_0 < 0 < x_{n-1}
+  // (heights are taken relative to the punch's axis x = 0), and convex (the
+  // slopes of its chords never fall by more than 1e-9 of their largest
+  // magnitude). A table need not be symmetric (symmetric() says whether it is:
+  // the undamped solver takes symmetric tables only, the asymmetric one any).
   PunchProfile(ProfileKind kind, double radius, double half_width,
                const std::vector<double>& x = {}, const std::vector<double>& y = {});
 
@@ -35,8 +36,15 @@ class PunchProfile {
   double slope(double x) const;
   // f(x) - f(0). Throws std::domain_error beyond extent().
   double height(double x) const;
-  // The largest |x| the shape is defined to: the table's last x (inf otherwise).
+  // The largest |x| the shape is defined to on both sides: min(-x_0, x_{n-1})
+  // of a table (inf otherwise); lower() and upper() are the table's x_0 and
+  // x_{n-1} (-inf and inf otherwise).
   double extent() const noexcept { return extent_; }
+  double lower() const noexcept { return lower_; }
+  double upper() const noexcept { return upper_; }
+  // False for a table that is not symmetric about x = 0 (x_i = -x_{n-1-i} and
+  // y_i = y_{n-1-i} to 1e-9 of max |x| and of the range of y); true otherwise.
+  bool symmetric() const noexcept { return symmetric_; }
   // The flat face's half-width b (0 for a cylinder or a table).
   double face() const noexcept { return face_; }
   // True for the flat punch: the contact is the face, its ends are
@@ -50,12 +58,24 @@ class PunchProfile {
   // slope is C^1: the aliased error, ~ d_{2M}, is independent of the count
   // below 500 terms, so a/h does not drift with N).
   std::vector<double> slope_chebyshev(double a, int count) const;
+  // The Chebyshev-T coefficients d_0 .. d_{count-1} of the slope on the
+  // contact (c - w, c + w), f'(c + w s) = d_0/2 + sum_{m>=1} d_m T_m(s), any
+  // parity: d_m = (2/pi) int_0^pi f'(c + w cos th) cos(m th) d th; in closed
+  // form for the cylinder and the rounded flat (split at its kinks), by a
+  // midpoint rule on max(16 count + 64, 8192) angles for a table. Throws
+  // std::domain_error when (c - w, c + w) leaves a table.
+  std::vector<double> slope_chebyshev_at(double c, double w, int count) const;
+  // The x where the shape's kinks lie (the rounded flat's face ends -b, b;
+  // none otherwise): quadratures of the slope split there.
+  std::vector<double> kinks() const;
   // One line: e.g. "flat punch, half-width b/h = 0.5".
   std::string describe() const;
 
  private:
   ProfileKind kind_;
   double radius_ = 0, face_ = 0, extent_ = 0;
+  double lower_ = 0, upper_ = 0;
+  bool symmetric_ = true;
   // The table's not-a-knot cubic spline: knots, values, second derivatives.
   std::vector<double> x_, y_, m_;
   double y0_ = 0;  // the spline at x = 0
@@ -63,7 +83,12 @@ class PunchProfile {
 };
 
 // Checks a profile table as PunchProfile does (the same messages), without
-// solving anything: the API checks a table when it is made.
-void check_profile_table(const std::vector<double>& x, const std::vector<double>& y);
+// solving anything: the API checks a table when it is made. With
+// require_symmetric, an asymmetric table is refused too (naming profile.x or
+// profile.y).
+void check_profile_table(const std::vector<double>& x, const std::vector<double>& y,
+                         bool require_symmetric = false);
+// True when the table is symmetric about x = 0 to 1e-9 (see PunchProfile).
+bool profile_table_symmetric(const std::vector<double>& x, const std::vector<double>& y);
 
 }  // namespace movingpunch
