@@ -62,6 +62,10 @@ void bind_damped(py::module_& m) {
           "(gamma_back, gamma_front): p ~ (x + b)^gamma_back (a - x)^gamma_front.")
       .def_property_readonly("coupling", &DampedSolution::coupling,
                              "Coupling constant Phi(vstar, nu) of the local term f Phi p.")
+      .def_property_readonly("series_truncation", &DampedSolution::series_truncation,
+                             "Bound on the pressure's error over P/h from the truncation of "
+                             "its (tail-extended) series: a profile's kinks (0 for the "
+                             "cylinder).")
       .def_property_readonly("pressure_error_estimate", &DampedSolution::pressure_error_estimate,
                              "Bound on the error of p/(P/h) at a fixed relative position "
                              "r = (x - c)/w in the contact.")
@@ -122,8 +126,8 @@ void bind_damped(py::module_& m) {
         return solve_damped(p);
       },
       py::kw_only(), "vstar"_a, "kw"_a, "radius"_a, "load"_a, "nu"_a, "damping"_a, "tol"_a,
-      "allow_unphysical"_a, "n"_a = 0, "kp"_a = 0.0, "friction"_a = 0.0,
-      "profile"_a = "cylinder", "half_width"_a = 0.0, "table_x"_a = std::vector<double>{},
+      "allow_unphysical"_a, "n"_a = 0, "kp"_a = 0.0, "friction"_a = 0.0, "profile"_a = "cylinder",
+      "half_width"_a = 0.0, "table_x"_a = std::vector<double>{},
       "table_y"_a = std::vector<double>{}, Release(),
       "Solves the contact problem on a damped (Kelvin-Voigt) foundation, damping = "
       "c_w c_T/mu > 0. Raises InvalidParameterError, SupercriticalSpeedError (vstar >= "

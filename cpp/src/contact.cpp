@@ -543,28 +543,10 @@ WidthRange profile_range(const ContactParams& p, const PunchProfile& prof) {
   return r;
 }
 
-// The first width of a non-cylindrical profile: the half-plane width, where
-// P = (1/phi1) int_{-a}^{a} x f'(x)/sqrt(a^2 - x^2) dx (the consistency
-// condition of a bounded contact on a half-plane; Hertz's a^2 = 2 phi1 R P/pi
-// for the cylinder), by bisection in ln(a - a0) within the range.
+// The first width of a non-cylindrical profile: the half-plane width
+// (solve_skeleton.hpp) within the range.
 double half_plane_width(const PunchProfile& prof, double phi1, double P, const WidthRange& r) {
-  constexpr int m = 64;
-  auto load = [&](double a) {
-    double sum = 0.0;
-    for (int i = 1; i <= m; ++i) {
-      const double t = std::cos((2 * i - 1) * kPi / (2.0 * m));
-      sum += a * t * prof.slope(a * t);
-    }
-    return sum * kPi / m / phi1;
-  };
-  double lo = std::log(kMinA), hi = std::log(r.amax - r.a0);
-  if (load(r.a0 + std::exp(hi)) <= P) return r.a0 + 0.9 * std::exp(hi);
-  if (load(r.a0 + std::exp(lo)) >= P) return r.a0 + 2.0 * std::exp(lo);
-  for (int it = 0; it < 60; ++it) {
-    const double mid = 0.5 * (lo + hi);
-    (load(r.a0 + std::exp(mid)) < P ? lo : hi) = mid;
-  }
-  return r.a0 + std::exp(0.5 * (lo + hi));
+  return detail::profile_half_plane_width(prof, phi1, P, r.a0, r.amax);
 }
 
 // The flat punch (index +1): g(r) = p(a r) sqrt(1 - r^2)/(P/h) by

@@ -491,8 +491,7 @@ void validate(const DampedParams& p) {
   // exponent is below 0.08 (a near-jump) and larger f costs minutes.
   require_in_range("friction", p.friction, 0.0, 10.0, false, false);
   // Without friction damping = 0 is the undamped solver's (contact.hpp).
-  require_in_range("damping", p.damping, 0.0, kInf, !(p.friction > 0.0) && !asymmetric_shape,
-                   true);
+  require_in_range("damping", p.damping, 0.0, kInf, !(p.friction > 0.0) && !asymmetric_shape, true);
   require_in_range("kp", p.kp, 0.0, kMaxKp, false, false);
   require_in_range("tol", p.tol, 1e-14, 1e-2, false, false);
   if (p.n != 0 && (p.n < 2 || p.n > 1024 || p.n % 2 != 0))
@@ -568,9 +567,10 @@ double max_abs_sine_series(const Eigen::VectorXd& b) {
 namespace {
 
 struct WidthEval {
-  double lambda = 0;  // the load R P/(mu h^2) this half-width carries
+  double lambda = 0;  // the load R P/(mu h^2) this half-width carries (a profile's: P)
   double centre = 0;  // the centre c of the contact
-  Eigen::VectorXd G;  // unit solution; g = -(w/(phi1 lambda)) G
+  Eigen::VectorXd G;  // unit solution; g = gscale G
+  double gscale = 0;  // -(w/(phi1 lambda)) (a profile's: -1/(phi1 P))
 };
 
 // For a trial half-width w the collocation system with the centre as the
@@ -599,6 +599,7 @@ WidthEval eval_width(const ChebyshevNodes& nd, double w, const DampedKernel& K, 
   e.G = x.head(n);
   e.centre = -w * x(n);
   e.lambda = -kPi * w * w * nd.w.dot(e.G) / phi1;
+  e.gscale = -(w / (phi1 * e.lambda));
   return e;
 }
 
@@ -611,19 +612,22 @@ struct WidthSolve {
 // The root of ln lambda(w) = ln lambda_t in ln w: a bracket by steps of 0.4
 // from the guess (lambda grows with w), then the shared bracketed root
 // (roots.hpp), and the solution at the root.
-template <class Kernel>
-WidthSolve solve_width(const ChebyshevNodes& nd, double lambda_t, double w_guess, Kernel&& kernel,
-                       double phi1) {
+// The root variable is ln(w - w0) (w0 = 0, or a rounded flat's face: its
+// load grows like (w - b)^(3/2)), on w0 + [kMinA, wmax - w0]; eval(w) is the
+// width's WidthEval (its lambda compared with lambda_t), n the size (messages).
+template <class Eval>
+WidthSolve solve_width(int n, double lambda_t, double w_guess, double w0, double wmax,
+                       Eval&& eval) {
   WidthSolve out;
   auto F = [&](double lw, WidthEval& e) {
-    const double w = std::exp(lw);
-    e = eval_width(nd, w, kernel(2.0 * w), phi1);
+    const double w = w0 + std::exp(lw);
+    e = eval(w);
     ++out.evaluations;
     if (!(e.lambda > 0.0) || !std::isfinite(e.lambda)) return std::nan("");
     return std::log(e.lambda) - std::log(lambda_t);
   };
-  const double lmin = std::log(detail::kMinA), lmax = std::log(detail::kMaxA);
-  double x0 = std::clamp(std::log(w_guess), lmin, lmax);
+  const double lmin = std::log(detail::kMinA), lmax = std::log(wmax - w0);
+  double x0 = std::clamp(std::log(std::max(w_guess - w0, detail::kMinA)), lmin, lmax);
   WidthEval e;
   double f0 = F(x0, e);
   // A wide first guess can be under-resolved at this N (no positive load):
@@ -636,16 +640,16 @@ WidthSolve solve_width(const ChebyshevNodes& nd, double lambda_t, double w_guess
     throw ConvergenceError(
         "damped contact: the collocation system gives no positive load at "
         "any trial width (N = " +
-        std::to_string(nd.n) + ")");
+        std::to_string(n) + ")");
   // Bracket: lambda grows with w. A trial width at round-off distance from
   // the root (|F| <= xftol: the guess, a coarser size's root, often is) is
   // the root.
   constexpr double xftol = 1e-15;
   double last = x0;  // where e was evaluated
   auto finish = [&](double x) {
-    out.w = std::exp(x);
+    out.w = w0 + std::exp(x);
     out.c = e.centre;
-    out.g = -(out.w / (phi1 * e.lambda)) * e.G;
+    out.g = e.gscale * e.G;
     return out;
   };
   if (std::fabs(f0) <= xftol) return finish(x0);
@@ -662,7 +666,7 @@ WidthSolve solve_width(const ChebyshevNodes& nd, double lambda_t, double w_guess
     if (x1 == lmin || x1 == lmax) {
       // At this N the width leaves the supported range (the caller refines N).
       throw ConvergenceError("damped contact: the contact width leaves the supported range " +
-                             detail::supported_range_text() + " at N = " + std::to_string(nd.n));
+                             detail::supported_range_text() + " at N = " + std::to_string(n));
     }
     x0 = x1;
     f0 = f1;
@@ -763,14 +767,272 @@ class ScanMemo {
   }
 };
 
+// ---------------------------------------------------------------------------
+// A punch profile's slope on the asymmetric solver (docs/theory.md section
+// 13, "Profiles on the asymmetric solver"). The collocation system's
+// half-plane part maps the density's N-term series onto the first N + 1
+// functions Q_m of the collocation points' family (T_m without friction,
+// P_m^(-alpha, -beta) with it; Q_0 is the centre unknown's constant), so the
+// slope is collocated through its projection onto Q_0 .. Q_N: exact for the
+// half-plane part even where the slope has a kink (a rounded flat's face
+// ends), whose point values would alias the projection's slowly decaying
+// tail onto the load.
+
+// Gauss-Jacobi rules, cached by (n, a, b) (the projections reuse a few).
+const JacobiRule& cached_rule(int n, double a, double b) { return cached_gauss_jacobi(n, a, b); }
+
+// The nodes s and weights of a quadrature of int_{-1}^{1} F(s) (1 - s)^a (1 + s)^b ds
+// for F smooth between the profile's kinks at x = c + w s: pieces between
+// them, each end's singular weight by its own Gauss-Jacobi rule of M nodes
+// (the other factor by value), interior pieces by Gauss-Legendre.
+template <class Add>
+void weighted_nodes(const PunchProfile& prof, double c, double w, double a, double b, int M,
+                    Add&& add) {
+  std::vector<double> edges{-1.0};
+  for (double x : prof.kinks()) {
+    const double s = (x - c) / w;
+    if (s > -1.0 && s < 1.0) edges.push_back(s);
+  }
+  edges.push_back(1.0);
+  std::sort(edges.begin(), edges.end());
+  for (std::size_t k = 0; k + 1 < edges.size(); ++k) {
+    const double lo = edges[k], hi = edges[k + 1];
+    if (!(hi - lo > 1e-15)) continue;
+    const bool left = lo == -1.0, right = hi == 1.0;
+    const JacobiRule& rule = cached_rule(M, right ? a : 0.0, left ? b : 0.0);
+    const double half = 0.5 * (hi - lo);
+    for (Eigen::Index i = 0; i < rule.x.size(); ++i) {
+      const double s = lo + half * (1.0 + rule.x(i));
+      double wt = rule.w(i) * half;
+      wt *= right ? std::pow(half, a) : std::pow(1.0 - s, a);
+      wt *= left ? std::pow(half, b) : std::pow(1.0 + s, b);
+      add(s, wt);
+    }
+  }
+}
+
+class SlopeProjection {
+ public:
+  // Without friction (jacobi false) the T_m; with it P_m^(a, b), (a, b) =
+  // (-alpha, -beta) of the density's exponents (alpha at the leading end).
+  SlopeProjection(const PunchProfile& prof, bool jacobi, double alpha)
+      : prof_(prof), jacobi_(jacobi), a_(-alpha), b_(alpha - 1.0) {}
+
+  bool jacobi() const noexcept { return jacobi_; }
+  // A table's projection uses fixed nodes (no kinks): q_m = sum_j A_jm f'(c + w s_j).
+  bool nodal() const noexcept { return prof_.kind() == ProfileKind::table; }
+  // For a table and the functional zeta . q: the offsets w s_j and the
+  // weights Z_j = sum_m A_jm zeta_m, so that zeta . q(c) = sum_j Z_j f'(c + w s_j)
+  // (the same rule as coefficients(): midpoint angles or Gauss-Jacobi nodes).
+  void nodal_functional(const Eigen::VectorXd& zeta, double w, std::vector<double>& xs,
+                        std::vector<double>& zw) const {
+    const int count = static_cast<int>(zeta.size());
+    xs.clear();
+    zw.clear();
+    std::vector<double> P(static_cast<std::size_t>(count));
+    if (!jacobi_) {
+      const int M = std::max(16 * count + 64, 8192);
+      for (int j = 0; j < M; ++j) {
+        const double th = (j + 0.5) * kPi / M;
+        basis(std::cos(th), count, P.data());  // T_m(cos th) = cos(m th)
+        double z = 0.5 * zeta(0);
+        for (int m = 1; m < count; ++m) z += zeta(m) * P[static_cast<std::size_t>(m)];
+        xs.push_back(w * std::cos(th));
+        zw.push_back(2.0 / M * z);
+      }
+      return;
+    }
+    const int M = std::max(16 * count + 64, 2048);
+    const JacobiRule& rule = cached_rule(M, a_, b_);
+    const std::vector<double>& h = norms(count);
+    for (Eigen::Index j = 0; j < rule.x.size(); ++j) {
+      basis(rule.x(j), count, P.data());
+      double z = 0.0;
+      for (int m = 0; m < count; ++m)
+        z += zeta(m) * P[static_cast<std::size_t>(m)] / h[static_cast<std::size_t>(m)];
+      xs.push_back(w * rule.x(j));
+      zw.push_back(rule.w(j) * z);
+    }
+  }
+  double a() const noexcept { return a_; }
+  double b() const noexcept { return b_; }
+
+  // Q_0(s) .. Q_{count-1}(s).
+  void basis(double s, int count, double* out) const {
+    if (count <= 0) return;
+    if (!jacobi_) {
+      double prev = 1.0, cur = s;
+      out[0] = 1.0;
+      for (int m = 1; m < count; ++m) {
+        out[m] = cur;
+        const double next = 2.0 * s * cur - prev;
+        prev = cur;
+        cur = next;
+      }
+      return;
+    }
+    out[0] = 1.0;
+    if (count == 1) return;
+    const double a = a_, b = b_;
+    out[1] = (a + 1.0) + (a + b + 2.0) * (s - 1.0) / 2.0;
+    for (int n = 2; n < count; ++n) {
+      const double nn = n, ab = a + b, c2 = 2.0 * nn + ab;
+      const double A = 2.0 * nn * (nn + ab) * (c2 - 2.0);
+      const double B = (c2 - 1.0) * (c2 * (c2 - 2.0) * s + a * a - b * b);
+      const double C = 2.0 * (nn + a - 1.0) * (nn + b - 1.0) * c2;
+      out[n] = (B * out[n - 1] - C * out[n - 2]) / A;
+    }
+  }
+
+  // The slope's coefficients q_0 .. q_{count-1} on (c - w, c + w):
+  // f'(c + w s) ~ sum q_m Q_m(s). Throws std::domain_error when the
+  // contact leaves a table.
+  std::vector<double> coefficients(double c, double w, int count) const {
+    if (!jacobi_) {
+      std::vector<double> d = prof_.slope_chebyshev_at(c, w, count);
+      if (!d.empty()) d[0] *= 0.5;
+      return d;
+    }
+    std::vector<double> q(static_cast<std::size_t>(count), 0.0);
+    std::vector<double> P(static_cast<std::size_t>(count));
+    const bool table = prof_.kind() == ProfileKind::table;
+    const int M = table ? std::max(16 * count + 64, 2048) : 2 * count + 64;
+    weighted_nodes(prof_, c, w, a_, b_, M, [&](double s, double weight) {
+      const double fs = prof_.slope(c + w * s) * weight;
+      if (fs == 0.0) return;
+      basis(s, count, P.data());
+      for (int m = 0; m < count; ++m) q[static_cast<std::size_t>(m)] += fs * P[m];
+    });
+    const std::vector<double>& h = norms(count);
+    for (int m = 0; m < count; ++m)
+      q[static_cast<std::size_t>(m)] /= h[static_cast<std::size_t>(m)];
+    return q;
+  }
+
+ private:
+  const PunchProfile& prof_;
+  bool jacobi_;
+  double a_, b_;
+  mutable std::vector<double> norms_;
+  // h_m = int Q_m^2 (1 - s)^a (1 + s)^b ds by a rule exact for them.
+  const std::vector<double>& norms(int count) const {
+    if (static_cast<int>(norms_.size()) >= count) return norms_;
+    const JacobiRule& rule = cached_rule(count + 2, a_, b_);
+    norms_.assign(static_cast<std::size_t>(count), 0.0);
+    std::vector<double> P(static_cast<std::size_t>(count));
+    for (Eigen::Index i = 0; i < rule.x.size(); ++i) {
+      basis(rule.x(i), count, P.data());
+      for (int m = 0; m < count; ++m)
+        norms_[static_cast<std::size_t>(m)] += rule.w(i) * P[m] * P[m];
+    }
+    return norms_;
+  }
+};
+
+// For a trial half-width w under a profile's slope: the collocation matrix
+// (as eval_width's) factored once; the centre c solves the consistency
+// condition gamma(c) = 0, gamma the centre unknown of M [G; gamma] = B q(c)
+// (B: Q_m at the collocation points), i.e. z . B q(c) with z the last row of
+// M^-1; then the load P(w) = -pi w W . G/phi1 and g = -G/(phi1 P).
+WidthEval eval_width_profile(const ChebyshevNodes& nd, double w, const DampedKernel& K, double phi1,
+                             const SlopeProjection& proj, const PunchProfile& prof,
+                             double c_guess) {
+  const int n = nd.n;
+  Eigen::MatrixXd M(n + 1, n + 1);
+  thread_local std::vector<double> u, kv;
+  u.resize(static_cast<std::size_t>(n) * (n + 1));
+  kv.resize(u.size());
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k <= n; ++k)
+      u[static_cast<std::size_t>(i) * (n + 1) + k] = -w * (nd.r(i) - nd.s(k));
+  K.many(u.data(), kv.data(), u.size());
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k <= n; ++k) {
+      const double d = nd.r(i) - nd.s(k);
+      M(k, i) = nd.w(i) * (1.0 / d - w * kv[static_cast<std::size_t>(i) * (n + 1) + k]);
+    }
+  M.col(n).setOnes();
+  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(M);
+  Eigen::MatrixXd B(n + 1, n + 1);
+  std::vector<double> row(static_cast<std::size_t>(n + 1));
+  for (int k = 0; k <= n; ++k) {
+    proj.basis(nd.s(k), n + 1, row.data());
+    for (int m = 0; m <= n; ++m) B(k, m) = row[static_cast<std::size_t>(m)];
+  }
+  const Eigen::VectorXd z = lu.transpose().solve(Eigen::VectorXd::Unit(n + 1, n));
+  const Eigen::VectorXd zeta = B.transpose() * z;
+  // gamma(c) = sum_m zeta_m q_m(c): for a table, whose projection's nodes do
+  // not move with c, as sum_j Z_j f'(c + w s_j) with Z = A zeta once per width.
+  std::vector<double> zs, zw;
+  if (proj.nodal()) proj.nodal_functional(zeta, w, zs, zw);
+  auto gamma = [&](double c) {
+    if (proj.nodal()) {
+      double sum = 0.0;
+      for (std::size_t j = 0; j < zs.size(); ++j) sum += zw[j] * prof.slope(c + zs[j]);
+      return sum;
+    }
+    const std::vector<double> q = proj.coefficients(c, w, n + 1);
+    return zeta.dot(Eigen::Map<const Eigen::VectorXd>(q.data(), n + 1));
+  };
+  WidthEval e;
+  e.lambda = std::nan("");
+  // The centres whose contact stays within a table.
+  const double clo = prof.lower() + w, chi = prof.upper() - w;
+  if (!(clo <= chi)) return e;
+  double c0 = std::clamp(c_guess, clo, chi);
+  double g0 = gamma(c0);
+  if (!std::isfinite(g0)) return e;
+  double c1 = c0, g1 = g0;
+  double step = 0.05 * w;
+  bool found = g0 == 0.0;
+  // Expand towards the sign change (gamma grows with c for a convex profile;
+  // both directions are tried).
+  for (int dir : {g0 > 0.0 ? -1 : 1, g0 > 0.0 ? 1 : -1}) {
+    if (found) break;
+    double a0 = c0, fa = g0, st = step;
+    for (int it = 0; it < 60; ++it) {
+      const double cn = std::clamp(a0 + dir * st, clo, chi);
+      const double gn = gamma(cn);
+      if (!std::isfinite(gn)) break;
+      if ((gn > 0.0) != (fa > 0.0) || gn == 0.0) {
+        c0 = a0;
+        g0 = fa;
+        c1 = cn;
+        g1 = gn;
+        found = true;
+        break;
+      }
+      if (cn == clo || cn == chi) break;
+      a0 = cn;
+      fa = gn;
+      st *= 2.0;
+    }
+  }
+  if (!found) return e;
+  double c = c1;
+  if (g1 != 0.0 && g0 != 0.0) {
+    const double lo = std::min(c0, c1), hi = std::max(c0, c1);
+    const double flo = lo == c0 ? g0 : g1, fhi = lo == c0 ? g1 : g0;
+    c = detail::bracketed_root(gamma, lo, hi, flo, fhi, 1e-15 * (w + std::fabs(c0)), 200, 0.0,
+                               detail::Safeguard::kStalledBracket);
+  } else if (g0 == 0.0) {
+    c = c0;
+  }
+  const std::vector<double> q = proj.coefficients(c, w, n + 1);
+  const Eigen::VectorXd rhs = B * Eigen::Map<const Eigen::VectorXd>(q.data(), n + 1);
+  const Eigen::VectorXd x = lu.solve(rhs);
+  e.G = x.head(n);
+  e.centre = c;
+  e.lambda = -kPi * w * nd.w.dot(e.G) / phi1;
+  e.gscale = -1.0 / (phi1 * e.lambda);
+  return e;
+}
+
 }  // namespace
 
 DampedSolution solve_damped(const DampedParams& prm) {
   const auto t0 = std::chrono::steady_clock::now();
   validate(prm);
-  if (prm.profile != ProfileKind::cylinder)
-    throw InvalidParameter("profile", "cylinder",
-                           "profile: only the cylinder solves on the asymmetric solver yet");
   DampedSolution s;
   s.params_ = prm;
   s.vr_ = rayleigh_vstar(prm.nu);
@@ -812,22 +1074,68 @@ DampedSolution solve_damped(const DampedParams& prm) {
     return *kern;
   };
 
-  const double lambda = prm.radius * prm.load;
+  // The punch: the cylinder keeps its own path (the centre absorbed by the
+  // constant unknown, lambda = R P); any other bounded profile collocates its
+  // slope's projection and finds the centre per width (eval_width_profile).
+  const PunchProfile prof = prm.punch();
+  s.punch_ = std::make_shared<const PunchProfile>(prof);
+  const bool cylinder = prof.kind() == ProfileKind::cylinder;
+  const SlopeProjection proj(*s.punch_, frictional, s.exps_.front);
+  // A rounded flat's width runs on ln(w - b); every width within the table.
+  const double w0 = prof.kind() == ProfileKind::rounded_flat ? prof.face() : 0.0;
+  const double wmax = std::min(detail::kMaxA, 0.5 * (prof.upper() - prof.lower()));
+  const double lambda = cylinder ? prm.radius * prm.load : prm.load;
   // The first width guess (solve_skeleton.hpp). A load that a half-plane
   // carries on less than twice the smallest supported width is refused up
   // front (subnormal or tiny radius * load), naming the inputs, instead of
-  // failing every N.
-  const detail::WidthGuess wg = detail::width_guess(phi1, lambda, prm.kw, prm.nu, prm.kp);
-  if (!(wg.hertz >= 2.0 * detail::kMinA))
+  // failing every N. A profile starts from its half-plane width (as the
+  // undamped solver does), through the Hertz load that width would carry.
+  double hp_width = 0.0;
+  if (!cylinder) {
+    hp_width = detail::profile_half_plane_width(prof, phi1, prm.load, w0,
+                                                std::min(detail::kMaxA, prof.extent()));
+  }
+  const detail::WidthGuess wg = detail::width_guess(
+      phi1, cylinder ? lambda : 0.5 * kPi * hp_width * hp_width / phi1, prm.kw, prm.nu, prm.kp);
+  if (cylinder && !(wg.hertz >= 2.0 * detail::kMinA))
     detail::width_out_of_range(prm, false, 2.0 * kPi * detail::kMinA * detail::kMinA / phi1);
   const bool wide_guess = wg.use_wide;
-  double guess = wg.a;
+  double guess = cylinder ? wg.a
+                          : std::clamp(wide_guess ? std::max(wg.a, hp_width) : hp_width,
+                                       w0 + 2.0 * detail::kMinA, wmax);
+  double c_last = 0.0;  // a profile's last centre: the next width's first guess
   // The first table: for the scan (8 w) too when the guess is the half-plane
   // width (close); a wide guess can be far off (the dashpots alone: aW is
   // thousands of h for a contact of 0.4 h), so only its own trial width.
   kernel((wide_guess ? 2.0 : 8.4) * guess);
   s.model_ = kern->model_ptr();
   const DampedLayerModel* model = s.model_.get();
+
+  // A profile's series of g beyond the collocated terms: the half-plane's
+  // (the half-plane part maps the n-th term onto Q_{n+1}: b_{m-1} =
+  // q_m/(phi1 P) for the U-series, c_{m-1} = sin(pi alpha) q_m/(2 phi1 P) for
+  // the Jacobi series), up to the layer's coupling, negligible that far out;
+  // to kTail terms (a rounded flat's kinked slope: 4096, 1024 with friction;
+  // a table's C^1 spline slope: 256), as the undamped solver extends its
+  // series (docs/theory.md section 13).
+  const bool kinked = prof.kind() == ProfileKind::rounded_flat;
+  const int tail_len = kinked ? (frictional ? 1024 : 4096) : 256;
+  const double tail_scale = frictional ? std::sin(kPi * s.exps_.front) / (2.0 * phi1 * prm.load)
+                                       : 1.0 / (phi1 * prm.load);
+  auto extend_tail = [&](Eigen::VectorXd& coef, double c, double w) {
+    const Eigen::Index n = coef.size();
+    const Eigen::Index len = std::max<Eigen::Index>(n, tail_len);
+    const std::vector<double> q = proj.coefficients(c, w, static_cast<int>(len) + 1);
+    coef.conservativeResize(len);
+    for (Eigen::Index m = n; m < len; ++m)
+      coef(m) = q[static_cast<std::size_t>(m + 1)] * tail_scale;
+  };
+  // max |sqrt(1 - r^2) sum b_n U_n| bounded by the sampled maximum of the
+  // first `head` terms plus sum |b_n| beyond (|sqrt(1 - r^2) U_n| <= 1).
+  auto head_sine_max = [](const Eigen::VectorXd& b, int head) {
+    const Eigen::Index h = std::min<Eigen::Index>(b.size(), head);
+    return max_abs_sine_series(b.head(h)) + b.tail(b.size() - h).cwiseAbs().sum();
+  };
 
   const std::vector<int> ladder = detail::size_ladder(512);
   std::vector<int> sizes;
@@ -860,10 +1168,31 @@ DampedSolution solve_damped(const DampedParams& prm) {
   for (std::size_t k = 0; k < sizes.size(); ++k) {
     nd = nodes_of(sizes[k]);
     try {
-      ws = solve_width(nd, lambda, guess, kernel, phi1);
+      if (cylinder) {
+        ws = solve_width(nd.n, lambda, guess, 0.0, detail::kMaxA,
+                         [&](double w) { return eval_width(nd, w, kernel(2.0 * w), phi1); });
+      } else {
+        ws = solve_width(nd.n, lambda, guess, w0, wmax, [&](double w) {
+          WidthEval e = eval_width_profile(nd, w, kernel(2.0 * w), phi1, proj, prof, c_last);
+          if (std::isfinite(e.lambda)) c_last = e.centre;
+          return e;
+        });
+      }
     } catch (const ConvergenceError& e) {
       // Under-resolved at this N (a non-monotone or non-positive discrete
       // load curve): refine N, unless this was the last size.
+      if (k + 1 == sizes.size() && prof.kind() == ProfileKind::table) {
+        // No width within the table carries the load (the widest, centred
+        // where the table allows, carries less): refused, naming the table.
+        std::ostringstream m;
+        m.precision(6);
+        m << "load = " << prm.load << " on the " << prof.describe() << " (kw = " << prm.kw
+          << ", vstar = " << prm.vstar << ") needs a contact that leaves the table ("
+          << prof.lower() << " <= x/h <= " << prof.upper()
+          << "): the contact must stay within the table; extend the table or reduce the load ("
+          << e.what() << ")";
+        throw std::invalid_argument(m.str());
+      }
       if (k + 1 == sizes.size()) {
         std::ostringstream msg;
         msg << e.what() << "; vstar = " << prm.vstar << ", kw = " << prm.kw
@@ -881,11 +1210,17 @@ DampedSolution solve_damped(const DampedParams& prm) {
     guess = ws.w;
     if (frictional) {
       js = JacobiSeries::from_nodes(s.exps_.front, nd.r, ws.g);
+      if (!cylinder) {
+        Eigen::VectorXd ext = js.coefficients();
+        extend_tail(ext, ws.c, ws.w);
+        js = JacobiSeries(s.exps_.front, ext);
+      }
       bk = js.coefficients();
       pmax = js.max_abs_density();
     } else {
       bk = u_coefficients(nd, ws.g);
-      pmax = max_abs_sine_series(bk);
+      if (!cylinder) extend_tail(bk, ws.c, ws.w);
+      pmax = cylinder ? max_abs_sine_series(bk) : head_sine_max(bk, 4 * nd.n + 64);
     }
     const double scale_e = ws.w + std::fabs(ws.c);
     // Round-off floors: a few hundred eps of the scale (growing slowly with
@@ -899,7 +1234,9 @@ DampedSolution solve_damped(const DampedParams& prm) {
       diff.head(bk.size()) += bk;
       diff.head(b_prev.size()) -= b_prev;
       d_ends.push_back(std::fabs(ws.w - w_prev) + std::fabs(ws.c - c_prev));
-      d_p.push_back(frictional ? js.minus(js_prev).max_abs_density() : max_abs_sine_series(diff));
+      d_p.push_back(frictional ? js.minus(js_prev).max_abs_density()
+                    : cylinder ? max_abs_sine_series(diff)
+                               : head_sine_max(diff, 4 * nd.n + 64));
       est_e = refinement_estimate(done_n, d_ends, floor_e);
       est_p = refinement_estimate(done_n, d_p, floor_p);
       if (prm.n == 0 && d_p.size() >= 2) {
@@ -985,6 +1322,63 @@ DampedSolution solve_damped(const DampedParams& prm) {
     s.jac_ = std::make_shared<const JacobiSeries>(js);
     s.drag_ = (s.centre_ * s.half_ * js.moment0() + s.half_ * s.half_ * js.moment1()) / prm.radius;
   }
+  if (!cylinder) {
+    // drag = int p f'(x) dx / P = w int weight(r) g(r) f'(c + w r) dr.
+    const double c = s.centre_, w = s.half_;
+    if (frictional) {
+      double sum = 0.0;
+      weighted_nodes(prof, c, w, s.exps_.front, s.exps_.back, js.size() + 64,
+                     [&](double r, double wt) { sum += wt * js.g(r) * prof.slope(c + w * r); });
+      s.drag_ = w * sum;
+    } else {
+      // int sqrt(1 - r^2) U_n T_m dr = (pi/4)(delta_nm (1 + delta_m0) - delta_m,n+2), with
+      // f'(c + w r) = d_0/2 + sum d_m T_m: (pi/4) sum_n b_n (d_n - d_{n+2}).
+      const Eigen::Index n = s.b_.size();
+      const std::vector<double> d = prof.slope_chebyshev_at(c, w, static_cast<int>(n) + 2);
+      double sum = 0.0;
+      for (Eigen::Index k = 0; k < n; ++k)
+        sum += s.b_(k) * (d[static_cast<std::size_t>(k)] - d[static_cast<std::size_t>(k + 2)]);
+      s.drag_ = w * 0.25 * kPi * sum;
+    }
+    // What the extended series leaves out (series_truncation): the
+    // half-plane tail's coefficients summed to four times the length (U-series,
+    // |sqrt(1 - r^2) U_n| <= 1) and the rest extrapolated as m^-2; with
+    // friction the last terms extrapolated as m^-2 times the largest
+    // |weight P_n| at the length (sampled).
+    const Eigen::Index len = s.b_.size();
+    if (frictional) {
+      const double a = s.exps_.front, b = s.exps_.back;
+      double bmax = 0.0;
+      std::vector<double> P(static_cast<std::size_t>(len) + 1);
+      const SlopeProjection jb(prof, true, 1.0 - a);  // P_n^(a, b): the density's family
+      const int samples = 4 * static_cast<int>(len) + 64;
+      for (int j = 0; j <= samples; ++j) {
+        const double r = std::cos(kPi * j / samples);
+        jb.basis(r, static_cast<int>(len) + 1, P.data());
+        const double wr = std::pow(1.0 - r, a) * std::pow(1.0 + r, b);
+        bmax = std::max(bmax, wr * std::fabs(P[static_cast<std::size_t>(len)]));
+      }
+      const double last = std::fabs(s.b_(len - 1)) + std::fabs(s.b_(len - 2));
+      s.trunc_ = 1.5 * std::max(bmax, 1.0) * last * static_cast<double>(len);
+    } else {
+      const std::vector<double> q = proj.coefficients(c, w, 4 * static_cast<int>(len) + 1);
+      double sum = 0.0;
+      for (std::size_t m = static_cast<std::size_t>(len) + 1; m < q.size(); ++m)
+        sum += std::fabs(q[m]);
+      sum += (std::fabs(q.back()) + std::fabs(q[q.size() - 2])) * static_cast<double>(q.size());
+      s.trunc_ = sum * std::fabs(tail_scale);
+    }
+    s.perr_ += s.trunc_;
+    if (s.trunc_ > 1e-3 * s.max_p_) {
+      std::ostringstream m;
+      m.precision(3);
+      m << "the pressure's series resolves the profile's kinks (" << prof.describe() << ") only to "
+        << s.trunc_ << " P/h (series_truncation; " << s.trunc_ / s.max_p_
+        << " of max p): corners much sharper than the contact are better modelled by a flat "
+           "punch";
+      s.warnings_.push_back(m.str());
+    }
+  }
 
   // Above V*_cr lambda(w) need not be monotone: a load can be carried by
   // several contacts (the steady problem has several solutions). Scan
@@ -996,7 +1390,17 @@ DampedSolution solve_damped(const DampedParams& prm) {
     const double lo = std::log(std::max(detail::kMinA, s.half_ / 8.0));
     const double hi = std::log(std::min(detail::kMaxA, 4.0 * s.half_));
     const std::vector<double> xs = scan_points(lo, hi);
-    const std::vector<double> lam = ScanMemo::lambdas(kern, ns, xs, phi1);
+    std::vector<double> lam;
+    if (cylinder) {
+      lam = ScanMemo::lambdas(kern, ns, xs, phi1);
+    } else {  // a profile's load curve depends on its shape: not memoised
+      for (double x : xs) {
+        const double w = std::exp(x);
+        lam.push_back(w > w0 && w <= wmax
+                          ? eval_width_profile(ns, w, *kern, phi1, proj, prof, s.centre_).lambda
+                          : std::nan(""));
+      }
+    }
     double prev_x = lo, prev_f = std::nan("");
     for (std::size_t i = 0; i < xs.size(); ++i) {
       const double x = xs[i];
@@ -1111,7 +1515,11 @@ DampedSolution solve_damped(const DampedParams& prm) {
       s.slope_wg_.push_back(rule.w(i) / kPi * js.g(rule.x(i)));
     }
   } else {
-    const int m = std::max(64, 2 * static_cast<int>(s.b_.size()) + 2);
+    // A profile's tail-extended series: nodes for its collocated head (the
+    // kernel is smooth; the tail's share is within series_truncation).
+    const int m = std::max(64, 2 * static_cast<int>(std::min<Eigen::Index>(
+                                       s.b_.size(), cylinder ? s.b_.size() : 4 * nd.n + 64)) +
+                                   2);
     for (int i = 1; i <= m; ++i) {
       const double th = i * kPi / (m + 1), r = std::cos(th);
       s.slope_r_.push_back(r);
@@ -1119,7 +1527,12 @@ DampedSolution solve_damped(const DampedParams& prm) {
     }
   }
   // The margin before separation: min over r of p/((P/h) sqrt(1 - r^2)) = g(r).
-  s.margin_ = frictional ? js.min_g() : u_series_minimum(s.b_);
+  // (A profile's on the collocated head: its tail's kink is resolved only
+  // to series_truncation anyway.)
+  s.margin_ = frictional ? js.min_g()
+              : cylinder
+                  ? u_series_minimum(s.b_)
+                  : u_series_minimum(s.b_.head(std::min<Eigen::Index>(s.b_.size(), 4 * nd.n + 64)));
 
   // Validity: p >= 0 on the contact, no penetration beside it.
   s.min_p_ = kInf;
@@ -1132,7 +1545,6 @@ DampedSolution solve_damped(const DampedParams& prm) {
   // gap(x) = int_edge^x (xi/R - v'(xi)) d xi beside each end, with xi = edge +- q^2.
   s.min_gap_ = kInf;
   {
-    const double R = prm.radius;
     for (int side = -1; side <= 1; side += 2) {
       const double edge = s.centre_ + side * s.half_;
       const double qmax = std::sqrt(2.0 * s.half_);
@@ -1146,7 +1558,8 @@ DampedSolution solve_damped(const DampedParams& prm) {
           const double gw = g_weight(j, h);
           const double q = gk_node(j, c, h);
           const double x = edge + side * q * q;
-          gap += gw * 2.0 * q * (x / R - s.surface_slope(x)) * side;
+          if (x < prof.lower() || x > prof.upper()) continue;  // beyond a table: no punch
+          gap += gw * 2.0 * q * (prof.slope(x) - s.surface_slope(x)) * side;
         }
         s.min_gap_ = std::min(s.min_gap_, gap);
       }
@@ -1154,7 +1567,11 @@ DampedSolution solve_damped(const DampedParams& prm) {
   }
   s.valid_ = true;
   std::ostringstream why;
-  const double gap_scale = s.half_ * s.half_ / prm.radius;
+  // The gap's scale: w^2/R for a cylinder, w times the slope at the ends otherwise.
+  const double gap_scale =
+      cylinder ? s.half_ * s.half_ / prm.radius
+               : s.half_ * std::max({std::fabs(prof.slope(s.centre_ - s.half_)),
+                                     std::fabs(prof.slope(s.centre_ + s.half_)), 1e-300});
   if (s.min_p_ < -1e-8) {
     s.valid_ = false;
     why << "pressure negative inside the contact (min p/(P/h) = " << s.min_p_ << "); ";
@@ -1879,8 +2296,7 @@ std::shared_ptr<const DampedSolution::Surface> DampedSolution::surface() const {
   }
   f.coefficients(g, s->smooth_re, s->smooth_im);
   detail::log1p_rule(b_, half_, s->log1p_r, s->log1p_w);
-  s->indentation =
-      centre_ * centre_ / (2.0 * params_.radius) - params_.load * surface_value(*s, centre_);
+  s->indentation = punch_->height(centre_) - params_.load * surface_value(*s, centre_);
   if (!std::isfinite(s->indentation))
     throw ConvergenceError("damped contact: the indentation came out non-finite (N = " +
                            std::to_string(n_) + "); the displacement is not trusted");
@@ -1915,7 +2331,7 @@ double DampedSolution::indentation() const {
   if (jac_) {  // the punch's rigid approach at the contact's centre
     std::lock_guard<std::mutex> lock(surface_cache_->mutex);
     if (!std::isnan(friction_indentation_)) return friction_indentation_;
-    friction_indentation_ = centre_ * centre_ / (2.0 * params_.radius) -
+    friction_indentation_ = punch_->height(centre_) -
                             friction_displacement(Eigen::VectorXd::Constant(1, centre_), 0.0)(0);
     return friction_indentation_;
   }

@@ -5,8 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 
 #include <Eigen/Eigenvalues>
 
@@ -136,6 +140,16 @@ JacobiRule gauss_jacobi(int n, double a, double b) {
   return r;
 }
 
+const JacobiRule& cached_gauss_jacobi(int n, double a, double b) {
+  static std::mutex mu;
+  static std::map<std::tuple<int, double, double>, std::unique_ptr<const JacobiRule>> cache;
+  const std::lock_guard<std::mutex> lock(mu);
+  if (cache.size() > 256) cache.clear();  // a long sweep over many exponents
+  auto& slot = cache[{n, a, b}];
+  if (!slot) slot = std::make_unique<const JacobiRule>(gauss_jacobi(n, a, b));
+  return *slot;
+}
+
 ChebyshevNodes jacobi_collocation_nodes(int n, double alpha) {
   if (n < 2) throw std::invalid_argument("jacobi_collocation_nodes: n must be >= 2");
   if (!(alpha > 0.0 && alpha < 1.0))
@@ -164,7 +178,7 @@ double jacobi_norm(int n, double a, double b) {
 JacobiSeries::JacobiSeries(double alpha, Eigen::VectorXd c) : alpha_(alpha), c_(std::move(c)) {
   if (!(alpha > 0.0 && alpha < 1.0))
     throw std::invalid_argument("JacobiSeries: alpha must be in (0, 1)");
-  const JacobiRule rule = gauss_jacobi(size() + 60, alpha_, beta());
+  const JacobiRule& rule = cached_gauss_jacobi(size() + 60, alpha_, beta());
   far_x_ = rule.x;
   far_wg_.resize(rule.x.size());
   for (Eigen::Index i = 0; i < rule.x.size(); ++i) far_wg_(i) = rule.w(i) * g(rule.x(i));
@@ -225,14 +239,44 @@ double JacobiSeries::cauchy(double x) const {
   const double poly =
       jacobi_series(c_, -a, -b, x, 1, static_cast<double*>(nullptr));  // sum c_n P_{n+1}^(-a,-b)(x)
   if (std::fabs(x) <= 1.0) return std::cos(kPi * a) / sa * density(x) - 2.0 / sa * poly;
-  if (std::fabs(x) < 1.2) {
+  const double ax = std::fabs(x), rho = ax + std::sqrt(ax * ax - 1.0);
+  if (ax < 1.2 && closed_form_ok(rho)) {
     const double Z =
         (x > 0 ? 1.0 : -1.0) * std::pow(std::fabs(x - 1.0), a) * std::pow(std::fabs(x + 1.0), b);
     return (Z * g(x) - 2.0 * poly) / sa;
   }
+  const auto [rx, rwg] = ax < 1.2 ? rule_for(rho) : std::make_pair(&far_x_, &far_wg_);
   double sum = 0.0;
-  for (Eigen::Index i = 0; i < far_x_.size(); ++i) sum += far_wg_(i) / (far_x_(i) - x);
+  for (Eigen::Index i = 0; i < rx->size(); ++i) sum += (*rwg)(i) / ((*rx)(i)-x);
   return sum / kPi;
+}
+
+bool JacobiSeries::closed_form_ok(double rho) const {
+  double top = 0.0, cmax = 0.0, pw = rho;
+  for (Eigen::Index n = 0; n < c_.size(); ++n) {
+    const double c = std::fabs(c_(n));
+    cmax = std::max(cmax, c);
+    top = std::max(top, c * pw);
+    pw *= rho;
+    if (!std::isfinite(pw)) return false;
+  }
+  return top <= 1e4 * cmax;
+}
+
+std::pair<const Eigen::VectorXd*, const Eigen::VectorXd*> JacobiSeries::rule_for(double rho) const {
+  // rho^(-2M) <= 1e-17 and at least the series' own degree.
+  const double need = 19.6 / std::log(std::max(rho, 1.0 + 1e-9)) + static_cast<double>(size());
+  if (need <= static_cast<double>(far_x_.size())) return {&far_x_, &far_wg_};
+  const int cap = 8 * size() + 64;
+  int m = static_cast<int>(std::min<double>(cap, std::ceil(need / 64.0) * 64.0));
+  const std::lock_guard<std::mutex> lock(near_->mutex);
+  for (const auto& r : near_->rules)
+    if (r.first.size() >= m) return {&r.first, &r.second};
+  const JacobiRule& rule = cached_gauss_jacobi(m, alpha_, beta());
+  Eigen::VectorXd wg(m);
+  for (int i = 0; i < m; ++i) wg(i) = rule.w(i) * g(rule.x(i));
+  near_->rules.emplace_back(rule.x, wg);
+  return {&near_->rules.back().first, &near_->rules.back().second};
 }
 
 std::complex<double> JacobiSeries::cauchy_upper(std::complex<double> z,
@@ -241,7 +285,7 @@ std::complex<double> JacobiSeries::cauchy_upper(std::complex<double> z,
   const double a = alpha_, b = beta();
   const C root = std::sqrt(z - 1.0) * std::sqrt(z + 1.0);
   const double rho = std::max(std::abs(z + root), std::abs(z - root));
-  if (rho < 1.86) {
+  if (rho < 1.86 && closed_form_ok(rho)) {
     const double sa = std::sin(kPi * a);
     const C Z = std::pow(z - 1.0, a) * std::pow(z + 1.0, b);
     C dg, dpoly;
@@ -253,11 +297,12 @@ std::complex<double> JacobiSeries::cauchy_upper(std::complex<double> z,
     }
     return (Z * gz - 2.0 * poly) / sa;
   }
+  const auto [rx, rwg] = rho < 1.86 ? rule_for(rho) : std::make_pair(&far_x_, &far_wg_);
   C sum = 0.0, dsum = 0.0;
-  for (Eigen::Index i = 0; i < far_x_.size(); ++i) {
-    const C d = 1.0 / (far_x_(i) - z);
-    sum += far_wg_(i) * d;
-    dsum += far_wg_(i) * d * d;
+  for (Eigen::Index i = 0; i < rx->size(); ++i) {
+    const C d = 1.0 / ((*rx)(i)-z);
+    sum += (*rwg)(i)*d;
+    dsum += (*rwg)(i)*d * d;
   }
   if (derivative) *derivative = dsum / kPi;
   return sum / kPi;

@@ -320,9 +320,8 @@ double linear_cos_integral(int m, double A, double w, double t0, double t1) {
     if (m == 0) return A * t + w * std::sin(t);
     if (m == 1) return A * std::sin(t) + w * (0.5 * t + 0.25 * std::sin(2.0 * t));
     const double mm = m;
-    return A * std::sin(mm * t) / mm +
-           w * (std::sin((mm - 1.0) * t) / (2.0 * (mm - 1.0)) +
-                std::sin((mm + 1.0) * t) / (2.0 * (mm + 1.0)));
+    return A * std::sin(mm * t) / mm + w * (std::sin((mm - 1.0) * t) / (2.0 * (mm - 1.0)) +
+                                            std::sin((mm + 1.0) * t) / (2.0 * (mm + 1.0)));
   };
   return F(t1) - F(t0);
 }
@@ -347,10 +346,9 @@ std::vector<double> PunchProfile::slope_chebyshev_at(double c, double w, int cou
       auto angle = [&](double x) { return std::acos(std::clamp((x - c) / w, -1.0, 1.0)); };
       const double t1 = angle(face_), t2 = angle(-face_);
       for (int m = 0; m < count; ++m)
-        d[static_cast<std::size_t>(m)] =
-            2.0 / (kPi * radius_) *
-            (linear_cos_integral(m, c - face_, w, 0.0, t1) +
-             linear_cos_integral(m, c + face_, w, t2, kPi));
+        d[static_cast<std::size_t>(m)] = 2.0 / (kPi * radius_) *
+                                         (linear_cos_integral(m, c - face_, w, 0.0, t1) +
+                                          linear_cos_integral(m, c + face_, w, t2, kPi));
       return d;
     }
     case ProfileKind::table: {

@@ -80,6 +80,34 @@ inline WidthGuess width_guess(double phi1, double lambda, double kw, double nu, 
   return g;
 }
 
+// The first width of a non-cylindrical profile (any class with slope(x)):
+// the half-plane width, where P = (1/phi1) int_{-a}^{a} x f'(x)/sqrt(a^2 - x^2) dx
+// (the consistency condition of a bounded contact on a half-plane; Hertz's
+// a^2 = 2 phi1 R P/pi for the cylinder), by bisection in ln(a - a0) on
+// a0 + [kMinA, amax - a0].
+template <class Profile>
+double profile_half_plane_width(const Profile& prof, double phi1, double P, double a0,
+                                double amax) {
+  constexpr double kPi = 3.14159265358979323846;
+  constexpr int m = 64;
+  auto load = [&](double a) {
+    double sum = 0.0;
+    for (int i = 1; i <= m; ++i) {
+      const double t = std::cos((2 * i - 1) * kPi / (2.0 * m));
+      sum += a * t * prof.slope(a * t);
+    }
+    return sum * kPi / m / phi1;
+  };
+  double lo = std::log(kMinA), hi = std::log(amax - a0);
+  if (load(a0 + std::exp(hi)) <= P) return a0 + 0.9 * std::exp(hi);
+  if (load(a0 + std::exp(lo)) >= P) return a0 + 2.0 * std::exp(lo);
+  for (int it = 0; it < 60; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (load(a0 + std::exp(mid)) < P ? lo : hi) = mid;
+  }
+  return a0 + std::exp(0.5 * (lo + hi));
+}
+
 // The foundation as messages name it: "kw = 1" for springs alone, "kw = 1,
 // kp = 0.2" with a Pasternak shear layer (any parameter struct with kw, kp).
 template <class Params>

@@ -45,9 +45,10 @@ TEST(Profiles, SplineReproducesCubicsAndParabolas) {
 
 TEST(Profiles, TableChecksNameTheirParameter) {
   const std::vector<double> x = {-2, -1, 0, 1, 2};
-  auto name_of = [](const std::vector<double>& tx, const std::vector<double>& ty) {
+  auto name_of = [](const std::vector<double>& tx, const std::vector<double>& ty,
+                    bool symmetric = true) {
     try {
-      check_profile_table(tx, ty);
+      check_profile_table(tx, ty, symmetric);
     } catch (const InvalidParameter& e) {
       return e.name();
     }
@@ -61,6 +62,53 @@ TEST(Profiles, TableChecksNameTheirParameter) {
   EXPECT_EQ(name_of(x, {1, 2, 0, 2, 1}), "profile.y");                  // not convex
   EXPECT_EQ(name_of({-2, -1, 0, 1, 3}, {4, 1, 0, 1, 4}), "profile.x");  // asymmetric x
   EXPECT_EQ(name_of(x, {4, 1, std::nan(""), 1, 4}), "profile.y");
+  // Asymmetric tables are valid for the asymmetric solver (require_symmetric
+  // false); the table must still span x = 0 and be convex.
+  EXPECT_EQ(name_of(x, {4, 1, 0, 1.5, 4}, false), "none");
+  EXPECT_EQ(name_of({-2, -1, 0, 1, 3}, {4, 1, 0, 1, 4}, false), "none");
+  EXPECT_EQ(name_of({0.5, 1, 2, 3, 4}, {4, 1, 0, 1, 4}, false), "profile.x");  // misses x = 0
+  EXPECT_EQ(name_of(x, {1, 2, 0, 2, 1}, false), "profile.y");                  // not convex
+  EXPECT_TRUE(profile_table_symmetric(x, {4, 1, 0, 1, 4}));
+  EXPECT_FALSE(profile_table_symmetric(x, {4, 1, 0, 1.5, 4}));
+}
+
+TEST(Profiles, AsymmetricTableKeepsItsOwnExtents) {
+  // f = (x - 0.5)^2 on [-1, 3]: heights from the axis x = 0, extents both sides.
+  std::vector<double> x, y;
+  for (int i = 0; i <= 40; ++i) {
+    x.push_back(-1.0 + 0.1 * i);
+    y.push_back((x.back() - 0.5) * (x.back() - 0.5));
+  }
+  const PunchProfile p(ProfileKind::table, 1.0, 0.0, x, y);
+  EXPECT_FALSE(p.symmetric());
+  EXPECT_DOUBLE_EQ(p.lower(), -1.0);
+  EXPECT_NEAR(p.upper(), 3.0, 1e-14);
+  EXPECT_NEAR(p.extent(), 1.0, 1e-14);
+  EXPECT_NEAR(p.height(2.5), 4.0 - 0.25, 1e-13);  // exact for a parabola
+  EXPECT_NEAR(p.slope(-0.9), 2.0 * (-1.4), 1e-13);
+  EXPECT_THROW(p.slope(3.1), std::domain_error);
+  EXPECT_THROW(p.slope(-1.1), std::domain_error);
+}
+
+TEST(Profiles, OffCentreProjectionMatchesQuadrature) {
+  // d_m = (2/pi) int_0^pi f'(c + w cos th) cos(m th) dth on an off-centre
+  // contact: the rounded flat's closed form (split at its kinks) and the
+  // cylinder's against a fine composite midpoint rule.
+  const PunchProfile rf(ProfileKind::rounded_flat, 2.0, 0.3);
+  const PunchProfile cyl(ProfileKind::cylinder, 5.0, 0.0);
+  for (const auto* p : {&rf, &cyl}) {
+    const double c = -0.12, w = 0.65;
+    const std::vector<double> d = p->slope_chebyshev_at(c, w, 9);
+    const int M = 400000;
+    for (int m = 0; m < 9; ++m) {
+      double sum = 0.0;
+      for (int j = 0; j < M; ++j) {
+        const double th = (j + 0.5) * M_PI / M;
+        sum += p->slope(c + w * std::cos(th)) * std::cos(m * th);
+      }
+      EXPECT_NEAR(d[static_cast<std::size_t>(m)], 2.0 / M * sum, 1e-9) << m;
+    }
+  }
 }
 
 TEST(Profiles, SlopeProjectionMatchesQuadrature) {

@@ -27,6 +27,7 @@
 #include "movingpunch/jacobi.hpp"
 #include "movingpunch/kernel.hpp"
 #include "movingpunch/layer_response.hpp"
+#include "movingpunch/profile.hpp"
 #include "movingpunch/stresses.hpp"
 
 namespace movingpunch {
@@ -307,13 +308,20 @@ class DampedSolution {
 
   // g's coefficients: Chebyshev U_n without friction, Jacobi P_n^(front, back) with it.
   const Eigen::VectorXd& g_coefficients() const noexcept { return b_; }
+  // The punch's shape (DampedParams::punch()).
+  const PunchProfile& punch() const noexcept { return *punch_; }
+  // A profile whose slope has a kink (a rounded flat) or a table: bound on
+  // what the series of g leaves out beyond its (half-plane tail extended)
+  // length, in P/h (pointwise on the pressure); 0 for a cylinder.
+  double series_truncation() const noexcept { return trunc_; }
   const DampedLayerModel& model() const noexcept { return *model_; }
 
  private:
   friend DampedSolution solve_damped(const DampedParams& p);
   DampedParams params_{};
   double centre_ = 0, half_ = 0, drag_ = 0, vcr_ = 0, vr_ = 0, err_ = 0, elapsed_ = 0;
-  double perr_ = 0, serr_ = 0, max_p_ = 0, margin_ = 0;
+  double perr_ = 0, serr_ = 0, max_p_ = 0, margin_ = 0, trunc_ = 0;
+  std::shared_ptr<const PunchProfile> punch_;
   std::vector<std::string> warnings_;
   int iterations_ = 0, n_ = 0, kernel_builds_ = 0;
   StageSeconds stage_seconds_{};

@@ -15,6 +15,9 @@
 #pragma once
 
 #include <complex>
+#include <memory>
+#include <mutex>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -57,6 +60,10 @@ struct JacobiRule {
   Eigen::VectorXd x, w;
 };
 JacobiRule gauss_jacobi(int n, double a, double b);
+// The same rule from a process-wide cache keyed on (n, a, b) (thread-safe;
+// the reference stays valid until the cache holds 256 rules and is emptied
+// by the next miss: use it at once).
+const JacobiRule& cached_gauss_jacobi(int n, double a, double b);
 
 // The collocation nodes of the rule above in ChebyshevNodes' layout (so that
 // the damped solver's width evaluation applies unchanged): r = zeros of
@@ -107,6 +114,18 @@ class JacobiSeries {
   Eigen::VectorXd c_;
   // cauchy()'s Gauss-Jacobi rule for |x| >= 1.2 (N + 60 nodes) times g there.
   Eigen::VectorXd far_x_, far_wg_;
+  // Near the cut the closed form cancels terms of size |c_n| rho^(n+1): for a
+  // slowly decaying series (a profile's kinked slope: c_n ~ n^-2) it is used
+  // only while they stay below 1e4 max |c_n|; beyond, a Gauss-Jacobi rule of
+  // enough nodes (19.6/ln rho + N, built on first use, shared by copies).
+  bool closed_form_ok(double rho) const;
+  struct NearRules {
+    std::mutex mutex;
+    std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> rules;  // (x, w g), by size
+  };
+  std::shared_ptr<NearRules> near_ = std::make_shared<NearRules>();
+  // The rule (x, w g) for |x or z| with Bernstein radius rho: far_ or a larger one.
+  std::pair<const Eigen::VectorXd*, const Eigen::VectorXd*> rule_for(double rho) const;
 };
 
 // int_{-1}^{1} w(r) g(r) e^{-i omega r} dr at many omega (|omega| <= omega_max)

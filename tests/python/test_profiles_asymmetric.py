@@ -1,0 +1,328 @@
+"""Punch profiles on the asymmetric solver (issue 14): a rounded flat or a
+table with damping and/or Coulomb friction, and asymmetric tables
+(docs/theory.md section 13, "Profiles on the asymmetric solver").
+
+Every anchor is independent of the code path under test:
+
+* translation invariance: a tabulated parabola shifted by x0 is the cylinder
+  of the undamped (symmetric, separately written) solver moved by x0;
+* the damping -> 0 limit: the undamped solver's rounded flat and table;
+* a tabulated parabola with damping and/or friction is the cylinder on the
+  asymmetric solver's own cylinder path (no projection, no centre root);
+* the energy balance: the drag of a damped profile equals the dashpots'
+  dissipation (Parseval on the bottom face's response: a conservation law);
+* the rigid punch: the surface follows the profile on the contact (the
+  displacement machinery against the profile's own heights);
+* a frictional, damped asymmetric case against a Gauss-Jacobi collocation
+  written from scratch (SciPy's roots_jacobi, CubicSpline and brentq, the
+  layer from numpy eigenvectors: tests/python/test_friction.py).
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+
+import numpy as np
+import pytest
+from scipy.interpolate import CubicSpline
+from scipy.optimize import brentq
+from scipy.special import roots_jacobi, roots_legendre
+from test_friction import _half_plane, _top_states
+
+import movingpunch as mp
+from movingpunch import _core
+from movingpunch.damped import DampedSolution
+from movingpunch.errors import InvalidParameterError
+
+BASE = {"vstar": 0.2, "kw": 1.0, "load": 0.002}
+R = 100.0
+
+
+def _parabola(x0: float = 0.0, lo: float = -1.5, hi: float = 2.5) -> mp.Profile:
+    xs = np.linspace(lo, hi, 801)
+    return mp.Profile(tuple(xs), tuple((xs - x0) ** 2 / (2 * R)))
+
+
+# ---------------------------------------------------------------------------
+# Asymmetric tables
+
+
+def test_an_asymmetric_table_is_accepted_and_routed_to_the_asymmetric_solver() -> None:
+    prof = _parabola(0.3)
+    assert not prof.symmetric
+    assert "asymmetric" in prof.describe()
+    s = mp.solve(**BASE, profile=prof)
+    assert isinstance(s, DampedSolution)
+    assert s.damping == 0.0 and s.friction == 0.0
+    assert s.profile == prof
+    assert math.isinf(s.radius)  # a table has no radius
+    # The undamped (symmetric) solver itself refuses it, naming the table.
+    with pytest.raises(InvalidParameterError) as info:
+        _core.solve_contact(
+            **BASE, radius=1.0, nu=0.2, tol=1e-8, allow_unphysical=False,
+            **{k: v for k, v in prof.core_args().items() if k != "radius"},
+        )  # fmt: skip
+    assert info.value.parameter in ("profile.x", "profile.y")
+    assert "asymmetric solver" in str(info.value)
+
+
+@pytest.mark.parametrize("x0", [0.3, -0.45])
+def test_a_shifted_parabola_is_the_undamped_cylinder_moved(x0: float) -> None:
+    """Translation invariance: f = (x - x0)^2/2R on the asymmetric solver
+    equals the undamped solver's cylinder shifted by x0: ends, pressure,
+    surface stress and indentation (delta_cyl - x0^2/2R: heights count from
+    x = 0)."""
+    u = mp.solve(**BASE, radius=R)
+    s = mp.solve(**BASE, profile=_parabola(x0))
+    assert s.contact_interval == pytest.approx((x0 - u.a, x0 + u.a), abs=1e-12)
+    assert s.error_estimate >= 0.0
+    x = x0 + np.linspace(-0.95, 0.95, 9) * u.a
+    np.testing.assert_allclose(s.pressure(x), u.pressure(x - x0), rtol=0, atol=1e-10)
+    np.testing.assert_allclose(
+        s.surface_stress(x), u.surface_stress(x - x0), rtol=0, atol=1e-9
+    )
+    assert s.indentation == pytest.approx(u.indentation - x0 * x0 / (2 * R), rel=1e-10)
+    assert abs(s.drag) < 1e-14
+    assert s.valid
+
+
+# ---------------------------------------------------------------------------
+# The damping -> 0 limit: the undamped solver's profiles
+
+
+@pytest.mark.parametrize(
+    "prof",
+    [
+        mp.RoundedFlat(0.3, 100.0),
+        mp.RoundedFlat(0.05, 5.0),
+        mp.Profile.from_function(lambda x: x**4 / 4 + x**2 / 300, 1.2, 1201),
+    ],
+    ids=["rounded-flat", "rounded-flat-sharp", "table-quartic"],
+)
+def test_vanishing_damping_gives_the_undamped_profile(prof: mp.PunchProfile) -> None:
+    """damping 1e-9: the asymmetric solver's ends, pressure and indentation
+    equal the undamped (symmetric) solver's to the first-order change
+    (~1e-9 relative), which is odd in x."""
+    u = mp.solve(**BASE, profile=prof)
+    d = mp.solve(**BASE, profile=prof, damping=1e-9)
+    assert d.contact_interval == pytest.approx((-u.a, u.a), rel=1e-8)
+    x = np.linspace(-0.95, 0.95, 11) * u.a
+    scale = u.p0
+    # Both pressures carry their own series truncation near the corners.
+    tol = 1e-7 * scale + 2.0 * (d._impl.series_truncation + u._impl.series_truncation)
+    assert np.max(np.abs(d.pressure(x) - u.pressure(x))) < tol
+    assert d.indentation == pytest.approx(u.indentation, rel=1e-8)
+    assert abs(d.drag) < 1e-8 * u.a / R + 1e-12
+
+
+# ---------------------------------------------------------------------------
+# A tabulated parabola is the cylinder, with damping and/or friction
+
+
+@pytest.mark.parametrize(
+    "extra",
+    [{"damping": 0.5}, {"friction": 0.3}, {"friction": 0.3, "damping": 0.5}],
+    ids=["damped", "friction", "both"],
+)
+def test_a_tabulated_parabola_is_the_asymmetric_cylinder(
+    extra: dict[str, float],
+) -> None:
+    """The table path (projected slope, the centre by its own root) against
+    the cylinder's path (the centre absorbed by the constant unknown)."""
+    c = mp.solve(**BASE, radius=R, **extra)
+    t = mp.solve(**BASE, profile=_parabola(), **extra)
+    assert t.contact_interval == pytest.approx(c.contact_interval, abs=1e-11)
+    assert t.drag == pytest.approx(c.drag, rel=1e-8, abs=1e-15)
+    assert t.end_exponents == c.end_exponents
+    x = np.linspace(*c.contact_interval, 9)[1:-1]
+    np.testing.assert_allclose(t.pressure(x), c.pressure(x), rtol=0, atol=1e-9)
+    assert t.indentation == pytest.approx(c.indentation, rel=1e-9)
+    # Shifted by x0, everything moves with it (friction and damping too).
+    x0 = 0.2
+    s = mp.solve(**BASE, profile=_parabola(x0), **extra)
+    assert s.contact_interval == pytest.approx(
+        (c.contact_interval[0] + x0, c.contact_interval[1] + x0), abs=1e-11
+    )
+
+
+# ---------------------------------------------------------------------------
+# Conservation laws and the rigid punch
+
+
+@pytest.mark.parametrize(
+    "prof",
+    [mp.RoundedFlat(0.3, 100.0), _parabola(0.25), mp.RoundedFlat(0.5, 2.0)],
+    ids=["rounded-flat", "shifted-table", "rounded-flat-tight"],
+)
+def test_a_damped_profiles_drag_is_its_dissipation(prof: mp.PunchProfile) -> None:
+    """Energy balance: drag P V (from the pressure and the profile's slope)
+    equals the dashpots' power (Parseval on the bottom face's response,
+    computed independently of the drag)."""
+    s = mp.solve(**BASE, profile=prof, damping=0.5)
+    assert s.drag > 0
+    assert s.dissipation == pytest.approx(s.drag, rel=1e-8)
+
+
+@pytest.mark.parametrize(
+    "extra",
+    [{"damping": 0.5}, {"friction": 0.3}, {"friction": 0.5, "damping": 0.2}],
+    ids=["damped", "friction", "both"],
+)
+def test_the_surface_follows_the_rounded_flat_on_the_contact(
+    extra: dict[str, float],
+) -> None:
+    """The punch is rigid: v(x, 0) = f(x) - delta on the contact (f the
+    profile's height), equilibrium int p = P, no penetration beside it."""
+    prof = mp.RoundedFlat(0.3, 20.0)
+    s = mp.solve(**BASE, profile=prof, **extra)
+    lo, hi = s.contact_interval
+    assert lo < -0.3 and hi > 0.3  # both corners carry load
+    x = np.linspace(lo, hi, 41)[1:-1]
+    gap = prof.height(x) - s.indentation - s.surface_displacement(x)
+    assert np.max(np.abs(gap)) < 1e-7 * s.indentation
+    # int p dx with x = (lo + hi)/2 - (hi - lo) cos(th)/2 (the ends' cusps
+    # smoothed), by the midpoint rule on 200000 angles (the kinks: O(h^2)).
+    th = (np.arange(200000) + 0.5) * math.pi / 200000
+    xm = 0.5 * (lo + hi) - 0.5 * (hi - lo) * np.cos(th)
+    total = (
+        float(np.sum(s.pressure(xm) * np.sin(th))) * 0.5 * (hi - lo) * math.pi / 200000
+    )
+    assert total == pytest.approx(1.0, abs=1e-8)
+    assert s.valid and s.min_gap >= 0.0
+    assert s.tangential_force == extra.get("friction", 0.0)
+
+
+def test_a_vanishing_face_tends_to_the_cylinder_with_friction() -> None:
+    """RoundedFlat(b -> 0, R) -> Cylinder(R), linearly in b (damped and
+    frictional)."""
+    extra = {"friction": 0.3, "damping": 0.2}
+    c = np.array(mp.solve(**BASE, radius=R, **extra).contact_interval)
+    diffs = []
+    for b in (1e-4, 1e-5, 1e-6):
+        s = mp.solve(**BASE, profile=mp.RoundedFlat(b, R), **extra)
+        diffs.append(np.max(np.abs(np.array(s.contact_interval) - c)))
+    assert diffs[2] < 1e-5
+    assert diffs[0] / diffs[1] == pytest.approx(10.0, rel=0.2)
+    assert diffs[1] / diffs[2] == pytest.approx(10.0, rel=0.2)
+
+
+# ---------------------------------------------------------------------------
+# An independent collocation of a frictional, damped, asymmetric profile
+
+
+def _independent_profile_ends(
+    s: float,
+    kw: float,
+    nu: float,
+    damping: float,
+    f: float,
+    slope: object,
+    load: float,
+    n: int,
+) -> tuple[float, float]:
+    """(-b, a) of a plain Gauss-Jacobi collocation (point values of the
+    slope, no projection) of
+    f Phi p + (1/pi) int p/(xi - x) - int p Lr(x - xi)/phi1 = -f'(x)/(P phi1),
+    the centre from the consistency condition (brentq) per width and the
+    width from equilibrium (brentq)."""
+    phi1, wq_inf, phi = _half_plane(s, nu)
+    front = 0.5 + math.atan(f * phi) / math.pi
+    back = 1 - front
+    r, w = roots_jacobi(n, front, back)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        sk, _ = roots_jacobi(n + 1, -front, -back)
+    nt = math.sqrt(1 - s)
+    x, wl = roots_legendre(16)
+    edges = np.linspace(0.0, 45.0 / nt, 401)
+    alpha = np.concatenate(
+        [0.5 * (b - a) * x + 0.5 * (a + b) for a, b in itertools.pairwise(edges)]
+    )
+    weight = np.concatenate([0.5 * (b - a) * wl for a, b in itertools.pairwise(edges)])
+    g = np.empty(alpha.size, complex)
+    for j, t in enumerate(alpha):
+        zn, zq = _top_states(float(t), s, kw, nu, damping)
+        g[j] = -1j * (-zn[1] - phi1) - f * (zq[1] - wq_inf)
+
+    def solve_at(width: float) -> tuple[float, float]:
+        u = width * (sk[:, None] - r[None, :])
+        kern = (np.exp(1j * np.multiply.outer(u, alpha)) @ (weight * g)).real / phi1
+        m = np.zeros((n + 1, n + 1))
+        m[:, :n] = (w / math.pi)[None, :] * (
+            1 / (r[None, :] - sk[:, None]) - width * kern
+        )
+        m[:, n] = 1
+
+        def gamma(c: float) -> float:
+            return float(np.linalg.solve(m, slope(c + width * sk))[n])  # type: ignore[operator]
+
+        c = brentq(gamma, -1.0, 1.0, xtol=1e-16, rtol=1e-15)
+        sol = np.linalg.solve(m, slope(c + width * sk))  # type: ignore[operator]
+        return -width * float(w @ sol[:n]) / phi1, c
+
+    lw = brentq(
+        lambda v: math.log(solve_at(math.exp(v))[0] / load),
+        math.log(0.1),
+        math.log(1.5),
+        xtol=1e-15,
+        rtol=1e-15,
+    )
+    width = math.exp(lw)
+    centre = solve_at(width)[1]
+    return centre - width, centre + width
+
+
+def test_a_frictional_damped_asymmetric_profile_matches_an_independent_collocation() -> (
+    None
+):
+    """A non-parabolic asymmetric table, f = (cosh(k (x - x0)) - 1)/(k^2 R),
+    with friction and damping: the contact ends to 1e-8 against a collocation
+    written from scratch (same not-a-knot spline through the table, by
+    SciPy's CubicSpline)."""
+    k, x0, radius = 2.0, 0.15, 40.0
+    xs = np.linspace(-1.6, 2.0, 2001)
+    ys = (np.cosh(k * (xs - x0)) - 1) / (k * k * radius)
+    prof = mp.Profile(tuple(xs), tuple(ys))
+    spline = CubicSpline(xs, ys, bc_type="not-a-knot").derivative()
+    extra = {"friction": 0.4, "damping": 0.3}
+    s = mp.solve(vstar=0.3, kw=1.0, load=0.004, nu=0.2, profile=prof, **extra)
+    ends = _independent_profile_ends(0.3, 1.0, 0.2, 0.3, 0.4, spline, 0.004, 48)
+    assert s.contact_interval == pytest.approx(ends, abs=1e-8)
+    assert s.error_estimate < 1e-8
+
+
+# ---------------------------------------------------------------------------
+# Error estimates, refusals
+
+
+@pytest.mark.parametrize(
+    ("prof", "extra"),
+    [
+        (mp.RoundedFlat(0.3, 50.0), {"damping": 0.5}),
+        (_parabola(0.2), {"friction": 0.3}),
+        (mp.RoundedFlat(0.2, 20.0), {"friction": 0.3, "damping": 0.3}),
+    ],
+    ids=["rounded-flat-damped", "table-friction", "rounded-flat-both"],
+)
+@pytest.mark.parametrize("n", [8, 12])
+def test_the_ends_estimate_bounds_the_error(
+    prof: mp.PunchProfile, extra: dict[str, float], n: int
+) -> None:
+    """At a fixed small n the estimate bounds the ends' actual error against
+    an n = 96 reference."""
+    ref = np.array(mp.solve(**BASE, profile=prof, n=96, **extra).contact_interval)
+    s = mp.solve(**BASE, profile=prof, n=n, allow_unphysical=True, **extra)
+    err = np.max(np.abs(np.array(s.contact_interval) - ref))
+    assert s.error_estimate >= err
+    auto = mp.solve(**BASE, profile=prof, **extra)
+    assert np.max(np.abs(np.array(auto.contact_interval) - ref)) <= max(
+        auto.error_estimate, 1e-13
+    )
+
+
+def test_a_contact_wider_than_an_asymmetric_table_is_refused() -> None:
+    xs = np.linspace(-0.2, 0.4, 61)
+    prof = mp.Profile(tuple(xs), tuple((xs - 0.1) ** 2 / 2))
+    with pytest.raises(InvalidParameterError) as info:
+        mp.solve(vstar=0.2, kw=1.0, load=1.0, profile=prof, damping=0.5)
+    assert "table" in str(info.value)
