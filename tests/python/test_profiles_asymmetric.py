@@ -28,12 +28,12 @@ import pytest
 from scipy.interpolate import CubicSpline
 from scipy.optimize import brentq
 from scipy.special import roots_jacobi, roots_legendre
-from test_friction import _half_plane, _top_states
 
 import movingpunch as mp
 from movingpunch import _core
 from movingpunch.damped import DampedSolution
 from movingpunch.errors import InvalidParameterError
+from test_friction import _half_plane, _top_states
 
 BASE = {"vstar": 0.2, "kw": 1.0, "load": 0.002}
 R = 100.0
@@ -54,7 +54,8 @@ def test_an_asymmetric_table_is_accepted_and_routed_to_the_asymmetric_solver() -
     assert "asymmetric" in prof.describe()
     s = mp.solve(**BASE, profile=prof)
     assert isinstance(s, DampedSolution)
-    assert s.damping == 0.0 and s.friction == 0.0
+    assert s.damping == 0.0
+    assert s.friction == 0.0
     assert s.profile == prof
     assert math.isinf(s.radius)  # a table has no radius
     # The undamped (symmetric) solver itself refuses it, naming the table.
@@ -177,7 +178,8 @@ def test_the_surface_follows_the_rounded_flat_on_the_contact(
     prof = mp.RoundedFlat(0.3, 20.0)
     s = mp.solve(**BASE, profile=prof, **extra)
     lo, hi = s.contact_interval
-    assert lo < -0.3 and hi > 0.3  # both corners carry load
+    assert lo < -0.3  # both corners carry load
+    assert hi > 0.3
     x = np.linspace(lo, hi, 41)[1:-1]
     gap = prof.height(x) - s.indentation - s.surface_displacement(x)
     assert np.max(np.abs(gap)) < 1e-7 * s.indentation
@@ -189,7 +191,8 @@ def test_the_surface_follows_the_rounded_flat_on_the_contact(
         float(np.sum(s.pressure(xm) * np.sin(th))) * 0.5 * (hi - lo) * math.pi / 200000
     )
     assert total == pytest.approx(1.0, abs=1e-8)
-    assert s.valid and s.min_gap >= 0.0
+    assert s.valid
+    assert s.min_gap >= 0.0
     assert s.tangential_force == extra.get("friction", 0.0)
 
 
@@ -272,9 +275,7 @@ def _independent_profile_ends(
     return centre - width, centre + width
 
 
-def test_a_frictional_damped_asymmetric_profile_matches_an_independent_collocation() -> (
-    None
-):
+def test_frictional_damped_asymmetric_profile_matches_independent_collocation() -> None:
     """A non-parabolic asymmetric table, f = (cosh(k (x - x0)) - 1)/(k^2 R),
     with friction and damping: the contact ends to 1e-8 against a collocation
     written from scratch (same not-a-knot spline through the table, by
