@@ -1606,3 +1606,86 @@ def test_rounded_flat_with_tiny_corners(radius: float) -> None:
         assert warned
     flat = mp.solve(vstar=0.2, kw=1.0, load=0.002, profile=mp.Flat(0.5))
     assert s.indentation == pytest.approx(flat.indentation, rel=20 * radius ** (2 / 3))
+
+
+# ---------------------------------------------------------------------------
+# Profiles on the asymmetric solver (docs/theory.md section 13)
+
+
+def _shifted_table(x0: float = 0.2) -> mp.Profile:
+    xs = np.linspace(-2.0, 3.0, 1001)
+    return mp.Profile(tuple(xs), tuple((xs - x0) ** 2 / 200.0))
+
+
+@pytest.mark.parametrize("eps", [1e-4, 1e-6])
+def test_asymmetric_table_near_the_critical_speed(eps: float) -> None:
+    """An asymmetric table (a cylinder shifted by 0.2) close to V*_cr without
+    damping: the undamped cylinder's contact moved by 0.2, within both
+    solutions' own error estimates; at V*_cr a SupercriticalSpeedError."""
+    vcr = mp.critical_vstar(1.0, NU)
+    v = vcr * (1.0 - eps)
+    base = mp.solve(vstar=v, kw=1.0, **PAPER)
+    s = mp.solve(vstar=v, kw=1.0, load=0.002, profile=_shifted_table())
+    diff = max(
+        abs(s.contact_interval[0] - 0.2 + base.a),
+        abs(s.contact_interval[1] - 0.2 - base.a),
+    )
+    assert diff <= s.error_estimate + base.error_estimate + 1e-12
+    if s.error_estimate > 1e-8 * (s.half_width + abs(s.centre)):
+        assert s.warnings
+    with pytest.raises(mp.SupercriticalSpeedError):
+        mp.solve(vstar=vcr, kw=1.0, load=0.002, profile=_shifted_table())
+
+
+def test_rounded_flat_near_the_critical_speed() -> None:
+    """A rounded flat at V*_cr (1 - 1e-4): undamped, its pressure goes
+    negative mid-face (the contact separates: UnphysicalContactError); a tiny
+    friction on the asymmetric solver finds the same contact and the same
+    verdict; damping 0.1 keeps it in one piece (valid, drag = dissipation)."""
+    vcr = mp.critical_vstar(1.0, NU)
+    args = {"vstar": vcr * (1 - 1e-4), "kw": 1.0, "load": 0.002}
+    prof = mp.RoundedFlat(0.3, 100.0)
+    u = mp.solve(**args, profile=prof, allow_unphysical=True)
+    f = mp.solve(**args, profile=prof, friction=1e-6, allow_unphysical=True)
+    assert not u.valid
+    assert not f.valid
+    assert f.contact_interval == pytest.approx((-u.a, u.a), abs=1e-6)
+    with pytest.raises(mp.UnphysicalContactError):
+        mp.solve(**args, profile=prof, friction=0.3)
+    d = mp.solve(**args, profile=prof, damping=0.1)
+    assert d.valid
+    assert d.contact_interval[0] < -0.3
+    assert d.contact_interval[1] > 0.3
+    assert d.dissipation == pytest.approx(d.drag, rel=1e-7)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(
+    ("prof", "extra"),
+    [
+        (mp.RoundedFlat(0.5, 1e-6), {"damping": 0.5}),  # tiny corners
+        (mp.RoundedFlat(20.0, 100.0), {"damping": 0.5}),  # huge face
+        (mp.RoundedFlat(1e-8, 100.0), {"friction": 0.3}),  # tiny face: the cylinder
+        (mp.RoundedFlat(0.3, 100.0), {"friction": 10.0}),  # the largest friction
+    ],
+    ids=["tiny-corners", "huge-face", "tiny-face", "friction-10"],
+)
+def test_rounded_flat_extremes_on_the_asymmetric_solver(
+    prof: mp.RoundedFlat, extra: dict[str, float]
+) -> None:
+    """Extreme rounded flats with damping or friction: finite, valid, the
+    contact beyond the face, and a series that cannot resolve sharp corners
+    says so (warning and series_truncation) rather than hiding it."""
+    s = mp.solve(vstar=0.2, kw=1.0, load=0.002, profile=prof, **extra)
+    assert s.valid
+    assert s.contact_interval[0] < -prof.half_width
+    assert s.contact_interval[1] > prof.half_width
+    assert np.all(np.isfinite(s.pressure(np.linspace(*s.contact_interval, 50))))
+    truncation = s._impl.series_truncation
+    warned = any("flat punch" in w for w in s.warnings)
+    assert warned == (truncation > 1e-3 * s.max_pressure)
+    if prof.radius <= 1e-6:
+        assert warned
+    if prof.half_width <= 1e-8:  # the cylinder with the same friction
+        c = mp.solve(vstar=0.2, kw=1.0, radius=100.0, load=0.002, **extra)
+        assert s.contact_interval == pytest.approx(c.contact_interval, abs=1e-6)
