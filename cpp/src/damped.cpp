@@ -1434,7 +1434,7 @@ DampedSolution solve_damped(const DampedParams& prm) {
     s.jtr_ = std::make_shared<const JacobiTransform>(
         js, kern->quadrature().panels.alpha_max * s.half_, have_change ? &dseries : nullptr);
     s.jtr_omega_ = kern->quadrature().panels.alpha_max * s.half_;
-    s.atan_rule_ = gauss_jacobi(js.size() + 64 + static_cast<int>(std::ceil(8.0 * s.half_)),
+    s.atan_rule_ = cached_gauss_jacobi(js.size() + 64 + static_cast<int>(std::ceil(8.0 * s.half_)),
                                 s.exps_.front, s.exps_.back);
   }
   s.light_ = std::make_shared<const DampedSolution::Fine>(
@@ -1509,7 +1509,7 @@ DampedSolution solve_damped(const DampedParams& prm) {
   // Gauss-Jacobi).
   if (frictional) {
     const int m = std::max(64, 2 * static_cast<int>(s.b_.size()) + 2);
-    const JacobiRule rule = gauss_jacobi(m, s.exps_.front, s.exps_.back);
+    const JacobiRule& rule = cached_gauss_jacobi(m, s.exps_.front, s.exps_.back);
     for (int i = 0; i < m; ++i) {
       s.slope_r_.push_back(rule.x(i));
       s.slope_wg_.push_back(rule.w(i) / kPi * js.g(rule.x(i)));

@@ -360,7 +360,7 @@ double JacobiSeries::min_g() const {
 JacobiTransform::JacobiTransform(const JacobiSeries& s, double omega_max,
                                  const JacobiSeries* second) {
   const int m = s.size() + static_cast<int>(std::ceil(std::fabs(omega_max))) + 40;
-  rule_ = gauss_jacobi(m, s.alpha(), s.beta());
+  rule_ = cached_gauss_jacobi(m, s.alpha(), s.beta());
   gw_.resize(m);
   gw2_ = Eigen::VectorXd::Zero(m);
   for (int i = 0; i < m; ++i) {

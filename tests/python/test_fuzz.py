@@ -436,6 +436,86 @@ def test_fuzz_profiles_600() -> None:
     fuzz_profiles(600, seed=1310, budget=300.0)
 
 
+# Punch profiles on the asymmetric solver (issue 14): through the binding,
+# with damping and/or friction, and asymmetric tables
+
+
+def fuzz_asymmetric_profiles(
+    calls: int, seed: int, budget: float
+) -> collections.Counter[str]:
+    """Each call: a profile as fuzz_profiles draws it (sometimes shifted off
+    x = 0: an asymmetric table), damping from {0, 0.1, 0.5} and friction from
+    {0, 0.3, 1} (kernel tables are cached per inputs), through
+    _core.solve_damped. The flat punch and damping = friction = 0 with a
+    symmetric shape are refused naming the parameter; a solution must be
+    finite with the contact reaching past a rounded flat's face and within a
+    table; an error must be the package's."""
+    draw = Draw(seed)
+    rng = np.random.default_rng(seed + 7)
+    outcomes: collections.Counter[str] = collections.Counter()
+
+    def work() -> None:
+        for _ in range(calls):
+            args = draw.call()
+            args.update(_draw_profile(draw))
+            args.setdefault("radius", 1.0)
+            if args["profile"] == "table" and rng.random() < 0.5:
+                x = np.asarray(args["table_x"]) + float(rng.uniform(-0.4, 0.4)) * float(
+                    np.max(args["table_x"])
+                )
+                if x[0] < 0.0 < x[-1]:
+                    args["table_x"] = x.tolist()  # shifted: asymmetric about x = 0
+            args["kw"] = float(draw._pick([0.1, 1.0, 10.0, INF]))
+            args["nu"] = 0.2
+            args["kp"] = float(draw._pick([0.0, 0.0, 0.3]))
+            vcr = draw.critical(args["kw"], args["nu"], args["kp"]) or 0.5
+            args["vstar"] = float(rng.uniform(0.0, 0.99)) * vcr
+            args["damping"] = float(draw._pick([0.0, 0.1, 0.5]))
+            args["friction"] = float(draw._pick([0.0, 0.3, 1.0]))
+            args["n"] = 0
+            args["tol"] = 1e-8
+            sol, exc = _attempt(lambda args=args: _core.solve_damped(**args))
+            if exc is not None:
+                _check_error(exc, args)
+                if args["profile"] == "flat":
+                    assert isinstance(exc, mp.InvalidParameterError), args
+                outcomes[type(exc).__name__] += 1
+                continue
+            assert args["profile"] != "flat", args
+            lo, hi = sol.left, sol.right
+            assert math.isfinite(lo), args
+            assert math.isfinite(hi), args
+            assert lo < hi, args
+            if args["profile"] == "rounded_flat":
+                assert hi - lo > 2 * args["half_width"] * (1 - 1e-12), args
+            if args["profile"] == "table":
+                assert args["table_x"][0] - 1e-9 <= lo, args
+                assert hi <= args["table_x"][-1] + 1e-9, args
+            assert math.isfinite(sol.error_estimate), args
+            assert np.isfinite(sol.g_coefficients).all(), args
+            assert np.isfinite(sol.pressure(np.array([0.5 * (lo + hi)]))).all(), args
+            assert math.isfinite(sol.drag), args
+            assert math.isfinite(sol.series_truncation), args
+            if not sol.valid:
+                assert args["allow_unphysical"], args
+            outcomes["valid" if sol.valid else "flagged"] += 1
+
+    _run_with_watchdog(work, budget)
+    assert sum(outcomes.values()) == calls
+    assert outcomes["valid"] + outcomes["flagged"] >= 0.2 * calls, outcomes
+    assert outcomes["InvalidParameterError"] >= 0.03 * calls, outcomes
+    return outcomes
+
+
+def test_fuzz_asymmetric_profiles_16() -> None:
+    fuzz_asymmetric_profiles(16, seed=1401, budget=240.0)
+
+
+@pytest.mark.slow
+def test_fuzz_asymmetric_profiles_120() -> None:
+    fuzz_asymmetric_profiles(120, seed=1402, budget=900.0)
+
+
 # Coulomb friction (issue 14): drawn with damping, through the public API
 
 FRICTION_POOL = [0.0, 1e-300, 1e-12, 0.05, 0.3, 1.0, 3.0, 10.0]
