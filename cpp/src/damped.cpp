@@ -480,19 +480,13 @@ void validate(const DampedParams& p) {
   // damping or friction to be asymmetric.
   const PunchProfile prof = p.punch();
   const bool asymmetric_shape = prof.kind() == ProfileKind::table && !prof.symmetric();
-  if (prof.kind() == ProfileKind::flat)
-    throw InvalidParameter("profile", "a bounded profile (cylinder, rounded_flat or table)",
-                           "profile: a " + prof.describe() +
-                               " on the asymmetric solver (damping > 0 or friction > 0) is "
-                               "not supported yet");
   require_in_range("load", p.load, 0.0, kInf, true, true);
   require_in_range("nu", p.nu, 0.0, 0.5, false, true);
   // Real Coulomb coefficients lie below about 2; at f = 10 the trailing
   // exponent is below 0.08 (a near-jump) and larger f costs minutes.
   require_in_range("friction", p.friction, 0.0, 10.0, false, false);
   // Without friction damping = 0 is the undamped solver's (contact.hpp).
-  require_in_range("damping", p.damping, 0.0, kInf, !(p.friction > 0.0) && !asymmetric_shape,
-                   true);
+  require_in_range("damping", p.damping, 0.0, kInf, !(p.friction > 0.0) && !asymmetric_shape, true);
   require_in_range("kp", p.kp, 0.0, kMaxKp, false, false);
   require_in_range("tol", p.tol, 1e-14, 1e-2, false, false);
   if (p.n != 0 && (p.n < 2 || p.n > 1024 || p.n % 2 != 0))
@@ -766,6 +760,8 @@ class ScanMemo {
 }  // namespace
 
 DampedSolution solve_damped(const DampedParams& prm) {
+  // The flat punch (index +1, no width iteration): damped_flat.cpp.
+  if (prm.profile == ProfileKind::flat) return solve_damped_flat(prm);
   const auto t0 = std::chrono::steady_clock::now();
   validate(prm);
   if (prm.profile != ProfileKind::cylinder)
@@ -1200,6 +1196,11 @@ Eigen::VectorXd at_points(const Eigen::Ref<const Eigen::VectorXd>& x, F f) {
 double DampedSolution::pressure(double x) const {
   if (std::isnan(x)) throw InvalidParameter("x", "not NaN", "pressure: x must not be NaN");
   const double r = (x - centre_) / half_;
+  if (jac_ && jac_->singular() && std::fabs(r) == 1.0) {
+    // A flat punch's edge: p = w g is infinite there (as ContactSolution's).
+    const double ge = jac_->g(r);
+    return ge == 0.0 ? 0.0 : std::copysign(kInf, ge);
+  }
   if (!(std::fabs(r) < 1.0)) return 0.0;
   if (jac_) return jac_->density(r);
   return u_series(b_, r) * std::sqrt(1.0 - r * r);

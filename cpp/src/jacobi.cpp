@@ -151,9 +151,27 @@ ChebyshevNodes jacobi_collocation_nodes(int n, double alpha) {
   return nd;
 }
 
+ChebyshevNodes jacobi_flat_nodes(int n, double alpha, double beta) {
+  if (n < 2) throw std::invalid_argument("jacobi_flat_nodes: n must be >= 2");
+  if (!(alpha > -1.0 && alpha < 0.0) || !(std::fabs(alpha + beta + 1.0) <= 1e-12))
+    throw std::invalid_argument("jacobi_flat_nodes: need alpha in (-1, 0) and alpha + beta = -1");
+  const JacobiRule rule = gauss_jacobi(n, alpha, beta);
+  ChebyshevNodes nd;
+  nd.n = n;
+  nd.r = rule.x.reverse();
+  nd.w = rule.w.reverse() / kPi;
+  nd.s = jacobi_zeros(n - 1, -alpha, -beta).reverse();
+  return nd;
+}
+
 namespace {
-// The norm h_n = int w P_n^2 for alpha + beta = 1.
+// The norm h_n = int w P_n^2 (alpha + beta = 1 or -1). n = 0 apart: the
+// general formula's 1/((a + b + 1) Gamma(a + b + 1)) is 0 * inf at a + b = -1
+// (its limit 1/Gamma(a + b + 2)).
 double jacobi_norm(int n, double a, double b) {
+  if (n == 0)
+    return std::exp((a + b + 1.0) * std::log(2.0) + std::lgamma(a + 1.0) + std::lgamma(b + 1.0) -
+                    std::lgamma(a + b + 2.0));
   return std::exp((a + b + 1.0) * std::log(2.0) - std::log(2.0 * n + a + b + 1.0) +
                   std::lgamma(n + a + 1.0) + std::lgamma(n + b + 1.0) -
                   std::lgamma(n + a + b + 1.0) - std::lgamma(n + 1.0));
@@ -161,10 +179,18 @@ double jacobi_norm(int n, double a, double b) {
 
 }  // namespace
 
-JacobiSeries::JacobiSeries(double alpha, Eigen::VectorXd c) : alpha_(alpha), c_(std::move(c)) {
-  if (!(alpha > 0.0 && alpha < 1.0))
-    throw std::invalid_argument("JacobiSeries: alpha must be in (0, 1)");
-  const JacobiRule rule = gauss_jacobi(size() + 60, alpha_, beta());
+JacobiSeries::JacobiSeries(double alpha, Eigen::VectorXd c)
+    : JacobiSeries(alpha, 1.0 - alpha, std::move(c)) {}
+
+JacobiSeries::JacobiSeries(double alpha, double beta, Eigen::VectorXd c)
+    : alpha_(alpha), beta_(beta), c_(std::move(c)) {
+  const bool bounded = std::fabs(alpha + beta - 1.0) <= 1e-12 && alpha > 0.0 && alpha < 1.0;
+  const bool singular = std::fabs(alpha + beta + 1.0) <= 1e-12 && alpha > -1.0 && alpha < 0.0;
+  if (!bounded && !singular)
+    throw std::invalid_argument(
+        "JacobiSeries: need alpha + beta = 1 with alpha in (0, 1), or alpha + beta = -1 with "
+        "alpha in (-1, 0)");
+  const JacobiRule rule = gauss_jacobi(size() + 60, alpha_, beta_);
   far_x_ = rule.x;
   far_wg_.resize(rule.x.size());
   for (Eigen::Index i = 0; i < rule.x.size(); ++i) far_wg_(i) = rule.w(i) * g(rule.x(i));
@@ -172,7 +198,11 @@ JacobiSeries::JacobiSeries(double alpha, Eigen::VectorXd c) : alpha_(alpha), c_(
 
 JacobiSeries JacobiSeries::from_nodes(double alpha, const Eigen::VectorXd& r,
                                       const Eigen::VectorXd& g) {
-  const double beta = 1.0 - alpha;
+  return from_nodes(alpha, 1.0 - alpha, r, g);
+}
+
+JacobiSeries JacobiSeries::from_nodes(double alpha, double beta, const Eigen::VectorXd& r,
+                                      const Eigen::VectorXd& g) {
   const int n = static_cast<int>(r.size());
   // Gauss-Jacobi weights at the nodes (recomputed from the formula).
   const JacobiRule rule = gauss_jacobi(n, alpha, beta);
@@ -190,7 +220,7 @@ JacobiSeries JacobiSeries::from_nodes(double alpha, const Eigen::VectorXd& r,
     }
     c(k) = sum / jacobi_norm(k, alpha, beta);
   }
-  return JacobiSeries(alpha, c);
+  return JacobiSeries(alpha, beta, c);
 }
 
 double JacobiSeries::g(double r) const {
@@ -212,23 +242,33 @@ double JacobiSeries::moment0() const {
 }
 
 double JacobiSeries::moment1() const {
-  // r = (2 P_1 - (a - b))/(a + b + 2) = (2 P_1 - (a - b))/3.
-  const double a = alpha_, b = beta();
-  double m = -(a - b) / 3.0 * moment0();
-  if (c_.size() > 1) m += 2.0 / 3.0 * c_(1) * jacobi_norm(1, a, b);
+  // r = (2 P_1 - (a - b))/(a + b + 2) (a + b + 2 = 3, or 1 for index +1).
+  const double a = alpha_, b = beta(), d = a + b + 2.0;
+  double m = -(a - b) / d * moment0();
+  if (c_.size() > 1) m += 2.0 / d * c_(1) * jacobi_norm(1, a, b);
   return m;
 }
 
 double JacobiSeries::cauchy(double x) const {
   const double a = alpha_, b = beta();
   const double sa = std::sin(kPi * a);
-  const double poly =
-      jacobi_series(c_, -a, -b, x, 1, static_cast<double*>(nullptr));  // sum c_n P_{n+1}^(-a,-b)(x)
-  if (std::fabs(x) <= 1.0) return std::cos(kPi * a) / sa * density(x) - 2.0 / sa * poly;
+  // sum c_n P_{n+1}^(-a,-b)(x) (index -1), sum c_n P_{n-1}^(-a,-b)(x) (index +1).
+  const double poly = jacobi_series(c_, -a, -b, x, shift(), static_cast<double*>(nullptr));
+  const double q = poly_factor();
+  if (std::fabs(x) < 1.0 || (!singular() && std::fabs(x) == 1.0))
+    return std::cos(kPi * a) / sa * density(x) - q / sa * poly;
+  if (std::fabs(x) == 1.0) {
+    // A singular series' end: w g/(t - x) is not integrable at t = x unless
+    // the cot term vanishes (alpha = -1/2) or g(x) = 0; else infinite.
+    const double cot = std::cos(kPi * a) / sa, gx = g(x);
+    if (std::fabs(cot) < 1e-15 || gx == 0.0) return -q / sa * poly;
+    const double side = x > 0.0 ? std::pow(2.0, b) : std::pow(2.0, a);
+    return cot * gx * side * std::numeric_limits<double>::infinity();
+  }
   if (std::fabs(x) < 1.2) {
     const double Z =
         (x > 0 ? 1.0 : -1.0) * std::pow(std::fabs(x - 1.0), a) * std::pow(std::fabs(x + 1.0), b);
-    return (Z * g(x) - 2.0 * poly) / sa;
+    return (Z * g(x) - q * poly) / sa;
   }
   double sum = 0.0;
   for (Eigen::Index i = 0; i < far_x_.size(); ++i) sum += far_wg_(i) / (far_x_(i) - x);
@@ -246,12 +286,13 @@ std::complex<double> JacobiSeries::cauchy_upper(std::complex<double> z,
     const C Z = std::pow(z - 1.0, a) * std::pow(z + 1.0, b);
     C dg, dpoly;
     const C gz = jacobi_series(c_, a, b, z, 0, &dg);
-    const C poly = jacobi_series(c_, -a, -b, z, 1, &dpoly);
+    const C poly = jacobi_series(c_, -a, -b, z, shift(), &dpoly);
+    const double q = poly_factor();
     if (derivative) {
       const C dZ = Z * (a / (z - 1.0) + b / (z + 1.0));
-      *derivative = (dZ * gz + Z * dg - 2.0 * dpoly) / sa;
+      *derivative = (dZ * gz + Z * dg - q * dpoly) / sa;
     }
-    return (Z * gz - 2.0 * poly) / sa;
+    return (Z * gz - q * poly) / sa;
   }
   C sum = 0.0, dsum = 0.0;
   for (Eigen::Index i = 0; i < far_x_.size(); ++i) {
@@ -268,13 +309,20 @@ JacobiSeries JacobiSeries::minus(const JacobiSeries& other) const {
   Eigen::VectorXd d = Eigen::VectorXd::Zero(n);
   d.head(c_.size()) += c_;
   d.head(other.c_.size()) -= other.c_;
-  return JacobiSeries(alpha_, d);
+  return JacobiSeries(alpha_, beta_, d);
 }
 
 double JacobiSeries::max_abs_density() const {
   const int m = 8 * (size() + 1) + 64;
   double best = 0.0;
   for (int j = 0; j <= m; ++j) best = std::max(best, std::fabs(density(std::cos(kPi * j / m))));
+  return best;
+}
+
+double JacobiSeries::max_abs_g() const {
+  const int m = 8 * (size() + 1) + 64;
+  double best = 0.0;
+  for (int j = 0; j <= m; ++j) best = std::max(best, std::fabs(g(std::cos(kPi * j / m))));
   return best;
 }
 

@@ -66,7 +66,13 @@ class Evaluations:
         pressure that is square-root singular at the contact's ends (a flat
         punch), K = lim sqrt(2 pi d) p over (P/h) sqrt(h) as the distance d
         to that end goes to 0 (1/sqrt(pi b/h) each on a half-plane:
-        p = P/(pi sqrt(b^2 - x^2))). (0.0, 0.0) for bounded ends."""
+        p = P/(pi sqrt(b^2 - x^2))). With friction the asymmetric solver's
+        flat punch has p ~ d^gamma (``end_exponents``, gamma = -1/2 without
+        friction) and K = lim sqrt(2 pi) d^(-gamma) p over (P/h) h^(-gamma).
+        (0.0, 0.0) for bounded ends."""
+        both = getattr(self._impl, "end_coefficients", None)
+        if both is not None:
+            return (float(both[0]), float(both[1]))
         k = float(getattr(self._impl, "end_coefficient", 0.0))
         return (k, k)
 

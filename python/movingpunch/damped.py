@@ -289,7 +289,9 @@ def solve_damped(
 
     ``radius`` and ``profile`` as in :func:`movingpunch.solve`: a cylinder,
     a rounded flat or a table (an asymmetric table needs neither damping nor
-    friction); a flat punch is refused (not supported yet).
+    friction), or a flat punch (its face is the contact; ``end_coefficients``
+    gives (K_back, K_front), ``end_exponents`` the exponents of p at its
+    edges, gamma - 1 of the bounded case's: (-0.5, -0.5) without friction).
     """
     from movingpunch.solver import resolve_profile
 
