@@ -363,3 +363,31 @@ def test_bad_inputs_name_the_parameter() -> None:
     with pytest.raises(mp.InvalidParameterError) as info:
         mp.solve(vstar=0.2, kw=1.0, load=LOAD, profile=mp.Flat(0.5), damping=0.1, n=7)
     assert info.value.parameter == "n"
+
+
+def test_stress_peaks_see_both_sides_and_the_singular_edges() -> None:
+    b = 0.3
+    s = _flat(vstar=0.2, kw=1.0, profile=mp.Flat(b), damping=0.5)
+    peaks = s.stress_peaks()
+    assert peaks.top_compressive == -math.inf
+    assert peaks.top_compressive_x == b  # K_front > K_back > 0
+    assert math.isfinite(peaks.top_tensile)
+    # The search covers x < 0 too (damping: sigma_x is not even): no grid
+    # point away from the edges exceeds the tensile peak.
+    grid = np.concatenate(
+        [np.linspace(-10, -1.001 * b, 400), np.linspace(1.001 * b, 10, 400)]
+    )
+    assert (
+        float(np.max(s.surface_stress(grid))) <= peaks.top_tensile + peaks.error_bound
+    )
+    assert any("singular" in w for w in peaks.warnings)
+    # Friction: the shear traction's Cauchy term is +inf just behind the
+    # trailing edge (and -inf inside the face).
+    f = _flat(vstar=0.2, kw=1.0, profile=mp.Flat(b), friction=0.3)
+    assert f.surface_stress(-b - 1e-7) > 1e3
+    assert f.surface_stress(-b + 1e-7) < -1e3
+    fp = f.stress_peaks()
+    assert fp.top_tensile == math.inf
+    assert fp.top_tensile_x == -b
+    assert fp.top_compressive == -math.inf
+    assert math.isfinite(fp.bottom_tensile)
