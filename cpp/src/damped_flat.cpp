@@ -39,8 +39,7 @@ Eigen::VectorXd flat_nodal_g(const ChebyshevNodes& nd, double w, const DampedKer
   Eigen::MatrixXd M(n, n);
   std::vector<double> u(static_cast<std::size_t>(n) * m), kv(u.size());
   for (int i = 0; i < n; ++i)
-    for (int k = 0; k < m; ++k)
-      u[static_cast<std::size_t>(i) * m + k] = -w * (nd.r(i) - nd.s(k));
+    for (int k = 0; k < m; ++k) u[static_cast<std::size_t>(i) * m + k] = -w * (nd.r(i) - nd.s(k));
   K.many(u.data(), kv.data(), u.size());
   for (int i = 0; i < n; ++i) {
     for (int k = 0; k < m; ++k) {
@@ -157,7 +156,8 @@ DampedSolution solve_damped_flat(const DampedParams& prm) {
       const double root_eps = std::sqrt(kEps);
       const bool end_k =
           ok_k || est_k.at_floor || (est_k.stagnated && d_k.back() <= root_eps * scale_k);
-      const bool end_g = ok_g || est_g.at_floor || (est_g.stagnated && d_g.back() <= root_eps * gmax);
+      const bool end_g =
+          ok_g || est_g.at_floor || (est_g.stagnated && d_g.back() <= root_eps * gmax);
       if (ok_k && ok_g) {
         converged = true;
         break;
@@ -179,8 +179,8 @@ DampedSolution solve_damped_flat(const DampedParams& prm) {
   if (prm.n == 0 && !converged && !stalled && !(est_k.estimate <= prm.tol * scale_k)) {
     std::ostringstream est;
     est << "estimated error " << est_k.estimate << " of the end coefficients";
-    throw ConvergenceError(detail::not_converged_message(
-        "damped flat punch: the end coefficients", prm.tol, sizes.back(), est.str()));
+    throw ConvergenceError(detail::not_converged_message("damped flat punch: the end coefficients",
+                                                         prm.tol, sizes.back(), est.str()));
   }
   const double t_width = since_start() - kernel_seconds;
 
@@ -241,8 +241,8 @@ DampedSolution solve_damped_flat(const DampedParams& prm) {
   }
   const double dg_ref = dseries.max_abs_g();
   s.jtr_omega_ = kern->quadrature().panels.alpha_max * w;
-  s.jtr_ = std::make_shared<const JacobiTransform>(js, s.jtr_omega_,
-                                                   have_change ? &dseries : nullptr);
+  s.jtr_ =
+      std::make_shared<const JacobiTransform>(js, s.jtr_omega_, have_change ? &dseries : nullptr);
   s.atan_rule_ = gauss_jacobi(js.size() + 64 + static_cast<int>(std::ceil(8.0 * w)), al, be);
   std::vector<cplx> dphat;
   const Eigen::VectorXd unused_db;
@@ -308,7 +308,8 @@ DampedSolution solve_damped_flat(const DampedParams& prm) {
   // (square corners): min_gap is +inf.
   s.margin_ = js.min_g();
   s.min_p_ = kInf;
-  for (int i = 1; i < 400; ++i) s.min_p_ = std::min(s.min_p_, js.density(std::cos(kPi * i / 400.0)));
+  for (int i = 1; i < 400; ++i)
+    s.min_p_ = std::min(s.min_p_, js.density(std::cos(kPi * i / 400.0)));
   s.min_gap_ = kInf;
   const double rel = std::max(1e-6, 100.0 * prm.tol);
   std::ostringstream why;
@@ -320,8 +321,8 @@ DampedSolution solve_damped_flat(const DampedParams& prm) {
     why << "the pressure at the flat punch's "
         << (g_back < -rel * gmax && g_front < -rel * gmax
                 ? "trailing and leading edges x/h = -+" + std::to_string(w) + " is"
-                : g_back < -rel * gmax ? "trailing edge x/h = " + std::to_string(-w) + " is"
-                                       : "leading edge x/h = " + std::to_string(w) + " is")
+            : g_back < -rel * gmax ? "trailing edge x/h = " + std::to_string(-w) + " is"
+                                   : "leading edge x/h = " + std::to_string(w) + " is")
         << " tensile (end coefficients K_back = " << kb << ", K_front = " << kf
         << "): the face lifts off at that edge and the single-contact solution (the whole face "
            "in contact) is unphysical";
@@ -330,8 +331,8 @@ DampedSolution solve_damped_flat(const DampedParams& prm) {
     why << "the contact pressure is negative inside the face (min p/(P/h) = " << s.min_p_
         << "): the face separates and the single-contact solution is unphysical";
   }
-  s.validity_ = s.valid_ ? "valid: p >= 0 on the punch's face (its edges included)"
-                         : "invalid: " + why.str();
+  s.validity_ =
+      s.valid_ ? "valid: p >= 0 on the punch's face (its edges included)" : "invalid: " + why.str();
   if (!s.valid_ && !prm.allow_unphysical) throw UnphysicalContactError(s.validity_);
   s.elapsed_ = since_start();
   s.stage_seconds_ = {t_critical, kernel_seconds, t_width - t_critical,

@@ -25,7 +25,7 @@ double tanh_sinh(F f) {
   double sum = 0.0;
   for (int k = -832; k <= 832; ++k) {
     const double tau = k * h, u = 0.5 * kPi * std::sinh(tau);
-    const double om = 2.0 / (1.0 + std::exp(2.0 * u));  // 1 - t
+    const double om = 2.0 / (1.0 + std::exp(2.0 * u));   // 1 - t
     const double op = 2.0 / (1.0 + std::exp(-2.0 * u));  // 1 + t
     const double t = std::tanh(u);
     const double c = std::cosh(u);
@@ -128,10 +128,11 @@ TEST(JacobiFlat, MomentsAreTheBetaIntegrals) {
   Eigen::VectorXd c(3);
   c << 0.7, 0.3, -0.2;
   const mp::JacobiSeries s(a, b, c);
-  const double q0 =
-      tanh_sinh([&](double t, double om, double op) { return std::pow(om, a) * std::pow(op, b) * s.g(t); });
-  const double q1 = tanh_sinh(
-      [&](double t, double om, double op) { return std::pow(om, a) * std::pow(op, b) * s.g(t) * t; });
+  const double q0 = tanh_sinh(
+      [&](double t, double om, double op) { return std::pow(om, a) * std::pow(op, b) * s.g(t); });
+  const double q1 = tanh_sinh([&](double t, double om, double op) {
+    return std::pow(om, a) * std::pow(op, b) * s.g(t) * t;
+  });
   EXPECT_NEAR(s.moment0(), q0, 1e-11);
   EXPECT_NEAR(s.moment1(), q1, 1e-11);
   // The transform at omega = 0 is the moment; at omega = 3 the quadrature's.

@@ -391,3 +391,20 @@ def test_stress_peaks_see_both_sides_and_the_singular_edges() -> None:
     assert fp.top_tensile_x == -b
     assert fp.top_compressive == -math.inf
     assert math.isfinite(fp.bottom_tensile)
+
+
+@pytest.mark.parametrize("extra", [{"damping": 0.2}, {"damping": 0.2, "friction": 0.3}])
+def test_large_fixed_n_keeps_every_output(extra: dict[str, float]) -> None:
+    # The closed-form Cauchy potential's terms grow like rho^N off the face:
+    # at N = 512 it must hand over to the Gauss-Jacobi rule (once 1e238).
+    args = {"vstar": 0.2, "kw": 1.0, "profile": mp.Flat(0.5), **extra}
+    auto = _flat(**args)
+    big = _flat(**args, n=512)
+    assert big.indentation == pytest.approx(auto.indentation, rel=1e-10)
+    x = np.array([-1.0, 0.2, 0.7])
+    np.testing.assert_allclose(
+        big.stress_field(x, [-0.3]).sigma_x,
+        auto.stress_field(x, [-0.3]).sigma_x,
+        rtol=1e-9,
+        atol=1e-9,
+    )

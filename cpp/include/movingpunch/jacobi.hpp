@@ -106,13 +106,18 @@ class JacobiSeries {
   double moment1() const;
   // (1/pi) int_{-1}^{1} w(t) g(t)/(t - x) dt for real x (principal value on
   // the cut): the closed form inside and near the cut, Gauss-Jacobi
-  // quadrature (converging like (|x| + sqrt(x^2 - 1))^(-2M)) for |x| >= 1.2.
+  // quadrature (converging like (|x| + sqrt(x^2 - 1))^(-2M)) beyond the
+  // Bernstein ellipse rho(x) = closed_form_radius() (|x| >= 1.2 for N <= 18).
   double cauchy(double x) const;
+  // min(1.86, 10^(5/N)): the closed forms' Bernstein radius (their terms grow
+  // like rho^N off the cut; beyond it the Gauss-Jacobi rule).
+  double closed_form_radius() const;
   // (1/pi) int_{-1}^{1} w(t) g(t)/(t - z) dt and its derivative in z, for
   // Im z >= 0 (z off the cut or on its upper side): the closed form
   // [Z(z) g(z) - q sum c_n P_{n+shift}^(-alpha,-beta)(z)]/sin(pi alpha) (q, shift
   // as in shift() below), Z = (z-1)^alpha
-  // (z+1)^beta, inside the Bernstein ellipse rho(z) < 1.86, else the rule of cauchy().
+  // (z+1)^beta, inside the Bernstein ellipse rho(z) < closed_form_radius(), else
+  // the rule of cauchy().
   std::complex<double> cauchy_upper(std::complex<double> z,
                                     std::complex<double>* derivative = nullptr) const;
   // The same for series with other coefficients: this - other (same alpha).
