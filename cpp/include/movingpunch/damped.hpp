@@ -233,7 +233,8 @@ class DampedSolution {
   double error_estimate() const noexcept { return err_; }
   // Bound on the error of the pressure shape, max over r in (-1, 1) of
   // |p(c + w r) - p_exact(c_exact + w_exact r)|, in P/h (pointwise in x add
-  // |dp/dx| error_estimate()).
+  // |dp/dx| error_estimate()). A flat punch (unbounded ends): the bound is on
+  // g = p/((P/h) w(r)), so |dp| <= it times w(r).
   double pressure_error_estimate() const noexcept { return perr_; }
   // Bound on the error of the surface sigma_x/(P/h) at points more than
   // 1e-3 (a + b)/2 from the contact ends (sigma_x has a square-root cusp there).
