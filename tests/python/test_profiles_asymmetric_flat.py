@@ -105,6 +105,26 @@ def test_vanishing_damping_is_the_undamped_flat_punch(
         rtol=0,
         atol=1e-7 * u.indentation,
     )
+    # Inside the layer and on its bottom face (the undamped solver's field
+    # evaluator is its own code too).
+    depths = [-0.3, -0.7, -1.0]
+    fu, fd = u.stress_field(xs, depths), d.stress_field(xs, depths)
+    for name in ("sigma_x", "sigma_y", "tau_xy"):
+        np.testing.assert_allclose(
+            getattr(fd, name), getattr(fu, name), rtol=0, atol=1e-7 * scale
+        )
+    np.testing.assert_allclose(
+        d.displacement(xs, -0.5), u.displacement(xs, -0.5), atol=1e-7 * u.indentation
+    )
+
+
+@pytest.mark.parametrize("extra", [{"damping": 0.3}, {"damping": 0.3, "friction": 0.5}])
+def test_the_base_carries_the_load(extra: dict[str, float]) -> None:
+    # Global equilibrium of the layer: int -sigma_y(x, -h) dx = P.
+    s = _flat(vstar=0.3, kw=1.0, profile=mp.Flat(1.0), **extra)
+    xs = np.linspace(-80.0, 80.0, 16001)
+    reaction = s.foundation_reaction(xs)
+    assert float(np.trapezoid(reaction, xs)) == pytest.approx(1.0, abs=1e-9)
 
 
 # ---------------------------------------------------------------------------
