@@ -428,3 +428,13 @@ def test_large_fixed_n_keeps_every_output(extra: dict[str, float]) -> None:
         rtol=1e-9,
         atol=1e-9,
     )
+
+
+def test_tui_summary_carries_both_end_coefficients() -> None:
+    from movingpunch.tui.model import Cache, Params, summary
+
+    params = Params(vstar=0.2, kw=1.0, profile="flat", half_width=0.3, damping=0.5)
+    s = summary(Cache(), params)
+    solved = _flat(vstar=0.2, kw=1.0, profile=mp.Flat(0.3), damping=0.5)
+    assert (s.end_coefficient_back, s.end_coefficient) == solved.end_coefficients
+    assert s.end_coefficient_back < s.end_coefficient
