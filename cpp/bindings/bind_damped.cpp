@@ -60,6 +60,15 @@ void bind_damped(py::module_& m) {
             return std::make_tuple(s.end_exponents().back, s.end_exponents().front);
           },
           "(gamma_back, gamma_front): p ~ (x + b)^gamma_back (a - x)^gamma_front.")
+      .def_property_readonly(
+          "end_coefficients",
+          [](const DampedSolution& s) {
+            return std::make_tuple(s.end_coefficient_back(), s.end_coefficient_front());
+          },
+          "(K_back, K_front) of a flat punch: lim sqrt(2 pi) d^(-gamma) p over (P/h) "
+          "h^(-gamma) as the distance d to that end goes to 0; (0, 0) for bounded ends.")
+      .def_property_readonly("end_coefficient_error", &DampedSolution::end_coefficient_error,
+                             "Estimated absolute error of each of end_coefficients.")
       .def_property_readonly("coupling", &DampedSolution::coupling,
                              "Coupling constant Phi(vstar, nu) of the local term f Phi p.")
       .def_property_readonly("series_truncation", &DampedSolution::series_truncation,

@@ -480,11 +480,6 @@ void validate(const DampedParams& p) {
   // damping or friction to be asymmetric.
   const PunchProfile prof = p.punch();
   const bool asymmetric_shape = prof.kind() == ProfileKind::table && !prof.symmetric();
-  if (prof.kind() == ProfileKind::flat)
-    throw InvalidParameter("profile", "a bounded profile (cylinder, rounded_flat or table)",
-                           "profile: a " + prof.describe() +
-                               " on the asymmetric solver (damping > 0 or friction > 0) is "
-                               "not supported yet");
   require_in_range("load", p.load, 0.0, kInf, true, true);
   require_in_range("nu", p.nu, 0.0, 0.5, false, true);
   // Real Coulomb coefficients lie below about 2; at f = 10 the trailing
@@ -1031,6 +1026,8 @@ WidthEval eval_width_profile(const ChebyshevNodes& nd, double w, const DampedKer
 }  // namespace
 
 DampedSolution solve_damped(const DampedParams& prm) {
+  // The flat punch (index +1, no width iteration): damped_flat.cpp.
+  if (prm.profile == ProfileKind::flat) return solve_damped_flat(prm);
   const auto t0 = std::chrono::steady_clock::now();
   validate(prm);
   DampedSolution s;
@@ -1428,7 +1425,7 @@ DampedSolution solve_damped(const DampedParams& prm) {
         js, kern->quadrature().panels.alpha_max * s.half_, have_change ? &dseries : nullptr);
     s.jtr_omega_ = kern->quadrature().panels.alpha_max * s.half_;
     s.atan_rule_ = cached_gauss_jacobi(js.size() + 64 + static_cast<int>(std::ceil(8.0 * s.half_)),
-                                s.exps_.front, s.exps_.back);
+                                       s.exps_.front, s.exps_.back);
   }
   s.light_ = std::make_shared<const DampedSolution::Fine>(
       s.build_fine(2.0 * s.half_, have_change ? &db : nullptr, &dphat));
@@ -1610,6 +1607,11 @@ Eigen::VectorXd at_points(const Eigen::Ref<const Eigen::VectorXd>& x, F f) {
 double DampedSolution::pressure(double x) const {
   if (std::isnan(x)) throw InvalidParameter("x", "not NaN", "pressure: x must not be NaN");
   const double r = (x - centre_) / half_;
+  if (jac_ && jac_->singular() && std::fabs(r) == 1.0) {
+    // A flat punch's edge: p = w g is infinite there (as ContactSolution's).
+    const double ge = jac_->g(r);
+    return ge == 0.0 ? 0.0 : std::copysign(kInf, ge);
+  }
   if (!(std::fabs(r) < 1.0)) return 0.0;
   if (jac_) return jac_->density(r);
   return u_series(b_, r) * std::sqrt(1.0 - r * r);

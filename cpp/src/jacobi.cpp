@@ -165,9 +165,27 @@ ChebyshevNodes jacobi_collocation_nodes(int n, double alpha) {
   return nd;
 }
 
+ChebyshevNodes jacobi_flat_nodes(int n, double alpha, double beta) {
+  if (n < 2) throw std::invalid_argument("jacobi_flat_nodes: n must be >= 2");
+  if (!(alpha > -1.0 && alpha < 0.0) || !(std::fabs(alpha + beta + 1.0) <= 1e-12))
+    throw std::invalid_argument("jacobi_flat_nodes: need alpha in (-1, 0) and alpha + beta = -1");
+  const JacobiRule rule = gauss_jacobi(n, alpha, beta);
+  ChebyshevNodes nd;
+  nd.n = n;
+  nd.r = rule.x.reverse();
+  nd.w = rule.w.reverse() / kPi;
+  nd.s = jacobi_zeros(n - 1, -alpha, -beta).reverse();
+  return nd;
+}
+
 namespace {
-// The norm h_n = int w P_n^2 for alpha + beta = 1.
+// The norm h_n = int w P_n^2 (alpha + beta = 1 or -1). n = 0 apart: the
+// general formula's 1/((a + b + 1) Gamma(a + b + 1)) is 0 * inf at a + b = -1
+// (its limit 1/Gamma(a + b + 2)).
 double jacobi_norm(int n, double a, double b) {
+  if (n == 0)
+    return std::exp((a + b + 1.0) * std::log(2.0) + std::lgamma(a + 1.0) + std::lgamma(b + 1.0) -
+                    std::lgamma(a + b + 2.0));
   return std::exp((a + b + 1.0) * std::log(2.0) - std::log(2.0 * n + a + b + 1.0) +
                   std::lgamma(n + a + 1.0) + std::lgamma(n + b + 1.0) -
                   std::lgamma(n + a + b + 1.0) - std::lgamma(n + 1.0));
@@ -175,10 +193,18 @@ double jacobi_norm(int n, double a, double b) {
 
 }  // namespace
 
-JacobiSeries::JacobiSeries(double alpha, Eigen::VectorXd c) : alpha_(alpha), c_(std::move(c)) {
-  if (!(alpha > 0.0 && alpha < 1.0))
-    throw std::invalid_argument("JacobiSeries: alpha must be in (0, 1)");
-  const JacobiRule& rule = cached_gauss_jacobi(size() + 60, alpha_, beta());
+JacobiSeries::JacobiSeries(double alpha, Eigen::VectorXd c)
+    : JacobiSeries(alpha, 1.0 - alpha, std::move(c)) {}
+
+JacobiSeries::JacobiSeries(double alpha, double beta, Eigen::VectorXd c)
+    : alpha_(alpha), beta_(beta), c_(std::move(c)) {
+  const bool bounded = std::fabs(alpha + beta - 1.0) <= 1e-12 && alpha > 0.0 && alpha < 1.0;
+  const bool singular = std::fabs(alpha + beta + 1.0) <= 1e-12 && alpha > -1.0 && alpha < 0.0;
+  if (!bounded && !singular)
+    throw std::invalid_argument(
+        "JacobiSeries: need alpha + beta = 1 with alpha in (0, 1), or alpha + beta = -1 with "
+        "alpha in (-1, 0)");
+  const JacobiRule& rule = cached_gauss_jacobi(size() + 60, alpha_, beta_);
   far_x_ = rule.x;
   far_wg_.resize(rule.x.size());
   for (Eigen::Index i = 0; i < rule.x.size(); ++i) far_wg_(i) = rule.w(i) * g(rule.x(i));
@@ -186,7 +212,11 @@ JacobiSeries::JacobiSeries(double alpha, Eigen::VectorXd c) : alpha_(alpha), c_(
 
 JacobiSeries JacobiSeries::from_nodes(double alpha, const Eigen::VectorXd& r,
                                       const Eigen::VectorXd& g) {
-  const double beta = 1.0 - alpha;
+  return from_nodes(alpha, 1.0 - alpha, r, g);
+}
+
+JacobiSeries JacobiSeries::from_nodes(double alpha, double beta, const Eigen::VectorXd& r,
+                                      const Eigen::VectorXd& g) {
   const int n = static_cast<int>(r.size());
   // Gauss-Jacobi weights at the nodes (recomputed from the formula).
   const JacobiRule rule = gauss_jacobi(n, alpha, beta);
@@ -204,7 +234,7 @@ JacobiSeries JacobiSeries::from_nodes(double alpha, const Eigen::VectorXd& r,
     }
     c(k) = sum / jacobi_norm(k, alpha, beta);
   }
-  return JacobiSeries(alpha, c);
+  return JacobiSeries(alpha, beta, c);
 }
 
 double JacobiSeries::g(double r) const {
@@ -226,57 +256,38 @@ double JacobiSeries::moment0() const {
 }
 
 double JacobiSeries::moment1() const {
-  // r = (2 P_1 - (a - b))/(a + b + 2) = (2 P_1 - (a - b))/3.
-  const double a = alpha_, b = beta();
-  double m = -(a - b) / 3.0 * moment0();
-  if (c_.size() > 1) m += 2.0 / 3.0 * c_(1) * jacobi_norm(1, a, b);
+  // r = (2 P_1 - (a - b))/(a + b + 2) (a + b + 2 = 3, or 1 for index +1).
+  const double a = alpha_, b = beta(), d = a + b + 2.0;
+  double m = -(a - b) / d * moment0();
+  if (c_.size() > 1) m += 2.0 / d * c_(1) * jacobi_norm(1, a, b);
   return m;
 }
 
 double JacobiSeries::cauchy(double x) const {
   const double a = alpha_, b = beta();
   const double sa = std::sin(kPi * a);
-  const double poly =
-      jacobi_series(c_, -a, -b, x, 1, static_cast<double*>(nullptr));  // sum c_n P_{n+1}^(-a,-b)(x)
-  if (std::fabs(x) <= 1.0) return std::cos(kPi * a) / sa * density(x) - 2.0 / sa * poly;
-  const double ax = std::fabs(x), rho = ax + std::sqrt(ax * ax - 1.0);
-  if (ax < 1.2 && closed_form_ok(rho)) {
+  // sum c_n P_{n+1}^(-a,-b)(x) (index -1), sum c_n P_{n-1}^(-a,-b)(x) (index +1).
+  const double poly = jacobi_series(c_, -a, -b, x, shift(), static_cast<double*>(nullptr));
+  const double q = poly_factor();
+  if (std::fabs(x) < 1.0 || (!singular() && std::fabs(x) == 1.0))
+    return std::cos(kPi * a) / sa * density(x) - q / sa * poly;
+  if (std::fabs(x) == 1.0) {
+    // A singular series' end: w g/(t - x) is not integrable at t = x unless
+    // the cot term vanishes (alpha = -1/2) or g(x) = 0; else infinite.
+    const double cot = std::cos(kPi * a) / sa, gx = g(x);
+    if (std::fabs(cot) < 1e-15 || gx == 0.0) return -q / sa * poly;
+    const double side = x > 0.0 ? std::pow(2.0, b) : std::pow(2.0, a);
+    return cot * gx * side * std::numeric_limits<double>::infinity();
+  }
+  const double rmax = closed_form_radius();
+  if (std::fabs(x) < 0.5 * (rmax + 1.0 / rmax)) {  // rho(x) < rmax (1.2 for rmax = 1.86)
     const double Z =
         (x > 0 ? 1.0 : -1.0) * std::pow(std::fabs(x - 1.0), a) * std::pow(std::fabs(x + 1.0), b);
-    return (Z * g(x) - 2.0 * poly) / sa;
+    return (Z * g(x) - q * poly) / sa;
   }
-  const auto [rx, rwg] = ax < 1.2 ? rule_for(rho) : std::make_pair(&far_x_, &far_wg_);
   double sum = 0.0;
-  for (Eigen::Index i = 0; i < rx->size(); ++i) sum += (*rwg)(i) / ((*rx)(i)-x);
+  for (Eigen::Index i = 0; i < far_x_.size(); ++i) sum += far_wg_(i) / (far_x_(i) - x);
   return sum / kPi;
-}
-
-bool JacobiSeries::closed_form_ok(double rho) const {
-  double top = 0.0, cmax = 0.0, pw = rho;
-  for (Eigen::Index n = 0; n < c_.size(); ++n) {
-    const double c = std::fabs(c_(n));
-    cmax = std::max(cmax, c);
-    top = std::max(top, c * pw);
-    pw *= rho;
-    if (!std::isfinite(pw)) return false;
-  }
-  return top <= 1e4 * cmax;
-}
-
-std::pair<const Eigen::VectorXd*, const Eigen::VectorXd*> JacobiSeries::rule_for(double rho) const {
-  // rho^(-2M) <= 1e-17 and at least the series' own degree.
-  const double need = 19.6 / std::log(std::max(rho, 1.0 + 1e-9)) + static_cast<double>(size());
-  if (need <= static_cast<double>(far_x_.size())) return {&far_x_, &far_wg_};
-  const int cap = 8 * size() + 64;
-  int m = static_cast<int>(std::min<double>(cap, std::ceil(need / 64.0) * 64.0));
-  const std::lock_guard<std::mutex> lock(near_->mutex);
-  for (const auto& r : near_->rules)
-    if (r.first.size() >= m) return {&r.first, &r.second};
-  const JacobiRule& rule = cached_gauss_jacobi(m, alpha_, beta());
-  Eigen::VectorXd wg(m);
-  for (int i = 0; i < m; ++i) wg(i) = rule.w(i) * g(rule.x(i));
-  near_->rules.emplace_back(rule.x, wg);
-  return {&near_->rules.back().first, &near_->rules.back().second};
 }
 
 std::complex<double> JacobiSeries::cauchy_upper(std::complex<double> z,
@@ -285,27 +296,35 @@ std::complex<double> JacobiSeries::cauchy_upper(std::complex<double> z,
   const double a = alpha_, b = beta();
   const C root = std::sqrt(z - 1.0) * std::sqrt(z + 1.0);
   const double rho = std::max(std::abs(z + root), std::abs(z - root));
-  if (rho < 1.86 && closed_form_ok(rho)) {
+  if (rho < closed_form_radius()) {
     const double sa = std::sin(kPi * a);
     const C Z = std::pow(z - 1.0, a) * std::pow(z + 1.0, b);
     C dg, dpoly;
     const C gz = jacobi_series(c_, a, b, z, 0, &dg);
-    const C poly = jacobi_series(c_, -a, -b, z, 1, &dpoly);
+    const C poly = jacobi_series(c_, -a, -b, z, shift(), &dpoly);
+    const double q = poly_factor();
     if (derivative) {
       const C dZ = Z * (a / (z - 1.0) + b / (z + 1.0));
-      *derivative = (dZ * gz + Z * dg - 2.0 * dpoly) / sa;
+      *derivative = (dZ * gz + Z * dg - q * dpoly) / sa;
     }
-    return (Z * gz - 2.0 * poly) / sa;
+    return (Z * gz - q * poly) / sa;
   }
-  const auto [rx, rwg] = rho < 1.86 ? rule_for(rho) : std::make_pair(&far_x_, &far_wg_);
   C sum = 0.0, dsum = 0.0;
-  for (Eigen::Index i = 0; i < rx->size(); ++i) {
-    const C d = 1.0 / ((*rx)(i)-z);
-    sum += (*rwg)(i)*d;
-    dsum += (*rwg)(i)*d * d;
+  for (Eigen::Index i = 0; i < far_x_.size(); ++i) {
+    const C d = 1.0 / (far_x_(i) - z);
+    sum += far_wg_(i) * d;
+    dsum += far_wg_(i) * d * d;
   }
   if (derivative) *derivative = dsum / kPi;
   return sum / kPi;
+}
+
+double JacobiSeries::closed_form_radius() const {
+  // The closed form's terms grow like rho^N off the cut: their round-off
+  // (eps |c| rho^N) stays below 1e-11 |c| for rho^N <= 1e5, where the far
+  // rule of N + 60 nodes is already accurate to rho^(-2 (N + 60)) < 1e-10.
+  const double n = std::max(1.0, static_cast<double>(size()));
+  return std::min(1.86, std::pow(10.0, 5.0 / n));
 }
 
 JacobiSeries JacobiSeries::minus(const JacobiSeries& other) const {
@@ -313,13 +332,20 @@ JacobiSeries JacobiSeries::minus(const JacobiSeries& other) const {
   Eigen::VectorXd d = Eigen::VectorXd::Zero(n);
   d.head(c_.size()) += c_;
   d.head(other.c_.size()) -= other.c_;
-  return JacobiSeries(alpha_, d);
+  return JacobiSeries(alpha_, beta_, d);
 }
 
 double JacobiSeries::max_abs_density() const {
   const int m = 8 * (size() + 1) + 64;
   double best = 0.0;
   for (int j = 0; j <= m; ++j) best = std::max(best, std::fabs(density(std::cos(kPi * j / m))));
+  return best;
+}
+
+double JacobiSeries::max_abs_g() const {
+  const int m = 8 * (size() + 1) + 64;
+  double best = 0.0;
+  for (int j = 0; j <= m; ++j) best = std::max(best, std::fabs(g(std::cos(kPi * j / m))));
   return best;
 }
 

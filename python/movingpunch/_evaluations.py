@@ -52,6 +52,8 @@ class Evaluations:
         def stress_error_estimate(self) -> float: ...
         @property
         def contact_interval(self) -> tuple[float, float]: ...
+        @property
+        def end_exponents(self) -> tuple[float, float]: ...
 
     @property
     def profile(self) -> PunchProfile:
@@ -66,7 +68,13 @@ class Evaluations:
         pressure that is square-root singular at the contact's ends (a flat
         punch), K = lim sqrt(2 pi d) p over (P/h) sqrt(h) as the distance d
         to that end goes to 0 (1/sqrt(pi b/h) each on a half-plane:
-        p = P/(pi sqrt(b^2 - x^2))). (0.0, 0.0) for bounded ends."""
+        p = P/(pi sqrt(b^2 - x^2))). With friction the asymmetric solver's
+        flat punch has p ~ d^gamma (``end_exponents``, gamma = -1/2 without
+        friction) and K = lim sqrt(2 pi) d^(-gamma) p over (P/h) h^(-gamma).
+        (0.0, 0.0) for bounded ends."""
+        both = getattr(self._impl, "end_coefficients", None)
+        if both is not None:
+            return (float(both[0]), float(both[1]))
         k = float(getattr(self._impl, "end_coefficient", 0.0))
         return (k, k)
 
@@ -157,6 +165,10 @@ class Evaluations:
         back, front = self.contact_interval
         k_back, k_front = self.end_coefficients
         singular = k_back != 0.0 or k_front != 0.0
+        friction = float(getattr(self, "friction", 0.0))
+        # Damping or friction: the distributions are not even, even on a
+        # symmetric contact (a flat punch's face).
+        asymmetric = float(getattr(self, "damping", 0.0)) > 0.0 or friction > 0.0
         surface = self._impl.surface_stress
         if singular:
             # A flat punch: sigma_x(x, 0) ~ -phi2 K/sqrt(2 pi d) at its edges.
@@ -180,7 +192,7 @@ class Evaluations:
         found = search_peaks(
             surface,
             lambda x: self._impl.stress_field(x, depth)[0][0],
-            lo=0.0 if back == -front else -float(span),
+            lo=0.0 if back == -front and not asymmetric else -float(span),
             hi=float(span),
             ends=(back, front),
             wavelength=wave,
@@ -191,7 +203,38 @@ class Evaluations:
         )
         search = max(p.uncertainty for p in found.peaks)
         top_min, top_max, warnings = found.top_min, found.top_max, found.warnings
-        if singular:
+        if singular and (k_back != k_front or friction > 0.0):
+            # The asymmetric solver's flat punch: inside the face sigma_x ~
+            # -(phi2 + f^2 C_q Phi) p at both edges (-inf where K > 0); with
+            # friction the shear traction's Cauchy term is singular beside
+            # the edges too, +inf just behind the trailing edge for K_back >
+            # 0 (docs/theory.md section 14).
+            inf = math.inf
+            infinite = []
+            minus = [x for x, k in ((front, k_front), (back, k_back)) if k > 0]
+            plus = [x for x, k in ((back, k_back), (front, k_front)) if k < 0]
+            if friction > 0.0 and k_back != 0.0:
+                minus, plus = minus or [back], [back]
+            if minus:
+                top_min = type(top_min)(-inf, minus[0], 0.0)
+                infinite.append(f"-inf at x/h = {minus[0]:g}")
+            if plus:
+                top_max = type(top_max)(inf, plus[0], 0.0)
+                infinite.append(f"+inf at x/h = {plus[0]:g}")
+            finite = [found.bottom_max]
+            if not minus:
+                finite.append(top_min)
+            if not plus:
+                finite.append(top_max)
+            search = max(p.uncertainty for p in finite)
+            warnings = (
+                *warnings,
+                f"sigma_x(x, 0) is singular at the flat punch's edges x/h = {back:g}, "
+                f"{front:g} (end coefficients (K_back, K_front) = ({k_back:.6g}, "
+                f"{k_front:.6g}), exponents {self.end_exponents}): the top surface's "
+                f"extremes are {' and '.join(infinite)}; the other peaks are finite",
+            )
+        elif singular:
             inf = math.inf
             k = k_front
             edge = (front, 0.0)

@@ -458,6 +458,12 @@ def _cmd_solve(args: argparse.Namespace) -> int:
                     "end coefficient K/((P/h)√h)",
                     f"{_fmt(s.end_coefficients[1])} ± {s.end_coefficient_error:.1e}",
                 )
+                if s.end_coefficients[0] == s.end_coefficients[1]
+                else (
+                    "end coefficients (K_back, K_front)",
+                    f"({_fmt(s.end_coefficients[0])}, {_fmt(s.end_coefficients[1])}) "
+                    f"± {s.end_coefficient_error:.1e}",
+                )
             ]
             if s.end_coefficients != (0.0, 0.0)
             else []

@@ -48,8 +48,11 @@ class ContactSolution(Protocol):
     ``tangential_force`` (the friction force on the punch over P, f; positive:
     it opposes the motion towards +x), ``end_exponents`` ((gamma_back,
     gamma_front): p ~ (x - x_back)^gamma_back (x_front - x)^gamma_front;
-    (0.5, 0.5) without friction) and ``dissipation`` (the
-    power dissipated over P V, equal to ``drag`` by the energy balance).
+    (0.5, 0.5) without friction; a flat punch on the asymmetric solver
+    reports its own, 1 less: (-0.5, -0.5) without friction) and
+    ``dissipation`` (the power dissipated over P V, equal to ``drag`` by the
+    energy balance without friction; a flat punch's drag is its edges'
+    force, docs/theory.md section 14).
     Trust: ``error_estimate`` (of the contact ends), ``stress_error_estimate``,
     ``valid``, ``validity``, ``warnings``. The punch: ``profile`` (its
     shape, ``movingpunch.profiles``; ``radius`` is the cylinder's or the

@@ -140,13 +140,15 @@ class DampedSolution(ResultFields):
     pressure_error_estimate: float
     """Bound on the error of p/(P/h) at a fixed relative position r = (x - c)/w
     in the contact (pointwise in x add |dp/dx| error_estimate); the solver
-    refines N until it is at most tol * max_pressure."""
+    refines N until it is at most tol * max_pressure. A flat punch, whose
+    pressure is unbounded at its edges: the bound is on g = p/((P/h) w(r)),
+    w = (1 - r)^gamma_front (1 + r)^gamma_back, so |dp| <= it times w(r)."""
     stress_error_estimate: float
     """Bound on the error of the surface sigma_x/(P/h) at points more than
     1e-3 (a + b)/2 from the contact ends (sigma_x has a square-root cusp
     there)."""
     max_pressure: float
-    """Maximum of p/(P/h) on the contact."""
+    """Maximum of p/(P/h) on the contact (inf for a flat punch)."""
     other_half_widths: tuple[float, ...]
     """Half-widths (a + b)/(2h) of other contacts that carry the same load
     (above V*_cr the steady solution need not be unique; to about 1 %).
@@ -289,7 +291,9 @@ def solve_damped(
 
     ``radius`` and ``profile`` as in :func:`movingpunch.solve`: a cylinder,
     a rounded flat or a table (an asymmetric table needs neither damping nor
-    friction); a flat punch is refused (not supported yet).
+    friction), or a flat punch (its face is the contact; ``end_coefficients``
+    gives (K_back, K_front), ``end_exponents`` the exponents of p at its
+    edges, gamma - 1 of the bounded case's: (-0.5, -0.5) without friction).
     """
     from movingpunch.solver import resolve_profile
 

@@ -43,7 +43,6 @@ from movingpunch.errors import InvalidParameterError
 from movingpunch.params import PRESETS
 from movingpunch.profiles import (
     Cylinder,
-    Flat,
     Profile,
     PunchProfile,
     check_profile,
@@ -298,14 +297,15 @@ def solve(
     ``Cylinder(radius)`` (the default: ``radius=R`` is its shorthand),
     ``Flat(half_width)`` (a flat face: its end coefficients in
     ``end_coefficients``), ``RoundedFlat(half_width, radius)`` or a
-    symmetric convex table ``Profile(x, y)``. Give ``radius`` or
+    convex table ``Profile(x, y)``. Give ``radius`` or
     ``profile``; both only if they agree (a Cylinder or a RoundedFlat of that
     very radius), else InvalidParameterError naming ``radius``. With
-    ``damping > 0`` or ``friction > 0`` a cylinder, a rounded flat or a table
-    solves on the asymmetric solver (a flat punch is refused there: not
-    supported yet); an asymmetric table takes the asymmetric solver even
-    without them. ``tol`` is on a/h (on the end coefficient for a flat
-    punch, whose contact is its face).
+    ``damping > 0`` or ``friction > 0`` every profile solves on the
+    asymmetric solver (a flat punch there: index +1 Gauss-Jacobi collocation
+    on its face, both end coefficients in ``end_coefficients``); an
+    asymmetric table takes the asymmetric solver even without them. ``tol``
+    is on a/h (on the end coefficients for a flat punch, whose contact is
+    its face).
 
     ``friction`` = f >= 0 is Coulomb friction between punch and layer (the
     punch moves towards +x and drags the surface with a shear traction f p;
@@ -318,15 +318,6 @@ def solve(
     shape = resolve_profile(radius, profile)
     asymmetric_shape = isinstance(shape, Profile) and not shape.symmetric
     if check_damping(damping) > 0 or check_friction(friction) > 0 or asymmetric_shape:
-        if isinstance(shape, Flat):
-            what = "damping > 0" if damping > 0 else "friction > 0"
-            raise InvalidParameterError(
-                f"profile {shape.describe()} with {what} is not supported yet; "
-                "use damping = 0 and friction = 0, or a bounded profile (Cylinder, "
-                "RoundedFlat or Profile)",
-                parameter="profile",
-                allowed="a bounded profile when damping > 0 or friction > 0",
-            )
         return solve_damped(
             vstar=vstar,
             kw=kw,

@@ -417,8 +417,11 @@ def test_solve_rules_for_radius_and_profile() -> None:
     with pytest.raises(mp.InvalidParameterError) as info:
         mp.solve(**kw, profile="flat")  # type: ignore[call-overload]
     assert info.value.parameter == "profile"
-    with pytest.raises(mp.InvalidParameterError, match="damping > 0 is not supported"):
-        mp.solve(**kw, profile=mp.Flat(0.5), damping=0.1)
+    # The flat punch with damping takes the asymmetric solver (issue 14;
+    # tests/python/test_profiles_asymmetric_flat.py).
+    flat = mp.solve(**kw, profile=mp.Flat(0.5), damping=0.1)
+    assert flat.profile == mp.Flat(0.5)
+    assert flat.contact_interval == (-0.5, 0.5)
     s = mp.solve(**kw, radius=100.0, profile=mp.RoundedFlat(0.1, 100.0))
     assert s.radius == 100.0
     assert s.a > 0.1

@@ -212,7 +212,10 @@ class DampedSolution {
   double centre() const noexcept { return centre_; }
   double half_width() const noexcept { return half_; }
   // Horizontal force on the punch over P, int p x/R dx / P: positive when it
-  // opposes the motion (the punch moves towards +x).
+  // opposes the motion (the punch moves towards +x). A flat punch: its
+  // edges' forces load phi1 (K_front^2 - K_back^2)/4 without friction (the
+  // limit of rounded corners; = dissipation()), 0 with friction (no finite
+  // sharp-corner limit; docs/theory.md section 14).
   double drag() const noexcept { return drag_; }
   double critical_vstar() const noexcept { return vcr_; }
   double rayleigh_vstar() const noexcept { return vr_; }
@@ -231,12 +234,14 @@ class DampedSolution {
   double error_estimate() const noexcept { return err_; }
   // Bound on the error of the pressure shape, max over r in (-1, 1) of
   // |p(c + w r) - p_exact(c_exact + w_exact r)|, in P/h (pointwise in x add
-  // |dp/dx| error_estimate()).
+  // |dp/dx| error_estimate()). A flat punch (unbounded ends): the bound is on
+  // g = p/((P/h) w(r)), so |dp| <= it times w(r).
   double pressure_error_estimate() const noexcept { return perr_; }
   // Bound on the error of the surface sigma_x/(P/h) at points more than
   // 1e-3 (a + b)/2 from the contact ends (sigma_x has a square-root cusp there).
   double stress_error_estimate() const noexcept { return serr_; }
-  // Maximum of p/(P/h) on the contact.
+  // Maximum of p/(P/h) on the contact (+inf for a flat punch, whose
+  // pressure is unbounded at its edges).
   double max_pressure() const noexcept { return max_p_; }
   // min over r in (-1, 1) of p/((P/h) sqrt(1 - r^2)) = min g(r), r = (x - c)/w:
   // the safety margin before the contact separates (> 0: both ends smooth).
@@ -306,7 +311,18 @@ class DampedSolution {
   // equals drag() by the energy balance.
   double dissipation() const;
 
-  // g's coefficients: Chebyshev U_n without friction, Jacobi P_n^(front, back) with it.
+  // A flat punch (profile flat; its contact is the face (-b, b), index +1):
+  // the end coefficients K_end = lim sqrt(2 pi) d^(-gamma_end) p(x) over
+  // (P/h) h^(-gamma_end) as the distance d to that end goes to 0 (gamma_end =
+  // end_exponents(), -1/2 without friction: K = lim sqrt(2 pi d) p, the
+  // undamped ContactSolution::end_coefficient), and the bound on the error of
+  // each. 0 for bounded ends.
+  double end_coefficient_back() const noexcept { return end_k_back_; }
+  double end_coefficient_front() const noexcept { return end_k_front_; }
+  double end_coefficient_error() const noexcept { return end_k_err_; }
+
+  // g's coefficients: Chebyshev U_n without friction, Jacobi P_n^(front, back) with it
+  // (a flat punch: Jacobi P_n^(front, back) of its exponents, front + back = -1).
   const Eigen::VectorXd& g_coefficients() const noexcept { return b_; }
   // The punch's shape (DampedParams::punch()).
   const PunchProfile& punch() const noexcept { return *punch_; }
@@ -318,7 +334,9 @@ class DampedSolution {
 
  private:
   friend DampedSolution solve_damped(const DampedParams& p);
+  friend DampedSolution solve_damped_flat(const DampedParams& p);
   DampedParams params_{};
+  double end_k_back_ = 0, end_k_front_ = 0, end_k_err_ = 0;
   double centre_ = 0, half_ = 0, drag_ = 0, vcr_ = 0, vr_ = 0, err_ = 0, elapsed_ = 0;
   double perr_ = 0, serr_ = 0, max_p_ = 0, margin_ = 0, trunc_ = 0;
   std::shared_ptr<const PunchProfile> punch_;
@@ -460,6 +478,14 @@ class DampedSolution {
 // (bad input), SupercriticalSpeedError (vstar >= V*_R), UnphysicalContactError
 // (unless allow_unphysical) and ConvergenceError.
 DampedSolution solve_damped(const DampedParams& p);
+
+// The flat punch (profile flat) on the asymmetric solver (damped_flat.cpp;
+// docs/theory.md section 14, "The flat punch on the asymmetric solver"): the
+// contact is the face (-b, b), p = (P/h) w(r) g(r) with w = (1 - r)^alpha
+// (1 + r)^beta, alpha = gamma_front - 1, beta = gamma_back - 1, by
+// Gauss-Jacobi collocation (jacobi_flat_nodes) and equilibrium, over the N
+// ladder until the end coefficients meet tol. solve_damped dispatches here.
+DampedSolution solve_damped_flat(const DampedParams& p);
 
 // Error estimate of the last member of a sequence x_0, x_1, ... computed at
 // sizes n_0 < n_1 < ..., from the changes d_k = |x_k - x_{k-1}| (changes[k-1]

@@ -71,18 +71,37 @@ const JacobiRule& cached_gauss_jacobi(int n, double a, double b);
 // Gauss-Jacobi weights / pi. alpha = 1/2 gives chebyshev_nodes(n) up to round-off.
 ChebyshevNodes jacobi_collocation_nodes(int n, double alpha);
 
-// g(r) = sum_n c_n P_n^(alpha, beta)(r) with alpha + beta = 1, the density
-// w(r) g(r), w = (1 - r)^alpha (1 + r)^beta, and its integrals in closed form.
+// The flat punch's rule (index +1, alpha + beta = -1, -1 < alpha, beta < 0;
+// docs/theory.md section 14, "The flat punch on the asymmetric solver"): r =
+// the N zeros of P_N^(alpha, beta), s = the N - 1 zeros of
+// P_{N-1}^(-alpha, -beta), w = Gauss-Jacobi weights / pi (descending, as
+// chebyshev_nodes). Exact as in the rule above because for alpha + beta = -1
+//   (1/pi) int w P_n^(alpha,beta)/(t - x) dt = cot(pi alpha) w P_n^(alpha,beta)(x)
+//       - (1/2)/sin(pi alpha) P_{n-1}^(-alpha,-beta)(x)   (n >= 1; n = 0: the cot term).
+// alpha = beta = -1/2 is first-kind Gauss-Chebyshev (the undamped flat punch).
+ChebyshevNodes jacobi_flat_nodes(int n, double alpha, double beta);
+
+// g(r) = sum_n c_n P_n^(alpha, beta)(r) with alpha + beta = 1 (bounded ends,
+// 0 < alpha < 1) or alpha + beta = -1 (index +1, unbounded ends: the flat
+// punch, -1 < alpha < 0), the density w(r) g(r), w = (1 - r)^alpha (1 + r)^beta,
+// and its integrals in closed form.
 class JacobiSeries {
  public:
   JacobiSeries() = default;
+  // alpha + beta = 1.
   JacobiSeries(double alpha, Eigen::VectorXd c);
+  // alpha + beta = 1 or -1 (to 1e-12); throws std::invalid_argument otherwise.
+  JacobiSeries(double alpha, double beta, Eigen::VectorXd c);
   // From the values g(r_i) at the zeros r_i of P_N^(alpha, beta) (exact for
   // polynomials of degree < N).
   static JacobiSeries from_nodes(double alpha, const Eigen::VectorXd& r, const Eigen::VectorXd& g);
+  static JacobiSeries from_nodes(double alpha, double beta, const Eigen::VectorXd& r,
+                                 const Eigen::VectorXd& g);
 
   double alpha() const noexcept { return alpha_; }
-  double beta() const noexcept { return 1.0 - alpha_; }
+  double beta() const noexcept { return beta_; }
+  // Index +1 (alpha + beta = -1): the density is unbounded at r = +-1.
+  bool singular() const noexcept { return alpha_ + beta_ < 0.0; }
   const Eigen::VectorXd& coefficients() const noexcept { return c_; }
   int size() const noexcept { return static_cast<int>(c_.size()); }
 
@@ -94,38 +113,39 @@ class JacobiSeries {
   double moment1() const;
   // (1/pi) int_{-1}^{1} w(t) g(t)/(t - x) dt for real x (principal value on
   // the cut): the closed form inside and near the cut, Gauss-Jacobi
-  // quadrature (converging like (|x| + sqrt(x^2 - 1))^(-2M)) for |x| >= 1.2.
+  // quadrature (converging like (|x| + sqrt(x^2 - 1))^(-2M)) beyond the
+  // Bernstein ellipse rho(x) = closed_form_radius() (|x| >= 1.2 for N <= 18).
   double cauchy(double x) const;
+  // min(1.86, 10^(5/N)): the closed forms' Bernstein radius (their terms grow
+  // like rho^N off the cut; beyond it the Gauss-Jacobi rule).
+  double closed_form_radius() const;
   // (1/pi) int_{-1}^{1} w(t) g(t)/(t - z) dt and its derivative in z, for
   // Im z >= 0 (z off the cut or on its upper side): the closed form
-  // [Z(z) g(z) - 2 sum c_n P_{n+1}^(-alpha,-beta)(z)]/sin(pi alpha), Z = (z-1)^alpha
-  // (z+1)^beta, inside the Bernstein ellipse rho(z) < 1.86, else the rule of cauchy().
+  // [Z(z) g(z) - q sum c_n P_{n+shift}^(-alpha,-beta)(z)]/sin(pi alpha) (q, shift
+  // as in shift() below), Z = (z-1)^alpha
+  // (z+1)^beta, inside the Bernstein ellipse rho(z) < closed_form_radius(), else
+  // the rule of cauchy().
   std::complex<double> cauchy_upper(std::complex<double> z,
                                     std::complex<double>* derivative = nullptr) const;
   // The same for series with other coefficients: this - other (same alpha).
   JacobiSeries minus(const JacobiSeries& other) const;
-  // max over [-1, 1] of |w g| sampled at 8 (N + 1) + 64 Chebyshev angles (the ends included).
+  // max over [-1, 1] of |w g| sampled at 8 (N + 1) + 64 Chebyshev angles (the
+  // ends included: +inf for a singular series with g(+-1) != 0).
   double max_abs_density() const;
+  // max over [-1, 1] of |g|, sampled the same way.
+  double max_abs_g() const;
   // min over (-1, 1) of g (the margin before separation), scanned and refined.
   double min_g() const;
 
  private:
-  double alpha_ = 0.5;
+  double alpha_ = 0.5, beta_ = 0.5;
   Eigen::VectorXd c_;
+  // The Cauchy integral's polynomial part: q sum c_n P_{n + shift}^(-alpha, -beta),
+  // q = 2, shift = 1 (alpha + beta = 1); q = 1/2, shift = -1 (alpha + beta = -1).
+  int shift() const noexcept { return singular() ? -1 : 1; }
+  double poly_factor() const noexcept { return singular() ? 0.5 : 2.0; }
   // cauchy()'s Gauss-Jacobi rule for |x| >= 1.2 (N + 60 nodes) times g there.
   Eigen::VectorXd far_x_, far_wg_;
-  // Near the cut the closed form cancels terms of size |c_n| rho^(n+1): for a
-  // slowly decaying series (a profile's kinked slope: c_n ~ n^-2) it is used
-  // only while they stay below 1e4 max |c_n|; beyond, a Gauss-Jacobi rule of
-  // enough nodes (19.6/ln rho + N, built on first use, shared by copies).
-  bool closed_form_ok(double rho) const;
-  struct NearRules {
-    std::mutex mutex;
-    std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> rules;  // (x, w g), by size
-  };
-  std::shared_ptr<NearRules> near_ = std::make_shared<NearRules>();
-  // The rule (x, w g) for |x or z| with Bernstein radius rho: far_ or a larger one.
-  std::pair<const Eigen::VectorXd*, const Eigen::VectorXd*> rule_for(double rho) const;
 };
 
 // int_{-1}^{1} w(r) g(r) e^{-i omega r} dr at many omega (|omega| <= omega_max)

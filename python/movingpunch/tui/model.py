@@ -344,7 +344,10 @@ class Summary:
     drag: float = 0.0
     """Horizontal force on the punch over P (0 without damping)."""
     end_coefficient: float = 0.0
-    """A flat punch's end coefficient K/((P/h) sqrt(h)) (0: bounded ends)."""
+    """A flat punch's end coefficient K/((P/h) sqrt(h)) (0: bounded ends);
+    the leading edge's (K_front) on the asymmetric solver."""
+    end_coefficient_back: float = 0.0
+    """The trailing edge's K_back (= end_coefficient when symmetric)."""
     warnings: tuple[str, ...] = ()
     """The solution's warnings (a requested accuracy not met)."""
     tangential_force: float = 0.0
@@ -469,6 +472,7 @@ def summary(cache: Cache, params: Params) -> Summary:
         contact_interval=s.contact_interval,
         drag=s.drag,
         end_coefficient=s.end_coefficients[1],
+        end_coefficient_back=s.end_coefficients[0],
         warnings=result_warnings(s),
         tangential_force=s.tangential_force,
     )

@@ -337,7 +337,11 @@ class MainScreen(Screen[None]):
         ]
         if s.drag != 0.0:
             parts.append(("drag/P", fmt(s.drag, 4)))
-        if s.end_coefficient != 0.0:  # a flat punch: singular ends
+        if s.end_coefficient != 0.0 and s.end_coefficient_back != s.end_coefficient:
+            # a flat punch on the asymmetric solver: both edges
+            parts.append(("K back", fmt(s.end_coefficient_back, 4)))
+            parts.append(("K front", fmt(s.end_coefficient, 4)))
+        elif s.end_coefficient != 0.0:  # a flat punch: singular ends
             parts.append(("K", fmt(s.end_coefficient, 4)))
         if s.tangential_force != 0.0:
             parts.append(("friction/P", fmt(s.tangential_force, 4)))

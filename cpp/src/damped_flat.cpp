@@ -1,0 +1,344 @@
+// The flat punch on the asymmetric solver (damping > 0 and/or friction > 0):
+// the contact is the face (-b, b), the pressure is unbounded at both ends
+// (index +1). See docs/theory.md section 14, "The flat punch on the
+// asymmetric solver".
+//
+// p(b r) = (P/h) w(r) g(r), w = (1 - r)^alpha (1 + r)^beta with alpha =
+// gamma_front - 1, beta = gamma_back - 1 (alpha + beta = -1; -1/2 each
+// without friction), g a polynomial. The equation on the face (the flat face
+// has no slope and the punch is held: the right-hand side is 0),
+//   f Phi p(x) + (1/pi) int p(xi)/(xi - x) d xi - int p(xi) K(x - xi) d xi = 0,
+// is collocated at the N - 1 zeros s_k of P_{N-1}^(-alpha, -beta) with the
+// N-node Gauss-Jacobi rule of P_N^(alpha, beta) (jacobi_flat_nodes: exact
+// for polynomial g of degree < N), and equilibrium int p = P closes the
+// square system. No width iteration: g over P/h does not depend on the load.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include "movingpunch/damped.hpp"
+#include "movingpunch/dispersion.hpp"
+#include "movingpunch/errors.hpp"
+#include "solve_skeleton.hpp"
+
+namespace movingpunch {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// g at the nodes of the collocation system of size nd.n (the kernel's values
+// in one batch, as eval_width's).
+Eigen::VectorXd flat_nodal_g(const ChebyshevNodes& nd, double w, const DampedKernel& K) {
+  const int n = nd.n, m = n - 1;
+  Eigen::MatrixXd M(n, n);
+  std::vector<double> u(static_cast<std::size_t>(n) * m), kv(u.size());
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < m; ++k) u[static_cast<std::size_t>(i) * m + k] = -w * (nd.r(i) - nd.s(k));
+  K.many(u.data(), kv.data(), u.size());
+  for (int i = 0; i < n; ++i) {
+    for (int k = 0; k < m; ++k) {
+      const double d = nd.r(i) - nd.s(k);
+      M(k, i) = nd.w(i) * (1.0 / d - w * kv[static_cast<std::size_t>(i) * m + k]);
+    }
+    // Equilibrium: int p dx/(P/h) = w int w(r) g(r) dr = pi w sum W_i g_i = 1.
+    M(m, i) = kPi * w * nd.w(i);
+  }
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
+  rhs(m) = 1.0;
+  return M.partialPivLu().solve(rhs);
+}
+
+}  // namespace
+
+DampedSolution solve_damped_flat(const DampedParams& prm) {
+  const auto t0 = std::chrono::steady_clock::now();
+  validate(prm);
+  if (prm.profile != ProfileKind::flat)
+    throw std::invalid_argument("solve_damped_flat: the profile must be flat");
+  auto since_start = [&t0] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  DampedSolution s;
+  s.params_ = prm;
+  s.punch_ = std::make_shared<const PunchProfile>(prm.punch());
+  s.vr_ = rayleigh_vstar(prm.nu);
+  s.vcr_ = critical_vstar(prm.kw, prm.nu, prm.kp);
+  const double t_critical = since_start();
+  if (!(prm.vstar < s.vr_)) throw SupercriticalSpeedError(prm.vstar, s.vcr_, s.vr_);
+  if (!(prm.damping > 0.0) && !(prm.vstar < s.vcr_))
+    throw SupercriticalSpeedError(prm.vstar, s.vcr_, s.vr_);
+  const WaveConstants wc = wave_constants(prm.vstar, prm.nu);
+  const double w = prm.punch().face();
+  const bool frictional = prm.friction > 0.0;
+  // The bounded case's exponents less 1 (cot(pi gamma_back) = f Phi).
+  const EndExponents bounded =
+      frictional ? end_exponents(prm.friction, tangential_half_plane(wc).Phi) : EndExponents{};
+  const double al = bounded.front - 1.0, be = -1.0 - al;
+  s.exps_.back = be;
+  s.exps_.front = al;
+
+  double kernel_seconds = 0.0;
+  std::shared_ptr<const DampedKernel> kern;
+  {
+    const auto tk = std::chrono::steady_clock::now();
+    bool built = false;
+    // |u| = w |s_k - r_i| < 2 w; twice that when built (a sweep's next face).
+    kern = cached_damped_kernel(prm.vstar, prm.kw, prm.nu, prm.damping, 2.0 * w, 4.0 * w, &built,
+                                prm.kp, prm.friction);
+    s.kernel_builds_ = built ? 1 : 0;
+    kernel_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - tk).count();
+  }
+  s.model_ = kern->model_ptr();
+  s.kernel_ = kern;
+  const DampedLayerModel* model = s.model_.get();
+
+  std::vector<int> sizes;
+  if (prm.n > 0) {
+    for (int m : {prm.n / 2, (3 * prm.n) / 4, prm.n}) {
+      const int e = std::max(2, m - m % 2);
+      if (sizes.empty() || e > sizes.back()) sizes.push_back(e);
+    }
+  } else {
+    sizes = detail::size_ladder(512);
+  }
+  // K_end = sqrt(2 pi) b^(-gamma_end) 2^(gamma_other) g(end) (section 14).
+  const double kf_scale = std::sqrt(2.0 * kPi) * std::pow(w, -al) * std::pow(2.0, be);
+  const double kb_scale = std::sqrt(2.0 * kPi) * std::pow(w, -be) * std::pow(2.0, al);
+  const double qerr = kern->quadrature().kronrod_error, terr = kern->table_error();
+  std::vector<int> done_n;
+  std::vector<double> d_k, d_g;
+  JacobiSeries js, js_prev;
+  double kb = 0, kf = 0, kb_prev = 0, kf_prev = 0, gmax = 0, floor_k = 0, floor_g = 0;
+  bool converged = false, stalled = false;
+  RefinementEstimate est_k, est_g;
+  int n_done = 0;
+  for (int n : sizes) {
+    const ChebyshevNodes nd = jacobi_flat_nodes(n, al, be);
+    const Eigen::VectorXd g = flat_nodal_g(nd, w, *kern);
+    ++s.iterations_;
+    if (!g.allFinite())
+      throw ConvergenceError(
+          "damped flat punch: the collocation system came out singular or non-finite at N = " +
+          std::to_string(n));
+    if (n_done > 0) js_prev = js;
+    kb_prev = kb;
+    kf_prev = kf;
+    js = JacobiSeries::from_nodes(al, be, nd.r, g);
+    kb = kb_scale * js.g(-1.0);
+    kf = kf_scale * js.g(1.0);
+    gmax = js.max_abs_g();
+    const double scale_k = std::max(std::fabs(kb), std::fabs(kf));
+    // Round-off (the collocation matrix's condition grows about like N) and
+    // the kernel's error carried into g (a relative dK w, as the widths').
+    floor_k = (64.0 * kEps * n + 4.0 * (qerr + terr) * w) * scale_k;
+    floor_g = (64.0 * kEps * n + 4.0 * (qerr + terr) * w) * gmax;
+    done_n.push_back(n);
+    n_done = n;
+    if (done_n.size() < 2) continue;
+    d_k.push_back(std::max(std::fabs(kb - kb_prev), std::fabs(kf - kf_prev)));
+    d_g.push_back(js.minus(js_prev).max_abs_g());
+    // The geometric extrapolation of refinement_estimate, but never below the
+    // last change (the previous member's error): the flat punch's changes can
+    // shrink faster before they settle to their rate (16 -> 24 -> 32 gave
+    // 2e-4, 5e-7, then an error 4e-8 at 32 on a wide face with friction).
+    est_k = refinement_estimate(done_n, d_k, floor_k);
+    est_g = refinement_estimate(done_n, d_g, floor_g);
+    est_k.estimate = std::max(est_k.estimate, d_k.back() + floor_k);
+    est_g.estimate = std::max(est_g.estimate, d_g.back() + floor_g);
+    if (prm.n == 0 && d_k.size() >= 2) {
+      const bool ok_k = est_k.estimate <= prm.tol * scale_k;
+      const bool ok_g = est_g.estimate <= prm.tol * gmax;
+      const double root_eps = std::sqrt(kEps);
+      const bool end_k =
+          ok_k || est_k.at_floor || (est_k.stagnated && d_k.back() <= root_eps * scale_k);
+      const bool end_g =
+          ok_g || est_g.at_floor || (est_g.stagnated && d_g.back() <= root_eps * gmax);
+      if (ok_k && ok_g) {
+        converged = true;
+        break;
+      }
+      if (end_k && end_g) {
+        stalled = true;
+        break;
+      }
+    }
+  }
+  if (d_k.empty()) {
+    est_k.estimate = kInf;
+    est_g.estimate = kInf;
+  }
+  const double scale_k = std::max(std::fabs(kb), std::fabs(kf));
+  if (!std::isfinite(kb) || !std::isfinite(kf) || !std::isfinite(gmax))
+    throw ConvergenceError("damped flat punch: the end coefficients came out non-finite (N = " +
+                           std::to_string(n_done) + ")");
+  if (prm.n == 0 && !converged && !stalled && !(est_k.estimate <= prm.tol * scale_k)) {
+    std::ostringstream est;
+    est << "estimated error " << est_k.estimate << " of the end coefficients";
+    throw ConvergenceError(detail::not_converged_message("damped flat punch: the end coefficients",
+                                                         prm.tol, sizes.back(), est.str()));
+  }
+  const double t_width = since_start() - kernel_seconds;
+
+  s.n_ = n_done;
+  s.half_ = w;
+  s.centre_ = 0.0;
+  s.b_ = js.coefficients();
+  s.jac_ = std::make_shared<const JacobiSeries>(js);
+  s.err_ = 0.0;  // the ends are the face's: exact
+  // The horizontal force: the face's normal pressure has none (f' = 0), but
+  // each square-root singular edge carries one, the limit of corners rounded
+  // ever more sharply (as an aerofoil's leading-edge suction): with
+  // int p (-H p) over the face = (K_back^2 - K_front^2)/4 (H the half-plane's
+  // Cauchy operator; the two-term T-series gives the constant) and
+  // int p_eps H p_eps = 0 for the rounded pressure, drag = load phi1
+  // (K_front^2 - K_back^2)/4 (docs/theory.md section 14), which the
+  // dashpots' dissipation equals (the energy balance; tested). With friction
+  // the trailing edge's p^2 is not integrable: the rounded corners' force
+  // has no finite sharp limit, and drag reports the face's part, 0.
+  s.drag_ = frictional ? 0.0 : prm.load * wc.phi1 * (kf * kf - kb * kb) / 4.0;
+  s.end_k_back_ = kb;
+  s.end_k_front_ = kf;
+  s.end_k_err_ = est_k.estimate;
+  s.perr_ = est_g.estimate;  // on g = p/((P/h) w(r)): |dp| <= perr_ w(r)
+  s.max_p_ = js.max_abs_density();
+  auto note = [&](const char* what, double est, double scale, double floor) {
+    const double want = prm.tol * scale;
+    if (est <= want) return;
+    std::ostringstream m;
+    m.precision(3);
+    m << what << " not met to tol = " << prm.tol << ": estimated relative error " << est / scale
+      << " (" << est / want << " x tol) at N = " << n_done;
+    if (floor > want)
+      m << " (round-off and kernel floor " << floor / scale << " exceeds tol)";
+    else if (prm.n > 0)
+      m << " (fixed n; raise n or leave it automatic)";
+    else if (stalled)
+      m << " (the changes between sizes stopped shrinking)";
+    s.warnings_.push_back(m.str());
+  };
+  note("end coefficients (K_back, K_front):", est_k.estimate, scale_k, floor_k);
+  note("pressure p(x)/w(r) = g(r):", est_g.estimate, gmax, floor_g);
+
+  // The transforms, the Fourier nodes, the arctan rule (friction), with the
+  // change between the last two sizes for the stress estimate.
+  // dseries: the change between the last two sizes; when that change is
+  // round-off (or there is one size only), a unit change of the top
+  // coefficient instead (the shape of a truncation error): the ratio of
+  // sigma_x's change to g's is what the estimate needs.
+  const bool have_change = true;
+  JacobiSeries dseries;
+  if (!d_g.empty() && d_g.back() > 4.0 * floor_g) {
+    dseries = js.minus(js_prev);
+  } else {
+    Eigen::VectorXd top = Eigen::VectorXd::Zero(js.size());
+    top(js.size() - 1) = 1.0;
+    dseries = JacobiSeries(al, be, top);
+  }
+  const double dg_ref = dseries.max_abs_g();
+  s.jtr_omega_ = kern->quadrature().panels.alpha_max * w;
+  s.jtr_ =
+      std::make_shared<const JacobiTransform>(js, s.jtr_omega_, have_change ? &dseries : nullptr);
+  s.atan_rule_ = cached_gauss_jacobi(js.size() + 64 + static_cast<int>(std::ceil(8.0 * w)), al, be);
+  std::vector<cplx> dphat;
+  const Eigen::VectorXd unused_db;
+  s.light_ = std::make_shared<const DampedSolution::Fine>(
+      s.build_fine(2.0 * w, have_change ? &unused_db : nullptr, &dphat));
+
+  // Surface sigma_x is linear in p: its change between the last two sizes at
+  // 64 points of the face with |r| <= 0.999 and 32 beside it out to 6 w, over
+  // the change of g, is the gain from g's error to the stress's (the local
+  // term -phi2 w(r) dg included). Round-off of the Fourier sum as the
+  // cylinder's.
+  {
+    const double phi2 = model->phi2();
+    const DampedSolution::Fine& f = *s.light_;
+    double gain = kInf, pin = 0.0;
+    std::vector<double> rs;
+    for (int j = 0; j < 96; ++j) {
+      if (j < 64) {
+        rs.push_back(0.999 * std::cos(kPi * (j + 0.5) / 64.0));
+      } else {
+        const int q = j - 64;
+        rs.push_back((q % 2 == 0 ? 1.0 : -1.0) * (1.0 + 5.0 * std::pow((q / 2 + 0.5) / 16.0, 2.0)));
+      }
+    }
+    for (double r : rs)
+      if (std::fabs(r) < 1.0) pin = std::max(pin, std::fabs(js.density(r)));
+    if (have_change) {
+      std::vector<cplx> amp(f.alpha.size());
+      for (std::size_t i = 0; i < f.alpha.size(); ++i)
+        amp[i] = s.surface_stress_integrand(f.r[i], f.alpha[i]) * dphat[i];
+      std::vector<double> amp_re, amp_im;
+      f.coefficients(amp, amp_re, amp_im);
+      double dmax = 0.0;
+      for (double r : rs) {
+        const double x = w * r;
+        const auto re_im = f.filon->integral_pair(x, amp_re, amp_im);
+        const double sum = re_im.first.real() - re_im.second.imag();
+        const double dp = std::fabs(r) < 1.0 ? dseries.density(r) : 0.0;
+        const double local = frictional ? s.friction_surface_terms(x, dseries, 0.0, w) : 0.0;
+        dmax = std::max(dmax, std::fabs(-phi2 * dp - sum / kPi + local));
+      }
+      gain = std::max(std::fabs(phi2), dmax / dg_ref);
+    }
+    double sabs = 0.0;
+    for (std::size_t i = 0; i < f.alpha.size(); ++i)
+      sabs += f.weight[i] * std::abs(s.surface_stress_integrand(f.r[i], f.alpha[i])) *
+              std::abs(f.phat[i]);
+    s.serr_ = gain * s.perr_ + 64.0 * kEps * (std::fabs(phi2) * pin + sabs / kPi);
+  }
+
+  // Gauss-Jacobi nodes and weights times g for surface_slope.
+  {
+    const int m = std::max(64, 2 * static_cast<int>(s.b_.size()) + 2);
+    const JacobiRule rule = gauss_jacobi(m, al, be);
+    for (int i = 0; i < m; ++i) {
+      s.slope_r_.push_back(rule.x(i));
+      s.slope_wg_.push_back(rule.w(i) / kPi * js.g(rule.x(i)));
+    }
+  }
+
+  // Validity: g >= 0 on the face, its ends included (a negative end
+  // coefficient: the edge pulls on the layer). No surface beside the face
+  // (square corners): min_gap is +inf.
+  s.margin_ = js.min_g();
+  s.min_p_ = kInf;
+  for (int i = 1; i < 400; ++i)
+    s.min_p_ = std::min(s.min_p_, js.density(std::cos(kPi * i / 400.0)));
+  s.min_gap_ = kInf;
+  const double rel = std::max(1e-6, 100.0 * prm.tol);
+  std::ostringstream why;
+  why.precision(6);
+  s.valid_ = true;
+  const double g_back = js.g(-1.0), g_front = js.g(1.0);
+  if (g_back < -rel * gmax || g_front < -rel * gmax) {
+    s.valid_ = false;
+    why << "the pressure at the flat punch's "
+        << (g_back < -rel * gmax && g_front < -rel * gmax
+                ? "trailing and leading edges x/h = -+" + std::to_string(w) + " is"
+            : g_back < -rel * gmax ? "trailing edge x/h = " + std::to_string(-w) + " is"
+                                   : "leading edge x/h = " + std::to_string(w) + " is")
+        << " tensile (end coefficients K_back = " << kb << ", K_front = " << kf
+        << "): the face lifts off at that edge and the single-contact solution (the whole face "
+           "in contact) is unphysical";
+  } else if (s.margin_ < -rel * gmax) {
+    s.valid_ = false;
+    why << "the contact pressure is negative inside the face (min p/(P/h) = " << s.min_p_
+        << "): the face separates and the single-contact solution is unphysical";
+  }
+  s.validity_ =
+      s.valid_ ? "valid: p >= 0 on the punch's face (its edges included)" : "invalid: " + why.str();
+  if (!s.valid_ && !prm.allow_unphysical) throw UnphysicalContactError(s.validity_);
+  s.elapsed_ = since_start();
+  s.stage_seconds_ = {t_critical, kernel_seconds, t_width - t_critical,
+                      s.elapsed_ - t_width - kernel_seconds};
+  return s;
+}
+
+}  // namespace movingpunch
