@@ -1420,7 +1420,15 @@ DampedSolution solve_damped(const DampedParams& prm) {
   std::vector<cplx> dphat;
   JacobiSeries dseries;
   if (frictional) {
-    if (have_change) dseries = js.minus(js_prev);
+    if (have_change) {
+      dseries = js.minus(js_prev);
+      // A profile's: the change lives in the collocated head (both tails
+      // are the half-plane's); the stress gain is read from it.
+      if (!cylinder) {
+        const Eigen::Index h = std::min<Eigen::Index>(dseries.size(), 4 * nd.n + 64);
+        dseries = JacobiSeries(s.exps_.front, dseries.coefficients().head(h));
+      }
+    }
     s.jtr_ = std::make_shared<const JacobiTransform>(
         js, kern->quadrature().panels.alpha_max * s.half_, have_change ? &dseries : nullptr);
     s.jtr_omega_ = kern->quadrature().panels.alpha_max * s.half_;
@@ -1497,19 +1505,19 @@ DampedSolution solve_damped(const DampedParams& prm) {
 
   // Gauss-Chebyshev (U) nodes and weights times g for surface_slope (friction:
   // Gauss-Jacobi).
+  // A profile's tail-extended series: nodes for its collocated head (the
+  // kernel is smooth; the tail's share is within series_truncation).
+  const int slope_terms =
+      static_cast<int>(std::min<Eigen::Index>(s.b_.size(), cylinder ? s.b_.size() : 4 * nd.n + 64));
   if (frictional) {
-    const int m = std::max(64, 2 * static_cast<int>(s.b_.size()) + 2);
+    const int m = std::max(64, 2 * slope_terms + 2);
     const JacobiRule& rule = cached_gauss_jacobi(m, s.exps_.front, s.exps_.back);
     for (int i = 0; i < m; ++i) {
       s.slope_r_.push_back(rule.x(i));
       s.slope_wg_.push_back(rule.w(i) / kPi * js.g(rule.x(i)));
     }
   } else {
-    // A profile's tail-extended series: nodes for its collocated head (the
-    // kernel is smooth; the tail's share is within series_truncation).
-    const int m = std::max(64, 2 * static_cast<int>(std::min<Eigen::Index>(
-                                       s.b_.size(), cylinder ? s.b_.size() : 4 * nd.n + 64)) +
-                                   2);
+    const int m = std::max(64, 2 * slope_terms + 2);
     for (int i = 1; i <= m; ++i) {
       const double th = i * kPi / (m + 1), r = std::cos(th);
       s.slope_r_.push_back(r);

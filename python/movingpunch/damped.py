@@ -52,7 +52,7 @@ from movingpunch._evaluations import ResultFields
 from movingpunch.contract import Points
 from movingpunch.errors import InvalidParameterError, SupercriticalSpeedError
 from movingpunch.fields import FloatArray
-from movingpunch.profiles import Profile, PunchProfile
+from movingpunch.profiles import Profile, PunchProfile, resolve_profile
 
 __all__ = [
     "DampedSolution",
@@ -295,8 +295,6 @@ def solve_damped(
     gives (K_back, K_front), ``end_exponents`` the exponents of p at its
     edges, gamma - 1 of the bounded case's: (-0.5, -0.5) without friction).
     """
-    from movingpunch.solver import resolve_profile
-
     shape = resolve_profile(radius, profile)
     inputs = _check_solve_inputs(vstar, kw, 1.0, load, nu, tol, kp)
     inputs["radius"] = shape.nominal_radius

@@ -47,6 +47,7 @@ __all__ = [
     "RoundedFlat",
     "check_profile",
     "profile_from_dict",
+    "resolve_profile",
 ]
 
 FloatArray = npt.NDArray[np.float64]
@@ -316,6 +317,35 @@ def check_profile(value: object) -> PunchProfile:
         parameter="profile",
         allowed="Cylinder, Flat, RoundedFlat or Profile",
     )
+
+
+def resolve_profile(radius: object, profile: object) -> PunchProfile:
+    """The punch of ``solve(radius=..., profile=...)``: ``profile`` (checked),
+    or ``Cylinder(radius)``. Both given: only if the profile has that very
+    radius (a Cylinder or a RoundedFlat's corners), else InvalidParameterError
+    naming ``radius``; neither: InvalidParameterError naming ``radius``."""
+    if profile is None:
+        if radius is None:
+            raise InvalidParameterError(
+                f"radius must be given ({params.range_text('radius')}, a cylinder) "
+                "unless profile is (mp.Cylinder, Flat, RoundedFlat or Profile)",
+                parameter="radius",
+                allowed=params.range_text("radius"),
+            )
+        return Cylinder(radius)  # type: ignore[arg-type]
+    shape = check_profile(profile)
+    if radius is not None:
+        r = params.check("radius", radius)
+        own = getattr(shape, "radius", None)
+        if own is None or own != r:
+            raise InvalidParameterError(
+                f"radius = {r!r} disagrees with profile = {shape.describe()}: give "
+                "radius (a cylinder) or profile, or both only when the profile has "
+                "that radius (a Cylinder or a RoundedFlat's corners)",
+                parameter="radius",
+                allowed="None when profile is given (or the profile's own radius)",
+            )
+    return shape
 
 
 _KEYS: Mapping[str, tuple[str, ...]] = {

@@ -45,7 +45,7 @@ from movingpunch.profiles import (
     Cylinder,
     Profile,
     PunchProfile,
-    check_profile,
+    resolve_profile,
 )
 
 if TYPE_CHECKING:
@@ -332,35 +332,6 @@ def solve(
             profile=shape,
         )
     return _solve_profile(shape, vstar, kw, load, nu, tol, allow_unphysical, n, kp)
-
-
-def resolve_profile(radius: object, profile: object) -> PunchProfile:
-    """The punch of ``solve(radius=..., profile=...)``: ``profile`` (checked),
-    or ``Cylinder(radius)``. Both given: only if the profile has that very
-    radius (a Cylinder or a RoundedFlat's corners), else InvalidParameterError
-    naming ``radius``; neither: InvalidParameterError naming ``radius``."""
-    if profile is None:
-        if radius is None:
-            raise InvalidParameterError(
-                f"radius must be given ({params.range_text('radius')}, a cylinder) "
-                "unless profile is (mp.Cylinder, Flat, RoundedFlat or Profile)",
-                parameter="radius",
-                allowed=params.range_text("radius"),
-            )
-        return Cylinder(radius)  # type: ignore[arg-type]
-    shape = check_profile(profile)
-    if radius is not None:
-        r = params.check("radius", radius)
-        own = getattr(shape, "radius", None)
-        if own is None or own != r:
-            raise InvalidParameterError(
-                f"radius = {r!r} disagrees with profile = {shape.describe()}: give "
-                "radius (a cylinder) or profile, or both only when the profile has "
-                "that radius (a Cylinder or a RoundedFlat's corners)",
-                parameter="radius",
-                allowed="None when profile is given (or the profile's own radius)",
-            )
-    return shape
 
 
 def _solve_profile(
