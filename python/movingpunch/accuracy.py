@@ -445,9 +445,15 @@ def _rung(
         abs(p.bottom_tensile - ref_peaks[k].bottom_tensile) for k, p in peaks.items()
     ]
     stress_est = [sols[k].stress_error_estimate for k in peaks]
-    bounded = all(ea[k] <= sols[k].error_estimate for k in ea) and all(
-        max(t, b) <= p.error_bound
-        for p, t, b in zip(peaks.values(), top, bot, strict=True)
+    # The actual error is known only to within the reference's own estimate
+    # (at its large fixed N round-off can dominate: a rounded flat with
+    # friction at N = 768 estimates 6e-10 and lies 4e-13 from the N = 16..512
+    # solutions, which agree to 3e-14).
+    bounded = all(
+        ea[k] <= sols[k].error_estimate + refs[k].error_estimate for k in ea
+    ) and all(
+        max(t, b) <= p.error_bound + ref_peaks[k].error_bound
+        for (k, p), t, b in zip(peaks.items(), top, bot, strict=True)
     )
     return Rung(
         tol=tol,

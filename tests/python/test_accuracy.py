@@ -415,3 +415,20 @@ def test_a_failed_rung_is_reported_and_the_others_run(
         report
     )
     assert np.isnan(report.columns()["error_a"][1])
+
+
+def test_accuracy_ladder_of_an_asymmetric_table_with_damping() -> None:
+    """A profile on the asymmetric solver (an asymmetric table, damped): every
+    rung's estimates bound its errors against the reference, allowing for the
+    reference's own estimate (its large fixed N has a round-off floor of its
+    own)."""
+    xs = [-1.5 + 0.005 * i for i in range(801)]
+    prof = mp.Profile(tuple(xs), tuple((x - 0.2) ** 2 / 200.0 for x in xs))
+    case = {"vstar": 0.2, "kw": 1.0, "load": 0.002, "damping": 0.5}
+    report = accuracy.accuracy_report(case, tols=(1e-4, 1e-8, 1e-12), profile=prof)
+    assert report is not None
+    assert report.scene.profile == prof
+    for r in report.rungs:
+        assert not r.failure, r.failure
+        assert r.bounded
+        assert r.error_a <= max(r.tol, 1e-12)
