@@ -774,7 +774,9 @@ class ScanMemo {
 // tail onto the load.
 
 // Gauss-Jacobi rules, cached by (n, a, b) (the projections reuse a few).
-const JacobiRule& cached_rule(int n, double a, double b) { return cached_gauss_jacobi(n, a, b); }
+std::shared_ptr<const JacobiRule> cached_rule(int n, double a, double b) {
+  return cached_gauss_jacobi(n, a, b);
+}
 
 // The nodes s and weights of a quadrature of int_{-1}^{1} F(s) (1 - s)^a (1 + s)^b ds
 // for F smooth between the profile's kinks at x = c + w s: pieces between
@@ -794,7 +796,8 @@ void weighted_nodes(const PunchProfile& prof, double c, double w, double a, doub
     const double lo = edges[k], hi = edges[k + 1];
     if (!(hi - lo > 1e-15)) continue;
     const bool left = lo == -1.0, right = hi == 1.0;
-    const JacobiRule& rule = cached_rule(M, right ? a : 0.0, left ? b : 0.0);
+    const auto held = cached_rule(M, right ? a : 0.0, left ? b : 0.0);
+    const JacobiRule& rule = *held;
     const double half = 0.5 * (hi - lo);
     for (Eigen::Index i = 0; i < rule.x.size(); ++i) {
       const double s = lo + half * (1.0 + rule.x(i));
@@ -838,7 +841,8 @@ class SlopeProjection {
       return;
     }
     const int M = std::max(16 * count + 64, 2048);
-    const JacobiRule& rule = cached_rule(M, a_, b_);
+    const auto held = cached_rule(M, a_, b_);
+    const JacobiRule& rule = *held;
     const std::vector<double>& h = norms(count);
     for (Eigen::Index j = 0; j < rule.x.size(); ++j) {
       basis(rule.x(j), count, P.data());
@@ -912,7 +916,8 @@ class SlopeProjection {
   // h_m = int Q_m^2 (1 - s)^a (1 + s)^b ds by a rule exact for them.
   const std::vector<double>& norms(int count) const {
     if (static_cast<int>(norms_.size()) >= count) return norms_;
-    const JacobiRule& rule = cached_rule(count + 2, a_, b_);
+    const auto held = cached_rule(count + 2, a_, b_);
+    const JacobiRule& rule = *held;
     norms_.assign(static_cast<std::size_t>(count), 0.0);
     std::vector<double> P(static_cast<std::size_t>(count));
     for (Eigen::Index i = 0; i < rule.x.size(); ++i) {
@@ -1432,8 +1437,8 @@ DampedSolution solve_damped(const DampedParams& prm) {
     s.jtr_ = std::make_shared<const JacobiTransform>(
         js, kern->quadrature().panels.alpha_max * s.half_, have_change ? &dseries : nullptr);
     s.jtr_omega_ = kern->quadrature().panels.alpha_max * s.half_;
-    s.atan_rule_ = cached_gauss_jacobi(js.size() + 64 + static_cast<int>(std::ceil(8.0 * s.half_)),
-                                       s.exps_.front, s.exps_.back);
+    s.atan_rule_ = *cached_gauss_jacobi(js.size() + 64 + static_cast<int>(std::ceil(8.0 * s.half_)),
+                                        s.exps_.front, s.exps_.back);
   }
   s.light_ = std::make_shared<const DampedSolution::Fine>(
       s.build_fine(2.0 * s.half_, have_change ? &db : nullptr, &dphat));
@@ -1511,7 +1516,8 @@ DampedSolution solve_damped(const DampedParams& prm) {
       static_cast<int>(std::min<Eigen::Index>(s.b_.size(), cylinder ? s.b_.size() : 4 * nd.n + 64));
   if (frictional) {
     const int m = std::max(64, 2 * slope_terms + 2);
-    const JacobiRule& rule = cached_gauss_jacobi(m, s.exps_.front, s.exps_.back);
+    const auto held = cached_gauss_jacobi(m, s.exps_.front, s.exps_.back);
+    const JacobiRule& rule = *held;
     for (int i = 0; i < m; ++i) {
       s.slope_r_.push_back(rule.x(i));
       s.slope_wg_.push_back(rule.w(i) / kPi * js.g(rule.x(i)));

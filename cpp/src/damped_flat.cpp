@@ -244,7 +244,8 @@ DampedSolution solve_damped_flat(const DampedParams& prm) {
   s.jtr_omega_ = kern->quadrature().panels.alpha_max * w;
   s.jtr_ =
       std::make_shared<const JacobiTransform>(js, s.jtr_omega_, have_change ? &dseries : nullptr);
-  s.atan_rule_ = cached_gauss_jacobi(js.size() + 64 + static_cast<int>(std::ceil(8.0 * w)), al, be);
+  s.atan_rule_ =
+      *cached_gauss_jacobi(js.size() + 64 + static_cast<int>(std::ceil(8.0 * w)), al, be);
   std::vector<cplx> dphat;
   const Eigen::VectorXd unused_db;
   s.light_ = std::make_shared<const DampedSolution::Fine>(

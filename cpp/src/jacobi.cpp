@@ -140,14 +140,21 @@ JacobiRule gauss_jacobi(int n, double a, double b) {
   return r;
 }
 
-const JacobiRule& cached_gauss_jacobi(int n, double a, double b) {
+std::shared_ptr<const JacobiRule> cached_gauss_jacobi(int n, double a, double b) {
   static std::mutex mu;
-  static std::map<std::tuple<int, double, double>, std::unique_ptr<const JacobiRule>> cache;
+  static std::map<std::tuple<int, double, double>, std::shared_ptr<const JacobiRule>> cache;
+  {
+    const std::lock_guard<std::mutex> lock(mu);
+    const auto it = cache.find({n, a, b});
+    if (it != cache.end()) return it->second;
+  }
+  // Built outside the lock (another thread may build the same rule: both
+  // are the same); a holder keeps its rule alive when the cache is emptied.
+  auto rule = std::make_shared<const JacobiRule>(gauss_jacobi(n, a, b));
   const std::lock_guard<std::mutex> lock(mu);
-  if (cache.size() > 256) cache.clear();  // a long sweep over many exponents
-  auto& slot = cache[{n, a, b}];
-  if (!slot) slot = std::make_unique<const JacobiRule>(gauss_jacobi(n, a, b));
-  return *slot;
+  if (cache.size() >= 256) cache.clear();  // a long sweep over many exponents
+  cache.emplace(std::make_tuple(n, a, b), rule);
+  return rule;
 }
 
 ChebyshevNodes jacobi_collocation_nodes(int n, double alpha) {
@@ -204,7 +211,8 @@ JacobiSeries::JacobiSeries(double alpha, double beta, Eigen::VectorXd c)
     throw std::invalid_argument(
         "JacobiSeries: need alpha + beta = 1 with alpha in (0, 1), or alpha + beta = -1 with "
         "alpha in (-1, 0)");
-  const JacobiRule& rule = cached_gauss_jacobi(size() + 60, alpha_, beta_);
+  const auto held = cached_gauss_jacobi(size() + 60, alpha_, beta_);
+  const JacobiRule& rule = *held;
   far_x_ = rule.x;
   far_wg_.resize(rule.x.size());
   for (Eigen::Index i = 0; i < rule.x.size(); ++i) far_wg_(i) = rule.w(i) * g(rule.x(i));
@@ -386,7 +394,7 @@ double JacobiSeries::min_g() const {
 JacobiTransform::JacobiTransform(const JacobiSeries& s, double omega_max,
                                  const JacobiSeries* second) {
   const int m = s.size() + static_cast<int>(std::ceil(std::fabs(omega_max))) + 40;
-  rule_ = cached_gauss_jacobi(m, s.alpha(), s.beta());
+  rule_ = *cached_gauss_jacobi(m, s.alpha(), s.beta());
   gw_.resize(m);
   gw2_ = Eigen::VectorXd::Zero(m);
   for (int i = 0; i < m; ++i) {

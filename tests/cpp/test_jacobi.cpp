@@ -125,3 +125,20 @@ TEST(Jacobi, ExponentsAndCoupling) {
   EXPECT_NEAR(t0.Wq, 0.3, 1e-15);         // (1 - 2 nu)/2
   EXPECT_NEAR(t0.Uq, 0.8, 1e-15);         // c2/(2 (c2 - 1)), c2 = 8/3
 }
+
+TEST(Jacobi, CachedRulesOutliveTheCachesClearing) {
+  // A rule held while other rules fill the cache past its capacity (256: it
+  // is then emptied) stays valid: the profile projections hold one rule while
+  // fetching the norms' (a long fuzz run once crashed on a dangling one).
+  const auto held = mp::cached_gauss_jacobi(40, 0.3, -0.3);
+  for (int k = 0; k < 300; ++k) mp::cached_gauss_jacobi(6 + k % 7, 0.1 + 1e-3 * k, 0.2);
+  const mp::JacobiRule fresh = mp::gauss_jacobi(40, 0.3, -0.3);
+  ASSERT_EQ(held->x.size(), fresh.x.size());
+  for (Eigen::Index i = 0; i < fresh.x.size(); ++i) {
+    EXPECT_EQ(held->x(i), fresh.x(i));
+    EXPECT_EQ(held->w(i), fresh.w(i));
+  }
+  // And the cache still answers (a new entry after the clearing).
+  const auto again = mp::cached_gauss_jacobi(40, 0.3, -0.3);
+  EXPECT_EQ(again->x(0), fresh.x(0));
+}

@@ -60,10 +60,9 @@ struct JacobiRule {
   Eigen::VectorXd x, w;
 };
 JacobiRule gauss_jacobi(int n, double a, double b);
-// The same rule from a process-wide cache keyed on (n, a, b) (thread-safe;
-// the reference stays valid until the cache holds 256 rules and is emptied
-// by the next miss: use it at once).
-const JacobiRule& cached_gauss_jacobi(int n, double a, double b);
+// The same rule from a process-wide cache keyed on (n, a, b) (thread-safe; at
+// 256 rules the cache is emptied, and the pointer keeps its rule alive).
+std::shared_ptr<const JacobiRule> cached_gauss_jacobi(int n, double a, double b);
 
 // The collocation nodes of the rule above in ChebyshevNodes' layout (so that
 // the damped solver's width evaluation applies unchanged): r = zeros of

@@ -1,0 +1,117 @@
+"""What each punch profile costs, on the symmetric and the asymmetric solver.
+
+For the paper's layer (V* 0.2, kw 1, nu 0.2, P/(mu h) 0.002) and each profile
+(the cylinder R/h 100, a rounded flat b/h 0.3 with R/h 100, a symmetric
+tabulated parabola, the same parabola shifted by 0.2 h (asymmetric), a flat
+punch b/h 0.5), each with no damping or friction, damping 0.5, friction 0.3
+and both: the cold solve (kernel cache cleared first) and the warm one (the
+table cached, another load), medians over --repeat solves, and their ratio to
+the plain NumPy/SciPy peer's cylinder solve (../shared/bench/peer_numpy.py,
+N = 24, the paper's problem) run in the same process. Prints the machine's
+load average; never asserts a time.
+
+    .venv/bin/python benchmarks/bench_profiles.py [--repeat 5]
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib.util
+import os
+import statistics
+import sys
+import time
+from pathlib import Path
+from types import ModuleType
+from typing import Any
+
+import numpy as np
+
+import movingpunch as mp
+
+BASE = {"vstar": 0.2, "kw": 1.0, "nu": 0.2}
+LOAD = 0.002
+PEER = Path(__file__).resolve().parents[2] / "shared" / "bench" / "peer_numpy.py"
+
+
+def _table(x0: float) -> mp.Profile:
+    xs = np.linspace(-1.5, 2.5, 801) if x0 else np.linspace(-2.0, 2.0, 801)
+    return mp.Profile(tuple(xs), tuple((xs - x0) ** 2 / 200.0))
+
+
+PROFILES: dict[str, mp.PunchProfile] = {
+    "cylinder": mp.Cylinder(100.0),
+    "rounded flat": mp.RoundedFlat(0.3, 100.0),
+    "table": _table(0.0),
+    "asymmetric table": _table(0.2),
+    "flat": mp.Flat(0.5),
+}
+EXTRAS: dict[str, dict[str, float]] = {
+    "-": {},
+    "damping 0.5": {"damping": 0.5},
+    "friction 0.3": {"friction": 0.3},
+    "both": {"damping": 0.5, "friction": 0.3},
+}
+
+
+def _peer() -> ModuleType | None:
+    if not PEER.exists():
+        return None
+    spec = importlib.util.spec_from_file_location("peer_numpy", PEER)
+    assert spec is not None
+    assert spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    sys.modules["peer_numpy"] = module
+    spec.loader.exec_module(module)
+    return module
+
+
+def _median_ms(run: Any, repeat: int, cold: bool) -> float:
+    times = []
+    for k in range(repeat):
+        if cold:
+            mp.clear_kernel_cache()
+        t0 = time.perf_counter()
+        run(LOAD * (1.0 + 1e-3 * (k + 1)))
+        times.append(1e3 * (time.perf_counter() - t0))
+    return statistics.median(times)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeat", type=int, default=5)
+    args = parser.parse_args()
+    print(f"load average: {os.getloadavg()[0]:.2f} ({os.cpu_count()} cores)")
+    peer = _peer()
+    peer_ms = float("nan")
+    if peer is not None:
+        t = []
+        for _ in range(args.repeat):
+            t0 = time.perf_counter()
+            peer.solve(0.2, 0.2, 1.0, 100.0, 500.0)
+            t.append(1e3 * (time.perf_counter() - t0))
+        peer_ms = statistics.median(t)
+        print(f"peer (NumPy/SciPy, cylinder, N = 24): {peer_ms:.1f} ms")
+    header = (
+        f"{'profile':18} {'options':13} {'cold ms':>9} {'warm ms':>9} {'warm/peer':>9}"
+    )
+    print(header)
+    print("-" * len(header))
+    for name, prof in PROFILES.items():
+        for label, extra in EXTRAS.items():
+
+            def run(load: float, prof: Any = prof, extra: Any = extra) -> object:
+                return mp.solve(**BASE, load=load, profile=prof, **extra)
+
+            try:
+                cold = _median_ms(run, args.repeat, cold=True)
+                run(LOAD)
+                warm = _median_ms(run, args.repeat, cold=False)
+            except mp.MovingPunchError as exc:
+                print(f"{name:18} {label:13} {type(exc).__name__}")
+                continue
+            print(f"{name:18} {label:13} {cold:9.1f} {warm:9.1f} {warm / peer_ms:9.3f}")
+
+
+if __name__ == "__main__":
+    main()
