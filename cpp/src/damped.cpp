@@ -536,6 +536,17 @@ RefinementEstimate refinement_estimate(const std::vector<int>& sizes,
   return r;
 }
 
+LadderStop ladder_stop(double tol, const RefinementEstimate& a, double last_a, double scale_a,
+                       const RefinementEstimate& b, double last_b, double scale_b) {
+  const bool ok_a = a.estimate <= tol * scale_a;
+  const bool ok_b = b.estimate <= tol * scale_b;
+  if (ok_a && ok_b) return LadderStop::converged;
+  const double root_eps = std::sqrt(kEps);
+  const bool end_a = ok_a || a.at_floor || (a.stagnated && last_a <= root_eps * scale_a);
+  const bool end_b = ok_b || b.at_floor || (b.stagnated && last_b <= root_eps * scale_b);
+  return end_a && end_b ? LadderStop::stalled : LadderStop::go_on;
+}
+
 double max_abs_sine_series(const Eigen::VectorXd& b) {
   const Eigen::Index n = b.size();
   const int m = 8 * static_cast<int>(n + 1) + 64;
@@ -572,7 +583,9 @@ struct WidthEval {
 // extra unknown is square and linear:
 //   sum_i W_i G_i [1/(r_i - s_k) - w K(w (s_k - r_i))] + gamma = s_k  (k = 1..N+1),
 // g = -(w/(phi1 lambda)) G and c = -w gamma; equilibrium gives lambda(w).
-WidthEval eval_width(const ChebyshevNodes& nd, double w, const DampedKernel& K, double phi1) {
+// The (N + 1) x (N + 1) collocation matrix for a trial half-width w:
+// W_i [1/(r_i - s_k) - w K(w (s_k - r_i))] and the centre unknown's column of ones.
+Eigen::MatrixXd collocation_matrix(const ChebyshevNodes& nd, double w, const DampedKernel& K) {
   const int n = nd.n;
   Eigen::MatrixXd M(n + 1, n + 1);
   // Column-major: the kernel's values column by column, in one batch.
@@ -589,6 +602,12 @@ WidthEval eval_width(const ChebyshevNodes& nd, double w, const DampedKernel& K, 
       M(k, i) = nd.w(i) * (1.0 / d - w * kv[static_cast<std::size_t>(i) * (n + 1) + k]);
     }
   M.col(n).setOnes();
+  return M;
+}
+
+WidthEval eval_width(const ChebyshevNodes& nd, double w, const DampedKernel& K, double phi1) {
+  const int n = nd.n;
+  const Eigen::MatrixXd M = collocation_matrix(nd, w, K);
   const Eigen::VectorXd x = M.partialPivLu().solve(nd.s);
   WidthEval e;
   e.G = x.head(n);
@@ -938,21 +957,7 @@ WidthEval eval_width_profile(const ChebyshevNodes& nd, double w, const DampedKer
                              const SlopeProjection& proj, const PunchProfile& prof,
                              double c_guess) {
   const int n = nd.n;
-  Eigen::MatrixXd M(n + 1, n + 1);
-  thread_local std::vector<double> u, kv;
-  u.resize(static_cast<std::size_t>(n) * (n + 1));
-  kv.resize(u.size());
-  for (int i = 0; i < n; ++i)
-    for (int k = 0; k <= n; ++k)
-      u[static_cast<std::size_t>(i) * (n + 1) + k] = -w * (nd.r(i) - nd.s(k));
-  K.many(u.data(), kv.data(), u.size());
-  for (int i = 0; i < n; ++i)
-    for (int k = 0; k <= n; ++k) {
-      const double d = nd.r(i) - nd.s(k);
-      M(k, i) = nd.w(i) * (1.0 / d - w * kv[static_cast<std::size_t>(i) * (n + 1) + k]);
-    }
-  M.col(n).setOnes();
-  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(M);
+  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(collocation_matrix(nd, w, K));
   Eigen::MatrixXd B(n + 1, n + 1);
   std::vector<double> row(static_cast<std::size_t>(n + 1));
   for (int k = 0; k <= n; ++k) {
@@ -1242,21 +1247,14 @@ DampedSolution solve_damped(const DampedParams& prm) {
       est_e = refinement_estimate(done_n, d_ends, floor_e);
       est_p = refinement_estimate(done_n, d_p, floor_p);
       if (prm.n == 0 && d_p.size() >= 2) {
-        // Stop (after at least three sizes, so that the rate is seen) when both meet tol, or when
-        // neither can improve further: the changes are round-off (at the floor) or stopped
-        // shrinking at a level that round-off amplification can explain (sqrt(eps)).
-        const bool ok_e = est_e.estimate <= prm.tol * scale_e;
-        const bool ok_p = est_p.estimate <= prm.tol * pmax;
-        const double root_eps = std::sqrt(kEps);
-        const bool end_e =
-            ok_e || est_e.at_floor || (est_e.stagnated && d_ends.back() <= root_eps * scale_e);
-        const bool end_p =
-            ok_p || est_p.at_floor || (est_p.stagnated && d_p.back() <= root_eps * pmax);
-        if (ok_e && ok_p) {
+        // Stop after at least three sizes, so that the rate is seen.
+        const LadderStop stop =
+            ladder_stop(prm.tol, est_e, d_ends.back(), scale_e, est_p, d_p.back(), pmax);
+        if (stop == LadderStop::converged) {
           converged = true;
           break;
         }
-        if (end_e && end_p) {
+        if (stop == LadderStop::stalled) {
           stalled = true;
           break;
         }

@@ -152,18 +152,13 @@ DampedSolution solve_damped_flat(const DampedParams& prm) {
     est_k.estimate = std::max(est_k.estimate, d_k.back() + floor_k);
     est_g.estimate = std::max(est_g.estimate, d_g.back() + floor_g);
     if (prm.n == 0 && d_k.size() >= 2) {
-      const bool ok_k = est_k.estimate <= prm.tol * scale_k;
-      const bool ok_g = est_g.estimate <= prm.tol * gmax;
-      const double root_eps = std::sqrt(kEps);
-      const bool end_k =
-          ok_k || est_k.at_floor || (est_k.stagnated && d_k.back() <= root_eps * scale_k);
-      const bool end_g =
-          ok_g || est_g.at_floor || (est_g.stagnated && d_g.back() <= root_eps * gmax);
-      if (ok_k && ok_g) {
+      const LadderStop stop =
+          ladder_stop(prm.tol, est_k, d_k.back(), scale_k, est_g, d_g.back(), gmax);
+      if (stop == LadderStop::converged) {
         converged = true;
         break;
       }
-      if (end_k && end_g) {
+      if (stop == LadderStop::stalled) {
         stalled = true;
         break;
       }

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import itertools
 import math
+from typing import Any
 
 import numpy as np
 import pytest
@@ -85,12 +86,14 @@ def _half_plane(s: float, nu: float) -> tuple[float, float, float]:
     return s * nl / rayleigh, wq, (2 - s - 2 * nl * nt) / (s * nl)
 
 
-def _independent_ends(
-    s: float, kw: float, nu: float, damping: float, f: float, lam: float, n: int
-) -> tuple[float, float]:
-    """(-b, a) from a plain Gauss-Jacobi collocation of
-    f Phi p + (1/pi) int p/(xi - x) - int p Lr(x - xi)/phi1 = -x/(R P phi1)
-    with Lr(u) = (1/pi) Re int_0^inf [-i(M1 - phi1) - f (Wq - Wq_inf)] e^{i alpha u}."""
+def _independent_rule(
+    s: float, kw: float, nu: float, damping: float, f: float, n: int
+) -> tuple[Any, ...]:
+    """What an independent Gauss-Jacobi collocation needs: phi1, the end
+    exponents (front, back), the nodes r and weights w (roots_jacobi), the
+    collocation points sk, and the regular kernel's samples g at the
+    Gauss-Legendre nodes alpha (weights) up to 45/nT:
+    g = -i(M1 - phi1) - f (Wq - Wq_inf) from the independent layer."""
     phi1, wq_inf, phi = _half_plane(s, nu)
     front = 0.5 + math.atan(f * phi) / math.pi
     back = 1 - front
@@ -108,6 +111,16 @@ def _independent_ends(
     for j, t in enumerate(alpha):
         zn, zq = _top_states(float(t), s, kw, nu, damping)
         g[j] = -1j * (-zn[1] - phi1) - f * (zq[1] - wq_inf)
+    return phi1, front, back, r, w, sk, alpha, weight, g
+
+
+def _independent_ends(
+    s: float, kw: float, nu: float, damping: float, f: float, lam: float, n: int
+) -> tuple[float, float]:
+    """(-b, a) from a plain Gauss-Jacobi collocation of
+    f Phi p + (1/pi) int p/(xi - x) - int p Lr(x - xi)/phi1 = -x/(R P phi1)
+    with Lr(u) = (1/pi) Re int_0^inf [-i(M1 - phi1) - f (Wq - Wq_inf)] e^{i alpha u}."""
+    phi1, _, _, r, w, sk, alpha, weight, g = _independent_rule(s, kw, nu, damping, f, n)
 
     def load_of(width: float) -> tuple[float, float]:
         u = width * (sk[:, None] - r[None, :])

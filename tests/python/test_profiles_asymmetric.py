@@ -20,20 +20,18 @@ Every anchor is independent of the code path under test:
 
 from __future__ import annotations
 
-import itertools
 import math
 
 import numpy as np
 import pytest
 from scipy.interpolate import CubicSpline
 from scipy.optimize import brentq
-from scipy.special import roots_jacobi, roots_legendre
 
 import movingpunch as mp
 from movingpunch import _core
 from movingpunch.damped import DampedSolution
 from movingpunch.errors import InvalidParameterError
-from test_friction import _half_plane, _top_states
+from test_friction import _independent_rule
 
 BASE = {"vstar": 0.2, "kw": 1.0, "load": 0.002}
 R = 100.0
@@ -229,23 +227,7 @@ def _independent_profile_ends(
     f Phi p + (1/pi) int p/(xi - x) - int p Lr(x - xi)/phi1 = -f'(x)/(P phi1),
     the centre from the consistency condition (brentq) per width and the
     width from equilibrium (brentq)."""
-    phi1, wq_inf, phi = _half_plane(s, nu)
-    front = 0.5 + math.atan(f * phi) / math.pi
-    back = 1 - front
-    r, w = roots_jacobi(n, front, back)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        sk, _ = roots_jacobi(n + 1, -front, -back)
-    nt = math.sqrt(1 - s)
-    x, wl = roots_legendre(16)
-    edges = np.linspace(0.0, 45.0 / nt, 401)
-    alpha = np.concatenate(
-        [0.5 * (b - a) * x + 0.5 * (a + b) for a, b in itertools.pairwise(edges)]
-    )
-    weight = np.concatenate([0.5 * (b - a) * wl for a, b in itertools.pairwise(edges)])
-    g = np.empty(alpha.size, complex)
-    for j, t in enumerate(alpha):
-        zn, zq = _top_states(float(t), s, kw, nu, damping)
-        g[j] = -1j * (-zn[1] - phi1) - f * (zq[1] - wq_inf)
+    phi1, _, _, r, w, sk, alpha, weight, g = _independent_rule(s, kw, nu, damping, f, n)
 
     def solve_at(width: float) -> tuple[float, float]:
         u = width * (sk[:, None] - r[None, :])

@@ -503,6 +503,16 @@ struct RefinementEstimate {
 RefinementEstimate refinement_estimate(const std::vector<int>& sizes,
                                        const std::vector<double>& changes, double floor);
 
+// The N ladder's verdict on two refined quantities (the contact's ends, or a
+// flat punch's end coefficients, and the pressure), from their estimates,
+// last changes and scales: converged when both estimates meet tol times
+// their scales; stalled when neither can improve further (its change at the
+// round-off floor, or stagnated at a level round-off amplification can
+// explain, sqrt(eps) of its scale); else go on.
+enum class LadderStop { go_on, converged, stalled };
+LadderStop ladder_stop(double tol, const RefinementEstimate& a, double last_a, double scale_a,
+                       const RefinementEstimate& b, double last_b, double scale_b);
+
 // max over theta in [0, pi] of |sum_k b_k sin((k + 1) theta)| (= max over r of
 // |sqrt(1 - r^2) sum b_k U_k(r)|), sampled at 8 (len(b) + 1) + 64 angles.
 double max_abs_sine_series(const Eigen::VectorXd& b);
