@@ -20,7 +20,9 @@ Every anchor is independent of the code path under test:
 
 from __future__ import annotations
 
+import json
 import math
+from typing import Any
 
 import numpy as np
 import pytest
@@ -309,3 +311,54 @@ def test_a_contact_wider_than_an_asymmetric_table_is_refused() -> None:
     with pytest.raises(InvalidParameterError) as info:
         mp.solve(vstar=0.2, kw=1.0, load=1.0, profile=prof, damping=0.5)
     assert "table" in str(info.value)
+
+
+# ---------------------------------------------------------------------------
+# Everywhere: the CLI and scenes
+
+
+def test_the_issues_cli_command_solves_a_frictional_flat_punch_on_pasternak(
+    run_cli: Any,
+) -> None:
+    """`solve --profile flat --half-width 0.5 --friction 0.3 --kp 0.2`: the
+    numbers are the API's (JSON), both end coefficients shown."""
+    args = ["solve", "--vstar", "0.2", "--kw", "1", "--load", "0.002"]
+    args += ["--profile", "flat", "--half-width", "0.5", "--friction", "0.3"]
+    args += ["--kp", "0.2"]
+    out = run_cli(*args, "--json")
+    assert out.returncode == 0, out.stderr
+    got = json.loads(out.stdout)
+    s = mp.solve(
+        vstar=0.2, kw=1.0, load=0.002, kp=0.2, friction=0.3, profile=mp.Flat(0.5)
+    )
+    assert got["end_coefficients"] == pytest.approx(list(s.end_coefficients), rel=1e-12)
+    assert got["contact_interval"] == pytest.approx([-0.5, 0.5], abs=0)
+    text = run_cli(*args)
+    assert text.returncode == 0, text.stderr
+    assert "K_back, K_front" in text.stdout
+
+
+def test_a_scene_with_a_rounded_flat_damping_and_friction(tmp_path: Any) -> None:
+    """A scene file's [params.profile] with damping and friction runs on the
+    asymmetric solver and writes the API's pressure."""
+    from movingpunch.scene import load_scene
+    from movingpunch.scene._run import run_scene
+
+    path = tmp_path / "rf.toml"
+    path.write_text(
+        'name = "rf"\n[params]\nvstar = 0.2\nkw = 1.0\nload = 0.002\n'
+        "damping = 0.5\nfriction = 0.3\n"
+        '[params.profile]\nkind = "rounded_flat"\nhalf_width = 0.3\nradius = 100.0\n'
+        "[outputs]\ncontact_width = true\npressure = { x = [-0.7, 0.7], points = 15 }\n"
+    )
+    scene = load_scene(path)
+    assert scene.profile == mp.RoundedFlat(0.3, 100.0)
+    result = run_scene(scene)
+    s = mp.solve(
+        vstar=0.2, kw=1.0, load=0.002, damping=0.5, friction=0.3,
+        profile=mp.RoundedFlat(0.3, 100.0),
+    )  # fmt: skip
+    (curve,) = result.outputs["pressure"].curves
+    np.testing.assert_allclose(curve.y, s.pressure(curve.x), rtol=0, atol=1e-12)
+    assert isinstance(result.solutions[0], DampedSolution)
+    assert result.solutions[0].contact_interval == s.contact_interval
