@@ -362,3 +362,32 @@ def test_a_scene_with_a_rounded_flat_damping_and_friction(tmp_path: Any) -> None
     np.testing.assert_allclose(curve.y, s.pressure(curve.x), rtol=0, atol=1e-12)
     assert isinstance(result.solutions[0], DampedSolution)
     assert result.solutions[0].contact_interval == s.contact_interval
+
+
+@pytest.mark.parametrize(
+    ("prof", "extra"),
+    [
+        (mp.RoundedFlat(0.3, 100.0), {"damping": 0.5}),
+        (_parabola(0.2), {"friction": 0.3}),
+    ],
+    ids=["rounded-flat-damped", "asymmetric-table-friction"],
+)
+def test_a_load_sweep_gives_the_same_contacts_in_both_directions(
+    prof: mp.PunchProfile, extra: dict[str, float]
+) -> None:
+    """Rising and falling loads (each from an empty kernel cache: the tables
+    and first guesses differ) give the same contacts to round-off."""
+    loads = np.geomspace(1e-3, 4e-3, 5)
+
+    def sweep(order: np.ndarray) -> dict[float, tuple[float, float]]:
+        mp.clear_kernel_cache()
+        return {
+            float(x): mp.solve(
+                **BASE | {"load": float(x)}, profile=prof, **extra
+            ).contact_interval
+            for x in order
+        }
+
+    up, down = sweep(loads), sweep(loads[::-1])
+    for x in up:
+        assert up[x] == pytest.approx(down[x], abs=1e-13)
