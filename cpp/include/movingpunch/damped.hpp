@@ -516,6 +516,10 @@ LadderStop ladder_stop(double tol, const RefinementEstimate& a, double last_a, d
 // max over theta in [0, pi] of |sum_k b_k sin((k + 1) theta)| (= max over r of
 // |sqrt(1 - r^2) sum b_k U_k(r)|), sampled at 8 (len(b) + 1) + 64 angles.
 double max_abs_sine_series(const Eigen::VectorXd& b);
+// The same for a long series (a profile's tail-extended one): the first
+// `head` terms locate the three largest values, the whole series is sampled
+// finely around them (the tail only shifts them a little).
+double max_abs_sine_series_long(const Eigen::VectorXd& b, int head);
 
 // The regular kernel of the damped equation,
 //   K(u) = (1/phi1) int_0^inf [Re(M1 - phi1) sin(alpha u) + Im(M1 - phi1) cos(alpha u)] d alpha,
