@@ -497,7 +497,8 @@ def _stress_rows(peaks: StressPeaks) -> list[tuple[str, str]]:
         ("bottom, most tensile x/h", _fmt(peaks.bottom_tensile_x)),
         ("centre, top (0, 0)", _fmt(peaks.centre_top)),
         ("centre, bottom (0, -h)", _fmt(peaks.centre_bottom)),
-        ("searched on 0 <= x/h <=", _fmt(peaks.search_extent)),
+        # |x| <= extent: the symmetric solver's half 0 <= x covers it by symmetry.
+        ("searched on |x|/h <=", _fmt(peaks.search_extent)),
         ("error bound (peaks)", f"{peaks.error_bound:.2e}"),
         *(("warning", text) for text in peaks.warnings),
     ]

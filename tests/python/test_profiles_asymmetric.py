@@ -336,6 +336,13 @@ def test_the_issues_cli_command_solves_a_frictional_flat_punch_on_pasternak(
     text = run_cli(*args)
     assert text.returncode == 0, text.stderr
     assert "K_back, K_front" in text.stdout
+    # The stress section's search range is |x| <= extent on the asymmetric
+    # solver (both sides searched).
+    base = ["solve", "--vstar", "0.2", "--kw", "1", "--load", "0.002"]
+    stress = run_cli(*base, "--profile", "rounded_flat", "--half-width", "0.3",
+                     "--radius", "100", "--damping", "0.5", "--stress")  # fmt: skip
+    assert stress.returncode == 0, stress.stderr
+    assert "searched on |x|/h <=" in stress.stdout
 
 
 def test_a_scene_with_a_rounded_flat_damping_and_friction(tmp_path: Any) -> None:
