@@ -16,8 +16,6 @@
 
 #include <complex>
 #include <memory>
-#include <mutex>
-#include <utility>
 #include <vector>
 
 #include <Eigen/Dense>
