@@ -157,5 +157,6 @@ void bind_errors(pybind11::module_& m);
 void bind_layer(pybind11::module_& m);
 void bind_contact(pybind11::module_& m);
 void bind_damped(pybind11::module_& m);
+void bind_zones(pybind11::module_& m);
 
 }  // namespace movingpunch::bindings

@@ -17,4 +17,5 @@ PYBIND11_MODULE(_core, m) {
   movingpunch::bindings::bind_layer(m);
   movingpunch::bindings::bind_contact(m);
   movingpunch::bindings::bind_damped(m);
+  movingpunch::bindings::bind_zones(m);
 }

@@ -1652,6 +1652,39 @@ DampedSolution solve_damped(const DampedParams& prm) {
   return s;
 }
 
+DampedSolution zone_solution(const DampedParams& prm, std::shared_ptr<const DampedKernel> kernel,
+                             double centre, double half, const Eigen::VectorXd& b) {
+  if (prm.friction != 0.0) throw std::invalid_argument("zone_solution: frictionless zones only");
+  if (!(half > 0.0) || !std::isfinite(centre) || b.size() < 1)
+    throw std::invalid_argument("zone_solution: a zone needs half > 0, a finite centre and b");
+  DampedSolution s;
+  s.params_ = prm;
+  s.vr_ = rayleigh_vstar(prm.nu);
+  s.vcr_ = critical_vstar(prm.kw, prm.nu, prm.kp);
+  s.model_ = kernel->model_ptr();
+  s.kernel_ = std::move(kernel);
+  s.punch_ = std::make_shared<const PunchProfile>(prm.punch());
+  s.centre_ = centre;
+  s.half_ = half;
+  s.b_ = b;
+  s.n_ = static_cast<int>(b.size());
+  s.light_ = std::make_shared<const DampedSolution::Fine>(s.build_fine(2.0 * half));
+  const int m = std::max(64, 2 * static_cast<int>(b.size()) + 2);
+  for (int i = 1; i <= m; ++i) {
+    const double th = i * kPi / (m + 1), r = std::cos(th);
+    s.slope_r_.push_back(r);
+    s.slope_wg_.push_back(std::sin(th) * std::sin(th) / (m + 1) * u_series(s.b_, r));
+  }
+  s.max_p_ = max_abs_sine_series(b);
+  s.margin_ = u_series_minimum(b);
+  s.min_p_ = kInf;
+  for (int i = 0; i <= 400; ++i) {
+    const double r = -1.0 + 2.0 * i / 400.0;
+    s.min_p_ = std::min(s.min_p_, u_series(b, r) * std::sqrt(std::max(0.0, 1.0 - r * r)));
+  }
+  return s;
+}
+
 // ---------------------------------------------------------------------------
 // Outputs
 

@@ -35,6 +35,7 @@ from movingpunch.damped import DampedSolution
 from movingpunch.fields import StressField, StressPeaks
 from movingpunch.profiles import Cylinder, Flat, Profile, PunchProfile, RoundedFlat
 from movingpunch.scene import Scene, SceneError, SceneResult, bundled_scenes
+from movingpunch.zones import Punch, PunchResult, ZonedSolution, solve_punches
 from movingpunch.solver import (
     PRESETS,
     Solution,
@@ -72,7 +73,9 @@ __all__ = [
     "MovingPunchError",
     "OutputError",
     "Profile",
+    "Punch",
     "PunchProfile",
+    "PunchResult",
     "RoundedFlat",
     "Scene",
     "SceneError",
@@ -82,6 +85,7 @@ __all__ = [
     "StressPeaks",
     "SupercriticalSpeedError",
     "UnphysicalContactError",
+    "ZonedSolution",
     "__version__",
     "bundled_scenes",
     "clear_kernel_cache",
@@ -93,4 +97,5 @@ __all__ = [
     "phi2",
     "rayleigh_vstar",
     "solve",
+    "solve_punches",
 ]

@@ -63,6 +63,16 @@ class Evaluations:
         return found if found is not None else Cylinder(self.radius)
 
     @property
+    def contact_zones(self) -> tuple[tuple[float, float], ...]:
+        """Every contact zone (x_left, x_right)/h from left to right: the one
+        ``contact_interval`` of a single contact; several when the contact
+        has separated or a train of punches is solved
+        (``movingpunch.zones.ZonedSolution``, whose ``contact_interval`` is
+        their hull)."""
+        back, front = self.contact_interval
+        return ((float(back), float(front)),)
+
+    @property
     def end_coefficients(self) -> tuple[float, float]:
         """(K_back, K_front): the stress-intensity-like coefficients of a
         pressure that is square-root singular at the contact's ends (a flat
@@ -168,7 +178,12 @@ class Evaluations:
         friction = float(getattr(self, "friction", 0.0))
         # Damping or friction: the distributions are not even, even on a
         # symmetric contact (a flat punch's face).
-        asymmetric = float(getattr(self, "damping", 0.0)) > 0.0 or friction > 0.0
+        # Several zones or punches: even only when they say so (``_even``).
+        asymmetric = (
+            float(getattr(self, "damping", 0.0)) > 0.0
+            or friction > 0.0
+            or not getattr(self, "_even", True)
+        )
         surface = self._impl.surface_stress
         if singular:
             # A flat punch: sigma_x(x, 0) ~ -phi2 K/sqrt(2 pi d) at its edges.

@@ -92,6 +92,8 @@ class ContactSolution(Protocol):
     @property
     def contact_interval(self) -> tuple[float, float]: ...
     @property
+    def contact_zones(self) -> tuple[tuple[float, float], ...]: ...
+    @property
     def half_width(self) -> float: ...
     @property
     def centre(self) -> float: ...
@@ -186,6 +188,7 @@ CONTRACT_FIELDS: tuple[str, ...] = (
     "end_exponents",
     "a",
     "contact_interval",
+    "contact_zones",
     "half_width",
     "centre",
     "p0",

@@ -39,10 +39,15 @@ from movingpunch._evaluate import (
     _pointwise,
 )
 from movingpunch._evaluations import ResultFields
-from movingpunch.errors import InvalidParameterError
+from movingpunch.errors import (
+    ConvergenceError,
+    InvalidParameterError,
+    UnphysicalContactError,
+)
 from movingpunch.params import PRESETS
 from movingpunch.profiles import (
     Cylinder,
+    Flat,
     Profile,
     PunchProfile,
     resolve_profile,
@@ -210,25 +215,8 @@ def solve(
     kp: float = ...,
     profile: PunchProfile | None = ...,
     friction: Literal[0] = ...,
+    contact: Literal["single"],
 ) -> Solution: ...
-
-
-@overload
-def solve(
-    *,
-    vstar: float,
-    kw: float,
-    radius: float | None = ...,
-    load: float,
-    nu: float = ...,
-    tol: float | str = ...,
-    allow_unphysical: bool = ...,
-    n: int | None = ...,
-    damping: float,
-    kp: float = ...,
-    profile: PunchProfile | None = ...,
-    friction: float = ...,
-) -> ContactSolution: ...
 
 
 @overload
@@ -245,7 +233,8 @@ def solve(
     damping: float = ...,
     kp: float = ...,
     profile: PunchProfile | None = ...,
-    friction: float,
+    friction: float = ...,
+    contact: str = ...,
 ) -> ContactSolution: ...
 
 
@@ -263,6 +252,7 @@ def solve(
     kp: float = 0.0,
     profile: PunchProfile | None = None,
     friction: float = 0.0,
+    contact: str = "auto",
 ) -> ContactSolution:
     """Solves the contact problem of a rigid punch sliding over the layer.
 
@@ -314,24 +304,44 @@ def solve(
     the end exponents of cot(pi gamma_back) = f Phi(vstar, nu).
     """
     from movingpunch.damped import check_damping, check_friction, solve_damped
+    from movingpunch.zones import check_contact, separate
 
     shape = resolve_profile(radius, profile)
+    mode = check_contact(contact)
+    flag = _check_flag("allow_unphysical", allow_unphysical)
     asymmetric_shape = isinstance(shape, Profile) and not shape.symmetric
-    if check_damping(damping) > 0 or check_friction(friction) > 0 or asymmetric_shape:
-        return solve_damped(
+    damp, fric = check_damping(damping), check_friction(friction)
+    # Several zones: frictionless punches with bounded ends (a flat punch's
+    # contact is its face). The single solve may then be unphysical.
+    zoned = mode == "auto" and fric == 0.0 and not isinstance(shape, Flat)
+    single: ContactSolution
+    if damp > 0 or fric > 0 or asymmetric_shape:
+        single = solve_damped(
             vstar=vstar,
             kw=kw,
             load=load,
             nu=nu,
             damping=damping,
             tol=tol,
-            allow_unphysical=allow_unphysical,
+            allow_unphysical=flag or zoned,
             n=n,
             kp=kp,
             friction=friction,
             profile=shape,
         )
-    return _solve_profile(shape, vstar, kw, load, nu, tol, allow_unphysical, n, kp)
+    else:
+        single = _solve_profile(shape, vstar, kw, load, nu, tol, flag or zoned, n, kp)
+    if single.valid or not zoned:
+        return single
+    # The single contact is unphysical: find the contact set (zones.py).
+    try:
+        return separate(single, damping=damp, kp=single.kp, n=n)
+    except (UnphysicalContactError, ConvergenceError) as err:
+        if flag:
+            return single
+        raise UnphysicalContactError(
+            f"{single.validity}; the search for several contact zones failed: {err}"
+        ) from err
 
 
 def _solve_profile(

@@ -335,6 +335,9 @@ class DampedSolution {
  private:
   friend DampedSolution solve_damped(const DampedParams& p);
   friend DampedSolution solve_damped_flat(const DampedParams& p);
+  friend DampedSolution zone_solution(const DampedParams& p,
+                                      std::shared_ptr<const DampedKernel> kernel, double centre,
+                                      double half, const Eigen::VectorXd& b);
   DampedParams params_{};
   double end_k_back_ = 0, end_k_front_ = 0, end_k_err_ = 0;
   double centre_ = 0, half_ = 0, drag_ = 0, vcr_ = 0, vr_ = 0, err_ = 0, elapsed_ = 0;
@@ -486,6 +489,16 @@ DampedSolution solve_damped(const DampedParams& p);
 // Gauss-Jacobi collocation (jacobi_flat_nodes) and equilibrium, over the N
 // ladder until the end coefficients meet tol. solve_damped dispatches here.
 DampedSolution solve_damped_flat(const DampedParams& p);
+
+// One zone of a several-zone contact (zones.hpp) as a solution of its own:
+// the pressure p = (P/h) sqrt(1 - r^2) sum b_n U_n(r), r = (x - centre)/half,
+// P = p.load (the zone's share of the load), frictionless and bounded at both
+// ends, with the outputs of the layer's response to it (surface slope,
+// stress, displacement, fields). The several-zone result sums its zones'
+// outputs (superposition); its own checks and estimates replace this one's
+// (valid(), the estimates and drag() are not set here).
+DampedSolution zone_solution(const DampedParams& p, std::shared_ptr<const DampedKernel> kernel,
+                             double centre, double half, const Eigen::VectorXd& b);
 
 // Error estimate of the last member of a sequence x_0, x_1, ... computed at
 // sizes n_0 < n_1 < ..., from the changes d_k = |x_k - x_{k-1}| (changes[k-1]

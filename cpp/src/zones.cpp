@@ -1,0 +1,698 @@
+// Several contact zones (zones.hpp; docs/theory.md section 15).
+#include "movingpunch/zones.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "movingpunch/collocation.hpp"
+#include "movingpunch/dispersion.hpp"
+#include "movingpunch/errors.hpp"
+#include "solve_skeleton.hpp"
+
+namespace movingpunch {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kEps = 2.220446049250313e-16;
+
+// Gauss-Legendre rule of n points on [-1, 1] (Newton on P_n from the
+// Chebyshev guesses).
+struct Legendre {
+  std::vector<double> x, w;
+};
+const Legendre& gauss_legendre8() {
+  static const Legendre rule = [] {
+    Legendre g;
+    constexpr int m = 8;
+    for (int i = 0; i < m; ++i) {
+      double z = std::cos(kPi * (i + 0.75) / (m + 0.5)), dp = 1.0;
+      for (int it = 0; it < 100; ++it) {
+        double p0 = 1.0, p1 = z;
+        for (int k = 2; k <= m; ++k) {
+          const double p2 = ((2.0 * k - 1.0) * z * p1 - (k - 1.0) * p0) / k;
+          p0 = p1;
+          p1 = p2;
+        }
+        dp = m * (z * p1 - p0) / (z * z - 1.0);
+        const double dz = p1 / dp;
+        z -= dz;
+        if (std::fabs(dz) < 1e-16) break;
+      }
+      g.x.push_back(z);
+      g.w.push_back(2.0 / ((1.0 - z * z) * dp * dp));
+    }
+    return g;
+  }();
+  return rule;
+}
+
+// The collocation system of one topology at one size N, and its state after
+// eval(): per zone the nodal values G (p = sqrt(1 - r^2) G(r), absolute:
+// units mu), the consistency constants and the loads.
+class System {
+ public:
+  System(const ZonesParams& p, const std::vector<PunchProfile>& prof, const DampedKernel& K, int n,
+         double slope_scale)
+      : p_(p), prof_(prof), K_(K), n_(n), nz_(static_cast<int>(p.zones.size())),
+        np_(static_cast<int>(p.punches.size())), nd_(chebyshev_nodes(n)), S_(slope_scale),
+        phi1_(K.model().phi1()) {
+    // b = C G: b_m = 2 sum_i W_i U_m(r_i) G_i (exact for the degree-(N - 1) G).
+    C_.resize(n, n);
+    for (int i = 0; i < n; ++i) {
+      double um1 = 0.0, u = 1.0;
+      for (int m = 0; m < n; ++m) {
+        C_(m, i) = 2.0 * nd_.w(i) * u;
+        const double un = 2.0 * nd_.r(i) * u - um1;
+        um1 = u;
+        u = un;
+      }
+    }
+    // Pairs of consecutive zones of one punch (the rigid-indentation conditions).
+    for (int k = 0; k < np_; ++k) {
+      int last = -1;
+      for (int j = 0; j < nz_; ++j) {
+        if (p.zones[static_cast<std::size_t>(j)].punch != k) continue;
+        if (last >= 0) pairs_.emplace_back(last, j);
+        last = j;
+      }
+    }
+  }
+
+  int unknowns() const { return 2 * nz_; }
+  int n() const { return n_; }
+  double centre(int j) const { return c_[static_cast<std::size_t>(j)]; }
+  double half(int j) const { return w_[static_cast<std::size_t>(j)]; }
+  const std::vector<std::pair<int, int>>& pairs() const { return pairs_; }
+  int punch_of(int j) const { return p_.zones[static_cast<std::size_t>(j)].punch; }
+  double slope(int k, double x) const {
+    return prof_[static_cast<std::size_t>(k)].slope(x - p_.punches[static_cast<std::size_t>(k)].at);
+  }
+  double height(int k, double x) const {
+    return prof_[static_cast<std::size_t>(k)].height(x -
+                                                     p_.punches[static_cast<std::size_t>(k)].at);
+  }
+  // Coefficients b (U series) of zone j's G.
+  Eigen::VectorXd coefficients(int j) const { return C_ * G_.col(j); }
+  double load(int j) const { return loads_(j); }
+
+  // Sets the ends e = (l_0, r_0, l_1, ...) and solves; F the scaled end
+  // conditions. False when the ends are not admissible (a zone inverted,
+  // zones overlapping, a zone beyond its table) or the system is singular.
+  bool eval(const Eigen::VectorXd& e, Eigen::VectorXd& F) {
+    c_.assign(static_cast<std::size_t>(nz_), 0.0);
+    w_.assign(static_cast<std::size_t>(nz_), 0.0);
+    for (int j = 0; j < nz_; ++j) {
+      const double l = e(2 * j), r = e(2 * j + 1);
+      if (!(r > l) || !std::isfinite(l) || !std::isfinite(r)) return false;
+      if (j > 0 && !(l > e(2 * j - 1))) return false;
+      const int k = punch_of(j);
+      const PunchProfile& pf = prof_[static_cast<std::size_t>(k)];
+      const double at = p_.punches[static_cast<std::size_t>(k)].at;
+      if (l - at < pf.lower() || r - at > pf.upper()) return false;
+      c_[static_cast<std::size_t>(j)] = 0.5 * (l + r);
+      w_[static_cast<std::size_t>(j)] = 0.5 * (r - l);
+    }
+    const int n = n_, rows = nz_ * (n + 1), cols = nz_ * (n + 1);
+    Eigen::MatrixXd M = Eigen::MatrixXd::Zero(rows, cols);
+    Eigen::VectorXd rhs(rows);
+    // The kernel's values, zone pair by zone pair, in one batch each.
+    std::vector<double> u(static_cast<std::size_t>(n) * (n + 1)), kv(u.size());
+    Eigen::MatrixXd Z(n + 1, n);
+    for (int j = 0; j < nz_; ++j) {
+      const double cj = c_[static_cast<std::size_t>(j)], wj = w_[static_cast<std::size_t>(j)];
+      for (int k = 0; k <= n; ++k)
+        rhs(j * (n + 1) + k) = slope(punch_of(j), cj + wj * nd_.s(k));
+      for (int i = 0; i < nz_; ++i) {
+        const double ci = c_[static_cast<std::size_t>(i)], wi = w_[static_cast<std::size_t>(i)];
+        for (int q = 0; q < n; ++q)
+          for (int k = 0; k <= n; ++k)
+            u[static_cast<std::size_t>(q) * (n + 1) + k] = cj + wj * nd_.s(k) - ci - wi * nd_.r(q);
+        K_.many(u.data(), kv.data(), u.size());
+        auto block = M.block(j * (n + 1), i * (n + 1), n + 1, n);
+        for (int q = 0; q < n; ++q)
+          for (int k = 0; k <= n; ++k)
+            block(k, q) = phi1_ * nd_.w(q) * wi * kv[static_cast<std::size_t>(q) * (n + 1) + k];
+        if (i == j) {
+          for (int q = 0; q < n; ++q)
+            for (int k = 0; k <= n; ++k) block(k, q) += phi1_ * nd_.w(q) / (nd_.s(k) - nd_.r(q));
+        } else {
+          // (1/pi) int sqrt(1 - r^2) U_m(r)/(z - r) dr = q^(m+1), q = z - sgn(z) sqrt(z^2 - 1).
+          for (int k = 0; k <= n; ++k) {
+            const double z = (cj + wj * nd_.s(k) - ci) / wi;
+            if (!(std::fabs(z) > 1.0)) return false;
+            const double qz = z - std::copysign(std::sqrt((z - 1.0) * (z + 1.0)), z);
+            double qm = qz;
+            for (int m = 0; m < n; ++m) {
+              Z(k, m) = qm;
+              qm *= qz;
+            }
+          }
+          block.noalias() += phi1_ * (Z * C_);
+        }
+      }
+      M.block(j * (n + 1), j * (n + 1) + n, n + 1, 1).setOnes();
+    }
+    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(M);
+    const Eigen::VectorXd x = lu.solve(rhs);
+    if (!x.allFinite()) return false;
+    G_.resize(n, nz_);
+    eps_.resize(nz_);
+    loads_.resize(nz_);
+    for (int j = 0; j < nz_; ++j) {
+      G_.col(j) = x.segment(j * (n + 1), n);
+      eps_(j) = x(j * (n + 1) + n);
+      loads_(j) = kPi * w_[static_cast<std::size_t>(j)] * nd_.w.dot(G_.col(j));
+    }
+    b_.resize(nz_);
+    for (int j = 0; j < nz_; ++j) b_[static_cast<std::size_t>(j)] = C_ * G_.col(j);
+    F.resize(2 * nz_);
+    int row = 0;
+    for (int j = 0; j < nz_; ++j) F(row++) = eps_(j) / S_;
+    for (int k = 0; k < np_; ++k) {
+      double sum = 0.0;
+      for (int j = 0; j < nz_; ++j)
+        if (punch_of(j) == k) sum += loads_(j);
+      const double P = p_.punches[static_cast<std::size_t>(k)].load;
+      F(row++) = (sum - P) / P;
+    }
+    for (const auto& [j, jn] : pairs_) {
+      const double a = e(2 * j + 1), b = e(2 * jn);
+      const int k = punch_of(j);
+      const double jump = gap_integral(a, b) - (height(k, b) - height(k, a));
+      F(row++) = jump / (S_ * (w_[static_cast<std::size_t>(j)] + w_[static_cast<std::size_t>(jn)]));
+    }
+    return F.allFinite();
+  }
+
+  // v'(x, 0) of the current state, any x (inside a zone: the principal value).
+  double vslope(double x) const {
+    double sum = 0.0;
+    thread_local std::vector<double> u, kv;
+    u.resize(static_cast<std::size_t>(n_));
+    kv.resize(u.size());
+    for (int i = 0; i < nz_; ++i) {
+      const double ci = c_[static_cast<std::size_t>(i)], wi = w_[static_cast<std::size_t>(i)];
+      const Eigen::VectorXd& b = b_[static_cast<std::size_t>(i)];
+      const double z = (x - ci) / wi;
+      double cauchy = 0.0;
+      if (std::fabs(z) <= 1.0) {
+        double tkm1 = 1.0, tk = z;
+        for (int m = 0; m < n_; ++m) {
+          cauchy += b(m) * tk;
+          const double tn = 2.0 * z * tk - tkm1;
+          tkm1 = tk;
+          tk = tn;
+        }
+      } else {
+        const double qz = z - std::copysign(std::sqrt((z - 1.0) * (z + 1.0)), z);
+        double qm = qz;
+        for (int m = 0; m < n_; ++m) {
+          cauchy += b(m) * qm;
+          qm *= qz;
+        }
+      }
+      for (int q = 0; q < n_; ++q) u[static_cast<std::size_t>(q)] = x - ci - wi * nd_.r(q);
+      K_.many(u.data(), kv.data(), u.size());
+      double kern = 0.0;
+      for (int q = 0; q < n_; ++q)
+        kern += nd_.w(q) * G_(q, i) * kv[static_cast<std::size_t>(q)];
+      sum += cauchy + wi * kern;
+    }
+    return phi1_ * sum;
+  }
+
+  // int_a^b v'(x) dx between two zone ends (v' has square-root cusps at
+  // both: x = m - h cos(theta), 16 panels of 8 Gauss points in theta).
+  double gap_integral(double a, double b) const {
+    const double mid = 0.5 * (a + b), hh = 0.5 * (b - a);
+    const Legendre& gl = gauss_legendre8();
+    double sum = 0.0;
+    constexpr int panels = 16;
+    for (int pnl = 0; pnl < panels; ++pnl) {
+      const double t0 = kPi * pnl / panels, th = 0.5 * kPi / panels;
+      for (std::size_t g = 0; g < gl.x.size(); ++g) {
+        const double t = t0 + th * (1.0 + gl.x[g]);
+        sum += th * gl.w[g] * hh * std::sin(t) * vslope(mid - hh * std::cos(t));
+      }
+    }
+    return sum;
+  }
+
+ private:
+  const ZonesParams& p_;
+  const std::vector<PunchProfile>& prof_;
+  const DampedKernel& K_;
+  int n_, nz_, np_;
+  ChebyshevNodes nd_;
+  double S_, phi1_;
+  Eigen::MatrixXd C_, G_;
+  Eigen::VectorXd eps_, loads_;
+  std::vector<Eigen::VectorXd> b_;
+  std::vector<double> c_, w_;
+  std::vector<std::pair<int, int>> pairs_;
+};
+
+// Newton's method on the ends from e (in place); evaluations counted. J: the
+// Jacobian of the scaled conditions (in the ends), reused from the previous
+// size when `have_j` (the conditions are scaled alike at every size) and
+// updated by Broyden's rule after each step; recomputed by forward
+// differences when a step fails with an updated one.
+void newton(System& sys, Eigen::VectorXd& e, int& evaluations, Eigen::MatrixXd& J, bool& have_j) {
+  const int m = sys.unknowns();
+  Eigen::VectorXd F, Ft;
+  if (!sys.eval(e, F))
+    throw ConvergenceError("several contact zones: the starting zones are not admissible (N = " +
+                           std::to_string(sys.n()) + ")");
+  ++evaluations;
+  double norm = F.lpNorm<Eigen::Infinity>();
+  if (J.rows() != m) have_j = false;
+  bool fresh = false;
+  auto jacobian = [&] {
+    J.resize(m, m);
+    for (int q = 0; q < m; ++q) {
+      const int j = q / 2;
+      const double h = 1e-7 * std::max(0.5 * (e(2 * j + 1) - e(2 * j)), 1e-9);
+      const double out = q % 2 == 0 ? -h : h;  // widen the zone: stays admissible
+      Eigen::VectorXd et = e;
+      et(q) += out;
+      if (!sys.eval(et, Ft)) {
+        et(q) = e(q) - out;
+        if (!sys.eval(et, Ft))
+          throw ConvergenceError("several contact zones: no admissible Jacobian step (N = " +
+                                 std::to_string(sys.n()) + ")");
+        J.col(q) = (F - Ft) / out;
+      } else {
+        J.col(q) = (Ft - F) / out;
+      }
+      ++evaluations;
+    }
+    have_j = true;
+    fresh = true;
+  };
+  bool moved = false;
+  for (int it = 0; it < 200; ++it) {
+    if (norm < 1e-14) break;
+    if (!have_j) jacobian();
+    const Eigen::VectorXd dx = J.fullPivLu().solve(-F);
+    if (!dx.allFinite()) {
+      if (!fresh) {
+        have_j = false;
+        continue;
+      }
+      throw ConvergenceError("several contact zones: singular Jacobian (N = " +
+                             std::to_string(sys.n()) + ")");
+    }
+    // Keep every zone and every gap above a tenth of its present size.
+    double t = 1.0;
+    for (int j = 0; j < m / 2; ++j) {
+      const double w = e(2 * j + 1) - e(2 * j), dw = dx(2 * j + 1) - dx(2 * j);
+      if (dw < 0.0) t = std::min(t, 0.9 * w / -dw);
+      if (j > 0) {
+        const double g = e(2 * j) - e(2 * j - 1), dg = dx(2 * j) - dx(2 * j - 1);
+        if (dg < 0.0) t = std::min(t, 0.9 * g / -dg);
+      }
+    }
+    bool accepted = false;
+    for (int bt = 0; bt < 40; ++bt, t *= 0.5) {
+      const Eigen::VectorXd en = e + t * dx;
+      if (!sys.eval(en, Ft)) continue;
+      ++evaluations;
+      const double nn = Ft.lpNorm<Eigen::Infinity>();
+      if (nn < (1.0 - 1e-4 * t) * norm || nn < 1e-14) {
+        const Eigen::VectorXd s = t * dx;
+        J += ((Ft - F) - J * s) * s.transpose() / s.squaredNorm();  // Broyden
+        fresh = false;
+        // A short or weak step: the next one from a new Jacobian.
+        if (t < 1.0 || nn > 0.25 * norm) have_j = false;
+        e = en;
+        F = Ft;
+        norm = nn;
+        accepted = true;
+        moved = true;
+        break;
+      }
+    }
+    if (!accepted) {
+      if (!fresh) {  // an updated Jacobian misled: a new one
+        have_j = false;
+        continue;
+      }
+      if (norm < 1e-10) break;  // at the round-off floor of the conditions
+      std::ostringstream msg;
+      msg << "several contact zones: Newton's method stalled at residual " << norm
+          << " (N = " << sys.n() << ")";
+      throw ConvergenceError(msg.str());
+    }
+    if (t == 1.0 && dx.lpNorm<Eigen::Infinity>() <= 4.0 * kEps * e.lpNorm<Eigen::Infinity>()) break;
+  }
+  // The state of the solution (the last evaluation may have been a trial).
+  if (moved || fresh) {
+    if (!sys.eval(e, F)) throw ConvergenceError("several contact zones: lost the solution");
+    ++evaluations;
+  }
+  if (!(F.lpNorm<Eigen::Infinity>() < 1e-9)) {
+    std::ostringstream msg;
+    msg << "several contact zones: the end conditions were not met (residual "
+        << F.lpNorm<Eigen::Infinity>() << ", N = " << sys.n() << ")";
+    throw ConvergenceError(msg.str());
+  }
+}
+
+}  // namespace
+
+DampedSolution ZoneResult::solution() const {
+  return zone_solution(params, kernel, 0.5 * (left + right), 0.5 * (right - left), b);
+}
+
+ZonesSolution solve_zones(const ZonesParams& prm) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const DampedParams& L = prm.layer;
+  require_in_range("vstar", L.vstar, 0.0, 1.0, false, true);
+  require_in_range("kw", L.kw, 1e-12, kInf, false, false, true);
+  require_in_range("nu", L.nu, 0.0, 0.5, false, true);
+  require_in_range("damping", L.damping, 0.0, kInf, false, true);
+  require_in_range("kp", L.kp, 0.0, kMaxKp, false, false);
+  require_in_range("tol", L.tol, 1e-14, 1e-2, false, false);
+  if (L.friction != 0.0)
+    throw InvalidParameter("friction", "0 (several zones are frictionless)",
+                           "several contact zones: friction must be 0, got " +
+                               std::to_string(L.friction));
+  if (L.n != 0 && (L.n < 8 || L.n > 256 || L.n % 2 != 0))
+    throw InvalidParameter("n", "0 (automatic) or an even integer in [8, 256]",
+                           "n must be 0 (automatic) or an even integer in [8, 256] for several "
+                           "zones, got " +
+                               std::to_string(L.n));
+  if (prm.punches.empty()) throw InvalidParameter("punches", "at least one", "no punches given");
+  std::vector<PunchProfile> prof;
+  for (const ZonePunch& pk : prm.punches) {
+    require_in_range("load", pk.load, 0.0, kInf, true, true);
+    if (!std::isfinite(pk.at))
+      throw InvalidParameter("at", "finite", "a punch's position `at` must be finite");
+    prof.push_back(pk.punch());
+    if (prof.back().singular_ends())
+      throw InvalidParameter("profile", "a profile with bounded ends (not a flat punch)",
+                             "several contact zones: a flat punch's contact is its face; trains "
+                             "take cylinders, rounded flats and tables");
+  }
+  const int nz = static_cast<int>(prm.zones.size());
+  std::vector<int> count(prm.punches.size(), 0);
+  for (int j = 0; j < nz; ++j) {
+    const ZoneSpan& z = prm.zones[static_cast<std::size_t>(j)];
+    if (z.punch < 0 || z.punch >= static_cast<int>(prm.punches.size()))
+      throw InvalidParameter("zones", "punch indices in range", "a zone names no punch");
+    if (!(z.right > z.left) || (j > 0 && !(z.left > prm.zones[static_cast<std::size_t>(j - 1)].right)))
+      throw InvalidParameter("zones", "disjoint intervals sorted from left to right",
+                             "the starting zones must be disjoint and sorted");
+    ++count[static_cast<std::size_t>(z.punch)];
+  }
+  for (int c : count)
+    if (c == 0) throw InvalidParameter("zones", "at least one per punch", "a punch has no zone");
+
+  ZonesSolution out;
+  out.rayleigh_vstar = rayleigh_vstar(L.nu);
+  out.critical_vstar = critical_vstar(L.kw, L.nu, L.kp);
+  if (!(L.vstar < out.rayleigh_vstar) || (!(L.damping > 0.0) && !(L.vstar < out.critical_vstar)))
+    throw SupercriticalSpeedError(L.vstar, out.critical_vstar, out.rayleigh_vstar);
+  out.phi1 = wave_constants(L.vstar, L.nu).phi1;
+
+  Eigen::VectorXd e(2 * nz);
+  for (int j = 0; j < nz; ++j) {
+    e(2 * j) = prm.zones[static_cast<std::size_t>(j)].left;
+    e(2 * j + 1) = prm.zones[static_cast<std::size_t>(j)].right;
+  }
+  // The kernel on the span of the zones and the checks beside them.
+  // |x - t| for x on a zone or in a punch's checked surroundings (2 hull
+  // widths beside its zones) and t on any zone.
+  auto range_need = [&](const Eigen::VectorXd& ends) {
+    double hull = 0.0;
+    for (std::size_t k = 0; k < prm.punches.size(); ++k) {
+      double lo = kInf, hi = -kInf;
+      for (int j = 0; j < nz; ++j)
+        if (prm.zones[static_cast<std::size_t>(j)].punch == static_cast<int>(k)) {
+          lo = std::min(lo, ends(2 * j));
+          hi = std::max(hi, ends(2 * j + 1));
+        }
+      hull = std::max(hull, hi - lo);
+    }
+    return ends(2 * nz - 1) - ends(0) + 2.0 * hull + 1.0;
+  };
+  std::shared_ptr<const DampedKernel> kern;
+  auto kernel = [&](double need) -> const DampedKernel& {
+    if (!kern || kern->range() < need) {
+      bool built = false;
+      kern = cached_damped_kernel(L.vstar, L.kw, L.nu, L.damping, need, 2.0 * need, &built, L.kp,
+                                  0.0);
+      out.kernel_builds += built ? 1 : 0;
+    }
+    return *kern;
+  };
+  double S = 0.0;
+  for (int j = 0; j < nz; ++j) {
+    const int k = prm.zones[static_cast<std::size_t>(j)].punch;
+    const double at = prm.punches[static_cast<std::size_t>(k)].at;
+    S = std::max({S, std::fabs(prof[static_cast<std::size_t>(k)].slope(e(2 * j) - at)),
+                  std::fabs(prof[static_cast<std::size_t>(k)].slope(e(2 * j + 1) - at))});
+  }
+  if (!(S > 0.0)) S = 1e-3;
+
+  // The N ladder (or the given N, with N/2 for the estimate).
+  std::vector<int> sizes;
+  if (L.n != 0) {
+    sizes = {std::max(16, 2 * (L.n / 4)), L.n};
+  } else {
+    for (int n : detail::kSizes)
+      if (n >= 24 && n <= 256) sizes.push_back(n);
+  }
+  std::vector<int> done;
+  std::vector<double> d_ends, d_p;
+  Eigen::VectorXd e_prev;
+  std::vector<Eigen::VectorXd> b_prev;
+  std::unique_ptr<System> sys;
+  Eigen::MatrixXd jac;
+  bool have_jac = false;
+  RefinementEstimate est_e, est_p;
+  double pmax = 0.0;
+  bool converged = false;
+  for (int n : sizes) {
+    sys = std::make_unique<System>(prm, prof, kernel(range_need(e)), n, S);
+    newton(*sys, e, out.iterations, jac, have_jac);
+    if (kern->range() < range_need(e)) {  // the ends moved out: a longer table
+      sys = std::make_unique<System>(prm, prof, kernel(range_need(e)), n, S);
+      newton(*sys, e, out.iterations, jac, have_jac);
+    }
+    std::vector<Eigen::VectorXd> b(static_cast<std::size_t>(nz));
+    pmax = 0.0;
+    for (int j = 0; j < nz; ++j) {
+      b[static_cast<std::size_t>(j)] = sys->coefficients(j);
+      pmax = std::max(pmax, max_abs_sine_series(b[static_cast<std::size_t>(j)]));
+    }
+    done.push_back(n);
+    if (e_prev.size() == e.size()) {
+      d_ends.push_back((e - e_prev).lpNorm<Eigen::Infinity>());
+      double dp = 0.0;
+      for (int j = 0; j < nz; ++j) {
+        const Eigen::VectorXd& bj = b[static_cast<std::size_t>(j)];
+        const Eigen::VectorXd& bp = b_prev[static_cast<std::size_t>(j)];
+        Eigen::VectorXd db = Eigen::VectorXd::Zero(std::max(bj.size(), bp.size()));
+        db.head(bj.size()) += bj;
+        db.head(bp.size()) -= bp;
+        dp = std::max(dp, max_abs_sine_series(db));
+      }
+      d_p.push_back(dp);
+      double wmax = 0.0;
+      for (int j = 0; j < nz; ++j) wmax = std::max(wmax, 0.5 * (e(2 * j + 1) - e(2 * j)));
+      const double span = std::max(std::fabs(e(0)), std::fabs(e(2 * nz - 1))) + wmax;
+      est_e = refinement_estimate(done, d_ends, 64.0 * kEps * span);
+      est_p = refinement_estimate(done, d_p, 64.0 * kEps * pmax);
+      const LadderStop stop =
+          ladder_stop(L.tol, est_e, d_ends.back(), wmax, est_p, d_p.back(), pmax);
+      if (stop == LadderStop::converged) {
+        converged = true;
+        break;
+      }
+      if (stop == LadderStop::stalled) break;
+    }
+    e_prev = e;
+    b_prev = b;
+  }
+  out.collocation_n = sys->n();
+  out.error_estimate = est_e.estimate;
+  out.pressure_error_estimate = est_p.estimate;
+  double wmax = 0.0;
+  for (int j = 0; j < nz; ++j) wmax = std::max(wmax, 0.5 * (e(2 * j + 1) - e(2 * j)));
+  if (!converged) {
+    std::ostringstream w;
+    w << "zone ends: error estimate " << out.error_estimate << " h exceeds tol * (largest zone "
+      << "half-width) = " << L.tol * wmax << " h at the largest size N = " << out.collocation_n
+      << " per zone";
+    if (out.pressure_error_estimate > L.tol * pmax)
+      w << "; pressure error estimate " << out.pressure_error_estimate << " above tol * max p";
+    out.warnings.push_back(w.str());
+  }
+  {
+    Eigen::VectorXd F;
+    sys->eval(e, F);
+    out.residual = F.lpNorm<Eigen::Infinity>();
+  }
+
+  // The zones (their solutions are built on demand: ZoneResult::solution).
+  for (int j = 0; j < nz; ++j) {
+    ZoneResult z;
+    z.punch = sys->punch_of(j);
+    z.left = e(2 * j);
+    z.right = e(2 * j + 1);
+    z.load = sys->load(j);
+    z.params = L;
+    z.params.load = z.load;
+    z.params.profile = ProfileKind::cylinder;
+    z.params.radius = 1.0;
+    z.params.half_width = 0.0;
+    z.params.table_x.clear();
+    z.params.table_y.clear();
+    z.kernel = kern;
+    const double scale = z.load != 0.0 ? z.load : 1.0;
+    z.b = sys->coefficients(j) / scale;
+    const double sign = z.load < 0 ? -1.0 : 1.0;
+    double rmin = 0.0;
+    z.margin = u_series_minimum(z.b, &rmin) * sign;
+    z.margin_x = sys->centre(j) + sys->half(j) * rmin;
+    z.min_pressure = kInf;
+    for (int i = 0; i <= 400; ++i) {
+      const double r = -1.0 + 2.0 * i / 400.0;
+      z.min_pressure = std::min(z.min_pressure,
+                                sign * u_series(z.b, r) * std::sqrt(std::max(0.0, 1.0 - r * r)));
+    }
+    out.zones.push_back(std::move(z));
+  }
+  // Per punch: where the indentation is taken, and the drag.
+  const int np = static_cast<int>(prm.punches.size());
+  out.drag.assign(static_cast<std::size_t>(np), 0.0);
+  double total = 0.0;
+  for (int k = 0; k < np; ++k) {
+    int best = -1;
+    for (int j = 0; j < nz; ++j)
+      if (out.zones[static_cast<std::size_t>(j)].punch == k &&
+          (best < 0 || out.zones[static_cast<std::size_t>(j)].load >
+                           out.zones[static_cast<std::size_t>(best)].load))
+        best = j;
+    const double xc = sys->centre(best);
+    out.indentation_x.push_back(xc);
+    out.indentation_height.push_back(sys->height(k, xc));
+    double drag = 0.0;
+    for (int j = 0; j < nz; ++j) {
+      if (out.zones[static_cast<std::size_t>(j)].punch != k) continue;
+      const Eigen::VectorXd b = sys->coefficients(j);
+      const int m = std::max(64, 2 * sys->n() + 2);
+      const double c = sys->centre(j), w = sys->half(j);
+      for (int i = 1; i <= m; ++i) {
+        const double th = i * kPi / (m + 1), r = std::cos(th);
+        drag += kPi * w * std::sin(th) * std::sin(th) / (m + 1) * u_series(b, r) *
+                sys->slope(k, c + w * r);
+      }
+    }
+    out.drag_total += drag;
+    total += prm.punches[static_cast<std::size_t>(k)].load;
+    out.drag[static_cast<std::size_t>(k)] = drag / prm.punches[static_cast<std::size_t>(k)].load;
+  }
+  out.drag_total /= total;
+  // The surface stress's error: sigma_x = -phi2 p - (1/pi) Re int (M2 -
+  // phi2) p^ e^{i alpha x} d alpha is linear in p, and |dp^| <= int |dp| <=
+  // 2 w max |dp| per zone: |d sigma_x| <= (|phi2| + (2 w/pi) int |M2 - phi2|)
+  // max |dp| summed over the zones, with dp the pressure's error (the
+  // ladder's estimate) plus the ends' error moving p by about pmax (da/w)(1 +
+  // 1/sqrt(2 d)) at a relative distance d >= 1e-3 from an end; plus round-off.
+  {
+    out.max_pressure = pmax / total;
+    const DampedQuadrature& quad = kern->quadrature();
+    const double phi2 = kern->model().phi2();
+    double im2 = 0.0;
+    for (std::size_t i = 0; i < quad.m2.size(); ++i)
+      im2 += quad.panels.weight[i] * std::abs(quad.m2[i] - phi2);
+    double bound = 0.0;
+    for (int j = 0; j < nz; ++j) {
+      const double gain = std::fabs(phi2) + 2.0 * sys->half(j) * im2 / kPi;
+      const double ends =
+          pmax * (out.error_estimate / sys->half(j)) * (1.0 + 1.0 / std::sqrt(2e-3));
+      bound += gain * (out.pressure_error_estimate + ends);
+    }
+    out.stress_error_estimate =
+        bound / total + 64.0 * kEps * (1.0 + std::fabs(phi2)) * out.max_pressure * nz;
+  }
+  // Complementarity beside the zones: each punch's gap
+  // f_k(x) - delta_k - v(x), from its nearest zone end (where it is 0), on
+  // its contact's hull and 2 hull widths beyond it on both sides.
+  out.min_gap = kInf;
+  const Legendre& gl = gauss_legendre8();
+  for (int k = 0; k < np; ++k) {
+    std::vector<int> mine;
+    for (int j = 0; j < nz; ++j)
+      if (sys->punch_of(j) == k) mine.push_back(j);
+    const double lo = e(2 * mine.front()), hi = e(2 * mine.back() + 1);
+    const double reach = 2.0 * (hi - lo);
+    const PunchProfile& pf = prof[static_cast<std::size_t>(k)];
+    const double at = prm.punches[static_cast<std::size_t>(k)].at;
+    for (int j : mine)
+      out.gap_scale = std::max(out.gap_scale, sys->half(j) * std::max(std::fabs(sys->slope(k, e(2 * j))),
+                                                                     std::fabs(sys->slope(k, e(2 * j + 1)))));
+    auto note = [&](double gap, double x, int after) {
+      if (gap < out.min_gap) {
+        out.min_gap = gap;
+        out.min_gap_x = x;
+        out.min_gap_after_zone = after;
+      }
+    };
+    // Outward from an end: x = edge + side q^2, q in [0, sqrt(reach)].
+    for (int side = -1; side <= 1; side += 2) {
+      const double edge = side < 0 ? lo : hi;
+      const double qmax = std::sqrt(reach);
+      constexpr int panels = 12;
+      double integral = 0.0;
+      for (int pnl = 0; pnl < panels; ++pnl) {
+        const double a = qmax * pnl / panels, hq = 0.5 * qmax / panels;
+        bool beyond = false;
+        for (std::size_t g = 0; g < gl.x.size(); ++g) {
+          const double q = a + hq * (1.0 + gl.x[g]);
+          const double x = edge + side * q * q;
+          if (x - at < pf.lower() || x - at > pf.upper()) {
+            beyond = true;
+            break;
+          }
+          integral += hq * gl.w[g] * 2.0 * q * side * sys->vslope(x);
+        }
+        if (beyond) break;
+        const double q = a + 2.0 * hq, x = edge + side * q * q;
+        note(sys->height(k, x) - sys->height(k, edge) - integral, x, -1);
+      }
+    }
+    // Between its consecutive zones.
+    for (const auto& [j, jn] : sys->pairs()) {
+      if (sys->punch_of(j) != k) continue;
+      const double a = e(2 * j + 1), b = e(2 * jn);
+      const double mid = 0.5 * (a + b), hh = 0.5 * (b - a);
+      constexpr int panels = 16;
+      double integral = 0.0;
+      for (int pnl = 0; pnl < panels - 1; ++pnl) {
+        const double t0 = kPi * pnl / panels, th = 0.5 * kPi / panels;
+        for (std::size_t g = 0; g < gl.x.size(); ++g) {
+          const double t = t0 + th * (1.0 + gl.x[g]);
+          integral += th * gl.w[g] * hh * std::sin(t) * sys->vslope(mid - hh * std::cos(t));
+        }
+        const double x = mid - hh * std::cos(t0 + 2.0 * th);
+        note(sys->height(k, x) - sys->height(k, a) - integral, x, j);
+      }
+    }
+  }
+  out.elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+}  // namespace movingpunch

@@ -1,0 +1,787 @@
+"""Several contact zones: a separated contact under one punch, and trains of
+rigid punches moving together (docs/theory.md section 15).
+
+When the single contact is unphysical (p < 0 inside it near the critical
+speed, or the punch would penetrate beside it), :func:`movingpunch.solve`
+(``contact="auto"``, the default) finds the real contact set: a union of
+intervals with p >= 0 on each, no penetration beside them and p bounded at
+every end. :func:`solve_punches` solves several punches moving together at
+one speed, each with its own load. Both return a :class:`ZonedSolution`,
+which satisfies ``movingpunch.ContactSolution`` like every result: its
+fields and evaluations are the superposed response of all zones.
+
+The contact set is found by an active-set search that cannot cycle: start
+from the single-contact solution (from each punch's own solution for a
+train), solve that topology's end conditions (``_core.solve_zones``:
+Newton's method on the zone ends), then check complementarity (p >= 0 on
+every zone, gap >= 0 beside them) and change the topology where it fails:
+split a zone where p < 0 inside it, shrink it where p < 0 at its end, merge
+two zones of one punch where the gap between them closes, add a zone where
+the punch penetrates away from its contact. No topology is tried twice.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+import time
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from types import MappingProxyType
+from typing import Any, overload
+
+import numpy as np
+import numpy.typing as npt
+
+from movingpunch import _core, params
+from movingpunch._evaluate import _pointwise
+from movingpunch._evaluations import ResultFields
+from movingpunch.contract import Points
+from movingpunch.errors import (
+    ConvergenceError,
+    InvalidParameterError,
+    UnphysicalContactError,
+)
+from movingpunch.fields import FloatArray
+from movingpunch.profiles import Cylinder, Flat, PunchProfile, check_profile
+
+__all__ = [
+    "CONTACT_MODES",
+    "Punch",
+    "PunchResult",
+    "ZonedSolution",
+    "check_contact",
+    "solve_punches",
+]
+
+CONTACT_MODES = ("auto", "single")
+"""``contact=`` of :func:`movingpunch.solve`: "auto" finds the contact set
+(several zones when the single contact is unphysical), "single" keeps the
+single contact and refuses an unphysical one."""
+
+_MAX_TOPOLOGIES = 12
+"""Contact sets the search tries before it gives up (it never revisits one)."""
+
+
+def check_contact(value: object) -> str:
+    """``value`` as a contact mode ("auto" or "single"), else
+    InvalidParameterError naming ``contact``."""
+    if isinstance(value, str) and value in CONTACT_MODES:
+        return value
+    raise InvalidParameterError(
+        f'contact must be "auto" or "single", got {value!r}',
+        parameter="contact",
+        allowed='"auto" or "single"',
+    )
+
+
+@dataclass(frozen=True)
+class Punch:
+    """One punch of a train: its shape (a profile, or a number: the radius
+    R/h of a cylinder), its load P/(mu h) and the position ``at`` (x/h) of
+    its axis in the moving frame (the train moves towards +x)."""
+
+    profile: PunchProfile
+    load: float
+    at: float = 0.0
+
+    def __init__(self, profile: PunchProfile | float, load: float, at: float = 0.0) -> None:
+        shape = (
+            Cylinder(params.check("radius", profile))
+            if isinstance(profile, (int, float)) and not isinstance(profile, bool)
+            else check_profile(profile)
+        )
+        if isinstance(shape, Flat):
+            raise InvalidParameterError(
+                "profile: a flat punch cannot be part of a train or separate "
+                "(its contact is its face); use a RoundedFlat",
+                parameter="profile",
+                allowed="Cylinder, RoundedFlat or Profile",
+            )
+        object.__setattr__(self, "profile", shape)
+        object.__setattr__(self, "load", params.check("load", load))
+        if isinstance(at, bool) or not isinstance(at, (int, float)) or not math.isfinite(at):
+            raise InvalidParameterError(
+                f"at (the punch's position x/h) must be a finite number, got {at!r}",
+                parameter="at",
+                allowed="a finite number",
+            )
+        object.__setattr__(self, "at", float(at))
+
+    def to_dict(self) -> dict[str, object]:
+        """The scene-file form (a ``[[punches]]`` table)."""
+        return {"profile": self.profile.to_dict(), "load": self.load, "at": self.at}
+
+    def _core(self) -> tuple[str, float, float, list[float], list[float], float, float]:
+        a = self.profile.core_args()
+        return (
+            a["profile"],
+            a["radius"],
+            a["half_width"],
+            a["table_x"],
+            a["table_y"],
+            self.load,
+            self.at,
+        )
+
+
+class _Zones:
+    """The zones of a solve and, built on first use (about a millisecond
+    each: their Fourier nodes), each as a compiled solution of its own load."""
+
+    def __init__(self, core_zones: Sequence[Any]) -> None:
+        self.core = tuple(core_zones)
+        self._solutions: tuple[Any, ...] | None = None
+
+    @property
+    def solutions(self) -> tuple[Any, ...]:
+        if self._solutions is None:
+            self._solutions = tuple(z.solution for z in self.core)
+        return self._solutions
+
+
+class _ZoneSum:
+    """The superposed response of some zones (each compiled zone weighted
+    by its share of the load ``total``): what the shared evaluations
+    (``movingpunch._evaluations``) call ``_impl``."""
+
+    def __init__(self, zones: _Zones, indices: Sequence[int], total: float) -> None:
+        self._all = zones
+        self._indices = tuple(indices)
+        self.weights = tuple(float(zones.core[i].load) / total for i in self._indices)
+
+    @property
+    def zones(self) -> tuple[Any, ...]:
+        built = self._all.solutions
+        return tuple(built[i] for i in self._indices)
+
+    def _sum(self, f: Callable[[Any], Any], weighted: bool = True) -> Any:
+        out = None
+        for z, w in zip(self.zones, self.weights, strict=True):
+            v = np.asarray(f(z), dtype=np.float64) * (w if weighted else 1.0)
+            out = v if out is None else out + v
+        return out
+
+    def pressure(self, x: FloatArray) -> FloatArray:
+        return self._sum(lambda z: z.pressure(x))  # type: ignore[no-any-return]
+
+    def surface_stress(self, x: FloatArray) -> FloatArray:
+        return self._sum(lambda z: z.surface_stress(x))  # type: ignore[no-any-return]
+
+    def surface_slope(self, x: FloatArray) -> FloatArray:
+        return self._sum(lambda z: z.surface_slope(x), weighted=False)  # type: ignore[no-any-return]
+
+    def surface_displacement(self, x: FloatArray) -> FloatArray:
+        return self._sum(lambda z: z.surface_displacement(x), weighted=False)  # type: ignore[no-any-return]
+
+    def bottom_slope(self, x: FloatArray) -> FloatArray:
+        return self._sum(lambda z: z.bottom_slope(x), weighted=False)  # type: ignore[no-any-return]
+
+    def bottom_displacement(self, x: FloatArray) -> FloatArray:
+        return self._sum(lambda z: z.bottom_displacement(x), weighted=False)  # type: ignore[no-any-return]
+
+    def displacement(self, x: FloatArray, y: FloatArray) -> FloatArray:
+        return self._sum(lambda z: z.displacement(x, y), weighted=False)  # type: ignore[no-any-return]
+
+    def stress_field(self, x: FloatArray, y: FloatArray) -> tuple[FloatArray, ...]:
+        parts = [z.stress_field(x, y) for z in self.zones]
+        return tuple(
+            sum(
+                (w * np.asarray(p[i], dtype=np.float64) for p, w in zip(parts, self.weights, strict=True)),
+                np.zeros((len(y), len(x))),
+            )
+            for i in range(3)
+        )
+
+
+@dataclass(frozen=True)
+class PunchResult:
+    """One punch of a ``ZonedSolution``: its contact zones, load share of
+    each, indentation and drag."""
+
+    profile: PunchProfile
+    load: float
+    """P_k/(mu h)."""
+    at: float
+    """x/h of its axis."""
+    contact_zones: tuple[tuple[float, float], ...]
+    """Its zones (x_left, x_right)/h from left to right."""
+    zone_loads: tuple[float, ...]
+    """The load each zone carries, P_zone/(mu h) (they sum to ``load``)."""
+    drag: float
+    """Horizontal force of the normal pressure on it over P_k, int p f_k' dx
+    / P_k (positive: opposes the motion towards +x)."""
+    _impl: _ZoneSum = field(repr=False, compare=False)
+    _everything: _ZoneSum = field(repr=False, compare=False)
+    _where: tuple[float, float] = field(repr=False, compare=False)
+
+    @functools.cached_property
+    def indentation(self) -> float:
+        """delta_k/h: how far its lowest point (its axis) lies below the
+        undisturbed surface: f_k(x) - v(x, 0) at its most loaded zone's
+        centre, v the whole train's displacement (computed on first access)."""
+        x, height = self._where
+        v = float(self._everything.surface_displacement(np.array([x]))[0])
+        return height - v
+
+    @overload
+    def pressure(self, x: float) -> float: ...
+    @overload
+    def pressure(self, x: Points) -> FloatArray: ...
+    def pressure(self, x: npt.ArrayLike) -> float | FloatArray:
+        """Its own contact pressure p/(P_k/h) at x/h (0 off its zones)."""
+        return _pointwise("x", x, self._impl.pressure)
+
+    def to_dict(self) -> dict[str, object]:
+        return {
+            "profile": self.profile.to_dict(),
+            "load": self.load,
+            "at": self.at,
+            "contact_zones": [list(z) for z in self.contact_zones],
+            "zone_loads": list(self.zone_loads),
+            "indentation": self.indentation,
+            "drag": self.drag,
+        }
+
+
+@dataclass(frozen=True)
+class ZonedSolution(ResultFields):
+    """Several contact zones (a separated contact, or a train of punches):
+    the contract's fields and evaluations of the whole surface (the
+    superposed response), pressures and stresses over P/h with P the total
+    load, and ``punches``, one ``PunchResult`` each. ``profile``,
+    ``radius``, ``indentation`` are the first punch's."""
+
+    damping: float
+    friction: float
+    tangential_force: float
+    end_exponents: tuple[float, float]
+    contact_interval: tuple[float, float]
+    """The hull (x_first, x_last)/h of all zones."""
+    drag: float
+    """Horizontal force of the normal pressure on all punches over P."""
+    pressure_error_estimate: float
+    """Bound on the error of p/(P/h) at fixed relative positions in each zone."""
+    stress_error_estimate: float
+    """Bound on the error of the surface sigma_x/(P/h) more than 1e-3 of a
+    zone's half-width from its ends."""
+    max_pressure: float
+    punches: tuple[PunchResult, ...]
+    single_validity: str
+    """What the single-contact solution was (why it was rejected), or "" for
+    a train."""
+    topologies: int
+    """Contact sets the search solved before this one was found (1: the
+    first was right)."""
+    _impl: _ZoneSum = field(repr=False, compare=False)
+    _contact_zones: tuple[tuple[float, float], ...] = field(default=(), repr=False)
+    _profile: PunchProfile | None = field(default=None, repr=False, compare=False)
+    _stage_times: Mapping[str, float] = field(default_factory=dict, repr=False, compare=False)
+    _kernel_builds: int = field(default=0, repr=False, compare=False)
+
+    @property
+    def kernel_builds(self) -> int:
+        return self._kernel_builds
+
+    @property
+    def contact_zones(self) -> tuple[tuple[float, float], ...]:
+        """Every zone (x_left, x_right)/h, from left to right."""
+        return self._contact_zones
+
+    @property
+    def _even(self) -> bool:
+        """Whether every distribution is even in x: one punch on the axis,
+        symmetric, undamped (a separated contact); never a train."""
+        if self.damping != 0.0 or len(self.punches) != 1 or self.punches[0].at != 0.0:
+            return False
+        return bool(getattr(self.profile, "symmetric", True))
+
+    @property
+    def stage_times(self) -> Mapping[str, float]:
+        """Seconds: ``width`` (the single solves and the zone solves of the
+        search), ``checks`` (the rest); ``critical_speed`` and ``kernel`` are
+        counted inside them (0.0 here)."""
+        return MappingProxyType(dict(self._stage_times))
+
+    @functools.cached_property
+    def indentation(self) -> float:
+        """The first punch's indentation delta/h (``PunchResult.indentation``;
+        computed on first access)."""
+        return self.punches[0].indentation
+
+    @property
+    def a(self) -> float:
+        """The hull's leading end x/h."""
+        return self.contact_interval[1]
+
+    @property
+    def half_width(self) -> float:
+        """Half the hull's length."""
+        return 0.5 * (self.contact_interval[1] - self.contact_interval[0])
+
+    @property
+    def centre(self) -> float:
+        """The hull's midpoint."""
+        return 0.5 * (self.contact_interval[1] + self.contact_interval[0])
+
+    @property
+    def p0(self) -> float:
+        """p(0)/(P/h) (0 where x = 0 lies between zones)."""
+        return self.pressure(0.0)
+
+    @functools.cached_property
+    def dissipation(self) -> float:
+        """Power dissipated in the dashpots over P V, damping sqrt(vstar)/P
+        int (dv/dx(x, -h))^2 dx (0 without damping), by quadrature of the
+        superposed bottom slope; equals ``drag`` by the energy balance."""
+        if self.damping == 0.0:
+            return 0.0
+        lo, hi = self.contact_interval
+        reach = 40.0 + 4.0 * (hi - lo)
+        x = np.linspace(lo - reach, hi + reach, 16001)
+        slope = self._impl.bottom_slope(x)
+        integral = float(np.sum(slope**2) * (x[1] - x[0]))
+        return self.damping * math.sqrt(self.vstar) / self.load * integral
+
+    @overload
+    def surface_slope(self, x: float) -> float: ...
+    @overload
+    def surface_slope(self, x: Points) -> FloatArray: ...
+    def surface_slope(self, x: npt.ArrayLike) -> float | FloatArray:
+        """Surface slope dv/dx(x, 0)."""
+        return _pointwise("x", x, self._impl.surface_slope)
+
+    @overload
+    def depth_stress(self, y: float, x: float = ...) -> float: ...
+    @overload
+    def depth_stress(self, y: Points, x: float = ...) -> FloatArray: ...
+    def depth_stress(self, y: npt.ArrayLike, x: float = 0.0) -> float | FloatArray:
+        """sigma_x(x, y)/(P/h) at depths y/h in [-1, 0] (x = 0 by default)."""
+        from movingpunch._evaluate import _depths, _real_any
+
+        pts = _depths(y)
+        xs = _real_any("x", x)
+        if not math.isfinite(xs):
+            raise InvalidParameterError(f"x must be a finite number, got {x!r}")
+        column = np.array([xs])
+        grid = self._impl.stress_field
+        return _pointwise("y", y, lambda ys: grid(column, ys)[0][:, 0], pts)
+
+    @overload
+    def foundation_reaction(self, x: float) -> float: ...
+    @overload
+    def foundation_reaction(self, x: Points) -> FloatArray: ...
+    def foundation_reaction(self, x: npt.ArrayLike) -> float | FloatArray:
+        """Pressure of the base on the layer, -sigma_y(x, -h)/(P/h)."""
+        from movingpunch._evaluate import _as_points, _flat, _is_scalar
+
+        fld = self.stress_field(_flat(_as_points("x", x)), [-1.0])
+        values = -fld.sigma_y[0]
+        return float(values[0]) if _is_scalar(x) else values.reshape(np.shape(x))
+
+    def to_dict(self) -> dict[str, object]:
+        out = super().to_dict()
+        out["punches"] = [p.to_dict() for p in self.punches]
+        out["contact_zones"] = [list(z) for z in self.contact_zones]
+        return out
+
+
+# ---------------------------------------------------------------------------
+# The search for the contact set
+
+
+@dataclass
+class _Layer:
+    vstar: float
+    kw: float
+    nu: float
+    damping: float
+    kp: float
+    tol: float
+    n: int
+
+
+def _solve_topology(
+    layer: _Layer, punches: Sequence[Punch], zones: Sequence[tuple[int, float, float]]
+) -> Any:
+    return _core.solve_zones(
+        vstar=layer.vstar,
+        kw=layer.kw,
+        nu=layer.nu,
+        damping=layer.damping,
+        kp=layer.kp,
+        tol=layer.tol,
+        n=layer.n,
+        punches=[p._core() for p in punches],
+        zones=list(zones),
+    )
+
+
+def _negative_runs(zone: Any) -> list[tuple[float, float, bool, bool]]:
+    """Where p < 0 in a zone: (x_from, x_to, touches_left, touches_right) of
+    each run of negative g = p/sqrt(1 - r^2) on a 2001-point grid."""
+    sol = zone.solution
+    c, w = float(sol.centre), float(sol.half_width)
+    r = np.cos(np.linspace(math.pi, 0.0, 2001))
+    r = r[1:-1]
+    g = np.asarray(sol.pressure(c + w * r)) / np.sqrt(1.0 - r * r) * math.copysign(1.0, zone.load)
+    neg = g < 0.0
+    runs = []
+    i = 0
+    while i < len(r):
+        if not neg[i]:
+            i += 1
+            continue
+        j = i
+        while j + 1 < len(r) and neg[j + 1]:
+            j += 1
+        runs.append((c + w * r[i], c + w * r[j], i == 0, j == len(r) - 1))
+        i = j + 1
+    return runs
+
+
+def _complementarity(z: Any) -> tuple[bool, str]:
+    """Whether the solved topology is the contact set: p >= 0 on each zone
+    (its margin), gap >= 0 beside them; the account."""
+    bad = []
+    for k, zone in enumerate(z.zones):
+        if zone.load <= 0.0 or zone.margin < -1e-9 * max(1.0, abs(zone.margin)):
+            bad.append(
+                f"zone {k + 1} ({zone.left:.6g}, {zone.right:.6g}): p < 0 near x/h = "
+                f"{zone.margin_x:.6g}"
+            )
+    if z.min_gap < -1e-6 * z.gap_scale:
+        bad.append(f"penetration at x/h = {z.min_gap_x:.6g} (gap/h = {z.min_gap:.3g})")
+    return (not bad, "; ".join(bad))
+
+
+_PADS = (0.02, 0.12, 0.25)
+"""How far (as a fraction of the zone's length) a new zone end is placed
+beyond the run of p < 0 it avoids: the search tries them in turn (Newton's
+method from a gap much narrower than the true one can stall)."""
+
+
+def _next_topologies(z: Any, punches: Sequence[Punch]) -> list[list[tuple[int, float, float]]]:
+    """The contact sets to try after ``z`` failed complementarity, best
+    first (empty: no rule applies)."""
+    zones = [(int(q.punch), float(q.left), float(q.right)) for q in z.zones]
+    runs = [
+        _negative_runs(q) if (q.load <= 0.0 or q.margin < 0.0) else [] for q in z.zones
+    ]
+    if any(runs):
+        # p < 0: split each zone around its negative run, or shrink its end
+        # (every such zone at once: a symmetric contact stays symmetric).
+        out = []
+        for frac in _PADS:
+            fixed: list[tuple[int, float, float]] = []
+            for k, zone_runs in enumerate(runs):
+                punch, left, right = zones[k]
+                if not zone_runs:
+                    fixed.append(zones[k])
+                    continue
+                lo, hi, at_left, at_right = zone_runs[0]
+                pad = frac * (right - left)
+                if at_left and at_right:
+                    continue  # negative everywhere: the zone carries no load, drop it
+                if at_left:
+                    fixed.append((punch, min(hi + pad, right - 0.02 * (right - left)), right))
+                elif at_right:
+                    fixed.append((punch, left, max(lo - pad, left + 0.02 * (right - left))))
+                else:
+                    new_lo = max(lo - pad, left + 0.02 * (right - left))
+                    new_hi = min(hi + pad, right - 0.02 * (right - left))
+                    if new_lo < new_hi:
+                        fixed += [(punch, left, new_lo), (punch, new_hi, right)]
+            if all(any(t[0] == k for t in fixed) for k in range(len(punches))):
+                out.append(fixed)
+        return out
+    # Penetration between two zones of one punch: merge them; elsewhere: a
+    # new zone (or grow the nearest end when the point is close to it).
+    if z.min_gap < -1e-6 * z.gap_scale:
+        j = int(z.min_gap_after_zone)
+        x = float(z.min_gap_x)
+        if j >= 0:
+            nxt = next(i for i in range(j + 1, len(zones)) if zones[i][0] == zones[j][0])
+            merged = (zones[j][0], zones[j][1], zones[nxt][2])
+            return [[*zones[:j], merged, *zones[j + 1 : nxt], *zones[nxt + 1 :]]]
+        near = min(
+            range(len(zones)), key=lambda i: min(abs(x - zones[i][1]), abs(x - zones[i][2]))
+        )
+        punch, left, right = zones[near]
+        width = right - left
+        if x < left and left - x < 0.1 * width:
+            zones[near] = (punch, x - 0.01 * width, right)
+        elif x > right and x - right < 0.1 * width:
+            zones[near] = (punch, left, x + 0.01 * width)
+        else:
+            zones.append((punch, x - 0.02 * width, x + 0.02 * width))
+            zones.sort(key=lambda t: t[1])
+        return [zones]
+    return []
+
+
+def _signature(zones: Sequence[tuple[int, float, float]]) -> tuple[object, ...]:
+    """A start of the search (its punches in order, its ends to 1e-6 of
+    the hull): the search never solves one twice."""
+    scale = 1e-6 * max(1e-300, zones[-1][2] - zones[0][1])
+    return tuple((z[0], round(z[1] / scale), round(z[2] / scale)) for z in zones)
+
+
+def find_contact_set(
+    layer: _Layer,
+    punches: Sequence[Punch],
+    start: Sequence[tuple[int, float, float]],
+) -> tuple[Any, int, list[str]]:
+    """The active-set search from the contact set ``start``: the solved
+    topology that satisfies complementarity, the number of topologies
+    solved and the account of each. Raises UnphysicalContactError when no
+    contact set is found (naming what failed); never returns one that
+    fails complementarity."""
+    seen: set[tuple[object, ...]] = set()
+    candidates = [list(start)]
+    account: list[str] = []
+    solved = 0
+    while candidates and solved < _MAX_TOPOLOGIES:
+        z = None
+        for zones in candidates:
+            key = _signature(zones)
+            if key in seen:
+                continue
+            seen.add(key)
+            try:
+                z = _solve_topology(layer, punches, zones)
+                break
+            except ConvergenceError as err:
+                account.append(f"{len(zones)} zones: {err}")
+        if z is None:
+            break
+        solved += 1
+        ok, why = _complementarity(z)
+        if ok:
+            return z, solved, account
+        account.append(f"{len(z.zones)} zones: {why}")
+        candidates = _next_topologies(z, punches)
+    raise UnphysicalContactError(
+        "no contact set satisfies p >= 0 and gap >= 0: the search tried "
+        + " | ".join(account or ["nothing"])
+    )
+
+
+def _result(
+    z: Any,
+    layer: _Layer,
+    punches: Sequence[Punch],
+    *,
+    topologies: int,
+    single_validity: str,
+    elapsed: float,
+    search_seconds: float,
+) -> ZonedSolution:
+    total = sum(p.load for p in punches)
+    built = _Zones(z.zones)
+    every = range(len(z.zones))
+    impl = _ZoneSum(built, every, total)
+    results = []
+    for k, p in enumerate(punches):
+        mine = [i for i, q in enumerate(z.zones) if q.punch == k]
+        results.append(
+            PunchResult(
+                profile=p.profile,
+                load=p.load,
+                at=p.at,
+                contact_zones=tuple((float(z.zones[i].left), float(z.zones[i].right)) for i in mine),
+                zone_loads=tuple(float(z.zones[i].load) for i in mine),
+                drag=float(z.drag[k]),
+                _impl=_ZoneSum(built, mine, p.load),
+                _everything=impl,
+                _where=(float(z.indentation_x[k]), float(z.indentation_height[k])),
+            )
+        )
+    zones = tuple((float(q.left), float(q.right)) for q in z.zones)
+    margins = [q.margin * q.load / total for q in z.zones]
+    n_zones = len(zones)
+    what = (
+        f"separated contact of {n_zones} zones"
+        if len(punches) == 1
+        else f"{len(punches)} punches in {n_zones} zones"
+    )
+    validity = (
+        f"valid: {what}; p >= 0 on every zone and no penetration within 2 contact "
+        "widths of each punch's zones (complementarity)"
+    )
+    if single_validity:
+        validity += f"; the single contact was rejected: {single_validity}"
+    warnings = tuple(str(w) for w in z.warnings)
+    first = punches[0]
+    return ZonedSolution(
+        vstar=layer.vstar,
+        kw=layer.kw,
+        kp=layer.kp,
+        radius=first.profile.nominal_radius,
+        load=total,
+        nu=layer.nu,
+        tol=layer.tol,
+        critical_vstar=float(z.critical_vstar),
+        rayleigh_vstar=float(z.rayleigh_vstar),
+        phi1=float(z.phi1),
+        iterations=int(z.iterations),
+        collocation_n=int(z.collocation_n),
+        error_estimate=float(z.error_estimate),
+        elapsed=elapsed,
+        valid=True,
+        validity=validity,
+        min_pressure=min(q.min_pressure * q.load / total for q in z.zones),
+        min_gap=float(z.min_gap),
+        pressure_margin=min(margins),
+        warnings=warnings,
+        damping=layer.damping,
+        friction=0.0,
+        tangential_force=0.0,
+        end_exponents=(0.5, 0.5),
+        contact_interval=(zones[0][0], zones[-1][1]),
+        _contact_zones=zones,
+        drag=float(z.drag_total),
+        pressure_error_estimate=float(z.pressure_error_estimate) / total,
+        stress_error_estimate=float(z.stress_error_estimate),
+        max_pressure=float(z.max_pressure),
+        punches=tuple(results),
+        single_validity=single_validity,
+        topologies=topologies,
+        _impl=impl,
+        _profile=first.profile,
+        _stage_times={
+            "critical_speed": 0.0,
+            "kernel": 0.0,
+            "width": search_seconds,
+            "checks": max(0.0, elapsed - search_seconds),
+        },
+        _kernel_builds=0,
+    )
+
+
+def separate(single: Any, *, damping: float, kp: float, n: int | None) -> ZonedSolution:
+    """The contact set of one punch whose single contact ``single`` (solved
+    with allow_unphysical) is unphysical: the search from that contact."""
+    t0 = time.perf_counter()
+    layer = _Layer(
+        single.vstar, single.kw, single.nu, damping, kp, single.tol, 0 if n is None else n
+    )
+    punch = Punch(single.profile, single.load, 0.0)
+    lo, hi = single.contact_interval
+    z, topologies, _ = find_contact_set(layer, [punch], [(0, float(lo), float(hi))])
+    elapsed = time.perf_counter() - t0 + single.elapsed
+    return _result(
+        z,
+        layer,
+        [punch],
+        topologies=topologies,
+        single_validity=single.validity,
+        elapsed=elapsed,
+        search_seconds=elapsed,
+    )
+
+
+def solve_punches(
+    punches: Sequence[Punch],
+    *,
+    vstar: float,
+    kw: float,
+    nu: float = 0.2,
+    kp: float = 0.0,
+    damping: float = 0.0,
+    friction: float = 0.0,
+    tol: float | str = 1e-8,
+    n: int | None = None,
+) -> ZonedSolution | Any:
+    """Solves a train of rigid punches moving together at one speed
+    (``Punch(profile, load, at=x0)`` each; positions x/h of their axes in the
+    moving frame, the train moving towards +x): each punch's contact zones
+    (several when its contact separates), pressure, indentation and drag,
+    and every field and stress of the whole surface (the superposed
+    response). A single punch at ``at = 0`` is :func:`movingpunch.solve`'s
+    result itself.
+
+    Frictionless (``friction`` must be 0: friction with several zones is
+    not supported yet); ``damping`` >= 0 and ``kp`` >= 0 as in
+    ``movingpunch.solve``. ``n`` fixes the collocation size per zone (even,
+    8 to 256). Raises InvalidParameterError (naming the parameter: a punch's
+    index in ``punches[k]``), SupercriticalSpeedError,
+    UnphysicalContactError (no contact set found) and ConvergenceError.
+    """
+    from movingpunch.damped import check_damping, check_friction
+    from movingpunch.solver import resolve_tol, solve
+
+    t0 = time.perf_counter()
+    if isinstance(punches, (str, bytes)) or not isinstance(punches, Sequence) or not punches:
+        raise InvalidParameterError(
+            f"punches must be a non-empty list of movingpunch.Punch, got {punches!r}",
+            parameter="punches",
+            allowed="a non-empty list of Punch",
+        )
+    for k, p in enumerate(punches):
+        if not isinstance(p, Punch):
+            raise InvalidParameterError(
+                f"punches[{k}] must be a movingpunch.Punch, got {p!r}",
+                parameter="punches",
+                allowed="a non-empty list of Punch",
+            )
+    if check_friction(friction) > 0.0:
+        raise InvalidParameterError(
+            "friction must be 0 for a train of punches (several contact zones with "
+            f"friction are not supported yet), got {friction!r}",
+            parameter="friction",
+            allowed="0 for solve_punches",
+        )
+    damp = check_damping(damping)
+    if len(punches) > 16:
+        raise InvalidParameterError(
+            f"punches: at most 16 punches, got {len(punches)}",
+            parameter="punches",
+            allowed="1 to 16 punches",
+        )
+    singles = []
+    for p in punches:
+        singles.append(
+            solve(
+                vstar=vstar,
+                kw=kw,
+                load=p.load,
+                nu=nu,
+                tol=tol,
+                n=n,
+                damping=damp,
+                kp=kp,
+                profile=p.profile,
+            )
+        )
+    if len(punches) == 1 and punches[0].at == 0.0:
+        return singles[0]
+    first = singles[0]
+    size = 0 if n is None else params.check_size(n, 256, " for several zones")
+    layer = _Layer(first.vstar, first.kw, first.nu, damp, first.kp, resolve_tol(tol), size)
+    start: list[tuple[int, float, float]] = []
+    for k, (p, s) in enumerate(zip(punches, singles, strict=True)):
+        zones = getattr(s, "contact_zones", (s.contact_interval,))
+        start += [(k, p.at + lo, p.at + hi) for lo, hi in zones]
+    start.sort(key=lambda t: t[1])
+    for (k1, _, r1), (k2, l2, _) in zip(start, start[1:]):
+        if not l2 > r1:
+            raise InvalidParameterError(
+                f"punches[{k1}] and punches[{k2}] are so close that their contacts would "
+                f"overlap (each alone spans up to x/h = {r1:.6g} and from {l2:.6g}): "
+                "place them further apart",
+                parameter="punches",
+                allowed="punches whose contacts do not overlap",
+            )
+    t1 = time.perf_counter()
+    z, topologies, _ = find_contact_set(layer, punches, start)
+    elapsed = time.perf_counter() - t0
+    return _result(
+        z,
+        layer,
+        punches,
+        topologies=topologies,
+        single_validity="",
+        elapsed=elapsed,
+        search_seconds=time.perf_counter() - t1,
+    )
