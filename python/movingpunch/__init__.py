@@ -35,7 +35,6 @@ from movingpunch.damped import DampedSolution
 from movingpunch.fields import StressField, StressPeaks
 from movingpunch.profiles import Cylinder, Flat, Profile, PunchProfile, RoundedFlat
 from movingpunch.scene import Scene, SceneError, SceneResult, bundled_scenes
-from movingpunch.zones import Punch, PunchResult, ZonedSolution, solve_punches
 from movingpunch.solver import (
     PRESETS,
     Solution,
@@ -49,6 +48,7 @@ from movingpunch.solver import (
     rayleigh_vstar,
     solve,
 )
+from movingpunch.zones import Punch, PunchResult, ZonedSolution, solve_punches
 
 
 def __getattr__(name: str) -> str:

@@ -23,6 +23,7 @@ the punch penetrates away from its contact. No topology is tried twice.
 from __future__ import annotations
 
 import functools
+import itertools
 import math
 import time
 from collections.abc import Callable, Mapping, Sequence
@@ -85,7 +86,9 @@ class Punch:
     load: float
     at: float = 0.0
 
-    def __init__(self, profile: PunchProfile | float, load: float, at: float = 0.0) -> None:
+    def __init__(
+        self, profile: PunchProfile | float, load: float, at: float = 0.0
+    ) -> None:
         shape = (
             Cylinder(params.check("radius", profile))
             if isinstance(profile, (int, float)) and not isinstance(profile, bool)
@@ -100,7 +103,11 @@ class Punch:
             )
         object.__setattr__(self, "profile", shape)
         object.__setattr__(self, "load", params.check("load", load))
-        if isinstance(at, bool) or not isinstance(at, (int, float)) or not math.isfinite(at):
+        if (
+            isinstance(at, bool)
+            or not isinstance(at, (int, float))
+            or not math.isfinite(at)
+        ):
             raise InvalidParameterError(
                 f"at (the punch's position x/h) must be a finite number, got {at!r}",
                 parameter="at",
@@ -187,7 +194,10 @@ class _ZoneSum:
         parts = [z.stress_field(x, y) for z in self.zones]
         return tuple(
             sum(
-                (w * np.asarray(p[i], dtype=np.float64) for p, w in zip(parts, self.weights, strict=True)),
+                (
+                    w * np.asarray(p[i], dtype=np.float64)
+                    for p, w in zip(parts, self.weights, strict=True)
+                ),
                 np.zeros((len(y), len(x))),
             )
             for i in range(3)
@@ -276,7 +286,9 @@ class ZonedSolution(ResultFields):
     _impl: _ZoneSum = field(repr=False, compare=False)
     _contact_zones: tuple[tuple[float, float], ...] = field(default=(), repr=False)
     _profile: PunchProfile | None = field(default=None, repr=False, compare=False)
-    _stage_times: Mapping[str, float] = field(default_factory=dict, repr=False, compare=False)
+    _stage_times: Mapping[str, float] = field(
+        default_factory=dict, repr=False, compare=False
+    )
     _kernel_builds: int = field(default=0, repr=False, compare=False)
 
     @property
@@ -424,7 +436,11 @@ def _negative_runs(zone: Any) -> list[tuple[float, float, bool, bool]]:
     c, w = float(sol.centre), float(sol.half_width)
     r = np.cos(np.linspace(math.pi, 0.0, 2001))
     r = r[1:-1]
-    g = np.asarray(sol.pressure(c + w * r)) / np.sqrt(1.0 - r * r) * math.copysign(1.0, zone.load)
+    g = (
+        np.asarray(sol.pressure(c + w * r))
+        / np.sqrt(1.0 - r * r)
+        * math.copysign(1.0, zone.load)
+    )
     neg = g < 0.0
     runs = []
     i = 0
@@ -461,7 +477,9 @@ beyond the run of p < 0 it avoids: the search tries them in turn (Newton's
 method from a gap much narrower than the true one can stall)."""
 
 
-def _next_topologies(z: Any, punches: Sequence[Punch]) -> list[list[tuple[int, float, float]]]:
+def _next_topologies(
+    z: Any, punches: Sequence[Punch]
+) -> list[list[tuple[int, float, float]]]:
     """The contact sets to try after ``z`` failed complementarity, best
     first (empty: no rule applies)."""
     zones = [(int(q.punch), float(q.left), float(q.right)) for q in z.zones]
@@ -484,9 +502,13 @@ def _next_topologies(z: Any, punches: Sequence[Punch]) -> list[list[tuple[int, f
                 if at_left and at_right:
                     continue  # negative everywhere: the zone carries no load, drop it
                 if at_left:
-                    fixed.append((punch, min(hi + pad, right - 0.02 * (right - left)), right))
+                    fixed.append(
+                        (punch, min(hi + pad, right - 0.02 * (right - left)), right)
+                    )
                 elif at_right:
-                    fixed.append((punch, left, max(lo - pad, left + 0.02 * (right - left))))
+                    fixed.append(
+                        (punch, left, max(lo - pad, left + 0.02 * (right - left)))
+                    )
                 else:
                     new_lo = max(lo - pad, left + 0.02 * (right - left))
                     new_hi = min(hi + pad, right - 0.02 * (right - left))
@@ -501,11 +523,14 @@ def _next_topologies(z: Any, punches: Sequence[Punch]) -> list[list[tuple[int, f
         j = int(z.min_gap_after_zone)
         x = float(z.min_gap_x)
         if j >= 0:
-            nxt = next(i for i in range(j + 1, len(zones)) if zones[i][0] == zones[j][0])
+            nxt = next(
+                i for i in range(j + 1, len(zones)) if zones[i][0] == zones[j][0]
+            )
             merged = (zones[j][0], zones[j][1], zones[nxt][2])
             return [[*zones[:j], merged, *zones[j + 1 : nxt], *zones[nxt + 1 :]]]
         near = min(
-            range(len(zones)), key=lambda i: min(abs(x - zones[i][1]), abs(x - zones[i][2]))
+            range(len(zones)),
+            key=lambda i: min(abs(x - zones[i][1]), abs(x - zones[i][2])),
         )
         punch, left, right = zones[near]
         width = right - left
@@ -589,7 +614,9 @@ def _result(
                 profile=p.profile,
                 load=p.load,
                 at=p.at,
-                contact_zones=tuple((float(z.zones[i].left), float(z.zones[i].right)) for i in mine),
+                contact_zones=tuple(
+                    (float(z.zones[i].left), float(z.zones[i].right)) for i in mine
+                ),
                 zone_loads=tuple(float(z.zones[i].load) for i in mine),
                 drag=float(z.drag[k]),
                 _impl=_ZoneSum(built, mine, p.load),
@@ -664,7 +691,13 @@ def separate(single: Any, *, damping: float, kp: float, n: int | None) -> ZonedS
     with allow_unphysical) is unphysical: the search from that contact."""
     t0 = time.perf_counter()
     layer = _Layer(
-        single.vstar, single.kw, single.nu, damping, kp, single.tol, 0 if n is None else n
+        single.vstar,
+        single.kw,
+        single.nu,
+        damping,
+        kp,
+        single.tol,
+        0 if n is None else n,
     )
     punch = Punch(single.profile, single.load, 0.0)
     lo, hi = single.contact_interval
@@ -712,7 +745,11 @@ def solve_punches(
     from movingpunch.solver import resolve_tol, solve
 
     t0 = time.perf_counter()
-    if isinstance(punches, (str, bytes)) or not isinstance(punches, Sequence) or not punches:
+    if (
+        isinstance(punches, (str, bytes))
+        or not isinstance(punches, Sequence)
+        or not punches
+    ):
         raise InvalidParameterError(
             f"punches must be a non-empty list of movingpunch.Punch, got {punches!r}",
             parameter="punches",
@@ -758,17 +795,19 @@ def solve_punches(
         return singles[0]
     first = singles[0]
     size = 0 if n is None else params.check_size(n, 256, " for several zones")
-    layer = _Layer(first.vstar, first.kw, first.nu, damp, first.kp, resolve_tol(tol), size)
+    layer = _Layer(
+        first.vstar, first.kw, first.nu, damp, first.kp, resolve_tol(tol), size
+    )
     start: list[tuple[int, float, float]] = []
     for k, (p, s) in enumerate(zip(punches, singles, strict=True)):
         zones = getattr(s, "contact_zones", (s.contact_interval,))
         start += [(k, p.at + lo, p.at + hi) for lo, hi in zones]
     start.sort(key=lambda t: t[1])
-    for (k1, _, r1), (k2, l2, _) in zip(start, start[1:]):
+    for (k1, _, r1), (k2, l2, _) in itertools.pairwise(start):
         if not l2 > r1:
             raise InvalidParameterError(
-                f"punches[{k1}] and punches[{k2}] are so close that their contacts would "
-                f"overlap (each alone spans up to x/h = {r1:.6g} and from {l2:.6g}): "
+                f"punches[{k1}] and punches[{k2}] are so close that their contacts "
+                f"would overlap (alone they reach x/h = {r1:.6g} and {l2:.6g}): "
                 "place them further apart",
                 parameter="punches",
                 allowed="punches whose contacts do not overlap",
