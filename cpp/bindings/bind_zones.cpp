@@ -55,7 +55,9 @@ void bind_zones(py::module_& m) {
       .def_readonly("elapsed", &ZonesSolution::elapsed)
       .def_readonly("critical_vstar", &ZonesSolution::critical_vstar)
       .def_readonly("rayleigh_vstar", &ZonesSolution::rayleigh_vstar)
-      .def_readonly("phi1", &ZonesSolution::phi1);
+      .def_readonly("phi1", &ZonesSolution::phi1)
+      .def("dissipation", &zones_dissipation, Release(),
+           "Power dissipated in the dashpots over P V (Parseval on the bottom face).");
 
   using PunchTuple = std::tuple<std::string, double, double, std::vector<double>,
                                 std::vector<double>, double, double>;

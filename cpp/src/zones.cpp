@@ -266,7 +266,8 @@ class System {
 // size when `have_j` (the conditions are scaled alike at every size) and
 // updated by Broyden's rule after each step; recomputed by forward
 // differences when a step fails with an updated one.
-void newton(System& sys, Eigen::VectorXd& e, int& evaluations, Eigen::MatrixXd& J, bool& have_j) {
+void newton(System& sys, Eigen::VectorXd& e, int& evaluations, Eigen::MatrixXd& J, bool& have_j,
+            int max_iterations) {
   const int m = sys.unknowns();
   Eigen::VectorXd F, Ft;
   if (!sys.eval(e, F))
@@ -299,7 +300,7 @@ void newton(System& sys, Eigen::VectorXd& e, int& evaluations, Eigen::MatrixXd& 
     fresh = true;
   };
   bool moved = false;
-  for (int it = 0; it < 200; ++it) {
+  for (int it = 0; it < max_iterations; ++it) {
     if (norm < 1e-14) break;
     if (!have_j) jacobian();
     const Eigen::VectorXd dx = J.fullPivLu().solve(-F);
@@ -368,6 +369,41 @@ void newton(System& sys, Eigen::VectorXd& e, int& evaluations, Eigen::MatrixXd& 
 }
 
 }  // namespace
+
+double zones_dissipation(const ZonesSolution& s) {
+  if (s.zones.empty() || !(s.zones.front().params.damping > 0.0)) return 0.0;
+  const DampedKernel& K = *s.zones.front().kernel;
+  const DampedLayerModel& model = K.model();
+  std::vector<DampedSolution> parts;
+  double total = 0.0, lo = kInf, hi = -kInf;
+  for (const ZoneResult& z : s.zones) {
+    parts.push_back(z.solution());
+    total += z.load;
+    lo = std::min(lo, z.left);
+    hi = std::max(hi, z.right);
+  }
+  // |p^|^2 oscillates with the distances between the zones: pieces of at
+  // most 1.5/(hi - lo) (and 0.5) in alpha, 8 Gauss points each.
+  const Legendre& gl = gauss_legendre8();
+  const auto& P = K.quadrature().panels;
+  const double width = std::min(0.5, 1.5 / std::max(hi - lo, 1e-300));
+  double sum = 0.0;
+  for (std::size_t p = 0; p < P.panel_centre.size(); ++p) {
+    const double a0 = P.panel_centre[p] - P.panel_half[p], len = 2.0 * P.panel_half[p];
+    const int m = std::max(1, static_cast<int>(std::ceil(len / width)));
+    for (int q = 0; q < m; ++q) {
+      const double c = a0 + (q + 0.5) * len / m, h = 0.5 * len / m;
+      for (std::size_t g = 0; g < gl.x.size(); ++g) {
+        const double a = c + h * gl.x[g];
+        cplx ph = 0.0;
+        for (std::size_t j = 0; j < parts.size(); ++j)
+          ph += (s.zones[j].load / total) * parts[j].pressure_transform(a);
+        sum += h * gl.w[g] * std::norm(model.response(a).Wb * ph);
+      }
+    }
+  }
+  return model.damping() * std::sqrt(model.vstar()) * total * sum / kPi;
+}
 
 DampedSolution ZoneResult::solution() const {
   return zone_solution(params, kernel, 0.5 * (left + right), 0.5 * (right - left), b);
@@ -467,7 +503,8 @@ ZonesSolution solve_zones(const ZonesParams& prm) {
   // The N ladder (or the given N, with N/2 for the estimate).
   std::vector<int> sizes;
   if (L.n != 0) {
-    sizes = {std::max(16, 2 * (L.n / 4)), L.n};
+    // The estimate's second size: about half, at least 6 (a size 8 compares with 6).
+    sizes = {std::max(6, 2 * (L.n / 4)), L.n};
   } else {
     for (int n : detail::kSizes)
       if (n >= 24 && n <= 256) sizes.push_back(n);
@@ -483,11 +520,31 @@ ZonesSolution solve_zones(const ZonesParams& prm) {
   double pmax = 0.0;
   bool converged = false;
   for (int n : sizes) {
-    sys = std::make_unique<System>(prm, prof, kernel(range_need(e)), n, S);
-    newton(*sys, e, out.iterations, jac, have_jac);
-    if (kern->range() < range_need(e)) {  // the ends moved out: a longer table
+    // The first size from the start (a long way, maybe); a larger one from
+    // the last size's ends, a few steps away. When a larger size fails (the
+    // finer discretisation has no root near the coarser one's), the ladder
+    // stops at the last size that solved, with a warning below.
+    const bool first = done.empty();
+    const int max_it = first ? 200 : 16;
+    const Eigen::VectorXd e_keep = e;
+    try {
       sys = std::make_unique<System>(prm, prof, kernel(range_need(e)), n, S);
-      newton(*sys, e, out.iterations, jac, have_jac);
+      newton(*sys, e, out.iterations, jac, have_jac, max_it);
+      if (kern->range() < range_need(e)) {  // the ends moved out: a longer table
+        sys = std::make_unique<System>(prm, prof, kernel(range_need(e)), n, S);
+        newton(*sys, e, out.iterations, jac, have_jac, max_it);
+      }
+    } catch (const ConvergenceError& err) {
+      if (first) throw;
+      std::ostringstream w;
+      w << "the zone ends did not converge at N = " << n << " (" << err.what()
+        << "); the result is that of N = " << done.back();
+      out.warnings.push_back(w.str());
+      e = e_keep;
+      sys = std::make_unique<System>(prm, prof, kernel(range_need(e)), done.back(), S);
+      Eigen::VectorXd F;
+      if (!sys->eval(e, F)) throw;
+      break;
     }
     std::vector<Eigen::VectorXd> b(static_cast<std::size_t>(nz));
     pmax = 0.0;
@@ -525,8 +582,9 @@ ZonesSolution solve_zones(const ZonesParams& prm) {
     b_prev = b;
   }
   out.collocation_n = sys->n();
-  out.error_estimate = est_e.estimate;
-  out.pressure_error_estimate = est_p.estimate;
+  // One size alone (a larger one failed): no estimate.
+  out.error_estimate = d_ends.empty() ? kInf : est_e.estimate;
+  out.pressure_error_estimate = d_p.empty() ? kInf : est_p.estimate;
   double wmax = 0.0;
   for (int j = 0; j < nz; ++j) wmax = std::max(wmax, 0.5 * (e(2 * j + 1) - e(2 * j)));
   if (!converged) {

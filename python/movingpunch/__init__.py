@@ -47,8 +47,9 @@ from movingpunch.solver import (
     phi2,
     rayleigh_vstar,
     solve,
+    solve_punches,
 )
-from movingpunch.zones import Punch, PunchResult, ZonedSolution, solve_punches
+from movingpunch.zones import Punch, PunchResult, ZonedSolution
 
 
 def __getattr__(name: str) -> str:

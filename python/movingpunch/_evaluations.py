@@ -299,7 +299,9 @@ class Evaluations:
 def _listed(value: object) -> object:
     if isinstance(value, (Cylinder, *_PROFILE_TYPES)):
         return value.to_dict()  # a punch profile: its scene-file form
-    return list(value) if isinstance(value, tuple) else value
+    if isinstance(value, tuple):  # nested too: contact_zones
+        return [_listed(v) for v in value]
+    return value
 
 
 _SINGULAR_CAP = 1e6

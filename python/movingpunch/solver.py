@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import functools
 import math
+import time
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from types import MappingProxyType
@@ -52,6 +53,7 @@ from movingpunch.profiles import (
     PunchProfile,
     resolve_profile,
 )
+from movingpunch.zones import Punch, check_contact, separate, solve_train
 
 if TYPE_CHECKING:
     from movingpunch.contract import ContactSolution
@@ -69,6 +71,7 @@ __all__ = [
     "rayleigh_vstar",
     "result_warnings",
     "solve",
+    "solve_punches",
 ]
 
 FloatArray = npt.NDArray[np.float64]
@@ -302,9 +305,18 @@ def solve(
     docs/theory.md section 14). f > 0 takes the asymmetric path (a
     ``DampedSolution``, with damping >= 0): Gauss-Jacobi collocation with
     the end exponents of cot(pi gamma_back) = f Phi(vstar, nu).
+
+    ``contact`` = "auto" (the default) finds the real contact set when the
+    single contact is unphysical (p < 0 inside it near the critical speed,
+    or penetration beside it): several zones, a ``ZonedSolution``
+    (``movingpunch.zones``; its ``validity`` says the contact separated and
+    why the single one was rejected). "single" keeps the single contact and
+    refuses an unphysical one (UnphysicalContactError). With
+    ``allow_unphysical=True`` the single contact comes back as it is,
+    flagged ``valid=False``, without the search. Several zones need a
+    frictionless punch with bounded ends (not a flat punch).
     """
     from movingpunch.damped import check_damping, check_friction, solve_damped
-    from movingpunch.zones import check_contact, separate
 
     shape = resolve_profile(radius, profile)
     mode = check_contact(contact)
@@ -333,12 +345,13 @@ def solve(
         single = _solve_profile(shape, vstar, kw, load, nu, tol, flag or zoned, n, kp)
     if single.valid or not zoned:
         return single
-    # The single contact is unphysical: find the contact set (zones.py).
+    # The single contact is unphysical: find the contact set (zones.py);
+    # allow_unphysical asks for the single contact as it is.
+    if flag:
+        return single
     try:
         return separate(single, damping=damp, kp=single.kp, n=n)
     except (UnphysicalContactError, ConvergenceError) as err:
-        if flag:
-            return single
         raise UnphysicalContactError(
             f"{single.validity}; the search for several contact zones failed: {err}"
         ) from err
@@ -649,3 +662,84 @@ def layer_response(
     if _is_scalar(t):
         return float(m1[0]), float(m2[0])
     return m1.reshape(points.shape), m2.reshape(points.shape)
+
+
+def solve_punches(
+    punches: Sequence[Punch],
+    *,
+    vstar: float,
+    kw: float,
+    nu: float = 0.2,
+    kp: float = 0.0,
+    damping: float = 0.0,
+    friction: float = 0.0,
+    tol: float | str = 1e-8,
+    n: int | None = None,
+) -> ContactSolution:
+    """Solves a train of rigid punches moving together at one speed
+    (``Punch(profile, load, at=x0)`` each; positions x/h of their axes in the
+    moving frame, the train moving towards +x): each punch's contact zones
+    (several when its contact separates), pressure, indentation and drag,
+    and every field and stress of the whole surface (the superposed
+    response). A single punch at ``at = 0`` is :func:`movingpunch.solve`'s
+    result itself.
+
+    Frictionless (``friction`` must be 0: friction with several zones is
+    not supported yet); ``damping`` >= 0 and ``kp`` >= 0 as in
+    ``movingpunch.solve``. ``n`` fixes the collocation size per zone (even,
+    8 to 256). Raises InvalidParameterError (naming the parameter: a punch's
+    index in ``punches[k]``), SupercriticalSpeedError,
+    UnphysicalContactError (no contact set found) and ConvergenceError.
+    """
+    from movingpunch.damped import check_damping, check_friction
+
+    t0 = time.perf_counter()
+    given: object = punches  # anything, at run time
+    if isinstance(given, (str, bytes)) or not isinstance(given, Sequence) or not given:
+        raise InvalidParameterError(
+            f"punches must be a non-empty list of movingpunch.Punch, got {punches!r}",
+            parameter="punches",
+            allowed="a non-empty list of Punch",
+        )
+    for k, p in enumerate(punches):
+        if not isinstance(p, Punch):
+            raise InvalidParameterError(
+                f"punches[{k}] must be a movingpunch.Punch, got {p!r}",
+                parameter="punches",
+                allowed="a non-empty list of Punch",
+            )
+    if check_friction(friction) > 0.0:
+        raise InvalidParameterError(
+            "friction must be 0 for a train of punches (several contact zones with "
+            f"friction are not supported yet), got {friction!r}",
+            parameter="friction",
+            allowed="0 for solve_punches",
+        )
+    damp = check_damping(damping)
+    if len(punches) > 16:
+        raise InvalidParameterError(
+            f"punches: at most 16 punches, got {len(punches)}",
+            parameter="punches",
+            allowed="1 to 16 punches",
+        )
+    size = 0 if n is None else params.check_size(n, 256, " for several zones")
+    singles = []
+    for p in punches:
+        singles.append(
+            solve(
+                vstar=vstar,
+                kw=kw,
+                load=p.load,
+                nu=nu,
+                tol=tol,
+                n=n,
+                damping=damp,
+                kp=kp,
+                profile=p.profile,
+            )
+        )
+    if len(punches) == 1 and punches[0].at == 0.0:
+        return singles[0]
+    return solve_train(
+        punches, singles, damping=damp, tol=resolve_tol(tol), n=size, t0=t0
+    )

@@ -52,7 +52,9 @@ __all__ = [
     "PunchResult",
     "ZonedSolution",
     "check_contact",
-    "solve_punches",
+    "find_contact_set",
+    "separate",
+    "solve_train",
 ]
 
 CONTACT_MODES = ("auto", "single")
@@ -285,6 +287,7 @@ class ZonedSolution(ResultFields):
     first was right)."""
     _impl: _ZoneSum = field(repr=False, compare=False)
     _contact_zones: tuple[tuple[float, float], ...] = field(default=(), repr=False)
+    _solved: Any = field(default=None, repr=False, compare=False)
     _profile: PunchProfile | None = field(default=None, repr=False, compare=False)
     _stage_times: Mapping[str, float] = field(
         default_factory=dict, repr=False, compare=False
@@ -345,15 +348,9 @@ class ZonedSolution(ResultFields):
     def dissipation(self) -> float:
         """Power dissipated in the dashpots over P V, damping sqrt(vstar)/P
         int (dv/dx(x, -h))^2 dx (0 without damping), by quadrature of the
-        superposed bottom slope; equals ``drag`` by the energy balance."""
-        if self.damping == 0.0:
-            return 0.0
-        lo, hi = self.contact_interval
-        reach = 40.0 + 4.0 * (hi - lo)
-        x = np.linspace(lo - reach, hi + reach, 16001)
-        slope = self._impl.bottom_slope(x)
-        integral = float(np.sum(slope**2) * (x[1] - x[0]))
-        return self.damping * math.sqrt(self.vstar) / self.load * integral
+        superposed bottom slope (Parseval, in the core); equals ``drag`` by the
+        energy balance."""
+        return float(self._solved.dissipation())
 
     @overload
     def surface_slope(self, x: float) -> float: ...
@@ -477,18 +474,47 @@ beyond the run of p < 0 it avoids: the search tries them in turn (Newton's
 method from a gap much narrower than the true one can stall)."""
 
 
+def _carve(
+    left: float,
+    right: float,
+    runs: Sequence[tuple[float, float, bool, bool]],
+    frac: float,
+) -> list[tuple[float, float]]:
+    """What remains of the zone (left, right) without its runs of p < 0,
+    each widened by ``frac`` of the zone's length (a run at an end takes
+    that end off); pieces shorter than 2 % of the zone are dropped."""
+    pad, least = frac * (right - left), 0.02 * (right - left)
+    pieces = [(left, right)]
+    for lo, hi, at_left, at_right in runs:
+        cut_lo = left if at_left else lo - pad
+        cut_hi = right if at_right else hi + pad
+        kept = []
+        for a, b in pieces:
+            if cut_hi <= a or cut_lo >= b:
+                kept.append((a, b))
+                continue
+            if cut_lo > a:
+                kept.append((a, cut_lo))
+            if cut_hi < b:
+                kept.append((cut_hi, b))
+        pieces = kept
+    return [(a, b) for a, b in pieces if b - a >= least]
+
+
 def _next_topologies(
-    z: Any, punches: Sequence[Punch]
+    z: Any, punches: Sequence[Punch], mirror: bool = False
 ) -> list[list[tuple[int, float, float]]]:
     """The contact sets to try after ``z`` failed complementarity, best
-    first (empty: no rule applies)."""
+    first (empty: no rule applies). ``mirror``: the problem is symmetric
+    about x = 0 (a new zone gets its mirror image too)."""
     zones = [(int(q.punch), float(q.left), float(q.right)) for q in z.zones]
     runs = [
         _negative_runs(q) if (q.load <= 0.0 or q.margin < 0.0) else [] for q in z.zones
     ]
     if any(runs):
-        # p < 0: split each zone around its negative run, or shrink its end
-        # (every such zone at once: a symmetric contact stays symmetric).
+        # p < 0: take every run of p < 0 out of its zone (split it, or
+        # shrink its end), in every zone at once (a symmetric contact stays
+        # symmetric), with a margin beyond each run tried in turn.
         out = []
         for frac in _PADS:
             fixed: list[tuple[int, float, float]] = []
@@ -497,23 +523,9 @@ def _next_topologies(
                 if not zone_runs:
                     fixed.append(zones[k])
                     continue
-                lo, hi, at_left, at_right = zone_runs[0]
-                pad = frac * (right - left)
-                if at_left and at_right:
-                    continue  # negative everywhere: the zone carries no load, drop it
-                if at_left:
-                    fixed.append(
-                        (punch, min(hi + pad, right - 0.02 * (right - left)), right)
-                    )
-                elif at_right:
-                    fixed.append(
-                        (punch, left, max(lo - pad, left + 0.02 * (right - left)))
-                    )
-                else:
-                    new_lo = max(lo - pad, left + 0.02 * (right - left))
-                    new_hi = min(hi + pad, right - 0.02 * (right - left))
-                    if new_lo < new_hi:
-                        fixed += [(punch, left, new_lo), (punch, new_hi, right)]
+                fixed += [
+                    (punch, a, b) for a, b in _carve(left, right, zone_runs, frac)
+                ]
             if all(any(t[0] == k for t in fixed) for k in range(len(punches))):
                 out.append(fixed)
         return out
@@ -527,28 +539,36 @@ def _next_topologies(
                 i for i in range(j + 1, len(zones)) if zones[i][0] == zones[j][0]
             )
             merged = (zones[j][0], zones[j][1], zones[nxt][2])
+            if mirror and len(zones) == nxt + 1 + j:  # and the mirror pair
+                m = len(zones) - 1 - nxt
+                pair = (zones[m][0], zones[m][1], zones[len(zones) - 1 - j][2])
+                if m > nxt:
+                    return [[*zones[:j], merged, *zones[nxt + 1 : m], pair]]
             return [[*zones[:j], merged, *zones[j + 1 : nxt], *zones[nxt + 1 :]]]
-        near = min(
-            range(len(zones)),
-            key=lambda i: min(abs(x - zones[i][1]), abs(x - zones[i][2])),
-        )
-        punch, left, right = zones[near]
-        width = right - left
-        if x < left and left - x < 0.1 * width:
-            zones[near] = (punch, x - 0.01 * width, right)
-        elif x > right and x - right < 0.1 * width:
-            zones[near] = (punch, left, x + 0.01 * width)
-        else:
-            zones.append((punch, x - 0.02 * width, x + 0.02 * width))
-            zones.sort(key=lambda t: t[1])
+        points = [x, -x] if mirror and abs(x) > 1e-9 else [x]
+        for xp in points:
+            near = min(
+                range(len(zones)),
+                key=lambda i: min(abs(xp - zones[i][1]), abs(xp - zones[i][2])),
+            )
+            punch, left, right = zones[near]
+            width = right - left
+            if xp < left and left - xp < 0.1 * width:
+                zones[near] = (punch, xp - 0.01 * width, right)
+            elif xp > right and xp - right < 0.1 * width:
+                zones[near] = (punch, left, xp + 0.01 * width)
+            else:
+                zones.append((punch, xp - 0.02 * width, xp + 0.02 * width))
+                zones.sort(key=lambda t: t[1])
         return [zones]
     return []
 
 
 def _signature(zones: Sequence[tuple[int, float, float]]) -> tuple[object, ...]:
-    """A start of the search (its punches in order, its ends to 1e-6 of
-    the hull): the search never solves one twice."""
-    scale = 1e-6 * max(1e-300, zones[-1][2] - zones[0][1])
+    """A start of the search (its punches in order, its ends to 1e-4 of
+    the hull): the search never solves one twice (nor one within 1e-4 of
+    the hull of it)."""
+    scale = 1e-4 * max(1e-300, zones[-1][2] - zones[0][1])
     return tuple((z[0], round(z[1] / scale), round(z[2] / scale)) for z in zones)
 
 
@@ -556,6 +576,8 @@ def find_contact_set(
     layer: _Layer,
     punches: Sequence[Punch],
     start: Sequence[tuple[int, float, float]],
+    *,
+    mirror: bool = False,
 ) -> tuple[Any, int, list[str]]:
     """The active-set search from the contact set ``start``: the solved
     topology that satisfies complementarity, the number of topologies
@@ -585,7 +607,7 @@ def find_contact_set(
         if ok:
             return z, solved, account
         account.append(f"{len(z.zones)} zones: {why}")
-        candidates = _next_topologies(z, punches)
+        candidates = _next_topologies(z, punches, mirror)
     raise UnphysicalContactError(
         "no contact set satisfies p >= 0 and gap >= 0: the search tried "
         + " | ".join(account or ["nothing"])
@@ -667,6 +689,7 @@ def _result(
         end_exponents=(0.5, 0.5),
         contact_interval=(zones[0][0], zones[-1][1]),
         _contact_zones=zones,
+        _solved=z,
         drag=float(z.drag_total),
         pressure_error_estimate=float(z.pressure_error_estimate) / total,
         stress_error_estimate=float(z.stress_error_estimate),
@@ -690,18 +713,16 @@ def separate(single: Any, *, damping: float, kp: float, n: int | None) -> ZonedS
     """The contact set of one punch whose single contact ``single`` (solved
     with allow_unphysical) is unphysical: the search from that contact."""
     t0 = time.perf_counter()
-    layer = _Layer(
-        single.vstar,
-        single.kw,
-        single.nu,
-        damping,
-        kp,
-        single.tol,
-        0 if n is None else n,
-    )
+    # A fixed size of the single solve (2 to 4096) as the zones' (8 to 256).
+    size = 0 if n is None else min(256, max(8, 2 * (n // 2)))
+    layer = _Layer(single.vstar, single.kw, single.nu, damping, kp, single.tol, size)
     punch = Punch(single.profile, single.load, 0.0)
     lo, hi = single.contact_interval
-    z, topologies, _ = find_contact_set(layer, [punch], [(0, float(lo), float(hi))])
+    # Symmetric about x = 0: a symmetric punch without damping.
+    mirror = damping == 0.0 and bool(getattr(single.profile, "symmetric", True))
+    z, topologies, _ = find_contact_set(
+        layer, [punch], [(0, float(lo), float(hi))], mirror=mirror
+    )
     elapsed = time.perf_counter() - t0 + single.elapsed
     return _result(
         z,
@@ -714,94 +735,25 @@ def separate(single: Any, *, damping: float, kp: float, n: int | None) -> ZonedS
     )
 
 
-def solve_punches(
+def solve_train(
     punches: Sequence[Punch],
+    singles: Sequence[Any],
     *,
-    vstar: float,
-    kw: float,
-    nu: float = 0.2,
-    kp: float = 0.0,
-    damping: float = 0.0,
-    friction: float = 0.0,
-    tol: float | str = 1e-8,
-    n: int | None = None,
-) -> ZonedSolution | Any:
-    """Solves a train of rigid punches moving together at one speed
-    (``Punch(profile, load, at=x0)`` each; positions x/h of their axes in the
-    moving frame, the train moving towards +x): each punch's contact zones
-    (several when its contact separates), pressure, indentation and drag,
-    and every field and stress of the whole surface (the superposed
-    response). A single punch at ``at = 0`` is :func:`movingpunch.solve`'s
-    result itself.
-
-    Frictionless (``friction`` must be 0: friction with several zones is
-    not supported yet); ``damping`` >= 0 and ``kp`` >= 0 as in
-    ``movingpunch.solve``. ``n`` fixes the collocation size per zone (even,
-    8 to 256). Raises InvalidParameterError (naming the parameter: a punch's
-    index in ``punches[k]``), SupercriticalSpeedError,
-    UnphysicalContactError (no contact set found) and ConvergenceError.
-    """
-    from movingpunch.damped import check_damping, check_friction
-    from movingpunch.solver import resolve_tol, solve
-
-    t0 = time.perf_counter()
-    if (
-        isinstance(punches, (str, bytes))
-        or not isinstance(punches, Sequence)
-        or not punches
-    ):
-        raise InvalidParameterError(
-            f"punches must be a non-empty list of movingpunch.Punch, got {punches!r}",
-            parameter="punches",
-            allowed="a non-empty list of Punch",
-        )
-    for k, p in enumerate(punches):
-        if not isinstance(p, Punch):
-            raise InvalidParameterError(
-                f"punches[{k}] must be a movingpunch.Punch, got {p!r}",
-                parameter="punches",
-                allowed="a non-empty list of Punch",
-            )
-    if check_friction(friction) > 0.0:
-        raise InvalidParameterError(
-            "friction must be 0 for a train of punches (several contact zones with "
-            f"friction are not supported yet), got {friction!r}",
-            parameter="friction",
-            allowed="0 for solve_punches",
-        )
-    damp = check_damping(damping)
-    if len(punches) > 16:
-        raise InvalidParameterError(
-            f"punches: at most 16 punches, got {len(punches)}",
-            parameter="punches",
-            allowed="1 to 16 punches",
-        )
-    singles = []
-    for p in punches:
-        singles.append(
-            solve(
-                vstar=vstar,
-                kw=kw,
-                load=p.load,
-                nu=nu,
-                tol=tol,
-                n=n,
-                damping=damp,
-                kp=kp,
-                profile=p.profile,
-            )
-        )
-    if len(punches) == 1 and punches[0].at == 0.0:
-        return singles[0]
+    damping: float,
+    tol: float,
+    n: int,
+    t0: float,
+) -> ZonedSolution:
+    """The train of ``punches`` from each punch's own solution ``singles``
+    (their contact zones, moved to the punch, start the search); ``n`` 0
+    (the ladder) or the zones' fixed size; ``t0`` when the solve began
+    (``time.perf_counter``). Raises InvalidParameterError naming ``punches``
+    when the punches' own contacts overlap."""
     first = singles[0]
-    size = 0 if n is None else params.check_size(n, 256, " for several zones")
-    layer = _Layer(
-        first.vstar, first.kw, first.nu, damp, first.kp, resolve_tol(tol), size
-    )
+    layer = _Layer(first.vstar, first.kw, first.nu, damping, first.kp, tol, n)
     start: list[tuple[int, float, float]] = []
     for k, (p, s) in enumerate(zip(punches, singles, strict=True)):
-        zones = getattr(s, "contact_zones", (s.contact_interval,))
-        start += [(k, p.at + lo, p.at + hi) for lo, hi in zones]
+        start += [(k, p.at + lo, p.at + hi) for lo, hi in s.contact_zones]
     start.sort(key=lambda t: t[1])
     for (k1, _, r1), (k2, l2, _) in itertools.pairwise(start):
         if not l2 > r1:

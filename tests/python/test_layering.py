@@ -14,7 +14,10 @@ own layer or of lower layers, never a higher one, and no import cycle may form):
    result files), ``contract`` (the result contract every solution
    satisfies), ``_evaluate`` (checking inputs and evaluating at points),
    ``_version`` (the package version, read without importing the package).
-4. ``solve``: the solves, ``solver`` and ``damped`` (neither imports the other
+4. ``zones``: several contact zones and trains of punches (``zones``: the
+   contact-set search and the superposed result, on the core and the shared
+   evaluations; ``solver.solve`` and ``solver.solve_punches`` call it).
+   ``solve``: the solves, ``solver`` and ``damped`` (neither imports the other
    at module level; ``solver.solve`` hands damping > 0 to ``damped``).
 5. ``scene``: scene files, their runs and exports (``movingpunch.scene.*``), in
    three sub-layers: the model (the parts, validation, TOML reading and
@@ -71,6 +74,7 @@ LAYERS: tuple[tuple[str, frozenset[str]], ...] = (
         ),
     ),
     ("evaluations", frozenset({"movingpunch._evaluations"})),
+    ("zones", frozenset({"movingpunch.zones"})),
     ("solve", frozenset({"movingpunch.solver", "movingpunch.damped"})),
     (
         "scene model",

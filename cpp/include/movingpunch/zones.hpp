@@ -97,6 +97,13 @@ struct ZonesSolution {
   double critical_vstar = 0, rayleigh_vstar = 0, phi1 = 0;
 };
 
+// Power dissipated in the dashpots over P V (P the total load): damping
+// sqrt(vstar)/P int (dv/dx(x, -1))^2 dx by Parseval, (P/pi) int_0^inf |Wb
+// sum_j (P_j/P) p_j^|^2 d alpha on the kernel's quadrature split to resolve
+// the train's length; 0 without damping. By the energy balance it equals the
+// punches' drag (the independent check of the solve).
+double zones_dissipation(const ZonesSolution& s);
+
 // Throws std::invalid_argument (bad input, overlapping or unordered zones),
 // SupercriticalSpeedError and ConvergenceError (Newton's method failed: a
 // zone closed or the ends left the supported range).
