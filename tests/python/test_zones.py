@@ -13,14 +13,15 @@ cpp/src/zones.cpp; docs/theory.md section 15), against independent anchors:
 
 from __future__ import annotations
 
+import itertools
 import json
 import math
 
 import numpy as np
 import pytest
-from independent_zones import two_zone_ends
 
 import movingpunch as mp
+from independent_zones import two_zone_ends
 from movingpunch import zones as Z
 
 KW = 0.1
@@ -55,7 +56,8 @@ def test_the_refused_case_separates_into_two_valid_zones(
 ) -> None:
     s = separated
     assert len(s.contact_zones) == 2
-    assert s.valid and "separated contact of 2 zones" in s.validity
+    assert s.valid
+    assert "separated contact of 2 zones" in s.validity
     assert "single contact was rejected" in s.validity
     (l1, r1), (l2, r2) = s.contact_zones
     assert l1 < r1 < 0.0 < l2 < r2
@@ -114,7 +116,8 @@ def test_the_contact_set_does_not_depend_on_the_start(
     got = [(q.left, q.right) for q in z.zones]
     assert len(got) == 2
     for (a, b), (c, d) in zip(got, separated.contact_zones, strict=True):
-        assert abs(a - c) < 1e-9 and abs(b - d) < 1e-9
+        assert abs(a - c) < 1e-9
+        assert abs(b - d) < 1e-9
 
 
 def _threshold() -> float:
@@ -138,19 +141,20 @@ def _threshold() -> float:
 def test_zones_merge_into_the_single_contact_at_the_threshold() -> None:
     p_star = _threshold()
     below = mp.solve(vstar=V99, kw=KW, radius=R, load=p_star * (1 - 1e-6))
-    assert isinstance(below, mp.Solution) and below.valid
+    assert isinstance(below, mp.Solution)
+    assert below.valid
     inner = []
     for eps in (1e-2, 1e-3, 1e-4, 1e-6):
         above = mp.solve(vstar=V99, kw=KW, radius=R, load=p_star * (1 + eps))
         assert isinstance(above, mp.ZonedSolution)
-        (l1, r1), (l2, r2) = above.contact_zones
+        (_l1, r1), (l2, r2) = above.contact_zones
         inner.append(l2)
         assert abs(r1 + l2) < 1e-9  # symmetric
     # The gap closes like sqrt(P - P*): its half-width falls about 3.2 times
     # per decade of P - P*, and the hull, the indentation and the pressure
     # join the single contact's.
     assert inner == sorted(inner, reverse=True)
-    for a, b in zip(inner, inner[1:2], strict=False):
+    for a, b in itertools.pairwise(inner):
         assert 2.5 < a / b < 4.0
     assert inner[-1] < 3e-3
     assert abs(r2 - below.a) < 1e-5 * below.a
@@ -166,7 +170,8 @@ def test_a_symmetric_pair_gives_mirror_results() -> None:
         [mp.Punch(R, LOAD, at=-1.5), mp.Punch(R, LOAD, at=1.5)], vstar=0.5, kw=1.0
     )
     (l1, r1), (l2, r2) = train.contact_zones
-    assert abs(l1 + r2) < 1e-10 and abs(r1 + l2) < 1e-10
+    assert abs(l1 + r2) < 1e-10
+    assert abs(r1 + l2) < 1e-10
     x = np.linspace(-4.0, 4.0, 81)
     assert np.allclose(train.pressure(x), train.pressure(-x), atol=1e-9, rtol=0)
     assert np.allclose(
@@ -183,7 +188,8 @@ def test_a_symmetric_pair_gives_mirror_results() -> None:
         [mp.Punch(R, 0.003, at=-2.0), mp.Punch(R, 0.001, at=2.0)], vstar=0.5, kw=1.0
     )
     for (p, q), (r, t) in zip(a.contact_zones, reversed(b.contact_zones), strict=True):
-        assert abs(p + t) < 1e-10 and abs(q + r) < 1e-10
+        assert abs(p + t) < 1e-10
+        assert abs(q + r) < 1e-10
     assert abs(a.punches[0].indentation - b.punches[1].indentation) < 1e-12
 
 
@@ -198,8 +204,10 @@ def test_far_apart_punches_are_single_punches() -> None:
         tol=1e-12,
     )
     (l1, r1), (l2, r2) = train.contact_zones
-    assert abs(l1 + 50.0 + single.a) < 1e-8 and abs(r1 + 50.0 - single.a) < 1e-8
-    assert abs(l2 - 50.0 + heavy.a) < 1e-8 and abs(r2 - 50.0 - heavy.a) < 1e-8
+    assert abs(l1 + 50.0 + single.a) < 1e-8
+    assert abs(r1 + 50.0 - single.a) < 1e-8
+    assert abs(l2 - 50.0 + heavy.a) < 1e-8
+    assert abs(r2 - 50.0 - heavy.a) < 1e-8
     assert (
         abs(train.punches[0].indentation - single.indentation)
         < 1e-8 * single.indentation
@@ -229,7 +237,8 @@ def test_a_one_punch_train_is_solve() -> None:
     moved = mp.solve_punches([mp.Punch(R, LOAD, at=7.0)], vstar=0.5, kw=1.0)
     assert isinstance(moved, mp.ZonedSolution)
     (lo, hi) = moved.contact_zones[0]
-    assert abs(lo - 7.0 + ref.a) < 1e-10 and abs(hi - 7.0 - ref.a) < 1e-10
+    assert abs(lo - 7.0 + ref.a) < 1e-10
+    assert abs(hi - 7.0 - ref.a) < 1e-10
     assert abs(moved.indentation - ref.indentation) < 1e-10 * ref.indentation
     x = np.linspace(-2.0, 2.0, 21)
     assert np.allclose(moved.surface_stress(x + 7.0), ref.surface_stress(x), atol=1e-8)
@@ -257,7 +266,8 @@ def test_contact_modes_and_the_contract() -> None:
     s = mp.solve(
         vstar=V99, kw=KW, radius=R, load=LOAD, contact="single", allow_unphysical=True
     )
-    assert isinstance(s, mp.Solution) and not s.valid
+    assert isinstance(s, mp.Solution)
+    assert not s.valid
     assert s.contact_zones == ((-s.a, s.a),)
     with pytest.raises(mp.InvalidParameterError) as err:
         mp.solve(vstar=0.5, kw=1.0, radius=R, load=LOAD, contact="zones")
@@ -270,17 +280,21 @@ def test_every_evaluation_of_the_contract_works(separated: mp.ZonedSolution) -> 
     s = separated
     assert isinstance(s, mp.ContactSolution)
     fld = s.stress_field(np.linspace(-3, 3, 7), [0.0, -0.5, -1.0])
-    assert fld.sigma_x.shape == (3, 7) and np.all(np.isfinite(fld.von_mises))
+    assert fld.sigma_x.shape == (3, 7)
+    assert np.all(np.isfinite(fld.von_mises))
     # On the surface sigma_y = -p.
     assert np.allclose(fld.sigma_y[0], -s.pressure(np.linspace(-3, 3, 7)), atol=1e-9)
     peaks = s.stress_peaks()
-    assert math.isfinite(peaks.top_compressive) and peaks.error_bound > 0
+    assert math.isfinite(peaks.top_compressive)
+    assert peaks.error_bound > 0
     assert s.depth_stress(-0.5) == pytest.approx(float(fld.sigma_x[1, 3]), abs=1e-12)
     assert math.isfinite(s.displacement(0.5, -0.5))
     assert math.isfinite(s.foundation_reaction(0.0))
-    assert s.dissipation == 0.0 and abs(s.drag) < 1e-12
+    assert s.dissipation == 0.0
+    assert abs(s.drag) < 1e-12
     data = json.loads(json.dumps(s.to_dict()))
-    assert len(data["contact_zones"]) == 2 and len(data["punches"]) == 1
+    assert len(data["contact_zones"]) == 2
+    assert len(data["punches"]) == 1
     assert data["punches"][0]["zone_loads"] == pytest.approx(
         [LOAD / 2, LOAD / 2], rel=1e-12
     )
