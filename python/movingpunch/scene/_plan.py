@@ -17,6 +17,7 @@ from movingpunch.profiles import PunchProfile
 from movingpunch.scene._model import PEAK_QUANTITIES, SceneData
 from movingpunch.scene._result import SweepTable
 from movingpunch.scene._solve import Key, curve_label, point_key, radius_ratio
+from movingpunch.zones import Punch
 
 __all__ = ["SweepPlan", "build_sweep_table", "plan_sweep", "split_chunks"]
 
@@ -34,6 +35,8 @@ class SweepPlan:
     want_peaks: bool
     damped: bool
     profile: PunchProfile | None = None
+    contact: str = "auto"
+    punches: tuple[Punch, ...] = ()
 
 
 def plan_sweep(scene: SceneData) -> SweepPlan:
@@ -55,8 +58,17 @@ def plan_sweep(scene: SceneData) -> SweepPlan:
     keys = [k for members in groups.values() for k in members]
     want_peaks = any(q in PEAK_QUANTITIES for q in sw.quantities)
     damped = any(k[4] > 0.0 or k[6] > 0.0 for k in keys)  # the asymmetric solver
+    damped = damped or bool(scene.punches)  # a train: seconds per point
     return SweepPlan(
-        points, keys, groups, representative, want_peaks, damped, scene.profile
+        points,
+        keys,
+        groups,
+        representative,
+        want_peaks,
+        damped,
+        scene.profile,
+        scene.contact,
+        tuple(scene.punches),
     )
 
 
@@ -181,6 +193,9 @@ def chunk_tasks(plan: SweepPlan, chunk: Chunk) -> list[dict[str, Any]]:
             ],
             "peaks": plan.want_peaks,
             "profile": plan.profile,
+            "contact": plan.contact,
+            "punches": plan.punches,
+            "spacings": [plan.representative[k].get("spacing") for k in keys],
         }
         for group, keys in chunk
     ]
