@@ -480,16 +480,16 @@ def _zone_text(zones: Sequence[tuple[float, float]]) -> str:
 
 
 def _cmd_solve(args: argparse.Namespace) -> int:
+    if args.load is None and not args.punch:
+        raise InvalidParameterError(
+            "solve needs --load (or a train: --punch LOAD@AT, repeated)",
+            parameter="load",
+        )
     profile = _cli_profile(args)
     s: Any
     if args.punch:
         s = _solve_train(args, profile)
     else:
-        if args.load is None:
-            raise InvalidParameterError(
-                "solve needs --load (or a train: --punch LOAD@AT, repeated)",
-                parameter="load",
-            )
         s = solve(
             vstar=args.vstar,
             kw=args.kw,
