@@ -16,6 +16,7 @@ import numpy as np
 import pytest
 
 import movingpunch as mp
+from movingpunch.accuracy import accuracy_report
 from movingpunch.scene import (
     Scene,
     SceneError,
@@ -455,3 +456,12 @@ def test_cli_solve_contact_and_punches(
     missing = run_cli("solve", "--vstar", "0.5", "--kw", "1", "--radius", "100")
     assert_one_line_error(missing, "--load")
     assert math.isfinite(direct.a)
+
+
+def test_the_accuracy_report_refuses_a_train(
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+    assert_one_line_error: Callable[..., None],
+) -> None:
+    with pytest.raises(mp.InvalidParameterError, match=r"train of 2 punches"):
+        accuracy_report(Scene.bundled("two-axle"), tols=[1e-4])
+    assert_one_line_error(run_cli("accuracy", "two-axle"), "[[punches]]")
