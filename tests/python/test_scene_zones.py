@@ -293,14 +293,25 @@ def test_broken_punches_give_a_scene_error_naming_the_key(text: str, key: str) -
     assert "\n" not in str(info.value)
 
 
-def test_overlapping_punches_fail_with_a_message_naming_them() -> None:
-    scene = Scene.from_toml(
-        _two(_OUT, _P0.replace("-2", "0") + _P0.replace("-2", "0.1"))
-    )
+def test_overlapping_punches_are_a_scene_error_naming_the_key() -> None:
+    close = _P0.replace("-2", "0") + _P0.replace("-2", "0.1")
     with pytest.raises(
-        mp.InvalidParameterError, match=r"punches\[0\] and punches\[1\]"
-    ):
-        scene.run()
+        SceneError, match=r"punches\[0\] and punches\[1\] overlap"
+    ) as info:
+        Scene.from_toml(_two(_OUT, close), "bad.toml")
+    assert info.value.key == "punches[1].at"
+    # A vary over spacing blames the value at fault.
+    vary = '[vary]\nparam = "spacing"\nvalues = [4.0, 0.5]\n'
+    with pytest.raises(SceneError) as info:
+        Scene.from_toml(_two(_OUT + vary), "bad.toml")
+    assert info.value.key == "vary.values[1]"
+    # A sweep's overlapping point is that point's error, not the scene's.
+    sweep = '[sweep]\nparam = "spacing"\nvalues = [0.5, 4.0]\nquantities = ["a"]\n'
+    result = Scene.from_toml(_two(sweep)).run()
+    assert result.sweep is not None
+    assert "overlap" in result.sweep.errors[(0, 0)]
+    assert math.isnan(result.sweep.data["a"][0][0])
+    assert math.isfinite(result.sweep.data["a"][0][1])
 
 
 # -- exports -------------------------------------------------------------------

@@ -8,6 +8,7 @@ damping). Every problem is one ``SceneError`` line:
 from __future__ import annotations
 
 import functools
+import itertools
 import math
 import numbers
 from collections.abc import Callable, Iterable, Mapping, Sequence
@@ -46,6 +47,7 @@ from movingpunch.scene._model import (
     allowed_text,
     output_items,
     sweep_grid,
+    train_of,
 )
 from movingpunch.zones import Punch
 
@@ -574,6 +576,8 @@ def validate(scene: SceneData, source: str) -> None:
             "at least one of " + ", ".join(OUTPUT_KINDS) + ", or a [sweep]",
         )
     _check_speeds(scene, c)
+    if punches:
+        _check_overlap(scene, c)
 
 
 def _axis_params(punches: Sequence[Punch]) -> tuple[str, ...]:
@@ -713,6 +717,54 @@ def _check_speeds(scene: SceneData, c: Checker) -> None:
                 if allowed.startswith("0 <=")
                 else allowed,
                 blamed,
+            )
+
+
+def _check_overlap(scene: SceneData, c: Checker) -> None:
+    """The punches of every curve the scene computes (outputs other than
+    critical_speed) must not overlap: each punch solved alone (cheap: the
+    kernel is shared), its contact shifted to its ``at``, must end before
+    the next one's begins. A sweep's points are checked by their solves
+    (an overlap is that point's error)."""
+    from movingpunch.errors import MovingPunchError
+    from movingpunch.solver import solve
+
+    if not any(k != "critical_speed" for k in scene.outputs):
+        return
+    for vi, v in enumerate(scene.curve_values()):
+        p = scene.point(v)
+        train = train_of(scene.punches, p)
+        ends: list[tuple[float, float, int]] = []
+        for k, q in enumerate(train):
+            try:
+                alone = solve(
+                    vstar=p["vstar"],
+                    kw=p["kw"],
+                    nu=p["nu"],
+                    kp=p.get("kp", 0.0),
+                    damping=p.get("damping", 0.0),
+                    profile=q.profile,
+                    load=q.load,
+                    tol=max(scene.tol, 1e-6),
+                )
+            except MovingPunchError:
+                return  # the run reports it
+            lo, hi = alone.contact_interval
+            ends.append((q.at + lo, q.at + hi, k))
+        ends.sort()
+        for (l1, r1, k1), (l2, r2, k2) in itertools.pairwise(ends):
+            if l2 > r1:
+                continue
+            varied = scene.vary is not None and scene.vary.param in (
+                "spacing",
+                "load",
+            )
+            key = f"vary.values[{vi}]" if varied else f"punches[{max(k1, k2)}].at"
+            raise c.fail(
+                key,
+                f"punches[{k1}] and punches[{k2}] overlap: alone their contacts "
+                f"span x/h = {l1:.6g} to {r1:.6g} and {l2:.6g} to {r2:.6g}",
+                "punches further apart",
             )
 
 
