@@ -58,7 +58,6 @@ def plan_sweep(scene: SceneData) -> SweepPlan:
     keys = [k for members in groups.values() for k in members]
     want_peaks = any(q in PEAK_QUANTITIES for q in sw.quantities)
     damped = any(k[4] > 0.0 or k[6] > 0.0 for k in keys)  # the asymmetric solver
-    damped = damped or bool(scene.punches)  # a train: seconds per point
     return SweepPlan(
         points,
         keys,
@@ -80,6 +79,7 @@ def plan_sweep(scene: SceneData) -> SweepPlan:
 # critical speed too); 20 000 warm points of a load sweep 6.5 s.
 _COLD_SECONDS, _WARM_SECONDS, _PEAKS_SECONDS = 1.5e-3, 3e-4, 3e-2
 _DAMPED_SECONDS = 0.7
+_TRAIN_SECONDS = 0.01  # two to four punches (the bundled spacing scene: 5 ms)
 _STARTUP_SECONDS = 0.6
 # A chunk (the unit of work a worker is sent) is sized to about
 # 1/_CHUNKS_PER_JOB of a worker's share, within [CHUNK_MIN, CHUNK_MAX]
@@ -96,6 +96,8 @@ Chunk = list[tuple[tuple[float, ...], list[Key]]]
 def _point_seconds(plan: SweepPlan, cold: bool) -> float:
     if plan.damped:
         return _DAMPED_SECONDS
+    if plan.punches:  # a train: its punches' solves and the zone search
+        return _TRAIN_SECONDS + (_PEAKS_SECONDS if plan.want_peaks else 0.0)
     seconds = _COLD_SECONDS if cold else _WARM_SECONDS
     return seconds + (_PEAKS_SECONDS if plan.want_peaks else 0.0)
 
