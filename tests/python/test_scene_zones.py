@@ -476,3 +476,13 @@ def test_the_accuracy_report_refuses_a_train(
     with pytest.raises(mp.InvalidParameterError, match=r"train of 2 punches"):
         accuracy_report(Scene.bundled("two-axle"), tols=[1e-4])
     assert_one_line_error(run_cli("accuracy", "two-axle"), "[[punches]]")
+
+
+def test_a_train_sweep_in_worker_processes_gives_the_same_numbers() -> None:
+    scene = Scene.bundled("spacing")
+    here, pooled = scene.run(jobs=1), scene.run(jobs=2)
+    assert here.sweep is not None
+    assert pooled.sweep is not None
+    assert pooled.jobs == 2
+    for q in scene.sweep.quantities if scene.sweep is not None else ():
+        np.testing.assert_array_equal(pooled.sweep.data[q], here.sweep.data[q])
