@@ -294,6 +294,20 @@ def _params_of(s: ContactSolution) -> dict[str, float]:
     return {name: float(getattr(s, name)) for name in _PARAMS}
 
 
+def _no_train(scene: Scene) -> Scene:
+    """``scene``, unless it is a train of punches: its reference solve
+    (one punch at fixed N) does not cover trains yet."""
+    if scene.punches:
+        raise InvalidParameterError(
+            f"accuracy: the scene {scene.name or 'given'!r} is a train of "
+            f"{len(scene.punches)} punches ([[punches]]); the accuracy report "
+            "covers single punches (a separated contact included) only",
+            parameter="scene",
+            allowed="a scene without [[punches]]",
+        )
+    return scene
+
+
 def _target(
     target: Scene | Mapping[str, float] | str | Path | None,
     profile: PunchProfile | None = None,
@@ -302,9 +316,9 @@ def _target(
         target = FIG4_CASE
     if isinstance(target, (str, Path)):
         scene = load_scene(target)
-        return _Target(scene.name or str(target), scene, single=False)
+        return _Target(scene.name or str(target), _no_train(scene), single=False)
     if isinstance(target, Scene):
-        return _Target(target.name or "scene", target, single=False)
+        return _Target(target.name or "scene", _no_train(target), single=False)
     params = {name: float(target[name]) for name in _PARAMS if name in target}
     params.setdefault("nu", 0.2)
     scene = Scene(

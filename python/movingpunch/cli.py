@@ -59,6 +59,7 @@ from movingpunch.solver import (
     result_warnings,
     solve,
 )
+from movingpunch.zones import Punch, solve_punches
 
 PROG = "movingpunch"
 EXIT_USAGE = 2
@@ -147,6 +148,20 @@ def _number(name: str) -> Callable[[str], float]:
     return parse
 
 
+def _punch_arg(text: str) -> tuple[float, float]:
+    """argparse type of --punch: LOAD@AT, two real numbers (their ranges
+    are checked by movingpunch.Punch)."""
+    load, sep, at = text.partition("@")
+    try:
+        if not sep:
+            raise ValueError
+        return float(load), float(at)
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"--punch must be LOAD@AT (two numbers, e.g. 0.002@-1.5), got {text!r}"
+        ) from None
+
+
 def _tol(text: str) -> float | str:
     """argparse type of --tol: a number or a preset name (checked by the
     solver, whose message names the range and the presets)."""
@@ -172,10 +187,35 @@ def _build_parser() -> argparse.ArgumentParser:
         description="Solve the contact problem and print a/h, p0, indentation, ...",
     )
     # Help texts and ranges: the table of parameters (movingpunch.params).
-    for name in ("vstar", "kw", "load"):
+    for name in ("vstar", "kw"):
         solve_p.add_argument(
             f"--{name}", type=_number(name), required=True, help=help_text(name)
         )
+    solve_p.add_argument(
+        "--load",
+        type=_number("load"),
+        default=None,
+        help=help_text("load") + " (required, except with --punch)",
+    )
+    solve_p.add_argument(
+        "--punch",
+        type=_punch_arg,
+        action="append",
+        default=None,
+        metavar="LOAD@AT",
+        help="a punch of a train: its load P/(mu h) and the x/h of its axis, "
+        "e.g. --punch 0.002@-1.5 --punch 0.002@1.5 (repeat it; each the shape "
+        "of --profile and its options, a cylinder of --radius by default; "
+        "instead of --load; docs/theory.md section 15)",
+    )
+    solve_p.add_argument(
+        "--contact",
+        choices=("auto", "single"),
+        default="auto",
+        help="auto (default): several contact zones where the single contact "
+        "is unphysical (it separates); single: the single contact only "
+        "(an unphysical one fails, or is flagged with --allow-unphysical)",
+    )
     solve_p.add_argument(
         "--radius",
         type=_number("radius"),
@@ -398,21 +438,72 @@ def _read_table(path: str) -> Profile:
     return Profile(tuple(xs), tuple(ys))
 
 
-def _cmd_solve(args: argparse.Namespace) -> int:
-    profile = _cli_profile(args)
-    s = solve(
+def _solve_train(args: argparse.Namespace, profile: PunchProfile | None) -> Any:
+    """``solve --punch LOAD@AT ...``: the train, by solve_punches."""
+    for given, option in (
+        (args.load is not None, "--load"),
+        (args.allow_unphysical, "--allow-unphysical"),
+        (args.contact != "auto", "--contact single"),
+    ):
+        if given:
+            raise InvalidParameterError(
+                f"{option} cannot be used with --punch (each punch has its load; "
+                "a train finds its contact zones)",
+                parameter="punch",
+            )
+    shape: PunchProfile | float
+    if profile is not None:
+        shape = profile
+    elif args.radius is not None:
+        shape = args.radius
+    else:
+        raise InvalidParameterError(
+            "--punch needs --radius (the cylinders' R/h) or a --profile",
+            parameter="radius",
+        )
+    punches = [Punch(shape, load, at) for load, at in args.punch]
+    return solve_punches(
+        punches,
         vstar=args.vstar,
         kw=args.kw,
-        radius=args.radius if profile is None else None,
-        profile=profile,
-        load=args.load,
         nu=args.nu,
         tol=args.tol,
-        allow_unphysical=args.allow_unphysical,
         damping=args.damping,
         kp=args.kp,
         friction=args.friction,
     )
+
+
+def _zone_text(zones: Sequence[tuple[float, float]]) -> str:
+    """Contact zones as "(-1.78, -0.72) (0.72, 1.78)"."""
+    return " ".join(f"({lo:.6g}, {hi:.6g})" for lo, hi in zones)
+
+
+def _cmd_solve(args: argparse.Namespace) -> int:
+    if args.load is None and not args.punch:
+        raise InvalidParameterError(
+            "solve needs --load (or a train: --punch LOAD@AT, repeated)",
+            parameter="load",
+        )
+    profile = _cli_profile(args)
+    s: Any
+    if args.punch:
+        s = _solve_train(args, profile)
+    else:
+        s = solve(
+            vstar=args.vstar,
+            kw=args.kw,
+            radius=args.radius if profile is None else None,
+            profile=profile,
+            load=args.load,
+            nu=args.nu,
+            tol=args.tol,
+            allow_unphysical=args.allow_unphysical,
+            damping=args.damping,
+            kp=args.kp,
+            friction=args.friction,
+            contact=args.contact,
+        )
     peaks = s.stress_peaks() if args.stress else None
     _print_warnings(s)
     if args.json:
@@ -435,9 +526,12 @@ def _cmd_solve(args: argparse.Namespace) -> int:
         ("tolerance", _fmt(s.tol)),
     ]
     back, front = s.contact_interval
+    zones = tuple(getattr(s, "contact_zones", ((back, front),)))
+    several = [("contact zones", _zone_text(zones))] if len(zones) > 1 else []
     results = [
         ("a/h", _fmt(s.a)),
         ("contact (x_back/h, x_front/h)", f"({_fmt(back)}, {_fmt(front)})"),
+        *several,
         ("p0/(P/h)", _fmt(s.p0)),
         ("indentation δ/h", _fmt(s.indentation)),
         ("drag (∫p x/R dx)/P", _fmt(s.drag)),
@@ -474,6 +568,21 @@ def _cmd_solve(args: argparse.Namespace) -> int:
         ("validity", s.validity or "-"),
     ]
     sections = [("Inputs", inputs), ("Results", results)]
+    punches = getattr(s, "punches", ())
+    if punches and (len(punches) > 1 or args.punch):
+        sections.append(
+            (
+                "Punches",
+                [
+                    (
+                        f"punch {k + 1} at x/h = {_fmt(q.at)}",
+                        f"P/(μh) = {_fmt(q.load)}, zones {_zone_text(q.contact_zones)}"
+                        f", δ/h = {_fmt(q.indentation)}, drag/P = {_fmt(q.drag)}",
+                    )
+                    for k, q in enumerate(punches)
+                ],
+            )
+        )
     if peaks is not None:
         sections.append(("Stress sigma_x/(P/h)", _stress_rows(peaks)))
     print(_tables(*sections))

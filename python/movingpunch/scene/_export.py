@@ -44,6 +44,7 @@ _PARAM_LABELS = {
     "damping": "damping",
     "kp": "k_p/(μh)",
     "friction": "friction f",
+    "spacing": "spacing/h",
 }
 _QUANTITY_LABELS = {
     "a": "a/h",
@@ -55,6 +56,7 @@ _QUANTITY_LABELS = {
     "drag": "drag/P",
     "contact_start": "-b/h (trailing end)",
     "contact_end": "a/h (end)",
+    "zones": "zones",
     "top_compressive": "top σx min",
     "top_tensile": "top σx max",
     "bottom_tensile": "bottom σx max",
@@ -99,6 +101,13 @@ def format_summary(result: SceneResult) -> str:
         f"{_PARAM_LABELS[k]} = {_fmt(v)}" for k, v in scene.params.items()
     )
     out.append(f"  {params}, tol = {scene.tol:g}")
+    if scene.contact != "auto":
+        out.append(f"  contact = {scene.contact}")
+    for k, punch in enumerate(scene.punches):
+        out.append(
+            f"  punch {k + 1}: {punch.profile.describe()}, "
+            f"P/(μh) = {_fmt(punch.load)}, at x/h = {_fmt(punch.at)}"
+        )
     if scene.vary is not None:
         vals = ", ".join(_fmt(v) for v in scene.vary.values)
         out.append(f"  curves: {_PARAM_LABELS[scene.vary.param]} = {vals}")
@@ -117,6 +126,7 @@ def format_summary(result: SceneResult) -> str:
                 row.append(("yes" if value else "NO") if n == "valid" else _fmt(value))
             rows.append(row)
         out += _table(header, rows)
+        out += _zone_lines(cw.details, len(rows), scene)
 
     cs = result.outputs.get("critical_speed")
     if cs is not None and not cs.curves:
@@ -175,6 +185,40 @@ def format_summary(result: SceneResult) -> str:
         [[s.name, str(s.count), f"{s.seconds:.4f}"] for s in result.stages],
     )
     return "\n".join(out)
+
+
+def format_zones(zones: Sequence[Sequence[float]]) -> str:
+    """Contact zones as text: "(-1.78, -0.72) (0.72, 1.78)"."""
+    return " ".join(f"({lo:.6g}, {hi:.6g})" for lo, hi in zones)
+
+
+def _zone_lines(details: Mapping[str, Any], n: int, scene: Scene) -> list[str]:
+    """The contact zones of each curve that has several, and a line per
+    punch of a train or a separated contact."""
+    zones = details.get("contact_zones", [])
+    punches = details.get("punches", [])
+    values = scene.curve_values()
+    param = scene.vary.param if scene.vary is not None else None
+    lines: list[str] = []
+    for i in range(min(n, len(zones))):
+        mine = punches[i] if i < len(punches) else []
+        if len(zones[i]) < 2 and len(mine) < 2:
+            continue
+        where = (
+            f" ({_PARAM_LABELS[param]} = {_fmt(float(values[i] or 0.0))})"
+            if param is not None and values[i] is not None
+            else ""
+        )
+        lines.append(f"  contact zones{where}: {format_zones(zones[i])}")
+        for k, d in enumerate(mine if len(mine) > 1 or len(zones[i]) > 1 else []):
+            lines.append(
+                f"    punch {k + 1} at x/h = {_fmt(float(d['at']))}: "
+                f"P/(μh) = {_fmt(float(d['load']))}, "
+                f"zones {format_zones(d['contact_zones'])}, "
+                f"δ/h = {_fmt(float(d['indentation']))}, "
+                f"drag/P = {_fmt(float(d['drag']))}"
+            )
+    return lines
 
 
 # ----------------------------------------------------------------------------
@@ -318,13 +362,18 @@ def _stem(scene: Scene) -> str:
 # ----------------------------------------------------------------------------
 
 
-def _tables(result: SceneResult) -> list[tuple[str, str, Mapping[str, FloatArray]]]:
-    tables: list[tuple[str, str, Mapping[str, FloatArray]]] = [
-        (name, data.title, data.columns) for name, data in result.outputs.items()
+_Table = tuple[str, str, Mapping[str, FloatArray], Mapping[str, Any]]
+
+
+def _tables(result: SceneResult) -> list[_Table]:
+    """(output, title, columns, details) of each output and of the sweep."""
+    tables: list[_Table] = [
+        (name, data.title, data.columns, data.details)
+        for name, data in result.outputs.items()
     ]
     if result.sweep is not None:
         tables.append(
-            ("sweep", f"sweep over {result.sweep.param}", result.sweep.columns())
+            ("sweep", f"sweep over {result.sweep.param}", result.sweep.columns(), {})
         )
     return tables
 
@@ -349,12 +398,12 @@ def render_outputs(result: SceneResult, fmt: str = "csv") -> list[tuple[str, byt
     stem = _stem(result.scene)
     scene_toml = result.scene.to_toml()
     rendered: list[tuple[str, bytes]] = []
-    for output, title, columns in _tables(result):
+    for output, title, columns, details in _tables(result):
         meta = _metadata(result, output, title)
         if fmt == "csv":
-            body = _csv(meta, scene_toml, columns)
+            body = _csv(meta, scene_toml, columns, details)
         else:
-            body = _json(meta, scene_toml, columns)
+            body = _json(meta, scene_toml, columns, details)
         rendered.append((f"{stem}-{output}.{fmt}", body.encode("utf-8")))
     return rendered
 
@@ -367,9 +416,17 @@ def write_outputs(result: SceneResult, out_dir: Path, fmt: str = "csv") -> list[
 
 
 def _csv(
-    meta: Mapping[str, str], scene_toml: str, columns: Mapping[str, FloatArray]
+    meta: Mapping[str, str],
+    scene_toml: str,
+    columns: Mapping[str, FloatArray],
+    details: Mapping[str, Any] | None = None,
 ) -> str:
     lines = [f"# {k}: {v}" for k, v in meta.items()]
+    # Details (contact zones, per-punch results): one JSON text a line.
+    lines += [
+        f"# {k}: {json.dumps(_json_safe(v), allow_nan=False)}"
+        for k, v in (details or {}).items()
+    ]
     lines.append("# columns: " + ",".join(columns))
     lines.append("# scene:")
     lines += [f"#   {line}" if line else "#" for line in scene_toml.splitlines()]
@@ -388,11 +445,31 @@ def _json_float(x: float) -> float | str:
     )
 
 
+def _json_safe(value: Any) -> Any:
+    """``value`` (details: nested lists and dicts of numbers and strings)
+    with non-finite floats as the strings "nan", "inf", "-inf"."""
+    if isinstance(value, Mapping):
+        return {str(k): _json_safe(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_json_safe(v) for v in value]
+    if isinstance(value, (float, np.floating)):
+        return _json_float(float(value))
+    return value
+
+
+_DETAILS = ("contact_zones", "punches")
+"""The details an output may carry (``OutputData.details``)."""
+
+
 def _json(
-    meta: Mapping[str, str], scene_toml: str, columns: Mapping[str, FloatArray]
+    meta: Mapping[str, str],
+    scene_toml: str,
+    columns: Mapping[str, FloatArray],
+    details: Mapping[str, Any] | None = None,
 ) -> str:
     doc = {
         **meta,
+        **{k: _json_safe(v) for k, v in (details or {}).items()},
         "scene": scene_toml,
         "columns": {
             k: [_json_float(float(x)) for x in np.asarray(v, dtype=np.float64)]
@@ -426,6 +503,8 @@ def read_csv(path: str | Path) -> tuple[dict[str, Any], dict[str, FloatArray]]:
             in_scene = True
         elif key == "columns":
             names = value.split(",")
+        elif key in _DETAILS:
+            meta[key] = json.loads(value)
         else:
             meta[key] = value
     meta["scene"] = Scene.from_toml("\n".join(toml_lines) + "\n", f"{path} (metadata)")

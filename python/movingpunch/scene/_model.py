@@ -7,6 +7,7 @@ Plain data: nothing here validates, reads files or computes.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Protocol
@@ -15,16 +16,20 @@ import numpy as np
 
 from movingpunch.params import PHYSICAL, SPECS
 from movingpunch.profiles import PunchProfile
+from movingpunch.zones import Punch
 
 __all__ = [
+    "CONTACT_MODES",
     "OUTPUT_KINDS",
     "PARAMS",
     "STRESS_COMPONENTS",
     "SWEEP_QUANTITIES",
+    "TRAIN_PARAMS",
     "OutputSpec",
     "SceneData",
     "Sweep",
     "Vary",
+    "train_of",
 ]
 
 PARAMS: tuple[str, ...] = PHYSICAL
@@ -35,9 +40,22 @@ docs/theory.md section 12) and ``friction`` (Coulomb f, docs/theory.md
 section 14) to 0, each kept in ``params`` only when given."""
 
 
+TRAIN_PARAMS: tuple[str, ...] = ("spacing",)
+"""Parameters a vary or a sweep takes beside ``PARAMS`` in a scene with
+``[[punches]]``: ``spacing`` places the K punches equally spaced, centred on
+x = 0 (at_k = (k - (K - 1)/2) * spacing)."""
+
+CONTACT_MODES: tuple[str, ...] = ("auto", "single")
+"""``[params] contact``: passed to ``movingpunch.solve``."""
+
+MAX_PUNCHES = 16
+
+
 def allowed_text(name: str) -> str:
     """What a scene accepts for the parameter ``name``: its range from the
     table of parameters (``movingpunch.params.SPECS``)."""
+    if name == "spacing":
+        return "a finite number > 0 (x/h between neighbouring punches)"
     text = f"a number, {SPECS[name].text}"
     return text + ', or "inf"' if name == "kw" else text
 
@@ -85,6 +103,8 @@ SWEEP_QUANTITIES: dict[str, str] = {
     "damping or friction)",
     "contact_start": "trailing end -b/h of the contact (-a/h without damping)",
     "contact_end": "leading end a/h of the contact",
+    "zones": "number of contact zones (1: a single contact; more: a separated "
+    "contact or a train of punches)",
     "top_compressive": "most compressive sigma_x/(P/h) on the top surface",
     "top_tensile": "most tensile sigma_x/(P/h) on the top surface",
     "bottom_tensile": "most tensile sigma_x/(P/h) at the bottom",
@@ -244,6 +264,10 @@ class SceneData(Protocol):
     @property
     def profile(self) -> PunchProfile | None: ...
     @property
+    def punches(self) -> tuple[Punch, ...]: ...
+    @property
+    def contact(self) -> str: ...
+    @property
     def outputs(self) -> Mapping[str, OutputSpec]: ...
     @property
     def vary(self) -> Vary | None: ...
@@ -259,3 +283,20 @@ class SceneData(Protocol):
     def point(
         self, vary_value: float | None = None, **override: float
     ) -> dict[str, float]: ...
+
+
+def train_of(punches: Sequence[Punch], p: Mapping[str, float]) -> list[Punch]:
+    """The punches of one point of a scene with ``[[punches]]``: their loads
+    scaled by p["load"] / (their total load) (a vary or sweep over ``load``
+    sets the train's total load), and, when p has a ``spacing``, placed
+    equally spaced centred on x = 0, at_k = (k - (K - 1)/2) * spacing (in the
+    order of the tables)."""
+    total = math.fsum(q.load for q in punches)
+    factor = p["load"] / total if "load" in p else 1.0
+    k_mid = 0.5 * (len(punches) - 1)
+    out = []
+    for k, q in enumerate(punches):
+        at = (k - k_mid) * p["spacing"] if "spacing" in p else q.at
+        load = q.load if factor == 1.0 else q.load * factor
+        out.append(Punch(q.profile, load, at))
+    return out

@@ -76,8 +76,10 @@ def _out_contact_width(run: RunState, spec: Any, solutions: _Solutions) -> Outpu
     if scene.vary is not None:
         cols[scene.vary.param] = []
     names = ["a", "contact_start", "contact_end", "drag", "p0", "indentation"]
-    for name in [*names, "valid", "error_estimate", "collocation_n"]:
+    for name in [*names, "zones", "valid", "error_estimate", "collocation_n"]:
         cols[name] = []
+    zones: list[list[list[float]]] = []
+    punches: list[list[dict[str, object]]] = []
     for v, s in solutions.items():
         p = scene.point(v)
         if scene.vary is not None:
@@ -90,20 +92,56 @@ def _out_contact_width(run: RunState, spec: Any, solutions: _Solutions) -> Outpu
         cols["drag"].append(s.drag * radius_ratio(s.radius, p["radius"]))
         cols["p0"].append(s.p0)
         cols["indentation"].append(s.indentation * p["load"] / s.load)
+        cols["zones"].append(float(len(s.contact_zones)))
+        zones.append([[float(lo), float(hi)] for lo, hi in s.contact_zones])
+        punches.append(_punch_dicts(s, p["load"] / s.load))
         cols["valid"].append(1.0 if s.valid else 0.0)
         cols["error_estimate"].append(s.error_estimate)
         cols["collocation_n"].append(float(s.collocation_n))
+    details: dict[str, Any] = {"contact_zones": zones}
+    if any(punches):
+        details["punches"] = punches
     return OutputData(
         name="contact_width",
         title="Contact half-width",
         x_label=scene.vary.param if scene.vary is not None else "",
         y_label="a/h",
         columns={k: np.asarray(v, dtype=np.float64) for k, v in cols.items()},
+        details=details,
     )
 
 
+def _punch_dicts(s: ContactSolution, scale: float) -> list[dict[str, object]]:
+    """``PunchResult.to_dict()`` of each punch of a ``ZonedSolution`` (none
+    of an ordinary result); loads and indentations times ``scale`` (a
+    solution shared through lambda = radius * load, like the indentation)."""
+    out: list[dict[str, object]] = []
+    for punch in getattr(s, "punches", ()):
+        d = punch.to_dict()
+        if scale != 1.0:
+            d["load"] = punch.load * scale
+            d["zone_loads"] = [x * scale for x in punch.zone_loads]
+            d["indentation"] = punch.indentation * scale
+        out.append(d)
+    return out
+
+
+def _hull_range(
+    solutions: _Solutions, default: tuple[float, float]
+) -> tuple[float, float]:
+    """``default``, widened to the hull of the contact zones and 1 h beyond
+    where a solution has several zones (a separated contact, a train)."""
+    lo, hi = default
+    for s in solutions.values():
+        if len(s.contact_zones) > 1:
+            start, end = s.contact_interval
+            lo, hi = min(lo, start - 1.0), max(hi, end + 1.0)
+    return lo, hi
+
+
 def _out_pressure(run: RunState, spec: Any, solutions: _Solutions) -> OutputData:
-    # 1.25 x the farthest contact end of every curve.
+    # 1.25 x the farthest contact end of every curve (the hull of several
+    # zones: contact_interval), so that an off-centre contact is covered too.
     reach = max(abs(e) for s in solutions.values() for e in s.contact_interval)
     default = (-1.25 * reach, 1.25 * reach)
     x = _x_grid(spec.x, default, spec.resolved_points())
@@ -137,7 +175,7 @@ def _curve_output(
 
 
 def _out_surface_stress(run: RunState, spec: Any, solutions: _Solutions) -> OutputData:
-    x = _x_grid(spec.x, (-3.0, 3.0), spec.resolved_points())
+    x = _x_grid(spec.x, _hull_range(solutions, (-3.0, 3.0)), spec.resolved_points())
     return _curve_output(
         run,
         solutions,
@@ -162,7 +200,7 @@ def _out_depth_stress(run: RunState, spec: Any, solutions: _Solutions) -> Output
 
 
 def _out_displacement(run: RunState, spec: Any, solutions: _Solutions) -> OutputData:
-    x = _x_grid(spec.x, (-3.0, 3.0), spec.resolved_points())
+    x = _x_grid(spec.x, _hull_range(solutions, (-3.0, 3.0)), spec.resolved_points())
     depth = spec.resolved_depth()
     curves = _curves(
         run,
@@ -184,7 +222,7 @@ def _out_displacement(run: RunState, spec: Any, solutions: _Solutions) -> Output
 
 def _out_stress_field(run: RunState, spec: Any, solutions: _Solutions) -> OutputData:
     scene = run.scene
-    x = _x_grid(spec.x, (-2.0, 2.0), spec.resolved_points())
+    x = _x_grid(spec.x, _hull_range(solutions, (-2.0, 2.0)), spec.resolved_points())
     lo, hi = spec.resolved_y()
     y = np.linspace(lo, hi, spec.resolved_depth_points())
     param = scene.vary.param if scene.vary is not None else None

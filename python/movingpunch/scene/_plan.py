@@ -17,6 +17,7 @@ from movingpunch.profiles import PunchProfile
 from movingpunch.scene._model import PEAK_QUANTITIES, SceneData
 from movingpunch.scene._result import SweepTable
 from movingpunch.scene._solve import Key, curve_label, point_key, radius_ratio
+from movingpunch.zones import Punch
 
 __all__ = ["SweepPlan", "build_sweep_table", "plan_sweep", "split_chunks"]
 
@@ -34,6 +35,8 @@ class SweepPlan:
     want_peaks: bool
     damped: bool
     profile: PunchProfile | None = None
+    contact: str = "auto"
+    punches: tuple[Punch, ...] = ()
 
 
 def plan_sweep(scene: SceneData) -> SweepPlan:
@@ -56,7 +59,15 @@ def plan_sweep(scene: SceneData) -> SweepPlan:
     want_peaks = any(q in PEAK_QUANTITIES for q in sw.quantities)
     damped = any(k[4] > 0.0 or k[6] > 0.0 for k in keys)  # the asymmetric solver
     return SweepPlan(
-        points, keys, groups, representative, want_peaks, damped, scene.profile
+        points,
+        keys,
+        groups,
+        representative,
+        want_peaks,
+        damped,
+        scene.profile,
+        scene.contact,
+        tuple(scene.punches),
     )
 
 
@@ -68,6 +79,7 @@ def plan_sweep(scene: SceneData) -> SweepPlan:
 # critical speed too); 20 000 warm points of a load sweep 6.5 s.
 _COLD_SECONDS, _WARM_SECONDS, _PEAKS_SECONDS = 1.5e-3, 3e-4, 3e-2
 _DAMPED_SECONDS = 0.7
+_TRAIN_SECONDS = 0.01  # two to four punches (the bundled spacing scene: 5 ms)
 _STARTUP_SECONDS = 0.6
 # A chunk (the unit of work a worker is sent) is sized to about
 # 1/_CHUNKS_PER_JOB of a worker's share, within [CHUNK_MIN, CHUNK_MAX]
@@ -84,6 +96,8 @@ Chunk = list[tuple[tuple[float, ...], list[Key]]]
 def _point_seconds(plan: SweepPlan, cold: bool) -> float:
     if plan.damped:
         return _DAMPED_SECONDS
+    if plan.punches:  # a train: its punches' solves and the zone search
+        return _TRAIN_SECONDS + (_PEAKS_SECONDS if plan.want_peaks else 0.0)
     seconds = _COLD_SECONDS if cold else _WARM_SECONDS
     return seconds + (_PEAKS_SECONDS if plan.want_peaks else 0.0)
 
@@ -181,6 +195,9 @@ def chunk_tasks(plan: SweepPlan, chunk: Chunk) -> list[dict[str, Any]]:
             ],
             "peaks": plan.want_peaks,
             "profile": plan.profile,
+            "contact": plan.contact,
+            "punches": plan.punches,
+            "spacings": [plan.representative[k].get("spacing") for k in keys],
         }
         for group, keys in chunk
     ]

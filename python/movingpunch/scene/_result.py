@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -98,6 +99,12 @@ class OutputData:
     columns: Mapping[str, FloatArray]
     curves: tuple[Curve, ...] = ()
     fields: tuple[tuple[str, StressField], ...] = ()
+    details: Mapping[str, Any] = field(default_factory=dict)
+    """What does not fit a column, per curve (lists in the order of the
+    curves): ``contact_zones`` ([[x_left, x_right], ...] of every curve) and,
+    for a separated contact or a train of punches, ``punches``
+    (``PunchResult.to_dict()`` of each punch). Written to JSON as objects, to
+    CSV as one JSON text per ``#`` header line."""
 
 
 @dataclass(frozen=True)

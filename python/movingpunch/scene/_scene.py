@@ -10,6 +10,7 @@ The modules below do the work: ``_model`` (the parts), ``_validate``,
 from __future__ import annotations
 
 import dataclasses
+import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -30,6 +31,7 @@ from movingpunch.scene._result import RunRecord
 from movingpunch.scene._run import run_scene
 from movingpunch.scene._toml import parse_toml, read_scene_file, to_toml
 from movingpunch.scene._validate import validate
+from movingpunch.zones import Punch
 
 __all__ = ["Scene", "SceneResult", "bundled_scenes", "load_scene"]
 
@@ -56,6 +58,17 @@ class Scene:
     ``params.radius`` (a Cylinder profile becomes that). Beside another
     profile ``params.radius`` is its nominal radius (inf for a flat punch or
     a table) and cannot vary."""
+    punches: tuple[Punch, ...] = ()
+    """A train of punches (``[[punches]]``, ``movingpunch.Punch`` each),
+    solved together by ``movingpunch.solve_punches``; ``params`` then holds
+    no radius and no load (each punch has its own). A vary or sweep over
+    ``load`` sets the train's total load (every punch's load scaled in
+    proportion), over ``spacing`` places the punches equally spaced, centred
+    on x = 0."""
+    contact: str = "auto"
+    """``[params] contact``: "auto" (several contact zones where the single
+    contact separates) or "single" (the single contact, flagged invalid where
+    it is unphysical), as ``movingpunch.solve``'s ``contact``."""
 
     def __post_init__(self) -> None:
         validate(self, "<Scene>")
@@ -146,6 +159,9 @@ class Scene:
         """The parameters of one computation: ``params`` with the vary value
         and any overrides applied."""
         p = dict(self.params)
+        if self.punches:  # the train's total load, the first punch's radius
+            p["load"] = math.fsum(q.load for q in self.punches)
+            p["radius"] = self.punches[0].profile.nominal_radius
         if self.vary is not None and vary_value is not None:
             p[self.vary.param] = vary_value
         p.update(override)

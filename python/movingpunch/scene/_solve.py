@@ -22,14 +22,15 @@ from typing import Any
 from movingpunch.contract import ContactSolution
 from movingpunch.errors import MovingPunchError
 from movingpunch.profiles import PunchProfile
-from movingpunch.scene._model import PEAK_QUANTITIES, SceneData
+from movingpunch.scene._model import PEAK_QUANTITIES, SceneData, train_of
 from movingpunch.scene._result import Stages
 from movingpunch.solver import result_warnings, solve
+from movingpunch.zones import Punch, solve_punches
 
 __all__ = ["RunState", "point_key", "solve_point"]
 
-# vstar, kw, nu, tol, damping, kp, friction, lambda
-Key = tuple[float, float, float, float, float, float, float, float]
+# vstar, kw, nu, tol, damping, kp, friction, lambda, spacing
+Key = tuple[float, float, float, float, float, float, float, float, float]
 
 
 def _damping(p: Mapping[str, float]) -> float:
@@ -47,8 +48,21 @@ def _friction(p: Mapping[str, float]) -> float:
 def point_key(p: Mapping[str, float], tol: float) -> Key:
     # Beside a flat punch or a table (radius inf) the load alone tells the
     # points apart (negated: never a cylinder's lambda).
+    # A train's points (radius: its first punch's, fixed) differ in the total
+    # load and the spacing (0: the punches' own positions).
     lam = p["radius"] * p["load"] if math.isfinite(p["radius"]) else -p["load"]
-    return (p["vstar"], p["kw"], p["nu"], tol, _damping(p), _kp(p), _friction(p), lam)
+    spacing = p.get("spacing", 0.0)
+    return (
+        p["vstar"],
+        p["kw"],
+        p["nu"],
+        tol,
+        _damping(p),
+        _kp(p),
+        _friction(p),
+        lam,
+        spacing,
+    )
 
 
 def radius_ratio(solved: float, wanted: float) -> float:
@@ -68,8 +82,24 @@ def solve_point(
     tol: float,
     stages: Stages,
     profile: PunchProfile | None = None,
+    contact: str = "auto",
+    punches: Sequence[Punch] = (),
 ) -> ContactSolution:
-    """One point of a scene: a cylinder of p["radius"], or ``profile``."""
+    """One point of a scene: a cylinder of p["radius"], or ``profile``, or
+    the train ``punches`` (``solve_punches``; their loads and positions for
+    this point from ``train_of``)."""
+    if punches:
+        s: ContactSolution = solve_punches(
+            train_of(punches, p),
+            vstar=p["vstar"],
+            kw=p["kw"],
+            nu=p["nu"],
+            kp=_kp(p),
+            damping=_damping(p),
+            tol=tol,
+        )
+        stages.add_solution(s)
+        return s
     s = solve(
         vstar=p["vstar"],
         kw=p["kw"],
@@ -82,6 +112,7 @@ def solve_point(
         damping=_damping(p),
         kp=_kp(p),
         friction=_friction(p),
+        contact=contact,
     )
     stages.add_solution(s)
     return s
@@ -107,6 +138,7 @@ def point_quantities(
         drag=s.drag,
         contact_start=s.contact_interval[0],
         contact_end=s.contact_interval[1],
+        zones=float(len(s.contact_zones)),
     )
     if want_peaks:
         t0 = time.perf_counter()
@@ -127,6 +159,8 @@ def _point_text(p: Mapping[str, float]) -> str:
         names.append("kp")
     if _friction(p) > 0.0:
         names.append("friction")
+    if "spacing" in p:
+        names.append("spacing")
     return ", ".join(f"{n}={p[n]:.6g}" for n in names)
 
 
@@ -137,7 +171,8 @@ def solve_group(task: Mapping[str, Any]) -> dict[str, Any]:
     stages = Stages()
     results: list[dict[str, float] | str] = []
     warnings: list[list[str]] = []
-    for radius, load in task["points"]:
+    spacings = task.get("spacings") or [None] * len(task["points"])
+    for (radius, load), spacing in zip(task["points"], spacings, strict=True):
         p = {
             "vstar": task["vstar"],
             "kw": task["kw"],
@@ -148,8 +183,17 @@ def solve_group(task: Mapping[str, Any]) -> dict[str, Any]:
             "radius": radius,
             "load": load,
         }
+        if spacing is not None:
+            p["spacing"] = spacing
         try:
-            s = solve_point(p, task["tol"], stages, task.get("profile"))
+            s = solve_point(
+                p,
+                task["tol"],
+                stages,
+                task.get("profile"),
+                task.get("contact", "auto"),
+                task.get("punches", ()),
+            )
             found = list(result_warnings(s))
             results.append(point_quantities(s, task["peaks"], stages, found))
             warnings.append(found)
@@ -191,7 +235,12 @@ class RunState:
         key = point_key(p, self.scene.tol)
         if key not in self.memo:
             self.memo[key] = solve_point(
-                p, self.scene.tol, self.stages, self.scene.profile
+                p,
+                self.scene.tol,
+                self.stages,
+                self.scene.profile,
+                self.scene.contact,
+                self.scene.punches,
             )
             self.note_warnings(key, p, result_warnings(self.memo[key]))
             self.tick()

@@ -20,7 +20,9 @@ from typing import Any
 
 from movingpunch.errors import SceneError
 from movingpunch.params import OPTIONAL
+from movingpunch.profiles import Cylinder
 from movingpunch.scene._model import (
+    CONTACT_MODES,
     DEFAULT_NU,
     DEFAULT_TOL,
     MAX_NESTING,
@@ -30,6 +32,7 @@ from movingpunch.scene._model import (
     OUTPUT_KINDS,
     PARAMS,
     SWEEP_QUANTITIES,
+    TRAIN_PARAMS,
     OutputSpec,
     SceneData,
     Sweep,
@@ -41,6 +44,7 @@ from movingpunch.scene._validate import (
     Checker,
     parse_output,
     parse_profile,
+    parse_punches,
     range_bounds,
     show,
     values_list,
@@ -53,7 +57,17 @@ else:  # pragma: no cover - Python 3.10 only
 
 __all__ = ["parse_toml", "read_scene_file", "to_toml", "tomllib"]
 
-_TOP_KEYS = ("name", "description", "params", "outputs", "vary", "sweep", "accuracy")
+_TOP_KEYS = (
+    "name",
+    "description",
+    "params",
+    "punches",
+    "outputs",
+    "vary",
+    "sweep",
+    "accuracy",
+)
+_AXIS_PARAMS = (*PARAMS, *TRAIN_PARAMS)  # spacing: validate checks the punches
 
 
 # ----------------------------------------------------------------------------
@@ -237,15 +251,21 @@ def _from_mapping(data: Mapping[str, Any], source: str) -> dict[str, Any]:
 
     if "params" not in data:
         raise c.fail("params", "missing", "a table [params] with " + ", ".join(PARAMS))
-    raw_params = c.table("params", data["params"], (*PARAMS, "profile"))
+    raw_params = c.table("params", data["params"], (*PARAMS, "profile", "contact"))
     profile = (
         parse_profile(c, raw_params["profile"]) if "profile" in raw_params else None
     )
+    punches = parse_punches(c, data["punches"]) if "punches" in data else ()
+    contact = "auto"
+    if "contact" in raw_params:
+        contact = c.string("params.contact", raw_params["contact"], CONTACT_MODES)
     params: dict[str, float] = {}
     for name_ in PARAMS:
         key = f"params.{name_}"
         if name_ == "radius" and profile is not None and name_ not in raw_params:
             continue  # the profile's (validate sets it)
+        if punches and name_ in ("radius", "load") and name_ not in raw_params:
+            continue  # the punches' own (validate refuses them in [params])
         if name_ in raw_params:
             params[name_] = c.param(key, name_, raw_params[name_])
         elif name_ == "nu":
@@ -274,6 +294,8 @@ def _from_mapping(data: Mapping[str, Any], source: str) -> dict[str, Any]:
     return {
         "params": params,
         "profile": profile,
+        "punches": punches,
+        "contact": contact,
         "outputs": outputs,
         "vary": vary,
         "sweep": sweep,
@@ -287,7 +309,7 @@ def _parse_vary(c: Checker, raw: object) -> Vary:
     t = c.table("vary", raw, ("param", "values"))
     if "param" not in t:
         raise c.fail("vary.param", "missing", ", ".join(PARAMS))
-    param = c.string("vary.param", t["param"], PARAMS)
+    param = c.string("vary.param", t["param"], _AXIS_PARAMS)
     if "values" not in t:
         raise c.fail("vary.values", "missing", allowed_text(param), param)
     return Vary(param, values_list(c, "vary.values", param, t["values"], MAX_VARY))
@@ -298,7 +320,7 @@ def _parse_sweep(c: Checker, raw: object) -> Sweep:
     t = c.table("sweep", raw, keys)
     if "param" not in t:
         raise c.fail("sweep.param", "missing", ", ".join(PARAMS))
-    param = c.string("sweep.param", t["param"], PARAMS)
+    param = c.string("sweep.param", t["param"], _AXIS_PARAMS)
     quantities: tuple[str, ...] = ("a", "p0")
     if "quantities" in t:
         q = t["quantities"]
@@ -377,9 +399,22 @@ def to_toml(scene: SceneData) -> str:
             continue  # the profile carries its own shape
         if name in scene.params:
             lines.append(f"{name} = {_toml_value(scene.params[name])}")
+    contact = getattr(scene, "contact", "auto")
+    if contact != "auto":
+        lines.append(f"contact = {_toml_value(contact)}")
     if profile is not None:
         lines += ["", "[params.profile]"]
         lines += [f"{k} = {_toml_value(v)}" for k, v in profile.to_dict().items()]
+    for punch in getattr(scene, "punches", ()):
+        lines += ["", "[[punches]]"]
+        lines += [f"load = {_toml_value(punch.load)}", f"at = {_toml_value(punch.at)}"]
+        if isinstance(punch.profile, Cylinder):
+            lines.append(f"radius = {_toml_value(punch.profile.radius)}")
+        else:
+            lines += ["", "[punches.profile]"]
+            lines += [
+                f"{k} = {_toml_value(v)}" for k, v in punch.profile.to_dict().items()
+            ]
     lines += ["", "[accuracy]", f"tol = {_toml_value(scene.tol)}"]
     if scene.outputs:
         lines += ["", "[outputs]"]

@@ -8,6 +8,7 @@ damping). Every problem is one ``SceneError`` line:
 from __future__ import annotations
 
 import functools
+import itertools
 import math
 import numbers
 from collections.abc import Callable, Iterable, Mapping, Sequence
@@ -26,9 +27,11 @@ from movingpunch.profiles import (
     profile_from_dict,
 )
 from movingpunch.scene._model import (
+    CONTACT_MODES,
     DEFAULT_NU,
     MAX_GRID,
     MAX_POINTS,
+    MAX_PUNCHES,
     MAX_SWEEP,
     MAX_VARY,
     OUTPUT_KEYS,
@@ -36,6 +39,7 @@ from movingpunch.scene._model import (
     PARAMS,
     STRESS_COMPONENTS,
     SWEEP_QUANTITIES,
+    TRAIN_PARAMS,
     OutputSpec,
     SceneData,
     Sweep,
@@ -43,25 +47,130 @@ from movingpunch.scene._model import (
     allowed_text,
     output_items,
     sweep_grid,
+    train_of,
 )
+from movingpunch.zones import Punch
 
-__all__ = ["Checker", "critical_speed", "parse_profile", "rayleigh_speed", "validate"]
+__all__ = [
+    "Checker",
+    "critical_speed",
+    "parse_profile",
+    "parse_punches",
+    "rayleigh_speed",
+    "validate",
+]
 
 _PROFILE_KEYS = ("kind", "radius", "half_width", "x", "y")
 
 
-def parse_profile(c: Checker, raw: object) -> PunchProfile:
-    """A scene's ``[params.profile]`` table (``kind`` = "cylinder",
+def parse_profile(
+    c: Checker, raw: object, where: str = "params.profile"
+) -> PunchProfile:
+    """A scene's ``[params.profile]`` table (or a punch's
+    ``[punches.profile]``, ``where`` naming it: ``kind`` = "cylinder",
     "flat", "rounded_flat" or "table" and its keys); errors name the key."""
-    t = c.table("params.profile", raw, _PROFILE_KEYS)
+    t = c.table(where, raw, _PROFILE_KEYS)
     try:
-        return profile_from_dict(t, "params.profile")
+        return profile_from_dict(t, where)
     except InvalidParameterError as exc:
-        key = exc.parameter or "params.profile"
+        key = exc.parameter or where
         problem = str(exc)
-        for prefix in ("params.profile: ", f"{key}: ", f"{key} "):
+        for prefix in (f"{where}: ", f"{key}: ", f"{key} "):
             problem = problem.removeprefix(prefix)
         raise c.fail(key, problem, exc.allowed or "", exc.parameter) from exc
+
+
+_PUNCH_KEYS = ("load", "at", "radius", "profile")
+
+
+def parse_punches(c: Checker, raw: object) -> tuple[Punch, ...]:
+    """A scene's ``[[punches]]`` tables: each with ``load``, ``at`` (x/h,
+    default 0) and either ``radius`` (a cylinder) or a ``[punches.profile]``
+    sub-table (the form of ``[params.profile]``). Errors name
+    ``punches[k].key`` (k from 0, in the order of the tables)."""
+    allowed = "[[punches]] tables with load, at and radius or [punches.profile]"
+    if isinstance(raw, (str, bytes, Mapping)) or not isinstance(raw, Sequence):
+        raise c.fail("punches", f"must be a list of tables, got {show(raw)}", allowed)
+    if not 1 <= len(raw) <= MAX_PUNCHES:
+        raise c.fail(
+            "punches", f"has {len(raw)} punches", f"1 to {MAX_PUNCHES} punches"
+        )
+    out: list[Punch] = []
+    for k, item in enumerate(raw):
+        where = f"punches[{k}]"
+        t = c.table(where, item, _PUNCH_KEYS)
+        if "load" not in t:
+            raise c.fail(f"{where}.load", "missing", allowed_text("load"), "load")
+        load = c.param(f"{where}.load", "load", t["load"])
+        at = 0.0
+        if "at" in t:
+            at = c.number(f"{where}.at", t["at"], "a finite number x/h")
+            if not math.isfinite(at):
+                raise c.fail(
+                    f"{where}.at", f"must be finite, got {show(at)}", "a finite x/h"
+                )
+        shape: PunchProfile | float
+        if "radius" in t and "profile" in t:
+            raise c.fail(
+                f"{where}.radius",
+                "is given beside [punches.profile]",
+                "either radius (a cylinder) or a [punches.profile] table",
+                "radius",
+            )
+        if "radius" in t:
+            shape = c.param(f"{where}.radius", "radius", t["radius"])
+        elif "profile" in t:
+            shape = parse_profile(c, t["profile"], f"{where}.profile")
+        else:
+            raise c.fail(
+                f"{where}.radius",
+                "missing (no radius and no [punches.profile])",
+                "either radius (a cylinder) or a [punches.profile] table",
+                "radius",
+            )
+        out.append(_punch(c, where, shape, load, at))
+    return tuple(out)
+
+
+def _punch(
+    c: Checker, where: str, shape: PunchProfile | float, load: float, at: float
+) -> Punch:
+    try:
+        return Punch(shape, load, at)
+    except InvalidParameterError as exc:
+        key = exc.parameter or "profile"
+        key = key if key.startswith(where) else f"{where}.{key}"
+        raise c.fail(key, str(exc), exc.allowed or "", exc.parameter) from exc
+
+
+def _check_punches(c: Checker, scene: SceneData) -> tuple[Punch, ...]:
+    """The punches of a scene (a scene built in Python: a sequence of
+    ``movingpunch.Punch``); their positions distinct."""
+    punches = getattr(scene, "punches", ())
+    if punches is None:
+        return ()
+    if isinstance(punches, (str, bytes)) or not isinstance(punches, Sequence):
+        raise c.fail(
+            "punches", f"must be a sequence of Punch, got {show(punches)}", "Punch"
+        )
+    if len(punches) > MAX_PUNCHES:
+        raise c.fail(
+            "punches", f"has {len(punches)} punches", f"1 to {MAX_PUNCHES} punches"
+        )
+    seen: dict[float, int] = {}
+    for k, q in enumerate(punches):
+        if not isinstance(q, Punch):
+            raise c.fail(
+                f"punches[{k}]", f"must be a movingpunch.Punch, got {show(q)}", "Punch"
+            )
+        if q.at in seen:
+            raise c.fail(
+                f"punches[{k}].at",
+                f"x/h = {q.at:g} is also punches[{seen[q.at]}].at: the punches overlap",
+                "a distinct position for each punch",
+            )
+        seen[q.at] = k
+    return tuple(punches)
 
 
 def _check_profile(
@@ -160,6 +269,11 @@ class Checker:
     def param(self, key: str, name: str, value: object) -> float:
         """``value`` checked against the table of parameters (SPECS)."""
         allowed = SPECS[name].text if name == "tol" else allowed_text(name)
+        if name == "spacing":
+            x = self.number(key, value, allowed)
+            if not (math.isfinite(x) and x > 0.0):
+                raise self.fail(key, f"out of range: {show(x)}", allowed, name)
+            return x
         if name == "kw" and isinstance(value, str):
             if value.strip().lower() in ("inf", "+inf", "infinity"):
                 return math.inf
@@ -348,12 +462,20 @@ def validate(scene: SceneData, source: str) -> None:
         raise c.fail("params", "must be a mapping", ", ".join(PARAMS))
     c.table("params", scene.params, PARAMS)
     raw = dict(scene.params)
+    punches = _check_punches(c, scene)
+    contact = c.string(
+        "params.contact", getattr(scene, "contact", "auto"), CONTACT_MODES
+    )
+    if punches:
+        _check_train_params(c, scene, raw, contact)
     profile = _check_profile(c, scene, raw)
     params: dict[str, float] = {}
     for name in PARAMS:
         if name == "radius" and profile is not None:
             params[name] = profile.nominal_radius  # inf: a flat punch or a table
             continue
+        if punches and name in ("radius", "load"):
+            continue  # the punches carry their own
         if name not in raw:
             if name == "nu":
                 params[name] = DEFAULT_NU
@@ -364,6 +486,8 @@ def validate(scene: SceneData, source: str) -> None:
         params[name] = c.param(f"params.{name}", name, raw[name])
     object.__setattr__(scene, "params", params)
     object.__setattr__(scene, "profile", profile)
+    object.__setattr__(scene, "punches", punches)
+    object.__setattr__(scene, "contact", contact)
 
     tol = c.tol("accuracy.tol", scene.tol)
     object.__setattr__(scene, "tol", tol)
@@ -389,17 +513,31 @@ def validate(scene: SceneData, source: str) -> None:
         outputs[kind] = spec
     object.__setattr__(scene, "outputs", outputs)
 
+    for part, axis in (("vary", scene.vary), ("sweep", scene.sweep)):
+        if isinstance(axis, (Vary, Sweep)) and axis.param == "spacing" and not punches:
+            raise c.fail(
+                f"{part}.param",
+                "spacing needs [[punches]] (it places the punches)",
+                ", ".join(PARAMS) + "; spacing beside [[punches]]",
+            )
+        if isinstance(axis, (Vary, Sweep)) and axis.param == "radius" and punches:
+            raise c.fail(
+                f"{part}.param",
+                "radius cannot vary beside [[punches]]: each punch carries its shape",
+                "vstar, kw, nu, kp, damping, load (the train's total load, "
+                "every punch scaled) or spacing",
+            )
     if scene.vary is not None:
         v = scene.vary
         if not isinstance(v, Vary):
             raise c.fail("vary", "must be a Vary")
-        c.string("vary.param", v.param, PARAMS)
+        c.string("vary.param", v.param, _axis_params(punches))
         values_list(c, "vary.values", v.param, list(v.values), MAX_VARY)
     if scene.sweep is not None:
         s = scene.sweep
         if not isinstance(s, Sweep):
             raise c.fail("sweep", "must be a Sweep")
-        c.string("sweep.param", s.param, PARAMS)
+        c.string("sweep.param", s.param, _axis_params(punches))
         if s.is_range:
             _check_range(c, s)
         else:
@@ -438,6 +576,52 @@ def validate(scene: SceneData, source: str) -> None:
             "at least one of " + ", ".join(OUTPUT_KINDS) + ", or a [sweep]",
         )
     _check_speeds(scene, c)
+    if punches:
+        _check_overlap(scene, c)
+
+
+def _axis_params(punches: Sequence[Punch]) -> tuple[str, ...]:
+    """The parameters a vary or sweep takes: ``spacing`` only beside
+    punches."""
+    return (*PARAMS, *TRAIN_PARAMS) if punches else PARAMS
+
+
+def _check_train_params(
+    c: Checker, scene: SceneData, raw: Mapping[str, Any], contact: str
+) -> None:
+    """[params] beside [[punches]]: no load, radius or profile (each punch
+    has its own), no friction, contact "auto"."""
+    for name in ("load", "radius"):
+        if name in raw:
+            raise c.fail(
+                f"params.{name}",
+                f"is not allowed together with [[punches]] (each punch has its "
+                f"own {name}; a sweep over load sets the train's total load)",
+                "vstar, kw, nu, kp, damping beside [[punches]]",
+                name,
+            )
+    if getattr(scene, "profile", None) is not None:
+        raise c.fail(
+            "params.profile",
+            "is not allowed together with [[punches]] (each punch has its own "
+            "radius or [punches.profile])",
+            "vstar, kw, nu, kp, damping beside [[punches]]",
+        )
+    if raw.get("friction", 0.0) != 0.0:
+        raise c.fail(
+            "params.friction",
+            "must be 0 with [[punches]] (several contact zones with friction "
+            "are not supported)",
+            "0 beside [[punches]]",
+            "friction",
+        )
+    if contact != "auto":
+        raise c.fail(
+            "params.contact",
+            f"{contact!r} is not allowed with [[punches]] (a train finds its "
+            "contact zones)",
+            '"auto" beside [[punches]]',
+        )
 
 
 def _sweep_extremes(sweep: Sweep) -> list[int]:
@@ -533,6 +717,54 @@ def _check_speeds(scene: SceneData, c: Checker) -> None:
                 if allowed.startswith("0 <=")
                 else allowed,
                 blamed,
+            )
+
+
+def _check_overlap(scene: SceneData, c: Checker) -> None:
+    """The punches of every curve the scene computes (outputs other than
+    critical_speed) must not overlap: each punch solved alone (cheap: the
+    kernel is shared), its contact shifted to its ``at``, must end before
+    the next one's begins. A sweep's points are checked by their solves
+    (an overlap is that point's error)."""
+    from movingpunch.errors import MovingPunchError
+    from movingpunch.solver import solve
+
+    if not any(k != "critical_speed" for k in scene.outputs):
+        return
+    for vi, v in enumerate(scene.curve_values()):
+        p = scene.point(v)
+        train = train_of(scene.punches, p)
+        ends: list[tuple[float, float, int]] = []
+        for k, q in enumerate(train):
+            try:
+                alone = solve(
+                    vstar=p["vstar"],
+                    kw=p["kw"],
+                    nu=p["nu"],
+                    kp=p.get("kp", 0.0),
+                    damping=p.get("damping", 0.0),
+                    profile=q.profile,
+                    load=q.load,
+                    tol=max(scene.tol, 1e-6),
+                )
+            except MovingPunchError:
+                return  # the run reports it
+            lo, hi = alone.contact_interval
+            ends.append((q.at + lo, q.at + hi, k))
+        ends.sort()
+        for (l1, r1, k1), (l2, r2, k2) in itertools.pairwise(ends):
+            if l2 > r1:
+                continue
+            varied = scene.vary is not None and scene.vary.param in (
+                "spacing",
+                "load",
+            )
+            key = f"vary.values[{vi}]" if varied else f"punches[{max(k1, k2)}].at"
+            raise c.fail(
+                key,
+                f"punches[{k1}] and punches[{k2}] overlap: alone their contacts "
+                f"span x/h = {l1:.6g} to {r1:.6g} and {l2:.6g} to {r2:.6g}",
+                "punches further apart",
             )
 
 
