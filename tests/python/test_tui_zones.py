@@ -155,6 +155,15 @@ def test_an_offset_train_is_plotted_around_its_hull() -> None:
     assert result is not None
     assert isinstance(result.data, Notice)
     assert "single punch" in model.to_csv(result.data, params)
+    # The load sweep does not change a train's own loads; R/h does.
+    result = model.compute(cache, Request(1, params, "sweep"))
+    assert result is not None
+    assert isinstance(result.data, Notice)
+    spec = model.SweepSpec(param="radius", values=(50.0, 100.0))
+    result = model.compute(cache, Request(1, params, "sweep", sweep=spec))
+    assert result is not None
+    assert isinstance(result.data, Curves)
+    assert np.all(np.isfinite(result.data.series[0].values))
 
 
 def test_a_train_keeps_a_scenes_own_profiles() -> None:

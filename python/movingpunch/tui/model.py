@@ -718,6 +718,16 @@ def compute(
         data = table
     elif request.tab == "field":
         data = _field(cache, request.params, request.quantity)
+    elif (
+        request.tab == "sweep"
+        and request.params.punches
+        and (request.sweep.param == "load")
+    ):
+        data = Notice(
+            "sweep",
+            "A train's punches carry their own loads (the train input): the "
+            "load sweep does not apply; w sweeps R/h.",
+        )
     elif request.tab == "sweep":
         out = _sweep(cache, request, solved, report, stop)
         if out is None:

@@ -316,9 +316,13 @@ class MainScreen(Screen[None]):
         self.query_one("#summary", Static).update(self._summary_text(result))
         data = result.data
         if isinstance(data, Notice):
-            view = self.query_one(f"#plot-{data.tab}", AccuracyView)
-            view.table = None
-            view.placeholder = data.text
+            widget = self.query_one(f"#plot-{data.tab}")
+            if isinstance(widget, AccuracyView):
+                widget.table = None
+                widget.placeholder = data.text
+            elif isinstance(widget, CurvePlot):
+                widget.curves = None
+                widget.placeholder = data.text
         elif isinstance(data, AccuracyTable):
             view = self.query_one("#plot-accuracy", AccuracyView)
             view.placeholder = "computing the accuracy ladder..."
@@ -326,7 +330,9 @@ class MainScreen(Screen[None]):
         elif isinstance(data, FieldMap):
             self.query_one("#plot-field", StressMap).field = data
         else:
-            self.query_one(f"#plot-{data.tab}", CurvePlot).curves = data
+            plot = self.query_one(f"#plot-{data.tab}", CurvePlot)
+            plot.placeholder = "computing..."
+            plot.curves = data
         self._update_status()
 
     def _summary_text(self, result: Result) -> Text:
