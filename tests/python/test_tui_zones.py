@@ -9,6 +9,7 @@ model run without Textual.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import replace
 
@@ -274,3 +275,21 @@ async def test_a_train_of_punches() -> None:
         assert "a/h" in text
         assert "punches" not in text
         assert not math.isnan(float(text.split("a/h ", 1)[1].split()[0]))
+
+
+def test_saving_a_train_is_refused_not_dropped() -> None:
+    """Scene files cannot hold a train (or contact single) yet: Save says so
+    rather than writing the single punch."""
+    from movingpunch.scene import Scene, SceneError
+    from movingpunch.tui import scene_files
+
+    fields = {f.name for f in dataclasses.fields(Scene)}
+    train = replace(Params(), punches=parse_punches(TRAIN))
+    if "punches" not in fields:
+        with pytest.raises(SceneError, match="train of punches"):
+            scene_files.to_scene(SceneState(params=train))
+    single = replace(Params(), contact="single")
+    if "contact" not in fields:
+        with pytest.raises(SceneError, match="contact single"):
+            scene_files.to_scene(SceneState(params=single))
+    assert scene_files.to_scene(SceneState(params=Params())).params["load"] == 0.002
