@@ -4,12 +4,14 @@ async test, wait for the workers, read the screen, type into an input."""
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import functools
 from collections.abc import Callable, Coroutine
 from typing import Any, ParamSpec
 
 from textual.pilot import Pilot
 from textual.widgets import Input, Static
+from textual.worker import WorkerFailed
 
 from movingpunch.tui import MovingPunchApp
 from movingpunch.tui.screens import MainScreen
@@ -28,12 +30,19 @@ def sync(test: Callable[P, Coroutine[Any, Any, None]]) -> Callable[P, None]:
 
 
 async def settle(pilot: Pilot[None]) -> None:
-    """Waits until every worker is done and its messages are handled."""
-    await pilot.app.workers.wait_for_complete()
+    """Waits until every worker is done and its messages are handled (a
+    worker that raises is not an error here: the app shows its error inline,
+    and the tests read it from the screen)."""
+    await _wait(pilot)
     await pilot.pause()
     while any(w.is_running for w in pilot.app.workers):
-        await pilot.app.workers.wait_for_complete()
+        await _wait(pilot)
         await pilot.pause()
+
+
+async def _wait(pilot: Pilot[None]) -> None:
+    with contextlib.suppress(WorkerFailed):
+        await pilot.app.workers.wait_for_complete()
 
 
 def screen_of(app: MovingPunchApp) -> MainScreen:

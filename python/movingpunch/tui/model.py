@@ -32,6 +32,7 @@ from movingpunch.solver import (
     result_warnings,
     solve,
 )
+from movingpunch.zones import CONTACT_MODES, Punch, solve_punches
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -67,6 +68,94 @@ def parse_profile_kind(text: str) -> str:
             allowed=", ".join(TUI_PROFILES),
         )
     return kind
+
+
+def parse_contact(text: str) -> str:
+    """The contact mode typed in the panel: ``auto`` (find the contact set:
+    several zones when the single contact is unphysical) or ``single`` (the
+    single contact, refused when unphysical). Raises InvalidParameterError
+    (``.parameter`` "contact")."""
+    mode = text.strip().lower()
+    if mode not in CONTACT_MODES:
+        raise InvalidParameterError(
+            f"contact must be auto or single, got {text.strip()!r}",
+            parameter="contact",
+            allowed="auto or single",
+        )
+    return mode
+
+
+MAX_PUNCHES = 16
+"""The most punches ``movingpunch.solve_punches`` takes."""
+
+
+@dataclass(frozen=True)
+class TrainPunch:
+    """One punch of a train: its load P_k/(mu h), the position x/h of its
+    axis and its shape (None: the panel's punch, R/h and b/h)."""
+
+    load: float
+    at: float
+    profile: PunchProfile | None = None
+
+    def text(self) -> str:
+        return f"{fmt(self.load, 10)}@{fmt(self.at, 10)}"
+
+
+def parse_punches(text: str) -> tuple[TrainPunch, ...]:
+    """The panel's ``punches`` input: empty for the single punch of the
+    load input, else ``load@at`` items separated by commas or semicolons
+    (``0.002@-1.5, 0.002@1.5``), each a punch of the panel's shape. Raises
+    InvalidParameterError (``.parameter`` "punches") naming the item."""
+    items = [t.strip() for t in text.replace(";", ",").split(",")]
+    if not any(items):
+        return ()
+    if len(items) > MAX_PUNCHES:
+        raise InvalidParameterError(
+            f"punches: at most {MAX_PUNCHES} punches, got {len(items)}",
+            parameter="punches",
+            allowed="load@at, ... (x/h of each axis)",
+        )
+    out = []
+    for k, item in enumerate(items, start=1):
+        where = f"punches: item {k} {item!r}"
+        load_text, at_sign, at_text = item.partition("@")
+        if not at_sign or not load_text.strip() or not at_text.strip():
+            raise InvalidParameterError(
+                f"{where}: write load@at, e.g. 0.002@-1.5",
+                parameter="punches",
+                allowed="load@at, ... (x/h of each axis)",
+            )
+        try:
+            load = parse_param("load", load_text)
+        except InvalidParameterError as exc:
+            raise InvalidParameterError(
+                f"{where}: {exc}", parameter="punches", allowed=exc.allowed
+            ) from None
+        try:
+            at = float(at_text.strip())
+        except ValueError:
+            at = math.nan
+        if not math.isfinite(at):
+            raise InvalidParameterError(
+                f"{where}: the position x/h after @ must be a finite number",
+                parameter="punches",
+                allowed="load@at, ... (x/h of each axis)",
+            )
+        out.append(TrainPunch(load, at))
+    return tuple(out)
+
+
+def format_punches(punches: Sequence[TrainPunch]) -> str:
+    """The text of the panel's ``punches`` input (the inverse of
+    ``parse_punches`` for punches of the panel's shape)."""
+    return ", ".join(p.text() for p in punches)
+
+
+def train_from(punches: Iterable[Punch]) -> tuple[TrainPunch, ...]:
+    """``movingpunch.Punch`` objects (e.g. a scene's ``[[punches]]``) as the
+    model's train, each keeping its own profile."""
+    return tuple(TrainPunch(p.load, p.at, p.profile) for p in punches)
 
 
 SCENE_PARAMS: tuple[str, ...] = PHYSICAL
@@ -160,6 +249,12 @@ class Params:
     """The tabulated profile of a scene file (kind "table")."""
     friction: float = 0.0
     """Coulomb friction f (docs/theory.md section 14); 0: frictionless."""
+    contact: str = "auto"
+    """``movingpunch.solve``'s ``contact=``: "auto" (several zones when the
+    single contact is unphysical) or "single" (refused when unphysical)."""
+    punches: tuple[TrainPunch, ...] = ()
+    """A train (``movingpunch.solve_punches``); (): the single punch of
+    ``load`` (the train's punches carry their own loads)."""
 
     @property
     def damped(self) -> bool:
@@ -181,6 +276,16 @@ class Params:
                 )
             return self.table
         return None
+
+    def train(self) -> list[Punch]:
+        """The train's punches as ``movingpunch.Punch`` (each of its own
+        profile, else the panel's shape). Raises InvalidParameterError."""
+        shape = self.shape()
+        own: PunchProfile | float = self.radius if shape is None else shape
+        return [
+            Punch(own if p.profile is None else p.profile, p.load, at=p.at)
+            for p in self.punches
+        ]
 
     def get(self, name: str) -> float:
         value: float = getattr(self, name)
@@ -218,12 +323,25 @@ class Params:
         shape = self.shape_label()
         if against is not None and shape == against.shape_label():
             shape = ""
-        if not names and not shape:
+        extra = self._zones_label()
+        if against is not None and extra == against._zones_label():
+            extra = []
+        if not names and not shape and not extra:
             return "same"
         return " ".join(
             [f"{SHORT[n]}={fmt(self.get(n), 4)}" for n in names]
             + ([shape] if shape else [])
+            + extra
         )
+
+    def _zones_label(self) -> list[str]:
+        """The train and a "single" contact mode (auto is the default)."""
+        out = []
+        if self.punches:
+            out.append("punches=" + ",".join(p.text() for p in self.punches))
+        if self.contact != "auto":
+            out.append(f"contact={self.contact}")
+        return out
 
     def shape_label(self) -> str:
         """ "" for a cylinder, else the punch in a few characters."""
@@ -295,6 +413,9 @@ class Curves:
     value_label: str
     grid: FloatArray
     series: tuple[Series, ...]
+    markers: tuple[float, ...] = ()
+    """x/h of the zone ends of the current set, drawn as vertical lines
+    (the pressure tab with several zones)."""
     vertical_grid: bool = False
     """Draw the grid vertically (σx through the depth: y/h upwards)."""
     log_grid: bool = False
@@ -311,6 +432,10 @@ class FieldMap:
     values: FloatArray
     """Shaped (len(y), len(x))."""
     a: float
+    centre: float = 0.0
+    """x/h at the middle of the map."""
+    zones: tuple[tuple[float, float], ...] = ()
+    """The contact zones when there are several (() for one contact)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -322,7 +447,25 @@ class AccuracyTable:
     tab: TabName = "accuracy"
 
 
-TabData = Curves | FieldMap | AccuracyTable
+@dataclass(frozen=True)
+class Notice:
+    """A tab that has nothing to show for these parameters, and why."""
+
+    tab: TabName
+    text: str
+
+
+TabData = Curves | FieldMap | AccuracyTable | Notice
+
+
+@dataclass(frozen=True)
+class PunchSummary:
+    """One punch of a train in the summary."""
+
+    load: float
+    at: float
+    indentation: float
+    contact_zones: tuple[tuple[float, float], ...]
 
 
 @dataclass(frozen=True)
@@ -352,6 +495,10 @@ class Summary:
     """The solution's warnings (a requested accuracy not met)."""
     tangential_force: float = 0.0
     """Friction force on the punch over P (f; 0 without friction)."""
+    contact_zones: tuple[tuple[float, float], ...] = ()
+    """Every contact zone (left, right)/h ((): the one ``contact_interval``)."""
+    punches: tuple[PunchSummary, ...] = ()
+    """Each punch of a train ((): a single punch)."""
 
     @property
     def damped(self) -> bool:
@@ -432,6 +579,20 @@ def solution(cache: Cache, params: Params) -> ContactSolution:
 
 
 def _solve(params: Params) -> ContactSolution:
+    if params.punches:
+        return cast(
+            ContactSolution,
+            solve_punches(
+                params.train(),
+                vstar=params.vstar,
+                kw=params.kw,
+                nu=params.nu,
+                kp=params.kp,
+                damping=params.damping,
+                friction=params.friction,
+                tol=params.tol,
+            ),
+        )
     shape = params.shape()
     return solve(
         vstar=params.vstar,
@@ -444,6 +605,33 @@ def _solve(params: Params) -> ContactSolution:
         damping=params.damping,
         kp=params.kp,
         friction=params.friction,
+        contact=params.contact,
+    )
+
+
+def zones_of(s: object) -> tuple[tuple[float, float], ...]:
+    """A solution's contact zones (its one contact interval if it has no
+    ``contact_zones``)."""
+    zones = getattr(s, "contact_zones", None)
+    if not zones:
+        interval = cast(ContactSolution, s).contact_interval
+        return ((float(interval[0]), float(interval[1])),)
+    return tuple((float(lo), float(hi)) for lo, hi in zones)
+
+
+def _punch_summaries(s: object) -> tuple[PunchSummary, ...]:
+    """Each punch of a train (several punches, or one off the axis)."""
+    punches = getattr(s, "punches", ())
+    if len(punches) < 2 and all(p.at == 0.0 for p in punches):
+        return ()
+    return tuple(
+        PunchSummary(
+            load=float(p.load),
+            at=float(p.at),
+            indentation=float(p.indentation),
+            contact_zones=tuple((float(a), float(b)) for a, b in p.contact_zones),
+        )
+        for p in punches
     )
 
 
@@ -475,6 +663,8 @@ def summary(cache: Cache, params: Params) -> Summary:
         end_coefficient_back=s.end_coefficients[0],
         warnings=result_warnings(s),
         tangential_force=s.tangential_force,
+        contact_zones=zones_of(s),
+        punches=_punch_summaries(s),
     )
 
 
@@ -528,6 +718,16 @@ def compute(
         data = table
     elif request.tab == "field":
         data = _field(cache, request.params, request.quantity)
+    elif (
+        request.tab == "sweep"
+        and request.params.punches
+        and (request.sweep.param == "load")
+    ):
+        data = Notice(
+            "sweep",
+            "A train's punches carry their own loads (the train input): the "
+            "load sweep does not apply; w sweeps R/h.",
+        )
     elif request.tab == "sweep":
         out = _sweep(cache, request, solved, report, stop)
         if out is None:
@@ -542,14 +742,51 @@ def _one_line(exc: BaseException) -> str:
     return " ".join(str(exc).split()) or type(exc).__name__
 
 
-def _extent(
+def _zoned(solved: Sequence[tuple[str, Params, ContactSolution]]) -> bool:
+    """Whether any member has several zones or is a train (its grid then
+    follows the zones' hull, not a contact centred on x = 0)."""
+    return any(p.punches or len(zones_of(s)) > 1 for _, p, s in solved)
+
+
+def _hull(
+    solved: Sequence[tuple[str, Params, ContactSolution]],
+) -> tuple[float, float, float]:
+    """(left, right, widest zone) over every member's zones."""
+    zones = [z for _, _, s in solved for z in zones_of(s)]
+    return (
+        min(lo for lo, _ in zones),
+        max(hi for _, hi in zones),
+        max(hi - lo for lo, hi in zones),
+    )
+
+
+def _centred(lo: float, hi: float, reach: float) -> tuple[float, float]:
+    """(centre, half) of a window around the hull (lo, hi): half is
+    ``reach`` rounded up, the centre rounded to a tenth of its step (stable
+    grids, stable caches)."""
+    half = _round_up(reach)
+    step = 10.0 ** (math.floor(math.log10(half)) - 1)
+    return round(0.5 * (lo + hi) / step) * step, half
+
+
+def _window(
     tab: TabName, solved: Sequence[tuple[str, Params, ContactSolution]]
-) -> float:
-    # The farthest contact end (the damped contact (-b, a) is asymmetric).
-    amax = max(max(abs(e) for e in s.contact_interval) for _, _, s in solved)
+) -> tuple[float, float]:
+    """(centre, half-length) of the x grid of the pressure and surface tabs.
+
+    One contact per member: centred on x = 0 out to the farthest contact
+    end (the damped contact (-b, a) is asymmetric). Several zones or a
+    train: centred on the hull of every zone, with a margin."""
+    if not _zoned(solved):
+        amax = max(max(abs(e) for e in s.contact_interval) for _, _, s in solved)
+        if tab == "pressure":
+            return 0.0, _round_up(1.15 * amax)
+        return 0.0, _round_up(max(3.0, 4.0 * amax))
+    lo, hi, widest = _hull(solved)
+    half = 0.5 * (hi - lo)
     if tab == "pressure":
-        return _round_up(1.15 * amax)
-    return _round_up(max(3.0, 4.0 * amax))
+        return _centred(lo, hi, half + max(0.15 * half, 0.25 * widest))
+    return _centred(lo, hi, max(3.0, half + max(2.0, 3.0 * widest)))
 
 
 def _round_up(x: float) -> float:
@@ -578,9 +815,18 @@ def _curves(
         grid = np.linspace(-1.0, 0.0, n)
         key: tuple[object, ...] = (n,)
     else:
-        extent = _extent(tab, solved)
-        grid = np.linspace(-extent, extent, 241 if tab == "surface" else 201)
-        key = (extent, len(grid))
+        centre, half = _window(tab, solved)
+        grid = np.linspace(
+            centre - half, centre + half, 241 if tab == "surface" else 201
+        )
+        ends: tuple[float, ...] = ()
+        if tab == "pressure" and _zoned(solved):
+            # Every zone's ends on the grid: p drops to 0 exactly there.
+            ends = tuple(
+                sorted({e for _, _, s in solved for z in zones_of(s) for e in z})
+            )
+            grid = np.union1d(grid, np.asarray(ends, dtype=np.float64))
+        key = (centre, half, len(grid), ends)
     series = []
     for i, (label, params, s) in enumerate(solved):
         if stop():
@@ -594,6 +840,11 @@ def _curves(
         assert isinstance(values, np.ndarray)
         series.append(Series(label, values))
         report(i + 1, len(solved))
+    markers: tuple[float, ...] = ()
+    if tab == "pressure" and solved:
+        current = zones_of(solved[0][2])
+        if len(current) > 1:
+            markers = tuple(e for z in current for e in z)
     return Curves(
         tab=tab,
         title=title,
@@ -601,6 +852,7 @@ def _curves(
         value_label=value_label,
         grid=grid,
         series=tuple(series),
+        markers=markers,
         vertical_grid=tab == "depth",
     )
 
@@ -650,16 +902,21 @@ def _a_or_nan(params: Params) -> float:
 
 def _field(cache: Cache, params: Params, quantity: FieldQuantity) -> FieldMap:
     s = solution(cache, params)
-    reach = max(abs(e) for e in s.contact_interval)
-    extent = _round_up(max(2.0, 3.0 * reach))
-    x = np.linspace(-extent, extent, 97)
+    zones = zones_of(s)
+    if params.punches or len(zones) > 1:
+        lo, hi, widest = _hull([("", params, s)])
+        centre, extent = _centred(lo, hi, max(2.0, 0.5 * (hi - lo) + 1.0 + widest))
+    else:
+        reach = max(abs(e) for e in s.contact_interval)
+        centre, extent = 0.0, _round_up(max(2.0, 3.0 * reach))
+    x = np.linspace(centre - extent, centre + extent, 97)
     y = np.linspace(-1.0, 0.0, 41)
 
     def make() -> FloatArray:
         f = s.stress_field(x, y)
         return f.sigma_x if quantity == "sigma_x" else f.von_mises
 
-    values = cache.get_or_make((f"field-{quantity}", params, extent), make)
+    values = cache.get_or_make((f"field-{quantity}", params, centre, extent), make)
     assert isinstance(values, np.ndarray)
     name = "σx/(P/h)" if quantity == "sigma_x" else "von Mises σ/(P/h)"
     return FieldMap(
@@ -669,15 +926,23 @@ def _field(cache: Cache, params: Params, quantity: FieldQuantity) -> FieldMap:
         y=y,
         values=values,
         a=s.a,
+        centre=centre,
+        zones=zones if len(zones) > 1 else (),
     )
 
 
 def _accuracy(
     cache: Cache, params: Params, report: Progress, stop: Callable[[], bool]
-) -> AccuracyTable | None:
+) -> AccuracyTable | Notice | None:
     """The accuracy ladder of ``params`` (solve + sigma_x peaks per tol),
     computed once per parameter set (its tol does not matter: the ladder runs
-    every tol). Each rung clears the core's kernel cache for a cold time."""
+    every tol). Each rung clears the core's kernel cache for a cold time.
+    A train: a Notice (the ladder runs one punch)."""
+    if params.punches:
+        return Notice(
+            "accuracy",
+            "The accuracy ladder runs a single punch: clear the train input to see it.",
+        )
     key = ("accuracy", replace(params, tol=PAPER_FIG4.tol))
     known = cache.peek(key)
     if isinstance(known, AccuracyTable):
@@ -706,6 +971,8 @@ def to_csv(data: TabData, source: Params) -> str:
         lines.append("# " + ", ".join(table))
         for row in np.column_stack(list(table.values())):
             lines.append(",".join(_csv_number(v) for v in row))
+    elif isinstance(data, Notice):
+        lines.append(f"# {data.text}")
     elif isinstance(data, Curves):
         lines.append(f"# {data.title}")
         names = [data.grid_label] + [

@@ -6,9 +6,11 @@ and sweep; saving writes them back with the outputs the app shows.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 from movingpunch.errors import InvalidParameterError
 from movingpunch.profiles import Profile
@@ -21,8 +23,16 @@ from movingpunch.scene import (
     bundled_scene_text,
     bundled_scenes,
 )
-from movingpunch.tui.model import SCENE_PARAMS, Overlay, Params, SweepSpec
+from movingpunch.tui.model import (
+    SCENE_PARAMS,
+    Overlay,
+    Params,
+    SweepSpec,
+    parse_contact,
+    train_from,
+)
 from movingpunch.tui.paths import WorkingFolder
+from movingpunch.zones import Punch
 
 SAVED_OUTPUTS: tuple[str, ...] = (
     "contact_width",
@@ -91,7 +101,9 @@ def load_in(folder: WorkingFolder, text: str) -> SceneState:
 
 
 def from_scene(scene: Scene) -> SceneState:
-    values = {name: float(scene.params.get(name, 0.0)) for name in SCENE_PARAMS}
+    values: dict[str, Any] = {
+        name: float(scene.params.get(name, 0.0)) for name in SCENE_PARAMS
+    }
     shape = scene.profile
     if not math.isfinite(values["radius"]):  # a flat punch or a table: no radius
         values["radius"] = Params.radius
@@ -101,6 +113,7 @@ def from_scene(scene: Scene) -> SceneState:
         profile=shape.kind if shape is not None else "cylinder",
         half_width=float(getattr(shape, "half_width", Params.half_width)),
         table=shape if isinstance(shape, Profile) else None,
+        **_zones_of(scene),
     )
     overlay = (
         None
@@ -124,6 +137,48 @@ def from_scene(scene: Scene) -> SceneState:
     )
 
 
+def _zones_of(scene: Scene) -> dict[str, Any]:
+    """The contact mode and the train of a scene that carries them (a
+    ``contact`` string and ``punches``, a sequence of ``movingpunch.Punch``);
+    {} for a scene without them (the scene files' ``[[punches]]`` tables
+    are read by ``movingpunch.scene``, not here)."""
+    out: dict[str, Any] = {}
+    contact = getattr(scene, "contact", None)
+    if isinstance(contact, str):
+        out["contact"] = parse_contact(contact)
+    punches = getattr(scene, "punches", None)
+    if punches and all(isinstance(p, Punch) for p in punches):
+        out["punches"] = train_from(punches)
+    return out
+
+
+def _zone_fields(params: Params) -> dict[str, Any]:
+    """What to give ``Scene`` for the contact mode and the train; a
+    SceneError if it cannot carry them (a train or contact single would be
+    lost)."""
+    names = {f.name for f in dataclasses.fields(Scene)}
+    out: dict[str, Any] = {}
+    if params.punches:
+        if "punches" not in names:
+            raise SceneError(
+                "<terminal UI>",
+                "punches",
+                "a train of punches cannot be saved in a scene file yet "
+                "(clear the train input to save the single punch)",
+            )
+        out["punches"] = tuple(params.train())
+    if params.contact != "auto":
+        if "contact" not in names:
+            raise SceneError(
+                "<terminal UI>",
+                "contact",
+                "contact single cannot be saved in a scene file yet "
+                "(set contact to auto to save)",
+            )
+        out["contact"] = params.contact
+    return out
+
+
 def to_scene(state: SceneState) -> Scene:
     """The state as a Scene (validated: raises SceneError)."""
     vary = (
@@ -140,6 +195,7 @@ def to_scene(state: SceneState) -> Scene:
         shape = state.params.shape()
     except InvalidParameterError as exc:
         raise SceneError("<terminal UI>", "params.profile", str(exc)) from exc
+    extra = _zone_fields(state.params)
     return Scene(
         params=state.params.physical(),
         profile=shape,
@@ -149,6 +205,7 @@ def to_scene(state: SceneState) -> Scene:
         tol=state.params.tol,
         name=state.name,
         description=state.description,
+        **extra,
     )
 
 

@@ -40,12 +40,12 @@ from movingpunch.scene import Scene
 from movingpunch.tui import model, scene_files
 from movingpunch.tui.messages import Computed, Progressed
 from movingpunch.tui.model import (
-    PARAM_NAMES,
     TABS,
     AccuracyTable,
     Cache,
     FieldMap,
     FieldQuantity,
+    Notice,
     Overlay,
     Params,
     Request,
@@ -64,6 +64,7 @@ from movingpunch.tui.widgets import (
     ParamsPanel,
     StressMap,
 )
+from movingpunch.tui.widgets.params import INPUTS
 
 TAB_TITLES: dict[TabName, str] = {
     "pressure": "p(x)",
@@ -284,11 +285,15 @@ class MainScreen(Screen[None]):
             self._status_error = "supercritical speed: no steady solution"
         elif isinstance(error, InvalidParameterError):
             name = error.parameter
-            if name in PARAM_NAMES or name == "profile":
+            if name == "at":  # a punch's position: the train's input
+                name = "punches"
+            if name in INPUTS:
                 panel.set_message(name, _one_line(error))
             self._status_error = _one_line(error)
         elif isinstance(error, UnphysicalContactError):
             self._status_error = "unphysical contact: " + _one_line(error)
+            if self.params.contact == "single" and not self.params.punches:
+                self._status_error += " (contact auto finds the contact zones)"
         elif isinstance(error, ConvergenceError):
             self._status_error = "no convergence: " + _one_line(error)
         else:
@@ -299,7 +304,7 @@ class MainScreen(Screen[None]):
     def _clear_solver_messages(self) -> None:
         """Messages from the solver (not from typing) go when a solve succeeds."""
         panel = self.query_one(ParamsPanel)
-        for name in PARAM_NAMES:
+        for name in INPUTS:
             if name not in self._invalid and panel.message(name):
                 panel.set_message(name, "")
 
@@ -310,12 +315,24 @@ class MainScreen(Screen[None]):
         gauge.limits = (s.params.vstar, s.critical_vstar, s.rayleigh_vstar)
         self.query_one("#summary", Static).update(self._summary_text(result))
         data = result.data
-        if isinstance(data, AccuracyTable):
-            self.query_one("#plot-accuracy", AccuracyView).table = data
+        if isinstance(data, Notice):
+            widget = self.query_one(f"#plot-{data.tab}")
+            if isinstance(widget, AccuracyView):
+                widget.table = None
+                widget.placeholder = data.text
+            elif isinstance(widget, CurvePlot):
+                widget.curves = None
+                widget.placeholder = data.text
+        elif isinstance(data, AccuracyTable):
+            view = self.query_one("#plot-accuracy", AccuracyView)
+            view.placeholder = "computing the accuracy ladder..."
+            view.table = data
         elif isinstance(data, FieldMap):
             self.query_one("#plot-field", StressMap).field = data
         else:
-            self.query_one(f"#plot-{data.tab}", CurvePlot).curves = data
+            plot = self.query_one(f"#plot-{data.tab}", CurvePlot)
+            plot.placeholder = "computing..."
+            plot.curves = data
         self._update_status()
 
     def _summary_text(self, result: Result) -> Text:
@@ -323,19 +340,28 @@ class MainScreen(Screen[None]):
         asymmetric), p0, δ/h, the σx peaks, the drag where there is one."""
         s = result.summary
         start, end = s.contact_interval
-        contact = (
-            ("a/h", fmt(s.a, 6))
-            if start == -end
-            else ("(-b,a)/h", f"({fmt(start, 5)}, {fmt(end, 5)})")
-        )
-        parts = [
-            contact,
-            ("p0", fmt(s.p0, 4)),
-            ("δ/h", fmt(s.indentation, 3)),
+        if s.punches:
+            parts = _train_parts(s)
+        elif len(s.contact_zones) > 1:
+            # a separated contact: its zones' ends, x/h
+            parts = [(f"{len(s.contact_zones)} zones", _zones_text(s.contact_zones, 4))]
+            parts += [("p0", fmt(s.p0, 4)), ("δ/h", fmt(s.indentation, 3))]
+        else:
+            contact = (
+                ("a/h", fmt(s.a, 6))
+                if start == -end
+                else ("(-b,a)/h", f"({fmt(start, 5)}, {fmt(end, 5)})")
+            )
+            parts = [
+                contact,
+                ("p0", fmt(s.p0, 4)),
+                ("δ/h", fmt(s.indentation, 3)),
+            ]
+        parts += [
             ("σx⁺ top", fmt(s.top_tensile, 3)),
             ("bot", fmt(s.bottom_tensile, 3)),
         ]
-        if s.drag != 0.0:
+        if s.damped or abs(s.drag) > 1e-9:  # (a sum of zones' rounding: not shown)
             parts.append(("drag/P", fmt(s.drag, 4)))
         if s.end_coefficient != 0.0 and s.end_coefficient_back != s.end_coefficient:
             # a flat punch on the asymmetric solver: both edges
@@ -385,6 +411,9 @@ class MainScreen(Screen[None]):
         if name == "profile":
             self._profile_changed(event.value)
             return
+        if name in ("contact", "punches"):
+            self._text_changed(name, event.value)
+            return
         try:
             value = model.parse_param(name, event.value)
         except InvalidParameterError as exc:
@@ -419,6 +448,32 @@ class MainScreen(Screen[None]):
         panel.set_message("profile", "")
         changed = kind != self.params.profile
         self.params = replace(self.params, profile=kind)
+        self._update_status()
+        if changed or (was_invalid and not self._invalid):
+            self.request()
+
+    def _text_changed(self, name: str, text: str) -> None:
+        """The contact mode or the train typed in the panel: checked (an
+        error names the input), then solved like any parameter change."""
+        panel = self.query_one(ParamsPanel)
+        try:
+            if name == "contact":
+                params = replace(self.params, contact=model.parse_contact(text))
+            else:
+                train = model.parse_punches(text)
+                if [p.text() for p in train] == [p.text() for p in self.params.punches]:
+                    train = self.params.punches  # keep a scene's own profiles
+                params = replace(self.params, punches=train)
+        except InvalidParameterError as exc:
+            self._invalid.add(name)
+            panel.set_message(name, _one_line(exc))
+            self._update_status()
+            return
+        was_invalid = name in self._invalid
+        self._invalid.discard(name)
+        panel.set_message(name, "")
+        changed = params != self.params
+        self.params = params
         self._update_status()
         if changed or (was_invalid and not self._invalid):
             self.request()
@@ -529,7 +584,7 @@ class MainScreen(Screen[None]):
         self.overlay = scene.overlay
         self.sweep = scene.sweep or SweepSpec()
         self.query_one(ParamsPanel).set_values(scene.params)
-        for name in PARAM_NAMES:
+        for name in INPUTS:
             self.query_one(ParamsPanel).set_message(name, "")
         self.query_one(ParamsPanel).show_load(scene.params.load)
         if tab is not None and tab != self.tab:
@@ -593,6 +648,26 @@ def _one_line(error: BaseException | None) -> str:
     if error is None:
         return "unknown error"
     return " ".join(str(error).split()) or type(error).__name__
+
+
+def _zones_text(zones: tuple[tuple[float, float], ...], digits: int) -> str:
+    """``[-1.2,-0.3] [0.3,1.2]``: each zone's ends x/h."""
+    return " ".join(f"[{fmt(lo, digits)},{fmt(hi, digits)}]" for lo, hi in zones)
+
+
+def _train_parts(s: model.Summary) -> list[tuple[str, str]]:
+    """A train: the punches and zones, then each punch's axis x/h, δ/h and
+    zones (compact)."""
+    zones = sum(len(p.contact_zones) for p in s.punches)
+    parts = [(f"{len(s.punches)} punches", f"{zones} zones")]
+    for k, p in enumerate(s.punches, start=1):
+        parts.append(
+            (
+                f"#{k}@{fmt(p.at, 4)}",
+                f"δ/h {fmt(p.indentation, 3)} {_zones_text(p.contact_zones, 3)}",
+            )
+        )
+    return parts
 
 
 def _labelled(parts: list[tuple[str, str]], valid: bool) -> Text:

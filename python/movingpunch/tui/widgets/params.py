@@ -11,7 +11,20 @@ from textual.reactive import reactive
 from textual.widgets import Input, Label, Static
 
 from movingpunch.params import help_text
-from movingpunch.tui.model import PARAM_NAMES, TUI_PROFILES, Params, fmt
+from movingpunch.tui.model import (
+    PARAM_NAMES,
+    TUI_PROFILES,
+    Params,
+    fmt,
+    format_punches,
+)
+
+TEXT_INPUTS: tuple[str, ...] = ("contact", "punches")
+"""The text inputs below the numeric ones (the punch's kind, ``profile``,
+is above them)."""
+
+INPUTS: tuple[str, ...] = ("profile", *PARAM_NAMES, *TEXT_INPUTS)
+"""Every input of the panel, top to bottom."""
 
 LABELS: dict[str, str] = {
     "vstar": "V*",
@@ -25,6 +38,8 @@ LABELS: dict[str, str] = {
     "damping": "damp",
     "friction": "fric",
     "tol": "tol",
+    "contact": "cont",
+    "punches": "train",
 }
 
 TOOLTIPS: dict[str, str] = {name: help_text(name) for name in PARAM_NAMES}
@@ -33,6 +48,16 @@ TOOLTIPS["profile"] = (
     + ", ".join(TUI_PROFILES)
     + " (R/h is the cylinder's or the rounded corners' radius, b/h the flat face's "
     "half-width; a table comes from a scene file)"
+)
+TOOLTIPS["contact"] = (
+    "auto: find the contact set (several zones where the single contact would "
+    "pull on the layer, p < 0, near the critical speed); single: one contact "
+    "interval, refused when unphysical. A train always finds its contact set."
+)
+TOOLTIPS["punches"] = (
+    "a train of punches moving together: load@at, ... e.g. 0.002@-1.5, 0.002@1.5 "
+    "(P_k/(μh) at x/h of each axis; each punch has the panel's shape, R/h and "
+    "b/h; frictionless). Empty: the single punch of P/(μh)."
 )
 """Meaning, valid range and default of each input: the table of parameters."""
 
@@ -99,17 +124,15 @@ class ParamsPanel(VerticalScroll):
         super().__init__(id="params")
         self._initial = params
         self._blink = cursor_blink
-        self._messages: dict[str, str] = dict.fromkeys(("profile", *PARAM_NAMES), "")
+        self._messages: dict[str, str] = dict.fromkeys(INPUTS, "")
 
     def compose(self) -> ComposeResult:
         yield Label("Parameters", classes="panel-title")
-        for name in ("profile", *PARAM_NAMES):
+        for name in INPUTS:
             with Horizontal(classes="param-row"):
                 yield Label(LABELS[name], classes="param-label")
                 box = Input(
-                    self._initial.profile
-                    if name == "profile"
-                    else fmt(self._initial.get(name), 10),
+                    self._text_of(self._initial, name),
                     id=f"in-{name}",
                     compact=True,
                     select_on_focus=False,
@@ -121,6 +144,16 @@ class ParamsPanel(VerticalScroll):
                     yield Label(self._mu_text(self._initial.load), id="mu-note")
             yield Static("", id=f"msg-{name}", classes="param-msg")
         yield Gauge(id="gauge")
+
+    @staticmethod
+    def _text_of(params: Params, name: str) -> str:
+        if name == "profile":
+            return params.profile
+        if name == "contact":
+            return params.contact
+        if name == "punches":
+            return format_punches(params.punches)
+        return fmt(params.get(name), 10)
 
     @staticmethod
     def _mu_text(load: float) -> str:
@@ -143,11 +176,8 @@ class ParamsPanel(VerticalScroll):
         return self.query_one(f"#in-{name}", Input).value
 
     def set_values(self, params: Params) -> None:
-        profile = self.query_one("#in-profile", Input)
-        if profile.value != params.profile:
-            profile.value = params.profile
-        for name in PARAM_NAMES:
+        for name in INPUTS:
             box = self.query_one(f"#in-{name}", Input)
-            text = fmt(params.get(name), 10)
+            text = self._text_of(params, name)
             if box.value != text:
                 box.value = text

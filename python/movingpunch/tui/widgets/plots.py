@@ -58,6 +58,10 @@ class CurvePlot(PlotextPlot):
                 color=PALETTE[i % len(PALETTE)],
                 label=series.label if len(data.series) > 1 else None,
             )
+        # The zone ends (several zones): thin vertical lines, one colour.
+        for x in data.markers:
+            if math.isfinite(x):
+                plt.vline(x, color=(150, 150, 150))
         if data.vertical_grid:
             plt.xlabel(data.value_label)
             plt.ylabel(data.grid_label)
@@ -126,7 +130,12 @@ class StressMap(Widget):
         yi = np.minimum((np.arange(2 * rows) + 0.5) * ny / (2 * rows), ny - 1)
         yi = (ny - 1 - yi.astype(int)).astype(int)
         out = Text(no_wrap=True, overflow="crop")
-        out.append(f"{data.title}  (a/h = {fmt(data.a, 5)})"[:width] + "\n")
+        if data.zones:
+            ends = " ".join(f"[{fmt(lo, 3)},{fmt(hi, 3)}]" for lo, hi in data.zones)
+            note = f"{len(data.zones)} zones {ends}"
+        else:
+            note = f"a/h = {fmt(data.a, 5)}"
+        out.append(f"{data.title}  ({note})"[:width] + "\n")
         for r in range(rows):
             if r == 0:
                 label = "0"
@@ -146,7 +155,7 @@ class StressMap(Widget):
                 out.append("▀", Style.parse(f"{up} on {down}"))
             out.append("\n")
         left, right = fmt(float(data.x[0]), 3), fmt(float(data.x[-1]), 3)
-        mid = "0 x/h"
+        mid = f"{fmt(data.centre, 3)} x/h"
         axis = [" "] * cols
         for pos, text in ((0, left), (cols // 2, mid), (cols - len(right), right)):
             for k, ch in enumerate(text):
