@@ -58,8 +58,9 @@ from movingpunch.solver import (
     rayleigh_vstar,
     result_warnings,
     solve,
+    solve_punches,
 )
-from movingpunch.zones import Punch, solve_punches
+from movingpunch.zones import Punch
 
 PROG = "movingpunch"
 EXIT_USAGE = 2

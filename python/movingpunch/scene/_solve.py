@@ -20,12 +20,12 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from movingpunch.contract import ContactSolution
-from movingpunch.errors import MovingPunchError
+from movingpunch.errors import MovingPunchError, UnphysicalContactError
 from movingpunch.profiles import PunchProfile
 from movingpunch.scene._model import PEAK_QUANTITIES, SceneData, train_of
 from movingpunch.scene._result import Stages
-from movingpunch.solver import result_warnings, solve
-from movingpunch.zones import Punch, solve_punches
+from movingpunch.solver import result_warnings, solve, solve_punches
+from movingpunch.zones import Punch
 
 __all__ = ["RunState", "point_key", "solve_point"]
 
@@ -100,20 +100,28 @@ def solve_point(
         )
         stages.add_solution(s)
         return s
-    s = solve(
-        vstar=p["vstar"],
-        kw=p["kw"],
-        radius=p["radius"] if profile is None else None,
-        profile=profile,
-        load=p["load"],
-        nu=p["nu"],
-        tol=tol,
-        allow_unphysical=True,
-        damping=_damping(p),
-        kp=_kp(p),
-        friction=_friction(p),
-        contact=contact,
-    )
+    args: dict[str, Any] = {
+        "vstar": p["vstar"],
+        "kw": p["kw"],
+        "radius": p["radius"] if profile is None else None,
+        "profile": profile,
+        "load": p["load"],
+        "nu": p["nu"],
+        "tol": tol,
+        "damping": _damping(p),
+        "kp": _kp(p),
+        "friction": _friction(p),
+    }
+    # A sweep goes on through unphysical points: contact "auto" finds the
+    # zones where the single contact separates, and where no contact set is
+    # found (or with "single") the point is the single contact, flagged
+    # invalid (valid = 0 in the tables).
+    try:
+        s = solve(**args, contact=contact) if contact == "auto" else None
+    except UnphysicalContactError:
+        s = None
+    if s is None:
+        s = solve(**args, allow_unphysical=True, contact=contact)
     stages.add_solution(s)
     return s
 

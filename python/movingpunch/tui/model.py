@@ -31,8 +31,9 @@ from movingpunch.solver import (
     rayleigh_vstar,
     result_warnings,
     solve,
+    solve_punches,
 )
-from movingpunch.zones import CONTACT_MODES, Punch, solve_punches
+from movingpunch.zones import CONTACT_MODES, Punch
 
 FloatArray = npt.NDArray[np.float64]
 

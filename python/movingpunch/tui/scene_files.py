@@ -6,7 +6,6 @@ and sweep; saving writes them back with the outputs the app shows.
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -32,7 +31,6 @@ from movingpunch.tui.model import (
     train_from,
 )
 from movingpunch.tui.paths import WorkingFolder
-from movingpunch.zones import Punch
 
 SAVED_OUTPUTS: tuple[str, ...] = (
     "contact_width",
@@ -138,44 +136,22 @@ def from_scene(scene: Scene) -> SceneState:
 
 
 def _zones_of(scene: Scene) -> dict[str, Any]:
-    """The contact mode and the train of a scene that carries them (a
-    ``contact`` string and ``punches``, a sequence of ``movingpunch.Punch``);
-    {} for a scene without them (the scene files' ``[[punches]]`` tables
-    are read by ``movingpunch.scene``, not here)."""
-    out: dict[str, Any] = {}
-    contact = getattr(scene, "contact", None)
-    if isinstance(contact, str):
-        out["contact"] = parse_contact(contact)
-    punches = getattr(scene, "punches", None)
-    if punches and all(isinstance(p, Punch) for p in punches):
-        out["punches"] = train_from(punches)
+    """The contact mode and the train (``[[punches]]``) of a scene."""
+    out: dict[str, Any] = {"contact": parse_contact(scene.contact)}
+    if scene.punches:
+        out["punches"] = train_from(scene.punches)
     return out
 
 
+_TRAIN_PARAMS = frozenset({"vstar", "kw", "nu", "kp", "damping"})
+"""The [params] keys a scene with [[punches]] takes."""
+
+
 def _zone_fields(params: Params) -> dict[str, Any]:
-    """What to give ``Scene`` for the contact mode and the train; a
-    SceneError if it cannot carry them (a train or contact single would be
-    lost)."""
-    names = {f.name for f in dataclasses.fields(Scene)}
-    out: dict[str, Any] = {}
+    """What to give ``Scene`` for the contact mode and the train."""
+    out: dict[str, Any] = {"contact": params.contact}
     if params.punches:
-        if "punches" not in names:
-            raise SceneError(
-                "<terminal UI>",
-                "punches",
-                "a train of punches cannot be saved in a scene file yet "
-                "(clear the train input to save the single punch)",
-            )
         out["punches"] = tuple(params.train())
-    if params.contact != "auto":
-        if "contact" not in names:
-            raise SceneError(
-                "<terminal UI>",
-                "contact",
-                "contact single cannot be saved in a scene file yet "
-                "(set contact to auto to save)",
-            )
-        out["contact"] = params.contact
     return out
 
 
@@ -196,8 +172,13 @@ def to_scene(state: SceneState) -> Scene:
     except InvalidParameterError as exc:
         raise SceneError("<terminal UI>", "params.profile", str(exc)) from exc
     extra = _zone_fields(state.params)
+    physical = state.params.physical()
+    if state.params.punches:
+        # A train: each punch carries its own load and shape.
+        physical = {k: v for k, v in physical.items() if k in _TRAIN_PARAMS}
+        shape = None
     return Scene(
-        params=state.params.physical(),
+        params=physical,
         profile=shape,
         outputs={kind: OutputSpec(kind) for kind in SAVED_OUTPUTS},
         vary=vary,
