@@ -88,8 +88,8 @@ void bind_zones(py::module_& m) {
         for (const auto& [k, l, r] : zones) p.zones.push_back(ZoneSpan{k, l, r});
         return solve_zones(p);
       },
-      py::kw_only(), "vstar"_a, "kw"_a, "nu"_a, "damping"_a, "kp"_a, "tol"_a, "n"_a,
-      "punches"_a, "zones"_a, Release(),
+      py::kw_only(), "vstar"_a, "kw"_a, "nu"_a, "damping"_a, "kp"_a, "tol"_a, "n"_a, "punches"_a,
+      "zones"_a, Release(),
       "Solves one contact set (zones: (punch, left, right) from left to right, disjoint) "
       "under punches ((profile, radius, half_width, table_x, table_y, load, at)) by Newton's "
       "method on the zone ends; frictionless. Raises InvalidParameterError, "

@@ -62,8 +62,14 @@ class System {
  public:
   System(const ZonesParams& p, const std::vector<PunchProfile>& prof, const DampedKernel& K, int n,
          double slope_scale)
-      : p_(p), prof_(prof), K_(K), n_(n), nz_(static_cast<int>(p.zones.size())),
-        np_(static_cast<int>(p.punches.size())), nd_(chebyshev_nodes(n)), S_(slope_scale),
+      : p_(p),
+        prof_(prof),
+        K_(K),
+        n_(n),
+        nz_(static_cast<int>(p.zones.size())),
+        np_(static_cast<int>(p.punches.size())),
+        nd_(chebyshev_nodes(n)),
+        S_(slope_scale),
         phi1_(K.model().phi1()) {
     // b = C G: b_m = 2 sum_i W_i U_m(r_i) G_i (exact for the degree-(N - 1) G).
     C_.resize(n, n);
@@ -129,8 +135,7 @@ class System {
     Eigen::MatrixXd Z(n + 1, n);
     for (int j = 0; j < nz_; ++j) {
       const double cj = c_[static_cast<std::size_t>(j)], wj = w_[static_cast<std::size_t>(j)];
-      for (int k = 0; k <= n; ++k)
-        rhs(j * (n + 1) + k) = slope(punch_of(j), cj + wj * nd_.s(k));
+      for (int k = 0; k <= n; ++k) rhs(j * (n + 1) + k) = slope(punch_of(j), cj + wj * nd_.s(k));
       for (int i = 0; i < nz_; ++i) {
         const double ci = c_[static_cast<std::size_t>(i)], wi = w_[static_cast<std::size_t>(i)];
         for (int q = 0; q < n; ++q)
@@ -223,8 +228,7 @@ class System {
       for (int q = 0; q < n_; ++q) u[static_cast<std::size_t>(q)] = x - ci - wi * nd_.r(q);
       K_.many(u.data(), kv.data(), u.size());
       double kern = 0.0;
-      for (int q = 0; q < n_; ++q)
-        kern += nd_.w(q) * G_(q, i) * kv[static_cast<std::size_t>(q)];
+      for (int q = 0; q < n_; ++q) kern += nd_.w(q) * G_(q, i) * kv[static_cast<std::size_t>(q)];
       sum += cauchy + wi * kern;
     }
     return phi1_ * sum;
@@ -309,8 +313,8 @@ void newton(System& sys, Eigen::VectorXd& e, int& evaluations, Eigen::MatrixXd& 
         have_j = false;
         continue;
       }
-      throw ConvergenceError("several contact zones: singular Jacobian (N = " +
-                             std::to_string(sys.n()) + ")");
+      throw ConvergenceError(
+          "several contact zones: singular Jacobian (N = " + std::to_string(sys.n()) + ")");
     }
     // Keep every zone and every gap above a tenth of its present size.
     double t = 1.0;
@@ -419,9 +423,9 @@ ZonesSolution solve_zones(const ZonesParams& prm) {
   require_in_range("kp", L.kp, 0.0, kMaxKp, false, false);
   require_in_range("tol", L.tol, 1e-14, 1e-2, false, false);
   if (L.friction != 0.0)
-    throw InvalidParameter("friction", "0 (several zones are frictionless)",
-                           "several contact zones: friction must be 0, got " +
-                               std::to_string(L.friction));
+    throw InvalidParameter(
+        "friction", "0 (several zones are frictionless)",
+        "several contact zones: friction must be 0, got " + std::to_string(L.friction));
   if (L.n != 0 && (L.n < 8 || L.n > 256 || L.n % 2 != 0))
     throw InvalidParameter("n", "0 (automatic) or an even integer in [8, 256]",
                            "n must be 0 (automatic) or an even integer in [8, 256] for several "
@@ -445,7 +449,8 @@ ZonesSolution solve_zones(const ZonesParams& prm) {
     const ZoneSpan& z = prm.zones[static_cast<std::size_t>(j)];
     if (z.punch < 0 || z.punch >= static_cast<int>(prm.punches.size()))
       throw InvalidParameter("zones", "punch indices in range", "a zone names no punch");
-    if (!(z.right > z.left) || (j > 0 && !(z.left > prm.zones[static_cast<std::size_t>(j - 1)].right)))
+    if (!(z.right > z.left) ||
+        (j > 0 && !(z.left > prm.zones[static_cast<std::size_t>(j - 1)].right)))
       throw InvalidParameter("zones", "disjoint intervals sorted from left to right",
                              "the starting zones must be disjoint and sorted");
     ++count[static_cast<std::size_t>(z.punch)];
@@ -485,8 +490,8 @@ ZonesSolution solve_zones(const ZonesParams& prm) {
   auto kernel = [&](double need) -> const DampedKernel& {
     if (!kern || kern->range() < need) {
       bool built = false;
-      kern = cached_damped_kernel(L.vstar, L.kw, L.nu, L.damping, need, 2.0 * need, &built, L.kp,
-                                  0.0);
+      kern =
+          cached_damped_kernel(L.vstar, L.kw, L.nu, L.damping, need, 2.0 * need, &built, L.kp, 0.0);
       out.kernel_builds += built ? 1 : 0;
     }
     return *kern;
@@ -626,8 +631,8 @@ ZonesSolution solve_zones(const ZonesParams& prm) {
     z.min_pressure = kInf;
     for (int i = 0; i <= 400; ++i) {
       const double r = -1.0 + 2.0 * i / 400.0;
-      z.min_pressure = std::min(z.min_pressure,
-                                sign * u_series(z.b, r) * std::sqrt(std::max(0.0, 1.0 - r * r)));
+      z.min_pressure =
+          std::min(z.min_pressure, sign * u_series(z.b, r) * std::sqrt(std::max(0.0, 1.0 - r * r)));
     }
     out.zones.push_back(std::move(z));
   }
@@ -699,8 +704,9 @@ ZonesSolution solve_zones(const ZonesParams& prm) {
     const PunchProfile& pf = prof[static_cast<std::size_t>(k)];
     const double at = prm.punches[static_cast<std::size_t>(k)].at;
     for (int j : mine)
-      out.gap_scale = std::max(out.gap_scale, sys->half(j) * std::max(std::fabs(sys->slope(k, e(2 * j))),
-                                                                     std::fabs(sys->slope(k, e(2 * j + 1)))));
+      out.gap_scale =
+          std::max(out.gap_scale, sys->half(j) * std::max(std::fabs(sys->slope(k, e(2 * j))),
+                                                          std::fabs(sys->slope(k, e(2 * j + 1)))));
     auto note = [&](double gap, double x, int after) {
       if (gap < out.min_gap) {
         out.min_gap = gap;

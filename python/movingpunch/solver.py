@@ -352,8 +352,17 @@ def solve(
     try:
         return separate(single, damping=damp, kp=single.kp, n=n)
     except (UnphysicalContactError, ConvergenceError) as err:
+        shape = single.profile
+        what = (
+            f"radius={shape.radius:.8g}"
+            if isinstance(shape, Cylinder)
+            else f"profile: {shape.describe()}"
+        )
         raise UnphysicalContactError(
-            f"{single.validity}; the search for several contact zones failed: {err}"
+            f"vstar={single.vstar:.8g}, kw={single.kw:.8g}, {what}, "
+            f"load={single.load:.8g}, nu={single.nu:.8g}: {single.validity} "
+            f"(a/h = {single.a:.8g}); the search for several contact zones "
+            f"failed: {err}"
         ) from err
 
 

@@ -16,6 +16,7 @@ solver is an independent stack down to its kernel).
 
 from __future__ import annotations
 
+import itertools
 import json
 import math
 from collections.abc import Mapping
@@ -73,6 +74,10 @@ PATHS: dict[str, dict[str, Any]] = {
     },
     "friction": {"vstar": 0.2, "kw": 1.0, "friction": 0.3},
     "friction-damped": {"vstar": 0.65, "kw": 1.0, "damping": 0.1, "friction": 0.3},
+    # Several zones: the paper's soft foundation at 0.99 V*_cr separates.
+    "separated": {"vstar": 0.99 * mp.critical_vstar(0.1), "kw": 0.1},
+    "train": {"vstar": 0.5, "kw": 1.0, "punches": True},
+    "train-damped": {"vstar": 0.5, "kw": 1.0, "damping": 0.3, "punches": True},
 }
 
 TYPES: dict[str, type | tuple[type, ...]] = {
@@ -83,6 +88,7 @@ TYPES: dict[str, type | tuple[type, ...]] = {
     "validity": str,
     "warnings": tuple,
     "contact_interval": tuple,
+    "contact_zones": tuple,
     "end_exponents": tuple,
     "stage_times": Mapping,
     "profile": (mp.Cylinder, mp.Flat, mp.RoundedFlat, mp.Profile),
@@ -93,7 +99,11 @@ TYPES: dict[str, type | tuple[type, ...]] = {
 @pytest.fixture(scope="module", params=sorted(PATHS))
 def solved(request: pytest.FixtureRequest) -> tuple[str, Any]:
     name = str(request.param)
-    return name, mp.solve(**{**PAPER, **PATHS[name]})
+    args = dict(PATHS[name])
+    if args.pop("punches", False):
+        train = [mp.Punch(100.0, 0.002, at=-1.5), mp.Punch(100.0, 0.003, at=1.5)]
+        return name, mp.solve_punches(train, **args)
+    return name, mp.solve(**{**PAPER, **args})
 
 
 def test_every_path_satisfies_the_contract(solved: tuple[str, Any]) -> None:
@@ -113,6 +123,11 @@ def test_every_path_satisfies_the_contract(solved: tuple[str, Any]) -> None:
     back, front = s.contact_interval
     assert back < front
     assert s.a == front
+    zones = s.contact_zones
+    assert zones[0][0] == back
+    assert zones[-1][1] == front
+    assert all(lo < hi for lo, hi in zones)
+    assert all(hi < lo for (_, hi), (lo, _) in itertools.pairwise(zones))
     assert s.half_width == pytest.approx(0.5 * (front - back), rel=1e-15)
     assert s.centre == pytest.approx(0.5 * (front + back), abs=1e-15)
     assert s.stage_times
@@ -177,12 +192,25 @@ def test_anchors_of_the_common_fields(solved: tuple[str, Any]) -> None:
     # -delta + f(x) (x^2/(2R) for a cylinder; the boundary condition, from the
     # displacement integral, not from g), on every path (the damped contact
     # is off-centre).
-    r = np.linspace(-0.9, 0.9, 7) * s.half_width + s.centre
-    profile = -s.indentation + s.profile.height(r)
+    # Several zones: on each, the surface follows its own punch's profile
+    # moved to its axis, and one indentation per punch holds on all its
+    # zones (the rigid punch).
     scale = max(abs(s.indentation), 1e-3)
-    np.testing.assert_allclose(
-        s.surface_displacement(r), profile, atol=1e-6 * scale, err_msg=name
-    )
+    punches = getattr(s, "punches", None)
+    if punches is None:
+        r = np.linspace(-0.9, 0.9, 7) * s.half_width + s.centre
+        profile = -s.indentation + s.profile.height(r)
+        np.testing.assert_allclose(
+            s.surface_displacement(r), profile, atol=1e-6 * scale, err_msg=name
+        )
+    else:
+        for p in punches:
+            for lo, hi in p.contact_zones:
+                r = lo + (hi - lo) * np.linspace(0.05, 0.95, 7)
+                profile = -p.indentation + p.profile.height(r - p.at)
+                np.testing.assert_allclose(
+                    s.surface_displacement(r), profile, atol=1e-6 * scale, err_msg=name
+                )
     # The top and the bottom of the displacement field are the surface
     # displacement and the foundation's deflection -reaction/kw (finite kw).
     xs = np.array([-1.5, s.centre, 2.0])
@@ -209,6 +237,12 @@ def test_anchors_of_the_common_fields(solved: tuple[str, Any]) -> None:
         assert s.end_exponents[0] + shift < 0.5 < s.end_exponents[1] + shift
         assert s.tangential_force == s.friction
         assert s.dissipation >= 0.0
+    elif s.damping == 0.0 and punches is not None:
+        # Undamped: no power is dissipated, so the normal pressure's
+        # horizontal forces on all punches cancel (each punch's alone need
+        # not: a train's punches lean on each other's waves).
+        assert abs(s.drag) < 1e-9, name
+        assert s.dissipation == 0.0
     elif s.damping == 0.0:
         assert s.contact_interval == (-s.a, s.a)
         assert s.drag == 0.0

@@ -65,26 +65,26 @@ struct ZoneResult {
   // the layer's response to it; the whole response is the sum over zones.
   // Built on each call (its Fourier nodes cost about a millisecond).
   DampedSolution solution() const;
-  DampedParams params;                          // the layer, load = the zone's
+  DampedParams params;                         // the layer, load = the zone's
   std::shared_ptr<const DampedKernel> kernel;  // the solve's kernel table
 };
 
 struct ZonesSolution {
   std::vector<ZoneResult> zones;  // sorted by left end
-  std::vector<double> drag;                // per punch: int p f_k' dx / P_k
+  std::vector<double> drag;       // per punch: int p f_k' dx / P_k
   // Per punch: where its indentation is taken (its most loaded zone's
   // centre) and f_k there; delta_k = f_k(x) - v(x, 0) (the caller sums the
   // zones' surface displacements, on first use).
   std::vector<double> indentation_x, indentation_height;
-  double error_estimate = 0;              // of the zone ends, in h
-  double pressure_error_estimate = 0;     // of p/(mu) at fixed relative positions
+  double error_estimate = 0;           // of the zone ends, in h
+  double pressure_error_estimate = 0;  // of p/(mu) at fixed relative positions
   // Bound on the error of the surface sigma_x/(P/h), P the total load, more
   // than 1e-3 of a zone's half-width from its ends (from the change of the
   // zones' series between the last two sizes and the ends' error).
   double stress_error_estimate = 0;
   double max_pressure = 0;  // max p/(P/h), P the total load
   double drag_total = 0;    // int p f' dx over all punches / P
-  double residual = 0;                    // max |F| of the end conditions at the solution
+  double residual = 0;      // max |F| of the end conditions at the solution
   int collocation_n = 0, iterations = 0, kernel_builds = 0;
   // Complementarity: the smallest gap beside the zones (each punch's own gap
   // within 2 times its contact's hull width of it and between its zones),

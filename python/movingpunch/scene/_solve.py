@@ -116,14 +116,14 @@ def solve_point(
     # zones where the single contact separates, and where no contact set is
     # found (or with "single") the point is the single contact, flagged
     # invalid (valid = 0 in the tables).
-    try:
-        s = solve(**args, contact=contact) if contact == "auto" else None
-    except UnphysicalContactError:
-        s = None
-    if s is None:
-        s = solve(**args, allow_unphysical=True, contact=contact)
-    stages.add_solution(s)
-    return s
+    found: ContactSolution | None = None
+    if contact == "auto":
+        with contextlib.suppress(UnphysicalContactError):
+            found = solve(**args, contact=contact)
+    if found is None:
+        found = solve(**args, allow_unphysical=True, contact=contact)
+    stages.add_solution(found)
+    return found
 
 
 def point_quantities(

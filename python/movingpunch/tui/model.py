@@ -581,18 +581,15 @@ def solution(cache: Cache, params: Params) -> ContactSolution:
 
 def _solve(params: Params) -> ContactSolution:
     if params.punches:
-        return cast(
-            ContactSolution,
-            solve_punches(
-                params.train(),
-                vstar=params.vstar,
-                kw=params.kw,
-                nu=params.nu,
-                kp=params.kp,
-                damping=params.damping,
-                friction=params.friction,
-                tol=params.tol,
-            ),
+        return solve_punches(
+            params.train(),
+            vstar=params.vstar,
+            kw=params.kw,
+            nu=params.nu,
+            kp=params.kp,
+            damping=params.damping,
+            friction=params.friction,
+            tol=params.tol,
         )
     shape = params.shape()
     return solve(

@@ -1,0 +1,107 @@
+// Several contact zones (cpp/src/zones.cpp) against the single-contact
+// solvers (one zone is the asymmetric solver's contact; far-apart punches are
+// independent punches), the energy balance, symmetry and bad input.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "movingpunch/contact.hpp"
+#include "movingpunch/damped.hpp"
+#include "movingpunch/dispersion.hpp"
+#include "movingpunch/errors.hpp"
+#include "movingpunch/zones.hpp"
+
+namespace mp = movingpunch;
+
+namespace {
+
+mp::ZonesParams layer(double vstar, double kw, double damping) {
+  mp::ZonesParams p;
+  p.layer.vstar = vstar;
+  p.layer.kw = kw;
+  p.layer.damping = damping;
+  p.layer.tol = 1e-10;
+  return p;
+}
+
+mp::ZonePunch cylinder(double load, double at) {
+  mp::ZonePunch k;
+  k.radius = 100.0;
+  k.load = load;
+  k.at = at;
+  return k;
+}
+
+}  // namespace
+
+TEST(Zones, OneZoneIsTheAsymmetricSolversContact) {
+  mp::DampedParams d;
+  d.vstar = 0.5;
+  d.kw = 1.0;
+  d.damping = 0.3;
+  d.tol = 1e-11;
+  const mp::DampedSolution ref = mp::solve_damped(d);
+  mp::ZonesParams p = layer(0.5, 1.0, 0.3);
+  p.punches = {cylinder(0.002, 0.0)};
+  p.zones = {{0, ref.left() * 0.9, ref.right() * 1.1}};
+  const mp::ZonesSolution z = mp::solve_zones(p);
+  ASSERT_EQ(z.zones.size(), 1U);
+  EXPECT_NEAR(z.zones[0].left, ref.left(), 1e-9);
+  EXPECT_NEAR(z.zones[0].right, ref.right(), 1e-9);
+  EXPECT_NEAR(z.drag[0], ref.drag(), 1e-9 * std::fabs(ref.drag()));
+  // The energy balance: the dashpots take the drag's power.
+  EXPECT_NEAR(mp::zones_dissipation(z), z.drag_total, 1e-7 * z.drag_total);
+  EXPECT_NEAR(z.zones[0].load, 0.002, 1e-14);
+}
+
+TEST(Zones, FarApartPunchesAreSinglePunches) {
+  mp::ContactParams c;
+  c.vstar = 0.3;
+  c.kw = 10.0;
+  c.tol = 1e-12;
+  const mp::ContactSolution single = mp::solve_contact(c);
+  mp::ZonesParams p = layer(0.3, 10.0, 0.0);
+  p.punches = {cylinder(0.002, -50.0), cylinder(0.002, 50.0)};
+  p.zones = {{0, -51.0, -49.0}, {1, 49.0, 51.0}};
+  const mp::ZonesSolution z = mp::solve_zones(p);
+  ASSERT_EQ(z.zones.size(), 2U);
+  EXPECT_NEAR(z.zones[0].left, -50.0 - single.a(), 1e-9);
+  EXPECT_NEAR(z.zones[1].right, 50.0 + single.a(), 1e-9);
+  EXPECT_GT(z.min_gap, 0.0);
+}
+
+TEST(Zones, SeparatedContactIsSymmetricAndComplementary) {
+  const double v = 0.99 * mp::critical_vstar(0.1, 0.2);
+  mp::ZonesParams p = layer(v, 0.1, 0.0);
+  p.punches = {cylinder(0.002, 0.0)};
+  p.zones = {{0, -1.8, -0.5}, {0, 0.5, 1.8}};
+  const mp::ZonesSolution z = mp::solve_zones(p);
+  ASSERT_EQ(z.zones.size(), 2U);
+  EXPECT_NEAR(z.zones[0].left, -z.zones[1].right, 1e-11);
+  EXPECT_NEAR(z.zones[0].right, -z.zones[1].left, 1e-11);
+  EXPECT_NEAR(z.zones[0].load, 0.001, 1e-13);
+  EXPECT_GT(z.zones[0].margin, 0.0);  // p >= 0 with square-root ends
+  EXPECT_GT(z.min_gap, -1e-6 * z.gap_scale);
+  EXPECT_LT(z.residual, 1e-10);
+  EXPECT_LT(z.error_estimate, 1e-8);
+}
+
+TEST(Zones, BadInputIsRefused) {
+  mp::ZonesParams p = layer(0.5, 1.0, 0.0);
+  p.punches = {cylinder(0.002, 0.0)};
+  p.zones = {{0, -0.5, 0.5}, {0, 0.4, 0.8}};  // overlapping
+  EXPECT_THROW(mp::solve_zones(p), mp::InvalidParameter);
+  p.zones = {{0, -0.5, 0.5}};
+  p.layer.friction = 0.2;
+  EXPECT_THROW(mp::solve_zones(p), mp::InvalidParameter);
+  p.layer.friction = 0.0;
+  p.punches[0].load = -1.0;
+  EXPECT_THROW(mp::solve_zones(p), mp::InvalidParameter);
+  p.punches[0].load = 0.002;
+  p.zones = {{1, -0.5, 0.5}};  // no such punch
+  EXPECT_THROW(mp::solve_zones(p), mp::InvalidParameter);
+  p.zones = {{0, -0.5, 0.5}};
+  p.layer.vstar = mp::critical_vstar(1.0, 0.2);
+  EXPECT_THROW(mp::solve_zones(p), mp::SupercriticalSpeedError);
+}
