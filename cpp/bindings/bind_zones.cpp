@@ -65,7 +65,7 @@ void bind_zones(py::module_& m) {
       "solve_zones",
       [](double vstar, double kw, double nu, double damping, double kp, double tol, int n,
          const std::vector<PunchTuple>& punches,
-         const std::vector<std::tuple<int, double, double>>& zones) {
+         const std::vector<std::tuple<int, double, double>>& zones, int first_n) {
         ZonesParams p;
         p.layer.vstar = vstar;
         p.layer.kw = kw;
@@ -86,10 +86,11 @@ void bind_zones(py::module_& m) {
           p.punches.push_back(z);
         }
         for (const auto& [k, l, r] : zones) p.zones.push_back(ZoneSpan{k, l, r});
+        p.first_n = first_n;
         return solve_zones(p);
       },
       py::kw_only(), "vstar"_a, "kw"_a, "nu"_a, "damping"_a, "kp"_a, "tol"_a, "n"_a, "punches"_a,
-      "zones"_a, Release(),
+      "zones"_a, "first_n"_a = 24, Release(),
       "Solves one contact set (zones: (punch, left, right) from left to right, disjoint) "
       "under punches ((profile, radius, half_width, table_x, table_y, load, at)) by Newton's "
       "method on the zone ends; frictionless. Raises InvalidParameterError, "

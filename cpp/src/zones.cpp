@@ -512,7 +512,7 @@ ZonesSolution solve_zones(const ZonesParams& prm) {
     sizes = {std::max(6, 2 * (L.n / 4)), L.n};
   } else {
     for (int n : detail::kSizes)
-      if (n >= 24 && n <= 256) sizes.push_back(n);
+      if (n >= std::clamp(prm.first_n, 8, 256) && n <= 256) sizes.push_back(n);
   }
   std::vector<int> done;
   std::vector<double> d_ends, d_p;

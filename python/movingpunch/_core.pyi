@@ -314,4 +314,5 @@ def solve_zones(
     n: int,
     punches: list[tuple[str, float, float, list[float], list[float], float, float]],
     zones: list[tuple[int, float, float]],
+    first_n: int = 24,
 ) -> ZonesSolution: ...

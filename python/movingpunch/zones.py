@@ -408,6 +408,8 @@ class _Layer:
     kp: float
     tol: float
     n: int
+    first_n: int = 24
+    """The ladder's first size (16 from a train's close start)."""
 
 
 def _solve_topology(
@@ -423,6 +425,7 @@ def _solve_topology(
         n=layer.n,
         punches=[p._core() for p in punches],
         zones=list(zones),
+        first_n=layer.first_n,
     )
 
 
@@ -750,7 +753,7 @@ def solve_train(
     (``time.perf_counter``). Raises InvalidParameterError naming ``punches``
     when the punches' own contacts overlap."""
     first = singles[0]
-    layer = _Layer(first.vstar, first.kw, first.nu, damping, first.kp, tol, n)
+    layer = _Layer(first.vstar, first.kw, first.nu, damping, first.kp, tol, n, 16)
     start: list[tuple[int, float, float]] = []
     for k, (p, s) in enumerate(zip(punches, singles, strict=True)):
         start += [(k, p.at + lo, p.at + hi) for lo, hi in s.contact_zones]

@@ -1,0 +1,110 @@
+"""What several contact zones cost: a two-punch train against one punch.
+
+For each case (a layer, a speed, the punches' spacing) the warm solve (kernel
+table cached; the loads varied by 1e-3 per repeat so no result is reused) of
+one punch (``mp.solve``, the single contact) and of a two-punch train
+(``mp.solve_punches``, each punch as the single one), medians over --repeat
+solves, their ratio (the issue asks at most 4x), and both against the plain
+NumPy/SciPy peer's cylinder solve (../shared/bench/peer_numpy.py, N = 24, the
+paper's problem) run in the same process. Also the separated contact of one
+punch (the paper's soft foundation at 0.99 V*_cr: two zones) against the
+single contact it replaces. Prints the machine's load average; never
+asserts a time.
+
+    .venv/bin/python benchmarks/bench_zones.py [--repeat 7]
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import statistics
+import time
+from collections.abc import Callable
+
+from bench_profiles import _peer
+
+import movingpunch as mp
+
+LOAD = 0.002
+CASES: dict[str, dict[str, float]] = {
+    "stiff, 100 h apart": {"vstar": 0.5, "kw": 1.0, "spacing": 100.0},
+    "kw 1, 3 h apart": {"vstar": 0.5, "kw": 1.0, "spacing": 3.0},
+    "kw 1 damped 0.3, 3 h": {"vstar": 0.5, "kw": 1.0, "spacing": 3.0, "damping": 0.3},
+    "kw 0.1 at 0.9 V*cr, 4 h": {
+        "vstar": 0.9 * mp.critical_vstar(0.1),
+        "kw": 0.1,
+        "spacing": 4.0,
+    },
+}
+
+
+def _median_ms(run: Callable[[float], object], repeat: int) -> float:
+    run(LOAD)  # warm: the kernel table
+    times = []
+    for k in range(repeat):
+        t0 = time.perf_counter()
+        run(LOAD * (1.0 + 1e-3 * (k + 1)))
+        times.append(1e3 * (time.perf_counter() - t0))
+    return statistics.median(times)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeat", type=int, default=7)
+    args = parser.parse_args()
+    print(f"load average: {os.getloadavg()[0]:.2f} ({os.cpu_count()} cores)")
+    peer = _peer()
+    peer_ms = float("nan")
+    if peer is not None:
+        t = []
+        for _ in range(args.repeat):
+            t0 = time.perf_counter()
+            peer.solve(0.2, 0.2, 1.0, 100.0, 500.0)
+            t.append(1e3 * (time.perf_counter() - t0))
+        peer_ms = statistics.median(t)
+        print(f"peer (NumPy/SciPy, cylinder, N = 24): {peer_ms:.1f} ms")
+    header = f"{'case':26} {'one ms':>8} {'two ms':>8} {'two/one':>8} {'two/peer':>9}"
+    print(header)
+    print("-" * len(header))
+    for name, case in CASES.items():
+        layer = {k: v for k, v in case.items() if k != "spacing"}
+        half = 0.5 * case["spacing"]
+
+        def one(load: float, layer: dict[str, float] = layer) -> object:
+            return mp.solve(**layer, radius=100.0, load=load)
+
+        def two(
+            load: float, layer: dict[str, float] = layer, half: float = half
+        ) -> object:
+            punches = [mp.Punch(100.0, load, at=-half), mp.Punch(100.0, load, at=half)]
+            return mp.solve_punches(punches, **layer)
+
+        a = _median_ms(one, args.repeat)
+        b = _median_ms(two, args.repeat)
+        print(f"{name:26} {a:8.2f} {b:8.2f} {b / a:8.1f} {b / peer_ms:9.3f}")
+    v99 = 0.99 * mp.critical_vstar(0.1)
+
+    def single(load: float) -> object:
+        return mp.solve(
+            vstar=v99,
+            kw=0.1,
+            radius=100.0,
+            load=load,
+            contact="single",
+            allow_unphysical=True,
+        )
+
+    def separated(load: float) -> object:
+        return mp.solve(vstar=v99, kw=0.1, radius=100.0, load=load)
+
+    a = _median_ms(single, args.repeat)
+    b = _median_ms(separated, args.repeat)
+    print(
+        f"separated (kw 0.1, 0.99 V*cr): single contact {a:.2f} ms, "
+        f"two zones {b:.2f} ms ({b / a:.1f}x; {b / peer_ms:.3f} of the peer)"
+    )
+
+
+if __name__ == "__main__":
+    main()
