@@ -573,7 +573,7 @@ ZonesSolution solve_zones(const ZonesParams& prm) {
       double wmax = 0.0;
       for (int j = 0; j < nz; ++j) wmax = std::max(wmax, 0.5 * (e(2 * j + 1) - e(2 * j)));
       const double span = std::max(std::fabs(e(0)), std::fabs(e(2 * nz - 1))) + wmax;
-      est_e = refinement_estimate(done, d_ends, 64.0 * kEps * span);
+      est_e = refinement_estimate(done, d_ends, 256.0 * kEps * span);
       est_p = refinement_estimate(done, d_p, 64.0 * kEps * pmax);
       const LadderStop stop =
           ladder_stop(L.tol, est_e, d_ends.back(), wmax, est_p, d_p.back(), pmax);

@@ -203,6 +203,11 @@ class Solution(ResultFields):
         return _pointwise("x", x, self._impl.foundation_reaction)
 
 
+_CONFIRM_TOL = 1e-8
+"""The tolerance at which ``solve(contact="auto")`` confirms a valid single
+contact solved at a coarser one (its validity decides the contact set)."""
+
+
 @overload
 def solve(
     *,
@@ -326,23 +331,34 @@ def solve(
     # Several zones: frictionless punches with bounded ends (a flat punch's
     # contact is its face). The single solve may then be unphysical.
     zoned = mode == "auto" and fric == 0.0 and not isinstance(shape, Flat)
-    single: ContactSolution
-    if damp > 0 or fric > 0 or asymmetric_shape:
-        single = solve_damped(
-            vstar=vstar,
-            kw=kw,
-            load=load,
-            nu=nu,
-            damping=damping,
-            tol=tol,
-            allow_unphysical=flag or zoned,
-            n=n,
-            kp=kp,
-            friction=friction,
-            profile=shape,
+
+    def single_at(accuracy: float | str, size: int | None) -> ContactSolution:
+        if damp > 0 or fric > 0 or asymmetric_shape:
+            return solve_damped(
+                vstar=vstar,
+                kw=kw,
+                load=load,
+                nu=nu,
+                damping=damping,
+                tol=accuracy,
+                allow_unphysical=flag or zoned,
+                n=size,
+                kp=kp,
+                friction=friction,
+                profile=shape,
+            )
+        return _solve_profile(
+            shape, vstar, kw, load, nu, accuracy, flag or zoned, size, kp
         )
-    else:
-        single = _solve_profile(shape, vstar, kw, load, nu, tol, flag or zoned, n, kp)
+
+    single = single_at(tol, n)
+    if zoned and single.valid and n is None and single.tol > _CONFIRM_TOL:
+        # A coarse tolerance stops on the contact's ends, which converge
+        # before the pressure's shape: near the critical speed p(0) can
+        # still have the wrong sign. The contact set is decided at 1e-8.
+        finer = single_at(_CONFIRM_TOL, None)
+        if not finer.valid:
+            single = finer
     if single.valid or not zoned:
         return single
     # The single contact is unphysical: find the contact set (zones.py);
