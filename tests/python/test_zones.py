@@ -383,3 +383,107 @@ def test_supercritical_trains_are_refused() -> None:
             vstar=mp.critical_vstar(1.0),
             kw=1.0,
         )
+
+
+# --------------------------------------------------------------------------
+# Hard cases and fuzz
+
+
+def test_a_damped_separated_contact_balances_energy() -> None:
+    # Light dashpots at 0.99 V*_cr: the contact still separates (p < 0 in the
+    # single one), now asymmetric; the dashpots take the drag's power.
+    s = mp.solve(vstar=V99, kw=KW, radius=R, load=LOAD, damping=0.01)
+    assert isinstance(s, mp.ZonedSolution)
+    assert len(s.contact_zones) == 2
+    assert s.valid
+    assert s.drag > 0
+    assert abs(s.dissipation - s.drag) < 1e-6 * s.drag
+
+
+def test_punches_1000_h_apart() -> None:
+    single = mp.solve(vstar=0.5, kw=1.0, radius=R, load=LOAD)
+    train = mp.solve_punches(
+        [mp.Punch(R, LOAD, at=-500.0), mp.Punch(R, LOAD, at=500.0)], vstar=0.5, kw=1.0
+    )
+    assert abs(train.contact_zones[1][1] - 500.0 - single.a) < 1e-9
+    assert abs(train.punches[0].indentation - single.indentation) < 1e-9
+
+
+@pytest.mark.slow
+def test_a_contact_set_not_found_is_a_clear_error() -> None:
+    # 1 % below V*_cr on kw = 0.01 the single contact's pressure is negative
+    # in two bands: the search tries its contact sets and, finding none that
+    # is complementary, says so, naming the inputs (never a wrong answer).
+    with pytest.raises(mp.UnphysicalContactError) as err:
+        mp.solve(vstar=0.086, kw=0.01, radius=R, load=LOAD)
+    msg = str(err.value)
+    for word in ("vstar=0.086", "kw=0.01", "several contact zones", "p < 0"):
+        assert word in msg, msg
+
+
+def _check_train(s: mp.ZonedSolution) -> None:
+    """Complementarity and equilibrium of a train, independently of the
+    solver's own checks."""
+    total = 0.0
+    for p in s.punches:
+        for (lo, hi), load in zip(p.contact_zones, p.zone_loads, strict=True):
+            assert hi > lo
+            assert load > 0
+            x = np.linspace(lo, hi, 201)
+            assert np.min(s.pressure(x)) >= -1e-10
+            # The surface follows the punch: f - delta - v = 0 on the zone.
+            inner = lo + (hi - lo) * np.linspace(0.05, 0.95, 9)
+            gap = _gap(
+                s, inner, np.asarray(p.profile.height(inner - p.at)), p.indentation
+            )
+            scale = max(abs(p.indentation), (hi - lo) ** 2 / 200.0)
+            assert np.max(np.abs(gap)) < 1e-6 * scale
+            total += _zone_integral(s, lo, hi)
+    assert abs(total - 1.0) < 1e-9
+
+
+def _fuzz_trains(draws: int, seed: int) -> None:
+    rng = np.random.default_rng(seed)
+    for _ in range(draws):
+        kw = float(10 ** rng.uniform(-1.3, 1.0))
+        vstar = float(rng.uniform(0.0, 0.95)) * mp.critical_vstar(kw)
+        damping = float(rng.choice([0.0, 0.3]))
+        k = int(rng.integers(2, 4))
+        spacing = float(rng.uniform(1.5, 15.0))
+        punches = [
+            mp.Punch(
+                float(rng.uniform(30.0, 200.0)),
+                float(10 ** rng.uniform(-3.5, -2.3)),
+                at=(i - (k - 1) / 2) * spacing,
+            )
+            for i in range(k)
+        ]
+        args = {"vstar": vstar, "kw": kw, "damping": damping}
+        failure: mp.MovingPunchError | None = None
+        try:
+            s = mp.solve_punches(punches, **args)
+        except (
+            mp.InvalidParameterError,
+            mp.UnphysicalContactError,
+            mp.ConvergenceError,
+        ) as exc:
+            failure = exc
+        if isinstance(failure, mp.InvalidParameterError):
+            assert failure.parameter == "punches", (args, punches)  # too close
+            continue
+        if failure is not None:  # no contact set found: said so
+            assert "zones" in str(failure) or "contact" in str(failure), failure
+            continue
+        assert isinstance(s, mp.ZonedSolution), (args, punches)
+        assert s.valid
+        assert math.isfinite(s.error_estimate)
+        _check_train(s)
+
+
+def test_fuzz_trains_12() -> None:
+    _fuzz_trains(12, 15)
+
+
+@pytest.mark.slow
+def test_fuzz_trains_60() -> None:
+    _fuzz_trains(60, 1515)
