@@ -23,10 +23,13 @@ from movingpunch._evaluate import (
     _chunked_grid,
     _depths,
     _flat,
+    _is_scalar,
     _json_safe,
     _pointwise,
+    _real_any,
 )
 from movingpunch.contract import CONTRACT_FIELDS, Points
+from movingpunch.errors import InvalidParameterError
 from movingpunch.fields import FloatArray, StressField, StressPeaks, derived_stresses
 from movingpunch.peaks import search_peaks
 from movingpunch.profiles import Cylinder, Flat, Profile, PunchProfile, RoundedFlat
@@ -139,6 +142,34 @@ class Evaluations:
             raise params.fail("y", f"y must be one depth in [-1, 0], got {y!r}")
         grid = self._impl.displacement
         return _pointwise("x", x, lambda xs: grid(xs, _flat(depth))[0])
+
+    @overload
+    def depth_stress(self, y: float, x: float = ...) -> float: ...
+    @overload
+    def depth_stress(self, y: Points, x: float = ...) -> FloatArray: ...
+    def depth_stress(self, y: npt.ArrayLike, x: float = 0.0) -> float | FloatArray:
+        """sigma_x(x, y)/(P/h) at depths y/h in [-1, 0] (y = 0:
+        ``surface_stress``), at x = 0 unless ``x`` is given (the symmetric
+        ``Solution`` has its own, at x = 0). The cost does not depend on y
+        (the half-plane part is in closed form)."""
+        pts = _depths(y)
+        xs = _real_any("x", x)
+        if not math.isfinite(xs):
+            raise InvalidParameterError(f"x must be a finite number, got {x!r}")
+        column = np.array([xs])
+        grid = self._impl.stress_field
+        return _pointwise("y", y, lambda ys: grid(column, ys)[0][:, 0], pts)
+
+    @overload
+    def foundation_reaction(self, x: float) -> float: ...
+    @overload
+    def foundation_reaction(self, x: Points) -> FloatArray: ...
+    def foundation_reaction(self, x: npt.ArrayLike) -> float | FloatArray:
+        """Pressure of the base on the layer, -sigma_y(x, -h)/(P/h)
+        (springs and dashpots together), from the stress field."""
+        field = self.stress_field(_flat(_as_points("x", x)), [-1.0])
+        values = -field.sigma_y[0]
+        return float(values[0]) if _is_scalar(x) else values.reshape(np.shape(x))
 
     def stress_field(self, x: npt.ArrayLike, y: npt.ArrayLike) -> StressField:
         """All stresses over P/h on the grid ``x`` (x/h) by ``y`` (y/h in

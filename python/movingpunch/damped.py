@@ -28,29 +28,23 @@ from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import overload
 
-import numpy as np
 import numpy.typing as npt
 
 from movingpunch import _core, params
 from movingpunch._evaluate import (
-    _as_points,
     _check_flag,
     _check_kp,
     _check_kw,
     _check_nu,
     _check_solve_inputs,
     _check_vstar,
-    _depths,
     _fail,
-    _flat,
-    _is_scalar,
     _pointwise,
     _real,
-    _real_any,
 )
 from movingpunch._evaluations import ResultFields
 from movingpunch.contract import Points
-from movingpunch.errors import InvalidParameterError, SupercriticalSpeedError
+from movingpunch.errors import SupercriticalSpeedError
 from movingpunch.fields import FloatArray
 from movingpunch.profiles import Profile, PunchProfile, resolve_profile
 
@@ -215,22 +209,6 @@ class DampedSolution(ResultFields):
         """Slope dv/dx(x, -h) of the bottom face."""
         return _pointwise("x", x, self._impl.bottom_slope)
 
-    @overload
-    def depth_stress(self, y: float, x: float = ...) -> float: ...
-    @overload
-    def depth_stress(self, y: Points, x: float = ...) -> FloatArray: ...
-    def depth_stress(self, y: npt.ArrayLike, x: float = 0.0) -> float | FloatArray:
-        """sigma_x(x, y)/(P/h) at depths y/h in [-1, 0] (y = 0:
-        ``surface_stress``), as ``Solution.depth_stress`` (which is at x = 0).
-        The cost does not depend on y (the half-plane part is in closed form)."""
-        pts = _depths(y)
-        xs = _real_any("x", x)
-        if not math.isfinite(xs):
-            raise InvalidParameterError(f"x must be a finite number, got {x!r}")
-        column = np.array([xs])
-        grid = self._impl.stress_field
-        return _pointwise("y", y, lambda ys: grid(column, ys)[0][:, 0], pts)
-
     @property
     def p0(self) -> float:
         """Pressure p(0)/(P/h) under the punch's axis x = 0 (not the contact's
@@ -252,17 +230,6 @@ class DampedSolution(ResultFields):
     def bottom_displacement(self, x: npt.ArrayLike) -> float | FloatArray:
         """Displacement v(x, -h)/h of the bottom face."""
         return _pointwise("x", x, self._impl.bottom_displacement)
-
-    @overload
-    def foundation_reaction(self, x: float) -> float: ...
-    @overload
-    def foundation_reaction(self, x: Points) -> FloatArray: ...
-    def foundation_reaction(self, x: npt.ArrayLike) -> float | FloatArray:
-        """Pressure of the base on the layer, -sigma_y(x, -h)/(P/h)
-        (springs and dashpots together)."""
-        field = self.stress_field(_flat(_as_points("x", x)), [-1.0])
-        values = -field.sigma_y[0]
-        return float(values[0]) if _is_scalar(x) else values.reshape(np.shape(x))
 
 
 def solve_damped(

@@ -183,12 +183,17 @@ class Solution(ResultFields):
         return self._impl.g_coefficients
 
     @overload
-    def depth_stress(self, y: float) -> float: ...
+    def depth_stress(self, y: float, x: float = ...) -> float: ...
     @overload
-    def depth_stress(self, y: npt.NDArray[Any] | Sequence[Any]) -> FloatArray: ...
-    def depth_stress(self, y: npt.ArrayLike) -> float | FloatArray:
-        """sigma_x(0, y)/(P/h) under the centre of the punch, y/h in [-1, 0]."""
-        return _pointwise("y", y, self._impl.depth_stress, points=_depths(y))
+    def depth_stress(
+        self, y: npt.NDArray[Any] | Sequence[Any], x: float = ...
+    ) -> FloatArray: ...
+    def depth_stress(self, y: npt.ArrayLike, x: float = 0.0) -> float | FloatArray:
+        """sigma_x(x, y)/(P/h), y/h in [-1, 0]; under the centre of the punch
+        (x = 0, the default) by the solution's own depth profile."""
+        if isinstance(x, (int, float)) and not isinstance(x, bool) and x == 0.0:
+            return _pointwise("y", y, self._impl.depth_stress, points=_depths(y))
+        return super().depth_stress(y, x)  # type: ignore[arg-type]
 
     @overload
     def foundation_reaction(self, x: float) -> float: ...

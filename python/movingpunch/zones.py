@@ -360,34 +360,6 @@ class ZonedSolution(ResultFields):
         """Surface slope dv/dx(x, 0)."""
         return _pointwise("x", x, self._impl.surface_slope)
 
-    @overload
-    def depth_stress(self, y: float, x: float = ...) -> float: ...
-    @overload
-    def depth_stress(self, y: Points, x: float = ...) -> FloatArray: ...
-    def depth_stress(self, y: npt.ArrayLike, x: float = 0.0) -> float | FloatArray:
-        """sigma_x(x, y)/(P/h) at depths y/h in [-1, 0] (x = 0 by default)."""
-        from movingpunch._evaluate import _depths, _real_any
-
-        pts = _depths(y)
-        xs = _real_any("x", x)
-        if not math.isfinite(xs):
-            raise InvalidParameterError(f"x must be a finite number, got {x!r}")
-        column = np.array([xs])
-        grid = self._impl.stress_field
-        return _pointwise("y", y, lambda ys: grid(column, ys)[0][:, 0], pts)
-
-    @overload
-    def foundation_reaction(self, x: float) -> float: ...
-    @overload
-    def foundation_reaction(self, x: Points) -> FloatArray: ...
-    def foundation_reaction(self, x: npt.ArrayLike) -> float | FloatArray:
-        """Pressure of the base on the layer, -sigma_y(x, -h)/(P/h)."""
-        from movingpunch._evaluate import _as_points, _flat, _is_scalar
-
-        fld = self.stress_field(_flat(_as_points("x", x)), [-1.0])
-        values = -fld.sigma_y[0]
-        return float(values[0]) if _is_scalar(x) else values.reshape(np.shape(x))
-
     def to_dict(self) -> dict[str, object]:
         out = super().to_dict()
         out["punches"] = [p.to_dict() for p in self.punches]
