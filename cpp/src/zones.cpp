@@ -55,6 +55,40 @@ const Legendre& gauss_legendre8() {
   return rule;
 }
 
+// Cumulative integration on the Chebyshev-Lobatto points t_i = -cos(i pi /
+// M), i = 0..M, of [-1, 1]: int_{-1}^{t_i} F ~ sum_j Q(i, j) F(t_j), exact for
+// polynomials of degree M (Clenshaw-Curtis; spectral for smooth F). M = 32.
+const Eigen::MatrixXd& cumulative_integration() {
+  static const Eigen::MatrixXd Q = [] {
+    constexpr int M = 32;
+    // F = sum_m c_m T_m with c = C F (the DCT-I on the points, halved at
+    // both ends of the sum).
+    Eigen::MatrixXd C(M + 1, M + 1);
+    for (int m = 0; m <= M; ++m)
+      for (int j = 0; j <= M; ++j) {
+        const double tm = std::cos(m * (kPi - kPi * j / M));  // T_m(t_j)
+        const double wj = (j == 0 || j == M) ? 0.5 : 1.0;
+        const double wm = (m == 0 || m == M) ? 0.5 : 1.0;
+        C(m, j) = 2.0 / M * wj * wm * tm;
+      }
+    // int T_0 = T_1, int T_1 = T_2/4, int T_m = T_{m+1}/(2(m+1)) - T_{m-1}/(2(m-1)).
+    Eigen::MatrixXd D = Eigen::MatrixXd::Zero(M + 2, M + 1);
+    D(1, 0) = 1.0;
+    D(2, 1) = 0.25;
+    for (int m = 2; m <= M; ++m) {
+      D(m + 1, m) += 0.5 / (m + 1);
+      D(m - 1, m) -= 0.5 / (m - 1);
+    }
+    // Evaluated at t_i less its value at -1 (T_m(-1) = (-1)^m).
+    Eigen::MatrixXd E(M + 1, M + 2);
+    for (int i = 0; i <= M; ++i)
+      for (int m = 0; m <= M + 1; ++m)
+        E(i, m) = std::cos(m * (kPi - kPi * i / M)) - (m % 2 == 0 ? 1.0 : -1.0);
+    return Eigen::MatrixXd(E * D * C);
+  }();
+  return Q;
+}
+
 // The collocation system of one topology at one size N, and its state after
 // eval(): per zone the nodal values G (p = sqrt(1 - r^2) G(r), absolute:
 // units mu), the consistency constants and the loads.
@@ -281,6 +315,7 @@ void newton(System& sys, Eigen::VectorXd& e, int& evaluations, Eigen::MatrixXd& 
   double norm = F.lpNorm<Eigen::Infinity>();
   if (J.rows() != m) have_j = false;
   bool fresh = false;
+  bool at_e = true;  // the system's state is that of the ends e
   auto jacobian = [&] {
     J.resize(m, m);
     for (int q = 0; q < m; ++q) {
@@ -302,8 +337,8 @@ void newton(System& sys, Eigen::VectorXd& e, int& evaluations, Eigen::MatrixXd& 
     }
     have_j = true;
     fresh = true;
+    at_e = false;
   };
-  bool moved = false;
   for (int it = 0; it < max_iterations; ++it) {
     if (norm < 1e-14) break;
     if (!have_j) jacobian();
@@ -329,6 +364,7 @@ void newton(System& sys, Eigen::VectorXd& e, int& evaluations, Eigen::MatrixXd& 
     bool accepted = false;
     for (int bt = 0; bt < 40; ++bt, t *= 0.5) {
       const Eigen::VectorXd en = e + t * dx;
+      at_e = false;
       if (!sys.eval(en, Ft)) continue;
       ++evaluations;
       const double nn = Ft.lpNorm<Eigen::Infinity>();
@@ -342,7 +378,7 @@ void newton(System& sys, Eigen::VectorXd& e, int& evaluations, Eigen::MatrixXd& 
         F = Ft;
         norm = nn;
         accepted = true;
-        moved = true;
+        at_e = true;
         break;
       }
     }
@@ -360,7 +396,7 @@ void newton(System& sys, Eigen::VectorXd& e, int& evaluations, Eigen::MatrixXd& 
     if (t == 1.0 && dx.lpNorm<Eigen::Infinity>() <= 4.0 * kEps * e.lpNorm<Eigen::Infinity>()) break;
   }
   // The state of the solution (the last evaluation may have been a trial).
-  if (moved || fresh) {
+  if (!at_e) {
     if (!sys.eval(e, F)) throw ConvergenceError("several contact zones: lost the solution");
     ++evaluations;
   }
@@ -694,7 +730,6 @@ ZonesSolution solve_zones(const ZonesParams& prm) {
   // f_k(x) - delta_k - v(x), from its nearest zone end (where it is 0), on
   // its contact's hull and 2 hull widths beyond it on both sides.
   out.min_gap = kInf;
-  const Legendre& gl = gauss_legendre8();
   for (int k = 0; k < np; ++k) {
     std::vector<int> mine;
     for (int j = 0; j < nz; ++j)
@@ -714,45 +749,45 @@ ZonesSolution solve_zones(const ZonesParams& prm) {
         out.min_gap_after_zone = after;
       }
     };
-    // Outward from an end: x = edge + side q^2, q in [0, sqrt(reach)].
+    // Outward from an end: x = edge + side q^2, q in [0, qmax] (qmax^2 the
+    // reach, or the distance to the end of a table), the gap at the
+    // Chebyshev points of q from the cumulative integral of its slope.
+    const Eigen::MatrixXd& Q = cumulative_integration();
+    const int M = static_cast<int>(Q.rows()) - 1;
+    Eigen::VectorXd F(M + 1), X(M + 1);
     for (int side = -1; side <= 1; side += 2) {
       const double edge = side < 0 ? lo : hi;
-      const double qmax = std::sqrt(reach);
-      constexpr int panels = 12;
-      double integral = 0.0;
-      for (int pnl = 0; pnl < panels; ++pnl) {
-        const double a = qmax * pnl / panels, hq = 0.5 * qmax / panels;
-        bool beyond = false;
-        for (std::size_t g = 0; g < gl.x.size(); ++g) {
-          const double q = a + hq * (1.0 + gl.x[g]);
-          const double x = edge + side * q * q;
-          if (x - at < pf.lower() || x - at > pf.upper()) {
-            beyond = true;
-            break;
-          }
-          integral += hq * gl.w[g] * 2.0 * q * side * sys->vslope(x);
-        }
-        if (beyond) break;
-        const double q = a + 2.0 * hq, x = edge + side * q * q;
-        note(sys->height(k, x) - sys->height(k, edge) - integral, x, -1);
+      // Up to the table's end and to the next zone (another punch's: its
+      // cusps would spoil the spectral integral; that punch checks there).
+      double room = side < 0 ? edge - at - pf.lower() : pf.upper() - (edge - at);
+      for (int j = 0; j < nz; ++j) {
+        const double gap_to = side < 0 ? edge - e(2 * j + 1) : e(2 * j) - edge;
+        if (gap_to > 0.0) room = std::min(room, gap_to);
       }
+      const double qmax = std::sqrt(std::min(reach, room));
+      if (!(qmax > 0.0)) continue;
+      for (int i = 0; i <= M; ++i) {
+        const double q = 0.5 * qmax * (1.0 - std::cos(kPi * i / M));
+        X(i) = edge + side * q * q;
+        F(i) = 2.0 * q * side * sys->vslope(X(i));
+      }
+      const Eigen::VectorXd integral = 0.5 * qmax * (Q * F);
+      for (int i = 1; i <= M; ++i)
+        note(sys->height(k, X(i)) - sys->height(k, edge) - integral(i), X(i), -1);
     }
-    // Between its consecutive zones.
+    // Between its consecutive zones: x = m - h cos(theta), theta in [0, pi].
     for (const auto& [j, jn] : sys->pairs()) {
       if (sys->punch_of(j) != k) continue;
       const double a = e(2 * j + 1), b = e(2 * jn);
       const double mid = 0.5 * (a + b), hh = 0.5 * (b - a);
-      constexpr int panels = 16;
-      double integral = 0.0;
-      for (int pnl = 0; pnl < panels - 1; ++pnl) {
-        const double t0 = kPi * pnl / panels, th = 0.5 * kPi / panels;
-        for (std::size_t g = 0; g < gl.x.size(); ++g) {
-          const double t = t0 + th * (1.0 + gl.x[g]);
-          integral += th * gl.w[g] * hh * std::sin(t) * sys->vslope(mid - hh * std::cos(t));
-        }
-        const double x = mid - hh * std::cos(t0 + 2.0 * th);
-        note(sys->height(k, x) - sys->height(k, a) - integral, x, j);
+      for (int i = 0; i <= M; ++i) {
+        const double th = kPi * 0.5 * (1.0 - std::cos(kPi * i / M));
+        X(i) = mid - hh * std::cos(th);
+        F(i) = hh * std::sin(th) * sys->vslope(X(i));
       }
+      const Eigen::VectorXd integral = 0.5 * kPi * (Q * F);
+      for (int i = 1; i < M; ++i)
+        note(sys->height(k, X(i)) - sys->height(k, a) - integral(i), X(i), j);
     }
   }
   out.elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -753,10 +753,14 @@ def solve_punches(
             allowed="1 to 16 punches",
         )
     size = 0 if n is None else params.check_size(n, 256, " for several zones")
+    # Each punch alone (its own contact set starts the train's search);
+    # identical punches (a train's wheels) share one solve.
+    alone: dict[tuple[object, float], ContactSolution] = {}
     singles = []
     for p in punches:
-        singles.append(
-            solve(
+        key = (p.profile, p.load)
+        if key not in alone:
+            alone[key] = solve(
                 vstar=vstar,
                 kw=kw,
                 load=p.load,
@@ -767,7 +771,7 @@ def solve_punches(
                 kp=kp,
                 profile=p.profile,
             )
-        )
+        singles.append(alone[key])
     if len(punches) == 1 and punches[0].at == 0.0:
         return singles[0]
     return solve_train(

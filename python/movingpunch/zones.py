@@ -725,7 +725,7 @@ def solve_train(
     (``time.perf_counter``). Raises InvalidParameterError naming ``punches``
     when the punches' own contacts overlap."""
     first = singles[0]
-    layer = _Layer(first.vstar, first.kw, first.nu, damping, first.kp, tol, n, 16)
+    layer = _Layer(first.vstar, first.kw, first.nu, damping, first.kp, tol, n, 12)
     start: list[tuple[int, float, float]] = []
     for k, (p, s) in enumerate(zip(punches, singles, strict=True)):
         start += [(k, p.at + lo, p.at + hi) for lo, hi in s.contact_zones]

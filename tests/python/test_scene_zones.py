@@ -484,5 +484,9 @@ def test_a_train_sweep_in_worker_processes_gives_the_same_numbers() -> None:
     assert here.sweep is not None
     assert pooled.sweep is not None
     assert pooled.jobs == 2
+    # The same numbers to round-off: a worker's kernel tables are built for
+    # the spacings it saw (another range), which moves the last digits only.
     for q in scene.sweep.quantities if scene.sweep is not None else ():
-        np.testing.assert_array_equal(pooled.sweep.data[q], here.sweep.data[q])
+        np.testing.assert_allclose(
+            pooled.sweep.data[q], here.sweep.data[q], rtol=1e-11, atol=1e-15
+        )
