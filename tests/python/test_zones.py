@@ -487,3 +487,52 @@ def test_fuzz_trains_12() -> None:
 @pytest.mark.slow
 def test_fuzz_trains_60() -> None:
     _fuzz_trains(60, 1515)
+
+
+def test_stress_peaks_of_a_separated_contact_match_a_dense_scan(
+    separated: mp.ZonedSolution,
+) -> None:
+    s = separated
+    pk = s.stress_peaks()
+    # A dense scan, finer near every zone end (sigma_x has square-root cusps
+    # there), on both sides (the search covers x >= 0 of an even field).
+    ends = [x for zone in s.contact_zones for x in zone]
+    x = np.concatenate(
+        [np.linspace(-pk.search_extent, pk.search_extent, 8001)]
+        + [e + np.linspace(-0.02, 0.02, 401) for e in ends]
+    )
+    top = np.asarray(s.surface_stress(x))
+    bottom = s.stress_field(x, [-1.0]).sigma_x[0]
+    bound = pk.error_bound + 1e-12 * np.max(np.abs(top))
+    # The reported extremes are the field's: no scanned value beats them by
+    # more than the bound, and each is attained (within it) where reported.
+    assert np.min(top) >= pk.top_compressive - bound
+    assert np.max(top) <= pk.top_tensile + bound
+    assert np.max(bottom) <= pk.bottom_tensile + bound
+    assert s.surface_stress(pk.top_compressive_x) == pytest.approx(
+        pk.top_compressive, abs=bound
+    )
+    assert s.surface_stress(pk.top_tensile_x) == pytest.approx(
+        pk.top_tensile, abs=bound
+    )
+
+
+@pytest.mark.slow
+def test_near_rayleigh_the_ripples_touch_the_punch() -> None:
+    # 1e-6 below V*_R on a rigid base the single contact's surface rises
+    # above the punch just outside it (tests/python/test_hard_cases.py):
+    # the contact set is the main zone and two tiny zones where the ripple
+    # touches, symmetric, each p >= 0, no penetration left.
+    vr = mp.rayleigh_vstar(0.2)
+    s = mp.solve(vstar=vr * (1 - 1e-6), kw=math.inf, radius=R, load=2e-4)
+    assert isinstance(s, mp.ZonedSolution)
+    assert len(s.contact_zones) == 3
+    (a, b), (c, d), (e, f) = s.contact_zones
+    assert abs(a + f) < 1e-9
+    assert abs(b + e) < 1e-9
+    assert abs(c + d) < 1e-9
+    x = np.linspace(-3.0, 3.0, 3001)
+    gap = _gap(s, x, x**2 / (2 * R), s.indentation)
+    assert np.min(gap) > -1e-9 * d**2 / (2 * R)
+    for lo, hi in s.contact_zones:
+        assert np.min(s.pressure(np.linspace(lo, hi, 201))) >= -1e-12
