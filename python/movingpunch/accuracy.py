@@ -44,7 +44,8 @@ from movingpunch.params import PHYSICAL
 from movingpunch.profiles import PunchProfile
 from movingpunch.scene import OutputSpec, Scene, load_scene
 from movingpunch.scene._result import CORE_STAGES
-from movingpunch.solver import clear_kernel_cache, solve
+from movingpunch.solver import clear_kernel_cache, solve, solve_punches
+from movingpunch.zones import Punch
 
 __all__ = [
     "FIG4_CASE",
@@ -189,10 +190,19 @@ def _key(p: Mapping[str, float]) -> Point:
 
 
 def _solve_point(
-    key: Point, tol: float, n: int | None = None, profile: PunchProfile | None = None
+    key: Point,
+    tol: float,
+    n: int | None = None,
+    profile: PunchProfile | None = None,
+    train: Sequence[Punch] = (),
 ) -> ContactSolution:
-    """The point ``key`` (a cylinder of its radius, or ``profile``)."""
+    """The point ``key`` (a cylinder of its radius, or ``profile``; or the
+    punches ``train`` on its layer)."""
     vstar, kw, radius, load, nu, damping, kp, friction = key
+    if train:
+        return solve_punches(
+            train, vstar=vstar, kw=kw, nu=nu, kp=kp, damping=damping, tol=tol, n=n
+        )
     args: dict[str, Any] = {
         "vstar": vstar,
         "kw": kw,
@@ -218,7 +228,7 @@ def _solve_point(
 
 
 def _reference(
-    key: Point, profile: PunchProfile | None = None
+    key: Point, profile: PunchProfile | None = None, train: Sequence[Punch] = ()
 ) -> tuple[ContactSolution, int, float]:
     """The reference solution: fixed N = max(64, 4 N_auto) at tol 1e-14 (or
     1e-13, 1e-12 if tighter tolerances are out of reach). If the solver does
@@ -227,7 +237,7 @@ def _reference(
     last: MovingPunchError | None = None
     for tol in _REF_TOLS:
         try:
-            auto = _solve_point(key, tol, profile=profile)
+            auto = _solve_point(key, tol, profile=profile, train=train)
         except MovingPunchError as exc:
             last = exc
             continue
@@ -237,7 +247,7 @@ def _reference(
         ]
         for n in dict.fromkeys(sizes):
             try:
-                return _solve_point(key, tol, n, profile), n, tol
+                return _solve_point(key, tol, n, profile, train), n, tol
             except InvalidParameterError as exc:
                 if exc.parameter != "n":
                     raise
@@ -282,8 +292,10 @@ class _Target:
     ) -> tuple[dict[Point, ContactSolution], list[Point], float, dict[str, float], int]:
         """(solutions by point, base points, seconds, stages, kernel tables)."""
         if self.single:
-            key = _key(self.scene.params)
-            s = _solve_point(key, tol, profile=self.scene.profile)
+            key = _key(_train_params(self.scene))
+            s = _solve_point(
+                key, tol, profile=self.scene.profile, train=self.scene.punches
+            )
             parts = {name: float(s.stage_times.get(name, 0.0)) for name in CORE_STAGES}
             return {key: s}, [key], s.elapsed, parts, s.kernel_builds
         scene = replace(self.scene, tol=tol)
@@ -309,18 +321,17 @@ def _params_of(s: ContactSolution) -> dict[str, float]:
     return {name: float(getattr(s, name)) for name in _PARAMS}
 
 
-def _no_train(scene: Scene) -> Scene:
-    """``scene``, unless it is a train of punches: its reference solve
-    (one punch at fixed N) does not cover trains yet."""
-    if scene.punches:
-        raise InvalidParameterError(
-            f"accuracy: the scene {scene.name or 'given'!r} is a train of "
-            f"{len(scene.punches)} punches ([[punches]]); the accuracy report "
-            "covers single punches (a separated contact included) only",
-            parameter="scene",
-            allowed="a scene without [[punches]]",
-        )
-    return scene
+def _train_params(scene: Scene) -> dict[str, float]:
+    """A scene's parameters; with punches, their total load and the first
+    punch's radius stand for ``load`` and ``radius`` (the key of its one
+    point)."""
+    if not scene.punches:
+        return dict(scene.params)
+    return {
+        **scene.params,
+        "radius": scene.punches[0].profile.nominal_radius,
+        "load": sum(p.load for p in scene.punches),
+    }
 
 
 def _target(
@@ -331,9 +342,11 @@ def _target(
         target = FIG4_CASE
     if isinstance(target, (str, Path)):
         scene = load_scene(target)
-        return _Target(scene.name or str(target), _no_train(scene), single=False)
+        # A train's scene: its punches as written (one configuration; its
+        # sweep is not re-run).
+        return _Target(scene.name or str(target), scene, single=bool(scene.punches))
     if isinstance(target, Scene):
-        return _Target(target.name or "scene", _no_train(target), single=False)
+        return _Target(target.name or "scene", target, single=bool(target.punches))
     params = {name: float(target[name]) for name in _PARAMS if name in target}
     params.setdefault("nu", 0.2)
     scene = Scene(
@@ -406,7 +419,7 @@ def accuracy_report(
             ref_n: list[int] = []
             ref_tol: list[float] = []
             for k in sols:
-                ref, n, rtol = _reference(k, tgt.scene.profile)
+                ref, n, rtol = _reference(k, tgt.scene.profile, tgt.scene.punches)
                 refs[k] = ref
                 ref_n.append(n)
                 ref_tol.append(rtol)
