@@ -296,6 +296,8 @@ class ZonedSolution(ResultFields):
 
     @property
     def kernel_builds(self) -> int:
+        """Kernel tables the zones' solve built (0: all from the cache; the
+        single solves before it not counted)."""
         return self._kernel_builds
 
     @property
@@ -680,7 +682,7 @@ def _result(
             "width": search_seconds,
             "checks": max(0.0, elapsed - search_seconds),
         },
-        _kernel_builds=0,
+        _kernel_builds=int(z.kernel_builds),
     )
 
 

@@ -536,3 +536,12 @@ def test_near_rayleigh_the_ripples_touch_the_punch() -> None:
     assert np.min(gap) > -1e-9 * d**2 / (2 * R)
     for lo, hi in s.contact_zones:
         assert np.min(s.pressure(np.linspace(lo, hi, 201))) >= -1e-12
+
+
+def test_kernel_builds_count_the_zones_tables() -> None:
+    mp.clear_kernel_cache()
+    punches = [mp.Punch(R, LOAD, at=-2.0), mp.Punch(R, LOAD, at=2.0)]
+    cold = mp.solve_punches(punches, vstar=0.45, kw=2.0)
+    warm = mp.solve_punches(punches, vstar=0.45, kw=2.0)
+    assert cold.kernel_builds >= 1
+    assert warm.kernel_builds == 0
