@@ -302,3 +302,23 @@ def test_a_train_and_the_contact_mode_survive_save_and_open(tmp_path: Path) -> N
     # A bundled train opens as a train.
     bogie = scene_files.from_scene(Scene.bundled("bogie"))
     assert len(bogie.params.punches) == 4
+
+
+@pytest.mark.parametrize("name", ["two-axle", "bogie", "spacing", "separated"])
+@sync
+async def test_the_bundled_zone_scenes_open_in_the_app(name: str) -> None:
+    """Each bundled scene of several zones opens (the way `movingpunch tui
+    NAME` does), solves and renders every tab."""
+    from movingpunch.scene import Scene
+    from movingpunch.tui import scene_files
+
+    state = scene_files.from_scene(Scene.bundled(name))
+    app = create_app(state, show_timing=False, cursor_blink=False)
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        assert "zones" in summary_text(app), summary_text(app)
+        for tab in model.TABS:
+            await pilot.press(str(model.TABS.index(tab) + 1))
+            await settle(pilot)
+            assert "Traceback" not in status_text(app)
+        assert "zones" in summary_text(app)

@@ -103,6 +103,11 @@ def from_scene(scene: Scene) -> SceneState:
         name: float(scene.params.get(name, 0.0)) for name in SCENE_PARAMS
     }
     shape = scene.profile
+    if scene.punches:
+        # A train: its punches carry the loads and shapes; the panel shows
+        # the first punch's (the train input holds them all).
+        values["load"] = float(scene.punches[0].load)
+        values["radius"] = float(scene.punches[0].profile.nominal_radius)
     if not math.isfinite(values["radius"]):  # a flat punch or a table: no radius
         values["radius"] = Params.radius
     params = Params(
