@@ -545,3 +545,22 @@ def test_kernel_builds_count_the_zones_tables() -> None:
     warm = mp.solve_punches(punches, vstar=0.45, kw=2.0)
     assert cold.kernel_builds >= 1
     assert warm.kernel_builds == 0
+
+
+def test_a_load_sweep_through_separation_agrees_both_ways() -> None:
+    # Up and down through the threshold (about 5.1e-4 here): the same
+    # contact sets, whatever the kernel cache holds from the last point.
+    loads = np.geomspace(3e-4, 3e-3, 7)
+
+    def zones(load: float) -> tuple[tuple[float, float], ...]:
+        return mp.solve(vstar=V99, kw=KW, radius=R, load=float(load)).contact_zones
+
+    up = [zones(p) for p in loads]
+    mp.clear_kernel_cache()
+    down = [zones(p) for p in loads[::-1]][::-1]
+    assert [len(z) for z in up] == [1, 1, 2, 2, 2, 2, 1]
+    for a, b in zip(up, down, strict=True):
+        assert len(a) == len(b)
+        for (p, q), (r, t) in zip(a, b, strict=True):
+            assert abs(p - r) < 1e-9
+            assert abs(q - t) < 1e-9
