@@ -383,7 +383,7 @@ class _Layer:
     tol: float
     n: int
     first_n: int = 24
-    """The ladder's first size (16 from a train's close start)."""
+    """The ladder's first size (8 from a train's close start)."""
 
 
 def _solve_topology(
@@ -727,7 +727,7 @@ def solve_train(
     (``time.perf_counter``). Raises InvalidParameterError naming ``punches``
     when the punches' own contacts overlap."""
     first = singles[0]
-    layer = _Layer(first.vstar, first.kw, first.nu, damping, first.kp, tol, n, 12)
+    layer = _Layer(first.vstar, first.kw, first.nu, damping, first.kp, tol, n, 8)
     start: list[tuple[int, float, float]] = []
     for k, (p, s) in enumerate(zip(punches, singles, strict=True)):
         start += [(k, p.at + lo, p.at + hi) for lo, hi in s.contact_zones]

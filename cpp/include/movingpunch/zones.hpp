@@ -50,9 +50,10 @@ struct ZonesParams {
   DampedParams layer;
   std::vector<ZonePunch> punches;
   std::vector<ZoneSpan> zones;  // the start: disjoint, every punch at least one zone
-  // The ladder's first size (layer.n = 0): 16 from a close start (a train
-  // from its punches' own contacts), 24 from a rough one (a split contact:
-  // Newton's method from far away is safer on the finer system).
+  // The ladder's first size (layer.n = 0): 8 from a close start (a train
+  // from its punches' own contacts: movingpunch.zones), 24 from a rough one
+  // (a split contact: Newton's method from far away is safer on the finer
+  // system).
   int first_n = 24;
 };
 
