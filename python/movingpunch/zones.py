@@ -349,9 +349,9 @@ class ZonedSolution(ResultFields):
     @functools.cached_property
     def dissipation(self) -> float:
         """Power dissipated in the dashpots over P V, damping sqrt(vstar)/P
-        int (dv/dx(x, -h))^2 dx (0 without damping), by quadrature of the
-        superposed bottom slope (Parseval, in the core); equals ``drag`` by the
-        energy balance."""
+        int (dv/dx(x, -h))^2 dx (0 without damping), by Parseval on the bottom
+        face from the zones' summed pressure transform (in the core); equals
+        ``drag`` by the energy balance."""
         return float(self._solved.dissipation())
 
     @overload
@@ -365,7 +365,6 @@ class ZonedSolution(ResultFields):
     def to_dict(self) -> dict[str, object]:
         out = super().to_dict()
         out["punches"] = [p.to_dict() for p in self.punches]
-        out["contact_zones"] = [list(z) for z in self.contact_zones]
         return out
 
 
