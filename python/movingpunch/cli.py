@@ -769,7 +769,12 @@ def _cmd_run(args: argparse.Namespace) -> int:
 
     from movingpunch.outputs import prepare, publish
     from movingpunch.scene import ascii_plots, format_summary, load_scene
-    from movingpunch.scene._export import pyplot, render_outputs, render_pngs
+    from movingpunch.scene._export import (
+        format_tables,
+        pyplot,
+        render_outputs,
+        render_pngs,
+    )
 
     scene = load_scene(args.scene)
     if args.dask is not None and scene.sweep is None:
@@ -802,6 +807,10 @@ def _cmd_run(args: argparse.Namespace) -> int:
     if show_plot:
         print()
         print(ascii_plots(result, color=sys.stdout.isatty()))
+    elif not sys.stdout.isatty():
+        # Piped or redirected: the numbers themselves, as plain text.
+        print()
+        print(format_tables(result))
     if out_dir is not None:
         print()
         print("Files")

@@ -200,3 +200,29 @@ def test_bad_jobs(
     assert_one_line_error: Callable[..., None],
 ) -> None:
     assert_one_line_error(run_cli("run", "table1", "--jobs", jobs), "--jobs")
+
+
+def test_run_piped_prints_the_numbers(
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+) -> None:
+    # `movingpunch run fig4 | cat`: no plots, the computed numbers as plain
+    # text tables (each output's columns, to 10 significant digits).
+    proc = run_cli("run", "fig4", "--jobs", "1")
+    assert proc.returncode == 0, proc.stderr
+    assert "⣀" not in proc.stdout  # no braille plot
+    lines = proc.stdout.splitlines()
+    start = lines.index("Output pressure: Contact pressure")
+    header = lines[start + 1].split()
+    direct = Scene.bundled("fig4").run(jobs=1).outputs["pressure"].columns
+    assert header == list(direct)
+    rows = []
+    for line in lines[start + 2 :]:
+        if not line.strip():
+            break
+        rows.append([float(v) for v in line.split()])
+    table = np.array(rows)
+    assert table.shape == (len(direct["x"]), len(direct))
+    for j, name in enumerate(direct):
+        np.testing.assert_allclose(table[:, j], direct[name], rtol=1e-9, atol=1e-12)
+    for output in ("contact_width", "surface_stress", "depth_stress"):
+        assert any(line.startswith(f"Output {output}:") for line in lines), output

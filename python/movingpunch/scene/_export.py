@@ -378,6 +378,38 @@ def _tables(result: SceneResult) -> list[_Table]:
     return tables
 
 
+def format_tables(result: SceneResult) -> str:
+    """Every output's numbers (and the sweep's) as plain-text tables: what
+    the files hold, without their metadata, one block per output, columns
+    aligned, values to 10 significant digits. ``movingpunch run`` prints it
+    when its stdout is not a terminal (``| cat``, a file), where the ASCII
+    plots would not serve."""
+    blocks: list[str] = []
+    for output, title, columns, _ in _tables(result):
+        names = list(columns)
+        if not names:
+            continue
+        cells = [[_fmt(float(v)) for v in np.ravel(columns[n])] for n in names]
+        rows = max(len(c) for c in cells)
+        widths = [
+            max(len(n), *(len(x) for x in c)) for n, c in zip(names, cells, strict=True)
+        ]
+        lines = [f"Output {output}: {title}"]
+        lines.append(
+            "  " + "  ".join(n.ljust(w) for n, w in zip(names, widths, strict=True))
+        )
+        for i in range(rows):
+            row = (c[i] if i < len(c) else "" for c in cells)
+            lines.append(
+                "  "
+                + "  ".join(
+                    v.ljust(w) for v, w in zip(row, widths, strict=True)
+                ).rstrip()
+            )
+        blocks.append("\n".join(lines))
+    return "\n\n".join(blocks)
+
+
 def _metadata(result: SceneResult, output: str, title: str) -> dict[str, str]:
     return {
         "movingpunch_version": version(),
