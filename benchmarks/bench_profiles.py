@@ -66,6 +66,22 @@ def _peer() -> ModuleType | None:
     return module
 
 
+def peer_cylinder_ms(repeat: int) -> float:
+    """Median ms of the peer's cylinder solve (the paper's problem, N = 24),
+    printed; nan without the peer."""
+    peer = _peer()
+    if peer is None:
+        return float("nan")
+    t = []
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        peer.solve(0.2, 0.2, 1.0, 100.0, 500.0)
+        t.append(1e3 * (time.perf_counter() - t0))
+    ms = statistics.median(t)
+    print(f"peer (NumPy/SciPy, cylinder, N = 24): {ms:.1f} ms")
+    return ms
+
+
 def _median_ms(run: Any, repeat: int, cold: bool) -> float:
     times = []
     for k in range(repeat):
@@ -82,16 +98,7 @@ def main() -> None:
     parser.add_argument("--repeat", type=int, default=5)
     args = parser.parse_args()
     print(f"load average: {os.getloadavg()[0]:.2f} ({os.cpu_count()} cores)")
-    peer = _peer()
-    peer_ms = float("nan")
-    if peer is not None:
-        t = []
-        for _ in range(args.repeat):
-            t0 = time.perf_counter()
-            peer.solve(0.2, 0.2, 1.0, 100.0, 500.0)
-            t.append(1e3 * (time.perf_counter() - t0))
-        peer_ms = statistics.median(t)
-        print(f"peer (NumPy/SciPy, cylinder, N = 24): {peer_ms:.1f} ms")
+    peer_ms = peer_cylinder_ms(args.repeat)
     header = (
         f"{'profile':18} {'options':13} {'cold ms':>9} {'warm ms':>9} {'warm/peer':>9}"
     )

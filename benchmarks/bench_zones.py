@@ -18,15 +18,12 @@ from __future__ import annotations
 
 import argparse
 import os
-import statistics
-import time
 from collections.abc import Callable
 
-from bench_profiles import _peer
+from bench_profiles import LOAD, _median_ms, peer_cylinder_ms
 
 import movingpunch as mp
 
-LOAD = 0.002
 CASES: dict[str, dict[str, float]] = {
     "stiff, 100 h apart": {"vstar": 0.5, "kw": 1.0, "spacing": 100.0},
     "kw 1, 3 h apart": {"vstar": 0.5, "kw": 1.0, "spacing": 3.0},
@@ -39,14 +36,9 @@ CASES: dict[str, dict[str, float]] = {
 }
 
 
-def _median_ms(run: Callable[[float], object], repeat: int) -> float:
+def _warm_median_ms(run: Callable[[float], object], repeat: int) -> float:
     run(LOAD)  # warm: the kernel table
-    times = []
-    for k in range(repeat):
-        t0 = time.perf_counter()
-        run(LOAD * (1.0 + 1e-3 * (k + 1)))
-        times.append(1e3 * (time.perf_counter() - t0))
-    return statistics.median(times)
+    return _median_ms(run, repeat, cold=False)
 
 
 def main() -> None:
@@ -54,16 +46,7 @@ def main() -> None:
     parser.add_argument("--repeat", type=int, default=7)
     args = parser.parse_args()
     print(f"load average: {os.getloadavg()[0]:.2f} ({os.cpu_count()} cores)")
-    peer = _peer()
-    peer_ms = float("nan")
-    if peer is not None:
-        t = []
-        for _ in range(args.repeat):
-            t0 = time.perf_counter()
-            peer.solve(0.2, 0.2, 1.0, 100.0, 500.0)
-            t.append(1e3 * (time.perf_counter() - t0))
-        peer_ms = statistics.median(t)
-        print(f"peer (NumPy/SciPy, cylinder, N = 24): {peer_ms:.1f} ms")
+    peer_ms = peer_cylinder_ms(args.repeat)
     header = f"{'case':26} {'one ms':>8} {'two ms':>8} {'two/one':>8} {'two/peer':>9}"
     print(header)
     print("-" * len(header))
@@ -80,8 +63,8 @@ def main() -> None:
             punches = [mp.Punch(100.0, load, at=-half), mp.Punch(100.0, load, at=half)]
             return mp.solve_punches(punches, **layer)
 
-        a = _median_ms(one, args.repeat)
-        b = _median_ms(two, args.repeat)
+        a = _warm_median_ms(one, args.repeat)
+        b = _warm_median_ms(two, args.repeat)
         print(f"{name:26} {a:8.2f} {b:8.2f} {b / a:8.1f} {b / peer_ms:9.3f}")
     v99 = 0.99 * mp.critical_vstar(0.1)
 
@@ -98,8 +81,8 @@ def main() -> None:
     def separated(load: float) -> object:
         return mp.solve(vstar=v99, kw=0.1, radius=100.0, load=load)
 
-    a = _median_ms(single, args.repeat)
-    b = _median_ms(separated, args.repeat)
+    a = _warm_median_ms(single, args.repeat)
+    b = _warm_median_ms(separated, args.repeat)
     print(
         f"separated (kw 0.1, 0.99 V*cr): single contact {a:.2f} ms, "
         f"two zones {b:.2f} ms ({b / a:.1f}x; {b / peer_ms:.3f} of the peer)"
