@@ -68,6 +68,7 @@ LAYERS: tuple[tuple[str, frozenset[str]], ...] = (
                 "movingpunch.profiles",
                 "movingpunch.outputs",
                 "movingpunch.contract",
+                "movingpunch.regime",
                 "movingpunch._evaluate",
                 "movingpunch._version",
             }
