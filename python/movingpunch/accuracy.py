@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import importlib
 import math
+import textwrap
 import time
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
@@ -639,26 +640,35 @@ def plot_series(
 def ascii_plot(
     report: AccuracyReport, *, width: int = 80, height: int = 22, color: bool = False
 ) -> str:
-    """A log-log plotext plot of the actual errors against the cold time."""
+    """A log-log plotext plot of the actual errors against the cold time;
+    its legend (each series' marker letter) below the plot, outside the
+    data area, wrapped at ``width``."""
     plt: Any = importlib.import_module("plotext")
+    series = plot_series(report)
+    legend = textwrap.wrap(
+        "markers: "
+        + ", ".join(label.replace("  ", " = ", 1) for label, _, _ in series),
+        max(width, 20),
+    )
     plt.clear_figure()
-    plt.plotsize(width, height)
+    plt.plotsize(width, max(height - len(legend), 6))
     if not color:
         plt.theme("clear")
     lo, hi = math.inf, -math.inf
-    for label, x, y in plot_series(report):
+    for label, x, y in series:
         ly = [math.log10(v) for v in y]
         lo, hi = min(lo, *ly), max(hi, *ly)
-        plt.scatter([math.log10(v) for v in x], ly, label=label, marker=label[0])
+        plt.scatter([math.log10(v) for v in x], ly, marker=label[0])
     if math.isfinite(lo):
         ticks = list(range(math.floor(lo), math.ceil(hi) + 1, 2))
         plt.yticks(ticks, [f"1e{t}" for t in ticks])
     plt.title(f"Error against cold time: {report.name} (log-log)")
     plt.xlabel("log10 seconds (cold)")
     plt.ylabel("absolute error")
-    text = str(plt.build())
+    text = str(plt.build()).rstrip("\n")
     plt.clear_figure()
-    return text if color else str(plt.uncolorize(text))
+    text = text if color else str(plt.uncolorize(text))
+    return "\n".join([text, *legend]) if series else text
 
 
 def render_csv(report: AccuracyReport) -> tuple[str, bytes]:

@@ -15,6 +15,7 @@ Pure Python: ``regime_hints`` takes numbers (the terminal UI's summary);
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
@@ -25,6 +26,7 @@ __all__ = [
     "NEAR_CRITICAL",
     "SMALL_STRAIN",
     "WIDE_CONTACT",
+    "half_length",
     "hints_for",
     "regime_hints",
 ]
@@ -106,17 +108,9 @@ def hints_for(
     finite = [v for v in stresses if math.isfinite(v)]
     strain = max(finite) * float(solution.load) if finite else math.nan
     if punches:  # each punch's own contact, not the train's hull
-        half = max(
-            0.5
-            * (
-                max(hi for _, hi in p.contact_zones)
-                - min(lo for lo, _ in p.contact_zones)
-            )
-            for p in punches
-        )
+        half = max(half_length(p.contact_zones) for p in punches)
     else:
-        start, end = solution.contact_interval
-        half = 0.5 * (float(end) - float(start))
+        half = half_length((solution.contact_interval,))
     return regime_hints(
         indentation=indent,
         half_length=half,
@@ -126,6 +120,13 @@ def hints_for(
         rayleigh_vstar=float(solution.rayleigh_vstar),
         damped=float(solution.damping) > 0,
     )
+
+
+def half_length(zones: Iterable[tuple[float, float]]) -> float:
+    """Half the extent over h of a punch's contact zones (a/h of one
+    symmetric zone; NaN for none)."""
+    ends = [float(e) for zone in zones for e in zone]
+    return 0.5 * (max(ends) - min(ends)) if ends else math.nan
 
 
 def _g(value: float) -> str:

@@ -253,7 +253,17 @@ def test_accuracy_ladder_of_the_fig4_case() -> None:
         assert f"\n{tol:.0e} " in text
     plot = accuracy.ascii_plot(report, width=70, height=18)
     assert "log-log" in plot
-    assert len(plot.splitlines()) >= 15
+    lines = plot.splitlines()
+    assert 15 <= len(lines) <= 18
+    assert all(len(line) <= 70 for line in lines)
+    # The legend is below the frame, outside the data area; the frame's
+    # inside holds only the markers (never a legend's words).
+    bottom = max(i for i, line in enumerate(lines) if "└" in line)
+    legend = " ".join(lines[bottom + 1 :])
+    assert "markers: a = a/h" in legend
+    inside = [line.split("│")[1] for line in lines[:bottom] if line.count("│") >= 2]
+    assert inside
+    assert not any("a/h" in row or "σx" in row for row in inside)
 
 
 def test_accuracy_ladder_of_a_scene_with_its_stages() -> None:

@@ -124,6 +124,7 @@ LAYERS: tuple[tuple[str, frozenset[str]], ...] = (
             {
                 f"{_TUI}.widgets",
                 f"{_TUI}.widgets.accuracy",
+                f"{_TUI}.widgets.fields",
                 f"{_TUI}.widgets.params",
                 f"{_TUI}.widgets.plots",
             }
@@ -142,7 +143,15 @@ LAYERS: tuple[tuple[str, frozenset[str]], ...] = (
     ),
     (
         "tui app",
-        frozenset({_TUI, f"{_TUI}.app", f"{_TUI}.__main__", f"{_TUI}.serve"}),
+        frozenset(
+            {
+                _TUI,
+                f"{_TUI}.app",
+                f"{_TUI}.__main__",
+                f"{_TUI}.serve",
+                f"{_TUI}.screenshots",
+            }
+        ),
     ),
     ("cli", frozenset({"movingpunch.cli", "movingpunch.__main__"})),
 )

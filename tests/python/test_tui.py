@@ -30,6 +30,7 @@ from movingpunch.tui.model import (
 )
 from movingpunch.tui.screens import MainScreen, OverlayPrompt, PathPrompt
 from movingpunch.tui.widgets import CurvePlot, Gauge, ParamsPanel, StressMap
+from movingpunch.tui.widgets.params import LABELS
 from tui_pilot import screen_of, settle, status_text, summary_text, sync, type_into
 
 SIZE = (100, 32)
@@ -189,11 +190,17 @@ async def test_invalid_input_shows_the_range_and_keeps_the_last_result() -> None
             # Pasted: typed key by key, a valid prefix ("-0" of "-0.1") would
             # become the last valid result.
             await type_into(pilot, name, text, paste=True)
+            if not text:  # an empty box is still being typed into until enter
+                assert screen.query_one(ParamsPanel).message(name) == ""
+                assert "typing" in status_text(app)
+                await pilot.press("enter")
+                await settle(pilot)
             message = screen.query_one(ParamsPanel).message(name)
             for word in words:
                 assert word in message, message
             assert screen.query_one(f"#msg-{name}").has_class("-shown")
-            assert "invalid input" in status_text(app)
+            assert f"invalid {LABELS[name]}" in status_text(app)
+            assert "showing the last result" in status_text(app)
             assert screen.result is before
             assert summary_text(app) == shown
             assert curves(app, "pressure") is p_before

@@ -15,6 +15,7 @@ from textual.worker import WorkerFailed
 
 from movingpunch.tui import MovingPunchApp
 from movingpunch.tui.screens import MainScreen
+from movingpunch.tui.widgets.fields import FieldsLine
 
 P = ParamSpec("P")
 
@@ -35,9 +36,17 @@ async def settle(pilot: Pilot[None]) -> None:
     and the tests read it from the screen)."""
     await _wait(pilot)
     await pilot.pause()
-    while any(w.is_running for w in pilot.app.workers):
+    while _busy(pilot):
+        await pilot.pause(0.05)
         await _wait(pilot)
         await pilot.pause()
+
+
+def _busy(pilot: Pilot[None]) -> bool:
+    """A worker runs, or a typed value waits for the user's pause."""
+    screen = pilot.app.screen
+    pending = isinstance(screen, MainScreen) and screen.solve_pending
+    return pending or any(w.is_running for w in pilot.app.workers)
 
 
 async def _wait(pilot: Pilot[None]) -> None:
@@ -52,7 +61,9 @@ def screen_of(app: MovingPunchApp) -> MainScreen:
 
 
 def summary_text(app: MovingPunchApp) -> str:
-    return str(screen_of(app).query_one("#summary", Static).render())
+    """The summary's fields as one line of plain text."""
+    fields = screen_of(app).query_one("#summary", FieldsLine).fields
+    return "  ".join(f.text() for f in fields)
 
 
 def status_text(app: MovingPunchApp) -> str:

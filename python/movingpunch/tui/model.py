@@ -417,6 +417,9 @@ class Curves:
     markers: tuple[float, ...] = ()
     """x/h of the zone ends of the current set, drawn as vertical lines
     (the pressure tab with several zones)."""
+    axes: tuple[float, ...] = ()
+    """x/h of the axes of a train's punches (the pressure and surface tabs),
+    drawn as dotted vertical lines of their own colour."""
     vertical_grid: bool = False
     """Draw the grid vertically (σx through the depth: y/h upwards)."""
     log_grid: bool = False
@@ -839,10 +842,13 @@ def _curves(
         series.append(Series(label, values))
         report(i + 1, len(solved))
     markers: tuple[float, ...] = ()
+    axes: tuple[float, ...] = ()
     if tab == "pressure" and solved:
         current = zones_of(solved[0][2])
         if len(current) > 1:
             markers = tuple(e for z in current for e in z)
+    if tab != "depth" and solved:
+        axes = tuple(float(p.at) for p in getattr(solved[0][2], "punches", ()))
     return Curves(
         tab=tab,
         title=title,
@@ -851,6 +857,7 @@ def _curves(
         grid=grid,
         series=tuple(series),
         markers=markers,
+        axes=axes,
         vertical_grid=tab == "depth",
     )
 

@@ -1,8 +1,14 @@
-"""The main screen: parameters, plot tabs, summary line, status and keys.
+"""The main screen: parameters, plot tabs, summary, messages and keys.
 
 Every computation runs in one exclusive thread worker; each request carries
 a generation number and a result (or error) from an older generation is
 dropped, so a stale result never overwrites a newer one.
+
+Typing is debounced: a valid value is solved once the user pauses for
+``DEBOUNCE_SECONDS`` (or presses enter), and a value still being typed
+(``0.``, ``1e``, ``-``, an empty box) is neither solved nor refused. So a
+half-typed value never replaces the result on screen, and after an error the
+screen keeps the last result the user saw.
 """
 
 from __future__ import annotations
@@ -17,6 +23,7 @@ from textual.app import ComposeResult
 from textual.binding import Binding, BindingType
 from textual.containers import Horizontal, Vertical
 from textual.screen import Screen
+from textual.timer import Timer
 from textual.widgets import (
     Footer,
     Input,
@@ -36,6 +43,8 @@ from movingpunch.errors import (
     UnphysicalContactError,
 )
 from movingpunch.outputs import atomic_write
+from movingpunch.params import PRESETS
+from movingpunch.regime import half_length, regime_hints
 from movingpunch.scene import Scene
 from movingpunch.tui import model, scene_files
 from movingpunch.tui.messages import Computed, Progressed
@@ -64,7 +73,14 @@ from movingpunch.tui.widgets import (
     ParamsPanel,
     StressMap,
 )
-from movingpunch.tui.widgets.params import INPUTS
+from movingpunch.tui.widgets.fields import Field, FieldsLine
+from movingpunch.tui.widgets.params import INPUTS, LABELS
+
+DEBOUNCE_SECONDS = 0.2
+"""A typed value is solved after the user pauses this long (or on enter)."""
+
+NARROW_TABS = 54
+"""Below this many columns for the tab bar, the tabs take their short names."""
 
 TAB_TITLES: dict[TabName, str] = {
     "pressure": "p(x)",
@@ -72,8 +88,18 @@ TAB_TITLES: dict[TabName, str] = {
     "depth": "σx(0,y)",
     "sweep": "a/h sweep",
     "field": "field",
-    "accuracy": "Accuracy",
+    "accuracy": "accuracy",
 }
+
+SHORT_TAB_TITLES: dict[TabName, str] = {
+    "pressure": "p(x)",
+    "surface": "σx(x)",
+    "depth": "σx(y)",
+    "sweep": "sweep",
+    "field": "field",
+    "accuracy": "accuracy",
+}
+"""The tabs' names on a narrow terminal (80 columns): whole words, never cut."""
 
 FIGURE_TABS: dict[str, TabName] = {
     "fig2": "sweep",
@@ -153,6 +179,14 @@ class MainScreen(Screen[None]):
         self._status_error = ""
         self._notes: tuple[str, ...] = ()
         self._warnings: tuple[str, ...] = ()
+        self._hints: tuple[str, ...] = ()
+        self._typing: set[str] = set()
+        """Inputs holding a value still being typed (``0.``, ``1e``, empty)."""
+        self._editing = ""
+        """The input the user edited last (an error that concerns it goes there)."""
+        self._solve_timer: Timer | None = None
+        self.requested: list[Params] = []
+        """Every parameter set sent to a worker, oldest first (for tests)."""
 
     # -- layout -------------------------------------------------------------
 
@@ -169,7 +203,7 @@ class MainScreen(Screen[None]):
                         else:
                             yield CurvePlot(id=f"plot-{tab}")
         with Vertical(id="bottom"):
-            yield Static("", id="summary")
+            yield FieldsLine(id="summary")
             with Horizontal(id="status-row"):
                 yield Static("", id="status")
                 yield ProgressBar(id="progress", show_eta=False)
@@ -177,7 +211,21 @@ class MainScreen(Screen[None]):
 
     def on_mount(self) -> None:
         self.query_one("#tabs", TabbedContent).query_one(Tabs).focus()
+        self._fit_tab_titles()
         self.request()
+
+    def on_resize(self) -> None:
+        self._fit_tab_titles()
+
+    def _fit_tab_titles(self) -> None:
+        """Long tab names where they fit, short ones (whole words) where not."""
+        tabs = self.query_one("#tabs", TabbedContent)
+        width = tabs.size.width or (self.size.width - 30)
+        titles = TAB_TITLES if width >= NARROW_TABS else SHORT_TAB_TITLES
+        for tab in TABS:
+            pane = tabs.get_tab(f"tab-{tab}")
+            if str(pane.label) != titles[tab]:
+                pane.label = titles[tab]
 
     # -- state --------------------------------------------------------------
 
@@ -188,11 +236,26 @@ class MainScreen(Screen[None]):
         assert name in TABS
         return name
 
+    @property
+    def solve_pending(self) -> bool:
+        """A typed value waits for the user's pause before it is solved."""
+        return self._solve_timer is not None
+
+    def request_soon(self) -> None:
+        """Solves after the user pauses typing (``DEBOUNCE_SECONDS``)."""
+        if self._solve_timer is not None:
+            self._solve_timer.stop()
+        self._solve_timer = self.set_timer(DEBOUNCE_SECONDS, self.request)
+
     def request(self) -> None:
         """Computes what the visible tab needs for the current state."""
-        if self._invalid:
-            return  # keep the last valid result on screen
+        if self._solve_timer is not None:
+            self._solve_timer.stop()
+            self._solve_timer = None
+        if self._invalid or self._typing:
+            return  # keep the last result the user saw on screen
         self.generation += 1
+        self.requested.append(self.params)
         request = Request(
             generation=self.generation,
             params=self.params,
@@ -242,6 +305,7 @@ class MainScreen(Screen[None]):
         self._status_error = ""
         self._notes = result.notes
         self._warnings = result.summary.warnings
+        self._hints = summary_hints(result.summary)
         self._clear_solver_messages()
         self._show(result)
         self.query_one("#progress", ProgressBar).remove_class("-busy")
@@ -284,12 +348,12 @@ class MainScreen(Screen[None]):
                 panel.set_message("vstar", _one_line(error))
             self._status_error = "supercritical speed: no steady solution"
         elif isinstance(error, InvalidParameterError):
-            name = error.parameter
-            if name == "at":  # a punch's position: the train's input
-                name = "punches"
-            if name in INPUTS:
+            name = self._field_of(error)
+            if name:
                 panel.set_message(name, _one_line(error))
-            self._status_error = _one_line(error)
+            self._status_error = (
+                f"{LABELS[name]}: {_one_line(error)}" if name else _one_line(error)
+            )
         elif isinstance(error, UnphysicalContactError):
             self._status_error = "unphysical contact: " + _one_line(error)
             if self.params.contact == "single" and not self.params.punches:
@@ -300,6 +364,19 @@ class MainScreen(Screen[None]):
             what = type(error).__name__ if error is not None else "error"
             self._status_error = f"{what}: {_one_line(error)}"
         self._update_status()
+
+    def _field_of(self, error: InvalidParameterError) -> str:
+        """The input an error belongs under: the one being edited when the
+        error concerns it (``radius * load = ...`` while editing P/(μh) goes
+        under P/(μh)), else the error's own parameter; "" for none."""
+        name = error.parameter or ""
+        if name == "at":  # a punch's position: the train's input
+            name = "punches"
+        words = set(str(error).replace("=", " ").replace(",", " ").split())
+        editing = self._editing
+        if editing and (editing == name or editing in words):
+            return editing
+        return name if name in INPUTS else ""
 
     def _clear_solver_messages(self) -> None:
         """Messages from the solver (not from typing) go when a solve succeeds."""
@@ -313,7 +390,7 @@ class MainScreen(Screen[None]):
         gauge = self.query_one(Gauge)
         gauge.damped = s.damped
         gauge.limits = (s.params.vstar, s.critical_vstar, s.rayleigh_vstar)
-        self.query_one("#summary", Static).update(self._summary_text(result))
+        self.query_one("#summary", FieldsLine).fields = self._summary_fields(result)
         data = result.data
         if isinstance(data, Notice):
             widget = self.query_one(f"#plot-{data.tab}")
@@ -335,9 +412,10 @@ class MainScreen(Screen[None]):
             plot.curves = data
         self._update_status()
 
-    def _summary_text(self, result: Result) -> Text:
-        """One line for every solution: the contact (a/h, or its ends when
-        asymmetric), p0, δ/h, the σx peaks, the drag where there is one."""
+    def _summary_fields(self, result: Result) -> tuple[Field, ...]:
+        """The summary's fields for every solution: the contact (a/h, or its
+        ends when asymmetric), p0, δ/h, the σx peaks, the drag where there is
+        one; packed into lines without breaking a field (``FieldsLine``)."""
         s = result.summary
         start, end = s.contact_interval
         if s.punches:
@@ -374,20 +452,29 @@ class MainScreen(Screen[None]):
         parts += [("it", str(s.iterations)), ("err", f"{s.error_estimate:.0e}")]
         if self._show_timing:
             parts.append(("", f"{s.elapsed * 1e3:.1f} ms"))
-        return _labelled(parts, s.valid)
+        fields = [Field(label, value) for label, value in parts]
+        if not s.valid:
+            fields.append(Field("", "INVALID", "bold red"))
+        return tuple(fields)
 
     def _update_status(self) -> None:
         status = self.query_one("#status", Static)
         text = Text()
         if self._invalid:
-            text.append("invalid input; showing the last valid result", "bold yellow")
+            names = ", ".join(LABELS[n] for n in INPUTS if n in self._invalid)
+            text.append(f"invalid {names}", "bold yellow")
+            text.append("; showing the last result", "yellow")
         elif self._status_error:
             text.append(self._status_error, "bold red")
-            text.append("; showing the last valid result", "yellow")
+            text.append("; showing the last result", "yellow")
+        elif self._typing:
+            text.append("typing...", "dim")
         else:
             # Every warning of the shown solution (a requested accuracy not met).
             for line in self._warnings:
                 text.append(f"warning: {line}  ", "bold yellow")
+            if self._hints:
+                text.append("hint: " + "; ".join(self._hints) + "  ", "yellow")
             extras = []
             if self.overlay is not None:
                 values = model.describe(self.overlay.values)
@@ -407,15 +494,27 @@ class MainScreen(Screen[None]):
             return
         event.stop()
         name = box_id.removeprefix("in-")
+        self._editing = name
+        if name in NUMERIC_INPUTS and _still_typing(event.value):
+            # Neither solved nor refused: the user has not finished.
+            self._typing.add(name)
+            self._invalid.discard(name)
+            self.query_one(ParamsPanel).set_message(name, "")
+            if self._solve_timer is not None:
+                self._solve_timer.stop()
+                self._solve_timer = None
+            self._update_status()
+            return
+        self._typing.discard(name)
+        self._accept(name, event.value, soon=True)
+
+    def _accept(self, name: str, text: str, *, soon: bool) -> None:
+        """Checks what was typed into ``name`` (an error names the input and
+        its range); a valid change is solved, after the user's pause when
+        ``soon``."""
         panel = self.query_one(ParamsPanel)
-        if name == "profile":
-            self._profile_changed(event.value)
-            return
-        if name in ("contact", "punches"):
-            self._text_changed(name, event.value)
-            return
         try:
-            value = model.parse_param(name, event.value)
+            params = self._parsed(name, text)
         except InvalidParameterError as exc:
             self._invalid.add(name)
             panel.set_message(name, _one_line(exc))
@@ -425,63 +524,62 @@ class MainScreen(Screen[None]):
         self._invalid.discard(name)
         panel.set_message(name, "")
         if name == "load":
-            panel.show_load(value)
-        changed = self.params.get(name) != value
-        self.params = self.params.with_value(name, value)
-        self._update_status()
-        if changed or (was_invalid and not self._invalid):
-            self.request()
-
-    def _profile_changed(self, text: str) -> None:
-        """The punch's kind typed in the panel (cylinder, flat, rounded_flat,
-        table): checked, then solved like any parameter change."""
-        panel = self.query_one(ParamsPanel)
-        try:
-            kind = model.parse_profile_kind(text)
-        except InvalidParameterError as exc:
-            self._invalid.add("profile")
-            panel.set_message("profile", _one_line(exc))
-            self._update_status()
-            return
-        was_invalid = "profile" in self._invalid
-        self._invalid.discard("profile")
-        panel.set_message("profile", "")
-        changed = kind != self.params.profile
-        self.params = replace(self.params, profile=kind)
-        self._update_status()
-        if changed or (was_invalid and not self._invalid):
-            self.request()
-
-    def _text_changed(self, name: str, text: str) -> None:
-        """The contact mode or the train typed in the panel: checked (an
-        error names the input), then solved like any parameter change."""
-        panel = self.query_one(ParamsPanel)
-        try:
-            if name == "contact":
-                params = replace(self.params, contact=model.parse_contact(text))
-            else:
-                train = model.parse_punches(text)
-                if [p.text() for p in train] == [p.text() for p in self.params.punches]:
-                    train = self.params.punches  # keep a scene's own profiles
-                params = replace(self.params, punches=train)
-        except InvalidParameterError as exc:
-            self._invalid.add(name)
-            panel.set_message(name, _one_line(exc))
-            self._update_status()
-            return
-        was_invalid = name in self._invalid
-        self._invalid.discard(name)
-        panel.set_message(name, "")
+            panel.show_load(params.load)
         changed = params != self.params
         self.params = params
+        self._show_applicable()
         self._update_status()
         if changed or (was_invalid and not self._invalid):
+            if soon:
+                self.request_soon()
+            else:
+                self.request()
+
+    def _parsed(self, name: str, text: str) -> Params:
+        """The current set with ``text`` typed into ``name``; raises
+        InvalidParameterError naming the input and its valid range."""
+        if name == "profile":
+            return replace(self.params, profile=model.parse_profile_kind(text))
+        if name == "contact":
+            return replace(self.params, contact=model.parse_contact(text))
+        if name == "punches":
+            train = model.parse_punches(text)
+            if [p.text() for p in train] == [p.text() for p in self.params.punches]:
+                train = self.params.punches  # keep a scene's own profiles
+            return replace(self.params, punches=train)
+        return self.params.with_value(name, model.parse_param(name, text))
+
+    def _show_applicable(self) -> None:
+        """Shows the inputs that apply to the current set; a hidden input
+        loses what was being typed in it (it no longer counts)."""
+        panel = self.query_one(ParamsPanel)
+        hidden = panel.show_applicable(self.params)
+        for name in hidden:
+            if name in self._invalid or name in self._typing:
+                self._invalid.discard(name)
+                self._typing.discard(name)
+                panel.set_message(name, "")
+                panel.set_values(self.params)
+
+    def _finish_typing(self, box: Input) -> None:
+        """Enter or leaving an input: what it holds is final (``0.`` is 0,
+        an empty box an error), and a pending solve starts now."""
+        name = (box.id or "").removeprefix("in-")
+        if name in self._typing:
+            self._typing.discard(name)
+            self._accept(name, box.value, soon=False)
+        elif self._solve_timer is not None:
             self.request()
 
     def on_input_submitted(self, event: Input.Submitted) -> None:
         if (event.input.id or "").startswith("in-"):
             event.stop()
+            self._finish_typing(event.input)
             self.action_leave_input()
+
+    def on_input_blurred(self, event: Input.Blurred) -> None:
+        if (event.input.id or "").startswith("in-") and self.is_mounted:
+            self._finish_typing(event.input)
 
     def on_tabbed_content_tab_activated(
         self, event: TabbedContent.TabActivated
@@ -644,6 +742,49 @@ class MainScreen(Screen[None]):
         )
 
 
+NUMERIC_INPUTS = frozenset(INPUTS) - {"profile", "contact", "punches"}
+
+
+def _still_typing(text: str) -> bool:
+    """A value not finished yet: empty, a number ending where more must
+    follow (``0.``, ``1e``, ``1e-``, ``-``), or the start of a word the input
+    takes (``inf``, a tolerance preset) that is not yet one."""
+    t = text.strip().lower()
+    if not t or t[-1] in ".+-":
+        return True
+    if t[-1] == "e" and (len(t) == 1 or t[-2].isdigit() or t[-2] == "."):
+        return True  # an exponent follows
+    if t.isalpha():
+        return t not in _WORDS and any(w.startswith(t) for w in _WORDS)
+    return False
+
+
+_WORDS = ("inf", "infinity", *PRESETS)
+"""The words the numeric inputs take: inf (kw), the tolerance presets."""
+
+
+def summary_hints(s: model.Summary) -> tuple[str, ...]:
+    """The plausibility hints of a summary (``movingpunch.regime``)."""
+    if s.punches:
+        indentation = max(abs(p.indentation) for p in s.punches)
+        half = max(half_length(p.contact_zones) for p in s.punches)
+        load = sum(p.load for p in s.punches)  # stresses are over the total P
+    else:
+        indentation = s.indentation
+        half = half_length((s.contact_interval,))
+        load = s.params.load
+    peak = max(abs(s.p0), abs(s.top_tensile), abs(s.bottom_tensile))
+    return regime_hints(
+        indentation=indentation,
+        half_length=half,
+        peak_strain=peak * load,
+        vstar=s.params.vstar,
+        critical_vstar=s.critical_vstar,
+        rayleigh_vstar=s.rayleigh_vstar,
+        damped=s.damped,
+    )
+
+
 def _one_line(error: BaseException | None) -> str:
     if error is None:
         return "unknown error"
@@ -668,20 +809,3 @@ def _train_parts(s: model.Summary) -> list[tuple[str, str]]:
             )
         )
     return parts
-
-
-def _labelled(parts: list[tuple[str, str]], valid: bool) -> Text:
-    """The summary line: dim labels, bold values (an unlabelled part dim),
-    and INVALID in red for an unphysical solution."""
-    out = Text()
-    for i, (label, value) in enumerate(parts):
-        if i:
-            out.append(" ")
-        if not label:
-            out.append(value, "dim")
-            continue
-        out.append(label + " ", "dim")
-        out.append(value, "bold")
-    if not valid:
-        out.append("  INVALID", "bold red")
-    return out

@@ -9,6 +9,7 @@ actual errors against the cold time, drawn to the size of the widget.
 from __future__ import annotations
 
 import math
+import textwrap
 from collections.abc import Callable
 
 from rich.console import RenderableType
@@ -65,8 +66,8 @@ def table_lines(data: AccuracyTable, width: int) -> list[str]:
     header = " ".join(cells[i][0].rjust(widths[i]) for i in chosen)
     lines.append(header)
     for r in rungs:
-        if r.failure:
-            lines.append(f"{r.tol:.0e} failed: {r.failure}"[:width])
+        if r.failure:  # wrapped at spaces: never cut mid-word
+            lines += textwrap.wrap(f"{r.tol:.0e} failed: {r.failure}", width)
             continue
         k = next(ok)
         lines.append(" ".join(cells[i][k].rjust(widths[i]) for i in chosen))
@@ -93,7 +94,9 @@ class AccuracyView(Widget):
         width, height = self.size.width, self.size.height
         out = Text(no_wrap=True, overflow="crop")
         title = f"Accuracy against time; reference {report.reference}"
-        out.append(title[:width] + "\n", "bold")
+        heading = textwrap.wrap(title, max(width, 8))
+        for line in heading:
+            out.append(line + "\n", "bold")
         lines = table_lines(data, width)
         for k, line in enumerate(lines):
             out.append(line[:width] + "\n", "dim" if k == 0 else "")
@@ -104,7 +107,7 @@ class AccuracyView(Widget):
             else "an actual error exceeds its estimate"
         )
         out.append(verdict[:width], "green" if bounded else "bold red")
-        room = height - len(lines) - 2
+        room = height - len(lines) - len(heading) - 1
         if room >= 8 and width >= 40:
             out.append("\n")
             out.append(ascii_plot(report, width=width, height=room))

@@ -1,6 +1,12 @@
 """The parameters panel: one compact input per parameter with its inline
-message, μ/(P/h) beside the load, and the gauge of V* against V*_cr (against
-the Rayleigh speed V*_R with damping > 0)."""
+message, grouped (speed, layer and foundation, punch, numerics), μ/(P/h)
+beside the load, and the gauge of V* against V*_cr (against the Rayleigh speed
+V*_R with damping > 0) under the speed.
+
+An input that does not apply to the current set is hidden (``applies``): b/h
+without a flat face, R/h for a flat punch or a table, and the single punch's
+load, friction and contact mode beside a train (its punches carry their loads;
+a train is frictionless and always finds its contact set)."""
 
 from __future__ import annotations
 
@@ -23,8 +29,31 @@ TEXT_INPUTS: tuple[str, ...] = ("contact", "punches")
 """The text inputs below the numeric ones (the punch's kind, ``profile``,
 is above them)."""
 
-INPUTS: tuple[str, ...] = ("profile", *PARAM_NAMES, *TEXT_INPUTS)
+GROUPS: tuple[tuple[str, tuple[str, ...]], ...] = (
+    ("speed", ("vstar",)),
+    ("layer, foundation", ("nu", "kw", "kp", "damping")),
+    ("punch", ("profile", "radius", "half_width", "load", "friction", "punches")),
+    ("numerics", ("tol", "contact")),
+)
+"""The panel's groups, top to bottom (the gauge follows the speed)."""
+
+INPUTS: tuple[str, ...] = tuple(name for _, names in GROUPS for name in names)
 """Every input of the panel, top to bottom."""
+
+assert sorted(INPUTS) == sorted(("profile", *PARAM_NAMES, *TEXT_INPUTS))
+
+
+def applies(name: str, params: Params) -> bool:
+    """Whether the input ``name`` means something for ``params`` (the panel
+    hides it otherwise)."""
+    if name == "radius":
+        return params.profile in ("cylinder", "rounded_flat")
+    if name == "half_width":
+        return params.profile in ("flat", "rounded_flat")
+    if name in ("load", "friction", "contact"):
+        return not params.punches
+    return True
+
 
 LABELS: dict[str, str] = {
     "vstar": "V*",
@@ -32,7 +61,7 @@ LABELS: dict[str, str] = {
     "kp": "kp/μh",
     "radius": "R/h",
     "half_width": "b/h",
-    "profile": "punch",
+    "profile": "shape",
     "load": "P/(μh)",
     "nu": "ν",
     "damping": "damp",
@@ -70,9 +99,9 @@ class Gauge(Static):
     damping > 0 the bar measures V* against V*_R: the critical speed no
     longer bounds the solution, the Rayleigh speed does."""
 
-    limits: reactive[tuple[float, float, float] | None] = reactive(None)
+    limits: reactive[tuple[float, float, float] | None] = reactive(None, layout=True)
     """(vstar, V*_cr, V*_R), or None before the first result."""
-    damped: reactive[bool] = reactive(False)
+    damped: reactive[bool] = reactive(False, layout=True)
     """Damping > 0: the limit is V*_R."""
 
     def render(self) -> Text:
@@ -127,23 +156,42 @@ class ParamsPanel(VerticalScroll):
         self._messages: dict[str, str] = dict.fromkeys(INPUTS, "")
 
     def compose(self) -> ComposeResult:
-        yield Label("Parameters", classes="panel-title")
+        for title, names in GROUPS:
+            yield Label(title, classes="group-title")
+            for name in names:
+                yield from self._row(name)
+            if title == "speed":
+                yield Gauge(id="gauge")
+
+    def _row(self, name: str) -> ComposeResult:
+        shown = applies(name, self._initial)
+        with Horizontal(classes="param-row", id=f"row-{name}") as row:
+            row.display = shown
+            yield Label(LABELS[name], classes="param-label")
+            box = Input(
+                self._text_of(self._initial, name),
+                id=f"in-{name}",
+                compact=True,
+                select_on_focus=False,
+                tooltip=TOOLTIPS[name],
+            )
+            box.cursor_blink = self._blink
+            yield box
+            if name == "load":
+                yield Label(self._mu_text(self._initial.load), id="mu-note")
+        yield Static("", id=f"msg-{name}", classes="param-msg")
+
+    def show_applicable(self, params: Params) -> tuple[str, ...]:
+        """Shows the inputs that apply to ``params`` and hides the others;
+        returns the names just hidden."""
+        hidden = []
         for name in INPUTS:
-            with Horizontal(classes="param-row"):
-                yield Label(LABELS[name], classes="param-label")
-                box = Input(
-                    self._text_of(self._initial, name),
-                    id=f"in-{name}",
-                    compact=True,
-                    select_on_focus=False,
-                    tooltip=TOOLTIPS[name],
-                )
-                box.cursor_blink = self._blink
-                yield box
-                if name == "load":
-                    yield Label(self._mu_text(self._initial.load), id="mu-note")
-            yield Static("", id=f"msg-{name}", classes="param-msg")
-        yield Gauge(id="gauge")
+            row = self.query_one(f"#row-{name}", Horizontal)
+            shown = applies(name, params)
+            if row.display and not shown:
+                hidden.append(name)
+            row.display = shown
+        return tuple(hidden)
 
     @staticmethod
     def _text_of(params: Params, name: str) -> str:

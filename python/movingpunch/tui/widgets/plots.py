@@ -17,6 +17,7 @@ from textual.widget import Widget
 from textual_plotext import PlotextPlot
 
 from movingpunch.tui.model import Curves, FieldMap, fmt
+from movingpunch.tui.widgets.fields import Field, packed_text
 
 # Distinct colours for the current curve, the overlay and the pins.
 PALETTE: tuple[tuple[int, int, int], ...] = (
@@ -31,8 +32,16 @@ PALETTE: tuple[tuple[int, int, int], ...] = (
 )
 
 
+ZONE_END_COLOUR = (150, 150, 150)
+AXIS_COLOUR = (255, 120, 200)
+
+
 class CurvePlot(PlotextPlot):
-    """Curves of one tab; ``curves`` is None until the first result."""
+    """Curves of one tab; ``curves`` is None until the first result.
+
+    The axes say their units (x/h, y/h, a stress over P/h) and the legend
+    sits below the plot, outside the data area: each curve's colour and
+    label, the zone ends and a train's punch axes (``legend``)."""
 
     curves: reactive[Curves | None] = reactive(None)
     placeholder: reactive[str] = reactive("computing...")
@@ -43,6 +52,10 @@ class CurvePlot(PlotextPlot):
         data = self.curves
         if data is None:
             return Text(self.placeholder, style="dim")
+        width, height = self.size.width, self.size.height
+        entries = legend(data)
+        key = packed_text(entries, width) if entries else None
+        rows = len(key.plain.splitlines()) if key is not None else 0
         plt.title(data.title)
         for i, series in enumerate(data.series):
             finite = np.isfinite(series.values) & np.isfinite(data.grid)
@@ -51,17 +64,14 @@ class CurvePlot(PlotextPlot):
             grid = data.grid[finite].tolist()
             values = series.values[finite].tolist()
             x, y = (values, grid) if data.vertical_grid else (grid, values)
-            plt.plot(
-                x,
-                y,
-                marker="braille",
-                color=PALETTE[i % len(PALETTE)],
-                label=series.label if len(data.series) > 1 else None,
-            )
-        # The zone ends (several zones): thin vertical lines, one colour.
+            plt.plot(x, y, marker="braille", color=PALETTE[i % len(PALETTE)])
+        # The zone ends (several zones) and the punch axes (a train).
         for x in data.markers:
             if math.isfinite(x):
-                plt.vline(x, color=(150, 150, 150))
+                plt.vline(x, color=ZONE_END_COLOUR)
+        for x in data.axes:
+            if math.isfinite(x):
+                plt.vline(x, color=AXIS_COLOUR)
         if data.vertical_grid:
             plt.xlabel(data.value_label)
             plt.ylabel(data.grid_label)
@@ -70,9 +80,33 @@ class CurvePlot(PlotextPlot):
             plt.ylabel(data.value_label)
         if data.log_grid:
             plt.xscale("log")
-        drawn = super().render()
-        assert isinstance(drawn, Text)
+        plot_height = max(height - rows, 6)
+        plt.plotsize(width, plot_height)
+        plt._set_size(width, plot_height)
+        plt.theme(self._get_plotext_theme_name(self.app.theme))
+        drawn = Text.from_ansi(plt.build().rstrip("\n"))
+        if key is not None:
+            drawn.append("\n")
+            drawn.append_text(key)
         return drawn
+
+
+def legend(data: Curves) -> list[Field]:
+    """The legend below a plot: a coloured mark and the label of each curve
+    (when there are several), then the zone ends and the punch axes."""
+    out: list[Field] = []
+    if len(data.series) > 1:
+        for i, series in enumerate(data.series):
+            r, g, b = PALETTE[i % len(PALETTE)]
+            out.append(Field("━━", series.label, "", f"rgb({r},{g},{b})"))
+    if data.markers:
+        r, g, b = ZONE_END_COLOUR
+        out.append(Field("│", "zone ends", "", f"rgb({r},{g},{b})"))
+    if data.axes:
+        r, g, b = AXIS_COLOUR
+        at = " ".join(fmt(x, 3) for x in data.axes)
+        out.append(Field("│", f"punch axes x/h {at}", "", f"rgb({r},{g},{b})"))
+    return out
 
 
 def _lerp(
@@ -168,4 +202,7 @@ class StressMap(Widget):
             v = lo + (hi - lo) * (k + 0.5) / bar
             out.append(" ", Style.parse(f"on {colour(v, lo, hi, diverging)}"))
         out.append(f" {fmt(hi, 3)}")
+        unit = "σx/(P/h)" if diverging else "σVM/(P/h)"
+        if margin + 10 + bar + len(f" {fmt(hi, 3)}") + len(unit) + 2 <= width:
+            out.append(f"  {unit}", "dim")
         return out

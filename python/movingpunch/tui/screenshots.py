@@ -1,0 +1,133 @@
+"""Screenshots of the terminal UI: its screen as plain text (what the layout
+tests scan) and as SVG (the gallery in docs/tui.md, written by
+``scripts/gallery.py``).
+
+Each screenshot runs the app headless at a given terminal size on a scene,
+shows one tab, waits for every solve and captures the screen. The solve time
+is hidden and the cursor does not blink, so the same scene gives the same
+picture.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import io
+import re
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+from rich.console import Console
+from textual.app import App
+from textual.pilot import Pilot
+
+from movingpunch.scene import Scene
+from movingpunch.tui.app import create_app
+from movingpunch.tui.model import TABS, TabName
+from movingpunch.tui.scene_files import SceneState, from_scene
+from movingpunch.tui.screens.main import MainScreen
+
+SIZES: tuple[tuple[int, int], ...] = ((80, 24), (120, 40))
+"""The terminal sizes of the gallery and the layout tests."""
+
+GALLERY_SCENE = "fig4"
+"""The gallery's scene: the paper's Fig. 4 case."""
+
+
+@dataclass(frozen=True)
+class Shot:
+    """One screen: its plain text (a line per terminal row) and its SVG."""
+
+    text: str
+    svg: str
+
+
+def screen_text(app: App[None]) -> str:
+    """The app's screen as plain text, one line per row (styles dropped)."""
+    width, height = app.size
+    console = Console(
+        width=width,
+        height=height,
+        file=io.StringIO(),
+        force_terminal=True,
+        color_system="truecolor",
+        record=True,
+        legacy_windows=False,
+        safe_box=False,
+    )
+    console.print(
+        app.screen._compositor.render_update(
+            full=True, screen_stack=app._background_screens
+        )
+    )
+    return console.export_text(styles=False)
+
+
+async def settled(pilot: Pilot[None]) -> None:
+    """Waits until no solve is pending or running and the screen is drawn."""
+    await pilot.pause()
+    while True:
+        await pilot.app.workers.wait_for_complete()
+        await pilot.pause()
+        screen = pilot.app.screen
+        pending = isinstance(screen, MainScreen) and screen.solve_pending
+        if not pending and not any(w.is_running for w in pilot.app.workers):
+            break
+        await pilot.pause(0.05)
+    await pilot.pause()
+
+
+async def shots(
+    scene: SceneState,
+    tabs: Sequence[TabName],
+    size: tuple[int, int],
+    *,
+    help_screen: bool = False,
+) -> dict[str, Shot]:
+    """The screens of ``tabs`` (and the help, with ``help_screen``) of the
+    app on ``scene`` at ``size``, keyed by tab name (``"help"``)."""
+    app = create_app(scene, show_timing=False, cursor_blink=False)
+    out: dict[str, Shot] = {}
+    async with app.run_test(size=size) as pilot:
+        await settled(pilot)
+        screen = app.screen
+        assert isinstance(screen, MainScreen)
+        for tab in tabs:
+            screen.action_show_tab(tab)
+            await settled(pilot)
+            out[tab] = Shot(screen_text(app), _svg(app, f"movingpunch: {tab}"))
+        if help_screen:
+            await pilot.press("question_mark")
+            await pilot.pause()
+            out["help"] = Shot(screen_text(app), _svg(app, "movingpunch: help"))
+            await pilot.press("escape")
+    return out
+
+
+def _svg(app: App[None], title: str) -> str:
+    """The SVG screenshot with its random-looking ids made stable (the same
+    screen gives the same file)."""
+    svg = app.export_screenshot(title=title)
+    return re.sub(r"terminal-\d+", "terminal", svg)
+
+
+def gallery_name(tab: str, size: tuple[int, int]) -> str:
+    """``tui-pressure-80x24.svg``: a gallery file's name."""
+    return f"tui-{tab}-{size[0]}x{size[1]}.svg"
+
+
+def write_gallery(folder: Path, scene: str = GALLERY_SCENE) -> list[Path]:
+    """Writes the gallery (every tab and the help at every size of
+    ``SIZES``) into ``folder``; returns the files written."""
+    state = from_scene(Scene.bundled(scene))
+    written = []
+    folder.mkdir(parents=True, exist_ok=True)
+    for size in SIZES:
+        taken = asyncio.run(shots(state, TABS, size, help_screen=True))
+        for tab, shot in taken.items():
+            path = folder / gallery_name(tab, size)
+            tmp = path.with_name(f".{path.name}.tmp")
+            tmp.write_text(shot.svg, encoding="utf-8")
+            tmp.replace(path)
+            written.append(path)
+    return written
