@@ -31,7 +31,15 @@ from movingpunch.tui.model import (
 from movingpunch.tui.screens import MainScreen, OverlayPrompt, PathPrompt
 from movingpunch.tui.widgets import CurvePlot, Gauge, ParamsPanel, StressMap
 from movingpunch.tui.widgets.params import LABELS
-from tui_pilot import screen_of, settle, status_text, summary_text, sync, type_into
+from tui_pilot import (
+    screen_of,
+    settle,
+    status_ok,
+    status_text,
+    summary_text,
+    sync,
+    type_into,
+)
 
 SIZE = (100, 32)
 
@@ -258,7 +266,7 @@ async def test_unphysical_and_convergence_errors_are_inline() -> None:
         await pilot.pause()
         assert "no convergence: the width iteration" in status_text(app)
         await type_into(pilot, "vstar", "0.05")
-        assert "ready" in status_text(app)
+        assert status_ok(app), status_text(app)
 
 
 @sync

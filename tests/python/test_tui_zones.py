@@ -33,7 +33,15 @@ from movingpunch.tui.model import (
 )
 from movingpunch.tui.scene_files import SceneState
 from movingpunch.tui.widgets import CurvePlot, ParamsPanel, StressMap
-from tui_pilot import screen_of, settle, status_text, summary_text, sync, type_into
+from tui_pilot import (
+    screen_of,
+    settle,
+    status_ok,
+    status_text,
+    summary_text,
+    sync,
+    type_into,
+)
 
 SIZE = (100, 32)
 
@@ -196,7 +204,7 @@ async def test_a_separated_contact_shows_its_zones() -> None:
         assert f"[{model.fmt(l1, 4)},{model.fmt(r1, 4)}]" in text
         assert f"[{model.fmt(l2, 4)},{model.fmt(r2, 4)}]" in text
         assert "INVALID" not in text
-        assert "ready" in status_text(app)
+        assert status_ok(app), status_text(app)
         p = curves(app, "pressure")
         assert p.grid[0] < l1
         assert p.grid[-1] > r2
@@ -208,7 +216,7 @@ async def test_a_separated_contact_shows_its_zones() -> None:
             await pilot.press(str(model.TABS.index(tab) + 1))
             await settle(pilot)
             assert "2 zones" in summary_text(app)
-            assert "ready" in status_text(app)
+            assert status_ok(app), status_text(app)
         field = screen_of(app).query_one(StressMap)
         assert field.field is not None
         assert len(field.field.zones) == 2
@@ -220,7 +228,7 @@ async def test_a_separated_contact_shows_its_zones() -> None:
         assert "unphysical contact" in status_text(app)
         assert "contact auto" in status_text(app)
         await type_into(pilot, "contact", "auto")
-        assert "ready" in status_text(app)
+        assert status_ok(app), status_text(app)
         assert "2 zones" in summary_text(app)
         # garbage in the contact input is named there
         await type_into(pilot, "contact", "maybe")
@@ -253,7 +261,7 @@ async def test_a_train_of_punches() -> None:
         assert p.grid[-1] > ref.contact_interval[1]
         # The plotted pressure is the train's (over P/h, P the total load).
         assert p.series[0].values == pytest.approx(ref.pressure(p.grid), abs=1e-9)
-        assert "ready" in status_text(app)
+        assert status_ok(app), status_text(app)
 
         # garbage: a message naming the input, the last result stays
         await set_text(pilot, "punches", "0.002@-1.5, lots")

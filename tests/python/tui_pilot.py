@@ -70,6 +70,14 @@ def status_text(app: MovingPunchApp) -> str:
     return str(screen_of(app).query_one("#status", Static).render())
 
 
+def status_ok(app: MovingPunchApp) -> bool:
+    """The message area shows no error, warning or unfinished input (it may
+    show plausibility hints, an overlay or pins, or "ready")."""
+    text = status_text(app)
+    bad = ("showing the last result", "warning", "typing", "invalid")
+    return not any(word in text for word in bad)
+
+
 async def type_into(
     pilot: Pilot[None], name: str, text: str, *, paste: bool = False
 ) -> None:

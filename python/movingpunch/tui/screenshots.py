@@ -36,10 +36,41 @@ GALLERY_SCENE = "fig4"
 
 @dataclass(frozen=True)
 class Shot:
-    """One screen: its plain text (a line per terminal row) and its SVG."""
+    """One screen: its plain text (a line per terminal row), its SVG, and
+    the phrases it must show whole (``phrases``)."""
 
     text: str
     svg: str
+    phrases: tuple[str, ...] = ()
+    status: str = ""
+    """The message area's text (it wraps: checked word by word)."""
+
+
+def phrases(screen: MainScreen) -> tuple[str, ...]:
+    """What the main screen must show whole, each on one line: the tab
+    names, the summary's fields, the panel's group titles and visible labels,
+    and the visible plot's title, axis labels and legend entries."""
+    from textual.widgets import Label, TabbedContent
+
+    from movingpunch.tui.widgets import CurvePlot, ParamsPanel
+    from movingpunch.tui.widgets.fields import FieldsLine
+    from movingpunch.tui.widgets.plots import legend
+
+    out: list[str] = []
+    tabs = screen.query_one("#tabs", TabbedContent)
+    out += [str(tabs.get_tab(f"tab-{tab}").label) for tab in TABS]
+    out += [f.text() for f in screen.query_one("#summary", FieldsLine).fields]
+    panel = screen.query_one(ParamsPanel)
+    out += [str(label.render()) for label in panel.query(".group-title").results(Label)]
+    for row in panel.query(".param-row"):
+        if row.display:
+            out += [str(label.render()) for label in row.query(Label)]
+    plot = screen.query_one(f"#plot-{screen.tab}")
+    if isinstance(plot, CurvePlot) and plot.curves is not None:
+        c = plot.curves
+        out += [c.title, c.grid_label, c.value_label]
+        out += [f.text() for f in legend(c)]
+    return tuple(p for p in out if p.strip())
 
 
 def screen_text(app: App[None]) -> str:
@@ -95,7 +126,12 @@ async def shots(
         for tab in tabs:
             screen.action_show_tab(tab)
             await settled(pilot)
-            out[tab] = Shot(screen_text(app), _svg(app, f"movingpunch: {tab}"))
+            out[tab] = Shot(
+                screen_text(app),
+                _svg(app, f"movingpunch: {tab}"),
+                phrases(screen),
+                str(screen.query_one("#status").render()),
+            )
         if help_screen:
             await pilot.press("question_mark")
             await pilot.pause()

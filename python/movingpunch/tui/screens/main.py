@@ -186,7 +186,8 @@ class MainScreen(Screen[None]):
         """The input the user edited last (an error that concerns it goes there)."""
         self._solve_timer: Timer | None = None
         self.requested: list[Params] = []
-        """Every parameter set sent to a worker, oldest first (for tests)."""
+        """Every parameter set sent to a worker, oldest first, a repeat of
+        the one before (another tab, a pin) not counted (for tests)."""
 
     # -- layout -------------------------------------------------------------
 
@@ -255,7 +256,8 @@ class MainScreen(Screen[None]):
         if self._invalid or self._typing:
             return  # keep the last result the user saw on screen
         self.generation += 1
-        self.requested.append(self.params)
+        if not self.requested or self.requested[-1] != self.params:
+            self.requested.append(self.params)
         request = Request(
             generation=self.generation,
             params=self.params,
@@ -483,7 +485,8 @@ class MainScreen(Screen[None]):
                 extras.append(f"{len(self.pins)} pinned")
             if self._notes:
                 extras.append("; ".join(self._notes))
-            text.append("  ".join(extras) or "ready", "dim")
+            if extras or not (self._hints or self._warnings):
+                text.append("  ".join(extras) or "ready", "dim")
         status.update(text)
 
     # -- input --------------------------------------------------------------

@@ -1,0 +1,180 @@
+"""Typing into the terminal UI as a person types: key by key with pauses.
+
+A value is solved once the user pauses (``DEBOUNCE_SECONDS``, or on enter);
+a value still being typed (``0.``, ``1e``, empty) is neither solved nor
+refused, so a half-typed value never replaces the result on screen; after a
+refused value (a supercritical speed) the screen keeps the last result the
+user saw. Errors are named under the field being edited.
+"""
+
+from __future__ import annotations
+
+import asyncio
+
+import pytest
+from textual import events
+from textual.pilot import Pilot
+from textual.widgets import Input
+
+import movingpunch as mp
+from movingpunch.tui import create_app
+from movingpunch.tui.model import Params, fmt
+from movingpunch.tui.scene_files import SceneState
+from movingpunch.tui.screens.main import DEBOUNCE_SECONDS, _still_typing
+from movingpunch.tui.widgets import ParamsPanel
+from tui_pilot import screen_of, settle, status_text, summary_text, sync
+
+SIZE = (80, 24)
+KEY_GAP = 0.12
+"""Seconds from one key to the next: a typist at about 8 keys a second
+(under the debounce, as real typing is)."""
+
+KEY_NAMES = {".": "full_stop", "-": "minus", "+": "plus"}
+
+
+async def type_slowly(pilot: Pilot[None], name: str, text: str) -> None:
+    """Empties the input and types ``text`` as a terminal delivers keys:
+    one every ``KEY_GAP`` seconds (on a clock, not after each key is
+    processed: the pilot's own ``press`` waits for the screen)."""
+    app = pilot.app
+    box = app.screen.query_one(f"#in-{name}", Input)
+    box.focus()
+    await pilot.pause()
+    box.value = ""
+    driver = app._driver
+    assert driver is not None
+    loop = asyncio.get_running_loop()
+    start = loop.time()
+    for i, char in enumerate(text):
+        await asyncio.sleep(max(0.0, start + i * KEY_GAP - loop.time()))
+        event = events.Key(KEY_NAMES.get(char, char), char)
+        event.set_sender(app)
+        driver.send_message(event)
+    await pilot.pause()
+
+
+def a_text(vstar: float, kw: float = 1.0) -> str:
+    return "a/h " + fmt(mp.solve(vstar=vstar, kw=kw, radius=100.0, load=0.002).a)
+
+
+@sync
+async def test_typing_key_by_key_solves_only_the_typed_value() -> None:
+    app = create_app(SceneState(Params()), show_timing=False, cursor_blink=False)
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        screen = screen_of(app)
+        assert [p.vstar for p in screen.requested] == [0.2]
+        assert a_text(0.2) in summary_text(app)
+
+        await type_slowly(pilot, "vstar", "0.5")
+        await settle(pilot)
+        # Neither the empty box, "0" nor "0." was solved: the pauses between
+        # keys are shorter than the debounce.
+        assert [p.vstar for p in screen.requested] == [0.2, 0.5]
+        assert a_text(0.5) in summary_text(app)
+
+        # The issue's case: 0.6 (on kw 3, where V*_cr is 0.7308), then a
+        # supercritical 0.9 ("0." on the way is V* = 0, never solved).
+        await type_slowly(pilot, "kw", "3")
+        await settle(pilot)
+        assert screen.requested[-1] == Params(vstar=0.5, kw=3.0)
+        await type_slowly(pilot, "vstar", "0.6")
+        await settle(pilot)
+        assert [p.vstar for p in screen.requested][3:] == [0.6]
+        shown = summary_text(app)
+        assert a_text(0.6, kw=3.0) in shown
+
+        await type_slowly(pilot, "vstar", "0.9")
+        await settle(pilot)
+        assert [p.vstar for p in screen.requested][4:] == [0.9]
+        # Refused, and the screen keeps 0.6: the last result the user saw.
+        assert summary_text(app) == shown
+        assert screen.result is not None
+        assert screen.result.summary.params.vstar == 0.6
+        message = screen.query_one(ParamsPanel).message("vstar")
+        assert "V* = 0.9 is at or above V*_cr" in message
+        assert "showing the last result" in status_text(app)
+
+
+@sync
+async def test_a_pause_after_each_key_solves_each_prefix() -> None:
+    """The debounce waits for a pause, it does not swallow one: a user who
+    stops after "0" sees V* = 0."""
+    app = create_app(SceneState(Params()), show_timing=False, cursor_blink=False)
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        screen = screen_of(app)
+        box = screen.query_one("#in-vstar", Input)
+        box.focus()
+        box.clear()
+        await pilot.pause(DEBOUNCE_SECONDS * 2)  # empty: still typing
+        assert screen.requested[1:] == []
+        assert "typing" in status_text(app)
+        await pilot.press("0")
+        await pilot.pause(DEBOUNCE_SECONDS * 2)
+        await settle(pilot)
+        assert [p.vstar for p in screen.requested[1:]] == [0.0]
+        await pilot.press(".")  # "0.": still typing, nothing new
+        await pilot.pause(DEBOUNCE_SECONDS * 2)
+        assert [p.vstar for p in screen.requested[1:]] == [0.0]
+        await pilot.press("3", "enter")  # enter solves at once
+        await settle(pilot)
+        assert [p.vstar for p in screen.requested[1:]] == [0.0, 0.3]
+
+
+@sync
+async def test_leaving_a_half_typed_value_makes_it_final() -> None:
+    app = create_app(SceneState(Params()), show_timing=False, cursor_blink=False)
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        screen = screen_of(app)
+        await type_slowly(pilot, "load", "1e")
+        await settle(pilot)
+        assert screen.requested[1:] == []
+        assert screen.query_one(ParamsPanel).message("load") == ""
+        await pilot.press("escape")  # leaves the input: "1e" is final
+        await settle(pilot)
+        assert "load" in screen.query_one(ParamsPanel).message("load")
+        assert "invalid P/(μh)" in status_text(app)
+        assert screen.requested[1:] == []
+
+
+@sync
+async def test_an_error_is_named_under_the_field_being_edited() -> None:
+    """radius * load out of range while typing P/(μh): the message goes
+    under P/(μh), not R/h, and the status names P/(μh)."""
+    app = create_app(SceneState(Params()), show_timing=False, cursor_blink=False)
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        screen = screen_of(app)
+        shown = summary_text(app)
+        await type_slowly(pilot, "load", "5000")
+        await settle(pilot)
+        panel = screen.query_one(ParamsPanel)
+        assert "radius * load" in panel.message("load")
+        assert panel.message("radius") == ""
+        assert status_text(app).startswith("P/(μh): ")
+        assert summary_text(app) == shown
+
+
+@pytest.mark.parametrize(
+    ("text", "typing"),
+    [
+        ("", True),
+        ("0", False),
+        ("0.", True),
+        ("0.6", False),
+        ("1e", True),
+        ("1e-", True),
+        ("1e-8", False),
+        ("-", True),
+        ("in", True),
+        ("inf", False),
+        ("pre", True),
+        ("precise", False),
+        ("abc", False),
+        ("nan", False),
+    ],
+)
+def test_still_typing(text: str, typing: bool) -> None:
+    assert _still_typing(text) is typing
