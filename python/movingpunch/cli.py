@@ -873,10 +873,7 @@ def _cmd_run(args: argparse.Namespace) -> int:
         for path in written:
             sys.stderr.write(f"{PROG}: wrote {path}\n")
         return 0
-    summary = format_summary(result)
-    if hints:
-        summary += "\n\nhint: " + "; ".join(hints)
-    print(summary)
+    print(format_summary(result, hints))
     show_plot = args.plot if args.plot is not None else sys.stdout.isatty()
     if show_plot:
         print()

@@ -91,9 +91,10 @@ def _table(header: Sequence[str], rows: Sequence[Sequence[str]]) -> list[str]:
     return [line.rstrip() for line in lines]
 
 
-def format_summary(result: SceneResult) -> str:
-    """The run as text: the scene, its scalar results, the sweep table and
-    the stages with their times."""
+def format_summary(result: SceneResult, hints: Sequence[str] = ()) -> str:
+    """The run as text: the scene, its scalar results, the sweep table, the
+    warnings, the plausibility ``hints`` (one line ``hint: ...``, if any)
+    and the stages with their times."""
     scene = result.scene
     out: list[str] = []
     title = f"Scene {scene.name}" if scene.name else "Scene"
@@ -176,6 +177,9 @@ def format_summary(result: SceneResult) -> str:
     if result.warnings:
         out += ["", f"Warnings ({len(result.warnings)})"]
         out += [f"  warning: {w}" for w in result.warnings]
+
+    if hints:
+        out += ["", "hint: " + "; ".join(hints)]
 
     out += [
         "",
