@@ -42,7 +42,7 @@ from collections.abc import Callable, Sequence
 from types import FrameType
 from typing import Any, NoReturn
 
-from movingpunch.errors import InvalidParameterError, MovingPunchError
+from movingpunch.errors import ClusterError, InvalidParameterError, MovingPunchError
 from movingpunch.fields import StressPeaks
 from movingpunch.params import help_text, range_text
 from movingpunch.profiles import (
@@ -52,6 +52,7 @@ from movingpunch.profiles import (
     PunchProfile,
     RoundedFlat,
 )
+from movingpunch.regime import hints_for
 from movingpunch.solver import (
     critical_vstar,
     critical_wavenumber,
@@ -507,10 +508,14 @@ def _cmd_solve(args: argparse.Namespace) -> int:
         )
     peaks = s.stress_peaks() if args.stress else None
     _print_warnings(s)
+    hints = hints_for(s, peaks)
+    if hints:  # never blocking: the exit status stays 0
+        print("hint: " + "; ".join(hints), file=sys.stderr)
     if args.json:
         data = s.to_dict()
         if peaks is not None:
             data["stress"] = dataclasses.asdict(peaks)
+        data["hints"] = list(hints)
         print(json.dumps(data, indent=2))
         return 0
     inputs = [
@@ -694,10 +699,16 @@ def _add_scene_commands(sub: Any) -> None:
         metavar="DIR",
         default=None,
         help="write one file per output into DIR (default: none; '.' when "
-        "--format or --png is given)",
+        "--format csv or --png is given)",
     )
     run_p.add_argument(
-        "--format", choices=("csv", "json"), default=None, help="file format (csv)"
+        "--format",
+        choices=("csv", "json"),
+        default=None,
+        help="format of the files of --out (csv by default); --format json "
+        "without --out prints the whole result as one JSON document on "
+        "stdout instead (summary, every output's columns; nan/inf as "
+        "strings), nothing else",
     )
     plot = run_p.add_mutually_exclusive_group()
     plot.add_argument(
@@ -725,7 +736,17 @@ def _add_scene_commands(sub: Any) -> None:
         metavar="ADDRESS",
         default=None,
         help="run the sweep on a Dask scheduler, e.g. tcp://host:8786 "
-        "(needs the 'dask' extra)",
+        "(needs the 'dask' extra); stderr shows 'connecting to ADDRESS', the "
+        "seconds left, then 'connected to ADDRESS (N workers)'",
+    )
+    run_p.add_argument(
+        "--dask-timeout",
+        type=_seconds,
+        default=None,
+        metavar="SECONDS",
+        help="how long --dask waits for the scheduler (connecting, and any "
+        f"stretch without a result); {_SECONDS_RANGE}, default "
+        "20",
     )
     run_p.set_defaults(handler=_cmd_run, stop_on_signals=True)
 
@@ -752,6 +773,23 @@ def _add_scene_commands(sub: Any) -> None:
     scene_p.set_defaults(handler=lambda _args: _fail("scene: missing ACTION: show"))
 
 
+_SECONDS_MAX = 3600.0
+_SECONDS_RANGE = f"0 < SECONDS <= {_SECONDS_MAX:g}"
+
+
+def _seconds(text: str) -> float:
+    """argparse type of --dask-timeout: seconds, 0 < SECONDS <= 3600."""
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not 0 < value <= _SECONDS_MAX:  # nan fails too
+        raise argparse.ArgumentTypeError(
+            f"must be a number of seconds, {_SECONDS_RANGE}, got {text!r}"
+        )
+    return value
+
+
 def _jobs(text: str) -> int:
     try:
         value = int(text)
@@ -770,12 +808,23 @@ def _cmd_run(args: argparse.Namespace) -> int:
     from movingpunch.outputs import prepare, publish
     from movingpunch.scene import ascii_plots, format_summary, load_scene
     from movingpunch.scene._export import (
+        format_json,
         format_tables,
         pyplot,
         render_outputs,
         render_pngs,
     )
 
+    # --format json without --out: the result as one JSON document on
+    # stdout, and nothing else there (notes, file names: stderr).
+    json_out = args.format == "json" and args.out is None
+    if json_out and args.plot:
+        _fail(
+            "--plot cannot be used with --format json without --out (stdout "
+            "holds the JSON document)"
+        )
+    if args.dask_timeout is not None and args.dask is None:
+        _fail("--dask-timeout needs --dask ADDRESS")
     scene = load_scene(args.scene)
     if args.dask is not None and scene.sweep is None:
         sys.stderr.write(
@@ -784,25 +833,47 @@ def _cmd_run(args: argparse.Namespace) -> int:
         )
     # Output problems are found before the work: the folder, the PNG extra.
     out_dir = None
-    if args.out is not None or args.format is not None or args.png:
+    if args.out is not None or (args.format is not None and not json_out) or args.png:
         out_dir = prepare(Path(args.out or "."))
         if args.png:
             pyplot()
     bar = _ProgressBar() if sys.stderr.isatty() else None
+    status = _DaskStatus(args.dask) if args.dask is not None else None
     try:
-        result = scene.run(jobs=args.jobs, progress=bar, dask=args.dask)
+        result = scene.run(
+            jobs=args.jobs,
+            progress=bar,
+            dask=args.dask,
+            dask_timeout=args.dask_timeout,
+            on_dask=status,
+        )
+    except ClusterError as exc:
+        if status is not None and status.waiting:  # while connecting
+            status.close()
+            raise ClusterError(
+                f"--dask {args.dask} (--dask-timeout {status.timeout:g} s): {exc}"
+            ) from None
+        raise
     finally:
+        if status is not None:
+            status.close()
         if bar is not None:
             bar.close()
+    hints = _scene_hints(result)
     # The files first (all of them or none), then the text: a reader that
     # closes stdout early (| head) does not cost the files.
     written = []
     if out_dir is not None:
-        files = render_outputs(result, args.format or "csv")
+        files = [] if json_out else render_outputs(result, args.format or "csv")
         if args.png:
             files += render_pngs(result)
         written = publish(out_dir, files)
-    print(format_summary(result))
+    if json_out:
+        sys.stdout.write(format_json(result, hints))
+        for path in written:
+            sys.stderr.write(f"{PROG}: wrote {path}\n")
+        return 0
+    print(format_summary(result, hints))
     show_plot = args.plot if args.plot is not None else sys.stdout.isatty()
     if show_plot:
         print()
@@ -819,8 +890,22 @@ def _cmd_run(args: argparse.Namespace) -> int:
     return 0
 
 
+def _scene_hints(result: Any) -> tuple[str, ...]:
+    """The plausibility hints (movingpunch.regime) of a scene's one
+    solution: a scene without [vary] or [sweep] that solved one contact
+    (elsewhere its solutions are shared, rescaled, between points, and no
+    single one is the scene's)."""
+    scene = result.scene
+    if scene.vary is not None or scene.sweep is not None:
+        return ()
+    if len(result.solutions) != 1:
+        return ()
+    return hints_for(result.solutions[0])
+
+
 class _ProgressBar:
-    """``progress(done, total)`` drawn as one line on stderr."""
+    """``progress(done, total)`` drawn as one line on stderr (made only
+    when stderr is a terminal: logs get no progress)."""
 
     def __init__(self) -> None:
         self.drawn = False
@@ -835,6 +920,86 @@ class _ProgressBar:
     def close(self) -> None:
         if self.drawn:
             sys.stderr.write("\n")
+            self.drawn = False
+
+
+class _DaskStatus:
+    """``on_dask(event, value)`` of ``run --dask``: "connecting to ADDRESS
+    …" on stderr at once, then the seconds left until the timeout (on a
+    terminal one line redrawn each second; otherwise a line every
+    COUNTDOWN_EVERY seconds at most, so that logs stay short), then
+    "connected to ADDRESS (N workers)"."""
+
+    COUNTDOWN_EVERY = 5.0
+
+    def __init__(self, address: str) -> None:
+        self.address = address
+        self.timeout = math.nan
+        self.waiting = False
+        self.tty = sys.stderr.isatty()
+        self._stop = threading.Event()
+        self._thread: threading.Thread | None = None
+        self._lock = threading.Lock()
+        self._line_open = False  # a terminal line without its newline yet
+
+    def __call__(self, event: str, value: float) -> None:
+        if event == "connecting":
+            self.timeout = value
+            self.waiting = True
+            self._write(f"connecting to {self.address} … (timeout {value:g} s)")
+            self._thread = threading.Thread(
+                target=self._countdown, name="movingpunch-dask-countdown", daemon=True
+            )
+            self._thread.start()
+        elif event == "connected":
+            self._stop_countdown()
+            workers = int(value)
+            self._write(
+                f"connected to {self.address} "
+                f"({workers} worker{'' if workers == 1 else 's'})",
+                end=True,
+            )
+
+    def _countdown(self) -> None:
+        import time
+
+        start = time.monotonic()
+        step = 1.0 if self.tty else self.COUNTDOWN_EVERY
+        while not self._stop.wait(step):
+            left = self.timeout - (time.monotonic() - start)
+            if left <= 0:
+                return
+            self._write(
+                f"connecting to {self.address} … {math.ceil(left):d} s left",
+                end=not self.tty,
+            )
+
+    def _write(self, text: str, *, end: bool | None = None) -> None:
+        """One status line: on a terminal redrawn in place (``\\r``, the
+        line left open unless ``end``), otherwise a line of its own."""
+        with self._lock:
+            if self.tty:
+                sys.stderr.write(f"\r\x1b[K{text}" + ("\n" if end else ""))
+                self._line_open = not end
+            else:
+                sys.stderr.write(f"{text}\n")
+            sys.stderr.flush()
+
+    def _stop_countdown(self) -> None:
+        self.waiting = False
+        self._stop.set()
+        if self._thread is not None:
+            self._thread.join()
+            self._thread = None
+
+    def close(self) -> None:
+        """Stops the countdown and ends its terminal line."""
+        self._stop_countdown()
+        with self._lock:
+            if self._line_open:
+                sys.stderr.write("\n")
+                sys.stderr.flush()
+                self._line_open = False
 
 
 def _cmd_scenes(args: argparse.Namespace) -> int:
@@ -958,9 +1123,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     for name in ("stdout", "stderr"):
         if getattr(sys, name) is None:  # started with the descriptor closed
             setattr(sys, name, open(os.devnull, "w", encoding="utf-8"))  # noqa: SIM115
-    if isinstance(sys.stdout, io.TextIOWrapper):
-        # Labels use Greek letters; never fail on a terminal that lacks them.
-        sys.stdout.reconfigure(errors="backslashreplace")
+    for stream in (sys.stdout, sys.stderr):
+        if isinstance(stream, io.TextIOWrapper):
+            # Labels and hints use Greek letters; never fail on a terminal
+            # that lacks them.
+            stream.reconfigure(errors="backslashreplace")
     parser = _build_parser()
     try:
         args = parser.parse_args(argv)

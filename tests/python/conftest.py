@@ -12,8 +12,12 @@ install of scripts/setup.sh, or PYTHONPATH in a worktree).
 from __future__ import annotations
 
 import json
+import os
+import pty
+import select
 import subprocess
 import sys
+import tempfile
 from collections.abc import Callable
 from pathlib import Path
 
@@ -77,6 +81,40 @@ def _run_python(code: str, *args: str, timeout: float = CODE_TIMEOUT) -> Complet
     )
 
 
+def _run_on_a_terminal(
+    *args: str, timeout: float = CLI_TIMEOUT
+) -> tuple[int, str, str]:
+    """``movingpunch ARGS`` with stderr on a pseudo-terminal and stdout into
+    a file: (status, stdout, what the terminal received)."""
+    master, slave = pty.openpty()
+    with tempfile.TemporaryFile() as out:
+        proc = subprocess.Popen(
+            [sys.executable, "-m", "movingpunch", *args],
+            stdout=out,
+            stderr=slave,
+            stdin=subprocess.DEVNULL,
+        )
+        os.close(slave)
+        received = bytearray()
+        try:
+            while select.select([master], [], [], timeout)[0]:
+                try:
+                    chunk = os.read(master, 4096)
+                except OSError:  # the child closed its end
+                    break
+                if not chunk:
+                    break
+                received += chunk
+        finally:
+            os.close(master)
+            if proc.poll() is None:
+                proc.kill()
+            status = proc.wait()
+        out.seek(0)
+        text = out.read().decode()
+    return status, text, received.decode("utf-8", "replace")
+
+
 def _modules_loaded_by(code: str) -> set[str]:
     # The list goes last on stdout, after anything CODE prints.
     proc = _run_python(
@@ -103,6 +141,14 @@ def run_cli() -> Callable[..., Completed]:
     movingpunch ARGS`` in a subprocess; stdout and stderr captured as text,
     the exit status not checked."""
     return _run_cli
+
+
+@pytest.fixture
+def run_on_a_terminal() -> Callable[..., tuple[int, str, str]]:
+    """``run_on_a_terminal(*args, timeout=CLI_TIMEOUT)``: ``python -m
+    movingpunch ARGS`` with stderr on a pseudo-terminal (stdout into a
+    file): (exit status, stdout, everything the terminal received)."""
+    return _run_on_a_terminal
 
 
 @pytest.fixture

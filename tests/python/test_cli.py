@@ -396,3 +396,30 @@ def test_abbreviated_options_are_refused(
     proc = run_cli("solve", *PAPER_CASE, "--n", "8")
     assert proc.returncode == 2, proc
     assert "unrecognized arguments: --n 8" in proc.stderr
+
+
+def test_solve_hints_when_the_result_leaves_small_strains(
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+) -> None:
+    # P/(mu h) = 50 on R/h = 100: delta/h 2.4, a/h 21.6 (movingpunch.regime).
+    heavy = [*PAPER_CASE[:-1], "50"]
+    proc = run_cli("solve", *heavy)
+    assert proc.returncode == 0, proc.stderr  # a hint never fails the command
+    hints = [line for line in proc.stderr.splitlines() if line.startswith("hint: ")]
+    assert len(hints) == 1, proc.stderr
+    assert "δ/h 2.4 > 0.05" in hints[0]
+    assert "a/h 21.6 > 5" in hints[0]
+    assert "beyond small-strain linear theory" in hints[0]
+    assert "hint" not in proc.stdout
+    data = json.loads(run_cli("solve", *heavy, "--json").stdout)
+    assert any(h.startswith("δ/h 2.4") for h in data["hints"])
+
+
+def test_solve_paper_case_has_no_hint(
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+) -> None:
+    proc = run_cli("solve", *PAPER_CASE, "--stress")
+    assert proc.returncode == 0, proc.stderr
+    assert "hint" not in proc.stderr
+    data = json.loads(run_cli("solve", *PAPER_CASE, "--json").stdout)
+    assert data["hints"] == []

@@ -3,6 +3,7 @@ subprocess)."""
 
 from __future__ import annotations
 
+import json
 import math
 import re
 import subprocess
@@ -65,7 +66,9 @@ def test_run_writes_csv_and_json_that_load_back(
         5,
     )
 
-    proc = run_cli("run", "table1", "--format", "json", "--jobs", "2", cwd=tmp_path)
+    proc = run_cli(
+        "run", "table1", "--format", "json", "--out", ".", "--jobs", "2", cwd=tmp_path
+    )
     assert proc.returncode == 0, proc.stderr
     meta, cols = read_json(tmp_path / "table1-sweep.json")
     assert meta["scene"] == Scene.bundled("table1")
@@ -226,3 +229,190 @@ def test_run_piped_prints_the_numbers(
         np.testing.assert_allclose(table[:, j], direct[name], rtol=1e-9, atol=1e-12)
     for output in ("contact_width", "surface_stress", "depth_stress"):
         assert any(line.startswith(f"Output {output}:") for line in lines), output
+
+
+def test_run_format_json_without_out_prints_one_document(
+    tmp_path: Path, run_cli: Callable[..., subprocess.CompletedProcess[str]]
+) -> None:
+    # stdout is the JSON document and nothing else; no file is written.
+    proc = run_cli("run", "fig4", "--format", "json", "--jobs", "1", cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stderr == ""
+    assert list(tmp_path.iterdir()) == []
+    doc = json.loads(proc.stdout)
+    assert doc["scene_name"] == "fig4"
+    assert doc["movingpunch_version"] == mp.__version__
+    assert Scene.from_toml(doc["scene"]) == Scene.bundled("fig4")
+    assert doc["params"]["radius"] == 100.0
+    direct = Scene.bundled("fig4").run(jobs=1)
+    assert list(doc["outputs"]) == list(direct.outputs)
+    for name, data in direct.outputs.items():
+        got = doc["outputs"][name]
+        assert got["title"] == data.title
+        assert list(got["columns"]) == list(data.columns)
+        for col, values in data.columns.items():
+            np.testing.assert_allclose(
+                np.asarray(got["columns"][col], dtype=float),
+                values,
+                rtol=1e-9,
+                atol=1e-12,
+                err_msg=f"{name}.{col}",
+            )
+    # The summary's values: a/h, p0, δ/h of each curve.
+    width = doc["outputs"]["contact_width"]["columns"]
+    s = mp.solve(vstar=0.2, kw=1.0, radius=100.0, load=0.002)
+    assert width["a"][width["vstar"].index(0.2)] == pytest.approx(s.a, rel=1e-9)
+    assert [st["name"] for st in doc["stages"]] == [st.name for st in direct.stages]
+
+
+def test_run_format_json_is_the_files_serialisation(
+    tmp_path: Path, run_cli: Callable[..., subprocess.CompletedProcess[str]]
+) -> None:
+    # table1 has kw = inf: non-finite numbers are written as in the JSON
+    # files ("inf"), so that the document is valid JSON (no Infinity).
+    proc = run_cli("run", "table1", "--format", "json", "--jobs", "1")
+    assert proc.returncode == 0, proc.stderr
+    assert "Infinity" not in proc.stdout
+    assert "NaN" not in proc.stdout
+    doc = json.loads(proc.stdout)
+    files = run_cli(
+        "run", "table1", "--format", "json", "--out", str(tmp_path), "--jobs", "1"
+    )
+    assert files.returncode == 0, files.stderr
+    for name, data in doc["outputs"].items():
+        on_disk = json.loads((tmp_path / f"table1-{name}.json").read_text())
+        assert data["title"] == on_disk["title"]
+        assert data["columns"] == on_disk["columns"]
+    assert doc["outputs"]["sweep"]["columns"]["kw"][-1] == "inf"
+
+
+def test_run_format_json_refuses_plot(
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+    assert_one_line_error: Callable[..., None],
+) -> None:
+    proc = run_cli("run", "fig4", "--format", "json", "--plot")
+    assert_one_line_error(proc, "--plot", "--format json", "--out")
+
+
+def test_progress_only_when_stderr_is_a_terminal(
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+    run_on_a_terminal: Callable[..., tuple[int, str, str]],
+) -> None:
+    # table1's sweep reports progress; piped, stderr stays empty.
+    piped = run_cli("run", "table1", "--jobs", "1", "--no-plot")
+    assert piped.returncode == 0, piped.stderr
+    assert piped.stderr == ""
+    # On a terminal the same run draws its bar there (never on stdout).
+    status, out, terminal = run_on_a_terminal("run", "table1", "--jobs", "1")
+    assert status == 0, terminal
+    assert "\r[" in terminal, terminal
+    assert "] 8/8" in terminal, terminal
+    assert "\r" not in out
+    assert "[#" not in out
+
+
+VALID_LOAD_50 = VALID.replace("load = 0.002", "load = 50")
+
+
+@pytest.mark.parametrize(("params", "hint"), [(VALID, False), (VALID_LOAD_50, True)])
+def test_run_prints_plausibility_hints(
+    params: str,
+    hint: bool,
+    tmp_path: Path,
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+) -> None:
+    path = tmp_path / "scene.toml"
+    path.write_text(params + "[outputs]\ncontact_width = true\n", encoding="utf-8")
+    proc = run_cli("run", str(path), "--no-plot")
+    assert proc.returncode == 0, proc.stderr
+    lines = [line for line in proc.stdout.splitlines() if line.startswith("hint: ")]
+    if hint:
+        assert len(lines) == 1, proc.stdout
+        assert "δ/h 2.4 > 0.05" in lines[0]
+        assert "a/h 21.6 > 5" in lines[0]
+    else:
+        assert lines == [], proc.stdout
+    doc = json.loads(run_cli("run", str(path), "--format", "json").stdout)
+    assert bool(doc["hints"]) is hint
+
+
+# --- ASCII plots: legends and labels outside the data -------------------------
+
+
+def _plots(name: str, width: int = 80) -> list[list[str]]:
+    from movingpunch.scene import ascii_plots
+
+    text = ascii_plots(Scene.bundled(name).run(jobs=1), width=width)
+    blocks: list[list[str]] = [[]]
+    for line in text.splitlines():
+        if line == "":
+            blocks.append([])
+        else:
+            blocks[-1].append(line)
+    return [b for b in blocks if b]
+
+
+@pytest.mark.parametrize(
+    ("name", "width"),
+    [("fig4", 80), ("pasternak", 80), ("two-axle", 80), ("fig5", 60)],
+)
+def test_ascii_plots_keep_legends_and_labels_outside(name: str, width: int) -> None:
+    scene = Scene.bundled(name)
+    labels = {
+        c.label
+        for data in scene.run(jobs=1).outputs.values()
+        for c in data.curves
+        if c.label
+    }
+    blocks = _plots(name, width)
+    assert blocks
+    for block in blocks:
+        top = next(i for i, line in enumerate(block) if "┌" in line)
+        bottom = next(i for i, line in enumerate(block) if "└" in line)
+        inside = block[top : bottom + 1]
+        below = block[bottom + 1 :]
+        # (d) nothing wider than asked.
+        assert all(len(line) <= width for line in block), block
+        # (c) both axes with their units, under the frame.
+        axes = next(line for line in below if "x axis:" in line)
+        assert "y axis:" in " ".join(below), block
+        assert re.search(r"x axis: \S+", axes)
+        # (a) no legend or label text in the frame.
+        for line in inside:
+            assert "axis" not in line, block
+            assert "legend" not in line, block
+            for label in labels:
+                assert label not in line, (label, block)
+        legend = [line for line in below if line.lstrip().startswith("legend:")]
+        if scene.vary is not None:
+            # (b) a legend after the frame: one distinct marker per series,
+            # each drawn in the frame.
+            assert legend, block
+            entries = re.findall(r"(\S) (\S+=\S+)", " ".join(below))
+            markers = [m for m, _ in entries]
+            assert len(markers) == len(scene.vary.values) == len(set(markers))
+            if name != "pasternak":  # there V*_cr's curves coincide
+                for marker in markers:
+                    assert any(marker in line for line in inside[1:-1]), marker
+        else:
+            assert legend == [], block
+
+
+def test_ascii_plots_state_units() -> None:
+    text = "\n".join(line for b in _plots("fig4") for line in b)
+    assert "x axis: x/h   y axis: p/(P/h)" in text
+    assert "x axis: x/h   y axis: sigma_x(x, 0)/(P/h)" in text
+    assert "x axis: y/h   y axis: sigma_x(0, y)/(P/h)" in text
+    text = "\n".join(line for b in _plots("pasternak") for line in b)
+    assert "x axis: k_p/(μh)   y axis: a/h" in text
+
+
+def test_run_help_documents_json_and_dask_timeout(
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+) -> None:
+    proc = run_cli("run", "--help")
+    assert proc.returncode == 0, proc.stderr
+    text = " ".join(proc.stdout.split())
+    assert "--format json without --out prints the whole result as one JSON" in text
+    assert "--dask-timeout SECONDS" in text
+    assert "0 < SECONDS <= 3600" in text

@@ -4,6 +4,9 @@ numbers of the local run. Needs the ``dask`` extra, which CI installs."""
 from __future__ import annotations
 
 import dataclasses
+import re
+import subprocess
+from collections.abc import Callable
 
 import numpy as np
 import pytest
@@ -59,3 +62,88 @@ def test_unreachable_scheduler_is_a_one_line_error(
     monkeypatch.setattr(_executors, "DASK_CONNECT_TIMEOUT", 1.0)
     with pytest.raises(ClusterError, match="cannot reach the scheduler"):
         _scene().run(dask="tcp://127.0.0.1:9")
+
+
+DEAD = "tcp://127.0.0.1:1"
+
+
+def test_cli_dead_scheduler_counts_down_and_names_the_timeout(
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+) -> None:
+    # Piped stderr: plain lines (no \r), then one error naming --dask, the
+    # address and the timeout.
+    proc = run_cli("run", "fig3", "--dask", DEAD, "--dask-timeout", "2")
+    assert proc.returncode == 2, proc.stderr
+    assert proc.stdout == ""
+    assert "\r" not in proc.stderr
+    lines = proc.stderr.splitlines()
+    assert lines[0] == f"connecting to {DEAD} … (timeout 2 s)"
+    assert lines[-1].startswith(
+        f"movingpunch: error: --dask {DEAD} (--dask-timeout 2 s)"
+    )
+    assert "cannot reach the scheduler" in lines[-1]
+    assert len(lines) == 2  # a countdown line at most every 5 s
+    assert "Traceback" not in proc.stderr
+
+
+def test_cli_dead_scheduler_countdown_on_a_terminal(
+    run_on_a_terminal: Callable[..., tuple[int, str, str]],
+) -> None:
+    # On a terminal: one line redrawn in place with the seconds left.
+    status, out, terminal = run_on_a_terminal(
+        "run", "fig3", "--dask", DEAD, "--dask-timeout", "2.5"
+    )
+    assert status == 2, terminal
+    assert out == ""
+    assert f"\r\x1b[Kconnecting to {DEAD} … (timeout 2.5 s)" in terminal
+    assert re.search(
+        rf"\r\x1b\[Kconnecting to {re.escape(DEAD)} … [12] s left", terminal
+    )
+    assert f"movingpunch: error: --dask {DEAD} (--dask-timeout 2.5 s)" in terminal
+
+
+@pytest.mark.parametrize("value", ["0", "-1", "3601", "nan", "soon"])
+def test_cli_bad_dask_timeout(
+    value: str,
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+    assert_one_line_error: Callable[..., None],
+) -> None:
+    proc = run_cli("run", "fig3", "--dask", DEAD, "--dask-timeout", value)
+    assert_one_line_error(proc, "--dask-timeout", "0 < SECONDS <= 3600", value)
+
+
+def test_cli_connects_and_says_so(
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+) -> None:
+    with LocalCluster(
+        n_workers=1,
+        threads_per_worker=1,
+        processes=False,
+        host="127.0.0.1",
+        protocol="tcp://",
+        dashboard_address=None,
+    ) as cluster:
+        address = cluster.scheduler_address
+        proc = run_cli("run", "table1", "--dask", address, "--no-plot")
+    assert proc.returncode == 0, proc.stderr
+    lines = proc.stderr.splitlines()
+    assert lines[0] == f"connecting to {address} … (timeout 20 s)"
+    assert f"connected to {address} (1 worker)" in lines
+    assert "Stages" in proc.stdout
+
+
+def test_run_reports_connecting_with_its_timeout() -> None:
+    events: list[tuple[str, float]] = []
+    with pytest.raises(ClusterError, match=r"within 1\.5 s"):
+        _scene().run(
+            dask=DEAD,
+            dask_timeout=1.5,
+            on_dask=lambda event, value: events.append((event, value)),
+        )
+    assert events == [("connecting", 1.5)]
+
+
+@pytest.mark.parametrize("value", [0.0, -1.0, float("nan"), float("inf")])
+def test_run_refuses_a_bad_dask_timeout(value: float) -> None:
+    with pytest.raises(ValueError, match="dask_timeout"):
+        _scene().run(dask=DEAD, dask_timeout=value)

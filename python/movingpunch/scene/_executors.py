@@ -30,11 +30,17 @@ from movingpunch.scene._plan import (
 )
 from movingpunch.scene._solve import solve_chunk
 
-__all__ = ["DASK_CONNECT_TIMEOUT"]
+__all__ = ["DASK_CONNECT_TIMEOUT", "DaskEvents"]
 
 
 DASK_CONNECT_TIMEOUT = 20.0
-"""Seconds to wait for a Dask scheduler before giving up."""
+"""Seconds to wait for a Dask scheduler before giving up (the default of
+``Scene.run(dask_timeout=...)``)."""
+
+DaskEvents = Callable[[str, float], None]
+"""``on_dask(event, value)``: ``("connecting", timeout)`` just before the
+client connects, ``("connected", workers)`` once the scheduler answered
+(its number of workers). A failure raises ClusterError instead."""
 
 # Chunks sent ahead to each worker: one computing, one queued, while more
 # than _TAIL chunks per process are left; then one, so that no process idles
@@ -276,29 +282,29 @@ def pool_map(
 # ----------------------------------------------------------------------------
 
 
-def _dask_client(distributed: Any, address: str) -> Any:
+def _dask_client(distributed: Any, address: str, timeout: float | None = None) -> Any:
     """A client of the scheduler at ``address``; every step of connecting,
-    the handshake included, within DASK_CONNECT_TIMEOUT seconds (Client's own
-    ``timeout`` does not bound the handshake: a listener that accepts and
-    never answers would hang it)."""
-    timeout = DASK_CONNECT_TIMEOUT
+    the handshake included, within ``timeout`` seconds (default
+    DASK_CONNECT_TIMEOUT; Client's own ``timeout`` does not bound the
+    handshake: a listener that accepts and never answers would hang it)."""
+    seconds = DASK_CONNECT_TIMEOUT if timeout is None else timeout
 
     class _BoundedClient(distributed.Client):  # type: ignore[misc]
         def start(self, **kwargs: Any) -> None:
             try:
-                super().start(callback_timeout=timeout, **kwargs)
+                super().start(callback_timeout=seconds, **kwargs)
             except BaseException:
                 with contextlib.suppress(Exception):
-                    self.close(timeout=min(timeout, _STOP_SECONDS))
+                    self.close(timeout=min(seconds, _STOP_SECONDS))
                 raise
 
     try:
-        return _BoundedClient(address, timeout=timeout, set_as_default=False)
+        return _BoundedClient(address, timeout=seconds, set_as_default=False)
     except (OSError, TimeoutError) as exc:
         why = str(exc) or type(exc).__name__
         raise ClusterError(
             f"dask: cannot reach the scheduler at {address!r} within "
-            f"{timeout:g} s: {why}"
+            f"{seconds:g} s: {why}"
         ) from None
 
 
@@ -307,23 +313,32 @@ def dask_map(
     make_chunks: Callable[[int, float, float], list[Chunk]],
     address: str,
     consume: Callable[[Chunk, Sequence[Mapping[str, Any]]], None],
+    *,
+    timeout: float | None = None,
+    on_dask: DaskEvents | None = None,
 ) -> None:
     """Solves the sweep's chunks on the Dask scheduler at ``address``.
 
-    Every wait is bounded by DASK_CONNECT_TIMEOUT: connecting; and while
-    results are awaited, a stretch that long without one makes it ask the
-    scheduler (within the same timeout) whether it still answers and has
-    workers, and gives up with ClusterError if not."""
+    Every wait is bounded by ``timeout`` (default DASK_CONNECT_TIMEOUT):
+    connecting; and while results are awaited, a stretch that long without
+    one makes it ask the scheduler (within the same timeout) whether it
+    still answers and has workers, and gives up with ClusterError if not.
+    ``on_dask`` hears of connecting and of the connection (``DaskEvents``)."""
     try:
         distributed: Any = importlib.import_module("distributed")
     except ImportError:
         raise MissingExtraError(
             "--dask needs Dask distributed: pip install 'movingpunch[dask]'"
         ) from None
-    timeout = DASK_CONNECT_TIMEOUT
-    client = _dask_client(distributed, address)
+    if timeout is None:
+        timeout = DASK_CONNECT_TIMEOUT
+    if on_dask is not None:
+        on_dask("connecting", timeout)
+    client = _dask_client(distributed, address, timeout)
     try:
         workers = _dask_workers(client, address, timeout)
+        if on_dask is not None:
+            on_dask("connected", float(workers))
         chunks = make_chunks(max(workers, 1), DASK_CHUNK_MIN, DASK_CHUNK_MAX)
         futures = [
             client.submit(solve_chunk, chunk_tasks(plan, chunk), pure=False)

@@ -25,6 +25,7 @@ from movingpunch.scene._scene import Scene, SceneResult
 
 __all__ = [
     "ascii_plots",
+    "format_json",
     "format_summary",
     "read_csv",
     "read_json",
@@ -90,9 +91,10 @@ def _table(header: Sequence[str], rows: Sequence[Sequence[str]]) -> list[str]:
     return [line.rstrip() for line in lines]
 
 
-def format_summary(result: SceneResult) -> str:
-    """The run as text: the scene, its scalar results, the sweep table and
-    the stages with their times."""
+def format_summary(result: SceneResult, hints: Sequence[str] = ()) -> str:
+    """The run as text: the scene, its scalar results, the sweep table, the
+    warnings, the plausibility ``hints`` (one line ``hint: ...``, if any)
+    and the stages with their times."""
     scene = result.scene
     out: list[str] = []
     title = f"Scene {scene.name}" if scene.name else "Scene"
@@ -176,6 +178,9 @@ def format_summary(result: SceneResult) -> str:
         out += ["", f"Warnings ({len(result.warnings)})"]
         out += [f"  warning: {w}" for w in result.warnings]
 
+    if hints:
+        out += ["", "hint: " + "; ".join(hints)]
+
     out += [
         "",
         f"Stages (total {result.total_seconds:.3f} s, jobs {result.jobs or 'dask'})",
@@ -258,10 +263,42 @@ def _plot_items(
     return items
 
 
+_MARKERS = ("•", "+", "x", "o", "*", "#", "%", "@", "=", "~")
+"""The marker of each series of a plot with several (one series: braille
+dots); a legend line under the plot names them."""
+
+
+def _wrap_items(prefix: str, items: Sequence[str], width: int) -> list[str]:
+    """``prefix`` then ``items``, three spaces apart, on as many lines as
+    ``width`` needs (the next lines indented like the first item; an item
+    longer than a line is cut with "…")."""
+    indent = " " * len(prefix)
+    room = max(width - len(prefix), 2)
+    lines: list[str] = []
+    line = ""
+    for item in items:
+        if len(item) > room:
+            item = item[: room - 1] + "…"
+        if line and len(line) + 3 + len(item) <= room:
+            line += "   " + item
+        else:
+            if line:
+                lines.append(line)
+            line = item
+    if line:
+        lines.append(line)
+    return [(prefix if i == 0 else indent) + text for i, text in enumerate(lines)]
+
+
 def ascii_plots(
     result: SceneResult, *, width: int = 80, height: int = 20, color: bool = False
 ) -> str:
-    """ASCII plots (plotext) of every curve output and every sweep quantity."""
+    """ASCII plots (plotext) of every curve output and every sweep quantity.
+
+    Each plot is its title, the frame with the curves, and under the frame
+    (never over the curves) a line naming both axes with their units and,
+    when the plot has several series, a legend: each series its own marker
+    (and, with ``color``, its own colour). No line is wider than ``width``."""
     plt: Any = importlib.import_module("plotext")
 
     blocks = []
@@ -270,24 +307,33 @@ def ascii_plots(
         plt.plotsize(width, height)
         if not color:
             plt.theme("clear")
-        drawn = False
+        shown = []
         for c in curves:
             mask = np.isfinite(c.x) & np.isfinite(c.y)
-            if mask.sum() < 1:
-                continue
-            plt.plot(c.x[mask].tolist(), c.y[mask].tolist(), label=c.label or None)
-            drawn = True
-        if not drawn:
+            if mask.sum() >= 1:
+                shown.append((c, mask))
+        if not shown:
             continue
+        several = len(shown) > 1
+        legend = []
+        for k, (c, mask) in enumerate(shown):
+            marker = _MARKERS[k % len(_MARKERS)] if several else "braille"
+            plt.plot(c.x[mask].tolist(), c.y[mask].tolist(), marker=marker)
+            if several:
+                legend.append(f"{marker} {c.label or f'series {k + 1}'}")
         if log_x:
             plt.xscale("log")
-        plt.title(title)
-        plt.xlabel(xl)
-        plt.ylabel(yl)
+        plt.title(title[:width])
         text = plt.build()
-        blocks.append(text if color else plt.uncolorize(text))
+        text = text if color else plt.uncolorize(text)
+        lines = [line.rstrip() for line in text.splitlines()]
+        x_axis = f"x axis: {xl or '-'}{' (log scale)' if log_x else ''}"
+        lines += _wrap_items("  ", [x_axis, f"y axis: {yl or '-'}"], width)
+        if legend:
+            lines += _wrap_items("  legend: ", legend, width)
+        blocks.append("\n".join(lines))
     plt.clear_figure()
-    return "\n".join(blocks)
+    return "\n\n".join(blocks)
 
 
 def pyplot() -> Any:
@@ -493,20 +539,55 @@ _DETAILS = ("contact_zones", "punches")
 """The details an output may carry (``OutputData.details``)."""
 
 
+def _json_data(
+    columns: Mapping[str, FloatArray], details: Mapping[str, Any] | None = None
+) -> dict[str, Any]:
+    """An output's details and columns as JSON values (non-finite floats as
+    "nan", "inf", "-inf"): the data of a JSON file and of ``format_json``."""
+    return {
+        **{k: _json_safe(v) for k, v in (details or {}).items()},
+        "columns": {
+            k: [_json_float(float(x)) for x in np.asarray(v, dtype=np.float64)]
+            for k, v in columns.items()
+        },
+    }
+
+
 def _json(
     meta: Mapping[str, str],
     scene_toml: str,
     columns: Mapping[str, FloatArray],
     details: Mapping[str, Any] | None = None,
 ) -> str:
-    doc = {
-        **meta,
-        **{k: _json_safe(v) for k, v in (details or {}).items()},
-        "scene": scene_toml,
-        "columns": {
-            k: [_json_float(float(x)) for x in np.asarray(v, dtype=np.float64)]
-            for k, v in columns.items()
+    data = _json_data(columns, details)
+    cols = data.pop("columns")
+    doc = {**meta, **data, "scene": scene_toml, "columns": cols}
+    return json.dumps(doc, indent=1, allow_nan=False) + "\n"
+
+
+def format_json(result: SceneResult, hints: Sequence[str] = ()) -> str:
+    """The whole run as one JSON document (``movingpunch run --format json``
+    without ``--out`` prints it): the package version, the scene (TOML) and
+    its parameters, the warnings and plausibility ``hints``, every output's
+    (and the sweep's) title, details and columns as the JSON files hold
+    them (non-finite numbers as "nan", "inf", "-inf"), and the stages."""
+    doc: dict[str, Any] = {
+        "movingpunch_version": version(),
+        "scene_name": result.scene.name,
+        "scene": result.scene.to_toml(),
+        "params": _json_safe(dict(result.scene.params)),
+        "warnings": list(result.warnings),
+        "hints": list(hints),
+        "outputs": {
+            output: {"title": title, **_json_data(columns, details)}
+            for output, title, columns, details in _tables(result)
         },
+        "stages": [
+            {"name": s.name, "count": s.count, "seconds": s.seconds}
+            for s in result.stages
+        ],
+        "total_seconds": result.total_seconds,
+        "jobs": result.jobs,
     }
     return json.dumps(doc, indent=1, allow_nan=False) + "\n"
 

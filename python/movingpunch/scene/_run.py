@@ -16,7 +16,7 @@ from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
 from movingpunch.errors import MovingPunchError
-from movingpunch.scene._executors import dask_map, pool_map
+from movingpunch.scene._executors import DaskEvents, dask_map, pool_map
 from movingpunch.scene._model import SceneData
 from movingpunch.scene._outputs import OUTPUTS
 from movingpunch.scene._plan import (
@@ -47,6 +47,8 @@ def run_scene(
     jobs: int | None = 1,
     progress: Callable[[int, int], None] | None = None,
     dask: str | None = None,
+    dask_timeout: float | None = None,
+    on_dask: DaskEvents | None = None,
 ) -> RunRecord:
     """Runs ``scene`` (see ``Scene.run``): all the result but the scene."""
     if jobs is not None and (
@@ -74,7 +76,9 @@ def run_scene(
     sweep_table: SweepTable | None = None
     used_jobs = 1
     if sweep_plan is not None:
-        sweep_table, used_jobs = _run_sweep(run, sweep_plan, n_jobs, dask, remote)
+        sweep_table, used_jobs = _run_sweep(
+            run, sweep_plan, n_jobs, dask, remote, (dask_timeout, on_dask)
+        )
 
     outputs: dict[str, OutputData] = {}
     solutions = {
@@ -97,7 +101,12 @@ def run_scene(
 
 
 def _run_sweep(
-    run: RunState, plan: SweepPlan, n_jobs: int, dask: str | None, remote: bool
+    run: RunState,
+    plan: SweepPlan,
+    n_jobs: int,
+    dask: str | None,
+    remote: bool,
+    dask_options: tuple[float | None, DaskEvents | None] = (None, None),
 ) -> tuple[SweepTable, int]:
     scene = run.scene
     assert scene.sweep is not None
@@ -127,7 +136,8 @@ def _run_sweep(
         run.tick(sum(len(keys) for _, keys in chunk))
 
     if dask is not None:
-        dask_map(plan, make_chunks, dask, consume)
+        timeout, on_dask = dask_options
+        dask_map(plan, make_chunks, dask, consume, timeout=timeout, on_dask=on_dask)
         used_jobs = 0
     else:
         chunks = make_chunks(n_jobs, CHUNK_MIN, CHUNK_MAX)

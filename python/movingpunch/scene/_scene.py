@@ -136,14 +136,34 @@ class Scene:
         jobs: int | None = 1,
         progress: Callable[[int, int], None] | None = None,
         dask: str | None = None,
+        dask_timeout: float | None = None,
+        on_dask: Callable[[str, float], None] | None = None,
     ) -> SceneResult:
         """Computes what the scene asks for, and only that.
 
         ``jobs``: worker processes for a sweep (``None``: all cores; 1: in
         this process). ``dask``: address of a Dask scheduler to run the sweep
-        on instead. ``progress(done, total)`` is called as solves finish.
+        on instead; ``dask_timeout``: seconds any wait on it may last
+        (default ``DASK_CONNECT_TIMEOUT``, 20); ``on_dask(event, value)``
+        hears ``("connecting", timeout)`` and ``("connected", workers)``.
+        ``progress(done, total)`` is called as solves finish.
         """
-        record = run_scene(self, jobs=jobs, progress=progress, dask=dask)
+        if dask_timeout is not None and not (
+            isinstance(dask_timeout, (int, float))
+            and math.isfinite(dask_timeout)
+            and dask_timeout > 0
+        ):
+            raise ValueError(
+                f"dask_timeout must be a number of seconds > 0, got {dask_timeout!r}"
+            )
+        record = run_scene(
+            self,
+            jobs=jobs,
+            progress=progress,
+            dask=dask,
+            dask_timeout=dask_timeout,
+            on_dask=on_dask,
+        )
         return SceneResult(scene=self, **vars(record))
 
     # -- derived ------------------------------------------------------------
