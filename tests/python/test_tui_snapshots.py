@@ -1,44 +1,63 @@
-"""Snapshots of the terminal UI (pytest-textual-snapshot): the main screen at
-80x24 and 120x40, and the stress map. Deterministic: the solve time is
-hidden (``show_timing=False``), the cursor does not blink, the kernel cache
-starts empty, and every worker has finished before the screen is taken.
+"""Snapshots of the terminal UI: the gallery in docs/tui.md (SVG
+screenshots of every tab and the help at 80x24 and 120x40 on the paper's
+Fig. 4 scene, ``docs/images/tui-<tab>-<W>x<H>.svg``) is the stored picture,
+and the app must still draw it. Deterministic: the solve time is hidden, the
+cursor does not blink, the kernel cache starts empty, and every worker has
+finished before a screen is taken (``movingpunch.tui.screenshots``).
 
-Regenerate after an intended change of the screen:
-``pytest tests/python/test_tui_snapshots.py --snapshot-update``.
+The Accuracy tab shows measured times, which differ from run to run: its
+file is checked to exist and the layout tests scan its screen.
+
+Regenerate after an intended change of the screen, and review the diff:
+``.venv/bin/python scripts/gallery.py``.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
+import asyncio
+import difflib
+from pathlib import Path
 
 import pytest
 
-import movingpunch as mp
-from movingpunch.tui import create_app
-from movingpunch.tui.model import TabName
-from tui_pilot import settle
+from movingpunch.scene import Scene
+from movingpunch.tui.model import TABS
+from movingpunch.tui.scene_files import from_scene
+from movingpunch.tui.screenshots import GALLERY_SCENE, SIZES, gallery_name, shots
 
-SnapCompare = Callable[..., bool]
-
-
-@pytest.fixture(autouse=True)
-def _cold_kernel_cache() -> None:
-    # The summary shows the iteration count, which depends on whether an
-    # earlier test left a (wider) kernel table in the process-wide cache.
-    mp.clear_kernel_cache()
+IMAGES = Path(__file__).resolve().parents[2] / "docs" / "images"
+TIMED = frozenset({"accuracy"})
+"""Tabs whose screen holds measured times (not compared)."""
 
 
-def app(tab: TabName = "pressure") -> object:
-    return create_app(show_timing=False, cursor_blink=False, tab=tab)
+@pytest.mark.parametrize("size", SIZES, ids=[f"{w}x{h}" for w, h in SIZES])
+def test_the_app_still_draws_the_gallery(size: tuple[int, int]) -> None:
+    state = from_scene(Scene.bundled(GALLERY_SCENE))
+    taken = asyncio.run(shots(state, TABS, size, help_screen=True))
+    assert set(taken) == {*TABS, "help"}
+    changed = []
+    for name, shot in taken.items():
+        path = IMAGES / gallery_name(name, size)
+        assert path.is_file(), f"{path.name} is missing: run scripts/gallery.py"
+        stored = path.read_text(encoding="utf-8")
+        assert stored.startswith("<svg")
+        if name in TIMED or stored == shot.svg:
+            continue
+        diff = difflib.unified_diff(
+            stored.splitlines(), shot.svg.splitlines(), lineterm="", n=0
+        )
+        changed.append(f"{path.name}:\n" + "\n".join(list(diff)[:12]))
+    assert not changed, (
+        "the screen changed; if intended, run scripts/gallery.py and review:\n"
+        + "\n".join(changed)
+    )
 
 
-def test_main_screen_80x24(snap_compare: SnapCompare) -> None:
-    assert snap_compare(app(), terminal_size=(80, 24), run_before=settle)
-
-
-def test_main_screen_120x40(snap_compare: SnapCompare) -> None:
-    assert snap_compare(app(), terminal_size=(120, 40), run_before=settle)
-
-
-def test_stress_map_120x40(snap_compare: SnapCompare) -> None:
-    assert snap_compare(app("field"), terminal_size=(120, 40), run_before=settle)
+def test_the_gallery_is_in_the_docs() -> None:
+    """docs/tui.md shows every picture of the gallery, and no stale one."""
+    doc = (IMAGES.parent / "tui.md").read_text(encoding="utf-8")
+    wanted = {gallery_name(t, s) for t in (*TABS, "help") for s in SIZES}
+    for name in wanted:
+        assert f"images/{name}" in doc, name
+    stored = {p.name for p in IMAGES.glob("tui-*.svg")}
+    assert stored == wanted

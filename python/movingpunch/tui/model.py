@@ -847,8 +847,9 @@ def _curves(
         current = zones_of(solved[0][2])
         if len(current) > 1:
             markers = tuple(e for z in current for e in z)
-    if tab != "depth" and solved:
-        axes = tuple(float(p.at) for p in getattr(solved[0][2], "punches", ()))
+    punches = getattr(solved[0][2], "punches", ()) if solved else ()
+    if tab != "depth" and len(punches) > 1:  # a train: its punches' axes
+        axes = tuple(float(p.at) for p in punches)
     return Curves(
         tab=tab,
         title=title,
