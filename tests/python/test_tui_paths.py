@@ -7,6 +7,7 @@ path that escaped would land next to it, where the test looks for it.
 
 from __future__ import annotations
 
+import asyncio
 import os
 import subprocess
 from collections.abc import Callable
@@ -42,6 +43,14 @@ async def submit(app: MovingPunchApp, pilot: Pilot[None], path: str) -> None:
     assert isinstance(app.screen, PathPrompt)
     app.screen.query_one("#path", Input).value = path
     await pilot.pause()
+    await pilot.press("enter")
+    await pilot.pause()
+
+
+async def confirm(pilot: Pilot[None]) -> None:
+    """The second enter that confirms overwriting (after the prompt's
+    guard against a repeated keypress)."""
+    await asyncio.sleep(PathPrompt.CONFIRM_AFTER + 0.05)
     await pilot.press("enter")
     await pilot.pause()
 
@@ -160,7 +169,9 @@ async def test_overwriting_asks_first(root: Path) -> None:
         prompt = app.screen
         await submit(app, pilot, "old.toml")
         assert app.screen is prompt
-        assert "old.toml exists: press enter again to overwrite" in prompt_message(app)
+        assert prompt_message(app) == (
+            "old.toml exists: enter again to overwrite, escape to cancel"
+        )
         assert old.read_text(encoding="utf-8") == "keep me\n"
         # Another existing path asks again (its own confirmation).
         await submit(app, pilot, "other.csv")
@@ -172,8 +183,7 @@ async def test_overwriting_asks_first(root: Path) -> None:
         assert app.screen is prompt
         assert old.read_text(encoding="utf-8") == "keep me\n"
         # The second enter on the same path writes.
-        await pilot.press("enter")
-        await pilot.pause()
+        await confirm(pilot)
         assert isinstance(app.screen, MainScreen)
         assert Scene.load(old).params["load"] == 0.002
         assert other.read_text(encoding="utf-8") == "keep me too\n"
@@ -189,8 +199,7 @@ async def test_overwriting_asks_first(root: Path) -> None:
         await pilot.press("e")
         await pilot.pause()
         await submit(app, pilot, "other.csv")
-        await pilot.press("enter")
-        await pilot.pause()
+        await confirm(pilot)
         assert isinstance(app.screen, MainScreen)
         assert other.read_text(encoding="utf-8").startswith("#")
 

@@ -385,17 +385,46 @@ def parse_values(name: str, text: str) -> tuple[float, ...]:
 
 @dataclass(frozen=True)
 class SweepSpec:
-    """The a/h tab: a/h against ``param`` on ``values`` (the paper's Figs 2-3)."""
+    """The a/h tab: a/h against ``param`` (the paper's Figs 2-3), on explicit
+    ``values`` or on a range: ``points`` values from ``start`` to ``stop``
+    spaced ``"log"`` or ``"linear"`` (what a saved scene keeps as start,
+    stop, points and spacing).
+
+    The default (no values, no start and stop) is a range too: 13 points on
+    a log scale from a tenth to ten times the current value of ``param``.
+    """
 
     param: str = "load"
     values: tuple[float, ...] | None = None
-    """None: 13 points on a log scale from a tenth to ten times the current."""
+    """Explicit values (a scene's ``values = [...]``); None: a range."""
+    start: float | None = None
+    """The range's first value; None (with ``stop``): the current / 10."""
+    stop: float | None = None
+    """The range's last value; None (with ``start``): the current * 10."""
+    points: int = 13
+    spacing: str = "log"
+    """``"log"`` or ``"linear"``."""
+
+    @property
+    def is_range(self) -> bool:
+        return self.values is None
+
+    def bounds(self, base: Params) -> tuple[float, float]:
+        """The range's start and stop (relative to ``base`` when not fixed)."""
+        if self.start is not None and self.stop is not None:
+            return self.start, self.stop
+        centre = base.get(self.param)
+        start = centre / 10.0 if self.start is None else self.start
+        stop = centre * 10.0 if self.stop is None else self.stop
+        return start, stop
 
     def grid(self, base: Params) -> FloatArray:
         if self.values is not None:
             return np.asarray(self.values, dtype=np.float64)
-        centre = base.get(self.param)
-        return np.geomspace(centre / 10.0, centre * 10.0, 13)
+        start, stop = self.bounds(base)
+        if self.spacing == "log":
+            return np.geomspace(start, stop, self.points)
+        return np.linspace(start, stop, self.points)
 
 
 @dataclass(frozen=True, eq=False)  # arrays: compared by identity
@@ -895,7 +924,7 @@ def _sweep(
         value_label="a/h",
         grid=grid,
         series=tuple(series),
-        log_grid=spec.values is None,
+        log_grid=spec.is_range and spec.spacing == "log",
     )
 
 

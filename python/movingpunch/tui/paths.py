@@ -70,7 +70,7 @@ class WorkingFolder:
             raise OutsideFolderError(f"{text}: is a folder; give a file name")
         if path.exists() and not overwrite:
             raise OverwriteNeeded(
-                f"{text} exists: press enter again to overwrite it, or change the path"
+                f"{text} exists: enter again to overwrite, escape to cancel"
             )
         return path
 

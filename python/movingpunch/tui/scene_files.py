@@ -67,6 +67,14 @@ def load(source: str | Path) -> SceneState:
     return from_scene(scene)
 
 
+def is_file_name(folder: WorkingFolder, text: str) -> bool:
+    """Whether the Open prompt takes ``text`` as a file (it exists in the
+    folder, ends in .toml or has a folder in it) rather than a bundled
+    scene's name."""
+    p = Path(text)
+    return p.suffix == ".toml" or len(p.parts) > 1 or (folder.root / text).exists()
+
+
 def load_in(folder: WorkingFolder, text: str) -> SceneState:
     """What the Open prompt reads: a scene file inside the working folder
     (a name that exists there, ends in .toml or has a folder in it) or a
@@ -74,8 +82,7 @@ def load_in(folder: WorkingFolder, text: str) -> SceneState:
 
     Raises SceneError, or OutsideFolderError for a path leaving the folder.
     """
-    p = Path(text)
-    if p.suffix == ".toml" or len(p.parts) > 1 or (folder.root / text).exists():
+    if is_file_name(folder, text):
         real = folder.resolve(text)
         try:
             scene = Scene.load(real)
@@ -123,20 +130,46 @@ def from_scene(scene: Scene) -> SceneState:
         if scene.vary is None
         else Overlay(scene.vary.param, tuple(float(v) for v in scene.vary.values))
     )
-    sweep = (
-        None
-        if scene.sweep is None
-        else SweepSpec(
-            param=scene.sweep.param,
-            values=tuple(float(v) for v in scene.sweep.values),
-        )
-    )
+    sweep = None if scene.sweep is None else _sweep_spec(scene.sweep)
     return SceneState(
         params=params,
         overlay=overlay,
         sweep=sweep,
         name=scene.name,
         description=scene.description,
+    )
+
+
+def _sweep_spec(sweep: Sweep) -> SweepSpec:
+    """A scene's sweep as the a/h tab's: a range stays a range (start, stop,
+    points, spacing), explicit values stay explicit."""
+    if sweep.is_range:
+        assert sweep.start is not None
+        assert sweep.stop is not None
+        return SweepSpec(
+            param=sweep.param,
+            start=float(sweep.start),
+            stop=float(sweep.stop),
+            points=int(sweep.points or len(sweep.values)),
+            spacing=sweep.spacing,
+        )
+    return SweepSpec(param=sweep.param, values=tuple(float(v) for v in sweep.values))
+
+
+def _sweep_of(spec: SweepSpec, params: Params) -> Sweep:
+    """The a/h tab's sweep as a scene's: a range (the default one too) is
+    written as start, stop, points and spacing; explicit values as values."""
+    if spec.values is not None:
+        values = tuple(float(v) for v in spec.values)
+        return Sweep(param=spec.param, values=values, quantities=("a",))
+    start, stop = spec.bounds(params)
+    return Sweep.range(
+        spec.param,
+        float(start),
+        float(stop),
+        spec.points,
+        spacing=spec.spacing,
+        quantities=("a",),
     )
 
 
@@ -170,8 +203,7 @@ def to_scene(state: SceneState) -> Scene:
     sweep = None
     spec = state.sweep
     if spec is not None and (vary is None or vary.param != spec.param):
-        grid = tuple(float(v) for v in spec.grid(state.params))
-        sweep = Sweep(param=spec.param, values=grid, quantities=("a",))
+        sweep = _sweep_of(spec, state.params)
     try:
         shape = state.params.shape()
     except InvalidParameterError as exc:

@@ -188,6 +188,8 @@ class MainScreen(Screen[None]):
         self.requested: list[Params] = []
         """Every parameter set sent to a worker, oldest first, a repeat of
         the one before (another tab, a pin) not counted (for tests)."""
+        self._last_file = "scene.toml"
+        """What Open and Save suggest: the last scene file saved or opened."""
 
     # -- layout -------------------------------------------------------------
 
@@ -695,12 +697,15 @@ class MainScreen(Screen[None]):
 
     def action_open_scene(self) -> None:
         def attempt(path: str, _confirmed: bool) -> str | None:
-            self.apply(scene_files.load_in(self.folder, path))
+            state = scene_files.load_in(self.folder, path)
+            if scene_files.is_file_name(self.folder, path):
+                self._last_file = path  # a file (not a bundled scene's name)
+            self.apply(state)
             return None
 
         self.app.push_screen(
             PathPrompt(
-                "Open a scene (TOML file or bundled name)", "scene.toml", attempt
+                "Open a scene (TOML file or bundled name)", self._last_file, attempt
             )
         )
 
@@ -715,10 +720,11 @@ class MainScreen(Screen[None]):
                 scene_files.save(state, target)
             except OSError as exc:
                 return write_error(path, exc)
+            self._last_file = path
             self.notify(f"saved {path}")
             return None
 
-        self.app.push_screen(PathPrompt("Save the scene to", "scene.toml", attempt))
+        self.app.push_screen(PathPrompt("Save the scene to", self._last_file, attempt))
 
     def action_export(self) -> None:
         result = self.results.get(self.tab)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import time
 from collections.abc import Callable
 from typing import ClassVar
 
@@ -24,9 +25,20 @@ path tries again with ``True``."""
 
 
 class PathPrompt(ModalScreen[str | None]):
-    """Asks for a path and runs ``attempt`` on it; errors appear inline."""
+    """Asks for a path and runs ``attempt`` on it; errors appear inline.
+
+    Replacing an existing file takes a second enter on the same path, at
+    least ``CONFIRM_AFTER`` seconds after the question appeared (so a
+    double-tapped or auto-repeated enter never confirms it); editing the
+    path drops the question (the new path is asked about on its own).
+    """
 
     BINDINGS: ClassVar[list[BindingType]] = [Binding("escape", "cancel", "Cancel")]
+
+    CONFIRM_AFTER: ClassVar[float] = 0.3
+    """Seconds after the overwrite question before an enter confirms it."""
+
+    HINT = "enter: ok   escape: cancel"
 
     def __init__(self, title: str, default: str, attempt: Attempt) -> None:
         super().__init__()
@@ -35,31 +47,42 @@ class PathPrompt(ModalScreen[str | None]):
         self._attempt = attempt
         self._confirm: str | None = None
         """The path whose overwriting the next enter confirms."""
+        self._asked_at = 0.0
+        """When the overwrite question appeared (time.monotonic())."""
 
     def compose(self) -> ComposeResult:
         with Vertical(classes="prompt-box"):
-            yield Label(self._title, classes="panel-title")
+            yield Label(self._title, classes="panel-title", id="prompt-title")
             yield Input(self._default, id="path")
-            yield Static("enter: ok   escape: cancel", id="prompt-msg")
+            yield Static(self.HINT, id="prompt-msg")
+
+    @property
+    def asking(self) -> str | None:
+        """The path the overwrite question is about (None: no question)."""
+        return self._confirm
 
     def on_input_changed(self, event: Input.Changed) -> None:
         event.stop()
-        if event.value.strip() != self._confirm:
-            self._confirm = None  # an edited path must be confirmed anew
+        if self._confirm is not None and event.value.strip() != self._confirm:
+            self._drop_question()  # an edited path must be confirmed anew
+            msg = self.query_one("#prompt-msg", Static)
+            msg.update(self.HINT)
+            msg.remove_class("-error")
 
     def on_input_submitted(self, event: Input.Submitted) -> None:
         event.stop()
         path = event.value.strip()
         if not path:
-            self._show("give a path")
+            self._show("give a file name or a path inside the working folder")
             return
         confirmed = self._confirm == path
-        self._confirm = None
+        if confirmed and time.monotonic() - self._asked_at < self.CONFIRM_AFTER:
+            return  # the same keypress repeated: the question stays
+        self._drop_question()
         try:
             error = self._attempt(path, confirmed)
         except OverwriteNeeded as ask:
-            self._confirm = path
-            self._show(str(ask))
+            self._ask(path, str(ask))
             return
         except OSError as exc:  # its file name may be a temporary one: not shown
             error = f"{path}: {exc.strerror or type(exc).__name__}"
@@ -69,6 +92,18 @@ class PathPrompt(ModalScreen[str | None]):
             self._show(error)
         else:
             self.dismiss(path)
+
+    def _ask(self, path: str, question: str) -> None:
+        """Shows the overwrite question about ``path``; the title says it."""
+        self._confirm = path
+        self._asked_at = time.monotonic()
+        self.query_one("#prompt-title", Label).update(f"Overwrite {path}?")
+        self._show(question)
+
+    def _drop_question(self) -> None:
+        if self._confirm is not None:
+            self.query_one("#prompt-title", Label).update(self._title)
+        self._confirm = None
 
     def _show(self, message: str) -> None:
         msg = self.query_one("#prompt-msg", Static)
