@@ -330,3 +330,51 @@ async def test_the_bundled_zone_scenes_open_in_the_app(name: str) -> None:
             await settle(pilot)
             assert "Traceback" not in status_text(app)
         assert "zones" in summary_text(app)
+
+
+@sync
+async def test_the_spacing_scene_sweeps_its_spacing() -> None:
+    """The bundled ``spacing`` scene's a/h tab sweeps the train's spacing
+    (it said "unknown parameter 'spacing'"): each point is the train placed
+    as the scene places it, centred on x = 0, solved independently here."""
+    from movingpunch.scene import Scene
+    from movingpunch.tui.scene_files import from_scene
+
+    state = from_scene(Scene.bundled("spacing"))
+    app = create_app(state, show_timing=False, cursor_blink=False, tab="sweep")
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        c = curves(app, "sweep")
+        assert c.grid_label == "spacing/h"
+        assert status_ok(app), status_text(app)
+        p = state.params
+        for j in (0, len(c.grid) // 2, len(c.grid) - 1):
+            s = float(c.grid[j])
+            ref = mp.solve_punches(
+                [
+                    mp.Punch(p.radius, 0.002, at=-s / 2),
+                    mp.Punch(p.radius, 0.002, at=s / 2),
+                ],
+                vstar=p.vstar,
+                kw=p.kw,
+                nu=p.nu,
+            )
+            assert c.series[0].values[j] == pytest.approx(ref.a, rel=1e-9)
+        # w cycles the sweep: load (a notice for a train), radius, spacing.
+        await pilot.press("w")
+        await settle(pilot)
+        assert screen_of(app).sweep.param == "load"
+        await pilot.press("w", "w")
+        await settle(pilot)
+        assert screen_of(app).sweep.param == "spacing"
+
+
+def test_spacing_needs_a_train() -> None:
+    with pytest.raises(InvalidParameterError, match="spacing: applies to a train"):
+        Params().with_value("spacing", 3.0)
+    train = Params(punches=parse_punches("0.002@0, 0.001@1, 0.002@5"))
+    spaced = train.with_value("spacing", 4.0)
+    assert [q.at for q in spaced.punches] == [-4.0, 0.0, 4.0]
+    assert [q.load for q in spaced.punches] == [0.002, 0.001, 0.002]
+    assert spaced.get("spacing") == 4.0
+    assert math.isnan(Params().get("spacing"))

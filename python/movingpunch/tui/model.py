@@ -197,6 +197,7 @@ GRID_LABELS: dict[str, str] = {
     "damping": "damping c_w c_T/μ",
     "kp": "k_p/(μh)",
     "friction": "friction f",
+    "spacing": "spacing/h",
 }
 """Axis labels of a swept parameter (the paper's normalisations)."""
 
@@ -289,14 +290,36 @@ class Params:
         ]
 
     def get(self, name: str) -> float:
+        if name == "spacing":  # a train's: its first two axes' distance
+            if len(self.punches) < 2:
+                return math.nan
+            return self.punches[1].at - self.punches[0].at
         value: float = getattr(self, name)
         return value
 
     def with_value(self, name: str, value: float) -> Params:
+        if name == "spacing":
+            return self.spaced(value)
         if name not in PARAM_NAMES:
             raise InvalidParameterError(f"unknown parameter {name!r}")
         changes: dict[str, object] = {name: value}
         return replace(self, **changes)  # type: ignore[arg-type]
+
+    def spaced(self, spacing: float) -> Params:
+        """The train with its punches equally ``spacing`` apart, centred on
+        x = 0 (at_k = (k - (K - 1)/2) spacing: a scene's sweep over
+        ``spacing``); their loads and shapes kept."""
+        k = len(self.punches)
+        if k < 2:
+            raise InvalidParameterError(
+                "spacing: applies to a train of two or more punches (the train input)",
+                parameter="spacing",
+            )
+        train = tuple(
+            replace(p, at=(i - (k - 1) / 2) * spacing)
+            for i, p in enumerate(self.punches)
+        )
+        return replace(self, punches=train)
 
     def _shown(self, name: str) -> bool:
         """damping, kp and friction only when > 0 (0 is the paper's model)."""

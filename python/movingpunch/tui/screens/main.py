@@ -647,7 +647,14 @@ class MainScreen(Screen[None]):
         self.request()
 
     def action_toggle_sweep(self) -> None:
-        param = "radius" if self.sweep.param == "load" else "load"
+        # load -> radius (-> spacing for a train) -> load
+        order = [
+            "load",
+            "radius",
+            *(["spacing"] if len(self.params.punches) > 1 else []),
+        ]
+        now = self.sweep.param
+        param = order[(order.index(now) + 1) % len(order)] if now in order else "load"
         self.sweep = SweepSpec(param=param)
         self.action_show_tab("sweep")
         self.request()
