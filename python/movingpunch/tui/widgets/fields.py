@@ -17,7 +17,7 @@ from textual.reactive import reactive
 from textual.widget import Widget
 
 SEPARATOR = "  "
-"""Between two fields on a line."""
+"""Between two fields on a line (one space where that saves a line)."""
 
 
 @dataclass(frozen=True)
@@ -45,14 +45,16 @@ class Field:
         return out
 
 
-def pack(fields: Sequence[Field], width: int) -> list[list[Field]]:
+def pack(
+    fields: Sequence[Field], width: int, separator: str = SEPARATOR
+) -> list[list[Field]]:
     """The fields in lines of at most ``width`` cells (a field wider than
     the line gets a line of its own; it is never split)."""
     lines: list[list[Field]] = []
     used = 0
     for f in fields:
-        need = f.width if not lines or not lines[-1] else len(SEPARATOR) + f.width
-        if lines and lines[-1] and used + need <= width:
+        need = len(separator) + f.width
+        if lines and used + need <= width:
             lines[-1].append(f)
             used += need
         else:
@@ -61,17 +63,33 @@ def pack(fields: Sequence[Field], width: int) -> list[list[Field]]:
     return lines
 
 
+def layout(fields: Sequence[Field], width: int) -> tuple[list[list[Field]], str]:
+    """(lines, separator): two spaces between fields, or one where that
+    saves a line (the summary of the paper's case fits one 80-column line)."""
+    width = max(width, 8)
+    wide = pack(fields, width, SEPARATOR)
+    tight = pack(fields, width, " ")
+    return (tight, " ") if len(tight) < len(wide) else (wide, SEPARATOR)
+
+
 def packed_text(fields: Sequence[Field], width: int) -> Text:
     """The fields packed to ``width`` as one Text, a line per row."""
     out = Text(no_wrap=True, overflow="crop")
-    for i, line in enumerate(pack(fields, max(width, 8))):
+    lines, separator = layout(fields, width)
+    for i, line in enumerate(lines):
         if i:
             out.append("\n")
         for j, f in enumerate(line):
             if j:
-                out.append(SEPARATOR)
+                out.append(separator)
             out.append_text(f.render())
     return out
+
+
+def plain_lines(fields: Sequence[Field], width: int) -> list[str]:
+    """The packed lines as plain text (for tests and logs)."""
+    lines, separator = layout(fields, width)
+    return [separator.join(f.text() for f in line) for line in lines]
 
 
 class FieldsLine(Widget):
@@ -95,10 +113,4 @@ class FieldsLine(Widget):
         return packed_text(self.fields, width)
 
     def get_content_height(self, container: Size, viewport: Size, width: int) -> int:
-        return max(len(pack(self.fields, max(width, 8))), 1)
-
-    def plain_lines(self, width: int) -> list[str]:
-        """The lines as plain text at ``width`` (for tests and logs)."""
-        return [
-            SEPARATOR.join(f.text() for f in line) for line in pack(self.fields, width)
-        ]
+        return max(len(layout(self.fields, width)[0]), 1)
