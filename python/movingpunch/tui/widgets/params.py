@@ -24,6 +24,7 @@ from movingpunch.tui.model import (
     fmt,
     format_punches,
 )
+from movingpunch.tui.widgets.fields import Field, packed_text
 
 TEXT_INPUTS: tuple[str, ...] = ("contact", "punches")
 """The text inputs below the numeric ones (the punch's kind, ``profile``,
@@ -108,42 +109,43 @@ class Gauge(Static):
         if self.limits is None:
             return Text("V*/V*_cr  ...", style="dim")
         vstar, vcr, vr = self.limits
-        if self.damped:
-            return self._render_damped(vstar, vcr, vr)
-        ratio = vstar / vcr if vcr > 0 else float("inf")
+        width = self.content_size.width or 28
+        limit, name = (vr, "V*_R") if self.damped else (vcr, "V*_cr")
+        ratio = vstar / limit if limit > 0 else float("inf")
         self.set_class(ratio > WARN_FRACTION, "-warning")
-        width = 12  # fixed: the panel is 30 cells wide at every size
-        filled = round(min(max(ratio, 0.0), 1.0) * width)
-        out = Text("V*/V*_cr ")
+        # The bar takes what the label and the ratio leave (12 in a panel
+        # 30 cells wide, less beside a scrollbar): the line never wraps.
+        head = f"V*/{name} ".ljust(9)
+        bar = max(min(width - len(head) - 5, 12), 3)
+        filled = round(min(max(ratio, 0.0), 1.0) * bar)
+        out = Text(head)
         bar_style = "bold red" if ratio > WARN_FRACTION else "green"
         out.append("█" * filled, bar_style)
-        out.append("░" * (width - filled), "dim")
+        out.append("░" * (bar - filled), "dim")
         out.append(f" {min(ratio, 9.99):.2f}\n")
-        out.append(f"V*_cr {fmt(vcr, 5)}  V*_R {fmt(vr, 5)}")
-        if ratio >= 1.0:
-            out.append("\nabove the critical speed", "bold red")
-        elif ratio > WARN_FRACTION:
-            out.append("\nnear the critical speed", "bold red")
+        speeds = (Field("V*_cr", fmt(vcr, 5), ""), Field("V*_R", fmt(vr, 5), ""))
+        out.append_text(packed_text(speeds, width))
+        note = self._note(vstar, vcr, ratio)
+        if note is not None:
+            out.append("\n")
+            out.append(*note)
         return out
 
-    def _render_damped(self, vstar: float, vcr: float, vr: float) -> Text:
-        ratio = vstar / vr if vr > 0 else float("inf")
-        self.set_class(ratio > WARN_FRACTION, "-warning")
-        width = 12
-        filled = round(min(max(ratio, 0.0), 1.0) * width)
-        out = Text("V*/V*_R  ")
-        bar_style = "bold red" if ratio > WARN_FRACTION else "green"
-        out.append("█" * filled, bar_style)
-        out.append("░" * (width - filled), "dim")
-        out.append(f" {min(ratio, 9.99):.2f}\n")
-        out.append(f"V*_cr {fmt(vcr, 5)}  V*_R {fmt(vr, 5)}")
+    def _note(self, vstar: float, vcr: float, ratio: float) -> tuple[str, str] | None:
+        """(text, style) of the line under the speeds, if any."""
+        if self.damped:
+            if ratio >= 1.0:
+                return ("at or above the Rayleigh speed", "bold red")
+            if ratio > WARN_FRACTION:
+                return ("near the Rayleigh speed", "bold red")
+            if vstar >= vcr:
+                return ("damped: above V*_cr", "yellow")
+            return None
         if ratio >= 1.0:
-            out.append("\nat or above the Rayleigh speed", "bold red")
-        elif ratio > WARN_FRACTION:
-            out.append("\nnear the Rayleigh speed", "bold red")
-        elif vstar >= vcr:
-            out.append("\ndamped: above V*_cr", "yellow")
-        return out
+            return ("above the critical speed", "bold red")
+        if ratio > WARN_FRACTION:
+            return ("near the critical speed", "bold red")
+        return None
 
 
 class ParamsPanel(VerticalScroll):
