@@ -215,8 +215,15 @@ def test_sigint_stops_a_dask_run(tmp_path: Path) -> None:
             time.sleep(0.05)
         assert cluster.scheduler.tasks, "no task reached the scheduler"
         stdout, stderr = _stop(proc, signal.SIGINT, group=False)
+        address = cluster.scheduler_address
     assert proc.returncode == 130, stderr
-    assert stderr == "movingpunch: interrupted\n"
+    # The connection's two lines (stderr is not a terminal: no countdown
+    # redrawn in place), then the interruption.
+    assert stderr.splitlines() == [
+        f"connecting to {address} … (timeout 20 s)",
+        f"connected to {address} (1 worker)",
+        "movingpunch: interrupted",
+    ]
     assert stdout == ""
 
 
