@@ -20,7 +20,11 @@ import movingpunch as mp
 from movingpunch.tui import create_app
 from movingpunch.tui.model import Params, fmt
 from movingpunch.tui.scene_files import SceneState
-from movingpunch.tui.screens.main import DEBOUNCE_SECONDS, _still_typing
+from movingpunch.tui.screens.main import (
+    DEBOUNCE_SECONDS,
+    _still_typing,
+    _still_typing_in,
+)
 from movingpunch.tui.widgets import ParamsPanel
 from tui_pilot import screen_of, settle, status_text, summary_text, sync
 
@@ -178,3 +182,50 @@ async def test_an_error_is_named_under_the_field_being_edited() -> None:
 )
 def test_still_typing(text: str, typing: bool) -> None:
     assert _still_typing(text) is typing
+
+
+@pytest.mark.parametrize(
+    ("name", "text", "typing"),
+    [
+        ("punches", "", False),  # empty: the single punch, complete
+        ("punches", "0.002", True),  # its "@" comes next
+        ("punches", "0.002@", True),
+        ("punches", "0.002@-", True),
+        ("punches", "0.002@-1.5", False),
+        ("punches", "0.002@-1.5,", True),
+        ("punches", "0.002@-1.5, lots", False),
+        ("punches", "0.002@x", False),
+        ("profile", "cyl", True),
+        ("profile", "cylinder", False),
+        ("profile", "zzz", False),
+        ("contact", "au", True),
+        ("contact", "maybe", False),
+        ("vstar", "0.", True),
+    ],
+)
+def test_still_typing_in_text_inputs(name: str, text: str, typing: bool) -> None:
+    assert _still_typing_in(name, text) is typing
+
+
+@sync
+async def test_typing_a_train_shows_no_error_on_the_way() -> None:
+    app = create_app(SceneState(Params()), show_timing=False, cursor_blink=False)
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        screen = screen_of(app)
+        panel = screen.query_one(ParamsPanel)
+        messages: list[str] = []
+        box = screen.query_one("#in-punches", Input)
+        box.focus()
+        await pilot.pause()
+        for char in "0.002@-1.5, 0.002@1.5":
+            await pilot.press(KEY_NAMES.get(char, "space" if char == " " else char))
+            messages.append(panel.message("punches"))
+        await settle(pilot)
+        assert messages == [""] * len(messages)
+        trains = [p.punches for p in screen.requested if p.punches]
+        assert [[(q.load, q.at) for q in t] for t in trains][-1] == [
+            (0.002, -1.5),
+            (0.002, 1.5),
+        ]
+        assert "2 punches" in summary_text(app)

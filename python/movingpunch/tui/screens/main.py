@@ -75,6 +75,7 @@ from movingpunch.tui.widgets import (
 )
 from movingpunch.tui.widgets.fields import Field, FieldsLine
 from movingpunch.tui.widgets.params import INPUTS, LABELS
+from movingpunch.zones import CONTACT_MODES
 
 DEBOUNCE_SECONDS = 0.2
 """A typed value is solved after the user pauses this long (or on enter)."""
@@ -500,7 +501,7 @@ class MainScreen(Screen[None]):
         event.stop()
         name = box_id.removeprefix("in-")
         self._editing = name
-        if name in NUMERIC_INPUTS and _still_typing(event.value):
+        if _still_typing_in(name, event.value):
             # Neither solved nor refused: the user has not finished.
             self._typing.add(name)
             self._invalid.discard(name)
@@ -759,6 +760,40 @@ class MainScreen(Screen[None]):
 
 
 NUMERIC_INPUTS = frozenset(INPUTS) - {"profile", "contact", "punches"}
+
+_CHOICES: dict[str, tuple[str, ...]] = {
+    "profile": model.TUI_PROFILES,
+    "contact": CONTACT_MODES,
+}
+"""The words the text inputs with a choice take."""
+
+
+def _still_typing_in(name: str, text: str) -> bool:
+    """``text`` in the input ``name`` is not finished yet: a number (see
+    ``_still_typing``), the start of one of a choice's words (``cyl``,
+    ``au``), or a train ending where more must follow (``0.002@``,
+    ``0.002@-1.5,``)."""
+    if name in NUMERIC_INPUTS:
+        return _still_typing(text)
+    t = text.strip().lower()
+    if name in _CHOICES:
+        words = _CHOICES[name]
+        return bool(t) and t not in words and any(w.startswith(t) for w in words)
+    if name == "punches" and t:
+        last = t.replace(";", ",").split(",")[-1].strip()
+        if "@" not in last:  # "" after a comma, or a load before its "@"
+            return not last or _still_typing(last) or _is_number(last)
+        at = last.split("@", 1)[1].strip()
+        return not at or _still_typing(at)
+    return False
+
+
+def _is_number(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
 
 
 def _still_typing(text: str) -> bool:
