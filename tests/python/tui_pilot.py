@@ -4,17 +4,16 @@ async test, wait for the workers, read the screen, type into an input."""
 from __future__ import annotations
 
 import asyncio
-import contextlib
 import functools
 from collections.abc import Callable, Coroutine
 from typing import Any, ParamSpec
 
 from textual.pilot import Pilot
 from textual.widgets import Input, Static
-from textual.worker import WorkerFailed
 
 from movingpunch.tui import MovingPunchApp
 from movingpunch.tui.screens import MainScreen
+from movingpunch.tui.screenshots import settled
 from movingpunch.tui.widgets.fields import FieldsLine
 
 P = ParamSpec("P")
@@ -31,27 +30,10 @@ def sync(test: Callable[P, Coroutine[Any, Any, None]]) -> Callable[P, None]:
 
 
 async def settle(pilot: Pilot[None]) -> None:
-    """Waits until every worker is done and its messages are handled (a
-    worker that raises is not an error here: the app shows its error inline,
-    and the tests read it from the screen)."""
-    await _wait(pilot)
-    await pilot.pause()
-    while _busy(pilot):
-        await pilot.pause(0.05)
-        await _wait(pilot)
-        await pilot.pause()
-
-
-def _busy(pilot: Pilot[None]) -> bool:
-    """A worker runs, or a typed value waits for the user's pause."""
-    screen = pilot.app.screen
-    pending = isinstance(screen, MainScreen) and screen.solve_pending
-    return pending or any(w.is_running for w in pilot.app.workers)
-
-
-async def _wait(pilot: Pilot[None]) -> None:
-    with contextlib.suppress(WorkerFailed):
-        await pilot.app.workers.wait_for_complete()
+    """Waits until no solve is pending or running and the screen is drawn
+    (``screenshots.settled``: an error of a worker is shown inline, and the
+    tests read it from the screen)."""
+    await settled(pilot)
 
 
 def screen_of(app: MovingPunchApp) -> MainScreen:

@@ -26,6 +26,7 @@ from movingpunch.fields import StressPeaks
 from movingpunch.params import OPTIONAL, PHYSICAL
 from movingpunch.params import check as check_param
 from movingpunch.profiles import PROFILE_KINDS, Flat, Profile, PunchProfile, RoundedFlat
+from movingpunch.regime import half_length, regime_hints
 from movingpunch.solver import (
     critical_vstar,
     rayleigh_vstar,
@@ -559,6 +560,28 @@ class Summary:
     @property
     def damped(self) -> bool:
         return self.params.damped
+
+
+def summary_hints(s: Summary) -> tuple[str, ...]:
+    """The plausibility hints of a summary (``movingpunch.regime``)."""
+    if s.punches:
+        indentation = max(abs(p.indentation) for p in s.punches)
+        half = max(half_length(p.contact_zones) for p in s.punches)
+        load = sum(p.load for p in s.punches)  # stresses are over the total P
+    else:
+        indentation = s.indentation
+        half = half_length((s.contact_interval,))
+        load = s.params.load
+    peak = max(abs(s.p0), abs(s.top_tensile), abs(s.bottom_tensile))
+    return regime_hints(
+        indentation=indentation,
+        half_length=half,
+        peak_strain=peak * load,
+        vstar=s.params.vstar,
+        critical_vstar=s.critical_vstar,
+        rayleigh_vstar=s.rayleigh_vstar,
+        damped=s.damped,
+    )
 
 
 @dataclass(frozen=True)

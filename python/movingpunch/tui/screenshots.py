@@ -11,6 +11,7 @@ picture.
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import io
 import re
 from collections.abc import Sequence
@@ -20,6 +21,7 @@ from pathlib import Path
 from rich.console import Console
 from textual.app import App
 from textual.pilot import Pilot
+from textual.worker import WorkerFailed
 
 from movingpunch import clear_kernel_cache
 from movingpunch.scene import Scene
@@ -96,10 +98,14 @@ def screen_text(app: App[None]) -> str:
 
 
 async def settled(pilot: Pilot[None]) -> None:
-    """Waits until no solve is pending or running and the screen is drawn."""
+    """Waits until no solve is pending (a typed value waiting for the
+    user's pause) or running, its messages are handled and the screen is
+    drawn. A worker that raised is no error here: the app shows its error
+    inline, on the screen."""
     await pilot.pause()
     while True:
-        await pilot.app.workers.wait_for_complete()
+        with contextlib.suppress(WorkerFailed):
+            await pilot.app.workers.wait_for_complete()
         await pilot.pause()
         screen = pilot.app.screen
         pending = isinstance(screen, MainScreen) and screen.solve_pending

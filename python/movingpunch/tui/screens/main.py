@@ -44,7 +44,6 @@ from movingpunch.errors import (
 )
 from movingpunch.outputs import atomic_write
 from movingpunch.params import PRESETS
-from movingpunch.regime import half_length, regime_hints
 from movingpunch.scene import Scene
 from movingpunch.tui import model, scene_files
 from movingpunch.tui.messages import Computed, Progressed
@@ -310,7 +309,7 @@ class MainScreen(Screen[None]):
         self._status_error = ""
         self._notes = result.notes
         self._warnings = result.summary.warnings
-        self._hints = summary_hints(result.summary)
+        self._hints = model.summary_hints(result.summary)
         self._clear_solver_messages()
         self._show(result)
         self.query_one("#progress", ProgressBar).remove_class("-busy")
@@ -812,28 +811,6 @@ def _still_typing(text: str) -> bool:
 
 _WORDS = ("inf", "infinity", *PRESETS)
 """The words the numeric inputs take: inf (kw), the tolerance presets."""
-
-
-def summary_hints(s: model.Summary) -> tuple[str, ...]:
-    """The plausibility hints of a summary (``movingpunch.regime``)."""
-    if s.punches:
-        indentation = max(abs(p.indentation) for p in s.punches)
-        half = max(half_length(p.contact_zones) for p in s.punches)
-        load = sum(p.load for p in s.punches)  # stresses are over the total P
-    else:
-        indentation = s.indentation
-        half = half_length((s.contact_interval,))
-        load = s.params.load
-    peak = max(abs(s.p0), abs(s.top_tensile), abs(s.bottom_tensile))
-    return regime_hints(
-        indentation=indentation,
-        half_length=half,
-        peak_strain=peak * load,
-        vstar=s.params.vstar,
-        critical_vstar=s.critical_vstar,
-        rayleigh_vstar=s.rayleigh_vstar,
-        damped=s.damped,
-    )
 
 
 def _one_line(error: BaseException | None) -> str:

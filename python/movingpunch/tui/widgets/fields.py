@@ -102,15 +102,8 @@ class FieldsLine(Widget):
 
     fields: reactive[tuple[Field, ...]] = reactive((), layout=True)
 
-    def _inner_width(self, width: int | None = None) -> int:
-        full = self.size.width if width is None else width
-        return max(full - self.styles.gutter.width, 8)
-
     def render(self) -> Text:
-        return self._text(self.content_size.width or self._inner_width())
-
-    def _text(self, width: int) -> Text:
-        return packed_text(self.fields, width)
+        return packed_text(self.fields, self.content_size.width)
 
     def get_content_height(self, container: Size, viewport: Size, width: int) -> int:
         return max(len(layout(self.fields, width)[0]), 1)
