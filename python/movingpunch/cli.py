@@ -42,6 +42,7 @@ from collections.abc import Callable, Sequence
 from types import FrameType
 from typing import Any, NoReturn
 
+from movingpunch._display import drag_scale, shown
 from movingpunch.errors import ClusterError, InvalidParameterError, MovingPunchError
 from movingpunch.fields import StressPeaks
 from movingpunch.params import help_text, range_text
@@ -533,6 +534,10 @@ def _cmd_solve(args: argparse.Namespace) -> int:
     ]
     back, front = s.contact_interval
     zones = tuple(getattr(s, "contact_zones", ((back, front),)))
+    # Round-off is shown as 0 (movingpunch._display): the drag of a
+    # symmetric contact or of mirror-image punches sums to ~1e-19.
+    drag = shown(s.drag, scale=drag_scale((back, front), s.radius))
+    dissipation = shown(s.dissipation, scale=drag_scale((back, front), s.radius))
     several = [("contact zones", _zone_text(zones))] if len(zones) > 1 else []
     results = [
         ("a/h", _fmt(s.a)),
@@ -540,10 +545,10 @@ def _cmd_solve(args: argparse.Namespace) -> int:
         *several,
         ("p0/(P/h)", _fmt(s.p0)),
         ("indentation δ/h", _fmt(s.indentation)),
-        ("drag (∫p x/R dx)/P", _fmt(s.drag)),
+        ("drag (∫p x/R dx)/P", _fmt(drag)),
         ("tangential force/P", _fmt(s.tangential_force)),
         ("end exponents (back, front)", "({}, {})".format(*map(_fmt, s.end_exponents))),
-        ("dissipation/(P V)", _fmt(s.dissipation)),
+        ("dissipation/(P V)", _fmt(dissipation)),
         ("V*_cr", _fmt(s.critical_vstar)),
         ("V*_R", _fmt(s.rayleigh_vstar)),
         ("φ1", _fmt(s.phi1)),
@@ -583,7 +588,8 @@ def _cmd_solve(args: argparse.Namespace) -> int:
                     (
                         f"punch {k + 1} at x/h = {_fmt(q.at)}",
                         f"P/(μh) = {_fmt(q.load)}, zones {_zone_text(q.contact_zones)}"
-                        f", δ/h = {_fmt(q.indentation)}, drag/P = {_fmt(q.drag)}",
+                        f", δ/h = {_fmt(q.indentation)}, drag/P = "
+                        f"{_fmt(shown(q.drag, scale=_punch_drag_scale(q, s.radius)))}",
                     )
                     for k, q in enumerate(punches)
                 ],
@@ -602,21 +608,38 @@ def _print_warnings(result: object) -> None:
 
 
 def _stress_rows(peaks: StressPeaks) -> list[tuple[str, str]]:
-    """Rows of the stress section: the peaks of sigma_x/(P/h) with their x/h."""
+    """Rows of the stress section: the peaks of sigma_x/(P/h) with their x/h.
+    A peak value within its error bound of 0, or a position within round-off
+    of the axis (1e-16 for x/h = 0), is shown as 0 (movingpunch._display)."""
+
+    def value(v: float) -> str:
+        return _fmt(shown(v, estimate=peaks.error_bound))
+
+    def at(x: float) -> str:
+        return _fmt(shown(x, scale=peaks.search_extent))
+
     return [
-        ("top, most compressive", _fmt(peaks.top_compressive)),
-        ("top, most compressive x/h", _fmt(peaks.top_compressive_x)),
-        ("top, most tensile", _fmt(peaks.top_tensile)),
-        ("top, most tensile x/h", _fmt(peaks.top_tensile_x)),
-        ("bottom, most tensile", _fmt(peaks.bottom_tensile)),
-        ("bottom, most tensile x/h", _fmt(peaks.bottom_tensile_x)),
-        ("centre, top (0, 0)", _fmt(peaks.centre_top)),
-        ("centre, bottom (0, -h)", _fmt(peaks.centre_bottom)),
+        ("top, most compressive", value(peaks.top_compressive)),
+        ("top, most compressive x/h", at(peaks.top_compressive_x)),
+        ("top, most tensile", value(peaks.top_tensile)),
+        ("top, most tensile x/h", at(peaks.top_tensile_x)),
+        ("bottom, most tensile", value(peaks.bottom_tensile)),
+        ("bottom, most tensile x/h", at(peaks.bottom_tensile_x)),
+        ("centre, top (0, 0)", value(peaks.centre_top)),
+        ("centre, bottom (0, -h)", value(peaks.centre_bottom)),
         # |x| <= extent: the symmetric solver's half 0 <= x covers it by symmetry.
         ("searched on |x|/h <=", _fmt(peaks.search_extent)),
         ("error bound (peaks)", f"{peaks.error_bound:.2e}"),
         *(("warning", text) for text in peaks.warnings),
     ]
+
+
+def _punch_drag_scale(punch: Any, radius: float) -> float:
+    """``drag_scale`` of one punch of a train: its zones' reach from its axis."""
+    ends = [x - punch.at for zone in punch.contact_zones for x in zone]
+    shape = getattr(punch, "profile", None)
+    own = getattr(shape, "radius", radius)
+    return drag_scale(ends, own if isinstance(own, float) else radius)
 
 
 def _cmd_critical(args: argparse.Namespace) -> int:

@@ -23,21 +23,33 @@ def derived_stresses(
     sigma_z = nu (sigma_x + sigma_y); von Mises from the three normal stresses
     and tau_xy; max_shear is Tresca's (sigma_max - sigma_min)/2 over the three
     principal stresses (sigma_z is one of them).
+
+    At a singular point (a flat punch's sharp edge x = +-b on the surface,
+    where the pressure and so sigma_x, sigma_y, and with friction tau_xy, are
+    infinite) von Mises and max_shear are +inf, the limit of the field as the
+    edge is approached (it grows like 1/sqrt(distance)), never NaN.
     """
-    sigma_z = nu * (sigma_x + sigma_y)
-    von_mises = np.sqrt(
-        0.5
-        * (
-            (sigma_x - sigma_y) ** 2
-            + (sigma_y - sigma_z) ** 2
-            + (sigma_z - sigma_x) ** 2
-        )
-        + 3.0 * tau_xy**2
+    sigma_x, sigma_y, tau_xy = (
+        np.asarray(a, dtype=np.float64) for a in (sigma_x, sigma_y, tau_xy)
     )
-    centre = 0.5 * (sigma_x + sigma_y)
-    radius = np.hypot(0.5 * (sigma_x - sigma_y), tau_xy)
-    principal = np.stack([centre + radius, centre - radius, sigma_z])
+    singular = ~(np.isfinite(sigma_x) & np.isfinite(sigma_y) & np.isfinite(tau_xy))
+    if singular.any():
+        # inf - inf is NaN: compute on the regular points only.
+        sx, sy, txy = (np.where(singular, 0.0, a) for a in (sigma_x, sigma_y, tau_xy))
+    else:
+        sx, sy, txy = sigma_x, sigma_y, tau_xy
+    sigma_z = nu * (sigma_x + sigma_y)
+    sz = nu * (sx + sy)
+    von_mises = np.sqrt(
+        0.5 * ((sx - sy) ** 2 + (sy - sz) ** 2 + (sz - sx) ** 2) + 3.0 * txy**2
+    )
+    centre = 0.5 * (sx + sy)
+    radius = np.hypot(0.5 * (sx - sy), txy)
+    principal = np.stack([centre + radius, centre - radius, sz])
     max_shear = 0.5 * (principal.max(axis=0) - principal.min(axis=0))
+    if singular.any():
+        von_mises = np.where(singular, np.inf, von_mises)
+        max_shear = np.where(singular, np.inf, max_shear)
     return sigma_z, von_mises, max_shear
 
 

@@ -16,11 +16,13 @@ from typing import Any
 
 import numpy as np
 
+from movingpunch._display import drag_scale, shown, singular_note
+from movingpunch._textplot import BLANK, MARKERS, Cell, compose, plain
 from movingpunch._version import version
 from movingpunch.errors import MissingExtraError
 from movingpunch.outputs import publish, safe_name
 from movingpunch.scene._model import SWEEP_QUANTITIES
-from movingpunch.scene._result import Curve, FloatArray
+from movingpunch.scene._result import Curve, FloatArray, OutputData
 from movingpunch.scene._scene import Scene, SceneResult
 
 __all__ = [
@@ -79,6 +81,33 @@ def _fmt(x: float) -> str:
     return f"{x:.10g}"
 
 
+_ENDS = ("a", "contact_start", "contact_end")
+
+
+def _drag_scale(
+    scene: Scene,
+    curve: int,
+    override: Mapping[str, float] | None,
+    ends: Sequence[float],
+) -> float:
+    """``drag_scale`` of the point of the ``curve``-th vary value (with the
+    sweep's ``override``): the contact's reach over its R/h."""
+    values = scene.curve_values()
+    value = values[curve] if curve < len(values) else None
+    radius = scene.point(value, **(override or {})).get("radius", math.inf)
+    return drag_scale([float(x) for x in ends], float(radius))
+
+
+def _punch_drag(d: Mapping[str, Any], scene: Scene, k: int) -> float:
+    """The ``k``-th punch's drag/P as shown: round-off of its scale is 0."""
+    at = float(d["at"])
+    ends = [float(x) - at for zone in d["contact_zones"] for x in zone]
+    radius = scene.point().get("radius", math.inf)
+    if k < len(scene.punches):
+        radius = scene.punches[k].profile.nominal_radius
+    return shown(float(d["drag"]), scale=drag_scale(ends, radius))
+
+
 def _table(header: Sequence[str], rows: Sequence[Sequence[str]]) -> list[str]:
     widths = [len(h) for h in header]
     for row in rows:
@@ -125,6 +154,9 @@ def format_summary(result: SceneResult, hints: Sequence[str] = ()) -> str:
             row = []
             for n in names:
                 value = float(cw.columns[n][i])
+                if n == "drag":  # round-off shown as 0 (movingpunch._display)
+                    ends = (cw.columns["contact_start"][i], cw.columns["contact_end"][i])
+                    value = shown(value, scale=_drag_scale(scene, i, None, ends))
                 row.append(("yes" if value else "NO") if n == "valid" else _fmt(value))
             rows.append(row)
         out += _table(header, rows)
@@ -156,9 +188,12 @@ def format_summary(result: SceneResult, hints: Sequence[str] = ()) -> str:
             row = [_fmt(float(x))]
             for i in range(len(sw.labels)):
                 for q in sw.quantities:
-                    row.append(
-                        _fmt(float(sw.data[q][i, j])) + ("" if sw.valid[i, j] else " !")
-                    )
+                    value = float(sw.data[q][i, j])
+                    if q == "drag":  # round-off shown as 0 (movingpunch._display)
+                        ends = [float(sw.data[e][i, j]) for e in _ENDS if e in sw.data]
+                        at = {sw.param: float(x)}
+                        value = shown(value, scale=_drag_scale(scene, i, at, ends))
+                    row.append(_fmt(value) + ("" if sw.valid[i, j] else " !"))
             rows.append(row)
         out += _table(header, rows)
         if not sw.valid.all():
@@ -221,7 +256,7 @@ def _zone_lines(details: Mapping[str, Any], n: int, scene: Scene) -> list[str]:
                 f"P/(μh) = {_fmt(float(d['load']))}, "
                 f"zones {format_zones(d['contact_zones'])}, "
                 f"δ/h = {_fmt(float(d['indentation']))}, "
-                f"drag/P = {_fmt(float(d['drag']))}"
+                f"drag/P = {_fmt(_punch_drag(d, scene, k))}"
             )
     return lines
 
@@ -263,28 +298,31 @@ def _plot_items(
     return items
 
 
-_MARKERS = ("•", "+", "x", "o", "*", "#", "%", "@", "=", "~")
-"""The marker of each series of a plot with several (one series: braille
-dots); a legend line under the plot names them."""
+_COLOURS = (33, 34, 32, 31, 35, 36, 91, 94, 92, 95)
+"""ANSI colour of each series' marker with ``color``."""
 
 
 def _wrap_items(prefix: str, items: Sequence[str], width: int) -> list[str]:
     """``prefix`` then ``items``, three spaces apart, on as many lines as
     ``width`` needs (the next lines indented like the first item; an item
-    longer than a line is cut with "…")."""
+    longer than a line is cut with "…"). Widths count visible characters
+    (an item's ANSI colour codes take no room)."""
     indent = " " * len(prefix)
     room = max(width - len(prefix), 2)
     lines: list[str] = []
     line = ""
+    used = 0
     for item in items:
-        if len(item) > room:
-            item = item[: room - 1] + "…"
-        if line and len(line) + 3 + len(item) <= room:
+        size = len(plain(item))
+        if size > room:
+            item, size = plain(item)[: room - 1] + "…", room
+        if line and used + 3 + size <= room:
             line += "   " + item
+            used += 3 + size
         else:
             if line:
                 lines.append(line)
-            line = item
+            line, used = item, size
     if line:
         lines.append(line)
     return [(prefix if i == 0 else indent) + text for i, text in enumerate(lines)]
@@ -303,10 +341,6 @@ def ascii_plots(
 
     blocks = []
     for _, title, xl, yl, curves, log_x in _plot_items(result):
-        plt.clear_figure()
-        plt.plotsize(width, height)
-        if not color:
-            plt.theme("clear")
         shown = []
         for c in curves:
             mask = np.isfinite(c.x) & np.isfinite(c.y)
@@ -315,25 +349,68 @@ def ascii_plots(
         if not shown:
             continue
         several = len(shown) > 1
-        legend = []
-        for k, (c, mask) in enumerate(shown):
-            marker = _MARKERS[k % len(_MARKERS)] if several else "braille"
-            plt.plot(c.x[mask].tolist(), c.y[mask].tolist(), marker=marker)
-            if several:
-                legend.append(f"{marker} {c.label or f'series {k + 1}'}")
-        if log_x:
-            plt.xscale("log")
-        plt.title(title[:width])
-        text = plt.build()
-        text = text if color else plt.uncolorize(text)
-        lines = [line.rstrip() for line in text.splitlines()]
+
+        def draw(
+            only: int | None,
+            shown: list[tuple[Curve, Any]] = shown,
+            title: str = title,
+            log_x: bool = log_x,
+            several: bool = several,
+        ) -> str:
+            """The plot with series ``only`` in its marker, the others blank."""
+            plt.clear_figure()
+            plt.plotsize(width, height)
+            plt.theme("clear")
+            order = [k for k in range(len(shown)) if k != only]
+            order += [] if only is None else [only]
+            for k in order:
+                c, mask = shown[k]
+                marker = BLANK
+                if k == only:
+                    marker = MARKERS[k % len(MARKERS)] if several else "braille"
+                plt.plot(c.x[mask].tolist(), c.y[mask].tolist(), marker=marker)
+            if log_x:
+                plt.xscale("log")
+            plt.title(title[:width])
+            return str(plt.build())
+
+        if several:
+            frame, cells = compose(draw, len(shown))
+            lines = _overlay(plain(frame).splitlines(), cells, color)
+        else:
+            lines = plain(draw(0)).splitlines()
+        lines = [line.rstrip() for line in lines]
         x_axis = f"x axis: {xl or '-'}{' (log scale)' if log_x else ''}"
         lines += _wrap_items("  ", [x_axis, f"y axis: {yl or '-'}"], width)
-        if legend:
+        if several:
+            legend = [
+                f"{_paint(MARKERS[k % len(MARKERS)], k, color)} "
+                f"{c.label or f'series {k + 1}'}"
+                for k, (c, _) in enumerate(shown)
+            ]
             lines += _wrap_items("  legend: ", legend, width)
         blocks.append("\n".join(lines))
     plt.clear_figure()
     return "\n\n".join(blocks)
+
+
+def _paint(marker: str, k: int, color: bool) -> str:
+    """``marker`` in series ``k``'s ANSI colour when ``color``."""
+    if not color:
+        return marker
+    return f"\x1b[{_COLOURS[k % len(_COLOURS)]}m{marker}\x1b[0m"
+
+
+def _overlay(lines: list[str], cells: Mapping[Cell, int], color: bool) -> list[str]:
+    """The frame's ``lines`` with each cell's series marker written in."""
+    rows: list[list[str]] = [list(line) for line in lines]
+    for (i, j), k in cells.items():
+        rows[i][j] = _paint(MARKERS[k % len(MARKERS)], k, color)
+    return ["".join(row) for row in rows]
+
+
+_LINE_STYLES = ("-", "--", "-.", ":")
+_PNG_MARKERS = ("o", "s", "^", "x", "D", "v", "+", "*")
 
 
 def pyplot() -> Any:
@@ -360,8 +437,17 @@ def render_pngs(result: SceneResult) -> list[tuple[str, bytes]]:
     try:
         for key, title, xl, yl, curves, log_x in _plot_items(result):
             fig, ax = plt.subplots(figsize=(6.4, 4.4))
-            for c in curves:
-                ax.plot(c.x, c.y, label=c.label or None)
+            for k, c in enumerate(curves):
+                # Line style and marker per curve: coinciding curves stay apart.
+                ax.plot(
+                    c.x,
+                    c.y,
+                    label=c.label or None,
+                    linestyle=_LINE_STYLES[k % len(_LINE_STYLES)],
+                    marker=_PNG_MARKERS[k % len(_PNG_MARKERS)],
+                    markevery=max(len(c.x) // 12, 1),
+                    markersize=4,
+                )
             if log_x:
                 ax.set_xscale("log")
             ax.set(title=title, xlabel=xl, ylabel=yl)
@@ -371,18 +457,8 @@ def render_pngs(result: SceneResult) -> list[tuple[str, bytes]]:
             figures.append((key, fig))
         fd = result.outputs.get("stress_field")
         if fd is not None:
-            spec = result.scene.outputs["stress_field"]
-            comp = spec.resolved_component()
-            n = len(fd.fields)
-            fig, axes = plt.subplots(n, 1, figsize=(6.4, 2.6 * n), squeeze=False)
-            for ax, (label, f) in zip(axes[:, 0], fd.fields, strict=True):
-                mesh = ax.pcolormesh(
-                    f.x, f.y, getattr(f, comp), shading="auto", cmap="RdBu_r"
-                )
-                fig.colorbar(mesh, ax=ax, label=f"{comp}/(P/h)")
-                ax.set(title=f"{comp} {label}".strip(), xlabel="x/h", ylabel="y/h")
-            fig.tight_layout()
-            figures.append((f"stress_field-{comp}", fig))
+            comp = result.scene.outputs["stress_field"].resolved_component()
+            figures.append((f"stress_field-{comp}", field_figure(plt, fd, comp)))
         for name, fig in figures:
             buf = io.BytesIO()
             fig.savefig(buf, format="png", dpi=120)
@@ -391,6 +467,33 @@ def render_pngs(result: SceneResult) -> list[tuple[str, bytes]]:
         for _, fig in figures:
             plt.close(fig)
     return rendered
+
+
+def field_figure(plt: Any, fd: OutputData, comp: str) -> Any:
+    """The figure of a ``stress_field`` output: one map of ``comp`` per
+    curve. A point where the stress is infinite (a flat punch's sharp edges
+    x = ±b on the surface) is masked out of the colours, marked with a
+    magenta x and named by the legend ("masked: singular at x/h = ±0.5")."""
+    n = len(fd.fields)
+    fig, axes = plt.subplots(n, 1, figsize=(6.4, 2.6 * n), squeeze=False)
+    for ax, (label, f) in zip(axes[:, 0], fd.fields, strict=True):
+        values = np.ma.masked_invalid(getattr(f, comp))
+        mesh = ax.pcolormesh(f.x, f.y, values, shading="auto", cmap="RdBu_r")
+        fig.colorbar(mesh, ax=ax, label=f"{comp}/(P/h)")
+        rows, cols = np.nonzero(np.ma.getmaskarray(values))
+        if rows.size:
+            ax.plot(
+                f.x[cols],
+                f.y[rows],
+                "x",
+                color="magenta",
+                clip_on=False,
+                label=singular_note(f.x[np.unique(cols)].tolist()),
+            )
+            ax.legend(loc="lower right", fontsize="small")
+        ax.set(title=f"{comp} {label}".strip(), xlabel="x/h", ylabel="y/h")
+    fig.tight_layout()
+    return fig
 
 
 def write_pngs(result: SceneResult, out_dir: Path) -> list[Path]:

@@ -35,6 +35,7 @@ from textual.widgets import (
 )
 from textual.worker import Worker, WorkerState, get_current_worker
 
+from movingpunch._display import drag_scale, shown
 from movingpunch.errors import (
     ConvergenceError,
     InvalidParameterError,
@@ -444,7 +445,8 @@ class MainScreen(Screen[None]):
             ("bot", fmt(s.bottom_tensile, 3)),
         ]
         if s.damped or abs(s.drag) > 1e-9:  # (a sum of zones' rounding: not shown)
-            parts.append(("drag/P", fmt(s.drag, 4)))
+            scale = drag_scale(s.contact_interval, s.params.radius)
+            parts.append(("drag/P", fmt(shown(s.drag, scale=scale), 4)))
         if s.end_coefficient != 0.0 and s.end_coefficient_back != s.end_coefficient:
             # a flat punch on the asymmetric solver: both edges
             parts.append(("K back", fmt(s.end_coefficient_back, 4)))

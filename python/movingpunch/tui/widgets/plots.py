@@ -7,6 +7,7 @@ the widget has, so they follow the terminal from 80x24 up.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping, Sequence
 
 import numpy as np
 from rich.console import RenderableType
@@ -16,7 +17,9 @@ from textual.reactive import reactive
 from textual.widget import Widget
 from textual_plotext import PlotextPlot
 
-from movingpunch.tui.model import Curves, FieldMap, fmt
+from movingpunch._display import singular_note
+from movingpunch._textplot import BLANK, MARKERS, Cell, compose
+from movingpunch.tui.model import Curves, FieldMap, FloatArray, fmt
 from movingpunch.tui.widgets.fields import Field, packed_text
 
 # Distinct colours for the current curve, the overlay and the pins.
@@ -40,11 +43,20 @@ class CurvePlot(PlotextPlot):
     """Curves of one tab; ``curves`` is None until the first result.
 
     The axes say their units (x/h, y/h, a stress over P/h) and the legend
-    sits below the plot, outside the data area: each curve's colour and
-    label, the zone ends and a train's punch axes (``legend``)."""
+    sits below the plot, outside the data area: each curve's marker, colour
+    and label, the zone ends and a train's punch axes (``legend``).
+
+    One curve is drawn in braille dots; several each in their own marker
+    (``MARKERS``) and colour, composed so that none hides another
+    (``movingpunch._textplot``): where curves share a cell the marker of the
+    one least shown so far is drawn, so curves lying on each other alternate
+    their markers and a crossing keeps every curve on both sides."""
 
     curves: reactive[Curves | None] = reactive(None)
     placeholder: reactive[str] = reactive("computing...")
+    _drawn: tuple[Curves, tuple[int, int, str], Text] | None = None
+    """The last plot drawn: its curves, (width, height, theme) and text:
+    composing several curves builds the plot once per curve."""
 
     def render(self) -> RenderableType:
         plt = self.plt
@@ -56,49 +68,96 @@ class CurvePlot(PlotextPlot):
         entries = legend(data)
         key = packed_text(entries, width) if entries else None
         rows = len(key.plain.splitlines()) if key is not None else 0
-        plt.title(data.title)
+        plot_height = max(height - rows, 6)
+        drawn_series = []
         for i, series in enumerate(data.series):
             finite = np.isfinite(series.values) & np.isfinite(data.grid)
-            if not finite.any():
-                continue
-            grid = data.grid[finite].tolist()
-            values = series.values[finite].tolist()
-            x, y = (values, grid) if data.vertical_grid else (grid, values)
-            plt.plot(x, y, marker="braille", color=PALETTE[i % len(PALETTE)])
-        # The zone ends (several zones) and the punch axes (a train).
-        for x in data.markers:
-            if math.isfinite(x):
-                plt.vline(x, color=ZONE_END_COLOUR)
-        for x in data.axes:
-            if math.isfinite(x):
-                plt.vline(x, color=AXIS_COLOUR)
-        if data.vertical_grid:
-            plt.xlabel(data.value_label)
-            plt.ylabel(data.grid_label)
+            if finite.any():
+                drawn_series.append((i, data.grid[finite], series.values[finite]))
+        several = len(data.series) > 1
+
+        def draw(only: int | None) -> str:
+            """The plot with series ``only`` in its marker, the others blank
+            (drawn first); every series in its marker for ``only`` = -1."""
+            plt.clear_figure()
+            plt.title(data.title)
+            order = [d for d in drawn_series if d[0] != only]
+            order += [d for d in drawn_series if d[0] == only]
+            for i, grid, values in order:
+                x, y = (values, grid) if data.vertical_grid else (grid, values)
+                marker = BLANK
+                if only == -1 or i == only:
+                    marker = MARKERS[i % len(MARKERS)] if several else "braille"
+                plt.plot(
+                    x.tolist(), y.tolist(), marker=marker, color=PALETTE[i % len(PALETTE)]
+                )
+            # The zone ends (several zones) and the punch axes (a train).
+            for x in data.markers:
+                if math.isfinite(x):
+                    plt.vline(x, color=ZONE_END_COLOUR)
+            for x in data.axes:
+                if math.isfinite(x):
+                    plt.vline(x, color=AXIS_COLOUR)
+            if data.vertical_grid:
+                plt.xlabel(data.value_label)
+                plt.ylabel(data.grid_label)
+            else:
+                plt.xlabel(data.grid_label)
+                plt.ylabel(data.value_label)
+            if data.log_grid:
+                plt.xscale("log")
+            plt.plotsize(width, plot_height)
+            plt._set_size(width, plot_height)
+            plt.theme(self._get_plotext_theme_name(self.app.theme))
+            return str(plt.build()).rstrip("\n")
+
+        theme = self.app.theme
+        memo = (width, plot_height, theme)
+        if self._drawn is not None and self._drawn[0] is data and self._drawn[1] == memo:
+            drawn = self._drawn[2].copy()  # a redraw: the composing is done
+        elif several and drawn_series:
+            frame, cells = compose(draw, len(data.series))
+            drawn = _overlay(frame, cells)
         else:
-            plt.xlabel(data.grid_label)
-            plt.ylabel(data.value_label)
-        if data.log_grid:
-            plt.xscale("log")
-        plot_height = max(height - rows, 6)
-        plt.plotsize(width, plot_height)
-        plt._set_size(width, plot_height)
-        plt.theme(self._get_plotext_theme_name(self.app.theme))
-        drawn = Text.from_ansi(plt.build().rstrip("\n"))
+            drawn = Text.from_ansi(draw(-1))
+        self._drawn = (data, memo, drawn.copy())
         if key is not None:
             drawn.append("\n")
             drawn.append_text(key)
         return drawn
 
 
+def _overlay(frame: str, cells: Mapping[Cell, int]) -> Text:
+    """The built ``frame`` (ANSI) with each cell's series marker written in,
+    in the series' colour."""
+    by_line: dict[int, list[tuple[int, int]]] = {}
+    for (i, j), k in cells.items():
+        by_line.setdefault(i, []).append((j, k))
+    out = Text()
+    for i, raw in enumerate(frame.split("\n")):
+        line = Text.from_ansi(raw)
+        for j, k in sorted(by_line.get(i, ())):
+            if j >= len(line.plain):
+                continue
+            r, g, b = PALETTE[k % len(PALETTE)]
+            mark = Text(MARKERS[k % len(MARKERS)], style=f"bold rgb({r},{g},{b})")
+            line = line[:j] + mark + line[j + 1 :]
+        if i:
+            out.append("\n")
+        out.append_text(line)
+    return out
+
+
 def legend(data: Curves) -> list[Field]:
-    """The legend below a plot: a coloured mark and the label of each curve
-    (when there are several), then the zone ends and the punch axes."""
+    """The legend below a plot: the marker (in its colour) and the label of
+    each curve (when there are several), then the zone ends and the punch
+    axes."""
     out: list[Field] = []
     if len(data.series) > 1:
         for i, series in enumerate(data.series):
             r, g, b = PALETTE[i % len(PALETTE)]
-            out.append(Field("━━", series.label, "", f"rgb({r},{g},{b})"))
+            mark = MARKERS[i % len(MARKERS)]
+            out.append(Field(f"─{mark}─", series.label, "", f"bold rgb({r},{g},{b})"))
     if data.markers:
         r, g, b = ZONE_END_COLOUR
         out.append(Field("│", "zone ends", "", f"rgb({r},{g},{b})"))
@@ -136,9 +195,31 @@ def colour(value: float, lo: float, hi: float, diverging: bool) -> str:
     return f"rgb({r},{g},{b})"
 
 
+MASK_MARK = "×"
+"""Drawn in a map's cell whose point is not finite: a flat punch's sharp
+edges x = ±b on the surface, where the pressure is square-root singular."""
+MASK_STYLE = "bold rgb(255,0,255)"
+
+
+def singular_columns(x: FloatArray, values: FloatArray) -> list[float]:
+    """x/h of the map's columns holding a non-finite value (singular points)."""
+    bad = ~np.isfinite(values).all(axis=0)
+    return [float(v) for v in x[bad]]
+
+
+def mask_note(xs: Sequence[float]) -> str:
+    """The legend of the masked cells: where the stress is singular."""
+    return f"{MASK_MARK} {singular_note(xs)}"
+
+
 class StressMap(Widget):
     """The stress field under the punch as a coloured map (two pixels per
-    cell with half blocks), with the y/h and x/h axes and a colour bar."""
+    cell with half blocks), with the y/h and x/h axes and a colour bar.
+
+    A point where the stress is infinite (a flat punch's edges x = ±b on the
+    surface) is masked: drawn as a magenta ``×``, left out of the colour
+    scale, and named under the colour bar ("× masked: singular at x/h =
+    ±0.5"). The map's column nearest such a point always shows it."""
 
     DEFAULT_CSS = """
     StressMap { width: 1fr; height: 1fr; }
@@ -155,14 +236,23 @@ class StressMap(Widget):
         width, height = self.size.width, self.size.height
         margin = 6  # y labels
         cols = max(width - margin, 4)
-        rows = max(height - 3, 2)  # title, x axis, colour bar
-        lo, hi = float(np.nanmin(data.values)), float(np.nanmax(data.values))
+        masked = singular_columns(data.x, data.values)
+        rows = max(height - (4 if masked else 3), 2)  # title, x axis, bar, note
+        finite = data.values[np.isfinite(data.values)]
+        lo, hi = (
+            (float(finite.min()), float(finite.max())) if finite.size else (0.0, 0.0)
+        )
         diverging = data.quantity == "sigma_x"
         nx, ny = len(data.x), len(data.y)
         # data.y runs from -1 up to 0; the screen runs from y = 0 down.
         xi = np.minimum((np.arange(cols) + 0.5) * nx / cols, nx - 1).astype(int)
+        for j in np.flatnonzero(~np.isfinite(data.values).all(axis=0)):
+            if j not in xi:  # a masked point is always shown
+                xi[int(np.argmin(np.abs((np.arange(cols) + 0.5) * nx / cols - j)))] = j
         yi = np.minimum((np.arange(2 * rows) + 0.5) * ny / (2 * rows), ny - 1)
         yi = (ny - 1 - yi.astype(int)).astype(int)
+        # The surface row y = 0 is always drawn (the singular points lie on it).
+        yi[0] = ny - 1
         out = Text(no_wrap=True, overflow="crop")
         if data.zones:
             ends = " ".join(f"[{fmt(lo, 3)},{fmt(hi, 3)}]" for lo, hi in data.zones)
@@ -184,9 +274,17 @@ class StressMap(Widget):
             out.append(f"{label:>{margin - 1}} ")
             top, bottom = yi[2 * r], yi[2 * r + 1]
             for c in range(cols):
-                up = colour(float(data.values[top, xi[c]]), lo, hi, diverging)
-                down = colour(float(data.values[bottom, xi[c]]), lo, hi, diverging)
-                out.append("▀", Style.parse(f"{up} on {down}"))
+                up_value = float(data.values[top, xi[c]])
+                down_value = float(data.values[bottom, xi[c]])
+                up = colour(up_value, lo, hi, diverging)
+                down = colour(down_value, lo, hi, diverging)
+                if not math.isfinite(up_value) or not math.isfinite(down_value):
+                    behind = down if math.isfinite(down_value) else up
+                    if not math.isfinite(up_value) and not math.isfinite(down_value):
+                        behind = "rgb(0,0,0)"
+                    out.append(MASK_MARK, Style.parse(f"{MASK_STYLE} on {behind}"))
+                else:
+                    out.append("▀", Style.parse(f"{up} on {down}"))
             out.append("\n")
         left, right = fmt(float(data.x[0]), 3), fmt(float(data.x[-1]), 3)
         mid = f"{fmt(data.centre, 3)} x/h"
@@ -205,4 +303,9 @@ class StressMap(Widget):
         unit = "σx/(P/h)" if diverging else "σVM/(P/h)"
         if margin + 10 + bar + len(f" {fmt(hi, 3)}") + len(unit) + 2 <= width:
             out.append(f"  {unit}", "dim")
+        if masked:
+            text = mask_note(masked)
+            out.append("\n" + " " * margin)
+            out.append(text[:1], MASK_STYLE)
+            out.append(text[1 : max(width - margin, 1)], "dim")
         return out
