@@ -80,7 +80,9 @@ def _by_column(cell: Cell) -> tuple[int, int]:
     return (cell[1], cell[0])
 
 
-def compose(draw: Callable[[int | None], str], count: int) -> tuple[str, dict[Cell, int]]:
+def compose(
+    draw: Callable[[int | None], str], count: int
+) -> tuple[str, dict[Cell, int]]:
     """(frame, shown): ``draw(None)`` builds the figure with every series
     blank, ``draw(k)`` with series ``k`` alone in its marker (the others
     blank, drawn first); ``shown`` maps each cell of the frame's text (lines

@@ -14,6 +14,7 @@ import json
 import re
 import subprocess
 import sys
+from typing import ClassVar
 
 import numpy as np
 import pytest
@@ -164,7 +165,8 @@ def test_a_flat_punchs_png_map_masks_and_names_the_singular_edges() -> None:
         labels = [t.get_text() for t in ax.get_legend().get_texts()]
         assert labels == ["masked: singular at x/h = ±0.5"]
         mesh = ax.collections[0]
-        assert np.isfinite(mesh.norm.vmin) and np.isfinite(mesh.norm.vmax)
+        assert np.isfinite(mesh.norm.vmin)
+        assert np.isfinite(mesh.norm.vmax)
     finally:
         plt.close(fig)
 
@@ -200,7 +202,7 @@ def _result_of(curves: list[Curve]) -> object:
         sweep = None
 
     class _Result:
-        outputs: dict[str, object] = {}
+        outputs: ClassVar[dict[str, object]] = {}
         scene = _Scene()
 
     r = _Result()
@@ -248,4 +250,5 @@ def test_allocate_shares_a_cell_fairly() -> None:
     shown_cells = allocate([a, set(a), {(0, 3)}])
     owners = [shown_cells[(0, j)] for j in range(6)]
     assert set(owners) == {0, 1, 2}
-    assert owners.count(0) >= 2 and owners.count(1) >= 2
+    assert owners.count(0) >= 2
+    assert owners.count(1) >= 2

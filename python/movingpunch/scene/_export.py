@@ -155,7 +155,10 @@ def format_summary(result: SceneResult, hints: Sequence[str] = ()) -> str:
             for n in names:
                 value = float(cw.columns[n][i])
                 if n == "drag":  # round-off shown as 0 (movingpunch._display)
-                    ends = (cw.columns["contact_start"][i], cw.columns["contact_end"][i])
+                    ends = (
+                        cw.columns["contact_start"][i],
+                        cw.columns["contact_end"][i],
+                    )
                     value = shown(value, scale=_drag_scale(scene, i, None, ends))
                 row.append(("yes" if value else "NO") if n == "valid" else _fmt(value))
             rows.append(row)
@@ -190,9 +193,9 @@ def format_summary(result: SceneResult, hints: Sequence[str] = ()) -> str:
                 for q in sw.quantities:
                     value = float(sw.data[q][i, j])
                     if q == "drag":  # round-off shown as 0 (movingpunch._display)
-                        ends = [float(sw.data[e][i, j]) for e in _ENDS if e in sw.data]
+                        reach = [float(sw.data[e][i, j]) for e in _ENDS if e in sw.data]
                         at = {sw.param: float(x)}
-                        value = shown(value, scale=_drag_scale(scene, i, at, ends))
+                        value = shown(value, scale=_drag_scale(scene, i, at, reach))
                     row.append(_fmt(value) + ("" if sw.valid[i, j] else " !"))
             rows.append(row)
         out += _table(header, rows)

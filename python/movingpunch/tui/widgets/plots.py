@@ -84,12 +84,15 @@ class CurvePlot(PlotextPlot):
             order = [d for d in drawn_series if d[0] != only]
             order += [d for d in drawn_series if d[0] == only]
             for i, grid, values in order:
-                x, y = (values, grid) if data.vertical_grid else (grid, values)
+                xs, ys = (values, grid) if data.vertical_grid else (grid, values)
                 marker = BLANK
                 if only == -1 or i == only:
                     marker = MARKERS[i % len(MARKERS)] if several else "braille"
                 plt.plot(
-                    x.tolist(), y.tolist(), marker=marker, color=PALETTE[i % len(PALETTE)]
+                    xs.tolist(),
+                    ys.tolist(),
+                    marker=marker,
+                    color=PALETTE[i % len(PALETTE)],
                 )
             # The zone ends (several zones) and the punch axes (a train).
             for x in data.markers:
@@ -113,7 +116,11 @@ class CurvePlot(PlotextPlot):
 
         theme = self.app.theme
         memo = (width, plot_height, theme)
-        if self._drawn is not None and self._drawn[0] is data and self._drawn[1] == memo:
+        if (
+            self._drawn is not None
+            and self._drawn[0] is data
+            and self._drawn[1] == memo
+        ):
             drawn = self._drawn[2].copy()  # a redraw: the composing is done
         elif several and drawn_series:
             frame, cells = compose(draw, len(data.series))
@@ -195,7 +202,7 @@ def colour(value: float, lo: float, hi: float, diverging: bool) -> str:
     return f"rgb({r},{g},{b})"
 
 
-MASK_MARK = "×"
+MASK_MARK = "\u00d7"  # a multiplication sign: a cross
 """Drawn in a map's cell whose point is not finite: a flat punch's sharp
 edges x = ±b on the surface, where the pressure is square-root singular."""
 MASK_STYLE = "bold rgb(255,0,255)"
@@ -217,9 +224,9 @@ class StressMap(Widget):
     cell with half blocks), with the y/h and x/h axes and a colour bar.
 
     A point where the stress is infinite (a flat punch's edges x = ±b on the
-    surface) is masked: drawn as a magenta ``×``, left out of the colour
-    scale, and named under the colour bar ("× masked: singular at x/h =
-    ±0.5"). The map's column nearest such a point always shows it."""
+    surface) is masked: drawn as a magenta cross (``MASK_MARK``), left out of the colour
+    scale, and named under the colour bar ("masked: singular at x/h =
+    ±0.5" after the cross). The map's column nearest such a point always shows it."""
 
     DEFAULT_CSS = """
     StressMap { width: 1fr; height: 1fr; }
