@@ -13,7 +13,9 @@ own layer or of lower layers, never a higher one, and no import cycle may form):
    ``fields`` (stress fields), ``peaks`` (peak search), ``outputs`` (writing
    result files), ``contract`` (the result contract every solution
    satisfies), ``_evaluate`` (checking inputs and evaluating at points),
-   ``_version`` (the package version, read without importing the package).
+   ``_version`` (the package version, read without importing the package),
+   ``_display`` (how a number is shown: round-off as 0) and ``_textplot``
+   (text plots where no curve hides another).
 4. ``zones``: several contact zones and trains of punches (``zones``: the
    contact-set search and the superposed result, on the core and the shared
    evaluations; ``solver.solve`` and ``solver.solve_punches`` call it).
@@ -71,6 +73,8 @@ LAYERS: tuple[tuple[str, frozenset[str]], ...] = (
                 "movingpunch.regime",
                 "movingpunch._evaluate",
                 "movingpunch._version",
+                "movingpunch._display",
+                "movingpunch._textplot",
             }
         ),
     ),
