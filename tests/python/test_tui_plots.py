@@ -12,11 +12,12 @@ import pytest
 from textual.app import App, ComposeResult
 
 import movingpunch as mp
-from movingpunch.tui import model
+from movingpunch.tui import create_app, model
 from movingpunch.tui.model import Curves, FieldMap, Params, Series
+from movingpunch.tui.scene_files import SceneState
 from movingpunch.tui.widgets import CurvePlot, StressMap
 from movingpunch.tui.widgets.plots import MARKERS, MASK_MARK, legend
-from tui_pilot import sync
+from tui_pilot import settle, summary_text, sync, type_into
 
 SIZES = ((80, 20), (118, 34))
 
@@ -161,3 +162,32 @@ def test_overlaid_curves_each_keep_a_marker_named_by_the_legend(count: int) -> N
     entries = legend(data)
     assert [e.value for e in entries] == [s.label for s in data.series]
     assert len({e.label for e in entries}) == count  # one marker each
+
+
+# --- the summary: round-off shown as 0 ----------------------------------------
+
+
+def test_the_summary_shows_a_symmetric_damped_drag_as_0() -> None:
+    # At rest on a damped foundation the contact is symmetric: drag 0 by
+    # symmetry; the solver sums it to round-off (~1e-19).
+    params = Params(vstar=0.0, damping=0.1)
+    s = mp.solve(vstar=0.0, kw=1.0, radius=100.0, load=0.002, damping=0.1)
+    assert abs(s.drag) < 1e-15
+    moving = mp.solve(vstar=0.2, kw=1.0, radius=100.0, load=0.002, damping=0.1)
+    texts: list[str] = []
+
+    @sync
+    async def run() -> None:
+        app = create_app(SceneState(params=params), show_timing=False)
+        async with app.run_test(size=(100, 32)) as pilot:
+            await settle(pilot)
+            texts.append(summary_text(app))
+            await type_into(pilot, "vstar", "0.2", paste=True)
+            texts.append(summary_text(app))
+
+    run()
+    at_rest, sliding = texts
+    assert "drag/P 0 " in at_rest + " ", at_rest
+    assert "e-1" not in at_rest.split("drag/P")[1].split()[0]
+    # A real drag is shown as it is.
+    assert f"drag/P {model.fmt(moving.drag, 4)}" in sliding, sliding
