@@ -137,21 +137,27 @@ class CurvePlot(PlotextPlot):
 def _overlay(frame: str, cells: Mapping[Cell, int]) -> Text:
     """The built ``frame`` (ANSI) with each cell's series marker written in,
     in the series' colour."""
-    by_line: dict[int, list[tuple[int, int]]] = {}
+    by_line: dict[int, dict[int, int]] = {}
     for (i, j), k in cells.items():
-        by_line.setdefault(i, []).append((j, k))
+        by_line.setdefault(i, {})[j] = k
     out = Text()
     for i, raw in enumerate(frame.split("\n")):
-        line = Text.from_ansi(raw)
-        for j, k in sorted(by_line.get(i, ())):
-            if j >= len(line.plain):
-                continue
-            r, g, b = PALETTE[k % len(PALETTE)]
-            mark = Text(MARKERS[k % len(MARKERS)], style=f"bold rgb({r},{g},{b})")
-            line = line[:j] + mark + line[j + 1 :]
         if i:
             out.append("\n")
-        out.append_text(line)
+        line = Text.from_ansi(raw)
+        marks = {j: k for j, k in by_line.get(i, {}).items() if j < len(line.plain)}
+        if not marks:
+            out.append_text(line)
+            continue
+        cuts = sorted({c for j in marks for c in (j, j + 1)})
+        starts = [0, *cuts]
+        for start, piece in zip(starts, line.divide(cuts), strict=False):
+            k = marks.get(start) if piece.plain else None
+            if k is None:
+                out.append_text(piece)
+            else:
+                r, g, b = PALETTE[k % len(PALETTE)]
+                out.append(MARKERS[k % len(MARKERS)], style=f"bold rgb({r},{g},{b})")
     return out
 
 
