@@ -152,12 +152,13 @@ def _overlay(frame: str, cells: Mapping[Cell, int]) -> Text:
         cuts = sorted({c for j in marks for c in (j, j + 1)})
         starts = [0, *cuts]
         for start, piece in zip(starts, line.divide(cuts), strict=False):
-            k = marks.get(start) if piece.plain else None
-            if k is None:
+            series = marks.get(start) if piece.plain else None
+            if series is None:
                 out.append_text(piece)
             else:
-                r, g, b = PALETTE[k % len(PALETTE)]
-                out.append(MARKERS[k % len(MARKERS)], style=f"bold rgb({r},{g},{b})")
+                r, g, b = PALETTE[series % len(PALETTE)]
+                mark = MARKERS[series % len(MARKERS)]
+                out.append(mark, style=f"bold rgb({r},{g},{b})")
     return out
 
 
