@@ -252,3 +252,44 @@ def test_allocate_shares_a_cell_fairly() -> None:
     assert set(owners) == {0, 1, 2}
     assert owners.count(0) >= 2
     assert owners.count(1) >= 2
+
+
+TRAIN_SWEEP = """
+name = "mirror-train"
+[params]
+vstar = 0.2
+kw = 1.0
+[[punches]]
+radius = 100.0
+load = 0.002
+at = -0.5
+[[punches]]
+radius = 100.0
+load = 0.002
+at = 0.5
+[sweep]
+param = "spacing"
+start = 1.0
+stop = 3.0
+points = 3
+quantities = ["a", "drag"]
+"""
+
+
+def test_a_sweeps_round_off_drag_is_shown_as_0() -> None:
+    # Two equal punches at ±d/2: the drags of the two cancel by symmetry.
+    result = Scene.from_toml(TRAIN_SWEEP, "test").run()
+    sweep = result.sweep
+    assert sweep is not None
+    raw = sweep.data["drag"][0]
+    assert np.all(np.abs(raw) < 1e-15)
+    text = format_summary(result)
+    table = text.split("Sweep over")[1].split("\n\n")[0].splitlines()
+    header = table[1]
+    at = header.index("drag/P")
+    values = [line[at:].split()[0] for line in table[2:5]]
+    assert values == ["0", "0", "0"], text
+    # The files keep the raw sums.
+    files = dict(render_outputs(result, "csv"))
+    csv = files["mirror-train-sweep.csv"].decode()
+    assert all(repr(float(v)) in csv for v in raw)
