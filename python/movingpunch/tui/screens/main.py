@@ -63,7 +63,7 @@ from movingpunch.tui.model import (
     fmt,
 )
 from movingpunch.tui.paths import WorkingFolder, write_error
-from movingpunch.tui.screens.help import HelpScreen
+from movingpunch.tui.screens.help import HelpScreen, MessagesScreen
 from movingpunch.tui.screens.prompts import OverlayPrompt, PathPrompt
 from movingpunch.tui.widgets import (
     AccuracyView,
@@ -73,7 +73,13 @@ from movingpunch.tui.widgets import (
     StressMap,
 )
 from movingpunch.tui.widgets.fields import Field, FieldsLine
-from movingpunch.tui.widgets.params import INPUTS, LABELS
+from movingpunch.tui.widgets.params import (
+    FULL_TEXT_KEY,
+    INPUTS,
+    LABELS,
+    STATUS_LINES,
+    MessageLine,
+)
 from movingpunch.zones import CONTACT_MODES
 
 DEBOUNCE_SECONDS = 0.2
@@ -128,6 +134,8 @@ class MainScreen(Screen[None]):
         Binding("s", "save_scene", "Save"),
         Binding("e", "export", "CSV"),
         Binding("question_mark,f1", "help", "Help", key_display="?"),
+        Binding(FULL_TEXT_KEY, "messages", "All"),  # shown while one is shortened
+        Binding(FULL_TEXT_KEY, "all_messages", "All", show=False),
         Binding("q", "quit", "Quit"),
         Binding("escape", "leave_input", "Leave input", key_display="esc"),
         Binding("i", "edit", "Edit the inputs", show=False),
@@ -208,7 +216,7 @@ class MainScreen(Screen[None]):
         with Vertical(id="bottom"):
             yield FieldsLine(id="summary")
             with Horizontal(id="status-row"):
-                yield Static("", id="status")
+                yield MessageLine(title="status", lines=STATUS_LINES, id="status")
                 yield ProgressBar(id="progress", show_eta=False)
         yield Footer(compact=True)
 
@@ -599,6 +607,8 @@ class MainScreen(Screen[None]):
         if action == "leave_input":
             # Shown in the footer (and active) only while an input has focus.
             return isinstance(self.focused, Input)
+        if action == "messages":  # shown while a message is shortened
+            return any(m.shortened for m in self.query(MessageLine))
         return True
 
     def action_leave_input(self) -> None:
@@ -675,6 +685,11 @@ class MainScreen(Screen[None]):
 
     def action_help(self) -> None:
         self.app.push_screen(HelpScreen())
+
+    def action_messages(self) -> None:
+        self.app.push_screen(MessagesScreen(self.query(MessageLine)))
+
+    action_all_messages = action_messages
 
     def action_quit(self) -> None:
         self.app.exit()

@@ -10,10 +10,18 @@ a train is frictionless and always finds its contact set)."""
 
 from __future__ import annotations
 
+import re
+
+from collections.abc import Sequence
+
+from rich.cells import cell_len
 from rich.text import Text
 from textual.app import ComposeResult
 from textual.containers import Horizontal, VerticalScroll
+from textual.content import Content
+from textual.geometry import Size
 from textual.reactive import reactive
+from textual.visual import VisualType
 from textual.widgets import Input, Label, Static
 
 from movingpunch.params import help_text
@@ -148,6 +156,172 @@ class Gauge(Static):
         return None
 
 
+ELLIPSIS = "…"
+"""Ends a message shortened to fit its area (the full text: ``FULL_TEXT_KEY``)."""
+
+FULL_TEXT_KEY = "x"
+"""The key that shows every message of the screen in full."""
+
+TALL = 30
+"""A terminal at least this many rows tall gives messages more lines."""
+
+STATUS_LINES = (2, 3)
+"""Lines of the message area under the summary: (below ``TALL`` rows, from
+``TALL`` rows); 2 keep the plot and its legend whole at 80x24."""
+
+INPUT_MESSAGE_LINES = (3, 5)
+"""Lines of a message under an input (the panel's rows at 80x24 hold every
+input, the gauge and one 3-line message)."""
+
+_CLAUSE_ENDS = re.compile(r"(?=; |: |, | \(| — |\. )")
+"""Where a clause ends: before ``; ``, ``: ``, ``, ``, `` (``, `` — ``, ``. ``."""
+
+_MIN_KEPT = 12
+"""A shortened part keeps at least this many characters (or its first words)."""
+
+
+def line_count(plain: str, width: int) -> int:
+    """Lines ``plain`` takes wrapped to ``width`` as Textual wraps it."""
+    return len(Content(plain).wrap(max(width, 1))) if plain else 0
+
+
+def _parts(text: Text) -> list[Text]:
+    """``text`` cut where its style changes: the items of a message line
+    (an error, ``; showing the last result``, a hint, the overlay)."""
+    cuts = sorted({x for span in text.spans for x in (span.start, span.end)})
+    cuts = [c for c in cuts if 0 < c < len(text.plain)]
+    return [part for part in text.divide(cuts) if part.plain]
+
+
+def _shorter(part: Text) -> tuple[list[Text], list[Text]]:
+    """``part``'s summaries, longest first: (cut after a whole clause, cut
+    after a whole word), each ending in the ellipsis (never mid-word)."""
+    plain = part.plain.rstrip()
+    clause = [m.start() for m in _CLAUSE_ENDS.finditer(plain)]
+    words = [m.start() for m in re.finditer(r" (?=\S)", plain)]
+    minimum = min(_MIN_KEPT, words[min(2, len(words) - 1)] if words else len(plain))
+    out: tuple[list[Text], list[Text]] = ([], [])
+    for cuts, options in zip((clause, words), out, strict=True):
+        for cut in sorted(set(cuts), reverse=True):
+            kept = plain[:cut].rstrip(" ;:,(—.")
+            if len(kept) < minimum:
+                continue
+            short = part[: len(kept)]
+            short.append(ELLIPSIS)
+            options.append(short)
+    return out
+
+
+CLAUSE_SHARE = 0.6
+"""A summary ends after a whole clause if that keeps at least this share of
+what ending after a word would keep."""
+
+
+def fit(text: Text | str, width: int, lines: int) -> tuple[Text, bool]:
+    """(``text`` as it fits ``lines`` lines of ``width`` cells, wrapped at
+    spaces; whether it was shortened). A message that does not fit is
+    summarised, never cut mid-sentence: its longest part (an item of its own
+    style) is cut after a whole clause (or, if that loses much more, a whole
+    word) that leaves room, and ends in ``ELLIPSIS``; short parts (``;
+    showing the last result``) stay whole."""
+    text = Text(text) if isinstance(text, str) else text
+    if width <= 0 or line_count(text.plain, width) <= lines:
+        return text, False
+    parts = _parts(text)
+
+    def joined(items: Sequence[Text]) -> Text:
+        out = Text(end="")
+        for item in items:
+            out.append_text(item)
+        return out
+
+    def fits(items: Sequence[Text]) -> bool:
+        return line_count(joined(items).plain, width) <= lines
+
+    def first_fit(k: int, options: list[Text]) -> Text | None:
+        for option in options:
+            if fits([*parts[:k], option, *parts[k + 1 :]]):
+                return option
+        return None
+
+    order = sorted(range(len(parts)), key=lambda k: -cell_len(parts[k].plain))
+    for k in order:
+        clauses, words = _shorter(parts[k])
+        by_clause, by_word = first_fit(k, clauses), first_fit(k, words)
+        best = by_clause
+        if by_word is not None and (
+            best is None or len(best) < CLAUSE_SHARE * len(by_word)
+        ):
+            best = by_word
+        if best is not None:
+            parts[k] = best
+            return joined(parts), True
+        if words or clauses:
+            parts[k] = (words or clauses)[-1]
+    while len(parts) > 1 and not fits(parts):
+        parts.pop()  # drop items from the end
+        parts[-1] = parts[-1].copy()
+        parts[-1].append(ELLIPSIS)
+    out = joined(parts)
+    while len(out) > 1 and line_count(out.plain, width) > lines:
+        # one word longer than the area: its head, marked
+        out = out[: max(len(out) - width // 2 - 2, 1)]
+        out.append(ELLIPSIS)
+    return out, True
+
+
+class MessageLine(Static):
+    """A message area: its text summarised to at most ``lines`` lines
+    (``fit``; the screen wraps it at spaces); ``full`` keeps the whole text, which the
+    full-text screen (key ``FULL_TEXT_KEY``) shows."""
+
+    def __init__(
+        self,
+        content: VisualType = "",
+        *,
+        title: str,
+        lines: tuple[int, int],
+        id: str | None = None,
+        classes: str | None = None,
+    ) -> None:
+        super().__init__(content, id=id, classes=classes, markup=False)
+        self.title = title
+        """What the message is about (the input's label, or ``status``)."""
+        self._lines = lines
+        self.shortened = False
+        """The text on screen is a summary of ``full``."""
+
+    @property
+    def full(self) -> str:
+        """The whole message as plain text."""
+        content = self.content
+        return content.plain if isinstance(content, Text) else str(content)
+
+    def _text(self) -> Text:
+        content = self.content
+        return content if isinstance(content, Text) else Text(str(content))
+
+    def max_lines(self, rows: int) -> int:
+        """Lines allowed in a terminal ``rows`` tall."""
+        return self._lines[1] if rows >= TALL else self._lines[0]
+
+    def _fitted(self, width: int, rows: int) -> Text:
+        text, shortened = fit(self._text(), width, self.max_lines(rows))
+        if shortened != self.shortened:
+            self.shortened = shortened
+            if self.is_mounted:  # the footer shows the full-text key or not
+                self.call_after_refresh(self.screen.refresh_bindings)
+        return text
+
+    def render(self) -> Text:
+        return self._fitted(self.content_size.width, self.app.size.height)
+
+    def get_content_height(self, container: Size, viewport: Size, width: int) -> int:
+        if not self.full:
+            return 0
+        return line_count(self._fitted(width, viewport.height).plain, width)
+
+
 class ParamsPanel(VerticalScroll):
     """Inputs for every parameter; the screen validates what is typed."""
 
@@ -181,7 +355,13 @@ class ParamsPanel(VerticalScroll):
             yield box
             if name == "load":
                 yield Label(self._mu_text(self._initial.load), id="mu-note")
-        yield Static("", id=f"msg-{name}", classes="param-msg")
+        yield MessageLine(
+            "",
+            title=LABELS[name],
+            lines=INPUT_MESSAGE_LINES,
+            id=f"msg-{name}",
+            classes="param-msg",
+        )
 
     def show_applicable(self, params: Params) -> tuple[str, ...]:
         """Shows the inputs that apply to ``params`` and hides the others;
@@ -214,7 +394,7 @@ class ParamsPanel(VerticalScroll):
 
     def set_message(self, name: str, message: str) -> None:
         self._messages[name] = message
-        msg = self.query_one(f"#msg-{name}", Static)
+        msg = self.query_one(f"#msg-{name}", MessageLine)
         msg.update(message)
         msg.set_class(bool(message), "-shown")
         self.query_one(f"#in-{name}", Input).set_class(bool(message), "-invalid")
