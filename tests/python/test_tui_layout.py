@@ -206,7 +206,10 @@ def test_scanner_finds_a_cut_sentence() -> None:
         "mid-word" in p
         for p in cut_messages(Shot("", "", messages=((whole, mid_word),)))
     )
-    summary = "overlay vstar: 0.2, 0.9  V*=0.9: vstar = 0.9 is at or above\nthe critical speed…"
+    summary = (
+        "overlay vstar: 0.2, 0.9  V*=0.9: vstar = 0.9 is at or above\n"
+        "the critical speed…"
+    )
     assert cut_messages(Shot("", "", messages=((whole, summary),))) == []
     middle = "overlay vstar: 0.2, 0.9  V*=0.9: vstar = 0.9…; showing the last result"
     assert (
@@ -248,8 +251,8 @@ def test_a_message_under_an_input_fits(size: tuple[int, int]) -> None:
 
     from movingpunch.tui.app import create_app
     from movingpunch.tui.screens.help import MessagesScreen
-    from movingpunch.tui.screenshots import screen_text, settled, visible_messages
     from movingpunch.tui.screens.main import MainScreen
+    from movingpunch.tui.screenshots import screen_text, settled, visible_messages
 
     async def run() -> None:
         app = create_app(SceneState(Params()), show_timing=False, cursor_blink=False)

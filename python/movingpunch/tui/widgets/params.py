@@ -11,7 +11,6 @@ a train is frictionless and always finds its contact set)."""
 from __future__ import annotations
 
 import re
-
 from collections.abc import Sequence
 
 from rich.cells import cell_len
