@@ -45,8 +45,8 @@ VARIANTS: dict[str, str] = {
 def state_of(variant: str) -> SceneState:
     if VARIANTS[variant]:
         return from_scene(Scene.bundled(VARIANTS[variant]))
-    if variant == "overlay-supercritical":  # `v`, V* values 0.2, 0.9 on kw 1
-        return SceneState(Params(), overlay=Overlay("vstar", (0.2, 0.9)))
+    if variant == "overlay-supercritical":  # `v`, V* 0.2, 0.9, 1.2 on kw 1
+        return SceneState(Params(), overlay=Overlay("vstar", (0.2, 0.9, 1.2)))
     vcr = mp.solve(vstar=0.2, kw=1.0, radius=100.0, load=0.002).critical_vstar
     return SceneState(Params(vstar=round(0.995 * vcr, 6), load=0.2))
 

@@ -85,24 +85,25 @@ def visible_messages(screen: MainScreen, text: str) -> tuple[tuple[str, str], ..
     every message area with a message: the status line and the messages
     under the inputs. The visible text is read from the screen inside the
     widget's region clipped by its containers."""
-    from movingpunch.tui.widgets.params import MessageLine
-
     rows = text.split("\n")
     out = []
-    for widget in screen.query(MessageLine):
-        if not widget.full.strip() or not widget.display:
+    for widget in screen.query("#status, .param-msg"):
+        whole = getattr(widget, "full", None)
+        if whole is None:  # a plain Static: its whole text
+            whole = str(widget.render())
+        if not whole.strip() or not widget.display:
             continue
         try:
             where = screen.find_widget(widget)
         except NoWidget:  # not on screen (a hidden row, scrolled away)
-            out.append((widget.full, ""))
+            out.append((whole, ""))
             continue
         seen = where.region.intersection(where.clip)
         lines = [
             rows[y][seen.x : seen.right] if y < len(rows) else ""
             for y in range(seen.y, seen.bottom)
         ]
-        out.append((widget.full, "\n".join(lines)))
+        out.append((whole, "\n".join(lines)))
     return tuple(out)
 
 
