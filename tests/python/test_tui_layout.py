@@ -280,3 +280,37 @@ def test_a_message_under_an_input_fits(size: tuple[int, int]) -> None:
             await pilot.press("escape")
 
     asyncio.run(run())
+
+
+def test_fit_summarises_after_a_clause_and_keeps_short_items() -> None:
+    """``fit``: a message that fits is unchanged; one that does not is cut
+    after a whole clause or word of its longest item and ends in the
+    ellipsis, the short item after it (``; showing the last result``)
+    whole, and it then fits its lines."""
+    from rich.text import Text
+
+    from movingpunch.tui.widgets.params import fit, line_count
+
+    error = (
+        "V*: vstar = 0.9 is at or above the critical speed V*_cr = 0.5716928222 "
+        "of this layer on its foundation (Rayleigh value V*_R = 0.8299135134); "
+        "no bounded steady solution exists there: vstar must be in [0, 0.57169)"
+    )
+    text = Text()
+    text.append(error, "bold red")
+    text.append("; showing the last result", "yellow")
+    same, shortened = fit(text, 400, 1)
+    assert (same.plain, shortened) == (text.plain, False)
+    for width, lines in ((78, 2), (78, 1), (40, 3), (28, 3)):
+        short, shortened = fit(text, width, lines)
+        assert shortened
+        assert line_count(short.plain, width) <= lines, (width, short.plain)
+        head, _, tail = short.plain.partition(ELLIPSIS)
+        assert error.startswith(head)
+        assert not error[len(head)].isalnum()  # never mid-word
+        assert tail == "; showing the last result"
+        assert short.spans[-1].style == "yellow"
+    assert fit(text, 78, 2)[0].plain.startswith(
+        "V*: vstar = 0.9 is at or above the critical speed V*_cr = 0.5716928222 "
+        "of this layer on its foundation…"  # the clause before "(Rayleigh"
+    )

@@ -184,31 +184,21 @@ def line_count(plain: str, width: int) -> int:
     return len(Content(plain).wrap(max(width, 1))) if plain else 0
 
 
+_SEPARATORS = re.compile(r"  +")
+"""Between two items of a message line (two spaces: a warning and the next,
+the overlay and its notes): never shortened, so each item is summarised on
+its own."""
+
+
 def _parts(text: Text) -> list[Text]:
-    """``text`` cut where its style changes: the items of a message line
-    (an error, ``; showing the last result``, a hint, the overlay)."""
-    cuts = sorted({x for span in text.spans for x in (span.start, span.end)})
-    cuts = [c for c in cuts if 0 < c < len(text.plain)]
-    return [part for part in text.divide(cuts) if part.plain]
-
-
-def _shorter(part: Text) -> tuple[list[Text], list[Text]]:
-    """``part``'s summaries, longest first: (cut after a whole clause, cut
-    after a whole word), each ending in the ellipsis (never mid-word)."""
-    plain = part.plain.rstrip()
-    clause = [m.start() for m in _CLAUSE_ENDS.finditer(plain)]
-    words = [m.start() for m in re.finditer(r" (?=\S)", plain)]
-    minimum = min(_MIN_KEPT, words[min(2, len(words) - 1)] if words else len(plain))
-    out: tuple[list[Text], list[Text]] = ([], [])
-    for cuts, options in zip((clause, words), out, strict=True):
-        for cut in sorted(set(cuts), reverse=True):
-            kept = plain[:cut].rstrip(" ;:,(—.")
-            if len(kept) < minimum:
-                continue
-            short = part[: len(kept)]
-            short.append(ELLIPSIS)
-            options.append(short)
-    return out
+    """``text`` cut where its style changes and at item separators: the
+    items of a message line (an error, ``; showing the last result``, the
+    warnings, the hints, the overlay) and the separators between them."""
+    cuts = {x for span in text.spans for x in (span.start, span.end)}
+    for m in _SEPARATORS.finditer(text.plain):
+        cuts |= {m.start(), m.end()}
+    inside = sorted(c for c in cuts if 0 < c < len(text.plain))
+    return [part for part in text.divide(inside) if part.plain]
 
 
 CLAUSE_SHARE = 0.6
@@ -216,13 +206,48 @@ CLAUSE_SHARE = 0.6
 what ending after a word would keep."""
 
 
+def _shorter(part: Text) -> Text | None:
+    """``part`` one step shorter, ending in the ellipsis: cut after its last
+    whole clause (``; ``, ``: ``, ``, ``, before `` (``), or after its last
+    whole word where the clause would lose much more; never mid-word. None:
+    it is as short as it gets (its first words, or a separator)."""
+    plain = part.plain
+    if _SEPARATORS.fullmatch(plain):
+        return None
+    base = plain[:-1] if plain.endswith(ELLIPSIS) else plain
+    base = base.rstrip()
+    words = [m.start() for m in re.finditer(r" (?=\S)", base)]
+    if not words:
+        return None
+    minimum = min(_MIN_KEPT, words[min(2, len(words) - 1)])
+
+    def kept(cut: int) -> int:
+        return len(base[:cut].rstrip(" ;:,(—."))
+
+    by_word = max((kept(c) for c in words if kept(c) >= minimum), default=0)
+    by_clause = max(
+        (
+            kept(m.start())
+            for m in _CLAUSE_ENDS.finditer(base)
+            if kept(m.start()) >= minimum
+        ),
+        default=0,
+    )
+    size = by_clause if by_clause >= CLAUSE_SHARE * by_word else by_word
+    if not size:
+        return None
+    short = part[:size]
+    short.append(ELLIPSIS)
+    return short
+
+
 def fit(text: Text | str, width: int, lines: int) -> tuple[Text, bool]:
     """(``text`` as it fits ``lines`` lines of ``width`` cells, wrapped at
     spaces; whether it was shortened). A message that does not fit is
-    summarised, never cut mid-sentence: its longest part (an item of its own
-    style) is cut after a whole clause (or, if that loses much more, a whole
-    word) that leaves room, and ends in ``ELLIPSIS``; short parts (``;
-    showing the last result``) stay whole."""
+    summarised, never cut mid-sentence: its longest item is cut after a
+    whole clause (or, if that loses much more, a whole word) and ends in
+    ``ELLIPSIS``, step by step, the longest item first, until it fits;
+    short items (``; showing the last result``) stay whole."""
     text = Text(text) if isinstance(text, str) else text
     if width <= 0 or line_count(text.plain, width) <= lines:
         return text, False
@@ -237,30 +262,22 @@ def fit(text: Text | str, width: int, lines: int) -> tuple[Text, bool]:
     def fits(items: Sequence[Text]) -> bool:
         return line_count(joined(items).plain, width) <= lines
 
-    def first_fit(k: int, options: list[Text]) -> Text | None:
-        for option in options:
-            if fits([*parts[:k], option, *parts[k + 1 :]]):
-                return option
-        return None
-
-    order = sorted(range(len(parts)), key=lambda k: -cell_len(parts[k].plain))
-    for k in order:
-        clauses, words = _shorter(parts[k])
-        by_clause, by_word = first_fit(k, clauses), first_fit(k, words)
-        best = by_clause
-        if by_word is not None and (
-            best is None or len(best) < CLAUSE_SHARE * len(by_word)
-        ):
-            best = by_word
-        if best is not None:
-            parts[k] = best
-            return joined(parts), True
-        if words or clauses:
-            parts[k] = (words or clauses)[-1]
+    while not fits(parts):
+        steps = {k: _shorter(part) for k, part in enumerate(parts)}
+        left = [k for k, step in steps.items() if step is not None]
+        if not left:
+            break
+        k = max(left, key=lambda k: cell_len(parts[k].plain))
+        step = steps[k]
+        assert step is not None
+        parts[k] = step
     while len(parts) > 1 and not fits(parts):
         parts.pop()  # drop items from the end
-        parts[-1] = parts[-1].copy()
-        parts[-1].append(ELLIPSIS)
+        if _SEPARATORS.fullmatch(parts[-1].plain):
+            parts.pop()
+        if not parts[-1].plain.endswith(ELLIPSIS):
+            parts[-1] = parts[-1].copy()
+            parts[-1].append(ELLIPSIS)
     out = joined(parts)
     while len(out) > 1 and line_count(out.plain, width) > lines:
         # one word longer than the area: its head, marked
