@@ -25,12 +25,19 @@ from textual.containers import VerticalScroll
 from textual.screen import ModalScreen
 from textual.widgets import Static
 
+from movingpunch.tui.widgets.params import (
+    FULL_TEXT_KEY,
+    INPUT_MESSAGE_LINES,
+    STATUS_LINES,
+    TALL,
+)
+
 TABLE_WIDTH = 60
 """The longest line of a table (an 80-column help box is 74 wide inside)."""
 
 KEYS: tuple[tuple[str, str], ...] = (
     ("tab, shift+tab", "move between the inputs and the plots"),
-    ("escape, enter", "leave an input (letters act only outside the inputs)"),
+    ("escape, enter", "leave an input"),
     ("i", "go to the first input (V*)"),
     ("1 ... 6", "go to a tab"),
     ("] and [", "next and previous tab"),
@@ -43,8 +50,8 @@ KEYS: tuple[tuple[str, str], ...] = (
     ("F2 ... F6", "the paper's Figs 2-6 (bundled scenes)"),
     ("o / s", "open / save a scene file (TOML)"),
     ("e", "export the tab's data to CSV"),
-    ("x", "every message in full (when one is shortened: …)"),
-    ("? or F1", "this help"),
+    (FULL_TEXT_KEY, "all messages whole (a shortened one: …)"),
+    ("? or F1", "the help: keys, tabs, inputs, files"),
     ("q", "quit"),
 )
 """Every key of the main screen: (key, what it does). docs/tui.md's Keys
@@ -68,29 +75,37 @@ GROUPS: tuple[tuple[str, str], ...] = (
 )
 """The input panel's groups, top to bottom."""
 
+DEBOUNCE_MS = 200
+"""The pause in typing before a value is solved, as the help says it (the
+app's ``DEBOUNCE_SECONDS``; a test checks they agree)."""
+
+_WORDS = ("no", "one", "two", "three", "four", "five", "six")
+
 FACTS: dict[str, str] = {
     "typing": (
         "A value is checked as you type and solved after a short pause in "
-        "typing (200 ms), or at once on enter. A half-typed or invalid value "
+        f"typing ({DEBOUNCE_MS} ms), or at once on enter. A half-typed or invalid value "
         "never replaces the result on screen: its message names the input and "
         "the valid range."
     ),
     "damping": (
-        "With damping > 0 every tab works as without damping: p(x), σx(x,0) "
+        "With damping, every tab works as without: p(x), σx(x,0) "
         "and σx(0,y) plot the asymmetric solution, the field map spans its "
         "contact, the a/h sweep solves every point and the Accuracy ladder "
         "measures it."
     ),
     "damped time": (
-        "A damped solve takes 20-45 ms cold and 3-12 ms warm, its σx peaks "
-        "for the summary 0.06-0.13 s in all; it runs in the worker thread, so "
+        "A damped solve takes 20-45 ms cold and 3-12 ms warm, 0.06-0.13 s "
+        "with the σx peaks of the summary; it runs in the worker thread, so "
         "the screen stays responsive."
     ),
     "messages": (
-        "A message longer than its area (two lines under the summary at 24 "
-        "rows, three from 30 rows; three or five under an input) is shortened "
-        "after a whole clause or word and ends in …; x shows every message in "
-        "full."
+        f"A message longer than its area ({_WORDS[STATUS_LINES[0]]} lines under "
+        f"the summary below {TALL} rows, {_WORDS[STATUS_LINES[1]]} from {TALL} "
+        f"rows; {_WORDS[INPUT_MESSAGE_LINES[0]]} or "
+        f"{_WORDS[INPUT_MESSAGE_LINES[1]]} under an input) is shortened after a "
+        f"whole clause or word and ends in …; {FULL_TEXT_KEY} shows every "
+        "message in full."
     ),
     "files": (
         "Open (o), save (s) and export (e) stay in the working folder: "
@@ -101,11 +116,10 @@ FACTS: dict[str, str] = {
     ),
 }
 """Sentences the help and docs/tui.md both say, word for word (docs/tui.md
-may wrap them across lines)."""
-
-DEBOUNCE_MS = 200
-"""The pause in typing before a value is solved, as the help says it (the
-app's ``DEBOUNCE_SECONDS``; a test checks they agree)."""
+may wrap them across lines). The damped times were measured with
+``mp.solve`` and the TUI's summary on nine damped sets (V* 0.2, 0.4, 0.65;
+damping 0.01, 0.1, 0.5; kw 1, R/h 100, P/(μh) 0.002) on a shared 2-core
+machine."""
 
 
 def _table(title: str, rows: Iterable[tuple[str, str]], key_width: int) -> str:
@@ -123,11 +137,7 @@ def help_text() -> str:
         ((str(k), f"{name}: {what}") for k, (name, _, what) in enumerate(TABS, 1)),
         1,
     )
-    tabs += (
-        "\n  (at 80 columns the tabs are "
-        + " ".join(short for _, short, _ in TABS)
-        + ")"
-    )
+    tabs += "\n  at 80 columns: " + " ".join(short for _, short, _ in TABS)
     groups = _table(
         "Inputs, in four groups (those that do not apply are hidden)", GROUPS, 17
     )

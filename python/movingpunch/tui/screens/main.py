@@ -727,7 +727,9 @@ class MainScreen(Screen[None]):
 
         self.app.push_screen(
             PathPrompt(
-                "Open a scene (TOML file or bundled name)", self._last_file, attempt
+                f"Open a scene (TOML file in {self.folder.label}, or bundled name)",
+                self._last_file,
+                attempt,
             )
         )
 
@@ -746,7 +748,8 @@ class MainScreen(Screen[None]):
             self.notify(f"saved {path}")
             return None
 
-        self.app.push_screen(PathPrompt("Save the scene to", self._last_file, attempt))
+        title = f"Save the scene to a file in {self.folder.label}"
+        self.app.push_screen(PathPrompt(title, self._last_file, attempt))
 
     def action_export(self) -> None:
         result = self.results.get(self.tab)
@@ -766,7 +769,7 @@ class MainScreen(Screen[None]):
 
         self.app.push_screen(
             PathPrompt(
-                "Export the visible curves to CSV",
+                f"Export the visible curves to CSV in {self.folder.label}",
                 f"movingpunch-{self.tab}.csv",
                 attempt,
             )
