@@ -84,9 +84,9 @@ _WORDS = ("no", "one", "two", "three", "four", "five", "six")
 FACTS: dict[str, str] = {
     "typing": (
         "A value is checked as you type and solved after a short pause in "
-        f"typing ({DEBOUNCE_MS} ms), or at once on enter. A half-typed or invalid value "
-        "never replaces the result on screen: its message names the input and "
-        "the valid range."
+        f"typing ({DEBOUNCE_MS} ms), or at once on enter. A half-typed or "
+        "invalid value never replaces the result on screen: its message names "
+        "the input and the valid range."
     ),
     "damping": (
         "With damping, every tab works as without: p(x), σx(x,0) "
