@@ -369,7 +369,8 @@ class MainScreen(Screen[None]):
         elif isinstance(error, UnphysicalContactError):
             self._status_error = "unphysical contact: " + _one_line(error)
             if self.params.contact == "single" and not self.params.punches:
-                self._status_error += " (contact auto finds the contact zones)"
+                # its own item (two spaces): a summary of the error keeps it
+                self._status_error += "  (contact auto finds the contact zones)"
         elif isinstance(error, ConvergenceError):
             self._status_error = "no convergence: " + _one_line(error)
         else:
