@@ -11,7 +11,7 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 log() { printf '[setup] %s\n' "$*"; }
 
 # --- System packages ---------------------------------------------------------
-packages=(libeigen3-dev libgtest-dev cmake g++ ninja-build tmux python3-venv)
+packages=(libeigen3-dev libgtest-dev cmake g++ ninja-build tmux jq python3-venv)
 missing=()
 for pkg in "${packages[@]}"; do
   if ! dpkg -s "$pkg" 2>/dev/null | grep -q '^Status: install ok installed'; then

@@ -15,12 +15,18 @@ from pathlib import Path
 
 import pytest
 from textual.pilot import Pilot
-from textual.widgets import Input, Static
+from textual.widgets import Input, Label, Static
 
 from movingpunch.scene import Scene
 from movingpunch.tui import MovingPunchApp, create_app
 from movingpunch.tui.model import Params
-from movingpunch.tui.paths import OutsideFolderError, OverwriteNeeded, WorkingFolder
+from movingpunch.tui.paths import (
+    DEFAULT_FOLDER,
+    OutsideFolderError,
+    OverwriteNeeded,
+    WorkingFolder,
+    source_checkout,
+)
 from movingpunch.tui.screens import MainScreen, PathPrompt
 from tui_pilot import screen_of, settle, sync
 
@@ -105,12 +111,98 @@ def test_target_refuses_folders_and_asks_before_overwriting(root: Path) -> None:
     assert folder.target("new.csv", overwrite=False) == root.resolve() / "new.csv"
 
 
-def test_the_folder_must_exist(tmp_path: Path) -> None:
+def test_the_folder_must_exist(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     with pytest.raises(ValueError, match=r"root: .* is not an existing directory"):
         WorkingFolder.at(tmp_path / "missing")
     with pytest.raises(ValueError, match="not an existing directory"):
         WorkingFolder.at(Path(__file__))
-    assert WorkingFolder.at().root == Path(os.path.realpath(os.getcwd()))
+    monkeypatch.chdir(tmp_path)  # not a source checkout: the folder is here
+    assert WorkingFolder.at().root == Path(os.path.realpath(tmp_path))
+    assert WorkingFolder.at().checkout is None
+
+
+# -- started in the source checkout (issue 25) --------------------------------
+
+CHECKOUT = Path(__file__).resolve().parents[2]
+"""This source checkout (the one the tests run from)."""
+
+
+def fake_checkout(where: Path, name: str = "movingpunch") -> Path:
+    (where / "python" / "movingpunch").mkdir(parents=True)
+    (where / "pyproject.toml").write_text(
+        f'[project]\nname = "{name}"\nversion = "0"\n', encoding="utf-8"
+    )
+    return where
+
+
+@pytest.fixture
+def home(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
+    """A scratch home folder (``~``)."""
+    folder = tmp_path / "home"
+    folder.mkdir()
+    monkeypatch.setenv("HOME", str(folder))
+    return folder
+
+
+def test_the_source_checkout_is_found(tmp_path: Path) -> None:
+    assert source_checkout(CHECKOUT) == CHECKOUT
+    assert source_checkout(CHECKOUT / "docs") == CHECKOUT
+    assert source_checkout(tmp_path) is None
+    other = fake_checkout(tmp_path / "other", name="movingpunch-fork")
+    assert source_checkout(other) is None  # another project
+    mine = fake_checkout(tmp_path / "mine")
+    (mine / "results").mkdir()
+    assert source_checkout(mine / "results") == mine
+
+
+@pytest.mark.parametrize("start", ["", "docs"], ids=["root", "docs"])
+def test_started_in_the_checkout_the_folder_is_elsewhere(
+    start: str, home: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Inside the checkout without --root the folder is ~/movingpunch,
+    made only when a file is written; --root . keeps the checkout."""
+    monkeypatch.chdir(CHECKOUT / start)
+    folder = WorkingFolder.at()
+    assert folder.root == home.resolve() / "movingpunch"
+    assert folder.checkout == CHECKOUT
+    assert folder.label == "~/movingpunch"
+    assert DEFAULT_FOLDER == "~/movingpunch"
+    assert not folder.root.exists()  # nothing made by starting
+    assert folder.target("scene.toml", overwrite=False) == folder.root / "scene.toml"
+    assert folder.root.is_dir()
+    # `serve` passes the folder on as --root before it exists.
+    folder.root.rmdir()
+    assert WorkingFolder.at(str(folder.root)).root == folder.root
+    kept = WorkingFolder.at(".")
+    assert kept.root == (CHECKOUT / start).resolve()
+    assert kept.checkout is None
+
+
+@sync
+async def test_exports_from_the_checkout_never_land_in_it(
+    home: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The app started in the checkout (as ``bash scripts/run.sh`` does):
+    its prompts name ~/movingpunch, and Export and Save write there, not
+    into the source tree (issue 25: an untracked movingpunch-pressure.csv
+    and scene.toml in the checkout)."""
+    monkeypatch.chdir(CHECKOUT)
+    before = set(os.listdir(CHECKOUT))
+    app = create_app(show_timing=False, cursor_blink=False)
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        for key, name in (("e", "movingpunch-pressure.csv"), ("s", "scene.toml")):
+            await pilot.press(key)
+            await pilot.pause()
+            assert isinstance(app.screen, PathPrompt)
+            title = str(app.screen.query_one("#prompt-title", Label).render())
+            assert title.endswith("in ~/movingpunch"), title
+            assert app.screen.query_one("#path", Input).value == name
+            await pilot.press("enter")
+            await pilot.pause()
+            assert isinstance(app.screen, MainScreen)
+            assert (home / "movingpunch" / name).stat().st_size > 0
+    assert set(os.listdir(CHECKOUT)) == before
 
 
 def test_tui_with_a_bad_root_is_one_line_and_exit_2(

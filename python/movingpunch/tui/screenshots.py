@@ -20,6 +20,7 @@ from pathlib import Path
 
 from rich.console import Console
 from textual.app import App
+from textual.errors import NoWidget
 from textual.pilot import Pilot
 from textual.worker import WorkerFailed
 
@@ -47,6 +48,9 @@ class Shot:
     phrases: tuple[str, ...] = ()
     status: str = ""
     """The message area's text (it wraps: checked word by word)."""
+    messages: tuple[tuple[str, str], ...] = ()
+    """Each message area on screen: (its whole text, the text visible in
+    its region of the screen), to find a message cut at its widget's edge."""
 
 
 def phrases(screen: MainScreen) -> tuple[str, ...]:
@@ -74,6 +78,33 @@ def phrases(screen: MainScreen) -> tuple[str, ...]:
         out += [c.title, c.grid_label, c.value_label]
         out += [f.text() for f in legend(c)]
     return tuple(p for p in out if p.strip())
+
+
+def visible_messages(screen: MainScreen, text: str) -> tuple[tuple[str, str], ...]:
+    """(whole text, text visible on ``text``, the screen's plain text) of
+    every message area with a message: the status line and the messages
+    under the inputs. The visible text is read from the screen inside the
+    widget's region clipped by its containers."""
+    rows = text.split("\n")
+    out = []
+    for widget in screen.query("#status, .param-msg"):
+        whole = getattr(widget, "full", None)
+        if whole is None:  # a plain Static: its whole text
+            whole = str(widget.render())
+        if not whole.strip() or not widget.display:
+            continue
+        try:
+            where = screen.find_widget(widget)
+        except NoWidget:  # not on screen (a hidden row, scrolled away)
+            out.append((whole, ""))
+            continue
+        seen = where.region.intersection(where.clip)
+        lines = [
+            rows[y][seen.x : seen.right] if y < len(rows) else ""
+            for y in range(seen.y, seen.bottom)
+        ]
+        out.append((whole, "\n".join(lines)))
+    return tuple(out)
 
 
 def screen_text(app: App[None]) -> str:
@@ -138,11 +169,13 @@ async def shots(
         for tab in tabs:
             screen.action_show_tab(tab)
             await settled(pilot)
+            text = screen_text(app)
             out[tab] = Shot(
-                screen_text(app),
+                text,
                 _svg(app, f"movingpunch: {tab}"),
                 phrases(screen),
                 str(screen.query_one("#status").render()),
+                visible_messages(screen, text),
             )
         if help_screen:  # over the first tab (the same picture every time)
             screen.action_show_tab(tabs[0] if tabs else "pressure")

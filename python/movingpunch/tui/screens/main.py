@@ -64,7 +64,7 @@ from movingpunch.tui.model import (
     fmt,
 )
 from movingpunch.tui.paths import WorkingFolder, write_error
-from movingpunch.tui.screens.help import HelpScreen
+from movingpunch.tui.screens.help import HelpScreen, MessagesScreen
 from movingpunch.tui.screens.prompts import OverlayPrompt, PathPrompt
 from movingpunch.tui.widgets import (
     AccuracyView,
@@ -74,7 +74,13 @@ from movingpunch.tui.widgets import (
     StressMap,
 )
 from movingpunch.tui.widgets.fields import Field, FieldsLine
-from movingpunch.tui.widgets.params import INPUTS, LABELS
+from movingpunch.tui.widgets.params import (
+    FULL_TEXT_KEY,
+    INPUTS,
+    LABELS,
+    STATUS_LINES,
+    MessageLine,
+)
 from movingpunch.zones import CONTACT_MODES
 
 DEBOUNCE_SECONDS = 0.2
@@ -129,6 +135,8 @@ class MainScreen(Screen[None]):
         Binding("s", "save_scene", "Save"),
         Binding("e", "export", "CSV"),
         Binding("question_mark,f1", "help", "Help", key_display="?"),
+        Binding(FULL_TEXT_KEY, "messages", "All"),  # shown while one is shortened
+        Binding(FULL_TEXT_KEY, "all_messages", "All", show=False),
         Binding("q", "quit", "Quit"),
         Binding("escape", "leave_input", "Leave input", key_display="esc"),
         Binding("i", "edit", "Edit the inputs", show=False),
@@ -209,7 +217,7 @@ class MainScreen(Screen[None]):
         with Vertical(id="bottom"):
             yield FieldsLine(id="summary")
             with Horizontal(id="status-row"):
-                yield Static("", id="status")
+                yield MessageLine(title="status", lines=STATUS_LINES, id="status")
                 yield ProgressBar(id="progress", show_eta=False)
         yield Footer(compact=True)
 
@@ -362,7 +370,8 @@ class MainScreen(Screen[None]):
         elif isinstance(error, UnphysicalContactError):
             self._status_error = "unphysical contact: " + _one_line(error)
             if self.params.contact == "single" and not self.params.punches:
-                self._status_error += " (contact auto finds the contact zones)"
+                # its own item (two spaces): a summary of the error keeps it
+                self._status_error += "  (contact auto finds the contact zones)"
         elif isinstance(error, ConvergenceError):
             self._status_error = "no convergence: " + _one_line(error)
         else:
@@ -601,6 +610,8 @@ class MainScreen(Screen[None]):
         if action == "leave_input":
             # Shown in the footer (and active) only while an input has focus.
             return isinstance(self.focused, Input)
+        if action == "messages":  # shown while a message is shortened
+            return any(m.shortened for m in self.query(MessageLine))
         return True
 
     def action_leave_input(self) -> None:
@@ -678,6 +689,11 @@ class MainScreen(Screen[None]):
     def action_help(self) -> None:
         self.app.push_screen(HelpScreen())
 
+    def action_messages(self) -> None:
+        self.app.push_screen(MessagesScreen(self.query(MessageLine)))
+
+    action_all_messages = action_messages
+
     def action_quit(self) -> None:
         self.app.exit()
 
@@ -714,7 +730,9 @@ class MainScreen(Screen[None]):
 
         self.app.push_screen(
             PathPrompt(
-                "Open a scene (TOML file or bundled name)", self._last_file, attempt
+                f"Open a scene (TOML file in {self.folder.label}, or bundled name)",
+                self._last_file,
+                attempt,
             )
         )
 
@@ -733,7 +751,8 @@ class MainScreen(Screen[None]):
             self.notify(f"saved {path}")
             return None
 
-        self.app.push_screen(PathPrompt("Save the scene to", self._last_file, attempt))
+        title = f"Save the scene to a file in {self.folder.label}"
+        self.app.push_screen(PathPrompt(title, self._last_file, attempt))
 
     def action_export(self) -> None:
         result = self.results.get(self.tab)
@@ -753,7 +772,7 @@ class MainScreen(Screen[None]):
 
         self.app.push_screen(
             PathPrompt(
-                "Export the visible curves to CSV",
+                f"Export the visible curves to CSV in {self.folder.label}",
                 f"movingpunch-{self.tab}.csv",
                 attempt,
             )

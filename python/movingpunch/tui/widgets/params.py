@@ -10,10 +10,17 @@ a train is frictionless and always finds its contact set)."""
 
 from __future__ import annotations
 
+import re
+from collections.abc import Sequence
+
+from rich.cells import cell_len
 from rich.text import Text
 from textual.app import ComposeResult
 from textual.containers import Horizontal, VerticalScroll
+from textual.content import Content
+from textual.geometry import Size
 from textual.reactive import reactive
+from textual.visual import VisualType
 from textual.widgets import Input, Label, Static
 
 from movingpunch.params import help_text
@@ -148,6 +155,189 @@ class Gauge(Static):
         return None
 
 
+ELLIPSIS = "…"
+"""Ends a message shortened to fit its area (the full text: ``FULL_TEXT_KEY``)."""
+
+FULL_TEXT_KEY = "x"
+"""The key that shows every message of the screen in full."""
+
+TALL = 30
+"""A terminal at least this many rows tall gives messages more lines."""
+
+STATUS_LINES = (2, 3)
+"""Lines of the message area under the summary: (below ``TALL`` rows, from
+``TALL`` rows); 2 keep the plot and its legend whole at 80x24."""
+
+INPUT_MESSAGE_LINES = (3, 5)
+"""Lines of a message under an input (the panel's rows at 80x24 hold every
+input, the gauge and one 3-line message)."""
+
+_CLAUSE_ENDS = re.compile(r"(?=; |: |, | \(| — |\. )")
+"""Where a clause ends: before ``; ``, ``: ``, ``, ``, `` (``, `` — ``, ``. ``."""
+
+_MIN_KEPT = 12
+"""A shortened part keeps at least this many characters (or its first words)."""
+
+
+def line_count(plain: str, width: int) -> int:
+    """Lines ``plain`` takes wrapped to ``width`` as Textual wraps it."""
+    return len(Content(plain).wrap(max(width, 1))) if plain else 0
+
+
+_SEPARATORS = re.compile(r"  +")
+"""Between two items of a message line (two spaces: a warning and the next,
+the overlay and its notes): never shortened, so each item is summarised on
+its own."""
+
+
+def _parts(text: Text) -> list[Text]:
+    """``text`` cut where its style changes and at item separators: the
+    items of a message line (an error, ``; showing the last result``, the
+    warnings, the hints, the overlay) and the separators between them."""
+    cuts = {x for span in text.spans for x in (span.start, span.end)}
+    for m in _SEPARATORS.finditer(text.plain):
+        cuts |= {m.start(), m.end()}
+    inside = sorted(c for c in cuts if 0 < c < len(text.plain))
+    return [part for part in text.divide(inside) if part.plain]
+
+
+CLAUSE_SHARE = 0.6
+"""A summary ends after a whole clause if that keeps at least this share of
+what ending after a word would keep."""
+
+
+def _shorter(part: Text) -> Text | None:
+    """``part`` one step shorter, ending in the ellipsis: cut after its last
+    whole clause (``; ``, ``: ``, ``, ``, before `` (``), or after its last
+    whole word where the clause would lose much more; never mid-word. None:
+    it is as short as it gets (its first words, or a separator)."""
+    plain = part.plain
+    if _SEPARATORS.fullmatch(plain):
+        return None
+    base = plain[:-1] if plain.endswith(ELLIPSIS) else plain
+    base = base.rstrip()
+    words = [m.start() for m in re.finditer(r" (?=\S)", base)]
+    if not words:
+        return None
+    minimum = min(_MIN_KEPT, words[min(2, len(words) - 1)])
+
+    def kept(cut: int) -> int:
+        return len(base[:cut].rstrip(" ;:,(—."))
+
+    by_word = max((kept(c) for c in words if kept(c) >= minimum), default=0)
+    by_clause = max(
+        (
+            kept(m.start())
+            for m in _CLAUSE_ENDS.finditer(base)
+            if kept(m.start()) >= minimum
+        ),
+        default=0,
+    )
+    size = by_clause if by_clause >= CLAUSE_SHARE * by_word else by_word
+    if not size:
+        return None
+    short = part[:size]
+    short.append(ELLIPSIS)
+    return short
+
+
+def fit(text: Text | str, width: int, lines: int) -> tuple[Text, bool]:
+    """(``text`` as it fits ``lines`` lines of ``width`` cells, wrapped at
+    spaces; whether it was shortened). A message that does not fit is
+    summarised, never cut mid-sentence: its longest item is cut after a
+    whole clause (or, if that loses much more, a whole word) and ends in
+    ``ELLIPSIS``, step by step, the longest item first, until it fits;
+    short items (``; showing the last result``) stay whole."""
+    text = Text(text) if isinstance(text, str) else text
+    if width <= 0 or line_count(text.plain, width) <= lines:
+        return text, False
+    parts = _parts(text)
+
+    def joined(items: Sequence[Text]) -> Text:
+        out = Text(end="")
+        for item in items:
+            out.append_text(item)
+        return out
+
+    def fits(items: Sequence[Text]) -> bool:
+        return line_count(joined(items).plain, width) <= lines
+
+    while not fits(parts):
+        steps = {k: _shorter(part) for k, part in enumerate(parts)}
+        left = [k for k, step in steps.items() if step is not None]
+        if not left:
+            break
+        k = max(left, key=lambda k: cell_len(parts[k].plain))
+        step = steps[k]
+        assert step is not None
+        parts[k] = step
+    while len(parts) > 1 and not fits(parts):
+        parts.pop()  # drop items from the end
+        if _SEPARATORS.fullmatch(parts[-1].plain):
+            parts.pop()
+        if not parts[-1].plain.endswith(ELLIPSIS):
+            parts[-1] = parts[-1].copy()
+            parts[-1].append(ELLIPSIS)
+    out = joined(parts)
+    while len(out) > 1 and line_count(out.plain, width) > lines:
+        # one word longer than the area: its head, marked
+        out = out[: max(len(out) - width // 2 - 2, 1)]
+        out.append(ELLIPSIS)
+    return out, True
+
+
+class MessageLine(Static):
+    """A message area: its text summarised to at most ``lines`` lines
+    (``fit``; the screen wraps it at spaces); ``full`` keeps the whole text, which the
+    full-text screen (key ``FULL_TEXT_KEY``) shows."""
+
+    def __init__(
+        self,
+        content: VisualType = "",
+        *,
+        title: str,
+        lines: tuple[int, int],
+        id: str | None = None,
+        classes: str | None = None,
+    ) -> None:
+        super().__init__(content, id=id, classes=classes, markup=False)
+        self.title = title
+        """What the message is about (the input's label, or ``status``)."""
+        self._lines = lines
+        self.shortened = False
+        """The text on screen is a summary of ``full``."""
+
+    @property
+    def full(self) -> str:
+        """The whole message as plain text."""
+        content = self.content
+        return content.plain if isinstance(content, Text) else str(content)
+
+    def _text(self) -> Text:
+        content = self.content
+        return content if isinstance(content, Text) else Text(str(content))
+
+    def max_lines(self, rows: int) -> int:
+        """Lines allowed in a terminal ``rows`` tall."""
+        return self._lines[1] if rows >= TALL else self._lines[0]
+
+    def _fitted(self, width: int, rows: int) -> Text:
+        text, shortened = fit(self._text(), width, self.max_lines(rows))
+        if shortened != self.shortened:
+            self.shortened = shortened
+            if self.is_mounted:  # the footer shows the full-text key or not
+                self.call_after_refresh(self.screen.refresh_bindings)
+        return text
+
+    def render(self) -> Text:
+        return self._fitted(self.content_size.width, self.app.size.height)
+
+    def get_content_height(self, container: Size, viewport: Size, width: int) -> int:
+        if not self.full:
+            return 0
+        return line_count(self._fitted(width, viewport.height).plain, width)
+
+
 class ParamsPanel(VerticalScroll):
     """Inputs for every parameter; the screen validates what is typed."""
 
@@ -181,7 +371,13 @@ class ParamsPanel(VerticalScroll):
             yield box
             if name == "load":
                 yield Label(self._mu_text(self._initial.load), id="mu-note")
-        yield Static("", id=f"msg-{name}", classes="param-msg")
+        yield MessageLine(
+            "",
+            title=LABELS[name],
+            lines=INPUT_MESSAGE_LINES,
+            id=f"msg-{name}",
+            classes="param-msg",
+        )
 
     def show_applicable(self, params: Params) -> tuple[str, ...]:
         """Shows the inputs that apply to ``params`` and hides the others;
@@ -214,7 +410,7 @@ class ParamsPanel(VerticalScroll):
 
     def set_message(self, name: str, message: str) -> None:
         self._messages[name] = message
-        msg = self.query_one(f"#msg-{name}", Static)
+        msg = self.query_one(f"#msg-{name}", MessageLine)
         msg.update(message)
         msg.set_class(bool(message), "-shown")
         self.query_one(f"#in-{name}", Input).set_class(bool(message), "-invalid")
