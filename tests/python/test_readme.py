@@ -117,28 +117,10 @@ def need(tool: str, present: bool) -> None:
     pytest.skip(reason)
 
 
-def _bin_dir(scratch: Path) -> Path:
-    """Where ``movingpunch`` is found: this environment's bin folder, or,
-    when its ``movingpunch`` is a hand-written script without pip's
-    ``if __name__ == "__main__"`` guard (a worker process started with
-    spawn would run it again), a shim to ``python -m movingpunch``."""
-    script = MOVINGPUNCH.read_text(encoding="utf-8", errors="replace")
-    if "__main__" in script:
-        return BIN
-    shim = scratch / ".bin"
-    shim.mkdir(exist_ok=True)
-    target = shim / "movingpunch"
-    target.write_text(
-        f'#!/bin/sh\nexec "{sys.executable}" -m movingpunch "$@"\n', encoding="utf-8"
-    )
-    target.chmod(0o755)
-    return shim
-
-
 def env_in(home: Path) -> dict[str, str]:
     env = dict(os.environ)
     env["HOME"] = str(home)
-    env["PATH"] = os.pathsep.join([str(_bin_dir(home)), str(BIN), env.get("PATH", "")])
+    env["PATH"] = os.pathsep.join([str(BIN), env.get("PATH", "")])
     env.pop("NO_COLOR", None)
     return env
 
