@@ -23,7 +23,6 @@ the punch penetrates away from its contact. No topology is tried twice.
 from __future__ import annotations
 
 import functools
-import itertools
 import math
 import time
 from collections.abc import Callable, Mapping, Sequence
@@ -711,6 +710,29 @@ def separate(single: Any, *, damping: float, kp: float, n: int | None) -> ZonedS
     )
 
 
+def _check_position(k: int, at: float, single: Any) -> None:
+    """Refuses a punch placed where the doubles are too sparse for its
+    contact (its zone ends resolved to less than 1e-3 of its narrowest zone's
+    half-width), naming ``at`` and the positions that work. Nearer x = 0 the
+    train is solved relative to its punches (the problem is translation
+    invariant) and moved there, to the spacing of doubles at ``at``."""
+    half = min(0.5 * (hi - lo) for lo, hi in single.contact_zones)
+    reach = max(max(abs(lo), abs(hi)) for lo, hi in single.contact_zones)
+    far = abs(at) + reach
+    if abs(at) <= 1.0 or math.ulp(far) <= 1e-3 * half:
+        return
+    limit = 2.0 ** (math.floor(math.log2(1e-3 * half)) + 53) - reach
+    raise InvalidParameterError(
+        f"punches[{k}]: at = {at!r} is too far from x = 0: positions there are "
+        f"resolved only to {math.ulp(far):.3g} h (the spacing of doubles), too "
+        f"coarse for its contact zone (half-width {half:.6g} h); |at| must be at "
+        f"most {limit:.6g} for this punch. A train's result does not depend on "
+        "where it is: place it near x = 0",
+        parameter="at",
+        allowed=f"|at| <= {limit:.6g}",
+    )
+
+
 def solve_train(
     punches: Sequence[Punch],
     singles: Sequence[Any],
@@ -727,21 +749,54 @@ def solve_train(
     when the punches' own contacts overlap."""
     first = singles[0]
     layer = _Layer(first.vstar, first.kw, first.nu, damping, first.kp, tol, n, 8)
+    for k, (p, s) in enumerate(zip(punches, singles, strict=True)):
+        _check_position(k, p.at, s)
     start: list[tuple[int, float, float]] = []
     for k, (p, s) in enumerate(zip(punches, singles, strict=True)):
         start += [(k, p.at + lo, p.at + hi) for lo, hi in s.contact_zones]
     start.sort(key=lambda t: t[1])
-    for (k1, _, r1), (k2, l2, _) in itertools.pairwise(start):
-        if not l2 > r1:
-            raise InvalidParameterError(
-                f"punches[{k1}] and punches[{k2}] are so close that their contacts "
-                f"would overlap (alone they reach x/h = {r1:.6g} and {l2:.6g}): "
-                "place them further apart",
-                parameter="punches",
-                allowed="punches whose contacts do not overlap",
-            )
+    # Punches whose own contacts would overlap start from them clipped apart
+    # (about the middle of the overlap): in a train the punches lift each
+    # other, and their zones may well end apart. Refused (naming the
+    # punches) only when clipping leaves a punch no zone or the search then
+    # finds no contact set.
+    overlap = None
+    for i in range(len(start) - 1):
+        (k1, left_l, r1), (k2, l2, right_r) = start[i], start[i + 1]
+        if l2 > r1:
+            continue
+        overlap = overlap or (k1, k2, r1, l2)
+        middle = 0.5 * (punches[k1].at + punches[k2].at)
+        if not left_l < middle < right_r:
+            middle = 0.5 * (r1 + l2)
+        margin = 0.02 * min(r1 - left_l, right_r - l2)
+        start[i] = (k1, left_l, middle - margin)
+        start[i + 1] = (k2, middle + margin, right_r)
+
+    def too_close(why: str) -> InvalidParameterError:
+        assert overlap is not None
+        k1, k2, r1, l2 = overlap
+        return InvalidParameterError(
+            f"punches[{k1}] and punches[{k2}] are so close that their contacts "
+            f"overlap (alone they reach x/h = {r1:.6g} and {l2:.6g}, and together "
+            f"no contact set keeps them apart: {why}): place them further apart",
+            parameter="punches",
+            allowed="punches whose contacts do not overlap",
+        )
+
+    if overlap is not None:
+        layer.first_n = 24  # a rough start: Newton's method on the finer system
+        if any(b <= a for _, a, b in start) or any(
+            all(t[0] != k for t in start) for k in range(len(punches))
+        ):
+            raise too_close("a punch would have no zone")
     t1 = time.perf_counter()
-    z, topologies, _ = find_contact_set(layer, punches, start)
+    try:
+        z, topologies, _ = find_contact_set(layer, punches, start)
+    except (UnphysicalContactError, ConvergenceError) as err:
+        if overlap is None:
+            raise
+        raise too_close(str(err)) from err
     elapsed = time.perf_counter() - t0
     return _result(
         z,

@@ -59,6 +59,9 @@ struct ZonesParams {
 
 struct ZoneResult {
   int punch = 0;
+  // The group of punches it was solved with (solve_zones solves punches
+  // too far apart to interact, to the tolerance, as separate groups).
+  int group = 0;
   double left = 0, right = 0;
   double load = 0;  // int p over the zone, P_zone/(mu h)
   // p = (P_zone/h) sqrt(1 - r^2) sum b_n U_n(r), r = (x - centre)/half.
