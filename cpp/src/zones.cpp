@@ -435,9 +435,17 @@ class System {
 // size when `have_j` (the conditions are scaled alike at every size) and
 // updated by Broyden's rule after each step; recomputed by forward
 // differences when a step fails with an updated one.
+// `mirror`: the problem and the start are symmetric about x = 0 (one
+// symmetric punch at 0 without damping): every step is made symmetric (the
+// ends' mirror images move alike), so that the iteration cannot wander to
+// an asymmetric spurious root of the end conditions.
 void newton(System& sys, Eigen::VectorXd& e, int& evaluations, Eigen::MatrixXd& J, bool& have_j,
-            int max_iterations) {
+            int max_iterations, bool mirror = false) {
   const int m = sys.unknowns();
+  auto symmetric = [&](Eigen::VectorXd& v) {
+    if (mirror) v = (0.5 * (v - v.reverse())).eval();
+  };
+  symmetric(e);
   Eigen::VectorXd F, Ft;
   if (!sys.eval(e, F))
     throw ConvergenceError("several contact zones: the starting zones are not admissible (N = " +
@@ -473,7 +481,8 @@ void newton(System& sys, Eigen::VectorXd& e, int& evaluations, Eigen::MatrixXd& 
   for (int it = 0; it < max_iterations; ++it) {
     if (norm < 1e-14) break;
     if (!have_j) jacobian();
-    const Eigen::VectorXd dx = J.fullPivLu().solve(-F);
+    Eigen::VectorXd dx = J.fullPivLu().solve(-F);
+    symmetric(dx);
     if (!dx.allFinite()) {
       if (!fresh) {
         have_j = false;
@@ -511,6 +520,21 @@ void newton(System& sys, Eigen::VectorXd& e, int& evaluations, Eigen::MatrixXd& 
         accepted = true;
         at_e = true;
         break;
+      }
+    }
+    if (accepted) {
+      // A zone or a gap shrinking to nothing: this topology is not the
+      // contact set (the zones merge, or one vanishes); said at once, not
+      // after the ladder's largest sizes at an ill-conditioned solution.
+      const double hull = e(m - 1) - e(0);
+      for (int j = 0; j < m / 2; ++j) {
+        if (!(e(2 * j + 1) - e(2 * j) > 1e-7 * hull))
+          throw ConvergenceError("several contact zones: zone " + std::to_string(j + 1) +
+                                 " closed (N = " + std::to_string(sys.n()) + ")");
+        if (j > 0 && !(e(2 * j) - e(2 * j - 1) > 1e-7 * hull))
+          throw ConvergenceError("several contact zones: the gap between zones " +
+                                 std::to_string(j) + " and " + std::to_string(j + 1) +
+                                 " closed: they merge (N = " + std::to_string(sys.n()) + ")");
       }
     }
     if (!accepted) {
@@ -556,22 +580,17 @@ double zones_dissipation(const ZonesSolution& s) {
     const ZoneResult* first = nullptr;
     std::vector<DampedSolution> parts;
     std::vector<double> loads;
-    double total = 0.0, lo = kInf, hi = -kInf, centre = 0.0;
+    double total = 0.0, lo = kInf, hi = -kInf;
     for (const ZoneResult& z : s.zones) {
       if (z.group != g) continue;
-      if (first == nullptr) {
-        first = &z;
-        centre = z.left;
-      }
-      // Each zone relative to the group (its phases e^{-i alpha x} small).
-      ZoneResult moved = z;
-      moved.left -= centre;
-      moved.right -= centre;
-      parts.push_back(moved.solution());
+      if (first == nullptr) first = &z;
+      // Each zone relative to the group's first (its phases e^{-i alpha x} small).
+      const double c = (z.origin - first->origin) + z.offset;
+      parts.push_back(zone_solution(z.params, z.kernel, c, z.half, z.b));
       loads.push_back(z.load);
       total += z.load;
-      lo = std::min(lo, moved.left);
-      hi = std::max(hi, moved.right);
+      lo = std::min(lo, c - z.half);
+      hi = std::max(hi, c + z.half);
     }
     if (first == nullptr) continue;
     const DampedKernel& K = *first->kernel;
@@ -601,9 +620,7 @@ double zones_dissipation(const ZonesSolution& s) {
   return out;
 }
 
-DampedSolution ZoneResult::solution() const {
-  return zone_solution(params, kernel, 0.5 * (left + right), 0.5 * (right - left), b);
-}
+DampedSolution ZoneResult::solution() const { return zone_solution(params, kernel, offset, half, b); }
 
 namespace {
 
@@ -752,6 +769,13 @@ ZonesSolution solve_connected(const ZonesParams& prm, const std::vector<PunchPro
   }
   if (!(S > 0.0)) S = 1e-3;
 
+  // Symmetric about x = 0: one symmetric punch there, no damping, a
+  // symmetric start (Newton's steps are kept symmetric).
+  bool mirror = prm.punches.size() == 1 && prm.punches[0].at == 0.0 && !(L.damping > 0.0) &&
+                prof[0].symmetric();
+  for (int i = 0; i < 2 * nz && mirror; ++i)
+    mirror = std::fabs(e(i) + e(2 * nz - 1 - i)) <= 1e-9 * (e(2 * nz - 1) - e(0));
+
   // The N ladder (or the given N, with N/2 for the estimate).
   std::vector<int> sizes;
   if (L.n != 0) {
@@ -781,10 +805,10 @@ ZonesSolution solve_connected(const ZonesParams& prm, const std::vector<PunchPro
     const Eigen::VectorXd e_keep = e;
     try {
       sys = std::make_unique<System>(prm, prof, kernel(table_need(e)), n, S);
-      newton(*sys, e, out.iterations, jac, have_jac, max_it);
+      newton(*sys, e, out.iterations, jac, have_jac, max_it, mirror);
       if (kern->range() < table_need(e)) {  // the ends moved out: a longer table
         sys = std::make_unique<System>(prm, prof, kernel(table_need(e)), n, S);
-        newton(*sys, e, out.iterations, jac, have_jac, max_it);
+        newton(*sys, e, out.iterations, jac, have_jac, max_it, mirror);
       }
     } catch (const ConvergenceError& err) {
       if (first) throw;
@@ -860,6 +884,9 @@ ZonesSolution solve_connected(const ZonesParams& prm, const std::vector<PunchPro
     z.punch = sys->punch_of(j);
     z.left = e(2 * j);
     z.right = e(2 * j + 1);
+    z.origin = prm.punches[static_cast<std::size_t>(z.punch)].at;
+    z.offset = sys->centre(j) - z.origin;
+    z.half = sys->half(j);
     z.load = sys->load(j);
     z.params = L;
     z.params.load = z.load;
@@ -1151,8 +1178,11 @@ ZonesSolution solve_zones(const ZonesParams& prm) {
     if (!reused) part = solve_connected(sub, sub_prof);
     raws.push_back(part);
     shift(part, origin);
-    // Back to the global punch indices.
-    for (ZoneResult& z : part.zones) z.punch = members[static_cast<std::size_t>(z.punch)];
+    // Back to the global punch indices (and their axes).
+    for (ZoneResult& z : part.zones) {
+      z.punch = members[static_cast<std::size_t>(z.punch)];
+      z.origin = prm.punches[static_cast<std::size_t>(z.punch)].at;
+    }
     inputs.push_back(std::move(sub));
     parts.push_back(std::move(part));
   }

@@ -135,10 +135,13 @@ class Punch:
 
 class _Zones:
     """The zones of a solve and, built on first use (about a millisecond
-    each: their Fourier nodes), each as a compiled solution of its own load."""
+    each: their Fourier nodes), each as a compiled solution of its own load,
+    relative to its punch's axis (``origins``: evaluated at x - origin, so
+    that a train far from x = 0 keeps its digits)."""
 
-    def __init__(self, core_zones: Sequence[Any]) -> None:
+    def __init__(self, core_zones: Sequence[Any], punches: Sequence[Punch]) -> None:
         self.core = tuple(core_zones)
+        self.origins = tuple(float(punches[int(z.punch)].at) for z in self.core)
         self._solutions: tuple[Any, ...] | None = None
 
     @property
@@ -157,42 +160,53 @@ class _ZoneSum:
         self._all = zones
         self._indices = tuple(indices)
         self.weights = tuple(float(zones.core[i].load) / total for i in self._indices)
+        self.origins = tuple(zones.origins[i] for i in self._indices)
 
     @property
     def zones(self) -> tuple[Any, ...]:
         built = self._all.solutions
         return tuple(built[i] for i in self._indices)
 
-    def _sum(self, f: Callable[[Any], Any], weighted: bool = True) -> Any:
+    def _sum(
+        self, f: Callable[[Any, FloatArray], Any], x: FloatArray, weighted: bool = True
+    ) -> Any:
         out = None
-        for z, w in zip(self.zones, self.weights, strict=True):
-            v = np.asarray(f(z), dtype=np.float64) * (w if weighted else 1.0)
+        xs = np.asarray(x, dtype=np.float64)
+        for z, w, o in zip(self.zones, self.weights, self.origins, strict=True):
+            v = np.asarray(f(z, xs - o), dtype=np.float64) * (w if weighted else 1.0)
             out = v if out is None else out + v
         return out
 
     def pressure(self, x: FloatArray) -> FloatArray:
-        return self._sum(lambda z: z.pressure(x))  # type: ignore[no-any-return]
+        return self._sum(lambda z, u: z.pressure(u), x)  # type: ignore[no-any-return]
 
     def surface_stress(self, x: FloatArray) -> FloatArray:
-        return self._sum(lambda z: z.surface_stress(x))  # type: ignore[no-any-return]
+        return self._sum(lambda z, u: z.surface_stress(u), x)  # type: ignore[no-any-return]
 
     def surface_slope(self, x: FloatArray) -> FloatArray:
-        return self._sum(lambda z: z.surface_slope(x), weighted=False)  # type: ignore[no-any-return]
+        return self._sum(lambda z, u: z.surface_slope(u), x, weighted=False)  # type: ignore[no-any-return]
 
     def surface_displacement(self, x: FloatArray) -> FloatArray:
-        return self._sum(lambda z: z.surface_displacement(x), weighted=False)  # type: ignore[no-any-return]
+        return self._sum(  # type: ignore[no-any-return]
+            lambda z, u: z.surface_displacement(u), x, weighted=False
+        )
 
     def bottom_slope(self, x: FloatArray) -> FloatArray:
-        return self._sum(lambda z: z.bottom_slope(x), weighted=False)  # type: ignore[no-any-return]
+        return self._sum(lambda z, u: z.bottom_slope(u), x, weighted=False)  # type: ignore[no-any-return]
 
     def bottom_displacement(self, x: FloatArray) -> FloatArray:
-        return self._sum(lambda z: z.bottom_displacement(x), weighted=False)  # type: ignore[no-any-return]
+        return self._sum(  # type: ignore[no-any-return]
+            lambda z, u: z.bottom_displacement(u), x, weighted=False
+        )
 
     def displacement(self, x: FloatArray, y: FloatArray) -> FloatArray:
-        return self._sum(lambda z: z.displacement(x, y), weighted=False)  # type: ignore[no-any-return]
+        return self._sum(lambda z, u: z.displacement(u, y), x, weighted=False)  # type: ignore[no-any-return]
 
     def stress_field(self, x: FloatArray, y: FloatArray) -> tuple[FloatArray, ...]:
-        parts = [z.stress_field(x, y) for z in self.zones]
+        xs = np.asarray(x, dtype=np.float64)
+        parts = [
+            z.stress_field(xs - o, y) for z, o in zip(self.zones, self.origins, strict=True)
+        ]
         return tuple(
             sum(
                 (
@@ -401,11 +415,13 @@ def _solve_topology(
     )
 
 
-def _negative_runs(zone: Any) -> list[tuple[float, float, bool, bool]]:
+def _negative_runs(zone: Any, origin: float) -> list[tuple[float, float, bool, bool]]:
     """Where p < 0 in a zone: (x_from, x_to, touches_left, touches_right) of
-    each run of negative g = p/sqrt(1 - r^2) on a 2001-point grid."""
+    each run of negative g = p/sqrt(1 - r^2) on a 2001-point grid (its
+    solution is relative to its punch's axis ``origin``)."""
     sol = zone.solution
-    c, w = float(sol.centre), float(sol.half_width)
+    w = float(sol.half_width)
+    c = float(sol.centre)
     r = np.cos(np.linspace(math.pi, 0.0, 2001))
     r = r[1:-1]
     g = (
@@ -423,7 +439,9 @@ def _negative_runs(zone: Any) -> list[tuple[float, float, bool, bool]]:
         j = i
         while j + 1 < len(r) and neg[j + 1]:
             j += 1
-        runs.append((c + w * r[i], c + w * r[j], i == 0, j == len(r) - 1))
+        runs.append(
+            (origin + c + w * r[i], origin + c + w * r[j], i == 0, j == len(r) - 1)
+        )
         i = j + 1
     return runs
 
@@ -484,7 +502,10 @@ def _next_topologies(
     about x = 0 (a new zone gets its mirror image too)."""
     zones = [(int(q.punch), float(q.left), float(q.right)) for q in z.zones]
     runs = [
-        _negative_runs(q) if (q.load <= 0.0 or q.margin < 0.0) else [] for q in z.zones
+        _negative_runs(q, punches[int(q.punch)].at)
+        if (q.load <= 0.0 or q.margin < 0.0)
+        else []
+        for q in z.zones
     ]
     if any(runs):
         # p < 0: take every run of p < 0 out of its zone (split it, or
@@ -600,7 +621,7 @@ def _result(
     search_seconds: float,
 ) -> ZonedSolution:
     total = sum(p.load for p in punches)
-    built = _Zones(z.zones)
+    built = _Zones(z.zones, punches)
     every = range(len(z.zones))
     impl = _ZoneSum(built, every, total)
     results = []
