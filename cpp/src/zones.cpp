@@ -620,7 +620,9 @@ double zones_dissipation(const ZonesSolution& s) {
   return out;
 }
 
-DampedSolution ZoneResult::solution() const { return zone_solution(params, kernel, offset, half, b); }
+DampedSolution ZoneResult::solution() const {
+  return zone_solution(params, kernel, offset, half, b);
+}
 
 namespace {
 
@@ -676,11 +678,11 @@ std::vector<PunchProfile> validate_zones(const ZonesParams& prm) {
       const double need = w > 0.0 ? w : 0.5 * (prm.zones[0].right - prm.zones[0].left);
       std::ostringstream m;
       m.precision(6);
-      m << "punches[" << z.punch << "] at x/h = " << at
-        << ": positions there are resolved only to " << ulp(x)
-        << " h (the spacing of doubles), too coarse for its contact zone";
+      m << "punches[" << z.punch << "] at x/h = " << at << ": positions there are resolved only to "
+        << ulp(x) << " h (the spacing of doubles), too coarse for its contact zone";
       if (need > 0.0) {
-        const double limit = std::ldexp(1.0, static_cast<int>(std::floor(std::log2(1e-3 * need))) + 53);
+        const double limit =
+            std::ldexp(1.0, static_cast<int>(std::floor(std::log2(1e-3 * need))) + 53);
         m << " (half-width " << need << " h): |at| must be below " << limit << " here";
       }
       m << "; a train's result does not depend on where it is: place it near x = 0";
@@ -1159,8 +1161,8 @@ ZonesSolution solve_zones(const ZonesParams& prm) {
     for (int j = 0; j < nz; ++j) {
       const ZoneSpan& z = prm.zones[static_cast<std::size_t>(j)];
       if (local[static_cast<std::size_t>(z.punch)] < 0) continue;
-      sub.zones.push_back({local[static_cast<std::size_t>(z.punch)], z.left - origin,
-                           z.right - origin});
+      sub.zones.push_back(
+          {local[static_cast<std::size_t>(z.punch)], z.left - origin, z.right - origin});
       zone_of.back().push_back(j);
     }
     std::vector<PunchProfile> sub_prof;

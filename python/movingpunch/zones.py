@@ -205,7 +205,8 @@ class _ZoneSum:
     def stress_field(self, x: FloatArray, y: FloatArray) -> tuple[FloatArray, ...]:
         xs = np.asarray(x, dtype=np.float64)
         parts = [
-            z.stress_field(xs - o, y) for z, o in zip(self.zones, self.origins, strict=True)
+            z.stress_field(xs - o, y)
+            for z, o in zip(self.zones, self.origins, strict=True)
         ]
         return tuple(
             sum(

@@ -105,7 +105,9 @@ def test_punches_far_apart_are_each_the_punch_alone(d: float) -> None:
         # (far out the positions' spacing moves the surface by about it
         # times the slope there)
         slack = 10.0 * spacing * single.a / R
-        assert abs(p.indentation - single.indentation) < 1e-9 * single.indentation + slack
+        assert (
+            abs(p.indentation - single.indentation) < 1e-9 * single.indentation + slack
+        )
         x = np.linspace(-0.99, 0.99, 9) * single.a
         assert np.allclose(
             p.pressure(x + at), single.pressure(x), atol=1e-8 + 10 * spacing, rtol=0
@@ -198,7 +200,8 @@ def test_a_punch_too_far_from_the_origin_is_refused_naming_at(at: float) -> None
         mp.solve_punches([mp.Punch(R, LOAD, at=at)], vstar=0.2, kw=1.0)
     assert err.value.parameter == "at"
     msg = str(err.value)
-    assert "|at| must be at most" in msg and "place it near x = 0" in msg
+    assert "|at| must be at most" in msg
+    assert "place it near x = 0" in msg
 
 
 def test_the_cli_refuses_a_punch_too_far_away_without_a_traceback() -> None:
@@ -223,7 +226,8 @@ def test_the_cli_refuses_a_punch_too_far_away_without_a_traceback() -> None:
     )
     assert out.returncode == 2, out.stderr
     assert "Traceback" not in out.stderr
-    assert "at = 1e+20" in out.stderr and "|at| must be at most" in out.stderr
+    assert "at = 1e+20" in out.stderr
+    assert "|at| must be at most" in out.stderr
 
 
 # --- Item 9: an asymmetric table ----------------------------------------------
@@ -242,15 +246,22 @@ def test_an_asymmetric_table_finds_its_contact_inside_the_table() -> None:
     table = _asymmetric_table()
     v = 0.99 * mp.critical_vstar(0.1)
     single = mp.solve(
-        vstar=v, kw=0.1, profile=table, load=LOAD, contact="single", allow_unphysical=True
+        vstar=v,
+        kw=0.1,
+        profile=table,
+        load=LOAD,
+        contact="single",
+        allow_unphysical=True,
     )
     lo, hi = single.contact_interval
-    assert -2.8 < lo < -2.0 and 0.9 < hi < 3.2  # inside the table
+    assert -2.8 < lo < -2.0
+    assert 0.9 < hi < 3.2
     s = mp.solve(vstar=v, kw=0.1, profile=table, load=LOAD)
     assert isinstance(s, mp.ZonedSolution)
     assert s.valid
     hull_lo, hull_hi = s.contact_interval
-    assert abs(hull_lo + 2.14) < 0.01 and abs(hull_hi - 1.06) < 0.01
+    assert abs(hull_lo + 2.14) < 0.01
+    assert abs(hull_hi - 1.06) < 0.01
     check_independently(s)
 
 
@@ -267,7 +278,8 @@ def test_kw_003_just_below_the_critical_speed_separates(below: float) -> None:
     assert isinstance(s, mp.ZonedSolution)
     assert s.valid
     (l1, r1), (l2, r2) = s.contact_zones
-    assert abs(l1 + r2) < 1e-9 and abs(r1 + l2) < 1e-9
+    assert abs(l1 + r2) < 1e-9
+    assert abs(r1 + l2) < 1e-9
     check_independently(s)
 
 
@@ -277,9 +289,10 @@ def test_kw_003_zone_ends_agree_with_an_independent_solver() -> None:
     v = (1.0 - 1e-3) * mp.critical_vstar(0.03)
     s = mp.solve(vstar=v, kw=0.03, radius=R, load=LOAD)
     assert isinstance(s, mp.ZonedSolution)
-    (_, r1), (l2, r2) = s.contact_zones
+    (_, _), (l2, r2) = s.contact_zones
     a1, a2 = two_zone_ends(v, 0.03, 0.2, R, LOAD, a_guess=(l2, r2))
-    assert abs(l2 - a1) < 1e-7 and abs(r2 - a2) < 1e-7
+    assert abs(l2 - a1) < 1e-7
+    assert abs(r2 - a2) < 1e-7
 
 
 @pytest.mark.slow
@@ -306,7 +319,8 @@ def test_two_punches_whose_own_contacts_overlap_lift_each_other_apart() -> None:
     assert s.valid
     (l1, r1), (l2, r2) = s.contact_zones
     assert r1 < l2
-    assert abs(r1 + l2) < 1e-9 and abs(l1 + r2) < 1e-9  # mirror images
+    assert abs(r1 + l2) < 1e-9
+    assert abs(l1 + r2) < 1e-9
     check_independently(s)
 
 

@@ -75,9 +75,9 @@ struct ZoneResult {
   // Relative to its punch's axis `origin` (= that punch's at): evaluate it
   // at x - origin (so that a train far from x = 0 keeps its digits).
   DampedSolution solution() const;
-  double origin = 0;  // x/h of its punch's axis
-  double offset = 0;  // its centre relative to origin
-  double half = 0;    // its half-width
+  double origin = 0;                           // x/h of its punch's axis
+  double offset = 0;                           // its centre relative to origin
+  double half = 0;                             // its half-width
   DampedParams params;                         // the layer, load = the zone's
   std::shared_ptr<const DampedKernel> kernel;  // the solve's kernel table
 };
