@@ -715,8 +715,9 @@ WidthSolve solve_width(int n, double lambda_t, double w_guess, double w0, double
     // No load at x1: a table's contact cannot be that wide where it must be
     // centred (its centres' range shrinks as it widens), or the size is too
     // coarse. Halve the step while the load stays of f0's sign: the root may
-    // lie before the trial contact leaves the table.
-    for (int h = 0; h < 40 && std::isnan(f1); ++h) {
+    // lie before the trial contact leaves the table (8 halvings: to 0.2 % of
+    // the width; a refusal stays cheap).
+    for (int h = 0; h < 8 && std::isnan(f1); ++h) {
       const double xm = 0.5 * (x0 + x1);
       if (xm == x0 || xm == x1) break;
       WidthEval em;

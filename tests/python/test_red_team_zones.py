@@ -330,3 +330,11 @@ def test_punches_too_close_are_still_refused_naming_punches() -> None:
             [mp.Punch(R, LOAD, at=-0.01), mp.Punch(R, LOAD, at=0.01)], vstar=0.5, kw=1.0
         )
     assert err.value.parameter == "punches"
+
+
+def test_a_table_too_short_for_its_load_is_still_refused_naming_it() -> None:
+    # The halved bracketing step does not hide a contact that really leaves
+    # the table: a load 150 times larger is refused as before.
+    with pytest.raises(mp.InvalidParameterError) as err:
+        mp.solve(vstar=0.3, kw=1.0, profile=_asymmetric_table(), load=0.3)
+    assert "needs a contact that leaves the table" in str(err.value)
