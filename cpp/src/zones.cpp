@@ -1102,8 +1102,8 @@ ZonesSolution solve_zones(const ZonesParams& prm) {
   });
   std::vector<std::vector<int>> groups;  // punch indices, along x
   double apart = kInf;                   // the distance beyond which groups are independent
+  bool built = false;                    // the decay's kernel table was built here
   if (np > 1) {
-    bool built = false;
     const ZoneKernel K(
         cached_damped_kernel(L.vstar, L.kw, L.nu, L.damping, 1.0, 4.0, &built, L.kp, 0.0));
     double slope = kInf, total = 0.0;
@@ -1189,6 +1189,7 @@ ZonesSolution solve_zones(const ZonesParams& prm) {
     parts.push_back(std::move(part));
   }
   ZonesSolution out;
+  out.kernel_builds = built ? 1 : 0;
   const ZonesSolution& first = parts.front();
   out.critical_vstar = first.critical_vstar;
   out.rayleigh_vstar = first.rayleigh_vstar;

@@ -22,6 +22,7 @@ the punch penetrates away from its contact. No topology is tried twice.
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import math
 import time
@@ -400,9 +401,12 @@ class _Layer:
 
 
 def _solve_topology(
-    layer: _Layer, punches: Sequence[Punch], zones: Sequence[tuple[int, float, float]]
+    layer: _Layer,
+    punches: Sequence[Punch],
+    zones: Sequence[tuple[int, float, float]],
+    builds: list[int] | None = None,
 ) -> Any:
-    return _core.solve_zones(
+    z = _core.solve_zones(
         vstar=layer.vstar,
         kw=layer.kw,
         nu=layer.nu,
@@ -414,6 +418,9 @@ def _solve_topology(
         zones=list(zones),
         first_n=layer.first_n,
     )
+    if builds is not None:
+        builds.append(int(z.kernel_builds))
+    return z
 
 
 def _negative_runs(zone: Any, origin: float) -> list[tuple[float, float, bool, bool]]:
@@ -569,18 +576,59 @@ def _signature(zones: Sequence[tuple[int, float, float]]) -> tuple[object, ...]:
     return tuple((z[0], round(z[1] / scale), round(z[2] / scale)) for z in zones)
 
 
+_SEARCH_N = 48
+"""The fixed collocation size per zone of the search's first pass."""
+
+
 def find_contact_set(
     layer: _Layer,
     punches: Sequence[Punch],
     start: Sequence[tuple[int, float, float]],
     *,
     mirror: bool = False,
+    builds: list[int] | None = None,
 ) -> tuple[Any, int, list[str]]:
     """The active-set search from the contact set ``start``: the solved
     topology that satisfies complementarity, the number of topologies
     solved and the account of each. Raises UnphysicalContactError when no
     contact set is found (naming what failed); never returns one that
-    fails complementarity."""
+    fails complementarity.
+
+    With the automatic ladder (``layer.n`` 0) the search first decides the
+    topologies at the fixed size ``_SEARCH_N`` (a topology whose zones
+    nearly merge would otherwise climb the ladder to its largest size only
+    to be rejected), then solves the set it found on the ladder from its
+    own ends and checks it again; when the first pass finds nothing, or its
+    set fails on the ladder, the search runs on the ladder. ``builds``
+    (optional) collects the kernel tables each solve built."""
+    if layer.n != 0:
+        return _search(layer, punches, start, mirror, builds)
+    try:
+        rough, solved, account = _search(
+            dataclasses.replace(layer, n=_SEARCH_N), punches, start, mirror, builds
+        )
+    except UnphysicalContactError:
+        return _search(layer, punches, start, mirror, builds)
+    zones = [(int(q.punch), float(q.left), float(q.right)) for q in rough.zones]
+    try:
+        z = _solve_topology(
+            dataclasses.replace(layer, first_n=8), punches, zones, builds
+        )
+    except ConvergenceError:
+        return _search(layer, punches, start, mirror, builds)
+    if _complementarity(z)[0]:
+        return z, solved, account
+    return _search(layer, punches, start, mirror, builds)
+
+
+def _search(
+    layer: _Layer,
+    punches: Sequence[Punch],
+    start: Sequence[tuple[int, float, float]],
+    mirror: bool,
+    builds: list[int] | None = None,
+) -> tuple[Any, int, list[str]]:
+    """find_contact_set's search at the layer's own sizes."""
     seen: set[tuple[object, ...]] = set()
     candidates = [list(start)]
     account: list[str] = []
@@ -593,7 +641,7 @@ def find_contact_set(
                 continue
             seen.add(key)
             try:
-                z = _solve_topology(layer, punches, zones)
+                z = _solve_topology(layer, punches, zones, builds)
                 break
             except ConvergenceError as err:
                 account.append(f"{len(zones)} zones: {err}")
@@ -620,6 +668,7 @@ def _result(
     single_validity: str,
     elapsed: float,
     search_seconds: float,
+    kernel_builds: int,
 ) -> ZonedSolution:
     total = sum(p.load for p in punches)
     built = _Zones(z.zones, punches)
@@ -702,7 +751,7 @@ def _result(
             "width": search_seconds,
             "checks": max(0.0, elapsed - search_seconds),
         },
-        _kernel_builds=int(z.kernel_builds),
+        _kernel_builds=kernel_builds,
     )
 
 
@@ -717,8 +766,9 @@ def separate(single: Any, *, damping: float, kp: float, n: int | None) -> ZonedS
     lo, hi = single.contact_interval
     # Symmetric about x = 0: a symmetric punch without damping.
     mirror = damping == 0.0 and bool(getattr(single.profile, "symmetric", True))
+    builds: list[int] = []
     z, topologies, _ = find_contact_set(
-        layer, [punch], [(0, float(lo), float(hi))], mirror=mirror
+        layer, [punch], [(0, float(lo), float(hi))], mirror=mirror, builds=builds
     )
     elapsed = time.perf_counter() - t0 + single.elapsed
     return _result(
@@ -729,6 +779,7 @@ def separate(single: Any, *, damping: float, kp: float, n: int | None) -> ZonedS
         single_validity=single.validity,
         elapsed=elapsed,
         search_seconds=elapsed,
+        kernel_builds=sum(builds),
     )
 
 
@@ -813,8 +864,9 @@ def solve_train(
         ):
             raise too_close("a punch would have no zone")
     t1 = time.perf_counter()
+    builds: list[int] = []
     try:
-        z, topologies, _ = find_contact_set(layer, punches, start)
+        z, topologies, _ = find_contact_set(layer, punches, start, builds=builds)
     except (UnphysicalContactError, ConvergenceError) as err:
         if overlap is None:
             raise
@@ -828,4 +880,5 @@ def solve_train(
         single_validity="",
         elapsed=elapsed,
         search_seconds=time.perf_counter() - t1,
+        kernel_builds=sum(builds),
     )
