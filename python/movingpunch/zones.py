@@ -594,14 +594,15 @@ def find_contact_set(
     contact set is found (naming what failed); never returns one that
     fails complementarity.
 
-    With the automatic ladder (``layer.n`` 0) the search first decides the
+    With the automatic ladder (``layer.n`` 0) and one punch (a separated
+    contact: the search starts far from the set) the search first decides the
     topologies at the fixed size ``_SEARCH_N`` (a topology whose zones
     nearly merge would otherwise climb the ladder to its largest size only
     to be rejected), then solves the set it found on the ladder from its
     own ends and checks it again; when the first pass finds nothing, or its
     set fails on the ladder, the search runs on the ladder. ``builds``
     (optional) collects the kernel tables each solve built."""
-    if layer.n != 0:
+    if layer.n != 0 or len(punches) > 1:  # a train starts close: the ladder
         return _search(layer, punches, start, mirror, builds)
     try:
         rough, solved, account = _search(
