@@ -147,6 +147,7 @@ def test_a_static_train_of_ten_is_ten_single_punches() -> None:
     check_independently(train)
 
 
+@pytest.mark.slow
 def test_a_long_coupled_train_passes_the_independent_checks() -> None:
     # 15 punches 20 h apart on a damped foundation at 0.9 V*_cr: neighbours
     # lift each other (by about 3e-5 of the indentation), so the train is
