@@ -712,6 +712,29 @@ WidthSolve solve_width(int n, double lambda_t, double w_guess, double w0, double
     x1 = std::clamp(x0 + step, lmin, lmax);
     f1 = F(x1, e);
     last = x1;
+    // No load at x1: a table's contact cannot be that wide where it must be
+    // centred (its centres' range shrinks as it widens), or the size is too
+    // coarse. Halve the step while the load stays of f0's sign: the root may
+    // lie before the trial contact leaves the table (8 halvings: to 0.2 % of
+    // the width; a refusal stays cheap).
+    for (int h = 0; h < 8 && std::isnan(f1); ++h) {
+      const double xm = 0.5 * (x0 + x1);
+      if (xm == x0 || xm == x1) break;
+      WidthEval em;
+      const double fm = F(xm, em);
+      last = xm;
+      if (std::isnan(fm)) {
+        x1 = xm;
+      } else if ((fm > 0.0) != (f0 > 0.0) || std::fabs(fm) <= xftol) {
+        x1 = xm;
+        f1 = fm;
+        e = em;
+      } else {
+        x0 = xm;
+        f0 = fm;
+        e = em;
+      }
+    }
     if (std::isnan(f1))
       throw ConvergenceError("damped contact: non-positive load while bracketing");
     if (std::fabs(f1) <= xftol) return finish(x1);

@@ -5,12 +5,16 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <mutex>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
+#include "chebyshev.hpp"
 #include "movingpunch/collocation.hpp"
 #include "movingpunch/dispersion.hpp"
 #include "movingpunch/errors.hpp"
@@ -89,12 +93,139 @@ const Eigen::MatrixXd& cumulative_integration() {
   return Q;
 }
 
+// The regular kernel K of the zones' equations: the shared table on |u| <=
+// range() and, beyond it, degree-24 Chebyshev pieces of width kWidth built
+// on first use from direct Filon sums. Zones far apart then cost the few
+// pieces their distances touch, never a table spanning the distance. A piece
+// whose last coefficients are not at the round-off of its values is
+// evaluated by direct sums instead.
+class ZoneKernel {
+ public:
+  explicit ZoneKernel(std::shared_ptr<const DampedKernel> k) : k_(std::move(k)) {
+    const DampedQuadrature& q = k_->quadrature();
+    const double phi1 = std::fabs(k_->model().phi1());
+    for (std::size_t i = 0; i < q.m1.size(); ++i)
+      abs_f_ += q.panels.weight[i] * std::abs(q.m1[i] - k_->model().phi1()) / phi1;
+  }
+  const std::shared_ptr<const DampedKernel>& table() const noexcept { return k_; }
+  const DampedLayerModel& model() const noexcept { return k_->model(); }
+  double range() const noexcept { return k_->range(); }
+  double operator()(double u) const { return std::fabs(u) <= k_->range() ? (*k_)(u) : far(u); }
+  void many(const double* u, double* out, std::size_t n) const {
+    const double range = k_->range();
+    bool inside = true;
+    for (std::size_t i = 0; i < n && inside; ++i) inside = std::fabs(u[i]) <= range;
+    if (inside) {
+      k_->many(u, out, n);
+      return;
+    }
+    for (std::size_t i = 0; i < n; ++i) out[i] = (*this)(u[i]);
+  }
+  std::size_t pieces() const {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    return pieces_.size();
+  }
+
+ private:
+  static constexpr double kWidth = 0.25;
+  static constexpr int kDegree = 24;
+  std::shared_ptr<const DampedKernel> k_;
+  double abs_f_ = 0.0;
+  mutable std::mutex mutex_;
+  mutable std::unordered_map<long long, std::vector<double>> pieces_;
+
+  double far(double u) const {
+    const double s = std::floor(u / kWidth);
+    if (!(std::fabs(s) < 1e15)) return k_->direct(u);
+    const auto idx = static_cast<long long>(s);
+    const std::vector<double>* c = nullptr;
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      auto it = pieces_.find(idx);
+      if (it == pieces_.end()) it = pieces_.emplace(idx, build(idx)).first;
+      c = &it->second;  // stable: unordered_map never moves its elements
+    }
+    if (c->empty()) return k_->direct(u);
+    const double x = 2.0 * (u - (static_cast<double>(idx) + 0.5) * kWidth) / kWidth;
+    return detail::chebyshev_sum(c->data(), kDegree, x);
+  }
+  std::vector<double> build(long long idx) const {
+    constexpr int D = kDegree;
+    const double c0 = (static_cast<double>(idx) + 0.5) * kWidth;
+    double vals[D + 1], vmax = 0.0;
+    for (int j = 0; j <= D; ++j) {
+      vals[j] = k_->direct(c0 + 0.5 * kWidth * std::cos(kPi * (j + 0.5) / (D + 1)));
+      vmax = std::max(vmax, std::fabs(vals[j]));
+    }
+    std::vector<double> c(D + 1);
+    for (int m = 0; m <= D; ++m) {
+      double sum = 0.0;
+      for (int j = 0; j <= D; ++j) sum += vals[j] * std::cos(kPi * m * (j + 0.5) / (D + 1));
+      c[static_cast<std::size_t>(m)] = (m == 0 ? 1.0 : 2.0) * sum / (D + 1);
+    }
+    const double tail = std::fabs(c[D - 1]) + std::fabs(c[D]);
+    if (!(tail <= 16.0 * kEps * (abs_f_ + vmax))) c.clear();  // not at round-off: direct sums
+    return c;
+  }
+};
+
+// The layer's total kernel T(u) = 1/u + K(u) (the whole slope response,
+// (phi1/pi) int p T(x - t) dt, at a distance u from a load) decays on a
+// Winkler or Pasternak foundation: exponentially, at the rate of the
+// response's complex poles nearest the real axis (slowly near the critical
+// speed, where they approach it). Sampled maxima of |T| on the windows
+// [2^k, 2^(k+1)] h, k = -1..kWindows - 2 (spacing 1/8 h, at most 2048
+// samples a window), memoised per layer: zones whose distances all lie in
+// windows where |T| stays below a bound interact below it.
+constexpr int kWindows = 15;  // up to 2^13 = 8192 h
+std::vector<double> kernel_windows(const ZoneKernel& K) {
+  const DampedLayerModel& m = K.model();
+  using Key = std::array<double, 5>;
+  static std::mutex mutex;
+  static std::vector<std::pair<Key, std::vector<double>>> memo;
+  const Key key = {m.vstar(), m.kw(), m.nu(), m.damping(), m.kp()};
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    for (const auto& [k, v] : memo)
+      if (k == key) return v;
+  }
+  const DampedKernel& table = *K.table();
+  std::vector<double> out;
+  for (int k = -1; k < kWindows - 1; ++k) {
+    const double lo = std::ldexp(1.0, k), hi = 2.0 * lo;
+    const int samples = static_cast<int>(std::min(2048.0, std::ceil((hi - lo) * 8.0)));
+    double mx = 0.0;
+    for (int i = 0; i <= samples; ++i) {
+      const double u = lo + (hi - lo) * i / samples;
+      mx = std::max(mx, std::fabs(1.0 / u + table.direct(u)));
+    }
+    out.push_back(mx);
+  }
+  const std::lock_guard<std::mutex> lock(mutex);
+  if (memo.size() >= 16) memo.erase(memo.begin());
+  memo.emplace_back(key, out);
+  return out;
+}
+
+// The distance beyond which |T| stays below eps (infinite when the sampled
+// windows do not show it: the zones are then solved together): the start of
+// the first window from which every later one (at least the last two) is
+// below eps/8.
+double quiet_distance(const ZoneKernel& K, double eps) {
+  const std::vector<double> w = kernel_windows(K);
+  const int m = static_cast<int>(w.size());
+  int first = m;
+  while (first > 0 && w[static_cast<std::size_t>(first - 1)] <= eps / 8.0) --first;
+  if (first > m - 2) return kInf;
+  return std::ldexp(1.0, first - 1);
+}
+
 // The collocation system of one topology at one size N, and its state after
 // eval(): per zone the nodal values G (p = sqrt(1 - r^2) G(r), absolute:
 // units mu), the consistency constants and the loads.
 class System {
  public:
-  System(const ZonesParams& p, const std::vector<PunchProfile>& prof, const DampedKernel& K, int n,
+  System(const ZonesParams& p, const std::vector<PunchProfile>& prof, const ZoneKernel& K, int n,
          double slope_scale)
       : p_(p),
         prof_(prof),
@@ -288,7 +419,7 @@ class System {
  private:
   const ZonesParams& p_;
   const std::vector<PunchProfile>& prof_;
-  const DampedKernel& K_;
+  const ZoneKernel& K_;
   int n_, nz_, np_;
   ChebyshevNodes nd_;
   double S_, phi1_;
@@ -304,9 +435,17 @@ class System {
 // size when `have_j` (the conditions are scaled alike at every size) and
 // updated by Broyden's rule after each step; recomputed by forward
 // differences when a step fails with an updated one.
+// `mirror`: the problem and the start are symmetric about x = 0 (one
+// symmetric punch at 0 without damping): every step is made symmetric (the
+// ends' mirror images move alike), so that the iteration cannot wander to
+// an asymmetric spurious root of the end conditions.
 void newton(System& sys, Eigen::VectorXd& e, int& evaluations, Eigen::MatrixXd& J, bool& have_j,
-            int max_iterations) {
+            int max_iterations, bool mirror = false) {
   const int m = sys.unknowns();
+  auto symmetric = [&](Eigen::VectorXd& v) {
+    if (mirror) v = (0.5 * (v - v.reverse())).eval();
+  };
+  symmetric(e);
   Eigen::VectorXd F, Ft;
   if (!sys.eval(e, F))
     throw ConvergenceError("several contact zones: the starting zones are not admissible (N = " +
@@ -342,7 +481,8 @@ void newton(System& sys, Eigen::VectorXd& e, int& evaluations, Eigen::MatrixXd& 
   for (int it = 0; it < max_iterations; ++it) {
     if (norm < 1e-14) break;
     if (!have_j) jacobian();
-    const Eigen::VectorXd dx = J.fullPivLu().solve(-F);
+    Eigen::VectorXd dx = J.fullPivLu().solve(-F);
+    symmetric(dx);
     if (!dx.allFinite()) {
       if (!fresh) {
         have_j = false;
@@ -382,6 +522,21 @@ void newton(System& sys, Eigen::VectorXd& e, int& evaluations, Eigen::MatrixXd& 
         break;
       }
     }
+    if (accepted) {
+      // A zone or a gap shrinking to nothing: this topology is not the
+      // contact set (the zones merge, or one vanishes); said at once, not
+      // after the ladder's largest sizes at an ill-conditioned solution.
+      const double hull = e(m - 1) - e(0);
+      for (int j = 0; j < m / 2; ++j) {
+        if (!(e(2 * j + 1) - e(2 * j) > 1e-7 * hull))
+          throw ConvergenceError("several contact zones: zone " + std::to_string(j + 1) +
+                                 " closed (N = " + std::to_string(sys.n()) + ")");
+        if (j > 0 && !(e(2 * j) - e(2 * j - 1) > 1e-7 * hull))
+          throw ConvergenceError("several contact zones: the gap between zones " +
+                                 std::to_string(j) + " and " + std::to_string(j + 1) +
+                                 " closed: they merge (N = " + std::to_string(sys.n()) + ")");
+      }
+    }
     if (!accepted) {
       if (!fresh) {  // an updated Jacobian misled: a new one
         have_j = false;
@@ -412,45 +567,73 @@ void newton(System& sys, Eigen::VectorXd& e, int& evaluations, Eigen::MatrixXd& 
 
 double zones_dissipation(const ZonesSolution& s) {
   if (s.zones.empty() || !(s.zones.front().params.damping > 0.0)) return 0.0;
-  const DampedKernel& K = *s.zones.front().kernel;
-  const DampedLayerModel& model = K.model();
-  std::vector<DampedSolution> parts;
-  double total = 0.0, lo = kInf, hi = -kInf;
+  // Groups solved apart (too far apart to interact) dissipate apart: the
+  // cross terms of |sum p^|^2 are those of their interaction.
+  double all = 0.0;
+  int groups = 0;
   for (const ZoneResult& z : s.zones) {
-    parts.push_back(z.solution());
-    total += z.load;
-    lo = std::min(lo, z.left);
-    hi = std::max(hi, z.right);
+    all += z.load;
+    groups = std::max(groups, z.group + 1);
   }
-  // |p^|^2 oscillates with the distances between the zones: pieces of at
-  // most 1.5/(hi - lo) (and 0.5) in alpha, 8 Gauss points each.
-  const Legendre& gl = gauss_legendre8();
-  const auto& P = K.quadrature().panels;
-  const double width = std::min(0.5, 1.5 / std::max(hi - lo, 1e-300));
-  double sum = 0.0;
-  for (std::size_t p = 0; p < P.panel_centre.size(); ++p) {
-    const double a0 = P.panel_centre[p] - P.panel_half[p], len = 2.0 * P.panel_half[p];
-    const int m = std::max(1, static_cast<int>(std::ceil(len / width)));
-    for (int q = 0; q < m; ++q) {
-      const double c = a0 + (q + 0.5) * len / m, h = 0.5 * len / m;
-      for (std::size_t g = 0; g < gl.x.size(); ++g) {
-        const double a = c + h * gl.x[g];
-        cplx ph = 0.0;
-        for (std::size_t j = 0; j < parts.size(); ++j)
-          ph += (s.zones[j].load / total) * parts[j].pressure_transform(a);
-        sum += h * gl.w[g] * std::norm(model.response(a).Wb * ph);
+  double out = 0.0;
+  for (int g = 0; g < groups; ++g) {
+    const ZoneResult* first = nullptr;
+    std::vector<DampedSolution> parts;
+    std::vector<double> loads;
+    double total = 0.0, lo = kInf, hi = -kInf;
+    for (const ZoneResult& z : s.zones) {
+      if (z.group != g) continue;
+      if (first == nullptr) first = &z;
+      // Each zone relative to the group's first (its phases e^{-i alpha x} small).
+      const double c = (z.origin - first->origin) + z.offset;
+      parts.push_back(zone_solution(z.params, z.kernel, c, z.half, z.b));
+      loads.push_back(z.load);
+      total += z.load;
+      lo = std::min(lo, c - z.half);
+      hi = std::max(hi, c + z.half);
+    }
+    if (first == nullptr) continue;
+    const DampedKernel& K = *first->kernel;
+    const DampedLayerModel& model = K.model();
+    // |p^|^2 oscillates with the distances between the zones: pieces of at
+    // most 1.5/(hi - lo) (and 0.5) in alpha, 8 Gauss points each.
+    const Legendre& gl = gauss_legendre8();
+    const auto& P = K.quadrature().panels;
+    const double width = std::min(0.5, 1.5 / std::max(hi - lo, 1e-300));
+    double sum = 0.0;
+    for (std::size_t p = 0; p < P.panel_centre.size(); ++p) {
+      const double a0 = P.panel_centre[p] - P.panel_half[p], len = 2.0 * P.panel_half[p];
+      const int m = std::max(1, static_cast<int>(std::ceil(len / width)));
+      for (int q = 0; q < m; ++q) {
+        const double c = a0 + (q + 0.5) * len / m, h = 0.5 * len / m;
+        for (std::size_t gg = 0; gg < gl.x.size(); ++gg) {
+          const double a = c + h * gl.x[gg];
+          cplx ph = 0.0;
+          for (std::size_t j = 0; j < parts.size(); ++j)
+            ph += (loads[j] / total) * parts[j].pressure_transform(a);
+          sum += h * gl.w[gg] * std::norm(model.response(a).Wb * ph);
+        }
       }
     }
+    out += (total / all) * model.damping() * std::sqrt(model.vstar()) * total * sum / kPi;
   }
-  return model.damping() * std::sqrt(model.vstar()) * total * sum / kPi;
+  return out;
 }
 
 DampedSolution ZoneResult::solution() const {
-  return zone_solution(params, kernel, 0.5 * (left + right), 0.5 * (right - left), b);
+  return zone_solution(params, kernel, offset, half, b);
 }
 
-ZonesSolution solve_zones(const ZonesParams& prm) {
-  const auto t0 = std::chrono::steady_clock::now();
+namespace {
+
+// The spacing of doubles at |x| (its unit in the last place).
+double ulp(double x) {
+  x = std::fabs(x);
+  return std::nextafter(x, kInf) - x;
+}
+
+// The checks of solve_zones' input; the punches' profiles.
+std::vector<PunchProfile> validate_zones(const ZonesParams& prm) {
   const DampedParams& L = prm.layer;
   require_in_range("vstar", L.vstar, 0.0, 1.0, false, true);
   require_in_range("kw", L.kw, 1e-12, kInf, false, false, true);
@@ -485,6 +668,26 @@ ZonesSolution solve_zones(const ZonesParams& prm) {
     const ZoneSpan& z = prm.zones[static_cast<std::size_t>(j)];
     if (z.punch < 0 || z.punch >= static_cast<int>(prm.punches.size()))
       throw InvalidParameter("zones", "punch indices in range", "a zone names no punch");
+    // Far from x = 0 the doubles are too sparse for a zone (its ends within
+    // 1e-3 of its half-width): refused, naming the position.
+    const double at = prm.punches[static_cast<std::size_t>(z.punch)].at;
+    const double x = std::max({std::fabs(z.left), std::fabs(z.right), std::fabs(at)});
+    const double w = 0.5 * (z.right - z.left);
+    if (std::isfinite(z.left) && std::isfinite(z.right) && std::fabs(at) > 1.0 &&
+        !(w >= 1e3 * ulp(x))) {
+      const double need = w > 0.0 ? w : 0.5 * (prm.zones[0].right - prm.zones[0].left);
+      std::ostringstream m;
+      m.precision(6);
+      m << "punches[" << z.punch << "] at x/h = " << at << ": positions there are resolved only to "
+        << ulp(x) << " h (the spacing of doubles), too coarse for its contact zone";
+      if (need > 0.0) {
+        const double limit =
+            std::ldexp(1.0, static_cast<int>(std::floor(std::log2(1e-3 * need))) + 53);
+        m << " (half-width " << need << " h): |at| must be below " << limit << " here";
+      }
+      m << "; a train's result does not depend on where it is: place it near x = 0";
+      throw InvalidParameter("at", "positions where a zone's ends are resolved", m.str());
+    }
     if (!(z.right > z.left) ||
         (j > 0 && !(z.left > prm.zones[static_cast<std::size_t>(j - 1)].right)))
       throw InvalidParameter("zones", "disjoint intervals sorted from left to right",
@@ -493,7 +696,15 @@ ZonesSolution solve_zones(const ZonesParams& prm) {
   }
   for (int c : count)
     if (c == 0) throw InvalidParameter("zones", "at least one per punch", "a punch has no zone");
+  return prof;
+}
 
+// One group of punches that interact (all of them, or one of the groups
+// solve_zones splits a train into), in its own coordinates.
+ZonesSolution solve_connected(const ZonesParams& prm, const std::vector<PunchProfile>& prof) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const DampedParams& L = prm.layer;
+  const int nz = static_cast<int>(prm.zones.size());
   ZonesSolution out;
   out.rayleigh_vstar = rayleigh_vstar(L.nu);
   out.critical_vstar = critical_vstar(L.kw, L.nu, L.kp);
@@ -522,15 +733,34 @@ ZonesSolution solve_zones(const ZonesParams& prm) {
     }
     return ends(2 * nz - 1) - ends(0) + 2.0 * hull + 1.0;
   };
+  // The table covers the distances within each punch's surroundings (and a
+  // train's span up to 256 h); longer distances take the kernel's pieces
+  // built where they are needed (ZoneKernel), so the cost does not grow
+  // with the distance between punches.
+  auto table_need = [&](const Eigen::VectorXd& ends) {
+    double hull = 0.0;
+    for (std::size_t k = 0; k < prm.punches.size(); ++k) {
+      double lo = kInf, hi = -kInf;
+      for (int j = 0; j < nz; ++j)
+        if (prm.zones[static_cast<std::size_t>(j)].punch == static_cast<int>(k)) {
+          lo = std::min(lo, ends(2 * j));
+          hi = std::max(hi, ends(2 * j + 1));
+        }
+      hull = std::max(hull, hi - lo);
+    }
+    return std::min(range_need(ends), std::max(4.0 * hull + 2.0, 256.0));
+  };
   std::shared_ptr<const DampedKernel> kern;
-  auto kernel = [&](double need) -> const DampedKernel& {
+  std::unique_ptr<ZoneKernel> zk;
+  auto kernel = [&](double need) -> const ZoneKernel& {
     if (!kern || kern->range() < need) {
       bool built = false;
       kern =
           cached_damped_kernel(L.vstar, L.kw, L.nu, L.damping, need, 2.0 * need, &built, L.kp, 0.0);
       out.kernel_builds += built ? 1 : 0;
+      zk = std::make_unique<ZoneKernel>(kern);
     }
-    return *kern;
+    return *zk;
   };
   double S = 0.0;
   for (int j = 0; j < nz; ++j) {
@@ -540,6 +770,13 @@ ZonesSolution solve_zones(const ZonesParams& prm) {
                   std::fabs(prof[static_cast<std::size_t>(k)].slope(e(2 * j + 1) - at))});
   }
   if (!(S > 0.0)) S = 1e-3;
+
+  // Symmetric about x = 0: one symmetric punch there, no damping, a
+  // symmetric start (Newton's steps are kept symmetric).
+  bool mirror = prm.punches.size() == 1 && prm.punches[0].at == 0.0 && !(L.damping > 0.0) &&
+                prof[0].symmetric();
+  for (int i = 0; i < 2 * nz && mirror; ++i)
+    mirror = std::fabs(e(i) + e(2 * nz - 1 - i)) <= 1e-9 * (e(2 * nz - 1) - e(0));
 
   // The N ladder (or the given N, with N/2 for the estimate).
   std::vector<int> sizes;
@@ -569,11 +806,11 @@ ZonesSolution solve_zones(const ZonesParams& prm) {
     const int max_it = first ? 200 : 16;
     const Eigen::VectorXd e_keep = e;
     try {
-      sys = std::make_unique<System>(prm, prof, kernel(range_need(e)), n, S);
-      newton(*sys, e, out.iterations, jac, have_jac, max_it);
-      if (kern->range() < range_need(e)) {  // the ends moved out: a longer table
-        sys = std::make_unique<System>(prm, prof, kernel(range_need(e)), n, S);
-        newton(*sys, e, out.iterations, jac, have_jac, max_it);
+      sys = std::make_unique<System>(prm, prof, kernel(table_need(e)), n, S);
+      newton(*sys, e, out.iterations, jac, have_jac, max_it, mirror);
+      if (kern->range() < table_need(e)) {  // the ends moved out: a longer table
+        sys = std::make_unique<System>(prm, prof, kernel(table_need(e)), n, S);
+        newton(*sys, e, out.iterations, jac, have_jac, max_it, mirror);
       }
     } catch (const ConvergenceError& err) {
       if (first) throw;
@@ -582,7 +819,7 @@ ZonesSolution solve_zones(const ZonesParams& prm) {
         << "); the result is that of N = " << done.back();
       out.warnings.push_back(w.str());
       e = e_keep;
-      sys = std::make_unique<System>(prm, prof, kernel(range_need(e)), done.back(), S);
+      sys = std::make_unique<System>(prm, prof, kernel(table_need(e)), done.back(), S);
       Eigen::VectorXd F;
       if (!sys->eval(e, F)) throw;
       break;
@@ -649,6 +886,9 @@ ZonesSolution solve_zones(const ZonesParams& prm) {
     z.punch = sys->punch_of(j);
     z.left = e(2 * j);
     z.right = e(2 * j + 1);
+    z.origin = prm.punches[static_cast<std::size_t>(z.punch)].at;
+    z.offset = sys->centre(j) - z.origin;
+    z.half = sys->half(j);
     z.load = sys->load(j);
     z.params = L;
     z.params.load = z.load;
@@ -789,6 +1029,241 @@ ZonesSolution solve_zones(const ZonesParams& prm) {
       for (int i = 1; i < M; ++i)
         note(sys->height(k, X(i)) - sys->height(k, a) - integral(i), X(i), j);
     }
+  }
+  out.elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+// Moves a solution computed in coordinates relative to `origin` back.
+void shift(ZonesSolution& s, double origin) {
+  for (ZoneResult& z : s.zones) {
+    z.left += origin;
+    z.right += origin;
+    z.margin_x += origin;
+  }
+  for (double& x : s.indentation_x) x += origin;
+  s.min_gap_x += origin;
+}
+
+// Whether two groups' inputs (relative to their origins) are the same to
+// 1e-12 of the group's length: one solve serves both.
+bool same_group(const ZonesParams& a, const ZonesParams& b) {
+  if (a.punches.size() != b.punches.size() || a.zones.size() != b.zones.size()) return false;
+  const double scale = 1e-12 * std::max(1.0, a.zones.back().right - a.zones.front().left);
+  auto near = [&](double x, double y) { return std::fabs(x - y) <= scale; };
+  for (std::size_t k = 0; k < a.punches.size(); ++k) {
+    const ZonePunch &p = a.punches[k], &q = b.punches[k];
+    if (p.profile != q.profile || p.radius != q.radius || p.half_width != q.half_width ||
+        p.table_x != q.table_x || p.table_y != q.table_y || p.load != q.load || !near(p.at, q.at))
+      return false;
+  }
+  for (std::size_t j = 0; j < a.zones.size(); ++j) {
+    const ZoneSpan &z = a.zones[j], &y = b.zones[j];
+    if (z.punch != y.punch || !near(z.left, y.left) || !near(z.right, y.right)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+ZonesSolution solve_zones(const ZonesParams& prm) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::vector<PunchProfile> prof = validate_zones(prm);
+  const DampedParams& L = prm.layer;
+  {
+    const double vr = rayleigh_vstar(L.nu), vcr = critical_vstar(L.kw, L.nu, L.kp);
+    if (!(L.vstar < vr) || (!(L.damping > 0.0) && !(L.vstar < vcr)))
+      throw SupercriticalSpeedError(L.vstar, vcr, vr);
+  }
+  const int nz = static_cast<int>(prm.zones.size());
+  const int np = static_cast<int>(prm.punches.size());
+  // Per punch: the hull of its starting zones; the narrowest zone; where
+  // the positions are largest.
+  std::vector<double> lo(static_cast<std::size_t>(np), kInf), hi(lo.size(), -kInf);
+  double wmin = kInf, xmax = 0.0;
+  for (const ZoneSpan& z : prm.zones) {
+    const auto k = static_cast<std::size_t>(z.punch);
+    lo[k] = std::min(lo[k], z.left);
+    hi[k] = std::max(hi[k], z.right);
+    wmin = std::min(wmin, 0.5 * (z.right - z.left));
+    xmax = std::max({xmax, std::fabs(z.left), std::fabs(z.right)});
+  }
+  // The order of the punches along x, and the groups that interact: on a
+  // foundation the layer's response decays with the distance, and punches
+  // whose zones (and the surroundings their checks cover) lie farther apart
+  // than where the total kernel has decayed below eps interact below the
+  // tolerance: each group is solved alone. eps: a slope error (phi1/pi) P
+  // eps moves a zone end by about that over the slope f' at the end,
+  // relative to the zone; kept at 1e-2 tol of it.
+  std::vector<int> order(static_cast<std::size_t>(np));
+  for (int k = 0; k < np; ++k) order[static_cast<std::size_t>(k)] = k;
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    return lo[static_cast<std::size_t>(a)] < lo[static_cast<std::size_t>(b)];
+  });
+  std::vector<std::vector<int>> groups;  // punch indices, along x
+  double apart = kInf;                   // the distance beyond which groups are independent
+  bool built = false;                    // the decay's kernel table was built here
+  if (np > 1) {
+    const ZoneKernel K(
+        cached_damped_kernel(L.vstar, L.kw, L.nu, L.damping, 1.0, 4.0, &built, L.kp, 0.0));
+    double slope = kInf, total = 0.0;
+    for (const ZoneSpan& z : prm.zones) {
+      const auto k = static_cast<std::size_t>(z.punch);
+      const double at = prm.punches[k].at;
+      slope = std::min(slope, std::max(std::fabs(prof[k].slope(z.left - at)),
+                                       std::fabs(prof[k].slope(z.right - at))));
+    }
+    for (const ZonePunch& p : prm.punches) total += p.load;
+    if (!(slope > 0.0)) slope = 1e-3;
+    const double phi1 = std::fabs(wave_constants(L.vstar, L.nu).phi1);
+    apart = quiet_distance(K, 1e-2 * L.tol * slope * kPi / (phi1 * total));
+  }
+  {
+    double ghi = -kInf, ghull = 0.0;
+    for (int k : order) {
+      const auto q = static_cast<std::size_t>(k);
+      const double hull = hi[q] - lo[q];
+      const double reach = 3.0 * std::max(ghull, hull);
+      if (groups.empty() || !(lo[q] - ghi - reach > apart)) {
+        if (groups.empty()) groups.emplace_back();
+        groups.back().push_back(k);
+        ghull = std::max(ghull, hull);
+      } else {
+        groups.push_back({k});
+        ghull = hull;
+      }
+      ghi = std::max(ghi, hi[q]);
+    }
+  }
+  // Each group is solved relative to its first punch's axis (the problem is
+  // translation invariant; far from x = 0 the ends would lose digits), and
+  // moved back: the positions then carry the spacing of doubles there,
+  // part of the error estimate (and a warning above tol).
+  const double spacing = ulp(xmax);
+  std::vector<ZonesSolution> parts, raws;
+  std::vector<ZonesParams> inputs;
+  std::vector<std::vector<int>> zone_of;  // per group: its zones' global indices
+  for (const std::vector<int>& g : groups) {
+    ZonesParams sub;
+    sub.layer = prm.layer;
+    sub.first_n = prm.first_n;
+    std::vector<int> local(static_cast<std::size_t>(np), -1);
+    std::vector<int> members = g;
+    std::sort(members.begin(), members.end());  // the punches' own order within the group
+    const double origin = prm.punches[static_cast<std::size_t>(g.front())].at;
+    for (int k : members) {
+      local[static_cast<std::size_t>(k)] = static_cast<int>(sub.punches.size());
+      ZonePunch p = prm.punches[static_cast<std::size_t>(k)];
+      p.at -= origin;
+      sub.punches.push_back(p);
+    }
+    zone_of.emplace_back();
+    for (int j = 0; j < nz; ++j) {
+      const ZoneSpan& z = prm.zones[static_cast<std::size_t>(j)];
+      if (local[static_cast<std::size_t>(z.punch)] < 0) continue;
+      sub.zones.push_back(
+          {local[static_cast<std::size_t>(z.punch)], z.left - origin, z.right - origin});
+      zone_of.back().push_back(j);
+    }
+    std::vector<PunchProfile> sub_prof;
+    for (int k : members) sub_prof.push_back(prof[static_cast<std::size_t>(k)]);
+    ZonesSolution part;
+    bool reused = false;
+    for (std::size_t i = 0; i < inputs.size() && !reused; ++i)
+      if (same_group(inputs[i], sub)) {  // a train of equal punches: solved once
+        part = raws[i];
+        part.iterations = 0;
+        part.kernel_builds = 0;
+        part.elapsed = 0.0;
+        reused = true;
+      }
+    if (!reused) part = solve_connected(sub, sub_prof);
+    raws.push_back(part);
+    shift(part, origin);
+    // Back to the global punch indices (and their axes).
+    for (ZoneResult& z : part.zones) {
+      z.punch = members[static_cast<std::size_t>(z.punch)];
+      z.origin = prm.punches[static_cast<std::size_t>(z.punch)].at;
+    }
+    inputs.push_back(std::move(sub));
+    parts.push_back(std::move(part));
+  }
+  ZonesSolution out;
+  out.kernel_builds = built ? 1 : 0;
+  const ZonesSolution& first = parts.front();
+  out.critical_vstar = first.critical_vstar;
+  out.rayleigh_vstar = first.rayleigh_vstar;
+  out.phi1 = first.phi1;
+  out.drag.assign(static_cast<std::size_t>(np), 0.0);
+  out.indentation_x.assign(static_cast<std::size_t>(np), 0.0);
+  out.indentation_height.assign(static_cast<std::size_t>(np), 0.0);
+  double total = 0.0;
+  for (const ZonePunch& p : prm.punches) total += p.load;
+  out.min_gap = kInf;
+  double worst = kInf;  // the smallest gap relative to its group's scale
+  std::vector<std::pair<double, ZoneResult>> zones;
+  for (std::size_t gi = 0; gi < parts.size(); ++gi) {
+    const ZonesSolution& s = parts[gi];
+    std::vector<int> members = groups[gi];
+    std::sort(members.begin(), members.end());
+    double load = 0.0;
+    for (int k : members) load += prm.punches[static_cast<std::size_t>(k)].load;
+    for (std::size_t i = 0; i < members.size(); ++i) {
+      const auto k = static_cast<std::size_t>(members[i]);
+      out.drag[k] = s.drag[i];
+      out.indentation_x[k] = s.indentation_x[i];
+      out.indentation_height[k] = s.indentation_height[i];
+    }
+    const std::size_t offset = out.zones.size();
+    for (ZoneResult z : s.zones) {
+      z.group = static_cast<int>(gi);
+      out.zones.push_back(std::move(z));
+    }
+    out.error_estimate = std::max(out.error_estimate, s.error_estimate);
+    out.pressure_error_estimate = std::max(out.pressure_error_estimate, s.pressure_error_estimate);
+    out.stress_error_estimate += s.stress_error_estimate * load / total;
+    out.max_pressure = std::max(out.max_pressure, s.max_pressure * load / total);
+    out.drag_total += s.drag_total * load / total;
+    out.residual = std::max(out.residual, s.residual);
+    out.collocation_n = std::max(out.collocation_n, s.collocation_n);
+    out.iterations += s.iterations;
+    out.kernel_builds += s.kernel_builds;
+    const double rel = s.min_gap / std::max(s.gap_scale, 1e-300);
+    if (rel < worst) {
+      worst = rel;
+      out.min_gap = s.min_gap;
+      out.min_gap_x = s.min_gap_x;
+      out.gap_scale = s.gap_scale;
+      out.min_gap_after_zone =
+          s.min_gap_after_zone < 0 ? -1 : static_cast<int>(offset) + s.min_gap_after_zone;
+    }
+    for (const std::string& w : s.warnings) {
+      if (parts.size() == 1) {
+        out.warnings.push_back(w);
+        continue;
+      }
+      std::ostringstream m;
+      m << "punches";
+      for (int k : members) m << " " << k;
+      m << ": " << w;
+      out.warnings.push_back(m.str());
+    }
+  }
+  if (parts.size() > 1) {
+    // The groups' interaction left out: below 1e-2 tol of the zones' ends.
+    double wmax = 0.0;
+    for (const ZoneResult& z : out.zones) wmax = std::max(wmax, 0.5 * (z.right - z.left));
+    out.error_estimate += 1e-2 * L.tol * wmax;
+  }
+  // The positions' spacing at |x| (the groups moved back there).
+  out.error_estimate = std::max(out.error_estimate, spacing);
+  if (spacing > L.tol * wmin) {
+    std::ostringstream w;
+    w << "positions near x/h = " << xmax << " are resolved only to " << spacing
+      << " h (the spacing of doubles there), above tol * (narrowest zone half-width) = "
+      << L.tol * wmin << " h: place the punches nearer x = 0 (the result does not depend on "
+      << "where they are)";
+    out.warnings.push_back(w.str());
   }
   out.elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;

@@ -22,8 +22,8 @@ the punch penetrates away from its contact. No topology is tried twice.
 
 from __future__ import annotations
 
+import dataclasses
 import functools
-import itertools
 import math
 import time
 from collections.abc import Callable, Mapping, Sequence
@@ -136,10 +136,13 @@ class Punch:
 
 class _Zones:
     """The zones of a solve and, built on first use (about a millisecond
-    each: their Fourier nodes), each as a compiled solution of its own load."""
+    each: their Fourier nodes), each as a compiled solution of its own load,
+    relative to its punch's axis (``origins``: evaluated at x - origin, so
+    that a train far from x = 0 keeps its digits)."""
 
-    def __init__(self, core_zones: Sequence[Any]) -> None:
+    def __init__(self, core_zones: Sequence[Any], punches: Sequence[Punch]) -> None:
         self.core = tuple(core_zones)
+        self.origins = tuple(float(punches[int(z.punch)].at) for z in self.core)
         self._solutions: tuple[Any, ...] | None = None
 
     @property
@@ -158,42 +161,54 @@ class _ZoneSum:
         self._all = zones
         self._indices = tuple(indices)
         self.weights = tuple(float(zones.core[i].load) / total for i in self._indices)
+        self.origins = tuple(zones.origins[i] for i in self._indices)
 
     @property
     def zones(self) -> tuple[Any, ...]:
         built = self._all.solutions
         return tuple(built[i] for i in self._indices)
 
-    def _sum(self, f: Callable[[Any], Any], weighted: bool = True) -> Any:
+    def _sum(
+        self, f: Callable[[Any, FloatArray], Any], x: FloatArray, weighted: bool = True
+    ) -> Any:
         out = None
-        for z, w in zip(self.zones, self.weights, strict=True):
-            v = np.asarray(f(z), dtype=np.float64) * (w if weighted else 1.0)
+        xs = np.asarray(x, dtype=np.float64)
+        for z, w, o in zip(self.zones, self.weights, self.origins, strict=True):
+            v = np.asarray(f(z, xs - o), dtype=np.float64) * (w if weighted else 1.0)
             out = v if out is None else out + v
         return out
 
     def pressure(self, x: FloatArray) -> FloatArray:
-        return self._sum(lambda z: z.pressure(x))  # type: ignore[no-any-return]
+        return self._sum(lambda z, u: z.pressure(u), x)  # type: ignore[no-any-return]
 
     def surface_stress(self, x: FloatArray) -> FloatArray:
-        return self._sum(lambda z: z.surface_stress(x))  # type: ignore[no-any-return]
+        return self._sum(lambda z, u: z.surface_stress(u), x)  # type: ignore[no-any-return]
 
     def surface_slope(self, x: FloatArray) -> FloatArray:
-        return self._sum(lambda z: z.surface_slope(x), weighted=False)  # type: ignore[no-any-return]
+        return self._sum(lambda z, u: z.surface_slope(u), x, weighted=False)  # type: ignore[no-any-return]
 
     def surface_displacement(self, x: FloatArray) -> FloatArray:
-        return self._sum(lambda z: z.surface_displacement(x), weighted=False)  # type: ignore[no-any-return]
+        return self._sum(  # type: ignore[no-any-return]
+            lambda z, u: z.surface_displacement(u), x, weighted=False
+        )
 
     def bottom_slope(self, x: FloatArray) -> FloatArray:
-        return self._sum(lambda z: z.bottom_slope(x), weighted=False)  # type: ignore[no-any-return]
+        return self._sum(lambda z, u: z.bottom_slope(u), x, weighted=False)  # type: ignore[no-any-return]
 
     def bottom_displacement(self, x: FloatArray) -> FloatArray:
-        return self._sum(lambda z: z.bottom_displacement(x), weighted=False)  # type: ignore[no-any-return]
+        return self._sum(  # type: ignore[no-any-return]
+            lambda z, u: z.bottom_displacement(u), x, weighted=False
+        )
 
     def displacement(self, x: FloatArray, y: FloatArray) -> FloatArray:
-        return self._sum(lambda z: z.displacement(x, y), weighted=False)  # type: ignore[no-any-return]
+        return self._sum(lambda z, u: z.displacement(u, y), x, weighted=False)  # type: ignore[no-any-return]
 
     def stress_field(self, x: FloatArray, y: FloatArray) -> tuple[FloatArray, ...]:
-        parts = [z.stress_field(x, y) for z in self.zones]
+        xs = np.asarray(x, dtype=np.float64)
+        parts = [
+            z.stress_field(xs - o, y)
+            for z, o in zip(self.zones, self.origins, strict=True)
+        ]
         return tuple(
             sum(
                 (
@@ -386,9 +401,12 @@ class _Layer:
 
 
 def _solve_topology(
-    layer: _Layer, punches: Sequence[Punch], zones: Sequence[tuple[int, float, float]]
+    layer: _Layer,
+    punches: Sequence[Punch],
+    zones: Sequence[tuple[int, float, float]],
+    builds: list[int] | None = None,
 ) -> Any:
-    return _core.solve_zones(
+    z = _core.solve_zones(
         vstar=layer.vstar,
         kw=layer.kw,
         nu=layer.nu,
@@ -400,13 +418,18 @@ def _solve_topology(
         zones=list(zones),
         first_n=layer.first_n,
     )
+    if builds is not None:
+        builds.append(int(z.kernel_builds))
+    return z
 
 
-def _negative_runs(zone: Any) -> list[tuple[float, float, bool, bool]]:
+def _negative_runs(zone: Any, origin: float) -> list[tuple[float, float, bool, bool]]:
     """Where p < 0 in a zone: (x_from, x_to, touches_left, touches_right) of
-    each run of negative g = p/sqrt(1 - r^2) on a 2001-point grid."""
+    each run of negative g = p/sqrt(1 - r^2) on a 2001-point grid (its
+    solution is relative to its punch's axis ``origin``)."""
     sol = zone.solution
-    c, w = float(sol.centre), float(sol.half_width)
+    w = float(sol.half_width)
+    c = float(sol.centre)
     r = np.cos(np.linspace(math.pi, 0.0, 2001))
     r = r[1:-1]
     g = (
@@ -424,7 +447,9 @@ def _negative_runs(zone: Any) -> list[tuple[float, float, bool, bool]]:
         j = i
         while j + 1 < len(r) and neg[j + 1]:
             j += 1
-        runs.append((c + w * r[i], c + w * r[j], i == 0, j == len(r) - 1))
+        runs.append(
+            (origin + c + w * r[i], origin + c + w * r[j], i == 0, j == len(r) - 1)
+        )
         i = j + 1
     return runs
 
@@ -485,7 +510,10 @@ def _next_topologies(
     about x = 0 (a new zone gets its mirror image too)."""
     zones = [(int(q.punch), float(q.left), float(q.right)) for q in z.zones]
     runs = [
-        _negative_runs(q) if (q.load <= 0.0 or q.margin < 0.0) else [] for q in z.zones
+        _negative_runs(q, punches[int(q.punch)].at)
+        if (q.load <= 0.0 or q.margin < 0.0)
+        else []
+        for q in z.zones
     ]
     if any(runs):
         # p < 0: take every run of p < 0 out of its zone (split it, or
@@ -548,18 +576,60 @@ def _signature(zones: Sequence[tuple[int, float, float]]) -> tuple[object, ...]:
     return tuple((z[0], round(z[1] / scale), round(z[2] / scale)) for z in zones)
 
 
+_SEARCH_N = 48
+"""The fixed collocation size per zone of the search's first pass."""
+
+
 def find_contact_set(
     layer: _Layer,
     punches: Sequence[Punch],
     start: Sequence[tuple[int, float, float]],
     *,
     mirror: bool = False,
+    builds: list[int] | None = None,
 ) -> tuple[Any, int, list[str]]:
     """The active-set search from the contact set ``start``: the solved
     topology that satisfies complementarity, the number of topologies
     solved and the account of each. Raises UnphysicalContactError when no
     contact set is found (naming what failed); never returns one that
-    fails complementarity."""
+    fails complementarity.
+
+    With the automatic ladder (``layer.n`` 0) and one punch (a separated
+    contact: the search starts far from the set) the search first decides the
+    topologies at the fixed size ``_SEARCH_N`` (a topology whose zones
+    nearly merge would otherwise climb the ladder to its largest size only
+    to be rejected), then solves the set it found on the ladder from its
+    own ends and checks it again; when the first pass finds nothing, or its
+    set fails on the ladder, the search runs on the ladder. ``builds``
+    (optional) collects the kernel tables each solve built."""
+    if layer.n != 0 or len(punches) > 1:  # a train starts close: the ladder
+        return _search(layer, punches, start, mirror, builds)
+    try:
+        rough, solved, account = _search(
+            dataclasses.replace(layer, n=_SEARCH_N), punches, start, mirror, builds
+        )
+    except UnphysicalContactError:
+        return _search(layer, punches, start, mirror, builds)
+    zones = [(int(q.punch), float(q.left), float(q.right)) for q in rough.zones]
+    try:
+        z = _solve_topology(
+            dataclasses.replace(layer, first_n=8), punches, zones, builds
+        )
+    except ConvergenceError:
+        return _search(layer, punches, start, mirror, builds)
+    if _complementarity(z)[0]:
+        return z, solved, account
+    return _search(layer, punches, start, mirror, builds)
+
+
+def _search(
+    layer: _Layer,
+    punches: Sequence[Punch],
+    start: Sequence[tuple[int, float, float]],
+    mirror: bool,
+    builds: list[int] | None = None,
+) -> tuple[Any, int, list[str]]:
+    """find_contact_set's search at the layer's own sizes."""
     seen: set[tuple[object, ...]] = set()
     candidates = [list(start)]
     account: list[str] = []
@@ -572,7 +642,7 @@ def find_contact_set(
                 continue
             seen.add(key)
             try:
-                z = _solve_topology(layer, punches, zones)
+                z = _solve_topology(layer, punches, zones, builds)
                 break
             except ConvergenceError as err:
                 account.append(f"{len(zones)} zones: {err}")
@@ -599,9 +669,10 @@ def _result(
     single_validity: str,
     elapsed: float,
     search_seconds: float,
+    kernel_builds: int,
 ) -> ZonedSolution:
     total = sum(p.load for p in punches)
-    built = _Zones(z.zones)
+    built = _Zones(z.zones, punches)
     every = range(len(z.zones))
     impl = _ZoneSum(built, every, total)
     results = []
@@ -681,7 +752,7 @@ def _result(
             "width": search_seconds,
             "checks": max(0.0, elapsed - search_seconds),
         },
-        _kernel_builds=int(z.kernel_builds),
+        _kernel_builds=kernel_builds,
     )
 
 
@@ -696,8 +767,9 @@ def separate(single: Any, *, damping: float, kp: float, n: int | None) -> ZonedS
     lo, hi = single.contact_interval
     # Symmetric about x = 0: a symmetric punch without damping.
     mirror = damping == 0.0 and bool(getattr(single.profile, "symmetric", True))
+    builds: list[int] = []
     z, topologies, _ = find_contact_set(
-        layer, [punch], [(0, float(lo), float(hi))], mirror=mirror
+        layer, [punch], [(0, float(lo), float(hi))], mirror=mirror, builds=builds
     )
     elapsed = time.perf_counter() - t0 + single.elapsed
     return _result(
@@ -708,6 +780,30 @@ def separate(single: Any, *, damping: float, kp: float, n: int | None) -> ZonedS
         single_validity=single.validity,
         elapsed=elapsed,
         search_seconds=elapsed,
+        kernel_builds=sum(builds),
+    )
+
+
+def _check_position(k: int, at: float, single: Any) -> None:
+    """Refuses a punch placed where the doubles are too sparse for its
+    contact (its zone ends resolved to less than 1e-3 of its narrowest zone's
+    half-width), naming ``at`` and the positions that work. Nearer x = 0 the
+    train is solved relative to its punches (the problem is translation
+    invariant) and moved there, to the spacing of doubles at ``at``."""
+    half = min(0.5 * (hi - lo) for lo, hi in single.contact_zones)
+    reach = max(max(abs(lo), abs(hi)) for lo, hi in single.contact_zones)
+    far = abs(at) + reach
+    if abs(at) <= 1.0 or math.ulp(far) <= 1e-3 * half:
+        return
+    limit = 2.0 ** (math.floor(math.log2(1e-3 * half)) + 53) - reach
+    raise InvalidParameterError(
+        f"punches[{k}]: at = {at!r} is too far from x = 0: positions there are "
+        f"resolved only to {math.ulp(far):.3g} h (the spacing of doubles), too "
+        f"coarse for its contact zone (half-width {half:.6g} h); |at| must be at "
+        f"most {limit:.6g} for this punch. A train's result does not depend on "
+        "where it is: place it near x = 0",
+        parameter="at",
+        allowed=f"|at| <= {limit:.6g}",
     )
 
 
@@ -727,21 +823,55 @@ def solve_train(
     when the punches' own contacts overlap."""
     first = singles[0]
     layer = _Layer(first.vstar, first.kw, first.nu, damping, first.kp, tol, n, 8)
+    for k, (p, s) in enumerate(zip(punches, singles, strict=True)):
+        _check_position(k, p.at, s)
     start: list[tuple[int, float, float]] = []
     for k, (p, s) in enumerate(zip(punches, singles, strict=True)):
         start += [(k, p.at + lo, p.at + hi) for lo, hi in s.contact_zones]
     start.sort(key=lambda t: t[1])
-    for (k1, _, r1), (k2, l2, _) in itertools.pairwise(start):
-        if not l2 > r1:
-            raise InvalidParameterError(
-                f"punches[{k1}] and punches[{k2}] are so close that their contacts "
-                f"would overlap (alone they reach x/h = {r1:.6g} and {l2:.6g}): "
-                "place them further apart",
-                parameter="punches",
-                allowed="punches whose contacts do not overlap",
-            )
+    # Punches whose own contacts would overlap start from them clipped apart
+    # (about the middle of the overlap): in a train the punches lift each
+    # other, and their zones may well end apart. Refused (naming the
+    # punches) only when clipping leaves a punch no zone or the search then
+    # finds no contact set.
+    overlap = None
+    for i in range(len(start) - 1):
+        (k1, left_l, r1), (k2, l2, right_r) = start[i], start[i + 1]
+        if l2 > r1:
+            continue
+        overlap = overlap or (k1, k2, r1, l2)
+        middle = 0.5 * (punches[k1].at + punches[k2].at)
+        if not left_l < middle < right_r:
+            middle = 0.5 * (r1 + l2)
+        margin = 0.02 * min(r1 - left_l, right_r - l2)
+        start[i] = (k1, left_l, middle - margin)
+        start[i + 1] = (k2, middle + margin, right_r)
+
+    def too_close(why: str) -> InvalidParameterError:
+        assert overlap is not None
+        k1, k2, r1, l2 = overlap
+        return InvalidParameterError(
+            f"punches[{k1}] and punches[{k2}] are so close that their contacts "
+            f"overlap (alone they reach x/h = {r1:.6g} and {l2:.6g}, and together "
+            f"no contact set keeps them apart: {why}): place them further apart",
+            parameter="punches",
+            allowed="punches whose contacts do not overlap",
+        )
+
+    if overlap is not None:
+        layer.first_n = 24  # a rough start: Newton's method on the finer system
+        if any(b <= a for _, a, b in start) or any(
+            all(t[0] != k for t in start) for k in range(len(punches))
+        ):
+            raise too_close("a punch would have no zone")
     t1 = time.perf_counter()
-    z, topologies, _ = find_contact_set(layer, punches, start)
+    builds: list[int] = []
+    try:
+        z, topologies, _ = find_contact_set(layer, punches, start, builds=builds)
+    except (UnphysicalContactError, ConvergenceError) as err:
+        if overlap is None:
+            raise
+        raise too_close(str(err)) from err
     elapsed = time.perf_counter() - t0
     return _result(
         z,
@@ -751,4 +881,5 @@ def solve_train(
         single_validity="",
         elapsed=elapsed,
         search_seconds=time.perf_counter() - t1,
+        kernel_builds=sum(builds),
     )

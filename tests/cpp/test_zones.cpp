@@ -105,3 +105,43 @@ TEST(Zones, BadInputIsRefused) {
   p.layer.vstar = mp::critical_vstar(1.0, 0.2);
   EXPECT_THROW(mp::solve_zones(p), mp::SupercriticalSpeedError);
 }
+
+// Punches a million h apart are two independent single punches (solved as
+// separate groups, each about its own axis: no table spans the distance),
+// and a damped pair's dissipation is the sum of each one's.
+TEST(Zones, PunchesAMillionApartAreEachTheSinglePunch) {
+  mp::DampedParams d;
+  d.vstar = 0.5;
+  d.kw = 1.0;
+  d.damping = 0.3;
+  d.tol = 1e-11;
+  const mp::DampedSolution ref = mp::solve_damped(d);
+  mp::ZonesParams p = layer(0.5, 1.0, 0.3);
+  p.punches = {cylinder(0.002, -5e5), cylinder(0.002, 5e5)};
+  p.zones = {{0, -5e5 + ref.left(), -5e5 + ref.right()}, {1, 5e5 + ref.left(), 5e5 + ref.right()}};
+  const mp::ZonesSolution z = mp::solve_zones(p);
+  ASSERT_EQ(z.zones.size(), 2U);
+  const double spacing = std::nextafter(5e5, 1e6) - 5e5;
+  for (int k = 0; k < 2; ++k) {
+    const double at = k == 0 ? -5e5 : 5e5;
+    EXPECT_NEAR(z.zones[static_cast<std::size_t>(k)].left, at + ref.left(), 1e-9 + spacing);
+    EXPECT_NEAR(z.zones[static_cast<std::size_t>(k)].right, at + ref.right(), 1e-9 + spacing);
+    EXPECT_NEAR(z.drag[static_cast<std::size_t>(k)], ref.drag(), 1e-8 * std::fabs(ref.drag()));
+    EXPECT_EQ(z.zones[static_cast<std::size_t>(k)].group, k);
+  }
+  EXPECT_NEAR(mp::zones_dissipation(z), z.drag_total, 1e-7 * z.drag_total);
+}
+
+// A punch too far from x = 0 for the doubles to hold its contact is refused,
+// naming `at` (not "the starting zones must be disjoint").
+TEST(Zones, APunchBeyondDoublePrecisionNamesAt) {
+  mp::ZonesParams p = layer(0.2, 1.0, 0.0);
+  p.punches = {cylinder(0.002, 1e20)};
+  p.zones = {{0, 1e20 - 0.37, 1e20 + 0.37}};
+  try {
+    mp::solve_zones(p);
+    FAIL() << "no exception";
+  } catch (const mp::InvalidParameter& e) {
+    EXPECT_EQ(e.name(), "at");
+  }
+}

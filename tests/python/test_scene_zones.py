@@ -305,8 +305,9 @@ def test_overlapping_punches_are_a_scene_error_naming_the_key() -> None:
     with pytest.raises(SceneError) as info:
         Scene.from_toml(_two(_OUT + vary), "bad.toml")
     assert info.value.key == "vary.values[1]"
-    # A sweep's overlapping point is that point's error, not the scene's.
-    sweep = '[sweep]\nparam = "spacing"\nvalues = [0.5, 4.0]\nquantities = ["a"]\n'
+    # A sweep's point too close (no contact set keeps the punches apart) is
+    # that point's error, not the scene's.
+    sweep = '[sweep]\nparam = "spacing"\nvalues = [0.02, 4.0]\nquantities = ["a"]\n'
     result = Scene.from_toml(_two(sweep)).run()
     assert result.sweep is not None
     assert "overlap" in result.sweep.errors[(0, 0)]

@@ -353,7 +353,7 @@ def test_the_error_estimate_bounds_a_coarse_solve() -> None:
         ),
         (
             lambda: mp.solve_punches(
-                [mp.Punch(R, LOAD, at=0.0), mp.Punch(R, LOAD, at=0.5)],
+                [mp.Punch(R, LOAD, at=0.0), mp.Punch(R, LOAD, at=0.02)],
                 vstar=0.5,
                 kw=1.0,
             ),
@@ -407,18 +407,6 @@ def test_punches_1000_h_apart() -> None:
     )
     assert abs(train.contact_zones[1][1] - 500.0 - single.a) < 1e-9
     assert abs(train.punches[0].indentation - single.indentation) < 1e-9
-
-
-@pytest.mark.slow
-def test_a_contact_set_not_found_is_a_clear_error() -> None:
-    # 1 % below V*_cr on kw = 0.01 the single contact's pressure is negative
-    # in two bands: the search tries its contact sets and, finding none that
-    # is complementary, says so, naming the inputs (never a wrong answer).
-    with pytest.raises(mp.UnphysicalContactError) as err:
-        mp.solve(vstar=0.086, kw=0.01, radius=R, load=LOAD)
-    msg = str(err.value)
-    for word in ("vstar=0.086", "kw=0.01", "several contact zones", "p < 0"):
-        assert word in msg, msg
 
 
 def _check_train(s: mp.ZonedSolution) -> None:

@@ -59,6 +59,9 @@ struct ZonesParams {
 
 struct ZoneResult {
   int punch = 0;
+  // The group of punches it was solved with (solve_zones solves punches
+  // too far apart to interact, to the tolerance, as separate groups).
+  int group = 0;
   double left = 0, right = 0;
   double load = 0;  // int p over the zone, P_zone/(mu h)
   // p = (P_zone/h) sqrt(1 - r^2) sum b_n U_n(r), r = (x - centre)/half.
@@ -69,7 +72,12 @@ struct ZoneResult {
   // The zone as a solution of its own (load = the zone's): its pressure and
   // the layer's response to it; the whole response is the sum over zones.
   // Built on each call (its Fourier nodes cost about a millisecond).
+  // Relative to its punch's axis `origin` (= that punch's at): evaluate it
+  // at x - origin (so that a train far from x = 0 keeps its digits).
   DampedSolution solution() const;
+  double origin = 0;                           // x/h of its punch's axis
+  double offset = 0;                           // its centre relative to origin
+  double half = 0;                             // its half-width
   DampedParams params;                         // the layer, load = the zone's
   std::shared_ptr<const DampedKernel> kernel;  // the solve's kernel table
 };
