@@ -658,6 +658,8 @@ FlatSolve solve_flat(Problem& prob, const ContactParams& p, double a) {
       ref_b = coefficients(m);
       return t_series(ref_b, 1.0);
     });
+    chain_n.push_back(p.n);
+    chain_k.push_back(t_series(out.b, 1.0));
     out.error = ref.error;
     out.g_error = ref.n > 0 ? 2.0 * max_series_difference(out.b, ref_b, SeriesKind::T) : kInf;
   } else if (p.n != 0) {
