@@ -393,7 +393,8 @@ std::string kink_truncation_warning(double truncation, double p_centre, const st
   std::ostringstream m;
   m.precision(3);
   m << "the pressure's Chebyshev series resolves the profile's kinks (" << what;
-  if (std::isfinite(beyond_face)) m << ", the contact reaching " << beyond_face << " h past the face";
+  if (std::isfinite(beyond_face))
+    m << ", the contact reaching " << beyond_face << " h past the face";
   m << ") only to " << truncation << " P/h (series_truncation; " << truncation / scale
     << " of p at the contact's centre): corners much sharper than the contact are better "
        "modelled by a flat punch";

@@ -1055,10 +1055,10 @@ void finish_checks(ContactSolution& sol, const ContactParams& p, const PunchProf
     }
     if (!t_kind && gap_min < -kFloor * std::max(prof.height(a), std::fabs(sol.delta_))) {
       sol.validity_ += " (no penetration up to a/h's error estimate)";
-      sol.warnings_.push_back("the layer surface rises above the punch at x/h = " +
-                              format_g(x_gap) + " (gap " + format_g(gap_min) +
-                              " h), within the error estimate of a/h (N = " +
-                              std::to_string(sol.n_) + "): raise n or leave it automatic");
+      sol.warnings_.push_back(
+          "the layer surface rises above the punch at x/h = " + format_g(x_gap) + " (gap " +
+          format_g(gap_min) + " h), within the error estimate of a/h (N = " +
+          std::to_string(sol.n_) + "): raise n or leave it automatic");
     }
   } else {
     sol.validity_ = why.str();

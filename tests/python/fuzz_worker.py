@@ -152,7 +152,9 @@ def checks(kind: str, args: dict[str, Any], sol: Any) -> list[str]:
         inside = c + w * np.cos(np.linspace(0.05, math.pi - 0.05, 41))
         on = -delta + _height(sol, inside) - sol.surface_displacement(inside)
         if trusted and float(np.max(np.abs(on))) > max(1e-3 * scale, slack):
-            fails.append(f"surface off the punch on the contact: {np.max(np.abs(on))!r}")
+            fails.append(
+                f"surface off the punch on the contact: {np.max(np.abs(on))!r}"
+            )
     # estimate >= error, against a reference
     try:
         ref = _reference(kind, args)
@@ -170,13 +172,17 @@ def checks(kind: str, args: dict[str, Any], sol: Any) -> list[str]:
     got_e, ref_e = _ends(sol), _ends(ref)
     if got_e.shape != ref_e.shape:
         if trusted:
-            fails.append(f"contact set {_zones(sol)} differs from the reference's {_zones(ref)}")
+            fails.append(
+                f"contact set {_zones(sol)} differs from the reference's {_zones(ref)}"
+            )
         return fails
     err = float(np.max(np.abs(got_e - ref_e)))
     est = float(sol.error_estimate)
     est_ref = float(ref.error_estimate)
     if not err <= est + est_ref + ROUNDOFF * float(np.max(np.abs(ref_e))):
-        fails.append(f"ends off by {err!r}, error_estimate {est!r} (reference's {est_ref!r})")
+        fails.append(
+            f"ends off by {err!r}, error_estimate {est!r} (reference's {est_ref!r})"
+        )
     return fails
 
 

@@ -604,7 +604,10 @@ def _shape(rng: np.random.Generator) -> dict[str, Any]:
     r = rng.random()
     if r < 0.4:
         radius = float(10.0 ** rng.uniform(0.0, 3.0))
-        return {"radius": radius, "load": float(10.0 ** rng.uniform(-6, -1.5)) / radius * 100}
+        return {
+            "radius": radius,
+            "load": float(10.0 ** rng.uniform(-6, -1.5)) / radius * 100,
+        }
     if r < 0.6:
         return {"profile": mp.Flat(float(rng.uniform(0.05, 2.0))), "load": 0.002}
     if r < 0.8:
@@ -653,7 +656,7 @@ def honesty_cases(family: str, count: int, seed: int) -> list[dict[str, Any]]:
             }
             cases.append({"kind": "solve", "args": args})
             continue
-        kw = float(rng.choice([0.1, 1.0, 10.0]))
+        kw = float(rng.choice([0.1, 0.1, 1.0, 10.0]))
         kp = float(rng.choice([0.0, 0.0, 0.1]))
         args = {
             **_shape(rng),
@@ -662,13 +665,21 @@ def honesty_cases(family: str, count: int, seed: int) -> list[dict[str, Any]]:
             "nu": float(rng.choice([0.2, 0.3])),
             "damping": float(rng.choice([0.0, 0.0, 0.001, 0.1])),
             "friction": float(rng.choice([0.0, 0.0, 0.0, 0.01])),
-            "contact": str(rng.choice(["auto", "single"])),
+            "contact": str(rng.choice(["auto", "single", "single"])),
             "allow_unphysical": bool(rng.random() < 0.5),
         }
         vcr = mp.critical_vstar(kw, args["nu"], kp)
-        args["vstar"] = float(rng.uniform(0.0, 0.995)) * vcr
+        # Half of them near V*_cr, where the single contact separates.
+        near = rng.random() < 0.5
+        frac = (
+            1.0 - float(10.0 ** -rng.uniform(0.5, 2.5)) if near else rng.uniform(0, 0.9)
+        )
+        args["vstar"] = float(frac) * vcr
         if family == "loose":
-            args["tol"] = float(10.0 ** rng.uniform(-4.0, -2.0))
+            # mostly 1e-3 ... 1e-2 (the sign check's slack was once 100 tol)
+            args["tol"] = float(
+                10.0 ** rng.uniform(-3.0 if rng.random() < 0.8 else -4.0, -2.0)
+            )
         else:  # small N
             args["n"] = int(rng.choice([2, 4, 6]))
         cases.append({"kind": "solve", "args": args})
@@ -700,7 +711,7 @@ def run_honesty(family: str, count: int, seed: int) -> collections.Counter[str]:
 
 
 def test_honesty_loose_tolerances() -> None:
-    outcomes = run_honesty("loose", 10, seed=2511)
+    outcomes = run_honesty("loose", 10, seed=2514)
     assert outcomes["valid"] >= 3, outcomes
 
 

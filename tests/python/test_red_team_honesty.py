@@ -119,7 +119,7 @@ def test_a_loose_tol_gives_the_verdict_of_a_tight_one(
 
 def test_the_issues_flat_case_is_refused_at_tol_5e_3() -> None:
     args = {**FLAT, "vstar": 0.9 * VCR}
-    with pytest.raises(mp.UnphysicalContactError, match="tensile|negative"):
+    with pytest.raises(mp.UnphysicalContactError, match=r"tensile|negative"):
         mp.solve(**args, tol=5e-3)
     s = mp.solve(**args, tol=5e-3, allow_unphysical=True)
     assert not s.valid
@@ -157,7 +157,9 @@ def test_cli_and_scene_at_a_loose_tol_do_not_say_valid(tmp_path: Path) -> None:
     run = _cli("run", str(scene), "--out", str(tmp_path / "out"), cwd=tmp_path)
     assert run.returncode == 0, run.stderr
     # the contact table's valid column
-    row = next(line for line in run.stdout.splitlines() if line.strip().startswith("0.5"))
+    row = next(
+        line for line in run.stdout.splitlines() if line.strip().startswith("0.5")
+    )
     assert row.split()[-1] == "NO", run.stdout
 
 
@@ -215,13 +217,19 @@ def _kink_warnings(s: Any) -> list[str]:
 
 @pytest.mark.parametrize("damping", [0.1, 1e-9])
 def test_a_rounded_flat_warns_about_its_corners_with_damping(damping: float) -> None:
-    args = {"vstar": 0.2, "kw": 1.0, "profile": mp.RoundedFlat(0.5, 10.0), "load": 0.002}
+    args = {
+        "vstar": 0.2,
+        "kw": 1.0,
+        "profile": mp.RoundedFlat(0.5, 10.0),
+        "load": 0.002,
+    }
     undamped = mp.solve(**args)
     damped = mp.solve(**args, damping=damping)
     assert _kink_warnings(undamped)
     assert _kink_warnings(damped), damped.warnings
     # the same message up to its numbers (one function writes both)
     words = [w for w in _kink_warnings(undamped)[0].split() if not w[:1].isdigit()]
-    assert words[:8] == [
-        w for w in _kink_warnings(damped)[0].split() if not w[:1].isdigit()
-    ][:8]
+    assert (
+        words[:8]
+        == [w for w in _kink_warnings(damped)[0].split() if not w[:1].isdigit()][:8]
+    )
