@@ -386,7 +386,8 @@ double max_series_difference(const Eigen::VectorXd& b, const Eigen::VectorXd& c,
 // converged width, where the comparison with a half size had nothing to
 // compare with and said 0). References at m = max(2N, 8), doubled up to
 // kFixedReferenceMax, until two successive changes shrink by 4 or more with
-// a reference of at least 32 (a geometric rate under way). The estimate is
+// a reference of at least 32 (a geometric rate under way) or two references
+// agree to round-off. The estimate is
 // |v(N) - v(m_last)| plus the reference's own error (collocation_error over
 // the references); infinite if a reference has no solution (an
 // under-resolved load curve). `value(m)` returns v at size m.
@@ -411,6 +412,10 @@ FixedReference fixed_size_reference(int n, double v_n, Value value) {
       sizes.push_back(m);
       values.push_back(value(m));
       const std::size_t k = values.size();
+      // Two references agreeing to round-off: converged.
+      if (k >= 2 && std::fabs(values[k - 1] - values[k - 2]) <=
+                        100.0 * std::numeric_limits<double>::epsilon() * std::fabs(values[k - 1]))
+        break;
       if (k >= 3 && m >= 32) {
         const double c2 = std::fabs(values[k - 1] - values[k - 2]);
         const double c1 = std::fabs(values[k - 2] - values[k - 3]);
