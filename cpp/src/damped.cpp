@@ -1316,10 +1316,10 @@ DampedSolution solve_damped(const DampedParams& prm) {
   if (d_ends.empty()) {  // a single size (n = 2) or every smaller size failed
     est_e.estimate = std::numeric_limits<double>::infinity();
     est_p.estimate = std::numeric_limits<double>::infinity();
-  } else if (prm.n > 0) {
-    // A fixed n: the last change is about the previous size's error; before
-    // the rate settles this size's can exceed it (n = 4 after n = 2 with
-    // friction: 1.03 times it, found by the fuzz): at least twice it.
+  } else if (prm.n > 0 && d_ends.size() == 1) {
+    // A fixed n with one change (n = 4 after n = 2): the change is about the
+    // previous size's error, and with no rate to read this size's can exceed
+    // it (1.03 times it with friction, found by the fuzz): twice it.
     est_e.estimate = std::max(est_e.estimate, 2.0 * d_ends.back() + floor_e);
     est_p.estimate = std::max(est_p.estimate, 2.0 * d_p.back() + floor_p);
   }

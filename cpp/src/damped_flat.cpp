@@ -167,8 +167,8 @@ DampedSolution solve_damped_flat(const DampedParams& prm) {
   if (d_k.empty()) {
     est_k.estimate = kInf;
     est_g.estimate = kInf;
-  } else if (prm.n > 0) {
-    // A fixed n: at least twice the last change (as the cylinder's, damped.cpp).
+  } else if (prm.n > 0 && d_k.size() == 1) {
+    // A fixed n with one change: twice it (as the cylinder's, damped.cpp).
     est_k.estimate = std::max(est_k.estimate, 2.0 * d_k.back() + floor_k);
     est_g.estimate = std::max(est_g.estimate, 2.0 * d_g.back() + floor_g);
   }
