@@ -241,7 +241,7 @@ class Worker:
             try:
                 answer: dict[str, Any] = self._conn.recv()
                 return answer
-            except EOFError:
+            except (EOFError, OSError):  # the worker died mid-answer
                 pass
             self._restart()
             return {"outcome": "crash", "fails": ["the worker died"]}
