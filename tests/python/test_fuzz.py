@@ -10,6 +10,11 @@ extreme values; kw and nu come mostly from small pools because every new
 
 ``test_fuzz_binding_20000`` (slow) makes 20 000 calls; the unmarked
 ``test_fuzz_binding_2000`` 2 000 with another seed.
+
+The honesty families (issue 25, at the end: loose tolerances, explicit small
+N, far-apart trains, stiff foundations near V*_cr) run each call in a worker
+process under a time bound and check every result independently
+(tests/python/fuzz_worker.py); ``test_honesty_many`` (slow) draws more.
 """
 
 from __future__ import annotations
