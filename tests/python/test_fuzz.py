@@ -721,7 +721,7 @@ def test_honesty_loose_tolerances() -> None:
 
 
 def test_honesty_small_fixed_sizes() -> None:
-    outcomes = run_honesty("small_n", 12, seed=2502)
+    outcomes = run_honesty("small_n", 10, seed=2502)
     assert outcomes["valid"] >= 3, outcomes
 
 
