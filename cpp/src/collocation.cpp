@@ -6,7 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -382,6 +384,21 @@ Eigen::VectorXd t_coefficients(const FirstKindNodes& nodes, const Eigen::VectorX
     b(m) = (m == 0 ? 1.0 : 2.0) * sum / n;
   }
   return b;
+}
+
+std::string kink_truncation_warning(double truncation, double p_centre, const std::string& what,
+                                    double beyond_face) {
+  const double scale = std::fabs(p_centre);
+  if (!(truncation > 1e-3 * scale)) return {};
+  std::ostringstream m;
+  m.precision(3);
+  m << "the pressure's Chebyshev series resolves the profile's kinks (" << what;
+  if (std::isfinite(beyond_face))
+    m << ", the contact reaching " << beyond_face << " h past the face";
+  m << ") only to " << truncation << " P/h (series_truncation; " << truncation / scale
+    << " of p at the contact's centre): corners much sharper than the contact are better "
+       "modelled by a flat punch";
+  return m.str();
 }
 
 }  // namespace movingpunch

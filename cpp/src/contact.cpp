@@ -369,6 +369,71 @@ double coefficient_rate(const Eigen::VectorXd& b) {
   return std::min(1.0, std::pow(top / below, 0.25));
 }
 
+// The largest difference of two series of g (U or T) on 401 points of
+// [-1, 1] (twice it bounds the error of a fixed N's g against a reference).
+double max_series_difference(const Eigen::VectorXd& b, const Eigen::VectorXd& c, SeriesKind kind) {
+  double out = 0.0;
+  for (int i = 0; i <= 400; ++i) {
+    const double r = std::cos(kPi * i / 400.0);
+    out = std::max(out, std::fabs(series(b, r, kind) - series(c, r, kind)));
+  }
+  return out;
+}
+
+// A fixed collocation size N (the caller's `n`): the error of a quantity v
+// (a/h, a flat punch's end value g(1)) read from finer sizes, not coarser
+// ones: a coarse N may be far from resolved (N = 2: a/h 22 % off the
+// converged width, where the comparison with a half size had nothing to
+// compare with and said 0). References at m = max(2N, 8), doubled up to
+// kFixedReferenceMax, until two successive changes shrink by 4 or more with
+// a reference of at least 32 (a geometric rate under way) or two references
+// agree to round-off. The estimate is
+// |v(N) - v(m_last)| plus the reference's own error (collocation_error over
+// the references); infinite if a reference has no solution (an
+// under-resolved load curve). `value(m)` returns v at size m.
+constexpr int kFixedReferenceMax = 1024;
+// Fixed sizes up to this one are checked against finer ones (two references
+// at least); larger ones against a half and a quarter of the size.
+constexpr int kFixedFinerMax = kFixedReferenceMax / 4;
+
+struct FixedReference {
+  int n = 0;           // the last reference size (0: none)
+  double value = 0.0;  // v there
+  double error = kInf;
+};
+
+template <class Value>
+FixedReference fixed_size_reference(int n, double v_n, Value value) {
+  FixedReference out;
+  std::vector<int> sizes;
+  std::vector<double> values;
+  try {
+    for (int m = std::max(2 * n, 8); m <= kFixedReferenceMax; m *= 2) {
+      sizes.push_back(m);
+      values.push_back(value(m));
+      const std::size_t k = values.size();
+      // Two references agreeing to round-off: converged.
+      if (k >= 2 && std::fabs(values[k - 1] - values[k - 2]) <=
+                        100.0 * std::numeric_limits<double>::epsilon() * std::fabs(values[k - 1]))
+        break;
+      if (k >= 3 && m >= 32) {
+        const double c2 = std::fabs(values[k - 1] - values[k - 2]);
+        const double c1 = std::fabs(values[k - 2] - values[k - 3]);
+        if (c2 <= 0.25 * c1) break;
+      }
+    }
+  } catch (const ConvergenceError&) {
+    return out;
+  } catch (const std::invalid_argument&) {
+    return out;
+  }
+  if (sizes.empty() || !std::isfinite(values.back())) return out;
+  out.n = sizes.back();
+  out.value = values.back();
+  out.error = std::fabs(v_n - out.value) + collocation_error(sizes, values);
+  return out;
+}
+
 std::string format_g(double x, int precision = 3) {
   std::ostringstream o;
   o.precision(precision);
@@ -559,6 +624,9 @@ struct FlatSolve {
   Eigen::VectorXd b;
   int n = 0;
   double error = kInf;
+  // The pointwise error of g at a fixed N (max_series_difference against the
+  // reference); at a converged N, `error` stands for it.
+  double g_error = -1.0;
 };
 
 FlatSolve solve_flat(Problem& prob, const ContactParams& p, double a) {
@@ -586,19 +654,35 @@ FlatSolve solve_flat(Problem& prob, const ContactParams& p, double a) {
   std::vector<int> chain_n;
   std::vector<double> chain_k;
   FlatSolve out;
-  if (p.n != 0) {
+  if (p.n != 0 && p.n <= kFixedFinerMax) {
+    // Against finer sizes (fixed_size_reference), g pointwise too.
+    out.b = coefficients(p.n);
+    out.n = p.n;
+    Eigen::VectorXd ref_b;
+    const FixedReference ref = fixed_size_reference(p.n, t_series(out.b, 1.0), [&](int m) {
+      ref_b = coefficients(m);
+      return t_series(ref_b, 1.0);
+    });
+    chain_n.push_back(p.n);
+    chain_k.push_back(t_series(out.b, 1.0));
+    out.error = ref.error;
+    out.g_error = ref.n > 0 ? 2.0 * max_series_difference(out.b, ref_b, SeriesKind::T) : kInf;
+  } else if (p.n != 0) {
     const int coarse = std::max(2, (p.n / 4) * 2);
     const int coarser = std::max(2, (coarse / 4) * 2);
+    Eigen::VectorXd coarse_b;
     for (int m : {coarser, coarse}) {
       if (m >= p.n || (!chain_n.empty() && m <= chain_n.back())) continue;
       chain_n.push_back(m);
-      chain_k.push_back(t_series(coefficients(m), 1.0));
+      coarse_b = coefficients(m);
+      chain_k.push_back(t_series(coarse_b, 1.0));
     }
     out.b = coefficients(p.n);
     out.n = p.n;
     chain_n.push_back(p.n);
     chain_k.push_back(t_series(out.b, 1.0));
-    out.error = coarse < p.n ? collocation_error(chain_n, chain_k) : 0.0;
+    out.error = collocation_error(chain_n, chain_k);
+    out.g_error = 2.0 * max_series_difference(out.b, coarse_b, SeriesKind::T);
   } else {
     bool converged = false;
     double change = kInf;
@@ -650,6 +734,7 @@ FlatSolve solve_flat(Problem& prob, const ContactParams& p, double a) {
     out.error += kernel_perturbation(k, a, lambda.head(h - 1), nd.x.head(h - 1), G / n,
                                      nd.t.head(h), std::fabs(w1.dot(G)));
   }
+  out.g_error = out.g_error < 0.0 ? out.error : std::max(out.g_error, out.error);
   return out;
 }
 
@@ -693,6 +778,10 @@ struct BoundedSolve {
   std::vector<int> chain_n;
   std::vector<double> chain_a;
   double change = kInf;
+  // A fixed N's finest reference (fixed_size_reference): its size (0: none)
+  // and width.
+  int ref_n = 0;
+  double ref_a = 0.0;
 };
 
 BoundedSolve solve_bounded(Problem& prob, const ContactParams& p, const PunchProfile& prof,
@@ -728,10 +817,27 @@ BoundedSolve solve_bounded(Problem& prob, const ContactParams& p, const PunchPro
   std::vector<int> chain_n;
   std::vector<double> chain_a;
   ChebyshevNodes nodes;
-  if (p.n != 0) {
-    // Fixed N: the estimate compares with the solves at about a half and a
-    // quarter of the size (infinite if the half-size solve has no root: an
-    // under-resolved load curve).
+  int ref_n = 0;
+  double ref_a = 0.0;
+  if (p.n != 0 && p.n <= kFixedFinerMax) {
+    // Fixed N: the estimate compares with finer sizes (fixed_size_reference);
+    // the finest is kept to estimate g's error (solve_contact).
+    nodes = chebyshev_nodes(p.n);
+    a = solve_width(prob, p, nodes, p.load, a, xtol, range);
+    chain_n.push_back(p.n);
+    chain_a.push_back(a);
+    double a_ref = a;
+    const FixedReference ref = fixed_size_reference(p.n, a, [&](int m) {
+      a_ref = solve_width(prob, p, chebyshev_nodes(m), p.load, a_ref, xtol, range);
+      return a_ref;
+    });
+    change = ref.error;
+    ref_n = ref.n;
+    ref_a = ref.value;
+  } else if (p.n != 0) {
+    // A large fixed N: the estimate compares with the solves at about a half
+    // and a quarter of the size (infinite if the half-size solve has no root:
+    // an under-resolved load curve); there the rate is geometric.
     const int coarse = std::max(2, (p.n / 4) * 2);
     const int coarser = std::max(2, (coarse / 4) * 2);
     for (int m : {coarser, coarse}) {
@@ -757,8 +863,7 @@ BoundedSolve solve_bounded(Problem& prob, const ContactParams& p, const PunchPro
     a = solve_width(prob, p, nodes, p.load, a, xtol, range);
     chain_n.push_back(p.n);
     chain_a.push_back(a);
-    // N = 2 has no coarser size: nothing to compare with (as before, 0).
-    change = coarse < p.n ? collocation_error(chain_n, chain_a) : 0.0;
+    change = collocation_error(chain_n, chain_a);
   } else {
     // Refine N. A coarse N can under-resolve the load curve (it may even be
     // non-monotone, with no root): a failure there moves on to the next N;
@@ -820,7 +925,31 @@ BoundedSolve solve_bounded(Problem& prob, const ContactParams& p, const PunchPro
     a = solve_width(prob, p, nodes, p.load, a, xtol, range);
   }
 
-  return BoundedSolve{a, nodes, chain_n, chain_a, change};
+  return BoundedSolve{a, nodes, chain_n, chain_a, change, ref_n, ref_a};
+}
+
+// g at a fixed N against the finest reference (BoundedSolve): the bound on
+// its pointwise error, max_series_difference twice (the reference's own
+// error is a small part of it where the rate is geometric); a large N
+// against the next coarser size of its chain; infinite without either.
+double fixed_size_g_error(Problem& prob, const BoundedSolve& bs, const Eigen::VectorXd& b) {
+  int n = bs.ref_n;
+  double a = bs.ref_a;
+  if (n == 0 && bs.chain_n.size() >= 2) {
+    n = bs.chain_n[bs.chain_n.size() - 2];
+    a = bs.chain_a[bs.chain_a.size() - 2];
+  }
+  if (n == 0) return kInf;
+  const ChebyshevNodes nodes = chebyshev_nodes(n);
+  const Problem::Linearised lin = prob.linearise(nodes, a);
+  const int h = n / 2;
+  Eigen::VectorXd g_full(n);
+  const double scale = prob.g_scale(a, lin.load);
+  for (int j = 0; j < h; ++j) g_full(j) = g_full(n - 1 - j) = scale * lin.G(j);
+  Eigen::VectorXd c = u_coefficients(nodes, g_full);
+  for (Eigen::Index m = 1; m < c.size(); m += 2) c(m) = 0.0;
+  const double d = 2.0 * max_series_difference(b, c, SeriesKind::U);
+  return std::isfinite(d) ? d : kInf;
 }
 
 }  // namespace
@@ -882,22 +1011,33 @@ void finish_checks(ContactSolution& sol, const ContactParams& p, const PunchProf
           "the gap outside the contact came out non-finite; the solution is not trusted");
   }
   sol.min_gap_ = gap_min;
-  const double rel = std::max(1e-6, 100.0 * p.tol);
+  // The verdict is physical, never tol's: p < 0 beyond g's own error estimate
+  // (g_err_: a fixed N's, from finer sizes) and a floor of 1e-6 of max |g|
+  // (the converged ladder's g is good to far better; a loose tol does not
+  // loosen the N ladder, which stops at 1e-8 or tighter), penetration beyond
+  // the same relative floor or a/h's relative error estimate of the gap's
+  // scale. (The slack once was 100 tol: tol = 5e-3 passed a flat punch with
+  // p(0) = -0.9 as valid.)
+  constexpr double kFloor = 1e-6;
+  const double p_slack = std::max(kFloor * gmax, sol.g_err_);
+  const double rel_a = t_kind ? 0.0 : sol.err_ / a;
+  double gap_slack = 0.0;
   std::ostringstream why;
   why.precision(6);
-  if (t_kind && sol.p_margin_ < -rel * gmax && std::fabs(r_margin) > 0.999) {
+  if (t_kind && sol.p_margin_ < -p_slack && std::fabs(r_margin) > 0.999) {
     sol.valid_ = false;
     why << "the pressure at the flat punch's edges is tensile (end coefficient " << sol.end_k_
         << "): the face lifts off at its edges and the single-contact "
         << "solution (the whole face in contact) is unphysical";
-  } else if (gmin < -rel * gmax) {
+  } else if (gmin < -p_slack) {
     sol.valid_ = false;
     why << "the contact pressure is negative near x/h = " << x_pmin
         << " (the punch would pull on the layer): the contact separates and the "
            "single-contact solution is unphysical";
   } else if (!t_kind) {
     const double gap_scale = std::max(prof.height(a), std::fabs(sol.delta_));
-    if (gap_min < -rel * gap_scale) {
+    gap_slack = std::max(kFloor, rel_a) * gap_scale;
+    if (gap_min < -gap_slack) {
       sol.valid_ = false;
       why << "the layer surface rises above the punch at x/h = " << x_gap << " (gap " << gap_min
           << " h): the punch would penetrate outside the contact "
@@ -908,6 +1048,23 @@ void finish_checks(ContactSolution& sol, const ContactParams& p, const PunchProf
     sol.validity_ = t_kind ? "valid: p >= 0 on the punch's face (its edges included)"
                            : "valid: p >= 0 on the contact, no penetration for a < |x| <= 3a";
     if (!t_kind && prof.extent() < 3.0 * a) sol.validity_ += " (within the profile's table)";
+    // Valid within its error estimate only: say so (a fixed N too small to
+    // tell the sign).
+    if (gmin < -kFloor * gmax) {
+      sol.validity_ += " (up to the pressure's error estimate)";
+      sol.warnings_.push_back(
+          "the sign of the pressure is not resolved: g (p over its end factor, per P/h) reaches " +
+          format_g(gmin) + " near x/h = " + format_g(x_pmin) + ", within its error estimate " +
+          format_g(sol.g_err_) + " (N = " + std::to_string(sol.n_) +
+          "); the contact may separate there: raise n or leave it automatic");
+    }
+    if (!t_kind && gap_min < -kFloor * std::max(prof.height(a), std::fabs(sol.delta_))) {
+      sol.validity_ += " (no penetration up to a/h's error estimate)";
+      sol.warnings_.push_back(
+          "the layer surface rises above the punch at x/h = " + format_g(x_gap) + " (gap " +
+          format_g(gap_min) + " h), within the error estimate of a/h (N = " +
+          std::to_string(sol.n_) + "): raise n or leave it automatic");
+    }
   } else {
     sol.validity_ = why.str();
     if (!p.allow_unphysical) {
@@ -987,6 +1144,7 @@ ContactSolution solve_contact(const ContactParams& p) {
     const double root = std::sqrt(kPi * a);
     sol.end_k_ = t_series(sol.b_, 1.0) * root;
     sol.end_k_err_ = fs.error * root;
+    sol.g_err_ = fs.g_error;
     sol.err_ = 0.0;  // the ends are the face's: exact
     sol.budget_ = {};
     const double scale = 1.0 / (kPi * a);  // g of the half-plane
@@ -1024,6 +1182,7 @@ ContactSolution solve_contact(const ContactParams& p) {
     for (Eigen::Index m = 1; m < sol.b_.size(); m += 2) sol.b_(m) = 0.0;  // g is even
     sol.p0_ = u_series(sol.b_, 0.0);
     sol.kind_ = SeriesKind::U;
+    if (p.n != 0) sol.g_err_ = fixed_size_g_error(prob, bs, sol.b_);
     sol.iterations_ = prob.evaluations();
     if (chain_a.size() >= 2 && std::isfinite(change))
       change = collocation_error(chain_n, chain_a, coefficient_rate(sol.b_));
@@ -1049,13 +1208,10 @@ ContactSolution solve_contact(const ContactParams& p) {
 
     if (!prob.cylinder()) extend_series(sol.b_, sol.trunc_, prof, a, phi1 * p.load);
     sol.p0_ = u_series(sol.b_, 0.0);
-    if (sol.trunc_ > 1e-3 * std::fabs(sol.p0_))
-      sol.warnings_.push_back(
-          "the pressure's Chebyshev series resolves the profile's kinks (a rounded flat's "
-          "corners, a - b = " +
-          format_g(a - prof.face()) + " h) only to " + format_g(sol.trunc_) +
-          " P/h (series_truncation; " + format_g(sol.trunc_ / std::fabs(sol.p0_)) +
-          " of p(0)): corners much sharper than the contact are better modelled by a flat punch");
+    const std::string kinks = kink_truncation_warning(
+        sol.trunc_, sol.p0_, prof.describe(),
+        prof.kind() == ProfileKind::rounded_flat ? a - prof.face() : std::nan(""));
+    if (!kinks.empty()) sol.warnings_.push_back(kinks);
   }
   finish_checks(sol, p, prof);
   sol.elapsed_ = timer.seconds();

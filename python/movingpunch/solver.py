@@ -282,7 +282,13 @@ def solve(
 
     ``n`` fixes the number of collocation points (even, 2 to 4096) instead of
     refining N until a/h meets ``tol``; the error estimate then compares with
-    the solve at about half the size.
+    solves at finer sizes (2n, 4n, ... up to 1024; n > 256: with a half and a
+    quarter of n), and a result whose estimate is above ``tol`` warns.
+
+    ``valid`` is a physical verdict, the same at every ``tol``: p >= 0 on the
+    contact and no penetration beside it, up to the solution's own error
+    estimate (and 1e-6 of the peak); a sign that only the estimate leaves
+    open is named in ``warnings``.
 
     ``damping`` = c_w c_T/mu >= 0 adds dashpots to the springs (a Kelvin-Voigt
     foundation, docs/damped.md). 0 (the default) is the paper's model and

@@ -199,3 +199,46 @@ TEST(Contact, PressureMarginIsHertzianForATinyContact) {
   EXPECT_NEAR(s.pressure_margin() * std::sqrt(1.0 - 0.25), s.pressure(0.5 * s.a()),
               2e-3 * s.pressure(0.5 * s.a()));
 }
+
+// Issue 25: the verdict is physical, never tol's. A flat punch at 0.9 V*_cr
+// on kw = 0.1 has p(0) = -0.905 (anchor: its own pressure): refused at
+// every tol (the slack was once 100 tol: tol = 5e-3 passed it as valid).
+TEST(Contact, ValidityDoesNotDependOnTol) {
+  ContactParams p = paper(0.0, 0.1);
+  p.vstar = 0.9 * critical_speed(0.1, 0.2, 0.0).vstar;
+  p.profile = ProfileKind::flat;
+  p.half_width = 0.5;
+  p.allow_unphysical = true;
+  for (double tol : {1e-8, 1e-3, 5e-3, 1e-2}) {
+    p.tol = tol;
+    const ContactSolution s = solve_contact(p);
+    EXPECT_LT(s.pressure(0.0), -0.9) << tol;
+    EXPECT_FALSE(s.valid()) << tol;
+  }
+  p.allow_unphysical = false;
+  p.tol = 5e-3;
+  EXPECT_THROW(solve_contact(p), UnphysicalContactError);
+}
+
+// Issue 25: a fixed N = 2 once reported an error estimate of 1.7e-13 for an
+// a/h 22 % off; its estimate now bounds the distance to the converged width,
+// and the result warns.
+TEST(Contact, FixedSizeEstimateBoundsTheError) {
+  ContactParams p = paper(0.2, 0.1);
+  p.load = 0.02;
+  ContactParams tight = p;
+  tight.tol = 1e-12;
+  const ContactSolution ref = solve_contact(tight);
+  for (int n : {2, 4, 6, 8, 12}) {
+    p.n = n;
+    const ContactSolution s = solve_contact(p);
+    const double err = std::fabs(s.a() - ref.a());
+    EXPECT_GE(s.error_estimate() + ref.error_estimate(), err) << n;
+    if (err > 1e-10) {
+      EXPECT_LE(s.error_estimate(), 100.0 * err) << n;
+    }
+    if (s.error_estimate() > p.tol * s.a()) {
+      EXPECT_FALSE(s.warnings().empty()) << n;
+    }
+  }
+}

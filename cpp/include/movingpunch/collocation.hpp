@@ -5,6 +5,7 @@
 #include <cstddef>
 
 #include <functional>
+#include <string>
 
 #include <Eigen/Dense>
 
@@ -104,5 +105,15 @@ Eigen::MatrixXd flat_collocation_matrix(const FirstKindNodes& nodes, double a,
 // Coefficients b_n (n = 0..N-1) of g(r) = sum b_n T_n(r) from its values at
 // all N nodes t_i (exact for polynomials of degree < N).
 Eigen::VectorXd t_coefficients(const FirstKindNodes& nodes, const Eigen::VectorXd& g_full);
+
+// The one warning both solvers give when a profile's pressure series resolves
+// its kinks (a rounded flat's corners, a table's spline) only to `truncation`
+// over P/h (series_truncation) and that is above 1e-3 of `p_centre`, the
+// pressure at the contact's centre over P/h (the undamped solver's p(0)):
+// empty otherwise. `what` names the profile (PunchProfile::describe),
+// `beyond_face` is how far a rounded flat's contact reaches past its face, on
+// average per side (NaN: not shown).
+std::string kink_truncation_warning(double truncation, double p_centre, const std::string& what,
+                                    double beyond_face);
 
 }  // namespace movingpunch

@@ -138,6 +138,10 @@ class ContactSolution {
   Eigen::VectorXd b_;  // U_n (or T_n) coefficients of g, normalised by P/h
   SeriesKind kind_ = SeriesKind::U;
   double end_k_ = 0, end_k_err_ = 0, trunc_ = 0;
+  // Estimated error of g (the series above) pointwise, over P/h: at a fixed
+  // collocation size N from the comparison with finer sizes; 0 where the N
+  // ladder converged (g's error is then below the validity check's floor).
+  double g_err_ = 0;
   std::string profile_text_;
   std::shared_ptr<const KernelK1> kernel_;
   struct FieldCache;
