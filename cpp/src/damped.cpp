@@ -239,6 +239,7 @@ struct DPanel {
 };
 
 DPanel eval_dpanel(const DampedLayerModel& m, double lo, double hi, double friction) {
+  check_interrupt();  // Ctrl-C (interrupt.hpp): 15 layer responses
   DPanel p;
   p.lo = lo;
   p.hi = hi;

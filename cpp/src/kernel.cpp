@@ -11,6 +11,7 @@
 #include "gauss_kronrod.hpp"
 #include "layer_basis.hpp"
 #include "movingpunch/errors.hpp"
+#include "movingpunch/interrupt.hpp"
 
 namespace movingpunch {
 
@@ -35,6 +36,7 @@ struct Panel {
 };
 
 Panel eval_panel(const LayerModel& model, double lo, double hi) {
+  check_interrupt();  // 15 layer responses: microseconds
   Panel p{};
   p.lo = lo;
   p.hi = hi;
@@ -330,6 +332,7 @@ std::vector<double> FilonIntegrator::coefficients(const std::vector<double>& g) 
 }
 
 void FilonIntegrator::weights(double x, std::vector<cplx>& K) const {
+  check_interrupt();  // a sum over every panel (kernel tables, stresses)
   // int_{c-h}^{c+h} P_k((alpha - c)/h) e^{i alpha x} = h e^{i c x} 2 i^k j_k(h x).
   K.resize(centre_.size() * 15);
   const cplx ipow[4] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
@@ -351,6 +354,7 @@ void FilonIntegrator::weights(double x, std::vector<cplx>& K) const {
 template <std::size_t M>
 void FilonIntegrator::integrals(double x, const std::array<const std::vector<double>*, M>& c,
                                 std::array<cplx, M>& out) const {
+  check_interrupt();  // a sum over every panel (the damped kernel's tables)
   // Per panel: h e^{i c x} sum_k c_k 2 i^k j_k(h x); i^k alternates between
   // the real (k even) and imaginary (k odd) axes with signs + + - -.
   const double ax = std::fabs(x), sgn = x < 0.0 ? -1.0 : 1.0;

@@ -1,0 +1,140 @@
+// Cooperative cancellation (movingpunch/interrupt.hpp): a poll that asks to
+// stop ends a solve with Interrupted, through the ladders' own catch blocks;
+// one that never asks changes nothing.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "movingpunch/contact.hpp"
+#include "movingpunch/damped.hpp"
+#include "movingpunch/interrupt.hpp"
+#include "movingpunch/kernel.hpp"
+#include "roots.hpp"
+
+namespace mp = movingpunch;
+using namespace std::chrono_literals;
+
+namespace {
+
+// A solve that builds its own kernel table (a key no other test uses), so
+// that it runs the quadrature, the table, the width secant and the ladder.
+mp::ContactParams fresh_params() {
+  mp::ContactParams p;
+  p.vstar = 0.2137;
+  p.kw = 1.37;
+  p.radius = 100.0;
+  p.load = 0.002;
+  p.nu = 0.2;
+  p.tol = 1e-8;
+  return p;
+}
+
+}  // namespace
+
+TEST(Interrupt, NoScopeNeverThrows) {
+  EXPECT_EQ(mp::detail::current_interrupt_scope(), nullptr);
+  for (int i = 0; i < 1000; ++i) EXPECT_NO_THROW(mp::check_interrupt());
+}
+
+TEST(Interrupt, PollIsRateLimited) {
+  int calls = 0;
+  mp::InterruptScope scope(
+      [&] {
+        ++calls;
+        return false;
+      },
+      1h);
+  for (int i = 0; i < 100000; ++i) mp::check_interrupt();
+  EXPECT_EQ(calls, 0);
+  EXPECT_EQ(scope.polls(), 0u);
+}
+
+TEST(Interrupt, StoppedScopeStaysStoppedAndScopesNest) {
+  int outer_calls = 0;
+  mp::InterruptScope outer(
+      [&] {
+        ++outer_calls;
+        return false;
+      },
+      0ns);
+  {
+    mp::InterruptScope inner([] { return true; }, 0ns);
+    EXPECT_THROW(mp::check_interrupt(), mp::Interrupted);
+    EXPECT_THROW(mp::check_interrupt(), mp::Interrupted);  // without polling again
+    EXPECT_EQ(inner.polls(), 1u);
+  }
+  // The outer scope is back and does not stop.
+  EXPECT_NO_THROW(mp::check_interrupt());
+  EXPECT_EQ(outer_calls, 1);
+  EXPECT_EQ(outer.polls(), 1u);
+}
+
+TEST(Interrupt, RootFindingStopsWhenAsked) {
+  int evaluations = 0;
+  auto f = [&](double x) {
+    ++evaluations;
+    return std::cos(x) - x;
+  };
+  {
+    int polls = 0;
+    mp::InterruptScope scope([&] { return ++polls >= 3; }, 0ns);
+    EXPECT_THROW(
+        mp::detail::bracketed_root(f, 0.0, 1.0, f(0.0), f(1.0), 1e-300, 200, 0.0), mp::Interrupted);
+  }
+  EXPECT_LE(evaluations, 2 + 3);
+  // Without a scope the same root is found (0.739085...).
+  const double r = mp::detail::bracketed_root(f, 0.0, 1.0, f(0.0), f(1.0), 1e-14);
+  EXPECT_NEAR(r, 0.7390851332151607, 1e-13);
+}
+
+// The ladder catches std::exception from a size that fails and moves on to
+// the next: Interrupted is no std::exception, so the solve ends at once.
+TEST(Interrupt, SolveEndsWithInterruptedNotAnotherError) {
+  mp::clear_kernel_cache();
+  int polls = 0;
+  mp::InterruptScope scope([&] { return ++polls >= 2; }, 0ns);
+  try {
+    (void)mp::solve_contact(fresh_params());
+    FAIL() << "the solve was not interrupted";
+  } catch (const mp::Interrupted&) {
+    SUCCEED();
+  } catch (const std::exception& e) {
+    FAIL() << "interrupted solve raised " << e.what();
+  }
+  EXPECT_EQ(polls, 2);
+}
+
+TEST(Interrupt, DampedSolveEndsWithInterrupted) {
+  mp::DampedParams p;
+  p.vstar = 0.2137;
+  p.kw = 1.37;
+  p.radius = 100.0;
+  p.load = 0.002;
+  p.damping = 0.0137;
+  mp::clear_kernel_cache();
+  mp::InterruptScope scope([] { return true; }, 0ns);
+  EXPECT_THROW((void)mp::solve_damped(p), mp::Interrupted);
+}
+
+// A poll that never stops changes nothing: the same result, bit for bit, as
+// the solve without a scope (both build the kernel table afresh), and it was
+// asked.
+TEST(Interrupt, PollThatNeverStopsChangesNothing) {
+  mp::clear_kernel_cache();
+  const mp::ContactSolution plain = mp::solve_contact(fresh_params());
+  mp::clear_kernel_cache();
+  std::uint64_t polls = 0;
+  double a = 0, err = 0;
+  {
+    mp::InterruptScope scope([] { return false; }, 0ns);
+    const mp::ContactSolution s = mp::solve_contact(fresh_params());
+    a = s.a();
+    err = s.error_estimate();
+    polls = scope.polls();
+  }
+  EXPECT_EQ(a, plain.a());
+  EXPECT_EQ(err, plain.error_estimate());
+  EXPECT_GT(polls, 10u);
+}
