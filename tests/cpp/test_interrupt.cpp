@@ -6,11 +6,14 @@
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 #include "movingpunch/contact.hpp"
 #include "movingpunch/damped.hpp"
+#include "movingpunch/dispersion.hpp"
 #include "movingpunch/interrupt.hpp"
 #include "movingpunch/kernel.hpp"
+#include "movingpunch/layer_response.hpp"
 #include "roots.hpp"
 
 namespace mp = movingpunch;
@@ -80,8 +83,8 @@ TEST(Interrupt, RootFindingStopsWhenAsked) {
   {
     int polls = 0;
     mp::InterruptScope scope([&] { return ++polls >= 3; }, 0ns);
-    EXPECT_THROW(
-        mp::detail::bracketed_root(f, 0.0, 1.0, f(0.0), f(1.0), 1e-300, 200, 0.0), mp::Interrupted);
+    EXPECT_THROW(mp::detail::bracketed_root(f, 0.0, 1.0, f(0.0), f(1.0), 1e-300, 200, 0.0),
+                 mp::Interrupted);
   }
   EXPECT_LE(evaluations, 2 + 3);
   // Without a scope the same root is found (0.739085...).
@@ -137,4 +140,39 @@ TEST(Interrupt, PollThatNeverStopsChangesNothing) {
   EXPECT_EQ(a, plain.a());
   EXPECT_EQ(err, plain.error_estimate());
   EXPECT_GT(polls, 10u);
+}
+
+// Red-team item 4: 1e-7 below V*_cr on a stiff Pasternak base (V*_cr = V*_R
+// there) the damped quadrature's panels reached its bottom response's
+// round-off and kept splitting to the evaluation cap (20145 panels; every
+// kernel table built on them then took minutes). Now they stop at the
+// round-off, and the integral of (M1 - phi1)/phi1 agrees with the undamped
+// quadrature's (an independent rule and stopping test on the same M1) to
+// 1e-10 relative.
+TEST(BoundedWork, DampedQuadratureNearCriticalStopsAtRoundOff) {
+  const double kw = 1e4, nu = 0.4048225797622928, kp = 3.0;
+  const double v = mp::critical_vstar(kw, nu, kp) * (1.0 - 1e-7);
+  const mp::DampedLayerModel damped(v, kw, nu, 0.0, kp);
+  const mp::DampedQuadrature q = mp::build_damped_quadrature(damped, 1e-15, 0.0);
+  EXPECT_LT(q.panels.panel_centre.size(), 2000u);
+  const mp::LayerModel undamped(v, kw, nu, kp);
+  // decay 1: the undamped rule then ends near the damped one's alpha_max
+  // (144.2 and 144.5). So close to V*_R, (M1 - phi1)/phi1 carries a round-off
+  // offset of about eps/(1 - V/V*_R) = 2e-9 at every alpha (phi1 is computed
+  // to that relative accuracy), which the integral gathers over its range:
+  // the two must end at about the same alpha to agree to 1e-10.
+  const mp::AlphaQuadrature u = mp::build_alpha_quadrature(undamped, 1e-13, 1.0, 1.0);
+  EXPECT_NEAR(u.alpha_max, q.panels.alpha_max, 1.0);
+  const double phi1 = damped.phi1();
+  auto integral = [&](const mp::AlphaQuadrature& a) {
+    double s = 0.0, s_abs = 0.0;
+    for (std::size_t i = 0; i < a.alpha.size(); ++i) {
+      s += a.weight[i] * (a.m1[i] - phi1) / phi1;
+      s_abs += a.weight[i] * std::fabs((a.m1[i] - phi1) / phi1);
+    }
+    return std::pair{s, s_abs};
+  };
+  const auto [sd, sd_abs] = integral(q.panels);
+  const auto [su, su_abs] = integral(u);
+  EXPECT_NEAR(sd, su, 1e-10 * std::max(sd_abs, su_abs));
 }

@@ -29,8 +29,8 @@ class InterruptScope {
   // poll() is called from check_interrupt() on this thread, at most once per
   // interval; returning true makes that check_interrupt() throw Interrupted
   // (and every later one in this scope: a stopped computation stays stopped).
-  explicit InterruptScope(Poll poll,
-                          std::chrono::steady_clock::duration interval = std::chrono::milliseconds(50));
+  explicit InterruptScope(
+      Poll poll, std::chrono::steady_clock::duration interval = std::chrono::milliseconds(50));
   ~InterruptScope();
   InterruptScope(const InterruptScope&) = delete;
   InterruptScope& operator=(const InterruptScope&) = delete;
