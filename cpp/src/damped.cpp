@@ -346,7 +346,8 @@ DampedQuadrature build_damped_quadrature(const DampedLayerModel& model, double t
 
 double damped_kernel(const FilonIntegrator& f, const std::vector<double>& kr,
                      const std::vector<double>& ki, double u) {
-  return f.integral(u, kr).imag() + f.integral(u, ki).real();
+  const auto [re, im] = f.integral_pair_exact(u, kr, ki);  // = integral() twice, bit for bit
+  return re.imag() + im.real();
 }
 
 // ---------------------------------------------------------------------------

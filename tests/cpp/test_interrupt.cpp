@@ -7,6 +7,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <utility>
+#include <vector>
 
 #include "movingpunch/contact.hpp"
 #include "movingpunch/damped.hpp"
@@ -175,4 +176,27 @@ TEST(BoundedWork, DampedQuadratureNearCriticalStopsAtRoundOff) {
   const auto [sd, sd_abs] = integral(q.panels);
   const auto [su, su_abs] = integral(u);
   EXPECT_NEAR(sd, su, 1e-10 * std::max(sd_abs, su_abs));
+}
+
+// The damped kernel's tables take both Filon sums of a point at once
+// (integral_pair_exact: one sin/cos per panel for both): the same numbers,
+// bit for bit, as two integral() calls.
+TEST(BoundedWork, ExactFilonPairIsTwoIntegralsBitForBit) {
+  const mp::LayerModel model(0.3, 1.0, 0.2);
+  const mp::AlphaQuadrature q = mp::build_alpha_quadrature(model, 1e-10, 5.0);
+  const mp::FilonIntegrator f(q);
+  std::vector<double> g1(q.alpha.size()), g2(q.alpha.size());
+  for (std::size_t i = 0; i < g1.size(); ++i) {
+    g1[i] = std::exp(-q.alpha[i]) * std::cos(3.0 * q.alpha[i]);
+    g2[i] = 1.0 / (1.0 + q.alpha[i] * q.alpha[i]);
+  }
+  const std::vector<double> c1 = f.coefficients(g1), c2 = f.coefficients(g2);
+  for (double x : {-37.5, -1.0, -1e-3, 0.0, 0.25, 2.0, 11.0, 400.0}) {
+    const auto [a, b] = f.integral_pair_exact(x, c1, c2);
+    const auto a1 = f.integral(x, c1), b1 = f.integral(x, c2);
+    EXPECT_EQ(a.real(), a1.real()) << x;
+    EXPECT_EQ(a.imag(), a1.imag()) << x;
+    EXPECT_EQ(b.real(), b1.real()) << x;
+    EXPECT_EQ(b.imag(), b1.imag()) << x;
+  }
 }
