@@ -142,7 +142,7 @@ void bind_contact(py::module_& m) {
       },
       py::kw_only(), "vstar"_a, "kw"_a, "radius"_a, "load"_a, "nu"_a, "tol"_a, "allow_unphysical"_a,
       "n"_a = 0, "kp"_a = 0.0, "profile"_a = "cylinder", "half_width"_a = 0.0,
-      "table_x"_a = std::vector<double>{}, "table_y"_a = std::vector<double>{}, Release(),
+      "table_x"_a = std::vector<double>{}, "table_y"_a = std::vector<double>{}, Interruptible(),
       "Solves the moving-punch contact problem (dimensionless inputs: vstar = "
       "rho V^2/mu, kw = k_w h/mu, radius = R/h, load = P/(mu h), nu, tol on a/h, "
       "kp = k_p/(mu h) the Pasternak shear layer, 0: springs alone; profile: the "

@@ -137,7 +137,7 @@ void bind_damped(py::module_& m) {
       py::kw_only(), "vstar"_a, "kw"_a, "radius"_a, "load"_a, "nu"_a, "damping"_a, "tol"_a,
       "allow_unphysical"_a, "n"_a = 0, "kp"_a = 0.0, "friction"_a = 0.0, "profile"_a = "cylinder",
       "half_width"_a = 0.0, "table_x"_a = std::vector<double>{},
-      "table_y"_a = std::vector<double>{}, Release(),
+      "table_y"_a = std::vector<double>{}, Interruptible(),
       "Solves the contact problem on a damped (Kelvin-Voigt) foundation, damping = "
       "c_w c_T/mu > 0. Raises InvalidParameterError, SupercriticalSpeedError (vstar >= "
       "V*_R), UnphysicalContactError (unless allow_unphysical) or ConvergenceError. "

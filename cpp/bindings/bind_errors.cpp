@@ -8,6 +8,7 @@
 
 #include "bindings.hpp"
 #include "movingpunch/errors.hpp"
+#include "movingpunch/interrupt.hpp"
 
 namespace py = pybind11;
 using namespace pybind11::literals;
@@ -42,6 +43,8 @@ void bind_errors(py::module_& m) {
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
+    } catch (const movingpunch::Interrupted&) {
+      raise_interrupted();  // the signal handler's exception (InterruptGuard)
     } catch (const movingpunch::SupercriticalSpeedError& e) {
       py::object cls = errors_module().attr("SupercriticalSpeedError");
       py::object exc = cls(e.what());

@@ -90,7 +90,7 @@ void bind_zones(py::module_& m) {
         return solve_zones(p);
       },
       py::kw_only(), "vstar"_a, "kw"_a, "nu"_a, "damping"_a, "kp"_a, "tol"_a, "n"_a, "punches"_a,
-      "zones"_a, "first_n"_a = 24, Release(),
+      "zones"_a, "first_n"_a = 24, Interruptible(),
       "Solves one contact set (zones: (punch, left, right) from left to right, disjoint) "
       "under punches ((profile, radius, half_width, table_x, table_y, load, at)) by Newton's "
       "method on the zone ends; frictionless. Raises InvalidParameterError, "

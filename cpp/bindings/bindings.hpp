@@ -2,6 +2,7 @@
 // wired together by module.cpp.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -13,10 +14,38 @@
 #include <Eigen/Dense>
 
 #include "movingpunch/contact.hpp"
+#include "movingpunch/interrupt.hpp"
 #include "movingpunch/profile.hpp"
 #include "movingpunch/stresses.hpp"
 
 namespace movingpunch::bindings {
+
+// The call guard of a long computation (a solve): releases the GIL and, on
+// the main thread, lets Ctrl-C stop it. Every ~50 ms the core's loops
+// (check_interrupt) take the GIL back for PyErr_CheckSignals(); when a
+// Python signal handler raises (KeyboardInterrupt from the default SIGINT
+// handler, or the CLI's own), the computation unwinds with Interrupted and
+// the exception translator (bind_errors) raises that very Python exception.
+// On other threads (the TUI's workers) nothing is installed: Python runs
+// signal handlers on the main thread only, and taking the GIL there would
+// only slow the solve.
+class InterruptGuard {
+ public:
+  InterruptGuard();
+  ~InterruptGuard();
+  InterruptGuard(const InterruptGuard&) = delete;
+  InterruptGuard& operator=(const InterruptGuard&) = delete;
+
+ private:
+  bool main_thread_;
+  pybind11::gil_scoped_release release_;  // after main_thread_: computed with the GIL
+  std::unique_ptr<InterruptScope> scope_;
+};
+using Interruptible = pybind11::call_guard<InterruptGuard>;
+
+// Raises the Python exception that stopped a computation on this thread
+// (KeyboardInterrupt if none was kept). Under the GIL; the translator's part.
+void raise_interrupted();
 
 // The stage times of a solve (either solver) as {stage: seconds}.
 inline pybind11::dict stage_dict(const ContactSolution::StageSeconds& t) {

@@ -236,9 +236,11 @@ struct DPanel {
   DampedResponse r[15];
   double error = 0, floor = 0, resabs = 0;
   double sharp = 0;  // QUADPACK's estimate of the Kronrod result's error
+  double parent_density = std::numeric_limits<double>::infinity();  // its parent's error / length
 };
 
 DPanel eval_dpanel(const DampedLayerModel& m, double lo, double hi, double friction) {
+  check_interrupt();  // Ctrl-C (interrupt.hpp): 15 layer responses
   DPanel p;
   p.lo = lo;
   p.hi = hi;
@@ -303,13 +305,22 @@ DampedQuadrature build_damped_quadrature(const DampedLayerModel& model, double t
     work.pop_back();
     const double len = p.hi - p.lo;
     const bool fine = p.error <= std::max(panel_tol * len / w0, p.floor);
-    if (fine || len < 1e-12 * w0 || evaluations > 40000) {
+    // At the responses' round-off: |K - G| within a small multiple of the
+    // floor and, per unit length, no smaller than the parent's (a truncation
+    // error falls like len^23 on halving, round-off like len). Near V*_cr
+    // the round-off of Wb is a few times the floor: without this, panels
+    // split down to 1e-13 wide, up to the evaluation cap (20000 panels, and
+    // minutes for every kernel table built on them).
+    const bool noise = p.error <= 64.0 * p.floor && p.error >= 0.25 * p.parent_density * len;
+    if (fine || noise || len < 1e-12 * w0 || evaluations > 40000) {
       done.push_back(p);
       continue;
     }
     const double mid = 0.5 * (p.lo + p.hi);
-    work.push_back(eval_dpanel(model, mid, p.hi, friction));
-    work.push_back(eval_dpanel(model, p.lo, mid, friction));
+    for (const auto& [lo, hi] : {std::pair{mid, p.hi}, std::pair{p.lo, mid}}) {
+      work.push_back(eval_dpanel(model, lo, hi, friction));
+      work.back().parent_density = p.error / len;
+    }
     evaluations += 2;
   }
   std::sort(done.begin(), done.end(), [](const DPanel& a, const DPanel& b) { return a.lo < b.lo; });
@@ -335,7 +346,8 @@ DampedQuadrature build_damped_quadrature(const DampedLayerModel& model, double t
 
 double damped_kernel(const FilonIntegrator& f, const std::vector<double>& kr,
                      const std::vector<double>& ki, double u) {
-  return f.integral(u, kr).imag() + f.integral(u, ki).real();
+  const auto [re, im] = f.integral_pair_exact(u, kr, ki);  // = integral() twice, bit for bit
+  return re.imag() + im.real();
 }
 
 // ---------------------------------------------------------------------------

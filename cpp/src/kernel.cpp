@@ -11,6 +11,7 @@
 #include "gauss_kronrod.hpp"
 #include "layer_basis.hpp"
 #include "movingpunch/errors.hpp"
+#include "movingpunch/interrupt.hpp"
 
 namespace movingpunch {
 
@@ -35,6 +36,7 @@ struct Panel {
 };
 
 Panel eval_panel(const LayerModel& model, double lo, double hi) {
+  check_interrupt();  // 15 layer responses: microseconds
   Panel p{};
   p.lo = lo;
   p.hi = hi;
@@ -330,6 +332,7 @@ std::vector<double> FilonIntegrator::coefficients(const std::vector<double>& g) 
 }
 
 void FilonIntegrator::weights(double x, std::vector<cplx>& K) const {
+  check_interrupt();  // a sum over every panel (kernel tables, stresses)
   // int_{c-h}^{c+h} P_k((alpha - c)/h) e^{i alpha x} = h e^{i c x} 2 i^k j_k(h x).
   K.resize(centre_.size() * 15);
   const cplx ipow[4] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
@@ -348,21 +351,22 @@ void FilonIntegrator::weights(double x, std::vector<cplx>& K) const {
   }
 }
 
-template <std::size_t M>
+template <std::size_t M, bool Rotate>
 void FilonIntegrator::integrals(double x, const std::array<const std::vector<double>*, M>& c,
                                 std::array<cplx, M>& out) const {
+  check_interrupt();  // a sum over every panel (the damped kernel's tables)
   // Per panel: h e^{i c x} sum_k c_k 2 i^k j_k(h x); i^k alternates between
   // the real (k even) and imaginary (k odd) axes with signs + + - -.
   const double ax = std::fabs(x), sgn = x < 0.0 ? -1.0 : 1.0;
   thread_local std::vector<std::array<double, 15>> bessel;
   bessel_by_width(ax, bessel);
   out.fill(0.0);
-  // M > 1 (integral_pair): e^{i c x} of a panel adjoining the previous one is
+  // Rotate (integral_pair): e^{i c x} of a panel adjoining the previous one is
   // that panel's times e^{i h_prev x} e^{i h x} (one sin/cos per distinct
   // half-width), re-anchored by sin/cos every 8 panels: a relative error of
   // a few 1e-15 in place of 1e-16, half the time.
   thread_local std::vector<cplx> rot;
-  if (M > 1) {
+  if (Rotate) {
     rot.resize(widths_.size());
     for (std::size_t w = 0; w < widths_.size(); ++w)
       rot[w] = cplx(std::cos(widths_[w] * x), std::sin(widths_[w] * x));
@@ -371,7 +375,7 @@ void FilonIntegrator::integrals(double x, const std::array<const std::vector<dou
   for (std::size_t p = 0; p < centre_.size(); ++p) {
     const std::array<double, 15>& j = bessel[width_of_[p]];
     const double arg = centre_[p] * x;
-    const bool adjoins = M > 1 && p % 8 != 0 &&
+    const bool adjoins = Rotate && p % 8 != 0 &&
                          std::fabs(centre_[p - (p > 0 ? 1 : 0)] + half_[p - (p > 0 ? 1 : 0)] +
                                    half_[p] - centre_[p]) <= 1e-14 * std::fabs(centre_[p]);
     if (adjoins)
@@ -393,14 +397,21 @@ void FilonIntegrator::integrals(double x, const std::array<const std::vector<dou
 
 FilonIntegrator::cplx FilonIntegrator::integral(double x, const std::vector<double>& c) const {
   std::array<cplx, 1> out;
-  integrals<1>(x, {&c}, out);
+  integrals<1, false>(x, {&c}, out);
   return out[0];
 }
 
 std::pair<FilonIntegrator::cplx, FilonIntegrator::cplx> FilonIntegrator::integral_pair(
     double x, const std::vector<double>& c1, const std::vector<double>& c2) const {
   std::array<cplx, 2> out;
-  integrals<2>(x, {&c1, &c2}, out);
+  integrals<2, true>(x, {&c1, &c2}, out);
+  return {out[0], out[1]};
+}
+
+std::pair<FilonIntegrator::cplx, FilonIntegrator::cplx> FilonIntegrator::integral_pair_exact(
+    double x, const std::vector<double>& c1, const std::vector<double>& c2) const {
+  std::array<cplx, 2> out;
+  integrals<2, false>(x, {&c1, &c2}, out);
   return {out[0], out[1]};
 }
 

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <functional>
 
+#include "movingpunch/interrupt.hpp"
+
 namespace movingpunch::detail {
 
 // How bracketed_root keeps its bracket shrinking.
@@ -24,6 +26,7 @@ class StallGuard {
  public:
   explicit StallGuard(double ref_width) : ref_width_(ref_width) {}
   double operator()(double x, double lo, double hi) {
+    check_interrupt();  // one step of a secant: a solve per step
     const double w = hi - lo;
     if (w <= 0.5 * ref_width_) {
       ref_width_ = w;
@@ -63,6 +66,7 @@ inline double bracketed_root(const std::function<double(double)>& f, double lo, 
     } else {
       x = stall(x, lo, hi);
     }
+    check_interrupt();
     const double fx = f(x);
     if (std::fabs(fx) <= ftol) return x;
     if ((fx < 0.0) == (flo < 0.0)) {

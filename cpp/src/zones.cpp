@@ -279,6 +279,7 @@ class System {
   // conditions. False when the ends are not admissible (a zone inverted,
   // zones overlapping, a zone beyond its table) or the system is singular.
   bool eval(const Eigen::VectorXd& e, Eigen::VectorXd& F) {
+    check_interrupt();  // Ctrl-C (interrupt.hpp): a solve per evaluation
     c_.assign(static_cast<std::size_t>(nz_), 0.0);
     w_.assign(static_cast<std::size_t>(nz_), 0.0);
     for (int j = 0; j < nz_; ++j) {

@@ -59,6 +59,10 @@ class FilonIntegrator {
   // the Bessel functions and the phases, most phases by rotation.
   std::pair<cplx, cplx> integral_pair(double x, const std::vector<double>& c1,
                                       const std::vector<double>& c2) const;
+  // integral(x, c1) and integral(x, c2), bit for bit, sharing the Bessel
+  // functions and the sin/cos of each phase (the damped kernel's tables).
+  std::pair<cplx, cplx> integral_pair_exact(double x, const std::vector<double>& c1,
+                                            const std::vector<double>& c2) const;
 
  private:
   std::vector<double> centre_, half_;
@@ -66,7 +70,8 @@ class FilonIntegrator {
   std::vector<std::size_t> width_of_;  // panel -> index into widths_
   // j_0 .. j_14 (h ax) for every distinct half-width h.
   void bessel_by_width(double ax, std::vector<std::array<double, 15>>& j) const;
-  template <std::size_t M>
+  // Rotate: most phases by rotation from the previous panel's (M > 1).
+  template <std::size_t M, bool Rotate>
   void integrals(double x, const std::array<const std::vector<double>*, M>& c,
                  std::array<cplx, M>& out) const;
 };
