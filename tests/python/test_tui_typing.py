@@ -97,7 +97,7 @@ async def test_typing_key_by_key_solves_only_the_typed_value() -> None:
         assert screen.result.summary.params.vstar == 0.6
         message = screen.query_one(ParamsPanel).message("vstar")
         assert "V* = 0.9 is at or above V*_cr" in message
-        assert "showing the last result" in status_text(app)
+        assert "showing the result for V* 0.6" in status_text(app)
 
 
 @sync
