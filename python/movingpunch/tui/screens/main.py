@@ -199,6 +199,7 @@ class MainScreen(Screen[None]):
         """The input the user edited last (an error that concerns it goes there)."""
         self._solve_timer: Timer | None = None
         self.debounce = DEBOUNCE_SECONDS
+        self._status_shown: Text | None = None
         """Seconds of pause after a key before a typed value is solved."""
         self._in_flight: Request | None = None
         """What the running worker computes (generation 0), if anything."""
@@ -349,6 +350,8 @@ class MainScreen(Screen[None]):
     def _start(self, wanted: Request) -> None:
         self.generation += 1
         self._in_flight = wanted
+        self._failed = None  # an error shown is of an older request now
+        self._status_error = ""
         if not self.requested or self.requested[-1] != wanted.params:
             self.requested.append(wanted.params)
         request = replace(wanted, generation=self.generation)
@@ -462,7 +465,6 @@ class MainScreen(Screen[None]):
         """An error of the solve of ``params`` (default: the inputs shown),
         inline; the last result stays, and the status says for which inputs."""
         params = params or self.params
-        panel = self.query_one(ParamsPanel)
         self._clear_solver_messages()
         if isinstance(error, SupercriticalSpeedError):
             vcr = error.critical_vstar
@@ -471,7 +473,7 @@ class MainScreen(Screen[None]):
                 self.query_one(Gauge).damped = False
                 self.query_one(Gauge).limits = (params.vstar, vcr, vr)
                 kp = params.kp
-                panel.set_message(
+                self._set_message(
                     "vstar",
                     f"V* = {fmt(params.vstar, 5)} is at or above V*_cr = "
                     f"{fmt(vcr, 6)} (kw {fmt(params.kw, 4)}, ν "
@@ -479,12 +481,12 @@ class MainScreen(Screen[None]):
                     "need 0 <= V* < V*_cr",
                 )
             else:
-                panel.set_message("vstar", _one_line(error))
+                self._set_message("vstar", _one_line(error))
             self._status_error = "supercritical speed: no steady solution"
         elif isinstance(error, InvalidParameterError):
             name = self._field_of(error)
             if name:
-                panel.set_message(name, _one_line(error))
+                self._set_message(name, _one_line(error))
             self._status_error = (
                 f"{LABELS[name]}: {_one_line(error)}" if name else _one_line(error)
             )
@@ -517,7 +519,7 @@ class MainScreen(Screen[None]):
         panel = self.query_one(ParamsPanel)
         for name in INPUTS:
             if name not in self._invalid and panel.message(name):
-                panel.set_message(name, "")
+                self._set_message(name, "")
 
     def _show(self, result: Result) -> None:
         self._show_gauge()
@@ -670,7 +672,15 @@ class MainScreen(Screen[None]):
                 extras.append("; ".join(self._notes))
             if extras or not (self._hints or self._warnings):
                 text.append("  ".join(extras) or "ready", "dim")
-        status.update(text)
+        if text != self._status_shown:  # an update lays the screen out again
+            self._status_shown = text
+            status.update(text)
+
+    def _set_message(self, name: str, message: str) -> None:
+        """The message under the input ``name`` (no update if it shows it)."""
+        panel = self.query_one(ParamsPanel)
+        if panel.message(name) != message:
+            panel.set_message(name, message)
 
     # -- input --------------------------------------------------------------
 
@@ -685,7 +695,7 @@ class MainScreen(Screen[None]):
             # Neither solved nor refused: the user has not finished.
             self._typing.add(name)
             self._invalid.discard(name)
-            self.query_one(ParamsPanel).set_message(name, "")
+            self._set_message(name, "")
             self._reconcile(soon=True)
             return
         self._typing.discard(name)
@@ -701,11 +711,11 @@ class MainScreen(Screen[None]):
             params = self._parsed(name, text)
         except InvalidParameterError as exc:
             self._invalid.add(name)
-            panel.set_message(name, _one_line(exc))
+            self._set_message(name, _one_line(exc))
             self._reconcile(soon=soon)
             return
         self._invalid.discard(name)
-        panel.set_message(name, "")
+        self._set_message(name, "")
         if name == "load":
             panel.show_load(params.load)
         self.params = params
@@ -736,7 +746,7 @@ class MainScreen(Screen[None]):
             if name in self._invalid or name in self._typing:
                 self._invalid.discard(name)
                 self._typing.discard(name)
-                panel.set_message(name, "")
+                self._set_message(name, "")
                 panel.set_values(self.params)
 
     def _finish_typing(self, box: Input) -> None:
@@ -872,7 +882,7 @@ class MainScreen(Screen[None]):
         self.sweep = scene.sweep or SweepSpec()
         self.query_one(ParamsPanel).set_values(scene.params)
         for name in INPUTS:
-            self.query_one(ParamsPanel).set_message(name, "")
+            self._set_message(name, "")
         self.query_one(ParamsPanel).show_load(scene.params.load)
         self._show_applicable()
         self._show_gauge()
