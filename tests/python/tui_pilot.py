@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import asyncio
 import functools
+import re
 from collections.abc import Callable, Coroutine
 from typing import Any, ParamSpec
 
@@ -14,6 +15,7 @@ from textual.message import Message
 from textual.pilot import Pilot
 from textual.widgets import Input, Static
 
+import movingpunch as mp
 from movingpunch.tui import MovingPunchApp
 from movingpunch.tui.screens import MainScreen
 from movingpunch.tui.screenshots import settled
@@ -121,3 +123,84 @@ async def type_into(
     elif text:
         await pilot.press(*text)
     await settle(pilot)
+
+
+# -- the summary against the API ---------------------------------------------
+
+_PEAKS: dict[int, tuple[mp.ContactSolution, float, float]] = {}
+
+
+def peaks(solution: mp.ContactSolution) -> tuple[float, float]:
+    """The API's σx peaks (top, bottom) of ``solution`` (computed once: the
+    cache keeps the solution, so its id is never reused)."""
+    key = id(solution)
+    if key not in _PEAKS:
+        p = solution.stress_peaks()
+        _PEAKS[key] = (solution, p.top_tensile, p.bottom_tensile)
+    return _PEAKS[key][1:]
+
+
+NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?|[-+]?inf")
+
+
+def half_digit(text: str) -> float:
+    """Half a unit in the last place of a printed number (``0.330419``:
+    5e-7; ``8e-15``: 5e-16; ``1.33``: 5e-3)."""
+    mantissa, _, exponent = text.lower().partition("e")
+    decimals = len(mantissa.partition(".")[2])
+    return 0.5 * 10.0 ** (int(exponent or 0) - decimals)
+
+
+def expected(solution: mp.ContactSolution, label: str) -> list[float] | None:
+    """The API's numbers a summary field of ``label`` prints (None: a field
+    this test does not know)."""
+    top, bottom = peaks(solution)
+    back, front = solution.end_coefficients
+    zones = [e for z in solution.contact_zones for e in z]
+    table: dict[str, list[float]] = {
+        "a/h": [solution.a],
+        "(-b,a)/h": list(solution.contact_interval),
+        "p0": [solution.p0],
+        "δ/h": [solution.indentation],
+        "σx⁺ top": [top],
+        "bot": [bottom],
+        "drag/P": [solution.drag],
+        "K": [front],
+        "K front": [front],
+        "K back": [back],
+        "friction/P": [solution.tangential_force],
+        "it": [float(solution.iterations)],
+        "err": [solution.error_estimate],
+    }
+    if re.fullmatch(r"\d+ zones", label):
+        return zones
+    return table.get(label)
+
+
+def assert_summary_is(
+    app: object, solution: mp.ContactSolution, what: str = ""
+) -> None:
+    """Every number of the summary is the API's to the printed digits."""
+    fields = summary_fields(app)
+    labels = [label for label, _ in fields]
+    assert "p0" in labels, (what, fields)
+    assert "δ/h" in labels, (what, fields)
+    for label, value in fields:
+        if label == "" and value == "INVALID":
+            assert not solution.valid, (what, fields)
+            continue
+        want = expected(solution, label)
+        if want is None:
+            continue
+        got = NUMBER.findall(value)
+        assert len(got) == len(want), (what, label, value, want)
+        for text, number in zip(got, want, strict=True):
+            printed = float(text)
+            if label == "err" and max(abs(printed), abs(number)) < 1e-12:
+                continue  # round-off (its digits vary between runs)
+            # Half a unit in the last printed place (a rounding), plus
+            # the run-to-run round-off of a damped solve (1e-12).
+            slack = half_digit(text) * (1 + 1e-9) + 1e-12 * max(1.0, abs(number))
+            assert abs(printed - number) <= slack, (what, label, value, number)
+    if solution.valid:
+        assert "INVALID" not in [v for _, v in fields], (what, fields)
