@@ -14,6 +14,7 @@ from textual import events
 from textual.message import Message
 from textual.pilot import Pilot
 from textual.widgets import Input, Static
+from textual.worker import WorkerCancelled
 
 import movingpunch as mp
 from movingpunch.tui import MovingPunchApp
@@ -37,8 +38,15 @@ def sync(test: Callable[P, Coroutine[Any, Any, None]]) -> Callable[P, None]:
 async def settle(pilot: Pilot[None]) -> None:
     """Waits until no solve is pending or running and the screen is drawn
     (``screenshots.settled``: an error of a worker is shown inline, and the
-    tests read it from the screen)."""
-    await settled(pilot)
+    tests read it from the screen). A worker superseded by a newer request
+    (cancelled: its result would be dropped) is waited past."""
+    while True:
+        try:
+            await settled(pilot)
+        except WorkerCancelled:
+            await pilot.pause(0.01)
+        else:
+            return
 
 
 def screen_of(app: MovingPunchApp) -> MainScreen:

@@ -331,10 +331,10 @@ class MainScreen(Screen[None]):
         return True
 
     def _drop_in_flight(self) -> None:
-        """A newer generation: the running worker's result will be dropped."""
+        """A newer generation: the running worker stops at its next check
+        (``cancelled()``) and its result, if any, is dropped."""
         self.generation += 1
         self._in_flight = None
-        self.workers.cancel_group(self, "compute")
         self.query_one("#progress", ProgressBar).remove_class("-busy")
 
     def request(self) -> None:
