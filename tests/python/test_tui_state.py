@@ -69,6 +69,14 @@ EASY_TABS = ("pressure", "surface", "depth")
 set: the slow run goes there too)."""
 NUMERIC = ("vstar", "kw", "kp", "nu", "damping", "radius", "load", "friction", "tol")
 """The numeric inputs of a cylinder (the API's keyword names)."""
+NOT_SHOWN = (
+    "showing the",
+    "invalid",
+    "no steady solution",
+    "unphysical contact",
+    "no convergence",
+)
+"""Words of a status that says the screen does not show the inputs' result."""
 SEQUENCE_TIMEOUT = 120.0
 """Seconds one sequence may take to settle: a hang guard, never a time
 measurement (a solve takes milliseconds)."""
@@ -318,6 +326,8 @@ def check(app: object, what: str) -> None:
         )
         assert_summary_is(app, solved, what)
         check_plot(app, solved, what)
+        # ... and says nothing else: no error, no "showing the last result".
+        assert not any(w in status for w in NOT_SHOWN), (what, status)
         if not unfinished:
             assert inputs is not None
             check_gauge(app, inputs, what)

@@ -397,3 +397,23 @@ async def test_a_tab_never_shows_a_plot_of_other_inputs_than_the_summary() -> No
         want = fig4_with(vstar=0.3).surface_stress(surface.curves.grid)
         assert np.allclose(surface.curves.series[0].values, want, rtol=1e-9)
         assert status_text(app) == "ready"
+
+
+@sync
+async def test_back_from_a_refused_value_to_the_shown_one_clears_the_error() -> None:
+    """V* 0.9 is refused (supercritical) while the screen keeps 0.2's result;
+    typing 0.2 again needs no solve (the screen shows it), and the error goes
+    with the value it was about."""
+    app = create_app(SceneState(Params()), show_timing=False)
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        screen = screen_of(app)
+        await keys_apart(pilot, "i", "end", BS, "9", "enter")
+        assert status_text(app).startswith("supercritical speed")
+        assert "V* = 0.9" in screen.query_one(ParamsPanel).message("vstar")
+        solves = len(screen.requested)
+        await keys_apart(pilot, "i", "end", BS, "2", "enter")
+        assert len(screen.requested) == solves
+        assert_summary_is(app, fig4_with())
+        assert status_text(app) == "ready"
+        assert screen.query_one(ParamsPanel).message("vstar") == ""

@@ -326,8 +326,8 @@ class MainScreen(Screen[None]):
             return False
         if self._in_flight is not None:
             self._drop_in_flight()
-        if self.result is not shown:
-            self._display(shown)
+        if self.result is not shown or self._failed or self._status_error:
+            self._display(shown)  # (an error of another set goes)
         return True
 
     def _drop_in_flight(self) -> None:
@@ -654,7 +654,7 @@ class MainScreen(Screen[None]):
         if stale:
             text.append("; " if text else "")
             text.append("showing the result for " + ", ".join(stale), "yellow")
-        elif self._invalid or self._status_error:
+        elif text and (self._invalid or self._status_error):
             text.append("; showing the last result", "yellow")
         if not text:
             # Every warning of the shown solution (a requested accuracy not met).
