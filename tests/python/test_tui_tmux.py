@@ -53,12 +53,19 @@ class Tmux:
         self.run("send-keys", "-t", "mp", *keys)
 
     def wait_for(self, test: Callable[[str], bool], what: str) -> str:
+        """The screen once ``test`` holds on it and it is drawn whole: the
+        same on two captures 0.2 s apart (a capture may catch a frame half
+        written to the terminal on a busy machine)."""
         deadline = time.monotonic() + TIMEOUT
         screen = ""
         while time.monotonic() < deadline:
             screen = self.screen()
             if test(screen):
-                return screen
+                time.sleep(0.2)
+                again = self.screen()
+                if again == screen:
+                    return screen
+                continue
             time.sleep(0.2)
         raise AssertionError(f"timed out waiting for {what}; screen:\n{screen}")
 
