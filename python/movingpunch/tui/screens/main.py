@@ -199,8 +199,10 @@ class MainScreen(Screen[None]):
         """The input the user edited last (an error that concerns it goes there)."""
         self._solve_timer: Timer | None = None
         self.debounce = DEBOUNCE_SECONDS
-        self._status_shown: Text | None = None
         """Seconds of pause after a key before a typed value is solved."""
+        self._status_shown: Text | None = None
+        """The status line's text (updated only when it changes: an update
+        lays the screen out again)."""
         self._in_flight: Request | None = None
         """What the running worker computes (generation 0), if anything."""
         self._failed: tuple[Request, BaseException | None] | None = None
