@@ -37,6 +37,7 @@ from movingpunch.errors import InvalidParameterError, MovingPunchError
 from movingpunch.tui import create_app
 from movingpunch.tui.model import Params
 from movingpunch.tui.scene_files import SceneState
+from movingpunch.tui.screens import MainScreen
 from movingpunch.tui.screens import main as main_screen
 from movingpunch.tui.widgets import CurvePlot, Gauge
 from movingpunch.tui.widgets.params import INPUTS, LABELS
@@ -384,7 +385,9 @@ async def drive(seed: int, count: int, *, debounce: float, every_tab: bool) -> N
                 since = []
             await asyncio.wait_for(run(pilot, ops), SEQUENCE_TIMEOUT)
             since.append(f"#{index}: {' '.join(map(str, ops))}")
-            check(app, f"seed {seed}, from Fig. 4: " + "; ".join(since))
+            what = f"seed {seed}, from Fig. 4: " + "; ".join(since)
+            assert isinstance(app.screen, MainScreen), (what, app.screen)
+            check(app, what)
 
 
 RESET_EVERY = 4

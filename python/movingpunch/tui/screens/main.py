@@ -766,7 +766,11 @@ class MainScreen(Screen[None]):
         if (event.input.id or "").startswith("in-"):
             event.stop()
             self._finish_typing(event.input)
-            self.action_leave_input()
+            if self.focused is event.input:
+                # (not if keys after enter moved the focus on already: a
+                # click into another input, ``i``; what is typed there next
+                # must not go to the screen's keys, ``e`` Export)
+                self.action_leave_input()
 
     def on_input_blurred(self, event: Input.Blurred) -> None:
         if (event.input.id or "").startswith("in-") and self.is_mounted:
