@@ -208,7 +208,7 @@ async def test_invalid_input_shows_the_range_and_keeps_the_last_result() -> None
                 assert word in message, message
             assert screen.query_one(f"#msg-{name}").has_class("-shown")
             assert f"invalid {LABELS[name]}" in status_text(app)
-            assert "showing the last result" in status_text(app)
+            assert f"showing the result for {LABELS[name]}" in status_text(app)
             assert screen.result is before
             assert summary_text(app) == shown
             assert curves(app, "pressure") is p_before

@@ -53,12 +53,19 @@ class Tmux:
         self.run("send-keys", "-t", "mp", *keys)
 
     def wait_for(self, test: Callable[[str], bool], what: str) -> str:
+        """The screen once ``test`` holds on it and it is drawn whole: the
+        same on two captures 0.2 s apart (a capture may catch a frame half
+        written to the terminal on a busy machine)."""
         deadline = time.monotonic() + TIMEOUT
         screen = ""
         while time.monotonic() < deadline:
             screen = self.screen()
             if test(screen):
-                return screen
+                time.sleep(0.2)
+                again = self.screen()
+                if again == screen:
+                    return screen
+                continue
             time.sleep(0.2)
         raise AssertionError(f"timed out waiting for {what}; screen:\n{screen}")
 
@@ -82,6 +89,45 @@ def tmux() -> Iterator[Tmux]:
 def a_text(vstar: float) -> str:
     """a/h as the summary line prints it."""
     return "a/h " + fmt(mp.solve(vstar=vstar, kw=1.0, radius=100.0, load=0.002).a)
+
+
+def type_keys(tmux: Tmux, *keys: str, gap: float = 0.15) -> None:
+    """Sends the keys one by one, ``gap`` seconds apart, as a person types."""
+    for key in keys:
+        tmux.keys(key)
+        time.sleep(gap)
+
+
+def input_value(screen: str, label: str) -> str:
+    """The text of the input ``label`` as the panel shows it."""
+    for line in screen.splitlines():
+        if line.startswith(label + " "):
+            return line.split("▕")[0].removeprefix(label).strip()
+    raise AssertionError(f"no {label} input on the screen:\n{screen}")
+
+
+def test_deleting_to_an_earlier_value_shows_its_result(tmux: Tmux) -> None:
+    """Issue 25: ``i``, End, three BSpace, ``0``, Enter, keys 150 ms apart:
+    deleting 0.2 passes through 0 (valid: solved after the pause), 0. and
+    the empty box (being typed: the pending solve stops); the ``0`` typed
+    then equals the last valid value. The screen showed V* 0.2's result and
+    said "ready"; it shows V* 0's after enter. Then (back in the input) BSpace,
+    ``0.3``, Enter: V* 0.3's, not one edit behind."""
+    fig4 = a_text(0.2)
+    tmux.wait_for(lambda s: fig4 in s and "ready" in s, "the Fig. 4 summary")
+    type_keys(tmux, "i", "End", "BSpace", "BSpace", "BSpace", "0", "Enter")
+    at_rest = a_text(0.0)
+    assert at_rest == "a/h 0.330419"  # the issue's value
+    screen = tmux.wait_for(lambda s: at_rest in s, "the a/h of V* = 0")
+    assert input_value(screen, "V*") == "0"
+    assert fig4 not in screen
+    screen = tmux.wait_for(lambda s: "ready" in s, "ready")
+    assert at_rest in screen
+    type_keys(tmux, "i", "BSpace", "0", ".", "3", "Enter")
+    faster = a_text(0.3)
+    screen = tmux.wait_for(lambda s: faster in s and "ready" in s, "V* = 0.3")
+    assert input_value(screen, "V*") == "0.3"
+    assert at_rest not in screen
 
 
 TAB_CHECKS: dict[str, tuple[str, ...]] = {
@@ -121,8 +167,9 @@ def test_every_tab_the_help_and_quit(tmux: Tmux) -> None:
     tmux.wait_for(lambda s: "esc Leave input" in s, "the focus in the input")
     tmux.keys(*["BSpace"] * 8)
     # An empty box is still being typed into: no error, the result stays.
-    screen = tmux.wait_for(lambda s: "typing..." in s, "an empty V* input")
+    screen = tmux.wait_for(lambda s: "typing V*" in s, "an empty V* input")
     assert fig4 in screen
+    assert "showing the result for V* 0.2" in screen
     tmux.keys("0", ".", "3", "5")
     faster = a_text(0.35)
     screen = tmux.wait_for(lambda s: faster in s, "the a/h of V* = 0.35")

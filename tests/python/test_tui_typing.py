@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import asyncio
 
+import numpy as np
 import pytest
 from textual import events
 from textual.pilot import Pilot
@@ -25,8 +26,17 @@ from movingpunch.tui.screens.main import (
     _still_typing,
     _still_typing_in,
 )
-from movingpunch.tui.widgets import ParamsPanel
-from tui_pilot import screen_of, settle, status_text, summary_text, sync
+from movingpunch.tui.widgets import CurvePlot, Gauge, ParamsPanel
+from tui_pilot import (
+    assert_summary_is,
+    click_into,
+    deliver,
+    screen_of,
+    settle,
+    status_text,
+    summary_text,
+    sync,
+)
 
 SIZE = (80, 24)
 KEY_GAP = 0.1
@@ -97,7 +107,7 @@ async def test_typing_key_by_key_solves_only_the_typed_value() -> None:
         assert screen.result.summary.params.vstar == 0.6
         message = screen.query_one(ParamsPanel).message("vstar")
         assert "V* = 0.9 is at or above V*_cr" in message
-        assert "showing the last result" in status_text(app)
+        assert "showing the result for V* 0.6" in status_text(app)
 
 
 @sync
@@ -229,3 +239,181 @@ async def test_typing_a_train_shows_no_error_on_the_way() -> None:
             (0.002, 1.5),
         ]
         assert "2 punches" in summary_text(app)
+
+
+# -- issue 25: the screen shows the result of the inputs it shows --------------
+
+PERSON_GAP = 0.15
+"""Seconds between keys in the issue's report (a person typing)."""
+
+
+async def keys_apart(pilot: Pilot[None], *keys: str, gap: float = PERSON_GAP) -> None:
+    """Sends the keys ``gap`` seconds apart on a clock (as a terminal
+    delivers a person's keys), then waits until the app settles."""
+    for key in keys:
+        deliver(pilot.app, key)
+        await asyncio.sleep(gap)
+    await settle(pilot)
+
+
+def fig4_with(**changes: float) -> mp.ContactSolution:
+    """The API's solution of Fig. 4 (V* 0.2, kw 1, R/h 100, P 0.002) changed."""
+    args: dict[str, float] = {"vstar": 0.2, "kw": 1.0, "radius": 100.0, "load": 0.002}
+    return mp.solve(**(args | changes))
+
+
+BS = "backspace"
+
+
+@pytest.mark.parametrize(
+    ("start", "name", "keys", "shown", "final"),
+    [
+        # The issue's sequence: 0.2 -> 0 (valid: its solve waits for the
+        # pause) -> 0. -> "" (being typed: the wait stops) -> "0", which
+        # equals the last valid value: nothing was solved, the screen kept
+        # V* 0.2's a/h 0.372881 and said "ready".
+        ({}, "vstar", ("i", "end", BS, BS, BS, "0", "enter"), "0", {"vstar": 0.0}),
+        ({"kw": 10.0}, "kw", ("end", BS, BS, "1", "enter"), "1", {"kw": 1.0}),
+        (
+            {"friction": 0.3},
+            "friction",
+            ("end", BS, BS, BS, "0", "enter"),
+            "0",
+            {"friction": 0.0},
+        ),
+        (
+            {"damping": 0.1},
+            "damping",
+            ("end", BS, BS, BS, "0", "enter"),
+            "0",
+            {"damping": 0.0},
+        ),
+        # Without enter: the pause solves what is shown.
+        ({"kw": 10.0}, "kw", ("end", BS, BS, "1"), "1", {"kw": 1.0}),
+        # Back to a value through one being typed (0.25 -> 0.25e -> 0.25).
+        ({}, "vstar", ("i", "end", "5", "e", BS), "0.25", {"vstar": 0.25}),
+    ],
+)
+@sync
+async def test_deleting_to_an_earlier_value_shows_its_result(
+    start: dict[str, float],
+    name: str,
+    keys: tuple[str, ...],
+    shown: str,
+    final: dict[str, float],
+) -> None:
+    app = create_app(SceneState(Params(**start)), show_timing=False)
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        screen = screen_of(app)
+        assert_summary_is(app, fig4_with(**start))
+        if keys[0] != "i":
+            click_into(app, name)
+        await keys_apart(pilot, *keys)
+        await pilot.pause(DEBOUNCE_SECONDS)  # a pending solve would start
+        await settle(pilot)
+        assert screen.query_one(f"#in-{name}", Input).value == shown
+        assert_summary_is(app, fig4_with(**(start | final)))
+        assert status_text(app) == "ready"
+        vcr = mp.critical_vstar(final.get("kw", start.get("kw", 1.0)), 0.2)
+        assert f"V*_cr {fmt(vcr, 5)}" in str(screen.query_one(Gauge).render())
+
+
+@sync
+async def test_the_issue_sequence_then_0_3_is_never_one_edit_behind() -> None:
+    app = create_app(SceneState(Params()), show_timing=False)
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        await keys_apart(pilot, "i", "end", BS, BS, BS, "0", "enter")
+        assert a_text(0.0) == "a/h 0.330419"
+        assert_summary_is(app, fig4_with(vstar=0.0))
+        await keys_apart(pilot, "i", BS, "0", ".", "3", "enter")
+        assert_summary_is(app, fig4_with(vstar=0.3))
+        assert status_text(app) == "ready"
+
+
+@sync
+async def test_the_status_names_the_inputs_the_result_is_for() -> None:
+    """While the summary shows another set's result, the status says which
+    (the values that result is for), never "ready"."""
+    app = create_app(SceneState(Params()), show_timing=False)
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        screen = screen_of(app)
+        screen.debounce = 600.0  # the user's pause never ends in this test
+        click_into(app, "kw")
+        await pilot.press("end", "0")  # kw 10, waiting for the pause
+        assert screen.solve_pending
+        assert status_text(app) == "solving...; showing the result for kw h/μ 1"
+        await pilot.press("e")  # 10e: being typed
+        assert not screen.solve_pending
+        assert status_text(app) == "typing kw h/μ; showing the result for kw h/μ 1"
+        await pilot.press("x")  # 10ex: invalid
+        status = status_text(app)
+        assert status == "invalid kw h/μ; showing the result for kw h/μ 1", status
+        click_into(app, "vstar")
+        await pilot.press("end", "5")  # V* 0.25 beside kw 10ex
+        status = status_text(app)
+        assert status.endswith("showing the result for V* 0.2, kw h/μ 1"), status
+        await pilot.press("backspace")  # V* 0.2 again
+        click_into(app, "kw")
+        await pilot.press("end", "backspace", "backspace")  # kw 10: waiting
+        assert status_text(app) == "solving...; showing the result for kw h/μ 1"
+        assert_summary_is(app, fig4_with())
+        await pilot.press("enter")  # solved now
+        await settle(pilot)
+        assert_summary_is(app, fig4_with(kw=10.0))
+        assert status_text(app) == "ready"
+
+
+@sync
+async def test_a_tab_never_shows_a_plot_of_other_inputs_than_the_summary() -> None:
+    """Each tab keeps its own result; back on a tab whose result is of an
+    older set, while the solve of the shown set fails, its plot is emptied
+    (not left beside the summary of another set)."""
+    app = create_app(SceneState(Params()), show_timing=False)
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        screen = screen_of(app)
+        await keys_apart(pilot, "]", "[", gap=0.05)  # σx(x) computed at V* 0.2
+        surface = screen.query_one("#plot-surface", CurvePlot)
+        assert surface.curves is not None
+        await keys_apart(pilot, "i", "end", BS, "3", "enter")  # V* 0.3
+        assert_summary_is(app, fig4_with(vstar=0.3))
+        await keys_apart(pilot, "i", "end", BS, "9", "enter")  # supercritical
+        await keys_apart(pilot, "]")
+        assert screen.tab == "surface"
+        assert surface.curves is None
+        assert "no result" in surface.placeholder
+        assert_summary_is(app, fig4_with(vstar=0.3))
+        status = status_text(app)
+        assert status.startswith("supercritical speed"), status
+        assert status.endswith("showing the result for V* 0.3"), status
+        # Back to 0.3: the surface tab solves it; 0.2 on the pressure tab
+        # shows the pressure tab's own earlier result again.
+        await keys_apart(pilot, "i", "end", BS, "3", "enter")
+        assert surface.curves is not None
+        assert_summary_is(app, fig4_with(vstar=0.3))
+        want = fig4_with(vstar=0.3).surface_stress(surface.curves.grid)
+        assert np.allclose(surface.curves.series[0].values, want, rtol=1e-9)
+        assert status_text(app) == "ready"
+
+
+@sync
+async def test_back_from_a_refused_value_to_the_shown_one_clears_the_error() -> None:
+    """V* 0.9 is refused (supercritical) while the screen keeps 0.2's result;
+    typing 0.2 again needs no solve (the screen shows it), and the error goes
+    with the value it was about."""
+    app = create_app(SceneState(Params()), show_timing=False)
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        screen = screen_of(app)
+        await keys_apart(pilot, "i", "end", BS, "9", "enter")
+        assert status_text(app).startswith("supercritical speed")
+        assert "V* = 0.9" in screen.query_one(ParamsPanel).message("vstar")
+        solves = len(screen.requested)
+        await keys_apart(pilot, "i", "end", BS, "2", "enter")
+        assert len(screen.requested) == solves
+        assert_summary_is(app, fig4_with())
+        assert status_text(app) == "ready"
+        assert screen.query_one(ParamsPanel).message("vstar") == ""

@@ -1,5 +1,16 @@
 """The main screen: parameters, plot tabs, summary, messages and keys.
 
+One rule keeps the screen honest (``MainScreen._reconcile``, run after every
+change: a key in an input, enter, leaving an input, a tab, a pin, an
+overlay, a scene): the screen tracks the request whose result it shows (per
+tab, ``results``) and the one in flight; whenever the complete, valid inputs
+shown differ from both (and from a request whose error is shown), they are
+solved. While the summary shows the result of other inputs (a value being
+typed, an invalid one, a solve waiting or running, an error), the status
+line names them with the values the result is for ("showing the result for
+V* 0.2"), never "ready". Enter solves what is shown unless the screen shows
+it. The gauge (V*_cr, V*_R) follows the inputs shown: it needs no solve.
+
 Every computation runs in one exclusive thread worker; each request carries
 a generation number and a result (or error) from an older generation is
 dropped, so a stale result never overwrites a newer one.
@@ -62,6 +73,7 @@ from movingpunch.tui.model import (
     SweepSpec,
     TabName,
     fmt,
+    format_punches,
 )
 from movingpunch.tui.paths import WorkingFolder, write_error
 from movingpunch.tui.screens.help import HelpScreen, MessagesScreen
@@ -80,6 +92,7 @@ from movingpunch.tui.widgets.params import (
     LABELS,
     STATUS_LINES,
     MessageLine,
+    applies,
 )
 from movingpunch.zones import CONTACT_MODES
 
@@ -167,7 +180,8 @@ class MainScreen(Screen[None]):
         self.folder = folder or WorkingFolder.at()
         """Where Open, Save and Export read and write (paths stay inside)."""
         self.params = params
-        """The last complete, valid parameter set (what the result shows)."""
+        """The inputs shown, each at its last complete, valid value (the
+        result on screen may be of another set: ``result.request.params``)."""
         self.overlay = overlay
         self.sweep = sweep or SweepSpec()
         self.pins: list[Params] = []
@@ -194,6 +208,17 @@ class MainScreen(Screen[None]):
         self._editing = ""
         """The input the user edited last (an error that concerns it goes there)."""
         self._solve_timer: Timer | None = None
+        self.debounce = DEBOUNCE_SECONDS
+        """Seconds of pause after a key before a typed value is solved."""
+        self._status_shown: Text | None = None
+        """The status line's text (updated only when it changes: an update
+        lays the screen out again)."""
+        self._in_flight: Request | None = None
+        """What the running worker computes (generation 0), if anything."""
+        self._failed: tuple[Request, BaseException | None] | None = None
+        """The request whose error is on screen, and its error."""
+        self._limits: dict[tuple[float, float, float], tuple[float, float]] = {}
+        """(V*_cr, V*_R) per (kw, ν, kp): the gauge's speeds."""
         self.requested: list[Params] = []
         """Every parameter set sent to a worker, oldest first, a repeat of
         the one before (another tab, a pin) not counted (for tests)."""
@@ -253,24 +278,14 @@ class MainScreen(Screen[None]):
         """A typed value waits for the user's pause before it is solved."""
         return self._solve_timer is not None
 
-    def request_soon(self) -> None:
-        """Solves after the user pauses typing (``DEBOUNCE_SECONDS``)."""
-        if self._solve_timer is not None:
-            self._solve_timer.stop()
-        self._solve_timer = self.set_timer(DEBOUNCE_SECONDS, self.request)
-
-    def request(self) -> None:
-        """Computes what the visible tab needs for the current state."""
-        if self._solve_timer is not None:
-            self._solve_timer.stop()
-            self._solve_timer = None
+    def wanted(self) -> Request | None:
+        """What the screen must show now (generation 0): the visible tab for
+        the inputs shown, the pins, the overlay; None while an input holds a
+        value being typed or an invalid one (nothing complete to solve)."""
         if self._invalid or self._typing:
-            return  # keep the last result the user saw on screen
-        self.generation += 1
-        if not self.requested or self.requested[-1] != self.params:
-            self.requested.append(self.params)
-        request = Request(
-            generation=self.generation,
+            return None
+        return Request(
+            generation=0,
             params=self.params,
             tab=self.tab,
             pins=tuple(self.pins),
@@ -278,6 +293,80 @@ class MainScreen(Screen[None]):
             sweep=self.sweep,
             quantity=self.quantity,
         )
+
+    def _reconcile(self, *, soon: bool) -> None:
+        """The one rule of the screen's state, run after every change: when
+        the complete, valid inputs shown differ from what the screen shows
+        and nothing in flight (or an error shown for them) covers them, they
+        are solved, after the user's pause when ``soon`` (typing), else now
+        (enter, leaving an input, a tab, a pin, a scene). What the screen
+        shows is tracked, never inferred from what changed last."""
+        wanted = self.wanted()
+        if wanted is None or self._covered(wanted):
+            self._stop_timer()
+        elif soon:
+            self._stop_timer()
+            self._solve_timer = self.set_timer(self.debounce, self._paused)
+        else:
+            self._stop_timer()
+            self._start(wanted)
+        self._update_status()
+
+    def _paused(self) -> None:
+        self._solve_timer = None
+        self._reconcile(soon=False)
+
+    def _stop_timer(self) -> None:
+        if self._solve_timer is not None:
+            self._solve_timer.stop()
+            self._solve_timer = None
+
+    def _covered(self, wanted: Request) -> bool:
+        """Whether ``wanted`` is on screen, in flight, or its error is shown.
+        A tab's own earlier result for ``wanted`` is shown again; a request in
+        flight for something else is then dropped (its result would replace
+        the right one)."""
+        if self._in_flight == wanted:
+            return True
+        if self._failed is not None and self._failed[0] == wanted:
+            if self._in_flight is not None:
+                self._drop_in_flight()
+            self.show_error(self._failed[1], wanted.params)  # its message again
+            return True
+        shown = self.results.get(wanted.tab)
+        if shown is None or _key(shown.request) != wanted:
+            return False
+        if self._in_flight is not None:
+            self._drop_in_flight()
+        if self.result is not shown or self._failed or self._status_error:
+            self._display(shown)  # (an error of another set goes)
+        return True
+
+    def _drop_in_flight(self) -> None:
+        """A newer generation: the running worker stops at its next check
+        (``cancelled()``) and its result, if any, is dropped."""
+        self.generation += 1
+        self._in_flight = None
+        self.query_one("#progress", ProgressBar).remove_class("-busy")
+
+    def request(self) -> None:
+        """Computes what the visible tab needs for the current state, even if
+        the screen shows it (``r``, the first solve); nothing while an input
+        is being typed into or is invalid."""
+        self._stop_timer()
+        wanted = self.wanted()
+        if wanted is not None:
+            self._start(wanted)
+        self._update_status()
+
+    def _start(self, wanted: Request) -> None:
+        self.generation += 1
+        self._in_flight = wanted
+        self._failed = None  # an error shown is of an older request now
+        self._status_error = ""
+        if not self.requested or self.requested[-1] != wanted.params:
+            self.requested.append(wanted.params)
+        request = replace(wanted, generation=self.generation)
         self._changed_at[self.generation] = time.perf_counter()
         bar = self.query_one("#progress", ProgressBar)
         bar.update(total=None, progress=0)
@@ -313,8 +402,16 @@ class MainScreen(Screen[None]):
         if generation != self.generation:
             return  # stale: a newer request is running or done
         started = self._changed_at.pop(generation, None)
+        self._in_flight = None
+        self._display(result)
+        if started is not None:
+            self.redraw_seconds.append(time.perf_counter() - started)
+
+    def _display(self, result: Result) -> None:
+        """Puts ``result`` on screen: the summary, its tab's plot, the status."""
         self.result = result
         self.results[result.request.tab] = result
+        self._failed = None
         self._status_error = ""
         self._notes = result.notes
         self._warnings = result.summary.warnings
@@ -322,8 +419,36 @@ class MainScreen(Screen[None]):
         self._clear_solver_messages()
         self._show(result)
         self.query_one("#progress", ProgressBar).remove_class("-busy")
-        if started is not None:
-            self.redraw_seconds.append(time.perf_counter() - started)
+
+    def _sync_plot(self) -> None:
+        """The visible tab's plot shows the set the summary shows, or
+        nothing: a tab's earlier result for other inputs is not left beside
+        the summary (its result stays in ``results``, shown again when the
+        inputs come back to it)."""
+        tab = self.tab
+        result = self.results.get(tab)
+        summary = self.result
+        if (
+            result is not None
+            and summary is not None
+            and result.request.params == summary.request.params
+        ):
+            return
+        text = (
+            "computing..."
+            if self._in_flight is not None
+            else "no result for the inputs shown: see the status line"
+        )
+        widget = self.query_one(f"#plot-{tab}")
+        if isinstance(widget, CurvePlot):
+            widget.curves = None
+            widget.placeholder = text
+        elif isinstance(widget, StressMap):
+            widget.field = None
+            widget.placeholder = text
+        elif isinstance(widget, AccuracyView):
+            widget.table = None
+            widget.placeholder = text
 
     def on_worker_state_changed(self, event: Worker.StateChanged) -> None:
         worker = event.worker
@@ -334,42 +459,52 @@ class MainScreen(Screen[None]):
         ):
             return
         generation = self._worker_generation.pop(worker, None)
-        if event.state != WorkerState.ERROR or generation != self.generation:
+        if generation != self.generation or self._in_flight is None:
             return
+        failed = self._in_flight
+        self._in_flight = None
         self.query_one("#progress", ProgressBar).remove_class("-busy")
-        self.show_error(worker.error)
+        if event.state == WorkerState.ERROR:
+            self._failed = (failed, worker.error)
+            self.show_error(worker.error, failed.params)
+            self._sync_plot()
+        else:  # ended without a result (cancelled)
+            self._update_status()
 
-    def show_error(self, error: BaseException | None) -> None:
-        """An error of the current request, inline; the last result stays."""
-        panel = self.query_one(ParamsPanel)
+    def show_error(
+        self, error: BaseException | None, params: Params | None = None
+    ) -> None:
+        """An error of the solve of ``params`` (default: the inputs shown),
+        inline; the last result stays, and the status says for which inputs."""
+        params = params or self.params
         self._clear_solver_messages()
         if isinstance(error, SupercriticalSpeedError):
             vcr = error.critical_vstar
             vr = error.rayleigh_vstar
             if vcr is not None and vr is not None:
                 self.query_one(Gauge).damped = False
-                self.query_one(Gauge).limits = (self.params.vstar, vcr, vr)
-                kp = self.params.kp
-                panel.set_message(
+                self.query_one(Gauge).limits = (params.vstar, vcr, vr)
+                kp = params.kp
+                self._set_message(
                     "vstar",
-                    f"V* = {fmt(self.params.vstar, 5)} is at or above V*_cr = "
-                    f"{fmt(vcr, 6)} (kw {fmt(self.params.kw, 4)}, ν "
-                    f"{fmt(self.params.nu, 4)}{f', kp {fmt(kp, 4)}' if kp else ''}): "
+                    f"V* = {fmt(params.vstar, 5)} is at or above V*_cr = "
+                    f"{fmt(vcr, 6)} (kw {fmt(params.kw, 4)}, ν "
+                    f"{fmt(params.nu, 4)}{f', kp {fmt(kp, 4)}' if kp else ''}): "
                     "need 0 <= V* < V*_cr",
                 )
             else:
-                panel.set_message("vstar", _one_line(error))
+                self._set_message("vstar", _one_line(error))
             self._status_error = "supercritical speed: no steady solution"
         elif isinstance(error, InvalidParameterError):
             name = self._field_of(error)
             if name:
-                panel.set_message(name, _one_line(error))
+                self._set_message(name, _one_line(error))
             self._status_error = (
                 f"{LABELS[name]}: {_one_line(error)}" if name else _one_line(error)
             )
         elif isinstance(error, UnphysicalContactError):
             self._status_error = "unphysical contact: " + _one_line(error)
-            if self.params.contact == "single" and not self.params.punches:
+            if params.contact == "single" and not params.punches:
                 # its own item (two spaces): a summary of the error keeps it
                 self._status_error += "  (contact auto finds the contact zones)"
         elif isinstance(error, ConvergenceError):
@@ -397,13 +532,10 @@ class MainScreen(Screen[None]):
         panel = self.query_one(ParamsPanel)
         for name in INPUTS:
             if name not in self._invalid and panel.message(name):
-                panel.set_message(name, "")
+                self._set_message(name, "")
 
     def _show(self, result: Result) -> None:
-        s = result.summary
-        gauge = self.query_one(Gauge)
-        gauge.damped = s.damped
-        gauge.limits = (s.params.vstar, s.critical_vstar, s.rayleigh_vstar)
+        self._show_gauge()
         self.query_one("#summary", FieldsLine).fields = self._summary_fields(result)
         data = result.data
         if isinstance(data, Notice):
@@ -472,19 +604,73 @@ class MainScreen(Screen[None]):
             fields.append(Field("", "INVALID", "bold red"))
         return tuple(fields)
 
+    def _show_gauge(self) -> None:
+        """The gauge of V* against V*_cr and V*_R for the inputs shown (a
+        function of kw, ν and kp: no solve), unless an input is unfinished."""
+        if self._invalid or self._typing:
+            return
+        p = self.params
+        key = (p.kw, p.nu, p.kp)
+        if key not in self._limits:
+            try:
+                self._limits[key] = model.limits(p.kw, p.nu, p.kp)
+            except MovingPunchError:
+                return
+        vcr, vr = self._limits[key]
+        gauge = self.query_one(Gauge)
+        gauge.damped = p.damped
+        gauge.limits = (p.vstar, vcr, vr)
+
+    def stale_inputs(self) -> tuple[str, ...]:
+        """The inputs whose text differs from the set the summary shows, each
+        as ``V* 0.2``: its label and the value the summary was computed for
+        (an input that does not apply to either set is left out: the shape
+        that hides it differs)."""
+        if self.result is None:
+            return ()
+        shown = self.result.request.params
+        panel = self.query_one(ParamsPanel)
+        out = []
+        for name in INPUTS:
+            if not (applies(name, shown) and applies(name, self.params)):
+                continue
+            if _value(shown, name) != self._typed_value(name, panel.text(name)):
+                out.append(f"{LABELS[name]} {_input_text(shown, name)}")
+        return tuple(out)
+
+    def _typed_value(self, name: str, text: str) -> object:
+        """The value ``text`` in the input ``name`` stands for (None if it
+        stands for none)."""
+        try:
+            return _value(self._parsed(name, text), name)
+        except InvalidParameterError:
+            return None
+
     def _update_status(self) -> None:
+        """Says what the screen shows. While the summary shows the result of
+        other inputs than those shown (a value being typed, an invalid one, a
+        solve waiting for the pause or running, an error), it names them with
+        the values the result is for: never "ready"."""
         status = self.query_one("#status", Static)
         text = Text()
+        wanted = self.wanted()
         if self._invalid:
             names = ", ".join(LABELS[n] for n in INPUTS if n in self._invalid)
             text.append(f"invalid {names}", "bold yellow")
-            text.append("; showing the last result", "yellow")
-        elif self._status_error:
+        elif self._failed is not None and self._failed[0] == wanted:
             text.append(self._status_error, "bold red")
-            text.append("; showing the last result", "yellow")
         elif self._typing:
-            text.append("typing...", "dim")
-        else:
+            names = ", ".join(LABELS[n] for n in INPUTS if n in self._typing)
+            text.append(f"typing {names}", "dim")
+        elif self.solve_pending or self._in_flight is not None:
+            text.append("solving...", "dim")
+        stale = self.stale_inputs()
+        if stale:
+            text.append("; " if text else "")
+            text.append("showing the result for " + ", ".join(stale), "yellow")
+        elif text and (self._invalid or self._status_error):
+            text.append("; showing the last result", "yellow")
+        if not text:
             # Every warning of the shown solution (a requested accuracy not met).
             for line in self._warnings:
                 text.append(f"warning: {line}  ", "bold yellow")
@@ -500,7 +686,15 @@ class MainScreen(Screen[None]):
                 extras.append("; ".join(self._notes))
             if extras or not (self._hints or self._warnings):
                 text.append("  ".join(extras) or "ready", "dim")
-        status.update(text)
+        if text != self._status_shown:  # an update lays the screen out again
+            self._status_shown = text
+            status.update(text)
+
+    def _set_message(self, name: str, message: str) -> None:
+        """The message under the input ``name`` (no update if it shows it)."""
+        panel = self.query_one(ParamsPanel)
+        if panel.message(name) != message:
+            panel.set_message(name, message)
 
     # -- input --------------------------------------------------------------
 
@@ -515,41 +709,33 @@ class MainScreen(Screen[None]):
             # Neither solved nor refused: the user has not finished.
             self._typing.add(name)
             self._invalid.discard(name)
-            self.query_one(ParamsPanel).set_message(name, "")
-            if self._solve_timer is not None:
-                self._solve_timer.stop()
-                self._solve_timer = None
-            self._update_status()
+            self._set_message(name, "")
+            self._reconcile(soon=True)
             return
         self._typing.discard(name)
         self._accept(name, event.value, soon=True)
 
     def _accept(self, name: str, text: str, *, soon: bool) -> None:
         """Checks what was typed into ``name`` (an error names the input and
-        its range); a valid change is solved, after the user's pause when
+        its range) and applies the rule (``_reconcile``): the inputs shown
+        are solved unless the screen shows them, after the user's pause when
         ``soon``."""
         panel = self.query_one(ParamsPanel)
         try:
             params = self._parsed(name, text)
         except InvalidParameterError as exc:
             self._invalid.add(name)
-            panel.set_message(name, _one_line(exc))
-            self._update_status()
+            self._set_message(name, _one_line(exc))
+            self._reconcile(soon=soon)
             return
-        was_invalid = name in self._invalid
         self._invalid.discard(name)
-        panel.set_message(name, "")
+        self._set_message(name, "")
         if name == "load":
             panel.show_load(params.load)
-        changed = params != self.params
         self.params = params
         self._show_applicable()
-        self._update_status()
-        if changed or (was_invalid and not self._invalid):
-            if soon:
-                self.request_soon()
-            else:
-                self.request()
+        self._show_gauge()
+        self._reconcile(soon=soon)
 
     def _parsed(self, name: str, text: str) -> Params:
         """The current set with ``text`` typed into ``name``; raises
@@ -574,24 +760,29 @@ class MainScreen(Screen[None]):
             if name in self._invalid or name in self._typing:
                 self._invalid.discard(name)
                 self._typing.discard(name)
-                panel.set_message(name, "")
+                self._set_message(name, "")
                 panel.set_values(self.params)
 
     def _finish_typing(self, box: Input) -> None:
         """Enter or leaving an input: what it holds is final (``0.`` is 0,
-        an empty box an error), and a pending solve starts now."""
+        an empty box an error), and the inputs shown are solved now unless
+        the screen shows them (or is solving them)."""
         name = (box.id or "").removeprefix("in-")
         if name in self._typing:
             self._typing.discard(name)
             self._accept(name, box.value, soon=False)
-        elif self._solve_timer is not None:
-            self.request()
+        else:
+            self._reconcile(soon=False)
 
     def on_input_submitted(self, event: Input.Submitted) -> None:
         if (event.input.id or "").startswith("in-"):
             event.stop()
             self._finish_typing(event.input)
-            self.action_leave_input()
+            if self.focused is event.input:
+                # (not if keys after enter moved the focus on already: a
+                # click into another input, ``i``; what is typed there next
+                # must not go to the screen's keys, ``e`` Export)
+                self.action_leave_input()
 
     def on_input_blurred(self, event: Input.Blurred) -> None:
         if (event.input.id or "").startswith("in-") and self.is_mounted:
@@ -602,7 +793,8 @@ class MainScreen(Screen[None]):
     ) -> None:
         event.stop()
         if self.is_mounted and self.generation:
-            self.request()
+            self._reconcile(soon=False)  # each tab has its own result
+            self._sync_plot()
 
     # -- actions ------------------------------------------------------------
 
@@ -634,12 +826,12 @@ class MainScreen(Screen[None]):
             return
         self.pins.append(pinned)
         self.notify(f"pinned {pinned.label()}")
-        self.request()
+        self._reconcile(soon=False)
 
     def action_clear_pins(self) -> None:
         self.pins.clear()
         self.overlay = None
-        self.request()
+        self._reconcile(soon=False)
 
     def _cycle(self, step: int) -> None:
         index = (TABS.index(self.tab) + step) % len(TABS)
@@ -657,7 +849,7 @@ class MainScreen(Screen[None]):
     def action_toggle_quantity(self) -> None:
         self.quantity = "von_mises" if self.quantity == "sigma_x" else "sigma_x"
         self.action_show_tab("field")
-        self.request()
+        self._reconcile(soon=False)
 
     def action_toggle_sweep(self) -> None:
         # load -> radius (-> spacing for a train) -> load
@@ -670,7 +862,7 @@ class MainScreen(Screen[None]):
         param = order[(order.index(now) + 1) % len(order)] if now in order else "load"
         self.sweep = SweepSpec(param=param)
         self.action_show_tab("sweep")
-        self.request()
+        self._reconcile(soon=False)
 
     def action_overlay(self) -> None:
         current = self.overlay
@@ -684,7 +876,7 @@ class MainScreen(Screen[None]):
     def _set_overlay(self, overlay: Overlay | None) -> None:
         if overlay is not None:
             self.overlay = overlay
-            self.request()
+            self._reconcile(soon=False)
 
     def action_help(self) -> None:
         self.app.push_screen(HelpScreen())
@@ -706,19 +898,23 @@ class MainScreen(Screen[None]):
         self.apply(scene, tab=FIGURE_TABS.get(name))
 
     def apply(self, scene: scene_files.SceneState, tab: TabName | None = None) -> None:
-        """Shows a scene: its parameters, overlay and sweep."""
+        """Shows a scene: its parameters, overlay and sweep (what was being
+        typed is replaced)."""
         self._invalid.clear()
+        self._typing.clear()
         self.params = scene.params
         self.overlay = scene.overlay
         self.sweep = scene.sweep or SweepSpec()
         self.query_one(ParamsPanel).set_values(scene.params)
         for name in INPUTS:
-            self.query_one(ParamsPanel).set_message(name, "")
+            self._set_message(name, "")
         self.query_one(ParamsPanel).show_load(scene.params.load)
+        self._show_applicable()
+        self._show_gauge()
         if tab is not None and tab != self.tab:
             self.action_show_tab(tab)
         self.notify(f"scene {scene.name}" if scene.name else "scene loaded")
-        self.request()
+        self._reconcile(soon=False)
 
     def action_open_scene(self) -> None:
         def attempt(path: str, _confirmed: bool) -> str | None:
@@ -832,6 +1028,32 @@ def _still_typing(text: str) -> bool:
 
 _WORDS = ("inf", "infinity", *PRESETS)
 """The words the numeric inputs take: inf (kw), the tolerance presets."""
+
+
+def _key(request: Request) -> Request:
+    """A request without its generation: what it computes."""
+    return replace(request, generation=0)
+
+
+def _value(params: Params, name: str) -> object:
+    """The value of the input ``name`` in ``params`` (a train: its punches'
+    texts)."""
+    if name == "profile":
+        return params.profile
+    if name == "contact":
+        return params.contact
+    if name == "punches":
+        return tuple(p.text() for p in params.punches)
+    return params.get(name)
+
+
+def _input_text(params: Params, name: str) -> str:
+    """The value of the input ``name`` in ``params`` as the input shows it."""
+    if name == "punches":
+        return format_punches(params.punches) or "none"
+    if name in ("profile", "contact"):
+        return str(_value(params, name))
+    return fmt(params.get(name), 10)
 
 
 def _one_line(error: BaseException | None) -> str:
