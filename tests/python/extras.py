@@ -45,11 +45,6 @@ EXTRAS: dict[str, tuple[str, tuple[str, ...], str]] = {
         ("$tmux",),
         "apt-get install tmux (scripts/setup.sh does)",
     ),
-    "dev": (
-        "the dev tools (ruff, mypy)",
-        ("ruff", "mypy"),
-        "pip install 'movingpunch[dev]'",
-    ),
 }
 
 

@@ -1,6 +1,7 @@
 """A sweep on a Dask distributed cluster (LocalCluster on loopback, free ports:
-the ``local_cluster`` fixture) gives the numbers of the local run. Needs the
-``dask`` extra, which CI installs; skipped without it."""
+the ``local_cluster`` fixture) gives the numbers of the local run. The tests
+that connect need the ``dask`` extra, which CI installs (skipped without it,
+with the reason: extras.py); without it ``--dask`` is a one-line error."""
 
 from __future__ import annotations
 
@@ -16,8 +17,6 @@ import pytest
 
 import movingpunch as mp
 from movingpunch.scene import ClusterError, Scene, Sweep, _executors
-
-pytestmark = pytest.mark.needs("dask")
 
 
 def _scene() -> Scene:
@@ -57,6 +56,7 @@ def test_dask_sweep_matches_the_local_sweep(
     assert remote.stage("contact").count == 12
 
 
+@pytest.mark.needs("dask")
 def test_a_busy_dashboard_port_changes_nothing(
     local_cluster: Callable[..., Any],
 ) -> None:
@@ -80,6 +80,7 @@ def test_a_busy_dashboard_port_changes_nothing(
     assert result.stage("contact").count == 12
 
 
+@pytest.mark.needs("dask")
 def test_unreachable_scheduler_is_a_one_line_error(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
@@ -91,6 +92,7 @@ def test_unreachable_scheduler_is_a_one_line_error(
 DEAD = "tcp://127.0.0.1:1"
 
 
+@pytest.mark.needs("dask")
 def test_cli_dead_scheduler_counts_down_and_names_the_timeout(
     run_cli: Callable[..., subprocess.CompletedProcess[str]],
 ) -> None:
@@ -110,6 +112,7 @@ def test_cli_dead_scheduler_counts_down_and_names_the_timeout(
     assert "Traceback" not in proc.stderr
 
 
+@pytest.mark.needs("dask")
 def test_cli_dead_scheduler_countdown_on_a_terminal(
     run_on_a_terminal: Callable[..., tuple[int, str, str]],
 ) -> None:
@@ -150,6 +153,7 @@ def test_cli_connects_and_says_so(
     assert "Stages" in proc.stdout
 
 
+@pytest.mark.needs("dask")
 def test_run_reports_connecting_with_its_timeout() -> None:
     events: list[tuple[str, float]] = []
     with pytest.raises(ClusterError, match=r"within 1\.5 s"):
@@ -165,3 +169,21 @@ def test_run_reports_connecting_with_its_timeout() -> None:
 def test_run_refuses_a_bad_dask_timeout(value: float) -> None:
     with pytest.raises(ValueError, match="dask_timeout"):
         _scene().run(dask=DEAD, dask_timeout=value)
+
+
+def test_dask_without_the_extra_is_a_one_line_error(
+    run_python: Callable[..., subprocess.CompletedProcess[str]],
+) -> None:
+    # Runs whether the extra is installed or not: Dask is hidden here.
+    code = (
+        "import sys; sys.modules['distributed'] = None; "
+        "from movingpunch.cli import main; raise SystemExit(main(sys.argv[1:]))"
+    )
+    proc = run_python(code, "run", "fig3", "--dask", DEAD, "--no-plot")
+    assert proc.returncode == 2, proc.stderr
+    assert "Traceback" not in proc.stderr
+    assert proc.stdout == ""
+    assert proc.stderr.splitlines() == [
+        "movingpunch: error: --dask needs Dask distributed: "
+        "pip install 'movingpunch[dask]'"
+    ]
