@@ -241,6 +241,7 @@ def _build_parser() -> argparse.ArgumentParser:
     )
     solve_p.add_argument(
         "--table",
+        type=_named_path("a file"),
         default=None,
         metavar="FILE",
         help="the profile table of --profile table: two columns x/h and y/h "
@@ -413,14 +414,27 @@ def _cli_profile(args: argparse.Namespace) -> PunchProfile | None:
 
 
 def _read_table(path: str) -> Profile:
-    """A profile table from a text file of two columns x/h, y/h."""
+    """A profile table from a text file of two columns x/h, y/h: a regular
+    file of at most MAX_SCENE_BYTES (1 MiB), read as a scene file is (no
+    device, FIFO or huge file is read; the refusal names the file)."""
     from pathlib import Path
 
+    from movingpunch.scene._model import MAX_SCENE_BYTES
+    from movingpunch.scene._toml import read_bounded_file
+
+    def refuse(problem: str, allowed: str) -> InvalidParameterError:
+        return InvalidParameterError(
+            f"--table {path}: {problem} (allowed: {allowed})",
+            parameter="table",
+            allowed=allowed,
+        )
+
+    data = read_bounded_file(Path(path), MAX_SCENE_BYTES, refuse)
     try:
-        text = Path(path).read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InvalidParameterError(
-            f"--table {path}: cannot read it ({exc})", parameter="table"
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise refuse(
+            f"not UTF-8 text (byte {exc.start})", "UTF-8 text, two numbers a line"
         ) from None
     xs: list[float] = []
     ys: list[float] = []
@@ -719,6 +733,7 @@ def _add_scene_commands(sub: Any) -> None:
     run_p.add_argument("scene", help="a scene file (TOML) or a bundled scene name")
     run_p.add_argument(
         "--out",
+        type=_named_path("a folder"),
         metavar="DIR",
         default=None,
         help="write one file per output into DIR (default: none; '.' when "
@@ -811,6 +826,20 @@ def _seconds(text: str) -> float:
             f"must be a number of seconds, {_SECONDS_RANGE}, got {text!r}"
         )
     return value
+
+
+def _named_path(what: str) -> Callable[[str], str]:
+    """argparse type of an option naming a file or folder: any path but the
+    empty one, which would silently mean the current folder."""
+
+    hint = " (use '.' for the current folder)" if what == "a folder" else ""
+
+    def check(text: str) -> str:
+        if not text:
+            raise argparse.ArgumentTypeError(f"must name {what}, got ''{hint}")
+        return text
+
+    return check
 
 
 def _jobs(text: str) -> int:
@@ -1072,7 +1101,11 @@ def _add_accuracy_command(sub: Any) -> None:
         help="the ladder of tolerances (default 1e-2,1e-3,...,1e-12; presets allowed)",
     )
     acc_p.add_argument(
-        "--out", metavar="DIR", default=None, help="write <name>-accuracy.csv into DIR"
+        "--out",
+        type=_named_path("a folder"),
+        metavar="DIR",
+        default=None,
+        help="write <name>-accuracy.csv into DIR",
     )
     plot = acc_p.add_mutually_exclusive_group()
     plot.add_argument(

@@ -249,7 +249,10 @@ class Profile(_Shape):
         ``points`` (odd, >= 5) equally spaced x in [-half_extent,
         half_extent], mirrored exactly about 0; f is called once on all of
         them (f need not be even: an asymmetric table takes the asymmetric
-        solver)."""
+        solver). A function of a float only (``math.cos``, an ``if x > 0``:
+        TypeError or ValueError on the array) is called once per point
+        instead; one that fails both ways is an InvalidParameterError naming
+        ``f``."""
         extent = params.check("half_width", half_extent)
         if extent <= 0:
             raise params.fail("half_width", f"half_extent must be > 0, got {extent!r}")
@@ -266,7 +269,7 @@ class Profile(_Shape):
             )
         half = extent * np.linspace(0.0, 1.0, (int(count) + 1) // 2)
         xs = np.concatenate([-half[:0:-1], half])
-        ys = np.asarray(f(xs), dtype=np.float64).reshape(-1)
+        ys = _heights(f, xs)
         if ys.shape != xs.shape:
             raise InvalidParameterError(
                 f"f must return one height per x ({xs.size}), got {ys.size}",
@@ -298,6 +301,31 @@ class Profile(_Shape):
 
     def to_dict(self) -> dict[str, object]:
         return {"kind": self.kind, "x": list(self.x), "y": list(self.y)}
+
+
+def _heights(f: Callable[[FloatArray], npt.ArrayLike], xs: FloatArray) -> FloatArray:
+    """``f`` at every x of ``xs`` (a 1-d array): one call on the array; if
+    ``f`` does not take arrays (TypeError or ValueError), one call per x."""
+    try:
+        return np.asarray(f(xs), dtype=np.float64).reshape(-1)
+    except (TypeError, ValueError) as exc:
+        on_array = f"{type(exc).__name__}: {exc}"
+    point: Callable[[float], object] = f  # type: ignore[assignment]
+    x = float(xs[0])
+    try:
+        values = []
+        for x in xs.tolist():
+            values.append(float(point(x)))  # type: ignore[arg-type]
+    except Exception as exc:
+        raise InvalidParameterError(
+            "f must accept a NumPy array of x/h and return one height per x "
+            "(or accept a float x/h and return a float height); called with "
+            f"the array of {xs.size} x it raised {on_array}; called with "
+            f"x = {x!r} it raised {type(exc).__name__}: {exc}",
+            parameter="f",
+            allowed="a function of x/h, vectorised over NumPy arrays",
+        ) from exc
+    return np.asarray(values, dtype=np.float64)
 
 
 PunchProfile = Cylinder | Flat | RoundedFlat | Profile

@@ -1,8 +1,10 @@
 """Fixtures shared by the Python tests: running movingpunch as a user would, in
 a subprocess (``run_cli``, ``run_python``), the modules a piece of code loads
 (``modules_loaded_by``) and the check every command-line error must pass
-(``assert_one_line_error``); and a guard that the tests run against this
-checkout's movingpunch.
+(``assert_one_line_error``); a Dask cluster on free ports (``local_cluster``);
+tests that need an optional extra skip without it (``@pytest.mark.needs``,
+extras.py); and a guard that the tests run against this checkout's
+movingpunch.
 
 Subprocesses use this interpreter (``sys.executable``) and inherit the
 environment, so they import the same movingpunch as the tests (the editable
@@ -20,10 +22,22 @@ import sys
 import tempfile
 from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 import pytest
 
+from extras import need
+
 ROOT = Path(__file__).resolve().parents[2]
+
+
+def pytest_runtest_setup(item: pytest.Item) -> None:
+    """``@pytest.mark.needs("dask", ...)``: the test skips, with the reason,
+    when one of these extras is missing (fails under
+    MOVINGPUNCH_REQUIRE_EXTRAS=1, as in CI; extras.py)."""
+    for mark in item.iter_markers("needs"):
+        for extra in mark.args:
+            need(extra)
 
 
 def pytest_sessionstart(session: pytest.Session) -> None:
@@ -173,3 +187,30 @@ def assert_one_line_error() -> Callable[..., None]:
     status 2, no traceback, nothing on stdout and one stderr line
     ``movingpunch: error: ...`` that contains every word."""
     return _assert_one_line_error
+
+
+@pytest.fixture
+def local_cluster() -> Callable[..., Any]:
+    """``local_cluster(**kwargs)``: a ``distributed.LocalCluster`` (a context
+    manager) on loopback that takes no fixed port: the scheduler on a free
+    port, no dashboard, and the scheduler's HTTP server, which Dask starts
+    even without a dashboard (on 8787 by default), on a free port too, so that
+    a busy 8787 (a user's Dask dashboard, a Jupyter session) changes nothing.
+    ``kwargs`` go to LocalCluster (n_workers, processes, ...). Skips without
+    the ``dask`` extra (see extras.py)."""
+    need("dask")
+    from distributed import LocalCluster
+
+    def make(**kwargs: Any) -> Any:
+        options: dict[str, Any] = {
+            "host": "127.0.0.1",
+            "protocol": "tcp://",
+            "scheduler_port": 0,
+            "dashboard_address": None,
+            "worker_dashboard_address": None,
+            "scheduler_kwargs": {"dashboard_address": "127.0.0.1:0"},
+        }
+        options.update(kwargs)
+        return LocalCluster(**options)
+
+    return make

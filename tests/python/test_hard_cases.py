@@ -84,10 +84,17 @@ def short_id(value: object) -> str:
     return text if len(text) <= 24 else text[:20] + "..."
 
 
+def cpu_seconds() -> float:
+    """This process's CPU time (every thread): the clock of the time bounds
+    below, which a loaded machine does not stretch (wall-clock time did: a
+    CPU-bound process beside the suite made a 5 s bound fail at 7.5 s)."""
+    return time.process_time()
+
+
 def timed(fn: Callable[[], Any]) -> tuple[Any, float]:
-    t0 = time.perf_counter()
+    t0 = cpu_seconds()
     out = fn()
-    return out, time.perf_counter() - t0
+    return out, cpu_seconds() - t0
 
 
 def assert_sound(s: mp.Solution) -> None:
@@ -357,10 +364,10 @@ def test_within_a_hair_of_rayleigh_answers_quickly(
     # answer (a flagged solution or a clear error), it must come in bounded time.
     vcr = mp.critical_vstar(kw, nu)
     args = {"kw": kw, "nu": nu, "radius": 1.0, "load": lam, "allow_unphysical": True}
-    t0 = time.perf_counter()
+    t0 = cpu_seconds()
     with contextlib.suppress(mp.MovingPunchError):
         assert_sound(mp.solve(vstar=vcr * (1 - eps), **args))
-    assert time.perf_counter() - t0 < NO_HANG
+    assert cpu_seconds() - t0 < NO_HANG
 
 
 def test_stiff_foundation_near_critical_resolves_the_kernel() -> None:
@@ -397,10 +404,10 @@ def test_too_close_to_rayleigh_for_double_precision_is_refused_fast() -> None:
     vcr = mp.critical_vstar(1000.0, 0.499)
     args = {"vstar": vcr * (1 - 3.4e-13), "kw": 1000.0, "nu": 0.499}
     args |= {"radius": 1.0, "load": 2.2e-4, "allow_unphysical": True}
-    t0 = time.perf_counter()
+    t0 = cpu_seconds()
     with pytest.raises(mp.ConvergenceError) as info:
         mp.solve(**args)
-    assert time.perf_counter() - t0 < 2.0
+    assert cpu_seconds() - t0 < 2.0
     msg = str(info.value)
     for word in ("vstar", "kw", "nu", "Rayleigh", "tol", "double precision"):
         assert word in msg, (word, msg)
@@ -423,10 +430,10 @@ def test_refusal_beyond_the_supported_width_is_fast() -> None:
     # soft foundation: refused in well under a second (it used to take 2-10 s,
     # building kernel tables for trial widths up to 127).
     for kw, load in [(INF, 3000.0), (1.0, 1300.0), (1e-6, 0.01), (0.01, 30.0)]:
-        t0 = time.perf_counter()
+        t0 = cpu_seconds()
         with pytest.raises(mp.InvalidParameterError) as info:
             mp.solve(vstar=0.0, kw=kw, radius=100.0, load=load)
-        assert time.perf_counter() - t0 < 2.0
+        assert cpu_seconds() - t0 < 2.0
         assert "above the supported range" in str(info.value)
     assert mp.solve(vstar=0.0, kw=INF, radius=100.0, load=2000.0).a == pytest.approx(
         49.1471030254, rel=1e-8
@@ -451,10 +458,10 @@ def _over(kw: float) -> list[float]:
 )
 def test_supercritical_is_refused_quickly(kw: float, vstar: float) -> None:
     vcr = mp.critical_vstar(kw)
-    t0 = time.perf_counter()
+    t0 = cpu_seconds()
     with pytest.raises(mp.MovingPunchError) as info:
         mp.solve(vstar=vstar, kw=kw, **PAPER)
-    assert time.perf_counter() - t0 < 1.0
+    assert cpu_seconds() - t0 < 1.0
     err = info.value
     assert "vstar" in str(err)
     if vstar > 2.0:  # 1e308, inf: refused as out of range, naming vstar
@@ -1580,9 +1587,9 @@ def test_flat_punch_huge_face(b: float) -> None:
     oscillates across the face), within a second; the total is the load
     (the pressure integrates to P: Gauss-Chebyshev of the T-series) and the
     pressure is nearly uniform mid-face, P/(2b) times a factor near 1."""
-    t0 = time.perf_counter()
+    t0 = cpu_seconds()
     s = mp.solve(vstar=0.2, kw=1.0, load=0.002, profile=mp.Flat(b))
-    assert time.perf_counter() - t0 < 30.0  # does not hang (measured 0.2 s at 50)
+    assert cpu_seconds() - t0 < 30.0  # does not hang (measured 0.2 s at 50)
     assert s.valid
     c = np.asarray(s.g_coefficients)
     assert c[0] * math.pi * b == pytest.approx(1.0, rel=1e-12)  # int p = P

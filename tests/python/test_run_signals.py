@@ -15,12 +15,13 @@ import signal
 import subprocess
 import sys
 import time
+from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import psutil
 import pytest
-from distributed import LocalCluster
 
 import movingpunch as mp
 from movingpunch.scene import Scene, Sweep, Vary, _plan
@@ -195,17 +196,12 @@ def test_kill_9_of_the_parent_ends_its_workers(tmp_path: Path, jobs: int) -> Non
 
 
 @pytest.mark.slow
-def test_sigint_stops_a_dask_run(tmp_path: Path) -> None:
+def test_sigint_stops_a_dask_run(
+    tmp_path: Path, local_cluster: Callable[..., Any]
+) -> None:
     scene = _scene_file(tmp_path, points=20_000)
     Scene.load(scene)  # valid
-    with LocalCluster(
-        n_workers=1,
-        threads_per_worker=1,
-        processes=False,
-        host="127.0.0.1",
-        protocol="tcp://",
-        dashboard_address=None,
-    ) as cluster:
+    with local_cluster(n_workers=1, threads_per_worker=1, processes=False) as cluster:
         proc = _start(
             "run", str(scene), "--dask", cluster.scheduler_address, cwd=tmp_path
         )

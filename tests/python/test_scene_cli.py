@@ -89,10 +89,10 @@ def test_run_plots_in_ascii(
     assert "┤" in proc.stdout
 
 
+@pytest.mark.needs("png")
 def test_png_writes_real_figures(
     tmp_path: Path, run_cli: Callable[..., subprocess.CompletedProcess[str]]
 ) -> None:
-    # matplotlib is installed by scripts/setup.sh (the png extra).
     proc = run_cli("run", "fig4", "--png", "--no-plot", "--out", str(tmp_path))
     assert proc.returncode == 0, proc.stderr
     pngs = sorted(tmp_path.glob("*.png"))

@@ -1,16 +1,19 @@
-"""A sweep on a Dask distributed cluster (LocalCluster on loopback) gives the
-numbers of the local run. Needs the ``dask`` extra, which CI installs."""
+"""A sweep on a Dask distributed cluster (LocalCluster on loopback, free ports:
+the ``local_cluster`` fixture) gives the numbers of the local run. The tests
+that connect need the ``dask`` extra, which CI installs (skipped without it,
+with the reason: extras.py); without it ``--dask`` is a one-line error."""
 
 from __future__ import annotations
 
 import dataclasses
 import re
+import socket
 import subprocess
 from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 import pytest
-from distributed import LocalCluster
 
 import movingpunch as mp
 from movingpunch.scene import ClusterError, Scene, Sweep, _executors
@@ -26,18 +29,15 @@ def _scene() -> Scene:
 
 
 @pytest.mark.parametrize("processes", [False, True])
-def test_dask_sweep_matches_the_local_sweep(processes: bool) -> None:
+def test_dask_sweep_matches_the_local_sweep(
+    processes: bool, local_cluster: Callable[..., Any]
+) -> None:
     scene = _scene()
     local = scene.run(jobs=1)
     mp.clear_kernel_cache()  # in-process workers (processes=False) share it
     seen: list[tuple[int, int]] = []
-    with LocalCluster(
-        n_workers=2 if processes else 1,
-        threads_per_worker=1,
-        processes=processes,
-        host="127.0.0.1",
-        protocol="tcp://",
-        dashboard_address=None,
+    with local_cluster(
+        n_workers=2 if processes else 1, threads_per_worker=1, processes=processes
     ) as cluster:
         remote = scene.run(
             dask=cluster.scheduler_address,
@@ -56,6 +56,31 @@ def test_dask_sweep_matches_the_local_sweep(processes: bool) -> None:
     assert remote.stage("contact").count == 12
 
 
+@pytest.mark.needs("dask")
+def test_a_busy_dashboard_port_changes_nothing(
+    local_cluster: Callable[..., Any],
+) -> None:
+    # Dask's scheduler starts an HTTP server even without a dashboard, on
+    # 8787 by default: with that port held (a user's own Dask dashboard, a
+    # Jupyter session) the cluster failed to start. Hold it here (if nobody
+    # else does already) and start one.
+    holder = socket.socket()
+    try:
+        holder.bind(("127.0.0.1", 8787))
+        holder.listen()
+    except OSError:  # held by another process: the case under test too
+        pass
+    try:
+        with local_cluster(n_workers=1, threads_per_worker=1, processes=False) as c:
+            assert c.scheduler.http_server.port not in (0, 8787)
+            result = _scene().run(dask=c.scheduler_address)
+    finally:
+        holder.close()
+    assert result.sweep is not None
+    assert result.stage("contact").count == 12
+
+
+@pytest.mark.needs("dask")
 def test_unreachable_scheduler_is_a_one_line_error(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
@@ -67,6 +92,7 @@ def test_unreachable_scheduler_is_a_one_line_error(
 DEAD = "tcp://127.0.0.1:1"
 
 
+@pytest.mark.needs("dask")
 def test_cli_dead_scheduler_counts_down_and_names_the_timeout(
     run_cli: Callable[..., subprocess.CompletedProcess[str]],
 ) -> None:
@@ -86,6 +112,7 @@ def test_cli_dead_scheduler_counts_down_and_names_the_timeout(
     assert "Traceback" not in proc.stderr
 
 
+@pytest.mark.needs("dask")
 def test_cli_dead_scheduler_countdown_on_a_terminal(
     run_on_a_terminal: Callable[..., tuple[int, str, str]],
 ) -> None:
@@ -114,15 +141,9 @@ def test_cli_bad_dask_timeout(
 
 def test_cli_connects_and_says_so(
     run_cli: Callable[..., subprocess.CompletedProcess[str]],
+    local_cluster: Callable[..., Any],
 ) -> None:
-    with LocalCluster(
-        n_workers=1,
-        threads_per_worker=1,
-        processes=False,
-        host="127.0.0.1",
-        protocol="tcp://",
-        dashboard_address=None,
-    ) as cluster:
+    with local_cluster(n_workers=1, threads_per_worker=1, processes=False) as cluster:
         address = cluster.scheduler_address
         proc = run_cli("run", "table1", "--dask", address, "--no-plot")
     assert proc.returncode == 0, proc.stderr
@@ -132,6 +153,7 @@ def test_cli_connects_and_says_so(
     assert "Stages" in proc.stdout
 
 
+@pytest.mark.needs("dask")
 def test_run_reports_connecting_with_its_timeout() -> None:
     events: list[tuple[str, float]] = []
     with pytest.raises(ClusterError, match=r"within 1\.5 s"):
@@ -147,3 +169,21 @@ def test_run_reports_connecting_with_its_timeout() -> None:
 def test_run_refuses_a_bad_dask_timeout(value: float) -> None:
     with pytest.raises(ValueError, match="dask_timeout"):
         _scene().run(dask=DEAD, dask_timeout=value)
+
+
+def test_dask_without_the_extra_is_a_one_line_error(
+    run_python: Callable[..., subprocess.CompletedProcess[str]],
+) -> None:
+    # Runs whether the extra is installed or not: Dask is hidden here.
+    code = (
+        "import sys; sys.modules['distributed'] = None; "
+        "from movingpunch.cli import main; raise SystemExit(main(sys.argv[1:]))"
+    )
+    proc = run_python(code, "run", "fig3", "--dask", DEAD, "--no-plot")
+    assert proc.returncode == 2, proc.stderr
+    assert "Traceback" not in proc.stderr
+    assert proc.stdout == ""
+    assert proc.stderr.splitlines() == [
+        "movingpunch: error: --dask needs Dask distributed: "
+        "pip install 'movingpunch[dask]'"
+    ]

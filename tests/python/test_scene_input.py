@@ -20,7 +20,6 @@ from typing import Any
 
 import numpy as np
 import pytest
-from distributed import LocalCluster
 
 import movingpunch as mp
 from movingpunch.scene import (
@@ -463,6 +462,7 @@ def mute_listener() -> Iterator[str]:
     server.close()
 
 
+@pytest.mark.needs("dask")
 def test_a_mute_scheduler_is_a_clear_error_within_the_timeout(
     mute_listener: str, monkeypatch: pytest.MonkeyPatch
 ) -> None:
@@ -491,17 +491,11 @@ def test_dask_without_a_sweep_says_so_and_runs_here(
 
 
 def test_a_scheduler_without_workers_is_a_clear_error(
-    monkeypatch: pytest.MonkeyPatch,
+    monkeypatch: pytest.MonkeyPatch, local_cluster: Callable[..., Any]
 ) -> None:
     monkeypatch.setattr(_executors, "DASK_CONNECT_TIMEOUT", 1.0)
     scene = Scene(params=BASE, sweep=Sweep("load", (0.001, 0.002, 0.003)))
-    with LocalCluster(
-        n_workers=0,
-        processes=False,
-        host="127.0.0.1",
-        protocol="tcp://",
-        dashboard_address=None,
-    ) as cluster:
+    with local_cluster(n_workers=0, processes=False) as cluster:
         t0 = time.monotonic()
         with pytest.raises(ClusterError, match="has no workers"):
             scene.run(dask=cluster.scheduler_address)

@@ -62,8 +62,13 @@ async def test_damping_above_the_critical_speed_shows_interval_and_drag() -> Non
         await settle(pilot)
         smap = screen.query_one("#plot-field", StressMap)
         assert smap.field is not None
-        np.testing.assert_array_equal(
-            smap.field.values, s.stress_field(smap.field.x, smap.field.y).sigma_x
+        # Same values up to round-off: a grid of more than 64 x is evaluated
+        # in slices whose sizes follow the measured time per point
+        # (_evaluate._chunk_calls), and the field at a point changes in the
+        # last bits with the slice it is computed in (5e-15 seen).
+        expected = s.stress_field(smap.field.x, smap.field.y).sigma_x
+        np.testing.assert_allclose(
+            smap.field.values, expected, rtol=0.0, atol=1e-12 * np.abs(expected).max()
         )
         # Back to damping 0 at that speed: the undamped limit applies again.
         await type_into(pilot, "damping", "0", paste=True)

@@ -1,5 +1,6 @@
 """`movingpunch serve` serves the app over HTTP on localhost behind a token
-and an Origin check (the `serve` extra is installed by scripts/setup.sh).
+and an Origin check (the `serve` extra is installed by scripts/setup.sh;
+without it the module is skipped, with the reason: extras.py).
 
 One real server (a subprocess on a free port, ``--port 0``) answers the
 module's tests; its working folder ``root`` sits inside a scratch directory
@@ -22,8 +23,11 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
-import aiohttp
 import pytest
+
+from extras import module
+
+aiohttp = module("serve", "aiohttp")
 
 ANSI = re.compile(
     r"\x1b\[[0-9;?]*[A-Za-z]|\x1b\][^\x07]*\x07|\x1b[()][A-Z0-9]|\x1b[78=>]"

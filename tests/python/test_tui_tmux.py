@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import os
 import shlex
-import shutil
 import subprocess
 import sys
 import time
@@ -16,6 +15,7 @@ from collections.abc import Callable, Iterator
 import pytest
 
 import movingpunch as mp
+from extras import need
 from movingpunch.tui.model import fmt
 
 TIMEOUT = 60.0
@@ -72,7 +72,7 @@ class Tmux:
 
 @pytest.fixture
 def tmux() -> Iterator[Tmux]:
-    assert shutil.which("tmux"), "tmux is missing: run scripts/setup.sh"
+    need("tmux")  # skipped without tmux (a failure under scripts/test.sh)
     session = Tmux(f"movingpunch-test-{os.getpid()}")
     command = shlex.join([sys.executable, "-m", "movingpunch"])
     session.run(

@@ -55,7 +55,7 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover - Python 3.10 only
     import tomli as tomllib  # type: ignore[import-not-found, unused-ignore]
 
-__all__ = ["parse_toml", "read_scene_file", "to_toml", "tomllib"]
+__all__ = ["parse_toml", "read_bounded_file", "read_scene_file", "to_toml", "tomllib"]
 
 _TOP_KEYS = (
     "name",
@@ -90,21 +90,22 @@ def _file_kind(mode: int) -> str:
     return "a special file"
 
 
-def read_scene_file(path: Path, source: str) -> str:
-    """The text of a scene file: a regular file (checked before it is opened,
-    and again on the open descriptor) of at most MAX_SCENE_BYTES, UTF-8. It
-    is opened non-blocking, so that nothing here waits for a FIFO's writer;
-    at most MAX_SCENE_BYTES + 1 bytes are read."""
-    allowed = f"a regular file of at most {MAX_SCENE_BYTES >> 20} MiB"
-
-    def refuse(problem: str, what: str = allowed) -> SceneError:
-        return SceneError(source, "(file)", problem, what)
+def read_bounded_file(
+    path: Path, limit: int, refuse: Callable[[str, str], Exception]
+) -> bytes:
+    """The bytes of a regular file (checked before it is opened, and again on
+    the open descriptor) of at most ``limit`` bytes: the reader of scene files
+    and of the CLI's profile tables. It is opened non-blocking, so that
+    nothing here waits for a FIFO's writer; at most ``limit + 1`` bytes are
+    read (a device such as /dev/zero is refused before any). A refusal raises
+    ``refuse(problem, allowed)``."""
+    allowed = f"a regular file of at most {_bytes(limit)}"
 
     def check(st: os.stat_result) -> None:
         if not stat.S_ISREG(st.st_mode):
-            raise refuse(f"cannot read {_file_kind(st.st_mode)}")
-        if st.st_size > MAX_SCENE_BYTES:
-            raise refuse(f"too large: {st.st_size} bytes")
+            raise refuse(f"cannot read {_file_kind(st.st_mode)}", allowed)
+        if st.st_size > limit:
+            raise refuse(f"too large: {st.st_size} bytes", allowed)
 
     flags = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_BINARY", 0)
     try:
@@ -116,8 +117,8 @@ def read_scene_file(path: Path, source: str) -> str:
     size = 0
     try:
         check(os.fstat(fd))  # the file opened is the one checked
-        while size <= MAX_SCENE_BYTES:
-            chunk = os.read(fd, MAX_SCENE_BYTES + 1 - size)
+        while size <= limit:
+            chunk = os.read(fd, limit + 1 - size)
             if not chunk:
                 break
             chunks.append(chunk)
@@ -126,10 +127,26 @@ def read_scene_file(path: Path, source: str) -> str:
         raise refuse(f"cannot read: {exc.strerror or exc}", "a readable file") from None
     finally:
         os.close(fd)
-    if size > MAX_SCENE_BYTES:  # it grew while it was read
-        raise refuse(f"too large: more than {MAX_SCENE_BYTES} bytes")
+    if size > limit:  # it grew while it was read
+        raise refuse(f"too large: more than {limit} bytes", allowed)
+    return b"".join(chunks)
+
+
+def _bytes(n: int) -> str:
+    """A size limit for a message: "1 MiB" for a whole number of MiB."""
+    return f"{n >> 20} MiB" if n >= 1 << 20 and n % (1 << 20) == 0 else f"{n} bytes"
+
+
+def read_scene_file(path: Path, source: str) -> str:
+    """The text of a scene file: a regular file of at most MAX_SCENE_BYTES
+    (``read_bounded_file``), UTF-8."""
+    data = read_bounded_file(
+        path,
+        MAX_SCENE_BYTES,
+        lambda problem, allowed: SceneError(source, "(file)", problem, allowed),
+    )
     try:
-        return b"".join(chunks).decode("utf-8")
+        return data.decode("utf-8")
     except UnicodeDecodeError as exc:
         raise SceneError(
             source,
