@@ -31,12 +31,12 @@ double response_band(const std::vector<double>& alpha, const std::vector<double>
 }
 
 // The sampling step of the gap for a surface band-limited to `band` (per
-// unit length): 16 samples per shortest wavelength 2 pi/band, so that the
+// unit length): 8 samples per shortest wavelength 2 pi/band, so that the
 // gap's curvature between samples (at most band^2 times its wave's
 // amplitude) cannot hide a dip: every dip spans several samples.
 inline double gap_step(double band) {
   constexpr double kPi = 3.14159265358979323846;
-  return 2.0 * kPi / (16.0 * std::max(band, 1e-300));
+  return 2.0 * kPi / (8.0 * std::max(band, 1e-300));
 }
 
 struct GapMinimum {
@@ -140,8 +140,7 @@ GapMinimum refine_minimum(const std::vector<double>& xs, const std::vector<doubl
 // most step/len apart, joined by m points clustered as t = (j/m)^2 at a
 // contact's end (cusp0 at t = 0, cusp1 at t = 1; the gap's dips right
 // beside an end are far narrower than the surface's waves there).
-inline std::vector<double> scan_fractions(double len, double step, int m, bool cusp0,
-                                          bool cusp1) {
+inline std::vector<double> scan_fractions(double len, double step, int m, bool cusp0, bool cusp1) {
   const int n = std::max({m, 2, static_cast<int>(std::ceil(len / step))});
   std::vector<double> t;
   t.reserve(static_cast<std::size_t>(n + 2 * m + 1));
@@ -176,11 +175,11 @@ GapMinimum scan_gap_values(const Value& value, double x0, double x1, double step
 }
 
 // The gap's minimum for x from x0 to x1 (either order) of a gap known by its
-// slope d gap/dx: gap(x) = g0 + int_x0^x slope, the integral on panels
-// at most `step` long (at least `min_panels`), 8 Gauss points each; a
-// panel at an end with a square-root cusp of the slope (a contact's end:
-// cusp0 at x0, cusp1 at x1) in x = end + (x - end) t^2. Between samples the
-// gap from the nearest sample (from x1 backwards in a cusped last panel).
+// slope d gap/dx: gap(x) = g0 + int_x0^x slope. A contact's end (cusp0 at
+// x0, cusp1 at x1: the gap is 0 there, the slope has a square-root cusp) is
+// integrated from in q, x = end +- q^2 (smooth in q), 8 Gauss points per
+// interval between samples; with both, each half from its own end (the
+// gap is 0 at both by the zones' conditions). Samples as scan_fractions.
 template <class Slope>
 GapMinimum scan_gap_slope(const Slope& slope, double x0, double x1, double g0, double step,
                           int min_panels, bool cusp0, bool cusp1) {
@@ -190,37 +189,49 @@ GapMinimum scan_gap_slope(const Slope& slope, double x0, double x1, double g0, d
   static const double gw[8] = {0.1012285362903763, 0.2223810344533745, 0.3137066458778873,
                                0.3626837833783620, 0.3626837833783620, 0.3137066458778873,
                                0.2223810344533745, 0.1012285362903763};
-  // int_from^to slope, with a cusp at `from` when cusp (x = from + (to - from) t^2).
-  auto integral = [&](double from, double to, bool cusp) {
+  // int_from^to slope dx; from a cusped end e (cusp): x = e + sg q^2.
+  auto integral = [&](double from, double to, bool cusp, double e) {
     double sum = 0.0;
-    const double d = to - from;
-    for (int g = 0; g < 8; ++g) {
-      const double t = 0.5 * (1.0 + gx[g]);
-      if (cusp)
-        sum += gw[g] * 0.5 * 2.0 * t * d * slope(from + d * t * t);
-      else
-        sum += gw[g] * 0.5 * d * slope(from + d * t);
+    if (cusp) {
+      const double sg = (from + to) * 0.5 >= e ? 1.0 : -1.0;
+      const double qa = std::sqrt(std::fabs(from - e)), qb = std::sqrt(std::fabs(to - e));
+      const double c = 0.5 * (qa + qb), h = 0.5 * (qb - qa);
+      for (int g = 0; g < 8; ++g) {
+        const double q = c + h * gx[g];
+        sum += gw[g] * h * 2.0 * sg * q * slope(e + sg * q * q);
+      }
+      return sum;
     }
+    const double c = 0.5 * (from + to), h = 0.5 * (to - from);
+    for (int g = 0; g < 8; ++g) sum += gw[g] * h * slope(c + h * gx[g]);
     return sum;
   };
-  const std::vector<double> t = scan_fractions(std::fabs(x1 - x0), step, min_panels, cusp0, cusp1);
+  std::vector<double> t = scan_fractions(std::fabs(x1 - x0), step, min_panels, cusp0, cusp1);
+  if (cusp1 && cusp0 && !std::binary_search(t.begin(), t.end(), 0.5)) {
+    t.push_back(0.5);
+    std::sort(t.begin(), t.end());
+  }
   const int n = static_cast<int>(t.size()) - 1;
+  // Samples with t <= split integrate forwards from x0, beyond it backwards from x1.
+  const double split = cusp1 ? (cusp0 ? 0.5 : -1.0) : 2.0;
   std::vector<double> xs(t.size()), gs(t.size());
   for (std::size_t i = 0; i < t.size(); ++i) xs[i] = x0 + (x1 - x0) * t[i];
+  const auto un = static_cast<std::size_t>(n);
   gs[0] = g0;
-  for (int i = 0; i < n; ++i) {
-    const auto u = static_cast<std::size_t>(i);
-    const double part = (i == n - 1 && cusp1) ? -integral(xs[u + 1], xs[u], true)
-                                              : integral(xs[u], xs[u + 1], i == 0 && cusp0);
-    gs[u + 1] = gs[u] + part;
+  for (std::size_t i = 0; i < un && t[i + 1] <= split; ++i)
+    gs[i + 1] = gs[i] + integral(xs[i], xs[i + 1], cusp0, x0);
+  if (cusp1) {
+    gs[un] = 0.0;
+    for (std::size_t i = un; i-- > 0 && t[i] >= split;)
+      gs[i] = gs[i + 1] + integral(xs[i + 1], xs[i], true, x1);
   }
   auto value = [&](double x) {
     const double f = (x - x0) / (x1 - x0);
     const auto at = std::upper_bound(t.begin(), t.end(), f);
-    const int i = std::clamp(static_cast<int>(at - t.begin()) - 1, 0, n - 1);
-    const auto u = static_cast<std::size_t>(i);
-    if (i == n - 1 && cusp1) return gs[u + 1] - integral(xs[u + 1], x, true);
-    return gs[u] + integral(xs[u], x, i == 0 && cusp0);
+    const auto i =
+        static_cast<std::size_t>(std::clamp(static_cast<int>(at - t.begin()) - 1, 0, n - 1));
+    if (t[i] >= split) return gs[i + 1] + integral(xs[i + 1], x, true, x1);
+    return gs[i] + integral(xs[i], x, cusp0, x0);
   };
   return refine_minimum(xs, gs, value, cusp0, cusp1);
 }
