@@ -141,7 +141,8 @@ GapMinimum refine_minimum(const std::vector<double>& xs, const std::vector<doubl
 // contact's end (cusp0 at t = 0, cusp1 at t = 1; the gap's dips right
 // beside an end are far narrower than the surface's waves there).
 inline std::vector<double> scan_fractions(double len, double step, int m, bool cusp0, bool cusp1) {
-  const int n = std::max({m, 2, static_cast<int>(std::ceil(len / step))});
+  // (The clustered points at an end give the scan m points already.)
+  const int n = std::max({cusp0 || cusp1 ? 2 : m, 2, static_cast<int>(std::ceil(len / step))});
   std::vector<double> t;
   t.reserve(static_cast<std::size_t>(n + 2 * m + 1));
   for (int i = 0; i <= n; ++i) t.push_back(static_cast<double>(i) / n);
