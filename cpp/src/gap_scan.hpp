@@ -116,10 +116,10 @@ GapMinimum refine_minimum(const std::vector<double>& xs, const std::vector<doubl
   for (std::size_t i = skip_first ? 1 : 0; i < (skip_last ? n - 1 : n); ++i)
     if (gs[i] < best.gap) best = GapMinimum{gs[i], xs[i]};
   for (std::size_t i = 1; i + 1 < n; ++i) {
-    // (Beside a skipped end, a sample rising towards the scan is a dip
-    // whatever the end's value: the gap may have its minimum just off it.)
-    const bool left = gs[i] <= gs[i - 1] || (i == 1 && skip_first);
-    const bool right = gs[i] <= gs[i + 1] || (i + 2 == n && skip_last);
+    // (Beside a skipped end, a negative sample rising towards the scan is a
+    // dip whatever the end's value: the gap may have its minimum just off it.)
+    const bool left = gs[i] <= gs[i - 1] || (i == 1 && skip_first && gs[i] < 0.0);
+    const bool right = gs[i] <= gs[i + 1] || (i + 2 == n && skip_last && gs[i] < 0.0);
     if (!(left && right)) continue;
     const double lo = std::min(xs[i - 1], xs[i + 1]), hi = std::max(xs[i - 1], xs[i + 1]);
     const double xtol = 1e-6 * (hi - lo);
