@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "gap_scan.hpp"
 #include "movingpunch/collocation.hpp"
 #include "movingpunch/dispersion.hpp"
 #include "movingpunch/errors.hpp"
@@ -998,15 +999,20 @@ void finish_checks(ContactSolution& sol, const ContactParams& p, const PunchProf
   }
   double gap_min = kInf, x_gap = 0.0;
   if (!t_kind) {
-    for (int j = 1; j <= 48; ++j) {
-      const double q = j / 48.0;
-      const double x = a * (1.0 + 2.0 * q * q);
-      if (x > prof.extent()) break;  // beyond a table: no punch there to touch
-      const double gap = -sol.delta_ + prof.height(x) - sol.surface_displacement(x);
-      if (gap < gap_min) {
-        gap_min = gap;
-        x_gap = x;
-      }
+    // On a < x <= 3a (up to a table's end: beyond, no punch to touch),
+    // sampled to resolve the surface's shortest wave and refined at every
+    // dip (gap_scan.hpp): near V*_cr on a stiff foundation the surface
+    // carries waves shorter than a.
+    const double x_end = std::min(3.0 * a, prof.extent());
+    if (x_end > a) {
+      const AlphaQuadrature& q = sol.kernel_->quadrature();
+      const double step = detail::gap_step(detail::response_band(
+          q.alpha, q.weight, [&](std::size_t i) { return std::fabs(q.m1[i] - sol.phi1_); }));
+      const detail::GapMinimum m = detail::scan_gap_values(
+          [&](double x) { return -sol.delta_ + prof.height(x) - sol.surface_displacement(x); }, a,
+          x_end, step, 48, true);
+      gap_min = m.gap;
+      x_gap = m.x;
     }
     if (!std::isfinite(gap_min))
       throw ConvergenceError(

@@ -13,6 +13,7 @@
 
 #include "bessel.hpp"
 #include "chebyshev.hpp"
+#include "gap_scan.hpp"
 #include "gauss_kronrod.hpp"
 #include "layer_basis.hpp"
 #include "movingpunch/collocation.hpp"
@@ -1634,27 +1635,28 @@ DampedSolution solve_damped(const DampedParams& prm) {
         std::min(s.min_p_, frictional ? js.density(r)
                                       : u_series(s.b_, r) * std::sqrt(std::max(0.0, 1.0 - r * r)));
   }
-  // gap(x) = int_edge^x (xi/R - v'(xi)) d xi beside each end, with xi = edge +- q^2.
+  // gap(x) = int_edge^x (f'(xi) - v'(xi)) d xi beside each end, out to 2w
+  // (up to a table's end: beyond, no punch), sampled to resolve the
+  // surface's shortest wave and refined at every dip (gap_scan.hpp).
   s.min_gap_ = kInf;
   {
+    const DampedQuadrature& quad = kern->quadrature();
+    const double phi1m = kern->model().phi1();
+    const double step = detail::gap_step(
+        detail::response_band(quad.panels.alpha, quad.panels.weight,
+                              [&](std::size_t i) { return std::abs(quad.m1[i] - phi1m); }));
     for (int side = -1; side <= 1; side += 2) {
       const double edge = s.centre_ + side * s.half_;
-      const double qmax = std::sqrt(2.0 * s.half_);
-      const int m = 24;
-      double gap = 0.0;
-      for (int seg = 0; seg < m; ++seg) {
-        const double lo = qmax * seg / m, hi = qmax * (seg + 1) / m;
-        const double c = 0.5 * (lo + hi), h = 0.5 * (hi - lo);
-        // The 7 Gauss nodes (the integrand is smooth on the segment).
-        for (int j = 1; j < 15; j += 2) {
-          const double gw = g_weight(j, h);
-          const double q = gk_node(j, c, h);
-          const double x = edge + side * q * q;
-          if (x < prof.lower() || x > prof.upper()) continue;  // beyond a table: no punch
-          gap += gw * 2.0 * q * (prof.slope(x) - s.surface_slope(x)) * side;
-        }
-        s.min_gap_ = std::min(s.min_gap_, gap);
-      }
+      const double room = side < 0 ? edge - prof.lower() : prof.upper() - edge;
+      const double len = std::min(2.0 * s.half_, room);
+      if (!(len > 0.0)) continue;
+      const detail::GapMinimum m =
+          detail::scan_gap_slope([&](double x) { return prof.slope(x) - s.surface_slope(x); }, edge,
+                                 edge + side * len, 0.0, step, 24, true, false);
+      if (!std::isfinite(m.gap))
+        throw ConvergenceError(
+            "the gap beside the contact came out non-finite; the solution is not trusted");
+      s.min_gap_ = std::min(s.min_gap_, m.gap);
     }
   }
   s.valid_ = true;

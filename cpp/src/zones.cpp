@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "chebyshev.hpp"
+#include "gap_scan.hpp"
 #include "movingpunch/collocation.hpp"
 #include "movingpunch/dispersion.hpp"
 #include "movingpunch/errors.hpp"
@@ -57,40 +58,6 @@ const Legendre& gauss_legendre8() {
     return g;
   }();
   return rule;
-}
-
-// Cumulative integration on the Chebyshev-Lobatto points t_i = -cos(i pi /
-// M), i = 0..M, of [-1, 1]: int_{-1}^{t_i} F ~ sum_j Q(i, j) F(t_j), exact for
-// polynomials of degree M (Clenshaw-Curtis; spectral for smooth F). M = 32.
-const Eigen::MatrixXd& cumulative_integration() {
-  static const Eigen::MatrixXd Q = [] {
-    constexpr int M = 32;
-    // F = sum_m c_m T_m with c = C F (the DCT-I on the points, halved at
-    // both ends of the sum).
-    Eigen::MatrixXd C(M + 1, M + 1);
-    for (int m = 0; m <= M; ++m)
-      for (int j = 0; j <= M; ++j) {
-        const double tm = std::cos(m * (kPi - kPi * j / M));  // T_m(t_j)
-        const double wj = (j == 0 || j == M) ? 0.5 : 1.0;
-        const double wm = (m == 0 || m == M) ? 0.5 : 1.0;
-        C(m, j) = 2.0 / M * wj * wm * tm;
-      }
-    // int T_0 = T_1, int T_1 = T_2/4, int T_m = T_{m+1}/(2(m+1)) - T_{m-1}/(2(m-1)).
-    Eigen::MatrixXd D = Eigen::MatrixXd::Zero(M + 2, M + 1);
-    D(1, 0) = 1.0;
-    D(2, 1) = 0.25;
-    for (int m = 2; m <= M; ++m) {
-      D(m + 1, m) += 0.5 / (m + 1);
-      D(m - 1, m) -= 0.5 / (m - 1);
-    }
-    // Evaluated at t_i less its value at -1 (T_m(-1) = (-1)^m).
-    Eigen::MatrixXd E(M + 1, M + 2);
-    for (int i = 0; i <= M; ++i)
-      for (int m = 0; m <= M + 1; ++m)
-        E(i, m) = std::cos(m * (kPi - kPi * i / M)) - (m % 2 == 0 ? 1.0 : -1.0);
-    return Eigen::MatrixXd(E * D * C);
-  }();
-  return Q;
 }
 
 // The regular kernel K of the zones' equations: the shared table on |u| <=
@@ -971,6 +938,15 @@ ZonesSolution solve_connected(const ZonesParams& prm, const std::vector<PunchPro
   // f_k(x) - delta_k - v(x), from its nearest zone end (where it is 0), on
   // its contact's hull and 2 hull widths beyond it on both sides.
   out.min_gap = kInf;
+  // The sampling step: the surface's band (gap_scan.hpp) from the kernel's
+  // quadrature of |M1 - phi1|.
+  const double step = [&] {
+    const DampedQuadrature& quad = kern->quadrature();
+    const double phi1 = kern->model().phi1();
+    return detail::gap_step(
+        detail::response_band(quad.panels.alpha, quad.panels.weight,
+                              [&](std::size_t i) { return std::abs(quad.m1[i] - phi1); }));
+  }();
   for (int k = 0; k < np; ++k) {
     std::vector<int> mine;
     for (int j = 0; j < nz; ++j)
@@ -983,52 +959,43 @@ ZonesSolution solve_connected(const ZonesParams& prm, const std::vector<PunchPro
       out.gap_scale =
           std::max(out.gap_scale, sys->half(j) * std::max(std::fabs(sys->slope(k, e(2 * j))),
                                                           std::fabs(sys->slope(k, e(2 * j + 1)))));
+    auto gap_slope = [&](double x) { return sys->slope(k, x) - sys->vslope(x); };
     auto note = [&](double gap, double x, int after) {
+      if (!std::isfinite(gap))
+        throw ConvergenceError(
+            "several contact zones: the gap beside the zones came out non-finite; "
+            "the solution is not trusted");
       if (gap < out.min_gap) {
         out.min_gap = gap;
         out.min_gap_x = x;
         out.min_gap_after_zone = after;
       }
     };
-    // Outward from an end: x = edge + side q^2, q in [0, qmax] (qmax^2 the
-    // reach, or the distance to the end of a table), the gap at the
-    // Chebyshev points of q from the cumulative integral of its slope.
-    const Eigen::MatrixXd& Q = cumulative_integration();
-    const int M = static_cast<int>(Q.rows()) - 1;
-    Eigen::VectorXd F(M + 1), X(M + 1);
+    // Outward from an end (up to the reach, the table's end or the next
+    // zone) and between its consecutive zones: gap' = f_k' - v', sampled
+    // to resolve the surface's shortest wave and refined at every dip
+    // (gap_scan.hpp).
     for (int side = -1; side <= 1; side += 2) {
       const double edge = side < 0 ? lo : hi;
       // Up to the table's end and to the next zone (another punch's: its
-      // cusps would spoil the spectral integral; that punch checks there).
+      // cusps would spoil the integral; that punch checks there).
       double room = side < 0 ? edge - at - pf.lower() : pf.upper() - (edge - at);
       for (int j = 0; j < nz; ++j) {
         const double gap_to = side < 0 ? edge - e(2 * j + 1) : e(2 * j) - edge;
         if (gap_to > 0.0) room = std::min(room, gap_to);
       }
-      const double qmax = std::sqrt(std::min(reach, room));
-      if (!(qmax > 0.0)) continue;
-      for (int i = 0; i <= M; ++i) {
-        const double q = 0.5 * qmax * (1.0 - std::cos(kPi * i / M));
-        X(i) = edge + side * q * q;
-        F(i) = 2.0 * q * side * sys->vslope(X(i));
-      }
-      const Eigen::VectorXd integral = 0.5 * qmax * (Q * F);
-      for (int i = 1; i <= M; ++i)
-        note(sys->height(k, X(i)) - sys->height(k, edge) - integral(i), X(i), -1);
+      const double len = std::min(reach, room);
+      if (!(len > 0.0)) continue;
+      const detail::GapMinimum m =
+          detail::scan_gap_slope(gap_slope, edge, edge + side * len, 0.0, step, 32, true, false);
+      note(m.gap, m.x, -1);
     }
-    // Between its consecutive zones: x = m - h cos(theta), theta in [0, pi].
     for (const auto& [j, jn] : sys->pairs()) {
       if (sys->punch_of(j) != k) continue;
       const double a = e(2 * j + 1), b = e(2 * jn);
-      const double mid = 0.5 * (a + b), hh = 0.5 * (b - a);
-      for (int i = 0; i <= M; ++i) {
-        const double th = kPi * 0.5 * (1.0 - std::cos(kPi * i / M));
-        X(i) = mid - hh * std::cos(th);
-        F(i) = hh * std::sin(th) * sys->vslope(X(i));
-      }
-      const Eigen::VectorXd integral = 0.5 * kPi * (Q * F);
-      for (int i = 1; i < M; ++i)
-        note(sys->height(k, X(i)) - sys->height(k, a) - integral(i), X(i), j);
+      const detail::GapMinimum m =
+          detail::scan_gap_slope(gap_slope, a, b, 0.0, step, 32, true, true);
+      note(m.gap, m.x, j);
     }
   }
   out.elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
