@@ -31,6 +31,24 @@ from extras import need
 ROOT = Path(__file__).resolve().parents[2]
 
 
+def pytest_collection_modifyitems(
+    config: pytest.Config, items: list[pytest.Item]
+) -> None:
+    """Deselects the ``stress`` runs (tens of CPU minutes each) unless
+    MOVINGPUNCH_STRESS=1 or the ``-m`` expression names them: CI runs the
+    rest within its budget, a stress run is asked for by name."""
+    if os.environ.get("MOVINGPUNCH_STRESS") == "1" or "stress" in (
+        config.option.markexpr or ""
+    ):
+        return
+    keep = [item for item in items if item.get_closest_marker("stress") is None]
+    if len(keep) != len(items):
+        config.hook.pytest_deselected(
+            items=[item for item in items if item.get_closest_marker("stress")]
+        )
+        items[:] = keep
+
+
 def pytest_runtest_setup(item: pytest.Item) -> None:
     """``@pytest.mark.needs("dask", ...)``: the test skips, with the reason,
     when one of these extras is missing (fails under

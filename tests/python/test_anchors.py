@@ -222,8 +222,13 @@ def test_pressure_maximum_moves_off_centre_but_stays_valid() -> None:
 def test_separating_contact_is_reported_never_returned_as_valid() -> None:
     kwargs = {"vstar": 0.086, "kw": 0.01, "radius": 100.0, "load": 0.002, "nu": 0.2}
     with pytest.raises(mp.UnphysicalContactError, match="unphysical"):
-        mp.solve(**kwargs)
-    sol = mp.solve(**kwargs, allow_unphysical=True)
+        mp.solve(**kwargs, contact="single")
+    sol = mp.solve(**kwargs, contact="single", allow_unphysical=True)
     assert not sol.valid
     assert sol.min_pressure < 0
     assert "negative" in sol.validity
+    # contact auto returns the separated contact instead, never the single one
+    zoned = mp.solve(**kwargs)
+    assert zoned.valid
+    assert len(zoned.contact_zones) >= 2
+    assert zoned.min_pressure >= 0

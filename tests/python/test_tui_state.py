@@ -421,6 +421,7 @@ async def test_random_edits_at_the_real_debounce() -> None:
 
 
 @pytest.mark.slow
+@pytest.mark.stress
 @pytest.mark.parametrize("seed", range(100, 120))
 @sync
 async def test_random_edits_every_tab_and_figure(
@@ -432,6 +433,7 @@ async def test_random_edits_every_tab_and_figure(
 
 
 @pytest.mark.slow
+@pytest.mark.stress
 @pytest.mark.parametrize("seed", range(2000, 2004))
 @sync
 async def test_random_edits_every_tab_at_the_real_debounce(seed: int) -> None:

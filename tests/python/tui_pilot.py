@@ -177,9 +177,11 @@ def expected(solution: mp.ContactSolution, label: str) -> list[float] | None:
         "K front": [front],
         "K back": [back],
         "friction/P": [solution.tangential_force],
-        "it": [float(solution.iterations)],
         "err": [solution.error_estimate],
     }
+    # "it" (the width iterations) is not compared: it counts the work of the
+    # solve that printed it (its start and the kernel tables it found built),
+    # not a property of the inputs (9 or 10 for Fig. 4 by the process's past).
     if re.fullmatch(r"\d+ zones", label):
         return zones
     return table.get(label)

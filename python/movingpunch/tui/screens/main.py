@@ -806,11 +806,15 @@ class MainScreen(Screen[None]):
             return any(m.shortened for m in self.query(MessageLine))
         return True
 
+    # Focus moves at once (Screen.set_focus), not later as Widget.focus()
+    # does: keys typed right after `i` or Escape while the app is busy
+    # drawing go where the user sent them (`i07e` typed 'e' to the screen,
+    # which opened the export prompt).
     def action_leave_input(self) -> None:
-        self.query_one("#tabs", TabbedContent).query_one(Tabs).focus()
+        self.set_focus(self.query_one("#tabs", TabbedContent).query_one(Tabs))
 
     def action_edit(self) -> None:
-        self.query_one("#in-vstar", Input).focus()
+        self.set_focus(self.query_one("#in-vstar", Input))
 
     def action_recompute(self) -> None:
         self.cache.clear()
