@@ -99,11 +99,14 @@ def test_error_estimate_is_honest_near_critical(
     kw: float, eps: float, tol: float
 ) -> None:
     """Bounds the error, and at most 100 times it unless a warning says tol
-    was not met (the acceptance of issue 12)."""
-    ref, u = reference(kw, eps)
+    was not met (the acceptance of issue 12). As at a loose tol, an error
+    below the reference's own bound is not resolved: that bound is in the
+    floor of the factor-100 check (kw 1 at 1e-13: an error of 9.7e-12 against
+    a sample u of 9.3e-12 is round-off of both)."""
+    fine, other = reference_solutions(kw, eps)
     s = mp.solve(vstar=_vstar(kw, eps), kw=kw, tol=tol, **_params(kw))
     assert s.valid
-    check_honest(s, ref, u)
+    check_honest(s, fine.a, abs(fine.a - other.a), resolution=fine.error_estimate)
 
 
 @pytest.mark.parametrize(

@@ -301,7 +301,12 @@ def test_rigid_base_close_to_rayleigh_penetrates() -> None:
     assert np.abs(c * rise_in - shape_in).max() < 1e-3 * scale
     independent = outside**2 / (2.0 * s.radius) - c * rise_out
     np.testing.assert_allclose(independent, gap(s, outside), atol=3e-3 * scale)
-    assert independent.min() == pytest.approx(s.min_gap, rel=0.02)
+    # min_gap is the gap check's refined minimum (Brent on each dip): the
+    # independent gap's minimum on a fine grid of the same range
+    fine = s.a * np.linspace(1.0, 3.0, 2001)[1:]
+    fine_gap = fine**2 / (2.0 * s.radius) - c * surface_rise(s, fine)
+    assert s.min_gap == pytest.approx(fine_gap.min(), rel=0.02, abs=3e-3 * scale)
+    assert s.min_gap <= independent.min() + 3e-3 * scale
 
 
 @pytest.mark.parametrize(
