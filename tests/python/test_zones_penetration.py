@@ -10,9 +10,9 @@ from __future__ import annotations
 from typing import Any
 
 import pytest
-from test_hard_cases import NO_HANG, check_zones_independently, timed
 
 import movingpunch as mp
+from test_hard_cases import NO_HANG, check_zones_independently, timed
 
 # From honesty_cases("stiff", 60, seed=2660): refused before ("the search
 # tried 1 zones: penetration ... | 1 zones: penetration ...": the grown end

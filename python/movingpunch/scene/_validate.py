@@ -738,18 +738,20 @@ def _check_overlap(scene: SceneData, c: Checker) -> None:
     for vi, v in enumerate(scene.curve_values()):
         p = scene.point(v)
         train = train_of(scene.punches, p)
-        layer = {
-            "vstar": p["vstar"],
-            "kw": p["kw"],
-            "nu": p["nu"],
-            "kp": p.get("kp", 0.0),
-            "damping": p.get("damping", 0.0),
-        }
+        vstar, kw, nu = p["vstar"], p["kw"], p["nu"]
+        kp, damping = p.get("kp", 0.0), p.get("damping", 0.0)
         ends: list[tuple[float, float, int]] = []
         for k, q in enumerate(train):
             try:
                 alone = solve(
-                    **layer, profile=q.profile, load=q.load, tol=max(scene.tol, 1e-6)
+                    vstar=vstar,
+                    kw=kw,
+                    nu=nu,
+                    kp=kp,
+                    damping=damping,
+                    profile=q.profile,
+                    load=q.load,
+                    tol=max(scene.tol, 1e-6),
                 )
             except MovingPunchError:
                 return  # the run reports it
@@ -764,7 +766,15 @@ def _check_overlap(scene: SceneData, c: Checker) -> None:
         if not close:
             continue
         try:
-            solve_punches(train, **layer, tol=scene.tol)
+            solve_punches(
+                train,
+                vstar=vstar,
+                kw=kw,
+                nu=nu,
+                kp=kp,
+                damping=damping,
+                tol=scene.tol,
+            )
             continue  # together they keep apart: the run solves them
         except InvalidParameterError as err:
             if err.parameter != "punches":
