@@ -550,6 +550,11 @@ def _next_topologies(
                     return [[*zones[:j], merged, *zones[nxt + 1 : m], pair]]
             return [[*zones[:j], merged, *zones[j + 1 : nxt], *zones[nxt + 1 :]]]
         points = [x, -x] if mirror and abs(x) > 1e-9 else [x]
+        # Two starts: the nearest end grown over the point (when it is
+        # close), and a new zone there. A topology's ends are fixed by its
+        # end conditions, so a grown end often solves back to the set that
+        # failed (the search then takes the new zone: _search).
+        grown, added = list(zones), list(zones)
         for xp in points:
             near = min(
                 range(len(zones)),
@@ -557,14 +562,19 @@ def _next_topologies(
             )
             punch, left, right = zones[near]
             width = right - left
+            lo, hi = xp - 0.02 * width, xp + 0.02 * width
             if xp < left and left - xp < 0.1 * width:
-                zones[near] = (punch, xp - 0.01 * width, right)
+                grown[near] = (punch, xp - 0.01 * width, grown[near][2])
+                hi = min(hi, xp + 0.5 * (left - xp))
             elif xp > right and xp - right < 0.1 * width:
-                zones[near] = (punch, left, xp + 0.01 * width)
+                grown[near] = (punch, grown[near][1], xp + 0.01 * width)
+                lo = max(lo, xp - 0.5 * (xp - right))
             else:
-                zones.append((punch, xp - 0.02 * width, xp + 0.02 * width))
-                zones.sort(key=lambda t: t[1])
-        return [zones]
+                grown.append((punch, lo, hi))
+            added.append((punch, lo, hi))
+        grown.sort(key=lambda t: t[1])
+        added.sort(key=lambda t: t[1])
+        return [grown, added] if grown != added else [added]
     return []
 
 
@@ -599,7 +609,9 @@ def find_contact_set(
     topologies at the fixed size ``_SEARCH_N`` (a topology whose zones
     nearly merge would otherwise climb the ladder to its largest size only
     to be rejected), then solves the set it found on the ladder from its
-    own ends and checks it again; when the first pass finds nothing, or its
+    own ends (from N = 24: at N = 8 a stiff foundation's short kernel is
+    unresolved, and Newton's method there once wandered for minutes before
+    it stalled) and checks it again; when the first pass finds nothing, or its
     set fails on the ladder, the search runs on the ladder. ``builds``
     (optional) collects the kernel tables each solve built."""
     if layer.n != 0 or len(punches) > 1:  # a train starts close: the ladder
@@ -613,7 +625,7 @@ def find_contact_set(
     zones = [(int(q.punch), float(q.left), float(q.right)) for q in rough.zones]
     try:
         z = _solve_topology(
-            dataclasses.replace(layer, first_n=8), punches, zones, builds
+            dataclasses.replace(layer, first_n=24), punches, zones, builds
         )
     except ConvergenceError:
         return _search(layer, punches, start, mirror, builds)
@@ -631,11 +643,14 @@ def _search(
 ) -> tuple[Any, int, list[str]]:
     """find_contact_set's search at the layer's own sizes."""
     seen: set[tuple[object, ...]] = set()
+    reached: set[tuple[object, ...]] = set()  # the sets solved so far
     candidates = [list(start)]
     account: list[str] = []
     solved = 0
+    unsolved = False  # the last round's starts failed to converge
     while candidates and solved < _MAX_TOPOLOGIES:
         z = None
+        unsolved = False
         for zones in candidates:
             key = _signature(zones)
             if key in seen:
@@ -643,9 +658,15 @@ def _search(
             seen.add(key)
             try:
                 z = _solve_topology(layer, punches, zones, builds)
-                break
             except ConvergenceError as err:
                 account.append(f"{len(zones)} zones: {err}")
+                unsolved = True
+                continue
+            got = _signature([(int(q.punch), q.left, q.right) for q in z.zones])
+            if got not in reached:
+                reached.add(got)
+                break
+            z = None  # solved back to a set already tried: the next start
         if z is None:
             break
         solved += 1
@@ -654,9 +675,14 @@ def _search(
             return z, solved, account
         account.append(f"{len(z.zones)} zones: {why}")
         candidates = _next_topologies(z, punches, mirror)
+    lead = (
+        "no contact set found (the end conditions of the next contact set "
+        "could not be solved)"
+        if unsolved
+        else "no contact set satisfies p >= 0 and gap >= 0"
+    )
     raise UnphysicalContactError(
-        "no contact set satisfies p >= 0 and gap >= 0: the search tried "
-        + " | ".join(account or ["nothing"])
+        f"{lead}: the search tried " + " | ".join(account or ["nothing"])
     )
 
 

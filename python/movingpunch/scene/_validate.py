@@ -722,27 +722,33 @@ def _check_speeds(scene: SceneData, c: Checker) -> None:
 
 def _check_overlap(scene: SceneData, c: Checker) -> None:
     """The punches of every curve the scene computes (outputs other than
-    critical_speed) must not overlap: each punch solved alone (cheap: the
-    kernel is shared), its contact shifted to its ``at``, must end before
-    the next one's begins. A sweep's points are checked by their solves
-    (an overlap is that point's error)."""
+    critical_speed) must be a train the solver solves: each punch solved
+    alone (cheap: the kernel is shared), its contact shifted to its ``at``;
+    where two such contacts overlap the train is solved as the run solves it
+    (``solve_punches``: together the punches lift each other, and their
+    zones may well end apart), and the scene is refused, naming both
+    punches, only when the solver refuses them as too close. A sweep's
+    points are checked by their solves (an overlap is that point's
+    error)."""
     from movingpunch.errors import MovingPunchError
-    from movingpunch.solver import solve
+    from movingpunch.solver import solve, solve_punches
 
     if not any(k != "critical_speed" for k in scene.outputs):
         return
     for vi, v in enumerate(scene.curve_values()):
         p = scene.point(v)
         train = train_of(scene.punches, p)
+        vstar, kw, nu = p["vstar"], p["kw"], p["nu"]
+        kp, damping = p.get("kp", 0.0), p.get("damping", 0.0)
         ends: list[tuple[float, float, int]] = []
         for k, q in enumerate(train):
             try:
                 alone = solve(
-                    vstar=p["vstar"],
-                    kw=p["kw"],
-                    nu=p["nu"],
-                    kp=p.get("kp", 0.0),
-                    damping=p.get("damping", 0.0),
+                    vstar=vstar,
+                    kw=kw,
+                    nu=nu,
+                    kp=kp,
+                    damping=damping,
                     profile=q.profile,
                     load=q.load,
                     tol=max(scene.tol, 1e-6),
@@ -752,20 +758,48 @@ def _check_overlap(scene: SceneData, c: Checker) -> None:
             lo, hi = alone.contact_interval
             ends.append((q.at + lo, q.at + hi, k))
         ends.sort()
-        for (l1, r1, k1), (l2, r2, k2) in itertools.pairwise(ends):
-            if l2 > r1:
-                continue
-            varied = scene.vary is not None and scene.vary.param in (
-                "spacing",
-                "load",
+        close = [
+            (a, b)
+            for a, b in itertools.pairwise(ends)
+            if b[0] <= a[1]  # alone, their contacts overlap
+        ]
+        if not close:
+            continue
+        try:
+            solve_punches(
+                train,
+                vstar=vstar,
+                kw=kw,
+                nu=nu,
+                kp=kp,
+                damping=damping,
+                tol=scene.tol,
             )
-            key = f"vary.values[{vi}]" if varied else f"punches[{max(k1, k2)}].at"
-            raise c.fail(
-                key,
-                f"punches[{k1}] and punches[{k2}] overlap: alone their contacts "
-                f"span x/h = {l1:.6g} to {r1:.6g} and {l2:.6g} to {r2:.6g}",
-                "punches further apart",
-            )
+            continue  # together they keep apart: the run solves them
+        except InvalidParameterError as err:
+            if err.parameter != "punches":
+                return  # the run reports it
+            refused = str(err)
+        except MovingPunchError:
+            return  # the run reports it
+        (l1, r1, k1), (l2, r2, k2) = next(
+            (
+                (a, b)
+                for a, b in close
+                if f"punches[{min(a[2], b[2])}] and punches[{max(a[2], b[2])}]"
+                in refused
+            ),
+            close[0],
+        )
+        varied = scene.vary is not None and scene.vary.param in ("spacing", "load")
+        key = f"vary.values[{vi}]" if varied else f"punches[{max(k1, k2)}].at"
+        raise c.fail(
+            key,
+            f"punches[{k1}] and punches[{k2}] overlap: alone their contacts "
+            f"span x/h = {l1:.6g} to {r1:.6g} and {l2:.6g} to {r2:.6g}, and "
+            "solved together no contact set keeps them apart",
+            "punches further apart",
+        )
 
 
 def _fmt_num(x: float) -> str:
