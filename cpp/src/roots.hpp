@@ -103,8 +103,8 @@ struct Minimum {
 // the best point evaluated. The returned f is f(x), the smallest value
 // evaluated.
 template <class F>
-Minimum brent_minimum(const F& f, double a, double b, double x, double fx, double xtol,
-                      double rtol, int max_iter) {
+Minimum brent_minimum(const F& f, double a, double b, double x, double fx, double xtol, double rtol,
+                      int max_iter) {
   constexpr double kGold = 0.3819660112501051;  // (3 - sqrt 5)/2
   double w = x, v = x, fw = fx, fv = fx;
   double d = 0.0, e = 0.0;

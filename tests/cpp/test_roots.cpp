@@ -224,7 +224,8 @@ TEST(BrentMinimum, SeveralMinimaGiveALocalOne) {
 TEST(BrentMinimum, BudgetEndsANonConvergingSearch) {
   // xtol 0 and rtol 0 never end by tolerance once the bracket reaches the
   // spacing of doubles: max_iter bounds the evaluations (no hang).
-  const BrentRun r = run_brent([](double x) { return (x - 0.5) * (x - 0.5); }, 0.0, 1.0, 0.0, 0.0, 40);
+  const BrentRun r =
+      run_brent([](double x) { return (x - 0.5) * (x - 0.5); }, 0.0, 1.0, 0.0, 0.0, 40);
   expect_contract(r, 0.0, 1.0, 40);
   EXPECT_NEAR(r.min.x, 0.5, 1e-7);
 }
