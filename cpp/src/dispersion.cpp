@@ -89,61 +89,12 @@ CriticalSpeed compute_critical(double kw, double nu, double kp) {
   if (best_s >= vr) return {vr, kInf};
   const double h = (lt1 - lt0) / (n - 1);
   auto F = [&](double lt) { return first_wave_vstar(std::exp(lt), kw, nu, kp); };
-  // Brent (1973), "localmin": golden section with parabolic steps.
-  const double cg = 0.5 * (3.0 - std::sqrt(5.0));
-  double a = lt0 + h * std::max(best - 1, 0), b = lt0 + h * std::min(best + 1, n - 1);
-  double x = lt0 + h * best, w = x, v = x;
-  double fx = best_s, fw = fx, fv = fx;
-  double d = 0.0, e = 0.0;
-  // c1 is quadratic at its minimum: 1e-7 in ln t leaves ~1e-14 in V*_cr.
-  const double tol = 1e-7;
-  for (int it = 0; it < 100; ++it) {
-    const double m = 0.5 * (a + b);
-    if (std::fabs(x - m) <= 2.0 * tol - 0.5 * (b - a)) break;
-    double u;
-    if (std::fabs(e) > tol) {
-      double r = (x - w) * (fx - fv), q = (x - v) * (fx - fw), pp = (x - v) * q - (x - w) * r;
-      q = 2.0 * (q - r);
-      if (q > 0.0) pp = -pp;
-      q = std::fabs(q);
-      const double etemp = e;
-      e = d;
-      if (std::fabs(pp) >= std::fabs(0.5 * q * etemp) || pp <= q * (a - x) || pp >= q * (b - x)) {
-        e = (x >= m ? a : b) - x;
-        d = cg * e;
-      } else {
-        d = pp / q;
-        const double un = x + d;
-        if (un - a < 2.0 * tol || b - un < 2.0 * tol) d = x < m ? tol : -tol;
-      }
-    } else {
-      e = (x >= m ? a : b) - x;
-      d = cg * e;
-    }
-    u = std::fabs(d) >= tol ? x + d : x + (d > 0.0 ? tol : -tol);
-    const double fu = F(u);
-    if (fu <= fx) {
-      (u >= x ? a : b) = x;
-      v = w;
-      fv = fw;
-      w = x;
-      fw = fx;
-      x = u;
-      fx = fu;
-    } else {
-      (u < x ? a : b) = u;
-      if (fu <= fw || w == x) {
-        v = w;
-        fv = fw;
-        w = u;
-        fw = fu;
-      } else if (fu <= fv || v == x || v == w) {
-        v = u;
-        fv = fu;
-      }
-    }
-  }
-  return {fx, std::exp(x)};
+  // Brent's minimiser (roots.hpp) between the best grid point's neighbours,
+  // from that point. c1 is quadratic at its minimum: 1e-7 in ln t leaves
+  // ~1e-14 in V*_cr.
+  const double a = lt0 + h * std::max(best - 1, 0), b = lt0 + h * std::min(best + 1, n - 1);
+  const detail::Minimum m = detail::brent_minimum(F, a, b, lt0 + h * best, best_s, 1e-7, 0.0, 100);
+  return {m.f, std::exp(m.x)};
 }
 
 }  // namespace

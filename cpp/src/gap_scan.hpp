@@ -10,6 +10,8 @@
 #include <limits>
 #include <vector>
 
+#include "roots.hpp"
+
 namespace movingpunch::detail {
 
 // The wavenumber below which all but `share` of the integral of
@@ -45,62 +47,11 @@ struct GapMinimum {
 };
 
 // Brent's minimisation of f on [a, b] (f's samples bracket a minimum), to
-// an abscissa tolerance xtol; at most 60 evaluations.
+// an abscissa tolerance xtol (and 1e-12 relative); at most 61 evaluations.
 template <class F>
-GapMinimum brent_minimum(const F& f, double a, double b, double xtol) {
-  constexpr double kGold = 0.3819660112501051;
-  double x = a + kGold * (b - a), w = x, v = x;
-  double fx = f(x), fw = fx, fv = fx;
-  double d = 0.0, e = 0.0;
-  for (int it = 0; it < 60; ++it) {
-    const double m = 0.5 * (a + b);
-    const double tol1 = xtol + 1e-12 * std::fabs(x), tol2 = 2.0 * tol1;
-    if (std::fabs(x - m) <= tol2 - 0.5 * (b - a)) break;
-    bool golden = true;
-    if (std::fabs(e) > tol1) {
-      const double r = (x - w) * (fx - fv);
-      double q = (x - v) * (fx - fw);
-      double p = (x - v) * q - (x - w) * r;
-      q = 2.0 * (q - r);
-      if (q > 0.0) p = -p;
-      q = std::fabs(q);
-      const double etemp = e;
-      e = d;
-      if (std::fabs(p) < std::fabs(0.5 * q * etemp) && p > q * (a - x) && p < q * (b - x)) {
-        d = p / q;
-        const double u = x + d;
-        if (u - a < tol2 || b - u < tol2) d = x < m ? tol1 : -tol1;
-        golden = false;
-      }
-    }
-    if (golden) {
-      e = (x >= m ? a : b) - x;
-      d = kGold * e;
-    }
-    const double u = std::fabs(d) >= tol1 ? x + d : x + (d > 0 ? tol1 : -tol1);
-    const double fu = f(u);
-    if (fu <= fx) {
-      (u >= x ? a : b) = x;
-      v = w;
-      fv = fw;
-      w = x;
-      fw = fx;
-      x = u;
-      fx = fu;
-    } else {
-      (u < x ? a : b) = u;
-      if (fu <= fw || w == x) {
-        v = w;
-        fv = fw;
-        w = u;
-        fw = fu;
-      } else if (fu <= fv || v == x || v == w) {
-        v = u;
-        fv = fu;
-      }
-    }
-  }
-  return GapMinimum{fx, x};
+GapMinimum brent_gap_minimum(const F& f, double a, double b, double xtol) {
+  const Minimum m = brent_minimum(f, a, b, xtol, 1e-12, 60);
+  return GapMinimum{m.f, m.x};
 }
 
 // The minimum of a gap known at equally spaced samples xs (gs its values,
@@ -123,7 +74,7 @@ GapMinimum refine_minimum(const std::vector<double>& xs, const std::vector<doubl
     if (!(left && right)) continue;
     const double lo = std::min(xs[i - 1], xs[i + 1]), hi = std::max(xs[i - 1], xs[i + 1]);
     const double xtol = 1e-6 * (hi - lo);
-    const GapMinimum m = brent_minimum(value, lo, hi, xtol);
+    const GapMinimum m = brent_gap_minimum(value, lo, hi, xtol);
     // Converged onto a skipped end: the gap rises from it (no dip).
     if ((i == 1 && skip_first && std::fabs(m.x - xs[0]) <= 10.0 * xtol) ||
         (i + 2 == n && skip_last && std::fabs(m.x - xs[n - 1]) <= 10.0 * xtol))

@@ -685,10 +685,9 @@ ZonesSolution solve_connected(const ZonesParams& prm, const std::vector<PunchPro
     e(2 * j) = prm.zones[static_cast<std::size_t>(j)].left;
     e(2 * j + 1) = prm.zones[static_cast<std::size_t>(j)].right;
   }
-  // The kernel on the span of the zones and the checks beside them.
-  // |x - t| for x on a zone or in a punch's checked surroundings (2 hull
-  // widths beside its zones) and t on any zone.
-  auto range_need = [&](const Eigen::VectorXd& ends) {
+  // The widest punch's hull: the span from the left end of a punch's first
+  // zone to the right end of its last, largest over the punches.
+  auto widest_hull = [&](const Eigen::VectorXd& ends) {
     double hull = 0.0;
     for (std::size_t k = 0; k < prm.punches.size(); ++k) {
       double lo = kInf, hi = -kInf;
@@ -699,24 +698,20 @@ ZonesSolution solve_connected(const ZonesParams& prm, const std::vector<PunchPro
         }
       hull = std::max(hull, hi - lo);
     }
-    return ends(2 * nz - 1) - ends(0) + 2.0 * hull + 1.0;
+    return hull;
+  };
+  // The kernel on the span of the zones and the checks beside them.
+  // |x - t| for x on a zone or in a punch's checked surroundings (2 hull
+  // widths beside its zones) and t on any zone.
+  auto range_need = [&](const Eigen::VectorXd& ends) {
+    return ends(2 * nz - 1) - ends(0) + 2.0 * widest_hull(ends) + 1.0;
   };
   // The table covers the distances within each punch's surroundings (and a
   // train's span up to 256 h); longer distances take the kernel's pieces
   // built where they are needed (ZoneKernel), so the cost does not grow
   // with the distance between punches.
   auto table_need = [&](const Eigen::VectorXd& ends) {
-    double hull = 0.0;
-    for (std::size_t k = 0; k < prm.punches.size(); ++k) {
-      double lo = kInf, hi = -kInf;
-      for (int j = 0; j < nz; ++j)
-        if (prm.zones[static_cast<std::size_t>(j)].punch == static_cast<int>(k)) {
-          lo = std::min(lo, ends(2 * j));
-          hi = std::max(hi, ends(2 * j + 1));
-        }
-      hull = std::max(hull, hi - lo);
-    }
-    return std::min(range_need(ends), std::max(4.0 * hull + 2.0, 256.0));
+    return std::min(range_need(ends), std::max(4.0 * widest_hull(ends) + 2.0, 256.0));
   };
   std::shared_ptr<const DampedKernel> kern;
   std::unique_ptr<ZoneKernel> zk;

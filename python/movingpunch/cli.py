@@ -318,6 +318,7 @@ def _build_parser() -> argparse.ArgumentParser:
     tui_p.add_argument(
         "--root",
         default=None,
+        type=_named_path("a folder"),
         metavar="DIR",
         help="the working folder: Open, Save and Export stay inside it "
         "(default: the current directory)",
@@ -349,6 +350,7 @@ def _build_parser() -> argparse.ArgumentParser:
     serve_p.add_argument(
         "--root",
         default=None,
+        type=_named_path("a folder"),
         metavar="DIR",
         help="the working folder of every visitor's app: Open, Save and "
         "Export stay inside it (default: the current directory)",

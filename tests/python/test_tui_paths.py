@@ -216,6 +216,33 @@ def test_tui_with_a_bad_root_is_one_line_and_exit_2(
     assert lines[0].startswith("movingpunch: error: root: ")
 
 
+@pytest.mark.parametrize("command", ["tui", "serve"])
+def test_an_empty_root_is_refused_naming_root(
+    tmp_path: Path,
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+    assert_one_line_error: Callable[..., None],
+    command: str,
+) -> None:
+    # `--root ''` silently meant the current directory (even in the source
+    # checkout, where no --root means ~/movingpunch), as `run --out ''` did.
+    proc = run_cli(command, "--root", "", cwd=tmp_path, timeout=60)
+    assert_one_line_error(
+        proc, "argument --root", "must name a folder, got ''", "use '.'"
+    )
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_an_empty_root_is_refused_by_the_api(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(ValueError, match=r"root: '' names no folder .*'\.'"):
+        WorkingFolder.at("")
+    with pytest.raises(ValueError, match=r"root: '' names no folder"):
+        create_app(root="")
+    assert WorkingFolder.at(".").root == Path(os.path.realpath(tmp_path))
+
+
 # -- the app ------------------------------------------------------------------
 
 

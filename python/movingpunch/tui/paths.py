@@ -91,6 +91,11 @@ class WorkingFolder:
                 return cls(_default_folder(), checkout)
             return cls(Path(os.path.realpath(here)))
         given = os.fspath(root)
+        if not given:  # would silently mean the current directory
+            raise InvalidParameterError(
+                "root: '' names no folder (allowed: an existing folder; "
+                "'.' for the current directory)"
+            )
         real = os.path.realpath(os.path.expanduser(given))
         if not os.path.isdir(real) and Path(real) != _default_folder():
             raise InvalidParameterError(
