@@ -321,7 +321,8 @@ def _build_parser() -> argparse.ArgumentParser:
         type=_named_path("a folder"),
         metavar="DIR",
         help="the working folder: Open, Save and Export stay inside it "
-        "(default: the current directory)",
+        "(default: the current directory; ~/movingpunch inside the source "
+        "checkout)",
     )
     tui_p.set_defaults(handler=_cmd_tui)
 
@@ -353,7 +354,8 @@ def _build_parser() -> argparse.ArgumentParser:
         type=_named_path("a folder"),
         metavar="DIR",
         help="the working folder of every visitor's app: Open, Save and "
-        "Export stay inside it (default: the current directory)",
+        "Export stay inside it (default: the current directory; "
+        "~/movingpunch inside the source checkout)",
     )
     serve_p.set_defaults(handler=_cmd_serve)
     _add_scene_commands(sub)
