@@ -525,6 +525,10 @@ def test_fuzz_asymmetric_profiles_16() -> None:
 @pytest.mark.slow
 @pytest.mark.stress
 def test_fuzz_asymmetric_profiles_120() -> None:
+    """Three CPU minutes: a rounded flat or a table with friction costs
+    ~1.5 s a call (~10 s a refusal), half of it or more building Gauss-Jacobi
+    rules of up to 16 N + 80 nodes for the slope's projection, new for every
+    (V*, f) and every size N of the ladder."""
     fuzz_asymmetric_profiles(120, seed=1402, budget=900.0)
 
 
