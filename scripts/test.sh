@@ -48,6 +48,8 @@ fi
 
 # pytest-xdist: one worker per core (MOVINGPUNCH_PYTEST_WORKERS=0 runs in
 # this process, e.g. to debug; arguments after the script's go to pytest).
+# --dist loadgroup: the tests of one @pytest.mark.xdist_group run on one
+# worker (they share a costly module-level reference, computed once).
 workers=${MOVINGPUNCH_PYTEST_WORKERS:-auto}
 # setup.sh installed every extra (and tmux): a test that needs one and finds
 # it missing fails here instead of skipping (tests/python/extras.py), so this
@@ -55,7 +57,7 @@ workers=${MOVINGPUNCH_PYTEST_WORKERS:-auto}
 # '.[test]'` skips those tests, naming the extra.
 export MOVINGPUNCH_REQUIRE_EXTRAS=${MOVINGPUNCH_REQUIRE_EXTRAS:-1}
 echo "[test] Python: pytest (workers: $workers; extras required: $MOVINGPUNCH_REQUIRE_EXTRAS)"
-if .venv/bin/python -m pytest -n "$workers" "$@"; then
+if .venv/bin/python -m pytest -n "$workers" --dist loadgroup "$@"; then
   echo "[test] Python tests passed"
 else
   echo "[test] Python tests FAILED" >&2

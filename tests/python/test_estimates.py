@@ -86,14 +86,29 @@ NEAR = [1e-4, 1e-6, 1e-8, 1e-10, 1e-12, 1e-13, 1e-14]
 FAST = {(1.0, 1e-4), (1.0, 1e-8), (1.0, 1e-12), (1.0, 1e-14)}
 
 
-@pytest.mark.parametrize(
-    ("kw", "eps"),
-    [
-        pytest.param(kw, eps, marks=() if (kw, eps) in FAST else pytest.mark.slow)
-        for kw in CASES
-        for eps in NEAR
-    ],
-)
+def near_group(kw: float, eps: float) -> pytest.MarkDecorator:
+    """The tests of one near-critical reference run on one pytest-xdist
+    worker (``--dist loadgroup``, scripts/test.sh): the reference (an
+    N = 256 solve near V*_cr and its stress peaks, up to ~25 s of CPU) is
+    then computed once, not once per worker that draws one of its tests."""
+    return pytest.mark.xdist_group(f"estimates-near-{kw:g}-{eps:g}")
+
+
+NEAR_CASES = [
+    pytest.param(
+        kw,
+        eps,
+        marks=(near_group(kw, eps),)
+        + (() if (kw, eps) in FAST else (pytest.mark.slow,)),
+    )
+    for kw in CASES
+    for eps in NEAR
+]
+"""(kw, eps) of the near-critical tests, grouped by reference; all but the
+FAST cases slow-marked."""
+
+
+@pytest.mark.parametrize(("kw", "eps"), NEAR_CASES)
 @pytest.mark.parametrize("tol", [1e-8, 1e-10])
 def test_error_estimate_is_honest_near_critical(
     kw: float, eps: float, tol: float
@@ -109,14 +124,7 @@ def test_error_estimate_is_honest_near_critical(
     check_honest(s, fine.a, abs(fine.a - other.a), resolution=fine.error_estimate)
 
 
-@pytest.mark.parametrize(
-    ("kw", "eps"),
-    [
-        pytest.param(kw, eps, marks=() if (kw, eps) in FAST else pytest.mark.slow)
-        for kw in CASES
-        for eps in NEAR
-    ],
-)
+@pytest.mark.parametrize(("kw", "eps"), NEAR_CASES)
 @pytest.mark.parametrize("tol", [1e-4, 1e-6])
 def test_error_estimate_is_honest_near_critical_at_loose_tol(
     kw: float, eps: float, tol: float
@@ -134,6 +142,7 @@ def test_error_estimate_is_honest_near_critical_at_loose_tol(
     check_honest(s, fine.a, abs(fine.a - other.a), resolution=fine.error_estimate)
 
 
+@near_group(1.0, 1e-12)
 def test_estimate_at_the_issues_case_is_no_longer_absurd() -> None:
     """kw = 1 within 1e-12 of V*_cr: the estimate was 4.8e2 (a/h ~ 1.23)."""
     s = mp.solve(vstar=_vstar(1.0, 1e-12), kw=1.0, **PAPER)
@@ -211,7 +220,36 @@ SURFACE = np.array([0.0, 0.25, 0.5, 0.75, 0.9, 0.99, 0.999])
 SURFACE = np.concatenate([SURFACE, [1.001, 1.01, 1.1, 1.5, 2.0, 3.0, 5.0]])
 
 
+_STRESS_VALUES: dict[tuple[object, ...], npt.NDArray[np.float64]] = {}
+
+
 def stress_values(s: mp.Solution, ref: mp.Solution) -> npt.NDArray[np.float64]:
+    """stress_values_of, computed once per solution content: a/h is never
+    solved looser than 1e-8, so the solutions at tol 1e-3 ... 1e-8 of a case
+    are bit for bit one solution, and its peak search (seconds near V*_cr)
+    need not run four times. The key is everything the values depend on:
+    the inputs, N, a/h, the coefficients (bit for bit) and the stress
+    estimate (the peak search's tolerance); the reference is kept alive by
+    its cache, so its id is not reused."""
+    key = (
+        id(ref),
+        s.kw,
+        s.vstar,
+        s.nu,
+        s.kp,
+        s.radius,
+        s.load,
+        s.collocation_n,
+        s.a,
+        np.asarray(s.g_coefficients, dtype=np.float64).tobytes(),
+        s.stress_error_estimate,
+    )
+    if key not in _STRESS_VALUES:
+        _STRESS_VALUES[key] = stress_values_of(s, ref)
+    return _STRESS_VALUES[key].copy()
+
+
+def stress_values_of(s: mp.Solution, ref: mp.Solution) -> npt.NDArray[np.float64]:
     """The stress_peaks values of ``s`` (most compressive and most tensile on
     the top, most tensile on the bottom, at (0, 0) and (0, -h)) and its
     surface sigma_x/(P/h) at SURFACE times the reference's a.
@@ -258,14 +296,7 @@ def check_stress_honest(s: mp.Solution, fine: mp.Solution, other: mp.Solution) -
         assert est <= FACTOR * floor, where
 
 
-@pytest.mark.parametrize(
-    ("kw", "eps"),
-    [
-        pytest.param(kw, eps, marks=() if (kw, eps) in FAST else pytest.mark.slow)
-        for kw in CASES
-        for eps in NEAR
-    ],
-)
+@pytest.mark.parametrize(("kw", "eps"), NEAR_CASES)
 @pytest.mark.parametrize("tol", [1e-8, 1e-10])
 def test_stress_error_estimate_is_honest_near_critical(
     kw: float, eps: float, tol: float
@@ -279,14 +310,7 @@ def test_stress_error_estimate_is_honest_near_critical(
     check_stress_honest(s, fine, other)
 
 
-@pytest.mark.parametrize(
-    ("kw", "eps"),
-    [
-        pytest.param(kw, eps, marks=() if (kw, eps) in FAST else pytest.mark.slow)
-        for kw in CASES
-        for eps in NEAR
-    ],
-)
+@pytest.mark.parametrize(("kw", "eps"), NEAR_CASES)
 @pytest.mark.parametrize("tol", [1e-3, 1e-4, 1e-6])
 def test_stress_error_estimate_is_honest_near_critical_at_loose_tol(
     kw: float, eps: float, tol: float
@@ -322,6 +346,7 @@ def test_no_warning_when_tol_is_met() -> None:
     assert s.to_dict()["warnings"] == []
 
 
+@near_group(1.0, 1e-4)
 def test_a_fixed_size_too_small_for_tol_warns_by_how_much() -> None:
     ref, _ = reference(1.0, 1e-4)
     s = mp.solve(vstar=_vstar(1.0, 1e-4), kw=1.0, **PAPER, n=8, tol=1e-10)
@@ -336,6 +361,7 @@ def test_a_fixed_size_too_small_for_tol_warns_by_how_much() -> None:
     assert s.to_dict()["warnings"] == [line]
 
 
+@near_group(1.0, 1e-14)
 def test_tight_tol_within_1e_14_of_critical_warns() -> None:
     """Round-off of the resonance limits a/h to ~1e-9 there: tol = 1e-12 is
     not met, and the result says so (and its estimate still bounds the error)."""

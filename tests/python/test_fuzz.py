@@ -260,7 +260,7 @@ def fuzz_binding(calls: int, seed: int, budget: float) -> collections.Counter[st
     def work() -> None:
         for _ in range(calls):
             args = draw.call()
-            t0 = time.perf_counter()
+            t0 = time.thread_time()  # this thread's CPU: the core runs on it
             sol, exc = _attempt(lambda args=args: _core.solve_contact(**args))
             if exc is not None:
                 _check_error(exc, args)
@@ -268,7 +268,7 @@ def fuzz_binding(calls: int, seed: int, budget: float) -> collections.Counter[st
             else:
                 _check_solution(sol, args)
                 outcomes["valid" if sol.valid else "flagged"] += 1
-            dt = time.perf_counter() - t0
+            dt = time.thread_time() - t0
             slowest.append((dt, args))
             slowest.sort(key=lambda item: -item[0])
             del slowest[3:]
@@ -279,7 +279,9 @@ def fuzz_binding(calls: int, seed: int, budget: float) -> collections.Counter[st
     assert outcomes["valid"] + outcomes["flagged"] >= 0.3 * calls, outcomes
     assert outcomes["InvalidParameterError"] >= 0.05 * calls, outcomes
     assert outcomes["SupercriticalSpeedError"] >= 0.01 * calls, outcomes
-    # No single call may stall (the slowest are listed on failure).
+    # No single call may stall (the slowest are listed on failure): a bound
+    # on its CPU time, which a loaded machine does not stretch (the wall
+    # clock did: a call of ~3 s CPU took 32 s beside other processes).
     assert slowest[0][0] < 30.0, slowest
     return outcomes
 
@@ -289,8 +291,11 @@ def test_fuzz_binding_2000() -> None:
 
 
 @pytest.mark.slow
-def test_fuzz_binding_20000() -> None:
-    fuzz_binding(20000, seed=4, budget=1200.0)
+@pytest.mark.parametrize("seed", [4, 5, 6, 7])
+def test_fuzz_binding_20000(seed: int) -> None:
+    """20 000 calls as four runs of 5 000 (seeds 4-7): the pytest-xdist
+    workers share them (one 20 000-call run was a minute-long tail)."""
+    fuzz_binding(5000, seed=seed, budget=1200.0)
 
 
 # --------------------------------------------------------------------------
@@ -520,6 +525,10 @@ def test_fuzz_asymmetric_profiles_16() -> None:
 @pytest.mark.slow
 @pytest.mark.stress
 def test_fuzz_asymmetric_profiles_120() -> None:
+    """Three CPU minutes: a rounded flat or a table with friction costs
+    ~1.5 s a call (~10 s a refusal), half of it or more building Gauss-Jacobi
+    rules of up to 16 N + 80 nodes for the slope's projection, new for every
+    (V*, f) and every size N of the ladder."""
     fuzz_asymmetric_profiles(120, seed=1402, budget=900.0)
 
 
