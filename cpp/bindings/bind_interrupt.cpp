@@ -133,8 +133,7 @@ void bind_interrupt(py::module_& m) {
       .def(py::init<>())
       .def("cancel", &CancelToken::cancel, py::call_guard<py::gil_scoped_release>(),
            "Asks the computations bound to this token to stop (idempotent, any thread).")
-      .def_property_readonly("cancelled", &CancelToken::cancelled,
-                             "True once cancel() was called.")
+      .def_property_readonly("cancelled", &CancelToken::cancelled, "True once cancel() was called.")
       .def(
           "check",
           [](const CancelToken& t) {
@@ -162,8 +161,7 @@ void bind_interrupt(py::module_& m) {
           },
           "exc_type"_a, "exc_value"_a, "traceback"_a, "Unbinds the token (exceptions propagate).")
       .def("__repr__", [](const CancelToken& t) {
-        return std::string("<movingpunch.Cancel ") + (t.cancelled() ? "cancelled" : "active") +
-               ">";
+        return std::string("<movingpunch.Cancel ") + (t.cancelled() ? "cancelled" : "active") + ">";
       });
   m.def(
       "check_cancelled",

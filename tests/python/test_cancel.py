@@ -190,11 +190,20 @@ def test_cancelled_is_not_taken_for_a_failure_by_the_zone_search(
 
     monkeypatch.setattr(_core, "solve_zones", cancelling)
     assert zones._core is _core
-    # Two punches whose zones the search separates (several solve_zones calls).
-    punches = [mp.Punch(100.0, 0.002, at=-0.6), mp.Punch(100.0, 0.002, at=0.6)]
+    # kw 0.03 at 1 % below V*_cr separates into two zones; uncancelled, the
+    # search's second topology fails (ConvergenceError) and it goes on to a
+    # third and fourth solve of a contact set.
+    case = {"kw": 0.03, "radius": 100.0, "load": 0.002}
+    vstar = 0.99 * mp.critical_vstar(0.03)
     with pytest.raises(Cancelled):
-        mp.solve_punches(punches, vstar=0.5, kw=1.0, cancel=token)
+        mp.solve(vstar=vstar, **case, cancel=token)
     assert calls == 2, "the search went on after the cancel"
+    # Uncancelled, the same search solves several more sets and separates.
+    calls = 0
+    token = mp.Cancel()
+    s = mp.solve(vstar=vstar, **case)
+    assert calls > 2
+    assert len(s.contact_zones) == 2
     assert not issubclass(Cancelled, MovingPunchError)
     assert not issubclass(Cancelled, (ConvergenceError, UnphysicalContactError))
 
@@ -214,7 +223,6 @@ def test_a_cancelled_sweep_stops_at_its_next_point() -> None:
     assert done[-1] == 3, f"points solved after the cancel: {done}"
 
 
-@pytest.mark.slow
 def test_a_cancelled_sweep_on_worker_processes_stops_its_pool() -> None:
     import multiprocessing
 

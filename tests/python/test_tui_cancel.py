@@ -11,6 +11,8 @@ solves it. The time bounds are hang guards, not performance assertions.
 
 from __future__ import annotations
 
+import asyncio
+import contextlib
 import threading
 import time
 from typing import Any
@@ -24,7 +26,14 @@ from movingpunch.errors import Cancelled
 from movingpunch.tui import create_app, model
 from movingpunch.tui.model import Params
 from movingpunch.tui.scene_files import SceneState
-from tui_pilot import assert_summary_is, screen_of, settle, status_text, sync
+from tui_pilot import (
+    assert_summary_is,
+    deliver,
+    screen_of,
+    settle,
+    status_text,
+    sync,
+)
 
 SIZE = (80, 24)
 SLOW_VSTAR = 0.31
@@ -34,9 +43,15 @@ STOP_BOUND = 10.0
 START_BOUND = 60.0
 
 
+LONG_SECONDS = 120.0
+"""How long the stand-in computes unless cancelled."""
+
+
 class SlowSolve:
-    """Stands in for ``model._solve``: V* = SLOW_VSTAR runs a long
-    near-critical solve (seconds), recording how it ended."""
+    """Stands in for ``model._solve``: V* = SLOW_VSTAR computes for
+    ``LONG_SECONDS`` unless cancelled (near-critical solves of a stiff
+    Pasternak foundation, each from an empty kernel cache: 5-20 s of
+    kernel quadrature each, which the core polls), recording how it ended."""
 
     def __init__(self) -> None:
         self.real = model._solve
@@ -49,24 +64,25 @@ class SlowSolve:
         self.started.set()
         kw, nu, kp = 1e4, 0.4048225797622928, 3.0
         v = 0.9999999 * mp.critical_vstar(kw, nu, kp)
+        end = time.monotonic() + LONG_SECONDS
         try:
-            # The worker's token is bound to this thread: no cancel= here.
-            s = mp.solve(
-                vstar=v,
-                kw=kw,
-                nu=nu,
-                kp=kp,
-                radius=0.004383187612912297,
-                load=319.749150627029,
-            )
+            while time.monotonic() < end:
+                mp.clear_kernel_cache()
+                # The worker's token is bound to this thread: no cancel= here.
+                with contextlib.suppress(mp.MovingPunchError):
+                    mp.solve(
+                        vstar=v,
+                        kw=kw,
+                        nu=nu,
+                        kp=kp,
+                        radius=0.004383187612912297,
+                        load=319.749150627029,
+                    )
         except Cancelled:
             self.outcomes.append("cancelled")
             raise
-        except mp.MovingPunchError:
-            self.outcomes.append("finished")
-            raise
         self.outcomes.append("finished")
-        return s
+        return self.real(params)
 
 
 @pytest.fixture
@@ -88,16 +104,30 @@ async def wait_until(pilot: Pilot[None], ok: Any, bound: float, what: str) -> fl
 
 
 async def enter_value(pilot: Pilot[None], name: str, text: str) -> None:
-    """Types ``text`` over the input ``name`` and presses enter (no wait
-    for the solve)."""
-    box = pilot.app.screen.query_one(f"#in-{name}", Input)
+    """Types ``text`` over the input ``name`` and presses enter, keys sent
+    as a terminal sends them (``deliver``: the pilot's ``press`` waits for
+    the process to idle, up to a second a key while a solve runs); returns
+    once enter has left the input (no wait for the solve)."""
+    app = pilot.app
+    box = app.screen.query_one(f"#in-{name}", Input)
     box.focus()
     box.clear()
-    await pilot.pause()
-    await pilot.press(*text, "enter")
+    await pilot.pause(0.05)
+    for key in text:
+        deliver(app, key)
+    deliver(app, "enter")
+    await wait_until(
+        pilot,
+        lambda: box.value == text and app.screen.focused is not box,
+        START_BOUND,
+        f"{text!r} entered into {name}",
+    )
 
 
 async def start_slow(pilot: Pilot[None], slow: SlowSolve) -> None:
+    """Enters V* = SLOW_VSTAR and waits until its solve is at work (the
+    values typed on the way, 0, 0.3, are not solved: a long debounce)."""
+    screen_of(pilot.app).debounce = 60.0
     await enter_value(pilot, "vstar", str(SLOW_VSTAR))
     start = time.monotonic()
     while not slow.started.is_set():
@@ -120,13 +150,15 @@ async def test_an_edit_during_a_long_solve_cancels_it(
         await settle(pilot)
         screen = screen_of(app)
         await start_slow(pilot, slow)
+        edited = time.monotonic()
         await enter_value(pilot, "vstar", value)
-        took = await wait_until(
+        await wait_until(
             pilot,
             lambda: screen.computations_running == 0,
             STOP_BOUND,
             "the abandoned solve's thread still computing",
         )
+        took = time.monotonic() - edited
         await settle(pilot)
         assert slow.outcomes == ["cancelled"], slow.outcomes
         assert screen.computations_running == 0
@@ -136,7 +168,20 @@ async def test_an_edit_during_a_long_solve_cancels_it(
         # A superseded computation vanishes silently.
         assert "cancelled" not in status, status
         assert "showing the" not in status, status
-        print(f"the abandoned solve ended {took:.3f} s after the edit")
+        print(f"the abandoned solve ended {took:.3f} s after the edit began")
+
+
+async def cancelled_by_escape(pilot: Pilot[None], slow: SlowSolve) -> None:
+    """Sends escape and waits until the computation's thread has ended."""
+    screen = screen_of(pilot.app)
+    count = len(slow.outcomes)
+    deliver(pilot.app, "escape")
+    await wait_until(
+        pilot,
+        lambda: screen.computations_running == 0 and len(slow.outcomes) > count,
+        STOP_BOUND,
+        "the cancelled solve's thread still computing",
+    )
 
 
 @sync
@@ -148,13 +193,7 @@ async def test_escape_cancels_and_says_so_until_r(slow: SlowSolve) -> None:
         before = mp.solve(vstar=0.2, kw=1.0, radius=100.0, load=0.002)
         await start_slow(pilot, slow)
         assert not isinstance(screen.focused, Input)  # enter left the input
-        await pilot.press("escape")
-        await wait_until(
-            pilot,
-            lambda: screen.computations_running == 0,
-            STOP_BOUND,
-            "the cancelled solve's thread still computing",
-        )
+        await cancelled_by_escape(pilot, slow)
         await settle(pilot)
         assert slow.outcomes == ["cancelled"]
         status = status_text(app)
@@ -166,16 +205,14 @@ async def test_escape_cancels_and_says_so_until_r(slow: SlowSolve) -> None:
         await pilot.pause(0.5)
         assert screen.computations_running == 0
         assert slow.outcomes == ["cancelled"]
+        assert status_text(app) == status
         # ... until r: it runs again (and escape stops it again).
-        await pilot.press("r")
-        await wait_until(
-            pilot, lambda: screen.computations_running == 1, START_BOUND, "r"
-        )
+        slow.started.clear()
+        deliver(app, "r")
+        await wait_until(pilot, slow.started.is_set, START_BOUND, "r")
         await pilot.pause(0.3)
-        await pilot.press("escape")
-        await wait_until(
-            pilot, lambda: screen.computations_running == 0, STOP_BOUND, "escape"
-        )
+        assert "solving" in status_text(app)
+        await cancelled_by_escape(pilot, slow)
         await settle(pilot)
         assert slow.outcomes == ["cancelled", "cancelled"]
         assert status_text(app).startswith("cancelled")
@@ -191,62 +228,72 @@ async def test_escape_in_an_input_leaves_it_and_does_not_cancel(
         screen = screen_of(app)
         await start_slow(pilot, slow)
         screen.query_one("#in-kw", Input).focus()
-        await pilot.pause()
-        await pilot.press("escape")  # leaves the input
+        await pilot.pause(0.05)
+        deliver(app, "escape")  # leaves the input
+        await wait_until(
+            pilot,
+            lambda: not isinstance(screen.focused, Input),
+            START_BOUND,
+            "escape leaves the input",
+        )
         await pilot.pause(0.3)
-        assert not isinstance(screen.focused, Input)
         assert screen.computations_running == 1
         assert slow.outcomes == []
-        await pilot.press("escape")  # now outside: cancels
-        await wait_until(
-            pilot, lambda: screen.computations_running == 0, STOP_BOUND, "escape"
-        )
+        await cancelled_by_escape(pilot, slow)  # now outside: cancels
         assert slow.outcomes == ["cancelled"]
 
 
 @sync
 async def test_typing_during_a_long_solve_stays_responsive(slow: SlowSolve) -> None:
+    # Keys sent as a terminal sends them, 0.1 s apart: each shows in the
+    # input at once although a solve runs (the core releases the GIL and its
+    # token is polled without it). The bound is a hang guard. No prefix of
+    # 0.35 is the set on screen (V* 0.2: typing it would make the long
+    # solve moot, and cancel it).
     app = create_app(SceneState(Params()), show_timing=False, cursor_blink=False)
     async with app.run_test(size=SIZE) as pilot:
         await settle(pilot)
         screen = screen_of(app)
-        screen.debounce = 5.0  # the typed value is not solved while typing
-        await start_slow(pilot, slow)
-        box = screen.query_one("#in-kw", Input)
+        await start_slow(pilot, slow)  # (typed values wait for enter)
+        box = screen.query_one("#in-vstar", Input)
         box.focus()
         box.clear()
-        await pilot.pause()
+        await pilot.pause(0.05)
         slowest = 0.0
-        for i, key in enumerate("12.5"):
-            await pilot.press(key)
+        for i, key in enumerate("0.35"):
+            deliver(app, key)
             slowest = max(
                 slowest,
                 await wait_until(
                     pilot, lambda i=i: len(box.value) == i + 1, 2.0, f"key {key!r}"
                 ),
             )
-        assert box.value == "12.5"
+            await pilot.pause(0.1)
+        assert box.value == "0.35"
         assert screen.computations_running == 1  # the long solve still runs
-        await pilot.press("enter")  # kw 12.5 at V* 0.31 supersedes it
+        assert slow.outcomes == []
+        deliver(app, "enter")  # V* 0.35 supersedes it
         await wait_until(
             pilot,
             lambda: slow.outcomes == ["cancelled"],
             STOP_BOUND,
             "the superseded solve",
         )
+        await settle(pilot)
+        expected = mp.solve(vstar=0.35, kw=1.0, radius=100.0, load=0.002)
+        assert_summary_is(app, expected, "V* 0.35 typed during the long solve")
         print(f"slowest key during the solve: {slowest:.3f} s")
 
 
 def test_quitting_during_a_long_solve_stops_it(slow: SlowSolve) -> None:
-    import asyncio
-
     async def main() -> float:
         app = create_app(SceneState(Params()), show_timing=False, cursor_blink=False)
         async with app.run_test(size=SIZE) as pilot:
             await settle(pilot)
             await start_slow(pilot, slow)
             quit_at = time.monotonic()
-            await pilot.press("q")
+            deliver(app, "q")
+            await wait_until(pilot, lambda: not app.is_running, STOP_BOUND, "q")
         return quit_at
 
     quit_at = asyncio.run(main())

@@ -412,8 +412,6 @@ class MainScreen(Screen[None]):
         bar.add_class("-busy")
         token = Cancel()
         self._tokens[request.generation] = token
-        with self._computing_lock:
-            self._computing.add(request.generation)
         worker = self._compute(request, token)
         self._worker_generation[worker] = request.generation
         self.refresh_bindings()  # escape cancels (outside the inputs)
@@ -431,6 +429,8 @@ class MainScreen(Screen[None]):
                 token.cancelled or worker.is_cancelled or self.generation != generation
             )
 
+        with self._computing_lock:
+            self._computing.add(generation)
         try:
             with token:  # every call of the core on this thread checks it
                 result = model.compute(self.cache, request, progress, cancelled)
