@@ -44,7 +44,9 @@ void bind_errors(py::module_& m) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const movingpunch::Interrupted&) {
-      raise_interrupted();  // the signal handler's exception (InterruptGuard)
+      raise_interrupted();  // a token's Cancelled or the signal handler's exception
+    } catch (const CancelledByToken&) {
+      raise_cancelled();  // a token cancelled before the call (InterruptGuard, CancelPoint)
     } catch (const movingpunch::SupercriticalSpeedError& e) {
       py::object cls = errors_module().attr("SupercriticalSpeedError");
       py::object exc = cls(e.what());

@@ -2,6 +2,7 @@
 // wired together by module.cpp.
 #pragma once
 
+#include <atomic>
 #include <memory>
 #include <string>
 #include <tuple>
@@ -20,15 +21,41 @@
 
 namespace movingpunch::bindings {
 
-// The call guard of a long computation (a solve): releases the GIL and, on
-// the main thread, lets Ctrl-C stop it. Every ~50 ms the core's loops
+// A cancellation token (Python: movingpunch.Cancel). cancel() may be called
+// from any thread; computations on a thread the token is bound to (the
+// Python `with token:` block, or a solve's cancel= keyword) stop at their next
+// check and raise movingpunch.errors.Cancelled. A cancelled token stays
+// cancelled. Reading it needs no GIL (an atomic flag).
+class CancelToken {
+ public:
+  void cancel() noexcept { flag_.store(true, std::memory_order_relaxed); }
+  bool cancelled() const noexcept { return flag_.load(std::memory_order_relaxed); }
+
+ private:
+  std::atomic<bool> flag_{false};
+};
+
+// Thrown (at a call's entry, or by CancelToken.check()) when a token bound to
+// this thread is cancelled; the translator (bind_errors) raises Cancelled.
+struct CancelledByToken {};
+
+// The tokens bound to this thread, innermost last (a copy).
+std::vector<std::shared_ptr<CancelToken>> bound_tokens();
+// Whether any token bound to this thread is cancelled.
+bool bound_token_cancelled() noexcept;
+
+// The call guard of a long computation (a solve): releases the GIL and lets
+// it be stopped. On the main thread, every ~50 ms the core's loops
 // (check_interrupt) take the GIL back for PyErr_CheckSignals(); when a
 // Python signal handler raises (KeyboardInterrupt from the default SIGINT
 // handler, or the CLI's own), the computation unwinds with Interrupted and
 // the exception translator (bind_errors) raises that very Python exception.
-// On other threads (the TUI's workers) nothing is installed: Python runs
-// signal handlers on the main thread only, and taking the GIL there would
-// only slow the solve.
+// On every thread the tokens bound to it (CancelToken) are polled too, an
+// atomic read without the GIL: a cancelled one unwinds the computation and
+// the translator raises movingpunch.errors.Cancelled. A token already
+// cancelled stops the call at its entry. On a thread other than the main one
+// with no token bound nothing is polled: Python runs signal handlers on the
+// main thread only, and taking the GIL there would only slow the solve.
 class InterruptGuard {
  public:
   InterruptGuard();
@@ -43,9 +70,27 @@ class InterruptGuard {
 };
 using Interruptible = pybind11::call_guard<InterruptGuard>;
 
+// The call guard of a short computation (a result's pressure, stresses,
+// maps): a cancellation point, then the GIL released. Raises Cancelled at
+// the call's entry when a token bound to this thread is cancelled, so a
+// Python loop over such calls (peaks, maps, sweeps) stops at its next call.
+class CancelPoint {
+ public:
+  CancelPoint();
+  CancelPoint(const CancelPoint&) = delete;
+  CancelPoint& operator=(const CancelPoint&) = delete;
+
+ private:
+  pybind11::gil_scoped_release release_;
+};
+using Released = pybind11::call_guard<CancelPoint>;
+
 // Raises the Python exception that stopped a computation on this thread
-// (KeyboardInterrupt if none was kept). Under the GIL; the translator's part.
+// (Cancelled if a token did, else the signal handler's, else
+// KeyboardInterrupt). Under the GIL; the translator's part.
 void raise_interrupted();
+// Raises movingpunch.errors.Cancelled. Under the GIL.
+void raise_cancelled();
 
 // The stage times of a solve (either solver) as {stage: seconds}.
 inline pybind11::dict stage_dict(const ContactSolution::StageSeconds& t) {
@@ -108,7 +153,7 @@ void bind_result_common(pybind11::class_<T>& cls) {
   namespace py = pybind11;
   using namespace pybind11::literals;
   using VectorRef = Eigen::Ref<const Eigen::VectorXd>;
-  using Release = py::call_guard<py::gil_scoped_release>;
+  using Release = Released;  // a cancellation point (CancelPoint)
   cls.def_property_readonly("critical_vstar", &T::critical_vstar,
                             "Critical speed V*_cr(kw, nu) of the undamped layer.")
       .def_property_readonly("rayleigh_vstar", &T::rayleigh_vstar, "Rayleigh speed V*_R(nu).")
@@ -183,6 +228,7 @@ void bind_result_common(pybind11::class_<T>& cls) {
 }
 
 void bind_errors(pybind11::module_& m);
+void bind_interrupt(pybind11::module_& m);
 void bind_layer(pybind11::module_& m);
 void bind_contact(pybind11::module_& m);
 void bind_damped(pybind11::module_& m);

@@ -14,6 +14,7 @@ PYBIND11_MODULE(_core, m) {
   m.attr("__version__") = MOVINGPUNCH_VERSION;
 
   movingpunch::bindings::bind_errors(m);
+  movingpunch::bindings::bind_interrupt(m);
   movingpunch::bindings::bind_layer(m);
   movingpunch::bindings::bind_contact(m);
   movingpunch::bindings::bind_damped(m);

@@ -13,6 +13,7 @@ See README.md for the parameters and docs/theory.md for the method.
 from __future__ import annotations
 
 from movingpunch.errors import (
+    Cancelled,
     ConvergenceError,
     InvalidParameterError,
     MovingPunchError,
@@ -30,6 +31,7 @@ except ImportError as exc:  # pragma: no cover - depends on how it was installed
         "`pip install .` from the repository or see README"
     ) from exc
 
+from movingpunch.cancel import Cancel
 from movingpunch.contract import ContactSolution
 from movingpunch.damped import DampedSolution
 from movingpunch.fields import StressField, StressPeaks
@@ -65,6 +67,8 @@ def __getattr__(name: str) -> str:
 
 __all__ = [
     "PRESETS",
+    "Cancel",
+    "Cancelled",
     "ContactSolution",
     "ConvergenceError",
     "Cylinder",

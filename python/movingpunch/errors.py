@@ -8,6 +8,7 @@ import ``_core``.
 from __future__ import annotations
 
 __all__ = [
+    "Cancelled",
     "ClusterError",
     "ConvergenceError",
     "InvalidParameterError",
@@ -109,6 +110,19 @@ class UnphysicalContactError(MovingPunchError, ValueError):
 
 class ConvergenceError(MovingPunchError, RuntimeError):
     """An iteration did not meet its tolerance within its budget."""
+
+
+class Cancelled(Exception):
+    """A computation was stopped by its cancellation token
+    (``movingpunch.Cancel``): the caller asked for it, nothing failed.
+
+    Deliberately not a MovingPunchError: code that handles a failed solve
+    (``except MovingPunchError``: the zone search's retries, a sweep point
+    recorded as failed, a scene's per-point errors) must not take a
+    cancellation for a failure and carry on, so it unwinds to the caller that
+    holds the token. Not a BaseException either (unlike KeyboardInterrupt):
+    it is a normal outcome of a request, caught with ``except Cancelled``.
+    """
 
 
 class OutputError(MovingPunchError, OSError):

@@ -40,6 +40,7 @@ from movingpunch._evaluate import (
     _pointwise,
 )
 from movingpunch._evaluations import ResultFields
+from movingpunch.cancel import Cancel, cancellable
 from movingpunch.errors import (
     ConvergenceError,
     InvalidParameterError,
@@ -229,6 +230,7 @@ def solve(
     profile: PunchProfile | None = ...,
     friction: Literal[0] = ...,
     contact: Literal["single"],
+    cancel: Cancel | None = ...,
 ) -> Solution: ...
 
 
@@ -248,9 +250,11 @@ def solve(
     profile: PunchProfile | None = ...,
     friction: float = ...,
     contact: str = ...,
+    cancel: Cancel | None = ...,
 ) -> ContactSolution: ...
 
 
+@cancellable
 def solve(
     *,
     vstar: float,
@@ -266,6 +270,7 @@ def solve(
     profile: PunchProfile | None = None,
     friction: float = 0.0,
     contact: str = "auto",
+    cancel: Cancel | None = None,
 ) -> ContactSolution:
     """Solves the contact problem of a rigid punch sliding over the layer.
 
@@ -331,6 +336,13 @@ def solve(
     ``allow_unphysical=True`` the single contact comes back as it is,
     flagged ``valid=False``, without the search. Several zones need a
     frictionless punch with bounded ends (not a flat punch).
+
+    ``cancel`` is a ``movingpunch.Cancel`` token (None: none): its
+    ``cancel()``, from any thread, stops the solve, which raises
+    ``movingpunch.Cancelled`` within about 50 ms (``movingpunch.cancel``).
+    The token is bound to this thread for the call; it does not follow the
+    result (a lazy property computed later, e.g. ``stress_error_estimate``,
+    runs unbound: compute it inside ``with token:`` to make it cancellable).
     """
     from movingpunch.damped import check_damping, check_friction, solve_damped
 
@@ -700,6 +712,7 @@ def layer_response(
     return m1.reshape(points.shape), m2.reshape(points.shape)
 
 
+@cancellable
 def solve_punches(
     punches: Sequence[Punch],
     *,
@@ -711,6 +724,7 @@ def solve_punches(
     friction: float = 0.0,
     tol: float | str = 1e-8,
     n: int | None = None,
+    cancel: Cancel | None = None,
 ) -> ContactSolution:
     """Solves a train of rigid punches moving together at one speed
     (``Punch(profile, load, at=x0)`` each; positions x/h of their axes in the
@@ -726,6 +740,8 @@ def solve_punches(
     8 to 256). Raises InvalidParameterError (naming the parameter: a punch's
     index in ``punches[k]``), SupercriticalSpeedError,
     UnphysicalContactError (no contact set found) and ConvergenceError.
+    ``cancel``: a ``movingpunch.Cancel`` token, as ``movingpunch.solve``'s
+    (the search for each contact set stops at its next solve).
     """
     from movingpunch.damped import check_damping, check_friction
 

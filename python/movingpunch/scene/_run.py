@@ -15,6 +15,7 @@ import time
 from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
+from movingpunch.cancel import check_cancelled
 from movingpunch.errors import MovingPunchError
 from movingpunch.scene._executors import DaskEvents, dask_map, pool_map
 from movingpunch.scene._model import SceneData
@@ -127,6 +128,7 @@ def _run_sweep(
         return split_chunks(plan, chunk_target(plan, n, lo, hi))
 
     def consume(chunk: Chunk, outs: Sequence[Mapping[str, Any]]) -> None:
+        check_cancelled()  # a cancelled run stops the pool (movingpunch.cancel)
         for (_, keys), out in zip(chunk, outs, strict=True):
             run.stages.merge(out["stages"])
             for key, res in zip(keys, out["results"], strict=True):

@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from movingpunch.cancel import Cancel, bound
 from movingpunch.errors import SceneError
 from movingpunch.outputs import atomic_write
 from movingpunch.profiles import PunchProfile
@@ -138,6 +139,7 @@ class Scene:
         dask: str | None = None,
         dask_timeout: float | None = None,
         on_dask: Callable[[str, float], None] | None = None,
+        cancel: Cancel | None = None,
     ) -> SceneResult:
         """Computes what the scene asks for, and only that.
 
@@ -146,7 +148,10 @@ class Scene:
         on instead; ``dask_timeout``: seconds any wait on it may last
         (default ``DASK_CONNECT_TIMEOUT``, 20); ``on_dask(event, value)``
         hears ``("connecting", timeout)`` and ``("connected", workers)``.
-        ``progress(done, total)`` is called as solves finish.
+        ``progress(done, total)`` is called as solves finish. ``cancel``: a
+        ``movingpunch.Cancel`` token whose ``cancel()`` stops the run with
+        ``movingpunch.Cancelled`` (a sweep on worker processes between
+        chunks, its pool shut down).
         """
         if dask_timeout is not None and not (
             isinstance(dask_timeout, (int, float))
@@ -156,14 +161,15 @@ class Scene:
             raise ValueError(
                 f"dask_timeout must be a number of seconds > 0, got {dask_timeout!r}"
             )
-        record = run_scene(
-            self,
-            jobs=jobs,
-            progress=progress,
-            dask=dask,
-            dask_timeout=dask_timeout,
-            on_dask=on_dask,
-        )
+        with bound(cancel):
+            record = run_scene(
+                self,
+                jobs=jobs,
+                progress=progress,
+                dask=dask,
+                dask_timeout=dask_timeout,
+                on_dask=on_dask,
+            )
         return SceneResult(scene=self, **vars(record))
 
     # -- derived ------------------------------------------------------------

@@ -13,7 +13,15 @@ it. The gauge (V*_cr, V*_R) follows the inputs shown: it needs no solve.
 
 Every computation runs in one exclusive thread worker; each request carries
 a generation number and a result (or error) from an older generation is
-dropped, so a stale result never overwrites a newer one.
+dropped, so a stale result never overwrites a newer one. Each worker has its
+own cancellation token (``movingpunch.Cancel``), bound to its thread: a newer
+request, a shown result that makes it moot, or quitting cancels it and the
+solve stops within about 50 ms (it vanishes silently: nothing of it is
+shown), so an abandoned near-critical solve does not go on burning a core
+while the next one waits. Escape outside the inputs cancels the computation
+in flight on the user's request: the status says "cancelled" (with the
+values the screen shows instead) and the inputs are not solved again until
+they change, ``r`` or enter.
 
 Typing is debounced: a valid value is solved once the user pauses for
 ``DEBOUNCE_SECONDS`` (or presses enter), and a value still being typed
@@ -24,6 +32,7 @@ screen keeps the last result the user saw.
 
 from __future__ import annotations
 
+import threading
 import time
 from dataclasses import replace
 from typing import ClassVar
@@ -47,7 +56,9 @@ from textual.widgets import (
 from textual.worker import Worker, WorkerState, get_current_worker
 
 from movingpunch._display import drag_scale, shown
+from movingpunch.cancel import Cancel
 from movingpunch.errors import (
+    Cancelled,
     ConvergenceError,
     InvalidParameterError,
     MovingPunchError,
@@ -152,6 +163,7 @@ class MainScreen(Screen[None]):
         Binding(FULL_TEXT_KEY, "all_messages", "All", show=False),
         Binding("q", "quit", "Quit"),
         Binding("escape", "leave_input", "Leave input", key_display="esc"),
+        Binding("escape", "cancel", "Cancel", key_display="esc"),
         Binding("i", "edit", "Edit the inputs", show=False),
         Binding("m", "toggle_quantity", "σx/VM", show=False),
         Binding("w", "toggle_sweep", "Sweep R/P", show=False),
@@ -224,6 +236,16 @@ class MainScreen(Screen[None]):
         the one before (another tab, a pin) not counted (for tests)."""
         self._last_file = "scene.toml"
         """What Open and Save suggest: the last scene file saved or opened."""
+        self._tokens: dict[int, Cancel] = {}
+        """The cancellation token of each computation started and not yet
+        cancelled, by generation (cancelled when superseded)."""
+        self._cancelled: Request | None = None
+        """The request the user cancelled (escape): not solved again until
+        the inputs change, ``r`` or enter."""
+        self._computing_lock = threading.Lock()
+        self._computing: set[int] = set()
+        """Generations whose worker thread is still computing (a cancelled
+        one leaves within about 50 ms; for tests and quitting)."""
 
     # -- layout -------------------------------------------------------------
 
@@ -335,7 +357,8 @@ class MainScreen(Screen[None]):
             return True
         shown = self.results.get(wanted.tab)
         if shown is None or _key(shown.request) != wanted:
-            return False
+            # The user cancelled it: solved again on r, enter or a change.
+            return self._cancelled == wanted
         if self._in_flight is not None:
             self._drop_in_flight()
         if self.result is not shown or self._failed or self._status_error:
@@ -343,8 +366,9 @@ class MainScreen(Screen[None]):
         return True
 
     def _drop_in_flight(self) -> None:
-        """A newer generation: the running worker stops at its next check
-        (``cancelled()``) and its result, if any, is dropped."""
+        """A newer generation: the running worker's token is cancelled (its
+        solve stops within about 50 ms) and its result, if any, is dropped."""
+        self._cancel_all()
         self.generation += 1
         self._in_flight = None
         self.query_one("#progress", ProgressBar).remove_class("-busy")
@@ -359,7 +383,22 @@ class MainScreen(Screen[None]):
             self._start(wanted)
         self._update_status()
 
+    def _cancel_all(self) -> None:
+        """Cancels every computation started (a superseded one vanishes:
+        its worker drops what it computed)."""
+        for token in self._tokens.values():
+            token.cancel()
+        self._tokens.clear()
+
+    @property
+    def computations_running(self) -> int:
+        """Worker threads still computing, cancelled ones included."""
+        with self._computing_lock:
+            return len(self._computing)
+
     def _start(self, wanted: Request) -> None:
+        self._cancel_all()  # superseded: the older computation stops
+        self._cancelled = None
         self.generation += 1
         self._in_flight = wanted
         self._failed = None  # an error shown is of an older request now
@@ -371,11 +410,14 @@ class MainScreen(Screen[None]):
         bar = self.query_one("#progress", ProgressBar)
         bar.update(total=None, progress=0)
         bar.add_class("-busy")
-        worker = self._compute(request)
+        token = Cancel()
+        self._tokens[request.generation] = token
+        worker = self._compute(request, token)
         self._worker_generation[worker] = request.generation
+        self.refresh_bindings()  # escape cancels (outside the inputs)
 
     @work(thread=True, exclusive=True, exit_on_error=False, group="compute")
-    def _compute(self, request: Request) -> None:
+    def _compute(self, request: Request, token: Cancel) -> None:
         worker = get_current_worker()
         generation = request.generation
 
@@ -383,9 +425,20 @@ class MainScreen(Screen[None]):
             self.post_message(Progressed(generation, done, total))
 
         def cancelled() -> bool:
-            return worker.is_cancelled or self.generation != generation
+            return (
+                token.cancelled or worker.is_cancelled or self.generation != generation
+            )
 
-        result = model.compute(self.cache, request, progress, cancelled)
+        with self._computing_lock:
+            self._computing.add(generation)
+        try:
+            with token:  # every call of the core on this thread checks it
+                result = model.compute(self.cache, request, progress, cancelled)
+        except Cancelled:
+            return  # superseded, escape or quit: nothing of it is shown
+        finally:
+            with self._computing_lock:
+                self._computing.discard(generation)
         if result is not None:
             self.post_message(Computed(result))
 
@@ -403,7 +456,9 @@ class MainScreen(Screen[None]):
             return  # stale: a newer request is running or done
         started = self._changed_at.pop(generation, None)
         self._in_flight = None
+        self._tokens.pop(generation, None)
         self._display(result)
+        self.refresh_bindings()
         if started is not None:
             self.redraw_seconds.append(time.perf_counter() - started)
 
@@ -463,6 +518,7 @@ class MainScreen(Screen[None]):
             return
         failed = self._in_flight
         self._in_flight = None
+        self.refresh_bindings()
         self.query_one("#progress", ProgressBar).remove_class("-busy")
         if event.state == WorkerState.ERROR:
             self._failed = (failed, worker.error)
@@ -659,6 +715,8 @@ class MainScreen(Screen[None]):
             text.append(f"invalid {names}", "bold yellow")
         elif self._failed is not None and self._failed[0] == wanted:
             text.append(self._status_error, "bold red")
+        elif self._cancelled is not None and self._cancelled == wanted:
+            text.append("cancelled (r computes)", "bold yellow")
         elif self._typing:
             names = ", ".join(LABELS[n] for n in INPUTS if n in self._typing)
             text.append(f"typing {names}", "dim")
@@ -777,6 +835,7 @@ class MainScreen(Screen[None]):
     def on_input_submitted(self, event: Input.Submitted) -> None:
         if (event.input.id or "").startswith("in-"):
             event.stop()
+            self._cancelled = None  # enter solves what is shown
             self._finish_typing(event.input)
             if self.focused is event.input:
                 # (not if keys after enter moved the focus on already: a
@@ -802,6 +861,8 @@ class MainScreen(Screen[None]):
         if action == "leave_input":
             # Shown in the footer (and active) only while an input has focus.
             return isinstance(self.focused, Input)
+        if action == "cancel":  # escape outside the inputs, while computing
+            return self._in_flight is not None and not isinstance(self.focused, Input)
         if action == "messages":  # shown while a message is shortened
             return any(m.shortened for m in self.query(MessageLine))
         return True
@@ -813,10 +874,23 @@ class MainScreen(Screen[None]):
     def action_leave_input(self) -> None:
         self.set_focus(self.query_one("#tabs", TabbedContent).query_one(Tabs))
 
+    def action_cancel(self) -> None:
+        """Escape while computing: the user's cancel. The computation stops
+        (its token) and the status says so; the inputs are not solved again
+        until they change, ``r`` or enter."""
+        if self._in_flight is None:
+            return
+        self._cancelled = self._in_flight
+        self._drop_in_flight()
+        self.refresh_bindings()
+        self._reconcile(soon=False)
+        self._sync_plot()
+
     def action_edit(self) -> None:
         self.set_focus(self.query_one("#in-vstar", Input))
 
     def action_recompute(self) -> None:
+        self._cancelled = None
         self.cache.clear()
         self.request()
 
@@ -891,7 +965,11 @@ class MainScreen(Screen[None]):
     action_all_messages = action_messages
 
     def action_quit(self) -> None:
+        self._cancel_all()  # the process ends without waiting for a solve
         self.app.exit()
+
+    def on_unmount(self) -> None:
+        self._cancel_all()
 
     def action_figure(self, name: str) -> None:
         try:  # the bundled scene, never a file of that name in the cwd
