@@ -387,6 +387,12 @@ class ZonedSolution(ResultFields):
 # The search for the contact set
 
 
+_FIRST_N = 24
+"""The first size of every zone solve's ladder (the search's second pass, a
+train's start): at N = 8 a stiff foundation's short kernel is unresolved, and
+Newton's method there once wandered for minutes before it stalled."""
+
+
 @dataclass
 class _Layer:
     vstar: float
@@ -396,8 +402,8 @@ class _Layer:
     kp: float
     tol: float
     n: int
-    first_n: int = 24
-    """The ladder's first size (8 from a train's close start)."""
+    first_n: int = _FIRST_N
+    """The ladder's first size."""
 
 
 def _solve_topology(
@@ -609,11 +615,9 @@ def find_contact_set(
     topologies at the fixed size ``_SEARCH_N`` (a topology whose zones
     nearly merge would otherwise climb the ladder to its largest size only
     to be rejected), then solves the set it found on the ladder from its
-    own ends (from N = 24: at N = 8 a stiff foundation's short kernel is
-    unresolved, and Newton's method there once wandered for minutes before
-    it stalled) and checks it again; when the first pass finds nothing, or its
-    set fails on the ladder, the search runs on the ladder. ``builds``
-    (optional) collects the kernel tables each solve built."""
+    own ends (from ``_FIRST_N``) and checks it again; when the first pass
+    finds nothing, or its set fails on the ladder, the search runs on the
+    ladder. ``builds`` (optional) collects the kernel tables each solve built."""
     if layer.n != 0 or len(punches) > 1:  # a train starts close: the ladder
         return _search(layer, punches, start, mirror, builds)
     try:
@@ -625,7 +629,7 @@ def find_contact_set(
     zones = [(int(q.punch), float(q.left), float(q.right)) for q in rough.zones]
     try:
         z = _solve_topology(
-            dataclasses.replace(layer, first_n=24), punches, zones, builds
+            dataclasses.replace(layer, first_n=_FIRST_N), punches, zones, builds
         )
     except ConvergenceError:
         return _search(layer, punches, start, mirror, builds)
@@ -848,7 +852,7 @@ def solve_train(
     (``time.perf_counter``). Raises InvalidParameterError naming ``punches``
     when the punches' own contacts overlap."""
     first = singles[0]
-    layer = _Layer(first.vstar, first.kw, first.nu, damping, first.kp, tol, n, 8)
+    layer = _Layer(first.vstar, first.kw, first.nu, damping, first.kp, tol, n)
     for k, (p, s) in enumerate(zip(punches, singles, strict=True)):
         _check_position(k, p.at, s)
     start: list[tuple[int, float, float]] = []
@@ -884,12 +888,11 @@ def solve_train(
             allowed="punches whose contacts do not overlap",
         )
 
-    if overlap is not None:
-        layer.first_n = 24  # a rough start: Newton's method on the finer system
-        if any(b <= a for _, a, b in start) or any(
-            all(t[0] != k for t in start) for k in range(len(punches))
-        ):
-            raise too_close("a punch would have no zone")
+    no_zone = any(b <= a for _, a, b in start) or any(
+        all(t[0] != k for t in start) for k in range(len(punches))
+    )
+    if overlap is not None and no_zone:
+        raise too_close("a punch would have no zone")
     t1 = time.perf_counter()
     builds: list[int] = []
     try:

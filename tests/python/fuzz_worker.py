@@ -24,6 +24,7 @@ and kills it when a call exceeds its time bound.
 
 from __future__ import annotations
 
+import itertools
 import math
 import multiprocessing
 import traceback
@@ -41,8 +42,12 @@ ROUNDOFF = 1e-10
 
 
 def _warned(sol: Any) -> bool:
-    text = " ".join(str(w) for w in getattr(sol, "warnings", ()))
-    return "not met" in text or "not resolved" in text
+    """The result names something it does not meet (every warning of the
+    solvers says that a tol, an estimate or a sign is not met: the zone
+    solver's "exceeds tol" and "did not converge at N" too)."""
+    from movingpunch.solver import result_warnings
+
+    return bool(result_warnings(sol))
 
 
 def _load(sol: Any, lo: float, hi: float) -> float:
@@ -85,11 +90,31 @@ def _reference(kind: str, args: dict[str, Any]) -> Any:
 
     tol = float(args.get("tol", 1e-8))
     ref_tol = max(REFERENCE_TOL, min(1e-8, 1e-3 * tol))
-    ref_args = {**args, "tol": ref_tol, "n": None, "allow_unphysical": True}
+    # the same contact mode (a separated contact's reference separates too)
+    ref_args = {**args, "tol": ref_tol, "n": None}
     if kind == "punches":
-        ref_args.pop("allow_unphysical")
         return mp.solve_punches(**ref_args)
     return mp.solve(**ref_args)
+
+
+def _surface_points(
+    zones: list[tuple[float, float]],
+) -> tuple[np.ndarray, np.ndarray]:
+    """Points on the contact (41 in each zone, clear of its ends) and beside
+    it (in every gap between zones and out to twice the hull's half-width on
+    either side): the surface must follow the punch on every zone, and
+    clear it between and beside the zones."""
+    theta = np.linspace(0.05, math.pi - 0.05, 41)
+    inside = np.concatenate(
+        [0.5 * (lo + hi) + 0.5 * (hi - lo) * np.cos(theta) for lo, hi in zones]
+    )
+    lo, hi = zones[0][0], zones[-1][1]
+    w = 0.5 * (hi - lo)
+    q = np.linspace(0.05, 1.0, 24)
+    g = np.linspace(0.0, 1.0, 26)[1:-1]
+    beside = [lo - 2 * w * q * q, hi + 2 * w * q * q]
+    beside += [r + (left - r) * g for (_, r), (left, _) in itertools.pairwise(zones)]
+    return inside, np.concatenate(beside)
 
 
 def checks(kind: str, args: dict[str, Any], sol: Any) -> list[str]:
@@ -136,20 +161,18 @@ def checks(kind: str, args: dict[str, Any], sol: Any) -> list[str]:
     # the gap (single punches: one indentation)
     if kind == "solve" and not flat:
         lo, hi = zones[0][0], zones[-1][1]
-        c, w = 0.5 * (lo + hi), 0.5 * (hi - lo)
+        w = 0.5 * (hi - lo)
         delta = float(sol.indentation)
         scale = max(abs(delta), float(np.max(np.abs(_height(sol, np.array([lo, hi]))))))
         rel = float(sol.error_estimate) / w if math.isfinite(sol.error_estimate) else 0
         slack = max(FLOOR, 10.0 * rel) * scale
-        q = np.linspace(0.05, 1.0, 24)
-        outside = np.concatenate([lo - 2 * w * q * q, hi + 2 * w * q * q])
+        inside, outside = _surface_points(zones)
         table = getattr(sol.profile, "x", None)
         if table is not None:  # beyond a table: no punch there
             outside = outside[(outside >= table[0]) & (outside <= table[-1])]
         gap = -delta + _height(sol, outside) - sol.surface_displacement(outside)
         if trusted and outside.size and float(np.min(gap)) < -slack:
             fails.append(f"penetration beside the contact: min gap {np.min(gap)!r}")
-        inside = c + w * np.cos(np.linspace(0.05, math.pi - 0.05, 41))
         on = -delta + _height(sol, inside) - sol.surface_displacement(inside)
         if trusted and float(np.max(np.abs(on))) > max(1e-3 * scale, slack):
             fails.append(
