@@ -69,9 +69,11 @@ def test_stiff_cases_stalled_above_1e_10_now_converge(args: dict[str, Any]) -> N
 # One first size
 
 
-def test_a_train_starts_its_ladder_where_every_zone_solve_does(
+def test_a_train_starts_its_ladder_from_its_punches_own_contacts_at_8(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
+    # A train from its punches' own contacts starts close: N = 8 (from 24 a
+    # two-punch train cost twice as much); a rough start uses _FIRST_N.
     seen: list[int] = []
     solve_zones = Z._core.solve_zones
 
@@ -87,7 +89,8 @@ def test_a_train_starts_its_ladder_where_every_zone_solve_does(
     )
     assert s.valid
     assert seen, "no zone solve"
-    assert set(seen) == {Z._FIRST_N}, seen
+    assert set(seen) == {Z._TRAIN_FIRST_N}, seen
+    assert Z._TRAIN_FIRST_N < Z._FIRST_N
 
 
 # ---------------------------------------------------------------------------
