@@ -1368,6 +1368,19 @@ DampedSolution solve_damped(const DampedParams& prm) {
     if (frictional) js_prev = js;
     have_prev = true;
   }
+  if (d_ends.empty()) {  // a single size (n = 2) or every smaller size failed
+    est_e.estimate = std::numeric_limits<double>::infinity();
+    est_p.estimate = std::numeric_limits<double>::infinity();
+  } else if (prm.n > 0 && d_ends.size() == 1) {
+    // A fixed n with one change (n = 4 after n = 2): the change is about the
+    // previous size's error, and with no rate to read this size's can exceed
+    // it (1.03 times it with friction, found by the fuzz): twice it.
+    est_e.estimate = std::max(est_e.estimate, 2.0 * d_ends.back() + floor_e);
+    est_p.estimate = std::max(est_p.estimate, 2.0 * d_p.back() + floor_p);
+  }
+  // The pressure's estimate from the coarser sizes: the stress estimate's
+  // gain is read from their change (below), and is applied to it.
+  const double p_coarse = est_p.estimate;
   if (prm.n > 0 && prm.n <= kFixedFinerMax) {
     // A fixed small N: its error read from finer sizes, not from coarser
     // ones (N = 4, 6 after 2: the changes of an unresolved start can shrink
@@ -1406,15 +1419,6 @@ DampedSolution solve_damped(const DampedParams& prm) {
     });
     est_e.estimate = fe.v + floor_e;
     est_p.estimate = fe.p + floor_p;
-  } else if (d_ends.empty()) {  // a single size (n = 2) or every smaller size failed
-    est_e.estimate = std::numeric_limits<double>::infinity();
-    est_p.estimate = std::numeric_limits<double>::infinity();
-  } else if (prm.n > 0 && d_ends.size() == 1) {
-    // A fixed n with one change (n = 4 after n = 2): the change is about the
-    // previous size's error, and with no rate to read this size's can exceed
-    // it (1.03 times it with friction, found by the fuzz): twice it.
-    est_e.estimate = std::max(est_e.estimate, 2.0 * d_ends.back() + floor_e);
-    est_p.estimate = std::max(est_p.estimate, 2.0 * d_p.back() + floor_p);
   }
   if (prm.n == 0 && !converged && !stalled && est_e.estimate > prm.tol * (ws.w + std::fabs(ws.c))) {
     std::ostringstream est;
@@ -1651,7 +1655,8 @@ DampedSolution solve_damped(const DampedParams& prm) {
     // The end's cusp p ~ d^gamma (gamma = 1/2 without friction).
     const double gmin = std::min(s.exps_.back, s.exps_.front);
     const double ends = s.max_p_ * (s.err_ / s.half_) * (1.0 + std::pow(2e-3, gmin - 1.0));
-    s.serr_ = gain * (s.perr_ + ends) + 64.0 * kEps * (std::fabs(phi2) * s.max_p_ + sabs / kPi);
+    const double p_est = std::max(s.perr_, p_coarse + s.trunc_);
+    s.serr_ = gain * (p_est + ends) + 64.0 * kEps * (std::fabs(phi2) * s.max_p_ + sabs / kPi);
   }
 
   // Gauss-Chebyshev (U) nodes and weights times g for surface_slope (friction:

@@ -164,6 +164,12 @@ DampedSolution solve_damped_flat(const DampedParams& prm) {
       }
     }
   }
+  // g's estimate from the coarser sizes: the stress estimate's gain is read
+  // from their change (below), and is applied to it.
+  const double g_coarse = d_g.empty() ? kInf
+                                      : (prm.n > 0 && d_g.size() == 1
+                                             ? std::max(est_g.estimate, 2.0 * d_g.back() + floor_g)
+                                             : est_g.estimate);
   if (prm.n > 0 && prm.n <= kFixedFinerMax && n_done == prm.n) {
     // A fixed small N: its error from finer sizes (fixed_size_error,
     // damped.hpp), on the end coefficients and on g.
@@ -323,7 +329,8 @@ DampedSolution solve_damped_flat(const DampedParams& prm) {
     for (std::size_t i = 0; i < f.alpha.size(); ++i)
       sabs += f.weight[i] * std::abs(s.surface_stress_integrand(f.r[i], f.alpha[i])) *
               std::abs(f.phat[i]);
-    s.serr_ = gain * s.perr_ + 64.0 * kEps * (std::fabs(phi2) * pin + sabs / kPi);
+    s.serr_ =
+        gain * std::max(s.perr_, g_coarse) + 64.0 * kEps * (std::fabs(phi2) * pin + sabs / kPi);
   }
 
   // Gauss-Jacobi nodes and weights times g for surface_slope.
