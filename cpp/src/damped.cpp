@@ -537,6 +537,7 @@ RefinementEstimate refinement_estimate(const std::vector<int>& sizes,
     return r;
   }
   const double dp = changes[m - 2];
+  r.unconfirmed = m == 2 && d < 1e-3 * dp;
   double q = 1.0;
   if (dp > 0.0 && d < dp) {
     const double steps = static_cast<double>(sizes[m] - sizes[m - 1]) /
@@ -551,6 +552,7 @@ RefinementEstimate refinement_estimate(const std::vector<int>& sizes,
 
 LadderStop ladder_stop(double tol, const RefinementEstimate& a, double last_a, double scale_a,
                        const RefinementEstimate& b, double last_b, double scale_b) {
+  if ((a.unconfirmed && !a.at_floor) || (b.unconfirmed && !b.at_floor)) return LadderStop::go_on;
   const bool ok_a = a.estimate <= tol * scale_a;
   const bool ok_b = b.estimate <= tol * scale_b;
   if (ok_a && ok_b) return LadderStop::converged;
@@ -1254,19 +1256,55 @@ DampedSolution solve_damped(const DampedParams& prm) {
   // table's (the pieces' tails and values' round-off: a round-off part).
   const double qerr = kern->quadrature().kronrod_error;
   const double terr = kern->table_error();
+  // One size's width solve from a width guess (a profile's centre from the
+  // last one found).
+  auto width_at = [&](const ChebyshevNodes& nds, double from) {
+    if (cylinder)
+      return solve_width(nds.n, lambda, from, 0.0, detail::kMaxA,
+                         [&](double w) { return eval_width(nds, w, kernel(2.0 * w), phi1); });
+    return solve_width(nds.n, lambda, from, w0, wmax, [&](double w) {
+      WidthEval e = eval_width_profile(nds, w, kernel(2.0 * w), phi1, proj, prof, c_last);
+      if (std::isfinite(e.lambda)) c_last = e.centre;
+      return e;
+    });
+  };
+  // g's series at a size: its U-coefficients, or with friction its Jacobi
+  // series (jso; a profile's extended by the half-plane tail); pm the
+  // largest |p|/(P/h) (a profile's bounded on its head, as the stopping
+  // rule's scale).
+  auto series_at = [&](const ChebyshevNodes& nds, const WidthSolve& wsz, JacobiSeries& jso,
+                       double& pm) {
+    Eigen::VectorXd b;
+    if (frictional) {
+      jso = JacobiSeries::from_nodes(s.exps_.front, nds.r, wsz.g);
+      if (!cylinder) {
+        Eigen::VectorXd ext = jso.coefficients();
+        extend_tail(ext, wsz.c, wsz.w);
+        jso = JacobiSeries(s.exps_.front, ext);
+      }
+      b = jso.coefficients();
+      pm = cylinder ? jso.max_abs_density() : head_density_max(b, 4 * nds.n + 64);
+    } else {
+      b = u_coefficients(nds, wsz.g);
+      if (!cylinder) extend_tail(b, wsz.c, wsz.w);
+      pm = cylinder ? max_abs_sine_series(b) : head_sine_max(b, 4 * nds.n + 64);
+    }
+    return b;
+  };
+  // The largest difference of p/(P/h) between two sizes' series (a
+  // profile's on the first `head` terms: both tails are the half-plane's).
+  auto p_change = [&](const Eigen::VectorXd& b1, const Eigen::VectorXd& b2, const JacobiSeries& j1,
+                      const JacobiSeries& j2, int head) {
+    Eigen::VectorXd diff = Eigen::VectorXd::Zero(std::max(b1.size(), b2.size()));
+    diff.head(b1.size()) += b1;
+    diff.head(b2.size()) -= b2;
+    return cylinder ? (frictional ? j1.minus(j2).max_abs_density() : max_abs_sine_series(diff))
+                    : (frictional ? head_density_max(diff, head) : head_sine_max(diff, head));
+  };
   for (std::size_t k = 0; k < sizes.size(); ++k) {
     nd = nodes_of(sizes[k]);
     try {
-      if (cylinder) {
-        ws = solve_width(nd.n, lambda, guess, 0.0, detail::kMaxA,
-                         [&](double w) { return eval_width(nd, w, kernel(2.0 * w), phi1); });
-      } else {
-        ws = solve_width(nd.n, lambda, guess, w0, wmax, [&](double w) {
-          WidthEval e = eval_width_profile(nd, w, kernel(2.0 * w), phi1, proj, prof, c_last);
-          if (std::isfinite(e.lambda)) c_last = e.centre;
-          return e;
-        });
-      }
+      ws = width_at(nd, guess);
     } catch (const ConvergenceError& e) {
       // Under-resolved at this N (a non-monotone or non-positive discrete
       // load curve): refine N, unless this was the last size.
@@ -1297,20 +1335,7 @@ DampedSolution solve_damped(const DampedParams& prm) {
     }
     s.iterations_ += ws.evaluations;
     guess = ws.w;
-    if (frictional) {
-      js = JacobiSeries::from_nodes(s.exps_.front, nd.r, ws.g);
-      if (!cylinder) {
-        Eigen::VectorXd ext = js.coefficients();
-        extend_tail(ext, ws.c, ws.w);
-        js = JacobiSeries(s.exps_.front, ext);
-      }
-      bk = js.coefficients();
-      pmax = cylinder ? js.max_abs_density() : head_density_max(bk, 4 * nd.n + 64);
-    } else {
-      bk = u_coefficients(nd, ws.g);
-      if (!cylinder) extend_tail(bk, ws.c, ws.w);
-      pmax = cylinder ? max_abs_sine_series(bk) : head_sine_max(bk, 4 * nd.n + 64);
-    }
+    bk = series_at(nd, ws, js, pmax);
     const double scale_e = ws.w + std::fabs(ws.c);
     // Round-off floors: a few hundred eps of the scale (growing slowly with
     // N: the collocation matrix's condition), plus the kernel quadrature's
@@ -1319,14 +1344,8 @@ DampedSolution solve_damped(const DampedParams& prm) {
     floor_p = (512.0 * kEps * (1.0 + nd.n / 64.0) + 4.0 * (qerr + terr) * ws.w) * pmax;
     done_n.push_back(nd.n);
     if (have_prev) {
-      Eigen::VectorXd diff = Eigen::VectorXd::Zero(std::max(bk.size(), b_prev.size()));
-      diff.head(bk.size()) += bk;
-      diff.head(b_prev.size()) -= b_prev;
       d_ends.push_back(std::fabs(ws.w - w_prev) + std::fabs(ws.c - c_prev));
-      d_p.push_back(
-          cylinder ? (frictional ? js.minus(js_prev).max_abs_density() : max_abs_sine_series(diff))
-                   : (frictional ? head_density_max(diff, 4 * nd.n + 64)
-                                 : head_sine_max(diff, 4 * nd.n + 64)));
+      d_p.push_back(p_change(bk, b_prev, js, js_prev, 4 * nd.n + 64));
       est_e = refinement_estimate(done_n, d_ends, floor_e);
       est_p = refinement_estimate(done_n, d_p, floor_p);
       if (prm.n == 0 && d_p.size() >= 2) {
@@ -1358,6 +1377,48 @@ DampedSolution solve_damped(const DampedParams& prm) {
     // it (1.03 times it with friction, found by the fuzz): twice it.
     est_e.estimate = std::max(est_e.estimate, 2.0 * d_ends.back() + floor_e);
     est_p.estimate = std::max(est_p.estimate, 2.0 * d_p.back() + floor_p);
+  }
+  // The pressure's estimate from the coarser sizes: the stress estimate's
+  // gain is read from their change (below), and is applied to it.
+  const double p_coarse = est_p.estimate;
+  if (prm.n > 0 && prm.n <= kFixedFinerMax) {
+    // A fixed small N: its error read from finer sizes, not from coarser
+    // ones (N = 4, 6 after 2: the changes of an unresolved start can shrink
+    // faster than the error does; the fuzz found an error 1.07 times the
+    // estimate). References at m = max(2N, 8), doubled up to
+    // kFixedReferenceMax, until their own estimate (refinement_estimate
+    // over the references) is a tenth of the distance from N's result, or
+    // round-off. The estimate is that distance plus twice the reference's
+    // estimate (|v_N - v| <= |v_N - v_ref| + |v_ref - v|); infinite if a
+    // reference has no solution (the result then warns that tol is not met).
+    double r_guess = ws.w, r_w = 0.0, r_c = 0.0;
+    Eigen::VectorXd r_b;
+    JacobiSeries r_j;
+    const FixedError fe = fixed_size_error(prm.n, [&](int m) {
+      const ChebyshevNodes nr = nodes_of(m);
+      const WidthSolve wr = width_at(nr, r_guess);
+      s.iterations_ += wr.evaluations;
+      JacobiSeries jr;
+      double pm_r = 0.0;
+      const Eigen::VectorXd br = series_at(nr, wr, jr, pm_r);
+      const int head = 4 * m + 64;
+      FixedSample out;
+      out.d_n_v = std::fabs(ws.w - wr.w) + std::fabs(ws.c - wr.c);
+      out.d_n_p = p_change(bk, br, js, jr, head);
+      if (r_b.size() > 0) {
+        out.d_v = std::fabs(wr.w - r_w) + std::fabs(wr.c - r_c);
+        out.d_p = p_change(br, r_b, jr, r_j, head);
+      }
+      out.floor_v = 64.0 * kEps * (wr.w + std::fabs(wr.c)) + 4.0 * (qerr + terr) * wr.w * wr.w;
+      out.floor_p = (512.0 * kEps * (1.0 + m / 64.0) + 4.0 * (qerr + terr) * wr.w) * pm_r;
+      r_guess = r_w = wr.w;
+      r_c = wr.c;
+      r_b = br;
+      r_j = jr;
+      return out;
+    });
+    est_e.estimate = fe.v + floor_e;
+    est_p.estimate = fe.p + floor_p;
   }
   if (prm.n == 0 && !converged && !stalled && est_e.estimate > prm.tol * (ws.w + std::fabs(ws.c))) {
     std::ostringstream est;
@@ -1594,7 +1655,8 @@ DampedSolution solve_damped(const DampedParams& prm) {
     // The end's cusp p ~ d^gamma (gamma = 1/2 without friction).
     const double gmin = std::min(s.exps_.back, s.exps_.front);
     const double ends = s.max_p_ * (s.err_ / s.half_) * (1.0 + std::pow(2e-3, gmin - 1.0));
-    s.serr_ = gain * (s.perr_ + ends) + 64.0 * kEps * (std::fabs(phi2) * s.max_p_ + sabs / kPi);
+    const double p_est = std::max(s.perr_, p_coarse + s.trunc_);
+    s.serr_ = gain * (p_est + ends) + 64.0 * kEps * (std::fabs(phi2) * s.max_p_ + sabs / kPi);
   }
 
   // Gauss-Chebyshev (U) nodes and weights times g for surface_slope (friction:

@@ -164,7 +164,45 @@ DampedSolution solve_damped_flat(const DampedParams& prm) {
       }
     }
   }
-  if (d_k.empty()) {
+  // g's estimate from the coarser sizes: the stress estimate's gain is read
+  // from their change (below), and is applied to it.
+  const double g_coarse = d_g.empty() ? kInf
+                                      : (prm.n > 0 && d_g.size() == 1
+                                             ? std::max(est_g.estimate, 2.0 * d_g.back() + floor_g)
+                                             : est_g.estimate);
+  if (prm.n > 0 && prm.n <= kFixedFinerMax && n_done == prm.n) {
+    // A fixed small N: its error from finer sizes (fixed_size_error,
+    // damped.hpp), on the end coefficients and on g.
+    JacobiSeries r_js;
+    double r_kb = 0.0, r_kf = 0.0;
+    bool r_have = false;
+    const FixedError fe = fixed_size_error(prm.n, [&](int m) {
+      const ChebyshevNodes nr = jacobi_flat_nodes(m, al, be);
+      const Eigen::VectorXd gr = flat_nodal_g(nr, w, *kern);
+      ++s.iterations_;
+      if (!gr.allFinite())
+        throw ConvergenceError("damped flat punch: a reference size's system is singular");
+      const JacobiSeries jr = JacobiSeries::from_nodes(al, be, nr.r, gr);
+      const double kbr = kb_scale * jr.g(-1.0), kfr = kf_scale * jr.g(1.0);
+      FixedSample out;
+      out.d_n_v = std::max(std::fabs(kb - kbr), std::fabs(kf - kfr));
+      out.d_n_p = js.minus(jr).max_abs_g();
+      if (r_have) {
+        out.d_v = std::max(std::fabs(kbr - r_kb), std::fabs(kfr - r_kf));
+        out.d_p = jr.minus(r_js).max_abs_g();
+      }
+      const double rel = 64.0 * kEps * m + 4.0 * (qerr + terr) * w;
+      out.floor_v = rel * std::max(std::fabs(kbr), std::fabs(kfr));
+      out.floor_p = rel * jr.max_abs_g();
+      r_js = jr;
+      r_kb = kbr;
+      r_kf = kfr;
+      r_have = true;
+      return out;
+    });
+    est_k.estimate = fe.v + floor_k;
+    est_g.estimate = fe.p + floor_g;
+  } else if (d_k.empty()) {
     est_k.estimate = kInf;
     est_g.estimate = kInf;
   } else if (prm.n > 0 && d_k.size() == 1) {
@@ -291,7 +329,8 @@ DampedSolution solve_damped_flat(const DampedParams& prm) {
     for (std::size_t i = 0; i < f.alpha.size(); ++i)
       sabs += f.weight[i] * std::abs(s.surface_stress_integrand(f.r[i], f.alpha[i])) *
               std::abs(f.phat[i]);
-    s.serr_ = gain * s.perr_ + 64.0 * kEps * (std::fabs(phi2) * pin + sabs / kPi);
+    s.serr_ =
+        gain * std::max(s.perr_, g_coarse) + 64.0 * kEps * (std::fabs(phi2) * pin + sabs / kPi);
   }
 
   // Gauss-Jacobi nodes and weights times g for surface_slope.

@@ -388,6 +388,68 @@ TEST(DampedRefinement, EstimateOfAGeometricSequence) {
   EXPECT_THROW(mp::refinement_estimate({8}, {1.0}, 0.0), std::invalid_argument);
 }
 
+// A single rate reading from a drop of more than 1e3 in one step is not
+// trusted: the ladder goes on (a rounded flat with friction: changes 9.2e-5,
+// 1.05e-8 at N = 12, 16, then an error 1.8e-8 at 16); a third change that
+// keeps the rate confirms it.
+TEST(DampedRefinement, AnUnconfirmedRateGoesOn) {
+  const auto u = mp::refinement_estimate({8, 12, 16}, {9.2e-5, 1.05e-8}, 1e-18);
+  EXPECT_TRUE(u.unconfirmed);
+  EXPECT_LT(u.estimate, 1.8e-8);  // the extrapolation alone would stop here
+  const auto ok = mp::refinement_estimate({8, 12, 16}, {1e-9, 1e-11}, 1e-18);
+  EXPECT_EQ(mp::ladder_stop(1e-3, u, 1.05e-8, 1.0, ok, 1e-11, 1.0), mp::LadderStop::go_on);
+  EXPECT_EQ(mp::ladder_stop(1e-3, ok, 1e-11, 1.0, u, 1.05e-8, 1.0), mp::LadderStop::go_on);
+  // At the round-off floor it is not in the way.
+  const auto f = mp::refinement_estimate({8, 12, 16}, {1e-6, 3e-15}, 1e-15);
+  EXPECT_FALSE(f.unconfirmed);
+  EXPECT_EQ(mp::ladder_stop(1e-3, f, 3e-15, 1.0, f, 3e-15, 1.0), mp::LadderStop::converged);
+  // A geometric rate (ratio 1e-2 per step) is read at once.
+  const auto g = mp::refinement_estimate({8, 12, 16}, {1e-4, 1e-6}, 1e-18);
+  EXPECT_FALSE(g.unconfirmed);
+  // Three changes: the rate is no longer a single reading.
+  const auto t = mp::refinement_estimate({8, 12, 16, 24}, {9.2e-5, 1.05e-8, 1.8e-8}, 1e-18);
+  EXPECT_FALSE(t.unconfirmed);
+  EXPECT_GE(t.estimate, 1.8e-8);
+}
+
+// A fixed N's error from finer references (fixed_size_error) on a synthetic
+// sequence x_m = rho^m: it bounds |x_N| within a small factor, stops once
+// the references' own estimate is small, and is infinite when a reference
+// has no solution.
+TEST(DampedRefinement, FixedSizeErrorFromFinerSizes) {
+  for (double rho : {0.5, 0.8, 0.95}) {
+    for (int n : {2, 4, 6, 16}) {
+      std::vector<int> asked;
+      double prev = 0.0;
+      const mp::FixedError fe = mp::fixed_size_error(n, [&](int m) {
+        asked.push_back(m);
+        mp::FixedSample s;
+        const double x = std::pow(rho, m);
+        s.d_n_v = std::pow(rho, n) - x;
+        s.d_n_p = s.d_n_v;
+        s.d_v = prev - x;
+        s.d_p = s.d_v;
+        s.floor_v = s.floor_p = 1e-300;
+        prev = x;
+        return s;
+      });
+      const double error = std::pow(rho, n);
+      EXPECT_GE(fe.v, error) << rho << " " << n;
+      EXPECT_LE(fe.v, 3.0 * error) << rho << " " << n;
+      EXPECT_GE(fe.p, error);
+      EXPECT_EQ(asked.front(), std::max(2 * n, 8));
+      EXPECT_EQ(fe.ref_n, asked.back());
+      EXPECT_LE(asked.back(), mp::kFixedReferenceMax);
+    }
+  }
+  const mp::FixedError none = mp::fixed_size_error(4, [](int m) -> mp::FixedSample {
+    if (m > 8) throw mp::ConvergenceError("no root");
+    return mp::FixedSample{};
+  });
+  EXPECT_TRUE(std::isinf(none.v));
+  EXPECT_TRUE(std::isinf(none.p));
+}
+
 // Series scans against direct evaluation on a fine grid.
 TEST(DampedRefinement, SeriesScans) {
   Eigen::VectorXd b(5);

@@ -345,10 +345,11 @@ def test_damped_ladder_against_an_independent_reference() -> None:
         assert r.peak_error_bound == peaks.error_bound
         # ... and each estimate honest: bounds and within 100x (or the floor).
         check_honest(s, ind)
-    # N matters here: the loose rungs carry real errors, the tight ones not.
+    # N matters here: the loose rungs carry real errors, the tight ones not
+    # (the ends' error at the loosest rung is round-off since the ladder no
+    # longer stops on a single rate reading; its pressure's, 3e-11, is not).
     first, last = report.rungs[0], report.rungs[-1]
-    assert first.error_a > 1e-13
-    assert first.error_p0 > 1e-9
+    assert first.error_p0 > 1e-12
     assert last.collocation_n > first.collocation_n
     assert last.error_a < 1e-14
 

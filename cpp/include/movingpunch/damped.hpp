@@ -15,7 +15,10 @@
 // (contact.hpp) is the undamped path and is unchanged.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <complex>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -24,6 +27,7 @@
 #include <Eigen/Dense>
 
 #include "movingpunch/contact.hpp"
+#include "movingpunch/errors.hpp"
 #include "movingpunch/jacobi.hpp"
 #include "movingpunch/kernel.hpp"
 #include "movingpunch/layer_response.hpp"
@@ -512,16 +516,76 @@ struct RefinementEstimate {
   double estimate = 0;
   bool at_floor = false;   // the last change is round-off
   bool stagnated = false;  // the changes stopped shrinking
+  // A single rate reading (two changes) from a drop of more than 1e3 in one
+  // step: the start of the ladder, not yet its rate (a rounded flat with
+  // friction: changes 9.2e-5, 1.05e-8 at N = 12, 16, then an error 1.8e-8 at
+  // 16, the extrapolation 1.2e-11). ladder_stop goes on to the next size.
+  bool unconfirmed = false;
 };
 RefinementEstimate refinement_estimate(const std::vector<int>& sizes,
                                        const std::vector<double>& changes, double floor);
+
+// A fixed collocation size N (the caller's n) on the asymmetric solver: its
+// error read from finer sizes, as the symmetric solver's (a coarse N may be
+// far from resolved, and the changes from still coarser sizes can shrink
+// faster than its error). Sizes up to kFixedFinerMax are checked against
+// references at m = max(2N, 8), doubled up to kFixedReferenceMax, until the
+// references' own estimate (refinement_estimate over them) is at most a
+// tenth of N's distance from the last one, or at round-off. `sample(m)`
+// solves at m and returns a FixedSample: N's result's distance from it, its
+// change from the previous reference (ignored for the first) and the
+// round-off floors at m, for two quantities (v: the ends or a flat punch's
+// end coefficients; p: the pressure). The error is that distance plus twice
+// the reference's estimate (|v_N - v| <= |v_N - v_ref| + |v_ref - v|);
+// infinite when a reference has no solution (ConvergenceError). Larger
+// sizes (a rate under way) keep the estimate from N/2 and 3N/4.
+inline constexpr int kFixedFinerMax = 32;
+inline constexpr int kFixedReferenceMax = 512;
+struct FixedSample {
+  double d_n_v = 0, d_n_p = 0;      // N's result against this reference
+  double d_v = 0, d_p = 0;          // this reference against the previous one
+  double floor_v = 0, floor_p = 0;  // round-off at this reference
+};
+struct FixedError {
+  double v = std::numeric_limits<double>::infinity();
+  double p = std::numeric_limits<double>::infinity();
+  int ref_n = 0;  // the last reference's size (0: none)
+};
+template <class Sample>
+FixedError fixed_size_error(int n, Sample&& sample) {
+  FixedError out;
+  std::vector<int> sizes;
+  std::vector<double> dv, dp;
+  try {
+    for (int m = std::max(2 * n, 8); m <= kFixedReferenceMax; m *= 2) {
+      const FixedSample fs = sample(m);
+      if (!std::isfinite(fs.d_n_v) || !std::isfinite(fs.d_n_p)) return FixedError{};
+      sizes.push_back(m);
+      if (sizes.size() < 2) continue;
+      dv.push_back(fs.d_v);
+      dp.push_back(fs.d_p);
+      const RefinementEstimate rv = refinement_estimate(sizes, dv, fs.floor_v);
+      const RefinementEstimate rp = refinement_estimate(sizes, dp, fs.floor_p);
+      out.v = fs.d_n_v + 2.0 * rv.estimate;
+      out.p = fs.d_n_p + 2.0 * rp.estimate;
+      out.ref_n = m;
+      const bool ok_v = rv.at_floor || (dv.size() >= 2 && rv.estimate <= 0.1 * fs.d_n_v);
+      const bool ok_p = rp.at_floor || (dp.size() >= 2 && rp.estimate <= 0.1 * fs.d_n_p);
+      if (ok_v && ok_p) break;
+    }
+  } catch (const ConvergenceError&) {
+    return FixedError{};
+  }
+  return out;
+}
 
 // The N ladder's verdict on two refined quantities (the contact's ends, or a
 // flat punch's end coefficients, and the pressure), from their estimates,
 // last changes and scales: converged when both estimates meet tol times
 // their scales; stalled when neither can improve further (its change at the
 // round-off floor, or stagnated at a level round-off amplification can
-// explain, sqrt(eps) of its scale); else go on.
+// explain, sqrt(eps) of its scale); else go on. An unconfirmed rate (above)
+// off the floor goes on.
 enum class LadderStop { go_on, converged, stalled };
 LadderStop ladder_stop(double tol, const RefinementEstimate& a, double last_a, double scale_a,
                        const RefinementEstimate& b, double last_b, double scale_b);
