@@ -27,10 +27,12 @@ from __future__ import annotations
 import itertools
 import math
 import multiprocessing
+import time
 import traceback
 from typing import Any
 
 import numpy as np
+import psutil
 
 # Relative floor of the sign and gap checks (the solver's own floor: a
 # pressure below -1e-6 of its peak is negative).
@@ -258,18 +260,31 @@ class Worker:
         self._proc.start()
         child.close()
 
+    def _cpu(self) -> float:
+        try:
+            t = psutil.Process(self._proc.pid).cpu_times()
+        except psutil.Error:
+            return 0.0
+        return float(t.user + t.system)
+
     def call(self, case: dict[str, Any], timeout: float) -> dict[str, Any]:
+        """The worker's answer; "timeout" when the call used more than
+        `timeout` seconds of the worker's CPU (a loaded machine stretches the
+        wall clock, not the work), or ten times that of wall time."""
+        start_cpu = self._cpu()
+        deadline = time.monotonic() + 10.0 * timeout
         self._conn.send(case)
-        if self._conn.poll(timeout):
-            try:
-                answer: dict[str, Any] = self._conn.recv()
-                return answer
-            except (EOFError, OSError):  # the worker died mid-answer
-                pass
-            self._restart()
-            return {"outcome": "crash", "fails": ["the worker died"]}
+        while not self._conn.poll(0.25):
+            if self._cpu() - start_cpu > timeout or time.monotonic() > deadline:
+                self._restart()
+                return {"outcome": "timeout", "fails": []}
+        try:
+            answer: dict[str, Any] = self._conn.recv()
+            return answer
+        except (EOFError, OSError):  # the worker died mid-answer
+            pass
         self._restart()
-        return {"outcome": "timeout", "fails": []}
+        return {"outcome": "crash", "fails": ["the worker died"]}
 
     def _restart(self) -> None:
         self._proc.kill()
