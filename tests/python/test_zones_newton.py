@@ -9,8 +9,10 @@ fuzz's checks of separated contacts (tests/python/fuzz_worker.py).
   between or beside them by an independent quadrature of the surface
   (test_hard_cases.check_zones_independently), and the fuzz's checks (a
   reference at tol 1e-10).
-- Every zone solve's ladder starts at one size (zones._FIRST_N), a train's
-  too.
+- A topology that cannot be solved is refused once Newton's method has not
+  halved the residual in 30 iterations (it wandered for its 200 iterations
+  at N = 24: 104 s to refuse a stiff case).
+- A train from its punches' own contacts starts its ladder at N = 8.
 - The fuzz's checker: a valid separated contact passes it, penetration
   between the zones is caught, and the zone solver's warnings count as
   warnings.
@@ -169,3 +171,38 @@ def test_the_zone_solvers_warnings_count_as_warnings() -> None:
         warnings = ()
 
     assert not _warned(Clean())
+
+
+# ---------------------------------------------------------------------------
+# A topology Newton's method cannot solve is given up in bounded work
+
+WANDERS = {
+    # test_fuzz.honesty_cases("stiff", 60, 2660) + ("stiff", 30, 2604), case 17
+    "vstar": 0.8978867441287791,
+    "kw": 105.8877531201104,
+    "kp": 2.6146911916796243,
+    "nu": 0.43946442625472193,
+    "radius": 0.00012987114516341183,
+    "load": 12117.807007246982,
+}
+
+
+@pytest.mark.slow
+def test_a_topology_without_progress_is_given_up_in_bounded_work() -> None:
+    # The three-zone topology's conditions stay near 1.35 at N = 24; Newton's
+    # method wandered for its 200 iterations (104 s of CPU) before the
+    # search refused. Now 30 iterations without halving end it: the search
+    # refuses, saying why, in a fraction of that CPU time (measured 13 s).
+    import time
+
+    t0 = time.process_time()
+    try:
+        s = mp.solve(**WANDERS)
+    except mp.UnphysicalContactError as err:
+        msg = str(err)
+        assert "penetrat" in msg, msg
+        assert "without halving it" in msg, msg
+    else:  # a set found: it must pass the independent checks
+        assert isinstance(s, mp.ZonedSolution)
+        check_zones_independently(s)
+    assert time.process_time() - t0 < 60.0
