@@ -14,8 +14,9 @@ own layer or of lower layers, never a higher one, and no import cycle may form):
    result files), ``contract`` (the result contract every solution
    satisfies), ``_evaluate`` (checking inputs and evaluating at points),
    ``_version`` (the package version, read without importing the package),
-   ``_display`` (how a number is shown: round-off as 0) and ``_textplot``
-   (text plots where no curve hides another).
+   ``_display`` (how a number is shown: round-off as 0), ``_textplot``
+   (text plots where no curve hides another) and ``cancel`` (cancellation
+   tokens bound to a thread).
 4. ``zones``: several contact zones and trains of punches (``zones``: the
    contact-set search and the superposed result, on the core and the shared
    evaluations; ``solver.solve`` and ``solver.solve_punches`` call it).
@@ -75,6 +76,7 @@ LAYERS: tuple[tuple[str, frozenset[str]], ...] = (
                 "movingpunch._version",
                 "movingpunch._display",
                 "movingpunch._textplot",
+                "movingpunch.cancel",
             }
         ),
     ),

@@ -567,7 +567,10 @@ FixedError fixed_size_error(int n, Sample&& sample) {
       const RefinementEstimate rv = refinement_estimate(sizes, dv, fs.floor_v);
       const RefinementEstimate rp = refinement_estimate(sizes, dp, fs.floor_p);
       out.v = fs.d_n_v + 2.0 * rv.estimate;
-      out.p = fs.d_n_p + 2.0 * rp.estimate;
+      // (x1.05: d_n_p is the largest of the difference's values on a scan
+      // of angles, which can lie a little below its maximum: measured
+      // 0.99992 of the pointwise difference at N = 8.)
+      out.p = 1.05 * fs.d_n_p + 2.0 * rp.estimate;
       out.ref_n = m;
       const bool ok_v = rv.at_floor || (dv.size() >= 2 && rv.estimate <= 0.1 * fs.d_n_v);
       const bool ok_p = rp.at_floor || (dp.size() >= 2 && rp.estimate <= 0.1 * fs.d_n_p);
