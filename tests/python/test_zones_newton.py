@@ -21,6 +21,7 @@ fuzz's checks of separated contacts (tests/python/fuzz_worker.py).
 from __future__ import annotations
 
 import math
+import time
 from typing import Any
 
 import numpy as np
@@ -193,8 +194,6 @@ def test_a_topology_without_progress_is_given_up_in_bounded_work() -> None:
     # method wandered for its 200 iterations (104 s of CPU) before the
     # search refused. Now 30 iterations without halving end it: the search
     # refuses, saying why, in a fraction of that CPU time (measured 13 s).
-    import time
-
     t0 = time.process_time()
     try:
         s = mp.solve(**WANDERS)

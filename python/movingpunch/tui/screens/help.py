@@ -37,7 +37,7 @@ TABLE_WIDTH = 60
 
 KEYS: tuple[tuple[str, str], ...] = (
     ("tab, shift+tab", "move between the inputs and the plots"),
-    ("escape, enter", "leave an input (esc: also stops a solve)"),
+    ("escape, enter", "leave an input; esc outside stops a solve"),
     ("i", "go to the first input (V*)"),
     ("1 ... 6", "go to a tab"),
     ("] and [", "next and previous tab"),
