@@ -388,6 +388,25 @@ TEST(DampedRefinement, EstimateOfAGeometricSequence) {
   EXPECT_THROW(mp::refinement_estimate({8}, {1.0}, 0.0), std::invalid_argument);
 }
 
+// A single rate reading (two changes) of an algebraically converging
+// sequence x_N = N^-p (a profile's kinks) is bounded too, within a factor
+// 100; so is the honesty fuzz's rounded flat (changes 2.09e-5, 2.4e-8 at
+// N = 12, 16; error 1.14e-9 at 16; the geometric reading alone: 3.0e-10).
+TEST(DampedRefinement, ASingleReadingOfAnAlgebraicRate) {
+  for (double p : {1.0, 2.0, 4.0, 10.6, 20.0}) {
+    const std::vector<int> sizes = {8, 12, 16};
+    auto x = [&](int n) { return std::pow(static_cast<double>(n), -p); };
+    const auto e = mp::refinement_estimate(sizes, {x(8) - x(12), x(12) - x(16)}, 1e-300);
+    EXPECT_GE(e.estimate, x(16)) << p;
+    EXPECT_LE(e.estimate, 100.0 * x(16)) << p;
+    EXPECT_NEAR(mp::algebraic_error(8, 12, 16, x(8) - x(12), x(12) - x(16)), x(16), 1e-9 * x(16))
+        << p;
+  }
+  const auto f = mp::refinement_estimate({8, 12, 16}, {2.09e-5, 2.4e-8}, 1e-18);
+  EXPECT_GE(f.estimate, 1.14e-9);
+  EXPECT_TRUE(std::isinf(mp::algebraic_error(8, 12, 16, 1e-8, 1e-8)));
+}
+
 // A single rate reading from a drop of more than 1e3 in one step is not
 // trusted: the ladder goes on (a rounded flat with friction: changes 9.2e-5,
 // 1.05e-8 at N = 12, 16, then an error 1.8e-8 at 16); a third change that

@@ -511,7 +511,9 @@ DampedSolution zone_solution(const DampedParams& p, std::shared_ptr<const Damped
 // is d q/(1 - q), reported times a safety factor 10, plus `floor` (round-off).
 // A change within 4 floor, or two changes in a row that shrink by less than
 // 20 % (stagnation), mark the round-off level: the estimate is then the
-// larger of the last two changes plus the floor.
+// larger of the last two changes plus the floor. With a single rate reading
+// (two changes) the error is also read as algebraic convergence (x_N = x +
+// C N^-p, p from the two changes: algebraic_error) and the larger is used.
 struct RefinementEstimate {
   double estimate = 0;
   bool at_floor = false;   // the last change is round-off
@@ -524,6 +526,10 @@ struct RefinementEstimate {
 };
 RefinementEstimate refinement_estimate(const std::vector<int>& sizes,
                                        const std::vector<double>& changes, double floor);
+// The error of x_{n2} when x_N = x + C N^-p and the changes d1 = |x_{n0} -
+// x_{n1}|, d2 = |x_{n1} - x_{n2}| (n0 < n1 < n2) fix p (clamped to [1/2,
+// 64]); infinite unless 0 < d2 < d1.
+double algebraic_error(int n0, int n1, int n2, double d1, double d2);
 
 // A fixed collocation size N (the caller's n) on the asymmetric solver: its
 // error read from finer sizes, as the symmetric solver's (a coarse N may be
