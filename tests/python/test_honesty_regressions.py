@@ -161,3 +161,36 @@ def test_a_single_rate_reading_allows_for_algebraic_convergence() -> None:
     assert err <= sol.error_estimate + ref.error_estimate + ROUNDOFF * scale
     # ... and without exaggerating it wildly
     assert sol.error_estimate <= 100.0 * err
+
+
+def test_a_fixed_n_2_on_a_damped_rounded_flat_near_separation() -> None:
+    # small_n, seed 2900, case 286: at n = 2 the finer sizes that check N = 2
+    # once converged to a single contact that the sign check refuses at a
+    # large N, and the n = 2 result was valid with its ends 0.052 off and an
+    # estimate of 2.2e-8. The result must bound its error (or say it is not
+    # to be trusted).
+    args: dict[str, Any] = {
+        "profile": mp.RoundedFlat(0.4988474190488974, 33.3589604350387),
+        "load": 0.007151653414231417,
+        "kw": 0.1,
+        "kp": 0.0,
+        "nu": 0.3,
+        "damping": 0.1,
+        "friction": 0.0,
+        "contact": "auto",
+        "allow_unphysical": False,
+        "vstar": 0.2616123557740013,
+        "n": 2,
+    }
+    sol = mp.solve(**args)
+    ref = mp.solve(**{**args, "n": None, "tol": 1e-10})
+    assert ref.valid
+    got = np.asarray([z for zone in sol.contact_zones for z in zone], dtype=float)
+    want = np.asarray([z for zone in ref.contact_zones for z in zone], dtype=float)
+    trusted = sol.valid and not sol.warnings
+    if got.shape != want.shape:
+        assert not trusted, (sol.contact_zones, ref.contact_zones)
+        return
+    err = float(np.max(np.abs(got - want)))
+    scale = float(np.max(np.abs(want)))
+    assert err <= sol.error_estimate + ref.error_estimate + ROUNDOFF * scale
