@@ -15,6 +15,10 @@ or 1e-8, whose own estimate is allowed for).
 * A single rate reading, read as geometric convergence, underestimated a
   damped rounded flat whose convergence slowed after its first drop (3.0e-10
   claimed, 1.14e-9 off): it is now also read as algebraic convergence.
+* A profile's ends converge irregularly (fast and slow by turns as N moves
+  the nodes against its kinks): a damped rounded flat changed by 3.2e-5,
+  7.0e-8 at N = 16, 24 and was 1.05e-9 off at 24 with an estimate of 2.0e-11.
+  A profile's ends estimate is never below the last change.
 """
 
 from __future__ import annotations
@@ -194,3 +198,28 @@ def test_a_fixed_n_2_on_a_damped_rounded_flat_near_separation() -> None:
     err = float(np.max(np.abs(got - want)))
     scale = float(np.max(np.abs(want)))
     assert err <= sol.error_estimate + ref.error_estimate + ROUNDOFF * scale
+
+
+def test_a_profile_s_ends_estimate_is_never_below_the_last_change() -> None:
+    # loose, seed 3100, case 205 (see the module's docstring).
+    args: dict[str, Any] = {
+        "profile": mp.RoundedFlat(0.5796224445864906, 257.50380443558663),
+        "load": 0.0049496663859509744,
+        "kw": 0.1,
+        "kp": 0.0,
+        "nu": 0.2,
+        "damping": 0.001,
+        "friction": 0.0,
+        "contact": "single",
+        "allow_unphysical": False,
+        "vstar": 0.24251134393318258,
+        "tol": 0.002845435160377063,
+    }
+    sol = mp.solve(**args)
+    ref = mp.solve(**{**args, "tol": 1e-10})
+    err = _ends_error(sol, ref)
+    scale = float(np.max(np.abs(ref.contact_interval)))
+    assert sol.valid
+    assert err > 1e-10 * scale  # the case: well above round-off
+    assert err <= sol.error_estimate + ref.error_estimate + ROUNDOFF * scale
+    assert sol.error_estimate <= 100.0 * err
