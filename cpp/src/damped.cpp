@@ -512,7 +512,9 @@ void validate(const DampedParams& p) {
 // Refinement estimates and series scans
 
 double algebraic_error(int n0, int n1, int n2, double d1, double d2) {
-  if (!(d2 > 0.0) || !(d1 > d2)) return std::numeric_limits<double>::infinity();
+  // Changes that do not shrink: no rate to read (the caller's geometric
+  // reading, its q capped at 0.99, stands).
+  if (!(d2 > 0.0) || !(d1 > d2)) return 0.0;
   // d1/d2 = (n0^-p - n1^-p)/(n1^-p - n2^-p) = (t0^p - 1)/(1 - t2^p), which
   // grows with p; p by bisection in [1/2, 64] (below 1/2: slower than any
   // useful rate, the estimate is large; above 64: the geometric reading is
