@@ -84,18 +84,34 @@ def test_a_train_scene_parses_round_trips_and_matches_solve_punches(
     result = scene.run()
     direct = mp.solve_punches(list(scene.punches), vstar=0.5, kw=1.0)
     cw = result.outputs["contact_width"]
-    assert cw.columns["a"][0] == direct.a
-    assert cw.columns["indentation"][0] == direct.indentation
-    assert cw.columns["contact_start"][0] == direct.contact_interval[0]
+    # The same solve up to round-off: the kernel tables an earlier solve in
+    # this process left behind move the last digit (1 ulp of the
+    # indentation after other zone tests).
+    same = {"rel": 1e-13, "abs": 0.0}
+    assert cw.columns["a"][0] == pytest.approx(direct.a, **same)
+    assert cw.columns["indentation"][0] == pytest.approx(direct.indentation, **same)
+    assert cw.columns["contact_start"][0] == pytest.approx(
+        direct.contact_interval[0], **same
+    )
     assert cw.columns["zones"][0] == len(direct.contact_zones) == 2
-    assert cw.details["contact_zones"] == [[list(z) for z in direct.contact_zones]]
+    np.testing.assert_allclose(
+        cw.details["contact_zones"][0],
+        [list(z) for z in direct.contact_zones],
+        rtol=1e-13,
+    )
     assert cw.details["punches"] == [[p.to_dict() for p in direct.punches]]
     pressure = result.outputs["pressure"]
     x = pressure.curves[0].x
     # The plot's range covers the whole hull of the zones.
     assert x[0] < direct.contact_interval[0]
     assert x[-1] > direct.contact_interval[1]
-    np.testing.assert_array_equal(pressure.curves[0].y, direct.pressure(x))
+    p_direct = direct.pressure(x)
+    np.testing.assert_allclose(
+        pressure.curves[0].y,
+        p_direct,
+        rtol=0,
+        atol=1e-12 * float(np.max(np.abs(p_direct))),
+    )
     summary = format_summary(result)
     assert "contact zones: " in summary
     assert "punch 2 at x/h = 1.5" in summary
