@@ -12,11 +12,11 @@
 #include <vector>
 
 #include "gap_scan.hpp"
+#include "ladder.hpp"
 #include "movingpunch/collocation.hpp"
 #include "movingpunch/dispersion.hpp"
 #include "movingpunch/errors.hpp"
 #include "potentials.hpp"
-#include "ladder.hpp"
 #include "solve_skeleton.hpp"
 
 namespace movingpunch {

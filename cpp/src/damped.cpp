@@ -16,6 +16,7 @@
 #include "chebyshev.hpp"
 #include "gap_scan.hpp"
 #include "gauss_kronrod.hpp"
+#include "ladder.hpp"
 #include "layer_basis.hpp"
 #include "movingpunch/collocation.hpp"
 #include "movingpunch/dispersion.hpp"
@@ -23,7 +24,6 @@
 #include "movingpunch/stresses.hpp"
 #include "potentials.hpp"
 #include "roots.hpp"
-#include "ladder.hpp"
 #include "solve_skeleton.hpp"
 
 namespace movingpunch {
@@ -1375,9 +1375,8 @@ DampedSolution solve_damped(const DampedParams& prm) {
         est_p = refinement_estimate(c.sizes, d_p, floor_p);
         // Stop after at least three sizes, so that the rate is seen.
         if (prm.n != 0 || d_p.size() < 2) return detail::Verdict::go_on;
-        return detail::ladder_verdict(ladder_stop(prm.tol, est_e, d_ends.back(),
-                                                  m.ws.w + std::fabs(m.ws.c), est_p, d_p.back(),
-                                                  pmax));
+        return detail::ladder_verdict(ladder_stop(
+            prm.tol, est_e, d_ends.back(), m.ws.w + std::fabs(m.ws.c), est_p, d_p.back(), pmax));
       },
       [&](const std::exception& ex, const detail::LadderAt& at) {
         const auto* e = dynamic_cast<const ConvergenceError*>(&ex);
@@ -1424,7 +1423,8 @@ DampedSolution solve_damped(const DampedParams& prm) {
   JacobiSeries js_prev;
   {
     const std::size_t k = run.chain.size();
-    const Member& m = run.verdict != detail::Verdict::go_on ? run.chain.states[k - 2] : run.chain.last();
+    const Member& m =
+        run.verdict != detail::Verdict::go_on ? run.chain.states[k - 2] : run.chain.last();
     b_prev = m.b;
     if (frictional) js_prev = m.js;
   }

@@ -20,10 +20,10 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "ladder.hpp"
 #include "movingpunch/damped.hpp"
 #include "movingpunch/dispersion.hpp"
 #include "movingpunch/errors.hpp"
-#include "ladder.hpp"
 #include "solve_skeleton.hpp"
 
 namespace movingpunch {
@@ -167,8 +167,8 @@ DampedSolution solve_damped_flat(const DampedParams& prm) {
         est_g.estimate = std::max(est_g.estimate, d_g.back() + floor_g);
         if (prm.n != 0 || d_k.size() < 2) return detail::Verdict::go_on;
         return detail::ladder_verdict(ladder_stop(prm.tol, est_k, d_k.back(),
-                                                  std::max(std::fabs(m.kb), std::fabs(m.kf)),
-                                                  est_g, d_g.back(), m.gmax));
+                                                  std::max(std::fabs(m.kb), std::fabs(m.kf)), est_g,
+                                                  d_g.back(), m.gmax));
       },
       detail::RethrowFailures{});
   const bool converged = run.verdict == detail::Verdict::converged;

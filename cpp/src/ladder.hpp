@@ -15,6 +15,7 @@
 #include <array>
 #include <cstddef>
 #include <exception>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -81,15 +82,12 @@ LadderRun<State, Q> run_ladder(const std::vector<int>& sizes, Solve&& solve, Cha
   int solved = 0, failures = 0;
   for (std::size_t k = 0; k < sizes.size(); ++k) {
     const int n = sizes[k];
+    std::optional<State> s;
     try {
-      State s = solve(n);
-      if (run.chain.size() > 0) {
-        const std::array<double, Q> d = change(run.chain.last(), s);
-        for (std::size_t q = 0; q < Q; ++q) run.chain.changes[q].push_back(d[q]);
-      }
-      run.chain.sizes.push_back(n);
-      run.chain.states.push_back(std::move(s));
+      s.emplace(solve(n));
     } catch (const std::exception& e) {
+      // Only the solve's own failures (the changes and the verdict below
+      // throw through).
       const LadderAt at{k, n, k + 1 == sizes.size(), solved, failures};
       switch (on_failure(e, at)) {
         case OnFailure::rethrow:
@@ -107,6 +105,12 @@ LadderRun<State, Q> run_ladder(const std::vector<int>& sizes, Solve&& solve, Cha
           return run;
       }
     }
+    if (run.chain.size() > 0) {
+      const std::array<double, Q> d = change(run.chain.last(), *s);
+      for (std::size_t q = 0; q < Q; ++q) run.chain.changes[q].push_back(d[q]);
+    }
+    run.chain.sizes.push_back(n);
+    run.chain.states.push_back(std::move(*s));
     ++solved;
     failures = 0;
     run.verdict = verdict(static_cast<const LadderChain<State, Q>&>(run.chain));

@@ -18,10 +18,10 @@
 
 #include "chebyshev.hpp"
 #include "gap_scan.hpp"
+#include "ladder.hpp"
 #include "movingpunch/collocation.hpp"
 #include "movingpunch/dispersion.hpp"
 #include "movingpunch/errors.hpp"
-#include "ladder.hpp"
 #include "solve_skeleton.hpp"
 
 namespace movingpunch {
