@@ -101,16 +101,16 @@ TEST(Ladder, RethrowKeepsTheFailuresType) {
     return 1.0;
   };
   auto never = [](const d::LadderChain<double, 1>&) { return d::Verdict::go_on; };
-  EXPECT_THROW((d::run_ladder<1, double>({8, 12, 16, 24}, solve, change1, never,
-                                         d::RethrowFailures{})),
-               mp::ConvergenceError);
+  EXPECT_THROW(
+      (d::run_ladder<1, double>({8, 12, 16, 24}, solve, change1, never, d::RethrowFailures{})),
+      mp::ConvergenceError);
   // A failure policy may throw a failure of its own (a better message).
-  EXPECT_THROW((d::run_ladder<1, double>(
-                   {8, 12, 16, 24}, solve, change1, never,
-                   [](const std::exception&, const d::LadderAt&) -> d::OnFailure {
-                     throw std::invalid_argument("refused");
-                   })),
-               std::invalid_argument);
+  EXPECT_THROW(
+      (d::run_ladder<1, double>({8, 12, 16, 24}, solve, change1, never,
+                                [](const std::exception&, const d::LadderAt&) -> d::OnFailure {
+                                  throw std::invalid_argument("refused");
+                                })),
+      std::invalid_argument);
 }
 
 TEST(Ladder, RefineRestartsTheChainAndCountsFailuresInARow) {
@@ -144,20 +144,19 @@ TEST(Ladder, UncountedFailuresDoNotCountAndASuccessResetsTheCount) {
   // 12 fails (counted), 16 fails (uncounted), 24 solves, 32 fails, 48 (last) fails.
   std::vector<d::LadderAt> seen;
   auto fail_at = [](int n) { return n == 12 || n == 16 || n == 32 || n == 48; };
-  EXPECT_THROW(
-      (d::run_ladder<1, double>(
-          {8, 12, 16, 24, 32, 48},
-          [&](int n) -> double {
-            if (fail_at(n)) throw mp::ConvergenceError("N = " + std::to_string(n));
-            return 1.0;
-          },
-          change1, [](const d::LadderChain<double, 1>&) { return d::Verdict::go_on; },
-          [&](const std::exception&, const d::LadderAt& at) {
-            seen.push_back(at);
-            if (at.last) return d::OnFailure::rethrow;
-            return at.n == 16 ? d::OnFailure::refine_uncounted : d::OnFailure::refine;
-          })),
-      mp::ConvergenceError);
+  EXPECT_THROW((d::run_ladder<1, double>(
+                   {8, 12, 16, 24, 32, 48},
+                   [&](int n) -> double {
+                     if (fail_at(n)) throw mp::ConvergenceError("N = " + std::to_string(n));
+                     return 1.0;
+                   },
+                   change1, [](const d::LadderChain<double, 1>&) { return d::Verdict::go_on; },
+                   [&](const std::exception&, const d::LadderAt& at) {
+                     seen.push_back(at);
+                     if (at.last) return d::OnFailure::rethrow;
+                     return at.n == 16 ? d::OnFailure::refine_uncounted : d::OnFailure::refine;
+                   })),
+               mp::ConvergenceError);
   ASSERT_EQ(seen.size(), 4u);
   EXPECT_EQ(seen[1].failures, 1);  // 16: after the counted failure at 12
   EXPECT_EQ(seen[2].n, 32);
@@ -204,8 +203,8 @@ TEST(Ladder, TwoQuantitiesWithTheRefinementEstimatesBoundTheirErrors) {
         if (c.size() < 3) return d::Verdict::go_on;
         eu = mp::refinement_estimate(c.sizes, c.changes[0], 1e-16);
         ev = mp::refinement_estimate(c.sizes, c.changes[1], 1e-16);
-        return d::ladder_verdict(mp::ladder_stop(tol, eu, c.changes[0].back(), 2.0, ev,
-                                                 c.changes[1].back(), 1.0));
+        return d::ladder_verdict(
+            mp::ladder_stop(tol, eu, c.changes[0].back(), 2.0, ev, c.changes[1].back(), 1.0));
       },
       d::RethrowFailures{});
   ASSERT_EQ(run.verdict, d::Verdict::converged);
@@ -234,19 +233,17 @@ TEST(Ladder, OnlyTheSolvesFailuresGoToTheFailurePolicy) {
   auto go_on = [](const d::LadderChain<double, 1>&) { return d::Verdict::go_on; };
   // A change or a verdict that throws is a bug of the solver, not a size
   // without a solution: it throws through.
-  EXPECT_THROW((d::run_ladder<1, double>(
-                   {8, 12, 16}, [](int n) { return 1.0 * n; },
-                   [](double, double) -> std::array<double, 1> {
-                     throw std::logic_error("change");
-                   },
-                   go_on, count)),
-               std::logic_error);
-  EXPECT_THROW((d::run_ladder<1, double>(
-                   {8, 12, 16}, [](int n) { return 1.0 * n; }, change1,
-                   [](const d::LadderChain<double, 1>&) -> d::Verdict {
-                     throw std::logic_error("verdict");
-                   },
-                   count)),
-               std::logic_error);
+  EXPECT_THROW(
+      (d::run_ladder<1, double>(
+          {8, 12, 16}, [](int n) { return 1.0 * n; },
+          [](double, double) -> std::array<double, 1> { throw std::logic_error("change"); }, go_on,
+          count)),
+      std::logic_error);
+  EXPECT_THROW(
+      (d::run_ladder<1, double>(
+          {8, 12, 16}, [](int n) { return 1.0 * n; }, change1,
+          [](const d::LadderChain<double, 1>&) -> d::Verdict { throw std::logic_error("verdict"); },
+          count)),
+      std::logic_error);
   EXPECT_EQ(seen, 0);
 }
