@@ -37,16 +37,39 @@ def pytest_collection_modifyitems(
     """Deselects the ``stress`` runs (tens of CPU minutes each) unless
     MOVINGPUNCH_STRESS=1 or the ``-m`` expression names them: CI runs the
     rest within its budget, a stress run is asked for by name."""
-    if os.environ.get("MOVINGPUNCH_STRESS") == "1" or "stress" in (
-        config.option.markexpr or ""
+    if not (
+        os.environ.get("MOVINGPUNCH_STRESS") == "1"
+        or "stress" in (config.option.markexpr or "")
     ):
-        return
-    keep = [item for item in items if item.get_closest_marker("stress") is None]
-    if len(keep) != len(items):
-        config.hook.pytest_deselected(
-            items=[item for item in items if item.get_closest_marker("stress")]
-        )
-        items[:] = keep
+        keep = [item for item in items if item.get_closest_marker("stress") is None]
+        if len(keep) != len(items):
+            config.hook.pytest_deselected(
+                items=[item for item in items if item.get_closest_marker("stress")]
+            )
+            items[:] = keep
+    _long_runs_first(items)
+
+
+def _xdist_scope(item: pytest.Item) -> str:
+    """The unit pytest-xdist's ``--dist loadgroup`` hands to a worker: the
+    test's ``xdist_group``, or the test alone."""
+    mark = item.get_closest_marker("xdist_group")
+    if mark is not None:
+        return str(mark.args[0] if mark.args else mark.kwargs.get("name"))
+    return item.nodeid
+
+
+def _long_runs_first(items: list[pytest.Item]) -> None:
+    """Puts the long runs (``slow``, and every test of an ``xdist_group``
+    that holds one) before the others, each part in collection order: the
+    workers take units in this order, so the long ones start first and the
+    many short ones fill in at the end, and no worker idles while another
+    finishes a long test that started last (a longest-first schedule). The
+    order of the tests of one group is kept."""
+    long_scopes = {
+        _xdist_scope(item) for item in items if item.get_closest_marker("slow")
+    }
+    items.sort(key=lambda item: _xdist_scope(item) not in long_scopes)
 
 
 def pytest_runtest_setup(item: pytest.Item) -> None:

@@ -481,13 +481,15 @@ def test_indentation_continuous_in_friction() -> None:
 def test_dissipation_is_the_bottom_slope_by_parseval() -> None:
     """With friction the dashpots take the power of both tractions: the
     Parseval sum equals D sqrt(V*)/load int (dv/dx(x, -1))^2 dx by Simpson's
-    rule on the bottom slope (measured agreement to all digits); it exceeds
-    the normal pressure's drag (the shear traction's power adds)."""
+    rule on the bottom slope (measured agreement: 3e-12 with 601 points,
+    7e-16 with 1201; 8e-6 with 301: the rule converges geometrically on
+    this smooth, decaying slope); it exceeds the normal pressure's drag (the
+    shear traction's power adds)."""
     from scipy.integrate import simpson
 
     s = mp.solve(vstar=0.2, kw=1.0, radius=100, load=0.002, friction=0.4, damping=0.5)
     assert isinstance(s, DampedSolution)
-    xs = np.linspace(-30.0, 30.0, 1201)
+    xs = np.linspace(-30.0, 30.0, 601)
     slope = s.bottom_slope(xs)
     direct = 0.5 * math.sqrt(0.2) * simpson(slope**2, x=xs) / 0.002
     assert s.dissipation == pytest.approx(direct, rel=1e-8)

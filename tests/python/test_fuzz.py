@@ -746,40 +746,14 @@ def test_honesty_stiff_foundations_near_critical() -> None:
     assert sum(outcomes.values()) >= 3, outcomes
 
 
-OPEN_SMALL_N = (
-    "open (issue 25): case 286, RoundedFlat(0.4989, 33.36), load 0.00715, kw 0.1, "
-    "nu 0.3, damping 0.1, vstar 0.2616, n=2: the fixed sizes 8, 16, 32 that check "
-    "N = 2 converge to the same contact (-1.036, 1.734), which the sign check "
-    "refuses at a large N; the automatic solve finds (-1.088, 1.781); the n=2 "
-    "result is valid with its ends 0.052 off and an estimate of 2.2e-8"
-)
-
-OPEN_LOOSE = (
-    "open (issue 25): case 159, RoundedFlat(0.5633, 252.55), load 0.00148, kw 1, "
-    "kp 0.1, nu 0.3, damping 0.001, vstar 0.6023, contact single, tol 1.97e-3: "
-    "valid with its ends 1.14e-9 off and an estimate of 3.0e-10 (the only "
-    "failure of the 300; small_n at seed 3100: none)"
-)
-
-
 @pytest.mark.slow
 @pytest.mark.stress
 @pytest.mark.parametrize(
     ("family", "count", "seed"),
     [
-        pytest.param(
-            "loose",
-            300,
-            2900,
-            marks=pytest.mark.xfail(reason=OPEN_LOOSE, strict=False),
-        ),
+        ("loose", 300, 2900),
         ("loose", 300, 3100),
-        pytest.param(
-            "small_n",
-            300,
-            2900,
-            marks=pytest.mark.xfail(reason=OPEN_SMALL_N, strict=False),
-        ),
+        ("small_n", 300, 2900),
         ("small_n", 300, 3100),
         ("trains", 30, 2630),
         ("stiff", 60, 2660),

@@ -404,6 +404,7 @@ def replay(seed: int, index: int, *, every_tab: bool = False) -> list[Op]:
     return list(sequences(seed, index + 1, every_tab=every_tab))[index]
 
 
+@pytest.mark.slow  # ~25 s a batch: started first (conftest.py), never last
 @pytest.mark.parametrize("seed", range(DEFAULT_BATCHES))
 @sync
 async def test_random_edits_leave_the_screen_showing_the_inputs(
@@ -413,6 +414,7 @@ async def test_random_edits_leave_the_screen_showing_the_inputs(
     await drive(seed, BATCH, debounce=FAST_DEBOUNCE, every_tab=False)
 
 
+@pytest.mark.slow
 @sync
 async def test_random_edits_at_the_real_debounce() -> None:
     real = main_screen.DEBOUNCE_SECONDS

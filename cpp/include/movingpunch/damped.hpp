@@ -528,7 +528,7 @@ RefinementEstimate refinement_estimate(const std::vector<int>& sizes,
                                        const std::vector<double>& changes, double floor);
 // The error of x_{n2} when x_N = x + C N^-p and the changes d1 = |x_{n0} -
 // x_{n1}|, d2 = |x_{n1} - x_{n2}| (n0 < n1 < n2) fix p (clamped to [1/2,
-// 64]); infinite unless 0 < d2 < d1.
+// 64]); 0 unless 0 < d2 < d1 (no rate to read).
 double algebraic_error(int n0, int n1, int n2, double d1, double d2);
 
 // A fixed collocation size N (the caller's n) on the asymmetric solver: its
