@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "gap_scan.hpp"
+#include "ladder.hpp"
 #include "movingpunch/collocation.hpp"
 #include "movingpunch/dispersion.hpp"
 #include "movingpunch/errors.hpp"
@@ -630,6 +631,22 @@ struct FlatSolve {
   double g_error = -1.0;
 };
 
+// The symmetric solver's verdict on one refined quantity (a width, or a flat
+// punch's g(1)) after a size of its ladder: converged when the last change
+// meets tol times `scale`, over at least three sizes unless the change is at
+// round-off: from two, the N error is only bounded by the change itself,
+// which overstates it by up to 1e3 where N converges fast. `change` keeps the
+// last change (for the message when the ladder runs out).
+template <class State>
+detail::Verdict change_verdict(const detail::LadderChain<State, 1>& c, double scale, double tol,
+                               double& change) {
+  if (c.size() < 2) return detail::Verdict::go_on;
+  constexpr double eps = std::numeric_limits<double>::epsilon();
+  change = c.changes[0].back();
+  const bool ok = change <= tol * scale && (c.size() >= 3 || change <= 100.0 * eps * scale);
+  return ok ? detail::Verdict::converged : detail::Verdict::go_on;
+}
+
 FlatSolve solve_flat(Problem& prob, const ContactParams& p, double a) {
   constexpr double eps = std::numeric_limits<double>::epsilon();
   // The displacement's Filon integrals need the kernel's panels to |u| = 4a.
@@ -685,28 +702,29 @@ FlatSolve solve_flat(Problem& prob, const ContactParams& p, double a) {
     out.error = collocation_error(chain_n, chain_k);
     out.g_error = 2.0 * max_series_difference(out.b, coarse_b, SeriesKind::T);
   } else {
-    bool converged = false;
+    // The ladder on the end value K = g(1) (ladder.hpp); no failure to refine
+    // past (a flat punch's system has no width to search).
     double change = kInf;
-    for (int n : kSizes) {
-      out.b = coefficients(n);
-      out.n = n;
-      const double K = t_series(out.b, 1.0);
-      chain_n.push_back(n);
-      chain_k.push_back(K);
-      if (chain_k.size() < 2) continue;
-      change = std::fabs(K - chain_k[chain_k.size() - 2]);
-      const double scale = std::max(half_plane, std::fabs(K));
-      if (change <= width_tol * scale && (chain_k.size() >= 3 || change <= 100.0 * eps * scale)) {
-        converged = true;
-        break;
-      }
-    }
-    if (!converged) {
+    const detail::LadderRun<double, 1> run = detail::run_ladder<1, double>(
+        detail::size_ladder(kSizes.back()),
+        [&](int n) {
+          out.b = coefficients(n);
+          out.n = n;
+          return t_series(out.b, 1.0);
+        },
+        [](double prev, double K) { return std::array<double, 1>{std::fabs(K - prev)}; },
+        [&](const detail::LadderChain<double, 1>& c) {
+          return change_verdict(c, std::max(half_plane, std::fabs(c.last())), width_tol, change);
+        },
+        detail::RethrowFailures{});
+    if (run.verdict != detail::Verdict::converged) {
       std::ostringstream last;
       last << "last change of the end value g(1) " << change;
       throw ConvergenceError(detail::not_converged_message("the flat punch's pressure", p.tol,
                                                            kSizes.back(), last.str()));
     }
+    chain_n = run.chain.sizes;
+    chain_k = run.chain.states;
     out.error = collocation_error(chain_n, chain_k, coefficient_rate(out.b));
   }
   const double scale = std::max(half_plane, std::fabs(chain_k.back()));
@@ -812,7 +830,6 @@ BoundedSolve solve_bounded(Problem& prob, const ContactParams& p, const PunchPro
   const double width_tol = std::min(p.tol, kLoosestWidthTol);
   const double xtol = std::max(1e-2 * width_tol, 1e-15);
 
-  double a_prev = std::numeric_limits<double>::quiet_NaN();
   double change = kInf;
   // The chain of sizes and widths the N error is read from (collocation_error).
   std::vector<int> chain_n;
@@ -866,56 +883,44 @@ BoundedSolve solve_bounded(Problem& prob, const ContactParams& p, const PunchPro
     chain_a.push_back(a);
     change = collocation_error(chain_n, chain_a);
   } else {
-    // Refine N. A coarse N can under-resolve the load curve (it may even be
-    // non-monotone, with no root): a failure there moves on to the next N;
-    // two failures in a row, or at the largest N, are reported.
-    bool converged = false, prev_ok = false;
-    int failures = 0;
-    for (std::size_t idx = 0; idx < kSizes.size(); ++idx) {
-      nodes = chebyshev_nodes(kSizes[idx]);
-      double a_new = a;
-      try {
-        a_new = solve_width(prob, p, nodes, p.load, a, xtol, range);
-      } catch (const UnderResolved&) {
-        // Not a failure of this problem: refine N (cheap, the kernel is kept).
-        if (idx + 1 == kSizes.size()) throw;
-        prev_ok = false;
-        chain_n.clear();
-        chain_a.clear();
-        continue;
-      } catch (const std::exception&) {
-        if (++failures >= 2 || idx + 1 == kSizes.size()) throw;
-        prev_ok = false;
-        chain_n.clear();
-        chain_a.clear();
-        continue;
-      }
-      failures = 0;
-      a = a_new;
-      chain_n.push_back(kSizes[idx]);
-      chain_a.push_back(a);
-      if (prev_ok) {
-        change = std::fabs(a - a_prev);
-        // Converged when the last change meets tol, over at least three
-        // sizes unless the change is at round-off: from two, the N error is
-        // only bounded by the change itself, which overstates it by up to 1e3
-        // where N converges fast.
-        constexpr double eps = std::numeric_limits<double>::epsilon();
-        if (change <= width_tol * a && (chain_a.size() >= 3 || change <= 100.0 * eps * a)) {
-          converged = true;
-          change = collocation_error(chain_n, chain_a);
-          break;
-        }
-      }
-      a_prev = a;
-      prev_ok = true;
-    }
-    if (!converged) {
+    // Refine N (ladder.hpp). A coarse N can under-resolve the load curve (it
+    // may even be non-monotone, with no root): a failure there moves on to
+    // the next N with the chain restarted; an UnderResolved is not a failure
+    // of this problem (refine: cheap, the kernel is kept); two other failures
+    // in a row, or any at the largest N, are reported.
+    struct Member {
+      double a;
+      ChebyshevNodes nodes;
+    };
+    const detail::LadderRun<Member, 1> run = detail::run_ladder<1, Member>(
+        detail::size_ladder(kSizes.back()),
+        [&](int n) {
+          ChebyshevNodes nd = chebyshev_nodes(n);
+          a = solve_width(prob, p, nd, p.load, a, xtol, range);
+          return Member{a, std::move(nd)};
+        },
+        [](const Member& prev, const Member& cur) {
+          return std::array<double, 1>{std::fabs(cur.a - prev.a)};
+        },
+        [&](const detail::LadderChain<Member, 1>& c) {
+          return change_verdict(c, c.last().a, width_tol, change);
+        },
+        [](const std::exception& e, const detail::LadderAt& at) {
+          if (at.last) return detail::OnFailure::rethrow;
+          if (dynamic_cast<const UnderResolved*>(&e) != nullptr)
+            return detail::OnFailure::refine_uncounted;
+          return at.failures + 1 >= 2 ? detail::OnFailure::rethrow : detail::OnFailure::refine;
+        });
+    if (run.verdict != detail::Verdict::converged) {
       std::ostringstream last;
       last << "last change " << change;
       throw ConvergenceError(
           detail::not_converged_message("a/h", p.tol, kSizes.back(), last.str()));
     }
+    nodes = run.chain.last().nodes;
+    for (const Member& m : run.chain.states) chain_a.push_back(m.a);
+    chain_n = run.chain.sizes;
+    change = collocation_error(chain_n, chain_a);
   }
 
   // The displacement (indentation, validity) integrates the transform of p,

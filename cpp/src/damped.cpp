@@ -3,6 +3,7 @@
 #include "movingpunch/damped.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -15,6 +16,7 @@
 #include "chebyshev.hpp"
 #include "gap_scan.hpp"
 #include "gauss_kronrod.hpp"
+#include "ladder.hpp"
 #include "layer_basis.hpp"
 #include "movingpunch/collocation.hpp"
 #include "movingpunch/dispersion.hpp"
@@ -1274,19 +1276,13 @@ DampedSolution solve_damped(const DampedParams& prm) {
   } else {
     sizes = ladder;
   }
-  // Per size: the ends and the U-coefficients of g; the changes between
-  // successive sizes drive both the stopping rule and the estimates.
-  std::vector<int> done_n;
-  std::vector<double> d_ends, d_p;
-  Eigen::VectorXd b_prev;
-  JacobiSeries js, js_prev;  // friction: g's Jacobi series at this size and the previous one
-  double w_prev = 0, c_prev = 0;
-  bool have_prev = false, converged = false, stalled = false;
+  bool converged = false, stalled = false;
   RefinementEstimate est_e, est_p;
   double floor_e = 0, floor_p = 0, pmax = 0;
   WidthSolve ws;
   ChebyshevNodes nd;
   Eigen::VectorXd bk;
+  JacobiSeries js;  // friction: g's Jacobi series at the last size
   // The kernel's error: its quadrature's (QUADPACK's estimate) and its
   // table's (the pieces' tails and values' round-off: a round-off part).
   const double qerr = kern->quadrature().kronrod_error;
@@ -1336,80 +1332,111 @@ DampedSolution solve_damped(const DampedParams& prm) {
     return cylinder ? (frictional ? j1.minus(j2).max_abs_density() : max_abs_sine_series(diff))
                     : (frictional ? head_density_max(diff, head) : head_sine_max(diff, head));
   };
-  for (std::size_t k = 0; k < sizes.size(); ++k) {
-    nd = nodes_of(sizes[k]);
-    try {
-      ws = width_at(nd, guess);
-    } catch (const ConvergenceError& e) {
-      // Under-resolved at this N (a non-monotone or non-positive discrete
-      // load curve): refine N, unless this was the last size.
-      if (k + 1 == sizes.size() && prof.kind() == ProfileKind::table) {
-        // No width within the table carries the load (the widest, centred
-        // where the table allows, carries less): refused, naming the table.
-        std::ostringstream m;
-        m.precision(6);
-        m << "load = " << prm.load << " on the " << prof.describe() << " (kw = " << prm.kw
-          << ", vstar = " << prm.vstar << ") needs a contact that leaves the table ("
-          << prof.lower() << " <= x/h <= " << prof.upper()
-          << "): the contact must stay within the table; extend the table or reduce the load ("
-          << e.what() << ")";
-        throw std::invalid_argument(m.str());
-      }
-      if (k + 1 == sizes.size()) {
-        std::ostringstream msg;
-        msg << e.what() << "; vstar = " << prm.vstar << ", kw = " << prm.kw
-            << ", damping = " << prm.damping << " (very soft foundations far above V*_cr "
-            << "have no bounded steady contact)";
-        throw ConvergenceError(msg.str());
-      }
-      have_prev = false;
-      done_n.clear();
-      d_ends.clear();
-      d_p.clear();
-      continue;
-    }
-    s.iterations_ += ws.evaluations;
-    guess = ws.w;
-    bk = series_at(nd, ws, js, pmax);
-    const double scale_e = ws.w + std::fabs(ws.c);
-    // Round-off floors: a few hundred eps of the scale (growing slowly with
-    // N: the collocation matrix's condition), plus the kernel quadrature's
-    // error carried into the ends (dw ~ 4 w^2 dK, docs/damped.md section 8).
-    floor_e = 64.0 * kEps * scale_e + 4.0 * (qerr + terr) * ws.w * ws.w;
-    floor_p = (512.0 * kEps * (1.0 + nd.n / 64.0) + 4.0 * (qerr + terr) * ws.w) * pmax;
-    done_n.push_back(nd.n);
-    if (have_prev) {
-      d_ends.push_back(std::fabs(ws.w - w_prev) + std::fabs(ws.c - c_prev));
-      d_p.push_back(p_change(bk, b_prev, js, js_prev, 4 * nd.n + 64));
-      est_e = refinement_estimate(done_n, d_ends, floor_e);
-      est_p = refinement_estimate(done_n, d_p, floor_p);
-      // A profile's ends (a rounded flat's, a table's: kinks in the slope's
-      // derivative) converge irregularly, fast and slow by turns as N moves
-      // the nodes against the kinks: their estimate is never below the last
-      // change (the previous size's error), as the flat punch's
-      // (damped_flat.cpp) and the symmetric solver's (contact.cpp). A damped
-      // rounded flat at tol 2.8e-3 changed by 3.2e-5, 7.0e-8 at N = 16, 24
-      // and was 1.05e-9 off at 24: the extrapolation claimed 2.0e-11.
-      if (!cylinder) est_e.estimate = std::max(est_e.estimate, d_ends.back() + floor_e);
-      if (prm.n == 0 && d_p.size() >= 2) {
+  // The ladder (ladder.hpp). Per size: the ends and the U-coefficients of g
+  // (with friction its Jacobi series); the changes between successive sizes
+  // drive both the stopping rule and the estimates.
+  struct Member {
+    ChebyshevNodes nd;
+    WidthSolve ws;
+    Eigen::VectorXd b;
+    JacobiSeries js;
+    double pmax = 0, floor_e = 0, floor_p = 0;
+  };
+  const detail::LadderRun<Member, 2> run = detail::run_ladder<2, Member>(
+      sizes,
+      [&](int n) {
+        Member m;
+        m.nd = nodes_of(n);
+        m.ws = width_at(m.nd, guess);
+        s.iterations_ += m.ws.evaluations;
+        guess = m.ws.w;
+        m.b = series_at(m.nd, m.ws, m.js, m.pmax);
+        const double scale_e = m.ws.w + std::fabs(m.ws.c);
+        // Round-off floors: a few hundred eps of the scale (growing slowly
+        // with N: the collocation matrix's condition), plus the kernel
+        // quadrature's error carried into the ends (dw ~ 4 w^2 dK,
+        // docs/damped.md section 8).
+        m.floor_e = 64.0 * kEps * scale_e + 4.0 * (qerr + terr) * m.ws.w * m.ws.w;
+        m.floor_p = (512.0 * kEps * (1.0 + m.nd.n / 64.0) + 4.0 * (qerr + terr) * m.ws.w) * m.pmax;
+        return m;
+      },
+      [&](const Member& prev, const Member& cur) {
+        return std::array<double, 2>{
+            std::fabs(cur.ws.w - prev.ws.w) + std::fabs(cur.ws.c - prev.ws.c),
+            p_change(cur.b, prev.b, cur.js, prev.js, 4 * cur.nd.n + 64)};
+      },
+      [&](const detail::LadderChain<Member, 2>& c) {
+        const Member& m = c.last();
+        floor_e = m.floor_e;
+        floor_p = m.floor_p;
+        pmax = m.pmax;
+        if (c.size() < 2) return detail::Verdict::go_on;
+        const std::vector<double>& d_ends = c.changes[0];
+        const std::vector<double>& d_p = c.changes[1];
+        est_e = refinement_estimate(c.sizes, d_ends, floor_e);
+        est_p = refinement_estimate(c.sizes, d_p, floor_p);
+        // A profile's ends (a rounded flat's, a table's: kinks in the slope's
+        // derivative) converge irregularly, fast and slow by turns as N moves
+        // the nodes against the kinks: their estimate is never below the last
+        // change (the previous size's error), as the flat punch's
+        // (damped_flat.cpp) and the symmetric solver's (contact.cpp). A damped
+        // rounded flat at tol 2.8e-3 changed by 3.2e-5, 7.0e-8 at N = 16, 24
+        // and was 1.05e-9 off at 24: the extrapolation claimed 2.0e-11.
+        if (!cylinder) est_e.estimate = std::max(est_e.estimate, d_ends.back() + floor_e);
         // Stop after at least three sizes, so that the rate is seen.
-        const LadderStop stop =
-            ladder_stop(prm.tol, est_e, d_ends.back(), scale_e, est_p, d_p.back(), pmax);
-        if (stop == LadderStop::converged) {
-          converged = true;
-          break;
+        if (prm.n != 0 || d_p.size() < 2) return detail::Verdict::go_on;
+        return detail::ladder_verdict(ladder_stop(
+            prm.tol, est_e, d_ends.back(), m.ws.w + std::fabs(m.ws.c), est_p, d_p.back(), pmax));
+      },
+      [&](const std::exception& ex, const detail::LadderAt& at) {
+        const auto* e = dynamic_cast<const ConvergenceError*>(&ex);
+        if (e == nullptr) return detail::OnFailure::rethrow;
+        // Under-resolved at this N (a non-monotone or non-positive discrete
+        // load curve): refine N, unless this was the last size.
+        if (at.last && prof.kind() == ProfileKind::table) {
+          // No width within the table carries the load (the widest, centred
+          // where the table allows, carries less): refused, naming the table.
+          std::ostringstream m;
+          m.precision(6);
+          m << "load = " << prm.load << " on the " << prof.describe() << " (kw = " << prm.kw
+            << ", vstar = " << prm.vstar << ") needs a contact that leaves the table ("
+            << prof.lower() << " <= x/h <= " << prof.upper()
+            << "): the contact must stay within the table; extend the table or reduce the load ("
+            << e->what() << ")";
+          throw std::invalid_argument(m.str());
         }
-        if (stop == LadderStop::stalled) {
-          stalled = true;
-          break;
+        if (at.last) {
+          std::ostringstream msg;
+          msg << e->what() << "; vstar = " << prm.vstar << ", kw = " << prm.kw
+              << ", damping = " << prm.damping << " (very soft foundations far above V*_cr "
+              << "have no bounded steady contact)";
+          throw ConvergenceError(msg.str());
         }
-      }
-    }
-    w_prev = ws.w;
-    c_prev = ws.c;
-    b_prev = bk;
-    if (frictional) js_prev = js;
-    have_prev = true;
+        return detail::OnFailure::refine;
+      });
+  converged = run.verdict == detail::Verdict::converged;
+  stalled = run.verdict == detail::Verdict::stalled;
+  {
+    const Member& m = run.chain.last();
+    nd = m.nd;
+    ws = m.ws;
+    bk = m.b;
+    js = m.js;
+  }
+  const std::vector<double>& d_ends = run.chain.changes[0];
+  const std::vector<double>& d_p = run.chain.changes[1];
+  // The "previous" series for the stress estimate's change (below): the
+  // member before the last when the ladder stopped on its verdict, the last
+  // one itself when the sizes ran out (as the loop this driver replaced kept
+  // it: then the change below is zero).
+  Eigen::VectorXd b_prev;
+  JacobiSeries js_prev;
+  {
+    const std::size_t k = run.chain.size();
+    const Member& m =
+        run.verdict != detail::Verdict::go_on ? run.chain.states[k - 2] : run.chain.last();
+    b_prev = m.b;
+    if (frictional) js_prev = m.js;
   }
   if (d_ends.empty()) {  // a single size (n = 2) or every smaller size failed
     est_e.estimate = std::numeric_limits<double>::infinity();

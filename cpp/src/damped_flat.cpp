@@ -13,12 +13,14 @@
 // for polynomial g of degree < N), and equilibrium int p = P closes the
 // square system. No width iteration: g over P/h does not depend on the load.
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
 
+#include "ladder.hpp"
 #include "movingpunch/damped.hpp"
 #include "movingpunch/dispersion.hpp"
 #include "movingpunch/errors.hpp"
@@ -111,59 +113,76 @@ DampedSolution solve_damped_flat(const DampedParams& prm) {
   const double kf_scale = std::sqrt(2.0 * kPi) * std::pow(w, -al) * std::pow(2.0, be);
   const double kb_scale = std::sqrt(2.0 * kPi) * std::pow(w, -be) * std::pow(2.0, al);
   const double qerr = kern->quadrature().kronrod_error, terr = kern->table_error();
-  std::vector<int> done_n;
-  std::vector<double> d_k, d_g;
-  JacobiSeries js, js_prev;
-  double kb = 0, kf = 0, kb_prev = 0, kf_prev = 0, gmax = 0, floor_k = 0, floor_g = 0;
-  bool converged = false, stalled = false;
+  double kb = 0, kf = 0, gmax = 0, floor_k = 0, floor_g = 0;
   RefinementEstimate est_k, est_g;
-  int n_done = 0;
-  for (int n : sizes) {
-    const ChebyshevNodes nd = jacobi_flat_nodes(n, al, be);
-    const Eigen::VectorXd g = flat_nodal_g(nd, w, *kern);
-    ++s.iterations_;
-    if (!g.allFinite())
-      throw ConvergenceError(
-          "damped flat punch: the collocation system came out singular or non-finite at N = " +
-          std::to_string(n));
-    if (n_done > 0) js_prev = js;
-    kb_prev = kb;
-    kf_prev = kf;
-    js = JacobiSeries::from_nodes(al, be, nd.r, g);
-    kb = kb_scale * js.g(-1.0);
-    kf = kf_scale * js.g(1.0);
-    gmax = js.max_abs_g();
-    const double scale_k = std::max(std::fabs(kb), std::fabs(kf));
-    // Round-off (the collocation matrix's condition grows about like N) and
-    // the kernel's error carried into g (a relative dK w, as the widths').
-    floor_k = (64.0 * kEps * n + 4.0 * (qerr + terr) * w) * scale_k;
-    floor_g = (64.0 * kEps * n + 4.0 * (qerr + terr) * w) * gmax;
-    done_n.push_back(n);
-    n_done = n;
-    if (done_n.size() < 2) continue;
-    d_k.push_back(std::max(std::fabs(kb - kb_prev), std::fabs(kf - kf_prev)));
-    d_g.push_back(js.minus(js_prev).max_abs_g());
-    // The geometric extrapolation of refinement_estimate, but never below the
-    // last change (the previous member's error): the flat punch's changes can
-    // shrink faster before they settle to their rate (16 -> 24 -> 32 gave
-    // 2e-4, 5e-7, then an error 4e-8 at 32 on a wide face with friction).
-    est_k = refinement_estimate(done_n, d_k, floor_k);
-    est_g = refinement_estimate(done_n, d_g, floor_g);
-    est_k.estimate = std::max(est_k.estimate, d_k.back() + floor_k);
-    est_g.estimate = std::max(est_g.estimate, d_g.back() + floor_g);
-    if (prm.n == 0 && d_k.size() >= 2) {
-      const LadderStop stop =
-          ladder_stop(prm.tol, est_k, d_k.back(), scale_k, est_g, d_g.back(), gmax);
-      if (stop == LadderStop::converged) {
-        converged = true;
-        break;
-      }
-      if (stop == LadderStop::stalled) {
-        stalled = true;
-        break;
-      }
-    }
-  }
+  // The ladder (ladder.hpp): per size the end coefficients and g's Jacobi
+  // series; a singular system is reported at once (no width to refine past).
+  struct Member {
+    JacobiSeries js;
+    double kb = 0, kf = 0, gmax = 0, floor_k = 0, floor_g = 0;
+  };
+  const detail::LadderRun<Member, 2> run = detail::run_ladder<2, Member>(
+      sizes,
+      [&](int n) {
+        const ChebyshevNodes nd = jacobi_flat_nodes(n, al, be);
+        const Eigen::VectorXd g = flat_nodal_g(nd, w, *kern);
+        ++s.iterations_;
+        if (!g.allFinite())
+          throw ConvergenceError(
+              "damped flat punch: the collocation system came out singular or non-finite at N = " +
+              std::to_string(n));
+        Member m;
+        m.js = JacobiSeries::from_nodes(al, be, nd.r, g);
+        m.kb = kb_scale * m.js.g(-1.0);
+        m.kf = kf_scale * m.js.g(1.0);
+        m.gmax = m.js.max_abs_g();
+        const double scale_k = std::max(std::fabs(m.kb), std::fabs(m.kf));
+        // Round-off (the collocation matrix's condition grows about like N)
+        // and the kernel's error carried into g (a relative dK w, as the
+        // widths').
+        m.floor_k = (64.0 * kEps * n + 4.0 * (qerr + terr) * w) * scale_k;
+        m.floor_g = (64.0 * kEps * n + 4.0 * (qerr + terr) * w) * m.gmax;
+        return m;
+      },
+      [](const Member& prev, const Member& cur) {
+        return std::array<double, 2>{
+            std::max(std::fabs(cur.kb - prev.kb), std::fabs(cur.kf - prev.kf)),
+            cur.js.minus(prev.js).max_abs_g()};
+      },
+      [&](const detail::LadderChain<Member, 2>& c) {
+        const Member& m = c.last();
+        floor_k = m.floor_k;
+        floor_g = m.floor_g;
+        if (c.size() < 2) return detail::Verdict::go_on;
+        const std::vector<double>& d_k = c.changes[0];
+        const std::vector<double>& d_g = c.changes[1];
+        // The geometric extrapolation of refinement_estimate, but never below
+        // the last change (the previous member's error): the flat punch's
+        // changes can shrink faster before they settle to their rate (16 ->
+        // 24 -> 32 gave 2e-4, 5e-7, then an error 4e-8 at 32 on a wide face
+        // with friction).
+        est_k = refinement_estimate(c.sizes, d_k, floor_k);
+        est_g = refinement_estimate(c.sizes, d_g, floor_g);
+        est_k.estimate = std::max(est_k.estimate, d_k.back() + floor_k);
+        est_g.estimate = std::max(est_g.estimate, d_g.back() + floor_g);
+        if (prm.n != 0 || d_k.size() < 2) return detail::Verdict::go_on;
+        return detail::ladder_verdict(ladder_stop(prm.tol, est_k, d_k.back(),
+                                                  std::max(std::fabs(m.kb), std::fabs(m.kf)), est_g,
+                                                  d_g.back(), m.gmax));
+      },
+      detail::RethrowFailures{});
+  const bool converged = run.verdict == detail::Verdict::converged;
+  const bool stalled = run.verdict == detail::Verdict::stalled;
+  const std::vector<double>& d_k = run.chain.changes[0];
+  const std::vector<double>& d_g = run.chain.changes[1];
+  const int n_done = run.chain.sizes.back();
+  const JacobiSeries& js = run.chain.last().js;
+  kb = run.chain.last().kb;
+  kf = run.chain.last().kf;
+  gmax = run.chain.last().gmax;
+  // The member before the last (for the stress estimate's change, below).
+  const JacobiSeries js_prev =
+      run.chain.size() >= 2 ? run.chain.states[run.chain.size() - 2].js : JacobiSeries();
   // g's estimate from the coarser sizes: the stress estimate's gain is read
   // from their change (below), and is applied to it.
   const double g_coarse = d_g.empty() ? kInf

@@ -2,8 +2,10 @@
 #include "movingpunch/zones.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -16,6 +18,7 @@
 
 #include "chebyshev.hpp"
 #include "gap_scan.hpp"
+#include "ladder.hpp"
 #include "movingpunch/collocation.hpp"
 #include "movingpunch/dispersion.hpp"
 #include "movingpunch/errors.hpp"
@@ -801,77 +804,86 @@ ZonesSolution solve_connected(const ZonesParams& prm, const std::vector<PunchPro
     for (int n : detail::kSizes)
       if (n >= std::clamp(prm.first_n, 8, 256) && n <= 256) sizes.push_back(n);
   }
-  std::vector<int> done;
-  std::vector<double> d_ends, d_p;
-  Eigen::VectorXd e_prev;
-  std::vector<Eigen::VectorXd> b_prev;
   std::unique_ptr<System> sys;
   Eigen::MatrixXd jac;
   bool have_jac = false;
   RefinementEstimate est_e, est_p;
   double pmax = 0.0;
-  bool converged = false;
-  for (int n : sizes) {
-    // The first size from the start (a long way, maybe); a larger one from
-    // the last size's ends, a few steps away. When a larger size fails (the
-    // finer discretisation has no root near the coarser one's), the ladder
-    // stops at the last size that solved, with a warning below.
-    const bool first = done.empty();
-    const int max_it = first ? 200 : 16;
-    const Eigen::VectorXd e_keep = e;
-    try {
-      sys = std::make_unique<System>(prm, prof, kernel(table_need(e)), n, S);
-      newton(*sys, e, out.iterations, jac, have_jac, max_it, mirror);
-      if (kern->range() < table_need(e)) {  // the ends moved out: a longer table
+  // The ladder (ladder.hpp). Per size: the ends and each zone's
+  // U-coefficients. The first size from the start (a long way, maybe); a
+  // larger one from the last size's ends, a few steps away. When a larger
+  // size fails (the finer discretisation has no root near the coarser
+  // one's), the ladder stops at the last size that solved, with a warning
+  // below.
+  struct Member {
+    Eigen::VectorXd e;
+    std::vector<Eigen::VectorXd> b;
+  };
+  std::string failure_text;  // a larger size's failure (it stops the ladder)
+  std::exception_ptr failure;
+  const detail::LadderRun<Member, 2> run = detail::run_ladder<2, Member>(
+      sizes,
+      [&](int n) {
+        const bool first = !sys;  // no size solved yet
+        const int max_it = first ? 200 : 16;
         sys = std::make_unique<System>(prm, prof, kernel(table_need(e)), n, S);
         newton(*sys, e, out.iterations, jac, have_jac, max_it, mirror);
-      }
-    } catch (const ConvergenceError& err) {
-      if (first) throw;
-      std::ostringstream w;
-      w << "the zone ends did not converge at N = " << n << " (" << err.what()
-        << "); the result is that of N = " << done.back();
-      out.warnings.push_back(w.str());
-      e = e_keep;
-      sys = std::make_unique<System>(prm, prof, kernel(table_need(e)), done.back(), S);
-      Eigen::VectorXd F;
-      if (!sys->eval(e, F)) throw;
-      break;
-    }
-    std::vector<Eigen::VectorXd> b(static_cast<std::size_t>(nz));
-    pmax = 0.0;
-    for (int j = 0; j < nz; ++j) {
-      b[static_cast<std::size_t>(j)] = sys->coefficients(j);
-      pmax = std::max(pmax, max_abs_sine_series(b[static_cast<std::size_t>(j)]));
-    }
-    done.push_back(n);
-    if (e_prev.size() == e.size()) {
-      d_ends.push_back((e - e_prev).lpNorm<Eigen::Infinity>());
-      double dp = 0.0;
-      for (int j = 0; j < nz; ++j) {
-        const Eigen::VectorXd& bj = b[static_cast<std::size_t>(j)];
-        const Eigen::VectorXd& bp = b_prev[static_cast<std::size_t>(j)];
-        Eigen::VectorXd db = Eigen::VectorXd::Zero(std::max(bj.size(), bp.size()));
-        db.head(bj.size()) += bj;
-        db.head(bp.size()) -= bp;
-        dp = std::max(dp, max_abs_sine_series(db));
-      }
-      d_p.push_back(dp);
-      double wmax = 0.0;
-      for (int j = 0; j < nz; ++j) wmax = std::max(wmax, 0.5 * (e(2 * j + 1) - e(2 * j)));
-      const double span = std::max(std::fabs(e(0)), std::fabs(e(2 * nz - 1))) + wmax;
-      est_e = refinement_estimate(done, d_ends, 256.0 * kEps * span);
-      est_p = refinement_estimate(done, d_p, 64.0 * kEps * pmax);
-      const LadderStop stop =
-          ladder_stop(L.tol, est_e, d_ends.back(), wmax, est_p, d_p.back(), pmax);
-      if (stop == LadderStop::converged) {
-        converged = true;
-        break;
-      }
-      if (stop == LadderStop::stalled) break;
-    }
-    e_prev = e;
-    b_prev = b;
+        if (kern->range() < table_need(e)) {  // the ends moved out: a longer table
+          sys = std::make_unique<System>(prm, prof, kernel(table_need(e)), n, S);
+          newton(*sys, e, out.iterations, jac, have_jac, max_it, mirror);
+        }
+        Member m{e, std::vector<Eigen::VectorXd>(static_cast<std::size_t>(nz))};
+        pmax = 0.0;
+        for (int j = 0; j < nz; ++j) {
+          m.b[static_cast<std::size_t>(j)] = sys->coefficients(j);
+          pmax = std::max(pmax, max_abs_sine_series(m.b[static_cast<std::size_t>(j)]));
+        }
+        return m;
+      },
+      [&](const Member& prev, const Member& cur) {
+        double dp = 0.0;
+        for (int j = 0; j < nz; ++j) {
+          const Eigen::VectorXd& bj = cur.b[static_cast<std::size_t>(j)];
+          const Eigen::VectorXd& bp = prev.b[static_cast<std::size_t>(j)];
+          Eigen::VectorXd db = Eigen::VectorXd::Zero(std::max(bj.size(), bp.size()));
+          db.head(bj.size()) += bj;
+          db.head(bp.size()) -= bp;
+          dp = std::max(dp, max_abs_sine_series(db));
+        }
+        return std::array<double, 2>{(cur.e - prev.e).lpNorm<Eigen::Infinity>(), dp};
+      },
+      [&](const detail::LadderChain<Member, 2>& c) {
+        if (c.size() < 2) return detail::Verdict::go_on;
+        double wmax = 0.0;
+        for (int j = 0; j < nz; ++j) wmax = std::max(wmax, 0.5 * (e(2 * j + 1) - e(2 * j)));
+        const double span = std::max(std::fabs(e(0)), std::fabs(e(2 * nz - 1))) + wmax;
+        const std::vector<double>& d_ends = c.changes[0];
+        const std::vector<double>& d_p = c.changes[1];
+        est_e = refinement_estimate(c.sizes, d_ends, 256.0 * kEps * span);
+        est_p = refinement_estimate(c.sizes, d_p, 64.0 * kEps * pmax);
+        return detail::ladder_verdict(
+            ladder_stop(L.tol, est_e, d_ends.back(), wmax, est_p, d_p.back(), pmax));
+      },
+      [&](const std::exception& err, const detail::LadderAt& at) {
+        if (dynamic_cast<const ConvergenceError*>(&err) == nullptr || at.solved == 0)
+          return detail::OnFailure::rethrow;
+        failure_text = err.what();
+        failure = std::current_exception();
+        return detail::OnFailure::stop;
+      });
+  const bool converged = run.verdict == detail::Verdict::converged;
+  const std::vector<double>& d_ends = run.chain.changes[0];
+  const std::vector<double>& d_p = run.chain.changes[1];
+  if (run.failed) {
+    // Back to the last size that solved (its ends, a system at its size).
+    std::ostringstream w;
+    w << "the zone ends did not converge at N = " << run.failed_n << " (" << failure_text
+      << "); the result is that of N = " << run.chain.sizes.back();
+    out.warnings.push_back(w.str());
+    e = run.chain.last().e;
+    sys = std::make_unique<System>(prm, prof, kernel(table_need(e)), run.chain.sizes.back(), S);
+    Eigen::VectorXd F;
+    if (!sys->eval(e, F)) std::rethrow_exception(failure);
   }
   out.collocation_n = sys->n();
   // One size alone (a larger one failed): no estimate.
