@@ -34,9 +34,22 @@ STOP_TIMEOUT = 20.0  # the child ends this soon after the signal
 LONG_SOLVE = "vstar=0.2, kw=1.0, radius=100, load=0.002, n=4096"
 
 
+# A process started from an interactive shell has SIGINT and SIGTERM
+# unblocked and Python's own SIGINT handler. A child inherits its parent's
+# signal mask and an ignored SIGINT: a pytest worker that has run other tests
+# (signal tests, worker pools) need not be in that state, so the child puts
+# itself in it first (a loaded CI run once saw the solve finish after the
+# signal, in both the API and the CLI child).
+_AS_FROM_A_SHELL = """
+import signal
+signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT, signal.SIGTERM})
+signal.signal(signal.SIGINT, signal.default_int_handler)
+"""
+
+
 def _start(code: str) -> subprocess.Popen[str]:
     return subprocess.Popen(
-        [sys.executable, "-c", textwrap.dedent(code)],
+        [sys.executable, "-c", _AS_FROM_A_SHELL + textwrap.dedent(code)],
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,

@@ -72,12 +72,17 @@ def _signals_deferred(*, ignore_sigint: bool = False) -> Iterator[None]:
     try:
         yield
     finally:
-        if ignore_sigint and main:
-            signal.signal(
-                signal.SIGINT, old_int if old_int is not None else signal.SIG_DFL
-            )
-        if mask is not None and old_mask is not None:
-            mask(signal.SIG_SETMASK, old_mask)
+        # Nested: a handler that raises between the two restores (a signal
+        # that was pending) must not leave SIGINT and SIGTERM blocked in
+        # this thread (its later children would inherit the mask).
+        try:
+            if ignore_sigint and main:
+                signal.signal(
+                    signal.SIGINT, old_int if old_int is not None else signal.SIG_DFL
+                )
+        finally:
+            if mask is not None and old_mask is not None:
+                mask(signal.SIG_SETMASK, old_mask)
 
 
 def _exit_with_parent(parent_alive: Connection) -> None:
