@@ -1,0 +1,170 @@
+// The medium under the punch: one interface behind every solver.
+//
+// A medium is what lies under the surface y = 0: a stack of sublayers (total
+// thickness h = 1; homogeneous or exponentially graded) on a base (springs,
+// Winkler/Pasternak with or without damping, rigid, or an elastic half-space,
+// bonded or in frictionless contact). Units are those of the TOP sublayer's
+// top: mu = rho = 1, vstar = rho V^2 / mu (docs/theory.md section 16).
+//
+// A solver never sees a concrete medium. It reads, per wavenumber t = alpha h:
+//  * response(t): the surface responses to unit transformed pressure
+//    (M1 = -alpha v^/p^, M2 = -sigma_x^/p^, alpha u^ and alpha v^ at the top;
+//    complex in general: damping, viscoelasticity; real for elastic media);
+//  * mode(t): the mode field at any depth (stresses and displacements) and
+//    its top material's half-plane part, which the stresses take in closed form;
+//  * top(): the half-plane constants of the top material (phi1, phi2, the
+//    Cauchy term of the kernel), and the decay rate of M1 - phi1 (where the
+//    kernel's alpha quadrature may stop) and the long-wave scales of the base
+//    (where its first panels must be split);
+//  * dispersion(t): a real function changing sign where a free steady wave of
+//    wavenumber t exists at this speed (the critical-speed search).
+// The kernel tables are cached per medium (key()).
+#pragma once
+
+#include <complex>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "movingpunch/layer_response.hpp"
+
+namespace movingpunch {
+
+// ---------------------------------------------------------------------------
+// The description of a medium, independent of the speed.
+
+// One sublayer: thickness (a fraction of h; the thicknesses sum to 1), shear
+// modulus and density relative to the top sublayer's top (the top sublayer
+// has mu = rho = 1), Poisson's ratio, and gamma_h: mu(y) and rho(y) vary as
+// exp(gamma_h (y - y_top)) from the sublayer's top value (y up, h = 1; 0:
+// homogeneous; the wave speeds stay constant).
+struct Sublayer {
+  double thickness = 1.0;
+  double mu = 1.0;
+  double nu = 0.2;
+  double rho = 1.0;
+  double gamma = 0.0;
+};
+
+enum class BaseKind {
+  springs,            // sigma_y = (kw + kp t^2 - i damping sqrt(vstar) t) v, tau = 0; kw = inf: rigid
+  half_space_bonded,  // an elastic substrate, u, v, tau, sigma_y continuous
+  half_space_smooth,  // an elastic substrate in frictionless contact: tau = 0 on both faces
+};
+
+struct BaseSpec {
+  BaseKind kind = BaseKind::springs;
+  double kw = 1.0;  // springs: k_w h / mu_1 in (0, inf]
+  double kp = 0.0;  // springs: k_p / (mu_1 h) in [0, kMaxKp]
+  double damping = 0.0;
+  double mu = 1.0, nu = 0.2, rho = 1.0;  // half-space: relative to the top sublayer
+};
+
+struct MediumSpec {
+  std::vector<Sublayer> layers{Sublayer{}};
+  BaseSpec base;
+  // One homogeneous sublayer on springs: the paper's layer (LayerModel).
+  bool homogeneous() const noexcept {
+    return layers.size() == 1 && layers[0].gamma == 0.0 && base.kind == BaseKind::springs;
+  }
+  // The numbers that identify the medium (cache keys).
+  std::vector<double> key() const;
+};
+
+// The paper's medium: one homogeneous sublayer of Poisson's ratio nu on springs.
+MediumSpec homogeneous_medium(double kw, double nu, double kp = 0.0, double damping = 0.0);
+
+// Throws InvalidParameter (errors.hpp) naming the parameter and its range:
+// thicknesses > 0 summing to 1 (to 1e-12), the top sublayer's mu = rho = 1,
+// every mu, rho > 0 finite, nu in [0, 0.5), |gamma_h| <= kMaxGamma, the
+// base's own ranges.
+void validate(const MediumSpec& m);
+
+// The largest |gamma_h| of a graded sublayer (the modulus changes by e^50
+// across the layer at most).
+inline constexpr double kMaxGamma = 50.0;
+
+// ---------------------------------------------------------------------------
+// The medium at one speed.
+
+using cplx = std::complex<double>;
+
+// Per unit transformed pressure at t = alpha h > 0 (as Response in
+// layer_response.hpp; complex in general; alpha < 0: the conjugates).
+struct MediumResponse {
+  cplx M1{0.0, 0.0};
+  cplx M2{0.0, 0.0};
+  cplx U0{0.0, 0.0};
+  cplx W0{0.0, 0.0};
+};
+
+// The state of one mode at a depth: [U, W, tau/alpha, sigma_y/alpha] and
+// sigma_x/alpha (of the material on the chosen side of an interface), for the
+// top load sigma_y/alpha = -1, tau = 0 (layer_response.hpp's normalisation).
+struct ModeState {
+  Eigen::Vector4cd z = Eigen::Vector4cd::Zero();
+  cplx sx{0.0, 0.0};
+};
+
+// The field of one wavenumber (built once, evaluated at many depths).
+class ModeProfile {
+ public:
+  virtual ~ModeProfile() = default;
+  // The state minus the top material's half-plane state at depth y in
+  // [-1, 0] (below: at an interface, the material below it; sigma_x/alpha
+  // of the remainder is that material's sigma_x of the state minus the top
+  // material's of the half-plane state).
+  virtual ModeState remainder(double y, bool below = false) const = 0;
+  // The half-plane part alone (the top material's, closed form).
+  virtual ModeState half_plane(double y) const = 0;
+};
+
+class Medium {
+ public:
+  virtual ~Medium() = default;
+
+  virtual double vstar() const noexcept = 0;
+  // The top material's half-plane constants (wave_constants(vstar, nu_1)).
+  virtual const WaveConstants& top() const noexcept = 0;
+  double phi1() const noexcept { return top().phi1; }
+  double phi2() const noexcept { return top().phi2; }
+  double nu() const noexcept { return top().nu; }
+
+  // True when every response is real (no damping, no viscoelasticity): the
+  // symmetric solver applies.
+  virtual bool real() const noexcept = 0;
+  virtual MediumResponse response(double t) const = 0;
+  virtual std::unique_ptr<const ModeProfile> mode(double t) const = 0;
+  // A function of t changing sign exactly where a free wave of wavenumber t
+  // exists at this speed (arbitrary sign convention).
+  virtual double dispersion(double t) const = 0;
+
+  // M1 - phi1 decays at least like exp(-decay_rate() t) (times a polynomial):
+  // 2 nT for the homogeneous layer (a reflection off its bottom).
+  virtual double decay_rate() const noexcept = 0;
+  // Edges of the first alpha panels on [0, w] (at least {0, w}): the base's
+  // long-wave scales (layer_basis.hpp's foundation_panel_edges).
+  virtual std::vector<double> first_panel_edges(double w) const = 0;
+  // Depths of the interfaces between sublayers (descending, strictly inside
+  // (-1, 0)); empty for one sublayer.
+  virtual std::vector<double> interfaces() const { return {}; }
+
+  // The description and speed this medium was built from; the cache key.
+  virtual const MediumSpec& spec() const noexcept = 0;
+  std::vector<double> key() const;
+};
+
+// The medium of `spec` at speed vstar. Throws InvalidParameter (errors.hpp)
+// for an invalid spec or a speed the medium cannot carry (vstar in [0,
+// max_vstar(spec))), std::invalid_argument for a combination not supported.
+std::shared_ptr<const Medium> make_medium(const MediumSpec& spec, double vstar);
+
+// The critical speed of a medium: the lowest vstar of a free steady wave,
+// including infima approached only as t -> inf or t -> 0 (t = inf or 0 then).
+struct CriticalSpeed;
+CriticalSpeed critical_speed(const MediumSpec& spec);
+
+}  // namespace movingpunch
