@@ -15,6 +15,7 @@
 #include "movingpunch/dispersion.hpp"
 #include "movingpunch/kernel.hpp"
 #include "movingpunch/layer_response.hpp"
+#include "movingpunch/medium.hpp"
 
 namespace py = pybind11;
 using namespace py::literals;
@@ -25,6 +26,12 @@ namespace {
 using Vector = Eigen::VectorXd;
 using VectorRef = Eigen::Ref<const Eigen::VectorXd>;
 using Release = py::call_guard<py::gil_scoped_release>;
+
+const LayerRows& require_layers(const LayerRows& layers) {
+  if (layers.empty())
+    throw InvalidParameter("layers", "at least one sublayer", "layers: at least one sublayer");
+  return layers;
+}
 
 std::pair<Vector, Vector> layer_response(const VectorRef& t, double vstar, double kw, double nu,
                                          const std::string& method, double kp) {
@@ -92,6 +99,38 @@ void bind_layer(py::module_& m) {
       "Lowest vstar in (0, V*_R) at which a free wave of wavenumber t = alpha h "
       "exists; rayleigh_vstar(nu) when there is none below it.");
 
+  m.def(
+      "medium_critical_speed",
+      [](const LayerRows& layers, const std::string& base, double kw, double kp, double base_mu,
+         double base_nu, double base_rho) {
+        const auto spec =
+            medium_spec(require_layers(layers), base, kw, kp, 0.0, base_mu, base_nu, base_rho);
+        const CriticalSpeed c = critical_speed(*spec);
+        return std::make_pair(c.vstar, c.t);
+      },
+      py::kw_only(), "layers"_a, "base"_a = "springs", "kw"_a = 1.0, "kp"_a = 0.0,
+      "base_mu"_a = 1.0, "base_nu"_a = 0.2, "base_rho"_a = 1.0, Release(),
+      "(V*_cr, t) of a medium (see solve_contact for its arguments): the lowest speed of a "
+      "free steady wave and its wavenumber alpha h (inf or 0: an infimum approached as "
+      "alpha h -> inf or 0).");
+  m.def(
+      "medium_response",
+      [](const VectorRef& t, double vstar, const LayerRows& layers, const std::string& base,
+         double kw, double kp, double base_mu, double base_nu, double base_rho) {
+        const auto spec =
+            medium_spec(require_layers(layers), base, kw, kp, 0.0, base_mu, base_nu, base_rho);
+        const std::shared_ptr<const Medium> med = make_medium(*spec, vstar);
+        Eigen::MatrixXcd out(t.size(), 4);
+        for (Eigen::Index i = 0; i < t.size(); ++i) {
+          const MediumResponse r = med->surface_response(t(i));
+          out.row(i) << r.M1, r.M2, r.U0, r.W0;
+        }
+        return out;
+      },
+      "t"_a, py::kw_only(), "vstar"_a, "layers"_a, "base"_a = "springs", "kw"_a = 1.0, "kp"_a = 0.0,
+      "base_mu"_a = 1.0, "base_nu"_a = 0.2, "base_rho"_a = 1.0, Release(),
+      "The surface responses (M1, M2, alpha u^, alpha v^ per unit transformed pressure; "
+      "columns, complex) of a medium at each t = alpha h > 0 (see solve_contact).");
   m.def("layer_response", &layer_response, "t"_a, "vstar"_a, "kw"_a, "nu"_a, "method"_a = "auto",
         "kp"_a = 0.0, Release(),
         "Surface responses (M1, M2) per unit transformed pressure at each "

@@ -2,6 +2,7 @@
 // wired together by module.cpp.
 #pragma once
 
+#include <array>
 #include <atomic>
 #include <memory>
 #include <string>
@@ -15,7 +16,9 @@
 #include <Eigen/Dense>
 
 #include "movingpunch/contact.hpp"
+#include "movingpunch/errors.hpp"
 #include "movingpunch/interrupt.hpp"
+#include "movingpunch/medium.hpp"
 #include "movingpunch/profile.hpp"
 #include "movingpunch/stresses.hpp"
 
@@ -125,6 +128,41 @@ void set_profile(P& p, const std::string& profile, double half_width,
   p.half_width = half_width;
   p.table_x = table_x;
   p.table_y = table_y;
+}
+
+// A medium from Python: sublayers as (thickness, mu, nu, rho, gamma_h) rows
+// top to bottom, the base's kind ("springs", "bonded", "smooth"), the
+// springs' (kw, kp, damping) and the half-space's (mu, nu, rho). Null for no
+// sublayers and springs: the homogeneous layer of the solve's kw, nu, kp.
+using LayerRows = std::vector<std::array<double, 5>>;
+inline std::shared_ptr<const MediumSpec> medium_spec(const LayerRows& layers,
+                                                     const std::string& base, double kw, double kp,
+                                                     double damping, double base_mu, double base_nu,
+                                                     double base_rho) {
+  if (layers.empty() && base == "springs") return nullptr;
+  if (layers.empty())
+    throw InvalidParameter("layers", "at least one sublayer",
+                           "layers: a half-space base needs the sublayers above it");
+  auto m = std::make_shared<MediumSpec>();
+  m->layers.clear();
+  for (const auto& r : layers) m->layers.push_back(Sublayer{r[0], r[1], r[2], r[3], r[4]});
+  if (base == "springs")
+    m->base.kind = BaseKind::springs;
+  else if (base == "bonded")
+    m->base.kind = BaseKind::half_space_bonded;
+  else if (base == "smooth")
+    m->base.kind = BaseKind::half_space_smooth;
+  else
+    throw InvalidParameter("base", "'springs', 'bonded' or 'smooth'",
+                           "base must be 'springs', 'bonded' or 'smooth', got '" + base + "'");
+  m->base.kw = kw;
+  m->base.kp = kp;
+  m->base.damping = damping;
+  m->base.mu = base_mu;
+  m->base.nu = base_nu;
+  m->base.rho = base_rho;
+  validate(*m);
+  return m;
 }
 
 // The inputs every solve takes (ContactParams, DampedParams: the same names),

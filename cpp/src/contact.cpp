@@ -50,6 +50,10 @@ struct Timer {
 
 }  // namespace
 
+MediumSpec medium_of(const ContactParams& p) {
+  return p.medium ? *p.medium : homogeneous_medium(p.kw, p.nu, p.kp);
+}
+
 void validate(const ContactParams& p) {
   require_in_range("nu", p.nu, 0.0, 0.5, false, true);
   // Any finite vstar >= 0 is a valid question: at or above V*_cr the answer
@@ -57,6 +61,12 @@ void validate(const ContactParams& p) {
   require_in_range("vstar", p.vstar, 0.0, 1e300, false, false);
   require_in_range("kw", p.kw, kMinKw, kInf, false, false, true);
   require_in_range("kp", p.kp, 0.0, kMaxKp, false, false);
+  if (p.medium) {
+    validate(*p.medium);
+    if (p.medium->base.kind == BaseKind::springs && p.medium->base.damping != 0.0)
+      throw InvalidParameter("damping", "0 on the symmetric solver",
+                             "damping: a damped base is solved by the asymmetric solver");
+  }
   // The shape's parameters (the cylinder's radius, a flat face's half-width,
   // a table), named as the API names them.
   (void)PunchProfile(p.profile, p.radius, p.half_width, p.table_x, p.table_y);
@@ -89,9 +99,13 @@ constexpr double kLoosestWidthTol = 1e-8;
 // Everything the iteration on a needs for one (vstar, kw, nu).
 class Problem {
  public:
-  Problem(const ContactParams& p, const LayerModel& model, bool may_grow,
+  Problem(const ContactParams& p, std::shared_ptr<const Medium> model, bool may_grow,
           const PunchProfile& profile)
-      : p_(p), model_(model), prof_(profile), phi1_(model.phi1()), may_grow_(may_grow) {
+      : p_(p),
+        model_(std::move(model)),
+        prof_(profile),
+        phi1_(model_->phi1()),
+        may_grow_(may_grow) {
     // Never looser than 1e-10: the kernel's error estimates (QUADPACK's
     // panel estimate, a Chebyshev table's last coefficients) bound a kernel
     // built loosely by 1e2 ... 1e4 times its actual error, and the a/h error
@@ -181,11 +195,18 @@ class Problem {
   }
 
   int evaluations() const { return evaluations_; }
+  // lim M1(t)/t at long waves, read at t = 0.05 h: the medium's compliance
+  // for the wide-contact first width (a half-space base's M1 stays finite
+  // as t -> 0: a large compliance, a wide first guess).
+  double long_wave_compliance() const {
+    constexpr double t0 = 0.05;
+    return model_->surface_response(t0).M1.real() / t0;
+  }
   void count_evaluation() { ++evaluations_; }
 
  private:
   const ContactParams& p_;
-  const LayerModel& model_;
+  std::shared_ptr<const Medium> model_;
   const PunchProfile& prof_;
   double phi1_;
   double kernel_tol_;
@@ -592,8 +613,8 @@ WidthRange profile_range(const ContactParams& p, const PunchProfile& prof) {
   r.refuse = [p, what, amax, a0, table_bound](bool too_wide) {
     std::ostringstream m;
     m.precision(6);
-    m << "load = " << p.load << " on the " << what << " (kw = " << p.kw << ", vstar = " << p.vstar
-      << ") needs a contact half-width ";
+    m << "load = " << p.load << " on the " << what << " (" << foundation_text(p)
+      << ", vstar = " << p.vstar << ") needs a contact half-width ";
     if (too_wide && table_bound)
       m << "above " << amax << " h, the extent of the profile's table: the contact must stay "
         << "within the table; extend the table beyond that width or reduce the load";
@@ -817,7 +838,11 @@ BoundedSolve solve_bounded(Problem& prob, const ContactParams& p, const PunchPro
   double a = 0.0;
   if (prof.kind() == ProfileKind::cylinder) {
     const double lambda = p.radius * p.load;
-    const detail::WidthGuess guess = detail::width_guess(phi1, lambda, p.kw, p.nu, p.kp);
+    const MediumSpec spec = medium_of(p);
+    const detail::WidthGuess guess =
+        spec.homogeneous()
+            ? detail::width_guess(phi1, lambda, spec.base.kw, spec.layers[0].nu, spec.base.kp)
+            : detail::width_guess_compliance(phi1, lambda, prob.long_wave_compliance());
     if (0.5 * std::cbrt(0.75 * lambda) > kMaxA) detail::width_out_of_range(p, true);
     if (10.0 * guess.hertz < kMinA) detail::width_out_of_range(p, false);
 
@@ -1083,7 +1108,11 @@ void finish_checks(ContactSolution& sol, const ContactParams& p, const PunchProf
     if (!p.allow_unphysical) {
       std::ostringstream m;
       m.precision(8);
-      m << "vstar=" << p.vstar << ", kw=" << p.kw;
+      m << "vstar=" << p.vstar << ", ";
+      if (p.medium && !p.medium->homogeneous())
+        m << describe(*p.medium);
+      else
+        m << "kw=" << p.kw;
       if (prof.kind() == ProfileKind::cylinder)
         m << ", radius=" << p.radius;
       else
@@ -1098,16 +1127,18 @@ void finish_checks(ContactSolution& sol, const ContactParams& p, const PunchProf
 ContactSolution solve_contact(const ContactParams& p) {
   Timer timer;
   validate(p);
-  const double vr = rayleigh_vstar(p.nu);
-  const CriticalSpeed crit = critical_speed(p.kw, p.nu, p.kp);
+  const MediumSpec spec = medium_of(p);
+  const double vr = rayleigh_vstar(spec.layers[0].nu);
+  const CriticalSpeed crit = critical_speed(spec);
   const double t_critical = timer.seconds();
   if (p.vstar >= crit.vstar) {
-    if (p.kp > 0.0) throw SupercriticalSpeedError(p.vstar, crit.vstar, vr, foundation_text(p));
+    if (!spec.homogeneous() || spec.base.kp > 0.0)
+      throw SupercriticalSpeedError(p.vstar, crit.vstar, vr, describe(spec));
     throw SupercriticalSpeedError(p.vstar, crit.vstar, vr);
   }
 
-  const LayerModel model(p.vstar, p.kw, p.nu, p.kp);
-  const double phi1 = model.phi1();
+  const std::shared_ptr<const Medium> model = make_medium(spec, p.vstar);
+  const double phi1 = model->phi1();
   // Round-off of a/h (relative) from the layer response: within a hair of the
   // Rayleigh speed phi1 = nL / R(vstar) carries a relative error of about
   // eps phi1 (the Rayleigh function cancels), and so do M1 and k1. Measured
@@ -1118,7 +1149,7 @@ ContactSolution solve_contact(const ContactParams& p) {
   if (roundoff > p.tol) {
     std::ostringstream m;
     m.precision(10);
-    m << "vstar = " << p.vstar << " (kw = " << p.kw << ", nu = " << p.nu
+    m << "vstar = " << p.vstar << " (" << describe(spec) << ", nu = " << spec.layers[0].nu
       << ") is within a relative " << 1.0 - p.vstar / vr << " of the Rayleigh speed V*_R = " << vr
       << ": the layer response there (phi1 = " << phi1
       << ") is computed with a round-off of ~eps*phi1, which limits a/h to a relative " << roundoff
@@ -1242,7 +1273,7 @@ std::shared_ptr<const FieldEvaluator> ContactSolution::field() const {
   std::lock_guard<std::mutex> lock(field_cache_->mutex);
   auto& ev = field_cache_->evaluator;
   if (!ev)
-    ev = std::make_shared<const FieldEvaluator>(kernel_->model(), a_, b_, kernel_->tol(), kind_);
+    ev = std::make_shared<const FieldEvaluator>(kernel_->medium(), a_, b_, kernel_->tol(), kind_);
   return ev;
 }
 
@@ -1297,22 +1328,34 @@ void ContactSolution::prepare_displacement() {
   const AlphaQuadrature& q = kernel_->quadrature();
   std::vector<double> g(q.alpha.size());
   series_cosine_transforms(b_, kind_, a_, q.alpha.data(), g.data(), g.size());
+  // A half-space base: M1 -> m0 != 0 as alpha -> 0; m0 e^-alpha/alpha is
+  // taken out too (its cosine transform is a constant, dropped with the
+  // reference point, minus (m0/2) ln(1 + u^2)).
+  m0_ = kernel_->model().long_wave_m1();
   for (std::size_t i = 0; i < q.alpha.size(); ++i) {
     const double al = q.alpha[i];
-    g[i] *= (q.m1[i] - phi1_ * (-std::expm1(-al))) / al;
+    if (m0_ == 0.0)
+      g[i] *= (q.m1[i] - phi1_ * (-std::expm1(-al))) / al;
+    else
+      g[i] *= (q.m1[i] - phi1_ * (-std::expm1(-al)) - m0_ * std::exp(-al)) / al;
   }
   smooth_coef_ = kernel_->filon().coefficients(g);
   // (phi1 / (2 pi)) int p ln(1 + (x - xi)^2) d xi by Gauss-Chebyshev (U)
   // quadrature: the nodes and g at them do not depend on x (potentials.hpp).
   detail::log1p_rule(b_, a_, log1p_r_, log1p_w_, kind_);
+  greens_reference_ = m0_ == 0.0 ? 0.0 : greens_integral(kDisplacementReference);
 }
 
 // (1/pi) int p(xi)/(P/h) G(x - xi) d xi with G(u) = int_0^inf (M1/alpha) cos(alpha u)
-// d alpha, split as int [M1 - phi1 (1 - e^-alpha)]/alpha cos + (phi1/2) ln(1 + 1/u^2).
+// d alpha, split as int [M1 - phi1 (1 - e^-alpha)]/alpha cos + (phi1/2) ln(1 + 1/u^2)
+// (a half-space base: [M1 - phi1 (1 - e^-alpha) - m0 e^-alpha]/alpha, and
+// -(m0/2) ln(1 + u^2) up to a constant; beyond kFarField the smooth part is 0).
 double ContactSolution::greens_integral(double x) const {
   const double a = a_;
   const Eigen::Index last = last_even_term(b_);
-  const double smooth = 2.0 / kPi * kernel_->filon().integral(x, smooth_coef_).real();
+  const double smooth = std::fabs(x) > kFarField
+                            ? 0.0
+                            : 2.0 / kPi * kernel_->filon().integral(x, smooth_coef_).real();
 
   // Log part: -(phi1/pi) int p ln|x - xi| = -phi1 a [ln a (b0/2) + sum b_n L_n(s)]
   // (T: (1/pi) int T_0/sqrt(1 - t^2) = 1, so ln a b0).
@@ -1325,13 +1368,14 @@ double ContactSolution::greens_integral(double x) const {
   // (phi1 / (2 pi)) int p ln(1 + (x - xi)^2) d xi on the precomputed nodes:
   // int sqrt(1 - r^2) g(r) ln(1 + (x - a r)^2) dr.
   const double l1 = detail::log1p_sum(log1p_r_, log1p_w_, a, x);
-  const double log1p_part = phi1_ / (2.0 * kPi) * a * l1;
+  const double log1p_part = (phi1_ - m0_) / (2.0 * kPi) * a * l1;
 
   return smooth + log_part + log1p_part;
 }
 
 double ContactSolution::surface_displacement(double x) const {
   if (!std::isfinite(x)) throw std::invalid_argument("surface_displacement: x must be finite");
+  if (m0_ != 0.0) return -params_.load * (greens_integral(x) - greens_reference_);
   if (std::fabs(x) > kFarField) return 0.0;  // see stresses.hpp
   return -params_.load * greens_integral(x);
 }

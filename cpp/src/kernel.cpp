@@ -35,7 +35,7 @@ struct Panel {
   double systematic;  // the part of truncation that is not round-off
 };
 
-Panel eval_panel(const LayerModel& model, double lo, double hi) {
+Panel eval_panel(const Medium& model, double lo, double hi) {
   check_interrupt();  // 15 layer responses: microseconds
   Panel p{};
   p.lo = lo;
@@ -49,7 +49,7 @@ Panel eval_panel(const LayerModel& model, double lo, double hi) {
     const double sgn = j < 7 ? -1.0 : 1.0;
     const double x = c + sgn * h * kXgk[k];
     p.nodes[j] = x;
-    p.m1[j] = model.response(x).M1;
+    p.m1[j] = model.surface_response(x).M1.real();
     const double f = (p.m1[j] - phi1) / phi1;
     fv[j] = f;
     fk += kWgk[k] * f;
@@ -98,16 +98,20 @@ double kronrod_weight(int j, double h) {
 
 }  // namespace
 
-AlphaQuadrature build_alpha_quadrature(const LayerModel& model, double tol, double max_frequency,
-                                       double decay) {
+AlphaQuadrature build_alpha_quadrature(const Medium& model, double tol, double max_frequency,
+                                       Reach reach) {
   if (!(tol > 0.0)) throw std::invalid_argument("kernel quadrature: tol must be > 0");
   if (!(max_frequency > 0.0) || !std::isfinite(max_frequency))
     throw std::invalid_argument("kernel quadrature: max_frequency must be finite and > 0");
-  const double nT = model.constants().nT;
   AlphaQuadrature q;
-  if (!(decay > 0.0)) throw std::invalid_argument("kernel quadrature: decay must be > 0");
-  // M1 - phi1 decays like (1 + 4t) exp(-2 nT t): below 1e-18 beyond this.
-  q.alpha_max = (std::log(1e18) + std::log1p(4.0 * 60.0 / (decay * nT))) / (decay * nT);
+  // M1 - phi1 decays like (1 + 4t) exp(-rate t) (the homogeneous layer: rate
+  // 2 nT at the surface, nT for the field at its bottom): below 1e-18 beyond
+  // this.
+  const double rate = reach == Reach::surface ? model.decay_rate() : model.field_decay_rate();
+  if (!(rate > 0.0) || !std::isfinite(rate))
+    throw std::invalid_argument(
+        "kernel quadrature: the medium's decay rate must be finite and > 0");
+  q.alpha_max = (std::log(1e18) + std::log1p(4.0 * 60.0 / rate)) / rate;
   // Panels narrow enough that sin(alpha u) turns at most ~2 radians on one.
   const double width = std::min(1.0, 2.0 / max_frequency);
   const int n0 = std::max(1, static_cast<int>(std::ceil(q.alpha_max / width)));
@@ -116,7 +120,7 @@ AlphaQuadrature build_alpha_quadrature(const LayerModel& model, double tol, doub
   for (int i = n0 - 1; i >= 1; --i) work.push_back(eval_panel(model, i * w0, (i + 1) * w0));
   // The first panel, split down to a Pasternak base's long-wave scale
   // (layer_basis.hpp; one panel for springs alone).
-  const std::vector<double> first = detail::foundation_panel_edges(model.kw(), model.kp(), w0);
+  const std::vector<double> first = model.first_panel_edges(w0);
   for (std::size_t i = first.size() - 1; i >= 1; --i)
     work.push_back(eval_panel(model, first[i - 1], first[i]));
   const double panel_tol = tol / n0;
@@ -433,16 +437,22 @@ double abs_integral(const AlphaQuadrature& q, double phi1) {
 }  // namespace
 
 KernelK1::KernelK1(const LayerModel& model, double tol, double range)
-    : model_(model), tol_(tol), range_(range) {
+    : KernelK1(make_medium(homogeneous_medium(model.kw(), model.nu(), model.kp()), model.vstar()),
+               tol, range) {}
+
+KernelK1::KernelK1(std::shared_ptr<const Medium> medium, double tol, double range)
+    : model_(std::move(medium)), tol_(tol), range_(range) {
+  if (!model_ || !model_->real())
+    throw std::invalid_argument("KernelK1: a medium with a real response is required");
   require_in_range("kernel tol", tol, 0.0, 1.0, true, false);
   require_in_range("kernel range", range, 0.0, 1e6, true, false);
   // The panels resolve M1 (and, for the displacement, the transform of a
   // pressure of half-width ~ range/4); sin(alpha u) is integrated exactly by
   // the Filon rule, so the grid does not grow with the range.
-  quad_ = build_alpha_quadrature(model_, tol_, 0.25 * range_);
+  quad_ = build_alpha_quadrature(*model_, tol_, 0.25 * range_);
   filon_ = std::make_shared<const FilonIntegrator>(quad_);
   std::vector<double> f(quad_.alpha.size());
-  for (std::size_t i = 0; i < f.size(); ++i) f[i] = (quad_.m1[i] - model_.phi1()) / model_.phi1();
+  for (std::size_t i = 0; i < f.size(); ++i) f[i] = (quad_.m1[i] - model_->phi1()) / model_->phi1();
   f_coef_ = filon_->coefficients(f);
   // A long table (many oscillations of k1 on |u| <= range) is held piecewise:
   // its cost is then proportional to the range, and so is no evaluation's.
@@ -486,7 +496,7 @@ KernelK1::KernelK1(const LayerModel& model, double tol, double range)
       // round-off of the values (Filon sums of terms up to int |f|).
       table_error_ = 2.0 * tail + dropped;
       table_order_ = n + 1;
-      table_roundoff_ = 4.0 * eps * (abs_integral(quad_, model_.phi1()) + vmax);
+      table_roundoff_ = 4.0 * eps * (abs_integral(quad_, model_->phi1()) + vmax);
       c.resize(std::max<std::size_t>(last, 2));
       coef_ = std::move(c);
       for (std::size_t m = 1; m < coef_.size(); m += 2) odd_.push_back(coef_[m]);
@@ -505,10 +515,11 @@ void KernelK1::build_pieces() {
   // half-width range/4 (the displacement), many times more of them on a wide
   // table.
   constexpr int D = kPieceDegree;
-  const AlphaQuadrature coarse = build_alpha_quadrature(model_, tol_, 1.0);
+  const AlphaQuadrature coarse = build_alpha_quadrature(*model_, tol_, 1.0);
   const FilonIntegrator filon(coarse);
   std::vector<double> f(coarse.alpha.size());
-  for (std::size_t i = 0; i < f.size(); ++i) f[i] = (coarse.m1[i] - model_.phi1()) / model_.phi1();
+  for (std::size_t i = 0; i < f.size(); ++i)
+    f[i] = (coarse.m1[i] - model_->phi1()) / model_->phi1();
   const std::vector<double> fc = filon.coefficients(f);
   std::vector<FilonIntegrator::cplx> K;
   double vmax = 0.0;
@@ -538,7 +549,7 @@ void KernelK1::build_pieces() {
   // of Filon sums of terms up to int |f|.
   constexpr double eps = 2.220446049250313e-16;
   table_error_ = 0.0;
-  table_roundoff_ = 4.0 * eps * (abs_integral(coarse, model_.phi1()) + vmax);
+  table_roundoff_ = 4.0 * eps * (abs_integral(coarse, model_->phi1()) + vmax);
   value_quad_ = coarse;
 }
 

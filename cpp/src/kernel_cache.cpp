@@ -7,6 +7,7 @@
 #include <list>
 #include <memory>
 #include <mutex>
+#include <vector>
 
 #include "movingpunch/damped.hpp"
 #include "movingpunch/kernel.hpp"
@@ -19,10 +20,10 @@ namespace {
 // the same inputs give the same table) and covering |u| <= range().
 constexpr double kStep = 1.25;
 
-template <class Table, std::size_t KeySize>
+template <class Table, class KeyType>
 class RangeCache {
  public:
-  using Key = std::array<double, KeySize>;
+  using Key = KeyType;
   using Ptr = std::shared_ptr<const Table>;
 
   RangeCache(std::size_t capacity, double max_ratio) : capacity_(capacity), max_ratio_(max_ratio) {}
@@ -101,16 +102,16 @@ class RangeCache {
   KernelCacheInfo info_;
 };
 
-RangeCache<KernelK1, 5>& k1_cache() {
-  static RangeCache<KernelK1, 5> c(kKernelCacheCapacity, kMaxRangeRatio);
+RangeCache<KernelK1, std::vector<double>>& k1_cache() {
+  static RangeCache<KernelK1, std::vector<double>> c(kKernelCacheCapacity, kMaxRangeRatio);
   return c;
 }
 
 // A damped table's evaluation costs the same whatever its range (pieces):
 // no upper ratio. Keyed on (vstar, kw, nu, damping, friction).
-RangeCache<DampedKernel, 6>& damped_cache() {
-  static RangeCache<DampedKernel, 6> c(kDampedKernelCacheCapacity,
-                                       std::numeric_limits<double>::infinity());
+RangeCache<DampedKernel, std::array<double, 6>>& damped_cache() {
+  static RangeCache<DampedKernel, std::array<double, 6>> c(kDampedKernelCacheCapacity,
+                                                           std::numeric_limits<double>::infinity());
   return c;
 }
 
@@ -118,10 +119,18 @@ RangeCache<DampedKernel, 6>& damped_cache() {
 
 std::shared_ptr<const KernelK1> cached_kernel(const LayerModel& model, double tol, double min_range,
                                               double build_range, bool* built, bool grow) {
+  return cached_kernel(
+      make_medium(homogeneous_medium(model.kw(), model.nu(), model.kp()), model.vstar()), tol,
+      min_range, build_range, built, grow);
+}
+
+std::shared_ptr<const KernelK1> cached_kernel(const std::shared_ptr<const Medium>& model,
+                                              double tol, double min_range, double build_range,
+                                              bool* built, bool grow) {
+  std::vector<double> key = model->key();  // kp is irrelevant on a rigid base: one key for it
+  key.push_back(tol);
   return k1_cache().get(
-      // kp is irrelevant on a rigid base: one key for it.
-      {model.vstar(), model.kw(), model.nu(), tol, model.rigid_base() ? 0.0 : model.kp()},
-      min_range, build_range,
+      key, min_range, build_range,
       [&](double range, const std::shared_ptr<const KernelK1>& shorter) {
         // Growth never turns a global table piecewise when the range needed
         // fits a global one: a piecewise table's error bound is of any shape

@@ -13,9 +13,12 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "movingpunch/errors.hpp"
+#include "movingpunch/medium.hpp"
 #include "roots.hpp"
 
 namespace movingpunch::detail {
@@ -80,6 +83,19 @@ inline WidthGuess width_guess(double phi1, double lambda, double kw, double nu, 
   return g;
 }
 
+// The same for any medium, from its long-wave compliance C = lim M1(t)/t
+// (the homogeneous layer's 1/kw + (1 - nu)/2 above, up to the layer's own
+// term): the wide contact of a cylinder on springs of compliance C.
+inline WidthGuess width_guess_compliance(double phi1, double lambda, double compliance) {
+  constexpr double kPi = 3.14159265358979323846;
+  WidthGuess g;
+  g.hertz = std::sqrt(2.0 * phi1 * lambda / kPi);
+  g.wide = std::cbrt(1.5 * lambda * std::max(compliance, 0.0));
+  g.use_wide = g.hertz > 8.0 * g.wide || g.wide > std::max(1.0, g.hertz);
+  g.a = std::clamp(g.use_wide ? g.wide : g.hertz, kMinA, kMaxA);
+  return g;
+}
+
 // The first width of a non-cylindrical profile (any class with slope(x)):
 // the half-plane width, where P = (1/phi1) int_{-a}^{a} x f'(x)/sqrt(a^2 - x^2) dx
 // (the consistency condition of a bounded contact on a half-plane; Hertz's
@@ -110,8 +126,17 @@ double profile_half_plane_width(const Profile& prof, double phi1, double P, doub
 
 // The foundation as messages name it: "kw = 1" for springs alone, "kw = 1,
 // kp = 0.2" with a Pasternak shear layer (any parameter struct with kw, kp).
+template <class Params, class = void>
+struct HasMedium : std::false_type {};
+template <class Params>
+struct HasMedium<Params, std::void_t<decltype(std::declval<Params>().medium)>> : std::true_type {};
+
+// A layered medium (ContactParams::medium) is named by describe().
 template <class Params>
 std::string foundation_text(const Params& p) {
+  if constexpr (HasMedium<Params>::value) {
+    if (p.medium && !p.medium->homogeneous()) return describe(*p.medium);
+  }
   std::ostringstream m;
   m.precision(6);
   m << "kw = " << p.kw;

@@ -17,14 +17,14 @@ constexpr double kPi = 3.14159265358979323846;
 
 }  // namespace
 
-FieldEvaluator::FieldEvaluator(const LayerModel& model, double a, const Eigen::VectorXd& b,
-                               double tol, SeriesKind kind)
-    : model_(std::make_shared<const LayerModel>(model)), a_(a), b_(b), kind_(kind) {
+FieldEvaluator::FieldEvaluator(std::shared_ptr<const Medium> medium, double a,
+                               const Eigen::VectorXd& b, double tol, SeriesKind kind)
+    : model_(std::move(medium)), a_(a), b_(b), kind_(kind) {
   if (!(a > 0.0) || !std::isfinite(a)) throw std::invalid_argument("field: a must be > 0");
   for (Eigen::Index n = 1; n < b_.size(); n += 2) b_(n) = 0.0;
   // Panels resolve the remainder and the transform of p (frequency a); the
   // oscillation in x is integrated exactly by the Filon rule.
-  quad_ = build_alpha_quadrature(*model_, tol, 2.0 * a, 1.0);
+  quad_ = build_alpha_quadrature(*model_, tol, 2.0 * a, Reach::field);
   filon_ = std::make_unique<FilonIntegrator>(quad_);
   const std::size_t nq = quad_.alpha.size();
   ptilde_.resize(nq);
@@ -32,7 +32,13 @@ FieldEvaluator::FieldEvaluator(const LayerModel& model, double a, const Eigen::V
   series_cosine_transforms(b_, kind_, a_, quad_.alpha.data(), ptilde_.data(), nq);
   for (std::size_t q = 0; q < nq; ++q) {
     ptilde_[q] *= 2.0 / kPi;
-    modes_.push_back(model_->mode_field(quad_.alpha[q]));
+    modes_.push_back(model_->mode(quad_.alpha[q]));
+  }
+  if (model_->long_wave_m1() != 0.0) {
+    Eigen::VectorXd xr(1), yr(1);
+    xr << kDisplacementReference;
+    yr << 0.0;
+    reference_ = displacement(xr, yr)(0, 0);
   }
 }
 
@@ -73,7 +79,7 @@ using detail::check_grid;
 StressField FieldEvaluator::stresses(const Eigen::Ref<const Eigen::VectorXd>& x,
                                      const Eigen::Ref<const Eigen::VectorXd>& y) const {
   check_grid(x, y);
-  const WaveConstants& c = model_->constants();
+  const WaveConstants& c = model_->top();
   const Eigen::Index nx = x.size(), ny = y.size();
   const auto nq = static_cast<Eigen::Index>(quad_.alpha.size());
   StressField f;
@@ -84,13 +90,13 @@ StressField FieldEvaluator::stresses(const Eigen::Ref<const Eigen::VectorXd>& x,
   // Layer remainder: per depth, values over alpha, then their transforms in x.
   Eigen::MatrixXd Rx(nq, ny), Ry(nq, ny), Rt(nq, ny);
   for (Eigen::Index q = 0; q < nq; ++q) {
-    const ModeField& m = modes_[static_cast<std::size_t>(q)];
+    const ModeProfile& m = *modes_[static_cast<std::size_t>(q)];
     const double pt = ptilde_[static_cast<std::size_t>(q)];
     for (Eigen::Index j = 0; j < ny; ++j) {
-      const Eigen::Vector4d r = m.state(y(j)) - m.half_plane_state(y(j));
-      Rx(q, j) = pt * sigma_x_hat(c, r);
-      Ry(q, j) = pt * r(3);
-      Rt(q, j) = pt * r(2);
+      const ModeState r = m.remainder(y(j));
+      Rx(q, j) = pt * r.sx.real();
+      Ry(q, j) = pt * r.z(3).real();
+      Rt(q, j) = pt * r.z(2).real();
     }
   }
   Eigen::MatrixXd cosv(nq, 2 * ny);
@@ -125,27 +131,39 @@ StressField FieldEvaluator::stresses(const Eigen::Ref<const Eigen::VectorXd>& x,
 Eigen::MatrixXd FieldEvaluator::displacement(const Eigen::Ref<const Eigen::VectorXd>& x,
                                              const Eigen::Ref<const Eigen::VectorXd>& y) const {
   check_grid(x, y);
-  const WaveConstants& c = model_->constants();
+  const WaveConstants& c = model_->top();
   const Eigen::Index nx = x.size(), ny = y.size();
   const auto nq = static_cast<Eigen::Index>(quad_.alpha.size());
-  // Remainder [W - W_hp (1 - e^-alpha)] / alpha (finite at alpha -> 0).
+  // Remainder [W - W_hp (1 - e^-alpha)] / alpha (finite at alpha -> 0 on
+  // springs). A half-space base: W -> -m0 at every depth as alpha -> 0, and
+  // -m0 e^-alpha/alpha is taken out as the surface displacement takes it
+  // (contact.cpp): its part of v is (m0/(2 pi)) int p ln(1 + (x - xi)^2) up
+  // to a constant, which the reference point removes (medium.hpp).
+  const double m0 = model_->long_wave_m1();
   Eigen::MatrixXd Rw(nq, ny);
   for (Eigen::Index q = 0; q < nq; ++q) {
     const double al = quad_.alpha[static_cast<std::size_t>(q)];
-    const ModeField& m = modes_[static_cast<std::size_t>(q)];
+    const ModeProfile& m = *modes_[static_cast<std::size_t>(q)];
     const double pt = ptilde_[static_cast<std::size_t>(q)];
     for (Eigen::Index j = 0; j < ny; ++j) {
-      const double w = m.state(y(j))(1), whp = m.half_plane_state(y(j))(1);
-      Rw(q, j) = pt * (w + whp * std::expm1(-al)) / al;
+      const double w = m.state(y(j)).z(1).real(), whp = m.half_plane(y(j)).z(1).real();
+      Rw(q, j) = m0 == 0.0 ? pt * (w + whp * std::expm1(-al)) / al
+                           : pt * (w + whp * std::expm1(-al) + m0 * std::exp(-al)) / al;
     }
   }
   Eigen::MatrixXd v = transform(Rw, false, x).transpose();
   // Half-plane part in closed form (potentials.hpp).
+  std::vector<double> lr, lw;
+  if (m0 != 0.0) detail::log1p_rule(b_, a_, lr, lw, kind_);
   for (Eigen::Index j = 0; j < ny; ++j)
     for (Eigen::Index i = 0; i < nx; ++i) {
-      if (std::fabs(x(i)) > kFarField) continue;
-      v(j, i) += detail::half_plane_displacement(c, b_, a_, x(i), y(j), 2, kind_);
+      if (m0 == 0.0 && std::fabs(x(i)) > kFarField) continue;
+      if (std::fabs(x(i)) <= kFarField)
+        v(j, i) += detail::half_plane_displacement(c, b_, a_, x(i), y(j), 2, kind_);
+      if (m0 != 0.0) v(j, i) += m0 / (2.0 * kPi) * a_ * detail::log1p_sum(lr, lw, a_, x(i));
     }
+  // Relative to the surface at the reference point (0 on springs).
+  v.array() -= reference_;
   return v;
 }
 

@@ -35,6 +35,7 @@ from movingpunch.cancel import Cancel
 from movingpunch.contract import ContactSolution
 from movingpunch.damped import DampedSolution
 from movingpunch.fields import StressField, StressPeaks
+from movingpunch.media import GradedLayer, HalfSpace, Layer, Medium, Winkler
 from movingpunch.profiles import Cylinder, Flat, Profile, PunchProfile, RoundedFlat
 from movingpunch.scene import Scene, SceneError, SceneResult, bundled_scenes
 from movingpunch.solver import (
@@ -74,7 +75,11 @@ __all__ = [
     "Cylinder",
     "DampedSolution",
     "Flat",
+    "GradedLayer",
+    "HalfSpace",
     "InvalidParameterError",
+    "Layer",
+    "Medium",
     "MovingPunchError",
     "OutputError",
     "Profile",
@@ -90,6 +95,7 @@ __all__ = [
     "StressPeaks",
     "SupercriticalSpeedError",
     "UnphysicalContactError",
+    "Winkler",
     "ZonedSolution",
     "__version__",
     "bundled_scenes",

@@ -14,6 +14,28 @@ def rayleigh_vstar(nu: float) -> float: ...
 def phi1(vstar: float, nu: float) -> float: ...
 def phi2(vstar: float, nu: float) -> float: ...
 def critical_speed(kw: float, nu: float, kp: float = 0.0) -> tuple[float, float]: ...
+def medium_critical_speed(
+    *,
+    layers: list[tuple[float, float, float, float, float]],
+    base: str = "springs",
+    kw: float = 1.0,
+    kp: float = 0.0,
+    base_mu: float = 1.0,
+    base_nu: float = 0.2,
+    base_rho: float = 1.0,
+) -> tuple[float, float]: ...
+def medium_response(
+    t: npt.ArrayLike,
+    *,
+    vstar: float,
+    layers: list[tuple[float, float, float, float, float]],
+    base: str = "springs",
+    kw: float = 1.0,
+    kp: float = 0.0,
+    base_mu: float = 1.0,
+    base_nu: float = 0.2,
+    base_rho: float = 1.0,
+) -> npt.NDArray[np.complex128]: ...
 def first_wave_vstar(t: float, kw: float, nu: float, kp: float = 0.0) -> float: ...
 def layer_response(
     t: npt.ArrayLike,
@@ -70,6 +92,11 @@ def solve_contact(
     half_width: float = 0.0,
     table_x: list[float] = ...,
     table_y: list[float] = ...,
+    layers: list[tuple[float, float, float, float, float]] = ...,
+    base: str = "springs",
+    base_mu: float = 1.0,
+    base_nu: float = 0.2,
+    base_rho: float = 1.0,
 ) -> ContactSolution: ...
 def check_profile_table(
     x: list[float], y: list[float], require_symmetric: bool = False

@@ -31,6 +31,7 @@ from movingpunch._evaluate import (
 from movingpunch.contract import CONTRACT_FIELDS, Points
 from movingpunch.errors import InvalidParameterError
 from movingpunch.fields import FloatArray, StressField, StressPeaks, derived_stresses
+from movingpunch.media import Layer, Medium, Winkler
 from movingpunch.peaks import search_peaks
 from movingpunch.profiles import Cylinder, Flat, Profile, PunchProfile, RoundedFlat
 
@@ -52,6 +53,9 @@ class Evaluations:
         kp: float
 
         @property
+        def damping(self) -> float: ...
+
+        @property
         def stress_error_estimate(self) -> float: ...
         @property
         def contact_interval(self) -> tuple[float, float]: ...
@@ -64,6 +68,19 @@ class Evaluations:
         ``profile``, or ``Cylinder(radius)``."""
         found = getattr(self, "_profile", None)
         return found if found is not None else Cylinder(self.radius)
+
+    @property
+    def medium(self) -> Medium:
+        """The medium solved on (``movingpunch.media``): the sublayers and
+        the base; the homogeneous layer of (kw, nu, kp, damping) unless
+        ``layers=`` or ``base=`` gave another."""
+        found = getattr(self, "_medium", None)
+        if found is not None:
+            return found  # type: ignore[no-any-return]
+        return Medium(
+            layers=(Layer(nu=self.nu),),
+            base=Winkler(kw=self.kw, kp=self.kp, damping=self.damping),
+        )
 
     @property
     def contact_zones(self) -> tuple[tuple[float, float], ...]:

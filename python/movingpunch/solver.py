@@ -46,6 +46,14 @@ from movingpunch.errors import (
     InvalidParameterError,
     UnphysicalContactError,
 )
+from movingpunch.media import (
+    Base,
+    HalfSpace,
+    Medium,
+    Sublayer,
+    Winkler,
+    resolve_medium,
+)
 from movingpunch.params import PRESETS
 from movingpunch.profiles import (
     Cylinder,
@@ -112,6 +120,7 @@ class Solution(ResultFields):
     cost of reading the clock."""
     _impl: _core.ContactSolution = field(repr=False, compare=False)
     _profile: PunchProfile | None = field(default=None, repr=False, compare=False)
+    _medium: Medium | None = field(default=None, repr=False, compare=False)
 
     @functools.cached_property
     def stress_error_estimate(self) -> float:
@@ -218,10 +227,10 @@ contact solved at a coarser one (its validity decides the contact set)."""
 def solve(
     *,
     vstar: float,
-    kw: float,
+    kw: float | None = ...,
     radius: float | None = ...,
     load: float,
-    nu: float = ...,
+    nu: float | None = ...,
     tol: float | str = ...,
     allow_unphysical: bool = ...,
     n: int | None = ...,
@@ -230,6 +239,8 @@ def solve(
     profile: PunchProfile | None = ...,
     friction: Literal[0] = ...,
     contact: Literal["single"],
+    layers: Sequence[Sublayer] | None = ...,
+    base: Base | None = ...,
     cancel: Cancel | None = ...,
 ) -> Solution: ...
 
@@ -238,10 +249,10 @@ def solve(
 def solve(
     *,
     vstar: float,
-    kw: float,
+    kw: float | None = ...,
     radius: float | None = ...,
     load: float,
-    nu: float = ...,
+    nu: float | None = ...,
     tol: float | str = ...,
     allow_unphysical: bool = ...,
     n: int | None = ...,
@@ -250,6 +261,8 @@ def solve(
     profile: PunchProfile | None = ...,
     friction: float = ...,
     contact: str = ...,
+    layers: Sequence[Sublayer] | None = ...,
+    base: Base | None = ...,
     cancel: Cancel | None = ...,
 ) -> ContactSolution: ...
 
@@ -258,10 +271,10 @@ def solve(
 def solve(
     *,
     vstar: float,
-    kw: float,
+    kw: float | None = None,
     radius: float | None = None,
     load: float,
-    nu: float = 0.2,
+    nu: float | None = None,
     tol: float | str = 1e-8,
     allow_unphysical: bool = False,
     n: int | None = None,
@@ -270,6 +283,8 @@ def solve(
     profile: PunchProfile | None = None,
     friction: float = 0.0,
     contact: str = "auto",
+    layers: Sequence[Sublayer] | None = None,
+    base: Base | None = None,
     cancel: Cancel | None = None,
 ) -> ContactSolution:
     """Solves the contact problem of a rigid punch sliding over the layer.
@@ -337,6 +352,19 @@ def solve(
     flagged ``valid=False``, without the search. Several zones need a
     frictionless punch with bounded ends (not a flat punch).
 
+    ``layers`` and ``base`` give the medium (``movingpunch.media``,
+    docs/media.md): sublayers ``Layer(thickness, mu, nu, rho)`` and
+    ``GradedLayer(gamma_h, ...)`` top to bottom, bonded, their thicknesses
+    summing to 1 and the top one the unit of mu and rho; the base
+    ``Winkler(kw, kp, damping)`` (``kw=``, ``kp=``, ``damping=`` are its
+    shorthand) or ``HalfSpace(mu, nu, rho, interface)``. Giving ``nu=`` with
+    ``layers=``, or ``kw=``/``kp=``/``damping=`` with ``base=``, is an
+    InvalidParameterError naming it. One homogeneous sublayer on springs is
+    the paper's layer, solved exactly as the shorthand is. A layered medium
+    or a half-space base runs on the symmetric solver (frictionless,
+    undamped, symmetric profiles); the other combinations are refused, by
+    name, until they are supported.
+
     ``cancel`` is a ``movingpunch.Cancel`` token (None: none): its
     ``cancel()``, from any thread, stops the solve, which raises
     ``movingpunch.Cancelled`` within about 50 ms (``movingpunch.cancel``).
@@ -346,6 +374,44 @@ def solve(
     """
     from movingpunch.damped import check_damping, check_friction, solve_damped
 
+    medium: Medium | None = None
+    if layers is not None or base is not None:
+        medium = resolve_medium(
+            layers=layers,
+            base=base,
+            kw=kw,
+            kp=kp if kp != 0.0 else None,
+            damping=damping if damping != 0.0 else None,
+            nu=nu,
+        )
+        if medium.homogeneous:
+            # The paper's layer: the shorthand's own path, bit for bit.
+            springs = medium.base
+            assert isinstance(springs, Winkler)
+            kw, kp, damping, nu = springs.kw, springs.kp, springs.damping, medium.nu
+            medium = None
+    if medium is not None:
+        return _solve_layered(
+            medium,
+            vstar,
+            radius,
+            load,
+            tol,
+            allow_unphysical,
+            n,
+            profile,
+            friction,
+            contact,
+        )
+    if kw is None:
+        raise InvalidParameterError(
+            "kw: the foundation's stiffness is required (or base=Winkler(...) or "
+            "base=HalfSpace(...) with layers=)",
+            parameter="kw",
+            allowed=params.SPECS["kw"].text,
+        )
+    springs_kw: float = kw
+    nu = 0.2 if nu is None else nu
     shape = resolve_profile(radius, profile)
     mode = check_contact(contact)
     flag = _check_flag("allow_unphysical", allow_unphysical)
@@ -359,7 +425,7 @@ def solve(
         if damp > 0 or fric > 0 or asymmetric_shape:
             return solve_damped(
                 vstar=vstar,
-                kw=kw,
+                kw=springs_kw,
                 load=load,
                 nu=nu,
                 damping=damping,
@@ -371,7 +437,7 @@ def solve(
                 profile=shape,
             )
         return _solve_profile(
-            shape, vstar, kw, load, nu, accuracy, flag or zoned, size, kp
+            shape, vstar, springs_kw, load, nu, accuracy, flag or zoned, size, kp
         )
 
     single = single_at(tol, n)
@@ -405,6 +471,56 @@ def solve(
         ) from err
 
 
+def _solve_layered(
+    medium: Medium,
+    vstar: object,
+    radius: float | None,
+    load: object,
+    tol: object,
+    allow_unphysical: object,
+    n: object,
+    profile: PunchProfile | None,
+    friction: object,
+    contact: str,
+) -> Solution:
+    """The symmetric solve on a layered medium (or a half-space base):
+    frictionless, undamped, a symmetric profile, a single contact."""
+    from movingpunch.damped import check_friction
+
+    shape = resolve_profile(radius, profile)
+    check_contact(contact)
+    flag = _check_flag("allow_unphysical", allow_unphysical)
+    refused = ""
+    if isinstance(medium.base, Winkler) and medium.base.damping > 0:
+        refused = "a damped base (Winkler(damping > 0))"
+    elif check_friction(friction) > 0:
+        refused = "friction"
+    elif isinstance(shape, Profile) and not shape.symmetric:
+        refused = "an asymmetric profile table"
+    if refused:
+        raise InvalidParameterError(
+            f"layers/base: {refused} runs on the asymmetric solver, which takes the "
+            "homogeneous layer on springs only so far (layers=None, base=Winkler "
+            f"or kw=); the medium given is {medium.describe()}",
+            parameter="layers",
+            allowed="the homogeneous layer with damping, friction or asymmetric tables",
+        )
+    springs = medium.base if isinstance(medium.base, Winkler) else None
+    kw = springs.kw if springs else math.inf
+    kp = springs.kp if springs else 0.0
+    single = _solve_profile(
+        shape, vstar, kw, load, medium.nu, tol, True, n, kp, medium=medium
+    )
+    if single.valid or flag:
+        return single
+    raise UnphysicalContactError(
+        f"vstar={single.vstar:.8g}, {medium.describe()}, {shape.describe()}, "
+        f"load={single.load:.8g}: {single.validity} (a/h = {single.a:.8g}); "
+        "several contact zones on a layered medium are not supported yet "
+        "(allow_unphysical=True returns the single contact, flagged)"
+    )
+
+
 def _solve_profile(
     shape: PunchProfile,
     vstar: object,
@@ -415,9 +531,11 @@ def _solve_profile(
     allow_unphysical: object,
     n: object,
     kp: object = 0.0,
+    medium: Medium | None = None,
 ) -> Solution:
     """The undamped solve of ``shape`` (validated inputs, the core's solve,
-    the Solution)."""
+    the Solution) on the homogeneous layer of (kw, nu, kp), or on ``medium``
+    (kw, kp: its springs'; inf, 0 under a half-space)."""
     # The shape's own parameters are checked by it; radius shows its nominal
     # radius (inf for a flat punch or a table).
     inputs = _check_solve_inputs(vstar, kw, 1.0, load, nu, tol, kp)
@@ -425,6 +543,10 @@ def _solve_profile(
     flag = _check_flag("allow_unphysical", allow_unphysical)
     size = _check_size(n)
     core = _core_inputs(inputs, shape)
+    if medium is not None:
+        core.update(medium.core_args())
+        if isinstance(medium.base, HalfSpace):
+            inputs["kw"] = math.nan  # no springs: the medium says what the base is
     impl = _core.solve_contact(**core, allow_unphysical=flag, n=size)
     return Solution(
         **inputs,
@@ -448,6 +570,7 @@ def _solve_profile(
         stage_times=MappingProxyType(dict(impl.stage_seconds)),
         _impl=impl,
         _profile=shape,
+        _medium=medium,
     )
 
 
@@ -624,18 +747,69 @@ def clear_kernel_cache() -> None:
     _core.clear_kernel_cache()
 
 
-def critical_vstar(kw: float, nu: float = 0.2, kp: float = 0.0) -> float:
+def _critical(
+    kw: float | None,
+    nu: float | None,
+    kp: float,
+    layers: Sequence[Sublayer] | None,
+    base: Base | None,
+) -> tuple[float, float]:
+    if layers is not None or base is not None:
+        medium = resolve_medium(
+            layers=layers, base=base, kw=kw, kp=kp if kp != 0.0 else None, nu=nu
+        )
+        if not medium.homogeneous:
+            args = medium.core_args()
+            springs = medium.base if isinstance(medium.base, Winkler) else None
+            vc, t = _core.medium_critical_speed(
+                **args,
+                kw=springs.kw if springs else math.inf,
+                kp=springs.kp if springs else 0.0,
+            )
+            return float(vc), float(t)
+        assert isinstance(medium.base, Winkler)
+        kw, kp, nu = medium.base.kw, medium.base.kp, medium.nu
+    if kw is None:
+        raise InvalidParameterError(
+            "kw: the foundation's stiffness is required (or base=/layers=)",
+            parameter="kw",
+            allowed=params.SPECS["kw"].text,
+        )
+    vc, t = _core.critical_speed(
+        _check_kw(kw), _check_nu(0.2 if nu is None else nu), _check_kp(kp)
+    )
+    return float(vc), float(t)
+
+
+def critical_vstar(
+    kw: float | None = None,
+    nu: float | None = None,
+    kp: float = 0.0,
+    *,
+    layers: Sequence[Sublayer] | None = None,
+    base: Base | None = None,
+) -> float:
     """Critical speed V*_cr(kw, nu, kp): the minimum phase speed of free waves
     in the layer on springs (and a Pasternak shear layer kp; the Rayleigh
     speed for kw = inf, and once kp is so stiff that no free wave is slower
-    than the Rayleigh wave). Grows with kw and with kp."""
-    return _core.critical_speed(_check_kw(kw), _check_nu(nu), _check_kp(kp))[0]
+    than the Rayleigh wave). Grows with kw and with kp. With ``layers=`` /
+    ``base=`` (as ``solve`` takes them): the medium's, including the infima
+    approached only at short or long waves (docs/media.md)."""
+    return _critical(kw, nu, kp, layers, base)[0]
 
 
-def critical_wavenumber(kw: float, nu: float = 0.2, kp: float = 0.0) -> float:
+def critical_wavenumber(
+    kw: float | None = None,
+    nu: float | None = None,
+    kp: float = 0.0,
+    *,
+    layers: Sequence[Sublayer] | None = None,
+    base: Base | None = None,
+) -> float:
     """alpha h at which the phase speed is minimal (inf for kw = inf, and
-    when V*_cr is the Rayleigh speed)."""
-    return _core.critical_speed(_check_kw(kw), _check_nu(nu), _check_kp(kp))[1]
+    when V*_cr is the Rayleigh speed; inf or 0 for a medium's infimum
+    approached at short or long waves)."""
+    return _critical(kw, nu, kp, layers, base)[1]
 
 
 def rayleigh_vstar(nu: float = 0.2) -> float:

@@ -156,13 +156,13 @@ TEST(BoundedWork, DampedQuadratureNearCriticalStopsAtRoundOff) {
   const mp::DampedLayerModel damped(v, kw, nu, 0.0, kp);
   const mp::DampedQuadrature q = mp::build_damped_quadrature(damped, 1e-15, 0.0);
   EXPECT_LT(q.panels.panel_centre.size(), 2000u);
-  const mp::LayerModel undamped(v, kw, nu, kp);
-  // decay 1: the undamped rule then ends near the damped one's alpha_max
-  // (144.2 and 144.5). So close to V*_R, (M1 - phi1)/phi1 carries a round-off
-  // offset of about eps/(1 - V/V*_R) = 2e-9 at every alpha (phi1 is computed
-  // to that relative accuracy), which the integral gathers over its range:
-  // the two must end at about the same alpha to agree to 1e-10.
-  const mp::AlphaQuadrature u = mp::build_alpha_quadrature(undamped, 1e-13, 1.0, 1.0);
+  const auto undamped = mp::make_medium(mp::homogeneous_medium(kw, nu, kp), v);
+  // Reach::field (the decay of the field at the bottom): the undamped rule then ends near the
+  // damped one's alpha_max (144.2 and 144.5). So close to V*_R, (M1 - phi1)/phi1 carries a
+  // round-off offset of about eps/(1 - V/V*_R) = 2e-9 at every alpha (phi1 is computed to that
+  // relative accuracy), which the integral gathers over its range: the two must end at about the
+  // same alpha to agree to 1e-10.
+  const mp::AlphaQuadrature u = mp::build_alpha_quadrature(*undamped, 1e-13, 1.0, mp::Reach::field);
   EXPECT_NEAR(u.alpha_max, q.panels.alpha_max, 1.0);
   const double phi1 = damped.phi1();
   auto integral = [&](const mp::AlphaQuadrature& a) {
@@ -182,8 +182,8 @@ TEST(BoundedWork, DampedQuadratureNearCriticalStopsAtRoundOff) {
 // (integral_pair_exact: one sin/cos per panel for both): the same numbers,
 // bit for bit, as two integral() calls.
 TEST(BoundedWork, ExactFilonPairIsTwoIntegralsBitForBit) {
-  const mp::LayerModel model(0.3, 1.0, 0.2);
-  const mp::AlphaQuadrature q = mp::build_alpha_quadrature(model, 1e-10, 5.0);
+  const mp::AlphaQuadrature q = mp::build_alpha_quadrature(
+      *mp::make_medium(mp::homogeneous_medium(1.0, 0.2), 0.3), 1e-10, 5.0);
   const mp::FilonIntegrator f(q);
   std::vector<double> g1(q.alpha.size()), g2(q.alpha.size());
   for (std::size_t i = 0; i < g1.size(); ++i) {

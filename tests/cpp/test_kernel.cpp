@@ -78,8 +78,8 @@ TEST(Kernel, ResolvesTheSharpPeakNearTheCriticalSpeed) {
 TEST(Filon, ExactFourierIntegralsOfPolynomialsAndSmoothFunctions) {
   // g(alpha) = exp(-alpha) on the quadrature's panels: int_0^A e^{-alpha} e^{i alpha x}
   // = (1 - e^{-(1 - i x) A}) / (1 - i x), exactly, for small and huge x.
-  const LayerModel m(0.2, 1.0, 0.2);
-  const AlphaQuadrature q = build_alpha_quadrature(m, 1e-10, 1.0);
+  const AlphaQuadrature q =
+      build_alpha_quadrature(*make_medium(homogeneous_medium(1.0, 0.2), 0.2), 1e-10, 1.0);
   const FilonIntegrator f(q);
   std::vector<double> g(q.alpha.size());
   for (std::size_t i = 0; i < g.size(); ++i) g[i] = std::exp(-q.alpha[i]);

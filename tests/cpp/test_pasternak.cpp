@@ -165,8 +165,9 @@ TEST(Pasternak, FirstPanelsReachTheBaseLongWaveScale) {
   // The quadrature then integrates M1/alpha ~ 1/(kw + kp t^2) near 0, the
   // membrane's sinking: beside the layer on a rigid base,
   // int (M1 - M1_rigid)/alpha = pi/(2 sqrt(kw kp)) + O(sqrt(kw/kp)).
-  const LayerModel m(0.0, 1.0, 0.2, 1e6), rigid(0.0, kInf, 0.2);
-  const AlphaQuadrature q = build_alpha_quadrature(m, 1e-12, 1.0);
+  const LayerModel rigid(0.0, kInf, 0.2);
+  const AlphaQuadrature q =
+      build_alpha_quadrature(*make_medium(homogeneous_medium(1.0, 0.2, 1e6), 0.0), 1e-12, 1.0);
   double sinking = 0.0;
   for (std::size_t i = 0; i < q.alpha.size(); ++i)
     sinking += q.weight[i] * (q.m1[i] - rigid.response(q.alpha[i]).M1) / q.alpha[i];

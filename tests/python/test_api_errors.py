@@ -33,7 +33,8 @@ NON_FINITE = [math.nan, math.inf, -math.inf]
 
 BAD: list[tuple[str, Any]] = []
 for name in GOOD:
-    BAD += [(name, v) for v in NOT_REAL]
+    # nu=None is "not given" (0.2; per sublayer with layers=).
+    BAD += [(name, v) for v in NOT_REAL if not (name == "nu" and v is None)]
     BAD += [(name, v) for v in NON_FINITE if not (name == "kw" and v == math.inf)]
 BAD += [
     ("vstar", -0.1),
@@ -67,6 +68,10 @@ def test_solve_rejects_bad_parameter(name: str, value: Any) -> None:
     assert isinstance(info.value, ValueError)
     assert isinstance(info.value, mp.MovingPunchError)
     assert str(info.value).startswith(name)
+
+
+def test_nu_none_is_the_default(paper: mp.Solution) -> None:
+    assert mp.solve(**{**GOOD, "nu": None}).a == paper.a
 
 
 def test_type_message_names_parameter_and_range() -> None:

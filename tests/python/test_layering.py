@@ -69,6 +69,7 @@ LAYERS: tuple[tuple[str, frozenset[str]], ...] = (
                 "movingpunch.fields",
                 "movingpunch.peaks",
                 "movingpunch.profiles",
+                "movingpunch.media",
                 "movingpunch.outputs",
                 "movingpunch.contract",
                 "movingpunch.regime",

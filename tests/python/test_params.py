@@ -401,7 +401,7 @@ def test_every_spec_is_complete() -> None:
     for name, spec in SPECS.items():
         assert spec.name == name
         assert spec.meaning
-        assert spec.range.startswith(("None", "0", "1e", "-1"))
+        assert spec.range.startswith(("None", "0", "1e", "-1", "-50"))
         assert name in spec.text
         if spec.default is not None and not spec.integer:
             assert spec.contains(spec.default), name

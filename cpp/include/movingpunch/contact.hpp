@@ -10,6 +10,7 @@
 
 #include "movingpunch/collocation.hpp"
 #include "movingpunch/kernel.hpp"
+#include "movingpunch/medium.hpp"
 #include "movingpunch/profile.hpp"
 #include "movingpunch/stresses.hpp"
 
@@ -33,7 +34,13 @@ struct ContactParams {
   double half_width = 0;                 // b/h (flat, rounded_flat)
   std::vector<double> table_x, table_y;  // the table's x/h and heights y/h (table)
   double kp = 0;  // k_p / (mu h) in [0, kMaxKp]: Pasternak shear layer (0: Winkler)
+  // The medium (medium.hpp): null, the homogeneous layer of (kw, nu, kp);
+  // otherwise this stack and base (kw, nu and kp are then ignored).
+  std::shared_ptr<const MediumSpec> medium;
 };
+
+// The medium of p: *p.medium, or the homogeneous layer of (kw, nu, kp).
+MediumSpec medium_of(const ContactParams& p);
 
 // Throws std::invalid_argument naming the parameter and its valid range.
 void validate(const ContactParams& p);
@@ -149,6 +156,9 @@ class ContactSolution {
   // Filon coefficients of f(alpha) ptilde(alpha) on the kernel's panels, with
   // f = [M1 - phi1 (1 - e^-alpha)]/alpha the smooth part of the Green's function.
   std::vector<double> smooth_coef_;
+  // lim M1(t -> 0) of the medium (0 on springs) and, when it is not 0, the
+  // Green's integral at the reference point (medium.hpp).
+  double m0_ = 0.0, greens_reference_ = 0.0;
   // Gauss-Chebyshev (U) nodes r_i of the ln(1 + (x - xi)^2) part of the
   // displacement and their weights times sqrt(1 - r^2)^2 g(r_i), per solution.
   std::vector<double> log1p_r_, log1p_w_;

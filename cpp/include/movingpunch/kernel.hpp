@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "movingpunch/layer_response.hpp"
+#include "movingpunch/medium.hpp"
 
 namespace movingpunch {
 
@@ -30,12 +31,15 @@ struct AlphaQuadrature {
   std::vector<double> panel_error, panel_roundoff;
 };
 
+// How far in alpha a quadrature must reach: until M1 - phi1 at the surface
+// is negligible (Medium::decay_rate), or the mode's remainder at every depth
+// (Medium::field_decay_rate).
+enum class Reach { surface, field };
 // Adaptive quadrature nodes for integrals of (M1 - phi1) times an oscillation
 // of frequency up to `max_frequency`, resolved to absolute tolerance `tol`,
-// on [0, alpha_max] where exp(-decay nT alpha) is negligible: decay = 2 for
-// M1 - phi1 at the surface, 1 for the field at the bottom of the layer.
-AlphaQuadrature build_alpha_quadrature(const LayerModel& model, double tol, double max_frequency,
-                                       double decay = 2.0);
+// on [0, alpha_max] where the medium's decay (of `reach`) is negligible.
+AlphaQuadrature build_alpha_quadrature(const Medium& model, double tol, double max_frequency,
+                                       Reach reach = Reach::surface);
 
 // Fourier integrals int g(alpha) e^{i alpha x} d alpha over the panels of a
 // quadrature, exact for the degree-14 interpolant of g on each panel (Filon):
@@ -80,7 +84,10 @@ class KernelK1 {
  public:
   // Tables with range * alpha_max above this are held piecewise (below).
   static constexpr double kPieceBandwidth = 600.0;
-  // Tabulates k1 on |u| <= range to tolerance tol (absolute, k1 is O(1)).
+  // Tabulates k1 on |u| <= range to tolerance tol (absolute, k1 is O(1)),
+  // for a medium with a real response (Medium::real()).
+  KernelK1(std::shared_ptr<const Medium> medium, double tol, double range);
+  // The homogeneous layer of `model`.
   KernelK1(const LayerModel& model, double tol, double range);
 
   double operator()(double u) const;  // any |u| <= range()
@@ -88,7 +95,8 @@ class KernelK1 {
   double sum(double u, double v) const;
   double range() const noexcept { return range_; }
   const AlphaQuadrature& quadrature() const noexcept { return quad_; }
-  const LayerModel& model() const noexcept { return model_; }
+  const Medium& model() const noexcept { return *model_; }
+  const std::shared_ptr<const Medium>& medium() const noexcept { return model_; }
   double tol() const noexcept { return tol_; }
   // Coefficients held (of the global series, or of all pieces).
   int terms() const noexcept {
@@ -115,7 +123,7 @@ class KernelK1 {
   const FilonIntegrator& filon() const noexcept { return *filon_; }
 
  private:
-  LayerModel model_;
+  std::shared_ptr<const Medium> model_;
   double tol_;
   double range_;
   AlphaQuadrature quad_;
@@ -139,7 +147,7 @@ class KernelK1 {
   void build_pieces();
 };
 
-// Process-wide cache of k1 tables, keyed on (vstar, kw, nu, tol, kp): solves that
+// Process-wide cache of k1 tables, keyed on the medium (Medium::key()) and tol: solves that
 // share a material and speed (a load or radius sweep) reuse one table.
 // Returns a cached table whose range is at least `min_range` (and at most
 // kMaxRangeRatio times it, so a tiny contact never pays for a huge table), or
@@ -161,6 +169,10 @@ struct KernelCacheInfo {
 inline constexpr double kMaxRangeRatio = 24.0;
 inline constexpr std::size_t kKernelCacheCapacity = 32;
 inline constexpr double kGrowth = 2.0;
+std::shared_ptr<const KernelK1> cached_kernel(const std::shared_ptr<const Medium>& medium,
+                                              double tol, double min_range, double build_range,
+                                              bool* built = nullptr, bool grow = true);
+// The homogeneous layer of `model`.
 std::shared_ptr<const KernelK1> cached_kernel(const LayerModel& model, double tol, double min_range,
                                               double build_range, bool* built = nullptr,
                                               bool grow = true);

@@ -7,7 +7,7 @@
 // top: mu = rho = 1, vstar = rho V^2 / mu (docs/theory.md section 16).
 //
 // A solver never sees a concrete medium. It reads, per wavenumber t = alpha h:
-//  * response(t): the surface responses to unit transformed pressure
+//  * surface_response(t): the surface responses to unit transformed pressure
 //    (M1 = -alpha v^/p^, M2 = -sigma_x^/p^, alpha u^ and alpha v^ at the top;
 //    complex in general: damping, viscoelasticity; real for elastic media);
 //  * mode(t): the mode field at any depth (stresses and displacements) and
@@ -29,6 +29,7 @@
 
 #include <Eigen/Dense>
 
+#include "movingpunch/dispersion.hpp"
 #include "movingpunch/layer_response.hpp"
 
 namespace movingpunch {
@@ -50,7 +51,7 @@ struct Sublayer {
 };
 
 enum class BaseKind {
-  springs,            // sigma_y = (kw + kp t^2 - i damping sqrt(vstar) t) v, tau = 0; kw = inf: rigid
+  springs,  // sigma_y = (kw + kp t^2 - i damping sqrt(vstar) t) v, tau = 0; kw = inf: rigid
   half_space_bonded,  // an elastic substrate, u, v, tau, sigma_y continuous
   half_space_smooth,  // an elastic substrate in frictionless contact: tau = 0 on both faces
 };
@@ -77,6 +78,11 @@ struct MediumSpec {
 // The paper's medium: one homogeneous sublayer of Poisson's ratio nu on springs.
 MediumSpec homogeneous_medium(double kw, double nu, double kp = 0.0, double damping = 0.0);
 
+// The medium as messages name it: "kw = 1" (one homogeneous sublayer on
+// springs), "3 sublayers on kw = 1, kp = 0.2", "2 sublayers on a bonded
+// half-space (mu 10, nu 0.3, rho 2)".
+std::string describe(const MediumSpec& m);
+
 // Throws InvalidParameter (errors.hpp) naming the parameter and its range:
 // thicknesses > 0 summing to 1 (to 1e-12), the top sublayer's mu = rho = 1,
 // every mu, rho > 0 finite, nu in [0, 0.5), |gamma_h| <= kMaxGamma, the
@@ -84,8 +90,11 @@ MediumSpec homogeneous_medium(double kw, double nu, double kp = 0.0, double damp
 void validate(const MediumSpec& m);
 
 // The largest |gamma_h| of a graded sublayer (the modulus changes by e^50
-// across the layer at most).
+// across the layer at most), the most sublayers, and the largest ratio of a
+// sublayer's (or the substrate's) mu or rho to the top's.
 inline constexpr double kMaxGamma = 50.0;
+inline constexpr std::size_t kMaxSublayers = 64;
+inline constexpr double kMaxModulusRatio = 1e12;
 
 // ---------------------------------------------------------------------------
 // The medium at one speed.
@@ -120,6 +129,8 @@ class ModeProfile {
   virtual ModeState remainder(double y, bool below = false) const = 0;
   // The half-plane part alone (the top material's, closed form).
   virtual ModeState half_plane(double y) const = 0;
+  // The whole state (default: remainder + half_plane).
+  virtual ModeState state(double y, bool below = false) const;
 };
 
 class Medium {
@@ -136,7 +147,7 @@ class Medium {
   // True when every response is real (no damping, no viscoelasticity): the
   // symmetric solver applies.
   virtual bool real() const noexcept = 0;
-  virtual MediumResponse response(double t) const = 0;
+  virtual MediumResponse surface_response(double t) const = 0;
   virtual std::unique_ptr<const ModeProfile> mode(double t) const = 0;
   // A function of t changing sign exactly where a free wave of wavenumber t
   // exists at this speed (arbitrary sign convention).
@@ -145,9 +156,17 @@ class Medium {
   // M1 - phi1 decays at least like exp(-decay_rate() t) (times a polynomial):
   // 2 nT for the homogeneous layer (a reflection off its bottom).
   virtual double decay_rate() const noexcept = 0;
+  // The slowest decay of the mode's remainder at any depth of the stack
+  // (nT for the homogeneous layer: the field at its bottom).
+  virtual double field_decay_rate() const noexcept = 0;
   // Edges of the first alpha panels on [0, w] (at least {0, w}): the base's
   // long-wave scales (layer_basis.hpp's foundation_panel_edges).
   virtual std::vector<double> first_panel_edges(double w) const = 0;
+  // lim M1 as t -> 0: 0 on springs (the layer's slope response vanishes at
+  // long waves), finite under a half-space (plane strain: its surface
+  // displacement grows like ln|x| far away, so displacements are measured
+  // relative to a reference point, kDisplacementReference).
+  virtual double long_wave_m1() const noexcept { return 0.0; }
   // Depths of the interfaces between sublayers (descending, strictly inside
   // (-1, 0)); empty for one sublayer.
   virtual std::vector<double> interfaces() const { return {}; }
@@ -157,6 +176,11 @@ class Medium {
   std::vector<double> key() const;
 };
 
+// Where displacements are measured from when long_wave_m1() != 0 (a
+// half-space base): the surface point at |x| = kDisplacementReference h
+// (v(x, y) is then v(x, y) - v(kDisplacementReference, 0); 0 elsewhere).
+inline constexpr double kDisplacementReference = 100.0;
+
 // The medium of `spec` at speed vstar. Throws InvalidParameter (errors.hpp)
 // for an invalid spec or a speed the medium cannot carry (vstar in [0,
 // max_vstar(spec))), std::invalid_argument for a combination not supported.
@@ -164,7 +188,7 @@ std::shared_ptr<const Medium> make_medium(const MediumSpec& spec, double vstar);
 
 // The critical speed of a medium: the lowest vstar of a free steady wave,
 // including infima approached only as t -> inf or t -> 0 (t = inf or 0 then).
-struct CriticalSpeed;
+// The homogeneous layer's is critical_speed(kw, nu, kp) (dispersion.hpp).
 CriticalSpeed critical_speed(const MediumSpec& spec);
 
 }  // namespace movingpunch

@@ -38,26 +38,30 @@ class FieldEvaluator {
   // a: contact half-width; b: Chebyshev coefficients of p/(P/h) (even) of
   // the series `kind` (U: bounded ends; T: a flat punch's square-root
   // singular ends, collocation.hpp); tol: quadrature tolerance.
-  FieldEvaluator(const LayerModel& model, double a, const Eigen::VectorXd& b, double tol,
-                 SeriesKind kind = SeriesKind::U);
+  FieldEvaluator(std::shared_ptr<const Medium> medium, double a, const Eigen::VectorXd& b,
+                 double tol, SeriesKind kind = SeriesKind::U);
 
-  // Stresses on the grid x (any finite x) by y (-1 <= y <= 0).
+  // Stresses on the grid x (any finite x) by y (-1 <= y <= 0); at an
+  // interface between sublayers, sigma_x of the material above it.
   StressField stresses(const Eigen::Ref<const Eigen::VectorXd>& x,
                        const Eigen::Ref<const Eigen::VectorXd>& y) const;
   // Vertical displacement v(x, y) mu / (P) (multiply by P/(mu h) for v/h),
-  // shaped (len(y), len(x)).
+  // shaped (len(y), len(x)); under a half-space base relative to the surface
+  // at |x| = kDisplacementReference (medium.hpp).
   Eigen::MatrixXd displacement(const Eigen::Ref<const Eigen::VectorXd>& x,
                                const Eigen::Ref<const Eigen::VectorXd>& y) const;
 
  private:
-  std::shared_ptr<const LayerModel> model_;  // stable address for the mode fields
+  std::shared_ptr<const Medium> model_;  // outlives the mode profiles
   double a_;
   Eigen::VectorXd b_;
   SeriesKind kind_ = SeriesKind::U;
   AlphaQuadrature quad_;
   std::unique_ptr<FilonIntegrator> filon_;
   std::vector<double> ptilde_;  // (2/pi) ptilde(alpha_q) at the nodes
-  std::vector<ModeField> modes_;
+  std::vector<std::unique_ptr<const ModeProfile>> modes_;
+  // A half-space base: v at the reference point (medium.hpp); 0 on springs.
+  double reference_ = 0.0;
 
   // Remainder integrals: for each column of `values` (one function of alpha
   // per column, at the nodes) the cosine or sine transform at every x.

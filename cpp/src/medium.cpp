@@ -1,0 +1,230 @@
+// The medium interface (medium.hpp): the description's checks and keys, the
+// paper's homogeneous layer as one implementation, and the factory.
+#include "movingpunch/medium.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "layer_basis.hpp"
+#include "movingpunch/errors.hpp"
+
+namespace movingpunch {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+// The softest springs any solve accepts (contact.cpp's kMinKw).
+constexpr double kMinKw = 1e-12;
+
+// The homogeneous layer on springs (LayerModel) behind the interface.
+class HomogeneousMode final : public ModeProfile {
+ public:
+  HomogeneousMode(const LayerModel& m, double t) : field_(m.mode_field(t)), c_(&m.constants()) {}
+  ModeState remainder(double y, bool /*below*/) const override {
+    // As the stresses always took it: the state minus the half-plane state,
+    // then Hooke's law on the difference (one material).
+    const Eigen::Vector4d r = field_.state(y) - field_.half_plane_state(y);
+    ModeState s;
+    s.z = r.cast<cplx>();
+    s.sx = sigma_x_hat(*c_, r);
+    return s;
+  }
+  ModeState half_plane(double y) const override {
+    const Eigen::Vector4d h = field_.half_plane_state(y);
+    ModeState s;
+    s.z = h.cast<cplx>();
+    s.sx = sigma_x_hat(*c_, h);
+    return s;
+  }
+  ModeState state(double y, bool /*below*/) const override {
+    const Eigen::Vector4d z = field_.state(y);
+    ModeState s;
+    s.z = z.cast<cplx>();
+    s.sx = sigma_x_hat(*c_, z);
+    return s;
+  }
+
+ private:
+  ModeField field_;
+  const WaveConstants* c_;
+};
+
+class HomogeneousMedium final : public Medium {
+ public:
+  HomogeneousMedium(const MediumSpec& spec, double vstar)
+      : spec_(spec), model_(vstar, spec.base.kw, spec.layers[0].nu, spec.base.kp) {}
+  double vstar() const noexcept override { return model_.vstar(); }
+  const WaveConstants& top() const noexcept override { return model_.constants(); }
+  bool real() const noexcept override { return true; }
+  MediumResponse surface_response(double t) const override {
+    const Response r = model_.response(t);
+    return MediumResponse{r.M1, r.M2, r.U0, r.W0};
+  }
+  std::unique_ptr<const ModeProfile> mode(double t) const override {
+    return std::make_unique<HomogeneousMode>(model_, t);
+  }
+  double dispersion(double t) const override { return model_.dispersion(t); }
+  // M1 - phi1 ~ (1 + 4t) exp(-2 nT t); the field at the bottom, exp(-nT t).
+  double decay_rate() const noexcept override { return 2.0 * model_.constants().nT; }
+  double field_decay_rate() const noexcept override { return model_.constants().nT; }
+  std::vector<double> first_panel_edges(double w) const override {
+    return detail::foundation_panel_edges(model_.kw(), model_.kp(), w);
+  }
+  const MediumSpec& spec() const noexcept override { return spec_; }
+
+ private:
+  MediumSpec spec_;
+  LayerModel model_;
+};
+
+std::string str(double x) {
+  std::ostringstream o;
+  o << x;
+  return o.str();
+}
+
+}  // namespace
+
+ModeState ModeProfile::state(double y, bool below) const {
+  const ModeState r = remainder(y, below), h = half_plane(y);
+  ModeState s;
+  s.z = r.z + h.z;
+  s.sx = r.sx + h.sx;
+  return s;
+}
+
+std::vector<double> MediumSpec::key() const {
+  if (homogeneous())
+    // As the homogeneous tables were always keyed: kp is irrelevant on a
+    // rigid base.
+    return {layers[0].nu, base.kw, std::isinf(base.kw) ? 0.0 : base.kp, base.damping};
+  std::vector<double> k;
+  k.reserve(5 * layers.size() + 8);
+  k.push_back(static_cast<double>(layers.size()));
+  for (const Sublayer& l : layers) {
+    k.push_back(l.thickness);
+    k.push_back(l.mu);
+    k.push_back(l.nu);
+    k.push_back(l.rho);
+    k.push_back(l.gamma);
+  }
+  k.push_back(static_cast<double>(static_cast<int>(base.kind)));
+  if (base.kind == BaseKind::springs) {
+    k.push_back(base.kw);
+    k.push_back(std::isinf(base.kw) ? 0.0 : base.kp);
+    k.push_back(base.damping);
+  } else {
+    k.push_back(base.mu);
+    k.push_back(base.nu);
+    k.push_back(base.rho);
+  }
+  return k;
+}
+
+std::vector<double> Medium::key() const {
+  std::vector<double> k{vstar()};
+  const std::vector<double> s = spec().key();
+  k.insert(k.end(), s.begin(), s.end());
+  return k;
+}
+
+std::string describe(const MediumSpec& m) {
+  std::ostringstream o;
+  o.precision(6);
+  const std::size_t graded = static_cast<std::size_t>(
+      std::count_if(m.layers.begin(), m.layers.end(), [](const Sublayer& l) { return l.gamma != 0.0; }));
+  if (m.layers.size() > 1 || graded > 0) {
+    o << m.layers.size() << (m.layers.size() == 1 ? " sublayer" : " sublayers");
+    if (graded > 0) o << " (" << graded << " graded)";
+    o << " on ";
+  }
+  const BaseSpec& b = m.base;
+  if (b.kind == BaseKind::springs) {
+    o << "kw = " << b.kw;
+    if (b.kp != 0.0) o << ", kp = " << b.kp;
+    if (b.damping != 0.0) o << ", damping = " << b.damping;
+  } else {
+    o << "a " << (b.kind == BaseKind::half_space_bonded ? "bonded" : "smooth")
+      << " half-space (mu " << b.mu << ", nu " << b.nu << ", rho " << b.rho << ")";
+  }
+  return o.str();
+}
+
+MediumSpec homogeneous_medium(double kw, double nu, double kp, double damping) {
+  MediumSpec m;
+  m.layers = {Sublayer{1.0, 1.0, nu, 1.0, 0.0}};
+  m.base.kind = BaseKind::springs;
+  m.base.kw = kw;
+  m.base.kp = kp;
+  m.base.damping = damping;
+  return m;
+}
+
+void validate(const MediumSpec& m) {
+  if (m.layers.empty())
+    throw InvalidParameter("layers", "at least one sublayer", "layers: at least one sublayer");
+  if (m.layers.size() > kMaxSublayers)
+    throw InvalidParameter("layers", "at most " + std::to_string(kMaxSublayers) + " sublayers",
+                           "layers: " + std::to_string(m.layers.size()) +
+                               " sublayers given, at most " + std::to_string(kMaxSublayers));
+  double total = 0.0;
+  for (std::size_t i = 0; i < m.layers.size(); ++i) {
+    const Sublayer& l = m.layers[i];
+    const std::string at = "layers[" + std::to_string(i) + "].";
+    require_in_range((at + "thickness").c_str(), l.thickness, 0.0, 1.0, true, false);
+    require_in_range((at + "nu").c_str(), l.nu, 0.0, 0.5, false, true);
+    require_in_range((at + "mu").c_str(), l.mu, 0.0, kMaxModulusRatio, true, false);
+    require_in_range((at + "rho").c_str(), l.rho, 0.0, kMaxModulusRatio, true, false);
+    require_in_range((at + "gamma_h").c_str(), l.gamma, -kMaxGamma, kMaxGamma, false, false);
+    total += l.thickness;
+  }
+  if (m.layers[0].mu != 1.0 || m.layers[0].rho != 1.0)
+    throw InvalidParameter("layers[0].mu", "1 (the top sublayer is the unit of mu and rho)",
+                           "layers[0]: the top sublayer's mu and rho are the units (1 by "
+                           "definition); given mu = " +
+                               str(m.layers[0].mu) + ", rho = " + str(m.layers[0].rho) +
+                               ": divide every sublayer's mu and rho by the top's");
+  if (!(std::fabs(total - 1.0) <= 1e-12))
+    throw InvalidParameter("layers", "thicknesses summing to 1 (the total thickness h)",
+                           "layers: the thicknesses sum to " + str(total) +
+                               "; they must sum to 1 (lengths are in the total thickness h)");
+  const BaseSpec& b = m.base;
+  switch (b.kind) {
+    case BaseKind::springs:
+      require_in_range("kw", b.kw, kMinKw, kInf, false, false, true);
+      require_in_range("kp", b.kp, 0.0, kMaxKp, false, false);
+      require_in_range("damping", b.damping, 0.0, kInf, false, true);
+      break;
+    case BaseKind::half_space_bonded:
+    case BaseKind::half_space_smooth:
+      require_in_range("base.mu", b.mu, 0.0, kMaxModulusRatio, true, false);
+      require_in_range("base.nu", b.nu, 0.0, 0.5, false, true);
+      require_in_range("base.rho", b.rho, 0.0, kMaxModulusRatio, true, false);
+      break;
+  }
+}
+
+std::shared_ptr<const Medium> make_medium(const MediumSpec& spec, double vstar) {
+  validate(spec);
+  if (spec.homogeneous()) {
+    if (spec.base.damping > 0.0)
+      throw std::invalid_argument(
+          "a damped foundation runs on the asymmetric solver's own layer model "
+          "(DampedLayerModel), not yet behind the medium interface");
+    return std::make_shared<const HomogeneousMedium>(spec, vstar);
+  }
+  throw std::invalid_argument("layered media are not built yet");
+}
+
+CriticalSpeed critical_speed(const MediumSpec& spec) {
+  validate(spec);
+  if (spec.homogeneous())
+    return critical_speed(spec.base.kw, spec.layers[0].nu, spec.base.kp);
+  throw std::invalid_argument("layered media are not built yet");
+}
+
+}  // namespace movingpunch

@@ -1,0 +1,366 @@
+"""The medium under the punch: sublayers and a base (docs/media.md).
+
+``movingpunch.solve(..., layers=[...], base=...)`` takes
+
+* ``Layer(thickness, mu=1.0, nu=0.2, rho=1.0)``: a homogeneous sublayer;
+* ``GradedLayer(gamma_h, nu=0.2, thickness=1.0, mu=1.0, rho=1.0)``: a sublayer
+  whose shear modulus and density vary as exp(gamma y) from its top value
+  (y up; gamma > 0: softer with depth; the wave speeds stay constant);
+
+listed top to bottom and bonded (u, v, tau_xy, sigma_y continuous), on
+
+* ``Winkler(kw, kp=0.0, damping=0.0)``: springs (a Pasternak shear layer with
+  kp > 0, dashpots with damping > 0); ``kw=inf`` is a smooth rigid base;
+  ``solve(kw=..., kp=..., damping=...)`` is its shorthand;
+* ``HalfSpace(mu, nu, rho=1.0, interface="bonded")``: an elastic substrate,
+  bonded or in frictionless contact (``interface="smooth"``).
+
+Units are those of the TOP sublayer: lengths per the total thickness h (the
+thicknesses sum to 1), moduli and densities per the top sublayer's mu_1 and
+rho_1 (so its ``mu`` and ``rho`` are 1), vstar = rho_1 V^2/mu_1, kw = k_w h/mu_1.
+Every value type is frozen and checked when made (InvalidParameterError names
+the parameter and its range); ``Medium`` is the resolved pair a solve uses.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from movingpunch import params
+from movingpunch.errors import InvalidParameterError
+
+__all__ = [
+    "GradedLayer",
+    "HalfSpace",
+    "Layer",
+    "Medium",
+    "Winkler",
+    "resolve_medium",
+]
+
+INTERFACES = ("bonded", "smooth")
+
+
+def _check(name: str, value: object, what: str) -> float:
+    """``value`` checked against the parameter table's ``name`` range, the
+    message naming ``what`` (e.g. "Layer.mu")."""
+    try:
+        return params.check(name, value)
+    except InvalidParameterError as err:
+        raise InvalidParameterError(
+            f"{what}: {err}", parameter=name, allowed=err.allowed
+        ) from None
+
+
+@dataclass(frozen=True)
+class Layer:
+    """A homogeneous sublayer: ``thickness`` (h_i/h in (0, 1]), shear modulus
+    ``mu`` and density ``rho`` per the top sublayer's (1 for the top), and
+    Poisson's ratio ``nu`` in [0, 0.5)."""
+
+    thickness: float = 1.0
+    mu: float = 1.0
+    nu: float = 0.2
+    rho: float = 1.0
+
+    def __post_init__(self) -> None:
+        for name in ("thickness", "mu", "nu", "rho"):
+            value = _check(name, getattr(self, name), f"Layer.{name}")
+            object.__setattr__(self, name, value)
+
+    @property
+    def gamma_h(self) -> float:
+        return 0.0
+
+    def row(self) -> tuple[float, float, float, float, float]:
+        """(thickness, mu, nu, rho, gamma_h) as the core takes it."""
+        return (self.thickness, self.mu, self.nu, self.rho, 0.0)
+
+    def describe(self) -> str:
+        return (
+            f"layer h_i/h = {self.thickness:g}, mu {self.mu:g}, nu {self.nu:g}, "
+            f"rho {self.rho:g}"
+        )
+
+    def to_dict(self) -> dict[str, object]:
+        return {
+            "kind": "layer",
+            "thickness": self.thickness,
+            "mu": self.mu,
+            "nu": self.nu,
+            "rho": self.rho,
+        }
+
+
+@dataclass(frozen=True)
+class GradedLayer:
+    """An exponentially graded sublayer: mu(y) = mu exp(gamma_h (y - y_top)/h)
+    and rho likewise (y up, so gamma_h > 0 softens with depth; the wave speeds
+    are constant). ``mu``, ``rho``: the values at its top, per the top
+    sublayer's (1 when it is the top sublayer)."""
+
+    gamma_h: float
+    nu: float = 0.2
+    thickness: float = 1.0
+    mu: float = 1.0
+    rho: float = 1.0
+
+    def __post_init__(self) -> None:
+        for name in ("gamma_h", "thickness", "mu", "nu", "rho"):
+            value = _check(name, getattr(self, name), f"GradedLayer.{name}")
+            object.__setattr__(self, name, value)
+
+    def row(self) -> tuple[float, float, float, float, float]:
+        return (self.thickness, self.mu, self.nu, self.rho, self.gamma_h)
+
+    def describe(self) -> str:
+        return (
+            f"graded layer h_i/h = {self.thickness:g}, gamma h = {self.gamma_h:g}, "
+            f"mu {self.mu:g}, nu {self.nu:g}, rho {self.rho:g} at its top"
+        )
+
+    def to_dict(self) -> dict[str, object]:
+        return {
+            "kind": "graded",
+            "thickness": self.thickness,
+            "gamma_h": self.gamma_h,
+            "mu": self.mu,
+            "nu": self.nu,
+            "rho": self.rho,
+        }
+
+
+Sublayer = Layer | GradedLayer
+
+
+@dataclass(frozen=True)
+class Winkler:
+    """Springs under the stack: ``kw`` = k_w h/mu_1 (inf: a smooth rigid
+    base), a Pasternak shear layer ``kp`` = k_p/(mu_1 h), dashpots
+    ``damping`` = c_w c_T/mu_1."""
+
+    kw: float
+    kp: float = 0.0
+    damping: float = 0.0
+
+    def __post_init__(self) -> None:
+        for name in ("kw", "kp", "damping"):
+            value = _check(name, getattr(self, name), f"Winkler.{name}")
+            object.__setattr__(self, name, value)
+
+    def describe(self) -> str:
+        out = f"kw = {self.kw:g}"
+        if self.kp:
+            out += f", kp = {self.kp:g}"
+        if self.damping:
+            out += f", damping = {self.damping:g}"
+        return out
+
+    def to_dict(self) -> dict[str, object]:
+        return {
+            "kind": "winkler",
+            "kw": self.kw,
+            "kp": self.kp,
+            "damping": self.damping,
+        }
+
+
+@dataclass(frozen=True)
+class HalfSpace:
+    """An elastic half-space under the stack: ``mu``, ``rho`` per the top
+    sublayer's, Poisson's ratio ``nu``; ``interface`` "bonded" (u, v, tau,
+    sigma_y continuous) or "smooth" (frictionless contact: tau = 0)."""
+
+    mu: float
+    nu: float
+    rho: float = 1.0
+    interface: str = "bonded"
+
+    def __post_init__(self) -> None:
+        for name in ("mu", "nu", "rho"):
+            value = _check(name, getattr(self, name), f"HalfSpace.{name}")
+            object.__setattr__(self, name, value)
+        if self.interface not in INTERFACES:
+            raise InvalidParameterError(
+                f"HalfSpace.interface must be 'bonded' or 'smooth', got "
+                f"{self.interface!r}",
+                parameter="interface",
+                allowed="'bonded' or 'smooth'",
+            )
+
+    def describe(self) -> str:
+        return (
+            f"{self.interface} half-space (mu {self.mu:g}, nu {self.nu:g}, "
+            f"rho {self.rho:g})"
+        )
+
+    def to_dict(self) -> dict[str, object]:
+        return {
+            "kind": "half_space",
+            "mu": self.mu,
+            "nu": self.nu,
+            "rho": self.rho,
+            "interface": self.interface,
+        }
+
+
+Base = Winkler | HalfSpace
+
+
+@dataclass(frozen=True)
+class Medium:
+    """The resolved medium of a solve: its sublayers (top to bottom) and its
+    base. ``homogeneous``: one homogeneous sublayer on springs (the paper's
+    layer, solved exactly as ``kw=``/``nu=`` are)."""
+
+    layers: tuple[Sublayer, ...]
+    base: Base
+
+    @property
+    def homogeneous(self) -> bool:
+        return (
+            len(self.layers) == 1
+            and isinstance(self.layers[0], Layer)
+            and isinstance(self.base, Winkler)
+        )
+
+    @property
+    def nu(self) -> float:
+        """Poisson's ratio of the top sublayer (its half-plane constants)."""
+        return self.layers[0].nu
+
+    def core_args(self) -> dict[str, Any]:
+        """The keyword arguments of ``_core.solve_contact`` for this medium
+        (kw and kp are the springs'; inf and 0 under a half-space)."""
+        if self.homogeneous:
+            return {}
+        base = self.base
+        out: dict[str, Any] = {"layers": [s.row() for s in self.layers]}
+        if isinstance(base, Winkler):
+            out.update(base="springs")
+        else:
+            out.update(
+                base=base.interface,
+                base_mu=base.mu,
+                base_nu=base.nu,
+                base_rho=base.rho,
+            )
+        return out
+
+    def describe(self) -> str:
+        parts = "; ".join(s.describe() for s in self.layers)
+        return f"{parts} on {self.base.describe()}"
+
+    def to_dict(self) -> dict[str, object]:
+        return {
+            "layers": [s.to_dict() for s in self.layers],
+            "base": self.base.to_dict(),
+        }
+
+
+def _sublayers(layers: object) -> tuple[Sublayer, ...]:
+    if isinstance(layers, (Layer, GradedLayer)):
+        layers = [layers]
+    if isinstance(layers, (str, bytes)) or not isinstance(layers, Sequence):
+        raise InvalidParameterError(
+            f"layers must be a list of movingpunch.Layer or GradedLayer, got "
+            f"{layers!r}",
+            parameter="layers",
+            allowed="a list of Layer or GradedLayer, top to bottom",
+        )
+    out: list[Sublayer] = []
+    for i, item in enumerate(layers):
+        if not isinstance(item, (Layer, GradedLayer)):
+            raise InvalidParameterError(
+                f"layers[{i}] must be a movingpunch.Layer or GradedLayer, got {item!r}",
+                parameter="layers",
+                allowed="a list of Layer or GradedLayer, top to bottom",
+            )
+        out.append(item)
+    if not out:
+        raise InvalidParameterError(
+            "layers must list at least one sublayer",
+            parameter="layers",
+            allowed="a list of Layer or GradedLayer, top to bottom",
+        )
+    total = math.fsum(s.thickness for s in out)
+    if abs(total - 1.0) > 1e-12:
+        raise InvalidParameterError(
+            f"layers: the thicknesses sum to {total!r}; they must sum to 1 "
+            "(lengths are per the total thickness h)",
+            parameter="layers",
+            allowed="thicknesses summing to 1",
+        )
+    top = out[0]
+    if top.mu != 1.0 or top.rho != 1.0:
+        raise InvalidParameterError(
+            f"layers[0]: the top sublayer's mu and rho are the units (1 by "
+            f"definition), got mu = {top.mu!r}, rho = {top.rho!r}; divide every "
+            "sublayer's mu and rho by the top's",
+            parameter="layers",
+            allowed="mu = rho = 1 for the top sublayer",
+        )
+    return tuple(out)
+
+
+def resolve_medium(
+    *,
+    layers: object = None,
+    base: object = None,
+    kw: object = None,
+    kp: object = None,
+    damping: object = None,
+    nu: object = None,
+) -> Medium:
+    """The medium of a solve's keyword arguments. ``layers``/``base`` are the
+    value types; ``kw``, ``kp``, ``damping`` and ``nu`` their shorthand
+    (None: not given). Giving a parameter both ways (``nu`` with ``layers``,
+    ``kw`` with a ``base``) is an InvalidParameterError naming it."""
+    if layers is not None and nu is not None:
+        raise InvalidParameterError(
+            "nu: give Poisson's ratio per sublayer (Layer(..., nu=...)) when "
+            "layers= is given, not nu=",
+            parameter="nu",
+            allowed="omitted when layers= is given",
+        )
+    for name, value in (("kw", kw), ("kp", kp), ("damping", damping)):
+        if base is not None and value is not None:
+            where = (
+                f"give {name} there (Winkler(kw, kp, damping)), not as a keyword too"
+                if isinstance(base, Winkler)
+                else f"a half-space base has no springs: drop {name}="
+            )
+            raise InvalidParameterError(
+                f"{name}: the base is given by base= ({base!r}); {where}",
+                parameter=name,
+                allowed="omitted when base= is given",
+            )
+    if base is None:
+        if kw is None:
+            raise InvalidParameterError(
+                "kw: the foundation's stiffness is required (or base=Winkler(...) "
+                "or base=HalfSpace(...))",
+                parameter="kw",
+                allowed=params.SPECS["kw"].text,
+            )
+        base = Winkler(
+            kw=kw,  # type: ignore[arg-type]
+            kp=0.0 if kp is None else kp,  # type: ignore[arg-type]
+            damping=0.0 if damping is None else damping,  # type: ignore[arg-type]
+        )
+    elif not isinstance(base, (Winkler, HalfSpace)):
+        raise InvalidParameterError(
+            f"base must be movingpunch.Winkler(...) or HalfSpace(...), got {base!r}",
+            parameter="base",
+            allowed="Winkler(kw, kp, damping) or HalfSpace(mu, nu, rho, interface)",
+        )
+    if layers is None:
+        sub: tuple[Sublayer, ...] = (
+            Layer(nu=0.2 if nu is None else nu),  # type: ignore[arg-type]
+        )
+    else:
+        sub = _sublayers(layers)
+    return Medium(layers=sub, base=base)
