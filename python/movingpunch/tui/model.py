@@ -23,6 +23,7 @@ from movingpunch.accuracy import LADDER, AccuracyReport, accuracy_report
 from movingpunch.contract import ContactSolution
 from movingpunch.errors import InvalidParameterError, MovingPunchError
 from movingpunch.fields import StressPeaks
+from movingpunch.media import GradedLayer, HalfSpace, Layer, Medium, Sublayer, Winkler
 from movingpunch.params import OPTIONAL, PHYSICAL
 from movingpunch.params import check as check_param
 from movingpunch.profiles import PROFILE_KINDS, Flat, Profile, PunchProfile, RoundedFlat
@@ -258,6 +259,58 @@ class Params:
     punches: tuple[TrainPunch, ...] = ()
     """A train (``movingpunch.solve_punches``); (): the single punch of
     ``load`` (the train's punches carry their own loads)."""
+    layers: tuple[Sublayer, ...] = ()
+    """The sublayers, top to bottom (``movingpunch.Layer``, ``GradedLayer``;
+    the medium editor); (): the homogeneous layer of Poisson's ratio ``nu``."""
+    half_space: HalfSpace | None = None
+    """The base: an elastic half-space under the layers; None: the springs
+    ``kw``, ``kp`` and ``damping``."""
+
+    def medium(self) -> Medium | None:
+        """The medium ``movingpunch.solve`` takes as ``layers=``/``base=``;
+        None for the homogeneous layer on springs (``kw=``, ``nu=``, ...)."""
+        if not self.layers and self.half_space is None:
+            return None
+        layers = self.layers or (Layer(1.0, nu=self.nu),)
+        base: Winkler | HalfSpace = self.half_space or Winkler(
+            self.kw, self.kp, self.damping
+        )
+        return Medium(layers=layers, base=base)
+
+    def interfaces(self) -> tuple[float, ...]:
+        """y/h of the interfaces between sublayers, top to bottom (the
+        bottom of the stack, y/h = -1, is not one of them)."""
+        out = []
+        depth = 0.0
+        for sub in self.layers[:-1]:
+            depth += sub.thickness
+            out.append(-depth)
+        return tuple(out)
+
+    def medium_label(self) -> str:
+        """The medium in a few characters ("" for the homogeneous layer on
+        springs): ``2 sublayers on springs``, ``graded on bonded half-space``."""
+        if self.medium() is None:
+            return ""
+        if len(self.layers) > 1:
+            stack = f"{len(self.layers)} sublayers"
+        elif self.layers and isinstance(self.layers[0], GradedLayer):
+            stack = f"graded γh={fmt(self.layers[0].gamma_h, 4)}"
+        else:
+            stack = "layer"
+        if self.half_space is None:
+            return f"{stack} on springs"
+        return f"{stack} on {self.half_space.interface} half-space"
+
+    def applies(self, name: str) -> bool:
+        """Whether the parameter ``name`` means something for this medium:
+        ν is the sublayers' own when there are sublayers; kw, kp and damping
+        are the springs' (none under a half-space)."""
+        if name == "nu":
+            return not self.layers
+        if name in ("kw", "kp", "damping"):
+            return self.half_space is None
+        return True
 
     @property
     def damped(self) -> bool:
@@ -303,6 +356,16 @@ class Params:
             return self.spaced(value)
         if name not in PARAM_NAMES:
             raise InvalidParameterError(f"unknown parameter {name!r}")
+        if not self.applies(name):
+            raise InvalidParameterError(
+                f"{name}: does not apply to the medium ({self.medium_label()}): "
+                + (
+                    "each sublayer has its own ν (the medium editor, l)"
+                    if name == "nu"
+                    else "a half-space base has no springs"
+                ),
+                parameter=name,
+            )
         changes: dict[str, object] = {name: value}
         return replace(self, **changes)  # type: ignore[arg-type]
 
@@ -342,8 +405,11 @@ class Params:
         names = [
             n
             for n in SCENE_PARAMS
-            if (against is None and self._shown(n))
-            or (against is not None and self.get(n) != against.get(n))
+            if self.applies(n)
+            and (
+                (against is None and self._shown(n))
+                or (against is not None and self.get(n) != against.get(n))
+            )
         ]
         shape = self.shape_label()
         if against is not None and shape == against.shape_label():
@@ -351,6 +417,16 @@ class Params:
         extra = self._zones_label()
         if against is not None and extra == against._zones_label():
             extra = []
+        medium = self.medium_label()
+        if against is not None and (self.layers, self.half_space) == (
+            against.layers,
+            against.half_space,
+        ):
+            medium = ""
+        elif against is not None and not medium:
+            medium = "homogeneous layer"
+        if medium:
+            extra = [*extra, medium]
         if not names and not shape and not extra:
             return "same"
         return " ".join(
@@ -476,6 +552,9 @@ class Curves:
     vertical_grid: bool = False
     """Draw the grid vertically (σx through the depth: y/h upwards)."""
     log_grid: bool = False
+    interfaces: tuple[float, ...] = ()
+    """y/h of the interfaces between the current set's sublayers (the depth
+    tab), drawn as horizontal lines."""
 
 
 @dataclass(frozen=True, eq=False)  # arrays: compared by identity
@@ -556,6 +635,9 @@ class Summary:
     """Every contact zone (left, right)/h ((): the one ``contact_interval``)."""
     punches: tuple[PunchSummary, ...] = ()
     """Each punch of a train ((): a single punch)."""
+    medium: str = ""
+    """The medium solved (``Medium.describe()``); "" for the homogeneous
+    layer on springs."""
 
     @property
     def damped(self) -> bool:
@@ -658,6 +740,28 @@ def solution(cache: Cache, params: Params) -> ContactSolution:
 
 
 def _solve(params: Params) -> ContactSolution:
+    medium = params.medium()
+    if params.punches and medium is not None:
+        raise InvalidParameterError(
+            f"layers: a train runs on the homogeneous layer on springs only so "
+            f"far; the medium is {medium.describe()} (clear the train or the "
+            "medium)",
+            parameter="layers",
+            allowed="the homogeneous layer on springs with a train",
+        )
+    if medium is not None:
+        shape = params.shape()
+        return solve(
+            vstar=params.vstar,
+            radius=params.radius if shape is None else None,
+            profile=shape,
+            load=params.load,
+            tol=params.tol,
+            friction=params.friction,
+            contact=params.contact,
+            layers=list(medium.layers),
+            base=medium.base,
+        )
     if params.punches:
         return solve_punches(
             params.train(),
@@ -716,6 +820,16 @@ def limits(kw: float, nu: float, kp: float = 0.0) -> tuple[float, float]:
     return critical_vstar(kw, nu, kp), rayleigh_vstar(nu)
 
 
+def medium_limits(params: Params) -> tuple[float, float]:
+    """(V*_cr, V*_R) of the medium of ``params`` (V*_R: its top sublayer's
+    Rayleigh speed); raises MovingPunchError when the medium is refused."""
+    medium = params.medium()
+    if medium is None:
+        return limits(params.kw, params.nu, params.kp)
+    vcr = critical_vstar(layers=list(medium.layers), base=medium.base)
+    return vcr, rayleigh_vstar(medium.nu)
+
+
 def summary(cache: Cache, params: Params) -> Summary:
     s = solution(cache, params)
     peaks = cache.get_or_make(("peaks", params), s.stress_peaks)
@@ -741,7 +855,13 @@ def summary(cache: Cache, params: Params) -> Summary:
         tangential_force=s.tangential_force,
         contact_zones=zones_of(s),
         punches=_punch_summaries(s),
+        medium=_medium_text(params),
     )
+
+
+def _medium_text(params: Params) -> str:
+    medium = params.medium()
+    return "" if medium is None else medium.describe()
 
 
 Progress = Callable[[int, int], None]
@@ -755,7 +875,11 @@ def _members(request: Request) -> list[tuple[str, Params]]:
         value = fmt(request.params.get(overlay.param), 4)
         out[0] = (f"current {SHORT[overlay.param]}={value}", request.params)
         # A value equal to the current one would draw the same curve twice.
-        out += [m for m in overlay.members(request.params) if m[1] != request.params]
+        # (An overlay of a parameter the medium has no use for: no members;
+        # ``compute`` notes it.)
+        if request.params.applies(overlay.param):
+            members = overlay.members(request.params)
+            out += [m for m in members if m[1] != request.params]
     for i, pin in enumerate(request.pins, start=1):
         out.append((f"pin{i} {pin.label(request.params)}", pin))
     return out
@@ -779,6 +903,12 @@ def compute(
     members = _members(request)
     solved: list[tuple[str, Params, ContactSolution]] = []
     notes: list[str] = []
+    overlay = request.overlay
+    if overlay is not None and not request.params.applies(overlay.param):
+        notes.append(
+            f"overlay {overlay.param}: not drawn, it does not apply to the "
+            f"medium ({request.params.medium_label()})"
+        )
     for label, params in members:
         try:
             solved.append((label, params, solution(cache, params)))
@@ -803,6 +933,12 @@ def compute(
             "sweep",
             "A train's punches carry their own loads (the train input): the "
             "load sweep does not apply; w sweeps R/h.",
+        )
+    elif request.tab == "sweep" and not request.params.applies(request.sweep.param):
+        data = Notice(
+            "sweep",
+            f"The sweep over {request.sweep.param} does not apply to the medium "
+            f"({request.params.medium_label()}); w sweeps P/(μh) and R/h.",
         )
     elif request.tab == "sweep":
         out = _sweep(cache, request, solved, report, stop)
@@ -871,6 +1007,9 @@ def _round_up(x: float) -> float:
     return math.ceil(x / step) * step
 
 
+INTERFACE_SIDE = 1e-9
+"""The depth tab's grid holds y/h = interface ± this: σx on either side."""
+
 _LABELS = {
     "pressure": ("Contact pressure", "x/h", "p(x)/(P/h)"),
     "surface": ("σx on the surface y = 0", "x/h", "σx(x,0)/(P/h)"),
@@ -886,10 +1025,18 @@ def _curves(
     stop: Callable[[], bool],
 ) -> Curves:
     title, grid_label, value_label = _LABELS[tab]
+    interfaces: tuple[float, ...] = ()
     if tab == "depth":
         n = 101
         grid = np.linspace(-1.0, 0.0, n)
-        key: tuple[object, ...] = (n,)
+        # sigma_x jumps across a bonded interface: both sides on the grid.
+        cuts = sorted({y for _, p, _ in solved for y in p.interfaces()})
+        if cuts:
+            sides = [y + d for y in cuts for d in (-INTERFACE_SIDE, INTERFACE_SIDE)]
+            grid = np.union1d(grid, np.asarray(sides, dtype=np.float64))
+        key: tuple[object, ...] = (n, tuple(cuts))
+        if solved:
+            interfaces = solved[0][1].interfaces()
     else:
         centre, half = _window(tab, solved)
         grid = np.linspace(
@@ -935,6 +1082,7 @@ def _curves(
         markers=markers,
         axes=axes,
         vertical_grid=tab == "depth",
+        interfaces=interfaces,
     )
 
 
@@ -1024,6 +1172,12 @@ def _accuracy(
             "accuracy",
             "The accuracy ladder runs a single punch: clear the train input to see it.",
         )
+    if params.medium() is not None:
+        return Notice(
+            "accuracy",
+            "The accuracy ladder runs the homogeneous layer on springs: clear "
+            f"the medium ({params.medium_label()}; the medium editor, l) to see it.",
+        )
     key = ("accuracy", replace(params, tol=PAPER_FIG4.tol))
     known = cache.peek(key)
     if isinstance(known, AccuracyTable):
@@ -1080,3 +1234,130 @@ def _csv_number(value: float) -> str:
 
 def describe(values: Iterable[float]) -> str:
     return ", ".join(fmt(v, 4) for v in values)
+
+
+# -- the medium editor ---------------------------------------------------------
+
+SUBLAYER_FIELDS: tuple[str, ...] = ("thickness", "mu", "nu", "rho", "gamma_h")
+"""The inputs of a sublayer's row in the medium editor (gamma_h 0: a
+homogeneous ``Layer``, else a ``GradedLayer``)."""
+
+HALF_SPACE_FIELDS: tuple[str, ...] = ("mu", "nu", "rho")
+"""The inputs of a half-space base."""
+
+BASE_KINDS: tuple[str, ...] = ("springs", "bonded", "smooth")
+"""The base selector: the springs (kw, kp, damping in the panel), or an
+elastic half-space bonded to the stack or in frictionless contact with it."""
+
+THICKNESS_SLACK = 1e-12
+"""The thicknesses must sum to 1 within this (``movingpunch.media``)."""
+
+
+def parse_sublayer(row: int, texts: dict[str, str]) -> Sublayer:
+    """The sublayer of row ``row`` (1: the top) from the texts typed in its
+    inputs (``SUBLAYER_FIELDS``). Raises InvalidParameterError naming the
+    row, the parameter and its range (``.parameter``: the field's name).
+    The top row's mu and rho are the units: 1."""
+    values = {}
+    for name in SUBLAYER_FIELDS:
+        try:
+            values[name] = parse_param(name, texts[name])
+        except InvalidParameterError as exc:
+            raise InvalidParameterError(
+                f"sublayer {row}: {exc}", parameter=name, allowed=exc.allowed
+            ) from None
+    if row == 1:
+        for name in ("mu", "rho"):
+            if values[name] != 1.0:
+                raise InvalidParameterError(
+                    f"sublayer 1: the top sublayer's {name} is the unit of every "
+                    f"{name} (1 by definition), got {fmt(values[name])}; give "
+                    "the others per the top's",
+                    parameter=name,
+                    allowed="1 for the top sublayer",
+                )
+    if values["gamma_h"] == 0.0:
+        return Layer(values["thickness"], values["mu"], values["nu"], values["rho"])
+    return GradedLayer(
+        values["gamma_h"],
+        values["nu"],
+        values["thickness"],
+        values["mu"],
+        values["rho"],
+    )
+
+
+def check_thicknesses(layers: Sequence[Sublayer]) -> None:
+    """Raises InvalidParameterError (``.parameter`` "thickness") unless the
+    thicknesses sum to 1, naming the sum and each row's thickness."""
+    total = math.fsum(s.thickness for s in layers)
+    if abs(total - 1.0) > THICKNESS_SLACK:
+        rows = ", ".join(
+            f"{k} {fmt(s.thickness, 6)}" for k, s in enumerate(layers, start=1)
+        )
+        raise InvalidParameterError(
+            f"thickness: the sublayers' thicknesses sum to {fmt(total, 8)}, they "
+            f"must sum to 1 (lengths are per the total thickness h; rows {rows}): "
+            "ctrl+t normalises them",
+            parameter="thickness",
+            allowed="thicknesses summing to 1",
+        )
+
+
+def normalised(thicknesses: Sequence[float]) -> tuple[float, ...]:
+    """The thicknesses scaled to sum to 1 (the last one takes the rounding,
+    so the sum is 1 to the last bit where it can be)."""
+    total = math.fsum(thicknesses)
+    if not total > 0.0 or not math.isfinite(total):
+        raise InvalidParameterError(
+            "thickness: nothing to normalise (the thicknesses must be positive)",
+            parameter="thickness",
+            allowed="0 < thickness",
+        )
+    out = [t / total for t in thicknesses]
+    if len(out) > 1:
+        out[-1] = 1.0 - math.fsum(out[:-1])
+    return tuple(out)
+
+
+def parse_base(kind: str, texts: dict[str, str]) -> HalfSpace | None:
+    """The base chosen: None for the springs (``kind`` "springs"), else a
+    half-space ``kind`` "bonded" or "smooth" of the texts typed (mu, nu,
+    rho). Raises InvalidParameterError naming the parameter and its range."""
+    if kind not in BASE_KINDS:
+        raise InvalidParameterError(
+            f"base must be one of {', '.join(BASE_KINDS)}, got {kind!r}",
+            parameter="base",
+            allowed=", ".join(BASE_KINDS),
+        )
+    if kind == "springs":
+        return None
+    values = {}
+    for name in HALF_SPACE_FIELDS:
+        try:
+            values[name] = parse_param(name, texts[name])
+        except InvalidParameterError as exc:
+            raise InvalidParameterError(
+                f"half-space: {exc}", parameter=name, allowed=exc.allowed
+            ) from None
+    return HalfSpace(values["mu"], values["nu"], values["rho"], interface=kind)
+
+
+def with_medium(
+    params: Params, layers: Sequence[Sublayer], half_space: HalfSpace | None
+) -> Params:
+    """``params`` on the medium of ``layers`` (top to bottom; their
+    thicknesses checked) and the base. One homogeneous sublayer is the
+    panel's layer: its ν goes to the ν input and ``layers`` stays ()."""
+    layers = tuple(layers)
+    if not layers:
+        raise InvalidParameterError(
+            "layers: give at least one sublayer",
+            parameter="layers",
+            allowed="one or more sublayers, top to bottom",
+        )
+    check_thicknesses(layers)
+    top = layers[0]
+    if len(layers) == 1 and isinstance(top, Layer):
+        return replace(params, layers=(), half_space=half_space, nu=top.nu)
+    return replace(params, layers=layers, half_space=half_space)

@@ -194,7 +194,19 @@ def _zone_fields(params: Params) -> dict[str, Any]:
 
 
 def to_scene(state: SceneState) -> Scene:
-    """The state as a Scene (validated: raises SceneError)."""
+    """The state as a Scene (validated: raises SceneError). A medium other
+    than the homogeneous layer on springs is refused: ``Scene`` holds no
+    sublayers or half-space base yet, and saving would drop it."""
+    medium = state.params.medium()
+    if medium is not None:
+        raise SceneError(
+            "<terminal UI>",
+            "layers",
+            f"the medium ({medium.describe()}) cannot be saved: a scene file "
+            "holds the homogeneous layer on springs only so far (the medium "
+            "editor, l, goes back to it with one homogeneous sublayer on springs)",
+            parameter="layers",
+        )
     vary = (
         None
         if state.overlay is None

@@ -45,6 +45,7 @@ KEYS: tuple[tuple[str, str], ...] = (
     ("p", "pin the current curves as a reference"),
     ("c", "clear the pins and the overlay"),
     ("v", "overlay one parameter at several values"),
+    ("l", "the medium: sublayers and the base"),
     ("m", "field tab: σx or von Mises"),
     ("w", "a/h sweep: against P/(μh) or R/h"),
     ("F2 ... F6", "the paper's Figs 2-6 (bundled scenes)"),
@@ -107,6 +108,17 @@ FACTS: dict[str, str] = {
         f"whole clause or word and ends in …; {FULL_TEXT_KEY} shows every "
         "message in full."
     ),
+    "medium": (
+        "The medium editor (l) lists the sublayers top to bottom, bonded: "
+        "thickness h_i/h, μ and ρ per the top sublayer's (1 for the top), ν "
+        "and the grading γh (0: homogeneous), and the base: springs (kw, kp, "
+        "damp in the panel), a bonded or a smooth elastic half-space (μ, ν, "
+        "ρ). ctrl+n adds a sublayer under the focused one and ctrl+r removes "
+        "it (each keeps the thicknesses' sum), ctrl+t scales the thicknesses "
+        "to sum to 1, enter applies and escape cancels. A message names the "
+        "sublayer, the parameter and its valid range. The depth tab draws "
+        "the interfaces between sublayers."
+    ),
     "files": (
         "Open (o), save (s) and export (e) stay in the working folder: "
         "--root DIR, else the directory the app started in, except inside "
@@ -162,6 +174,11 @@ def help_text() -> str:
         "0.002@-1.5, 0.002@1.5 (P/(μh) and x/h of each axis; empty: one punch "
         "of P/(μh)).",
         FACTS["typing"],
+        FACTS["medium"]
+        + " With sublayers ν is each one's own and the ν input is hidden; "
+        "under a half-space kw, kp and damp are. The panel and the status "
+        "line name the medium solved; a medium the solver does not take yet "
+        "is refused on the status line.",
         FACTS["messages"],
         "The gauge compares V* with the critical speed V*_cr(kw, ν, kp) and "
         "turns red above 95 %. With damping > 0 it compares V* with the "

@@ -88,6 +88,7 @@ from movingpunch.tui.model import (
 )
 from movingpunch.tui.paths import WorkingFolder, write_error
 from movingpunch.tui.screens.help import HelpScreen, MessagesScreen
+from movingpunch.tui.screens.medium import MediumChoice, MediumEditor
 from movingpunch.tui.screens.prompts import OverlayPrompt, PathPrompt
 from movingpunch.tui.widgets import (
     AccuracyView,
@@ -155,6 +156,7 @@ class MainScreen(Screen[None]):
             show=False,
         ),
         Binding("v", "overlay", "Vary"),
+        Binding("l", "medium", "Medium", show=False),
         Binding("o", "open_scene", "Open"),
         Binding("s", "save_scene", "Save"),
         Binding("e", "export", "CSV"),
@@ -229,8 +231,9 @@ class MainScreen(Screen[None]):
         """What the running worker computes (generation 0), if anything."""
         self._failed: tuple[Request, BaseException | None] | None = None
         """The request whose error is on screen, and its error."""
-        self._limits: dict[tuple[float, float, float], tuple[float, float]] = {}
-        """(V*_cr, V*_R) per (kw, ν, kp): the gauge's speeds."""
+        self._limits: dict[tuple[object, ...], tuple[float, float] | None] = {}
+        """(V*_cr, V*_R) per (kw, ν, kp, sublayers, half-space): the gauge's
+        speeds (None: the medium's refused)."""
         self.requested: list[Params] = []
         """Every parameter set sent to a worker, oldest first, a repeat of
         the one before (another tab, a pin) not counted (for tests)."""
@@ -666,14 +669,19 @@ class MainScreen(Screen[None]):
         if self._invalid or self._typing:
             return
         p = self.params
-        key = (p.kw, p.nu, p.kp)
+        key = (p.kw, p.nu, p.kp, p.layers, p.half_space)
         if key not in self._limits:
             try:
-                self._limits[key] = model.limits(p.kw, p.nu, p.kp)
+                self._limits[key] = model.medium_limits(p)
             except MovingPunchError:
-                return
-        vcr, vr = self._limits[key]
+                # (a medium the core refuses: the solve's error says why)
+                self._limits[key] = None
+        speeds = self._limits[key]
         gauge = self.query_one(Gauge)
+        if speeds is None:
+            gauge.limits = None
+            return
+        vcr, vr = speeds
         gauge.damped = p.damped
         gauge.limits = (p.vstar, vcr, vr)
 
@@ -692,6 +700,11 @@ class MainScreen(Screen[None]):
                 continue
             if _value(shown, name) != self._typed_value(name, panel.text(name)):
                 out.append(f"{LABELS[name]} {_input_text(shown, name)}")
+        if (shown.layers, shown.half_space) != (
+            self.params.layers,
+            self.params.half_space,
+        ):
+            out.append(f"medium {shown.medium_label() or 'homogeneous layer'}")
         return tuple(out)
 
     def _typed_value(self, name: str, text: str) -> object:
@@ -735,6 +748,9 @@ class MainScreen(Screen[None]):
             if self._hints:
                 text.append("hint: " + "; ".join(self._hints) + "  ", "yellow")
             extras = []
+            medium = self.result.summary.medium if self.result is not None else ""
+            if medium:
+                extras.append(f"medium: {medium}")
             if self.overlay is not None:
                 values = model.describe(self.overlay.values)
                 extras.append(f"overlay {self.overlay.param}: {values}")
@@ -956,6 +972,26 @@ class MainScreen(Screen[None]):
             self.overlay = overlay
             self._reconcile(soon=False)
 
+    def action_medium(self) -> None:
+        """The medium editor: the sublayers and the base."""
+        self.app.push_screen(MediumEditor(self.params), self._set_medium)
+
+    def _set_medium(self, choice: MediumChoice | None) -> None:
+        if choice is None:
+            return
+        try:
+            params = model.with_medium(self.params, choice.layers, choice.half_space)
+        except InvalidParameterError as exc:  # (the editor checks it first)
+            self.notify(_one_line(exc), severity="error")
+            return
+        panel = self.query_one(ParamsPanel)
+        self.params = params
+        panel.set_values(params)
+        panel.show_medium(params)
+        self._show_applicable()
+        self._show_gauge()
+        self._reconcile(soon=False)
+
     def action_help(self) -> None:
         self.app.push_screen(HelpScreen())
 
@@ -991,6 +1027,7 @@ class MainScreen(Screen[None]):
         for name in INPUTS:
             self._set_message(name, "")
         self.query_one(ParamsPanel).show_load(scene.params.load)
+        self.query_one(ParamsPanel).show_medium(scene.params)
         self._show_applicable()
         self._show_gauge()
         if tab is not None and tab != self.tab:

@@ -6,7 +6,10 @@ V*_R with damping > 0) under the speed.
 An input that does not apply to the current set is hidden (``applies``): b/h
 without a flat face, R/h for a flat punch or a table, and the single punch's
 load, friction and contact mode beside a train (its punches carry their loads;
-a train is frictionless and always finds its contact set)."""
+a train is frictionless and always finds its contact set). With sublayers
+(the medium editor, key ``l``) ν is each sublayer's own, and a half-space
+base has no springs (kw, kp, damping): those inputs are hidden, and the
+group names the medium."""
 
 from __future__ import annotations
 
@@ -60,7 +63,7 @@ def applies(name: str, params: Params) -> bool:
         return params.profile in ("flat", "rounded_flat")
     if name in ("load", "friction", "contact"):
         return not params.punches
-    return True
+    return params.applies(name)
 
 
 LABELS: dict[str, str] = {
@@ -350,6 +353,10 @@ class ParamsPanel(VerticalScroll):
     def compose(self) -> ComposeResult:
         for title, names in GROUPS:
             yield Label(title, classes="group-title")
+            if title == "layer, foundation":
+                note = Label("", id="medium-note")
+                note.display = False
+                yield note
             for name in names:
                 yield from self._row(name)
             if title == "speed":
@@ -378,6 +385,17 @@ class ParamsPanel(VerticalScroll):
             id=f"msg-{name}",
             classes="param-msg",
         )
+
+    def on_mount(self) -> None:
+        self.show_medium(self._initial)
+
+    def show_medium(self, params: Params) -> None:
+        """Names the medium under the group's title (hidden for the
+        homogeneous layer on springs)."""
+        note = self.query_one("#medium-note", Label)
+        label = params.medium_label()
+        note.update(f"medium {label} (l edits)" if label else "")
+        note.display = bool(label)
 
     def show_applicable(self, params: Params) -> tuple[str, ...]:
         """Shows the inputs that apply to ``params`` and hides the others;

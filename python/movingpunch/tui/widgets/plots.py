@@ -37,6 +37,7 @@ PALETTE: tuple[tuple[int, int, int], ...] = (
 
 ZONE_END_COLOUR = (150, 150, 150)
 AXIS_COLOUR = (255, 120, 200)
+INTERFACE_COLOUR = (120, 200, 255)
 
 
 class CurvePlot(PlotextPlot):
@@ -101,6 +102,10 @@ class CurvePlot(PlotextPlot):
             for x in data.axes:
                 if math.isfinite(x):
                     plt.vline(x, color=AXIS_COLOUR)
+            # The interfaces between sublayers (the depth tab: y/h upwards).
+            for y in data.interfaces:
+                if math.isfinite(y):
+                    plt.hline(y, color=INTERFACE_COLOUR)
             if data.vertical_grid:
                 plt.xlabel(data.value_label)
                 plt.ylabel(data.grid_label)
@@ -164,8 +169,8 @@ def _overlay(frame: str, cells: Mapping[Cell, int]) -> Text:
 
 def legend(data: Curves) -> list[Field]:
     """The legend below a plot: the marker (in its colour) and the label of
-    each curve (when there are several), then the zone ends and the punch
-    axes."""
+    each curve (when there are several), then the zone ends, the punch axes
+    and the interfaces between sublayers (the depth tab)."""
     out: list[Field] = []
     if len(data.series) > 1:
         for i, series in enumerate(data.series):
@@ -179,6 +184,10 @@ def legend(data: Curves) -> list[Field]:
         r, g, b = AXIS_COLOUR
         at = " ".join(fmt(x, 3) for x in data.axes)
         out.append(Field("│", f"punch axes x/h {at}", "", f"rgb({r},{g},{b})"))
+    if data.interfaces:
+        r, g, b = INTERFACE_COLOUR
+        at = " ".join(fmt(y, 3) for y in data.interfaces)
+        out.append(Field("─", f"interfaces y/h {at}", "", f"rgb({r},{g},{b})"))
     return out
 
 
