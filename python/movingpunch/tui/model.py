@@ -295,7 +295,7 @@ class Params:
         if len(self.layers) > 1:
             stack = f"{len(self.layers)} sublayers"
         elif self.layers and isinstance(self.layers[0], GradedLayer):
-            stack = f"graded γh={fmt(self.layers[0].gamma_h, 4)}"
+            stack = f"graded gamma h={fmt(self.layers[0].gamma_h, 4)}"
         else:
             stack = "layer"
         if self.half_space is None:

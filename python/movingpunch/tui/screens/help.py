@@ -111,7 +111,7 @@ FACTS: dict[str, str] = {
     "medium": (
         "The medium editor (l) lists the sublayers top to bottom, bonded: "
         "thickness h_i/h, μ and ρ per the top sublayer's (1 for the top), ν "
-        "and the grading γh (0: homogeneous), and the base: springs (kw, kp, "
+        "and the grading gamma h (0: homogeneous), and the base: springs (kw, kp, "
         "damp in the panel), a bonded or a smooth elastic half-space (μ, ν, "
         "ρ). ctrl+n adds a sublayer under the focused one and ctrl+r removes "
         "it (each keeps the thicknesses' sum), ctrl+t scales the thicknesses "

@@ -1,5 +1,5 @@
 """The medium editor (key ``l`` on the main screen): the sublayers, top to
-bottom, each a row of inputs (thickness h_i/h, μ_i/μ_1, ν, ρ_i/ρ_1, γh; γh
+bottom, each a row of inputs (thickness h_i/h, μ_i/μ_1, ν, ρ_i/ρ_1, gamma h; gamma h
 ≠ 0 makes it a graded sublayer), and the base (the springs of the panel, or
 an elastic half-space bonded to the stack or in frictionless contact).
 
@@ -43,7 +43,7 @@ HEADINGS: dict[str, str] = {
     "mu": "μ/μ₁",
     "nu": "ν",
     "rho": "ρ/ρ₁",
-    "gamma_h": "γh",
+    "gamma_h": "gamma h",
 }
 """The column headings of the sublayer rows (and the half-space's)."""
 
