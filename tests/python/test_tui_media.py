@@ -385,8 +385,10 @@ async def test_medium_stack_two_sublayers_summary_and_depth_interface() -> None:
         assert len(below) == 1
         values = curves.series[0].values
         sides = api.depth_stress(np.array([-0.4 - 1e-9, -0.4 + 1e-9]))
-        np.testing.assert_allclose(values[[below[0], above[0]]], sides, rtol=1e-12)
+        np.testing.assert_allclose(values[[below[0], above[0]]], sides, rtol=1e-9)
         assert abs(sides[1] - sides[0]) > 1e-3 * np.max(np.abs(values))  # a jump
+        csv = tui_model.to_csv(curves, screen.params)
+        assert "# medium: layer h_i/h = 0.4" in csv, csv[:300]
 
 
 @sync

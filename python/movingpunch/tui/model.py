@@ -1200,6 +1200,9 @@ def to_csv(data: TabData, source: Params) -> str:
     """The tab's data as CSV that ``numpy.loadtxt(..., delimiter=",")``
     reads back: ``#`` comment lines, then numbers only."""
     lines = [f"# movingpunch {source.label()} tol={fmt(source.tol)}"]
+    medium = source.medium()
+    if medium is not None:
+        lines.append(f"# medium: {medium.describe()}")
     if isinstance(data, AccuracyTable):
         lines.append(f"# accuracy against time; reference {data.report.reference}")
         table = data.report.columns()
