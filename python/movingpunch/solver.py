@@ -48,6 +48,7 @@ from movingpunch.errors import (
 )
 from movingpunch.media import (
     Base,
+    GradedLayer,
     HalfSpace,
     Medium,
     Sublayer,
@@ -497,6 +498,16 @@ def _solve_layered(
         refused = "friction"
     elif isinstance(shape, Profile) and not shape.symmetric:
         refused = "an asymmetric profile table"
+    if isinstance(medium.layers[0], GradedLayer) and medium.layers[0].gamma_h != 0:
+        raise InvalidParameterError(
+            "layers: a graded TOP sublayer is not solved yet: its response reaches "
+            "the half-plane's only as a series in gamma/alpha, and the kernel must "
+            "take that series out exactly (a plain quadrature stalls at 1e-4 ... "
+            "1e-6); put a homogeneous sublayer on top (a graded one below it is "
+            "solved) or model the grading as a staircase of Layer(...)",
+            parameter="layers",
+            allowed="a homogeneous top sublayer (graded ones below it)",
+        )
     if refused:
         raise InvalidParameterError(
             f"layers/base: {refused} runs on the asymmetric solver, which takes the "

@@ -203,10 +203,12 @@ class _ZoneSum:
     def displacement(self, x: FloatArray, y: FloatArray) -> FloatArray:
         return self._sum(lambda z, u: z.displacement(u, y), x, weighted=False)  # type: ignore[no-any-return]
 
-    def stress_field(self, x: FloatArray, y: FloatArray) -> tuple[FloatArray, ...]:
+    def stress_field(
+        self, x: FloatArray, y: FloatArray, below: bool = False
+    ) -> tuple[FloatArray, ...]:
         xs = np.asarray(x, dtype=np.float64)
         parts = [
-            z.stress_field(xs - o, y)
+            z.stress_field(xs - o, y, below)
             for z, o in zip(self.zones, self.origins, strict=True)
         ]
         return tuple(
