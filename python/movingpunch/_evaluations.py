@@ -2,7 +2,7 @@
 result (``_impl``): the pressure, the surface stress and displacement, the
 displacement at a depth, the stress field, the stress peaks and
 ``to_dict``. ``Solution`` and
-``DampedSolution`` both inherit them (one implementation of the contract's
+``AsymmetricSolution`` both inherit them (one implementation of the contract's
 shared members; the compiled results bind the same members once,
 ``bind_result_common`` in cpp/bindings/bindings.hpp)."""
 

@@ -124,7 +124,7 @@ class Rung:
     peak_error_bound: float = math.nan
     """Largest bound the sigma_x peaks carry (``StressPeaks.error_bound``):
     ``stress_error_estimate`` plus the peak search's uncertainty. The search
-    of the damped solver's peaks stops at tol relative to the centre stress,
+    of the asymmetric solver's peaks stops at tol relative to the centre stress,
     so at loose tols this, not the stress estimate, bounds the peak errors."""
     failure: str = ""
     """Why this rung could not be computed ("" if it was)."""

@@ -1,7 +1,7 @@
 """The result contract: what every contact solution offers.
 
 ``movingpunch.solve`` returns a ``Solution`` (frictionless, undamped: the
-paper's model) or, with ``damping > 0``, a ``DampedSolution`` (an asymmetric
+paper's model) or, with ``damping > 0``, a ``AsymmetricSolution`` (an asymmetric
 contact with drag). Both satisfy ``ContactSolution``, and everything that
 consumes a solution — scenes, the CLI, the terminal UI — uses only this
 contract, never the concrete class. A new physical effect (a punch profile,

@@ -1463,7 +1463,7 @@ def test_friction_at_the_largest_coefficient(damping: float) -> None:
     s = mp.solve(vstar=0.2, kw=1.0, friction=10.0, damping=damping, **PAPER)
     gb = s.end_exponents[0]
     assert gb == pytest.approx(
-        math.atan2(1.0, 10.0 * mp.damped.coupling_constant(0.2)) / math.pi
+        math.atan2(1.0, 10.0 * mp.asymmetric.coupling_constant(0.2)) / math.pi
     )
     assert gb < 0.08
     assert s.valid

@@ -4,24 +4,30 @@ import Textual; the compiled core releases the GIL while it computes (what
 keeps a UI responsive).
 
 The layers, lowest first (``LAYERS`` below; a module may import modules of its
-own layer or of lower layers, never a higher one, and no import cycle may form):
+own layer or of lower layers, never a higher one, and no import cycle may form).
+docs/architecture.md lists the same layers with the same modules, in the same
+order (``test_architecture_doc_lists_the_layers`` compares them):
 
 1. ``errors``: the exception family (imports nothing of movingpunch).
    ``params``: the table of parameter specs (pure Python, on ``errors``).
 2. ``core``: the compiled extension ``movingpunch._core``.
 3. ``helpers``: pure-Python numerics and files on top of the core results:
-   ``fields`` (stress fields), ``peaks`` (peak search), ``outputs`` (writing
-   result files), ``contract`` (the result contract every solution
-   satisfies), ``_evaluate`` (checking inputs and evaluating at points),
-   ``_version`` (the package version, read without importing the package),
-   ``_display`` (how a number is shown: round-off as 0), ``_textplot``
-   (text plots where no curve hides another) and ``cancel`` (cancellation
-   tokens bound to a thread).
-4. ``zones``: several contact zones and trains of punches (``zones``: the
+   ``fields`` (stress fields), ``peaks`` (peak search), ``profiles`` (the
+   punch shapes), ``outputs`` (writing result files), ``contract`` (the result
+   contract every solution satisfies), ``regime`` (plausibility hints),
+   ``_evaluate`` (checking inputs and evaluating at points), ``_version``
+   (the package version, read without importing the package), ``_display``
+   (how a number is shown: round-off as 0), ``_textplot`` (text plots where
+   no curve hides another) and ``cancel`` (cancellation tokens bound to a
+   thread).
+4. ``evaluations``: what every solution computes alike (``_evaluations``).
+   ``zones``: several contact zones and trains of punches (``zones``: the
    contact-set search and the superposed result, on the core and the shared
    evaluations; ``solver.solve`` and ``solver.solve_punches`` call it).
-   ``solve``: the solves, ``solver`` and ``damped`` (neither imports the other
-   at module level; ``solver.solve`` hands damping > 0 to ``damped``).
+   ``solve``: the solves, ``solver`` and ``asymmetric`` (neither imports the
+   other at module level; ``solver.solve`` hands damping, friction and
+   asymmetric profiles to ``asymmetric``); ``damped``, the deprecated old
+   name of ``asymmetric``, only re-exports it.
 5. ``scene``: scene files, their runs and exports (``movingpunch.scene.*``), in
    three sub-layers: the model (the parts, validation, TOML reading and
    writing, the bundled files), the run (results, solving points, the sweep's
@@ -82,7 +88,7 @@ LAYERS: tuple[tuple[str, frozenset[str]], ...] = (
     ),
     ("evaluations", frozenset({"movingpunch._evaluations"})),
     ("zones", frozenset({"movingpunch.zones"})),
-    ("solve", frozenset({"movingpunch.solver", "movingpunch.damped"})),
+    ("solve", frozenset({"movingpunch.solver", "movingpunch.asymmetric", "movingpunch.damped"})),
     (
         "scene model",
         frozenset(
