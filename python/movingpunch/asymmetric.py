@@ -47,6 +47,7 @@ from movingpunch.contract import Points
 from movingpunch.errors import SupercriticalSpeedError
 from movingpunch.fields import FloatArray
 from movingpunch.profiles import Profile, PunchProfile, resolve_profile
+from movingpunch.zones import PunchResult, single_punch
 
 __all__ = [
     "AsymmetricSolution",
@@ -149,6 +150,13 @@ class AsymmetricSolution(ResultFields):
     Empty when none was found on [w/8, 4w]."""
     _impl: _core.DampedSolution = field(repr=False, compare=False)
     _profile: PunchProfile | None = field(default=None, repr=False, compare=False)
+
+    @functools.cached_property
+    def punches(self) -> tuple[PunchResult, ...]:
+        """The one punch (``movingpunch.PunchResult``): at x = 0, its one zone
+        (``contact_zones``) with the whole load, ``indentation`` and ``drag``
+        as the solution's."""
+        return single_punch(self, self._impl)
 
     @property
     def kernel_builds(self) -> int:

@@ -54,7 +54,14 @@ from movingpunch.profiles import (
     PunchProfile,
     resolve_profile,
 )
-from movingpunch.zones import Punch, check_contact, separate, solve_train
+from movingpunch.zones import (
+    Punch,
+    PunchResult,
+    check_contact,
+    separate,
+    single_punch,
+    solve_train,
+)
 
 if TYPE_CHECKING:
     from movingpunch.contract import ContactSolution
@@ -112,6 +119,13 @@ class Solution(ResultFields):
     cost of reading the clock."""
     _impl: _core.ContactSolution = field(repr=False, compare=False)
     _profile: PunchProfile | None = field(default=None, repr=False, compare=False)
+
+    @functools.cached_property
+    def punches(self) -> tuple[PunchResult, ...]:
+        """The one punch (``movingpunch.PunchResult``): at x = 0, its one zone
+        (``contact_zones``) with the whole load, ``indentation`` and ``drag``
+        as the solution's."""
+        return single_punch(self, self._impl)
 
     @functools.cached_property
     def stress_error_estimate(self) -> float:

@@ -16,7 +16,11 @@ import numpy as np
 import pytest
 
 import movingpunch as mp
-from movingpunch.asymmetric import AsymmetricSolution, damped_layer_response, solve_asymmetric
+from movingpunch.asymmetric import (
+    AsymmetricSolution,
+    damped_layer_response,
+    solve_asymmetric,
+)
 
 PAPER = {"radius": 100.0, "load": 0.002, "nu": 0.2}
 

@@ -22,8 +22,8 @@ import pytest
 
 import movingpunch as mp
 from movingpunch import accuracy
-from movingpunch.contract import ContactSolution
 from movingpunch.asymmetric import AsymmetricSolution, solve_asymmetric
+from movingpunch.contract import ContactSolution
 from movingpunch.errors import InvalidParameterError
 from movingpunch.scene import OutputSpec, Scene, Vary, read_csv
 from movingpunch.tui import model
@@ -48,7 +48,9 @@ def _solve(
     )
 
 
-def solve(case: dict[str, float], tol: float, n: int | None = None) -> AsymmetricSolution:
+def solve(
+    case: dict[str, float], tol: float, n: int | None = None
+) -> AsymmetricSolution:
     return _solve(case["vstar"], case["kw"], case["damping"], tol, n)
 
 

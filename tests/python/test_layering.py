@@ -88,7 +88,12 @@ LAYERS: tuple[tuple[str, frozenset[str]], ...] = (
     ),
     ("evaluations", frozenset({"movingpunch._evaluations"})),
     ("zones", frozenset({"movingpunch.zones"})),
-    ("solve", frozenset({"movingpunch.solver", "movingpunch.asymmetric", "movingpunch.damped"})),
+    (
+        "solve",
+        frozenset(
+            {"movingpunch.solver", "movingpunch.asymmetric", "movingpunch.damped"}
+        ),
+    ),
     (
         "scene model",
         frozenset(
