@@ -291,8 +291,7 @@ def zones_surface_rise(
     p_hat = np.zeros_like(t)
     m = 64
     theta = np.arange(1, m + 1) * math.pi / (m + 1)
-    zones = getattr(s, "contact_zones", None) or (s.contact_interval,)
-    for lo, hi in zones:
+    for lo, hi in s.contact_zones:
         c, w = 0.5 * (lo + hi), 0.5 * (hi - lo)
         p = np.asarray(s.pressure(c + w * np.cos(theta)))
         # p(c + w cos th) = sum_k beta_k sin((k + 1) th): a discrete sine transform
