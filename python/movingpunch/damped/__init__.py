@@ -5,6 +5,9 @@ profiles) is named by its role now: :mod:`movingpunch.asymmetric`, whose result
 is ``AsymmetricSolution``. This module re-exports it under the old names
 (``DampedSolution``, ``solve_damped``) and warns once, on import, with a
 ``DeprecationWarning``. Import :mod:`movingpunch.asymmetric` instead.
+
+(A package rather than a ``damped.py`` beside ``asymmetric.py``, so that git
+sees damped.py renamed to asymmetric.py and carries its history over.)
 """
 
 from __future__ import annotations
