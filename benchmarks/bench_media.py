@@ -84,16 +84,24 @@ def main() -> None:
     print(f"load average {os.getloadavg()}")
     rows = {name: measure(m, args.repeat) for name, m in MEDIA.items()}
     w0, c0, f0 = rows["homogeneous"]
-    print(f"{'medium':<18} {'warm ms':>9} {'x':>6} {'cold ms':>9} {'x':>6} "
-          f"{'map ms':>8} {'x':>6}  target (warm)")
+    print(
+        f"{'medium':<18} {'warm ms':>9} {'x':>6} {'cold ms':>9} {'x':>6} "
+        f"{'map ms':>8} {'x':>6}  target (warm)"
+    )
     for name, (w, c, f) in rows.items():
         target = TARGETS.get(name)
-        mark = f"<= {target:g}x {'met' if w / w0 <= target else 'MISSED'}" if target else ""
-        print(f"{name:<18} {w:9.2f} {w / w0:6.2f} {c:9.2f} {c / c0:6.2f} "
-              f"{f:8.1f} {f / f0:6.2f}  {mark}")
+        mark = ""
+        if target:
+            mark = f"<= {target:g}x {'met' if w / w0 <= target else 'MISSED'}"
+        print(
+            f"{name:<18} {w:9.2f} {w / w0:6.2f} {c:9.2f} {c / c0:6.2f} "
+            f"{f:8.1f} {f / f0:6.2f}  {mark}"
+        )
     stack_cold = rows["3-sublayer stack"][1] / c0
-    print(f"cold 3-sublayer / cold homogeneous: {stack_cold:.2f} "
-          f"(<= 10x {'met' if stack_cold <= 10 else 'MISSED'})")
+    print(
+        f"cold 3-sublayer / cold homogeneous: {stack_cold:.2f} "
+        f"(<= 10x {'met' if stack_cold <= 10 else 'MISSED'})"
+    )
 
 
 if __name__ == "__main__":

@@ -1,8 +1,8 @@
 """The evaluations every solution computes the same way from its compiled
 result (``_impl``): the pressure, the surface stress and displacement, the
 displacement at a depth, the stress field, the stress peaks and
-``to_dict``. ``Solution`` and
-``DampedSolution`` both inherit them (one implementation of the contract's
+``to_dict``. ``Solution``, ``AsymmetricSolution`` and ``ZonedSolution``
+inherit them (one implementation of the contract's
 shared members; the compiled results bind the same members once,
 ``bind_result_common`` in cpp/bindings/bindings.hpp)."""
 
@@ -28,7 +28,7 @@ from movingpunch._evaluate import (
     _pointwise,
     _real_any,
 )
-from movingpunch.contract import CONTRACT_FIELDS, Points
+from movingpunch.contract import CONTRACT_FIELDS, Points, SolvedPunch
 from movingpunch.errors import InvalidParameterError
 from movingpunch.fields import (
     DesignStrains,
@@ -69,6 +69,8 @@ class Evaluations:
         def contact_interval(self) -> tuple[float, float]: ...
         @property
         def end_exponents(self) -> tuple[float, float]: ...
+        @property
+        def punches(self) -> tuple[SolvedPunch, ...]: ...
 
     @property
     def profile(self) -> PunchProfile:
@@ -418,7 +420,11 @@ class Evaluations:
         names = [f.name for f in dataclasses.fields(self)]  # type: ignore[arg-type]
         names += [n for n in CONTRACT_FIELDS if n not in names]
         return {
-            n: _json_safe(_listed(getattr(self, n)))
+            n: (
+                [p.to_dict() for p in self.punches]
+                if n == "punches"
+                else _json_safe(_listed(getattr(self, n)))
+            )
             for n in names
             if not n.startswith("_")
         }

@@ -43,6 +43,7 @@ from types import FrameType
 from typing import Any, NoReturn
 
 from movingpunch._display import drag_scale, shown
+from movingpunch.contract import ContactSolution, SolvedPunch
 from movingpunch.errors import ClusterError, InvalidParameterError, MovingPunchError
 from movingpunch.fields import StressPeaks
 from movingpunch.params import help_text, range_text
@@ -459,7 +460,9 @@ def _read_table(path: str) -> Profile:
     return Profile(tuple(xs), tuple(ys))
 
 
-def _solve_train(args: argparse.Namespace, profile: PunchProfile | None) -> Any:
+def _solve_train(
+    args: argparse.Namespace, profile: PunchProfile | None
+) -> ContactSolution:
     """``solve --punch LOAD@AT ...``: the train, by solve_punches."""
     for given, option in (
         (args.load is not None, "--load"),
@@ -507,7 +510,7 @@ def _cmd_solve(args: argparse.Namespace) -> int:
             parameter="load",
         )
     profile = _cli_profile(args)
-    s: Any
+    s: ContactSolution
     if args.punch:
         s = _solve_train(args, profile)
     else:
@@ -551,7 +554,7 @@ def _cmd_solve(args: argparse.Namespace) -> int:
         ("tolerance", _fmt(s.tol)),
     ]
     back, front = s.contact_interval
-    zones = tuple(getattr(s, "contact_zones", ((back, front),)))
+    zones = s.contact_zones
     # Round-off is shown as 0 (movingpunch._display): the drag of a
     # symmetric contact or of mirror-image punches sums to ~1e-19.
     drag = shown(s.drag, scale=drag_scale((back, front), s.radius))
@@ -597,8 +600,8 @@ def _cmd_solve(args: argparse.Namespace) -> int:
         ("validity", s.validity or "-"),
     ]
     sections = [("Inputs", inputs), ("Results", results)]
-    punches = getattr(s, "punches", ())
-    if punches and (len(punches) > 1 or args.punch):
+    punches = s.punches
+    if len(punches) > 1 or args.punch:
         sections.append(
             (
                 "Punches",
@@ -652,11 +655,10 @@ def _stress_rows(peaks: StressPeaks) -> list[tuple[str, str]]:
     ]
 
 
-def _punch_drag_scale(punch: Any, radius: float) -> float:
+def _punch_drag_scale(punch: SolvedPunch, radius: float) -> float:
     """``drag_scale`` of one punch of a train: its zones' reach from its axis."""
     ends = [x - punch.at for zone in punch.contact_zones for x in zone]
-    shape = getattr(punch, "profile", None)
-    own = getattr(shape, "radius", radius)
+    own = getattr(punch.profile, "radius", radius)  # a flat punch or table: none
     return drag_scale(ends, own if isinstance(own, float) else radius)
 
 

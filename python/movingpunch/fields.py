@@ -168,7 +168,7 @@ class StressPeaks:
     error_bound: float
     """Bound on the absolute error of each peak value: ``search_error`` plus
     the solution's stress error estimate (``Solution.stress_error_estimate``;
-    the damped solver has no stress error estimate, so for it this is the
+    the asymmetric solver has no stress error estimate, so for it this is the
     search's part alone)."""
     search_error: float
     """The search's own part of ``error_bound``: how far the true extreme of

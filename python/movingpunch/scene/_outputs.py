@@ -98,9 +98,7 @@ def _out_contact_width(run: RunState, spec: Any, solutions: _Solutions) -> Outpu
         cols["valid"].append(1.0 if s.valid else 0.0)
         cols["error_estimate"].append(s.error_estimate)
         cols["collocation_n"].append(float(s.collocation_n))
-    details: dict[str, Any] = {"contact_zones": zones}
-    if any(punches):
-        details["punches"] = punches
+    details: dict[str, Any] = {"contact_zones": zones, "punches": punches}
     return OutputData(
         name="contact_width",
         title="Contact half-width",
@@ -112,11 +110,11 @@ def _out_contact_width(run: RunState, spec: Any, solutions: _Solutions) -> Outpu
 
 
 def _punch_dicts(s: ContactSolution, scale: float) -> list[dict[str, object]]:
-    """``PunchResult.to_dict()`` of each punch of a ``ZonedSolution`` (none
-    of an ordinary result); loads and indentations times ``scale`` (a
+    """``to_dict()`` of each punch of ``s`` (``ContactSolution.punches``: a
+    single contact's one too); loads and indentations times ``scale`` (a
     solution shared through lambda = radius * load, like the indentation)."""
     out: list[dict[str, object]] = []
-    for punch in getattr(s, "punches", ()):
+    for punch in s.punches:
         d = punch.to_dict()
         if scale != 1.0:
             d["load"] = punch.load * scale

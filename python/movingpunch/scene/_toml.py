@@ -410,19 +410,18 @@ def to_toml(scene: SceneData) -> str:
     if lines:
         lines.append("")
     lines.append("[params]")
-    profile = getattr(scene, "profile", None)
+    profile = scene.profile
     for name in PARAMS:
         if name == "radius" and profile is not None:
             continue  # the profile carries its own shape
         if name in scene.params:
             lines.append(f"{name} = {_toml_value(scene.params[name])}")
-    contact = getattr(scene, "contact", "auto")
-    if contact != "auto":
-        lines.append(f"contact = {_toml_value(contact)}")
+    if scene.contact != "auto":
+        lines.append(f"contact = {_toml_value(scene.contact)}")
     if profile is not None:
         lines += ["", "[params.profile]"]
         lines += [f"{k} = {_toml_value(v)}" for k, v in profile.to_dict().items()]
-    for punch in getattr(scene, "punches", ()):
+    for punch in scene.punches:
         lines += ["", "[[punches]]"]
         lines += [f"load = {_toml_value(punch.load)}", f"at = {_toml_value(punch.at)}"]
         if isinstance(punch.profile, Cylinder):

@@ -146,7 +146,7 @@ def _punch(
 def _check_punches(c: Checker, scene: SceneData) -> tuple[Punch, ...]:
     """The punches of a scene (a scene built in Python: a sequence of
     ``movingpunch.Punch``); their positions distinct."""
-    punches = getattr(scene, "punches", ())
+    punches: object = scene.punches  # a scene built in Python: anything
     if punches is None:
         return ()
     if isinstance(punches, (str, bytes)) or not isinstance(punches, Sequence):
@@ -179,7 +179,7 @@ def _check_profile(
     """The scene's profile (None: a cylinder of params.radius, which a
     Cylinder profile becomes); ``raw`` (the params) loses a radius the
     profile carries. A radius beside another profile must be its own."""
-    profile = getattr(scene, "profile", None)
+    profile: object = scene.profile  # a scene built in Python: anything
     if profile is None:
         return None
     if not isinstance(profile, (Cylinder, Flat, RoundedFlat, Profile)):
@@ -463,9 +463,7 @@ def validate(scene: SceneData, source: str) -> None:
     c.table("params", scene.params, PARAMS)
     raw = dict(scene.params)
     punches = _check_punches(c, scene)
-    contact = c.string(
-        "params.contact", getattr(scene, "contact", "auto"), CONTACT_MODES
-    )
+    contact = c.string("params.contact", scene.contact, CONTACT_MODES)
     if punches:
         _check_train_params(c, scene, raw, contact)
     profile = _check_profile(c, scene, raw)
@@ -600,7 +598,7 @@ def _check_train_params(
                 "vstar, kw, nu, kp, damping beside [[punches]]",
                 name,
             )
-    if getattr(scene, "profile", None) is not None:
+    if scene.profile is not None:
         raise c.fail(
             "params.profile",
             "is not allowed together with [[punches]] (each punch has its own "
