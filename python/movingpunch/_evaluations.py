@@ -431,8 +431,8 @@ class Evaluations:
 
 
 def _listed(value: object) -> object:
-    if isinstance(value, (Cylinder, *_PROFILE_TYPES)):
-        return value.to_dict()  # a punch profile: its scene-file form
+    if isinstance(value, (Cylinder, *_PROFILE_TYPES, Medium)):
+        return value.to_dict()  # a punch profile, a medium: the scene-file form
     if isinstance(value, tuple):  # nested too: contact_zones
         return [_listed(v) for v in value]
     return value

@@ -20,7 +20,14 @@ from typing import TYPE_CHECKING, Any, Protocol, overload, runtime_checkable
 
 import numpy.typing as npt
 
-from movingpunch.fields import FloatArray, StressField, StressPeaks
+from movingpunch.fields import (
+    DesignStrains,
+    FloatArray,
+    StrainField,
+    StressField,
+    StressPeaks,
+)
+from movingpunch.media import Medium
 
 if TYPE_CHECKING:
     from movingpunch.profiles import PunchProfile
@@ -137,6 +144,8 @@ class ContactSolution(Protocol):
     @property
     def punches(self) -> tuple[SolvedPunch, ...]: ...
     @property
+    def medium(self) -> Medium: ...
+    @property
     def half_width(self) -> float: ...
     @property
     def centre(self) -> float: ...
@@ -212,7 +221,19 @@ class ContactSolution(Protocol):
     def foundation_reaction(self, x: float) -> float: ...
     @overload
     def foundation_reaction(self, x: Points) -> FloatArray: ...
-    def stress_field(self, x: npt.ArrayLike, y: npt.ArrayLike) -> StressField: ...
+    def stress_field(
+        self, x: npt.ArrayLike, y: npt.ArrayLike, side: str = "above"
+    ) -> StressField: ...
+    def strain_field(
+        self, x: npt.ArrayLike, y: npt.ArrayLike, side: str = "above"
+    ) -> StrainField: ...
+    @overload
+    def depth_strain(self, y: float, x: float = 0.0, side: str = "above") -> float: ...
+    @overload
+    def depth_strain(
+        self, y: Points, x: float = 0.0, side: str = "above"
+    ) -> FloatArray: ...
+    def design_strains(self) -> DesignStrains: ...
     def stress_peaks(self, extent: float | None = None) -> StressPeaks: ...
     def to_dict(self) -> dict[str, object]: ...
 
@@ -233,6 +254,7 @@ CONTRACT_FIELDS: tuple[str, ...] = (
     "contact_interval",
     "contact_zones",
     "punches",
+    "medium",
     "half_width",
     "centre",
     "p0",
@@ -261,13 +283,16 @@ CONTRACT_FIELDS: tuple[str, ...] = (
 )
 """The contract's data fields, each also a key of ``to_dict()`` (``profile``
 as its scene-file form ``{"kind": ..., ...}``, ``punches`` as each punch's
-``to_dict()``)."""
+``to_dict()``, ``medium`` as its ``to_dict()``)."""
 
 CONTRACT_METHODS: tuple[str, ...] = (
     "pressure",
     "surface_stress",
     "depth_stress",
     "stress_field",
+    "strain_field",
+    "depth_strain",
+    "design_strains",
     "displacement",
     "surface_displacement",
     "foundation_reaction",

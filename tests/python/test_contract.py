@@ -94,6 +94,7 @@ TYPES: dict[str, type | tuple[type, ...]] = {
     "stage_times": Mapping,
     "profile": (mp.Cylinder, mp.Flat, mp.RoundedFlat, mp.Profile),
     "end_coefficients": tuple,
+    "medium": mp.Medium,
 }
 
 
@@ -359,3 +360,27 @@ def test_damping_zero_and_tiny_give_the_same_outputs() -> None:
             np.testing.assert_allclose(
                 other, values, rtol=0.0, atol=1e-10, err_msg=f"{name}.{key}"
             )
+
+
+def test_strains_follow_from_the_stresses_by_hookes_law(
+    solved: tuple[str, Any],
+) -> None:
+    """strain_field on every path: plane strain of the one layer's material
+    (mu = 1, nu), eps_x continuous with depth; design_strains reads it."""
+    name, s = solved
+    x = np.array([0.0, 0.5 * s.half_width + s.centre, 3.0])
+    y = np.array([-0.3, -1.0])
+    f, e = s.stress_field(x, y), s.strain_field(x, y)
+    nu = s.nu
+    np.testing.assert_allclose(
+        e.eps_x, (f.sigma_x - nu * (f.sigma_x + f.sigma_y)) / 2, rtol=1e-13, atol=0
+    )
+    np.testing.assert_allclose(e.gamma_xy, f.tau_xy, rtol=1e-13, atol=0)
+    d = s.design_strains()
+    assert d.base_vertical is None, name
+    (bottom,) = d.bottom_horizontal
+    assert bottom == pytest.approx(float(s.depth_strain(-1.0)), rel=1e-12, abs=1e-15)
+    assert s.medium.homogeneous, name
+    assert s.to_dict()["medium"] == json.loads(
+        json.dumps(s.medium.to_dict(), default=str).replace("Infinity", '"inf"')
+    )
