@@ -531,4 +531,5 @@ def test_solve_on_a_half_space_stack_shows_no_springs(
     crit = run_cli("critical", "--half-space", "0.1,0.3", "--json")
     assert crit.returncode == 0, crit.stderr
     data = json.loads(crit.stdout)
-    assert data["kw"] is None and data["medium"]["base"]["kind"] == "half_space"
+    assert data["kw"] is None
+    assert data["medium"]["base"]["kind"] == "half_space"

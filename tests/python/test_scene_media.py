@@ -84,7 +84,8 @@ def test_layers_on_a_half_space_are_read_and_written_back(tmp_path: Path) -> Non
     # nu is the top sublayer's; a half-space has no springs.
     assert scene.params == {"vstar": 0.0, "radius": 100.0, "load": 0.002, "nu": 0.35}
     text = scene.to_toml()
-    assert "[[layers]]" in text and "[base]" in text
+    assert "[[layers]]" in text
+    assert "[base]" in text
     assert "\nnu = 0.35\n" in text.split("[[layers]]")[1]  # in the layer, not params
     assert "kw" not in text
     assert Scene.from_toml(text) == scene
@@ -98,7 +99,8 @@ def test_layers_without_a_base_stand_on_the_springs_of_params() -> None:
     scene = Scene.from_toml(text)
     assert scene.medium is not None
     assert scene.medium.base == Winkler(2.0, kp=0.5)
-    assert scene.params["kw"] == 2.0 and scene.params["kp"] == 0.5
+    assert scene.params["kw"] == 2.0
+    assert scene.params["kp"] == 0.5
     assert Scene.from_toml(scene.to_toml()) == scene
 
 
@@ -107,7 +109,8 @@ def test_a_winkler_base_table_is_the_springs_of_params() -> None:
     scene = Scene.from_toml(no_kw(HEAD) + STACK + base + OUTPUTS)
     assert scene.medium is not None
     assert scene.medium.base == Winkler(math.inf, kp=0.25)
-    assert scene.params["kw"] == math.inf and scene.params["kp"] == 0.25
+    assert scene.params["kw"] == math.inf
+    assert scene.params["kp"] == 0.25
     assert Scene.from_toml(scene.to_toml()) == scene
 
 
@@ -124,7 +127,8 @@ def test_a_scene_built_in_python_takes_a_medium() -> None:
     params = {"vstar": 0.0, "radius": 100.0, "load": 0.002}
     outputs = {"contact_width": OutputSpec("contact_width")}
     scene = Scene(params=params, outputs=outputs, medium=medium)
-    assert scene.params["kw"] == 3.0 and scene.params["nu"] == 0.2
+    assert scene.params["kw"] == 3.0
+    assert scene.params["nu"] == 0.2
     assert Scene.from_toml(scene.to_toml()) == scene
     # The same springs given twice agree; different ones are refused.
     Scene(params={**params, "kw": 3.0}, outputs=outputs, medium=medium)
@@ -270,7 +274,8 @@ def test_the_layer_given_as_layers_is_the_paper_layer() -> None:
     Table 1's a/h, and the plain scene's every number."""
     with_layers = Scene.from_toml(HEAD + ONE_LAYER + OUTPUTS + "pressure = true\n")
     plain = Scene.from_toml(HEAD + "nu = 0.2\n" + OUTPUTS + "pressure = true\n")
-    assert with_layers.medium is not None and with_layers.medium.homogeneous
+    assert with_layers.medium is not None
+    assert with_layers.medium.homogeneous
     got, want = with_layers.run(), plain.run()
     a = float(got.outputs["contact_width"].columns["a"][0])
     assert a == pytest.approx(TABLE1_KW1, abs=1e-6)
@@ -294,7 +299,8 @@ def test_a_sweep_over_the_springs_under_layers_is_the_plain_sweep() -> None:
     layered = Scene(params={**params}, sweep=sweep, medium=medium)
     plain = Scene(params={**params, "kw": 0.1, "nu": 0.3}, sweep=sweep)
     got, want = layered.run(), plain.run()
-    assert got.sweep is not None and want.sweep is not None
+    assert got.sweep is not None
+    assert want.sweep is not None
     for q in sweep.quantities:
         np.testing.assert_array_equal(got.sweep.data[q], want.sweep.data[q])
     # V*_cr grows with kw (a stiffer foundation): the three springs were used.
@@ -322,9 +328,11 @@ MEDIA_SCENES = ("pavement", "graded-coating", "half-space-vs-winkler")
 @pytest.mark.parametrize("name", MEDIA_SCENES)
 def test_the_bundled_media_scenes_load(name: str) -> None:
     scenes = mp.bundled_scenes()
-    assert name in scenes and scenes[name]
+    assert name in scenes
+    assert scenes[name]
     scene = Scene.bundled(name)
-    assert scene.medium is not None and not scene.medium.homogeneous
+    assert scene.medium is not None
+    assert not scene.medium.homogeneous
     assert Scene.from_toml(scene.to_toml()) == scene
 
 
@@ -332,9 +340,11 @@ def test_the_bundled_media_are_what_they_say() -> None:
     pavement = Scene.bundled("pavement").medium
     assert pavement is not None
     assert [s.thickness for s in pavement.layers] == [0.25, 0.75]
-    assert pavement.layers[1].mu == 0.1 and isinstance(pavement.base, Winkler)
+    assert pavement.layers[1].mu == 0.1
+    assert isinstance(pavement.base, Winkler)
     graded = Scene.bundled("graded-coating").medium
-    assert graded is not None and isinstance(graded.layers[0], GradedLayer)
+    assert graded is not None
+    assert isinstance(graded.layers[0], GradedLayer)
     assert graded.base == Winkler(1.0)
     half = Scene.bundled("half-space-vs-winkler").medium
     assert half == Medium((Layer(),), HalfSpace(0.1, 0.3, interface="smooth"))
@@ -380,7 +390,8 @@ def test_pavement_stack_runs_with_the_pressure_balanced() -> None:
     result = scene.run()
     _pressure_checks(result)
     a = result.outputs["contact_width"].columns["a"]
-    assert np.all(np.isfinite(a)) and np.all(a > 0)
+    assert np.all(np.isfinite(a))
+    assert np.all(a > 0)
     medium = scene.medium
     assert medium is not None
     direct = mp.solve(
