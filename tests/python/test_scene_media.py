@@ -240,7 +240,11 @@ REFUSED = [
 ]
 
 
-@pytest.mark.parametrize(("text", "key", "allowed"), REFUSED)
+@pytest.mark.parametrize(
+    ("text", "key", "allowed"),
+    REFUSED,
+    ids=[f"{i}-{r[1]}" for i, r in enumerate(REFUSED)],
+)
 def test_a_medium_scene_is_refused_naming_the_key(
     text: str, key: str, allowed: str
 ) -> None:
