@@ -20,7 +20,13 @@ import movingpunch as mp
 from movingpunch.errors import SceneError
 from movingpunch.media import GradedLayer, HalfSpace, Layer, Medium, Winkler
 from movingpunch.scene import OutputSpec, Scene, Sweep, Vary
-from movingpunch.scene._export import format_json, format_summary, render_outputs
+from movingpunch.scene._export import (
+    format_json,
+    format_summary,
+    read_csv,
+    render_outputs,
+    write_outputs,
+)
 
 # physics.md section 8 / the paper's Table 1: a/h of the layer (nu = 0.2) on
 # k_w h/mu = 1 at V* = 0, R/h = 100, P/(mu h) = 0.002.
@@ -273,7 +279,7 @@ def test_punches_beside_a_stack_are_refused() -> None:
 # -- runs that solve today: one homogeneous sublayer on springs ----------------
 
 
-def test_the_layer_given_as_layers_is_the_paper_layer() -> None:
+def test_the_layer_given_as_layers_is_the_paper_layer(tmp_path: Path) -> None:
     """One [[layers]] table on the springs of [params] is the paper's layer:
     Table 1's a/h, and the plain scene's every number."""
     with_layers = Scene.from_toml(HEAD + ONE_LAYER + OUTPUTS + "pressure = true\n")
@@ -292,6 +298,9 @@ def test_the_layer_given_as_layers_is_the_paper_layer() -> None:
     assert '"medium"' in format_json(got)
     files = dict(render_outputs(got))
     assert "# medium: layer h_i/h = 1" in files["scene-contact_width.csv"].decode()
+    written = write_outputs(got, tmp_path)
+    meta, _ = read_csv(next(p for p in written if p.name.endswith("width.csv")))
+    assert meta["scene"] == with_layers  # the medium comes back from the file
 
 
 def test_a_sweep_over_the_springs_under_layers_is_the_plain_sweep() -> None:
