@@ -563,6 +563,8 @@ def _cmd_solve(args: argparse.Namespace) -> int:
         print("hint: " + "; ".join(hints), file=sys.stderr)
     if args.json:
         data = s.to_dict()
+        if medium is not None:
+            data["medium"] = medium.to_dict()
         if peaks is not None:
             data["stress"] = dataclasses.asdict(peaks)
         data["hints"] = list(hints)

@@ -446,6 +446,15 @@ def test_solve_on_one_layer_given_by_layer_is_the_paper_layer(
     crit = run_cli("critical", "--kw", "1", "--layer", "1,1,0.2")
     assert crit.returncode == 0, crit.stderr
     assert number_after("V*_cr", crit.stdout) == pytest.approx(0.5716928, abs=1e-6)
+    data = json.loads(
+        run_cli(
+            "solve", *TABLE1_CASE, "--kw", "1", "--layer", "1,1,0.2", "--json"
+        ).stdout
+    )
+    assert data["a"] == pytest.approx(0.330419, abs=1e-6)
+    assert data["medium"]["layers"] == [
+        {"kind": "layer", "thickness": 1.0, "mu": 1.0, "nu": 0.2, "rho": 1.0}
+    ]
 
 
 def test_help_documents_the_medium_options(
