@@ -443,3 +443,29 @@ def test_half_space_stack_scene_runs() -> None:
     result = scene.run()
     _pressure_checks(result)
     assert "smooth half-space" in format_summary(result)
+
+
+def test_a_sweep_on_a_half_space_stack_solves_each_point_on_it() -> None:
+    """The sweep's tasks carry the medium (no springs under a half-space):
+    each point is the API's solve on that medium."""
+    scene = dataclasses.replace(
+        Scene.bundled("half-space-vs-winkler"),
+        outputs={},
+        vary=None,
+        sweep=Sweep("vstar", (0.0, 0.02), ("a", "p0")),
+    )
+    table = scene.run().sweep
+    assert table is not None
+    medium = scene.medium
+    assert medium is not None
+    for j, vstar in enumerate((0.0, 0.02)):
+        direct = mp.solve(
+            vstar=vstar,
+            radius=100.0,
+            load=0.002,
+            layers=list(medium.layers),
+            base=medium.base,
+            tol=scene.tol,
+        )
+        assert table.data["a"][0, j] == direct.a
+        assert table.data["p0"][0, j] == direct.p0
