@@ -171,7 +171,12 @@ LAYERS: tuple[tuple[str, frozenset[str]], ...] = (
             }
         ),
     ),
-    ("cli", frozenset({"movingpunch.cli", "movingpunch.__main__"})),
+    (
+        "cli",
+        frozenset(
+            {"movingpunch.cli", "movingpunch._cli_media", "movingpunch.__main__"}
+        ),
+    ),
 )
 
 
