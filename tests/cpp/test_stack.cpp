@@ -1,0 +1,317 @@
+// Layered media (cpp/src/stack.hpp), each against an independent anchor:
+// the homogeneous layer (LayerModel), a naive long-double product of
+// transfer matrices, the half-plane, Winkler springs of the substrate's
+// stiffness, the rigid base, and the critical speed of dispersion.hpp.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <complex>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "movingpunch/dispersion.hpp"
+#include "movingpunch/errors.hpp"
+#include "movingpunch/layer_response.hpp"
+#include "stack.hpp"
+
+using namespace movingpunch;
+
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+MediumSpec springs(std::vector<Sublayer> layers, double kw, double kp = 0.0) {
+  MediumSpec m;
+  m.layers = std::move(layers);
+  m.base.kind = BaseKind::springs;
+  m.base.kw = kw;
+  m.base.kp = kp;
+  return m;
+}
+
+MediumSpec half_space(std::vector<Sublayer> layers, BaseKind kind, double mu, double nu,
+                      double rho) {
+  MediumSpec m;
+  m.layers = std::move(layers);
+  m.base.kind = kind;
+  m.base.mu = mu;
+  m.base.nu = nu;
+  m.base.rho = rho;
+  return m;
+}
+
+// K identical sublayers of unequal thicknesses.
+std::vector<Sublayer> identical(int K, double nu) {
+  const std::vector<double> w{0.37, 0.11, 0.23, 0.19, 0.1};
+  std::vector<Sublayer> out;
+  double sum = 0.0;
+  for (int i = 0; i < K; ++i) sum += w[static_cast<size_t>(i)];
+  for (int i = 0; i < K; ++i) out.push_back({w[static_cast<size_t>(i)] / sum, 1.0, nu, 1.0, 0.0});
+  double total = 0.0;
+  for (int i = 0; i + 1 < K; ++i) total += out[static_cast<size_t>(i)].thickness;
+  out.back().thickness = 1.0 - total;
+  return out;
+}
+
+double rel(double a, double b) { return std::fabs(a - b) / std::max(std::fabs(b), 1e-300); }
+
+// ---- a naive long-double evaluation --------------------------------------
+using LD = long double;
+using M4 = std::array<std::array<LD, 4>, 4>;
+
+M4 mul(const M4& a, const M4& b) {
+  M4 c{};
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) {
+      LD s = 0;
+      for (int k = 0; k < 4; ++k) s += a[i][k] * b[k][j];
+      c[i][j] = s;
+    }
+  return c;
+}
+
+// exp(B) by scaling and squaring with a Taylor series.
+M4 expm(M4 B) {
+  LD norm = 0;
+  for (auto& r : B) {
+    LD s = 0;
+    for (LD x : r) s += std::fabs(x);
+    norm = std::max(norm, s);
+  }
+  int sq = 0;
+  while (norm > 0.125L) {
+    norm /= 2;
+    ++sq;
+  }
+  const LD f = std::ldexp(1.0L, -sq);
+  for (auto& r : B)
+    for (LD& x : r) x *= f;
+  M4 P{}, term{};
+  for (int i = 0; i < 4; ++i) P[i][i] = term[i][i] = 1;
+  for (int k = 1; k < 40; ++k) {
+    term = mul(term, B);
+    for (auto& r : term)
+      for (LD& x : r) x /= k;
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j) P[i][j] += term[i][j];
+  }
+  for (int i = 0; i < sq; ++i) P = mul(P, P);
+  return P;
+}
+
+// The state matrix of a material (stresses over its own modulus) at local speed s.
+M4 state_matrix(LD s, LD nu) {
+  const LD kappa = 3 - 4 * nu, c2 = (kappa + 1) / (kappa - 1);
+  M4 A{};
+  A[0] = {0, 1, 1, 0};
+  A[1] = {-(c2 - 2) / c2, 0, 0, 1 / c2};
+  A[2] = {4 * (c2 - 1) / c2 - s, 0, 0, (c2 - 2) / c2};
+  A[3] = {0, -s, -1, 0};
+  return A;
+}
+
+// Solves the 4 x 4 system a x = b (Gaussian elimination, partial pivoting).
+std::array<LD, 4> solve4(M4 a, std::array<LD, 4> b) {
+  for (int c = 0; c < 4; ++c) {
+    int p = c;
+    for (int r = c + 1; r < 4; ++r)
+      if (std::fabs(a[r][c]) > std::fabs(a[p][c])) p = r;
+    std::swap(a[c], a[p]);
+    std::swap(b[c], b[p]);
+    for (int r = c + 1; r < 4; ++r) {
+      const LD f = a[r][c] / a[c][c];
+      for (int k = c; k < 4; ++k) a[r][k] -= f * a[c][k];
+      b[r] -= f * b[c];
+    }
+  }
+  std::array<LD, 4> x{};
+  for (int r = 3; r >= 0; --r) {
+    LD s = b[r];
+    for (int k = r + 1; k < 4; ++k) s -= a[r][k] * x[k];
+    x[r] = s / a[r][r];
+  }
+  return x;
+}
+
+// An eigenvector [1, v1, v2, v3] of A for the eigenvalue lam (distinct roots).
+std::array<LD, 4> eigvec(const M4& A, LD lam) {
+  // Rows 1..3 of (A - lam I) v = 0 with v0 = 1.
+  M4 a{};
+  std::array<LD, 4> b{};
+  for (int r = 1; r < 4; ++r) {
+    for (int k = 1; k < 4; ++k) a[r - 1][k - 1] = A[r][k] - (r == k ? lam : 0);
+    b[r - 1] = -A[r][0];
+  }
+  a[3][3] = 1;
+  const auto x = solve4(a, b);
+  return {1, x[0], x[1], x[2]};
+}
+
+// M1 and U0 of the medium by the naive product of the sublayers' transfer
+// matrices applied to the bottom condition (z(0) = [U0, W0, 0, -1]).
+std::array<double, 2> naive(const MediumSpec& m, double vstar, double t) {
+  M4 P{};
+  for (int i = 0; i < 4; ++i) P[i][i] = 1;
+  for (const Sublayer& l : m.layers) {
+    const LD s = static_cast<LD>(vstar) * l.rho / l.mu;
+    M4 B = state_matrix(s, l.nu);
+    for (auto& r : B)
+      for (LD& x : r) x *= -static_cast<LD>(t) * l.thickness;  // from top to bottom
+    B[2][2] += static_cast<LD>(l.gamma) * l.thickness;
+    B[3][3] += static_cast<LD>(l.gamma) * l.thickness;
+    M4 E = expm(B);
+    // unscaled -> scaled at the top (1/mu_top), scaled -> unscaled at the bottom.
+    const LD mt = l.mu, mb = l.mu * std::exp(-static_cast<LD>(l.gamma) * l.thickness);
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j) {
+        E[i][j] *= (i >= 2 ? mb : 1.0L);
+        E[i][j] /= (j >= 2 ? mt : 1.0L);
+      }
+    P = mul(E, P);
+  }
+  // z(-1) = P z0; unknowns U0, W0 (and a, b for a bonded half-space).
+  auto zrow = [&](int r, std::array<LD, 4>& row, LD& rhs) {
+    row = {P[r][0], P[r][1], 0, 0};
+    rhs = P[r][3];  // moves -(-1) P[r][3] to the right side: P z0 = ... + (-1) P[r][3]
+  };
+  M4 a{};
+  std::array<LD, 4> b{};
+  const BaseSpec& base = m.base;
+  if (base.kind == BaseKind::half_space_bonded) {
+    const LD s2 = static_cast<LD>(vstar) * base.rho / base.mu;
+    const M4 A2 = state_matrix(s2, base.nu);
+    const LD c2 = (4 - 4 * static_cast<LD>(base.nu)) / (2 - 4 * static_cast<LD>(base.nu));
+    auto vT = eigvec(A2, std::sqrt(1 - s2)), vL = eigvec(A2, std::sqrt(1 - s2 / c2));
+    for (int r = 0; r < 4; ++r) {
+      std::array<LD, 4> row;
+      LD rhs;
+      zrow(r, row, rhs);
+      const LD sc = r >= 2 ? static_cast<LD>(base.mu) : 1.0L;
+      row[2] = -vT[static_cast<size_t>(r)] * sc;
+      row[3] = -vL[static_cast<size_t>(r)] * sc;
+      a[r] = row;
+      b[r] = rhs;
+    }
+  } else {
+    std::array<LD, 4> row;
+    LD rhs;
+    zrow(2, row, rhs);  // tau(-1) = 0
+    a[0] = row;
+    b[0] = rhs;
+    LD k;  // sigma/alpha t = k W
+    if (base.kind == BaseKind::springs) {
+      k = base.kw + base.kp * static_cast<LD>(t) * t;
+    } else {
+      const LD s2 = static_cast<LD>(vstar) * base.rho / base.mu;
+      const LD kap = 3 - 4 * static_cast<LD>(base.nu), c2 = (kap + 1) / (kap - 1);
+      const LD nT = std::sqrt(1 - s2), nL = std::sqrt(1 - s2 / c2);
+      const LD phi = (1 - nT * nT) * nL / (4 * nL * nT - (1 + nT * nT) * (1 + nT * nT));
+      k = static_cast<LD>(t) * base.mu / phi;
+    }
+    if (std::isinf(k)) {
+      zrow(1, row, rhs);
+    } else {
+      std::array<LD, 4> r3, r1;
+      LD h3, h1;
+      zrow(3, r3, h3);
+      zrow(1, r1, h1);
+      for (int j = 0; j < 4; ++j) row[static_cast<size_t>(j)] = t * r3[static_cast<size_t>(j)] - k * r1[static_cast<size_t>(j)];
+      rhs = t * h3 - k * h1;
+    }
+    a[1] = row;
+    b[1] = rhs;
+    a[2][2] = a[3][3] = 1;
+  }
+  const auto x = solve4(a, b);
+  return {static_cast<double>(-x[1]), static_cast<double>(x[0])};
+}
+
+}  // namespace
+
+TEST(Stack, IdenticalSublayersMatchLayerModel) {
+  const double nu = 0.2;
+  struct Base {
+    double kw, kp;
+  };
+  for (const Base b : {Base{1.0, 0.0}, Base{1.0, 0.3}, Base{kInf, 0.0}})
+    for (int K : {1, 2, 5})
+      for (double s : {0.0, 0.2, 0.5}) {
+        const MediumSpec spec = springs(identical(K, nu), b.kw, b.kp);
+        const auto med = make_stack_medium(spec, s);
+        const LayerModel ref(s, b.kw, nu, b.kp);
+        for (double t : {1e-6, 1e-3, 0.1, 0.3, 0.49, 0.5, 0.7, 1.0, 1.7, 3.0, 10.0, 40.0, 200.0,
+                         1e3}) {
+          const Response r = ref.response(t);
+          const MediumResponse m = med->response(t);
+          const std::string at =
+              "K = " + std::to_string(K) + ", kw = " + std::to_string(b.kw) + ", kp = " +
+              std::to_string(b.kp) + ", s = " + std::to_string(s) + ", t = " + std::to_string(t);
+          EXPECT_LE(rel(m.M1.real(), r.M1), 1e-12) << at;
+          // M2 = (c2 - 2)/c2 - 4 (c2 - 1)/c2 U0 cancels to O(t^2) as t -> 0 at
+          // vstar = 0 (the squeezed layer has sigma_x ~ 0): relative to its terms.
+          const WaveConstants& c = ref.constants();
+          const double terms = (c.c2 - 2.0) / c.c2 + 4.0 * (c.c2 - 1.0) / c.c2 * std::fabs(r.U0);
+          EXPECT_LE(std::fabs(m.M2.real() - r.M2), 1e-12 * std::max(std::fabs(r.M2), terms)) << at;
+          EXPECT_LE(rel(m.U0.real(), r.U0), 1e-12) << at;
+          EXPECT_LE(rel(m.W0.real(), r.W0), 1e-12) << at;
+          EXPECT_EQ(m.M1.imag(), 0.0);
+        }
+      }
+}
+
+TEST(Stack, IdenticalSublayersModeStatesMatchLayerModel) {
+  const double nu = 0.2;
+  for (double kw : {1.0, kInf})
+    for (int K : {2, 5})
+      for (double s : {0.0, 0.5}) {
+        const MediumSpec spec = springs(identical(K, nu), kw);
+        const auto med = make_stack_medium(spec, s);
+        const LayerModel ref(s, kw, nu);
+        std::vector<double> depths{0.0, -0.05, -0.5, -0.77, -1.0};
+        for (double y : med->interfaces()) depths.push_back(y);
+        for (double t : {1e-4, 0.3, 1.0, 3.0, 12.0}) {
+          const ModeField f = ref.mode_field(t);
+          const auto p = med->mode(t);
+          const double scale = f.state(0.0).cwiseAbs().maxCoeff();
+          for (double y : depths)
+            for (bool below : {false, true}) {
+              const Eigen::Vector4d zr = f.state(y), hp = f.half_plane_state(y);
+              const ModeState st = p->remainder(y, below);
+              const double tol = 1e-12 * std::max(zr.cwiseAbs().maxCoeff(), 1e-8 * scale);
+              for (int i = 0; i < 4; ++i)
+                EXPECT_NEAR(st.z(i).real(), zr(i) - hp(i), tol)
+                    << "K " << K << " kw " << kw << " s " << s << " t " << t << " y " << y << " i "
+                    << i;
+              const double sx = sigma_x_hat(ref.constants(), zr) - sigma_x_hat(ref.constants(), hp);
+              EXPECT_NEAR(st.sx.real(), sx, 4.0 * tol) << "t " << t << " y " << y;
+              const ModeState h = p->half_plane(y);
+              for (int i = 0; i < 4; ++i) EXPECT_NEAR(h.z(i).real(), hp(i), 1e-14);
+            }
+        }
+      }
+}
+
+TEST(Stack, MixedStackMatchesNaiveLongDoubleProduct) {
+  // Different materials, a graded sublayer, every base, moderate t.
+  const std::vector<Sublayer> layers{{0.3, 1.0, 0.25, 1.0, 0.0},
+                                     {0.45, 0.4, 0.3, 0.8, 1.7},
+                                     {0.25, 2.5, 0.2, 1.3, 0.0}};
+  const std::vector<Sublayer> graded_top{{0.6, 1.0, 0.2, 1.0, -2.3}, {0.4, 0.3, 0.35, 0.9, 0.0}};
+  std::vector<MediumSpec> specs{springs(layers, 0.7), springs(layers, 2.0, 0.4),
+                                springs(layers, kInf), springs(graded_top, 1.3),
+                                half_space(layers, BaseKind::half_space_bonded, 0.5, 0.3, 1.1),
+                                half_space(graded_top, BaseKind::half_space_bonded, 3.0, 0.25, 2.0),
+                                half_space(layers, BaseKind::half_space_smooth, 0.5, 0.3, 1.1)};
+  for (const MediumSpec& spec : specs)
+    for (double s : {0.05, 0.15})
+      for (double t : {0.01, 0.2, 0.6, 1.3, 3.0}) {
+        const auto med = make_stack_medium(spec, s);
+        const auto ref = naive(spec, s, t);
+        const MediumResponse m = med->response(t);
+        EXPECT_LE(rel(m.M1.real(), ref[0]), 1e-12) << "s " << s << " t " << t;
+        EXPECT_LE(rel(m.U0.real(), ref[1]), 1e-12) << "s " << s << " t " << t;
+      }
+}
