@@ -152,7 +152,7 @@ std::array<LD, 4> eigvec(const M4& A, LD lam) {
 
 // M1 and U0 of the medium by the naive product of the sublayers' transfer
 // matrices applied to the bottom condition (z(0) = [U0, W0, 0, -1]).
-std::array<double, 2> naive(const MediumSpec& m, double vstar, double t) {
+std::array<double, 2> naive(const MediumSpec& m, double vstar, double t, bool clamped = false) {
   M4 P{};
   for (int i = 0; i < 4; ++i) P[i][i] = 1;
   for (const Sublayer& l : m.layers) {
@@ -180,7 +180,17 @@ std::array<double, 2> naive(const MediumSpec& m, double vstar, double t) {
   M4 a{};
   std::array<LD, 4> b{};
   const BaseSpec& base = m.base;
-  if (base.kind == BaseKind::half_space_bonded) {
+  if (clamped) {
+    std::array<LD, 4> row;
+    LD rhs;
+    zrow(0, row, rhs);
+    a[0] = row;
+    b[0] = rhs;
+    zrow(1, row, rhs);
+    a[1] = row;
+    b[1] = rhs;
+    a[2][2] = a[3][3] = 1;
+  } else if (base.kind == BaseKind::half_space_bonded) {
     const LD s2 = static_cast<LD>(vstar) * base.rho / base.mu;
     const M4 A2 = state_matrix(s2, base.nu);
     const LD c2 = (4 - 4 * static_cast<LD>(base.nu)) / (2 - 4 * static_cast<LD>(base.nu));
@@ -314,4 +324,236 @@ TEST(Stack, MixedStackMatchesNaiveLongDoubleProduct) {
         EXPECT_LE(rel(m.M1.real(), ref[0]), 1e-12) << "s " << s << " t " << t;
         EXPECT_LE(rel(m.U0.real(), ref[1]), 1e-12) << "s " << s << " t " << t;
       }
+}
+
+TEST(Stack, GradedSublayerWithTinyGammaIsTheHomogeneousOne) {
+  for (double s : {0.0, 0.3})
+    for (double kw : {0.5, kInf}) {
+      const std::vector<Sublayer> hom{{0.4, 1.0, 0.2, 1.0, 0.0}, {0.6, 0.5, 0.3, 0.7, 0.0}};
+      std::vector<Sublayer> gr = hom;
+      gr[0].gamma = 1e-9;
+      gr[1].gamma = -1e-9;
+      const auto a = make_stack_medium(springs(hom, kw), s);
+      const auto b = make_stack_medium(springs(gr, kw), s);
+      for (double t : {1e-5, 0.2, 1.0, 5.0, 30.0, 300.0}) {
+        const MediumResponse ra = a->response(t), rb = b->response(t);
+        EXPECT_LE(rel(rb.M1.real(), ra.M1.real()), 3e-9) << "s " << s << " t " << t;
+        EXPECT_LE(rel(rb.U0.real(), ra.U0.real()), 3e-9) << "s " << s << " t " << t;
+        // ... and is not the same computation: gamma = 1e-3 moves it.
+      }
+      std::vector<Sublayer> g3 = hom;
+      g3[0].gamma = 1e-3;
+      EXPECT_GT(rel(make_stack_medium(springs(g3, kw), s)->response(1.0).M1.real(),
+                    a->response(1.0).M1.real()),
+                1e-6);
+    }
+}
+
+TEST(Stack, BondedHalfSpaceOfTheOwnMaterialIsTheHalfPlane) {
+  for (double nu : {0.0, 0.2, 0.45})
+    for (double s : {0.0, 0.2, 0.6}) {
+      for (int K : {1, 3}) {
+        const auto med = make_stack_medium(
+            half_space(identical(K, nu), BaseKind::half_space_bonded, 1.0, nu, 1.0), s);
+        for (double t : {1e-300, 1e-8, 1e-3, 0.3, 1.0, 4.0, 50.0, 1e4}) {
+          const MediumResponse r = med->response(t);
+          EXPECT_LE(rel(r.M1.real(), med->phi1()), 1e-12) << "nu " << nu << " s " << s << " t " << t;
+          EXPECT_LE(rel(r.M2.real(), med->phi2()), 1e-12) << "nu " << nu << " s " << s << " t " << t;
+        }
+      }
+    }
+}
+
+TEST(Stack, SmoothHalfSpaceIsSpringsOfItsStiffnessPerMode) {
+  const double mu2 = 0.3, nu2 = 0.3, rho2 = 0.8;
+  for (double s : {0.0, 0.1, 0.2}) {
+    const auto med = make_stack_medium(
+        half_space({Sublayer{1.0, 1.0, 0.2, 1.0, 0.0}}, BaseKind::half_space_smooth, mu2, nu2, rho2),
+        s);
+    const double ph2 = phi1(s * rho2 / mu2, nu2);
+    for (double t : {1e-6, 1e-2, 0.4, 0.6, 2.0, 9.0, 100.0}) {
+      const LayerModel ref(s, t * mu2 / ph2, 0.2);
+      const Response r = ref.response(t);
+      const MediumResponse m = med->response(t);
+      EXPECT_LE(rel(m.M1.real(), r.M1), 1e-12) << "s " << s << " t " << t;
+      EXPECT_LE(rel(m.U0.real(), r.U0), 1e-12) << "s " << s << " t " << t;
+    }
+  }
+}
+
+TEST(Stack, StiffHalfSpaceTendsToTheRigidBase) {
+  // Bonded: the clamped base (u = v = 0, naive product); smooth: the smooth
+  // rigid base (LayerModel, kw = inf). The difference falls like 1/mu2.
+  const double nu = 0.25, s = 0.2;
+  const LayerModel rigid(s, kInf, nu);
+  const std::vector<Sublayer> one{Sublayer{1.0, 1.0, nu, 1.0, 0.0}};
+  for (BaseKind kind : {BaseKind::half_space_bonded, BaseKind::half_space_smooth})
+    for (double t : {0.05, 0.7, 3.0}) {
+      const double ref = kind == BaseKind::half_space_smooth
+                             ? rigid.response(t).M1
+                             : naive(springs(one, kInf), s, t, /*clamped=*/true)[0];
+      std::vector<double> diff;
+      for (double mu2 : {1e4, 1e5}) {
+        const auto med = make_stack_medium(half_space(one, kind, mu2, 0.3, mu2), s);
+        diff.push_back(std::fabs(med->response(t).M1.real() - ref));
+      }
+      EXPECT_LT(diff[1], 1e-3 * std::fabs(ref)) << "t " << t;
+      EXPECT_NEAR(diff[0] / diff[1], 10.0, 0.05) << "t " << t;  // ~ 1/mu2
+    }
+}
+
+TEST(Stack, HalfSpaceBaseM1TendsToTheSubstrateHalfPlane) {
+  for (BaseKind kind : {BaseKind::half_space_bonded, BaseKind::half_space_smooth}) {
+    const MediumSpec spec = half_space({Sublayer{0.5, 1.0, 0.2, 1.0, 0.0}, Sublayer{0.5, 2.0, 0.3, 1.5, 0.8}},
+                                       kind, 0.2, 0.35, 0.9);
+    const double s = 0.1;
+    const auto med = make_stack_medium(spec, s);
+    const double lim = phi1(s * 0.9 / 0.2, 0.35) / 0.2;
+    EXPECT_DOUBLE_EQ(stack_small_t_m1(spec, s), lim);
+    double prev = kInf;
+    for (double t : {1e-2, 1e-4, 1e-6, 1e-8}) {
+      const double e = std::fabs(med->response(t).M1.real() - lim);
+      EXPECT_LT(e, prev);
+      prev = e;
+    }
+    EXPECT_LT(prev, 1e-6 * lim);
+  }
+}
+
+TEST(Stack, ResponsesAreFiniteForEveryKindAndWavenumber) {
+  const std::vector<Sublayer> mixed{{0.2, 1.0, 0.2, 1.0, 3.0}, {0.5, 0.3, 0.3, 0.5, 0.0},
+                                    {0.3, 4.0, 0.25, 2.0, -1.5}};
+  const std::vector<MediumSpec> specs{
+      springs(mixed, 1.0), springs(mixed, 0.01, 2.0), springs(mixed, kInf),
+      half_space(mixed, BaseKind::half_space_bonded, 0.2, 0.3, 0.4),
+      half_space(mixed, BaseKind::half_space_smooth, 5.0, 0.3, 1.0),
+      springs({Sublayer{1.0, 1.0, 0.3, 1.0, kMaxGamma}}, 1.0),
+      springs({Sublayer{1.0, 1.0, 0.3, 1.0, -kMaxGamma}}, kInf)};
+  for (const MediumSpec& spec : specs)
+    for (double s : {0.0, 0.1}) {
+      const auto med = make_stack_medium(spec, s);
+      for (double t : {0.0, 1e-300, 1e-12, 1.0, 1e3, 1e300}) {
+        const MediumResponse r = med->response(t);
+        EXPECT_TRUE(std::isfinite(r.M1.real()) && std::isfinite(r.M2.real()) &&
+                    std::isfinite(r.U0.real()) && std::isfinite(r.W0.real()))
+            << "t " << t;
+        if (t >= 1e300) {
+          EXPECT_NEAR(r.M1.real(), med->phi1(), 1e-14);
+          EXPECT_NEAR(r.M2.real(), med->phi2(), 1e-14);
+        }
+      }
+      for (double t : {1e-12, 1.0, 1e3, 1e300}) {
+        const auto p = med->mode(t);
+        for (double y : {0.0, -0.2, -0.5, -1.0}) {
+          const ModeState st = p->remainder(y, true);
+          for (int i = 0; i < 4; ++i) EXPECT_TRUE(std::isfinite(st.z(i).real()));
+          EXPECT_TRUE(std::isfinite(st.sx.real()));
+        }
+      }
+      EXPECT_TRUE(std::isfinite(med->dispersion(1.0)));
+    }
+}
+
+TEST(Stack, StaircaseConvergesToTheGradedSublayerAsKToTheMinus2) {
+  const double gamma = 1.5, nu = 0.25, s = 0.1, kw = 2.0;
+  const auto graded = make_stack_medium(springs({Sublayer{1.0, 1.0, nu, 1.0, gamma}}, kw), s);
+  auto staircase = [&](int K) {
+    std::vector<Sublayer> l;
+    for (int j = 0; j < K; ++j) {
+      const double m = std::exp(-gamma * (j + 0.5) / K);  // the midpoint value
+      l.push_back({1.0 / K, j == 0 ? 1.0 : m, nu, j == 0 ? 1.0 : m, 0.0});
+    }
+    // The top step is the reference material (mu = rho = 1): scale the others.
+    const double m0 = std::exp(-gamma * 0.5 / K);
+    for (size_t j = 1; j < l.size(); ++j) {
+      l[j].mu /= m0;
+      l[j].rho /= m0;
+    }
+    double sum = 0.0;
+    for (size_t j = 0; j + 1 < l.size(); ++j) sum += l[j].thickness;
+    l.back().thickness = 1.0 - sum;
+    return l;
+  };
+  for (double t : {0.5, 2.0}) {
+    std::vector<double> err;
+    for (int K : {16, 32, 64}) {
+      // The staircase's units are its top step's (mu = exp(-gamma/(2K))):
+      // M1 is per unit mu_1, so M1_graded = M1_stair * mu_stair_top / mu_graded_top.
+      const double m0 = std::exp(-gamma * 0.5 / K);
+      MediumSpec st = springs(staircase(K), kw / m0);
+      const auto med = make_stack_medium(st, s / m0 * m0);
+      const double M1 = med->response(t).M1.real() / m0;
+      err.push_back(std::fabs(M1 - graded->response(t).M1.real()));
+    }
+    EXPECT_NEAR(err[0] / err[1], 4.0, 0.2) << "t " << t;
+    EXPECT_NEAR(err[1] / err[2], 4.0, 0.1) << "t " << t;
+  }
+}
+
+TEST(Stack, CriticalSpeedOfOneSublayerIsTheLayersOne) {
+  for (double kw : {0.1, 1.0, 10.0}) {
+    const CriticalSpeed ref = critical_speed(kw, 0.2);
+    const CriticalSpeed one = stack_critical_speed(springs({Sublayer{1.0, 1.0, 0.2, 1.0, 0.0}}, kw));
+    EXPECT_NEAR(one.vstar, ref.vstar, 1e-12 * ref.vstar) << "kw " << kw;
+    EXPECT_NEAR(one.t, ref.t, 1e-3 * ref.t);
+    const CriticalSpeed three = stack_critical_speed(springs(identical(3, 0.2), kw));
+    EXPECT_NEAR(three.vstar, ref.vstar, 1e-12 * ref.vstar) << "kw " << kw;
+  }
+  const CriticalSpeed rig = stack_critical_speed(springs(identical(2, 0.2), kInf));
+  EXPECT_EQ(rig.vstar, rayleigh_vstar(0.2)) << (rig.vstar / rayleigh_vstar(0.2) - 1.0) << " t " << rig.t;
+  EXPECT_TRUE(std::isinf(rig.t));
+}
+
+TEST(Stack, CriticalSpeedInfimaOfSoftSublayersAndSubstrate) {
+  // A soft bottom sublayer on a rigid base: its shear speed (t -> inf).
+  const MediumSpec soft_bottom =
+      springs({Sublayer{0.6, 1.0, 0.2, 1.0, 0.0}, Sublayer{0.4, 0.2, 0.3, 1.0, 0.0}}, kInf);
+  const CriticalSpeed a = stack_critical_speed(soft_bottom);
+  EXPECT_NEAR(a.vstar, 0.2, 1e-14);
+  EXPECT_TRUE(std::isinf(a.t));
+  EXPECT_EQ(stack_max_vstar(soft_bottom), 0.2);
+  // A soft half-space substrate: its Rayleigh speed (t -> 0).
+  const MediumSpec soft_sub =
+      half_space({Sublayer{1.0, 1.0, 0.2, 1.0, 0.0}}, BaseKind::half_space_bonded, 0.1, 0.3, 1.2);
+  const CriticalSpeed b = stack_critical_speed(soft_sub);
+  EXPECT_NEAR(b.vstar, 0.1 / 1.2 * rayleigh_vstar(0.3), 1e-14);
+  EXPECT_EQ(b.t, 0.0);
+  // A soft bottom sublayer over Winkler springs: its bottom face's Rayleigh speed
+  // bounds the critical speed from above.
+  const MediumSpec over_springs =
+      springs({Sublayer{0.5, 1.0, 0.2, 1.0, 0.0}, Sublayer{0.5, 0.3, 0.2, 1.0, 0.0}}, 1e3);
+  const CriticalSpeed c = stack_critical_speed(over_springs);
+  EXPECT_LE(c.vstar, 0.3 * rayleigh_vstar(0.2) * (1.0 + 1e-14));
+  // The critical speed is a free wave: the dispersion changes sign across it at c.t.
+  const MediumSpec soft = springs({Sublayer{0.5, 1.0, 0.2, 1.0, 0.0}, Sublayer{0.5, 0.5, 0.3, 1.0, 0.0}}, 0.3);
+  const CriticalSpeed d = stack_critical_speed(soft);
+  ASSERT_TRUE(std::isfinite(d.t) && d.t > 0.0);
+  const double lo = make_stack_medium(soft, d.vstar * (1 - 1e-6))->dispersion(d.t);
+  const double hi = make_stack_medium(soft, d.vstar * (1 + 1e-6))->dispersion(d.t);
+  EXPECT_LT(lo * hi, 0.0);
+}
+
+TEST(Stack, RejectsInvalidInput) {
+  const MediumSpec ok = springs(identical(2, 0.2), 1.0);
+  try {
+    make_stack_medium(ok, rayleigh_vstar(0.2));
+    FAIL() << "vstar at the bound accepted";
+  } catch (const InvalidParameter& e) {
+    EXPECT_EQ(e.name(), "vstar");
+  }
+  MediumSpec damped = ok;
+  damped.base.damping = 0.1;
+  EXPECT_THROW(make_stack_medium(damped, 0.1), std::invalid_argument);
+  MediumSpec bad = ok;
+  bad.layers[1].thickness += 0.1;
+  EXPECT_THROW(make_stack_medium(bad, 0.1), InvalidParameter);
+  bad = ok;
+  bad.layers[0].mu = 2.0;
+  EXPECT_THROW(make_stack_medium(bad, 0.1), InvalidParameter);
+  bad = ok;
+  bad.layers[1].gamma = 60.0;
+  EXPECT_THROW(make_stack_medium(bad, 0.1), InvalidParameter);
+  const auto med = make_stack_medium(ok, 0.1);
+  EXPECT_THROW(med->response(std::nan("")), std::invalid_argument);
+  EXPECT_THROW(med->mode(-1.0), std::invalid_argument);
 }
