@@ -557,3 +557,73 @@ TEST(Stack, RejectsInvalidInput) {
   EXPECT_THROW(med->response(std::nan("")), std::invalid_argument);
   EXPECT_THROW(med->mode(-1.0), std::invalid_argument);
 }
+
+TEST(Stack, DispersionChangesSignWhereTheLayersDoes) {
+  // Above the critical speed of kw = 1 (0.5717) free waves exist at some t:
+  // K identical sublayers change sign exactly where LayerModel does, and
+  // nowhere else (no spurious sign change where the propagation switches
+  // from transfer to modal maps, t d = 0.5).
+  const double nu = 0.2;
+  for (double s : {0.62, 0.75})
+    for (int K : {1, 3, 5}) {
+      const auto med = make_stack_medium(springs(identical(K, nu), 1.0), s);
+      const LayerModel ref(s, 1.0, nu);
+      std::vector<double> roots_ref, roots;
+      const int n = 4000;
+      double tp = 0.0, dp = 0.0, rp = 0.0;
+      for (int i = 0; i <= n; ++i) {
+        const double t = std::exp(std::log(0.05) + (std::log(60.0) - std::log(0.05)) * i / n);
+        const double d = med->dispersion(t), r = ref.dispersion(t);
+        if (i > 0) {
+          if ((d < 0) != (dp < 0)) roots.push_back(std::sqrt(t * tp));
+          if ((r < 0) != (rp < 0)) roots_ref.push_back(std::sqrt(t * tp));
+        }
+        tp = t;
+        dp = d;
+        rp = r;
+      }
+      // LayerModel::dispersion itself changes sign where it switches from
+      // its transfer to its modal evaluation (t = kSmallT = 0.5): not a wave.
+      std::vector<double> waves;
+      for (double r : roots_ref)
+        if (std::fabs(r / LayerModel::kSmallT - 1.0) > 2e-3) waves.push_back(r);
+      ASSERT_FALSE(waves.empty());
+      EXPECT_EQ(roots, waves) << "s " << s << " K " << K;
+    }
+}
+
+TEST(Stack, GradedTopApproachesItsHalfPlaneLikeGammaOverT) {
+  // The graded response tends to the top's half-plane value as a series in
+  // gamma/t (physics.md section 11): t (M1 - phi1) -> c1 gamma, with the
+  // next term O(1/t), across the depth where the deeper structure is cut.
+  for (double gamma : {2.0, -3.0}) {
+    const auto med = make_stack_medium(
+        springs({Sublayer{0.5, 1.0, 0.25, 1.0, gamma}, Sublayer{0.5, 0.5, 0.3, 1.0, 0.0}}, 1.0), 0.2);
+    std::vector<double> q;
+    for (double t : {250.0, 500.0, 1000.0, 2000.0}) q.push_back(t * (med->response(t).M1.real() - med->phi1()));
+    const double r1 = (q[1] - q[0]) / (q[2] - q[1]), r2 = (q[2] - q[1]) / (q[3] - q[2]);
+    EXPECT_NEAR(r1, 2.0, 0.05) << "gamma " << gamma;
+    EXPECT_NEAR(r2, 2.0, 0.05) << "gamma " << gamma;
+    EXPECT_GT(std::fabs(q[3]), 1e-3);  // a real 1/t term, proportional to gamma
+    EXPECT_EQ(med->decay_rate(), 0.0);
+  }
+}
+
+TEST(Stack, GeometryOfTheMedium) {
+  const auto med = make_stack_medium(springs(identical(3, 0.2), 1.0, 0.5), 0.3);
+  const std::vector<double> ifc = med->interfaces();
+  ASSERT_EQ(ifc.size(), 2u);
+  EXPECT_NEAR(ifc[0], -med->spec().layers[0].thickness, 1e-15);
+  EXPECT_GT(ifc[0], ifc[1]);
+  EXPECT_NEAR(med->decay_rate(), 2.0 * std::sqrt(1.0 - 0.3) * med->spec().layers[0].thickness, 1e-15);
+  EXPECT_EQ(med->first_panel_edges(10.0), std::vector<double>({0.0, 0.25 * std::sqrt(2.0), 0.5 * std::sqrt(2.0), 1.0 * std::sqrt(2.0), 2.0 * std::sqrt(2.0), 10.0}));
+  const auto hs = make_stack_medium(
+      half_space(identical(2, 0.2), BaseKind::half_space_bonded, 0.5, 0.3, 1.0), 0.1);
+  const std::vector<double> e = hs->first_panel_edges(8.0);
+  EXPECT_EQ(e.front(), 0.0);
+  EXPECT_EQ(e.back(), 8.0);
+  EXPECT_LE(e[1], 8.0 / 1000.0);
+  EXPECT_TRUE(med->real());
+  EXPECT_EQ(med->vstar(), 0.3);
+  EXPECT_EQ(med->top().nu, 0.2);
+}
