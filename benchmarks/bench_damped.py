@@ -1,7 +1,7 @@
 """Damped against undamped solves, and widening against narrowing sweeps.
 
 1. In one process, side by side: the undamped solve (``mp.solve``) and the
-   damped one (``solve_damped``, damping 0.1) on the paper's case (kw 1,
+   damped one (``solve_asymmetric``, damping 0.1) on the paper's case (kw 1,
    radius 100, load 0.002, nu 0.2), cold (kernel cache cleared before each
    solve) and warm (the same vstar, kw, nu, damping and tol, another load),
    at V* = 0.2 and 0.65. The undamped problem has no steady solution at
@@ -32,7 +32,7 @@ from collections.abc import Callable
 import numpy as np
 
 import movingpunch as mp
-from movingpunch.damped import solve_damped
+from movingpunch.asymmetric import solve_asymmetric
 
 CASE = {"kw": 1.0, "radius": 100.0, "nu": 0.2}
 LOAD = 0.002
@@ -59,7 +59,7 @@ def solve_times(
 
     def run(load: float) -> object:
         if damped:
-            return solve_damped(vstar=vstar, load=load, damping=DAMPING, **CASE)
+            return solve_asymmetric(vstar=vstar, load=load, damping=DAMPING, **CASE)
         return mp.solve(vstar=vstar, load=load, **CASE)
 
     loads = [LOAD * (1.0 + 1e-3 * k) for k in range(repeat)]

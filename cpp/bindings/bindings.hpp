@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 #include <tuple>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -256,13 +257,22 @@ void bind_result_common(pybind11::class_<T>& cls) {
           "(len(y), len(x)).")
       .def(
           "stress_field",
-          [](const T& s, const VectorRef& x, const VectorRef& y) {
-            StressField f = s.stress_field(x, y);
+          [](const T& s, const VectorRef& x, const VectorRef& y, bool below) {
+            StressField f;
+            if constexpr (std::is_same_v<T, ContactSolution>) {
+              f = s.stress_field(x, y, below);
+            } else {
+              if (below)
+                throw InvalidParameter("side", "'above' on the homogeneous layer",
+                                       "side: the asymmetric solver's layer has no interfaces");
+              f = s.stress_field(x, y);
+            }
             return std::make_tuple(std::move(f.sigma_x), std::move(f.sigma_y), std::move(f.tau_xy));
           },
-          "x"_a, "y"_a, Release(),
+          "x"_a, "y"_a, "below"_a = false, Release(),
           "(sigma_x, sigma_y, tau_xy)/(P/h) on the grid x/h by y/h, each shaped (len(y), "
-          "len(x)) (the damped solver: -1 <= y <= -1e-3).");
+          "len(x)) (the damped solver: -1 <= y <= -1e-3); below: at an interface, sigma_x "
+          "of the material below it.");
 }
 
 void bind_errors(pybind11::module_& m);

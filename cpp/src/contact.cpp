@@ -1278,8 +1278,9 @@ std::shared_ptr<const FieldEvaluator> ContactSolution::field() const {
 }
 
 StressField ContactSolution::stress_field(const Eigen::Ref<const Eigen::VectorXd>& x,
-                                          const Eigen::Ref<const Eigen::VectorXd>& y) const {
-  return field()->stresses(x, y);
+                                          const Eigen::Ref<const Eigen::VectorXd>& y,
+                                          bool below) const {
+  return field()->stresses(x, y, below);
 }
 
 Eigen::VectorXd ContactSolution::surface_stress(const Eigen::Ref<const Eigen::VectorXd>& x) const {

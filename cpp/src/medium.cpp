@@ -135,8 +135,8 @@ std::vector<double> Medium::key() const {
 std::string describe(const MediumSpec& m) {
   std::ostringstream o;
   o.precision(6);
-  const std::size_t graded = static_cast<std::size_t>(
-      std::count_if(m.layers.begin(), m.layers.end(), [](const Sublayer& l) { return l.gamma != 0.0; }));
+  const std::size_t graded = static_cast<std::size_t>(std::count_if(
+      m.layers.begin(), m.layers.end(), [](const Sublayer& l) { return l.gamma != 0.0; }));
   if (m.layers.size() > 1 || graded > 0) {
     o << m.layers.size() << (m.layers.size() == 1 ? " sublayer" : " sublayers");
     if (graded > 0) o << " (" << graded << " graded)";
@@ -148,8 +148,8 @@ std::string describe(const MediumSpec& m) {
     if (b.kp != 0.0) o << ", kp = " << b.kp;
     if (b.damping != 0.0) o << ", damping = " << b.damping;
   } else {
-    o << "a " << (b.kind == BaseKind::half_space_bonded ? "bonded" : "smooth")
-      << " half-space (mu " << b.mu << ", nu " << b.nu << ", rho " << b.rho << ")";
+    o << "a " << (b.kind == BaseKind::half_space_bonded ? "bonded" : "smooth") << " half-space (mu "
+      << b.mu << ", nu " << b.nu << ", rho " << b.rho << ")";
   }
   return o.str();
 }
@@ -222,8 +222,7 @@ std::shared_ptr<const Medium> make_medium(const MediumSpec& spec, double vstar) 
 
 CriticalSpeed critical_speed(const MediumSpec& spec) {
   validate(spec);
-  if (spec.homogeneous())
-    return critical_speed(spec.base.kw, spec.layers[0].nu, spec.base.kp);
+  if (spec.homogeneous()) return critical_speed(spec.base.kw, spec.layers[0].nu, spec.base.kp);
   throw std::invalid_argument("layered media are not built yet");
 }
 

@@ -77,7 +77,7 @@ Eigen::MatrixXd FieldEvaluator::transform(const Eigen::MatrixXd& values, bool si
 using detail::check_grid;
 
 StressField FieldEvaluator::stresses(const Eigen::Ref<const Eigen::VectorXd>& x,
-                                     const Eigen::Ref<const Eigen::VectorXd>& y) const {
+                                     const Eigen::Ref<const Eigen::VectorXd>& y, bool below) const {
   check_grid(x, y);
   const WaveConstants& c = model_->top();
   const Eigen::Index nx = x.size(), ny = y.size();
@@ -93,7 +93,7 @@ StressField FieldEvaluator::stresses(const Eigen::Ref<const Eigen::VectorXd>& x,
     const ModeProfile& m = *modes_[static_cast<std::size_t>(q)];
     const double pt = ptilde_[static_cast<std::size_t>(q)];
     for (Eigen::Index j = 0; j < ny; ++j) {
-      const ModeState r = m.remainder(y(j));
+      const ModeState r = m.remainder(y(j), below);
       Rx(q, j) = pt * r.sx.real();
       Ry(q, j) = pt * r.z(3).real();
       Rt(q, j) = pt * r.z(2).real();

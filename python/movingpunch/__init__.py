@@ -31,9 +31,9 @@ except ImportError as exc:  # pragma: no cover - depends on how it was installed
         "`pip install .` from the repository or see README"
     ) from exc
 
+from movingpunch.asymmetric import AsymmetricSolution
 from movingpunch.cancel import Cancel
 from movingpunch.contract import ContactSolution
-from movingpunch.damped import DampedSolution
 from movingpunch.fields import StressField, StressPeaks
 from movingpunch.media import GradedLayer, HalfSpace, Layer, Medium, Winkler
 from movingpunch.profiles import Cylinder, Flat, Profile, PunchProfile, RoundedFlat
@@ -54,6 +54,10 @@ from movingpunch.solver import (
 )
 from movingpunch.zones import Punch, PunchResult, ZonedSolution
 
+DampedSolution = AsymmetricSolution
+"""Deprecated name of ``AsymmetricSolution`` (the asymmetric solver's result;
+not in ``__all__``)."""
+
 
 def __getattr__(name: str) -> str:
     """``__version__``, looked up on first use (``movingpunch._version``)."""
@@ -68,12 +72,12 @@ def __getattr__(name: str) -> str:
 
 __all__ = [
     "PRESETS",
+    "AsymmetricSolution",
     "Cancel",
     "Cancelled",
     "ContactSolution",
     "ConvergenceError",
     "Cylinder",
-    "DampedSolution",
     "Flat",
     "GradedLayer",
     "HalfSpace",

@@ -1,8 +1,8 @@
 """The evaluations every solution computes the same way from its compiled
 result (``_impl``): the pressure, the surface stress and displacement, the
 displacement at a depth, the stress field, the stress peaks and
-``to_dict``. ``Solution`` and
-``DampedSolution`` both inherit them (one implementation of the contract's
+``to_dict``. ``Solution``, ``AsymmetricSolution`` and ``ZonedSolution``
+inherit them (one implementation of the contract's
 shared members; the compiled results bind the same members once,
 ``bind_result_common`` in cpp/bindings/bindings.hpp)."""
 
@@ -28,10 +28,18 @@ from movingpunch._evaluate import (
     _pointwise,
     _real_any,
 )
-from movingpunch.contract import CONTRACT_FIELDS, Points
+from movingpunch.contract import CONTRACT_FIELDS, Points, SolvedPunch
 from movingpunch.errors import InvalidParameterError
-from movingpunch.fields import FloatArray, StressField, StressPeaks, derived_stresses
-from movingpunch.media import Layer, Medium, Winkler
+from movingpunch.fields import (
+    DesignStrains,
+    FloatArray,
+    StrainField,
+    StressField,
+    StressPeaks,
+    derived_stresses,
+    plane_strains,
+)
+from movingpunch.media import HalfSpace, Layer, Medium, Winkler
 from movingpunch.peaks import search_peaks
 from movingpunch.profiles import Cylinder, Flat, Profile, PunchProfile, RoundedFlat
 
@@ -61,6 +69,8 @@ class Evaluations:
         def contact_interval(self) -> tuple[float, float]: ...
         @property
         def end_exponents(self) -> tuple[float, float]: ...
+        @property
+        def punches(self) -> tuple[SolvedPunch, ...]: ...
 
     @property
     def profile(self) -> PunchProfile:
@@ -188,15 +198,39 @@ class Evaluations:
         values = -field.sigma_y[0]
         return float(values[0]) if _is_scalar(x) else values.reshape(np.shape(x))
 
-    def stress_field(self, x: npt.ArrayLike, y: npt.ArrayLike) -> StressField:
+    def _stresses(
+        self, x: npt.ArrayLike, y: npt.ArrayLike, side: str
+    ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, FloatArray, bool]:
+        xs = _flat(_as_points("x", x))
+        ys = _flat(_depths(y))
+        if side not in ("above", "below"):
+            raise InvalidParameterError(
+                f"side must be 'above' or 'below' (which material an interface "
+                f"depth takes), got {side!r}",
+                parameter="side",
+                allowed="'above' or 'below'",
+            )
+        below = side == "below"
+        impl = self._impl
+
+        def grid(xx: FloatArray, yy: FloatArray) -> tuple[FloatArray, ...]:
+            return tuple(impl.stress_field(xx, yy, below))
+
+        sx, sy, txy = _chunked_grid(grid, xs, ys)
+        return xs, ys, sx, sy, txy, below
+
+    def stress_field(
+        self, x: npt.ArrayLike, y: npt.ArrayLike, side: str = "above"
+    ) -> StressField:
         """All stresses over P/h on the grid ``x`` (x/h) by ``y`` (y/h in
         [-1, 0]); arrays shaped (len(y), len(x)). On the surface y = 0:
         sigma_x = ``surface_stress``, sigma_y = -p, tau_xy = f p (0 for a
-        frictionless punch)."""
-        xs = _flat(_as_points("x", x))
-        ys = _flat(_depths(y))
-        sx, sy, txy = _chunked_grid(self._impl.stress_field, xs, ys)
-        sz, vm, ms = derived_stresses(sx, sy, txy, self.nu)
+        frictionless punch). At an interface between sublayers (a layered
+        ``medium``) sigma_x jumps: ``side`` "above" (the default) or "below"
+        says which material's; sigma_y and tau_xy are continuous."""
+        xs, ys, sx, sy, txy, below = self._stresses(x, y, side)
+        _, nu = self.medium.material(ys, below)
+        sz, vm, ms = derived_stresses(sx, sy, txy, nu[:, None])
         return StressField(
             x=xs,
             y=ys,
@@ -206,6 +240,54 @@ class Evaluations:
             sigma_z=sz,
             von_mises=vm,
             max_shear=ms,
+        )
+
+    def strain_field(
+        self, x: npt.ArrayLike, y: npt.ArrayLike, side: str = "above"
+    ) -> StrainField:
+        """Strains per P/(mu_1 h) on the grid ``x`` by ``y`` (as
+        ``stress_field``), from the stresses by Hooke's law of the material at
+        each depth (``medium.material``); ``side`` picks the material at an
+        interface depth (eps_x is continuous across a bonded interface, eps_y
+        jumps)."""
+        xs, ys, sx, sy, txy, below = self._stresses(x, y, side)
+        mu, nu = self.medium.material(ys, below)
+        ex, ey, gxy = plane_strains(sx, sy, txy, mu[:, None], nu[:, None])
+        return StrainField(x=xs, y=ys, eps_x=ex, eps_y=ey, gamma_xy=gxy, side=side)
+
+    @overload
+    def depth_strain(self, y: float, x: float = ..., side: str = ...) -> float: ...
+    @overload
+    def depth_strain(
+        self, y: Points, x: float = ..., side: str = ...
+    ) -> FloatArray: ...
+    def depth_strain(
+        self, y: npt.ArrayLike, x: float = 0.0, side: str = "above"
+    ) -> float | FloatArray:
+        """eps_x(x, y) per P/(mu_1 h) at depths y/h in [-1, 0], at x = 0
+        unless ``x`` is given (``strain_field``'s eps_x)."""
+        xs = _real_any("x", x)
+        if not math.isfinite(xs):
+            raise InvalidParameterError(f"x must be a finite number, got {x!r}")
+        pts = _depths(y)
+        field = self.strain_field(np.array([xs]), _flat(pts), side)
+        values = field.eps_x[:, 0]
+        return float(values[0]) if _is_scalar(y) else values.reshape(np.shape(y))
+
+    def design_strains(self) -> DesignStrains:
+        """The pavement engineer's strains at x = 0 (``DesignStrains``): eps_x
+        at the bottom of each sublayer (its own material), eps_y at the top of
+        the base (the half-space's material; None on springs)."""
+        medium = self.medium
+        bottoms = [*medium.interfaces, -1.0]
+        field = self.strain_field(np.array([0.0]), np.array(bottoms), "above")
+        base: float | None = None
+        if isinstance(medium.base, HalfSpace):
+            under = self.strain_field(np.array([0.0]), np.array([-1.0]), "below")
+            base = float(under.eps_y[0, 0])
+        return DesignStrains(
+            bottom_horizontal=tuple(float(v) for v in field.eps_x[:, 0]),
+            base_vertical=base,
         )
 
     def stress_peaks(self, extent: float | None = None) -> StressPeaks:
@@ -338,15 +420,19 @@ class Evaluations:
         names = [f.name for f in dataclasses.fields(self)]  # type: ignore[arg-type]
         names += [n for n in CONTRACT_FIELDS if n not in names]
         return {
-            n: _json_safe(_listed(getattr(self, n)))
+            n: (
+                [p.to_dict() for p in self.punches]
+                if n == "punches"
+                else _json_safe(_listed(getattr(self, n)))
+            )
             for n in names
             if not n.startswith("_")
         }
 
 
 def _listed(value: object) -> object:
-    if isinstance(value, (Cylinder, *_PROFILE_TYPES)):
-        return value.to_dict()  # a punch profile: its scene-file form
+    if isinstance(value, (Cylinder, *_PROFILE_TYPES, Medium)):
+        return value.to_dict()  # a punch profile, a medium: the scene-file form
     if isinstance(value, tuple):  # nested too: contact_zones
         return [_listed(v) for v in value]
     return value

@@ -13,7 +13,7 @@ the refinement's stopping rule. ``movingpunch accuracy`` prints the table, a
 log-log plot and writes CSV; the terminal UI's Accuracy tab shows the same.
 
 Every solution is read through ``movingpunch.ContactSolution`` only: the
-ladder never asks which solver (damped or not) computed it.
+ladder never asks which solver (symmetric or asymmetric) computed it.
 
 Nothing here imports Textual.
 """
@@ -124,7 +124,7 @@ class Rung:
     peak_error_bound: float = math.nan
     """Largest bound the sigma_x peaks carry (``StressPeaks.error_bound``):
     ``stress_error_estimate`` plus the peak search's uncertainty. The search
-    of the damped solver's peaks stops at tol relative to the centre stress,
+    of the asymmetric solver's peaks stops at tol relative to the centre stress,
     so at loose tols this, not the stress estimate, bounds the peak errors."""
     failure: str = ""
     """Why this rung could not be computed ("" if it was)."""
@@ -233,7 +233,7 @@ def _reference(
 ) -> tuple[ContactSolution, int, float]:
     """The reference solution: fixed N = max(64, 4 N_auto) at tol 1e-14 (or
     1e-13, 1e-12 if tighter tolerances are out of reach). If the solver does
-    not take that N (each solver has its largest size: 4096, the damped one
+    not take that N (each solver has its largest size: 4096, the asymmetric one
     1024), 2 N_auto, the refusal naming ``n``."""
     last: MovingPunchError | None = None
     for tol in _REF_TOLS:

@@ -42,9 +42,12 @@ from collections.abc import Callable, Sequence
 from types import FrameType
 from typing import Any, NoReturn
 
+from movingpunch._cli_media import add_medium_options, medium_of
 from movingpunch._display import drag_scale, shown
+from movingpunch.contract import ContactSolution, SolvedPunch
 from movingpunch.errors import ClusterError, InvalidParameterError, MovingPunchError
 from movingpunch.fields import StressPeaks
+from movingpunch.media import Winkler
 from movingpunch.params import help_text, range_text
 from movingpunch.profiles import (
     PROFILE_KINDS,
@@ -190,10 +193,15 @@ def _build_parser() -> argparse.ArgumentParser:
         description="Solve the contact problem and print a/h, p0, indentation, ...",
     )
     # Help texts and ranges: the table of parameters (movingpunch.params).
-    for name in ("vstar", "kw"):
-        solve_p.add_argument(
-            f"--{name}", type=_number(name), required=True, help=help_text(name)
-        )
+    solve_p.add_argument(
+        "--vstar", type=_number("vstar"), required=True, help=help_text("vstar")
+    )
+    solve_p.add_argument(
+        "--kw",
+        type=_number("kw"),
+        default=None,
+        help=help_text("kw") + " (required, except with --half-space)",
+    )
     solve_p.add_argument(
         "--load",
         type=_number("load"),
@@ -247,8 +255,11 @@ def _build_parser() -> argparse.ArgumentParser:
         help="the profile table of --profile table: two columns x/h and y/h "
         "(whitespace or comma separated; # comments), symmetric and convex",
     )
-    solve_p.add_argument("--nu", type=_number("nu"), default=0.2, help=help_text("nu"))
+    solve_p.add_argument(
+        "--nu", type=_number("nu"), default=None, help=help_text("nu") + "; default 0.2"
+    )
     solve_p.add_argument("--tol", type=_tol, default=1e-8, help=help_text("tol"))
+    add_medium_options(solve_p)
     # The foundation's optional terms, 0 by default (the paper's model).
     for name, more in (
         (
@@ -292,9 +303,17 @@ def _build_parser() -> argparse.ArgumentParser:
         help="critical speed of the layer on springs",
         description="Print V*_cr, alpha h at the minimum and the Rayleigh V*_R.",
     )
-    crit_p.add_argument("--kw", type=_number("kw"), required=True, help=help_text("kw"))
-    crit_p.add_argument("--nu", type=_number("nu"), default=0.2, help=help_text("nu"))
+    crit_p.add_argument(
+        "--kw",
+        type=_number("kw"),
+        default=None,
+        help=help_text("kw") + " (required, except with --half-space)",
+    )
+    crit_p.add_argument(
+        "--nu", type=_number("nu"), default=None, help=help_text("nu") + "; default 0.2"
+    )
     crit_p.add_argument("--kp", type=_number("kp"), default=0.0, help=help_text("kp"))
+    add_medium_options(crit_p)
     crit_p.add_argument("--json", action="store_true", help="print JSON")
     crit_p.set_defaults(handler=_cmd_critical)
 
@@ -459,7 +478,9 @@ def _read_table(path: str) -> Profile:
     return Profile(tuple(xs), tuple(ys))
 
 
-def _solve_train(args: argparse.Namespace, profile: PunchProfile | None) -> Any:
+def _solve_train(
+    args: argparse.Namespace, profile: PunchProfile | None
+) -> ContactSolution:
     """``solve --punch LOAD@AT ...``: the train, by solve_punches."""
     for given, option in (
         (args.load is not None, "--load"),
@@ -487,7 +508,7 @@ def _solve_train(args: argparse.Namespace, profile: PunchProfile | None) -> Any:
         punches,
         vstar=args.vstar,
         kw=args.kw,
-        nu=args.nu,
+        nu=0.2 if args.nu is None else args.nu,
         tol=args.tol,
         damping=args.damping,
         kp=args.kp,
@@ -507,23 +528,36 @@ def _cmd_solve(args: argparse.Namespace) -> int:
             parameter="load",
         )
     profile = _cli_profile(args)
-    s: Any
+    medium = medium_of(args)
+    if medium is None and args.kw is None:
+        raise InvalidParameterError(
+            "solve needs --kw (or --half-space)", parameter="kw"
+        )
+    s: ContactSolution
     if args.punch:
+        if medium is not None:
+            raise InvalidParameterError(
+                "--punch cannot be used with --layer/--graded/--half-space (a "
+                "train runs on the homogeneous layer on springs only so far)",
+                parameter="punch",
+            )
         s = _solve_train(args, profile)
     else:
+        spring_args: dict[str, Any] = (
+            {"kw": args.kw, "nu": args.nu, "damping": args.damping, "kp": args.kp}
+            if medium is None
+            else {"layers": list(medium.layers), "base": medium.base}
+        )
         s = solve(
             vstar=args.vstar,
-            kw=args.kw,
             radius=args.radius if profile is None else None,
             profile=profile,
             load=args.load,
-            nu=args.nu,
             tol=args.tol,
             allow_unphysical=args.allow_unphysical,
-            damping=args.damping,
-            kp=args.kp,
             friction=args.friction,
             contact=args.contact,
+            **spring_args,
         )
     peaks = s.stress_peaks() if args.stress else None
     _print_warnings(s)
@@ -532,14 +566,18 @@ def _cmd_solve(args: argparse.Namespace) -> int:
         print("hint: " + "; ".join(hints), file=sys.stderr)
     if args.json:
         data = s.to_dict()
+        if medium is not None:
+            data["medium"] = medium.to_dict()
         if peaks is not None:
             data["stress"] = dataclasses.asdict(peaks)
         data["hints"] = list(hints)
         print(json.dumps(data, indent=2))
         return 0
+    springs = medium is None or isinstance(medium.base, Winkler)
     inputs = [
         ("V* = ρV²/μ", _fmt(s.vstar)),
-        ("k_w h/μ", _fmt(s.kw)),
+        *([("medium", medium.describe())] if medium is not None else []),
+        ("k_w h/μ", _fmt(s.kw) if springs else "- (half-space)"),
         ("k_p/(μh) (Pasternak)", _fmt(s.kp)),
         ("damping c_w c_T/μ", _fmt(s.damping)),
         ("friction f", _fmt(s.friction)),
@@ -551,7 +589,7 @@ def _cmd_solve(args: argparse.Namespace) -> int:
         ("tolerance", _fmt(s.tol)),
     ]
     back, front = s.contact_interval
-    zones = tuple(getattr(s, "contact_zones", ((back, front),)))
+    zones = s.contact_zones
     # Round-off is shown as 0 (movingpunch._display): the drag of a
     # symmetric contact or of mirror-image punches sums to ~1e-19.
     drag = shown(s.drag, scale=drag_scale((back, front), s.radius))
@@ -597,8 +635,8 @@ def _cmd_solve(args: argparse.Namespace) -> int:
         ("validity", s.validity or "-"),
     ]
     sections = [("Inputs", inputs), ("Results", results)]
-    punches = getattr(s, "punches", ())
-    if punches and (len(punches) > 1 or args.punch):
+    punches = s.punches
+    if len(punches) > 1 or args.punch:
         sections.append(
             (
                 "Punches",
@@ -652,32 +690,46 @@ def _stress_rows(peaks: StressPeaks) -> list[tuple[str, str]]:
     ]
 
 
-def _punch_drag_scale(punch: Any, radius: float) -> float:
+def _punch_drag_scale(punch: SolvedPunch, radius: float) -> float:
     """``drag_scale`` of one punch of a train: its zones' reach from its axis."""
     ends = [x - punch.at for zone in punch.contact_zones for x in zone]
-    shape = getattr(punch, "profile", None)
-    own = getattr(shape, "radius", radius)
+    own = getattr(punch.profile, "radius", radius)  # a flat punch or table: none
     return drag_scale(ends, own if isinstance(own, float) else radius)
 
 
 def _cmd_critical(args: argparse.Namespace) -> int:
-    vcr = critical_vstar(args.kw, args.nu, args.kp)
-    t = critical_wavenumber(args.kw, args.nu, args.kp)
-    vr = rayleigh_vstar(args.nu)
+    medium = medium_of(args)
+    if medium is None:
+        if args.kw is None:
+            raise InvalidParameterError(
+                "critical needs --kw (or --half-space)", parameter="kw"
+            )
+        nu = 0.2 if args.nu is None else args.nu
+        vcr = critical_vstar(args.kw, nu, args.kp)
+        t = critical_wavenumber(args.kw, nu, args.kp)
+    else:
+        nu = medium.nu
+        vcr = critical_vstar(layers=list(medium.layers), base=medium.base)
+        t = critical_wavenumber(layers=list(medium.layers), base=medium.base)
+    springs = medium is None or isinstance(medium.base, Winkler)
+    vr = rayleigh_vstar(nu)
     if args.json:
-        data = {
-            "kw": _json_number(args.kw),
-            "nu": args.nu,
+        data: dict[str, Any] = {
+            "kw": _json_number(args.kw) if springs else None,
+            "nu": nu,
             "kp": args.kp,
             "critical_vstar": _json_number(vcr),
             "critical_wavenumber": _json_number(t),
             "rayleigh_vstar": _json_number(vr),
         }
+        if medium is not None:
+            data["medium"] = medium.to_dict()
         print(json.dumps(data, indent=2))
         return 0
     rows = [
-        ("k_w h/μ", _fmt(float(args.kw))),
-        ("ν", _fmt(float(args.nu))),
+        *([("medium", medium.describe())] if medium is not None else []),
+        ("k_w h/μ", _fmt(float(args.kw)) if springs else "- (half-space)"),
+        ("ν" if medium is None else "ν (top)", _fmt(float(nu))),
         ("k_p/(μh)", _fmt(float(args.kp))),
         ("V*_cr", _fmt(vcr)),
         ("αh at the minimum", _fmt(t)),

@@ -1,7 +1,7 @@
 """The result contract: what every contact solution offers.
 
 ``movingpunch.solve`` returns a ``Solution`` (frictionless, undamped: the
-paper's model) or, with ``damping > 0``, a ``DampedSolution`` (an asymmetric
+paper's model) or, with ``damping > 0``, a ``AsymmetricSolution`` (an asymmetric
 contact with drag). Both satisfy ``ContactSolution``, and everything that
 consumes a solution — scenes, the CLI, the terminal UI — uses only this
 contract, never the concrete class. A new physical effect (a punch profile,
@@ -20,12 +20,25 @@ from typing import TYPE_CHECKING, Any, Protocol, overload, runtime_checkable
 
 import numpy.typing as npt
 
-from movingpunch.fields import FloatArray, StressField, StressPeaks
+from movingpunch.fields import (
+    DesignStrains,
+    FloatArray,
+    StrainField,
+    StressField,
+    StressPeaks,
+)
+from movingpunch.media import Medium
 
 if TYPE_CHECKING:
     from movingpunch.profiles import PunchProfile
 
-__all__ = ["CONTRACT_FIELDS", "CONTRACT_METHODS", "ContactSolution", "Points"]
+__all__ = [
+    "CONTRACT_FIELDS",
+    "CONTRACT_METHODS",
+    "ContactSolution",
+    "Points",
+    "SolvedPunch",
+]
 
 Points = npt.NDArray[Any] | Sequence[Any]
 """Several positions: an array or a sequence (a scalar gives a float)."""
@@ -34,6 +47,38 @@ Points = npt.NDArray[Any] | Sequence[Any]
 # runtime_checkable for the contract test; on Python 3.11 isinstance reads
 # every member and so computes the lazy ones: not for hot paths.
 @runtime_checkable
+class SolvedPunch(Protocol):
+    """One punch of a solution (``ContactSolution.punches``; the class is
+    ``movingpunch.PunchResult``): ``profile`` (its shape), ``load``
+    (P_k/(mu h)), ``at`` (x/h of its axis), ``contact_zones`` (its zones
+    (x_left, x_right)/h, left to right), ``zone_loads`` (the load of each,
+    summing to ``load``), ``drag`` (the normal pressure's horizontal force on
+    it over P_k), ``indentation`` (delta_k/h), ``pressure(x)`` (its own
+    pressure over P_k/h) and ``to_dict()``. A single contact has one, at
+    x = 0 with its one zone."""
+
+    @property
+    def profile(self) -> PunchProfile: ...
+    @property
+    def load(self) -> float: ...
+    @property
+    def at(self) -> float: ...
+    @property
+    def contact_zones(self) -> tuple[tuple[float, float], ...]: ...
+    @property
+    def zone_loads(self) -> tuple[float, ...]: ...
+    @property
+    def drag(self) -> float: ...
+    @property
+    def indentation(self) -> float: ...
+    @overload
+    def pressure(self, x: float) -> float: ...
+    @overload
+    def pressure(self, x: Points) -> FloatArray: ...
+    def to_dict(self) -> dict[str, object]: ...
+
+
+@runtime_checkable
 class ContactSolution(Protocol):
     """Every solution's fields and evaluations (see the module docstring).
 
@@ -41,7 +86,10 @@ class ContactSolution(Protocol):
     springs), ``radius``, ``load``, ``nu``, ``tol``, ``damping`` (0.0 for the
     paper's model), ``friction`` (Coulomb f, 0.0 for the paper's model). The
     contact: ``contact_interval``
-    (x_back, x_front), ``half_width``, ``centre``, ``a`` (the leading end;
+    (x_back, x_front), ``contact_zones`` (every zone, left to right: one for
+    a single contact, ``contact_interval`` their hull), ``punches`` (each
+    punch, ``SolvedPunch``: one for a single punch, a train's in its
+    order), ``half_width``, ``centre``, ``a`` (the leading end;
     the half-width of a symmetric contact), ``p0`` (the pressure under the
     punch's axis x = 0, over P/h), ``indentation``, ``drag`` (the
     horizontal force of the normal pressure over P; 0.0 without damping),
@@ -93,6 +141,10 @@ class ContactSolution(Protocol):
     def contact_interval(self) -> tuple[float, float]: ...
     @property
     def contact_zones(self) -> tuple[tuple[float, float], ...]: ...
+    @property
+    def punches(self) -> tuple[SolvedPunch, ...]: ...
+    @property
+    def medium(self) -> Medium: ...
     @property
     def half_width(self) -> float: ...
     @property
@@ -169,7 +221,19 @@ class ContactSolution(Protocol):
     def foundation_reaction(self, x: float) -> float: ...
     @overload
     def foundation_reaction(self, x: Points) -> FloatArray: ...
-    def stress_field(self, x: npt.ArrayLike, y: npt.ArrayLike) -> StressField: ...
+    def stress_field(
+        self, x: npt.ArrayLike, y: npt.ArrayLike, side: str = "above"
+    ) -> StressField: ...
+    def strain_field(
+        self, x: npt.ArrayLike, y: npt.ArrayLike, side: str = "above"
+    ) -> StrainField: ...
+    @overload
+    def depth_strain(self, y: float, x: float = 0.0, side: str = "above") -> float: ...
+    @overload
+    def depth_strain(
+        self, y: Points, x: float = 0.0, side: str = "above"
+    ) -> FloatArray: ...
+    def design_strains(self) -> DesignStrains: ...
     def stress_peaks(self, extent: float | None = None) -> StressPeaks: ...
     def to_dict(self) -> dict[str, object]: ...
 
@@ -189,6 +253,8 @@ CONTRACT_FIELDS: tuple[str, ...] = (
     "a",
     "contact_interval",
     "contact_zones",
+    "punches",
+    "medium",
     "half_width",
     "centre",
     "p0",
@@ -216,13 +282,17 @@ CONTRACT_FIELDS: tuple[str, ...] = (
     "end_coefficient_error",
 )
 """The contract's data fields, each also a key of ``to_dict()`` (``profile``
-as its scene-file form ``{"kind": ..., ...}``)."""
+as its scene-file form ``{"kind": ..., ...}``, ``punches`` as each punch's
+``to_dict()``, ``medium`` as its ``to_dict()``)."""
 
 CONTRACT_METHODS: tuple[str, ...] = (
     "pressure",
     "surface_stress",
     "depth_stress",
     "stress_field",
+    "strain_field",
+    "depth_strain",
+    "design_strains",
     "displacement",
     "surface_displacement",
     "foundation_reaction",

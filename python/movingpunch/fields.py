@@ -10,13 +10,39 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
-__all__ = ["StressField", "StressPeaks", "derived_stresses"]
+__all__ = [
+    "DesignStrains",
+    "StrainField",
+    "StressField",
+    "StressPeaks",
+    "derived_stresses",
+    "plane_strains",
+]
 
 FloatArray = npt.NDArray[np.float64]
 
 
+def plane_strains(
+    sigma_x: FloatArray,
+    sigma_y: FloatArray,
+    tau_xy: FloatArray,
+    mu: float | FloatArray,
+    nu: float | FloatArray,
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """(eps_x, eps_y, gamma_xy) of plane strain from the stresses by Hooke's
+    law of the local material (shear modulus ``mu``, Poisson's ratio ``nu``,
+    scalars or arrays broadcasting against the stresses):
+    eps_x = (sigma_x - nu (sigma_x + sigma_y))/(2 mu), eps_y likewise,
+    gamma_xy = tau_xy/mu. Stresses per P/h and mu per mu_1 give strains per
+    P/(mu_1 h)."""
+    sx, sy, txy = (np.asarray(a, dtype=np.float64) for a in (sigma_x, sigma_y, tau_xy))
+    trace = np.asarray(nu) * (sx + sy)
+    two_mu = 2.0 * np.asarray(mu, dtype=np.float64)
+    return (sx - trace) / two_mu, (sy - trace) / two_mu, txy / np.asarray(mu)
+
+
 def derived_stresses(
-    sigma_x: FloatArray, sigma_y: FloatArray, tau_xy: FloatArray, nu: float
+    sigma_x: FloatArray, sigma_y: FloatArray, tau_xy: FloatArray, nu: float | FloatArray
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """(sigma_z, von_mises, max_shear) of a plane-strain state.
 
@@ -73,6 +99,41 @@ class StressField:
 
 
 @dataclass(frozen=True)
+class StrainField:
+    """Strains of plane strain on a grid, per P/(mu_1 h) (mu_1: the top
+    sublayer's shear modulus): ``x`` (x/h) by ``y`` (y/h), each array shaped
+    (len(y), len(x)); extension positive. eps_x and gamma_xy/2 are continuous
+    across a bonded interface only where the displacement is (eps_x always;
+    eps_y jumps with the moduli); ``side`` says which material an interface
+    depth took."""
+
+    x: FloatArray
+    y: FloatArray
+    eps_x: FloatArray
+    eps_y: FloatArray
+    gamma_xy: FloatArray
+    side: str = "above"
+
+
+@dataclass(frozen=True)
+class DesignStrains:
+    """What a pavement engineer reads (per P/(mu_1 h), at x = 0 under the
+    punch's axis): the horizontal strain eps_x at the bottom of each sublayer
+    (top to bottom; tension positive: fatigue cracking of bound layers) and
+    the vertical strain eps_y at the top of the base (compression negative:
+    rutting of the subgrade), None on springs (no continuum below)."""
+
+    bottom_horizontal: tuple[float, ...]
+    base_vertical: float | None
+
+    def to_dict(self) -> dict[str, object]:
+        return {
+            "bottom_horizontal": list(self.bottom_horizontal),
+            "base_vertical": self.base_vertical,
+        }
+
+
+@dataclass(frozen=True)
 class StressPeaks:
     """Peak values of sigma_x/(P/h), with their positions x/h (x >= 0 for the
     symmetric solver, whose distributions are even in x; of either sign for
@@ -107,7 +168,7 @@ class StressPeaks:
     error_bound: float
     """Bound on the absolute error of each peak value: ``search_error`` plus
     the solution's stress error estimate (``Solution.stress_error_estimate``;
-    the damped solver has no stress error estimate, so for it this is the
+    the asymmetric solver has no stress error estimate, so for it this is the
     search's part alone)."""
     search_error: float
     """The search's own part of ``error_bound``: how far the true extreme of

@@ -29,6 +29,9 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
+import numpy as np
+import numpy.typing as npt
+
 from movingpunch import params
 from movingpunch.errors import InvalidParameterError
 
@@ -42,6 +45,8 @@ __all__ = [
 ]
 
 INTERFACES = ("bonded", "smooth")
+
+FloatArray = npt.NDArray[np.float64]
 
 
 def _check(name: str, value: object, what: str) -> float:
@@ -231,6 +236,41 @@ class Medium:
     def nu(self) -> float:
         """Poisson's ratio of the top sublayer (its half-plane constants)."""
         return self.layers[0].nu
+
+    @property
+    def interfaces(self) -> tuple[float, ...]:
+        """Depths y/h of the interfaces between sublayers, top to bottom
+        (strictly inside (-1, 0)); empty for one sublayer."""
+        out: list[float] = []
+        depth = 0.0
+        for s in self.layers[:-1]:
+            depth -= s.thickness
+            out.append(depth)
+        return tuple(out)
+
+    def material(
+        self, y: npt.ArrayLike, below: bool = False
+    ) -> tuple[FloatArray, FloatArray]:
+        """(mu, nu) per the top sublayer's mu at each depth y/h in [-1, 0]: at
+        an interface (within 1e-12 h) the material above it, or below it when
+        ``below``; at y = -1 with ``below`` the half-space's (springs: the
+        bottom sublayer's)."""
+        ys = np.asarray(y, dtype=np.float64)
+        mu = np.empty(ys.shape)
+        nu = np.empty(ys.shape)
+        tops = [0.0, *self.interfaces]
+        for idx, yv in np.ndenumerate(ys):
+            i = 0
+            for k in range(1, len(tops)):
+                at = tops[k]
+                if yv < at - 1e-12 or (below and abs(yv - at) <= 1e-12):
+                    i = k
+            s = self.layers[i]
+            m, n = s.mu * math.exp(s.gamma_h * (min(yv, tops[i]) - tops[i])), s.nu
+            if below and yv <= -1.0 + 1e-12 and isinstance(self.base, HalfSpace):
+                m, n = self.base.mu, self.base.nu
+            mu[idx], nu[idx] = m, n
+        return mu, nu
 
     def core_args(self) -> dict[str, Any]:
         """The keyword arguments of ``_core.solve_contact`` for this medium

@@ -386,7 +386,7 @@ def check(name: str, value: object) -> float:
 def check_size(value: object, most: int = SIZE_MAX, what: str = "") -> int:
     """The collocation size: None (automatic) -> 0, or an even int in
     [2, ``most``]. ``what`` is appended to the range in the message (the
-    damped solver takes at most 1024: " for the damped solver")."""
+    asymmetric solver takes at most 1024: " for the asymmetric solver")."""
     if value is None:
         return 0
     if not isinstance(value, bool) and isinstance(value, numbers.Integral):

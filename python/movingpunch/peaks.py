@@ -1,7 +1,7 @@
 """One search for the peaks of sigma_x along the top and bottom faces.
 
 Pure NumPy over callables (vectorised evaluations of the field at many x), so
-the symmetric and the damped solutions share it and tests can feed it closed
+the symmetric and the asymmetric solutions share it and tests can feed it closed
 forms. ``search_peaks`` finds the lowest and the highest value of the top
 face's sigma_x and the highest of the bottom face's on [lo, hi] and says how
 far each reported value can be from the true extreme of the evaluated field.

@@ -92,12 +92,8 @@ def hints_for(
     train's largest), contact, speed limits and, with ``peaks`` (its
     ``stress_peaks()``, which the caller has usually computed), the peak
     strain. Reads only the contract's fields."""
-    punches = getattr(solution, "punches", ())  # a train's own punches
-    indent = (
-        max(abs(float(p.indentation)) for p in punches)
-        if punches
-        else float(solution.indentation)
-    )
+    punches = solution.punches  # a single contact's one, a train's own
+    indent = max(abs(float(p.indentation)) for p in punches)
     stresses = [abs(float(solution.p0))]
     if peaks is not None:
         stresses += [
@@ -107,10 +103,8 @@ def hints_for(
         ]
     finite = [v for v in stresses if math.isfinite(v)]
     strain = max(finite) * float(solution.load) if finite else math.nan
-    if punches:  # each punch's own contact, not the train's hull
-        half = max(half_length(p.contact_zones) for p in punches)
-    else:
-        half = half_length((solution.contact_interval,))
+    # Each punch's own contact, not the train's hull.
+    half = max(half_length(p.contact_zones) for p in punches)
     return regime_hints(
         indentation=indent,
         half_length=half,

@@ -48,6 +48,7 @@ from movingpunch.errors import (
 )
 from movingpunch.media import (
     Base,
+    GradedLayer,
     HalfSpace,
     Medium,
     Sublayer,
@@ -62,7 +63,14 @@ from movingpunch.profiles import (
     PunchProfile,
     resolve_profile,
 )
-from movingpunch.zones import Punch, check_contact, separate, solve_train
+from movingpunch.zones import (
+    Punch,
+    PunchResult,
+    check_contact,
+    separate,
+    single_punch,
+    solve_train,
+)
 
 if TYPE_CHECKING:
     from movingpunch.contract import ContactSolution
@@ -121,6 +129,13 @@ class Solution(ResultFields):
     _impl: _core.ContactSolution = field(repr=False, compare=False)
     _profile: PunchProfile | None = field(default=None, repr=False, compare=False)
     _medium: Medium | None = field(default=None, repr=False, compare=False)
+
+    @functools.cached_property
+    def punches(self) -> tuple[PunchResult, ...]:
+        """The one punch (``movingpunch.PunchResult``): at x = 0, its one zone
+        (``contact_zones``) with the whole load, ``indentation`` and ``drag``
+        as the solution's."""
+        return single_punch(self, self._impl)
 
     @functools.cached_property
     def stress_error_estimate(self) -> float:
@@ -312,7 +327,7 @@ def solve(
 
     ``damping`` = c_w c_T/mu >= 0 adds dashpots to the springs (a Kelvin-Voigt
     foundation, docs/damped.md). 0 (the default) is the paper's model and
-    returns a Solution; > 0 returns a ``movingpunch.damped.DampedSolution``
+    returns a Solution; > 0 returns a ``movingpunch.asymmetric.AsymmetricSolution``
     (asymmetric contact, drag; speeds up to the Rayleigh speed). Both satisfy
     ``movingpunch.ContactSolution``, the one contract callers use.
 
@@ -339,7 +354,7 @@ def solve(
     ``friction`` = f >= 0 is Coulomb friction between punch and layer (the
     punch moves towards +x and drags the surface with a shear traction f p;
     docs/theory.md section 14). f > 0 takes the asymmetric path (a
-    ``DampedSolution``, with damping >= 0): Gauss-Jacobi collocation with
+    ``AsymmetricSolution``, with damping >= 0): Gauss-Jacobi collocation with
     the end exponents of cot(pi gamma_back) = f Phi(vstar, nu).
 
     ``contact`` = "auto" (the default) finds the real contact set when the
@@ -372,7 +387,7 @@ def solve(
     result (a lazy property computed later, e.g. ``stress_error_estimate``,
     runs unbound: compute it inside ``with token:`` to make it cancellable).
     """
-    from movingpunch.damped import check_damping, check_friction, solve_damped
+    from movingpunch.asymmetric import check_damping, check_friction, solve_asymmetric
 
     medium: Medium | None = None
     if layers is not None or base is not None:
@@ -423,7 +438,7 @@ def solve(
 
     def single_at(accuracy: float | str, size: int | None) -> ContactSolution:
         if damp > 0 or fric > 0 or asymmetric_shape:
-            return solve_damped(
+            return solve_asymmetric(
                 vstar=vstar,
                 kw=springs_kw,
                 load=load,
@@ -485,7 +500,7 @@ def _solve_layered(
 ) -> Solution:
     """The symmetric solve on a layered medium (or a half-space base):
     frictionless, undamped, a symmetric profile, a single contact."""
-    from movingpunch.damped import check_friction
+    from movingpunch.asymmetric import check_friction
 
     shape = resolve_profile(radius, profile)
     check_contact(contact)
@@ -497,6 +512,16 @@ def _solve_layered(
         refused = "friction"
     elif isinstance(shape, Profile) and not shape.symmetric:
         refused = "an asymmetric profile table"
+    if isinstance(medium.layers[0], GradedLayer) and medium.layers[0].gamma_h != 0:
+        raise InvalidParameterError(
+            "layers: a graded TOP sublayer is not solved yet: its response reaches "
+            "the half-plane's only as a series in gamma/alpha, and the kernel must "
+            "take that series out exactly (a plain quadrature stalls at 1e-4 ... "
+            "1e-6); put a homogeneous sublayer on top (a graded one below it is "
+            "solved) or model the grading as a staircase of Layer(...)",
+            parameter="layers",
+            allowed="a homogeneous top sublayer (graded ones below it)",
+        )
     if refused:
         raise InvalidParameterError(
             f"layers/base: {refused} runs on the asymmetric solver, which takes the "
@@ -588,7 +613,7 @@ if TYPE_CHECKING:
 
 
 def result_warnings(result: object) -> tuple[str, ...]:
-    """The ``warnings`` of a solution (Solution, DampedSolution or anything
+    """The ``warnings`` of a solution (Solution, AsymmetricSolution or anything
     with that attribute) as a tuple of one-line strings; () if it has none.
     Every display (CLI, scenes, terminal UI) shows them through this."""
     found = getattr(result, "warnings", ())
@@ -917,7 +942,7 @@ def solve_punches(
     ``cancel``: a ``movingpunch.Cancel`` token, as ``movingpunch.solve``'s
     (the search for each contact set stops at its next solve).
     """
-    from movingpunch.damped import check_damping, check_friction
+    from movingpunch.asymmetric import check_damping, check_friction
 
     t0 = time.perf_counter()
     given: object = punches  # anything, at run time

@@ -37,7 +37,7 @@ import numpy.typing as npt
 from movingpunch import _core, params
 from movingpunch._evaluate import _pointwise
 from movingpunch._evaluations import ResultFields
-from movingpunch.contract import Points
+from movingpunch.contract import ContactSolution, Points
 from movingpunch.errors import (
     ConvergenceError,
     InvalidParameterError,
@@ -54,6 +54,7 @@ __all__ = [
     "check_contact",
     "find_contact_set",
     "separate",
+    "single_punch",
     "solve_train",
 ]
 
@@ -203,10 +204,12 @@ class _ZoneSum:
     def displacement(self, x: FloatArray, y: FloatArray) -> FloatArray:
         return self._sum(lambda z, u: z.displacement(u, y), x, weighted=False)  # type: ignore[no-any-return]
 
-    def stress_field(self, x: FloatArray, y: FloatArray) -> tuple[FloatArray, ...]:
+    def stress_field(
+        self, x: FloatArray, y: FloatArray, below: bool = False
+    ) -> tuple[FloatArray, ...]:
         xs = np.asarray(x, dtype=np.float64)
         parts = [
-            z.stress_field(xs - o, y)
+            z.stress_field(xs - o, y, below)
             for z, o in zip(self.zones, self.origins, strict=True)
         ]
         return tuple(
@@ -223,8 +226,10 @@ class _ZoneSum:
 
 @dataclass(frozen=True)
 class PunchResult:
-    """One punch of a ``ZonedSolution``: its contact zones, load share of
-    each, indentation and drag."""
+    """One punch of a solution (``ContactSolution.punches``): its contact
+    zones, load share of each, indentation and drag. A single contact's one
+    punch is this too (``single_punch``): at x = 0, one zone with the whole
+    load, the solution's own indentation and drag."""
 
     profile: PunchProfile
     load: float
@@ -238,18 +243,19 @@ class PunchResult:
     drag: float
     """Horizontal force of the normal pressure on it over P_k, int p f_k' dx
     / P_k (positive: opposes the motion towards +x)."""
-    _impl: _ZoneSum = field(repr=False, compare=False)
-    _everything: _ZoneSum = field(repr=False, compare=False)
-    _where: tuple[float, float] = field(repr=False, compare=False)
+    _impl: Any = field(repr=False, compare=False)
+    """Its own pressure (``pressure(x)`` over P_k/h): a ``_ZoneSum`` of its
+    zones, or a single contact's compiled result."""
+    _indentation: Callable[[], float] = field(repr=False, compare=False)
+    """Computes ``indentation`` (called once, on first access)."""
 
     @functools.cached_property
     def indentation(self) -> float:
         """delta_k/h: how far its lowest point (its axis) lies below the
         undisturbed surface: f_k(x) - v(x, 0) at its most loaded zone's
-        centre, v the whole train's displacement (computed on first access)."""
-        x, height = self._where
-        v = float(self._everything.surface_displacement(np.array([x]))[0])
-        return height - v
+        centre, v the whole train's displacement (a single contact: the
+        solution's ``indentation``; computed on first access)."""
+        return self._indentation()
 
     @overload
     def pressure(self, x: float) -> float: ...
@@ -376,11 +382,6 @@ class ZonedSolution(ResultFields):
     def surface_slope(self, x: npt.ArrayLike) -> float | FloatArray:
         """Surface slope dv/dx(x, 0)."""
         return _pointwise("x", x, self._impl.surface_slope)
-
-    def to_dict(self) -> dict[str, object]:
-        out = super().to_dict()
-        out["punches"] = [p.to_dict() for p in self.punches]
-        return out
 
 
 # ---------------------------------------------------------------------------
@@ -696,6 +697,31 @@ def _search(
     )
 
 
+def _indentation_at(everything: _ZoneSum, x: float, height: float) -> float:
+    """A punch's indentation: its profile's height f_k(x) less the whole
+    surface's displacement v(x, 0) at x (its most loaded zone's centre)."""
+    return height - float(everything.surface_displacement(np.array([x]))[0])
+
+
+def single_punch(s: ContactSolution, impl: Any) -> tuple[PunchResult, ...]:
+    """``punches`` of a single contact ``s`` (``impl``: its compiled result,
+    whose ``pressure`` is the punch's): its one punch, described as a
+    train's are: at x = 0, its one zone carrying the whole load, the
+    solution's own drag and (on first access) indentation."""
+    return (
+        PunchResult(
+            profile=s.profile,
+            load=s.load,
+            at=0.0,
+            contact_zones=s.contact_zones,
+            zone_loads=(s.load,),
+            drag=s.drag,
+            _impl=impl,
+            _indentation=lambda: s.indentation,
+        ),
+    )
+
+
 def _result(
     z: Any,
     layer: _Layer,
@@ -725,8 +751,12 @@ def _result(
                 zone_loads=tuple(float(z.zones[i].load) for i in mine),
                 drag=float(z.drag[k]),
                 _impl=_ZoneSum(built, mine, p.load),
-                _everything=impl,
-                _where=(float(z.indentation_x[k]), float(z.indentation_height[k])),
+                _indentation=functools.partial(
+                    _indentation_at,
+                    impl,
+                    float(z.indentation_x[k]),
+                    float(z.indentation_height[k]),
+                ),
             )
         )
     zones = tuple((float(q.left), float(q.right)) for q in z.zones)

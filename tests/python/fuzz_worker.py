@@ -67,11 +67,7 @@ def _load(sol: Any, lo: float, hi: float) -> float:
 
 
 def _zones(sol: Any) -> list[tuple[float, float]]:
-    zones = getattr(sol, "contact_zones", None)
-    if zones:
-        return [(float(lo), float(hi)) for lo, hi in zones]
-    lo, hi = sol.contact_interval
-    return [(float(lo), float(hi))]
+    return [(float(lo), float(hi)) for lo, hi in sol.contact_zones]
 
 
 def _height(sol: Any, x: np.ndarray) -> np.ndarray:

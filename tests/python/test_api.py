@@ -90,3 +90,27 @@ def test_helpers_return_floats_and_arrays() -> None:
     a1, a2 = mp.layer_response([[0.5, 1.0, 2.0]], vstar=0.2, kw=1.0)
     assert a1.shape == a2.shape == (1, 3)
     assert a1[0, 1] == m1
+
+
+def test_the_old_module_name_warns_and_still_works(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    # movingpunch.damped was the asymmetric solver's module before it was
+    # named by its role (issue 26): importing it warns and re-exports it.
+    import importlib
+    import sys
+
+    from movingpunch.asymmetric import AsymmetricSolution, solve_asymmetric
+
+    monkeypatch.delitem(sys.modules, "movingpunch.damped", raising=False)
+    with pytest.warns(DeprecationWarning, match=r"movingpunch\.asymmetric"):
+        damped = importlib.import_module("movingpunch.damped")
+    assert damped.DampedSolution is AsymmetricSolution
+    assert damped.solve_damped is solve_asymmetric
+    assert mp.DampedSolution is mp.AsymmetricSolution
+    assert "AsymmetricSolution" in mp.__all__
+    assert "DampedSolution" not in mp.__all__
+    s = damped.solve_damped(vstar=0.2, kw=1.0, radius=100.0, load=0.002, damping=0.1)
+    assert isinstance(s, damped.DampedSolution)
+    same = mp.solve(vstar=0.2, kw=1.0, radius=100.0, load=0.002, damping=0.1)
+    assert (s.contact_interval, s.drag) == (same.contact_interval, same.drag)

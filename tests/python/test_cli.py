@@ -425,3 +425,120 @@ def test_solve_paper_case_has_no_hint(
     assert "hint" not in proc.stderr
     data = json.loads(run_cli("solve", *PAPER_CASE, "--json").stdout)
     assert data["hints"] == []
+
+
+# -- the medium options (issue 26) ---------------------------------------------
+
+TABLE1_CASE = ["--vstar", "0", "--radius", "100", "--load", "0.002"]
+
+
+def test_solve_on_one_layer_given_by_layer_is_the_paper_layer(
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+) -> None:
+    """--layer 1,1,0.2 on --kw 1 is the paper's layer: Table 1's a/h
+    (physics.md section 8), and the medium shown in the table."""
+    proc = run_cli("solve", *TABLE1_CASE, "--kw", "1", "--layer", "1,1,0.2")
+    assert proc.returncode == 0, proc.stderr
+    assert number_after("a/h", proc.stdout) == pytest.approx(0.330419, abs=1e-6)
+    assert re.search(
+        r"medium\s+layer h_i/h = 1, mu 1, nu 0.2, rho 1 on kw = 1", proc.stdout
+    )
+    crit = run_cli("critical", "--kw", "1", "--layer", "1,1,0.2")
+    assert crit.returncode == 0, crit.stderr
+    assert number_after("V*_cr", crit.stdout) == pytest.approx(0.5716928, abs=1e-6)
+    data = json.loads(
+        run_cli(
+            "solve", *TABLE1_CASE, "--kw", "1", "--layer", "1,1,0.2", "--json"
+        ).stdout
+    )
+    assert data["a"] == pytest.approx(0.330419, abs=1e-6)
+    assert data["medium"]["layers"] == [
+        {"kind": "layer", "thickness": 1.0, "mu": 1.0, "nu": 0.2, "rho": 1.0}
+    ]
+
+
+def test_help_documents_the_medium_options(
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+) -> None:
+    for command in ("solve", "critical"):
+        out = run_cli(command, "--help").stdout
+        for text in (
+            "--layer T,MU,NU[,RHO]",
+            "--graded T,GAMMA_H,NU[,MU,RHO]",
+            "--half-space MU,NU[,RHO][,bonded|smooth]",
+        ):
+            assert text in out, (command, text)
+
+
+@pytest.mark.parametrize(
+    ("extra", "words"),
+    [
+        (["--kw", "1", "--layer", "1,1"], ["--layer", "T,MU,NU[,RHO]", "'1,1'"]),
+        (["--kw", "1", "--layer", "1,a,0.2"], ["--layer", "T,MU,NU[,RHO]"]),
+        (["--kw", "1", "--layer", "1,1,0.7"], ["--layer 1,1,0.7", "nu", "0.5"]),
+        (["--kw", "1", "--graded", "1,1,0.2,2"], ["--graded", "MU and RHO together"]),
+        (["--half-space", "0.1"], ["--half-space", "MU,NU[,RHO][,bonded|smooth]"]),
+        (["--half-space", "0.1,0.3,glued"], ["--half-space", "bonded|smooth"]),
+        (["--kw", "1", "--half-space", "0.1,0.3"], ["--kw", "--half-space"]),
+        (["--kp", "1", "--half-space", "0.1,0.3"], ["--kp", "--half-space"]),
+        (["--kw", "1", "--nu", "0.3", "--layer", "1,1,0.3"], ["--nu", "--layer"]),
+        (["--layer", "1,1,0.3"], ["--kw", "--half-space"]),
+        (
+            ["--kw", "1", "--layer", "0.5,1,0.3", "--layer", "0.4,1,0.3"],
+            ["--layer/--graded", "sum to 1"],
+        ),
+        (["--kw", "1", "--layer", "1,2,0.3"], ["--layer/--graded", "1 by definition"]),
+        (["--nu", "0.2"], ["--kw"]),
+    ],
+)
+def test_medium_options_errors_name_the_option(
+    extra: list[str],
+    words: list[str],
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+    assert_one_line_error: Callable[..., None],
+) -> None:
+    assert_one_line_error(run_cli("solve", *TABLE1_CASE, *extra), *words)
+
+
+def test_a_train_beside_a_layer_is_refused(
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+    assert_one_line_error: Callable[..., None],
+) -> None:
+    proc = run_cli(
+        "solve", "--vstar", "0", "--radius", "100", "--kw", "1",
+        "--layer", "1,1,0.2", "--punch", "0.002@-2", "--punch", "0.002@2",
+    )  # fmt: skip
+    assert_one_line_error(proc, "--punch", "--layer")
+
+
+def test_solve_on_identical_stack_sublayers_is_the_paper_layer(
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+) -> None:
+    """Two identical bonded sublayers (one --layer, one --graded of gamma h
+    = 0), in command-line order: the homogeneous layer (Table 1). Needs the
+    stack medium of the core."""
+    proc = run_cli(
+        "solve", *TABLE1_CASE, "--kw", "1",
+        "--layer", "0.4,1,0.2", "--graded", "0.6,0,0.2,1,1",
+    )  # fmt: skip
+    assert proc.returncode == 0, proc.stderr
+    assert number_after("a/h", proc.stdout) == pytest.approx(0.330419, abs=1e-6)
+    assert "layer h_i/h = 0.4" in proc.stdout
+    assert proc.stdout.index("h_i/h = 0.4") < proc.stdout.index("h_i/h = 0.6")
+
+
+def test_solve_on_a_half_space_stack_shows_no_springs(
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+) -> None:
+    """Needs the half-space medium of the core."""
+    proc = run_cli(
+        "solve", *TABLE1_CASE, "--layer", "1,1,0.2", "--half-space", "0.1,0.3,smooth"
+    )
+    assert proc.returncode == 0, proc.stderr
+    assert "smooth half-space (mu 0.1, nu 0.3, rho 1)" in proc.stdout
+    assert re.search(r"k_w h/μ\s+- \(half-space\)", proc.stdout)
+    crit = run_cli("critical", "--half-space", "0.1,0.3", "--json")
+    assert crit.returncode == 0, crit.stderr
+    data = json.loads(crit.stdout)
+    assert data["kw"] is None
+    assert data["medium"]["base"]["kind"] == "half_space"

@@ -26,7 +26,7 @@ import numpy as np
 import pytest
 
 import movingpunch as mp
-from movingpunch.contract import CONTRACT_FIELDS, CONTRACT_METHODS
+from movingpunch.contract import CONTRACT_FIELDS, CONTRACT_METHODS, SolvedPunch
 from movingpunch.scene import Scene
 
 PAPER = {"radius": 100.0, "load": 0.002}
@@ -89,10 +89,12 @@ TYPES: dict[str, type | tuple[type, ...]] = {
     "warnings": tuple,
     "contact_interval": tuple,
     "contact_zones": tuple,
+    "punches": tuple,
     "end_exponents": tuple,
     "stage_times": Mapping,
     "profile": (mp.Cylinder, mp.Flat, mp.RoundedFlat, mp.Profile),
     "end_coefficients": tuple,
+    "medium": mp.Medium,
 }
 
 
@@ -177,6 +179,63 @@ def test_evaluations_take_scalars_and_arrays(solved: tuple[str, Any]) -> None:
     assert peaks.error_bound > 0.0
 
 
+def _own_load(p: Any) -> float:
+    """int p_k dx over the punch's zones, p_k its own pressure over P_k/h
+    (Gauss-Legendre in theta, x = c + w sin(theta) on each zone: the
+    square-root (or a flat punch's inverse square-root) ends become smooth
+    or nearly so); 1 when the pressure carries the punch's load."""
+    theta, weights = np.polynomial.legendre.leggauss(400)
+    theta = 0.5 * math.pi * theta
+    total = 0.0
+    for lo, hi in p.contact_zones:
+        c, w = 0.5 * (lo + hi), 0.5 * (hi - lo)
+        values = p.pressure(c + w * np.sin(theta)) * w * np.cos(theta)
+        total += 0.5 * math.pi * float(np.dot(weights, values))
+    return total
+
+
+def test_punches_and_zones_describe_the_contact(solved: tuple[str, Any]) -> None:
+    """``punches`` and ``contact_zones`` on every path (the contract; a
+    single punch: one of each). Anchors: the zones are the punches' zones, the
+    loads add up to the total, each punch's own pressure carries its load
+    (a quadrature of ``pressure``, independent of the solver's load balance),
+    a single punch is the solution itself."""
+    name, s = solved
+    punches = s.punches
+    assert isinstance(punches, tuple), name
+    assert punches, name
+    assert all(isinstance(p, SolvedPunch) for p in punches), name
+    zones = s.contact_zones
+    assert isinstance(zones, tuple), name
+    assert zones, name
+    assert sorted(z for p in punches for z in p.contact_zones) == list(zones), name
+    assert math.fsum(p.load for p in punches) == pytest.approx(s.load, rel=1e-12)
+    for p in punches:
+        assert len(p.zone_loads) == len(p.contact_zones), name
+        assert math.fsum(p.zone_loads) == pytest.approx(p.load, rel=1e-9), name
+        # The theta rule converges geometrically for smooth p (~3e-14 seen),
+        # algebraically for a rounded flat's corner kink (1.6e-5 seen) and a
+        # flat punch's ends with friction, p ~ d^gamma, gamma < -1/2 (8e-7).
+        tol = 1e-9
+        if isinstance(p.profile, mp.RoundedFlat):
+            tol = 1e-4
+        elif isinstance(p.profile, mp.Flat) and s.friction > 0:
+            tol = 1e-5
+        assert _own_load(p) == pytest.approx(1.0, rel=tol), name
+    if not name.startswith("train"):
+        (p,) = punches
+        assert (p.at, p.load, p.profile) == (0.0, s.load, s.profile), name
+        assert p.indentation == s.indentation, name
+        assert p.drag == s.drag, name
+        x = np.linspace(-2.0, 2.0, 9) * s.half_width + s.centre
+        np.testing.assert_array_equal(p.pressure(x), s.pressure(x), err_msg=name)
+    if name != "separated" and not name.startswith("train"):
+        assert zones == (s.contact_interval,), name
+    data = s.to_dict()
+    assert data["punches"] == [p.to_dict() for p in punches], name
+    assert data["contact_zones"] == [list(z) for z in zones], name
+
+
 def test_to_dict_has_every_field_and_is_json(solved: tuple[str, Any]) -> None:
     name, s = solved
     data = s.to_dict()
@@ -196,21 +255,13 @@ def test_anchors_of_the_common_fields(solved: tuple[str, Any]) -> None:
     # moved to its axis, and one indentation per punch holds on all its
     # zones (the rigid punch).
     scale = max(abs(s.indentation), 1e-3)
-    punches = getattr(s, "punches", None)
-    if punches is None:
-        r = np.linspace(-0.9, 0.9, 7) * s.half_width + s.centre
-        profile = -s.indentation + s.profile.height(r)
-        np.testing.assert_allclose(
-            s.surface_displacement(r), profile, atol=1e-6 * scale, err_msg=name
-        )
-    else:
-        for p in punches:
-            for lo, hi in p.contact_zones:
-                r = lo + (hi - lo) * np.linspace(0.05, 0.95, 7)
-                profile = -p.indentation + p.profile.height(r - p.at)
-                np.testing.assert_allclose(
-                    s.surface_displacement(r), profile, atol=1e-6 * scale, err_msg=name
-                )
+    for p in s.punches:
+        for lo, hi in p.contact_zones:
+            r = lo + (hi - lo) * np.linspace(0.05, 0.95, 7)
+            profile = -p.indentation + p.profile.height(r - p.at)
+            np.testing.assert_allclose(
+                s.surface_displacement(r), profile, atol=1e-6 * scale, err_msg=name
+            )
     # The top and the bottom of the displacement field are the surface
     # displacement and the foundation's deflection -reaction/kw (finite kw).
     xs = np.array([-1.5, s.centre, 2.0])
@@ -237,7 +288,7 @@ def test_anchors_of_the_common_fields(solved: tuple[str, Any]) -> None:
         assert s.end_exponents[0] + shift < 0.5 < s.end_exponents[1] + shift
         assert s.tangential_force == s.friction
         assert s.dissipation >= 0.0
-    elif s.damping == 0.0 and punches is not None:
+    elif s.damping == 0.0 and (len(s.punches) > 1 or len(s.contact_zones) > 1):
         # Undamped: no power is dissipated, so the normal pressure's
         # horizontal forces on all punches cancel (each punch's alone need
         # not: a train's punches lean on each other's waves).
@@ -309,3 +360,27 @@ def test_damping_zero_and_tiny_give_the_same_outputs() -> None:
             np.testing.assert_allclose(
                 other, values, rtol=0.0, atol=1e-10, err_msg=f"{name}.{key}"
             )
+
+
+def test_strains_follow_from_the_stresses_by_hookes_law(
+    solved: tuple[str, Any],
+) -> None:
+    """strain_field on every path: plane strain of the one layer's material
+    (mu = 1, nu), eps_x continuous with depth; design_strains reads it."""
+    name, s = solved
+    x = np.array([0.0, 0.5 * s.half_width + s.centre, 3.0])
+    y = np.array([-0.3, -1.0])
+    f, e = s.stress_field(x, y), s.strain_field(x, y)
+    nu = s.nu
+    np.testing.assert_allclose(
+        e.eps_x, (f.sigma_x - nu * (f.sigma_x + f.sigma_y)) / 2, rtol=1e-13, atol=0
+    )
+    np.testing.assert_allclose(e.gamma_xy, f.tau_xy, rtol=1e-13, atol=0)
+    d = s.design_strains()
+    assert d.base_vertical is None, name
+    (bottom,) = d.bottom_horizontal
+    assert bottom == pytest.approx(float(s.depth_strain(-1.0)), rel=1e-12, abs=1e-15)
+    assert s.medium.homogeneous, name
+    assert s.to_dict()["medium"] == json.loads(
+        json.dumps(s.medium.to_dict(), default=str).replace("Infinity", '"inf"')
+    )

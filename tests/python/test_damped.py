@@ -16,12 +16,16 @@ import numpy as np
 import pytest
 
 import movingpunch as mp
-from movingpunch.damped import DampedSolution, damped_layer_response, solve_damped
+from movingpunch.asymmetric import (
+    AsymmetricSolution,
+    damped_layer_response,
+    solve_asymmetric,
+)
 
 PAPER = {"radius": 100.0, "load": 0.002, "nu": 0.2}
 
 
-def drag_by_quadrature(s: DampedSolution) -> float:
+def drag_by_quadrature(s: AsymmetricSolution) -> float:
     """int p x/R dx / P by Gauss-Chebyshev (U) quadrature of the pressure."""
     m = 400
     theta = np.arange(1, m + 1) * np.pi / (m + 1)
@@ -48,7 +52,7 @@ def test_zero_damping_is_the_undamped_solver() -> None:
 def test_tiny_damping_reproduces_table1(kw: float, paper_a: float) -> None:
     und = mp.solve(vstar=1e-3, kw=kw, **PAPER)
     s = mp.solve(vstar=1e-3, kw=kw, damping=1e-9, **PAPER)
-    assert isinstance(s, DampedSolution)
+    assert isinstance(s, AsymmetricSolution)
     left, right = s.contact_interval
     assert right == pytest.approx(paper_a, abs=5e-5)
     assert right == pytest.approx(und.a, abs=1e-8)
@@ -81,7 +85,7 @@ def test_layer_response_limits_and_energy_per_mode() -> None:
     [(0.2, 1.0, 0.1), (0.2, 0.1, 2.0), (0.65, 1.0, 0.05), (0.3, 0.01, 0.2)],
 )
 def test_energy_balance_and_drag(vstar: float, kw: float, damping: float) -> None:
-    s = solve_damped(vstar=vstar, kw=kw, damping=damping, **PAPER)
+    s = solve_asymmetric(vstar=vstar, kw=kw, damping=damping, **PAPER)
     assert s.drag > 0  # opposes the motion
     assert s.dissipation == pytest.approx(s.drag, rel=1e-6)
     assert drag_by_quadrature(s) == pytest.approx(s.drag, rel=1e-9)
@@ -98,7 +102,7 @@ def test_kelvin_voigt_base_condition_in_real_space(vstar: float) -> None:
     from the field, the bottom displacement and its slope (three separate
     Fourier integrals); the reaction carries the load."""
     damping, kw, load = 0.3, 1.0, 0.002
-    s = solve_damped(vstar=vstar, kw=kw, damping=damping, **PAPER)
+    s = solve_asymmetric(vstar=vstar, kw=kw, damping=damping, **PAPER)
     x = np.array([-1.5, -0.3, 0.0, 0.4, 2.5])
     f = s.stress_field(x, [-1.0])
     v = np.asarray(s.bottom_displacement(x))
@@ -119,7 +123,7 @@ def test_supercritical_speed_solves_and_rayleigh_is_refused() -> None:
     with pytest.raises(mp.SupercriticalSpeedError):
         mp.solve(vstar=0.65, kw=1.0, **PAPER)
     s = mp.solve(vstar=0.65, kw=1.0, damping=0.1, **PAPER)
-    assert isinstance(s, DampedSolution)
+    assert isinstance(s, AsymmetricSolution)
     assert s.vstar > vcr
     assert s.contact_interval[0] < s.contact_interval[1]
     vr = mp.rayleigh_vstar(0.2)
@@ -132,12 +136,12 @@ def test_supercritical_speed_solves_and_rayleigh_is_refused() -> None:
 def test_no_effect_at_rest_and_drag_vanishes_with_speed() -> None:
     static = mp.solve(vstar=0.0, kw=1.0, **PAPER)
     s = mp.solve(vstar=0.0, kw=1.0, damping=3.0, **PAPER)
-    assert isinstance(s, DampedSolution)
+    assert isinstance(s, AsymmetricSolution)
     assert s.a == pytest.approx(static.a, abs=1e-9)
     assert s.b == pytest.approx(static.a, abs=1e-9)
     assert abs(s.drag) < 1e-14
     drags = [
-        solve_damped(vstar=v, kw=1.0, damping=1.0, **PAPER).drag
+        solve_asymmetric(vstar=v, kw=1.0, damping=1.0, **PAPER).drag
         for v in (1e-2, 1e-4, 1e-6)
     ]
     assert all(d > 0 for d in drags)
@@ -150,7 +154,7 @@ def test_depth_stress_near_surface_against_flamant() -> None:
     half-plane (Flamant) integral of the same pressure is smooth in y, and
     its extrapolation to y = 0 must be the surface value minus the half-plane's
     -p(0): an anchor independent of both depth-stress evaluations."""
-    s = solve_damped(vstar=0.0, kw=1.0, damping=1.0, **PAPER)
+    s = solve_asymmetric(vstar=0.0, kw=1.0, damping=1.0, **PAPER)
     m = 20000
     theta = np.arange(1, m + 1) * np.pi / (m + 1)
     xi = s.centre + s.half_width * np.cos(theta)
@@ -169,7 +173,7 @@ def test_depth_stress_near_surface_against_flamant() -> None:
 
 def test_limiting_absorption() -> None:
     ends = [
-        solve_damped(vstar=0.65, kw=1.0, damping=d, **PAPER).contact_interval
+        solve_asymmetric(vstar=0.65, kw=1.0, damping=d, **PAPER).contact_interval
         for d in (1e-3, 1e-4, 1e-5)
     ]
     d1 = ends[1][1] - ends[0][1]
@@ -179,10 +183,10 @@ def test_limiting_absorption() -> None:
 
 
 def test_multiple_steady_states_are_reported() -> None:
-    s = solve_damped(vstar=0.65, kw=1.0, damping=0.01, radius=100.0, load=0.0025)
+    s = solve_asymmetric(vstar=0.65, kw=1.0, damping=0.01, radius=100.0, load=0.0025)
     assert len(s.other_half_widths) == 2
     assert "not unique" in s.validity
-    unique = solve_damped(vstar=0.65, kw=1.0, damping=0.01, **PAPER)
+    unique = solve_asymmetric(vstar=0.65, kw=1.0, damping=0.01, **PAPER)
     assert unique.other_half_widths == ()
 
 
@@ -193,12 +197,12 @@ def test_bad_damping_is_named(bad: object) -> None:
 
 
 def test_bad_depth_and_size() -> None:
-    s = solve_damped(vstar=0.2, kw=1.0, damping=0.1, **PAPER)
+    s = solve_asymmetric(vstar=0.2, kw=1.0, damping=0.1, **PAPER)
     with pytest.raises(mp.InvalidParameterError, match="y must satisfy"):
         s.depth_stress(1e-4)
     with pytest.raises(mp.InvalidParameterError, match="n must be"):
-        solve_damped(vstar=0.2, kw=1.0, damping=0.1, n=2048, **PAPER)
-    fixed = solve_damped(vstar=0.2, kw=1.0, damping=0.1, n=32, **PAPER)
+        solve_asymmetric(vstar=0.2, kw=1.0, damping=0.1, n=2048, **PAPER)
+    fixed = solve_asymmetric(vstar=0.2, kw=1.0, damping=0.1, n=32, **PAPER)
     assert fixed.collocation_n == 32
     assert fixed.contact_interval == pytest.approx(s.contact_interval, abs=1e-8)
 
@@ -206,8 +210,8 @@ def test_bad_depth_and_size() -> None:
 def test_unphysical_supercritical_contact_is_flagged() -> None:
     args = {"vstar": 0.3, "kw": 0.01, "radius": 100.0, "load": 0.02, "damping": 0.01}
     with pytest.raises(mp.UnphysicalContactError):
-        solve_damped(**args)
-    s = solve_damped(**args, allow_unphysical=True)
+        solve_asymmetric(**args)
+    s = solve_asymmetric(**args, allow_unphysical=True)
     assert not s.valid
     assert s.min_pressure < 0
 
@@ -217,7 +221,7 @@ def test_cli_damping(run_cli: Callable[..., subprocess.CompletedProcess[str]]) -
     proc = run_cli("solve", *case, "--damping", "0.1", "--json")
     assert proc.returncode == 0, proc.stderr
     data = json.loads(proc.stdout)
-    api = solve_damped(vstar=0.65, kw=1.0, damping=0.1, **PAPER)
+    api = solve_asymmetric(vstar=0.65, kw=1.0, damping=0.1, **PAPER)
     assert data["contact_interval"] == pytest.approx(
         list(api.contact_interval), abs=1e-12
     )

@@ -22,8 +22,8 @@ import pytest
 
 import movingpunch as mp
 from movingpunch import accuracy
+from movingpunch.asymmetric import AsymmetricSolution, solve_asymmetric
 from movingpunch.contract import ContactSolution
-from movingpunch.damped import DampedSolution, solve_damped
 from movingpunch.errors import InvalidParameterError
 from movingpunch.scene import OutputSpec, Scene, Vary, read_csv
 from movingpunch.tui import model
@@ -42,26 +42,28 @@ R = np.cos(np.linspace(0.0, math.pi, 1601))[1:-1]  # positions scaled to the con
 @functools.cache
 def _solve(
     vstar: float, kw: float, damping: float, tol: float, n: int | None
-) -> DampedSolution:
-    return solve_damped(
+) -> AsymmetricSolution:
+    return solve_asymmetric(
         vstar=vstar, kw=kw, radius=100.0, load=0.002, damping=damping, tol=tol, n=n
     )
 
 
-def solve(case: dict[str, float], tol: float, n: int | None = None) -> DampedSolution:
+def solve(
+    case: dict[str, float], tol: float, n: int | None = None
+) -> AsymmetricSolution:
     return _solve(case["vstar"], case["kw"], case["damping"], tol, n)
 
 
-def reference(case: dict[str, float], n: int) -> DampedSolution:
+def reference(case: dict[str, float], n: int) -> AsymmetricSolution:
     return solve(case, 1e-14, n)
 
 
-def shape(s: DampedSolution) -> np.ndarray:
+def shape(s: AsymmetricSolution) -> np.ndarray:
     """p at the fixed relative positions R."""
     return np.asarray(s.pressure(s.centre + s.half_width * R))
 
 
-def surface_points(ref: DampedSolution) -> np.ndarray:
+def surface_points(ref: AsymmetricSolution) -> np.ndarray:
     """Surface points at least 1e-3 w from the contact ends."""
     r = np.concatenate(
         [0.999 * np.cos(np.linspace(0, math.pi, 41)), [-3.0, -2.0, -1.2, 1.2, 2.0, 3.0]]
@@ -70,7 +72,7 @@ def surface_points(ref: DampedSolution) -> np.ndarray:
 
 
 def errors(
-    s: DampedSolution, ref: DampedSolution
+    s: AsymmetricSolution, ref: AsymmetricSolution
 ) -> dict[str, tuple[float, float, float, float]]:
     """Per quantity: (actual error, estimate, reference's estimate, floor)."""
     ends = max(abs(s.a - ref.a), abs(s.b - ref.b))
@@ -97,7 +99,7 @@ def errors(
     }
 
 
-def check_honest(s: DampedSolution, ref: DampedSolution) -> None:
+def check_honest(s: AsymmetricSolution, ref: AsymmetricSolution) -> None:
     for name, (actual, est, ref_est, floor) in errors(s, ref).items():
         # The estimate bounds the error (the reference's own bound added: the
         # comparison sees both errors) ...
@@ -179,7 +181,7 @@ def test_fixed_n_estimates_are_honest() -> None:
 # --- pressure_margin -------------------------------------------------------------
 
 
-def margin_on_grid(s: DampedSolution) -> float:
+def margin_on_grid(s: AsymmetricSolution) -> float:
     """min of p/sqrt(1 - r^2) through the public pressure(x), dense grid."""
     r = np.cos(np.linspace(0.0, math.pi, 40001))[1:-1]
     return float(np.min(s.pressure(s.centre + s.half_width * r) / np.sqrt(1.0 - r * r)))
@@ -197,7 +199,7 @@ def test_pressure_margin_against_the_pressure() -> None:
 def test_pressure_margin_hertz_limit() -> None:
     """Narrow contact (a/h ~ 1e-3) and damping -> 0: p = (2P/(pi a^2))
     sqrt(a^2 - x^2), so p/sqrt(1 - r^2) = 2/(pi a) (P/h)."""
-    s = solve_damped(vstar=0.2, kw=1.0, radius=1.0, load=2e-6, damping=1e-9)
+    s = solve_asymmetric(vstar=0.2, kw=1.0, radius=1.0, load=2e-6, damping=1e-9)
     assert s.half_width < 1.2e-3
     hertz = 2.0 / (math.pi * s.half_width)
     assert s.pressure_margin == pytest.approx(hertz, rel=1e-6)
@@ -206,7 +208,7 @@ def test_pressure_margin_hertz_limit() -> None:
 
 @pytest.mark.slow
 def test_pressure_margin_negative_when_the_contact_separates() -> None:
-    s = solve_damped(
+    s = solve_asymmetric(
         vstar=0.3, kw=0.01, radius=100.0, load=0.02, damping=0.01, allow_unphysical=True
     )
     assert not s.valid
@@ -270,7 +272,7 @@ def test_subnormal_inputs_are_refused_up_front(inputs: dict[str, float]) -> None
     args = {"vstar": 0.3, "kw": 1.0, "radius": 100.0, "load": 0.002, "damping": 0.1}
     args.update(inputs)
     with pytest.raises(InvalidParameterError, match=r"radius \* load .* must be >="):
-        solve_damped(**args)
+        solve_asymmetric(**args)
 
 
 # --- the accuracy ladder (issue 13) ----------------------------------------------
@@ -306,11 +308,11 @@ def test_damped_ladder_against_an_independent_reference() -> None:
     assert report.scene.params == {**WIDE, "nu": 0.2}
     assert report.points == 1
     assert report.reference.startswith("fixed N = ")
-    ind = solve_damped(**WIDE, tol=1e-14, n=256)
+    ind = solve_asymmetric(**WIDE, tol=1e-14, n=256)
     ind_peaks = ind.stress_peaks()
     # The ladder's reference (4 N_auto) and this one agree to round-off.
     ref_n = int(report.reference.split()[3])
-    ref = solve_damped(**WIDE, tol=1e-14, n=ref_n)
+    ref = solve_asymmetric(**WIDE, tol=1e-14, n=ref_n)
     assert ref_n != 256
     assert end_error(ref, ind) <= ref.error_estimate + ind.error_estimate
     u_p = ref.pressure_error_estimate + ind.pressure_error_estimate
@@ -323,7 +325,7 @@ def test_damped_ladder_against_an_independent_reference() -> None:
     for r in report.rungs:
         assert not r.failure, r.failure
         assert r.bounded
-        s = solve_damped(**WIDE, tol=r.tol)  # what the rung solved
+        s = solve_asymmetric(**WIDE, tol=r.tol)  # what the rung solved
         assert r.collocation_n == s.collocation_n
         assert r.error_estimate == s.error_estimate
         assert r.stress_error_estimate == s.stress_error_estimate
@@ -488,8 +490,8 @@ def test_the_reference_takes_2_n_auto_where_the_solver_refuses_4_n_auto(
     assert report.reference == f"fixed N = {largest} at tol 1e-14"
     (rung,) = report.rungs
     assert rung.bounded
-    ref = solve_damped(**case, tol=1e-14, n=128)
-    s = solve_damped(**case, tol=1e-6)
+    ref = solve_asymmetric(**case, tol=1e-14, n=128)
+    s = solve_asymmetric(**case, tol=1e-6)
     assert rung.error_a <= end_error(s, ref) + ref.error_estimate + s.error_estimate
 
     def refuses_nu(**kwargs: Any) -> ContactSolution:

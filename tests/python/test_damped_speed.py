@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import movingpunch as mp
-from movingpunch.damped import solve_damped
+from movingpunch.asymmetric import solve_asymmetric
 
 PAPER = {"kw": 1.0, "radius": 100.0, "nu": 0.2}
 
@@ -19,16 +19,16 @@ PAPER = {"kw": 1.0, "radius": 100.0, "nu": 0.2}
 @pytest.mark.parametrize("vstar", [0.2, 0.65])
 def test_second_damped_solve_reuses_the_kernel(vstar: float) -> None:
     mp.clear_kernel_cache()
-    first = solve_damped(vstar=vstar, load=0.002, damping=0.1, **PAPER)
+    first = solve_asymmetric(vstar=vstar, load=0.002, damping=0.1, **PAPER)
     assert first.kernel_builds >= 1
-    warm = solve_damped(vstar=vstar, load=0.0021, damping=0.1, **PAPER)
+    warm = solve_asymmetric(vstar=vstar, load=0.0021, damping=0.1, **PAPER)
     assert warm.kernel_builds == 0
     assert warm.iterations > 0
     assert set(warm.stage_times) == {"critical_speed", "kernel", "width", "checks"}
     assert math.isclose(sum(warm.stage_times.values()), warm.elapsed, rel_tol=1e-2)
     # The reused table gives the contact a fresh one gives.
     mp.clear_kernel_cache()
-    fresh = solve_damped(vstar=vstar, load=0.0021, damping=0.1, **PAPER)
+    fresh = solve_asymmetric(vstar=vstar, load=0.0021, damping=0.1, **PAPER)
     assert fresh.kernel_builds >= 1
     for w, f in zip(warm.contact_interval, fresh.contact_interval, strict=True):
         assert abs(w - f) <= 1e-13
@@ -41,7 +41,7 @@ def test_stage_times_are_nonnegative_when_the_checks_fetch_a_wider_kernel() -> N
     width is found; its time is the kernel's, never subtracted from the
     width (the width stage came out -12 ... -21 ms)."""
     mp.clear_kernel_cache()
-    s = solve_damped(vstar=0.3, kw=0.1, radius=100.0, load=0.006, damping=0.1)
+    s = solve_asymmetric(vstar=0.3, kw=0.1, radius=100.0, load=0.006, damping=0.1)
     assert s.kernel_builds >= 2, s.kernel_builds
     assert all(t >= 0.0 for t in s.stage_times.values()), s.stage_times
     assert math.isclose(sum(s.stage_times.values()), s.elapsed, rel_tol=1e-2)
@@ -57,7 +57,7 @@ def test_cached_damped_solve_matches_the_direct_kernel_values() -> None:
         (0.65, (0.2736640, 1.1858265), 8.292463e-3),
     ):
         for load in (0.0019, 0.002):  # the second on the first's table
-            s = solve_damped(vstar=vstar, load=load, damping=0.1, **PAPER)
+            s = solve_asymmetric(vstar=vstar, load=load, damping=0.1, **PAPER)
         assert s.kernel_builds == 0
         assert s.contact_interval == pytest.approx(ends, abs=1e-7)
         assert s.drag == pytest.approx(drag, rel=1e-6)
@@ -89,7 +89,7 @@ def test_random_order_sweep_builds_a_few_tables() -> None:
 def test_damped_depth_stress_includes_the_surface() -> None:
     # Anchor: the undamped solver's field evaluator (closed-form half-plane
     # part, an independent computation) at damping -> 0.
-    s = solve_damped(vstar=0.2, load=0.002, damping=1e-9, **PAPER)
+    s = solve_asymmetric(vstar=0.2, load=0.002, damping=1e-9, **PAPER)
     u = mp.solve(vstar=0.2, load=0.002, **PAPER)
     for x in (0.0, 0.2):
         assert s.depth_stress(0.0, x=x) == s.surface_stress(x)

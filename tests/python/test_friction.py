@@ -26,7 +26,7 @@ from scipy.special import roots_jacobi, roots_legendre
 
 import movingpunch as mp
 from movingpunch import _core, params
-from movingpunch.damped import DampedSolution, coupling_constant, end_exponents
+from movingpunch.asymmetric import AsymmetricSolution, coupling_constant, end_exponents
 from movingpunch.errors import (
     InvalidParameterError,
     SupercriticalSpeedError,
@@ -216,7 +216,7 @@ def test_half_plane_limit_static(f: float) -> None:
     # The layer moves the centre at first order in a/h (measured 0.36 f w^2;
     # tenfold less per tenfold smaller w, docs/theory.md section 14).
     assert abs(s.centre - c) <= 0.5 * f * w * w
-    peak = s.max_pressure if isinstance(s, DampedSolution) else 0.0
+    peak = s.max_pressure if isinstance(s, AsymmetricSolution) else 0.0
     for r in np.linspace(-0.95, 0.95, 9):
         # p/(P/h) of the closed form (p in mu units over the load), at the
         # same relative position r in the contact.
@@ -231,7 +231,7 @@ def test_half_plane_limit_static(f: float) -> None:
         assert got == pytest.approx(exact, abs=2e-4 * f * peak)
 
 
-def _smooth(s: DampedSolution, x: float) -> float:
+def _smooth(s: AsymmetricSolution, x: float) -> float:
     """p/((x + b)^gb (a - x)^gf), the smooth factor of the pressure."""
     back, front = s.contact_interval
     gb, gf = s.end_exponents
@@ -247,7 +247,7 @@ def test_equilibrium_and_tangential_force() -> None:
         s = mp.solve(
             vstar=0.3, kw=1.0, radius=100, load=0.002, friction=0.4, damping=damping
         )
-        assert isinstance(s, DampedSolution)
+        assert isinstance(s, AsymmetricSolution)
         back, front = s.contact_interval
         gb, gf = s.end_exponents
         r, wr = roots_jacobi(96, gf, gb)
@@ -325,11 +325,11 @@ def test_surface_stress_half_plane_limit_and_trailing_tension() -> None:
     edge carries the larger tension."""
     f = 0.3
     s = mp.solve(vstar=0.0, kw=math.inf, radius=100.0, load=2e-9, friction=f)
-    assert isinstance(s, DampedSolution)
+    assert isinstance(s, AsymmetricSolution)
     back, front = s.contact_interval
     w = s.half_width
     gb, gf = s.end_exponents
-    peak = s.max_pressure if isinstance(s, DampedSolution) else 1.0
+    peak = s.max_pressure if isinstance(s, AsymmetricSolution) else 1.0
 
     def cauchy(x: float) -> float:
         if back < x < front:
@@ -377,10 +377,10 @@ def test_error_estimates_are_honest(case: dict[str, float]) -> None:
     of coarse fixed sizes (n = 8, 12) and of the automatic solve, and are
     not absurdly larger (within 1e3 of the actual error or of the floor)."""
     ref = mp.solve(radius=100, load=0.002, n=96, tol=1e-14, **case)
-    assert isinstance(ref, DampedSolution)
+    assert isinstance(ref, AsymmetricSolution)
     for n in (8, 12, None):
         s = mp.solve(radius=100, load=0.002, n=n, **case)
-        assert isinstance(s, DampedSolution)
+        assert isinstance(s, AsymmetricSolution)
         actual = max(
             abs(u - v)
             for u, v in zip(s.contact_interval, ref.contact_interval, strict=True)
@@ -433,7 +433,7 @@ def test_displacement_follows_the_punch(kw: float, damping: float) -> None:
     s = mp.solve(
         vstar=0.2, kw=kw, radius=100, load=0.002, friction=0.4, damping=damping
     )
-    assert isinstance(s, DampedSolution)
+    assert isinstance(s, AsymmetricSolution)
     delta = s.indentation
     x = s.centre + s.half_width * np.linspace(-0.999, 0.999, 21)
     gap = -delta + x**2 / 200.0 - s.surface_displacement(x)
@@ -488,7 +488,7 @@ def test_dissipation_is_the_bottom_slope_by_parseval() -> None:
     from scipy.integrate import simpson
 
     s = mp.solve(vstar=0.2, kw=1.0, radius=100, load=0.002, friction=0.4, damping=0.5)
-    assert isinstance(s, DampedSolution)
+    assert isinstance(s, AsymmetricSolution)
     xs = np.linspace(-30.0, 30.0, 601)
     slope = s.bottom_slope(xs)
     direct = 0.5 * math.sqrt(0.2) * simpson(slope**2, x=xs) / 0.002
@@ -513,7 +513,7 @@ def test_surface_follows_the_punch_and_separates_beside_it(damping: float) -> No
     s = mp.solve(
         vstar=0.3, kw=1.0, radius=100, load=0.002, friction=0.6, damping=damping
     )
-    assert isinstance(s, DampedSolution)
+    assert isinstance(s, AsymmetricSolution)
     r = np.linspace(-0.999, 0.999, 41)
     x = s.centre + s.half_width * r
     slope = s.surface_slope(x)
@@ -531,7 +531,7 @@ def test_trailing_edge_tension_is_two_f_p0_when_uncoupled() -> None:
     (Smith & Liu, J. Appl. Mech. 20 (1953) 157; Johnson 1985, section 7.1)."""
     f = 0.25
     s = mp.solve(vstar=0.0, kw=math.inf, radius=100.0, load=2e-9, nu=0.4999, friction=f)
-    assert isinstance(s, DampedSolution)
+    assert isinstance(s, AsymmetricSolution)
     back, front = s.contact_interval
     p0 = s.max_pressure
     assert s.surface_stress(back) == pytest.approx(2 * f * p0, rel=2e-3)
@@ -593,7 +593,7 @@ def test_friction_bounds_are_the_cores() -> None:
 
 
 def _bottom_direct(
-    s: DampedSolution, x: np.ndarray, y: float = -1.0
+    s: AsymmetricSolution, x: np.ndarray, y: float = -1.0
 ) -> tuple[np.ndarray, np.ndarray]:
     """sigma_x and sigma_y on the bottom face y = -1 by the direct Fourier
     integral (1/pi) Re int_0^inf [Sigma_x, S](normal + i f tangential) p^
@@ -650,7 +650,7 @@ def test_bottom_face_against_a_direct_fourier_sum(damping: float) -> None:
     s = mp.solve(
         vstar=0.2, kw=1.0, radius=100, load=0.002, friction=0.4, damping=damping
     )
-    assert isinstance(s, DampedSolution)
+    assert isinstance(s, AsymmetricSolution)
     x = np.array([-3.0, -0.8, -0.2, 0.0, 0.3, 1.1, 4.0])
     sx, sy = _bottom_direct(s, x)
     field = s.stress_field(x, [-1.0])
@@ -695,7 +695,7 @@ def test_interior_field_against_a_direct_fourier_sum(y: float, damping: float) -
     s = mp.solve(
         vstar=0.2, kw=1.0, radius=100, load=0.002, friction=0.4, damping=damping
     )
-    assert isinstance(s, DampedSolution)
+    assert isinstance(s, AsymmetricSolution)
     x = np.array([-3.0, -0.8, -0.2, 0.0, 0.3, 1.1, 4.0])
     sx, sy = _bottom_direct(s, x, y)
     field = s.stress_field(x, [y])
@@ -711,7 +711,7 @@ def test_interior_field_is_continuous_to_both_faces() -> None:
     holds at depth."""
     f = 0.3
     s = mp.solve(vstar=0.2, kw=1.0, radius=100, load=0.002, friction=f)
-    assert isinstance(s, DampedSolution)
+    assert isinstance(s, AsymmetricSolution)
     x = np.array([-1.0, -0.2, 0.0, 0.2, 0.5, 1.5])
     near = s.stress_field(x, [-1e-9])
     p = s.pressure(x)

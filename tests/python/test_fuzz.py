@@ -578,7 +578,7 @@ def fuzz_friction(calls: int, seed: int) -> collections.Counter[str]:
         assert gb + gf == pytest.approx(1.0, abs=1e-15), args
         f = float(args["friction"])
         if f > 0.0:
-            phi = mp.damped.coupling_constant(args["vstar"], args["nu"])
+            phi = mp.asymmetric.coupling_constant(args["vstar"], args["nu"])
             assert math.atan2(1.0, f * phi) / math.pi == pytest.approx(gb, abs=1e-15)
         assert sol.tangential_force == f, args
         assert math.isfinite(sol.pressure(0.5 * (back + front))), args

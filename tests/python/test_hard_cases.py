@@ -291,8 +291,7 @@ def zones_surface_rise(
     p_hat = np.zeros_like(t)
     m = 64
     theta = np.arange(1, m + 1) * math.pi / (m + 1)
-    zones = getattr(s, "contact_zones", None) or (s.contact_interval,)
-    for lo, hi in zones:
+    for lo, hi in s.contact_zones:
         c, w = 0.5 * (lo + hi), 0.5 * (hi - lo)
         p = np.asarray(s.pressure(c + w * np.cos(theta)))
         # p(c + w cos th) = sum_k beta_k sin((k + 1) th): a discrete sine transform
@@ -1463,7 +1462,7 @@ def test_friction_at_the_largest_coefficient(damping: float) -> None:
     s = mp.solve(vstar=0.2, kw=1.0, friction=10.0, damping=damping, **PAPER)
     gb = s.end_exponents[0]
     assert gb == pytest.approx(
-        math.atan2(1.0, 10.0 * mp.damped.coupling_constant(0.2)) / math.pi
+        math.atan2(1.0, 10.0 * mp.asymmetric.coupling_constant(0.2)) / math.pi
     )
     assert gb < 0.08
     assert s.valid

@@ -4,24 +4,30 @@ import Textual; the compiled core releases the GIL while it computes (what
 keeps a UI responsive).
 
 The layers, lowest first (``LAYERS`` below; a module may import modules of its
-own layer or of lower layers, never a higher one, and no import cycle may form):
+own layer or of lower layers, never a higher one, and no import cycle may form).
+docs/architecture.md lists the same layers with the same modules, in the same
+order (``test_architecture_doc_lists_the_layers`` compares them):
 
 1. ``errors``: the exception family (imports nothing of movingpunch).
    ``params``: the table of parameter specs (pure Python, on ``errors``).
 2. ``core``: the compiled extension ``movingpunch._core``.
 3. ``helpers``: pure-Python numerics and files on top of the core results:
-   ``fields`` (stress fields), ``peaks`` (peak search), ``outputs`` (writing
-   result files), ``contract`` (the result contract every solution
-   satisfies), ``_evaluate`` (checking inputs and evaluating at points),
-   ``_version`` (the package version, read without importing the package),
-   ``_display`` (how a number is shown: round-off as 0), ``_textplot``
-   (text plots where no curve hides another) and ``cancel`` (cancellation
-   tokens bound to a thread).
-4. ``zones``: several contact zones and trains of punches (``zones``: the
+   ``fields`` (stress fields), ``peaks`` (peak search), ``profiles`` (the
+   punch shapes), ``outputs`` (writing result files), ``contract`` (the result
+   contract every solution satisfies), ``regime`` (plausibility hints),
+   ``_evaluate`` (checking inputs and evaluating at points), ``_version``
+   (the package version, read without importing the package), ``_display``
+   (how a number is shown: round-off as 0), ``_textplot`` (text plots where
+   no curve hides another) and ``cancel`` (cancellation tokens bound to a
+   thread).
+4. ``evaluations``: what every solution computes alike (``_evaluations``).
+   ``zones``: several contact zones and trains of punches (``zones``: the
    contact-set search and the superposed result, on the core and the shared
    evaluations; ``solver.solve`` and ``solver.solve_punches`` call it).
-   ``solve``: the solves, ``solver`` and ``damped`` (neither imports the other
-   at module level; ``solver.solve`` hands damping > 0 to ``damped``).
+   ``solve``: the solves, ``solver`` and ``asymmetric`` (neither imports the
+   other at module level; ``solver.solve`` hands damping, friction and
+   asymmetric profiles to ``asymmetric``); ``damped``, the deprecated old
+   name of ``asymmetric``, only re-exports it.
 5. ``scene``: scene files, their runs and exports (``movingpunch.scene.*``), in
    three sub-layers: the model (the parts, validation, TOML reading and
    writing, the bundled files), the run (results, solving points, the sweep's
@@ -83,7 +89,12 @@ LAYERS: tuple[tuple[str, frozenset[str]], ...] = (
     ),
     ("evaluations", frozenset({"movingpunch._evaluations"})),
     ("zones", frozenset({"movingpunch.zones"})),
-    ("solve", frozenset({"movingpunch.solver", "movingpunch.damped"})),
+    (
+        "solve",
+        frozenset(
+            {"movingpunch.solver", "movingpunch.asymmetric", "movingpunch.damped"}
+        ),
+    ),
     (
         "scene model",
         frozenset(
@@ -160,7 +171,12 @@ LAYERS: tuple[tuple[str, frozenset[str]], ...] = (
             }
         ),
     ),
-    ("cli", frozenset({"movingpunch.cli", "movingpunch.__main__"})),
+    (
+        "cli",
+        frozenset(
+            {"movingpunch.cli", "movingpunch._cli_media", "movingpunch.__main__"}
+        ),
+    ),
 )
 
 
@@ -330,6 +346,138 @@ def test_the_graph_reader_sees_every_kind_of_import(tmp_path: Path) -> None:
         "movingpunch.top": {"movingpunch.sub.leaf", "movingpunch"},
     }
     assert cycles(graph) == {frozenset({"movingpunch.sub.leaf", "movingpunch.top"})}
+
+
+ARCHITECTURE = SOURCE.parents[1] / "docs" / "architecture.md"
+
+
+def documented_layers(text: str) -> list[tuple[str, list[str]]]:
+    """The Python layer list of docs/architecture.md: (layer, modules) in
+    the order written. It is the code block's lines after the one starting
+    ``Py``: a layer is a line indented by exactly 5 spaces, ``layer:
+    modules`` (names below ``movingpunch.``; ``movingpunch``: the package),
+    the modules ending at two spaces or the line's end and continued on the
+    next line while the list ends with a comma; deeper lines describe."""
+    lines = text.splitlines()
+    start = next((i for i, line in enumerate(lines) if line.startswith("Py ")), None)
+    assert start is not None, "docs/architecture.md has no 'Py ' layer list"
+    end = lines.index("```", start)
+    layers: list[tuple[str, list[str]]] = []
+    i = start + 1
+    while i < end:
+        line = lines[i]
+        i += 1
+        if not line.startswith("     ") or line.startswith("      "):
+            continue  # a description or the heading's continuation
+        name, colon, rest = line[5:].partition(": ")
+        assert colon, f"docs/architecture.md: not 'layer: modules': {line!r}"
+        listed = rest.split("  ")[0].strip()
+        while listed.endswith(",") and i < end:
+            listed += " " + lines[i].strip().split("  ")[0]
+            i += 1
+        modules = [m.strip() for m in listed.split(",") if m.strip()]
+        layers.append((name.strip(), modules))
+    return layers
+
+
+def _full_name(module: str) -> str:
+    return module if module == PACKAGE else f"{PACKAGE}.{module}"
+
+
+def layer_differences(
+    documented: list[tuple[str, list[str]]],
+    table: tuple[tuple[str, frozenset[str]], ...],
+) -> list[str]:
+    """Every difference between the documented layers and ``table``, one
+    sentence each (empty: they agree)."""
+    out: list[str] = []
+    doc_names = [name for name, _ in documented]
+    table_names = [name for name, _ in table]
+    for name in sorted(set(table_names) - set(doc_names)):
+        out.append(f"layer {name!r} is in LAYERS, not in docs/architecture.md")
+    for name in sorted(set(doc_names) - set(table_names)):
+        out.append(f"layer {name!r} is in docs/architecture.md, not in LAYERS")
+    both = [n for n in doc_names if n in table_names]
+    if both != [n for n in table_names if n in doc_names]:
+        out.append(
+            f"the layers' order differs: docs/architecture.md {doc_names}, "
+            f"LAYERS {table_names}"
+        )
+    doc_layer: dict[str, str] = {}
+    for name, modules in documented:
+        for m in modules:
+            full = _full_name(m)
+            if full in doc_layer:
+                out.append(f"{full} is listed twice in docs/architecture.md")
+            doc_layer[full] = name
+    table_layer = {m: name for name, members in table for m in members}
+    for m in sorted(set(table_layer) - set(doc_layer)):
+        out.append(
+            f"{m} (layer {table_layer[m]!r} in LAYERS) is missing from "
+            "docs/architecture.md"
+        )
+    for m in sorted(set(doc_layer) - set(table_layer)):
+        out.append(
+            f"{m} (layer {doc_layer[m]!r} in docs/architecture.md) is not in LAYERS"
+        )
+    for m in sorted(set(doc_layer) & set(table_layer)):
+        if doc_layer[m] != table_layer[m]:
+            out.append(
+                f"{m} is in layer {doc_layer[m]!r} in docs/architecture.md but "
+                f"{table_layer[m]!r} in LAYERS"
+            )
+    return out
+
+
+def test_architecture_doc_lists_the_layers() -> None:
+    # The map cannot drift from the table (it once left out zones).
+    documented = documented_layers(ARCHITECTURE.read_text(encoding="utf-8"))
+    problems = layer_differences(documented, LAYERS)
+    assert problems == [], "docs/architecture.md and LAYERS differ:\n" + "\n".join(
+        problems
+    )
+
+
+def test_the_layer_comparison_names_each_difference() -> None:
+    # The comparison itself, on a made-up document and table.
+    text = (
+        "```\nC++  ignored: not, this\n"
+        "Py   the layers\n       one per line\n"
+        "     low: a, b,\n       c         described\n"
+        "                             more description: with a colon\n"
+        "     high: movingpunch\n"
+        "     extra: d\n```\n"
+    )
+    documented = documented_layers(text)
+    assert documented == [
+        ("low", ["a", "b", "c"]),
+        ("high", ["movingpunch"]),
+        ("extra", ["d"]),
+    ]
+    table = (
+        ("low", frozenset({"movingpunch.a", "movingpunch.b", "movingpunch.c"})),
+        ("high", frozenset({"movingpunch"})),
+        ("extra", frozenset({"movingpunch.d"})),
+    )
+    assert layer_differences(documented, table) == []
+    moved = (
+        ("low", frozenset({"movingpunch.a", "movingpunch.b"})),
+        ("high", frozenset({"movingpunch", "movingpunch.c", "movingpunch.e"})),
+        ("other", frozenset({"movingpunch.d"})),
+    )
+    assert layer_differences(documented, moved) == [
+        "layer 'other' is in LAYERS, not in docs/architecture.md",
+        "layer 'extra' is in docs/architecture.md, not in LAYERS",
+        "movingpunch.e (layer 'high' in LAYERS) is missing from docs/architecture.md",
+        "movingpunch.c is in layer 'low' in docs/architecture.md but 'high' in LAYERS",
+        "movingpunch.d is in layer 'extra' in docs/architecture.md but 'other' "
+        "in LAYERS",
+    ]
+    swapped = (table[1], table[0], table[2])
+    assert layer_differences(documented, swapped) == [
+        "the layers' order differs: docs/architecture.md ['low', 'high', "
+        "'extra'], LAYERS ['high', 'low', 'extra']"
+    ]
 
 
 def test_numerical_modules_do_not_import_textual(

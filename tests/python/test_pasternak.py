@@ -23,7 +23,7 @@ from scipy.optimize import brentq, minimize_scalar
 import movingpunch as mp
 from movingpunch import _core, cli
 from movingpunch.accuracy import accuracy_report
-from movingpunch.damped import damped_layer_response
+from movingpunch.asymmetric import damped_layer_response
 from movingpunch.errors import InvalidParameterError, SupercriticalSpeedError
 from movingpunch.params import SPECS, range_text
 from movingpunch.scene import Scene, SceneError, bundled_scenes

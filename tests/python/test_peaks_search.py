@@ -1,4 +1,4 @@
-"""The peak search (movingpunch.peaks, Solution/DampedSolution.stress_peaks)
+"""The peak search (movingpunch.peaks, Solution/AsymmetricSolution.stress_peaks)
 against independent dense scans, masked arrays refused, long calls
 interruptible.
 

@@ -31,7 +31,7 @@ from scipy.optimize import brentq
 
 import movingpunch as mp
 from movingpunch import _core
-from movingpunch.damped import DampedSolution
+from movingpunch.asymmetric import AsymmetricSolution
 from movingpunch.errors import InvalidParameterError
 from test_friction import _independent_rule
 
@@ -53,7 +53,7 @@ def test_an_asymmetric_table_is_accepted_and_routed_to_the_asymmetric_solver() -
     assert not prof.symmetric
     assert "asymmetric" in prof.describe()
     s = mp.solve(**BASE, profile=prof)
-    assert isinstance(s, DampedSolution)
+    assert isinstance(s, AsymmetricSolution)
     assert s.damping == 0.0
     assert s.friction == 0.0
     assert s.profile == prof
@@ -367,7 +367,7 @@ def test_a_scene_with_a_rounded_flat_damping_and_friction(tmp_path: Any) -> None
     )  # fmt: skip
     (curve,) = result.outputs["pressure"].curves
     np.testing.assert_allclose(curve.y, s.pressure(curve.x), rtol=0, atol=1e-12)
-    assert isinstance(result.solutions[0], DampedSolution)
+    assert isinstance(result.solutions[0], AsymmetricSolution)
     assert result.solutions[0].contact_interval == s.contact_interval
 
 

@@ -29,7 +29,7 @@ from scipy.special import roots_jacobi, roots_legendre
 
 import movingpunch as mp
 from movingpunch import _core
-from movingpunch.damped import DampedSolution, coupling_constant, end_exponents
+from movingpunch.asymmetric import AsymmetricSolution, coupling_constant, end_exponents
 
 LOAD = 0.002
 
@@ -45,9 +45,9 @@ def _interior(b: float) -> np.ndarray:
     return np.array([-0.97, -0.6, -0.2, 0.0, 0.35, 0.8, 0.96]) * b
 
 
-def _flat(**kw: object) -> DampedSolution:
+def _flat(**kw: object) -> AsymmetricSolution:
     s = mp.solve(load=LOAD, **kw)  # type: ignore[call-overload]
-    assert isinstance(s, DampedSolution)
+    assert isinstance(s, AsymmetricSolution)
     return s
 
 

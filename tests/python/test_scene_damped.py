@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import movingpunch as mp
-from movingpunch.damped import DampedSolution
+from movingpunch.asymmetric import AsymmetricSolution
 from movingpunch.scene import OutputSpec, Scene, SceneError, Sweep, Vary, bundled_scenes
 
 FIG4 = {"vstar": 0.2, "kw": 1.0, "radius": 100.0, "load": 0.002, "nu": 0.2}
@@ -21,9 +21,9 @@ HEAD = "[params]\nvstar = {vstar}\nkw = 1\nradius = 100\nload = 0.002\n"
 
 def damped(
     vstar: float, damping: float, radius: float = 100.0, load: float = 0.002
-) -> DampedSolution:
+) -> AsymmetricSolution:
     s = mp.solve(vstar=vstar, kw=1.0, radius=radius, load=load, damping=damping)
-    assert isinstance(s, DampedSolution)
+    assert isinstance(s, AsymmetricSolution)
     return s
 
 
@@ -166,7 +166,7 @@ def test_sweep_over_damping_and_undamped_quantities() -> None:
 
 
 def test_damped_sweep_gives_the_stress_peaks() -> None:
-    # A damped point's sigma_x peaks come from DampedSolution.stress_peaks
+    # A damped point's sigma_x peaks come from AsymmetricSolution.stress_peaks
     # (equal to the API's), an undamped point's from Solution.stress_peaks.
     scene = Scene(
         params={**FIG4, "vstar": 0.4},

@@ -366,7 +366,14 @@ def test_ordinary_results_have_one_zone(tmp_path: Path) -> None:
     cw = scene.run().outputs["contact_width"]
     a = cw.columns["a"][0]
     assert cw.columns["zones"][0] == 1.0
-    assert cw.details == {"contact_zones": [[[-a, a]]]}
+    # Every result has its punches (the contract): a single one at x = 0.
+    (punch,) = cw.details["punches"][0]
+    assert cw.details == {"contact_zones": [[[-a, a]]], "punches": [[punch]]}
+    assert punch["profile"] == mp.Cylinder(100.0).to_dict()
+    assert (punch["at"], punch["load"], punch["drag"]) == (0.0, 0.002, 0.0)
+    assert punch["contact_zones"] == [[-a, a]]
+    assert punch["zone_loads"] == [0.002]
+    assert punch["indentation"] == cw.columns["indentation"][0]
 
 
 # -- bundled scenes ------------------------------------------------------------

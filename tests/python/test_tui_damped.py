@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import movingpunch as mp
-from movingpunch.damped import DampedSolution
+from movingpunch.asymmetric import AsymmetricSolution
 from movingpunch.scene import Scene
 from movingpunch.tui import create_app, model
 from movingpunch.tui.model import Cache, Curves, Params, Request, fmt
@@ -19,9 +19,9 @@ from tui_pilot import screen_of, settle, summary_text, sync, type_into
 SIZE = (100, 32)
 
 
-def damped(vstar: float, damping: float) -> DampedSolution:
+def damped(vstar: float, damping: float) -> AsymmetricSolution:
     s = mp.solve(vstar=vstar, kw=1.0, radius=100.0, load=0.002, damping=damping)
-    assert isinstance(s, DampedSolution)
+    assert isinstance(s, AsymmetricSolution)
     return s
 
 
@@ -113,7 +113,7 @@ def test_depth_tab_of_a_damped_set_reaches_the_surface() -> None:
     assert isinstance(data, Curves)
     assert len(data.grid) == 101
     s = model.solution(cache, params)
-    assert isinstance(s, DampedSolution)
+    assert isinstance(s, AsymmetricSolution)
     values = data.series[0].values
     assert values[-1] == pytest.approx(float(s.surface_stress(0.0)), rel=1e-12)
     np.testing.assert_allclose(

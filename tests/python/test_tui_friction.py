@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 import movingpunch as mp
-from movingpunch.damped import DampedSolution
+from movingpunch.asymmetric import AsymmetricSolution
 from movingpunch.tui import create_app
 from movingpunch.tui.model import Params, fmt
 from movingpunch.tui.widgets import CurvePlot, ParamsPanel
@@ -26,7 +26,7 @@ async def test_friction_input_summary_and_pressure() -> None:
         await type_into(pilot, "friction", "0.3", paste=True)
         assert screen.params == Params(friction=0.3)
         s = mp.solve(vstar=0.2, kw=1.0, radius=100.0, load=0.002, friction=0.3)
-        assert isinstance(s, DampedSolution)
+        assert isinstance(s, AsymmetricSolution)
         text = summary_text(app)
         start, end = s.contact_interval
         assert f"(-b,a)/h ({start:.5g}, {end:.5g})" in text, text

@@ -93,9 +93,11 @@ class ContactSolution {
   // Vertical surface displacement v(x, 0)/h (negative under the punch).
   double surface_displacement(double x) const;
   Eigen::VectorXd surface_displacement(const Eigen::Ref<const Eigen::VectorXd>& x) const;
-  // Stresses over P/h on the grid x by y (-1 <= y <= 0), shaped (len(y), len(x)).
+  // Stresses over P/h on the grid x by y (-1 <= y <= 0), shaped (len(y), len(x));
+  // below: at an interface between sublayers (and at y = -1 over a half-space),
+  // sigma_x of the material below it (the others are continuous).
   StressField stress_field(const Eigen::Ref<const Eigen::VectorXd>& x,
-                           const Eigen::Ref<const Eigen::VectorXd>& y) const;
+                           const Eigen::Ref<const Eigen::VectorXd>& y, bool below = false) const;
   // sigma_x(x, 0)/(P/h) and sigma_x(0, y)/(P/h).
   Eigen::VectorXd surface_stress(const Eigen::Ref<const Eigen::VectorXd>& x) const;
   Eigen::VectorXd depth_stress(const Eigen::Ref<const Eigen::VectorXd>& y) const;

@@ -42,9 +42,10 @@ class FieldEvaluator {
                  double tol, SeriesKind kind = SeriesKind::U);
 
   // Stresses on the grid x (any finite x) by y (-1 <= y <= 0); at an
-  // interface between sublayers, sigma_x of the material above it.
+  // interface between sublayers, sigma_x of the material above it (below:
+  // of the material below it; at y = -1 the half-space's, if any).
   StressField stresses(const Eigen::Ref<const Eigen::VectorXd>& x,
-                       const Eigen::Ref<const Eigen::VectorXd>& y) const;
+                       const Eigen::Ref<const Eigen::VectorXd>& y, bool below = false) const;
   // Vertical displacement v(x, y) mu / (P) (multiply by P/(mu h) for v/h),
   // shaped (len(y), len(x)); under a half-space base relative to the surface
   // at |x| = kDisplacementReference (medium.hpp).

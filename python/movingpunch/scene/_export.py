@@ -132,6 +132,8 @@ def format_summary(result: SceneResult, hints: Sequence[str] = ()) -> str:
         f"{_PARAM_LABELS[k]} = {_fmt(v)}" for k, v in scene.params.items()
     )
     out.append(f"  {params}, tol = {scene.tol:g}")
+    if scene.medium is not None:
+        out.append(f"  medium: {scene.medium.describe()}")
     if scene.contact != "auto":
         out.append(f"  contact = {scene.contact}")
     for k, punch in enumerate(scene.punches):
@@ -568,6 +570,11 @@ def _metadata(result: SceneResult, output: str, title: str) -> dict[str, str]:
         "scene_name": result.scene.name,
         "output": output,
         "title": title,
+        **(
+            {"medium": result.scene.medium.describe()}
+            if result.scene.medium is not None
+            else {}
+        ),
         # Every point's unmet accuracy, " | "-separated ("none": all met).
         "warnings": " | ".join(result.warnings) if result.warnings else "none",
     }
@@ -682,6 +689,11 @@ def format_json(result: SceneResult, hints: Sequence[str] = ()) -> str:
         "scene_name": result.scene.name,
         "scene": result.scene.to_toml(),
         "params": _json_safe(dict(result.scene.params)),
+        **(
+            {"medium": _json_safe(result.scene.medium.to_dict())}
+            if result.scene.medium is not None
+            else {}
+        ),
         "warnings": list(result.warnings),
         "hints": list(hints),
         "outputs": {

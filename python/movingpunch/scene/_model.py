@@ -14,6 +14,7 @@ from typing import Protocol
 
 import numpy as np
 
+from movingpunch.media import HalfSpace, Medium, Winkler
 from movingpunch.params import PHYSICAL, SPECS
 from movingpunch.profiles import PunchProfile
 from movingpunch.zones import Punch
@@ -49,6 +50,26 @@ CONTACT_MODES: tuple[str, ...] = ("auto", "single")
 """``[params] contact``: passed to ``movingpunch.solve``."""
 
 MAX_PUNCHES = 16
+
+LAYER_KEYS: dict[str, tuple[str, ...]] = {
+    "layer": ("kind", "thickness", "mu", "nu", "rho"),
+    "graded": ("kind", "thickness", "gamma_h", "mu", "nu", "rho"),
+}
+"""``[[layers]]``: the keys of each kind of sublayer (``kind`` defaults to
+"layer"; ``movingpunch.Layer`` and ``GradedLayer``)."""
+
+BASE_KEYS: dict[str, tuple[str, ...]] = {
+    "winkler": ("kind", "kw", "kp", "damping"),
+    "half_space": ("kind", "mu", "nu", "rho", "interface"),
+}
+"""``[base]``: the keys of each kind of base (``movingpunch.Winkler`` and
+``HalfSpace``)."""
+
+MAX_LAYERS = 32
+"""Most sublayers a scene's ``[[layers]]`` lists."""
+
+SPRING_PARAMS: tuple[str, ...] = ("kw", "kp", "damping")
+"""The parameters of the springs: a half-space base has none of them."""
 
 
 def allowed_text(name: str) -> str:
@@ -268,6 +289,8 @@ class SceneData(Protocol):
     @property
     def contact(self) -> str: ...
     @property
+    def medium(self) -> Medium | None: ...
+    @property
     def outputs(self) -> Mapping[str, OutputSpec]: ...
     @property
     def vary(self) -> Vary | None: ...
@@ -300,3 +323,13 @@ def train_of(punches: Sequence[Punch], p: Mapping[str, float]) -> list[Punch]:
         load = q.load if factor == 1.0 else q.load * factor
         out.append(Punch(q.profile, load, at))
     return out
+
+
+def point_medium(medium: Medium, p: Mapping[str, float]) -> Medium:
+    """The medium of one point of a scene with [[layers]] or a [base]: its
+    sublayers on a half-space, or on the springs of the point's kw, kp and
+    damping (a vary or sweep over them changes the springs)."""
+    if isinstance(medium.base, HalfSpace):
+        return medium
+    springs = Winkler(p["kw"], p.get("kp", 0.0), p.get("damping", 0.0))
+    return medium if springs == medium.base else Medium(medium.layers, springs)

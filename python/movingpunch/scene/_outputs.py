@@ -17,7 +17,8 @@ import numpy as np
 
 from movingpunch.contract import ContactSolution
 from movingpunch.fields import StressField
-from movingpunch.scene._model import STRESS_COMPONENTS
+from movingpunch.media import Medium, Winkler
+from movingpunch.scene._model import STRESS_COMPONENTS, point_medium
 from movingpunch.scene._result import (
     Curve,
     FloatArray,
@@ -26,7 +27,7 @@ from movingpunch.scene._result import (
 )
 from movingpunch.scene._solve import RunState, curve_label, radius_ratio
 from movingpunch.scene._validate import critical_speed
-from movingpunch.solver import rayleigh_vstar
+from movingpunch.solver import critical_vstar, critical_wavenumber, rayleigh_vstar
 
 __all__ = ["OUTPUTS"]
 
@@ -98,9 +99,7 @@ def _out_contact_width(run: RunState, spec: Any, solutions: _Solutions) -> Outpu
         cols["valid"].append(1.0 if s.valid else 0.0)
         cols["error_estimate"].append(s.error_estimate)
         cols["collocation_n"].append(float(s.collocation_n))
-    details: dict[str, Any] = {"contact_zones": zones}
-    if any(punches):
-        details["punches"] = punches
+    details: dict[str, Any] = {"contact_zones": zones, "punches": punches}
     return OutputData(
         name="contact_width",
         title="Contact half-width",
@@ -112,11 +111,11 @@ def _out_contact_width(run: RunState, spec: Any, solutions: _Solutions) -> Outpu
 
 
 def _punch_dicts(s: ContactSolution, scale: float) -> list[dict[str, object]]:
-    """``PunchResult.to_dict()`` of each punch of a ``ZonedSolution`` (none
-    of an ordinary result); loads and indentations times ``scale`` (a
+    """``to_dict()`` of each punch of ``s`` (``ContactSolution.punches``: a
+    single contact's one too); loads and indentations times ``scale`` (a
     solution shared through lambda = radius * load, like the indentation)."""
     out: list[dict[str, object]] = []
-    for punch in getattr(s, "punches", ()):
+    for punch in s.punches:
         d = punch.to_dict()
         if scale != 1.0:
             d["load"] = punch.load * scale
@@ -253,8 +252,64 @@ def _out_stress_field(run: RunState, spec: Any, solutions: _Solutions) -> Output
     )
 
 
+def _out_medium_critical_speed(run: RunState, spec: Any, medium: Medium) -> OutputData:
+    """V*_cr of a layered medium or a half-space base: one row per curve
+    (its springs those of the curve's point), or a curve over spec.kw per
+    curve (springs; validation refuses a kw range under a half-space). kw is
+    nan under a half-space (no springs)."""
+    scene = run.scene
+    curves: list[Curve] = []
+    rows: list[tuple[float, float, float, float, float, float]] = []
+    several = len(scene.curve_values()) > 1
+    param = scene.vary.param if scene.vary is not None else None
+    for v in scene.curve_values():
+        m = point_medium(medium, scene.point(v))
+        media = [m]
+        if spec.kw is not None:
+            assert isinstance(m.base, Winkler)
+            grid = np.geomspace(spec.kw[0], spec.kw[1], spec.resolved_points())
+            media = [
+                Medium(m.layers, Winkler(float(k), m.base.kp, m.base.damping))
+                for k in grid
+            ]
+        start = len(rows)
+        for mk in media:
+            springs = mk.base if isinstance(mk.base, Winkler) else None
+            with run.timed("critical_speed"):
+                vcr = critical_vstar(layers=list(mk.layers), base=mk.base)
+                alpha = critical_wavenumber(layers=list(mk.layers), base=mk.base)
+            rows.append(
+                (
+                    springs.kw if springs else math.nan,
+                    mk.nu,
+                    vcr,
+                    alpha,
+                    rayleigh_vstar(mk.nu),
+                    springs.kp if springs else math.nan,
+                )
+            )
+        if spec.kw is not None:
+            block = np.asarray(rows[start:], dtype=np.float64)
+            label = curve_label(param, v) if several else ""
+            curves.append(
+                Curve(label, v if several else None, block[:, 0], block[:, 2])
+            )
+    table = np.asarray(rows, dtype=np.float64).reshape(-1, 6)
+    names = ("kw", "nu", "critical_vstar", "critical_wavenumber", "rayleigh_vstar")
+    return OutputData(
+        "critical_speed",
+        f"Critical speed ({medium.describe()})",
+        "kw = k_w h/mu",
+        "V*_cr",
+        {n: table[:, i] for i, n in enumerate(names)},
+        tuple(curves),
+    )
+
+
 def _out_critical_speed(run: RunState, spec: Any, solutions: _Solutions) -> OutputData:
     scene = run.scene
+    if scene.medium is not None and not scene.medium.homogeneous:
+        return _out_medium_critical_speed(run, spec, scene.medium)
     # (kw, nu, kp): kp (the Pasternak shear layer) 0 unless the scene sets it.
     combos: list[tuple[float, float, float]] = []
     for v in scene.curve_values():

@@ -13,6 +13,7 @@ from typing import Any
 
 import numpy as np
 
+from movingpunch.media import Medium
 from movingpunch.profiles import PunchProfile
 from movingpunch.scene._model import PEAK_QUANTITIES, SceneData
 from movingpunch.scene._result import SweepTable
@@ -37,6 +38,7 @@ class SweepPlan:
     profile: PunchProfile | None = None
     contact: str = "auto"
     punches: tuple[Punch, ...] = ()
+    medium: Medium | None = None
 
 
 def plan_sweep(scene: SceneData) -> SweepPlan:
@@ -68,6 +70,7 @@ def plan_sweep(scene: SceneData) -> SweepPlan:
         scene.profile,
         scene.contact,
         tuple(scene.punches),
+        scene.medium,
     )
 
 
@@ -197,6 +200,7 @@ def chunk_tasks(plan: SweepPlan, chunk: Chunk) -> list[dict[str, Any]]:
             "profile": plan.profile,
             "contact": plan.contact,
             "punches": plan.punches,
+            "medium": plan.medium,
             "spacings": [plan.representative[k].get("spacing") for k in keys],
         }
         for group, keys in chunk

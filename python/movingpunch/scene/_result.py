@@ -51,8 +51,8 @@ class Stages:
 
     def add_solution(self, s: ContactSolution) -> None:
         self.add("contact", s.elapsed)
-        times = getattr(s, "stage_times", None) or {}
-        builds = int(getattr(s, "kernel_builds", 0))
+        times = s.stage_times
+        builds = int(s.kernel_builds)
         self.kernel_tables += builds
         for name in CORE_STAGES:
             if name in times:

@@ -18,6 +18,7 @@ from typing import Any
 
 from movingpunch.cancel import Cancel, bound
 from movingpunch.errors import SceneError
+from movingpunch.media import Medium
 from movingpunch.outputs import atomic_write
 from movingpunch.profiles import PunchProfile
 from movingpunch.scene._bundled import bundled_names, bundled_text
@@ -70,6 +71,13 @@ class Scene:
     """``[params] contact``: "auto" (several contact zones where the single
     contact separates) or "single" (the single contact, flagged invalid where
     it is unphysical), as ``movingpunch.solve``'s ``contact``."""
+    medium: Medium | None = None
+    """The medium under the punch (``[[layers]]`` and ``[base]``,
+    ``movingpunch.Medium``); None: the homogeneous layer of ``params`` nu on
+    the springs of ``params`` kw, kp, damping. With a medium ``params.nu``
+    is its top sublayer's, and ``params`` kw, kp, damping are its springs
+    (a vary or sweep over them changes the springs); under a half-space
+    ``params`` holds none of them."""
 
     def __post_init__(self) -> None:
         validate(self, "<Scene>")

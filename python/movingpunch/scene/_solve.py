@@ -21,8 +21,14 @@ from typing import Any
 
 from movingpunch.contract import ContactSolution
 from movingpunch.errors import MovingPunchError, UnphysicalContactError
+from movingpunch.media import Medium
 from movingpunch.profiles import PunchProfile
-from movingpunch.scene._model import PEAK_QUANTITIES, SceneData, train_of
+from movingpunch.scene._model import (
+    PEAK_QUANTITIES,
+    SceneData,
+    point_medium,
+    train_of,
+)
 from movingpunch.scene._result import Stages
 from movingpunch.solver import result_warnings, solve, solve_punches
 from movingpunch.zones import Punch
@@ -45,6 +51,11 @@ def _friction(p: Mapping[str, float]) -> float:
     return p.get("friction", 0.0)
 
 
+NO_SPRINGS = -1.0
+"""The kw of a point's key under a half-space base (no springs: its params
+hold no kw; never a valid kw)."""
+
+
 def point_key(p: Mapping[str, float], tol: float) -> Key:
     # Beside a flat punch or a table (radius inf) the load alone tells the
     # points apart (negated: never a cylinder's lambda).
@@ -54,7 +65,7 @@ def point_key(p: Mapping[str, float], tol: float) -> Key:
     spacing = p.get("spacing", 0.0)
     return (
         p["vstar"],
-        p["kw"],
+        p.get("kw", NO_SPRINGS),
         p["nu"],
         tol,
         _damping(p),
@@ -84,10 +95,12 @@ def solve_point(
     profile: PunchProfile | None = None,
     contact: str = "auto",
     punches: Sequence[Punch] = (),
+    medium: Medium | None = None,
 ) -> ContactSolution:
     """One point of a scene: a cylinder of p["radius"], or ``profile``, or
     the train ``punches`` (``solve_punches``; their loads and positions for
-    this point from ``train_of``)."""
+    this point from ``train_of``), on the homogeneous layer of p (nu, kw,
+    kp, damping) or on ``medium`` (its springs those of p: ``point_medium``)."""
     if punches:
         s: ContactSolution = solve_punches(
             train_of(punches, p),
@@ -102,16 +115,17 @@ def solve_point(
         return s
     args: dict[str, Any] = {
         "vstar": p["vstar"],
-        "kw": p["kw"],
         "radius": p["radius"] if profile is None else None,
         "profile": profile,
         "load": p["load"],
-        "nu": p["nu"],
         "tol": tol,
-        "damping": _damping(p),
-        "kp": _kp(p),
         "friction": _friction(p),
     }
+    if medium is None:
+        args.update(kw=p["kw"], nu=p["nu"], damping=_damping(p), kp=_kp(p))
+    else:
+        m = point_medium(medium, p)
+        args.update(layers=list(m.layers), base=m.base)
     # A sweep goes on through unphysical points: contact "auto" finds the
     # zones where the single contact separates, and where no contact set is
     # found (or with "single") the point is the single contact, flagged
@@ -160,7 +174,7 @@ def point_quantities(
 
 def _point_text(p: Mapping[str, float]) -> str:
     """The parameters of a solved point, for its warnings."""
-    names = ["vstar", "kw", "radius", "load", "nu"]
+    names = [n for n in ("vstar", "kw", "radius", "load", "nu") if n in p]
     if _damping(p) > 0.0:
         names.append("damping")
     if _kp(p) > 0.0:
@@ -191,6 +205,8 @@ def solve_group(task: Mapping[str, Any]) -> dict[str, Any]:
             "radius": radius,
             "load": load,
         }
+        if p["kw"] == NO_SPRINGS:  # a half-space base
+            del p["kw"], p["kp"], p["damping"]
         if spacing is not None:
             p["spacing"] = spacing
         try:
@@ -201,6 +217,7 @@ def solve_group(task: Mapping[str, Any]) -> dict[str, Any]:
                 task.get("profile"),
                 task.get("contact", "auto"),
                 task.get("punches", ()),
+                task.get("medium"),
             )
             found = list(result_warnings(s))
             results.append(point_quantities(s, task["peaks"], stages, found))
@@ -249,6 +266,7 @@ class RunState:
                 self.scene.profile,
                 self.scene.contact,
                 self.scene.punches,
+                self.scene.medium,
             )
             self.note_warnings(key, p, result_warnings(self.memo[key]))
             self.tick()

@@ -19,6 +19,7 @@ from pathlib import Path
 from typing import Any
 
 from movingpunch.errors import SceneError
+from movingpunch.media import HalfSpace, Layer, Medium, Winkler
 from movingpunch.params import OPTIONAL
 from movingpunch.profiles import Cylinder
 from movingpunch.scene._model import (
@@ -31,6 +32,7 @@ from movingpunch.scene._model import (
     MAX_VARY,
     OUTPUT_KINDS,
     PARAMS,
+    SPRING_PARAMS,
     SWEEP_QUANTITIES,
     TRAIN_PARAMS,
     OutputSpec,
@@ -42,6 +44,8 @@ from movingpunch.scene._model import (
 )
 from movingpunch.scene._validate import (
     Checker,
+    parse_base,
+    parse_layers,
     parse_output,
     parse_profile,
     parse_punches,
@@ -62,6 +66,8 @@ _TOP_KEYS = (
     "description",
     "params",
     "punches",
+    "layers",
+    "base",
     "outputs",
     "vary",
     "sweep",
@@ -273,6 +279,30 @@ def _from_mapping(data: Mapping[str, Any], source: str) -> dict[str, Any]:
         parse_profile(c, raw_params["profile"]) if "profile" in raw_params else None
     )
     punches = parse_punches(c, data["punches"]) if "punches" in data else ()
+    layers = parse_layers(c, data["layers"]) if "layers" in data else None
+    base = parse_base(c, data["base"]) if "base" in data else None
+    if layers is not None and "nu" in raw_params:
+        raise c.fail(
+            "params.nu",
+            "is given together with [[layers]] (each sublayer has its own nu)",
+            "no nu in [params] beside [[layers]]: give nu in each [[layers]] table",
+            "nu",
+        )
+    if base is not None:
+        for name_ in SPRING_PARAMS:
+            if name_ in raw_params:
+                kind = "winkler" if isinstance(base, Winkler) else "half_space"
+                why = (
+                    "give the springs once, in [base]"
+                    if kind == "winkler"
+                    else "a half-space has no springs"
+                )
+                raise c.fail(
+                    f"params.{name_}",
+                    f'is given together with [base] kind = "{kind}" ({why})',
+                    f"no {name_} in [params] beside [base]",
+                    name_,
+                )
     contact = "auto"
     if "contact" in raw_params:
         contact = c.string("params.contact", raw_params["contact"], CONTACT_MODES)
@@ -283,6 +313,13 @@ def _from_mapping(data: Mapping[str, Any], source: str) -> dict[str, Any]:
             continue  # the profile's (validate sets it)
         if punches and name_ in ("radius", "load") and name_ not in raw_params:
             continue  # the punches' own (validate refuses them in [params])
+        if base is not None and name_ in SPRING_PARAMS:
+            if isinstance(base, Winkler) and (name_ == "kw" or getattr(base, name_)):
+                params[name_] = float(getattr(base, name_))
+            continue  # the base's (none under a half-space)
+        if layers is not None and name_ == "nu":
+            params[name_] = layers[0].nu  # the top sublayer's
+            continue
         if name_ in raw_params:
             params[name_] = c.param(key, name_, raw_params[name_])
         elif name_ == "nu":
@@ -293,6 +330,16 @@ def _from_mapping(data: Mapping[str, Any], source: str) -> dict[str, Any]:
             params[name_] = sweep.values[0]
         elif name_ not in OPTIONAL:  # optional, 0
             raise c.fail(key, "missing", allowed_text(name_), name_)
+
+    medium: Medium | None = None
+    if layers is not None or base is not None:
+        if base is None:  # the springs of [params]
+            base = Winkler(
+                params["kw"], params.get("kp", 0.0), params.get("damping", 0.0)
+            )
+        if layers is None:  # the homogeneous layer of [params] nu
+            layers = (Layer(nu=params["nu"]),)
+        medium = Medium(layers, base)
 
     tol = DEFAULT_TOL
     if "accuracy" in data:
@@ -313,6 +360,7 @@ def _from_mapping(data: Mapping[str, Any], source: str) -> dict[str, Any]:
         "profile": profile,
         "punches": punches,
         "contact": contact,
+        "medium": medium,
         "outputs": outputs,
         "vary": vary,
         "sweep": sweep,
@@ -410,19 +458,21 @@ def to_toml(scene: SceneData) -> str:
     if lines:
         lines.append("")
     lines.append("[params]")
-    profile = getattr(scene, "profile", None)
+    profile = scene.profile
+    medium = scene.medium
     for name in PARAMS:
         if name == "radius" and profile is not None:
             continue  # the profile carries its own shape
+        if name == "nu" and medium is not None:
+            continue  # each [[layers]] table has its own
         if name in scene.params:
             lines.append(f"{name} = {_toml_value(scene.params[name])}")
-    contact = getattr(scene, "contact", "auto")
-    if contact != "auto":
-        lines.append(f"contact = {_toml_value(contact)}")
+    if scene.contact != "auto":
+        lines.append(f"contact = {_toml_value(scene.contact)}")
     if profile is not None:
         lines += ["", "[params.profile]"]
         lines += [f"{k} = {_toml_value(v)}" for k, v in profile.to_dict().items()]
-    for punch in getattr(scene, "punches", ()):
+    for punch in scene.punches:
         lines += ["", "[[punches]]"]
         lines += [f"load = {_toml_value(punch.load)}", f"at = {_toml_value(punch.at)}"]
         if isinstance(punch.profile, Cylinder):
@@ -431,6 +481,15 @@ def to_toml(scene: SceneData) -> str:
             lines += ["", "[punches.profile]"]
             lines += [
                 f"{k} = {_toml_value(v)}" for k, v in punch.profile.to_dict().items()
+            ]
+    if medium is not None:
+        for layer in medium.layers:
+            lines += ["", "[[layers]]"]
+            lines += [f"{k} = {_toml_value(v)}" for k, v in layer.to_dict().items()]
+        if isinstance(medium.base, HalfSpace):  # on springs: [params] kw, kp, damping
+            lines += ["", "[base]"]
+            lines += [
+                f"{k} = {_toml_value(v)}" for k, v in medium.base.to_dict().items()
             ]
     lines += ["", "[accuracy]", f"tol = {_toml_value(scene.tol)}"]
     if scene.outputs:

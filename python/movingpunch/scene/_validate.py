@@ -17,6 +17,16 @@ from typing import Any
 import numpy as np
 
 from movingpunch.errors import InvalidParameterError, SceneError
+from movingpunch.media import (
+    INTERFACES,
+    GradedLayer,
+    HalfSpace,
+    Layer,
+    Medium,
+    Sublayer,
+    Winkler,
+    resolve_medium,
+)
 from movingpunch.params import OPTIONAL, PRESETS, SPECS, classify
 from movingpunch.profiles import (
     Cylinder,
@@ -27,9 +37,12 @@ from movingpunch.profiles import (
     profile_from_dict,
 )
 from movingpunch.scene._model import (
+    BASE_KEYS,
     CONTACT_MODES,
     DEFAULT_NU,
+    LAYER_KEYS,
     MAX_GRID,
+    MAX_LAYERS,
     MAX_POINTS,
     MAX_PUNCHES,
     MAX_SWEEP,
@@ -37,6 +50,7 @@ from movingpunch.scene._model import (
     OUTPUT_KEYS,
     OUTPUT_KINDS,
     PARAMS,
+    SPRING_PARAMS,
     STRESS_COMPONENTS,
     SWEEP_QUANTITIES,
     TRAIN_PARAMS,
@@ -46,6 +60,7 @@ from movingpunch.scene._model import (
     Vary,
     allowed_text,
     output_items,
+    point_medium,
     sweep_grid,
     train_of,
 )
@@ -54,6 +69,9 @@ from movingpunch.zones import Punch
 __all__ = [
     "Checker",
     "critical_speed",
+    "medium_critical_speed",
+    "parse_base",
+    "parse_layers",
     "parse_profile",
     "parse_punches",
     "rayleigh_speed",
@@ -78,6 +96,220 @@ def parse_profile(
         for prefix in (f"{where}: ", f"{key}: ", f"{key} "):
             problem = problem.removeprefix(prefix)
         raise c.fail(key, problem, exc.allowed or "", exc.parameter) from exc
+
+
+_LAYERS_ALLOWED = (
+    '[[layers]] tables, top to bottom: kind = "layer" (thickness, mu, nu, rho) '
+    'or "graded" (thickness, gamma_h, mu, nu, rho)'
+)
+
+
+def _media_fail(c: Checker, key: str, exc: InvalidParameterError) -> SceneError:
+    """An InvalidParameterError of movingpunch.media as a SceneError on ``key``."""
+    problem = str(exc)
+    for prefix in (f"{exc.parameter}: ", "layers: "):
+        problem = problem.removeprefix(prefix)
+    return c.fail(key, problem, exc.allowed or "", exc.parameter)
+
+
+def parse_layers(c: Checker, raw: object) -> tuple[Sublayer, ...]:
+    """A scene's ``[[layers]]`` tables, top to bottom: ``kind`` = "layer"
+    (the default: thickness, mu, nu, rho) or "graded" (thickness, gamma_h,
+    mu, nu, rho), bonded; the thicknesses sum to 1 and the top sublayer's mu
+    and rho are 1 (the units). Errors name ``layers[k].key`` (k from 0)."""
+    if isinstance(raw, (str, bytes, Mapping)) or not isinstance(raw, Sequence):
+        raise c.fail(
+            "layers", f"must be a list of tables, got {show(raw)}", _LAYERS_ALLOWED
+        )
+    if not 1 <= len(raw) <= MAX_LAYERS:
+        raise c.fail(
+            "layers", f"has {len(raw)} sublayers", f"1 to {MAX_LAYERS} sublayers"
+        )
+    out: list[Sublayer] = []
+    for k, item in enumerate(raw):
+        where = f"layers[{k}]"
+        kinds = tuple(LAYER_KEYS)
+        if not isinstance(item, Mapping):
+            raise c.fail(where, f"must be a table, got {show(item)}", _LAYERS_ALLOWED)
+        kind = c.string(f"{where}.kind", item.get("kind", "layer"), kinds)
+        t = c.table(where, item, LAYER_KEYS[kind])
+        if kind == "graded" and "gamma_h" not in t:
+            raise c.fail(
+                f"{where}.gamma_h", "missing", allowed_text("gamma_h"), "gamma_h"
+            )
+        values = {
+            name: c.param(f"{where}.{name}", name, t[name])
+            for name in LAYER_KEYS[kind]
+            if name != "kind" and name in t
+        }
+        try:
+            out.append(GradedLayer(**values) if kind == "graded" else Layer(**values))
+        except InvalidParameterError as exc:  # pragma: no cover - c.param checked
+            raise _media_fail(c, f"{where}.{exc.parameter}", exc) from exc
+    try:
+        return resolve_medium(layers=out, kw=1.0).layers
+    except InvalidParameterError as exc:
+        key = "layers[0]" if "layers[0]" in str(exc) else "layers"
+        raise _media_fail(c, key, exc) from exc
+
+
+def parse_base(c: Checker, raw: object) -> Winkler | HalfSpace:
+    """A scene's ``[base]`` table: ``kind`` = "winkler" (kw, kp, damping:
+    the springs of [params] moved here) or "half_space" (mu, nu, rho per the
+    top sublayer's, interface = "bonded" or "smooth")."""
+    allowed = (
+        'kind = "winkler" (kw, kp, damping) or "half_space" (mu, nu, rho, '
+        'interface = "bonded" or "smooth")'
+    )
+    if not isinstance(raw, Mapping):
+        raise c.fail("base", f"must be a table, got {show(raw)}", allowed)
+    if "kind" not in raw:
+        raise c.fail("base.kind", "missing", ", ".join(BASE_KEYS))
+    kind = c.string("base.kind", raw["kind"], tuple(BASE_KEYS))
+    t = c.table("base", raw, BASE_KEYS[kind])
+    required = ("kw",) if kind == "winkler" else ("mu", "nu")
+    for name in required:
+        if name not in t:
+            raise c.fail(f"base.{name}", "missing", allowed_text(name), name)
+    values: dict[str, Any] = {
+        name: c.param(f"base.{name}", name, t[name])
+        for name in BASE_KEYS[kind]
+        if name not in ("kind", "interface") and name in t
+    }
+    if "interface" in t:
+        values["interface"] = c.string("base.interface", t["interface"], INTERFACES)
+    try:
+        return Winkler(**values) if kind == "winkler" else HalfSpace(**values)
+    except InvalidParameterError as exc:  # pragma: no cover - c.param checked
+        raise _media_fail(c, f"base.{exc.parameter}", exc) from exc
+
+
+def _check_medium(c: Checker, scene: SceneData, raw: dict[str, Any]) -> Medium | None:
+    """The scene's medium (None: the homogeneous layer of params kw, nu, kp,
+    damping), checked as the API checks it; ``raw`` (the params) made to
+    hold what the medium fixes: nu = the top sublayer's, and kw, kp, damping
+    = its springs' (none under a half-space). A parameter given both ways
+    with different values is refused, naming it."""
+    medium = getattr(scene, "medium", None)
+    if medium is None:
+        return None
+    if not isinstance(medium, Medium):
+        raise c.fail(
+            "layers",
+            f"the medium must be a movingpunch.Medium, got {show(medium)}",
+            "Medium(layers=(Layer(...), ...), base=Winkler(...) or HalfSpace(...))",
+        )
+    try:
+        medium = resolve_medium(layers=list(medium.layers), base=medium.base)
+    except InvalidParameterError as exc:
+        raise _media_fail(
+            c, "base" if exc.parameter == "base" else "layers", exc
+        ) from exc
+    if "nu" in raw and raw["nu"] != medium.nu:
+        raise c.fail(
+            "params.nu",
+            "is given together with [[layers]] (each sublayer has its own nu)",
+            "no nu in [params] beside [[layers]]: give nu in each [[layers]] table",
+            "nu",
+        )
+    raw["nu"] = medium.nu
+    base = medium.base
+    if isinstance(base, HalfSpace):
+        for name in SPRING_PARAMS:
+            if name in raw:
+                raise c.fail(
+                    f"params.{name}",
+                    f"is given together with a half-space [base] ({base.describe()}), "
+                    "which has no springs",
+                    f'no {name} beside a half-space base (or [base] kind = "winkler")',
+                    name,
+                )
+        return medium
+    for name in SPRING_PARAMS:
+        value = float(getattr(base, name))
+        if name in raw and raw[name] != value:
+            raise c.fail(
+                f"params.{name}",
+                f"= {_fmt_num(float(raw[name]))} differs from the base's "
+                f"{name} = {_fmt_num(value)}",
+                f"{name} given once: in [params] or in [base]",
+                name,
+            )
+        if name == "kw" or value != 0.0:
+            raw[name] = value
+    return medium
+
+
+def _check_medium_use(
+    c: Checker, scene: SceneData, medium: Medium, profile: PunchProfile | None
+) -> None:
+    """What a medium other than the homogeneous layer on springs cannot be
+    given with yet (the layered solve is the symmetric solver: frictionless,
+    undamped, symmetric profiles, one punch), and the vary or sweep
+    parameters it makes meaningless, each refused naming the key."""
+    axes = [
+        (part, axis)
+        for part, axis in (("vary", scene.vary), ("sweep", scene.sweep))
+        if isinstance(axis, (Vary, Sweep))
+    ]
+    for part, axis in axes:
+        if axis.param == "nu":
+            raise c.fail(
+                f"{part}.param",
+                "nu cannot vary beside [[layers]]: each sublayer has its own nu",
+                "vstar, radius, load, kw, kp (springs), friction, damping",
+            )
+        if isinstance(medium.base, HalfSpace) and axis.param in SPRING_PARAMS:
+            raise c.fail(
+                f"{part}.param",
+                f"{axis.param} cannot vary under a half-space [base] "
+                f"({medium.base.describe()}): it has no springs",
+                'vstar, radius, load (or [base] kind = "winkler")',
+            )
+    crit = (
+        scene.outputs.get("critical_speed")
+        if isinstance(scene.outputs, Mapping)
+        else None
+    )
+    if isinstance(medium.base, HalfSpace) and crit is not None and crit.kw is not None:
+        raise c.fail(
+            "outputs.critical_speed.kw",
+            "a range of kw means nothing under a half-space [base] (no springs)",
+            "no kw range beside a half-space base",
+        )
+    if medium.homogeneous:
+        return  # the paper's layer: everything it supports
+    refused = (
+        "layered media and a half-space base run on the symmetric solver so far "
+        "(frictionless, undamped, symmetric profiles, one punch)"
+    )
+    if getattr(scene, "punches", ()):
+        raise c.fail(
+            "punches",
+            f"[[punches]] beside this medium ({medium.describe()}): {refused}",
+            "one punch ([params]) beside [[layers]] or a half-space [base]",
+        )
+    for name in ("damping", "friction"):
+        if scene.params.get(name, 0.0) != 0.0:
+            raise c.fail(
+                f"params.{name}",
+                f"{name} > 0 beside this medium ({medium.describe()}): {refused}",
+                f"{name} = 0 beside [[layers]] or a half-space [base]",
+                name,
+            )
+        for part, axis in axes:
+            if axis.param == name:
+                raise c.fail(
+                    f"{part}.param",
+                    f"{name} cannot vary beside this medium: {refused}",
+                    "vstar, radius, load, kw, kp",
+                )
+    if isinstance(profile, Profile) and not profile.symmetric:
+        raise c.fail(
+            "params.profile",
+            f"an asymmetric table beside this medium: {refused}",
+            "a symmetric profile beside [[layers]] or a half-space [base]",
+        )
 
 
 _PUNCH_KEYS = ("load", "at", "radius", "profile")
@@ -146,7 +378,7 @@ def _punch(
 def _check_punches(c: Checker, scene: SceneData) -> tuple[Punch, ...]:
     """The punches of a scene (a scene built in Python: a sequence of
     ``movingpunch.Punch``); their positions distinct."""
-    punches = getattr(scene, "punches", ())
+    punches: object = scene.punches  # a scene built in Python: anything
     if punches is None:
         return ()
     if isinstance(punches, (str, bytes)) or not isinstance(punches, Sequence):
@@ -179,7 +411,7 @@ def _check_profile(
     """The scene's profile (None: a cylinder of params.radius, which a
     Cylinder profile becomes); ``raw`` (the params) loses a radius the
     profile carries. A radius beside another profile must be its own."""
-    profile = getattr(scene, "profile", None)
+    profile: object = scene.profile  # a scene built in Python: anything
     if profile is None:
         return None
     if not isinstance(profile, (Cylinder, Flat, RoundedFlat, Profile)):
@@ -213,6 +445,19 @@ def critical_speed(kw: float, nu: float, kp: float = 0.0) -> tuple[float, float]
     from movingpunch import _core
 
     return _core.critical_speed(kw, nu, kp)
+
+
+@functools.lru_cache(maxsize=1024)
+def medium_critical_speed(medium: Medium) -> float | None:
+    """V*_cr of a medium (``movingpunch.critical_vstar(layers=, base=)``),
+    once per process; None where the core cannot compute it (a medium it
+    does not build: the run then reports that by name)."""
+    from movingpunch.solver import critical_vstar
+
+    try:
+        return critical_vstar(layers=list(medium.layers), base=medium.base)
+    except InvalidParameterError:
+        return None
 
 
 @functools.lru_cache(maxsize=64)
@@ -463,14 +708,16 @@ def validate(scene: SceneData, source: str) -> None:
     c.table("params", scene.params, PARAMS)
     raw = dict(scene.params)
     punches = _check_punches(c, scene)
-    contact = c.string(
-        "params.contact", getattr(scene, "contact", "auto"), CONTACT_MODES
-    )
+    contact = c.string("params.contact", scene.contact, CONTACT_MODES)
     if punches:
         _check_train_params(c, scene, raw, contact)
     profile = _check_profile(c, scene, raw)
+    medium = _check_medium(c, scene, raw)
+    half_space = medium is not None and isinstance(medium.base, HalfSpace)
     params: dict[str, float] = {}
     for name in PARAMS:
+        if half_space and name in SPRING_PARAMS:
+            continue  # no springs (_check_medium refused them)
         if name == "radius" and profile is not None:
             params[name] = profile.nominal_radius  # inf: a flat punch or a table
             continue
@@ -488,6 +735,7 @@ def validate(scene: SceneData, source: str) -> None:
     object.__setattr__(scene, "profile", profile)
     object.__setattr__(scene, "punches", punches)
     object.__setattr__(scene, "contact", contact)
+    object.__setattr__(scene, "medium", medium)
 
     tol = c.tol("accuracy.tol", scene.tol)
     object.__setattr__(scene, "tol", tol)
@@ -575,6 +823,8 @@ def validate(scene: SceneData, source: str) -> None:
             "nothing to compute",
             "at least one of " + ", ".join(OUTPUT_KINDS) + ", or a [sweep]",
         )
+    if medium is not None:
+        _check_medium_use(c, scene, medium, profile)
     _check_speeds(scene, c)
     if punches:
         _check_overlap(scene, c)
@@ -600,7 +850,7 @@ def _check_train_params(
                 "vstar, kw, nu, kp, damping beside [[punches]]",
                 name,
             )
-    if getattr(scene, "profile", None) is not None:
+    if scene.profile is not None:
         raise c.fail(
             "params.profile",
             "is not allowed together with [[punches]] (each punch has its own "
@@ -667,7 +917,13 @@ def _check_speeds(scene: SceneData, c: Checker) -> None:
                 )
             combos.append((p, where))
     seen: set[tuple[float, float, float, bool, float]] = set()
+    medium = getattr(scene, "medium", None)
+    layered = medium is not None and not medium.homogeneous
     for p, where in combos:
+        if layered:
+            assert medium is not None
+            _check_medium_speed(c, point_medium(medium, p), p, where)
+            continue
         damped = p.get("damping", 0.0) > 0.0
         kp = p.get("kp", 0.0)
         key = (p["vstar"], p["kw"], p["nu"], damped, kp)
@@ -718,6 +974,30 @@ def _check_speeds(scene: SceneData, c: Checker) -> None:
                 else allowed,
                 blamed,
             )
+
+
+def _check_medium_speed(
+    c: Checker, medium: Medium, p: Mapping[str, float], where: Mapping[str, str]
+) -> None:
+    """vstar < V*_cr of a layered medium (or one on a half-space) at the
+    point ``p``; unchecked where the core cannot compute V*_cr (the run
+    reports why)."""
+    vcr = medium_critical_speed(medium)
+    if vcr is None or p["vstar"] == 0.0 or p["vstar"] < vcr:
+        return
+    culprit, blamed = where["vstar"], "vstar"
+    allowed = f"0 <= vstar < {vcr:.10g}"
+    if culprit.startswith("params.") and not where["kw"].startswith("params."):
+        culprit, blamed = where["kw"], "kw"
+        allowed = f"kw with V*_cr > vstar = {p['vstar']:g}"
+    raise c.fail(
+        culprit,
+        f"vstar = {p['vstar']:.10g} is at or above the critical speed "
+        f"V*_cr = {vcr:.10g} of the medium ({medium.describe()}): no steady "
+        "solution",
+        allowed,
+        blamed,
+    )
 
 
 def _check_overlap(scene: SceneData, c: Checker) -> None:

@@ -789,19 +789,14 @@ def _solve(params: Params) -> ContactSolution:
     )
 
 
-def zones_of(s: object) -> tuple[tuple[float, float], ...]:
-    """A solution's contact zones (its one contact interval if it has no
-    ``contact_zones``)."""
-    zones = getattr(s, "contact_zones", None)
-    if not zones:
-        interval = cast(ContactSolution, s).contact_interval
-        return ((float(interval[0]), float(interval[1])),)
-    return tuple((float(lo), float(hi)) for lo, hi in zones)
+def zones_of(s: ContactSolution) -> tuple[tuple[float, float], ...]:
+    """A solution's contact zones, as floats."""
+    return tuple((float(lo), float(hi)) for lo, hi in s.contact_zones)
 
 
-def _punch_summaries(s: object) -> tuple[PunchSummary, ...]:
+def _punch_summaries(s: ContactSolution) -> tuple[PunchSummary, ...]:
     """Each punch of a train (several punches, or one off the axis)."""
-    punches = getattr(s, "punches", ())
+    punches = s.punches
     if len(punches) < 2 and all(p.at == 0.0 for p in punches):
         return ()
     return tuple(
@@ -1069,7 +1064,7 @@ def _curves(
         current = zones_of(solved[0][2])
         if len(current) > 1:
             markers = tuple(e for z in current for e in z)
-    punches = getattr(solved[0][2], "punches", ()) if solved else ()
+    punches = solved[0][2].punches if solved else ()
     if tab != "depth" and len(punches) > 1:  # a train: its punches' axes
         axes = tuple(float(p.at) for p in punches)
     return Curves(

@@ -47,15 +47,16 @@ from movingpunch.contract import Points
 from movingpunch.errors import SupercriticalSpeedError
 from movingpunch.fields import FloatArray
 from movingpunch.profiles import Profile, PunchProfile, resolve_profile
+from movingpunch.zones import PunchResult, single_punch
 
 __all__ = [
-    "DampedSolution",
+    "AsymmetricSolution",
     "check_damping",
     "check_friction",
     "coupling_constant",
     "damped_layer_response",
     "end_exponents",
-    "solve_damped",
+    "solve_asymmetric",
 ]
 
 _N_MAX = 1024
@@ -71,7 +72,7 @@ def check_damping(value: object, *, positive: bool = False) -> float:
     if positive and x == 0:
         raise params.fail(
             "damping",
-            "damping must satisfy 0 < damping < inf for the damped solver "
+            "damping must satisfy 0 < damping < inf for the asymmetric solver "
             f"(damping = 0: movingpunch.solve), got {value!r}",
         )
     return x
@@ -104,12 +105,12 @@ def end_exponents(
     return (float(back), float(front))
 
 
-def _check_damped_size(value: object) -> int:
-    return params.check_size(value, _N_MAX, " for the damped solver")
+def _check_asymmetric_size(value: object) -> int:
+    return params.check_size(value, _N_MAX, " for the asymmetric solver")
 
 
 @dataclass(frozen=True)
-class DampedSolution(ResultFields):
+class AsymmetricSolution(ResultFields):
     """The asymmetric solution: a damped foundation and/or Coulomb friction
     (dimensionless: lengths per h, pressures and stresses per P/h). The punch
     moves towards +x; (-b, a) are its trailing and leading ends."""
@@ -149,6 +150,13 @@ class DampedSolution(ResultFields):
     Empty when none was found on [w/8, 4w]."""
     _impl: _core.DampedSolution = field(repr=False, compare=False)
     _profile: PunchProfile | None = field(default=None, repr=False, compare=False)
+
+    @functools.cached_property
+    def punches(self) -> tuple[PunchResult, ...]:
+        """The one punch (``movingpunch.PunchResult``): at x = 0, its one zone
+        (``contact_zones``) with the whole load, ``indentation`` and ``drag``
+        as the solution's."""
+        return single_punch(self, self._impl)
 
     @property
     def kernel_builds(self) -> int:
@@ -232,7 +240,7 @@ class DampedSolution(ResultFields):
         return _pointwise("x", x, self._impl.bottom_displacement)
 
 
-def solve_damped(
+def solve_asymmetric(
     *,
     vstar: float,
     kw: float,
@@ -246,7 +254,7 @@ def solve_damped(
     kp: float = 0.0,
     friction: float = 0.0,
     profile: PunchProfile | None = None,
-) -> DampedSolution:
+) -> AsymmetricSolution:
     """Solves the asymmetric contact problem: a damped foundation
     (``damping`` > 0) and/or Coulomb friction (``friction`` > 0, then
     ``damping`` >= 0).
@@ -271,7 +279,7 @@ def solve_damped(
         damping, positive=inputs["friction"] == 0 and not asymmetric_shape
     )
     flag = _check_flag("allow_unphysical", allow_unphysical)
-    size = _check_damped_size(n)
+    size = _check_asymmetric_size(n)
     vr = float(_core.rayleigh_vstar(inputs["nu"]))
     if inputs["vstar"] >= vr:
         raise SupercriticalSpeedError(
@@ -286,7 +294,7 @@ def solve_damped(
         **{**inputs, **shape.core_args()}, allow_unphysical=flag, n=size
     )
     back, front = impl.end_exponents
-    return DampedSolution(
+    return AsymmetricSolution(
         **inputs,
         tangential_force=float(impl.tangential_force),
         end_exponents=(float(back), float(front)),

@@ -1,0 +1,108 @@
+"""What a medium costs: stacks, a graded sublayer and a half-space base
+against the homogeneous layer, in one process.
+
+For the paper's case (V* 0.2, R/h 100, P/(mu h) 0.002) on
+  * the homogeneous layer (kw 1, nu 0.2): the yardstick;
+  * a 3-sublayer pavement-like stack (0.2 asphalt, 0.3 base mu 0.3,
+    0.5 subbase mu 0.1) on kw 1;
+  * a homogeneous top 0.3 over a graded sublayer 0.7 (gamma h 2) on kw 1;
+  * the layer on a bonded half-space (mu 0.5, nu 0.3);
+the warm solve (the kernel cached: another load each time), the cold solve
+(kernel cache cleared first) and the TUI's 97 x 41 stress map, medians over
+--repeat, as ratios to the homogeneous layer's. Issue 26's targets: warm
+stack <= 3x, graded <= 3x, half-space <= 2x; a cold 3-sublayer solve <= 10x
+the homogeneous cold solve. Prints the machine's load average; never asserts
+a time.
+
+    .venv/bin/python benchmarks/bench_media.py [--repeat 7]
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import statistics
+import time
+from collections.abc import Callable
+
+import numpy as np
+
+import movingpunch as mp
+
+CASE = {"vstar": 0.2, "radius": 100.0}
+MEDIA: dict[str, dict[str, object]] = {
+    "homogeneous": {"kw": 1.0, "nu": 0.2},
+    "3-sublayer stack": {
+        "layers": [
+            mp.Layer(0.2, nu=0.35),
+            mp.Layer(0.3, mu=0.3, nu=0.3, rho=0.9),
+            mp.Layer(0.5, mu=0.1, nu=0.3, rho=0.8),
+        ],
+        "base": mp.Winkler(1.0),
+    },
+    "graded sublayer": {
+        "layers": [mp.Layer(0.3), mp.GradedLayer(2.0, thickness=0.7)],
+        "base": mp.Winkler(1.0),
+    },
+    "half-space base": {
+        "layers": [mp.Layer(1.0)],
+        "base": mp.HalfSpace(0.5, 0.3),
+    },
+}
+TARGETS = {"3-sublayer stack": 3.0, "graded sublayer": 3.0, "half-space base": 2.0}
+
+
+def _median_ms(run: Callable[[int], object], repeat: int) -> float:
+    times = []
+    for i in range(repeat):
+        t0 = time.perf_counter()
+        run(i)
+        times.append(1e3 * (time.perf_counter() - t0))
+    return statistics.median(times)
+
+
+def measure(medium: dict[str, object], repeat: int) -> tuple[float, float, float]:
+    def solve(i: int, cold: bool = False) -> mp.ContactSolution:
+        if cold:
+            mp.clear_kernel_cache()
+        return mp.solve(**CASE, load=0.002 * (1 + 1e-3 * i), **medium)  # type: ignore[arg-type]
+
+    cold = _median_ms(lambda i: solve(i, cold=True), repeat)
+    solve(0)
+    warm = _median_ms(solve, repeat)
+    s = solve(0)
+    x = np.linspace(-3.0, 3.0, 97)
+    y = np.linspace(-1.0, 0.0, 41)
+    field = _median_ms(lambda _i: s.stress_field(x, y), max(3, repeat // 2))
+    return warm, cold, field
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeat", type=int, default=7)
+    args = parser.parse_args()
+    print(f"load average {os.getloadavg()}")
+    rows = {name: measure(m, args.repeat) for name, m in MEDIA.items()}
+    w0, c0, f0 = rows["homogeneous"]
+    print(
+        f"{'medium':<18} {'warm ms':>9} {'x':>6} {'cold ms':>9} {'x':>6} "
+        f"{'map ms':>8} {'x':>6}  target (warm)"
+    )
+    for name, (w, c, f) in rows.items():
+        target = TARGETS.get(name)
+        mark = ""
+        if target:
+            mark = f"<= {target:g}x {'met' if w / w0 <= target else 'MISSED'}"
+        print(
+            f"{name:<18} {w:9.2f} {w / w0:6.2f} {c:9.2f} {c / c0:6.2f} "
+            f"{f:8.1f} {f / f0:6.2f}  {mark}"
+        )
+    stack_cold = rows["3-sublayer stack"][1] / c0
+    print(
+        f"cold 3-sublayer / cold homogeneous: {stack_cold:.2f} "
+        f"(<= 10x {'met' if stack_cold <= 10 else 'MISSED'})"
+    )
+
+
+if __name__ == "__main__":
+    main()

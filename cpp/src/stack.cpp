@@ -1,0 +1,640 @@
+// Layered media (stack.hpp; docs/media.md).
+#include "stack.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <mutex>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Eigenvalues>
+
+#include "layer_basis.hpp"
+#include "movingpunch/errors.hpp"
+#include "roots.hpp"
+
+namespace movingpunch {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kPi = 3.14159265358979323846;
+// Attraction (in e-folds of the basis) beyond which the deeper structure is
+// not evaluated: its effect on the surface is below e^-100, on the state
+// at the start depth below e^-50.
+constexpr double kCut = 100.0;
+// Largest ||generator||_inf of one Taylor slice; the modal step from t d = kModalT.
+constexpr double kSliceNorm = 0.5;
+constexpr double kModalT = 0.5;
+
+using Mat42 = Eigen::Matrix<double, 4, 2>;
+using Vec4 = Eigen::Vector4d;
+using Mat4 = Eigen::Matrix4d;
+
+// exp(B) by its Taylor series (||B||_inf <= ~0.5).
+Mat4 taylor_exp(const Mat4& B) {
+  Mat4 P = Mat4::Identity(), term = Mat4::Identity();
+  for (int k = 1; k < 80; ++k) {
+    term = term * B / static_cast<double>(k);
+    P += term;
+    if (k > 3 && term.cwiseAbs().maxCoeff() <= 1e-18 * P.cwiseAbs().maxCoeff()) break;
+  }
+  return P;
+}
+
+// Orthonormalises the columns of S by column operations (classical
+// Gram-Schmidt, twice): S_in = S_out R, R upper triangular with a positive
+// diagonal (the orientation of the basis is kept).
+Eigen::Matrix2d orthonormalise(Mat42& S) {
+  Eigen::Matrix2d R = Eigen::Matrix2d::Identity();
+  for (int pass = 0; pass < 2; ++pass) {
+    const double r11 = S.col(0).norm();
+    S.col(0) /= r11;
+    const double r12 = S.col(0).dot(S.col(1));
+    S.col(1) -= r12 * S.col(0);
+    const double r22 = S.col(1).norm();
+    S.col(1) /= r22;
+    Eigen::Matrix2d Rp;
+    Rp << r11, r12, 0.0, r22;
+    R = Rp * R;
+  }
+  return R;
+}
+
+Mat4 stress_scale(double m) { return Vec4(1.0, 1.0, m, m).asDiagonal(); }
+
+// One sublayer at the speed.
+struct Sub {
+  double y_top = 0, y_bot = -1, d = 1;
+  double m_top = 1, gamma = 0;  // mu at the top (top sublayer's units), gamma_h
+  bool graded = false;
+  WaveConstants c;  // local constants at s = vstar rho / mu
+  double m_at(double y) const { return graded ? m_top * std::exp(gamma * (y - y_top)) : m_top; }
+  double m_bot() const { return m_at(y_bot); }
+  double sx(const Vec4& z, double m) const {
+    return m * 4.0 * (c.c2 - 1.0) / c.c2 * z(0) + (c.c2 - 2.0) / c.c2 * z(3);
+  }
+};
+
+// One sublayer's map of the basis from its bottom to its top (scaled
+// variables: stresses over the local modulus).
+struct Segment {
+  int layer = 0;
+  bool modal = false;
+  bool start = false;  // the deepest evaluated sublayer: no input from below
+  double t_loc = 0;    // t d
+  // Slices: from yhat = lo to 0 in n slices of width h, each exp(Bh).
+  double lo = -1.0, h = 1.0;
+  int n = 1;
+  Mat4 Bh = Mat4::Zero();
+  std::vector<Mat42> basis;             // at each slice's bottom (normalised)
+  std::vector<Eigen::Matrix2d> R;       // basis[k+1] R[k] = exp(Bh) basis[k]
+  Eigen::Matrix<double, 4, 2> Nul;      // modal: amplitudes a = Nul c_raw
+  Mat42 in = Mat42::Zero();                            // normalised scaled input
+  Eigen::Matrix2d Rin = Eigen::Matrix2d::Identity();   // in = scaled input Rin^-1
+};
+
+struct Propagation {
+  std::vector<Segment> segs;  // top sublayer first
+  Mat42 S_top;                // orthonormal basis at the surface
+  double orient = 1.0;        // +-1: the orientation relative to the transfer maps
+  bool cut = false;           // structure below segs.back() not evaluated
+};
+
+// The medium's data at one speed (no validation of the speed against the
+// critical one: the critical-speed search uses it at every speed).
+class Core {
+ public:
+  Core(const MediumSpec& spec, double vstar) : spec_(spec), s_(vstar) {
+    double y = 0.0;
+    for (const Sublayer& l : spec.layers) {
+      Sub sb;
+      sb.y_top = y;
+      sb.d = l.thickness;
+      y -= l.thickness;
+      sb.y_bot = y;
+      sb.m_top = l.mu;
+      sb.gamma = l.gamma;
+      sb.graded = l.gamma != 0.0;
+      sb.c = wave_constants(vstar * l.rho / l.mu, l.nu);
+      subs_.push_back(sb);
+    }
+    subs_.back().y_bot = -1.0;
+    subs_.back().d = subs_.back().y_top + 1.0;
+    const BaseSpec& b = spec.base;
+    if (b.kind != BaseKind::springs) sub_ = wave_constants(vstar * b.rho / b.mu, b.nu);
+  }
+
+  const std::vector<Sub>& subs() const { return subs_; }
+  const MediumSpec& spec() const { return spec_; }
+
+  // The base's two-dimensional solution space at y = -1 (unscaled).
+  Mat42 base(double t) const {
+    const BaseSpec& b = spec_.base;
+    Mat42 S = Mat42::Zero();
+    S(0, 0) = 1.0;
+    if (b.kind == BaseKind::springs) {
+      const double k = b.kw + b.kp * t * t;
+      if (std::isinf(k)) {
+        S(3, 1) = 1.0;
+      } else {
+        // t sigma/alpha = k W, as [t/(t+k)] sigma/alpha = [k/(t+k)] W.
+        S(1, 1) = 1.0 / (1.0 + k / t);
+        S(3, 1) = 1.0 / (1.0 + t / k);
+      }
+    } else if (b.kind == BaseKind::half_space_smooth) {
+      // tau = 0; sigma = alpha mu2 v / phi1_2: phi1_2 = nL / den, regular form.
+      const double sub_den = sub_.nL / sub_.phi1;
+      S(1, 1) = sub_.nL;
+      S(3, 1) = b.mu * sub_den;
+    } else {
+      // The substrate's downward-decaying modes at its face (independent of t).
+      const Mat4 C = detail::modal_columns(sub_, 1.0, 0.0);
+      S = stress_scale(b.mu) * C.leftCols<2>();
+    }
+    orthonormalise(S);
+    return S;
+  }
+
+  // The attraction of the basis over the whole sublayer i at t.
+  double attraction(const Sub& sb, double t) const {
+    const double td = t * sb.d;
+    if (!sb.graded) return 2.0 * td * sb.c.nT;
+    Mat4 G = sb.c.A;
+    const double g = sb.gamma / t;  // per unit t: the generator is t (A - g D)
+    G(2, 2) -= g;
+    G(3, 3) -= g;
+    Eigen::EigenSolver<Mat4> es(G, false);
+    std::vector<double> re;
+    for (int i = 0; i < 4; ++i) re.push_back(es.eigenvalues()(i).real());
+    std::sort(re.begin(), re.end(), std::greater<double>());
+    return (re[1] - re[2]) * td;
+  }
+
+  // dispersion: homogeneous sublayers are never cut (their modal maps keep
+  // a continuous orientation at every t), and the orientation is tracked.
+  Propagation propagate(double t, bool dispersion) const {
+    Propagation P;
+    const int K = static_cast<int>(subs_.size());
+    int i0 = K;
+    double start_depth = 1.0;
+    for (int i = 0; i < K; ++i) {
+      const Sub& sb = subs_[static_cast<size_t>(i)];
+      if (dispersion && !sb.graded) continue;
+      if (t * sb.d * 2.0 * std::max(sb.c.nL, 1.0) + std::fabs(sb.gamma) * sb.d < 0.5 * kCut)
+        continue;  // cannot reach kCut (|eigenvalues| <= t nL + |gamma|)
+      const double a = attraction(sb, t);
+      if (a >= kCut) {
+        i0 = i;
+        start_depth = kCut / a;
+        break;
+      }
+    }
+    P.cut = i0 < K;
+    const int last = P.cut ? i0 : K - 1;
+    std::vector<Segment> segs(static_cast<size_t>(last + 1));
+    Mat42 S = P.cut ? Mat42::Zero() : base(t);  // unscaled, at the current depth
+    for (int i = last; i >= 0; --i) {
+      const Sub& sb = subs_[static_cast<size_t>(i)];
+      Segment& g = segs[static_cast<size_t>(i)];
+      g.layer = i;
+      g.t_loc = t * sb.d;
+      g.start = P.cut && i == i0;
+      Mat42 top;
+      if (g.start && !sb.graded) {
+        g.modal = true;
+        g.Nul.setZero();
+        g.Nul(0, 0) = g.Nul(1, 1) = 1.0;
+        top = detail::modal_columns(sb.c, g.t_loc, 0.0).leftCols<2>();
+      } else if (!sb.graded && g.t_loc >= kModalT) {
+        g.modal = true;
+        g.in = stress_scale(1.0 / sb.m_bot()) * S;
+        g.Rin = orthonormalise(g.in);
+        modal_step(sb, g, dispersion ? &P.orient : nullptr);
+        top = detail::modal_columns(sb.c, g.t_loc, 0.0) * g.Nul;
+      } else {
+        // Slices of the constant-coefficient generator (scaled variables).
+        if (g.start) {
+          g.lo = -start_depth;
+          g.in = detail::modal_columns(sb.c, g.t_loc, 0.0).leftCols<2>();
+        } else {
+          g.lo = -1.0;
+          g.in = stress_scale(1.0 / sb.m_bot()) * S;
+        }
+        g.Rin = orthonormalise(g.in);
+        const double span = -g.lo;
+        Mat4 Dg = Mat4::Zero();
+        Dg(2, 2) = Dg(3, 3) = sb.gamma * sb.d;
+        const Mat4 Bspan = (g.t_loc * span) * sb.c.A - span * Dg;
+        const double norm = Bspan.cwiseAbs().rowwise().sum().maxCoeff();
+        g.n = std::max(1, static_cast<int>(std::ceil(norm / kSliceNorm)));
+        g.h = span / g.n;
+        g.Bh = (g.t_loc * g.h) * sb.c.A - g.h * Dg;
+        const Mat4 E = taylor_exp(g.Bh);
+        g.basis.reserve(static_cast<size_t>(g.n) + 1);
+        g.R.reserve(static_cast<size_t>(g.n));
+        g.basis.push_back(g.in);
+        for (int k = 0; k < g.n; ++k) {
+          Mat42 nxt = E * g.basis.back();
+          g.R.push_back(orthonormalise(nxt));
+          g.basis.push_back(nxt);
+        }
+        top = g.basis.back();
+      }
+      if (g.modal) orthonormalise(top);
+      S = stress_scale(sb.m_top) * top;
+      orthonormalise(S);  // the coefficient change is recovered by least squares
+    }
+    P.S_top = S;
+    P.segs = std::move(segs);
+    return P;
+  }
+
+  // The modal map of a homogeneous sublayer: amplitudes a (4) of its
+  // regularised modes whose bottom state lies in span(in): a = Nul c.
+  static void modal_step(const Sub& sb, Segment& g, double* orient) {
+    const Mat4 Cb = detail::modal_columns(sb.c, g.t_loc, -1.0);
+    // The complement of the input span.
+    Eigen::HouseholderQR<Mat42> qr(g.in);
+    const Mat4 Q = qr.householderQ();
+    const Eigen::Matrix<double, 2, 4> G = Q.rightCols<2>().transpose() * Cb;
+    const Eigen::Matrix2d G1 = G.leftCols<2>(), G2 = G.rightCols<2>();
+    const double scale = G2.cwiseAbs().maxCoeff();
+    if (scale > 0.0 && std::fabs(G2.determinant()) > 1e-8 * scale * scale) {
+      // Canonical: the amplitudes of the top-face modes are the coordinates.
+      g.Nul.topRows<2>().setIdentity();
+      g.Nul.bottomRows<2>() = -G2.partialPivLu().solve(G1);
+      if (orient) {
+        // exp(t d A) in = C0 Cb^-1 in = C0 Nul W_top: the sign of det W_top.
+        // Cb's first two columns are [vT+, dv+] U with U upper triangular,
+        // positive diagonal (e^{-nT t d}, e^{-nL t d}): the same sign from
+        // the t-independent, well-conditioned [vT+, dv+, Cb(2), Cb(3)].
+        const WaveConstants& c = sb.c;
+        Mat4 Ct = Cb;
+        Ct.col(0) = detail::shear_vector(c.nT);
+        Ct.col(1) = Vec4(0.0, c.dW, c.dT, c.dS);
+        const Mat42 W = Ct.partialPivLu().solve(g.in);
+        if (W.topRows<2>().determinant() < 0.0) *orient = -*orient;
+      }
+    } else {
+      // A (rare) singular canonical form: any basis of the null space.
+      Eigen::FullPivLU<Eigen::Matrix<double, 2, 4>> lu(G);
+      Eigen::Matrix<double, 4, Eigen::Dynamic> k = lu.kernel();
+      g.Nul = k.leftCols<2>();
+    }
+  }
+
+  // The surface solution: coefficients c of P.S_top with tau = 0, sigma/alpha = -1.
+  static Eigen::Vector2d top_coefficients(const Propagation& P, double* p23_out = nullptr) {
+    Mat42 S = P.S_top;
+    const double p23_raw = S(2, 0) * S(3, 1) - S(2, 1) * S(3, 0);
+    if (p23_out) *p23_out = p23_raw * P.orient;
+    // The tau row is O(t) as t -> 0: rescale it (the solution is unchanged).
+    const double tmax = std::max(std::fabs(S(2, 0)), std::fabs(S(2, 1)));
+    if (tmax > 0.0) S.row(2) /= tmax;
+    const double p23 = S(2, 0) * S(3, 1) - S(2, 1) * S(3, 0);
+    return Eigen::Vector2d(S(2, 1), -S(2, 0)) / p23;
+  }
+
+  MediumResponse response(double t) const {
+    const Propagation P = propagate(t, false);
+    const Eigen::Vector2d c = top_coefficients(P);
+    const Vec4 z0 = P.S_top * c;
+    const WaveConstants& k = subs_[0].c;
+    MediumResponse r;
+    r.U0 = z0(0);
+    r.W0 = z0(1);
+    r.M1 = -z0(1);
+    r.M2 = (k.c2 - 2.0) / k.c2 - 4.0 * (k.c2 - 1.0) / k.c2 * z0(0);
+    return r;
+  }
+
+  double dispersion(double t) const {
+    const Propagation P = propagate(t, true);
+    double p23 = 0.0;
+    top_coefficients(P, &p23);
+    return p23;
+  }
+
+ private:
+  MediumSpec spec_;
+  double s_;
+  std::vector<Sub> subs_;
+  WaveConstants sub_;
+};
+
+// The solution of one wavenumber at every depth.
+class StackProfile final : public ModeProfile {
+ public:
+  StackProfile(const Core& core, const WaveConstants& top, double t)
+      : subs_(core.subs()), top_(top), t_(t), P_(core.propagate(t, false)) {
+    // Downward pass: the state at each sublayer's top, its coordinates in
+    // the sublayer's own basis (least squares: the state lies in its span),
+    // and the state at its bottom, the next sublayer's top state.
+    Vec4 z = P_.S_top * Core::top_coefficients(P_);
+    for (Segment& g : P_.segs) {
+      const Sub& sb = subs_[static_cast<size_t>(g.layer)];
+      const Mat42 out = g.modal ? Mat42(detail::modal_columns(sb.c, g.t_loc, 0.0) * g.Nul)
+                                : g.basis.back();
+      const Mat42 out_u = stress_scale(sb.m_top) * out;
+      const Eigen::Vector2d cg = out_u.colPivHouseholderQr().solve(z);
+      Vec4 zb;  // the unscaled state at the segment's bottom
+      if (g.modal) {
+        amp_.push_back(g.Nul * cg);
+        slice_c_.emplace_back();
+        zb = stress_scale(sb.m_bot()) * detail::modal_columns(sb.c, g.t_loc, -1.0) * amp_.back();
+      } else {
+        amp_.push_back(Vec4::Zero());
+        std::vector<Eigen::Vector2d> ck(static_cast<size_t>(g.n) + 1);
+        ck[static_cast<size_t>(g.n)] = cg;
+        for (int k = g.n - 1; k >= 0; --k)
+          ck[static_cast<size_t>(k)] =
+              g.R[static_cast<size_t>(k)].triangularView<Eigen::Upper>().solve(
+                  ck[static_cast<size_t>(k) + 1]);
+        zb = stress_scale(sb.m_at(sb.y_top + g.lo * sb.d)) * g.basis[0] * ck[0];
+        slice_c_.push_back(std::move(ck));
+      }
+      ++done_;
+      if (g.start) break;
+      z = zb;
+    }
+  }
+
+  ModeState remainder(double y, bool below) const override {
+    const ModeState hp = half_plane(y);
+    ModeState st;
+    double sxv = 0.0;
+    Vec4 z = Vec4::Zero();
+    int i = locate(y, below);
+    if (i >= 0 && i < done_) {
+      const Sub& sb = subs_[static_cast<size_t>(i)];
+      const Segment& g = P_.segs[static_cast<size_t>(i)];
+      const double yh = std::min(0.0, std::max(-1.0, (y - sb.y_top) / sb.d));
+      const double m = sb.m_at(y);
+      if (g.modal) {
+        z = stress_scale(m) * detail::modal_columns(sb.c, g.t_loc, yh) * amp_[static_cast<size_t>(i)];
+      } else if (yh >= g.lo) {
+        const auto& ck = slice_c_[static_cast<size_t>(i)];
+        int k = static_cast<int>(std::floor((yh - g.lo) / g.h));
+        k = std::min(std::max(k, 0), g.n - 1);
+        const double f = (yh - (g.lo + k * g.h)) / g.h;
+        z = stress_scale(m) * taylor_exp(f * g.Bh) * g.basis[static_cast<size_t>(k)] *
+            ck[static_cast<size_t>(k)];
+      }
+      sxv = sb.sx(z, m);
+    } else if (i >= 0) {
+      // Below the evaluated structure: the state is below e^-50 of the surface's.
+      const Sub& sb = subs_[static_cast<size_t>(i)];
+      sxv = sb.sx(z, sb.m_at(y));
+    }
+    for (int r = 0; r < 4; ++r) st.z(r) = z(r) - hp.z(r);
+    st.sx = sxv - hp.sx;
+    return st;
+  }
+
+  ModeState half_plane(double y) const override {
+    const Mat4 C = detail::modal_columns(top_, t_, y);
+    const Vec4 z = top_.hp1 * C.col(0) + top_.hp2 * C.col(1);
+    ModeState s;
+    for (int r = 0; r < 4; ++r) s.z(r) = z(r);
+    s.sx = sigma_x_hat(top_, z);
+    return s;
+  }
+
+ private:
+  int locate(double y, bool below) const {
+    const int K = static_cast<int>(subs_.size());
+    for (int i = 0; i < K; ++i) {
+      const Sub& sb = subs_[static_cast<size_t>(i)];
+      if (i + 1 < K && y == sb.y_bot) return below ? i + 1 : i;
+      if (y >= sb.y_bot || i + 1 == K) return i;
+    }
+    return K - 1;
+  }
+
+  std::vector<Sub> subs_;
+  WaveConstants top_;
+  double t_;
+  Propagation P_;
+  int done_ = 0;
+  std::vector<Vec4> amp_;
+  std::vector<std::vector<Eigen::Vector2d>> slice_c_;
+};
+
+std::string idx(const char* what, size_t i, const char* field) {
+  std::ostringstream o;
+  o << what << "[" << i << "]." << field;
+  return o.str();
+}
+
+void check_spec(const MediumSpec& m) {
+  if (m.layers.empty())
+    throw InvalidParameter("layers", "at least one sublayer", "layers: at least one sublayer");
+  double sum = 0.0;
+  for (size_t i = 0; i < m.layers.size(); ++i) {
+    const Sublayer& l = m.layers[i];
+    require_in_range(idx("layers", i, "thickness").c_str(), l.thickness, 0.0, 1.0, true, false);
+    require_in_range(idx("layers", i, "mu").c_str(), l.mu, 0.0, 1e300, true, false);
+    require_in_range(idx("layers", i, "rho").c_str(), l.rho, 0.0, 1e300, true, false);
+    require_in_range(idx("layers", i, "nu").c_str(), l.nu, 0.0, 0.5, false, true);
+    require_in_range(idx("layers", i, "gamma").c_str(), l.gamma, -kMaxGamma, kMaxGamma, false,
+                     false);
+    sum += l.thickness;
+  }
+  if (!(std::fabs(sum - 1.0) <= 1e-12)) {
+    std::ostringstream o;
+    o.precision(17);
+    o << "layers: the thicknesses must sum to 1 (within 1e-12), got " << sum;
+    throw InvalidParameter("layers", "thicknesses summing to 1", o.str());
+  }
+  if (m.layers[0].mu != 1.0 || m.layers[0].rho != 1.0)
+    throw InvalidParameter("layers", "top sublayer mu = rho = 1",
+                           "layers[0]: the top sublayer has mu = rho = 1 (the units)");
+  const BaseSpec& b = m.base;
+  if (b.kind == BaseKind::springs) {
+    require_in_range("kw", b.kw, 0.0, kInf, true, false, true);
+    require_in_range("kp", b.kp, 0.0, kMaxKp, false, false);
+    if (b.damping != 0.0)
+      throw std::invalid_argument("stack medium: a damped base (damping != 0) is not supported");
+  } else {
+    require_in_range("base.mu", b.mu, 0.0, 1e300, true, false);
+    require_in_range("base.rho", b.rho, 0.0, 1e300, true, false);
+    require_in_range("base.nu", b.nu, 0.0, 0.5, false, true);
+  }
+}
+
+class StackMedium final : public Medium {
+ public:
+  StackMedium(const MediumSpec& spec, double vstar)
+      : core_(spec, vstar), spec_(spec), s_(vstar), top_(wave_constants(vstar, spec.layers[0].nu)) {}
+
+  double vstar() const noexcept override { return s_; }
+  const WaveConstants& top() const noexcept override { return top_; }
+  bool real() const noexcept override { return true; }
+
+  MediumResponse response(double t) const override {
+    if (std::isnan(t) || t < 0.0)
+      throw std::invalid_argument("stack response: t = alpha h must be >= 0");
+    // t = 0: the limit, to double precision (every correction is O(t)).
+    return core_.response(t == 0.0 ? 1e-300 : t);
+  }
+  std::unique_ptr<const ModeProfile> mode(double t) const override {
+    if (!(t > 0.0) || !std::isfinite(t))
+      throw std::invalid_argument("stack mode: t = alpha h must be finite and > 0");
+    return std::make_unique<StackProfile>(core_, top_, t);
+  }
+  double dispersion(double t) const override {
+    if (!(t > 0.0) || !std::isfinite(t))
+      throw std::invalid_argument("stack dispersion: t = alpha h must be finite and > 0");
+    return core_.dispersion(t);
+  }
+  double decay_rate() const noexcept override {
+    const Sublayer& l = spec_.layers[0];
+    return l.gamma != 0.0 ? 0.0 : 2.0 * top_.nT * l.thickness;
+  }
+  std::vector<double> first_panel_edges(double w) const override {
+    const BaseSpec& b = spec_.base;
+    if (b.kind == BaseKind::springs) return detail::foundation_panel_edges(b.kw, b.kp, w);
+    // Half-space: M1 -> phi1_2/mu2 with t log t corrections; panels graded
+    // geometrically towards 0 (w 2^-12 ... w/2, w).
+    std::vector<double> e{0.0};
+    for (int k = 12; k >= 1; --k) e.push_back(std::ldexp(w, -k));
+    e.push_back(w);
+    return e;
+  }
+  std::vector<double> interfaces() const override {
+    std::vector<double> out;
+    double y = 0.0;
+    for (size_t i = 0; i + 1 < spec_.layers.size(); ++i) {
+      y -= spec_.layers[i].thickness;
+      out.push_back(y);
+    }
+    return out;
+  }
+  const MediumSpec& spec() const noexcept override { return spec_; }
+
+ private:
+  Core core_;
+  MediumSpec spec_;
+  double s_;
+  WaveConstants top_;
+};
+
+// The lowest vstar < smax of a free wave of wavenumber t (smax if none).
+double first_wave(const MediumSpec& spec, double t, double smax) {
+  auto D = [&](double s) { return Core(spec, s).dispersion(t); };
+  const int m = kFirstWaveScan;
+  const double top = smax * (1.0 - 1e-13);
+  double s_prev = 0.0, d_prev = D(0.0);
+  for (int j = 1; j <= m; ++j) {
+    const double s = top * 0.5 * (1.0 - std::cos(kPi * j / m));
+    const double d = D(s);
+    if (d == 0.0) return s;
+    if ((d < 0.0) != (d_prev < 0.0)) {
+      const double r = detail::bracketed_root(D, s_prev, s, d_prev, d, 1e-15 * smax);
+      // A sign change of a continuous function has |D| -> 0 at the root; a
+      // jump of the basis' orientation (docs/media.md) does not.
+      if (std::fabs(D(r)) <= 1e-6 * std::max(std::fabs(d), std::fabs(d_prev))) return r;
+    }
+    s_prev = s;
+    d_prev = d;
+  }
+  return smax;
+}
+
+CriticalSpeed compute_critical(const MediumSpec& spec) {
+  // The infima reached only as t -> inf or t -> 0.
+  CriticalSpeed inf{rayleigh_vstar(spec.layers[0].nu), kInf};
+  auto consider = [&](double v, double t) {
+    if (v < inf.vstar) inf = {v, t};
+  };
+  for (const Sublayer& l : spec.layers) consider(l.mu / l.rho, kInf);
+  const BaseSpec& b = spec.base;
+  const Sublayer& bot = spec.layers.back();
+  if (b.kind == BaseKind::springs) {
+    if (std::isfinite(b.kw) && b.kp == 0.0) consider(bot.mu / bot.rho * rayleigh_vstar(bot.nu), kInf);
+  } else {
+    consider(b.mu / b.rho * rayleigh_vstar(b.nu), 0.0);
+  }
+  const double smax = inf.vstar;
+  // A grid in log t and Brent's minimiser, as critical_speed (dispersion.cpp).
+  const double lt0 = std::log(1e-5), lt1 = std::log(1e5);
+  int n = 0, best = 0;
+  double best_s = kInf;
+  for (const int size : {21, 201}) {
+    n = size;
+    best = 0;
+    best_s = kInf;
+    for (int i = 0; i < n; ++i) {
+      const double v = first_wave(spec, std::exp(lt0 + (lt1 - lt0) * i / (n - 1)), smax);
+      if (v < best_s) {
+        best_s = v;
+        best = i;
+      }
+    }
+    if (best_s < smax * (1.0 - 1e-6)) break;
+  }
+  // A root within 1e-12 of the infimum is the infimum's own branch seen
+  // through round-off (D ~ 1e-13 there at large t): none below it.
+  if (best_s >= smax * (1.0 - 1e-12)) return inf;
+  const double h = (lt1 - lt0) / (n - 1);
+  auto F = [&](double lt) { return first_wave(spec, std::exp(lt), smax); };
+  const double a = lt0 + h * std::max(best - 1, 0), bb = lt0 + h * std::min(best + 1, n - 1);
+  const detail::Minimum mn = detail::brent_minimum(F, a, bb, lt0 + h * best, best_s, 1e-7, 0.0, 100);
+  return {mn.f, std::exp(mn.x)};
+}
+
+std::vector<double> spec_key(const MediumSpec& s) {
+  std::vector<double> k;
+  for (const Sublayer& l : s.layers) k.insert(k.end(), {l.thickness, l.mu, l.nu, l.rho, l.gamma});
+  const BaseSpec& b = s.base;
+  k.insert(k.end(), {static_cast<double>(static_cast<int>(b.kind)), b.kw, b.kp, b.damping, b.mu,
+                     b.nu, b.rho});
+  return k;
+}
+
+}  // namespace
+
+double stack_max_vstar(const MediumSpec& spec) {
+  check_spec(spec);
+  double v = rayleigh_vstar(spec.layers[0].nu);
+  for (const Sublayer& l : spec.layers) v = std::min(v, l.mu / l.rho);
+  if (spec.base.kind != BaseKind::springs) v = std::min(v, spec.base.mu / spec.base.rho);
+  return v;
+}
+
+std::shared_ptr<const Medium> make_stack_medium(const MediumSpec& spec, double vstar) {
+  const double vmax = stack_max_vstar(spec);
+  require_in_range("vstar", vstar, 0.0, vmax, false, true);
+  return std::make_shared<StackMedium>(spec, vstar);
+}
+
+CriticalSpeed stack_critical_speed(const MediumSpec& spec) {
+  check_spec(spec);
+  static std::mutex mutex;
+  static std::map<std::vector<double>, CriticalSpeed> cache;
+  const std::vector<double> key = spec_key(spec);
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    const auto it = cache.find(key);
+    if (it != cache.end()) return it->second;
+  }
+  const CriticalSpeed c = compute_critical(spec);
+  std::lock_guard<std::mutex> lock(mutex);
+  if (cache.size() > 4096) cache.clear();
+  cache[key] = c;
+  return c;
+}
+
+double stack_small_t_m1(const MediumSpec& spec, double vstar) {
+  const BaseSpec& b = spec.base;
+  if (b.kind == BaseKind::springs) return std::numeric_limits<double>::quiet_NaN();
+  return wave_constants(vstar * b.rho / b.mu, b.nu).phi1 / b.mu;
+}
+
+}  // namespace movingpunch
