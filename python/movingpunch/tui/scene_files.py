@@ -1,17 +1,19 @@
 """Between the app's state and ``movingpunch.scene`` files and bundled scenes.
 
-Opening keeps the scene's parameters, accuracy, overlaid values (``[vary]``)
-and sweep; saving writes them back with the outputs the app shows.
+Opening keeps the scene's parameters, medium (``[[layers]]``, ``[base]``),
+accuracy, overlaid values (``[vary]``) and sweep; saving writes them back
+with the outputs the app shows.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
 from movingpunch.errors import InvalidParameterError
+from movingpunch.media import HalfSpace
 from movingpunch.profiles import Profile
 from movingpunch.scene import (
     OutputSpec,
@@ -29,6 +31,7 @@ from movingpunch.tui.model import (
     SweepSpec,
     parse_contact,
     train_from,
+    with_medium,
 )
 from movingpunch.tui.paths import WorkingFolder
 
@@ -130,6 +133,13 @@ def from_scene(scene: Scene) -> SceneState:
         if scene.vary is None
         else Overlay(scene.vary.param, tuple(float(v) for v in scene.vary.values))
     )
+    medium = scene.medium
+    if medium is not None:
+        # [[layers]] and [base]: under a half-space params holds no springs.
+        half_space = medium.base if isinstance(medium.base, HalfSpace) else None
+        if half_space is not None:
+            params = replace(params, kw=Params.kw, kp=0.0, damping=0.0)
+        params = with_medium(params, medium.layers, half_space)
     sweep = None if scene.sweep is None else _sweep_spec(scene.sweep)
     return SceneState(
         params=params,
@@ -195,18 +205,9 @@ def _zone_fields(params: Params) -> dict[str, Any]:
 
 def to_scene(state: SceneState) -> Scene:
     """The state as a Scene (validated: raises SceneError). A medium other
-    than the homogeneous layer on springs is refused: ``Scene`` holds no
-    sublayers or half-space base yet, and saving would drop it."""
-    medium = state.params.medium()
-    if medium is not None:
-        raise SceneError(
-            "<terminal UI>",
-            "layers",
-            f"the medium ({medium.describe()}) cannot be saved: a scene file "
-            "holds the homogeneous layer on springs only so far (the medium "
-            "editor, l, goes back to it with one homogeneous sublayer on springs)",
-            parameter="layers",
-        )
+    than the homogeneous layer on springs is the scene's ``medium``
+    (``[[layers]]`` and ``[base]``); ``params`` then holds no ν (each
+    sublayer has its own) and, under a half-space, no kw, kp or damping."""
     vary = (
         None
         if state.overlay is None
@@ -222,6 +223,11 @@ def to_scene(state: SceneState) -> Scene:
         raise SceneError("<terminal UI>", "params.profile", str(exc)) from exc
     extra = _zone_fields(state.params)
     physical = state.params.physical()
+    medium = state.params.medium()
+    if medium is not None:
+        extra["medium"] = medium
+        fixed = {"nu"} | ({"kw", "kp", "damping"} if state.params.half_space else set())
+        physical = {k: v for k, v in physical.items() if k not in fixed}
     if state.params.punches:
         # A train: each punch carries its own load and shape.
         physical = {k: v for k, v in physical.items() if k in _TRAIN_PARAMS}

@@ -814,6 +814,8 @@ class MainScreen(Screen[None]):
     def _parsed(self, name: str, text: str) -> Params:
         """The current set with ``text`` typed into ``name``; raises
         InvalidParameterError naming the input and its valid range."""
+        if not self.params.applies(name):
+            return self.params  # hidden by the medium (ν beside sublayers)
         if name == "profile":
             return replace(self.params, profile=model.parse_profile_kind(text))
         if name == "contact":
