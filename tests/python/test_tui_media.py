@@ -475,3 +475,50 @@ async def test_medium_depth_plot_draws_the_interfaces() -> None:
         }
         assert ticks[-0.33] < rows[0] < ticks[-0.5], (ticks, rows, lines)
         assert "interfaces y/h -0.4" in lines[-1], lines[-1]
+
+
+def test_medium_stack_overlay_and_sweep_of_a_hidden_parameter_say_so() -> None:
+    """An overlay of ν beside sublayers draws no curve of its own and says
+    why; a sweep of kw under a half-space is a notice; the accuracy ladder
+    (homogeneous layer only) is a notice too. The current curve is the
+    medium's, as the API computes it."""
+    cache = tui_model.Cache()
+    stack = with_medium(Params(), [mp.Layer(0.4), mp.Layer(0.6, mu=0.5)], None)
+    request = tui_model.Request(
+        generation=1,
+        params=stack,
+        tab="pressure",
+        overlay=tui_model.Overlay("nu", (0.1, 0.3)),
+    )
+    result = tui_model.compute(cache, request)
+    assert result is not None
+    assert isinstance(result.data, tui_model.Curves)
+    assert [s.label for s in result.data.series] == ["current ν=0.2"]
+    assert any("overlay nu: not drawn" in n for n in result.notes), result.notes
+    api = mp.solve(
+        vstar=0.2,
+        radius=100.0,
+        load=0.002,
+        layers=[mp.Layer(0.4), mp.Layer(0.6, mu=0.5)],
+        base=mp.Winkler(1.0),
+    )
+    np.testing.assert_allclose(
+        result.data.series[0].values, api.pressure(result.data.grid), atol=1e-12
+    )
+    assert result.summary.medium == api.medium.describe()
+    on_hs = with_medium(
+        Params(vstar=0.05), [mp.Layer(1.0)], mp.HalfSpace(0.5, 0.3, interface="smooth")
+    )
+    sweep = tui_model.compute(
+        cache,
+        tui_model.Request(
+            generation=2, params=on_hs, tab="sweep", sweep=tui_model.SweepSpec("kw")
+        ),
+    )
+    assert sweep is not None and isinstance(sweep.data, tui_model.Notice)
+    assert "does not apply" in sweep.data.text
+    ladder = tui_model.compute(
+        cache, tui_model.Request(generation=3, params=on_hs, tab="accuracy")
+    )
+    assert ladder is not None and isinstance(ladder.data, tui_model.Notice)
+    assert "homogeneous layer" in ladder.data.text
