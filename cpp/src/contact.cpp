@@ -63,6 +63,12 @@ void validate(const ContactParams& p) {
   require_in_range("kp", p.kp, 0.0, kMaxKp, false, false);
   if (p.medium) {
     validate(*p.medium);
+    if (p.medium->layers[0].gamma != 0.0)
+      throw InvalidParameter(
+          "layers", "a homogeneous top sublayer (graded ones below it)",
+          "layers: a graded top sublayer is not solved yet (its response reaches the "
+          "half-plane's only as a series in gamma/alpha, which the kernel must take out "
+          "exactly); put a homogeneous sublayer on top or use a staircase of sublayers");
     if (p.medium->base.kind == BaseKind::springs && p.medium->base.damping != 0.0)
       throw InvalidParameter("damping", "0 on the symmetric solver",
                              "damping: a damped base is solved by the asymmetric solver");
