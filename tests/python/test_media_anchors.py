@@ -38,7 +38,7 @@ def _check_physical(s: mp.Solution) -> None:
     a = s.a
     n = 400
     t = np.cos((2 * np.arange(1, n + 1) - 1) * math.pi / (2 * n))
-    # int_{-a}^{a} p dx = a int p(a t) sqrt(1 - t^2) / sqrt(1 - t^2) dt (Gauss-Chebyshev).
+    # a int p(a t) dt by Gauss-Chebyshev: p(a t) sqrt(1 - t^2) / sqrt(1 - t^2).
     p = np.asarray(s.pressure(a * t))
     total = a * math.pi / n * float(np.sum(p * np.sqrt(1 - t**2)))
     assert total == pytest.approx(1.0, rel=1e-9)  # p is per P/h
