@@ -160,3 +160,69 @@ def test_stack_unsupported_combinations_are_refused_by_name() -> None:
         with pytest.raises(mp.InvalidParameterError, match=says) as info:
             _solve(layers=stack, **extra)
         assert info.value.parameter == "layers"
+
+
+@pytest.mark.parametrize(
+    "medium",
+    [
+        mp.Medium((mp.Layer(0.4), mp.Layer(0.6, mu=0.3, nu=0.3)), mp.Winkler(1.0)),
+        mp.Medium(
+            (mp.Layer(0.5), mp.Layer(0.5, mu=2.0, rho=2.0)), mp.HalfSpace(0.5, 0.3)
+        ),
+    ],
+    ids=["springs", "half-space"],
+)
+def test_stack_accuracy_report_references_the_same_medium(medium: mp.Medium) -> None:
+    """The ladder's reference is solved on the scene's medium (a reference on
+    the homogeneous layer would put the errors near 1e-2)."""
+    from movingpunch.accuracy import accuracy_report
+    from movingpunch.scene import OutputSpec, Scene
+
+    params = {"vstar": 0.05, "radius": R, "load": P}
+    if isinstance(medium.base, mp.Winkler):
+        params["kw"] = medium.base.kw
+    scene = Scene(
+        params=params,
+        outputs={"contact_width": OutputSpec("contact_width")},
+        medium=medium,
+        name="stack",
+    )
+    report = accuracy_report(scene, tols=(1e-4, 1e-8))
+    assert report is not None
+    for rung in report.rungs:
+        assert rung.error_a <= max(rung.tol * 0.3, 1e-12), (rung.tol, rung.error_a)
+        assert rung.error_a <= rung.error_estimate + 1e-14
+
+
+@pytest.mark.parametrize(
+    "medium",
+    [
+        {"layers": [mp.Layer(0.4), mp.Layer(0.6, mu=0.3, nu=0.3)], "kw": 1.0},
+        {
+            "layers": [mp.Layer(0.5), mp.Layer(0.5, mu=2.0)],
+            "base": mp.HalfSpace(0.5, 0.3),
+        },
+    ],
+    ids=["springs", "half-space"],
+)
+def test_stack_stress_estimates_bound_the_stress_error(
+    medium: dict[str, object],
+) -> None:
+    """The stress error estimate re-solves on the same medium, and the peak
+    search uses the medium's own critical wavenumber: a loose solve's
+    sigma_x is within its estimate of a tight one's."""
+    loose = mp.solve(vstar=0.05, radius=R, load=P, tol=1e-5, **medium)  # type: ignore[arg-type]
+    tight = mp.solve(vstar=0.05, radius=R, load=P, tol=1e-12, **medium)  # type: ignore[arg-type]
+    # Points 1e-3 a or more from the contact's edges (the estimate's domain:
+    # sigma_x has a square-root cusp at |x| = a).
+    x = tight.a * np.array([0.0, 0.3, 0.9, 0.99, 1.01, 1.5, 3.0, 8.0])
+    y = np.array([0.0, -0.5, -1.0])
+    err = np.max(
+        np.abs(loose.stress_field(x, y).sigma_x - tight.stress_field(x, y).sigma_x)
+    )
+    assert math.isfinite(loose.stress_error_estimate)
+    assert err <= loose.stress_error_estimate
+    peaks = loose.stress_peaks()
+    ref = tight.stress_peaks()
+    assert abs(peaks.top_compressive - ref.top_compressive) <= peaks.error_bound
+    assert not peaks.warnings
