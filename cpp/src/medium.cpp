@@ -11,6 +11,7 @@
 
 #include "layer_basis.hpp"
 #include "movingpunch/errors.hpp"
+#include "stack.hpp"
 
 namespace movingpunch {
 
@@ -217,13 +218,13 @@ std::shared_ptr<const Medium> make_medium(const MediumSpec& spec, double vstar) 
           "(DampedLayerModel), not yet behind the medium interface");
     return std::make_shared<const HomogeneousMedium>(spec, vstar);
   }
-  throw std::invalid_argument("layered media are not built yet");
+  return make_stack_medium(spec, vstar);
 }
 
 CriticalSpeed critical_speed(const MediumSpec& spec) {
   validate(spec);
   if (spec.homogeneous()) return critical_speed(spec.base.kw, spec.layers[0].nu, spec.base.kp);
-  throw std::invalid_argument("layered media are not built yet");
+  return stack_critical_speed(spec);
 }
 
 }  // namespace movingpunch

@@ -92,11 +92,11 @@ struct Segment {
   double lo = -1.0, h = 1.0;
   int n = 1;
   Mat4 Bh = Mat4::Zero();
-  std::vector<Mat42> basis;             // at each slice's bottom (normalised)
-  std::vector<Eigen::Matrix2d> R;       // basis[k+1] R[k] = exp(Bh) basis[k]
-  Eigen::Matrix<double, 4, 2> Nul;      // modal: amplitudes a = Nul c_raw
-  Mat42 in = Mat42::Zero();                            // normalised scaled input
-  Eigen::Matrix2d Rin = Eigen::Matrix2d::Identity();   // in = scaled input Rin^-1
+  std::vector<Mat42> basis;                           // at each slice's bottom (normalised)
+  std::vector<Eigen::Matrix2d> R;                     // basis[k+1] R[k] = exp(Bh) basis[k]
+  Eigen::Matrix<double, 4, 2> Nul;                    // modal: amplitudes a = Nul c_raw
+  Mat42 in = Mat42::Zero();                           // normalised scaled input
+  Eigen::Matrix2d Rin = Eigen::Matrix2d::Identity();  // in = scaled input Rin^-1
 };
 
 struct Propagation {
@@ -339,8 +339,8 @@ class StackProfile final : public ModeProfile {
     Vec4 z = P_.S_top * Core::top_coefficients(P_);
     for (Segment& g : P_.segs) {
       const Sub& sb = subs_[static_cast<size_t>(g.layer)];
-      const Mat42 out = g.modal ? Mat42(detail::modal_columns(sb.c, g.t_loc, 0.0) * g.Nul)
-                                : g.basis.back();
+      const Mat42 out =
+          g.modal ? Mat42(detail::modal_columns(sb.c, g.t_loc, 0.0) * g.Nul) : g.basis.back();
       const Mat42 out_u = stress_scale(sb.m_top) * out;
       const Eigen::Vector2d cg = out_u.colPivHouseholderQr().solve(z);
       Vec4 zb;  // the unscaled state at the segment's bottom
@@ -377,7 +377,8 @@ class StackProfile final : public ModeProfile {
       const double yh = std::min(0.0, std::max(-1.0, (y - sb.y_top) / sb.d));
       const double m = sb.m_at(y);
       if (g.modal) {
-        z = stress_scale(m) * detail::modal_columns(sb.c, g.t_loc, yh) * amp_[static_cast<size_t>(i)];
+        z = stress_scale(m) * detail::modal_columns(sb.c, g.t_loc, yh) *
+            amp_[static_cast<size_t>(i)];
       } else if (yh >= g.lo) {
         const auto& ck = slice_c_[static_cast<size_t>(i)];
         int k = static_cast<int>(std::floor((yh - g.lo) / g.h));
@@ -471,13 +472,16 @@ void check_spec(const MediumSpec& m) {
 class StackMedium final : public Medium {
  public:
   StackMedium(const MediumSpec& spec, double vstar)
-      : core_(spec, vstar), spec_(spec), s_(vstar), top_(wave_constants(vstar, spec.layers[0].nu)) {}
+      : core_(spec, vstar),
+        spec_(spec),
+        s_(vstar),
+        top_(wave_constants(vstar, spec.layers[0].nu)) {}
 
   double vstar() const noexcept override { return s_; }
   const WaveConstants& top() const noexcept override { return top_; }
   bool real() const noexcept override { return true; }
 
-  MediumResponse response(double t) const override {
+  MediumResponse surface_response(double t) const override {
     if (std::isnan(t) || t < 0.0)
       throw std::invalid_argument("stack response: t = alpha h must be >= 0");
     // t = 0: the limit, to double precision (every correction is O(t)).
@@ -496,6 +500,22 @@ class StackMedium final : public Medium {
   double decay_rate() const noexcept override {
     const Sublayer& l = spec_.layers[0];
     return l.gamma != 0.0 ? 0.0 : 2.0 * top_.nT * l.thickness;
+  }
+  // The remainder (state minus the top's half-plane state) at any depth
+  // decays at least as slowly as the state at the bottom, exp(-t sum nT_i
+  // h_i) (each sublayer's shear rate, the slower of its two), or the top's
+  // half-plane state there, exp(-nT_1 t), or the surface's reflection.
+  double field_decay_rate() const noexcept override {
+    double travel = 0.0;
+    for (const Sublayer& l : spec_.layers)
+      travel += l.thickness * std::sqrt(std::max(0.0, 1.0 - s_ * l.rho / l.mu));
+    double rate = std::min(travel, top_.nT);
+    const double surface = decay_rate();
+    if (surface > 0.0) rate = std::min(rate, surface);
+    return rate;
+  }
+  double long_wave_m1() const noexcept override {
+    return spec_.base.kind == BaseKind::springs ? 0.0 : stack_small_t_m1(spec_, s_);
   }
   std::vector<double> first_panel_edges(double w) const override {
     const BaseSpec& b = spec_.base;
@@ -557,7 +577,8 @@ CriticalSpeed compute_critical(const MediumSpec& spec) {
   const BaseSpec& b = spec.base;
   const Sublayer& bot = spec.layers.back();
   if (b.kind == BaseKind::springs) {
-    if (std::isfinite(b.kw) && b.kp == 0.0) consider(bot.mu / bot.rho * rayleigh_vstar(bot.nu), kInf);
+    if (std::isfinite(b.kw) && b.kp == 0.0)
+      consider(bot.mu / bot.rho * rayleigh_vstar(bot.nu), kInf);
   } else {
     consider(b.mu / b.rho * rayleigh_vstar(b.nu), 0.0);
   }
@@ -585,7 +606,8 @@ CriticalSpeed compute_critical(const MediumSpec& spec) {
   const double h = (lt1 - lt0) / (n - 1);
   auto F = [&](double lt) { return first_wave(spec, std::exp(lt), smax); };
   const double a = lt0 + h * std::max(best - 1, 0), bb = lt0 + h * std::min(best + 1, n - 1);
-  const detail::Minimum mn = detail::brent_minimum(F, a, bb, lt0 + h * best, best_s, 1e-7, 0.0, 100);
+  const detail::Minimum mn =
+      detail::brent_minimum(F, a, bb, lt0 + h * best, best_s, 1e-7, 0.0, 100);
   return {mn.f, std::exp(mn.x)};
 }
 

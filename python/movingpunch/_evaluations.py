@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Any, overload
 import numpy as np
 import numpy.typing as npt
 
-from movingpunch import _core, params
+from movingpunch import params
 from movingpunch._evaluate import (
     _as_points,
     _check_positive_extent,
@@ -328,7 +328,7 @@ class Evaluations:
             if extent is None
             else _check_positive_extent(extent)
         )
-        alpha = _core.critical_speed(self.kw, self.nu, self.kp)[1]
+        alpha = self.medium.critical_speed()[1]
         wave = 2.0 * math.pi / alpha if 0.0 < alpha < math.inf else math.inf
         depth = np.array([-1.0])
         centre = self._impl.stress_field(np.array([0.0]), np.array([0.0, -1.0]))[0][

@@ -40,11 +40,14 @@ from movingpunch.errors import (
     UnphysicalContactError,
 )
 from movingpunch.fields import StressPeaks
+from movingpunch.media import HalfSpace, Medium
 from movingpunch.outputs import publish, safe_name
 from movingpunch.params import PHYSICAL
 from movingpunch.profiles import PunchProfile
 from movingpunch.scene import OutputSpec, Scene, load_scene
+from movingpunch.scene._model import point_medium
 from movingpunch.scene._result import CORE_STAGES
+from movingpunch.scene._solve import NO_SPRINGS
 from movingpunch.solver import clear_kernel_cache, solve, solve_punches
 from movingpunch.zones import Punch
 
@@ -180,7 +183,7 @@ def _key(p: Mapping[str, float]) -> Point:
     given: the paper's model)."""
     return (
         p["vstar"],
-        p["kw"],
+        p.get("kw", NO_SPRINGS),
         p["radius"],
         p["load"],
         p["nu"],
@@ -196,9 +199,11 @@ def _solve_point(
     n: int | None = None,
     profile: PunchProfile | None = None,
     train: Sequence[Punch] = (),
+    medium: Medium | None = None,
 ) -> ContactSolution:
     """The point ``key`` (a cylinder of its radius, or ``profile``; or the
-    punches ``train`` on its layer)."""
+    punches ``train`` on its layer; on ``medium``'s sublayers when given, on
+    the point's springs or the medium's half-space)."""
     vstar, kw, radius, load, nu, damping, kp, friction = key
     if train:
         return solve_punches(
@@ -206,17 +211,19 @@ def _solve_point(
         )
     args: dict[str, Any] = {
         "vstar": vstar,
-        "kw": kw,
         "radius": radius if profile is None else None,
         "profile": profile,
         "load": load,
-        "nu": nu,
-        "damping": damping,
-        "kp": kp,
         "friction": friction,
         "tol": tol,
         "n": n,
     }
+    if medium is None:
+        args.update(kw=kw, nu=nu, damping=damping, kp=kp)
+    else:
+        springs = {"kw": kw, "kp": kp, "damping": damping}
+        here = medium if kw == NO_SPRINGS else point_medium(medium, springs)
+        args.update(layers=list(here.layers), base=here.base)
     # As a scene solves it: several zones where the single contact separates
     # (their ends are then the ends compared), else the single contact,
     # flagged when unphysical.
@@ -229,7 +236,10 @@ def _solve_point(
 
 
 def _reference(
-    key: Point, profile: PunchProfile | None = None, train: Sequence[Punch] = ()
+    key: Point,
+    profile: PunchProfile | None = None,
+    train: Sequence[Punch] = (),
+    medium: Medium | None = None,
 ) -> tuple[ContactSolution, int, float]:
     """The reference solution: fixed N = max(64, 4 N_auto) at tol 1e-14 (or
     1e-13, 1e-12 if tighter tolerances are out of reach). If the solver does
@@ -238,7 +248,7 @@ def _reference(
     last: MovingPunchError | None = None
     for tol in _REF_TOLS:
         try:
-            auto = _solve_point(key, tol, profile=profile, train=train)
+            auto = _solve_point(key, tol, profile=profile, train=train, medium=medium)
         except MovingPunchError as exc:
             last = exc
             continue
@@ -248,7 +258,7 @@ def _reference(
         ]
         for n in dict.fromkeys(sizes):
             try:
-                return _solve_point(key, tol, n, profile, train), n, tol
+                return _solve_point(key, tol, n, profile, train, medium), n, tol
             except InvalidParameterError as exc:
                 if exc.parameter != "n":
                     raise
@@ -295,7 +305,11 @@ class _Target:
         if self.single:
             key = _key(_train_params(self.scene))
             s = _solve_point(
-                key, tol, profile=self.scene.profile, train=self.scene.punches
+                key,
+                tol,
+                profile=self.scene.profile,
+                train=self.scene.punches,
+                medium=self.scene.medium,
             )
             parts = {name: float(s.stage_times.get(name, 0.0)) for name in CORE_STAGES}
             return {key: s}, [key], s.elapsed, parts, s.kernel_builds
@@ -318,8 +332,12 @@ class _Target:
 
 
 def _params_of(s: ContactSolution) -> dict[str, float]:
-    """The point's parameters, through the contract's fields."""
-    return {name: float(getattr(s, name)) for name in _PARAMS}
+    """The point's parameters, through the contract's fields (no kw under a
+    half-space base: the scene's points have none)."""
+    out = {name: float(getattr(s, name)) for name in _PARAMS}
+    if isinstance(s.medium.base, HalfSpace):
+        del out["kw"]
+    return out
 
 
 def _train_params(scene: Scene) -> dict[str, float]:
@@ -420,7 +438,9 @@ def accuracy_report(
             ref_n: list[int] = []
             ref_tol: list[float] = []
             for k in sols:
-                ref, n, rtol = _reference(k, tgt.scene.profile, tgt.scene.punches)
+                ref, n, rtol = _reference(
+                    k, tgt.scene.profile, tgt.scene.punches, tgt.scene.medium
+                )
                 refs[k] = ref
                 ref_n.append(n)
                 ref_tol.append(rtol)

@@ -32,7 +32,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from movingpunch import params
+from movingpunch import _core, params
 from movingpunch.errors import InvalidParameterError
 
 __all__ = [
@@ -271,6 +271,23 @@ class Medium:
                 m, n = self.base.mu, self.base.nu
             mu[idx], nu[idx] = m, n
         return mu, nu
+
+    def critical_speed(self) -> tuple[float, float]:
+        """(V*_cr, alpha h at the minimum) of this medium: the lowest speed of
+        a free steady wave (alpha h inf or 0: an infimum approached by short
+        or long waves; docs/media.md)."""
+        base = self.base
+        if self.homogeneous:
+            assert isinstance(base, Winkler)
+            vc, t = _core.critical_speed(base.kw, self.nu, base.kp)
+        else:
+            springs = base if isinstance(base, Winkler) else None
+            vc, t = _core.medium_critical_speed(
+                **self.core_args(),
+                kw=springs.kw if springs else math.inf,
+                kp=springs.kp if springs else 0.0,
+            )
+        return float(vc), float(t)
 
     def core_args(self) -> dict[str, Any]:
         """The keyword arguments of ``_core.solve_contact`` for this medium

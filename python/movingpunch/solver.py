@@ -728,9 +728,12 @@ def _stress_error_estimate(s: Solution) -> float:
     if finer:
         try:
             shape = s._profile if s._profile is not None else Cylinder(s.radius)
-            inputs = {"vstar": s.vstar, "kw": s.kw, "load": s.load, "nu": s.nu}
+            # On the same medium (a half-space base has no springs: kw nan).
+            kw = s.kw if not math.isnan(s.kw) else math.inf
+            inputs = {"vstar": s.vstar, "kw": kw, "load": s.load, "nu": s.nu}
             other = _core.solve_contact(
                 **_core_inputs({**inputs, "kp": s.kp}, shape),
+                **s.medium.core_args(),
                 # Its width and kernel well below this one's collocation
                 # error: at a loose tol the change would measure the root's
                 # own 1e-2 tol, and at N = 24 the 1e-10 kernel of a tol-1e-6
@@ -784,14 +787,7 @@ def _critical(
             layers=layers, base=base, kw=kw, kp=kp if kp != 0.0 else None, nu=nu
         )
         if not medium.homogeneous:
-            args = medium.core_args()
-            springs = medium.base if isinstance(medium.base, Winkler) else None
-            vc, t = _core.medium_critical_speed(
-                **args,
-                kw=springs.kw if springs else math.inf,
-                kp=springs.kp if springs else 0.0,
-            )
-            return float(vc), float(t)
+            return medium.critical_speed()
         assert isinstance(medium.base, Winkler)
         kw, kp, nu = medium.base.kw, medium.base.kp, medium.nu
     if kw is None:

@@ -639,10 +639,68 @@ def _shape(rng: np.random.Generator) -> dict[str, Any]:
     }
 
 
+def _medium(rng: np.random.Generator) -> dict[str, Any]:
+    """A layered medium for the public API: 2 to 4 sublayers (moduli 0.03 to
+    10 times the top's, a graded one below the top now and then) on springs
+    (soft to rigid, a Pasternak layer sometimes) or on a half-space (bonded
+    or smooth, 0.1 to 100 times the top's modulus)."""
+    k = int(rng.integers(2, 5))
+    cuts = np.sort(rng.uniform(0.05, 0.95, k - 1))
+    thick = np.diff(np.concatenate([[0.0], cuts, [1.0]]))
+    thick[-1] = 1.0 - float(np.sum(thick[:-1]))
+    layers: list[Any] = [mp.Layer(float(thick[0]), nu=float(rng.uniform(0.0, 0.45)))]
+    for t in thick[1:]:
+        mu = float(10.0 ** rng.uniform(-1.5, 1.0))
+        rho = float(10.0 ** rng.uniform(-0.5, 0.5))
+        nu = float(rng.uniform(0.0, 0.45))
+        if rng.random() < 0.2:
+            gamma = float(rng.uniform(-3.0, 3.0))
+            layers.append(
+                mp.GradedLayer(gamma, nu=nu, thickness=float(t), mu=mu, rho=rho)
+            )
+        else:
+            layers.append(mp.Layer(float(t), mu=mu, nu=nu, rho=rho))
+    if rng.random() < 0.6:
+        kw = float(rng.choice([0.1, 1.0, 10.0, math.inf]))
+        kp = float(rng.choice([0.0, 0.0, 0.2]))
+        base: Any = mp.Winkler(kw, kp=kp)
+    else:
+        mu2 = float(10.0 ** rng.uniform(-1.0, 2.0))
+        base = mp.HalfSpace(
+            mu2,
+            float(rng.uniform(0.1, 0.45)),
+            rho=float(10.0 ** rng.uniform(-0.3, 0.3)),
+            interface=str(rng.choice(["bonded", "smooth"])),
+        )
+    return {"layers": layers, "base": base}
+
+
 def honesty_cases(family: str, count: int, seed: int) -> list[dict[str, Any]]:
     rng = np.random.default_rng(seed)
     cases: list[dict[str, Any]] = []
     for _ in range(count):
+        if family == "media":
+            medium = _medium(rng)
+            vcr = mp.critical_vstar(**medium)
+            near = rng.random() < 0.3
+            frac = (
+                1.0 - float(10.0 ** -rng.uniform(0.5, 2.0))
+                if near
+                else 0.9 * rng.random()
+            )
+            shape = _shape(rng)
+            if isinstance(shape.get("profile"), mp.Profile):
+                shape = {"radius": 100.0, "load": 0.002}
+            args = {
+                **shape,
+                **medium,
+                "vstar": float(frac) * vcr,
+                "tol": float(10.0 ** rng.uniform(-8.0, -3.0)),
+                "contact": "single",
+                "allow_unphysical": True,
+            }
+            cases.append({"kind": "solve", "args": args})
+            continue
         if family == "trains":
             kw = float(rng.choice([0.1, 1.0, 10.0]))
             d = float(10.0 ** rng.uniform(1.0, 4.0))
@@ -741,6 +799,11 @@ def test_honesty_far_apart_trains() -> None:
     assert outcomes["valid"] + outcomes["flagged"] >= 1, outcomes
 
 
+def test_honesty_layered_media() -> None:
+    outcomes = run_honesty("media", 8, seed=2606)
+    assert outcomes["valid"] >= 3, outcomes
+
+
 def test_honesty_stiff_foundations_near_critical() -> None:
     outcomes = run_honesty("stiff", 3, seed=2504)
     assert sum(outcomes.values()) >= 3, outcomes
@@ -757,6 +820,7 @@ def test_honesty_stiff_foundations_near_critical() -> None:
         ("small_n", 300, 3100),
         ("trains", 30, 2630),
         ("stiff", 60, 2660),
+        ("media", 150, 2700),
     ],
 )
 def test_honesty_many(family: str, count: int, seed: int) -> None:

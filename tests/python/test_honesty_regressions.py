@@ -240,3 +240,43 @@ def test_several_zones_bound_their_error_where_convergence_is_irregular() -> Non
     # test_gap_check.py found penetrating before (its CASES[0]).
     sol = _assert_bounds_its_error(GAP_CASES[0])
     assert len(sol.contact_zones) == 3
+
+
+def test_a_rounded_flat_on_a_stack_never_claims_below_its_last_change() -> None:
+    """media fuzz, seed 2606, case 7: a rounded flat on a 4-sublayer stack
+    converges irregularly (N = 12, 16, 24: 8.6e-10, 3.8e-10, 1.5e-14 off);
+    the geometric extrapolation of the 8 -> 12 -> 16 changes claimed 8.9e-13
+    at N = 16. The symmetric solver's estimate for a profile is now never
+    below the last change (4.7e-10)."""
+    layers = [
+        mp.Layer(0.22191407971277233, nu=0.28412775009218383),
+        mp.Layer(
+            0.395975453570207,
+            mu=0.41935945755379833,
+            nu=0.3586985403798539,
+            rho=1.386818944020465,
+        ),
+        mp.Layer(
+            0.11225551769184772,
+            mu=1.3402179414608817,
+            nu=0.28063471202817564,
+            rho=2.6077629193542693,
+        ),
+        mp.Layer(
+            0.26985494902517293,
+            mu=1.296147802696095,
+            nu=0.191023846362611,
+            rho=3.079819257078747,
+        ),
+    ]
+    _assert_bounds_its_error(
+        {
+            "profile": mp.RoundedFlat(0.3903248298890876, 10.631050684308716),
+            "load": 0.00036888244477588275,
+            "layers": layers,
+            "base": mp.Winkler(0.1, kp=0.2),
+            "vstar": 0.07086326212134948,
+            "tol": 1e-8,
+            "contact": "single",
+        }
+    )

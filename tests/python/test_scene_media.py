@@ -357,7 +357,8 @@ def test_the_bundled_media_are_what_they_say() -> None:
     assert isinstance(pavement.base, Winkler)
     graded = Scene.bundled("graded-coating").medium
     assert graded is not None
-    assert isinstance(graded.layers[0], GradedLayer)
+    assert isinstance(graded.layers[0], Layer)
+    assert isinstance(graded.layers[1], GradedLayer)
     assert graded.base == Winkler(1.0)
     half = Scene.bundled("half-space-vs-winkler").medium
     assert half == Medium((Layer(),), HalfSpace(0.1, 0.3, interface="smooth"))
@@ -423,7 +424,8 @@ def test_graded_coating_stack_tends_to_the_homogeneous_layer() -> None:
     depth) sinks more: a wider contact."""
     scene = Scene.bundled("graded-coating")
     assert scene.medium is not None
-    near = Medium((GradedLayer(1e-9, nu=0.2),), scene.medium.base)
+    coat = scene.medium.layers[0]
+    near = Medium((coat, GradedLayer(1e-9, nu=0.2, thickness=0.95)), scene.medium.base)
     flat = dataclasses.replace(scene, medium=near, vary=Vary("vstar", (0.0,)))
     a0 = float(flat.run().outputs["contact_width"].columns["a"][0])
     assert a0 == pytest.approx(TABLE1_KW1, abs=1e-6)
