@@ -515,10 +515,12 @@ def test_medium_stack_overlay_and_sweep_of_a_hidden_parameter_say_so() -> None:
             generation=2, params=on_hs, tab="sweep", sweep=tui_model.SweepSpec("kw")
         ),
     )
-    assert sweep is not None and isinstance(sweep.data, tui_model.Notice)
+    assert sweep is not None
+    assert isinstance(sweep.data, tui_model.Notice)
     assert "does not apply" in sweep.data.text
     ladder = tui_model.compute(
         cache, tui_model.Request(generation=3, params=on_hs, tab="accuracy")
     )
-    assert ladder is not None and isinstance(ladder.data, tui_model.Notice)
+    assert ladder is not None
+    assert isinstance(ladder.data, tui_model.Notice)
     assert "homogeneous layer" in ladder.data.text
