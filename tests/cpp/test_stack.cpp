@@ -228,7 +228,9 @@ std::array<double, 2> naive(const MediumSpec& m, double vstar, double t, bool cl
       LD h3, h1;
       zrow(3, r3, h3);
       zrow(1, r1, h1);
-      for (int j = 0; j < 4; ++j) row[static_cast<size_t>(j)] = t * r3[static_cast<size_t>(j)] - k * r1[static_cast<size_t>(j)];
+      for (int j = 0; j < 4; ++j)
+        row[static_cast<size_t>(j)] =
+            t * r3[static_cast<size_t>(j)] - k * r1[static_cast<size_t>(j)];
       rhs = t * h3 - k * h1;
     }
     a[1] = row;
@@ -252,13 +254,13 @@ TEST(Stack, IdenticalSublayersMatchLayerModel) {
         const MediumSpec spec = springs(identical(K, nu), b.kw, b.kp);
         const auto med = make_stack_medium(spec, s);
         const LayerModel ref(s, b.kw, nu, b.kp);
-        for (double t : {1e-6, 1e-3, 0.1, 0.3, 0.49, 0.5, 0.7, 1.0, 1.7, 3.0, 10.0, 40.0, 200.0,
-                         1e3}) {
+        for (double t :
+             {1e-6, 1e-3, 0.1, 0.3, 0.49, 0.5, 0.7, 1.0, 1.7, 3.0, 10.0, 40.0, 200.0, 1e3}) {
           const Response r = ref.response(t);
           const MediumResponse m = med->response(t);
-          const std::string at =
-              "K = " + std::to_string(K) + ", kw = " + std::to_string(b.kw) + ", kp = " +
-              std::to_string(b.kp) + ", s = " + std::to_string(s) + ", t = " + std::to_string(t);
+          const std::string at = "K = " + std::to_string(K) + ", kw = " + std::to_string(b.kw) +
+                                 ", kp = " + std::to_string(b.kp) + ", s = " + std::to_string(s) +
+                                 ", t = " + std::to_string(t);
           EXPECT_LE(rel(m.M1.real(), r.M1), 1e-12) << at;
           // M2 = (c2 - 2)/c2 - 4 (c2 - 1)/c2 U0 cancels to O(t^2) as t -> 0 at
           // vstar = 0 (the squeezed layer has sigma_x ~ 0): relative to its terms.
@@ -306,12 +308,13 @@ TEST(Stack, IdenticalSublayersModeStatesMatchLayerModel) {
 
 TEST(Stack, MixedStackMatchesNaiveLongDoubleProduct) {
   // Different materials, a graded sublayer, every base, moderate t.
-  const std::vector<Sublayer> layers{{0.3, 1.0, 0.25, 1.0, 0.0},
-                                     {0.45, 0.4, 0.3, 0.8, 1.7},
-                                     {0.25, 2.5, 0.2, 1.3, 0.0}};
+  const std::vector<Sublayer> layers{
+      {0.3, 1.0, 0.25, 1.0, 0.0}, {0.45, 0.4, 0.3, 0.8, 1.7}, {0.25, 2.5, 0.2, 1.3, 0.0}};
   const std::vector<Sublayer> graded_top{{0.6, 1.0, 0.2, 1.0, -2.3}, {0.4, 0.3, 0.35, 0.9, 0.0}};
-  std::vector<MediumSpec> specs{springs(layers, 0.7), springs(layers, 2.0, 0.4),
-                                springs(layers, kInf), springs(graded_top, 1.3),
+  std::vector<MediumSpec> specs{springs(layers, 0.7),
+                                springs(layers, 2.0, 0.4),
+                                springs(layers, kInf),
+                                springs(graded_top, 1.3),
                                 half_space(layers, BaseKind::half_space_bonded, 0.5, 0.3, 1.1),
                                 half_space(graded_top, BaseKind::half_space_bonded, 3.0, 0.25, 2.0),
                                 half_space(layers, BaseKind::half_space_smooth, 0.5, 0.3, 1.1)};
@@ -357,8 +360,10 @@ TEST(Stack, BondedHalfSpaceOfTheOwnMaterialIsTheHalfPlane) {
             half_space(identical(K, nu), BaseKind::half_space_bonded, 1.0, nu, 1.0), s);
         for (double t : {1e-300, 1e-8, 1e-3, 0.3, 1.0, 4.0, 50.0, 1e4}) {
           const MediumResponse r = med->response(t);
-          EXPECT_LE(rel(r.M1.real(), med->phi1()), 1e-12) << "nu " << nu << " s " << s << " t " << t;
-          EXPECT_LE(rel(r.M2.real(), med->phi2()), 1e-12) << "nu " << nu << " s " << s << " t " << t;
+          EXPECT_LE(rel(r.M1.real(), med->phi1()), 1e-12)
+              << "nu " << nu << " s " << s << " t " << t;
+          EXPECT_LE(rel(r.M2.real(), med->phi2()), 1e-12)
+              << "nu " << nu << " s " << s << " t " << t;
         }
       }
     }
@@ -367,9 +372,9 @@ TEST(Stack, BondedHalfSpaceOfTheOwnMaterialIsTheHalfPlane) {
 TEST(Stack, SmoothHalfSpaceIsSpringsOfItsStiffnessPerMode) {
   const double mu2 = 0.3, nu2 = 0.3, rho2 = 0.8;
   for (double s : {0.0, 0.1, 0.2}) {
-    const auto med = make_stack_medium(
-        half_space({Sublayer{1.0, 1.0, 0.2, 1.0, 0.0}}, BaseKind::half_space_smooth, mu2, nu2, rho2),
-        s);
+    const auto med = make_stack_medium(half_space({Sublayer{1.0, 1.0, 0.2, 1.0, 0.0}},
+                                                  BaseKind::half_space_smooth, mu2, nu2, rho2),
+                                       s);
     const double ph2 = phi1(s * rho2 / mu2, nu2);
     for (double t : {1e-6, 1e-2, 0.4, 0.6, 2.0, 9.0, 100.0}) {
       const LayerModel ref(s, t * mu2 / ph2, 0.2);
@@ -404,8 +409,9 @@ TEST(Stack, StiffHalfSpaceTendsToTheRigidBase) {
 
 TEST(Stack, HalfSpaceBaseM1TendsToTheSubstrateHalfPlane) {
   for (BaseKind kind : {BaseKind::half_space_bonded, BaseKind::half_space_smooth}) {
-    const MediumSpec spec = half_space({Sublayer{0.5, 1.0, 0.2, 1.0, 0.0}, Sublayer{0.5, 2.0, 0.3, 1.5, 0.8}},
-                                       kind, 0.2, 0.35, 0.9);
+    const MediumSpec spec =
+        half_space({Sublayer{0.5, 1.0, 0.2, 1.0, 0.0}, Sublayer{0.5, 2.0, 0.3, 1.5, 0.8}}, kind,
+                   0.2, 0.35, 0.9);
     const double s = 0.1;
     const auto med = make_stack_medium(spec, s);
     const double lim = phi1(s * 0.9 / 0.2, 0.35) / 0.2;
@@ -421,14 +427,15 @@ TEST(Stack, HalfSpaceBaseM1TendsToTheSubstrateHalfPlane) {
 }
 
 TEST(Stack, ResponsesAreFiniteForEveryKindAndWavenumber) {
-  const std::vector<Sublayer> mixed{{0.2, 1.0, 0.2, 1.0, 3.0}, {0.5, 0.3, 0.3, 0.5, 0.0},
-                                    {0.3, 4.0, 0.25, 2.0, -1.5}};
-  const std::vector<MediumSpec> specs{
-      springs(mixed, 1.0), springs(mixed, 0.01, 2.0), springs(mixed, kInf),
-      half_space(mixed, BaseKind::half_space_bonded, 0.2, 0.3, 0.4),
-      half_space(mixed, BaseKind::half_space_smooth, 5.0, 0.3, 1.0),
-      springs({Sublayer{1.0, 1.0, 0.3, 1.0, kMaxGamma}}, 1.0),
-      springs({Sublayer{1.0, 1.0, 0.3, 1.0, -kMaxGamma}}, kInf)};
+  const std::vector<Sublayer> mixed{
+      {0.2, 1.0, 0.2, 1.0, 3.0}, {0.5, 0.3, 0.3, 0.5, 0.0}, {0.3, 4.0, 0.25, 2.0, -1.5}};
+  const std::vector<MediumSpec> specs{springs(mixed, 1.0),
+                                      springs(mixed, 0.01, 2.0),
+                                      springs(mixed, kInf),
+                                      half_space(mixed, BaseKind::half_space_bonded, 0.2, 0.3, 0.4),
+                                      half_space(mixed, BaseKind::half_space_smooth, 5.0, 0.3, 1.0),
+                                      springs({Sublayer{1.0, 1.0, 0.3, 1.0, kMaxGamma}}, 1.0),
+                                      springs({Sublayer{1.0, 1.0, 0.3, 1.0, -kMaxGamma}}, kInf)};
   for (const MediumSpec& spec : specs)
     for (double s : {0.0, 0.1}) {
       const auto med = make_stack_medium(spec, s);
@@ -493,14 +500,16 @@ TEST(Stack, StaircaseConvergesToTheGradedSublayerAsKToTheMinus2) {
 TEST(Stack, CriticalSpeedOfOneSublayerIsTheLayersOne) {
   for (double kw : {0.1, 1.0, 10.0}) {
     const CriticalSpeed ref = critical_speed(kw, 0.2);
-    const CriticalSpeed one = stack_critical_speed(springs({Sublayer{1.0, 1.0, 0.2, 1.0, 0.0}}, kw));
+    const CriticalSpeed one =
+        stack_critical_speed(springs({Sublayer{1.0, 1.0, 0.2, 1.0, 0.0}}, kw));
     EXPECT_NEAR(one.vstar, ref.vstar, 1e-12 * ref.vstar) << "kw " << kw;
     EXPECT_NEAR(one.t, ref.t, 1e-3 * ref.t);
     const CriticalSpeed three = stack_critical_speed(springs(identical(3, 0.2), kw));
     EXPECT_NEAR(three.vstar, ref.vstar, 1e-12 * ref.vstar) << "kw " << kw;
   }
   const CriticalSpeed rig = stack_critical_speed(springs(identical(2, 0.2), kInf));
-  EXPECT_EQ(rig.vstar, rayleigh_vstar(0.2)) << (rig.vstar / rayleigh_vstar(0.2) - 1.0) << " t " << rig.t;
+  EXPECT_EQ(rig.vstar, rayleigh_vstar(0.2))
+      << (rig.vstar / rayleigh_vstar(0.2) - 1.0) << " t " << rig.t;
   EXPECT_TRUE(std::isinf(rig.t));
 }
 
@@ -525,7 +534,8 @@ TEST(Stack, CriticalSpeedInfimaOfSoftSublayersAndSubstrate) {
   const CriticalSpeed c = stack_critical_speed(over_springs);
   EXPECT_LE(c.vstar, 0.3 * rayleigh_vstar(0.2) * (1.0 + 1e-14));
   // The critical speed is a free wave: the dispersion changes sign across it at c.t.
-  const MediumSpec soft = springs({Sublayer{0.5, 1.0, 0.2, 1.0, 0.0}, Sublayer{0.5, 0.5, 0.3, 1.0, 0.0}}, 0.3);
+  const MediumSpec soft =
+      springs({Sublayer{0.5, 1.0, 0.2, 1.0, 0.0}, Sublayer{0.5, 0.5, 0.3, 1.0, 0.0}}, 0.3);
   const CriticalSpeed d = stack_critical_speed(soft);
   ASSERT_TRUE(std::isfinite(d.t) && d.t > 0.0);
   const double lo = make_stack_medium(soft, d.vstar * (1 - 1e-6))->dispersion(d.t);
@@ -598,9 +608,11 @@ TEST(Stack, GradedTopApproachesItsHalfPlaneLikeGammaOverT) {
   // next term O(1/t), across the depth where the deeper structure is cut.
   for (double gamma : {2.0, -3.0}) {
     const auto med = make_stack_medium(
-        springs({Sublayer{0.5, 1.0, 0.25, 1.0, gamma}, Sublayer{0.5, 0.5, 0.3, 1.0, 0.0}}, 1.0), 0.2);
+        springs({Sublayer{0.5, 1.0, 0.25, 1.0, gamma}, Sublayer{0.5, 0.5, 0.3, 1.0, 0.0}}, 1.0),
+        0.2);
     std::vector<double> q;
-    for (double t : {250.0, 500.0, 1000.0, 2000.0}) q.push_back(t * (med->response(t).M1.real() - med->phi1()));
+    for (double t : {250.0, 500.0, 1000.0, 2000.0})
+      q.push_back(t * (med->response(t).M1.real() - med->phi1()));
     const double r1 = (q[1] - q[0]) / (q[2] - q[1]), r2 = (q[2] - q[1]) / (q[3] - q[2]);
     EXPECT_NEAR(r1, 2.0, 0.05) << "gamma " << gamma;
     EXPECT_NEAR(r2, 2.0, 0.05) << "gamma " << gamma;
@@ -615,8 +627,11 @@ TEST(Stack, GeometryOfTheMedium) {
   ASSERT_EQ(ifc.size(), 2u);
   EXPECT_NEAR(ifc[0], -med->spec().layers[0].thickness, 1e-15);
   EXPECT_GT(ifc[0], ifc[1]);
-  EXPECT_NEAR(med->decay_rate(), 2.0 * std::sqrt(1.0 - 0.3) * med->spec().layers[0].thickness, 1e-15);
-  EXPECT_EQ(med->first_panel_edges(10.0), std::vector<double>({0.0, 0.25 * std::sqrt(2.0), 0.5 * std::sqrt(2.0), 1.0 * std::sqrt(2.0), 2.0 * std::sqrt(2.0), 10.0}));
+  EXPECT_NEAR(med->decay_rate(), 2.0 * std::sqrt(1.0 - 0.3) * med->spec().layers[0].thickness,
+              1e-15);
+  EXPECT_EQ(med->first_panel_edges(10.0),
+            std::vector<double>({0.0, 0.25 * std::sqrt(2.0), 0.5 * std::sqrt(2.0),
+                                 1.0 * std::sqrt(2.0), 2.0 * std::sqrt(2.0), 10.0}));
   const auto hs = make_stack_medium(
       half_space(identical(2, 0.2), BaseKind::half_space_bonded, 0.5, 0.3, 1.0), 0.1);
   const std::vector<double> e = hs->first_panel_edges(8.0);
