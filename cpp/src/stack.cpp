@@ -644,4 +644,45 @@ double stack_small_t_m1(const MediumSpec& spec, double vstar) {
   return wave_constants(vstar * b.rho / b.mu, b.nu).phi1 / b.mu;
 }
 
+namespace {
+
+// M1 of the graded half-space of generator A - eps D (surface modulus 1).
+double graded_half_space_m1(const WaveConstants& c, double eps) {
+  Mat4 M = c.A;
+  M(2, 2) -= eps;
+  M(3, 3) -= eps;
+  // sign(M) by Newton's iteration X <- (X + X^-1)/2 (no eigenvalue of M on
+  // the imaginary axis: nT > 0, |eps| small).
+  Mat4 X = M;
+  for (int k = 0; k < 100; ++k) {
+    const Mat4 Xn = 0.5 * (X + X.inverse());
+    const double d = (Xn - X).cwiseAbs().maxCoeff();
+    X = Xn;
+    if (d <= 1e-15 * X.cwiseAbs().maxCoeff()) break;
+  }
+  // The projector onto the downward-decaying solutions (Re lambda > 0),
+  // applied to the homogeneous half-plane's modes.
+  const Mat4 Pr = 0.5 * (Mat4::Identity() + X);
+  Mat42 S = Pr * detail::modal_columns(c, 1.0, 0.0).leftCols<2>();
+  orthonormalise(S);
+  const double p12 = S(1, 0) * S(2, 1) - S(1, 1) * S(2, 0);
+  const double p23 = S(2, 0) * S(3, 1) - S(2, 1) * S(3, 0);
+  return -p12 / p23;
+}
+
+}  // namespace
+
+GradedAsymptotics graded_top_asymptotics(double vstar, double nu) {
+  const WaveConstants c = wave_constants(vstar, nu);
+  const double F0 = graded_half_space_m1(c, 0.0);
+  auto diffs = [&](double h) {
+    const double fp = graded_half_space_m1(c, h), fm = graded_half_space_m1(c, -h);
+    return std::make_pair((fp - fm) / (2.0 * h), (fp - 2.0 * F0 + fm) / (2.0 * h * h));
+  };
+  const double h = 2e-3;
+  const auto a = diffs(h), b = diffs(0.5 * h);
+  // Both differences err by O(h^2): Richardson's (4 b - a)/3.
+  return {(4.0 * b.first - a.first) / 3.0, (4.0 * b.second - a.second) / 3.0};
+}
+
 }  // namespace movingpunch

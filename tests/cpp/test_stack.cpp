@@ -642,3 +642,26 @@ TEST(Stack, GeometryOfTheMedium) {
   EXPECT_EQ(med->vstar(), 0.3);
   EXPECT_EQ(med->top().nu, 0.2);
 }
+
+TEST(Stack, GradedTopAsymptoticExpansionLeavesATMinus3Remainder) {
+  // M1 - phi1 - c1 g/t - c2 (g/t)^2 falls like t^-3 (ratio 8 per doubling)
+  // for the full propagation of a graded top sublayer; with c2 = 0 it would
+  // fall like t^-2 only.
+  for (double s : {0.0, 0.3})
+    for (double gamma : {2.0, -1.5}) {
+      const auto med = make_stack_medium(
+          springs({Sublayer{0.5, 1.0, 0.25, 1.0, gamma}, Sublayer{0.5, 0.5, 0.3, 1.0, 0.0}}, 1.0),
+          s);
+      const GradedAsymptotics a = graded_top_asymptotics(s, 0.25);
+      std::vector<double> rem, rem1;
+      for (double t : {200.0, 400.0, 800.0}) {
+        const double e = gamma / t;
+        const double d = med->response(t).M1.real() - med->phi1() - a.c1 * e;
+        rem1.push_back(d);
+        rem.push_back(d - a.c2 * e * e);
+      }
+      EXPECT_NEAR(rem[0] / rem[1], 8.0, 0.4) << "s " << s << " gamma " << gamma;
+      EXPECT_NEAR(rem[1] / rem[2], 8.0, 0.4) << "s " << s << " gamma " << gamma;
+      EXPECT_NEAR(rem1[1] / rem1[2], 4.0, 0.2);  // c1 alone leaves (g/t)^2
+    }
+}
