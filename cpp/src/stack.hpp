@@ -53,4 +53,18 @@ CriticalSpeed stack_critical_speed(const MediumSpec& spec);
 // passes the pressure through; docs/media.md). NaN for a springs base.
 double stack_small_t_m1(const MediumSpec& spec, double vstar);
 
+// A graded TOP sublayer: M1(t) = phi1 + c1 (gamma/t) + c2 (gamma/t)^2 +
+// O(t^-3) as t -> inf. With eps = gamma/t the graded half-space's generator
+// is t (A - eps diag(0,0,1,1)); its surface response F(eps) comes from the
+// invariant subspace of the two eigenvalues with positive real part
+// (spectral projector by the Newton iteration for the matrix sign
+// function: robust where the eigenvalues merge, vstar = 0), and
+// c1 = F'(0), c2 = F''(0)/2 by Richardson-extrapolated central differences
+// (accurate to ~1e-9). Depends on the top material's (vstar, nu) only.
+struct GradedAsymptotics {
+  double c1 = 0;
+  double c2 = 0;
+};
+GradedAsymptotics graded_top_asymptotics(double vstar, double nu);
+
 }  // namespace movingpunch

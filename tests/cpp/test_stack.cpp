@@ -642,3 +642,79 @@ TEST(Stack, GeometryOfTheMedium) {
   EXPECT_EQ(med->vstar(), 0.3);
   EXPECT_EQ(med->top().nu, 0.2);
 }
+
+TEST(Stack, GradedTopAsymptoticExpansionLeavesATMinus3Remainder) {
+  // M1 - phi1 - c1 g/t - c2 (g/t)^2 falls like t^-3 (ratio 8 per doubling)
+  // for the full propagation of a graded top sublayer; with c2 = 0 it would
+  // fall like t^-2 only.
+  for (double s : {0.0, 0.3})
+    for (double gamma : {2.0, -1.5}) {
+      const auto med = make_stack_medium(
+          springs({Sublayer{0.5, 1.0, 0.25, 1.0, gamma}, Sublayer{0.5, 0.5, 0.3, 1.0, 0.0}}, 1.0),
+          s);
+      const GradedAsymptotics a = graded_top_asymptotics(s, 0.25);
+      std::vector<double> rem, rem1;
+      for (double t : {200.0, 400.0, 800.0}) {
+        const double e = gamma / t;
+        const double d = med->surface_response(t).M1.real() - med->phi1() - a.c1 * e;
+        rem1.push_back(d);
+        rem.push_back(d - a.c2 * e * e);
+      }
+      EXPECT_NEAR(rem[0] / rem[1], 8.0, 0.4) << "s " << s << " gamma " << gamma;
+      EXPECT_NEAR(rem[1] / rem[2], 8.0, 0.4) << "s " << s << " gamma " << gamma;
+      EXPECT_NEAR(rem1[1] / rem1[2], 4.0, 0.2);  // c1 alone leaves (g/t)^2
+    }
+}
+
+TEST(Stack, MixedStackModeStatesMatchTheNaiveProduct) {
+  // The state at every interface (both sides) and at the base, against the
+  // naive long-double product started from the naive surface state; sigma_x
+  // jumps by each material's Hooke law, the state is continuous.
+  const std::vector<Sublayer> layers{
+      {0.3, 1.0, 0.25, 1.0, 0.0}, {0.45, 0.4, 0.3, 0.8, 1.7}, {0.25, 2.5, 0.2, 1.3, 0.0}};
+  for (const MediumSpec& spec :
+       {springs(layers, 0.7), half_space(layers, BaseKind::half_space_bonded, 0.5, 0.3, 1.1)})
+    for (double t : {0.2, 1.3, 3.0}) {
+      const double s = 0.1;
+      const auto ref = naive(spec, s, t);
+      const auto med = make_stack_medium(spec, s);
+      const auto prof = med->mode(t);
+      std::array<LD, 4> z{static_cast<LD>(ref[1]), static_cast<LD>(-ref[0]), 0, -1};
+      double y = 0.0;
+      for (const Sublayer& l : spec.layers) {
+        // Propagate through the sublayer to its bottom (in 4 steps, checking each).
+        for (int step = 1; step <= 4; ++step) {
+          const double dy = l.thickness / 4;
+          const LD m_top = l.mu * std::exp(-static_cast<LD>(l.gamma) * (step - 1) * dy);
+          const LD m_bot = l.mu * std::exp(-static_cast<LD>(l.gamma) * step * dy);
+          M4 B = state_matrix(static_cast<LD>(s) * l.rho / l.mu, l.nu);
+          for (auto& r : B)
+            for (LD& x : r) x *= -static_cast<LD>(t) * dy;
+          B[2][2] += static_cast<LD>(l.gamma) * dy;
+          B[3][3] += static_cast<LD>(l.gamma) * dy;
+          const M4 E = expm(B);
+          std::array<LD, 4> zs{z[0], z[1], z[2] / m_top, z[3] / m_top}, zn{};
+          for (int i = 0; i < 4; ++i)
+            for (int j = 0; j < 4; ++j)
+              zn[static_cast<size_t>(i)] += E[i][j] * zs[static_cast<size_t>(j)];
+          zn[2] *= m_bot;
+          zn[3] *= m_bot;
+          z = zn;
+          const double yy = step == 4 ? y - l.thickness : y - step * dy;
+          const ModeState st = prof->remainder(yy, false);
+          const ModeState hp = prof->half_plane(yy);
+          for (int i = 0; i < 4; ++i)
+            EXPECT_NEAR(st.z(i).real() + hp.z(i).real(),
+                        static_cast<double>(z[static_cast<size_t>(i)]), 1e-12)
+                << "t " << t << " y " << yy << " i " << i;
+          // sigma_x of this sublayer's material (at its bottom: above the interface).
+          const double kappa = 3 - 4 * l.nu, c2 = (kappa + 1) / (kappa - 1);
+          const double m = static_cast<double>(m_bot);
+          const double sx = m * 4 * (c2 - 1) / c2 * static_cast<double>(z[0]) +
+                            (c2 - 2) / c2 * static_cast<double>(z[3]);
+          EXPECT_NEAR(st.sx.real() + hp.sx.real(), sx, 1e-11) << "t " << t << " y " << yy;
+        }
+        y -= l.thickness;
+      }
+    }
+}
