@@ -1,7 +1,8 @@
 """What a medium costs: stacks, a graded sublayer and a half-space base
 against the homogeneous layer, in one process.
 
-For a slow punch (V* 0.05: below the soft sublayers' shear speed), R/h 100, P/(mu h) 0.002, on
+For a slow punch (V* 0.05: below the soft sublayers' shear speed), R/h 100,
+P/(mu h) 0.002, on
   * the homogeneous layer (kw 1, nu 0.2): the yardstick;
   * a 3-sublayer pavement-like stack (0.2 asphalt, 0.3 base mu 0.3,
     0.5 subbase mu 0.1) on kw 1;

@@ -156,6 +156,7 @@ LAYERS: tuple[tuple[str, frozenset[str]], ...] = (
                 f"{_TUI}.screens.help",
                 f"{_TUI}.screens.main",
                 f"{_TUI}.screens.prompts",
+                f"{_TUI}.screens.medium",
             }
         ),
     ),
