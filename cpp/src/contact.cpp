@@ -1151,7 +1151,11 @@ ContactSolution solve_contact(const ContactParams& p) {
   // scatter of a/h over N = 64 ... 1024 (kw = inf, nu = 0.2, eps = 1e-10, 1e-12;
   // kw = 1000, nu = 0.499, eps = 3.4e-13): 0.5e-3 to 1.6e-3 eps phi1. Where it
   // exceeds tol, a/h cannot be resolved in double precision: say so at once.
-  const double roundoff = 2e-3 * std::numeric_limits<double>::epsilon() * std::fabs(phi1);
+  // The medium says how its M1 - phi1 carries that round-off
+  // (Medium::roundoff_gain: a stack's M1 is not computed from phi1's own
+  // closed form, so their errors do not cancel).
+  const double roundoff =
+      model->roundoff_gain() * std::numeric_limits<double>::epsilon() * std::fabs(phi1);
   if (roundoff > p.tol) {
     std::ostringstream m;
     m.precision(10);

@@ -479,6 +479,7 @@ class StackMedium final : public Medium {
     if (surface > 0.0) rate = std::min(rate, surface);
     return rate;
   }
+  double roundoff_gain() const noexcept override { return 50.0; }
   double long_wave_m1() const noexcept override {
     return spec_.base.kind == BaseKind::springs ? 0.0 : stack_small_t_m1(spec_, s_);
   }

@@ -280,3 +280,27 @@ def test_a_rounded_flat_on_a_stack_never_claims_below_its_last_change() -> None:
             "contact": "single",
         }
     )
+
+
+def test_a_stack_near_the_rayleigh_speed_bounds_its_round_off() -> None:
+    """A layer on a stiff bonded half-space at 0.999 V*_R: the stack's M1 is
+    propagated, its round-off (about 2.5 eps phi1, phi1 = 333) not shared
+    with phi1's closed form as the homogeneous layer's is; a/h came out
+    1.4e-12 apart from the tol-1e-12 solve with an estimate of 1.8e-13. The
+    medium's round-off gain (Medium::roundoff_gain) now carries it."""
+    args = {
+        "vstar": 0.999 * mp.rayleigh_vstar(0.3),
+        "radius": 100.0,
+        "load": 0.002,
+        "layers": [mp.Layer(1.0, nu=0.3)],
+        "base": mp.HalfSpace(1e6, 0.3, rho=1e6),
+    }
+    loose = mp.solve(**args, tol=1e-8)
+    # tol 1e-12 is refused there now: the round-off limits a/h to 3.7e-12.
+    with pytest.raises(mp.ConvergenceError, match="round-off"):
+        mp.solve(**args, tol=1e-12)
+    tight = mp.solve(**args, tol=1e-11)
+    err = abs(loose.a - tight.a)
+    assert err <= loose.error_estimate + tight.error_estimate
+    # ... without exaggerating it wildly
+    assert loose.error_estimate <= 100.0 * max(err, 1e-13 * tight.a)
