@@ -524,14 +524,14 @@ def _zone_text(zones: Sequence[tuple[float, float]]) -> str:
 def _cmd_solve(args: argparse.Namespace) -> int:
     if args.load is None and not args.punch:
         raise InvalidParameterError(
-            "solve needs --load (or a train: --punch LOAD@AT, repeated)",
+            "solve: --load is required (or a train: --punch LOAD@AT, repeated)",
             parameter="load",
         )
     profile = _cli_profile(args)
     medium = medium_of(args)
     if medium is None and args.kw is None:
         raise InvalidParameterError(
-            "solve needs --kw (or --half-space)", parameter="kw"
+            "solve: --kw is required (or --half-space)", parameter="kw"
         )
     s: ContactSolution
     if args.punch:
@@ -702,7 +702,7 @@ def _cmd_critical(args: argparse.Namespace) -> int:
     if medium is None:
         if args.kw is None:
             raise InvalidParameterError(
-                "critical needs --kw (or --half-space)", parameter="kw"
+                "critical: --kw is required (or --half-space)", parameter="kw"
             )
         nu = 0.2 if args.nu is None else args.nu
         vcr = critical_vstar(args.kw, nu, args.kp)
