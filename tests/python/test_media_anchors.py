@@ -226,3 +226,31 @@ def test_stack_stress_estimates_bound_the_stress_error(
     ref = tight.stress_peaks()
     assert abs(peaks.top_compressive - ref.top_compressive) <= peaks.error_bound
     assert not peaks.warnings
+
+
+@pytest.mark.parametrize(
+    "base", [mp.HalfSpace(0.5, 0.3), mp.HalfSpace(3.0, 0.25, interface="smooth")]
+)
+def test_stack_half_space_displacements_from_the_reference_point(
+    base: mp.HalfSpace,
+) -> None:
+    """Under a half-space (M1 -> m0 != 0: a logarithmic far field) every
+    displacement is measured from the surface at |x| = 100 h: the surface
+    Green's-function path (contact.cpp) and the mode-field path (stresses.cpp)
+    take m0 e^-alpha/alpha out independently and agree; v(100 h, 0) = 0; the
+    indentation is -v(0, 0)."""
+    s = mp.solve(
+        vstar=0.05,
+        radius=R,
+        load=P,
+        tol=1e-10,
+        layers=[mp.Layer(0.4), mp.Layer(0.6, mu=2.0)],
+        base=base,
+    )
+    x = np.array([0.0, 0.2, 1.0, 5.0, 30.0, 100.0])
+    surface = np.asarray(s.surface_displacement(x))
+    field = np.asarray(s.displacement(x, 0.0))
+    np.testing.assert_allclose(field, surface, rtol=1e-9, atol=1e-12 * s.indentation)
+    assert abs(surface[-1]) <= 1e-12 * s.indentation
+    assert s.indentation == pytest.approx(-surface[0], rel=1e-12)
+    assert np.all(np.diff(surface) > 0)  # the surface rises away from the punch
