@@ -9,6 +9,7 @@
 #include <tuple>
 #include <utility>
 
+#include "critical_search.hpp"
 #include "movingpunch/errors.hpp"
 #include "movingpunch/layer_response.hpp"
 #include "roots.hpp"
@@ -55,46 +56,20 @@ namespace {
 CriticalSpeed compute_critical(double kw, double nu, double kp) {
   const double vr = rayleigh_vstar(nu);
   if (std::isinf(kw)) return {vr, kInf};
-  // The lowest branch c1(t) falls from the foundation-dominated long waves to
-  // one broad minimum (about a decade wide in t) and rises to the Rayleigh
-  // value: a log grid of 4 points per decade finds it, and Brent's parabolic
-  // minimiser refines it between the neighbours of the best grid point.
   // On stiff foundations (kw >~ 30) the dip below the Rayleigh value is
-  // shallow (2.6e-10 relative at kw = 100, nu = 0) and narrow: a dip shallower
-  // than 1e-6 is searched again on a grid of 20 points per decade.
-  // A Pasternak layer (kp > 0) adds kp t^2 to the base's stiffness: it lifts
-  // the whole branch (by about kp on soft foundations) without moving the
-  // minimum of a soft foundation (t^4 ~ kw/D as for springs alone); as kp
-  // grows the dip becomes shallow and moves to larger t (kw = 10, nu = 0.2,
-  // kp = 0.3: 6e-5 relative at t = 7.2), and beyond kp ~ 1 no free wave is
-  // slower than the Rayleigh wave of the top face: V*_cr = V*_R, t = inf
-  // (a dip shallower than the scan's 1e-13 below V*_R counts as none). The
-  // grid's range 1e-5 <= t <= 1e5 covers both.
-  const double lt0 = std::log(1e-5), lt1 = std::log(1e5);
-  int n = 0, best = 0;
-  double best_s = kInf;
-  for (const int size : {21, 201}) {
-    n = size;
-    best = 0;
-    best_s = kInf;
-    for (int i = 0; i < n; ++i) {
-      const double v = first_wave_vstar(std::exp(lt0 + (lt1 - lt0) * i / (n - 1)), kw, nu, kp);
-      if (v < best_s) {
-        best_s = v;
-        best = i;
-      }
-    }
-    if (best_s < vr * (1.0 - 1e-6)) break;
-  }
-  if (best_s >= vr) return {vr, kInf};
-  const double h = (lt1 - lt0) / (n - 1);
-  auto F = [&](double lt) { return first_wave_vstar(std::exp(lt), kw, nu, kp); };
-  // Brent's minimiser (roots.hpp) between the best grid point's neighbours,
-  // from that point. c1 is quadratic at its minimum: 1e-7 in ln t leaves
-  // ~1e-14 in V*_cr.
-  const double a = lt0 + h * std::max(best - 1, 0), b = lt0 + h * std::min(best + 1, n - 1);
-  const detail::Minimum m = detail::brent_minimum(F, a, b, lt0 + h * best, best_s, 1e-7, 0.0, 100);
-  return {m.f, std::exp(m.x)};
+  // shallow (2.6e-10 relative at kw = 100, nu = 0) and narrow: the grid of
+  // 201 points (critical_search.hpp). A Pasternak layer (kp > 0) adds kp t^2
+  // to the base's stiffness: it lifts the whole branch (by about kp on soft
+  // foundations) without moving the minimum of a soft foundation (t^4 ~ kw/D
+  // as for springs alone); as kp grows the dip becomes shallow and moves to
+  // larger t (kw = 10, nu = 0.2, kp = 0.3: 6e-5 relative at t = 7.2), and
+  // beyond kp ~ 1 no free wave is slower than the Rayleigh wave of the top
+  // face: V*_cr = V*_R, t = inf (a dip shallower than the scan's 1e-13 below
+  // V*_R counts as none).
+  CriticalSpeed c{vr, kInf};
+  detail::log_grid_minimum([&](double t) { return first_wave_vstar(t, kw, nu, kp); }, vr, 0.0,
+                           c.vstar, c.t);
+  return c;
 }
 
 }  // namespace

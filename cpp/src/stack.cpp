@@ -14,6 +14,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "critical_search.hpp"
 #include "layer_basis.hpp"
 #include "movingpunch/errors.hpp"
 #include "roots.hpp"
@@ -549,41 +550,13 @@ CriticalSpeed compute_critical(const MediumSpec& spec) {
     consider(b.mu / b.rho * rayleigh_vstar(b.nu), 0.0);
   }
   const double smax = inf.vstar;
-  // A grid in log t and Brent's minimiser, as critical_speed (dispersion.cpp).
-  const double lt0 = std::log(1e-5), lt1 = std::log(1e5);
-  int n = 0, best = 0;
-  double best_s = kInf;
-  for (const int size : {21, 201}) {
-    n = size;
-    best = 0;
-    best_s = kInf;
-    for (int i = 0; i < n; ++i) {
-      const double v = first_wave(spec, std::exp(lt0 + (lt1 - lt0) * i / (n - 1)), smax);
-      if (v < best_s) {
-        best_s = v;
-        best = i;
-      }
-    }
-    if (best_s < smax * (1.0 - 1e-6)) break;
-  }
-  // A root within 1e-12 of the infimum is the infimum's own branch seen
-  // through round-off (D ~ 1e-13 there at large t): none below it.
-  if (best_s >= smax * (1.0 - 1e-12)) return inf;
-  const double h = (lt1 - lt0) / (n - 1);
-  auto F = [&](double lt) { return first_wave(spec, std::exp(lt), smax); };
-  const double a = lt0 + h * std::max(best - 1, 0), bb = lt0 + h * std::min(best + 1, n - 1);
-  const detail::Minimum mn =
-      detail::brent_minimum(F, a, bb, lt0 + h * best, best_s, 1e-7, 0.0, 100);
-  return {mn.f, std::exp(mn.x)};
-}
-
-std::vector<double> spec_key(const MediumSpec& s) {
-  std::vector<double> k;
-  for (const Sublayer& l : s.layers) k.insert(k.end(), {l.thickness, l.mu, l.nu, l.rho, l.gamma});
-  const BaseSpec& b = s.base;
-  k.insert(k.end(), {static_cast<double>(static_cast<int>(b.kind)), b.kw, b.kp, b.damping, b.mu,
-                     b.nu, b.rho});
-  return k;
+  // As critical_speed (dispersion.cpp). A root within 1e-12 of the infimum
+  // is the infimum's own branch seen through round-off (D ~ 1e-13 there at
+  // large t): none below it.
+  CriticalSpeed c = inf;
+  detail::log_grid_minimum([&](double t) { return first_wave(spec, t, smax); }, smax, 1e-12,
+                           c.vstar, c.t);
+  return c;
 }
 
 }  // namespace
@@ -606,7 +579,7 @@ CriticalSpeed stack_critical_speed(const MediumSpec& spec) {
   check_spec(spec);
   static std::mutex mutex;
   static std::map<std::vector<double>, CriticalSpeed> cache;
-  const std::vector<double> key = spec_key(spec);
+  const std::vector<double> key = spec.key();
   {
     std::lock_guard<std::mutex> lock(mutex);
     const auto it = cache.find(key);
