@@ -356,6 +356,7 @@ def _train_params(scene: Scene) -> dict[str, float]:
 def _target(
     target: Scene | Mapping[str, float] | str | Path | None,
     profile: PunchProfile | None = None,
+    medium: Medium | None = None,
 ) -> _Target:
     if target is None:
         target = FIG4_CASE
@@ -367,10 +368,17 @@ def _target(
     if isinstance(target, Scene):
         return _Target(target.name or "scene", target, single=bool(target.punches))
     params = {name: float(target[name]) for name in _PARAMS if name in target}
-    params.setdefault("nu", 0.2)
+    if medium is None:
+        params.setdefault("nu", 0.2)
+    else:
+        # The medium fixes nu (its top sublayer's) and the springs (none
+        # under a half-space): the scene takes them from it.
+        for name in ("nu", "kw", "kp", "damping"):
+            params.pop(name, None)
     scene = Scene(
         params=params,
         profile=profile,
+        medium=medium,
         outputs={"contact_width": OutputSpec("contact_width")},
         name="case",
         description="one parameter set: solve and the sigma_x peaks",
@@ -390,6 +398,7 @@ def accuracy_report(
     progress: Progress | None = None,
     cancelled: Callable[[], bool] | None = None,
     profile: PunchProfile | None = None,
+    medium: Medium | None = None,
 ) -> AccuracyReport | None:
     """The accuracy ladder of ``target``: None (the paper's Fig. 4 case), a
     parameter mapping (vstar, kw, radius, load, optional nu, damping, kp and
@@ -399,10 +408,13 @@ def accuracy_report(
     cache cleared first: this empties the process-wide cache) and then warm.
     Returns None if ``cancelled()`` turns true. ``profile``: the punch of
     a parameter mapping (a scene carries its own; docs/theory.md section 13).
+    ``medium``: the medium of a parameter mapping (``movingpunch.Medium``;
+    it fixes nu and the springs, so the mapping's nu, kw, kp and damping
+    are not read; a scene carries its own).
     """
     report = progress or (lambda done, total: None)
     stop = cancelled or (lambda: False)
-    tgt = _target(target, profile)
+    tgt = _target(target, profile, medium)
     ladder = [float(t) for t in tols]
     total = len(ladder)
     # The points are those of the first rung that runs (the same set at every

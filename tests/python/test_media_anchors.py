@@ -254,3 +254,28 @@ def test_stack_half_space_displacements_from_the_reference_point(
     assert abs(surface[-1]) <= 1e-12 * s.indentation
     assert s.indentation == pytest.approx(-surface[0], rel=1e-12)
     assert np.all(np.diff(surface) > 0)  # the surface rises away from the punch
+
+
+def test_accuracy_report_of_a_parameter_mapping_on_a_medium() -> None:
+    """``accuracy_report(mapping, medium=)`` (the TUI's accuracy tab) runs
+    the ladder and its reference on the medium: the mapping's nu and springs
+    are the medium's; the 1e-8 rung's a/h matches the medium's own tight
+    solve, far from the homogeneous layer's."""
+    from movingpunch.accuracy import accuracy_report
+
+    medium = mp.Medium((mp.Layer(0.4), mp.Layer(0.6, mu=0.3, nu=0.3)), mp.Winkler(1.0))
+    case = {"vstar": 0.05, "radius": R, "load": P, "kw": 3.0, "nu": 0.45}
+    report = accuracy_report(case, tols=(1e-4, 1e-8), medium=medium)
+    assert report is not None
+    assert report.scene.medium == medium
+    assert report.scene.params["kw"] == 1.0  # the medium's springs, not the mapping's
+    for rung in report.rungs:
+        assert not rung.failure, rung
+        assert rung.error_a <= rung.error_estimate + 1e-14, rung
+    own = mp.solve(
+        vstar=0.05, radius=R, load=P, tol=1e-12, layers=medium.layers, kw=1.0
+    )
+    homogeneous = mp.solve(vstar=0.05, radius=R, load=P, tol=1e-12, kw=1.0, nu=0.2)
+    solved = report.scene.run().solutions[0]
+    assert abs(solved.a - own.a) <= 1e-7 * own.a
+    assert abs(own.a - homogeneous.a) > 1e-3 * own.a

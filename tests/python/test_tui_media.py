@@ -480,7 +480,7 @@ async def test_medium_depth_plot_draws_the_interfaces() -> None:
 def test_medium_stack_overlay_and_sweep_of_a_hidden_parameter_say_so() -> None:
     """An overlay of ν beside sublayers draws no curve of its own and says
     why; a sweep of kw under a half-space is a notice; the accuracy ladder
-    (homogeneous layer only) is a notice too. The current curve is the
+    runs on the medium (its reference too). The current curve is the
     medium's, as the API computes it."""
     cache = tui_model.Cache()
     stack = with_medium(Params(), [mp.Layer(0.4), mp.Layer(0.6, mu=0.5)], None)
@@ -522,5 +522,13 @@ def test_medium_stack_overlay_and_sweep_of_a_hidden_parameter_say_so() -> None:
         cache, tui_model.Request(generation=3, params=on_hs, tab="accuracy")
     )
     assert ladder is not None
-    assert isinstance(ladder.data, tui_model.Notice)
-    assert "homogeneous layer" in ladder.data.text
+    assert isinstance(ladder.data, tui_model.AccuracyTable)
+    # The ladder runs on the medium (its reference too: a reference on the
+    # homogeneous layer on springs would put every error near 1e-1), each
+    # rung's error within its estimate.
+    report = ladder.data.report
+    assert report.scene.medium == on_hs.medium()
+    for rung in report.rungs:
+        assert not rung.failure, rung
+        assert rung.error_a <= rung.error_estimate + 1e-14, rung
+        assert rung.error_a <= max(rung.tol, 1e-12), rung

@@ -1167,12 +1167,6 @@ def _accuracy(
             "accuracy",
             "The accuracy ladder runs a single punch: clear the train input to see it.",
         )
-    if params.medium() is not None:
-        return Notice(
-            "accuracy",
-            "The accuracy ladder runs the homogeneous layer on springs: clear "
-            f"the medium ({params.medium_label()}; the medium editor, l) to see it.",
-        )
     key = ("accuracy", replace(params, tol=PAPER_FIG4.tol))
     known = cache.peek(key)
     if isinstance(known, AccuracyTable):
@@ -1183,6 +1177,7 @@ def _accuracy(
         progress=report,
         cancelled=stop,
         profile=params.shape(),
+        medium=params.medium(),
     )
     if out is None:
         return None
