@@ -1981,7 +1981,8 @@ double bar_pole(const Medium& m) {
   throw std::invalid_argument(
       what + " on " + describe(m.spec()) +
       " is not available from the asymmetric solver yet (the homogeneous layer's only); the "
-      "contact, pressure, drag, surface slope and surface stress are");
+      "contact, pressure, drag, surface slope and surface stress are (and, without friction, "
+      "the stresses at depth)");
 }
 
 }  // namespace
@@ -2343,12 +2344,28 @@ Eigen::Vector3d DampedSolution::stresses(double x, double y) const {
 // remainder there is -(M2 - phi2), the closed form -phi2 p, -p, 0).
 
 std::shared_ptr<const DampedSolution::FieldNodes> DampedSolution::field_nodes() const {
-  if (!layer()) layered_refusal(*model_, "the stress field below the surface");
   std::lock_guard<std::mutex> lock(field_cache_->mutex);
   auto& np = field_cache_->nodes;
   if (np) return np;
   auto n = std::make_shared<FieldNodes>();
   const Fine& f = *light_;
+  if (!layer()) {
+    // Any other medium: each node's mode profile (its remainder at any
+    // depth: the state less the top material's half-plane state, sigma_x by
+    // the material at that depth), the phase p^ e^{i alpha c}.
+    n->modes.reserve(f.alpha.size());
+    n->ph.resize(f.alpha.size());
+    double ref = 0.0;
+    for (std::size_t q = 0; q < f.alpha.size(); ++q) {
+      check_interrupt();
+      n->modes.push_back(model_->mode(f.alpha[q]));
+      n->ph[q] = f.phat[q] * std::exp(cplx(0.0, f.alpha[q] * centre_));
+      ref = std::max(ref, std::abs(n->ph[q]));
+    }
+    n->negligible = 1e-18 * ref / static_cast<double>(std::max<std::size_t>(f.alpha.size(), 1));
+    np = n;
+    return np;
+  }
   const WaveConstants& c = model_->top();
   const auto nq = static_cast<Eigen::Index>(f.alpha.size());
   // |entries| of v_T(+-nT) and dv(+-), the columns' vectors (modal_columns).
@@ -2400,6 +2417,20 @@ std::shared_ptr<const Eigen::MatrixXd> DampedSolution::depth_coefficients(const 
     const auto q = static_cast<std::size_t>(k);
     const double al = f.alpha[q];
     Eigen::Vector4d r_re, r_im;
+    if (!nodes.modes.empty()) {
+      // Any other medium: the node's own remainder (sigma_x of the material
+      // at y, the side above an interface).
+      const ModeState st = nodes.modes[q]->remainder(y, false);
+      const cplx ph = nodes.ph[q];
+      const cplx sx = st.sx * ph, sy = st.z(3) * ph, tau = cplx(0.0, -1.0) * st.z(2) * ph;
+      G(k, 0) = sx.real();
+      G(k, 1) = sy.real();
+      G(k, 2) = tau.real();
+      G(k, 3) = sx.imag();
+      G(k, 4) = sy.imag();
+      G(k, 5) = tau.imag();
+      continue;
+    }
     if (al < DampedLayerModel::kSmallT) {
       const Eigen::Matrix4d T = detail::transfer_matrix(c, al, y);
       const Eigen::Matrix4d C = detail::modal_columns(c, al, y);
@@ -2436,6 +2467,8 @@ std::shared_ptr<const Eigen::MatrixXd> DampedSolution::depth_coefficients(const 
 StressField DampedSolution::stress_field(const Eigen::Ref<const Eigen::VectorXd>& x,
                                          const Eigen::Ref<const Eigen::VectorXd>& y) const {
   detail::check_grid(x, y);
+  if (jac_ && !layer())
+    layered_refusal(*model_, "the stress field below the surface with friction");
   const Fine& f = *light_;
   const auto nodes = field_nodes();
   const WaveConstants& c = model_->top();

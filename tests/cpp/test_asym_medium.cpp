@@ -315,8 +315,7 @@ TEST(AsymMedium, IdenticalSublayersTangentialIsTheHomogeneousLayers) {
         EXPECT_LT(std::abs(a.M1 - b.M1), 1e-12 * std::abs(b.M1) + 1e-15) << kw << " " << t;
       }
       EXPECT_EQ(stack->tangential().Uq, hom->tangential().Uq);
-      EXPECT_NEAR(stack->bar_compliance(), hom->bar_compliance(),
-                  1e-14 * hom->bar_compliance());
+      EXPECT_NEAR(stack->bar_compliance(), hom->bar_compliance(), 1e-14 * hom->bar_compliance());
     }
 }
 
@@ -448,9 +447,18 @@ TEST(AsymMedium, IdenticalSublayersRoundedFlatAndTableGiveTheHomogeneousContact)
   g.medium = nullptr;
   g.kw = kw;
   g.nu = nu;
-  const DampedSolution a = solve_damped(q);
-  expect_same_contact(a, solve_damped(g), "asymmetric table");
+  const DampedSolution a = solve_damped(q), b = solve_damped(g);
+  expect_same_contact(a, b, "asymmetric table");
   expect_equilibrium(a, "asymmetric table");
+  // The stresses at depth (the stack's mode profiles, an interface and the
+  // base face included) are the homogeneous layer's closed-form modes'.
+  const Eigen::VectorXd xs = Eigen::Vector3d(b.centre() - 0.5, b.centre(), b.centre() + 0.3);
+  const Eigen::VectorXd ys = Eigen::Vector4d(-0.1, -0.37, -0.6, -1.0);
+  const StressField fa = a.stress_field(xs, ys), fb = b.stress_field(xs, ys);
+  const double scale = fb.sigma_y.cwiseAbs().maxCoeff();
+  EXPECT_LT((fa.sigma_x - fb.sigma_x).cwiseAbs().maxCoeff(), 1e-8 * scale);
+  EXPECT_LT((fa.sigma_y - fb.sigma_y).cwiseAbs().maxCoeff(), 1e-8 * scale);
+  EXPECT_LT((fa.tau_xy - fb.tau_xy).cwiseAbs().maxCoeff(), 1e-8 * scale);
 }
 
 // The flat punch with friction on identical sublayers: the homogeneous layer's
@@ -476,8 +484,8 @@ TEST(AsymMedium, IdenticalSublayersFlatWithFrictionGiveTheHomogeneousEnds) {
 // Johnson, Contact Mechanics, sec. 7.2), front = 1/2 + atan(f Phi)/pi.
 TEST(AsymMedium, BondedHalfSpaceOfTheOwnMaterialIsTheFrictionalHalfPlane) {
   const double nu = 0.2, s = 0.3, f = 0.3;
-  const MediumSpec spec = half_space({{1.0, 1.0, nu, 1.0, 0.0}}, BaseKind::half_space_bonded, 1.0,
-                                     nu, 1.0);
+  const MediumSpec spec =
+      half_space({{1.0, 1.0, nu, 1.0, 0.0}}, BaseKind::half_space_bonded, 1.0, nu, 1.0);
   const WaveConstants c = wave_constants(s, nu);
   const EndExponents e = end_exponents(f, tangential_half_plane(c).Phi);
   for (double load : {1e-4, 4e-3}) {

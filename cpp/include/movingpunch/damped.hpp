@@ -454,6 +454,9 @@ class DampedSolution {
     std::vector<cplx> ph;
     std::vector<double> top_bound, bottom_bound;
     double negligible = 0;  // a node's contribution below this is dropped
+    // Any other medium: each node's mode (Medium::mode, built once; its
+    // remainder at any depth), instead of d_re, d_im and the bounds.
+    std::vector<std::unique_ptr<const ModeProfile>> modes;
   };
   struct FieldCache {
     std::mutex mutex;
