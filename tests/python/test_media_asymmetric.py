@@ -187,3 +187,37 @@ def test_depth_fields_of_a_stack_on_the_asymmetric_solver_are_refused_by_name() 
     with pytest.raises(ValueError, match="not available from the asymmetric solver"):
         s.depth_stress(-0.5)
     assert math.isfinite(float(s.surface_stress(0.0)))
+
+
+def test_a_separated_contact_on_identical_sublayers_is_the_homogeneous_layers() -> None:
+    """Near the critical speed on soft springs the single contact separates
+    (test_zones.py's case): the stack's zones are the homogeneous layer's."""
+    kw = 0.1
+    common = {
+        "vstar": 0.99 * mp.critical_vstar(kw, 0.2),
+        "radius": 100.0,
+        "load": 0.002,
+    }
+    a = mp.solve(**common, layers=IDENTICAL, base=mp.Winkler(kw))
+    b = mp.solve(**common, kw=kw)
+    assert isinstance(a, mp.ZonedSolution)
+    assert isinstance(b, mp.ZonedSolution)
+    assert len(a.contact_zones) == len(b.contact_zones) == 2
+    tol = 1e-10 + 2.0 * (a.error_estimate + b.error_estimate)
+    for (l1, r1), (l2, r2) in zip(a.contact_zones, b.contact_zones, strict=True):
+        assert l1 == pytest.approx(l2, abs=tol)
+        assert r1 == pytest.approx(r2, abs=tol)
+    _equilibrium_zones(a)
+
+
+def _equilibrium_zones(s: mp.ContactSolution) -> None:
+    """int p dx over the zones = P (p in P/h: the integral is 1), p >= 0."""
+    total = 0.0
+    for lo, hi in s.contact_zones:
+        c, w = 0.5 * (lo + hi), 0.5 * (hi - lo)
+        m = 4000
+        th = math.pi * (np.arange(m) + 0.5) / m
+        p = np.asarray(s.pressure(c - w * np.cos(th)))
+        assert float(np.min(p)) >= -1e-9 * float(np.max(p))
+        total += float(np.sum(p * w * np.sin(th)) * math.pi / m)
+    assert total == pytest.approx(1.0, abs=2e-4)
