@@ -556,6 +556,14 @@ def _solve_layered(
         )
     if single.valid or flag:
         return single
+    if zoned and isinstance(medium.base, HalfSpace):
+        raise UnphysicalContactError(
+            f"vstar={single.vstar:.8g}, {medium.describe()}, {shape.describe()}, "
+            f"load={single.load:.8g}: {single.validity} (a/h = {single.a:.8g}); "
+            "several contact zones under a half-space base are not supported yet "
+            "(their indentations need the displacement, which grows like ln|x| "
+            "there); allow_unphysical=True returns the single contact, flagged"
+        )
     if zoned:
         try:
             return separate(single, damping=0.0, kp=kp, n=n)
@@ -1023,6 +1031,15 @@ def solve_punches(
         singles.append(alone[key])
     if len(punches) == 1 and punches[0].at == 0.0:
         return singles[0]
+    if isinstance(base, HalfSpace):
+        raise InvalidParameterError(
+            "base: a train of punches on a half-space base is not supported yet "
+            "(the punches' indentations need the displacement, which grows like "
+            "ln|x| under a half-space); use springs (base=Winkler(...)) or one "
+            "punch at x = 0",
+            parameter="base",
+            allowed="Winkler springs for a train of punches",
+        )
     return solve_train(
         punches, singles, damping=damp, tol=resolve_tol(tol), n=size, t0=t0
     )

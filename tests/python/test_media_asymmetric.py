@@ -221,3 +221,15 @@ def _equilibrium_zones(s: mp.ContactSolution) -> None:
         assert float(np.min(p)) >= -1e-9 * float(np.max(p))
         total += float(np.sum(p * w * np.sin(th)) * math.pi / m)
     assert total == pytest.approx(1.0, abs=2e-4)
+
+
+def test_a_train_on_a_half_space_base_is_refused_naming_base() -> None:
+    punches = [mp.Punch(50.0, 0.004, at=0.0), mp.Punch(50.0, 0.004, at=1.2)]
+    with pytest.raises(mp.InvalidParameterError, match="half-space") as info:
+        mp.solve_punches(
+            punches,
+            vstar=0.2,
+            layers=[mp.Layer(0.5), mp.Layer(0.5, mu=0.5)],
+            base=mp.HalfSpace(2.0, 0.3),
+        )
+    assert info.value.parameter == "base"
