@@ -15,6 +15,10 @@ stack <= 3x, graded <= 3x, half-space <= 2x; a cold 3-sublayer solve <= 10x
 the homogeneous cold solve. Prints the machine's load average; never asserts
 a time.
 
+The asymmetric solver on a medium: the 3-sublayer stack with friction 0.3
+against the homogeneous layer with friction 0.3 (V* 0.05, the same punch),
+warm and cold, as ratios (no target in the issue; reported).
+
     .venv/bin/python benchmarks/bench_media.py [--repeat 7]
 """
 
@@ -51,6 +55,7 @@ MEDIA: dict[str, dict[str, object]] = {
     },
 }
 TARGETS = {"3-sublayer stack": 3.0, "graded sublayer": 3.0, "half-space base": 2.0}
+FRICTION = {"vstar": 0.05, "radius": 100.0, "friction": 0.3}
 
 
 def _median_ms(run: Callable[[int], object], repeat: int) -> float:
@@ -78,6 +83,19 @@ def measure(medium: dict[str, object], repeat: int) -> tuple[float, float, float
     return warm, cold, field
 
 
+def measure_friction(medium: dict[str, object], repeat: int) -> tuple[float, float]:
+    """Warm and cold solves with friction 0.3 (the asymmetric solver)."""
+
+    def solve(i: int, cold: bool = False) -> mp.ContactSolution:
+        if cold:
+            mp.clear_kernel_cache()
+        return mp.solve(**FRICTION, load=0.002 * (1 + 1e-3 * i), **medium)  # type: ignore[arg-type]
+
+    cold = _median_ms(lambda i: solve(i, cold=True), repeat)
+    solve(0)
+    return _median_ms(solve, repeat), cold
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=7)
@@ -102,6 +120,13 @@ def main() -> None:
     print(
         f"cold 3-sublayer / cold homogeneous: {stack_cold:.2f} "
         f"(<= 10x {'met' if stack_cold <= 10 else 'MISSED'})"
+    )
+    fw0, fc0 = measure_friction(MEDIA["homogeneous"], args.repeat)
+    fw, fc = measure_friction(MEDIA["3-sublayer stack"], args.repeat)
+    print(
+        f"friction 0.3 (asymmetric solver): homogeneous warm {fw0:.2f} ms, cold "
+        f"{fc0:.2f} ms; 3-sublayer stack warm {fw:.2f} ms ({fw / fw0:.2f}x), cold "
+        f"{fc:.2f} ms ({fc / fc0:.2f}x)"
     )
 
 

@@ -228,7 +228,7 @@ namespace {
 // The kernel's integrand (M1 - phi1)/phi1; with friction f > 0 that of the
 // effective response M1 - i f Wq less its half-plane limit phi1 - i f Wq_inf
 // (docs/theory.md section 14).
-cplx kernel_integrand(const DampedLayerModel& m, const DampedResponse& r, double friction) {
+cplx kernel_integrand(const Medium& m, const DampedResponse& r, double friction) {
   const double phi1 = m.phi1();
   if (!(friction > 0.0)) return (r.M1 - phi1) / phi1;
   return (r.M1 - phi1 - cplx(0.0, friction) * (r.Wq - m.tangential().Wq)) / phi1;
@@ -242,7 +242,7 @@ struct DPanel {
   double parent_density = std::numeric_limits<double>::infinity();  // its parent's error / length
 };
 
-DPanel eval_dpanel(const DampedLayerModel& m, double lo, double hi, double friction) {
+DPanel eval_dpanel(const Medium& m, double lo, double hi, double friction) {
   check_interrupt();  // Ctrl-C (interrupt.hpp): 15 layer responses
   DPanel p;
   p.lo = lo;
@@ -251,7 +251,7 @@ DPanel eval_dpanel(const DampedLayerModel& m, double lo, double hi, double frict
   cplx kf = 0.0, gf = 0.0, kb = 0.0, gb = 0.0;
   double fmax = 0.0;
   for (int j = 0; j < 15; ++j) {
-    p.r[j] = m.response(gk_node(j, c, h));
+    p.r[j] = m.full_response(gk_node(j, c, h));
     const cplx f = kernel_integrand(m, p.r[j], friction);
     const cplx b = p.r[j].Wb;
     kf += gk_weight(j, h) * f;
@@ -282,12 +282,17 @@ DPanel eval_dpanel(const DampedLayerModel& m, double lo, double hi, double frict
 
 }  // namespace
 
-DampedQuadrature build_damped_quadrature(const DampedLayerModel& model, double tol,
-                                         double friction) {
+DampedQuadrature build_damped_quadrature(const Medium& model, double tol, double friction) {
   if (!(tol > 0.0)) throw std::invalid_argument("damped quadrature: tol must be > 0");
-  const double nT = model.constants().nT;
+  // The slowest field, the base face's response Wb, decays like (1 + t)
+  // exp(-nT t) (nT: the homogeneous layer's; a stack's travel time through
+  // its sublayers, field_decay_rate): below 1e-18 beyond this.
+  const double nT = model.field_decay_rate();
+  if (!(nT > 0.0))
+    throw std::invalid_argument(
+        "asymmetric solver: the medium's response does not decay at short waves (a graded "
+        "top sublayer): not supported");
   DampedQuadrature q;
-  // The bottom response Wb decays like (1 + t) exp(-nT t): below 1e-18 beyond this.
   double& amax = q.panels.alpha_max;
   amax = (std::log(1e18) + std::log1p(4.0 * 60.0 / nT)) / nT;
   const double w0 = 0.5;
@@ -298,7 +303,7 @@ DampedQuadrature build_damped_quadrature(const DampedLayerModel& model, double t
     work.push_back(eval_dpanel(model, i * w0, (i + 1) * w0, friction));
   // The first panel, split down to a Pasternak base's long-wave scale
   // (layer_basis.hpp; one panel for springs alone).
-  const std::vector<double> first = detail::foundation_panel_edges(model.kw(), model.kp(), w0);
+  const std::vector<double> first = model.first_panel_edges(w0);
   for (std::size_t i = first.size() - 1; i >= 1; --i)
     work.push_back(eval_dpanel(model, first[i - 1], first[i], friction));
   const double panel_tol = tol / n0;
@@ -356,8 +361,7 @@ double damped_kernel(const FilonIntegrator& f, const std::vector<double>& kr,
 // ---------------------------------------------------------------------------
 // The tabulated kernel
 
-DampedKernel::DampedKernel(std::shared_ptr<const DampedLayerModel> model, double range,
-                           double friction)
+DampedKernel::DampedKernel(std::shared_ptr<const Medium> model, double range, double friction)
     : range_(range) {
   require_in_range("kernel range", range, 0.0, 1e6, true, false);
   require_in_range("friction", friction, 0.0, kInf, false, true);
@@ -487,7 +491,58 @@ double DampedKernel::operator()(double u) const {
 // ---------------------------------------------------------------------------
 // Validation
 
+MediumSpec medium_of(const DampedParams& p) {
+  return p.medium ? *p.medium : homogeneous_medium(p.kw, p.nu, p.kp, p.damping);
+}
+
+DampedParams with_medium_scalars(const DampedParams& p) {
+  DampedParams q = p;
+  if (!p.medium) return q;
+  const MediumSpec& m = *p.medium;
+  q.nu = m.layers[0].nu;
+  if (m.base.kind == BaseKind::springs) {
+    q.kw = m.base.kw;
+    q.kp = m.base.kp;
+    q.damping = m.base.damping;
+  } else {
+    q.kw = kInf;
+    q.kp = 0.0;
+    q.damping = 0.0;
+  }
+  return q;
+}
+
+double critical_vstar_of(const DampedParams& p) {
+  if (!p.medium || p.medium->homogeneous()) {
+    const DampedParams q = with_medium_scalars(p);
+    return critical_vstar(q.kw, q.nu, q.kp);
+  }
+  return critical_speed(*p.medium).vstar;
+}
+
 void validate(const DampedParams& p) {
+  if (p.medium) {
+    validate(*p.medium);
+    const MediumSpec& m = *p.medium;
+    if (m.layers[0].gamma != 0.0)
+      throw InvalidParameter(
+          "layers", "a homogeneous top sublayer (graded ones below it)",
+          "layers: a graded top sublayer is not solved yet (its response reaches the "
+          "half-plane's only as a series in gamma/alpha, which the kernel must take out "
+          "exactly); put a homogeneous sublayer on top or use a staircase of sublayers");
+    if (!m.homogeneous() && m.base.kind == BaseKind::springs && m.base.damping != 0.0)
+      throw InvalidParameter(
+          "damping", "0 under a stack of sublayers (damped springs: the homogeneous layer only)",
+          "damping: damped springs under a stack of sublayers are not supported yet (the stack's "
+          "propagation is real); given damping = " +
+              std::to_string(m.base.damping) + " under " + describe(m));
+    // The scalar checks on the medium's own values (nu: the top's; damping
+    // > 0 unless friction or an asymmetric table asks for this solver).
+    DampedParams r = with_medium_scalars(p);
+    r.medium = nullptr;
+    validate(r);
+    return;
+  }
   require_in_range("vstar", p.vstar, 0.0, 1.0, false, true);
   require_in_range("kw", p.kw, 1e-12, kInf, false, false, true);
   // The shape's parameters (the cylinder's radius, a face's half-width, a
@@ -1149,15 +1204,18 @@ WidthEval eval_width_profile(const ChebyshevNodes& nd, double w, const DampedKer
 
 }  // namespace
 
-DampedSolution solve_damped(const DampedParams& prm) {
+DampedSolution solve_damped(const DampedParams& prm_in) {
   // The flat punch (index +1, no width iteration): damped_flat.cpp.
-  if (prm.profile == ProfileKind::flat) return solve_damped_flat(prm);
+  if (prm_in.profile == ProfileKind::flat) return solve_damped_flat(prm_in);
   const auto t0 = std::chrono::steady_clock::now();
-  validate(prm);
+  validate(prm_in);
+  // kw, nu, kp, damping: the medium's own (nu: the top sublayer's).
+  const DampedParams prm = with_medium_scalars(prm_in);
+  const bool homogeneous = !prm.medium || prm.medium->homogeneous();
   DampedSolution s;
   s.params_ = prm;
   s.vr_ = rayleigh_vstar(prm.nu);
-  s.vcr_ = critical_vstar(prm.kw, prm.nu, prm.kp);
+  s.vcr_ = critical_vstar_of(prm);
   auto since_start = [&t0] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   };
@@ -1181,13 +1239,14 @@ DampedSolution solve_damped(const DampedParams& prm) {
   // the scan of lambda(w) on [w/8, 4w], 4 w_final for the gap. Twice the need
   // when built: a slightly wider contact (the next point of a sweep) reuses it.
   std::shared_ptr<const DampedKernel> kern;
+  std::shared_ptr<const Medium> medium;
   double kernel_seconds = 0.0;
   auto kernel = [&](double need) -> const DampedKernel& {
     if (!kern || kern->range() < need) {
       const auto tk = std::chrono::steady_clock::now();
       bool built = false;
-      kern = cached_damped_kernel(prm.vstar, prm.kw, prm.nu, prm.damping, need, 2.0 * need, &built,
-                                  prm.kp, prm.friction);
+      if (!medium) medium = make_medium(medium_of(prm), prm.vstar);
+      kern = cached_damped_kernel(medium, need, 2.0 * need, &built, prm.friction);
       s.kernel_builds_ += built ? 1 : 0;
       kernel_seconds +=
           std::chrono::duration<double>(std::chrono::steady_clock::now() - tk).count();
@@ -1216,8 +1275,17 @@ DampedSolution solve_damped(const DampedParams& prm) {
     hp_width = detail::profile_half_plane_width(prof, phi1, prm.load, w0,
                                                 std::min(detail::kMaxA, prof.extent()));
   }
-  const detail::WidthGuess wg = detail::width_guess(
-      phi1, cylinder ? lambda : 0.5 * kPi * hp_width * hp_width / phi1, prm.kw, prm.nu, prm.kp);
+  const double guess_lambda = cylinder ? lambda : 0.5 * kPi * hp_width * hp_width / phi1;
+  detail::WidthGuess wg;
+  if (homogeneous) {
+    wg = detail::width_guess(phi1, guess_lambda, prm.kw, prm.nu, prm.kp);
+  } else {
+    // Any other medium: from its long-wave compliance (contact.cpp's).
+    medium = make_medium(medium_of(prm), prm.vstar);
+    constexpr double t_c = 0.05;
+    wg = detail::width_guess_compliance(phi1, guess_lambda,
+                                        medium->surface_response(t_c).M1.real() / t_c);
+  }
   if (cylinder && !(wg.hertz >= 2.0 * detail::kMinA))
     detail::width_out_of_range(prm, false, 2.0 * kPi * detail::kMinA * detail::kMinA / phi1);
   const bool wide_guess = wg.use_wide;
@@ -1230,7 +1298,7 @@ DampedSolution solve_damped(const DampedParams& prm) {
   // thousands of h for a contact of 0.4 h), so only its own trial width.
   kernel((wide_guess ? 2.0 : 8.4) * guess);
   s.model_ = kern->model_ptr();
-  const DampedLayerModel* model = s.model_.get();
+  const Medium* model = s.model_.get();
 
   // A profile's series of g beyond the collocated terms: the half-plane's
   // (the half-plane part maps the n-th term onto Q_{n+1}: b_{m-1} =
@@ -1833,7 +1901,7 @@ DampedSolution zone_solution(const DampedParams& prm, std::shared_ptr<const Damp
   DampedSolution s;
   s.params_ = prm;
   s.vr_ = rayleigh_vstar(prm.nu);
-  s.vcr_ = critical_vstar(prm.kw, prm.nu, prm.kp);
+  s.vcr_ = critical_vstar_of(prm);
   s.model_ = kernel->model_ptr();
   s.kernel_ = std::move(kernel);
   s.punch_ = std::make_shared<const PunchProfile>(prm.punch());
@@ -1898,6 +1966,29 @@ cplx DampedSolution::pressure_transform(double alpha) const {
   return u_series_transform(b_, centre_, half_, alpha);
 }
 
+namespace {
+
+// The bar pole of the surface sigma_x per unit tangential load: ep Uq ~
+// bar_pole/alpha as alpha -> 0 (ep/(ep - vstar) for the homogeneous layer;
+// 0 on a bonded half-space, which takes the net horizontal force).
+double bar_pole(const Medium& m) {
+  const WaveConstants& c = m.top();
+  return 4.0 * (c.c2 - 1.0) / c.c2 * m.bar_compliance();
+}
+
+// What the asymmetric solver does not evaluate on a layered medium yet.
+[[noreturn]] void layered_refusal(const Medium& m, const std::string& what) {
+  throw std::invalid_argument(
+      what + " on " + describe(m.spec()) +
+      " is not available from the asymmetric solver yet (the homogeneous layer's only); the "
+      "contact, pressure, drag, surface slope and surface stress are (and, without friction, "
+      "the stresses at depth)");
+}
+
+}  // namespace
+
+const DampedLayerModel* DampedSolution::layer() const { return model_->homogeneous_layer(); }
+
 cplx DampedSolution::bottom_w(const DampedResponse& r) const {
   if (!(params_.friction > 0.0)) return r.Wb;
   return r.Wb + cplx(0.0, params_.friction) * r.Wqb;
@@ -1906,8 +1997,8 @@ cplx DampedSolution::bottom_w(const DampedResponse& r) const {
 cplx DampedSolution::surface_stress_integrand(const DampedResponse& r, double alpha) const {
   const double phi2 = model_->phi2();
   if (!(params_.friction > 0.0)) return r.M2 - phi2;
-  const WaveConstants& c = model_->constants();
-  const double ep = 4.0 * (c.c2 - 1.0) / c.c2, c0 = ep / (ep - c.s);
+  const WaveConstants& c = model_->top();
+  const double ep = 4.0 * (c.c2 - 1.0) / c.c2, c0 = bar_pole(*model_);
   const cplx tq = ep * (r.Uq - model_->tangential().Uq) - c0 * std::exp(-alpha) / alpha;
   return r.M2 - phi2 - cplx(0.0, params_.friction) * tq;
 }
@@ -1916,16 +2007,15 @@ double DampedSolution::friction_surface_terms(double x, const JacobiSeries& ser,
                                               double w) const {
   // f Cq (1/pi) int p/(xi - x) - (f C0/pi) int p(xi) arctan(x - xi) d xi for p(c + w r) = w(r)
   // g(r).
-  const WaveConstants& wc = model_->constants();
-  const double ep = 4.0 * (wc.c2 - 1.0) / wc.c2, c0 = ep / (ep - wc.s);
+  const WaveConstants& wc = model_->top();
+  const double ep = 4.0 * (wc.c2 - 1.0) / wc.c2;
   const double cq = ep * model_->tangential().Uq, f = params_.friction;
-  (void)c0;
   return f * cq * ser.cauchy((x - c) / w) + bar_term(x, ser, c, w);
 }
 
 double DampedSolution::bar_term(double x, const JacobiSeries& ser, double c, double w) const {
-  const WaveConstants& wc = model_->constants();
-  const double ep = 4.0 * (wc.c2 - 1.0) / wc.c2, c0 = ep / (ep - wc.s);
+  const double c0 = bar_pole(*model_);
+  if (c0 == 0.0) return 0.0;  // a bonded half-space takes the net horizontal force
   double at = 0.0;
   for (Eigen::Index j = 0; j < atan_rule_.x.size(); ++j)
     at += atan_rule_.w(j) * ser.g(atan_rule_.x(j)) * std::atan(x - c - w * atan_rule_.x(j));
@@ -1989,11 +2079,12 @@ Eigen::Vector3d jacobi_half_plane(const WaveConstants& c, const JacobiSeries& js
 }  // namespace
 
 std::shared_ptr<const Eigen::MatrixXd> DampedSolution::friction_depth_coefficients(double y) const {
+  if (!layer()) layered_refusal(*model_, "the stress field below the surface");
   // The shear traction's remainder (state i f z_q less its half-plane mix,
   // the bar pole C0 e^-alpha/alpha out of sigma_x) at depth y: Filon
   // coefficients, columns [sigma_x, sigma_y, tau] real parts, then imaginary.
   const Fine& f = *light_;
-  const WaveConstants& c = model_->constants();
+  const WaveConstants& c = model_->top();
   const auto nq = static_cast<Eigen::Index>(f.alpha.size());
   const double ep = 4.0 * (c.c2 - 1.0) / c.c2, c0 = ep / (ep - c.s), fr = params_.friction;
   const auto [q1, q2] = tangential_mix(c);
@@ -2020,19 +2111,20 @@ std::shared_ptr<const Eigen::MatrixXd> DampedSolution::friction_depth_coefficien
 }
 
 std::shared_ptr<const DampedSolution::BottomFriction> DampedSolution::bottom_friction() const {
+  if (!layer()) layered_refusal(*model_, "the stresses at the base");
   std::lock_guard<std::mutex> lock(bottom_friction_cache_->mutex);
   auto& bp = bottom_friction_cache_->data;
   if (bp) return bp;
   auto b = std::make_shared<BottomFriction>();
   const Fine& f = *light_;
-  const WaveConstants& c = model_->constants();
+  const WaveConstants& c = model_->top();
   const double ep = 4.0 * (c.c2 - 1.0) / c.c2, c0 = ep / (ep - c.s), fr = params_.friction;
   const cplx i(0.0, 1.0);
   std::vector<cplx> gx(f.alpha.size()), gy(f.alpha.size()), gt(f.alpha.size());
   for (std::size_t k = 0; k < f.alpha.size(); ++k) {
     const double al = f.alpha[k];
     const Eigen::Vector4cd z = model_->tangential_state(al, -1.0);
-    const Eigen::Vector4cd zn = model_->state(al, -1.0);  // the normal load's
+    const Eigen::Vector4cd zn = model_->normal_state(al, -1.0);  // the normal load's
     const cplx ph = f.phat[k] * std::exp(cplx(0.0, al * centre_));
     const cplx sx = ep * z(0) + (c.c2 - 2.0) / c.c2 * z(3);
     const cplx sxn = ep * zn(0) + (c.c2 - 2.0) / c.c2 * zn(3);
@@ -2148,7 +2240,8 @@ DampedSolution::Fine DampedSolution::build_fine(double freq, const Eigen::Vector
         f.alpha.push_back(a);
         f.weight.push_back(m == 1 ? P.weight[15 * p + static_cast<std::size_t>(j)]
                                   : gk_weight(j, h));
-        f.r.push_back(m == 1 ? Q.r[15 * p + static_cast<std::size_t>(j)] : model_->response(a));
+        f.r.push_back(m == 1 ? Q.r[15 * p + static_cast<std::size_t>(j)]
+                             : model_->full_response(a));
         cplx dp = 0.0;
         if (jac_) {
           f.phat.push_back(pressure_transform(a));
@@ -2256,7 +2349,24 @@ std::shared_ptr<const DampedSolution::FieldNodes> DampedSolution::field_nodes() 
   if (np) return np;
   auto n = std::make_shared<FieldNodes>();
   const Fine& f = *light_;
-  const WaveConstants& c = model_->constants();
+  if (!layer()) {
+    // Any other medium: each node's mode profile (its remainder at any
+    // depth: the state less the top material's half-plane state, sigma_x by
+    // the material at that depth), the phase p^ e^{i alpha c}.
+    n->modes.reserve(f.alpha.size());
+    n->ph.resize(f.alpha.size());
+    double ref = 0.0;
+    for (std::size_t q = 0; q < f.alpha.size(); ++q) {
+      check_interrupt();
+      n->modes.push_back(model_->mode(f.alpha[q]));
+      n->ph[q] = f.phat[q] * std::exp(cplx(0.0, f.alpha[q] * centre_));
+      ref = std::max(ref, std::abs(n->ph[q]));
+    }
+    n->negligible = 1e-18 * ref / static_cast<double>(std::max<std::size_t>(f.alpha.size(), 1));
+    np = n;
+    return np;
+  }
+  const WaveConstants& c = model_->top();
   const auto nq = static_cast<Eigen::Index>(f.alpha.size());
   // |entries| of v_T(+-nT) and dv(+-), the columns' vectors (modal_columns).
   const double kc = std::max({2.0, 1.0 / c.nT, (1.0 + c.nT * c.nT) / c.nT, std::fabs(c.dW),
@@ -2270,7 +2380,7 @@ std::shared_ptr<const DampedSolution::FieldNodes> DampedSolution::field_nodes() 
   for (Eigen::Index k = 0; k < nq; ++k) {
     const auto q = static_cast<std::size_t>(k);
     const double al = f.alpha[q];
-    Eigen::Vector4cd d = model_->state_coefficients(al);
+    Eigen::Vector4cd d = layer()->state_coefficients(al);
     if (al >= DampedLayerModel::kSmallT) d -= Eigen::Vector4cd(c.hp1, c.hp2, 0.0, 0.0);
     n->d_re.col(k) = d.real();
     n->d_im.col(k) = d.imag();
@@ -2296,7 +2406,7 @@ std::shared_ptr<const Eigen::MatrixXd> DampedSolution::depth_coefficients(const 
       if (depth == y) return coef;
   }
   const Fine& f = *light_;
-  const WaveConstants& c = model_->constants();
+  const WaveConstants& c = model_->top();
   const auto nq = static_cast<Eigen::Index>(f.alpha.size());
   // Remainder integrands [sigma_x, sigma_y, tau] real parts, then imaginary
   // parts (zero at nodes whose bound is negligible).
@@ -2307,6 +2417,20 @@ std::shared_ptr<const Eigen::MatrixXd> DampedSolution::depth_coefficients(const 
     const auto q = static_cast<std::size_t>(k);
     const double al = f.alpha[q];
     Eigen::Vector4d r_re, r_im;
+    if (!nodes.modes.empty()) {
+      // Any other medium: the node's own remainder (sigma_x of the material
+      // at y, the side above an interface).
+      const ModeState st = nodes.modes[q]->remainder(y, false);
+      const cplx ph = nodes.ph[q];
+      const cplx sx = st.sx * ph, sy = st.z(3) * ph, tau = cplx(0.0, -1.0) * st.z(2) * ph;
+      G(k, 0) = sx.real();
+      G(k, 1) = sy.real();
+      G(k, 2) = tau.real();
+      G(k, 3) = sx.imag();
+      G(k, 4) = sy.imag();
+      G(k, 5) = tau.imag();
+      continue;
+    }
     if (al < DampedLayerModel::kSmallT) {
       const Eigen::Matrix4d T = detail::transfer_matrix(c, al, y);
       const Eigen::Matrix4d C = detail::modal_columns(c, al, y);
@@ -2343,9 +2467,11 @@ std::shared_ptr<const Eigen::MatrixXd> DampedSolution::depth_coefficients(const 
 StressField DampedSolution::stress_field(const Eigen::Ref<const Eigen::VectorXd>& x,
                                          const Eigen::Ref<const Eigen::VectorXd>& y) const {
   detail::check_grid(x, y);
+  if (jac_ && !layer())
+    layered_refusal(*model_, "the stress field below the surface with friction");
   const Fine& f = *light_;
   const auto nodes = field_nodes();
-  const WaveConstants& c = model_->constants();
+  const WaveConstants& c = model_->top();
   const Eigen::Index nx = x.size(), ny = y.size(), nq = static_cast<Eigen::Index>(f.alpha.size());
   // The Filon coefficients of the remainder, columns [sigma_x, sigma_y, tau] x
   // depth, real parts then imaginary parts (zero on the surface row, which is
@@ -2428,6 +2554,8 @@ double DampedSolution::stress_x(double x, double y) const {
 double DampedSolution::bottom_displacement(double x) const {
   // v(x, -1) = (1/2pi) int (Wb/alpha) p^ e^{i alpha x}; Wb/alpha -> -1/kw at alpha -> 0.
   // Friction: Wb + i f Wqb (the shear traction's bottom W vanishes at alpha -> 0).
+  if (model_->long_wave_m1() != 0.0)
+    layered_refusal(*model_, "the base face's displacement (a logarithmic far field)");
   const auto f = fine_for(x);
   double sum = 0.0;
   for (std::size_t i = 0; i < f->alpha.size(); ++i)
@@ -2455,7 +2583,7 @@ double DampedSolution::dissipation() const {
   const Fine& f = *light_;
   for (std::size_t i = 0; i < f.alpha.size(); ++i)
     sum += f.weight[i] * std::norm(bottom_w(f.r[i]) * f.phat[i]);
-  return model_->damping() * std::sqrt(model_->vstar()) * params_.load * sum / kPi;
+  return model_->base_damper() * params_.load * sum / kPi;
 }
 
 // ---------------------------------------------------------------------------
@@ -2487,7 +2615,7 @@ Eigen::VectorXd DampedSolution::friction_displacement(const Eigen::Ref<const Eig
   // Lambda(z)], Lambda' = Phi = -cauchy_upper, by a graded Gauss-Legendre
   // rule on the vertical segment; V' = w [Phi(z + i/w) - Phi(z)].
   const Fine& f = *light_;
-  const WaveConstants& c = model_->constants();
+  const WaveConstants& c = model_->top();
   const double fr = params_.friction, w = half_;
   const auto [q1, q2] = tangential_mix(c);
   // W_q(0, y) by Richardson from two small wavenumbers (error O(t^2)).
@@ -2500,7 +2628,7 @@ Eigen::VectorXd DampedSolution::friction_displacement(const Eigen::Ref<const Eig
     const Eigen::Matrix4d C = detail::modal_columns(c, al, y);
     const double wn_hp = c.hp1 * C(1, 0) + c.hp2 * C(1, 1);
     const double wq_hp = q1 * C(1, 0) + q2 * C(1, 1);
-    const cplx wn = y == 0.0 ? -f.r[k].M1 : model_->state(al, y)(1);
+    const cplx wn = y == 0.0 ? -f.r[k].M1 : model_->normal_state(al, y)(1);
     const cplx wq = y == 0.0 ? f.r[k].Wq : model_->tangential_state(al, y)(1);
     const cplx rn = (wn + wn_hp * std::expm1(-al)) / al;
     const cplx rq = (wq + wq_hp * std::expm1(-al) - w0 * std::exp(-al)) / al;
@@ -2549,6 +2677,8 @@ std::shared_ptr<const DampedSolution::Surface> DampedSolution::surface() const {
   std::lock_guard<std::mutex> lock(surface_cache_->mutex);
   auto& sp = surface_cache_->surface;
   if (sp) return sp;
+  if (model_->long_wave_m1() != 0.0)
+    layered_refusal(*model_, "the displacement (a logarithmic far field under a half-space)");
   auto s = std::make_shared<Surface>();
   const Fine& f = *light_;
   const double phi1 = model_->phi1();
@@ -2587,11 +2717,15 @@ double DampedSolution::surface_displacement(double x) const {
     throw InvalidParameter("x", "finite",
                            "surface_displacement: x must be finite, got " + std::to_string(x));
   if (std::fabs(x) > kFarField) return 0.0;  // as ContactSolution's (stresses.hpp)
+  if (model_->long_wave_m1() != 0.0)
+    layered_refusal(*model_, "the displacement (a logarithmic far field under a half-space)");
   if (jac_) return friction_displacement(Eigen::VectorXd::Constant(1, x), 0.0)(0);
   return params_.load * surface_value(*surface(), x);
 }
 
 double DampedSolution::indentation() const {
+  if (model_->long_wave_m1() != 0.0)
+    layered_refusal(*model_, "the indentation (a logarithmic far field under a half-space)");
   if (jac_) {  // the punch's rigid approach at the contact's centre
     std::lock_guard<std::mutex> lock(surface_cache_->mutex);
     if (!std::isnan(friction_indentation_)) return friction_indentation_;
@@ -2605,13 +2739,15 @@ double DampedSolution::indentation() const {
 Eigen::MatrixXd DampedSolution::displacement(const Eigen::Ref<const Eigen::VectorXd>& x,
                                              const Eigen::Ref<const Eigen::VectorXd>& y) const {
   detail::check_grid(x, y);
+  if (model_->long_wave_m1() != 0.0)
+    layered_refusal(*model_, "the displacement (a logarithmic far field under a half-space)");
   if (jac_) {
     Eigen::MatrixXd v(y.size(), x.size());
     for (Eigen::Index i = 0; i < y.size(); ++i) v.row(i) = friction_displacement(x, y(i));
     return v;
   }
   const Fine& f = *light_;
-  const WaveConstants& c = model_->constants();
+  const WaveConstants& c = model_->top();
   Eigen::MatrixXd v(y.size(), x.size());
   std::vector<cplx> g(f.alpha.size());
   std::vector<double> g_re, g_im;
@@ -2620,7 +2756,7 @@ Eigen::MatrixXd DampedSolution::displacement(const Eigen::Ref<const Eigen::Vecto
       const double al = f.alpha[k];
       const Eigen::Matrix4d C = detail::modal_columns(c, al, y(i));
       const double w_hp = c.hp1 * C(1, 0) + c.hp2 * C(1, 1);
-      const cplx w = y(i) == 0.0 ? -f.r[k].M1 : model_->state(al, y(i))(1);
+      const cplx w = y(i) == 0.0 ? -f.r[k].M1 : model_->normal_state(al, y(i))(1);
       g[k] = (w + w_hp * std::expm1(-al)) / al * f.phat[k] * std::exp(cplx(0.0, al * centre_));
     }
     f.coefficients(g, g_re, g_im);

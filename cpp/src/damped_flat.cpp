@@ -58,9 +58,11 @@ Eigen::VectorXd flat_nodal_g(const ChebyshevNodes& nd, double w, const DampedKer
 
 }  // namespace
 
-DampedSolution solve_damped_flat(const DampedParams& prm) {
+DampedSolution solve_damped_flat(const DampedParams& prm_in) {
   const auto t0 = std::chrono::steady_clock::now();
-  validate(prm);
+  validate(prm_in);
+  // kw, nu, kp, damping: the medium's own (nu: the top sublayer's).
+  const DampedParams prm = with_medium_scalars(prm_in);
   if (prm.profile != ProfileKind::flat)
     throw std::invalid_argument("solve_damped_flat: the profile must be flat");
   auto since_start = [&t0] {
@@ -70,7 +72,7 @@ DampedSolution solve_damped_flat(const DampedParams& prm) {
   s.params_ = prm;
   s.punch_ = std::make_shared<const PunchProfile>(prm.punch());
   s.vr_ = rayleigh_vstar(prm.nu);
-  s.vcr_ = critical_vstar(prm.kw, prm.nu, prm.kp);
+  s.vcr_ = critical_vstar_of(prm);
   const double t_critical = since_start();
   if (!(prm.vstar < s.vr_)) throw SupercriticalSpeedError(prm.vstar, s.vcr_, s.vr_);
   if (!(prm.damping > 0.0) && !(prm.vstar < s.vcr_))
@@ -91,14 +93,14 @@ DampedSolution solve_damped_flat(const DampedParams& prm) {
     const auto tk = std::chrono::steady_clock::now();
     bool built = false;
     // |u| = w |s_k - r_i| < 2 w; twice that when built (a sweep's next face).
-    kern = cached_damped_kernel(prm.vstar, prm.kw, prm.nu, prm.damping, 2.0 * w, 4.0 * w, &built,
-                                prm.kp, prm.friction);
+    kern = cached_damped_kernel(make_medium(medium_of(prm), prm.vstar), 2.0 * w, 4.0 * w, &built,
+                                prm.friction);
     s.kernel_builds_ = built ? 1 : 0;
     kernel_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - tk).count();
   }
   s.model_ = kern->model_ptr();
   s.kernel_ = kern;
-  const DampedLayerModel* model = s.model_.get();
+  const Medium* model = s.model_.get();
 
   std::vector<int> sizes;
   if (prm.n > 0) {

@@ -108,10 +108,10 @@ RangeCache<KernelK1, std::vector<double>>& k1_cache() {
 }
 
 // A damped table's evaluation costs the same whatever its range (pieces):
-// no upper ratio. Keyed on (vstar, kw, nu, damping, friction).
-RangeCache<DampedKernel, std::array<double, 6>>& damped_cache() {
-  static RangeCache<DampedKernel, std::array<double, 6>> c(kDampedKernelCacheCapacity,
-                                                           std::numeric_limits<double>::infinity());
+// no upper ratio. Keyed on the medium (Medium::key()) and the friction.
+RangeCache<DampedKernel, std::vector<double>>& damped_cache() {
+  static RangeCache<DampedKernel, std::vector<double>> c(kDampedKernelCacheCapacity,
+                                                         std::numeric_limits<double>::infinity());
   return c;
 }
 
@@ -145,18 +145,26 @@ std::shared_ptr<const KernelK1> cached_kernel(const std::shared_ptr<const Medium
       built, grow ? kGrowth : 1.0);
 }
 
+std::shared_ptr<const DampedKernel> cached_damped_kernel(
+    const std::shared_ptr<const Medium>& medium, double min_range, double build_range, bool* built,
+    double friction) {
+  std::vector<double> key = medium->key();  // kp is irrelevant on a rigid base: one key for it
+  key.push_back(friction);
+  return damped_cache().get(
+      key, min_range, build_range,
+      [&](double range, const std::shared_ptr<const DampedKernel>& shorter) {
+        if (shorter) return std::make_shared<const DampedKernel>(*shorter, range);
+        return std::make_shared<const DampedKernel>(medium, range, friction);
+      },
+      built);
+}
+
 std::shared_ptr<const DampedKernel> cached_damped_kernel(double vstar, double kw, double nu,
                                                          double damping, double min_range,
                                                          double build_range, bool* built, double kp,
                                                          double friction) {
-  return damped_cache().get(
-      {vstar, kw, nu, damping, std::isinf(kw) ? 0.0 : kp, friction}, min_range, build_range,
-      [&](double range, const std::shared_ptr<const DampedKernel>& shorter) {
-        if (shorter) return std::make_shared<const DampedKernel>(*shorter, range);
-        return std::make_shared<const DampedKernel>(
-            std::make_shared<const DampedLayerModel>(vstar, kw, nu, damping, kp), range, friction);
-      },
-      built);
+  return cached_damped_kernel(make_medium(homogeneous_medium(kw, nu, kp, damping), vstar),
+                              min_range, build_range, built, friction);
 }
 
 KernelCacheInfo kernel_cache_info() { return k1_cache().info(); }

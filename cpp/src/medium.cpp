@@ -10,6 +10,7 @@
 #include <string>
 
 #include "layer_basis.hpp"
+#include "movingpunch/damped.hpp"
 #include "movingpunch/errors.hpp"
 #include "stack.hpp"
 
@@ -54,20 +55,78 @@ class HomogeneousMode final : public ModeProfile {
   const WaveConstants* c_;
 };
 
+// The damped layer's mode (complex): DampedLayerModel::state, the same
+// half-plane part (the base does not enter it).
+class DampedHomogeneousMode final : public ModeProfile {
+ public:
+  DampedHomogeneousMode(const LayerModel& m, const DampedLayerModel& d, double t)
+      : field_(m.mode_field(t)), damped_(&d), c_(&m.constants()), t_(t) {}
+  ModeState remainder(double y, bool below) const override {
+    const ModeState z = state(y, below), h = half_plane(y);
+    ModeState s;
+    s.z = z.z - h.z;
+    s.sx = z.sx - h.sx;
+    return s;
+  }
+  ModeState half_plane(double y) const override {
+    const Eigen::Vector4d h = field_.half_plane_state(y);
+    ModeState s;
+    s.z = h.cast<cplx>();
+    s.sx = sigma_x_hat(*c_, h);
+    return s;
+  }
+  ModeState state(double y, bool /*below*/) const override {
+    ModeState s;
+    s.z = damped_->state(t_, y);
+    s.sx = 4.0 * (c_->c2 - 1.0) / c_->c2 * s.z(0) + (c_->c2 - 2.0) / c_->c2 * s.z(3);
+    return s;
+  }
+
+ private:
+  ModeField field_;
+  const DampedLayerModel* damped_;
+  const WaveConstants* c_;
+  double t_;
+};
+
 class HomogeneousMedium final : public Medium {
  public:
   HomogeneousMedium(const MediumSpec& spec, double vstar)
-      : spec_(spec), model_(vstar, spec.base.kw, spec.layers[0].nu, spec.base.kp) {}
+      : spec_(spec),
+        model_(vstar, spec.base.kw, spec.layers[0].nu, spec.base.kp),
+        damped_(vstar, spec.base.kw, spec.layers[0].nu, spec.base.damping, spec.base.kp) {}
   double vstar() const noexcept override { return model_.vstar(); }
   const WaveConstants& top() const noexcept override { return model_.constants(); }
-  bool real() const noexcept override { return true; }
+  bool real() const noexcept override { return !(spec_.base.damping > 0.0); }
   MediumResponse surface_response(double t) const override {
+    if (!real()) {
+      const FullResponse r = damped_.response(t);
+      return MediumResponse{r.M1, r.M2, r.U0, r.W0};
+    }
     const Response r = model_.response(t);
     return MediumResponse{r.M1, r.M2, r.U0, r.W0};
   }
   std::unique_ptr<const ModeProfile> mode(double t) const override {
+    if (!real()) return std::make_unique<DampedHomogeneousMode>(model_, damped_, t);
     return std::make_unique<HomogeneousMode>(model_, t);
   }
+  // The asymmetric solver's: the damped layer's closed forms (damping 0:
+  // the same layer's, as that solver always evaluated it).
+  FullResponse full_response(double t) const override { return damped_.response(t); }
+  Eigen::Vector4cd normal_state(double t, double y) const override { return damped_.state(t, y); }
+  Eigen::Vector4cd tangential_state(double t, double y) const override {
+    return damped_.tangential_state(t, y);
+  }
+  const TangentialHalfPlane& tangential() const noexcept override { return damped_.tangential(); }
+  // The bar: Ep - vstar (Ep = 4 (c2 - 1)/c2, the plane-strain modulus over mu).
+  double bar_compliance() const noexcept override {
+    const WaveConstants& c = model_.constants();
+    return 1.0 / (4.0 * (c.c2 - 1.0) / c.c2 - c.s);
+  }
+  double base_damper() const noexcept override {
+    return spec_.base.damping * std::sqrt(model_.vstar());
+  }
+  const DampedLayerModel* homogeneous_layer() const noexcept override { return &damped_; }
   double dispersion(double t) const override { return model_.dispersion(t); }
   // M1 - phi1 ~ (1 + 4t) exp(-2 nT t); the field at the bottom, exp(-nT t).
   double decay_rate() const noexcept override { return 2.0 * model_.constants().nT; }
@@ -80,6 +139,7 @@ class HomogeneousMedium final : public Medium {
  private:
   MediumSpec spec_;
   LayerModel model_;
+  DampedLayerModel damped_;
 };
 
 std::string str(double x) {
@@ -211,13 +271,7 @@ void validate(const MediumSpec& m) {
 
 std::shared_ptr<const Medium> make_medium(const MediumSpec& spec, double vstar) {
   validate(spec);
-  if (spec.homogeneous()) {
-    if (spec.base.damping > 0.0)
-      throw std::invalid_argument(
-          "a damped foundation runs on the asymmetric solver's own layer model "
-          "(DampedLayerModel), not yet behind the medium interface");
-    return std::make_shared<const HomogeneousMedium>(spec, vstar);
-  }
+  if (spec.homogeneous()) return std::make_shared<const HomogeneousMedium>(spec, vstar);
   return make_stack_medium(spec, vstar);
 }
 

@@ -303,6 +303,15 @@ class Core {
     return Eigen::Vector2d(S(2, 1), -S(2, 0)) / p23;
   }
 
+  // The unit tangential load's surface solution: coefficients c of P.S_top
+  // with tau/alpha = 1, sigma_y = 0 (on a shear-free base they grow like
+  // 1/t as t -> 0: the bar pole).
+  static Eigen::Vector2d tangential_coefficients(const Propagation& P) {
+    const Mat42& S = P.S_top;
+    const double p23 = S(2, 0) * S(3, 1) - S(2, 1) * S(3, 0);
+    return Eigen::Vector2d(S(3, 1), -S(3, 0)) / p23;
+  }
+
   MediumResponse response(double t) const {
     const Propagation P = propagate(t, false);
     const Eigen::Vector2d c = top_coefficients(P);
@@ -333,13 +342,18 @@ class Core {
 // The solution of one wavenumber at every depth.
 class StackProfile final : public ModeProfile {
  public:
-  StackProfile(const Core& core, const WaveConstants& top, double t)
-      : subs_(core.subs()), top_(top), t_(t), P_(core.propagate(t, false)) {
+  // The normal load's (tangential = false) or the unit tangential load's
+  // solution; P: the propagation at t (core.propagate(t, false)).
+  StackProfile(const Core& core, const WaveConstants& top, double t,
+               std::shared_ptr<const Propagation> P, bool tangential = false)
+      : subs_(core.subs()), top_(top), t_(t), P_(std::move(P)), tangential_(tangential) {
     // Downward pass: the state at each sublayer's top, its coordinates in
     // the sublayer's own basis (least squares: the state lies in its span),
     // and the state at its bottom, the next sublayer's top state.
-    Vec4 z = P_.S_top * Core::top_coefficients(P_);
-    for (Segment& g : P_.segs) {
+    Vec4 z =
+        P_->S_top * (tangential ? Core::tangential_coefficients(*P_) : Core::top_coefficients(*P_));
+    z_top_ = z;
+    for (const Segment& g : P_->segs) {
       const Sub& sb = subs_[static_cast<size_t>(g.layer)];
       const Mat42 out =
           g.modal ? Mat42(detail::modal_columns(sb.c, g.t_loc, 0.0) * g.Nul) : g.basis.back();
@@ -362,10 +376,18 @@ class StackProfile final : public ModeProfile {
         slice_c_.push_back(std::move(ck));
       }
       ++done_;
-      if (g.start) break;
+      z_bottom_ = zb;
+      if (g.start) {
+        z_bottom_.setZero();  // below the evaluated structure: under e^-50
+        break;
+      }
       z = zb;
     }
   }
+
+  // The unscaled state at the surface and at the base face y = -1.
+  const Vec4& top_state() const { return z_top_; }
+  const Vec4& bottom_state() const { return z_bottom_; }
 
   ModeState remainder(double y, bool below) const override {
     const ModeState hp = half_plane(y);
@@ -375,7 +397,7 @@ class StackProfile final : public ModeProfile {
     int i = locate(y, below);
     if (i >= 0 && i < done_) {
       const Sub& sb = subs_[static_cast<size_t>(i)];
-      const Segment& g = P_.segs[static_cast<size_t>(i)];
+      const Segment& g = P_->segs[static_cast<size_t>(i)];
       const double yh = std::min(0.0, std::max(-1.0, (y - sb.y_top) / sb.d));
       const double m = sb.m_at(y);
       if (g.modal) {
@@ -402,7 +424,17 @@ class StackProfile final : public ModeProfile {
 
   ModeState half_plane(double y) const override {
     const Mat4 C = detail::modal_columns(top_, t_, y);
-    const Vec4 z = top_.hp1 * C.col(0) + top_.hp2 * C.col(1);
+    Vec4 z;
+    if (tangential_) {
+      // The unit tangential load's half-plane mix (top T = 1, S = 0) on the
+      // regularised basis: h1 v_T + h2 dv, h2 = 1/(q dS/2 + dT), h1 = dS h2/2
+      // (q = (1 + nT^2)/nT, v_T's T entry).
+      const double q = (1.0 + top_.nT * top_.nT) / top_.nT;
+      const double h2 = 1.0 / (0.5 * q * top_.dS + top_.dT);
+      z = 0.5 * top_.dS * h2 * C.col(0) + h2 * C.col(1);
+    } else {
+      z = top_.hp1 * C.col(0) + top_.hp2 * C.col(1);
+    }
     ModeState s;
     for (int r = 0; r < 4; ++r) s.z(r) = z(r);
     s.sx = sigma_x_hat(top_, z);
@@ -423,7 +455,9 @@ class StackProfile final : public ModeProfile {
   std::vector<Sub> subs_;
   WaveConstants top_;
   double t_;
-  Propagation P_;
+  std::shared_ptr<const Propagation> P_;
+  bool tangential_ = false;
+  Vec4 z_top_ = Vec4::Zero(), z_bottom_ = Vec4::Zero();
   int done_ = 0;
   std::vector<Vec4> amp_;
   std::vector<std::vector<Eigen::Vector2d>> slice_c_;
@@ -456,7 +490,49 @@ class StackMedium final : public Medium {
   std::unique_ptr<const ModeProfile> mode(double t) const override {
     if (!(t > 0.0) || !std::isfinite(t))
       throw std::invalid_argument("stack mode: t = alpha h must be finite and > 0");
-    return std::make_unique<StackProfile>(core_, top_, t);
+    return std::make_unique<StackProfile>(core_, top_, t, propagation(t));
+  }
+
+  // The asymmetric solver's reads: one propagation, the normal and the
+  // tangential load's downward passes on it (real: the stack is elastic).
+  FullResponse full_response(double t) const override {
+    if (std::isnan(t) || t < 0.0)
+      throw std::invalid_argument("stack response: t = alpha h must be >= 0");
+    const double tt = t == 0.0 ? 1e-300 : t;
+    const auto P = propagation(tt);
+    const StackProfile n(core_, top_, tt, P, false), q(core_, top_, tt, P, true);
+    const Vec4& z0 = n.top_state();
+    const WaveConstants& k = top_;
+    FullResponse r;
+    r.U0 = z0(0);
+    r.W0 = z0(1);
+    r.M1 = -z0(1);
+    r.M2 = (k.c2 - 2.0) / k.c2 - 4.0 * (k.c2 - 1.0) / k.c2 * z0(0);
+    r.Wb = n.bottom_state()(1);
+    r.Uq = q.top_state()(0);
+    r.Wq = q.top_state()(1);
+    r.Wqb = q.bottom_state()(1);
+    if (t == 0.0 && bar_compliance() != 0.0) r.Uq = r.Wq = std::nan("");  // the bar pole
+    return r;
+  }
+  Eigen::Vector4cd normal_state(double t, double y) const override { return state_at(t, y, false); }
+  Eigen::Vector4cd tangential_state(double t, double y) const override {
+    return state_at(t, y, true);
+  }
+  const TangentialHalfPlane& tangential() const noexcept override { return tq_; }
+  // Shear-free bases (springs, rigid, a smooth half-space): the stack's bar,
+  // 1/sum_i int (Ep_i mu_i(y) - vstar rho_i(y)) dy (a graded sublayer's
+  // modulus and density both scale by exp(gamma (y - y_top))).
+  double bar_compliance() const noexcept override {
+    if (spec_.base.kind == BaseKind::half_space_bonded) return 0.0;
+    double stiff = 0.0;
+    for (const Sublayer& l : spec_.layers) {
+      const double ep = 2.0 / (1.0 - l.nu);
+      const double g = l.gamma * l.thickness;
+      const double span = g == 0.0 ? l.thickness : -std::expm1(-g) / l.gamma;
+      stiff += (ep * l.mu - s_ * l.rho) * span;
+    }
+    return 1.0 / stiff;
   }
   double dispersion(double t) const override {
     if (!(t > 0.0) || !std::isfinite(t))
@@ -506,10 +582,21 @@ class StackMedium final : public Medium {
   const MediumSpec& spec() const noexcept override { return spec_; }
 
  private:
+  std::shared_ptr<const Propagation> propagation(double t) const {
+    return std::make_shared<const Propagation>(core_.propagate(t, false));
+  }
+  Eigen::Vector4cd state_at(double t, double y, bool tangential) const {
+    if (!(t > 0.0) || !std::isfinite(t) || !(y >= -1.0) || !(y <= 0.0))
+      throw std::invalid_argument("stack state: need t > 0 finite and -1 <= y <= 0");
+    const StackProfile p(core_, top_, t, propagation(t), tangential);
+    return p.state(y).z;
+  }
+
   Core core_;
   MediumSpec spec_;
   double s_;
   WaveConstants top_;
+  TangentialHalfPlane tq_ = tangential_half_plane(top_);
 };
 
 // The lowest vstar < smax of a free wave of wavenumber t (smax if none).

@@ -78,7 +78,7 @@ class ZoneKernel {
       abs_f_ += q.panels.weight[i] * std::abs(q.m1[i] - k_->model().phi1()) / phi1;
   }
   const std::shared_ptr<const DampedKernel>& table() const noexcept { return k_; }
-  const DampedLayerModel& model() const noexcept { return k_->model(); }
+  const Medium& model() const noexcept { return k_->model(); }
   double range() const noexcept { return k_->range(); }
   double operator()(double u) const { return std::fabs(u) <= k_->range() ? (*k_)(u) : far(u); }
   void many(const double* u, double* out, std::size_t n) const {
@@ -149,11 +149,10 @@ class ZoneKernel {
 // windows where |T| stays below a bound interact below it.
 constexpr int kWindows = 15;  // up to 2^13 = 8192 h
 std::vector<double> kernel_windows(const ZoneKernel& K) {
-  const DampedLayerModel& m = K.model();
-  using Key = std::array<double, 5>;
+  using Key = std::vector<double>;
   static std::mutex mutex;
   static std::vector<std::pair<Key, std::vector<double>>> memo;
-  const Key key = {m.vstar(), m.kw(), m.nu(), m.damping(), m.kp()};
+  const Key key = K.model().key();
   {
     const std::lock_guard<std::mutex> lock(mutex);
     for (const auto& [k, v] : memo)
@@ -628,7 +627,7 @@ double zones_dissipation(const ZonesSolution& s) {
     }
     if (first == nullptr) continue;
     const DampedKernel& K = *first->kernel;
-    const DampedLayerModel& model = K.model();
+    const Medium& model = K.model();
     // |p^|^2 oscillates with the distances between the zones: pieces of at
     // most 1.5/(hi - lo) (and 0.5) in alpha, 8 Gauss points each.
     const Legendre& gl = gauss_legendre8();
@@ -645,11 +644,11 @@ double zones_dissipation(const ZonesSolution& s) {
           cplx ph = 0.0;
           for (std::size_t j = 0; j < parts.size(); ++j)
             ph += (loads[j] / total) * parts[j].pressure_transform(a);
-          sum += h * gl.w[gg] * std::norm(model.response(a).Wb * ph);
+          sum += h * gl.w[gg] * std::norm(model.full_response(a).Wb * ph);
         }
       }
     }
-    out += (total / all) * model.damping() * std::sqrt(model.vstar()) * total * sum / kPi;
+    out += (total / all) * model.base_damper() * total * sum / kPi;
   }
   return out;
 }
@@ -668,7 +667,23 @@ double ulp(double x) {
 
 // The checks of solve_zones' input; the punches' profiles.
 std::vector<PunchProfile> validate_zones(const ZonesParams& prm) {
-  const DampedParams& L = prm.layer;
+  if (prm.layer.medium) {
+    // The medium's own checks and refusals (as solve_damped's), then its
+    // scalars as the homogeneous layer's below.
+    const MediumSpec& m = *prm.layer.medium;
+    validate(m);
+    if (m.layers[0].gamma != 0.0)
+      throw InvalidParameter("layers", "a homogeneous top sublayer (graded ones below it)",
+                             "layers: a graded top sublayer is not solved yet; put a homogeneous "
+                             "sublayer on top or use a staircase of sublayers");
+    if (!m.homogeneous() && m.base.kind == BaseKind::springs && m.base.damping != 0.0)
+      throw InvalidParameter(
+          "damping", "0 under a stack of sublayers (damped springs: the homogeneous layer only)",
+          "damping: damped springs under a stack of sublayers are not supported yet (the "
+          "stack's propagation is real); given " +
+              describe(m));
+  }
+  const DampedParams L = with_medium_scalars(prm.layer);
   require_in_range("vstar", L.vstar, 0.0, 1.0, false, true);
   require_in_range("kw", L.kw, 1e-12, kInf, false, false, true);
   require_in_range("nu", L.nu, 0.0, 0.5, false, true);
@@ -737,11 +752,11 @@ std::vector<PunchProfile> validate_zones(const ZonesParams& prm) {
 // solve_zones splits a train into), in its own coordinates.
 ZonesSolution solve_connected(const ZonesParams& prm, const std::vector<PunchProfile>& prof) {
   const auto t0 = std::chrono::steady_clock::now();
-  const DampedParams& L = prm.layer;
+  const DampedParams L = with_medium_scalars(prm.layer);
   const int nz = static_cast<int>(prm.zones.size());
   ZonesSolution out;
   out.rayleigh_vstar = rayleigh_vstar(L.nu);
-  out.critical_vstar = critical_vstar(L.kw, L.nu, L.kp);
+  out.critical_vstar = critical_vstar_of(L);
   if (!(L.vstar < out.rayleigh_vstar) || (!(L.damping > 0.0) && !(L.vstar < out.critical_vstar)))
     throw SupercriticalSpeedError(L.vstar, out.critical_vstar, out.rayleigh_vstar);
   out.phi1 = wave_constants(L.vstar, L.nu).phi1;
@@ -780,12 +795,13 @@ ZonesSolution solve_connected(const ZonesParams& prm, const std::vector<PunchPro
     return std::min(range_need(ends), std::max(4.0 * widest_hull(ends) + 2.0, 256.0));
   };
   std::shared_ptr<const DampedKernel> kern;
+  std::shared_ptr<const Medium> medium;
   std::unique_ptr<ZoneKernel> zk;
   auto kernel = [&](double need) -> const ZoneKernel& {
     if (!kern || kern->range() < need) {
       bool built = false;
-      kern =
-          cached_damped_kernel(L.vstar, L.kw, L.nu, L.damping, need, 2.0 * need, &built, L.kp, 0.0);
+      if (!medium) medium = make_medium(medium_of(L), L.vstar);
+      kern = cached_damped_kernel(medium, need, 2.0 * need, &built, 0.0);
       out.kernel_builds += built ? 1 : 0;
       zk = std::make_unique<ZoneKernel>(kern);
     }
@@ -1121,9 +1137,9 @@ bool same_group(const ZonesParams& a, const ZonesParams& b) {
 ZonesSolution solve_zones(const ZonesParams& prm) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::vector<PunchProfile> prof = validate_zones(prm);
-  const DampedParams& L = prm.layer;
+  const DampedParams L = with_medium_scalars(prm.layer);
   {
-    const double vr = rayleigh_vstar(L.nu), vcr = critical_vstar(L.kw, L.nu, L.kp);
+    const double vr = rayleigh_vstar(L.nu), vcr = critical_vstar_of(L);
     if (!(L.vstar < vr) || (!(L.damping > 0.0) && !(L.vstar < vcr)))
       throw SupercriticalSpeedError(L.vstar, vcr, vr);
   }
@@ -1157,7 +1173,7 @@ ZonesSolution solve_zones(const ZonesParams& prm) {
   bool built = false;                    // the decay's kernel table was built here
   if (np > 1) {
     const ZoneKernel K(
-        cached_damped_kernel(L.vstar, L.kw, L.nu, L.damping, 1.0, 4.0, &built, L.kp, 0.0));
+        cached_damped_kernel(make_medium(medium_of(L), L.vstar), 1.0, 4.0, &built, 0.0));
     double slope = kInf, total = 0.0;
     for (const ZoneSpan& z : prm.zones) {
       const auto k = static_cast<std::size_t>(z.punch);

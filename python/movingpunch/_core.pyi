@@ -191,6 +191,11 @@ def solve_damped(
     half_width: float = 0.0,
     table_x: list[float] = ...,
     table_y: list[float] = ...,
+    layers: list[tuple[float, float, float, float, float]] = ...,
+    base: str = "springs",
+    base_mu: float = 1.0,
+    base_nu: float = 0.2,
+    base_rho: float = 1.0,
 ) -> DampedSolution: ...
 def damped_layer_response(
     t: float, vstar: float, kw: float, nu: float, damping: float, kp: float = 0.0
@@ -360,4 +365,9 @@ def solve_zones(
     punches: list[tuple[str, float, float, list[float], list[float], float, float]],
     zones: list[tuple[int, float, float]],
     first_n: int = 24,
+    layers: list[tuple[float, float, float, float, float]] = ...,
+    base: str = "springs",
+    base_mu: float = 1.0,
+    base_nu: float = 0.2,
+    base_rho: float = 1.0,
 ) -> ZonesSolution: ...

@@ -46,6 +46,7 @@ from movingpunch._evaluations import ResultFields
 from movingpunch.contract import Points
 from movingpunch.errors import SupercriticalSpeedError
 from movingpunch.fields import FloatArray
+from movingpunch.media import HalfSpace, Medium
 from movingpunch.profiles import Profile, PunchProfile, resolve_profile
 from movingpunch.zones import PunchResult, single_punch
 
@@ -150,6 +151,7 @@ class AsymmetricSolution(ResultFields):
     Empty when none was found on [w/8, 4w]."""
     _impl: _core.DampedSolution = field(repr=False, compare=False)
     _profile: PunchProfile | None = field(default=None, repr=False, compare=False)
+    _medium: Medium | None = field(default=None, repr=False, compare=False)
 
     @functools.cached_property
     def punches(self) -> tuple[PunchResult, ...]:
@@ -254,6 +256,7 @@ def solve_asymmetric(
     kp: float = 0.0,
     friction: float = 0.0,
     profile: PunchProfile | None = None,
+    medium: Medium | None = None,
 ) -> AsymmetricSolution:
     """Solves the asymmetric contact problem: a damped foundation
     (``damping`` > 0) and/or Coulomb friction (``friction`` > 0, then
@@ -269,6 +272,13 @@ def solve_asymmetric(
     friction), or a flat punch (its face is the contact; ``end_coefficients``
     gives (K_back, K_front), ``end_exponents`` the exponents of p at its
     edges, gamma - 1 of the bounded case's: (-0.5, -0.5) without friction).
+
+    ``medium``: a layered medium or a half-space base (``movingpunch.media``;
+    ``kw``, ``kp``, ``nu`` are then its springs' and its top sublayer's, kw =
+    inf under a half-space, and ``damping`` must be 0). The contact,
+    pressure, drag, surface slope and surface stress are solved on it; the
+    fields below the surface and, under a half-space, the displacements are
+    refused by name (the homogeneous layer's only so far).
     """
     shape = resolve_profile(radius, profile)
     inputs = _check_solve_inputs(vstar, kw, 1.0, load, nu, tol, kp)
@@ -290,9 +300,12 @@ def solve_asymmetric(
             critical_vstar=None,
             rayleigh_vstar=vr,
         )
+    layered = medium.core_args() if medium is not None else {}
     impl = _core.solve_damped(
-        **{**inputs, **shape.core_args()}, allow_unphysical=flag, n=size
+        **{**inputs, **shape.core_args(), **layered}, allow_unphysical=flag, n=size
     )
+    if medium is not None and isinstance(medium.base, HalfSpace):
+        inputs["kw"] = math.nan  # no springs: the medium says what the base is
     back, front = impl.end_exponents
     return AsymmetricSolution(
         **inputs,
@@ -319,6 +332,7 @@ def solve_asymmetric(
         warnings=tuple(str(w) for w in impl.warnings),
         _impl=impl,
         _profile=shape,
+        _medium=medium,
     )
 
 

@@ -73,6 +73,7 @@ from movingpunch.zones import (
 )
 
 if TYPE_CHECKING:
+    from movingpunch.asymmetric import AsymmetricSolution
     from movingpunch.contract import ContactSolution
 
 __all__ = [
@@ -488,30 +489,34 @@ def solve(
 
 def _solve_layered(
     medium: Medium,
-    vstar: object,
+    vstar: float,
     radius: float | None,
-    load: object,
-    tol: object,
+    load: float,
+    tol: float | str,
     allow_unphysical: object,
-    n: object,
+    n: int | None,
     profile: PunchProfile | None,
     friction: object,
     contact: str,
-) -> Solution:
-    """The symmetric solve on a layered medium (or a half-space base):
-    frictionless, undamped, a symmetric profile, a single contact."""
-    from movingpunch.asymmetric import check_friction
+) -> ContactSolution:
+    """The solve on a layered medium (or a half-space base): the symmetric
+    solver for a frictionless symmetric punch, the asymmetric one for
+    friction or an asymmetric table; several contact zones when the single
+    contact separates (frictionless punches with bounded ends)."""
+    from movingpunch.asymmetric import check_friction, solve_asymmetric
 
     shape = resolve_profile(radius, profile)
-    check_contact(contact)
+    mode = check_contact(contact)
     flag = _check_flag("allow_unphysical", allow_unphysical)
-    refused = ""
     if isinstance(medium.base, Winkler) and medium.base.damping > 0:
-        refused = "a damped base (Winkler(damping > 0))"
-    elif check_friction(friction) > 0:
-        refused = "friction"
-    elif isinstance(shape, Profile) and not shape.symmetric:
-        refused = "an asymmetric profile table"
+        raise InvalidParameterError(
+            "damping: a damped base (damped springs, Winkler(damping > 0)) under "
+            "a stack of sublayers is not supported yet (the stack's response is "
+            "propagated in real arithmetic); damping runs on the homogeneous layer "
+            f"(layers=None); the medium given is {medium.describe()}",
+            parameter="damping",
+            allowed="0 under layers= (damping > 0: the homogeneous layer only)",
+        )
     if isinstance(medium.layers[0], GradedLayer) and medium.layers[0].gamma_h != 0:
         raise InvalidParameterError(
             "layers: a graded TOP sublayer is not solved yet: its response reaches "
@@ -522,26 +527,55 @@ def _solve_layered(
             parameter="layers",
             allowed="a homogeneous top sublayer (graded ones below it)",
         )
-    if refused:
-        raise InvalidParameterError(
-            f"layers/base: {refused} runs on the asymmetric solver, which takes the "
-            "homogeneous layer on springs only so far (layers=None, base=Winkler "
-            f"or kw=); the medium given is {medium.describe()}",
-            parameter="layers",
-            allowed="the homogeneous layer with damping, friction or asymmetric tables",
-        )
+    fric = check_friction(friction)
+    asymmetric_shape = isinstance(shape, Profile) and not shape.symmetric
+    zoned = mode == "auto" and fric == 0.0 and not isinstance(shape, Flat)
     springs = medium.base if isinstance(medium.base, Winkler) else None
     kw = springs.kw if springs else math.inf
     kp = springs.kp if springs else 0.0
-    single = _solve_profile(
-        shape, vstar, kw, load, medium.nu, tol, True, n, kp, medium=medium
-    )
+    single: Solution | AsymmetricSolution
+    if fric > 0 or asymmetric_shape:
+        single = solve_asymmetric(
+            vstar=vstar,
+            kw=kw,
+            radius=None,
+            load=load,
+            nu=medium.nu,
+            damping=0.0,
+            tol=tol,
+            allow_unphysical=True,
+            n=n,
+            kp=kp,
+            friction=fric,
+            profile=shape,
+            medium=medium,
+        )
+    else:
+        single = _solve_profile(
+            shape, vstar, kw, load, medium.nu, tol, True, n, kp, medium=medium
+        )
     if single.valid or flag:
         return single
+    if zoned and isinstance(medium.base, HalfSpace):
+        raise UnphysicalContactError(
+            f"vstar={single.vstar:.8g}, {medium.describe()}, {shape.describe()}, "
+            f"load={single.load:.8g}: {single.validity} (a/h = {single.a:.8g}); "
+            "several contact zones under a half-space base are not supported yet "
+            "(their indentations need the displacement, which grows like ln|x| "
+            "there); allow_unphysical=True returns the single contact, flagged"
+        )
+    if zoned:
+        try:
+            return separate(single, damping=0.0, kp=kp, n=n)
+        except (UnphysicalContactError, ConvergenceError) as err:
+            raise UnphysicalContactError(
+                f"vstar={single.vstar:.8g}, {medium.describe()}, {shape.describe()}, "
+                f"load={single.load:.8g}: {single.validity} (a/h = {single.a:.8g}); "
+                f"the search for several contact zones failed: {err}"
+            ) from err
     raise UnphysicalContactError(
         f"vstar={single.vstar:.8g}, {medium.describe()}, {shape.describe()}, "
-        f"load={single.load:.8g}: {single.validity} (a/h = {single.a:.8g}); "
-        "several contact zones on a layered medium are not supported yet "
+        f"load={single.load:.8g}: {single.validity} (a/h = {single.a:.8g}) "
         "(allow_unphysical=True returns the single contact, flagged)"
     )
 
@@ -912,14 +946,16 @@ def solve_punches(
     punches: Sequence[Punch],
     *,
     vstar: float,
-    kw: float,
-    nu: float = 0.2,
+    kw: float | None = None,
+    nu: float | None = None,
     kp: float = 0.0,
     damping: float = 0.0,
     friction: float = 0.0,
     tol: float | str = 1e-8,
     n: int | None = None,
     cancel: Cancel | None = None,
+    layers: Sequence[Sublayer] | None = None,
+    base: Base | None = None,
 ) -> ContactSolution:
     """Solves a train of rigid punches moving together at one speed
     (``Punch(profile, load, at=x0)`` each; positions x/h of their axes in the
@@ -932,8 +968,10 @@ def solve_punches(
     Frictionless (``friction`` must be 0: friction with several zones is
     not supported yet); ``damping`` >= 0 and ``kp`` >= 0 as in
     ``movingpunch.solve``. ``n`` fixes the collocation size per zone (even,
-    8 to 256). Raises InvalidParameterError (naming the parameter: a punch's
-    index in ``punches[k]``), SupercriticalSpeedError,
+    8 to 256). ``layers`` and ``base``: the medium, as ``movingpunch.solve``
+    takes them (undamped under a stack). Raises InvalidParameterError
+    (naming the parameter: a punch's index in ``punches[k]``),
+    SupercriticalSpeedError,
     UnphysicalContactError (no contact set found) and ConvergenceError.
     ``cancel``: a ``movingpunch.Cancel`` token, as ``movingpunch.solve``'s
     (the search for each contact set stops at its next solve).
@@ -987,10 +1025,21 @@ def solve_punches(
                 damping=damp,
                 kp=kp,
                 profile=p.profile,
+                layers=layers,
+                base=base,
             )
         singles.append(alone[key])
     if len(punches) == 1 and punches[0].at == 0.0:
         return singles[0]
+    if isinstance(base, HalfSpace):
+        raise InvalidParameterError(
+            "base: a train of punches on a half-space base is not supported yet "
+            "(the punches' indentations need the displacement, which grows like "
+            "ln|x| under a half-space); use springs (base=Winkler(...)) or one "
+            "punch at x = 0",
+            parameter="base",
+            allowed="Winkler springs for a train of punches",
+        )
     return solve_train(
         punches, singles, damping=damp, tol=resolve_tol(tol), n=size, t0=t0
     )

@@ -44,6 +44,7 @@ from movingpunch.errors import (
     UnphysicalContactError,
 )
 from movingpunch.fields import FloatArray
+from movingpunch.media import Medium
 from movingpunch.profiles import Cylinder, Flat, PunchProfile, check_profile
 
 __all__ = [
@@ -314,6 +315,7 @@ class ZonedSolution(ResultFields):
         default_factory=dict, repr=False, compare=False
     )
     _kernel_builds: int = field(default=0, repr=False, compare=False)
+    _medium: Medium | None = field(default=None, repr=False, compare=False)
 
     @property
     def kernel_builds(self) -> int:
@@ -411,6 +413,9 @@ class _Layer:
     n: int
     first_n: int = _FIRST_N
     """The ladder's first size."""
+    medium: Medium | None = None
+    """A layered medium (or a half-space base; ``movingpunch.media``), or
+    None: the homogeneous layer of (kw, nu, kp, damping)."""
 
 
 def _solve_topology(
@@ -430,6 +435,7 @@ def _solve_topology(
         punches=[p._core() for p in punches],
         zones=list(zones),
         first_n=layer.first_n,
+        **(layer.medium.core_args() if layer.medium is not None else {}),
     )
     if builds is not None:
         builds.append(int(z.kernel_builds))
@@ -819,6 +825,7 @@ def _result(
             "checks": max(0.0, elapsed - search_seconds),
         },
         _kernel_builds=kernel_builds,
+        _medium=layer.medium,
     )
 
 
@@ -828,7 +835,16 @@ def separate(single: Any, *, damping: float, kp: float, n: int | None) -> ZonedS
     t0 = time.perf_counter()
     # A fixed size of the single solve (2 to 4096) as the zones' (8 to 256).
     size = 0 if n is None else min(256, max(8, 2 * (n // 2)))
-    layer = _Layer(single.vstar, single.kw, single.nu, damping, kp, single.tol, size)
+    layer = _Layer(
+        single.vstar,
+        single.kw,
+        single.nu,
+        damping,
+        kp,
+        single.tol,
+        size,
+        medium=single._medium,
+    )
     punch = Punch(single.profile, single.load, 0.0)
     lo, hi = single.contact_interval
     # Symmetric about x = 0: a symmetric punch without damping.
@@ -889,7 +905,15 @@ def solve_train(
     when the punches' own contacts overlap."""
     first = singles[0]
     layer = _Layer(
-        first.vstar, first.kw, first.nu, damping, first.kp, tol, n, _TRAIN_FIRST_N
+        first.vstar,
+        first.kw,
+        first.nu,
+        damping,
+        first.kp,
+        tol,
+        n,
+        _TRAIN_FIRST_N,
+        medium=first._medium,
     )
     for k, (p, s) in enumerate(zip(punches, singles, strict=True)):
         _check_position(k, p.at, s)

@@ -129,13 +129,13 @@ TEST(DampedLayer, RejectsBadDamping) {
 }
 
 TEST(DampedKernel, ZeroDampingIsK1) {
-  const mp::DampedLayerModel d(0.2, 1.0, 0.2, 0.0);
-  const auto q = mp::build_damped_quadrature(d, 1e-12);
+  const auto d = mp::make_medium(mp::homogeneous_medium(1.0, 0.2, 0.0, 0.0), 0.2);
+  const auto q = mp::build_damped_quadrature(*d, 1e-12);
   const mp::FilonIntegrator f(q.panels);
   std::vector<double> re(q.m1.size()), im(q.m1.size());
   for (std::size_t i = 0; i < re.size(); ++i) {
-    re[i] = (q.m1[i].real() - d.phi1()) / d.phi1();
-    im[i] = q.m1[i].imag() / d.phi1();
+    re[i] = (q.m1[i].real() - d->phi1()) / d->phi1();
+    im[i] = q.m1[i].imag() / d->phi1();
   }
   const auto kr = f.coefficients(re), ki = f.coefficients(im);
   const mp::KernelK1 k1(mp::LayerModel(0.2, 1.0, 0.2), 1e-12, 3.0);
@@ -540,7 +540,7 @@ TEST(DampedKernelTable, MatchesDirectSumsWithinItsBound) {
   };
   for (const Case c :
        {Case{0.2, 1.0, 0.1}, Case{0.65, 1.0, 0.1}, Case{0.8, 1.0, 0.01}, Case{0.3, 0.01, 1.0}}) {
-    const auto model = std::make_shared<const mp::DampedLayerModel>(c.vstar, c.kw, 0.2, c.damping);
+    const auto model = mp::make_medium(mp::homogeneous_medium(c.kw, 0.2, 0.0, c.damping), c.vstar);
     const mp::DampedKernel k(model, 3.0);
     EXPECT_LT(k.table_error(), 1e-13) << c.vstar;
     double worst = 0.0;

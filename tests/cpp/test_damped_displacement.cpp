@@ -38,7 +38,7 @@ double direct_displacement(const mp::DampedSolution& s, double x, double y) {
     const double c = lo + 0.5 * width, h = 0.5 * width;
     for (int k = 0; k < 8; ++k) {
       const double al = c + (k < 4 ? -1.0 : 1.0) * h * gx[k % 4];
-      const cplx w = s.model().state(al, y)(1);
+      const cplx w = s.model().normal_state(al, y)(1);
       sum +=
           h * gw[k % 4] * (w / al * s.pressure_transform(al) * std::exp(cplx(0.0, al * x))).real();
     }

@@ -44,7 +44,7 @@ Eigen::MatrixXd direct_stresses(const mp::DampedSolution& s, const Eigen::Vector
     const double c = lo + 0.5 * width, h = 0.5 * width;
     for (int k = 0; k < 8; ++k) {
       const double al = c + (k < 4 ? -1.0 : 1.0) * h * gx[k % 4];
-      const Eigen::Vector4cd z = s.model().state(al, y);
+      const Eigen::Vector4cd z = s.model().normal_state(al, y);
       const cplx ph = h * gw[k % 4] * s.pressure_transform(al);
       const cplx sx = (4.0 * (c2 - 1.0) / c2 * z(0) + (c2 - 2.0) / c2 * z(3)) * ph;
       const cplx sy = z(3) * ph, tau = cplx(0.0, -1.0) * z(2) * ph;

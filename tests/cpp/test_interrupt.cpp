@@ -153,8 +153,8 @@ TEST(Interrupt, PollThatNeverStopsChangesNothing) {
 TEST(BoundedWork, DampedQuadratureNearCriticalStopsAtRoundOff) {
   const double kw = 1e4, nu = 0.4048225797622928, kp = 3.0;
   const double v = mp::critical_vstar(kw, nu, kp) * (1.0 - 1e-7);
-  const mp::DampedLayerModel damped(v, kw, nu, 0.0, kp);
-  const mp::DampedQuadrature q = mp::build_damped_quadrature(damped, 1e-15, 0.0);
+  const auto damped = mp::make_medium(mp::homogeneous_medium(kw, nu, kp, 0.0), v);
+  const mp::DampedQuadrature q = mp::build_damped_quadrature(*damped, 1e-15, 0.0);
   EXPECT_LT(q.panels.panel_centre.size(), 2000u);
   const auto undamped = mp::make_medium(mp::homogeneous_medium(kw, nu, kp), v);
   // Reach::field (the decay of the field at the bottom): the undamped rule then ends near the
@@ -164,7 +164,7 @@ TEST(BoundedWork, DampedQuadratureNearCriticalStopsAtRoundOff) {
   // same alpha to agree to 1e-10.
   const mp::AlphaQuadrature u = mp::build_alpha_quadrature(*undamped, 1e-13, 1.0, mp::Reach::field);
   EXPECT_NEAR(u.alpha_max, q.panels.alpha_max, 1.0);
-  const double phi1 = damped.phi1();
+  const double phi1 = damped->phi1();
   auto integral = [&](const mp::AlphaQuadrature& a) {
     double s = 0.0, s_abs = 0.0;
     for (std::size_t i = 0; i < a.alpha.size(); ++i) {

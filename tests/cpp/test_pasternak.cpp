@@ -149,7 +149,8 @@ TEST(Pasternak, KpKeysTheKernelCaches) {
   EXPECT_FALSE(built);
   cached_damped_kernel(0.2, 1.0, 0.2, 0.3, 1.0, 2.0, &built, 0.1);
   EXPECT_TRUE(built);
-  EXPECT_EQ(cached_damped_kernel(0.2, 1.0, 0.2, 0.3, 1.0, 2.0, &built, 0.1)->model().kp(), 0.1);
+  EXPECT_EQ(cached_damped_kernel(0.2, 1.0, 0.2, 0.3, 1.0, 2.0, &built, 0.1)->model().spec().base.kp,
+            0.1);
   clear_kernel_cache();
 }
 

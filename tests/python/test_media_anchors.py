@@ -152,14 +152,12 @@ def test_stack_a_graded_top_sublayer_is_refused_until_its_kernel_is_exact() -> N
 
 
 def test_stack_unsupported_combinations_are_refused_by_name() -> None:
+    # Friction, asymmetric tables and several zones run on a stack
+    # (test_media_asymmetric.py); damped springs under it do not yet.
     stack = [mp.Layer(0.5), mp.Layer(0.5, mu=0.5)]
-    for extra, says in (
-        ({"friction": 0.3, "kw": 1.0}, "friction"),
-        ({"base": mp.Winkler(1.0, damping=0.2)}, "damped base"),
-    ):
-        with pytest.raises(mp.InvalidParameterError, match=says) as info:
-            _solve(layers=stack, **extra)
-        assert info.value.parameter == "layers"
+    with pytest.raises(mp.InvalidParameterError, match="damped base") as info:
+        _solve(layers=stack, base=mp.Winkler(1.0, damping=0.2))
+    assert info.value.parameter == "damping"
 
 
 @pytest.mark.parametrize(

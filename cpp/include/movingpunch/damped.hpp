@@ -38,23 +38,14 @@ namespace movingpunch {
 
 using cplx = std::complex<double>;
 
-// Per unit transformed pressure at t = alpha h > 0 (alpha < 0: the complex
-// conjugates). M1 = -alpha v^(alpha, 0)/p^, M2 = -sigma_x^(alpha, 0)/p^ as in
-// layer_response.hpp; Wb = alpha v^(alpha, -1)/p^ (the bottom face).
-struct DampedResponse {
-  cplx M1{0.0, 0.0};
-  cplx M2{0.0, 0.0};
-  cplx U0{0.0, 0.0};
-  cplx W0{0.0, 0.0};
-  cplx Wb{0.0, 0.0};
-  // The top state of the unit tangential load (state [Uq, Wq, 1, 0] at
-  // y = 0: tau_xy/alpha = 1, sigma_y = 0; the physical amplitudes of a load
-  // tau_xy = q^ e^{i alpha x} are i q^ times these: docs/theory.md section 14).
-  cplx Uq{0.0, 0.0};
-  cplx Wq{0.0, 0.0};
-  cplx Wqb{0.0, 0.0};  // its W at the bottom y = -1
-};
+// The asymmetric solver's response per unit transformed load (medium.hpp's
+// FullResponse: M1, M2, U0, W0, the base face's Wb, the unit tangential
+// load's Uq, Wq, Wqb).
+using DampedResponse = FullResponse;
 
+// The homogeneous layer on damped springs: make_medium's implementation of
+// Medium for a damped homogeneous spec (medium.cpp), and the closed-form
+// modal fields of the asymmetric solver's depth outputs on that layer.
 class DampedLayerModel {
  public:
   static constexpr double kSmallT = 0.5;
@@ -117,12 +108,13 @@ struct DampedQuadrature {
   // (|K15 - G7| above bounds the Gauss rule's error, far larger once resolved).
   double kronrod_error = 0;
 };
-// friction > 0: the panels resolve friction (Wq - Wq_inf)/phi1 too.
-DampedQuadrature build_damped_quadrature(const DampedLayerModel& model, double tol,
-                                         double friction = 0.0);
+// friction > 0: the panels resolve friction (Wq - Wq_inf)/phi1 too. Any
+// medium (its full_response; the panels end where its slowest field decays
+// below 1e-18, field_decay_rate).
+DampedQuadrature build_damped_quadrature(const Medium& model, double tol, double friction = 0.0);
 
 // The regular kernel K(u) of the damped equation (damped_kernel() below) for
-// one (vstar, kw, nu, damping): the alpha quadrature and its Filon
+// one medium (Medium::key()) and friction: the alpha quadrature and its Filon
 // coefficients (range-independent, shared by every table of these inputs) and
 // a piecewise Chebyshev table (degree 24 on equal pieces of width <= 1) on
 // |u| <= range(), built from direct Filon sums and checked piece by piece
@@ -132,7 +124,7 @@ class DampedKernel {
  public:
   // friction > 0: the kernel of the frictional equation, K - f K_t with the
   // effective response M1 - i f Wq (docs/theory.md section 14).
-  DampedKernel(std::shared_ptr<const DampedLayerModel> model, double range, double friction = 0.0);
+  DampedKernel(std::shared_ptr<const Medium> model, double range, double friction = 0.0);
   // A wider table on the quadrature of `other` (no new layer responses).
   DampedKernel(const DampedKernel& other, double range);
 
@@ -144,8 +136,8 @@ class DampedKernel {
   // Bound on |table - direct| (truncation of the pieces plus their values'
   // round-off), absolute.
   double table_error() const noexcept { return table_error_; }
-  const DampedLayerModel& model() const noexcept { return *base_->model; }
-  const std::shared_ptr<const DampedLayerModel>& model_ptr() const noexcept { return base_->model; }
+  const Medium& model() const noexcept { return *base_->model; }
+  const std::shared_ptr<const Medium>& model_ptr() const noexcept { return base_->model; }
   const DampedQuadrature& quadrature() const noexcept { return base_->quad; }
   const FilonIntegrator& filon() const noexcept { return *base_->filon; }
   const std::vector<double>& kr() const noexcept { return base_->kr; }
@@ -154,7 +146,7 @@ class DampedKernel {
  private:
   static constexpr int kDegree = 24;
   struct Base {
-    std::shared_ptr<const DampedLayerModel> model;
+    std::shared_ptr<const Medium> model;
     DampedQuadrature quad;
     std::shared_ptr<const FilonIntegrator> filon;
     std::vector<double> kr, ki;  // Filon coefficients of Re, Im (M1 - phi1)/phi1
@@ -166,14 +158,19 @@ class DampedKernel {
   void tabulate();
 };
 
-// Process-wide cache of damped kernel tables, keyed on (vstar, kw, nu,
-// damping, kp) (the table is built to round-off whatever tol, so tol is not part
-// of the key): a table whose range is at least min_range, or one of range
-// build_range built and cached (at least kGrowth times the longest shorter
-// table of the same inputs when one exists: its quadrature is reused). Least recently used
+// Process-wide cache of the asymmetric solver's kernel tables, keyed on the
+// medium (Medium::key(): its speed and description) and the friction (the
+// table is built to round-off whatever tol, so tol is not part of the key):
+// a table whose range is at least min_range, or one of range build_range
+// built and cached (at least kGrowth times the longest shorter table of the
+// same inputs when one exists: its quadrature is reused). Least recently used
 // evicted beyond kDampedKernelCacheCapacity; thread-safe; emptied by
 // clear_kernel_cache() (kernel.hpp).
 inline constexpr std::size_t kDampedKernelCacheCapacity = 16;
+std::shared_ptr<const DampedKernel> cached_damped_kernel(
+    const std::shared_ptr<const Medium>& medium, double min_range, double build_range,
+    bool* built = nullptr, double friction = 0.0);
+// The homogeneous layer of (vstar, kw, nu, damping, kp) (make_medium).
 std::shared_ptr<const DampedKernel> cached_damped_kernel(double vstar, double kw, double nu,
                                                          double damping, double min_range,
                                                          double build_range, bool* built = nullptr,
@@ -194,6 +191,10 @@ struct DampedParams {
   bool allow_unphysical = false;
   int n = 0;      // fixed collocation size (even, 2..1024); 0: refine
   double kp = 0;  // k_p / (mu h) in [0, kMaxKp]: Pasternak shear layer (0: Winkler)
+  // The medium (medium.hpp), as ContactParams': null, the homogeneous layer
+  // of (kw, nu, kp, damping); otherwise this stack and base (kw, nu, kp and
+  // damping are then ignored: solve_damped reads them from it).
+  std::shared_ptr<const MediumSpec> medium;
   // The punch's shape, as ContactParams' (profile.hpp, docs/theory.md
   // section 13): a cylinder of `radius` (the default); a rounded flat
   // (half_width, corners of `radius`); a convex table (table_x, table_y),
@@ -205,7 +206,20 @@ struct DampedParams {
   PunchProfile punch() const { return PunchProfile(profile, radius, half_width, table_x, table_y); }
 };
 
-// Throws std::invalid_argument naming the parameter and its valid range.
+// The medium of p: *p.medium, or the homogeneous layer of (kw, nu, kp, damping).
+MediumSpec medium_of(const DampedParams& p);
+// p with kw, nu, kp and damping read from p.medium when it is set (nu: the
+// top sublayer's; kw = inf, kp = 0 under a half-space), so that messages
+// and width guesses see the medium's own values.
+DampedParams with_medium_scalars(const DampedParams& p);
+// The critical vstar of p's medium (critical_vstar(kw, nu, kp) for the
+// homogeneous layer; critical_speed(spec) otherwise).
+double critical_vstar_of(const DampedParams& p);
+
+// Throws std::invalid_argument naming the parameter and its valid range (a
+// medium: its own checks, and InvalidParameter for what the asymmetric
+// solver cannot take on it: a graded top sublayer, a damped base under a
+// stack or a half-space).
 void validate(const DampedParams& p);
 
 class DampedSolution {
@@ -334,7 +348,8 @@ class DampedSolution {
   // what the series of g leaves out beyond its (half-plane tail extended)
   // length, in P/h (pointwise on the pressure); 0 for a cylinder.
   double series_truncation() const noexcept { return trunc_; }
-  const DampedLayerModel& model() const noexcept { return *model_; }
+  // The medium solved on.
+  const Medium& model() const noexcept { return *model_; }
 
  private:
   friend DampedSolution solve_damped(const DampedParams& p);
@@ -370,8 +385,12 @@ class DampedSolution {
   // The surface sigma_x's parts that are closed forms of p with friction:
   // f Cq (1/pi) int p/(xi - x) - (f C0/pi) int p arctan(x - xi) (theory.md section 14).
   double friction_surface_terms(double x, const JacobiSeries& s, double c, double w) const;
-  std::shared_ptr<const DampedLayerModel> model_;
+  std::shared_ptr<const Medium> model_;
   std::shared_ptr<const DampedKernel> kernel_;
+  // The homogeneous layer behind model_ (its closed-form modal fields: the
+  // depth outputs' fast path), or null: a layered medium, whose depth
+  // outputs are refused (layered_refusal names them).
+  const DampedLayerModel* layer() const;
   // Gauss-Chebyshev (U) nodes r_i and weights times g(r_i) of surface_slope's
   // kernel integral.
   std::vector<double> slope_r_, slope_wg_;
@@ -435,6 +454,9 @@ class DampedSolution {
     std::vector<cplx> ph;
     std::vector<double> top_bound, bottom_bound;
     double negligible = 0;  // a node's contribution below this is dropped
+    // Any other medium: each node's mode (Medium::mode, built once; its
+    // remainder at any depth), instead of d_re, d_im and the bounds.
+    std::vector<std::unique_ptr<const ModeProfile>> modes;
   };
   struct FieldCache {
     std::mutex mutex;

@@ -17,7 +17,13 @@
 //    kernel's alpha quadrature may stop) and the long-wave scales of the base
 //    (where its first panels must be split);
 //  * dispersion(t): a real function changing sign where a free steady wave of
-//    wavenumber t exists at this speed (the critical-speed search).
+//    wavenumber t exists at this speed (the critical-speed search);
+//  * for the asymmetric solver (friction, damping, asymmetric profiles,
+//    several zones): full_response(t), the normal and the unit tangential
+//    load's responses at the surface and at the base face together,
+//    normal_state/tangential_state(t, y) at any depth, tangential() (the
+//    top material's tangential half-plane constants), bar_compliance() (the
+//    tangential response's long-wave pole) and base_damper() (the dashpots).
 // The kernel tables are cached per medium (key()).
 #pragma once
 
@@ -30,6 +36,7 @@
 #include <Eigen/Dense>
 
 #include "movingpunch/dispersion.hpp"
+#include "movingpunch/jacobi.hpp"
 #include "movingpunch/layer_response.hpp"
 
 namespace movingpunch {
@@ -110,6 +117,31 @@ struct MediumResponse {
   cplx W0{0.0, 0.0};
 };
 
+// The asymmetric solver's responses at t = alpha h > 0 (alpha < 0: the
+// conjugates), per unit transformed load:
+//  * the normal load (sigma_y/alpha = -1, tau = 0 at y = 0): M1, M2, U0, W0
+//    as MediumResponse, and Wb = alpha v^(alpha, -1)/p^, the base face's
+//    deflection: on springs it is what the springs and dashpots compress
+//    (the foundation's reaction kw v, the dashpots' dissipation
+//    base_damper() int |Wb p^|^2); on a rigid base 0; under a half-space the
+//    interface's deflection (no dashpot: no dissipation);
+//  * the unit tangential load (state [Uq, Wq, 1, 0] at y = 0: tau/alpha = 1,
+//    sigma_y = 0; the physical amplitudes of tau_xy = q^ e^{i alpha x} are
+//    i q^ times these; docs/theory.md section 14): Uq, Wq at the surface and
+//    Wqb, its W at the base face.
+struct FullResponse {
+  cplx M1{0.0, 0.0};
+  cplx M2{0.0, 0.0};
+  cplx U0{0.0, 0.0};
+  cplx W0{0.0, 0.0};
+  cplx Wb{0.0, 0.0};
+  cplx Uq{0.0, 0.0};
+  cplx Wq{0.0, 0.0};
+  cplx Wqb{0.0, 0.0};
+};
+
+class DampedLayerModel;  // damped.hpp: the homogeneous layer on damped springs
+
 // The state of one mode at a depth: [U, W, tau/alpha, sigma_y/alpha] and
 // sigma_x/alpha (of the material on the chosen side of an interface), for the
 // top load sigma_y/alpha = -1, tau = 0 (layer_response.hpp's normalisation).
@@ -179,6 +211,31 @@ class Medium {
   // (-1, 0)); empty for one sublayer.
   virtual std::vector<double> interfaces() const { return {}; }
 
+  // --- The asymmetric solver's reads (damped.hpp, zones.hpp).
+  // The normal and tangential loads' responses (FullResponse), t >= 0 (t = 0:
+  // the limits; Uq, Wq are NaN there on a shear-free base, the bar pole).
+  virtual FullResponse full_response(double t) const = 0;
+  // The whole state [U, W, tau/alpha, sigma_y/alpha] at -1 <= y <= 0 (an
+  // interface: the side above; continuous there) of the normal load
+  // (layer_response.hpp's normalisation) and of the unit tangential load
+  // (top tau/alpha = 1, sigma_y = 0), t > 0 finite.
+  virtual Eigen::Vector4cd normal_state(double t, double y) const = 0;
+  virtual Eigen::Vector4cd tangential_state(double t, double y) const = 0;
+  // The moving half-plane's tangential response of the top material.
+  virtual const TangentialHalfPlane& tangential() const noexcept = 0;
+  // lim_{t -> 0} t Uq(t): on a shear-free base (springs, rigid, a smooth
+  // half-space) the stack carries the net horizontal force as a bar, Uq ~
+  // 1/(t sum_i int (Ep_i mu_i - vstar rho_i) dy) (Ep = 2/(1 - nu), the
+  // plane-strain modulus over mu); a bonded half-space takes the force: 0.
+  virtual double bar_compliance() const noexcept = 0;
+  // The dashpots' coefficient damping sqrt(vstar) (springs with damping; 0
+  // otherwise): the base dissipates base_damper() int |v(x, -1)_x|^2 dx.
+  virtual double base_damper() const noexcept { return 0.0; }
+  // The homogeneous layer on springs as DampedLayerModel (its closed-form
+  // modal fields are the fast path of the asymmetric solver's depth
+  // outputs); null for any other medium.
+  virtual const DampedLayerModel* homogeneous_layer() const noexcept { return nullptr; }
+
   // The description and speed this medium was built from; the cache key.
   virtual const MediumSpec& spec() const noexcept = 0;
   std::vector<double> key() const;
@@ -192,6 +249,8 @@ inline constexpr double kDisplacementReference = 100.0;
 // The medium of `spec` at speed vstar. Throws InvalidParameter (errors.hpp)
 // for an invalid spec or a speed the medium cannot carry (vstar in [0,
 // max_vstar(spec))), std::invalid_argument for a combination not supported.
+// A damped homogeneous layer (damping > 0) has real() == false: the
+// asymmetric solver's only.
 std::shared_ptr<const Medium> make_medium(const MediumSpec& spec, double vstar);
 
 // The critical speed of a medium: the lowest vstar of a free steady wave,
