@@ -71,6 +71,29 @@ class ParamSpec:
     note: str = ""
     """Appended to the range in every text (presets, the meaning of inf)."""
     integer: bool = False
+    symbol: str = ""
+    """How ``describe()`` shows the value: ``"h_i/h ="`` gives
+    ``h_i/h = 0.25``; "" gives the name and a space (``mu 1``)."""
+    label: str = ""
+    """The terminal UI's column heading ("" : the name)."""
+    metavar: str = ""
+    """The command line's name of the value in a comma-separated option
+    (``--layer T,MU,NU``); "" : the name in capitals."""
+
+    @property
+    def shown_as(self) -> str:
+        """The prefix of the value in ``describe()``."""
+        return self.symbol or self.name
+
+    @property
+    def heading(self) -> str:
+        """The terminal UI's heading of the input."""
+        return self.label or self.name
+
+    @property
+    def cli_name(self) -> str:
+        """The value's name in a comma-separated command-line option."""
+        return self.metavar or self.name.upper()
 
     @property
     def range(self) -> str:
@@ -164,6 +187,7 @@ SPECS: Mapping[str, ParamSpec] = MappingProxyType(
                 None,
                 inf_ok=True,
                 note="(inf: smooth rigid base)",
+                symbol="kw =",
             ),
             ParamSpec(
                 "kp",
@@ -176,6 +200,7 @@ SPECS: Mapping[str, ParamSpec] = MappingProxyType(
                 "(two-parameter foundation)",
                 0.0,
                 note="(0: Winkler springs alone)",
+                symbol="kp =",
             ),
             ParamSpec(
                 "radius", 0.0, 1e12, True, False, "R/h", "radius of the punch", None
@@ -189,6 +214,9 @@ SPECS: Mapping[str, ParamSpec] = MappingProxyType(
                 "h_i/h",
                 "thickness of a sublayer (the sublayers' sum to 1)",
                 None,
+                symbol="h_i/h =",
+                label="h_i/h",
+                metavar="T",
             ),
             ParamSpec(
                 "mu",
@@ -200,6 +228,7 @@ SPECS: Mapping[str, ParamSpec] = MappingProxyType(
                 "shear modulus of a sublayer or the half-space, per the top's",
                 1.0,
                 note="(1 for the top sublayer)",
+                label="μ/μ₁",
             ),
             ParamSpec(
                 "rho",
@@ -211,6 +240,7 @@ SPECS: Mapping[str, ParamSpec] = MappingProxyType(
                 "density of a sublayer or the half-space, per the top's",
                 1.0,
                 note="(1 for the top sublayer)",
+                label="ρ/ρ₁",
             ),
             ParamSpec(
                 "gamma_h",
@@ -222,6 +252,8 @@ SPECS: Mapping[str, ParamSpec] = MappingProxyType(
                 "grading of a sublayer: mu and rho vary as exp(gamma y) from its top",
                 None,
                 note="(0: homogeneous)",
+                symbol="gamma h =",
+                label="gamma h",
             ),
             ParamSpec(
                 "half_width",
@@ -245,7 +277,15 @@ SPECS: Mapping[str, ParamSpec] = MappingProxyType(
                 None,
             ),
             ParamSpec(
-                "nu", 0.0, 0.5, False, True, "", "Poisson's ratio of the layer", 0.2
+                "nu",
+                0.0,
+                0.5,
+                False,
+                True,
+                "",
+                "Poisson's ratio of the layer",
+                0.2,
+                label="ν",
             ),
             ParamSpec(
                 "damping",
@@ -257,6 +297,7 @@ SPECS: Mapping[str, ParamSpec] = MappingProxyType(
                 "dashpots beside the foundation's springs (Kelvin-Voigt)",
                 0.0,
                 note="(0: no dashpots, the paper's model)",
+                symbol="damping =",
             ),
             ParamSpec(
                 "friction",

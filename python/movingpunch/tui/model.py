@@ -23,7 +23,15 @@ from movingpunch.accuracy import LADDER, AccuracyReport, accuracy_report
 from movingpunch.contract import ContactSolution
 from movingpunch.errors import InvalidParameterError, MovingPunchError
 from movingpunch.fields import StressPeaks
-from movingpunch.media import GradedLayer, HalfSpace, Layer, Medium, Sublayer, Winkler
+from movingpunch.media import (
+    SUBLAYER_TYPES,
+    GradedLayer,
+    HalfSpace,
+    Layer,
+    Medium,
+    Sublayer,
+    Winkler,
+)
 from movingpunch.params import OPTIONAL, PHYSICAL
 from movingpunch.params import check as check_param
 from movingpunch.profiles import PROFILE_KINDS, Flat, Profile, PunchProfile, RoundedFlat
@@ -1236,11 +1244,14 @@ def describe(values: Iterable[float]) -> str:
 
 # -- the medium editor ---------------------------------------------------------
 
-SUBLAYER_FIELDS: tuple[str, ...] = ("thickness", "mu", "nu", "rho", "gamma_h")
-"""The inputs of a sublayer's row in the medium editor (gamma_h 0: a
+SUBLAYER_FIELDS: tuple[str, ...] = tuple(
+    dict.fromkeys(name for cls in SUBLAYER_TYPES for name in cls.FIELDS)
+)
+"""The inputs of a sublayer's row in the medium editor: every field of every
+kind of sublayer (``movingpunch.media`` field tables; gamma_h 0: a
 homogeneous ``Layer``, else a ``GradedLayer``)."""
 
-HALF_SPACE_FIELDS: tuple[str, ...] = ("mu", "nu", "rho")
+HALF_SPACE_FIELDS: tuple[str, ...] = HalfSpace.FIELDS
 """The inputs of a half-space base."""
 
 BASE_KINDS: tuple[str, ...] = ("springs", "bonded", "smooth")
@@ -1275,14 +1286,8 @@ def parse_sublayer(row: int, texts: dict[str, str]) -> Sublayer:
                     allowed="1 for the top sublayer",
                 )
     if values["gamma_h"] == 0.0:
-        return Layer(values["thickness"], values["mu"], values["nu"], values["rho"])
-    return GradedLayer(
-        values["gamma_h"],
-        values["nu"],
-        values["thickness"],
-        values["mu"],
-        values["rho"],
-    )
+        return Layer(**{name: values[name] for name in Layer.FIELDS})
+    return GradedLayer(**{name: values[name] for name in GradedLayer.FIELDS})
 
 
 def check_thicknesses(layers: Sequence[Sublayer]) -> None:
@@ -1338,7 +1343,7 @@ def parse_base(kind: str, texts: dict[str, str]) -> HalfSpace | None:
             raise InvalidParameterError(
                 f"half-space: {exc}", parameter=name, allowed=exc.allowed
             ) from None
-    return HalfSpace(values["mu"], values["nu"], values["rho"], interface=kind)
+    return HalfSpace(**values, interface=kind)
 
 
 def with_medium(
