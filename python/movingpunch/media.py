@@ -243,6 +243,50 @@ Base = Winkler | HalfSpace
 BASE_TYPES: tuple[type[Winkler] | type[HalfSpace], ...] = (Winkler, HalfSpace)
 """The kinds of base."""
 
+CLI_OPTIONS: dict[str, str] = {
+    "layer": "--layer",
+    "graded": "--graded",
+    "half_space": "--half-space",
+    "winkler": "--kw, --kp, --damping",
+}
+"""The command line's option of each kind (movingpunch._cli_media)."""
+
+
+def fields_table() -> str:
+    """The value types' fields as a Markdown table (docs/media.md holds it
+    verbatim; tests/python/test_param_table.py checks it)."""
+    lines = [
+        "| type (scene `kind`) | field (scene key) | CLI | TUI | range, unit "
+        "| default | meaning |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    for cls in (*SUBLAYER_TYPES, *BASE_TYPES):
+        for name in (*cls.FIELDS, *cls.CHOICES):
+            default = cls.default(name)
+            if default is dataclasses.MISSING:
+                shown = "required"
+            else:
+                shown = f'"{default}"' if isinstance(default, str) else f"{default:g}"
+            if name in cls.CHOICES:
+                rng = " or ".join(f'"{w}"' for w in cls.CHOICES[name])
+                meaning = "the interface with the stack (smooth: frictionless)"
+                cli, tui = "a last word", "the base selector"
+            else:
+                spec = params.SPECS[name]
+                rng, meaning, tui = spec.text, spec.meaning, spec.heading
+                cli = (
+                    f"{CLI_OPTIONS[cls.KIND]} {spec.cli_name}"
+                    if name in cls.CLI
+                    else f"--{name}"
+                )
+                if cls is Winkler:
+                    tui = f"panel: {name}"
+            lines.append(
+                f"| {cls.__name__} (`{cls.KIND}`) | `{name}` | `{cli}` | {tui} | "
+                f"{rng.replace('|', '/')} | {shown} | {meaning} |"
+            )
+    return "\n".join(lines) + "\n"
+
 
 @dataclass(frozen=True)
 class Medium:
