@@ -46,6 +46,13 @@ HEADINGS: dict[str, str] = {
 """The column headings of the sublayer rows (and the half-space's): the
 parameter table's labels (``movingpunch.params.SPECS``)."""
 
+def box_width() -> int:
+    """The editor's width: the sublayer number, an input (12 and a margin of
+    1, app.tcss) per field of ``SUBLAYER_FIELDS`` and the frame (76 for
+    five fields)."""
+    return 6 + 5 + 13 * len(SUBLAYER_FIELDS)
+
+
 BASE_LABELS: dict[str, str] = {
     "springs": "springs (kw, kp, damp)",
     "bonded": "bonded half-space",
@@ -146,6 +153,7 @@ class MediumEditor(ModalScreen[MediumChoice | None]):
             yield Footer(compact=True)
 
     def on_mount(self) -> None:
+        self.query_one("#medium-box", Vertical).styles.width = box_width()
         self._renumber()
         self._show_base()
         self.validate()
