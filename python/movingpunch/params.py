@@ -16,14 +16,16 @@ from __future__ import annotations
 import math
 import numbers
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from types import MappingProxyType
 
 from movingpunch.errors import InvalidParameterError
 
 __all__ = [
+    "CONTACT_MODES",
     "PRESETS",
     "SPECS",
+    "Numerics",
     "ParamSpec",
     "check",
     "check_size",
@@ -438,3 +440,58 @@ def check_size(value: object, most: int = SIZE_MAX, what: str = "") -> int:
     raise InvalidParameterError(
         f"n must be {allowed}{what}, got {value!r}", parameter="n", allowed=allowed
     )
+
+
+CONTACT_MODES: tuple[str, ...] = ("auto", "single")
+"""``contact=``: "auto" finds the contact set (several zones when the single
+contact is unphysical), "single" keeps the single contact
+(``movingpunch.zones.CONTACT_MODES``)."""
+
+
+@dataclass(frozen=True)
+class Numerics:
+    """How a solve computes, as one value: ``tol`` (relative, on a/h, or a
+    preset name: kept as the number), ``n`` (None: automatic, else an even
+    collocation size), ``allow_unphysical`` and ``contact`` ("auto" or
+    "single"), checked when made as ``movingpunch.solve`` checks its
+    keywords of the same names (InvalidParameterError naming the parameter
+    and its range). ``movingpunch.solve(..., numerics=Numerics(...))`` takes
+    it instead of those keywords."""
+
+    tol: float | str = 1e-8
+    n: int | None = None
+    allow_unphysical: bool = False
+    contact: str = "auto"
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "tol", check("tol", self.tol))
+        check_size(self.n)
+        if not isinstance(self.allow_unphysical, bool):
+            raise InvalidParameterError(
+                f"allow_unphysical must be True or False, got "
+                f"{self.allow_unphysical!r}",
+                parameter="allow_unphysical",
+                allowed="True or False",
+            )
+        if not isinstance(self.contact, str) or self.contact not in CONTACT_MODES:
+            allowed = " or ".join(f'"{m}"' for m in CONTACT_MODES)
+            raise InvalidParameterError(
+                f"contact must be {allowed}, got {self.contact!r}",
+                parameter="contact",
+                allowed=allowed,
+            )
+
+    def keywords(self, **given: object) -> tuple[float | str, int | None, bool, str]:
+        """(tol, n, allow_unphysical, contact) for solve; ``given``: solve's
+        keywords of those names as the call had them (giving one both ways,
+        away from its default, is an InvalidParameterError naming it)."""
+        for f in fields(self):
+            value = given.get(f.name, f.default)
+            if value is not f.default and value != f.default:
+                raise InvalidParameterError(
+                    f"{f.name}: the numerics are given by numerics= ({self!r}); "
+                    f"give {f.name} there, not as a keyword too",
+                    parameter=f.name,
+                    allowed="omitted when numerics= is given",
+                )
+        return self.tol, self.n, self.allow_unphysical, self.contact

@@ -407,3 +407,41 @@ def test_docs_list_every_field() -> None:
     scenes = (ROOT / "docs" / "scenes.md").read_text(encoding="utf-8")
     for cls in TYPES:
         assert f'"{cls.KIND}"' in scenes, cls.KIND
+
+
+# -- the numerics ------------------------------------------------------------
+
+
+def test_numerics_are_checked_as_solve_checks_its_keywords() -> None:
+    assert mp.Numerics(tol="precise").tol == 1e-12
+    assert mp.Numerics(n=16, contact="single").n == 16
+    bad: list[tuple[dict[str, Any], str, str]] = [
+        ({"tol": 0.5}, "tol", SPECS["tol"].text),
+        ({"tol": "rough"}, "tol", SPECS["tol"].text),
+        ({"n": 7}, "n", "an even integer in [2, 4096]"),
+        ({"allow_unphysical": 1}, "allow_unphysical", "True or False"),
+        ({"contact": "zones"}, "contact", '"auto" or "single"'),
+    ]
+    for kwargs, name, allowed in bad:
+        with pytest.raises(InvalidParameterError) as info:
+            mp.Numerics(**kwargs)
+        assert info.value.parameter == name
+        assert allowed in str(info.value), str(info.value)
+    assert mp.params.CONTACT_MODES == mp.zones.CONTACT_MODES
+
+
+def test_solve_takes_the_numerics_as_its_keywords() -> None:
+    physical = {"vstar": 0.2, "kw": 1.0, "radius": 100.0, "load": 0.002}
+    numerics = mp.Numerics(tol=1e-6, n=32, contact="single")
+    by_value = mp.solve(**physical, numerics=numerics)
+    by_keyword = mp.solve(**physical, tol=1e-6, n=32, contact="single")
+    assert type(by_value) is type(by_keyword)
+    assert by_value.tol == by_keyword.tol == 1e-6
+    assert by_value.collocation_n == by_keyword.collocation_n == 32
+    assert by_value.a == by_keyword.a
+    # A keyword at its default beside numerics= is no conflict; another is.
+    mp.solve(**physical, numerics=numerics, allow_unphysical=False)
+    with pytest.raises(InvalidParameterError) as info:
+        mp.solve(**physical, numerics=numerics, tol=1e-4)
+    assert info.value.parameter == "tol"
+    assert "numerics=" in str(info.value)

@@ -46,6 +46,7 @@ HEADINGS: dict[str, str] = {
 """The column headings of the sublayer rows (and the half-space's): the
 parameter table's labels (``movingpunch.params.SPECS``)."""
 
+
 def box_width() -> int:
     """The editor's width: the sublayer number, an input (12 and a margin of
     1, app.tcss) per field of ``SUBLAYER_FIELDS`` and the frame (76 for
