@@ -98,15 +98,26 @@ def parse_profile(
         raise c.fail(key, problem, exc.allowed or "", exc.parameter) from exc
 
 
-def _kinds_text(keys: Mapping[str, tuple[str, ...]]) -> str:
-    """``kind = "layer" (thickness, mu, nu, rho) or "graded" (...)``."""
+def _kinds_text(types: Iterable[type[ValueType]]) -> str:
+    """``kind = "layer" (thickness, mu, nu, rho) or "graded" (...)``: each
+    type's keys from its field table (a choice with its words)."""
     return "kind = " + " or ".join(
-        f'"{kind}" ({", ".join(k for k in names if k != "kind")})'
-        for kind, names in keys.items()
+        f'"{cls.KIND}" ('
+        + ", ".join(
+            [
+                *cls.FIELDS,
+                *(
+                    f"{name} = " + " or ".join(f'"{w}"' for w in words)
+                    for name, words in cls.CHOICES.items()
+                ),
+            ]
+        )
+        + ")"
+        for cls in types
     )
 
 
-_LAYERS_ALLOWED = "[[layers]] tables, top to bottom: " + _kinds_text(LAYER_KEYS)
+_LAYERS_ALLOWED = "[[layers]] tables, top to bottom: " + _kinds_text(SUBLAYER_TYPES)
 
 
 def _media_fail(c: Checker, key: str, exc: InvalidParameterError) -> SceneError:
@@ -182,7 +193,7 @@ def parse_base(c: Checker, raw: object) -> Winkler | HalfSpace:
     the springs of [params] moved here) or "half_space" (mu, nu, rho per the
     top sublayer's, interface = "bonded" or "smooth"): each with its type's
     fields (``BASE_KEYS``)."""
-    allowed = _kinds_text(BASE_KEYS)
+    allowed = _kinds_text(BASE_TYPES)
     if not isinstance(raw, Mapping):
         raise c.fail("base", f"must be a table, got {show(raw)}", allowed)
     if "kind" not in raw:
