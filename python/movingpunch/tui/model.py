@@ -1264,11 +1264,14 @@ THICKNESS_SLACK = 1e-12
 
 def parse_sublayer(row: int, texts: dict[str, str]) -> Sublayer:
     """The sublayer of row ``row`` (1: the top) from the texts typed in its
-    inputs (``SUBLAYER_FIELDS``). Raises InvalidParameterError naming the
-    row, the parameter and its range (``.parameter``: the field's name).
-    The top row's mu and rho are the units: 1."""
-    values = {}
+    inputs (``SUBLAYER_FIELDS``; a field without a text takes its default,
+    gamma_h 0). Raises InvalidParameterError naming the row, the parameter
+    and its range (``.parameter``: the field's name). The top row's mu and
+    rho are the units: 1."""
+    values: dict[str, float] = {}
     for name in SUBLAYER_FIELDS:
+        if name not in texts:
+            continue
         try:
             values[name] = parse_param(name, texts[name])
         except InvalidParameterError as exc:
@@ -1277,7 +1280,7 @@ def parse_sublayer(row: int, texts: dict[str, str]) -> Sublayer:
             ) from None
     if row == 1:
         for name in ("mu", "rho"):
-            if values[name] != 1.0:
+            if values.get(name, 1.0) != 1.0:
                 raise InvalidParameterError(
                     f"sublayer 1: the top sublayer's {name} is the unit of every "
                     f"{name} (1 by definition), got {fmt(values[name])}; give "
@@ -1285,9 +1288,9 @@ def parse_sublayer(row: int, texts: dict[str, str]) -> Sublayer:
                     parameter=name,
                     allowed="1 for the top sublayer",
                 )
-    if values["gamma_h"] == 0.0:
-        return Layer(**{name: values[name] for name in Layer.FIELDS})
-    return GradedLayer(**{name: values[name] for name in GradedLayer.FIELDS})
+    if values.get("gamma_h", 0.0) == 0.0:
+        return Layer(**{n: v for n, v in values.items() if n in Layer.FIELDS})
+    return GradedLayer(**{n: v for n, v in values.items() if n in GradedLayer.FIELDS})
 
 
 def check_thicknesses(layers: Sequence[Sublayer]) -> None:
