@@ -36,6 +36,7 @@ from movingpunch.cancel import Cancel
 from movingpunch.contract import ContactSolution
 from movingpunch.fields import StressField, StressPeaks
 from movingpunch.media import GradedLayer, HalfSpace, Layer, Medium, Winkler
+from movingpunch.params import Numerics
 from movingpunch.profiles import Cylinder, Flat, Profile, PunchProfile, RoundedFlat
 from movingpunch.scene import Scene, SceneError, SceneResult, bundled_scenes
 from movingpunch.solver import (
@@ -85,6 +86,7 @@ __all__ = [
     "Layer",
     "Medium",
     "MovingPunchError",
+    "Numerics",
     "OutputError",
     "Profile",
     "Punch",

@@ -8,90 +8,130 @@ order), ``--half-space MU,NU[,RHO][,bonded|smooth]``; and the medium they give
 from __future__ import annotations
 
 import argparse
-from collections.abc import Callable
 from typing import TypeVar
 
 from movingpunch.errors import InvalidParameterError
 from movingpunch.media import (
-    INTERFACES,
     GradedLayer,
     HalfSpace,
     Layer,
     Medium,
     Sublayer,
+    ValueType,
     resolve_medium,
 )
+from movingpunch.params import SPECS
 
 __all__ = ["add_medium_options", "medium_of"]
 
-_T = TypeVar("_T")
+MediumType = type[ValueType]
 
-LAYER_FORM = "T,MU,NU[,RHO] (thickness h_i/h, mu and rho per the top sublayer's)"
-GRADED_FORM = "T,GAMMA_H,NU[,MU,RHO] (thickness h_i/h, gamma h, mu and rho at its top)"
-HALF_SPACE_FORM = "MU,NU[,RHO][,bonded|smooth] (mu and rho per the top sublayer's)"
+_V = TypeVar("_V", bound=ValueType)
 
 
-def _numbers(option: str, form: str, text: str, lo: int, hi: int) -> list[float]:
+def _optional_units(cls: MediumType) -> list[tuple[str, ...]]:
+    """The optional positions of ``cls.CLI`` as the units given together."""
+    units: list[tuple[str, ...]] = []
+    for name in cls.CLI[cls.CLI_REQUIRED :]:
+        if units and name in cls.CLI_TOGETHER and units[-1][0] in cls.CLI_TOGETHER:
+            units[-1] = (*units[-1], name)
+        else:
+            units.append((name,))
+    return units
+
+
+def _counts(cls: MediumType) -> list[int]:
+    """How many comma-separated numbers the option takes."""
+    out = [cls.CLI_REQUIRED]
+    for unit in _optional_units(cls):
+        out.append(out[-1] + len(unit))
+    return out
+
+
+def cli_form(cls: MediumType) -> str:
+    """The option's metavar from the field table: ``T,MU,NU[,RHO]``,
+    ``T,GAMMA_H,NU[,MU,RHO]``, ``MU,NU[,RHO][,bonded|smooth]``."""
+    meta = [SPECS[n].cli_name for n in cls.CLI]
+    out = ",".join(meta[: cls.CLI_REQUIRED])
+    units = _optional_units(cls)
+    for unit in units:
+        out += "[," + ",".join(SPECS[n].cli_name for n in unit)
+    out += "]" * len(units)
+    for words in cls.CHOICES.values():
+        out += "[," + "|".join(words) + "]"
+    return out
+
+
+def cli_fields_help(cls: MediumType) -> str:
+    """Each position's range (and default) from the parameter table."""
+    parts = []
+    for k, name in enumerate(cls.CLI):
+        spec = SPECS[name]
+        text = f"{spec.cli_name}: {spec.text}"
+        if k >= cls.CLI_REQUIRED:
+            text += f" (default {cls.default(name):g})"
+        parts.append(text)
+    for name, words in cls.CHOICES.items():
+        default = cls.default(name)
+        parts.append(f"{'|'.join(words)}: the {name} (default {default})")
+    return "; ".join(parts)
+
+
+def parse_cli(option: str, cls: type[_V], text: str) -> _V:
+    """The value of ``option`` (``--layer``, ``--graded``, ``--half-space``):
+    comma-separated numbers in the positions ``cls.CLI``, then a word of each
+    of ``cls.CHOICES``. Raises argparse.ArgumentTypeError naming the option,
+    its form, and for a bad value the parameter and its range."""
+    form = cli_form(cls)
     parts = [p.strip() for p in text.split(",")]
+    words: dict[str, str] = {}
+    for name, allowed in reversed(cls.CHOICES.items()):
+        if parts and parts[-1].lower() in allowed:
+            words[name] = parts.pop().lower()
+    counts = _counts(cls)
     try:
-        if not lo <= len(parts) <= hi:
+        if not counts[0] <= len(parts) <= counts[-1]:
             raise ValueError
-        return [float(p) for p in parts]
+        numbers = [float(p) for p in parts]
     except ValueError:
         raise argparse.ArgumentTypeError(
-            f"{option} must be {form}: {lo} to {hi} comma-separated numbers, got "
-            f"{text!r}"
+            f"{option} must be {form}: {counts[0]} to {counts[-1]} comma-separated "
+            f"numbers, got {text!r}"
         ) from None
-
-
-def _made(option: str, text: str, make: Callable[[], _T]) -> _T:
+    if len(numbers) not in counts:
+        together = " and ".join(SPECS[n].cli_name for n in cls.CLI_TOGETHER)
+        raise argparse.ArgumentTypeError(
+            f"{option} must be {form}: give {together} together, got {text!r}"
+        )
+    values: dict[str, object] = dict(zip(cls.CLI, numbers, strict=False))
+    values.update(words)
     try:
-        return make()
+        return cls(**values)
     except InvalidParameterError as err:
         raise argparse.ArgumentTypeError(f"{option} {text}: {err}") from None
 
 
 def _layer(text: str) -> Sublayer:
     """argparse type of --layer: a homogeneous sublayer."""
-    v = _numbers("--layer", LAYER_FORM, text, 3, 4)
-    return _made(
-        "--layer",
-        text,
-        lambda: Layer(
-            thickness=v[0], mu=v[1], nu=v[2], rho=v[3] if len(v) > 3 else 1.0
-        ),
-    )
+    return parse_cli("--layer", Layer, text)
 
 
 def _graded(text: str) -> Sublayer:
     """argparse type of --graded: an exponentially graded sublayer."""
-    v = _numbers("--graded", GRADED_FORM, text, 3, 5)
-    if len(v) == 4:
-        raise argparse.ArgumentTypeError(
-            f"--graded must be {GRADED_FORM}: give MU and RHO together, got {text!r}"
-        )
-    mu, rho = (v[3], v[4]) if len(v) == 5 else (1.0, 1.0)
-    return _made(
-        "--graded",
-        text,
-        lambda: GradedLayer(gamma_h=v[1], nu=v[2], thickness=v[0], mu=mu, rho=rho),
-    )
+    return parse_cli("--graded", GradedLayer, text)
 
 
 def _half_space(text: str) -> HalfSpace:
     """argparse type of --half-space: an elastic substrate under the stack."""
-    parts = [p.strip() for p in text.split(",")]
-    interface = "bonded"
-    if parts and parts[-1].lower() in INTERFACES:
-        interface = parts.pop().lower()
-    v = _numbers("--half-space", HALF_SPACE_FORM, ",".join(parts), 2, 3)
-    return _made(
-        "--half-space",
-        text,
-        lambda: HalfSpace(
-            mu=v[0], nu=v[1], rho=v[2] if len(v) > 2 else 1.0, interface=interface
-        ),
-    )
+    return parse_cli("--half-space", HalfSpace, text)
+
+
+OPTIONS: dict[str, MediumType] = {
+    "--layer": Layer,
+    "--graded": GradedLayer,
+    "--half-space": HalfSpace,
+}
+"""The medium's options and the value type each makes."""
 
 
 def add_medium_options(p: argparse.ArgumentParser) -> None:
@@ -103,35 +143,33 @@ def add_medium_options(p: argparse.ArgumentParser) -> None:
         type=_layer,
         action="append",
         default=None,
-        metavar="T,MU,NU[,RHO]",
+        metavar=cli_form(Layer),
         help="a homogeneous sublayer of the stack, top to bottom (repeat it; "
-        "with --graded in command-line order): thickness h_i/h (they sum to 1), "
-        "shear modulus and density per the top sublayer's (the top one: 1, 1; "
-        "RHO defaults to 1), Poisson's ratio; bonded. Instead of --nu; the "
-        "springs are --kw, --kp (or a --half-space). E.g. --layer 0.25,1,0.35 "
-        "--layer 0.75,0.1,0.3",
+        "with --graded in command-line order), bonded: "
+        f"{cli_fields_help(Layer)}. The thicknesses sum to 1; the top "
+        "sublayer's MU and RHO are 1. Instead of --nu; the springs are --kw, "
+        "--kp (or a --half-space). E.g. --layer 0.25,1,0.35 --layer 0.75,0.1,0.3",
     )
     p.add_argument(
         "--graded",
         dest="layers",
         type=_graded,
         action="append",
-        metavar="T,GAMMA_H,NU[,MU,RHO]",
+        metavar=cli_form(GradedLayer),
         help="an exponentially graded sublayer (mu and rho vary as "
         "exp(gamma y), y up: GAMMA_H > 0 softens with depth; the wave speeds "
-        "stay constant): thickness, gamma h, Poisson's ratio, and mu, rho at "
-        "its top (default 1, 1); repeat it, with --layer, top to bottom",
+        f"stay constant; MU, RHO at its top): {cli_fields_help(GradedLayer)}; "
+        "repeat it, with --layer, top to bottom",
     )
     p.add_argument(
         "--half-space",
         dest="half_space",
         type=_half_space,
         default=None,
-        metavar="MU,NU[,RHO][,bonded|smooth]",
+        metavar=cli_form(HalfSpace),
         help="an elastic half-space under the layer (or the --layer stack) "
-        "instead of springs: shear modulus and density per the top sublayer's "
-        "(RHO defaults to 1), Poisson's ratio, and the interface: bonded "
-        "(default) or smooth (frictionless). Not with --kw, --kp, --damping",
+        f"instead of springs: {cli_fields_help(HalfSpace)} (smooth: "
+        "frictionless). Not with --kw, --kp, --damping",
     )
 
 

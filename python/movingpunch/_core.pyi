@@ -16,7 +16,7 @@ def phi2(vstar: float, nu: float) -> float: ...
 def critical_speed(kw: float, nu: float, kp: float = 0.0) -> tuple[float, float]: ...
 def medium_critical_speed(
     *,
-    layers: list[tuple[float, float, float, float, float]],
+    layers: list[tuple[float, ...]],
     base: str = "springs",
     kw: float = 1.0,
     kp: float = 0.0,
@@ -28,7 +28,7 @@ def medium_response(
     t: npt.ArrayLike,
     *,
     vstar: float,
-    layers: list[tuple[float, float, float, float, float]],
+    layers: list[tuple[float, ...]],
     base: str = "springs",
     kw: float = 1.0,
     kp: float = 0.0,
@@ -92,7 +92,7 @@ def solve_contact(
     half_width: float = 0.0,
     table_x: list[float] = ...,
     table_y: list[float] = ...,
-    layers: list[tuple[float, float, float, float, float]] = ...,
+    layers: list[tuple[float, ...]] = ...,
     base: str = "springs",
     base_mu: float = 1.0,
     base_nu: float = 0.2,

@@ -24,10 +24,11 @@ the parameter and its range); ``Medium`` is the resolved pair a solve uses.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 import numpy.typing as npt
@@ -36,10 +37,13 @@ from movingpunch import _core, params
 from movingpunch.errors import InvalidParameterError
 
 __all__ = [
+    "BASE_TYPES",
+    "SUBLAYER_TYPES",
     "GradedLayer",
     "HalfSpace",
     "Layer",
     "Medium",
+    "ValueType",
     "Winkler",
     "resolve_medium",
 ]
@@ -60,8 +64,92 @@ def _check(name: str, value: object, what: str) -> float:
         ) from None
 
 
+class ValueType:
+    """The field table of a medium's value type: everything that reads or
+    writes one (its checks, ``describe()``, ``to_dict()``, ``core_args()``,
+    scene files, the command line's --layer/--graded/--half-space and the
+    terminal UI's medium editor) iterates over these class attributes, and
+    each scalar's range, unit, meaning and texts come from
+    ``movingpunch.params.SPECS`` under the same name. A new scalar parameter
+    of a medium is a dataclass field, its name in ``FIELDS`` and its row in
+    ``SPECS`` (docs/media.md, "The value types' fields")."""
+
+    KIND: ClassVar[str]
+    """The type's ``kind`` in scene files and ``to_dict()``."""
+    FIELDS: ClassVar[tuple[str, ...]]
+    """The scalar fields, in the order scenes, ``to_dict()``, ``describe()``
+    and the terminal UI show them; each is a key of ``params.SPECS``."""
+    CHOICES: ClassVar[dict[str, tuple[str, ...]]] = {}
+    """Fields that take one of a few words (a half-space's ``interface``)."""
+    CLI: ClassVar[tuple[str, ...]] = ()
+    """The positions of the command line's comma-separated values (empty:
+    not an option of its own)."""
+    CLI_REQUIRED: ClassVar[int] = 0
+    """How many leading ``CLI`` positions are required."""
+    CLI_TOGETHER: ClassVar[tuple[str, ...]] = ()
+    """Optional ``CLI`` positions given all or none."""
+    TITLE: ClassVar[str] = "{fields}"
+    """``describe()``: ``{fields}`` and each of ``CHOICES`` filled in."""
+
+    def __post_init__(self) -> None:
+        cls = type(self).__name__
+        for name in self.FIELDS:
+            value = _check(name, getattr(self, name), f"{cls}.{name}")
+            object.__setattr__(self, name, value)
+        for name, words in self.CHOICES.items():
+            value = getattr(self, name)
+            if value not in words:
+                allowed = " or ".join(repr(w) for w in words)
+                raise InvalidParameterError(
+                    f"{cls}.{name} must be {allowed}, got {value!r}",
+                    parameter=name,
+                    allowed=allowed,
+                )
+
+    @classmethod
+    def default(cls, name: str) -> Any:
+        """The default of field ``name`` (``dataclasses.MISSING``: required)."""
+        for f in dataclasses.fields(cls):  # type: ignore[arg-type]
+            if f.name == name:
+                return f.default
+        raise KeyError(name)
+
+    @classmethod
+    def required(cls) -> tuple[str, ...]:
+        """The fields without a default, in ``FIELDS`` order."""
+        return tuple(
+            n
+            for n in (*cls.FIELDS, *cls.CHOICES)
+            if cls.default(n) is dataclasses.MISSING
+        )
+
+    def describe(self) -> str:
+        """One line: each field as ``params.SPECS`` shows it; a field at a
+        default of 0 (a term switched off: kp, damping) is left out."""
+        shown = []
+        for name in self.FIELDS:
+            value = float(getattr(self, name))
+            if value == 0.0 and self.default(name) == 0.0:
+                continue
+            shown.append(f"{params.SPECS[name].shown_as} {value:g}")
+        words = {name: getattr(self, name) for name in self.CHOICES}
+        return self.TITLE.format(fields=", ".join(shown), **words)
+
+    def to_dict(self) -> dict[str, object]:
+        """``kind`` and every field, as a scene's table holds them."""
+        out: dict[str, object] = {"kind": self.KIND}
+        out.update((name, getattr(self, name)) for name in self.FIELDS)
+        out.update((name, getattr(self, name)) for name in self.CHOICES)
+        return out
+
+
+SUBLAYER_ROW: tuple[str, ...] = ("thickness", "mu", "nu", "rho", "gamma_h")
+"""A sublayer's row as the core takes it (``_core`` ``layers=``; the C++
+``Sublayer``, cpp/bindings/bindings.hpp ``medium_spec``)."""
+
+
 @dataclass(frozen=True)
-class Layer:
+class Layer(ValueType):
     """A homogeneous sublayer: ``thickness`` (h_i/h in (0, 1]), shear modulus
     ``mu`` and density ``rho`` per the top sublayer's (1 for the top), and
     Poisson's ratio ``nu`` in [0, 0.5)."""
@@ -71,37 +159,23 @@ class Layer:
     nu: float = 0.2
     rho: float = 1.0
 
-    def __post_init__(self) -> None:
-        for name in ("thickness", "mu", "nu", "rho"):
-            value = _check(name, getattr(self, name), f"Layer.{name}")
-            object.__setattr__(self, name, value)
+    KIND: ClassVar[str] = "layer"
+    FIELDS: ClassVar[tuple[str, ...]] = ("thickness", "mu", "nu", "rho")
+    CLI: ClassVar[tuple[str, ...]] = ("thickness", "mu", "nu", "rho")
+    CLI_REQUIRED: ClassVar[int] = 3
+    TITLE: ClassVar[str] = "layer {fields}"
 
     @property
     def gamma_h(self) -> float:
         return 0.0
 
-    def row(self) -> tuple[float, float, float, float, float]:
-        """(thickness, mu, nu, rho, gamma_h) as the core takes it."""
-        return (self.thickness, self.mu, self.nu, self.rho, 0.0)
-
-    def describe(self) -> str:
-        return (
-            f"layer h_i/h = {self.thickness:g}, mu {self.mu:g}, nu {self.nu:g}, "
-            f"rho {self.rho:g}"
-        )
-
-    def to_dict(self) -> dict[str, object]:
-        return {
-            "kind": "layer",
-            "thickness": self.thickness,
-            "mu": self.mu,
-            "nu": self.nu,
-            "rho": self.rho,
-        }
+    def row(self) -> tuple[float, ...]:
+        """``SUBLAYER_ROW`` of this sublayer, as the core takes it."""
+        return tuple(float(getattr(self, n)) for n in SUBLAYER_ROW)
 
 
 @dataclass(frozen=True)
-class GradedLayer:
+class GradedLayer(ValueType):
     """An exponentially graded sublayer: mu(y) = mu exp(gamma_h (y - y_top)/h)
     and rho likewise (y up, so gamma_h > 0 softens with depth; the wave speeds
     are constant). ``mu``, ``rho``: the values at its top, per the top
@@ -113,36 +187,26 @@ class GradedLayer:
     mu: float = 1.0
     rho: float = 1.0
 
-    def __post_init__(self) -> None:
-        for name in ("gamma_h", "thickness", "mu", "nu", "rho"):
-            value = _check(name, getattr(self, name), f"GradedLayer.{name}")
-            object.__setattr__(self, name, value)
+    KIND: ClassVar[str] = "graded"
+    FIELDS: ClassVar[tuple[str, ...]] = ("thickness", "gamma_h", "mu", "nu", "rho")
+    CLI: ClassVar[tuple[str, ...]] = ("thickness", "gamma_h", "nu", "mu", "rho")
+    CLI_REQUIRED: ClassVar[int] = 3
+    CLI_TOGETHER: ClassVar[tuple[str, ...]] = ("mu", "rho")
+    TITLE: ClassVar[str] = "graded layer {fields} at its top"
 
-    def row(self) -> tuple[float, float, float, float, float]:
-        return (self.thickness, self.mu, self.nu, self.rho, self.gamma_h)
-
-    def describe(self) -> str:
-        return (
-            f"graded layer h_i/h = {self.thickness:g}, gamma h = {self.gamma_h:g}, "
-            f"mu {self.mu:g}, nu {self.nu:g}, rho {self.rho:g} at its top"
-        )
-
-    def to_dict(self) -> dict[str, object]:
-        return {
-            "kind": "graded",
-            "thickness": self.thickness,
-            "gamma_h": self.gamma_h,
-            "mu": self.mu,
-            "nu": self.nu,
-            "rho": self.rho,
-        }
+    def row(self) -> tuple[float, ...]:
+        """``SUBLAYER_ROW`` of this sublayer, as the core takes it."""
+        return tuple(float(getattr(self, n)) for n in SUBLAYER_ROW)
 
 
 Sublayer = Layer | GradedLayer
 
+SUBLAYER_TYPES: tuple[type[Layer] | type[GradedLayer], ...] = (Layer, GradedLayer)
+"""The kinds of sublayer, the homogeneous first."""
+
 
 @dataclass(frozen=True)
-class Winkler:
+class Winkler(ValueType):
     """Springs under the stack: ``kw`` = k_w h/mu_1 (inf: a smooth rigid
     base), a Pasternak shear layer ``kp`` = k_p/(mu_1 h), dashpots
     ``damping`` = c_w c_T/mu_1."""
@@ -151,30 +215,12 @@ class Winkler:
     kp: float = 0.0
     damping: float = 0.0
 
-    def __post_init__(self) -> None:
-        for name in ("kw", "kp", "damping"):
-            value = _check(name, getattr(self, name), f"Winkler.{name}")
-            object.__setattr__(self, name, value)
-
-    def describe(self) -> str:
-        out = f"kw = {self.kw:g}"
-        if self.kp:
-            out += f", kp = {self.kp:g}"
-        if self.damping:
-            out += f", damping = {self.damping:g}"
-        return out
-
-    def to_dict(self) -> dict[str, object]:
-        return {
-            "kind": "winkler",
-            "kw": self.kw,
-            "kp": self.kp,
-            "damping": self.damping,
-        }
+    KIND: ClassVar[str] = "winkler"
+    FIELDS: ClassVar[tuple[str, ...]] = ("kw", "kp", "damping")
 
 
 @dataclass(frozen=True)
-class HalfSpace:
+class HalfSpace(ValueType):
     """An elastic half-space under the stack: ``mu``, ``rho`` per the top
     sublayer's, Poisson's ratio ``nu``; ``interface`` "bonded" (u, v, tau,
     sigma_y continuous) or "smooth" (frictionless contact: tau = 0)."""
@@ -184,35 +230,62 @@ class HalfSpace:
     rho: float = 1.0
     interface: str = "bonded"
 
-    def __post_init__(self) -> None:
-        for name in ("mu", "nu", "rho"):
-            value = _check(name, getattr(self, name), f"HalfSpace.{name}")
-            object.__setattr__(self, name, value)
-        if self.interface not in INTERFACES:
-            raise InvalidParameterError(
-                f"HalfSpace.interface must be 'bonded' or 'smooth', got "
-                f"{self.interface!r}",
-                parameter="interface",
-                allowed="'bonded' or 'smooth'",
-            )
-
-    def describe(self) -> str:
-        return (
-            f"{self.interface} half-space (mu {self.mu:g}, nu {self.nu:g}, "
-            f"rho {self.rho:g})"
-        )
-
-    def to_dict(self) -> dict[str, object]:
-        return {
-            "kind": "half_space",
-            "mu": self.mu,
-            "nu": self.nu,
-            "rho": self.rho,
-            "interface": self.interface,
-        }
+    KIND: ClassVar[str] = "half_space"
+    FIELDS: ClassVar[tuple[str, ...]] = ("mu", "nu", "rho")
+    CHOICES: ClassVar[dict[str, tuple[str, ...]]] = {"interface": INTERFACES}
+    CLI: ClassVar[tuple[str, ...]] = ("mu", "nu", "rho")
+    CLI_REQUIRED: ClassVar[int] = 2
+    TITLE: ClassVar[str] = "{interface} half-space ({fields})"
 
 
 Base = Winkler | HalfSpace
+
+BASE_TYPES: tuple[type[Winkler] | type[HalfSpace], ...] = (Winkler, HalfSpace)
+"""The kinds of base."""
+
+CLI_OPTIONS: dict[str, str] = {
+    "layer": "--layer",
+    "graded": "--graded",
+    "half_space": "--half-space",
+    "winkler": "--kw, --kp, --damping",
+}
+"""The command line's option of each kind (movingpunch._cli_media)."""
+
+
+def fields_table() -> str:
+    """The value types' fields as a Markdown table (docs/media.md holds it
+    verbatim; tests/python/test_param_table.py checks it)."""
+    lines = [
+        "| type (scene `kind`) | field (scene key) | CLI | TUI | range, unit "
+        "| default | meaning |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    for cls in (*SUBLAYER_TYPES, *BASE_TYPES):
+        for name in (*cls.FIELDS, *cls.CHOICES):
+            default = cls.default(name)
+            if default is dataclasses.MISSING:
+                shown = "required"
+            else:
+                shown = f'"{default}"' if isinstance(default, str) else f"{default:g}"
+            if name in cls.CHOICES:
+                rng = " or ".join(f'"{w}"' for w in cls.CHOICES[name])
+                meaning = "the interface with the stack (smooth: frictionless)"
+                cli, tui = "a last word", "the base selector"
+            else:
+                spec = params.SPECS[name]
+                rng, meaning, tui = spec.text, spec.meaning, spec.heading
+                cli = (
+                    f"{CLI_OPTIONS[cls.KIND]} {spec.cli_name}"
+                    if name in cls.CLI
+                    else f"--{name}"
+                )
+                if cls is Winkler:
+                    tui = f"panel: {name}"
+            lines.append(
+                f"| {cls.__name__} (`{cls.KIND}`) | `{name}` | `{cli}` | {tui} | "
+                f"{rng.replace('|', '/')} | {shown} | {meaning} |"
+            )
+    return "\n".join(lines) + "\n"
 
 
 @dataclass(frozen=True)
@@ -299,12 +372,8 @@ class Medium:
         if isinstance(base, Winkler):
             out.update(base="springs")
         else:
-            out.update(
-                base=base.interface,
-                base_mu=base.mu,
-                base_nu=base.nu,
-                base_rho=base.rho,
-            )
+            out.update(base=base.interface)
+            out.update((f"base_{n}", getattr(base, n)) for n in HalfSpace.FIELDS)
         return out
 
     def describe(self) -> str:

@@ -16,14 +16,16 @@ from __future__ import annotations
 import math
 import numbers
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from types import MappingProxyType
 
 from movingpunch.errors import InvalidParameterError
 
 __all__ = [
+    "CONTACT_MODES",
     "PRESETS",
     "SPECS",
+    "Numerics",
     "ParamSpec",
     "check",
     "check_size",
@@ -71,6 +73,29 @@ class ParamSpec:
     note: str = ""
     """Appended to the range in every text (presets, the meaning of inf)."""
     integer: bool = False
+    symbol: str = ""
+    """How ``describe()`` shows the value: ``"h_i/h ="`` gives
+    ``h_i/h = 0.25``; "" gives the name and a space (``mu 1``)."""
+    label: str = ""
+    """The terminal UI's column heading ("" : the name)."""
+    metavar: str = ""
+    """The command line's name of the value in a comma-separated option
+    (``--layer T,MU,NU``); "" : the name in capitals."""
+
+    @property
+    def shown_as(self) -> str:
+        """The prefix of the value in ``describe()``."""
+        return self.symbol or self.name
+
+    @property
+    def heading(self) -> str:
+        """The terminal UI's heading of the input."""
+        return self.label or self.name
+
+    @property
+    def cli_name(self) -> str:
+        """The value's name in a comma-separated command-line option."""
+        return self.metavar or self.name.upper()
 
     @property
     def range(self) -> str:
@@ -164,6 +189,7 @@ SPECS: Mapping[str, ParamSpec] = MappingProxyType(
                 None,
                 inf_ok=True,
                 note="(inf: smooth rigid base)",
+                symbol="kw =",
             ),
             ParamSpec(
                 "kp",
@@ -176,6 +202,7 @@ SPECS: Mapping[str, ParamSpec] = MappingProxyType(
                 "(two-parameter foundation)",
                 0.0,
                 note="(0: Winkler springs alone)",
+                symbol="kp =",
             ),
             ParamSpec(
                 "radius", 0.0, 1e12, True, False, "R/h", "radius of the punch", None
@@ -189,6 +216,9 @@ SPECS: Mapping[str, ParamSpec] = MappingProxyType(
                 "h_i/h",
                 "thickness of a sublayer (the sublayers' sum to 1)",
                 None,
+                symbol="h_i/h =",
+                label="h_i/h",
+                metavar="T",
             ),
             ParamSpec(
                 "mu",
@@ -200,6 +230,7 @@ SPECS: Mapping[str, ParamSpec] = MappingProxyType(
                 "shear modulus of a sublayer or the half-space, per the top's",
                 1.0,
                 note="(1 for the top sublayer)",
+                label="μ/μ₁",
             ),
             ParamSpec(
                 "rho",
@@ -211,6 +242,7 @@ SPECS: Mapping[str, ParamSpec] = MappingProxyType(
                 "density of a sublayer or the half-space, per the top's",
                 1.0,
                 note="(1 for the top sublayer)",
+                label="ρ/ρ₁",
             ),
             ParamSpec(
                 "gamma_h",
@@ -222,6 +254,8 @@ SPECS: Mapping[str, ParamSpec] = MappingProxyType(
                 "grading of a sublayer: mu and rho vary as exp(gamma y) from its top",
                 None,
                 note="(0: homogeneous)",
+                symbol="gamma h =",
+                label="gamma h",
             ),
             ParamSpec(
                 "half_width",
@@ -245,7 +279,15 @@ SPECS: Mapping[str, ParamSpec] = MappingProxyType(
                 None,
             ),
             ParamSpec(
-                "nu", 0.0, 0.5, False, True, "", "Poisson's ratio of the layer", 0.2
+                "nu",
+                0.0,
+                0.5,
+                False,
+                True,
+                "",
+                "Poisson's ratio of the layer",
+                0.2,
+                label="ν",
             ),
             ParamSpec(
                 "damping",
@@ -257,6 +299,7 @@ SPECS: Mapping[str, ParamSpec] = MappingProxyType(
                 "dashpots beside the foundation's springs (Kelvin-Voigt)",
                 0.0,
                 note="(0: no dashpots, the paper's model)",
+                symbol="damping =",
             ),
             ParamSpec(
                 "friction",
@@ -397,3 +440,58 @@ def check_size(value: object, most: int = SIZE_MAX, what: str = "") -> int:
     raise InvalidParameterError(
         f"n must be {allowed}{what}, got {value!r}", parameter="n", allowed=allowed
     )
+
+
+CONTACT_MODES: tuple[str, ...] = ("auto", "single")
+"""``contact=``: "auto" finds the contact set (several zones when the single
+contact is unphysical), "single" keeps the single contact
+(``movingpunch.zones.CONTACT_MODES``)."""
+
+
+@dataclass(frozen=True)
+class Numerics:
+    """How a solve computes, as one value: ``tol`` (relative, on a/h, or a
+    preset name: kept as the number), ``n`` (None: automatic, else an even
+    collocation size), ``allow_unphysical`` and ``contact`` ("auto" or
+    "single"), checked when made as ``movingpunch.solve`` checks its
+    keywords of the same names (InvalidParameterError naming the parameter
+    and its range). ``movingpunch.solve(..., numerics=Numerics(...))`` takes
+    it instead of those keywords."""
+
+    tol: float | str = 1e-8
+    n: int | None = None
+    allow_unphysical: bool = False
+    contact: str = "auto"
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "tol", check("tol", self.tol))
+        check_size(self.n)
+        if not isinstance(self.allow_unphysical, bool):
+            raise InvalidParameterError(
+                f"allow_unphysical must be True or False, got "
+                f"{self.allow_unphysical!r}",
+                parameter="allow_unphysical",
+                allowed="True or False",
+            )
+        if not isinstance(self.contact, str) or self.contact not in CONTACT_MODES:
+            allowed = " or ".join(f'"{m}"' for m in CONTACT_MODES)
+            raise InvalidParameterError(
+                f"contact must be {allowed}, got {self.contact!r}",
+                parameter="contact",
+                allowed=allowed,
+            )
+
+    def keywords(self, **given: object) -> tuple[float | str, int | None, bool, str]:
+        """(tol, n, allow_unphysical, contact) for solve; ``given``: solve's
+        keywords of those names as the call had them (giving one both ways,
+        away from its default, is an InvalidParameterError naming it)."""
+        for f in fields(self):
+            value = given.get(f.name, f.default)
+            if value is not f.default and value != f.default:
+                raise InvalidParameterError(
+                    f"{f.name}: the numerics are given by numerics= ({self!r}); "
+                    f"give {f.name} there, not as a keyword too",
+                    parameter=f.name,
+                    allowed="omitted when numerics= is given",
+                )
+        return self.tol, self.n, self.allow_unphysical, self.contact

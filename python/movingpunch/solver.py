@@ -55,7 +55,7 @@ from movingpunch.media import (
     Winkler,
     resolve_medium,
 )
-from movingpunch.params import PRESETS
+from movingpunch.params import PRESETS, Numerics
 from movingpunch.profiles import (
     Cylinder,
     Flat,
@@ -257,6 +257,7 @@ def solve(
     contact: Literal["single"],
     layers: Sequence[Sublayer] | None = ...,
     base: Base | None = ...,
+    numerics: Numerics | None = ...,
     cancel: Cancel | None = ...,
 ) -> Solution: ...
 
@@ -279,6 +280,7 @@ def solve(
     contact: str = ...,
     layers: Sequence[Sublayer] | None = ...,
     base: Base | None = ...,
+    numerics: Numerics | None = ...,
     cancel: Cancel | None = ...,
 ) -> ContactSolution: ...
 
@@ -301,6 +303,7 @@ def solve(
     contact: str = "auto",
     layers: Sequence[Sublayer] | None = None,
     base: Base | None = None,
+    numerics: Numerics | None = None,
     cancel: Cancel | None = None,
 ) -> ContactSolution:
     """Solves the contact problem of a rigid punch sliding over the layer.
@@ -381,6 +384,10 @@ def solve(
     undamped, symmetric profiles); the other combinations are refused, by
     name, until they are supported.
 
+    ``numerics`` (``movingpunch.Numerics``: tol, n, allow_unphysical,
+    contact as one checked value) stands for those four keywords; giving
+    one of them too is an InvalidParameterError naming it.
+
     ``cancel`` is a ``movingpunch.Cancel`` token (None: none): its
     ``cancel()``, from any thread, stops the solve, which raises
     ``movingpunch.Cancelled`` within about 50 ms (``movingpunch.cancel``).
@@ -390,6 +397,10 @@ def solve(
     """
     from movingpunch.asymmetric import check_damping, check_friction, solve_asymmetric
 
+    if numerics is not None:
+        tol, n, allow_unphysical, contact = numerics.keywords(
+            tol=tol, n=n, allow_unphysical=allow_unphysical, contact=contact
+        )
     medium: Medium | None = None
     if layers is not None or base is not None:
         medium = resolve_medium(

@@ -452,9 +452,9 @@ def test_solve_on_one_layer_given_by_layer_is_the_paper_layer(
         ).stdout
     )
     assert data["a"] == pytest.approx(0.330419, abs=1e-6)
-    assert data["medium"]["layers"] == [
-        {"kind": "layer", "thickness": 1.0, "mu": 1.0, "nu": 0.2, "rho": 1.0}
-    ]
+    (layer,) = data["medium"]["layers"]
+    expected = {"kind": "layer", "thickness": 1.0, "mu": 1.0, "nu": 0.2, "rho": 1.0}
+    assert expected.items() <= layer.items()  # (and any field added, at its default)
 
 
 def test_help_documents_the_medium_options(
@@ -463,9 +463,9 @@ def test_help_documents_the_medium_options(
     for command in ("solve", "critical"):
         out = run_cli(command, "--help").stdout
         for text in (
-            "--layer T,MU,NU[,RHO]",
-            "--graded T,GAMMA_H,NU[,MU,RHO]",
-            "--half-space MU,NU[,RHO][,bonded|smooth]",
+            "--layer T,MU,NU[,RHO",  # (and any field added to the table)
+            "--graded T,GAMMA_H,NU[,MU,RHO",
+            "--half-space MU,NU[,RHO",
         ):
             assert text in out, (command, text)
 
@@ -473,11 +473,11 @@ def test_help_documents_the_medium_options(
 @pytest.mark.parametrize(
     ("extra", "words"),
     [
-        (["--kw", "1", "--layer", "1,1"], ["--layer", "T,MU,NU[,RHO]", "'1,1'"]),
-        (["--kw", "1", "--layer", "1,a,0.2"], ["--layer", "T,MU,NU[,RHO]"]),
+        (["--kw", "1", "--layer", "1,1"], ["--layer", "T,MU,NU[,RHO", "'1,1'"]),
+        (["--kw", "1", "--layer", "1,a,0.2"], ["--layer", "T,MU,NU[,RHO"]),
         (["--kw", "1", "--layer", "1,1,0.7"], ["--layer 1,1,0.7", "nu", "0.5"]),
         (["--kw", "1", "--graded", "1,1,0.2,2"], ["--graded", "MU and RHO together"]),
-        (["--half-space", "0.1"], ["--half-space", "MU,NU[,RHO][,bonded|smooth]"]),
+        (["--half-space", "0.1"], ["--half-space", "MU,NU[,RHO", "bonded|smooth]"]),
         (["--half-space", "0.1,0.3,glued"], ["--half-space", "bonded|smooth"]),
         (["--kw", "1", "--half-space", "0.1,0.3"], ["--kw", "--half-space"]),
         (["--kp", "1", "--half-space", "0.1,0.3"], ["--kp", "--half-space"]),

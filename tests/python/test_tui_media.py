@@ -108,13 +108,8 @@ async def test_medium_one_sublayer_is_the_plain_layer_on_screen() -> None:
         await settle(pilot)
         editor = await open_editor(pilot)
         assert len(editor.rows()) == 1
-        assert row(editor, 1).texts() == {
-            "thickness": "1",
-            "mu": "1",
-            "nu": "0.2",
-            "rho": "1",
-            "gamma_h": "0",
-        }
+        shown = {"thickness": "1", "mu": "1", "nu": "0.2", "rho": "1", "gamma_h": "0"}
+        assert shown.items() <= row(editor, 1).texts().items()
         await type_in(pilot, row(editor, 1).box("nu"), "0.3")
         assert editor.error == ""
         await pilot.press("enter")

@@ -14,7 +14,13 @@ from typing import Protocol
 
 import numpy as np
 
-from movingpunch.media import HalfSpace, Medium, Winkler
+from movingpunch.media import (
+    BASE_TYPES,
+    SUBLAYER_TYPES,
+    HalfSpace,
+    Medium,
+    Winkler,
+)
 from movingpunch.params import PHYSICAL, SPECS
 from movingpunch.profiles import PunchProfile
 from movingpunch.zones import Punch
@@ -52,18 +58,16 @@ CONTACT_MODES: tuple[str, ...] = ("auto", "single")
 MAX_PUNCHES = 16
 
 LAYER_KEYS: dict[str, tuple[str, ...]] = {
-    "layer": ("kind", "thickness", "mu", "nu", "rho"),
-    "graded": ("kind", "thickness", "gamma_h", "mu", "nu", "rho"),
+    cls.KIND: ("kind", *cls.FIELDS, *cls.CHOICES) for cls in SUBLAYER_TYPES
 }
 """``[[layers]]``: the keys of each kind of sublayer (``kind`` defaults to
-"layer"; ``movingpunch.Layer`` and ``GradedLayer``)."""
+"layer"; ``movingpunch.Layer`` and ``GradedLayer``: their field tables)."""
 
 BASE_KEYS: dict[str, tuple[str, ...]] = {
-    "winkler": ("kind", "kw", "kp", "damping"),
-    "half_space": ("kind", "mu", "nu", "rho", "interface"),
+    cls.KIND: ("kind", *cls.FIELDS, *cls.CHOICES) for cls in BASE_TYPES
 }
 """``[base]``: the keys of each kind of base (``movingpunch.Winkler`` and
-``HalfSpace``)."""
+``HalfSpace``: their field tables)."""
 
 MAX_LAYERS = 32
 """Most sublayers a scene's ``[[layers]]`` lists."""

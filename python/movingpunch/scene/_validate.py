@@ -12,18 +12,18 @@ import itertools
 import math
 import numbers
 from collections.abc import Callable, Iterable, Mapping, Sequence
-from typing import Any
+from typing import Any, TypeVar
 
 import numpy as np
 
 from movingpunch.errors import InvalidParameterError, SceneError
 from movingpunch.media import (
-    INTERFACES,
-    GradedLayer,
+    BASE_TYPES,
+    SUBLAYER_TYPES,
     HalfSpace,
-    Layer,
     Medium,
     Sublayer,
+    ValueType,
     Winkler,
     resolve_medium,
 )
@@ -98,10 +98,26 @@ def parse_profile(
         raise c.fail(key, problem, exc.allowed or "", exc.parameter) from exc
 
 
-_LAYERS_ALLOWED = (
-    '[[layers]] tables, top to bottom: kind = "layer" (thickness, mu, nu, rho) '
-    'or "graded" (thickness, gamma_h, mu, nu, rho)'
-)
+def _kinds_text(types: Iterable[type[ValueType]]) -> str:
+    """``kind = "layer" (thickness, mu, nu, rho) or "graded" (...)``: each
+    type's keys from its field table (a choice with its words)."""
+    return "kind = " + " or ".join(
+        f'"{cls.KIND}" ('
+        + ", ".join(
+            [
+                *cls.FIELDS,
+                *(
+                    f"{name} = " + " or ".join(f'"{w}"' for w in words)
+                    for name, words in cls.CHOICES.items()
+                ),
+            ]
+        )
+        + ")"
+        for cls in types
+    )
+
+
+_LAYERS_ALLOWED = "[[layers]] tables, top to bottom: " + _kinds_text(SUBLAYER_TYPES)
 
 
 def _media_fail(c: Checker, key: str, exc: InvalidParameterError) -> SceneError:
@@ -114,9 +130,9 @@ def _media_fail(c: Checker, key: str, exc: InvalidParameterError) -> SceneError:
 
 def parse_layers(c: Checker, raw: object) -> tuple[Sublayer, ...]:
     """A scene's ``[[layers]]`` tables, top to bottom: ``kind`` = "layer"
-    (the default: thickness, mu, nu, rho) or "graded" (thickness, gamma_h,
-    mu, nu, rho), bonded; the thicknesses sum to 1 and the top sublayer's mu
-    and rho are 1 (the units). Errors name ``layers[k].key`` (k from 0)."""
+    (the default) or "graded", each with its type's fields (``LAYER_KEYS``),
+    bonded; the thicknesses sum to 1 and the top sublayer's mu and rho are 1
+    (the units). Errors name ``layers[k].key`` (k from 0)."""
     if isinstance(raw, (str, bytes, Mapping)) or not isinstance(raw, Sequence):
         raise c.fail(
             "layers", f"must be a list of tables, got {show(raw)}", _LAYERS_ALLOWED
@@ -133,19 +149,8 @@ def parse_layers(c: Checker, raw: object) -> tuple[Sublayer, ...]:
             raise c.fail(where, f"must be a table, got {show(item)}", _LAYERS_ALLOWED)
         kind = c.string(f"{where}.kind", item.get("kind", "layer"), kinds)
         t = c.table(where, item, LAYER_KEYS[kind])
-        if kind == "graded" and "gamma_h" not in t:
-            raise c.fail(
-                f"{where}.gamma_h", "missing", allowed_text("gamma_h"), "gamma_h"
-            )
-        values = {
-            name: c.param(f"{where}.{name}", name, t[name])
-            for name in LAYER_KEYS[kind]
-            if name != "kind" and name in t
-        }
-        try:
-            out.append(GradedLayer(**values) if kind == "graded" else Layer(**values))
-        except InvalidParameterError as exc:  # pragma: no cover - c.param checked
-            raise _media_fail(c, f"{where}.{exc.parameter}", exc) from exc
+        cls = next(s for s in SUBLAYER_TYPES if kind == s.KIND)
+        out.append(_value_of(c, where, cls, t))
     try:
         return resolve_medium(layers=out, kw=1.0).layers
     except InvalidParameterError as exc:
@@ -153,35 +158,50 @@ def parse_layers(c: Checker, raw: object) -> tuple[Sublayer, ...]:
         raise _media_fail(c, key, exc) from exc
 
 
+_V = TypeVar("_V", bound=ValueType)
+
+
+def _value_of(c: Checker, where: str, cls: type[_V], t: Mapping[str, Any]) -> _V:
+    """The value type ``cls`` of a scene's table ``t`` (its keys checked):
+    every field from the type's table, checked against ``params.SPECS``;
+    a missing required field, a bad value or a bad word named as
+    ``where.key``."""
+    for name in cls.required():
+        if name not in t:
+            allowed = (
+                allowed_text(name)
+                if name in cls.FIELDS
+                else " or ".join(repr(w) for w in cls.CHOICES[name])
+            )
+            raise c.fail(f"{where}.{name}", "missing", allowed, name)
+    values: dict[str, Any] = {
+        name: c.param(f"{where}.{name}", name, t[name])
+        for name in cls.FIELDS
+        if name in t
+    }
+    for name, words in cls.CHOICES.items():
+        if name in t:
+            values[name] = c.string(f"{where}.{name}", t[name], words)
+    try:
+        return cls(**values)
+    except InvalidParameterError as exc:  # pragma: no cover - c.param checked
+        raise _media_fail(c, f"{where}.{exc.parameter}", exc) from exc
+
+
 def parse_base(c: Checker, raw: object) -> Winkler | HalfSpace:
     """A scene's ``[base]`` table: ``kind`` = "winkler" (kw, kp, damping:
     the springs of [params] moved here) or "half_space" (mu, nu, rho per the
-    top sublayer's, interface = "bonded" or "smooth")."""
-    allowed = (
-        'kind = "winkler" (kw, kp, damping) or "half_space" (mu, nu, rho, '
-        'interface = "bonded" or "smooth")'
-    )
+    top sublayer's, interface = "bonded" or "smooth"): each with its type's
+    fields (``BASE_KEYS``)."""
+    allowed = _kinds_text(BASE_TYPES)
     if not isinstance(raw, Mapping):
         raise c.fail("base", f"must be a table, got {show(raw)}", allowed)
     if "kind" not in raw:
         raise c.fail("base.kind", "missing", ", ".join(BASE_KEYS))
     kind = c.string("base.kind", raw["kind"], tuple(BASE_KEYS))
     t = c.table("base", raw, BASE_KEYS[kind])
-    required = ("kw",) if kind == "winkler" else ("mu", "nu")
-    for name in required:
-        if name not in t:
-            raise c.fail(f"base.{name}", "missing", allowed_text(name), name)
-    values: dict[str, Any] = {
-        name: c.param(f"base.{name}", name, t[name])
-        for name in BASE_KEYS[kind]
-        if name not in ("kind", "interface") and name in t
-    }
-    if "interface" in t:
-        values["interface"] = c.string("base.interface", t["interface"], INTERFACES)
-    try:
-        return Winkler(**values) if kind == "winkler" else HalfSpace(**values)
-    except InvalidParameterError as exc:  # pragma: no cover - c.param checked
-        raise _media_fail(c, f"base.{exc.parameter}", exc) from exc
+    cls = next(b for b in BASE_TYPES if kind == b.KIND)
+    return _value_of(c, "base", cls, t)
 
 
 def _check_medium(c: Checker, scene: SceneData, raw: dict[str, Any]) -> Medium | None:

@@ -23,7 +23,15 @@ from movingpunch.accuracy import LADDER, AccuracyReport, accuracy_report
 from movingpunch.contract import ContactSolution
 from movingpunch.errors import InvalidParameterError, MovingPunchError
 from movingpunch.fields import StressPeaks
-from movingpunch.media import GradedLayer, HalfSpace, Layer, Medium, Sublayer, Winkler
+from movingpunch.media import (
+    SUBLAYER_TYPES,
+    GradedLayer,
+    HalfSpace,
+    Layer,
+    Medium,
+    Sublayer,
+    Winkler,
+)
 from movingpunch.params import OPTIONAL, PHYSICAL
 from movingpunch.params import check as check_param
 from movingpunch.profiles import PROFILE_KINDS, Flat, Profile, PunchProfile, RoundedFlat
@@ -1231,11 +1239,14 @@ def describe(values: Iterable[float]) -> str:
 
 # -- the medium editor ---------------------------------------------------------
 
-SUBLAYER_FIELDS: tuple[str, ...] = ("thickness", "mu", "nu", "rho", "gamma_h")
-"""The inputs of a sublayer's row in the medium editor (gamma_h 0: a
+SUBLAYER_FIELDS: tuple[str, ...] = tuple(
+    dict.fromkeys(name for cls in SUBLAYER_TYPES for name in cls.FIELDS)
+)
+"""The inputs of a sublayer's row in the medium editor: every field of every
+kind of sublayer (``movingpunch.media`` field tables; gamma_h 0: a
 homogeneous ``Layer``, else a ``GradedLayer``)."""
 
-HALF_SPACE_FIELDS: tuple[str, ...] = ("mu", "nu", "rho")
+HALF_SPACE_FIELDS: tuple[str, ...] = HalfSpace.FIELDS
 """The inputs of a half-space base."""
 
 BASE_KINDS: tuple[str, ...] = ("springs", "bonded", "smooth")
@@ -1248,11 +1259,14 @@ THICKNESS_SLACK = 1e-12
 
 def parse_sublayer(row: int, texts: dict[str, str]) -> Sublayer:
     """The sublayer of row ``row`` (1: the top) from the texts typed in its
-    inputs (``SUBLAYER_FIELDS``). Raises InvalidParameterError naming the
-    row, the parameter and its range (``.parameter``: the field's name).
-    The top row's mu and rho are the units: 1."""
-    values = {}
+    inputs (``SUBLAYER_FIELDS``; a field without a text takes its default,
+    gamma_h 0). Raises InvalidParameterError naming the row, the parameter
+    and its range (``.parameter``: the field's name). The top row's mu and
+    rho are the units: 1."""
+    values: dict[str, float] = {}
     for name in SUBLAYER_FIELDS:
+        if name not in texts:
+            continue
         try:
             values[name] = parse_param(name, texts[name])
         except InvalidParameterError as exc:
@@ -1261,7 +1275,7 @@ def parse_sublayer(row: int, texts: dict[str, str]) -> Sublayer:
             ) from None
     if row == 1:
         for name in ("mu", "rho"):
-            if values[name] != 1.0:
+            if values.get(name, 1.0) != 1.0:
                 raise InvalidParameterError(
                     f"sublayer 1: the top sublayer's {name} is the unit of every "
                     f"{name} (1 by definition), got {fmt(values[name])}; give "
@@ -1269,15 +1283,9 @@ def parse_sublayer(row: int, texts: dict[str, str]) -> Sublayer:
                     parameter=name,
                     allowed="1 for the top sublayer",
                 )
-    if values["gamma_h"] == 0.0:
-        return Layer(values["thickness"], values["mu"], values["nu"], values["rho"])
-    return GradedLayer(
-        values["gamma_h"],
-        values["nu"],
-        values["thickness"],
-        values["mu"],
-        values["rho"],
-    )
+    if values.get("gamma_h", 0.0) == 0.0:
+        return Layer(**{n: v for n, v in values.items() if n in Layer.FIELDS})
+    return GradedLayer(**{n: v for n, v in values.items() if n in GradedLayer.FIELDS})
 
 
 def check_thicknesses(layers: Sequence[Sublayer]) -> None:
@@ -1333,7 +1341,7 @@ def parse_base(kind: str, texts: dict[str, str]) -> HalfSpace | None:
             raise InvalidParameterError(
                 f"half-space: {exc}", parameter=name, allowed=exc.allowed
             ) from None
-    return HalfSpace(values["mu"], values["nu"], values["rho"], interface=kind)
+    return HalfSpace(**values, interface=kind)
 
 
 def with_medium(

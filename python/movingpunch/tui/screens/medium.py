@@ -1,6 +1,7 @@
 """The medium editor (key ``l`` on the main screen): the sublayers, top to
-bottom, each a row of inputs (thickness h_i/h, μ_i/μ_1, ν, ρ_i/ρ_1, gamma h; gamma h
-≠ 0 makes it a graded sublayer), and the base (the springs of the panel, or
+bottom, each a row of inputs (the fields of ``movingpunch.media``'s sublayer types:
+thickness h_i/h, μ_i/μ_1, ν, ρ_i/ρ_1, gamma h; gamma h ≠ 0 makes it a graded
+sublayer), and the base (the springs of the panel, or
 an elastic half-space bonded to the stack or in frictionless contact).
 
 Every input is checked as it is typed, as the panel's are: a message names
@@ -22,6 +23,7 @@ from textual.widgets import Footer, Input, Label, Select, Static
 
 from movingpunch.errors import InvalidParameterError
 from movingpunch.media import HalfSpace, Layer, Sublayer
+from movingpunch.params import SPECS
 from movingpunch.tui.model import (
     BASE_KINDS,
     HALF_SPACE_FIELDS,
@@ -39,13 +41,18 @@ MAX_SUBLAYERS = 8
 """The most sublayers the editor holds."""
 
 HEADINGS: dict[str, str] = {
-    "thickness": "h_i/h",
-    "mu": "μ/μ₁",
-    "nu": "ν",
-    "rho": "ρ/ρ₁",
-    "gamma_h": "gamma h",
+    name: SPECS[name].heading for name in (*SUBLAYER_FIELDS, *HALF_SPACE_FIELDS)
 }
-"""The column headings of the sublayer rows (and the half-space's)."""
+"""The column headings of the sublayer rows (and the half-space's): the
+parameter table's labels (``movingpunch.params.SPECS``)."""
+
+
+def box_width() -> int:
+    """The editor's width: the sublayer number, an input (12 and a margin of
+    1, app.tcss) per field of ``SUBLAYER_FIELDS`` and the frame (76 for
+    five fields)."""
+    return 6 + 5 + 13 * len(SUBLAYER_FIELDS)
+
 
 BASE_LABELS: dict[str, str] = {
     "springs": "springs (kw, kp, damp)",
@@ -147,6 +154,7 @@ class MediumEditor(ModalScreen[MediumChoice | None]):
             yield Footer(compact=True)
 
     def on_mount(self) -> None:
+        self.query_one("#medium-box", Vertical).styles.width = box_width()
         self._renumber()
         self._show_base()
         self.validate()
