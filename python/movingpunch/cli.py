@@ -47,7 +47,7 @@ from movingpunch._display import drag_scale, shown
 from movingpunch.contract import ContactSolution, SolvedPunch
 from movingpunch.errors import ClusterError, InvalidParameterError, MovingPunchError
 from movingpunch.fields import StressPeaks
-from movingpunch.media import Winkler
+from movingpunch.media import Medium, Winkler
 from movingpunch.params import help_text, range_text
 from movingpunch.profiles import (
     PROFILE_KINDS,
@@ -479,7 +479,7 @@ def _read_table(path: str) -> Profile:
 
 
 def _solve_train(
-    args: argparse.Namespace, profile: PunchProfile | None
+    args: argparse.Namespace, profile: PunchProfile | None, medium: Medium | None
 ) -> ContactSolution:
     """``solve --punch LOAD@AT ...``: the train, by solve_punches."""
     for given, option in (
@@ -504,6 +504,17 @@ def _solve_train(
             parameter="radius",
         )
     punches = [Punch(shape, load, at) for load, at in args.punch]
+    if medium is not None:
+        # On the medium (solve_punches refuses what it cannot take yet,
+        # naming it: a train under a half-space, damped springs under a stack).
+        return solve_punches(
+            punches,
+            vstar=args.vstar,
+            tol=args.tol,
+            friction=args.friction,
+            layers=list(medium.layers),
+            base=medium.base,
+        )
     return solve_punches(
         punches,
         vstar=args.vstar,
@@ -535,13 +546,7 @@ def _cmd_solve(args: argparse.Namespace) -> int:
         )
     s: ContactSolution
     if args.punch:
-        if medium is not None:
-            raise InvalidParameterError(
-                "--punch cannot be used with --layer/--graded/--half-space (a "
-                "train runs on the homogeneous layer on springs only so far)",
-                parameter="punch",
-            )
-        s = _solve_train(args, profile)
+        s = _solve_train(args, profile, medium)
     else:
         spring_args: dict[str, Any] = (
             {"kw": args.kw, "nu": args.nu, "damping": args.damping, "kp": args.kp}

@@ -500,15 +500,29 @@ def test_medium_options_errors_name_the_option(
     assert_one_line_error(run_cli("solve", *TABLE1_CASE, *extra), *words)
 
 
-def test_a_train_beside_a_layer_is_refused(
+def test_a_train_on_a_stack_and_refused_under_a_half_space(
     run_cli: Callable[..., subprocess.CompletedProcess[str]],
     assert_one_line_error: Callable[..., None],
 ) -> None:
+    """--punch beside --layer runs the train on the stack: two identical
+    sublayers give the homogeneous layer's train (the anchor); under a
+    half-space the train is refused naming the base."""
+    train = ["--punch", "0.002@-2", "--punch", "0.002@2", "--json"]
+    head = ["solve", "--vstar", "0", "--radius", "100"]
+    stack = run_cli(*head, "--kw", "1", "--layer", "0.4,1,0.2",
+                    "--layer", "0.6,1,0.2", *train)  # fmt: skip
+    plain = run_cli(*head, "--kw", "1", "--nu", "0.2", *train)
+    assert stack.returncode == 0, stack.stderr
+    assert plain.returncode == 0, plain.stderr
+    got, want = json.loads(stack.stdout), json.loads(plain.stdout)
+    assert len(got["medium"]["layers"]) == 2
+    for key in ("a", "indentation"):
+        assert got[key] == pytest.approx(want[key], rel=1e-8), key
     proc = run_cli(
-        "solve", "--vstar", "0", "--radius", "100", "--kw", "1",
-        "--layer", "1,1,0.2", "--punch", "0.002@-2", "--punch", "0.002@2",
+        "solve", "--vstar", "0", "--radius", "100", "--layer", "1,1,0.2",
+        "--half-space", "0.5,0.3", "--punch", "0.002@-2", "--punch", "0.002@2",
     )  # fmt: skip
-    assert_one_line_error(proc, "--punch", "--layer")
+    assert_one_line_error(proc, "base")
 
 
 def test_solve_on_identical_stack_sublayers_is_the_paper_layer(

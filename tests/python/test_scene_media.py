@@ -229,14 +229,14 @@ REFUSED = [
     ),
     (
         HEAD + STACK + "[outputs]\ncritical_speed = true\n"
-        '[vary]\nparam = "friction"\nvalues = [0.0, 0.1]\n',
+        '[vary]\nparam = "damping"\nvalues = [0.0, 0.1]\n',
         "vary.param",
-        "friction cannot vary beside this medium",
+        "damping cannot vary beside this medium",
     ),
     (
-        HEAD + "friction = 0.1\n" + STACK,
-        "params.friction",
-        "friction = 0 beside [[layers]]",
+        HEAD + "damping = 0.1\n" + STACK,
+        "params.damping",
+        "damping = 0 beside [[layers]]",
     ),
     (
         no_kw(HEAD) + HALF_SPACE + "[outputs]\ncritical_speed = { kw = [0.1, 10.0] }\n",
@@ -262,10 +262,11 @@ def test_a_medium_scene_is_refused_naming_the_key(
     assert allowed in str(info.value), str(info.value)
 
 
-def test_punches_beside_a_stack_are_refused() -> None:
+def test_punches_under_a_half_space_are_refused() -> None:
     text = (
-        no_kw(HEAD).replace("radius = 100.0\nload = 0.002\n", "kw = 1.0\n")
+        no_kw(HEAD).replace("radius = 100.0\nload = 0.002\n", "")
         + STACK
+        + HALF_SPACE
         + "[[punches]]\nload = 0.002\nradius = 100.0\n"
         + "[[punches]]\nload = 0.002\nradius = 100.0\nat = 4.0\n"
         + OUTPUTS
@@ -274,6 +275,50 @@ def test_punches_beside_a_stack_are_refused() -> None:
         Scene.from_toml(text, "s.toml")
     assert info.value.key == "punches"
     assert "one punch" in str(info.value)
+
+
+IDENTICAL = """
+[[layers]]
+thickness = 0.4
+nu = 0.2
+
+[[layers]]
+thickness = 0.6
+nu = 0.2
+"""
+
+
+@pytest.mark.parametrize(
+    "extra",
+    [
+        "friction = 0.3\n",
+        "",  # a train (below)
+    ],
+    ids=["friction", "train"],
+)
+def test_friction_and_trains_on_identical_sublayers_are_the_layer(extra: str) -> None:
+    """Friction and a train of punches run on a layered medium in a scene
+    (the asymmetric solver reads the medium); two identical sublayers give
+    the homogeneous layer's contact (the anchor: one material, cut in two)."""
+    if extra:
+        head = HEAD.replace("vstar = 0.0", "vstar = 0.1") + extra
+        punches = ""
+    else:
+        head = HEAD.replace("radius = 100.0\nload = 0.002\n", "")
+        punches = (
+            "[[punches]]\nload = 0.002\nradius = 100.0\n"
+            "[[punches]]\nload = 0.002\nradius = 100.0\nat = 3.0\n"
+        )
+    stack = Scene.from_toml(head + IDENTICAL + punches + OUTPUTS)
+    plain = Scene.from_toml(head + "nu = 0.2\n" + punches + OUTPUTS)
+    got = stack.run().outputs["contact_width"].columns
+    want = plain.run().outputs["contact_width"].columns
+    for name in ("contact_start", "contact_end", "drag"):
+        np.testing.assert_allclose(got[name], want[name], rtol=1e-8, atol=1e-12)
+    if extra:
+        # friction: an asymmetric contact, with a drag of its own
+        assert float(got["drag"][0]) != 0.0
+        assert float(got["contact_start"][0]) != -float(got["contact_end"][0])
 
 
 # -- runs that solve today: one homogeneous sublayer on springs ----------------

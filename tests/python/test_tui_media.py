@@ -287,15 +287,25 @@ def test_medium_scene_round_trip() -> None:
         assert to_scene(SceneState(params=params)).medium == scene.medium, name
 
 
-def test_medium_train_is_refused_by_name() -> None:
-    stack = with_medium(
-        Params(punches=tui_model.parse_punches("0.002@-1, 0.002@1")),
-        [mp.Layer(0.4), mp.Layer(0.6, mu=0.5)],
-        None,
-    )
-    with pytest.raises(InvalidParameterError, match="layers: a train") as info:
-        tui_model.solution(tui_model.Cache(), stack)
-    assert info.value.parameter == "layers"
+def test_medium_train_runs_on_the_medium_and_is_refused_under_a_half_space() -> None:
+    """A train on a stack on springs is solved on the stack (two identical
+    sublayers: the homogeneous layer's train, the anchor); under a
+    half-space it is refused naming the base."""
+    train = tui_model.parse_punches("0.002@-1.5, 0.002@1.5")
+    stack = with_medium(Params(punches=train), [mp.Layer(0.4), mp.Layer(0.6)], None)
+    got = tui_model.solution(tui_model.Cache(), stack)
+    want = tui_model.solution(tui_model.Cache(), Params(punches=train))
+    assert got.medium is not None
+    assert not got.medium.homogeneous
+    for g, w in zip(got.punches, want.punches, strict=True):
+        np.testing.assert_allclose(
+            g.contact_zones, w.contact_zones, rtol=1e-8, atol=1e-12
+        )
+        assert g.indentation == pytest.approx(w.indentation, rel=1e-8)
+    on_hs = with_medium(Params(punches=train), [mp.Layer(1.0)], mp.HalfSpace(0.5, 0.3))
+    with pytest.raises(InvalidParameterError) as info:
+        tui_model.solution(tui_model.Cache(), on_hs)
+    assert info.value.parameter == "base", str(info.value)
 
 
 # -- solves and refusals ---------------------------------------------------------

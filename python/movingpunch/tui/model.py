@@ -750,12 +750,16 @@ def solution(cache: Cache, params: Params) -> ContactSolution:
 def _solve(params: Params) -> ContactSolution:
     medium = params.medium()
     if params.punches and medium is not None:
-        raise InvalidParameterError(
-            f"layers: a train runs on the homogeneous layer on springs only so "
-            f"far; the medium is {medium.describe()} (clear the train or the "
-            "medium)",
-            parameter="layers",
-            allowed="the homogeneous layer on springs with a train",
+        # A train on the medium (solve_punches refuses what it cannot take
+        # yet, naming it: a train under a half-space, damped springs under a
+        # stack).
+        return solve_punches(
+            params.train(),
+            vstar=params.vstar,
+            friction=params.friction,
+            tol=params.tol,
+            layers=list(medium.layers),
+            base=medium.base,
         )
     if medium is not None:
         shape = params.shape()
