@@ -34,32 +34,32 @@ void bind_contact(py::module_& m) {
   using VectorRef = Eigen::Ref<const Eigen::VectorXd>;
   using Release = py::call_guard<py::gil_scoped_release>;
 
-  auto cls = bind_result_class<ContactSolution>(
-      m, "ContactSolution",
+  auto cls = bind_result_class<SymmetricSolution>(
+      m, "SymmetricSolution",
       "Result of solve_contact (dimensionless: h = 1, mu = 1, pressures per P/h). "
       "Not constructible from Python.");
-  cls.def_property_readonly("a", &ContactSolution::a, "Contact half-width a/h.")
-      .def_property_readonly("p0", &ContactSolution::p0, "Central pressure p(0)/(P/h).")
+  cls.def_property_readonly("a", &SymmetricSolution::a, "Contact half-width a/h.")
+      .def_property_readonly("p0", &SymmetricSolution::p0, "Central pressure p(0)/(P/h).")
       .def_property_readonly(
           "series_kind",
-          [](const ContactSolution& s) {
+          [](const SymmetricSolution& s) {
             return std::string(s.series_kind() == SeriesKind::T ? "T" : "U");
           },
           "'U': g_coefficients are Chebyshev-U of p(a r)/((P/h) sqrt(1 - r^2)) (bounded "
           "ends); 'T' (flat punch): Chebyshev-T of p(a r) sqrt(1 - r^2)/(P/h).")
-      .def_property_readonly("end_coefficient", &ContactSolution::end_coefficient,
+      .def_property_readonly("end_coefficient", &SymmetricSolution::end_coefficient,
                              "K = lim sqrt(2 pi (a - x)) p(x) over (P/h) sqrt(h) at each end of "
                              "a flat punch (0 for bounded ends).")
-      .def_property_readonly("end_coefficient_error", &ContactSolution::end_coefficient_error,
+      .def_property_readonly("end_coefficient_error", &SymmetricSolution::end_coefficient_error,
                              "Estimated absolute error of end_coefficient.")
-      .def_property_readonly("series_truncation", &ContactSolution::series_truncation,
+      .def_property_readonly("series_truncation", &SymmetricSolution::series_truncation,
                              "Bound on the pressure's error over P/h from the truncation of "
                              "its Chebyshev series (0 for the cylinder and the flat punch).")
-      .def_property_readonly("profile_description", &ContactSolution::profile_description,
+      .def_property_readonly("profile_description", &SymmetricSolution::profile_description,
                              "The punch's shape, one line.")
       .def_property_readonly(
           "error_budget",
-          [](const ContactSolution& s) {
+          [](const SymmetricSolution& s) {
             const auto& b = s.error_budget();
             py::dict d;
             d["collocation"] = b.collocation;
@@ -72,18 +72,18 @@ void bind_contact(py::module_& m) {
           "roundoff.")
       .def(
           "depth_stress",
-          [](const ContactSolution& s, const VectorRef& y) -> Eigen::VectorXd {
+          [](const SymmetricSolution& s, const VectorRef& y) -> Eigen::VectorXd {
             return s.depth_stress(y);
           },
           "y"_a, Release(), "sigma_x(0, y)/(P/h) at each y/h in [-1, 0].")
       .def(
           "foundation_reaction",
-          [](const ContactSolution& s, const VectorRef& x) -> Eigen::VectorXd {
+          [](const SymmetricSolution& s, const VectorRef& x) -> Eigen::VectorXd {
             return s.foundation_reaction(x);
           },
           "x"_a, Release(), "Pressure of the base on the layer, -sigma_y(x, -h)/(P/h).")
-      .def("__repr__", [](const ContactSolution& s) {
-        return py::str("<movingpunch._core.ContactSolution a={!r} valid={}>")
+      .def("__repr__", [](const SymmetricSolution& s) {
+        return py::str("<movingpunch._core.SymmetricSolution a={!r} valid={}>")
             .format(s.a(), s.valid());
       });
 

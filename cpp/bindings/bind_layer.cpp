@@ -92,6 +92,12 @@ void bind_layer(py::module_& m) {
       "(V*_cr, alpha h at the minimum). For kw = inf, or when no free wave is "
       "slower than the Rayleigh wave, it is (rayleigh_vstar(nu), inf).");
 
+  {
+    py::tuple names(kSublayerRow);
+    for (std::size_t i = 0; i < kSublayerRow; ++i) names[i] = kSublayerFields[i].name;
+    m.attr("SUBLAYER_FIELDS") = names;  // a sublayer's row (medium.hpp kSublayerFields)
+  }
+
   m.def(
       "first_wave_vstar",
       [](double t, double kw, double nu, double kp) { return first_wave_vstar(t, kw, nu, kp); },
@@ -144,7 +150,8 @@ void bind_layer(py::module_& m) {
       },
       "t"_a, "vstar"_a, "kw"_a, "nu"_a, "kp"_a = 0.0, Release(),
       "A function of (t, vstar) that changes sign where a free wave of "
-      "wavenumber t exists (arbitrary sign convention).");
+      "wavenumber t exists, as vstar varies at a fixed t (arbitrary sign "
+      "convention, different for t < 0.5 and t >= 0.5).");
 
   m.def("kernel_k1", &kernel_k1, "u"_a, "vstar"_a, "kw"_a, "nu"_a, "tol"_a, "range"_a,
         "direct"_a = false, "kp"_a = 0.0, Release(),

@@ -97,7 +97,7 @@ void raise_interrupted();
 void raise_cancelled();
 
 // The stage times of a solve (either solver) as {stage: seconds}.
-inline pybind11::dict stage_dict(const ContactSolution::StageSeconds& t) {
+inline pybind11::dict stage_dict(const SymmetricSolution::StageSeconds& t) {
   pybind11::dict d;
   d["critical_speed"] = t.critical_speed;
   d["kernel"] = t.kernel;
@@ -135,7 +135,8 @@ void set_profile(P& p, const std::string& profile, double half_width,
 // top to bottom, the base's kind ("springs", "bonded", "smooth"), the
 // springs' (kw, kp, damping) and the half-space's (mu, nu, rho). Null for no
 // sublayers and springs: the homogeneous layer of the solve's kw, nu, kp.
-using LayerRows = std::vector<std::array<double, 5>>;
+// A sublayer's row: its scalars in the order of kSublayerFields (medium.hpp).
+using LayerRows = std::vector<std::array<double, kSublayerRow>>;
 inline std::shared_ptr<const MediumSpec> medium_spec(const LayerRows& layers,
                                                      const std::string& base, double kw, double kp,
                                                      double damping, double base_mu, double base_nu,
@@ -146,7 +147,11 @@ inline std::shared_ptr<const MediumSpec> medium_spec(const LayerRows& layers,
                            "layers: a half-space base needs the sublayers above it");
   auto m = std::make_shared<MediumSpec>();
   m->layers.clear();
-  for (const auto& r : layers) m->layers.push_back(Sublayer{r[0], r[1], r[2], r[3], r[4]});
+  for (const auto& r : layers) {
+    Sublayer l;
+    for (std::size_t i = 0; i < kSublayerRow; ++i) l.*kSublayerFields[i].member = r[i];
+    m->layers.push_back(l);
+  }
   if (base == "springs")
     m->base.kind = BaseKind::springs;
   else if (base == "bonded")
@@ -183,7 +188,7 @@ P solve_params(double vstar, double kw, double radius, double load, double nu, d
   return p;
 }
 
-// The members every contact result binds alike (ContactSolution,
+// The members every contact result binds alike (SymmetricSolution,
 // DampedSolution: the same C++ names and signatures), bound once here; each
 // bind_<area>() adds what only its result has. Docstrings say "the contact
 // ends" for both (-a, a) and (-b, a).
@@ -259,7 +264,7 @@ void bind_result_common(pybind11::class_<T>& cls) {
           "stress_field",
           [](const T& s, const VectorRef& x, const VectorRef& y, bool below) {
             StressField f;
-            if constexpr (std::is_same_v<T, ContactSolution>) {
+            if constexpr (std::is_same_v<T, SymmetricSolution>) {
               f = s.stress_field(x, y, below);
             } else {
               if (below)

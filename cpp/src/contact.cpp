@@ -554,7 +554,7 @@ double kernel_perturbation(const KernelK1& k, double a, const Eigen::VectorXd& l
   return dS;
 }
 
-// The parts of the error estimate of a/h (ContactSolution::ErrorBudget) from
+// The parts of the error estimate of a/h (SymmetricSolution::ErrorBudget) from
 // the final solve at a. Every perturbation of the collocation matrix dM moves
 // S = sum W G by -lambda^T dM G; S moves the load by dS/S and a by
 // (dS/S)/slope, slope = d ln load/d ln a (measured here, about 2). k1 enters M
@@ -564,10 +564,10 @@ double kernel_perturbation(const KernelK1& k, double a, const Eigen::VectorXd& l
 // counts (the largest over five points of the panel). Near V*_cr this is what
 // keeps the estimate honest: the resonance's round-off (eps |M1|^2 over a
 // width sqrt(eps)) lies where this sensitivity nearly vanishes.
-ContactSolution::ErrorBudget error_budget(Problem& prob, const ContactParams& p,
-                                          const ChebyshevNodes& nodes,
-                                          const Problem::Linearised& lin, double a,
-                                          double collocation, double roundoff) {
+SymmetricSolution::ErrorBudget error_budget(Problem& prob, const ContactParams& p,
+                                            const ChebyshevNodes& nodes,
+                                            const Problem::Linearised& lin, double a,
+                                            double collocation, double roundoff) {
   constexpr double eps = std::numeric_limits<double>::epsilon();
   const int h = nodes.n / 2;
   const Eigen::VectorXd w = nodes.w.head(h);
@@ -579,7 +579,7 @@ ContactSolution::ErrorBudget error_budget(Problem& prob, const ContactParams& p,
   if (!std::isfinite(slope) || slope < 0.5) slope = 0.5;  // a flat curve: be cautious
   const double to_a = a / (std::fabs(S) * slope);         // dS -> da
 
-  ContactSolution::ErrorBudget b;
+  SymmetricSolution::ErrorBudget b;
   b.collocation = collocation;
   // Newton's step from the residual (the residual's own noise is the
   // round-off part below).
@@ -996,7 +996,7 @@ double fixed_size_g_error(Problem& prob, const BoundedSolve& bs, const Eigen::Ve
 // contact with bounded ends, no penetration on a < |x| <= 3a (within a table's
 // extent). A flat punch has no surface beside its face (square corners):
 // min_gap is +inf.
-void finish_checks(ContactSolution& sol, const ContactParams& p, const PunchProfile& prof) {
+void finish_checks(SymmetricSolution& sol, const ContactParams& p, const PunchProfile& prof) {
   const double a = sol.a_;
   const bool t_kind = sol.kind_ == SeriesKind::T;
   // Indentation: delta = -v(0, 0).
@@ -1130,7 +1130,7 @@ void finish_checks(ContactSolution& sol, const ContactParams& p, const PunchProf
   }
 }
 
-ContactSolution solve_contact(const ContactParams& p) {
+SymmetricSolution solve_contact(const ContactParams& p) {
   Timer timer;
   validate(p);
   const MediumSpec spec = medium_of(p);
@@ -1173,13 +1173,13 @@ ContactSolution solve_contact(const ContactParams& p) {
   // issue 12 (tests/python/test_estimates.py).
   const PunchProfile prof(p.profile, p.radius, p.half_width, p.table_x, p.table_y);
   Problem prob(p, model, p.vstar < 0.99 * crit.vstar, prof);
-  ContactSolution sol;
+  SymmetricSolution sol;
   sol.params_ = p;
   sol.vcr_ = crit.vstar;
   sol.vr_ = vr;
   sol.phi1_ = phi1;
   sol.profile_text_ = prof.describe();
-  sol.field_cache_ = std::make_shared<ContactSolution::FieldCache>();
+  sol.field_cache_ = std::make_shared<SymmetricSolution::FieldCache>();
   double t_width = 0.0;
   if (prof.singular_ends()) {
     // A flat punch: the contact is its face, the pressure is linear in the
@@ -1250,7 +1250,7 @@ ContactSolution solve_contact(const ContactParams& p) {
         change = std::max(change, std::fabs(chain_a.back() - chain_a[chain_a.size() - 2]));
     }
     sol.budget_ = error_budget(prob, p, nodes, lin, a, change, roundoff);
-    const ContactSolution::ErrorBudget& eb = sol.budget_;
+    const SymmetricSolution::ErrorBudget& eb = sol.budget_;
     sol.err_ = eb.collocation + eb.root + eb.kernel + eb.roundoff;
     if (!(sol.err_ <= p.tol * a)) {
       // Name the largest part: that is what kept a/h from tol.
@@ -1283,12 +1283,12 @@ ContactSolution solve_contact(const ContactParams& p) {
   return sol;
 }
 
-struct ContactSolution::FieldCache {
+struct SymmetricSolution::FieldCache {
   std::mutex mutex;
   std::shared_ptr<const FieldEvaluator> evaluator;
 };
 
-std::shared_ptr<const FieldEvaluator> ContactSolution::field() const {
+std::shared_ptr<const FieldEvaluator> SymmetricSolution::field() const {
   std::lock_guard<std::mutex> lock(field_cache_->mutex);
   auto& ev = field_cache_->evaluator;
   if (!ev)
@@ -1296,34 +1296,35 @@ std::shared_ptr<const FieldEvaluator> ContactSolution::field() const {
   return ev;
 }
 
-StressField ContactSolution::stress_field(const Eigen::Ref<const Eigen::VectorXd>& x,
-                                          const Eigen::Ref<const Eigen::VectorXd>& y,
-                                          bool below) const {
+StressField SymmetricSolution::stress_field(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                            const Eigen::Ref<const Eigen::VectorXd>& y,
+                                            bool below) const {
   return field()->stresses(x, y, below);
 }
 
-Eigen::VectorXd ContactSolution::surface_stress(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+Eigen::VectorXd SymmetricSolution::surface_stress(
+    const Eigen::Ref<const Eigen::VectorXd>& x) const {
   const Eigen::VectorXd y0 = Eigen::VectorXd::Zero(1);
   return stress_field(x, y0).sigma_x.row(0).transpose();
 }
 
-Eigen::VectorXd ContactSolution::depth_stress(const Eigen::Ref<const Eigen::VectorXd>& y) const {
+Eigen::VectorXd SymmetricSolution::depth_stress(const Eigen::Ref<const Eigen::VectorXd>& y) const {
   const Eigen::VectorXd x0 = Eigen::VectorXd::Zero(1);
   return stress_field(x0, y).sigma_x.col(0);
 }
 
-Eigen::MatrixXd ContactSolution::displacement(const Eigen::Ref<const Eigen::VectorXd>& x,
-                                              const Eigen::Ref<const Eigen::VectorXd>& y) const {
+Eigen::MatrixXd SymmetricSolution::displacement(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                                const Eigen::Ref<const Eigen::VectorXd>& y) const {
   return params_.load * field()->displacement(x, y);
 }
 
-Eigen::VectorXd ContactSolution::foundation_reaction(
+Eigen::VectorXd SymmetricSolution::foundation_reaction(
     const Eigen::Ref<const Eigen::VectorXd>& x) const {
   const Eigen::VectorXd yb = Eigen::VectorXd::Constant(1, -1.0);
   return -stress_field(x, yb).sigma_y.row(0).transpose();
 }
 
-double ContactSolution::pressure(double x) const {
+double SymmetricSolution::pressure(double x) const {
   if (std::isnan(x)) throw std::invalid_argument("pressure: x must not be NaN");
   const double r = x / a_;
   if (kind_ == SeriesKind::T && std::fabs(r) == 1.0) {
@@ -1336,7 +1337,7 @@ double ContactSolution::pressure(double x) const {
   return u_series(b_, r) * std::sqrt((1.0 - r) * (1.0 + r));
 }
 
-Eigen::VectorXd ContactSolution::pressure(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+Eigen::VectorXd SymmetricSolution::pressure(const Eigen::Ref<const Eigen::VectorXd>& x) const {
   Eigen::VectorXd out(x.size());
   for (Eigen::Index i = 0; i < x.size(); ++i) out(i) = pressure(x(i));
   return out;
@@ -1344,7 +1345,7 @@ Eigen::VectorXd ContactSolution::pressure(const Eigen::Ref<const Eigen::VectorXd
 
 // Precomputes the Filon coefficients of f(alpha) ptilde(alpha), f = [M1 - phi1 (1 -
 // e^-alpha)]/alpha and ptilde the exact transform of the Chebyshev series of p.
-void ContactSolution::prepare_displacement() {
+void SymmetricSolution::prepare_displacement() {
   const AlphaQuadrature& q = kernel_->quadrature();
   std::vector<double> g(q.alpha.size());
   series_cosine_transforms(b_, kind_, a_, q.alpha.data(), g.data(), g.size());
@@ -1370,7 +1371,7 @@ void ContactSolution::prepare_displacement() {
 // d alpha, split as int [M1 - phi1 (1 - e^-alpha)]/alpha cos + (phi1/2) ln(1 + 1/u^2)
 // (a half-space base: [M1 - phi1 (1 - e^-alpha) - m0 e^-alpha]/alpha, and
 // -(m0/2) ln(1 + u^2) up to a constant; beyond kFarField the smooth part is 0).
-double ContactSolution::greens_integral(double x) const {
+double SymmetricSolution::greens_integral(double x) const {
   const double a = a_;
   const Eigen::Index last = last_even_term(b_);
   const double smooth = std::fabs(x) > kFarField
@@ -1393,14 +1394,14 @@ double ContactSolution::greens_integral(double x) const {
   return smooth + log_part + log1p_part;
 }
 
-double ContactSolution::surface_displacement(double x) const {
+double SymmetricSolution::surface_displacement(double x) const {
   if (!std::isfinite(x)) throw std::invalid_argument("surface_displacement: x must be finite");
   if (m0_ != 0.0) return -params_.load * (greens_integral(x) - greens_reference_);
   if (std::fabs(x) > kFarField) return 0.0;  // see stresses.hpp
   return -params_.load * greens_integral(x);
 }
 
-Eigen::VectorXd ContactSolution::surface_displacement(
+Eigen::VectorXd SymmetricSolution::surface_displacement(
     const Eigen::Ref<const Eigen::VectorXd>& x) const {
   Eigen::VectorXd out(x.size());
   for (Eigen::Index i = 0; i < x.size(); ++i) out(i) = surface_displacement(x(i));

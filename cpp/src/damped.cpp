@@ -1945,7 +1945,7 @@ double DampedSolution::pressure(double x) const {
   if (std::isnan(x)) throw InvalidParameter("x", "not NaN", "pressure: x must not be NaN");
   const double r = (x - centre_) / half_;
   if (jac_ && jac_->singular() && std::fabs(r) == 1.0) {
-    // A flat punch's edge: p = w g is infinite there (as ContactSolution's).
+    // A flat punch's edge: p = w g is infinite there (as SymmetricSolution's).
     const double ge = jac_->g(r);
     return ge == 0.0 ? 0.0 : std::copysign(kInf, ge);
   }
@@ -2716,7 +2716,7 @@ double DampedSolution::surface_displacement(double x) const {
   if (!std::isfinite(x))
     throw InvalidParameter("x", "finite",
                            "surface_displacement: x must be finite, got " + std::to_string(x));
-  if (std::fabs(x) > kFarField) return 0.0;  // as ContactSolution's (stresses.hpp)
+  if (std::fabs(x) > kFarField) return 0.0;  // as SymmetricSolution's (stresses.hpp)
   if (model_->long_wave_m1() != 0.0)
     layered_refusal(*model_, "the displacement (a logarithmic far field under a half-space)");
   if (jac_) return friction_displacement(Eigen::VectorXd::Constant(1, x), 0.0)(0);

@@ -164,15 +164,10 @@ std::vector<double> MediumSpec::key() const {
     // rigid base.
     return {layers[0].nu, base.kw, std::isinf(base.kw) ? 0.0 : base.kp, base.damping};
   std::vector<double> k;
-  k.reserve(5 * layers.size() + 8);
+  k.reserve(kSublayerRow * layers.size() + 8);
   k.push_back(static_cast<double>(layers.size()));
-  for (const Sublayer& l : layers) {
-    k.push_back(l.thickness);
-    k.push_back(l.mu);
-    k.push_back(l.nu);
-    k.push_back(l.rho);
-    k.push_back(l.gamma);
-  }
+  for (const Sublayer& l : layers)
+    for (const SublayerField& f : kSublayerFields) k.push_back(l.*f.member);
   k.push_back(static_cast<double>(static_cast<int>(base.kind)));
   if (base.kind == BaseKind::springs) {
     k.push_back(base.kw);
@@ -236,11 +231,8 @@ void validate(const MediumSpec& m) {
   for (std::size_t i = 0; i < m.layers.size(); ++i) {
     const Sublayer& l = m.layers[i];
     const std::string at = "layers[" + std::to_string(i) + "].";
-    require_in_range((at + "thickness").c_str(), l.thickness, 0.0, 1.0, true, false);
-    require_in_range((at + "nu").c_str(), l.nu, 0.0, 0.5, false, true);
-    require_in_range((at + "mu").c_str(), l.mu, 0.0, kMaxModulusRatio, true, false);
-    require_in_range((at + "rho").c_str(), l.rho, 0.0, kMaxModulusRatio, true, false);
-    require_in_range((at + "gamma_h").c_str(), l.gamma, -kMaxGamma, kMaxGamma, false, false);
+    for (const SublayerField& f : kSublayerFields)
+      require_in_range((at + f.name).c_str(), l.*f.member, f.lo, f.hi, f.lo_open, f.hi_open);
     total += l.thickness;
   }
   if (m.layers[0].mu != 1.0 || m.layers[0].rho != 1.0)

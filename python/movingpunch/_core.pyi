@@ -10,6 +10,8 @@ _Array = npt.NDArray[np.float64]
 __version__: str
 _errors: ModuleType
 
+SUBLAYER_FIELDS: tuple[str, ...]
+
 def rayleigh_vstar(nu: float) -> float: ...
 def phi1(vstar: float, nu: float) -> float: ...
 def phi2(vstar: float, nu: float) -> float: ...
@@ -97,7 +99,7 @@ def solve_contact(
     base_mu: float = 1.0,
     base_nu: float = 0.2,
     base_rho: float = 1.0,
-) -> ContactSolution: ...
+) -> SymmetricSolution: ...
 def check_profile_table(
     x: list[float], y: list[float], require_symmetric: bool = False
 ) -> None: ...
@@ -112,7 +114,7 @@ def profile_shape(
     x: npt.ArrayLike,
 ) -> tuple[_Array, _Array]: ...
 
-class ContactSolution:
+class SymmetricSolution:
     @property
     def a(self) -> float: ...
     @property

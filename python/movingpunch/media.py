@@ -143,9 +143,10 @@ class ValueType:
         return out
 
 
-SUBLAYER_ROW: tuple[str, ...] = ("thickness", "mu", "nu", "rho", "gamma_h")
-"""A sublayer's row as the core takes it (``_core`` ``layers=``; the C++
-``Sublayer``, cpp/bindings/bindings.hpp ``medium_spec``)."""
+SUBLAYER_ROW: tuple[str, ...] = tuple(_core.SUBLAYER_FIELDS)
+"""A sublayer's row as the core takes it (``_core`` ``layers=``): the C++
+``Sublayer``'s field table (cpp/include/movingpunch/medium.hpp
+``kSublayerFields``), whose names are those of the value types' fields."""
 
 
 @dataclass(frozen=True)

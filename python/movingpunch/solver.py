@@ -127,7 +127,7 @@ class Solution(ResultFields):
     (fetching or building the k1 table), ``width`` (the iteration on a) and
     ``checks`` (indentation and validity). They sum to ``elapsed`` up to the
     cost of reading the clock."""
-    _impl: _core.ContactSolution = field(repr=False, compare=False)
+    _impl: _core.SymmetricSolution = field(repr=False, compare=False)
     _profile: PunchProfile | None = field(default=None, repr=False, compare=False)
     _medium: Medium | None = field(default=None, repr=False, compare=False)
 
@@ -709,7 +709,7 @@ def _finer_size(n: int) -> int:
     return above[0] if above else 0
 
 
-def _stress_samples(impl: _core.ContactSolution, a: float) -> FloatArray:
+def _stress_samples(impl: _core.SymmetricSolution, a: float) -> FloatArray:
     """sigma_x/(P/h) at sample points: the surface on and off the contact
     (more than 1e-3 a from its edge), its bottom, and under the centre."""
     r = np.cos(np.linspace(0.0, math.pi / 2, 24))

@@ -33,7 +33,7 @@ TEST(Contact, HalfPlaneLimit) {
     ContactParams p = paper(v, kInf);
     p.radius = 1.0;
     p.load = 5e-7;
-    const ContactSolution s = solve_contact(p);
+    const SymmetricSolution s = solve_contact(p);
     ASSERT_LE(s.a(), 1e-3);
     const double hertz = std::sqrt(2.0 * s.phi1() * p.radius * p.load / M_PI);
     EXPECT_NEAR(s.a() / hertz, 1.0, 1e-5) << "vstar " << v;
@@ -43,7 +43,7 @@ TEST(Contact, HalfPlaneLimit) {
 
 TEST(Contact, EquilibriumSymmetryAndPositivePressure) {
   for (double kw : {0.1, 1.0, kInf}) {
-    const ContactSolution s = solve_contact(paper(0.2, kw));
+    const SymmetricSolution s = solve_contact(paper(0.2, kw));
     // int p dx / (P/h) = 1 by an independent trapezoid rule in theta (x = a cos theta).
     const int m = 2000;
     double sum = 0.0;
@@ -63,7 +63,7 @@ TEST(Contact, EquilibriumSymmetryAndPositivePressure) {
 
 TEST(Contact, SurfaceFollowsThePunchInsideTheContact) {
   // v(x, 0) = -delta + x^2/(2R) on |x| < a: only the slope is imposed.
-  const ContactSolution s = solve_contact(paper(0.2, 1.0));
+  const SymmetricSolution s = solve_contact(paper(0.2, 1.0));
   for (double f : {0.25, 0.5, 0.9, 1.0}) {
     const double x = f * s.a();
     EXPECT_NEAR(s.surface_displacement(x), -s.indentation() + x * x / 200.0, 1e-10);
@@ -123,7 +123,7 @@ TEST(Contact, UnderResolvedLoadCurveRefinesInsteadOfRefusing) {
   p.vstar = critical_vstar(30.0, 0.2) * (1.0 - 1e-5);
   p.radius = 100.0;
   p.load = 0.02;
-  const ContactSolution s = solve_contact(p);
+  const SymmetricSolution s = solve_contact(p);
   EXPECT_TRUE(s.valid());
   ContactParams fixed = p;
   fixed.n = 128;
@@ -151,7 +151,7 @@ TEST(Contact, RoundOffNearTheRayleighSpeedIsAClearError) {
     EXPECT_NE(msg.find("tol"), std::string::npos) << msg;
   }
   p.tol = 1e-6;
-  const ContactSolution s = solve_contact(p);
+  const SymmetricSolution s = solve_contact(p);
   EXPECT_TRUE(std::isfinite(s.a()));
   EXPECT_GT(s.error_estimate(), 1e-8 * s.a());
 }
@@ -170,7 +170,7 @@ TEST(Contact, WidthSearchStaysWithinTheSupportedRange) {
 
 TEST(Contact, ErrorBudgetAddsUpAndWarnsOnlyWhenTolIsNotMet) {
   ContactParams p = paper(0.2, 1.0);
-  const ContactSolution s = solve_contact(p);
+  const SymmetricSolution s = solve_contact(p);
   const auto& b = s.error_budget();
   EXPECT_DOUBLE_EQ(s.error_estimate(), b.collocation + b.root + b.kernel + b.roundoff);
   EXPECT_GT(b.roundoff, 0.0);
@@ -179,7 +179,7 @@ TEST(Contact, ErrorBudgetAddsUpAndWarnsOnlyWhenTolIsNotMet) {
   // A fixed N far too small for tol: the estimate says so, and so does a warning.
   p.n = 4;
   p.tol = 1e-12;
-  const ContactSolution coarse = solve_contact(p);
+  const SymmetricSolution coarse = solve_contact(p);
   EXPECT_GT(coarse.error_estimate(), 1e-12 * coarse.a());
   ASSERT_EQ(coarse.warnings().size(), 1u);
   EXPECT_NE(coarse.warnings()[0].find("tol not met"), std::string::npos);
@@ -193,7 +193,7 @@ TEST(Contact, PressureMarginIsHertzianForATinyContact) {
   p.kw = kInf;
   p.radius = 1.0;
   p.load = 1e-7;
-  const ContactSolution s = solve_contact(p);
+  const SymmetricSolution s = solve_contact(p);
   ASSERT_LT(s.a(), 1e-3);
   EXPECT_NEAR(s.pressure_margin(), 2.0 / (kPi * s.a()), 2e-3 * 2.0 / (kPi * s.a()));
   EXPECT_NEAR(s.pressure_margin() * std::sqrt(1.0 - 0.25), s.pressure(0.5 * s.a()),
@@ -211,7 +211,7 @@ TEST(Contact, ValidityDoesNotDependOnTol) {
   p.allow_unphysical = true;
   for (double tol : {1e-8, 1e-3, 5e-3, 1e-2}) {
     p.tol = tol;
-    const ContactSolution s = solve_contact(p);
+    const SymmetricSolution s = solve_contact(p);
     EXPECT_LT(s.pressure(0.0), -0.9) << tol;
     EXPECT_FALSE(s.valid()) << tol;
   }
@@ -228,10 +228,10 @@ TEST(Contact, FixedSizeEstimateBoundsTheError) {
   p.load = 0.02;
   ContactParams tight = p;
   tight.tol = 1e-12;
-  const ContactSolution ref = solve_contact(tight);
+  const SymmetricSolution ref = solve_contact(tight);
   for (int n : {2, 4, 6, 8, 12}) {
     p.n = n;
-    const ContactSolution s = solve_contact(p);
+    const SymmetricSolution s = solve_contact(p);
     const double err = std::fabs(s.a() - ref.a());
     EXPECT_GE(s.error_estimate() + ref.error_estimate(), err) << n;
     if (err > 1e-10) {

@@ -85,5 +85,5 @@ TEST(DampedDisplacement, RefusesBadPoints) {
   EXPECT_THROW((void)s.surface_displacement(std::nan("")), mp::InvalidParameter);
   EXPECT_THROW((void)s.surface_displacement(std::numeric_limits<double>::infinity()),
                mp::InvalidParameter);
-  EXPECT_EQ(s.surface_displacement(2e9), 0.0);  // beyond kFarField, as ContactSolution
+  EXPECT_EQ(s.surface_displacement(2e9), 0.0);  // beyond kFarField, as SymmetricSolution
 }

@@ -127,13 +127,13 @@ TEST(Interrupt, DampedSolveEndsWithInterrupted) {
 // asked.
 TEST(Interrupt, PollThatNeverStopsChangesNothing) {
   mp::clear_kernel_cache();
-  const mp::ContactSolution plain = mp::solve_contact(fresh_params());
+  const mp::SymmetricSolution plain = mp::solve_contact(fresh_params());
   mp::clear_kernel_cache();
   std::uint64_t polls = 0;
   double a = 0, err = 0;
   {
     mp::InterruptScope scope([] { return false; }, 0ns);
-    const mp::ContactSolution s = mp::solve_contact(fresh_params());
+    const mp::SymmetricSolution s = mp::solve_contact(fresh_params());
     a = s.a();
     err = s.error_estimate();
     polls = scope.polls();

@@ -65,12 +65,12 @@ TEST(KernelCache, ALoadSweepReusesOneTableAndMatchesFreshSolves) {
   // Largest contact first: its table covers the rest.
   for (double load : {0.02, 0.01, 0.005, 0.002, 0.001}) {
     p.load = load;
-    const ContactSolution warm = solve_contact(p);
+    const SymmetricSolution warm = solve_contact(p);
     builds += warm.kernel_builds();
     EXPECT_LT(warm.a(), previous);
     previous = warm.a();
     clear_kernel_cache();
-    const ContactSolution fresh = solve_contact(p);
+    const SymmetricSolution fresh = solve_contact(p);
     EXPECT_GE(fresh.kernel_builds(), 1);
     // Both tables are accurate far below tol: the widths agree to the root
     // finder's tolerance (1e-2 tol), not bit for bit.
@@ -93,7 +93,7 @@ TEST(KernelCache, SweepBuildsOnce) {
   int builds = 0;
   for (int i = 0; i < 14; ++i) {
     p.load = 0.01 * std::pow(0.8, i);  // descending: a/h from about 0.9 down to 0.2
-    const ContactSolution s = solve_contact(p);
+    const SymmetricSolution s = solve_contact(p);
     if (i > 0) {
       EXPECT_EQ(s.kernel_builds(), 0) << "load " << p.load;
     }

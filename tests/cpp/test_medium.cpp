@@ -78,12 +78,12 @@ TEST(Medium, ContactOnTheHomogeneousMediumIsTheShorthand) {
   p.kw = 2.0;
   p.nu = 0.3;
   p.tol = 1e-10;
-  const ContactSolution a = solve_contact(p);
+  const SymmetricSolution a = solve_contact(p);
   ContactParams q = p;
   q.kw = 9.0;  // ignored: the medium's springs are the base's
   q.nu = 0.1;
   q.medium = std::make_shared<const MediumSpec>(homogeneous_medium(2.0, 0.3));
-  const ContactSolution b = solve_contact(q);
+  const SymmetricSolution b = solve_contact(q);
   EXPECT_EQ(a.a(), b.a());
   EXPECT_EQ(a.indentation(), b.indentation());
   EXPECT_EQ(a.critical_vstar(), b.critical_vstar());
@@ -138,4 +138,30 @@ TEST(Medium, DescribeNamesTheMedium) {
   m.base.nu = 0.3;
   m.base.rho = 2.0;
   EXPECT_EQ(describe(m), "2 sublayers (1 graded) on a smooth half-space (mu 10, nu 0.3, rho 2)");
+}
+
+// The sublayer's field table drives validate() and the cache key: every
+// field out of its range (just past each end, and NaN) is refused naming
+// "layers[1].<field>"; a change of any field changes the key.
+TEST(Medium, EverySublayerFieldIsValidatedAndKeyedByTheTable) {
+  MediumSpec ok;
+  ok.layers = {Sublayer{0.5, 1.0, 0.2, 1.0, 0.0}, Sublayer{0.5, 0.5, 0.3, 0.8, 0.5}};
+  ASSERT_NO_THROW(validate(ok));
+  for (const SublayerField& f : kSublayerFields) {
+    const double span = std::isfinite(f.hi - f.lo) ? f.hi - f.lo : 1.0;
+    for (const double bad : {f.lo - 1e-3 * span, f.hi + 1e-3 * span,
+                             std::numeric_limits<double>::quiet_NaN()}) {
+      MediumSpec m = ok;
+      m.layers[1].*f.member = bad;
+      try {
+        validate(m);
+        ADD_FAILURE() << f.name << " = " << bad << " accepted";
+      } catch (const InvalidParameter& e) {
+        EXPECT_EQ(e.name(), std::string("layers[1].") + f.name) << e.what();
+      }
+    }
+    MediumSpec moved = ok;
+    moved.layers[1].*f.member = 0.5 * (ok.layers[1].*f.member + 0.45);
+    EXPECT_NE(moved.key(), ok.key()) << f.name;
+  }
 }

@@ -55,7 +55,7 @@ TEST(ModeField, HalfPlanePartSatisfiesTheTopLoadAndDominatesShortWaves) {
 TEST(Stresses, SurfaceAndBaseConditions) {
   for (double kw : {0.1, 1.0, kInf})
     for (double v : {0.0, 0.2}) {
-      const ContactSolution s = solve_contact(paper(v, kw));
+      const SymmetricSolution s = solve_contact(paper(v, kw));
       const double a = s.a();
       const Eigen::VectorXd x = grid({0.0, 0.3 * a, 0.99 * a, 1.01 * a, 2 * a, 3.0});
       const Eigen::VectorXd y = grid({0.0, -1.0});
@@ -74,7 +74,7 @@ TEST(Stresses, SurfaceAndBaseConditions) {
 }
 
 TEST(Stresses, DisplacementAgreesWithTheSurfaceEvaluation) {
-  const ContactSolution s = solve_contact(paper(0.2, 0.1));
+  const SymmetricSolution s = solve_contact(paper(0.2, 0.1));
   const Eigen::VectorXd x = grid({0.0, 0.2, 0.7, 1.3, 2.5});
   const Eigen::MatrixXd v = s.displacement(x, grid({0.0}));
   for (Eigen::Index i = 0; i < x.size(); ++i)
@@ -90,7 +90,7 @@ TEST(Stresses, ClassicalHertzFieldOnTheAxis) {
   ContactParams p = paper(0.0, kInf);
   p.radius = 1.0;
   p.load = 5e-7;
-  const ContactSolution s = solve_contact(p);
+  const SymmetricSolution s = solve_contact(p);
   const double a = s.a(), p0 = s.p0();
   ASSERT_LT(a, 1e-3);
   auto hertz_x = [&](double z) {
@@ -108,7 +108,7 @@ TEST(Stresses, ClassicalHertzFieldOnTheAxis) {
 }
 
 TEST(Stresses, ContinuousUpToTheSurface) {
-  const ContactSolution s = solve_contact(paper(0.2, 1.0));
+  const SymmetricSolution s = solve_contact(paper(0.2, 1.0));
   const Eigen::VectorXd x = grid({0.0, 0.5 * s.a(), 1.2 * s.a(), 2.0});
   const StressField f0 = s.stress_field(x, grid({0.0}));
   const StressField f1 = s.stress_field(x, grid({-1e-7}));
@@ -117,7 +117,7 @@ TEST(Stresses, ContinuousUpToTheSurface) {
 }
 
 TEST(Stresses, RejectsPointsOutsideTheLayer) {
-  const ContactSolution s = solve_contact(paper(0.2, 1.0));
+  const SymmetricSolution s = solve_contact(paper(0.2, 1.0));
   EXPECT_THROW(s.stress_field(grid({0.0}), grid({0.1})), std::invalid_argument);
   EXPECT_THROW(s.stress_field(grid({0.0}), grid({-1.5})), std::invalid_argument);
   EXPECT_THROW(s.stress_field(grid({std::nan("")}), grid({-0.5})), std::invalid_argument);

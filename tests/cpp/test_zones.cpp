@@ -66,7 +66,7 @@ TEST(Zones, FarApartPunchesAreSinglePunches) {
   c.vstar = 0.3;
   c.kw = 10.0;
   c.tol = 1e-12;
-  const mp::ContactSolution single = mp::solve_contact(c);
+  const mp::SymmetricSolution single = mp::solve_contact(c);
   mp::ZonesParams p = layer(0.3, 10.0, 0.0);
   p.punches = {cylinder(0.002, -50.0), cylinder(0.002, 50.0)};
   p.zones = {{0, -51.0, -49.0}, {1, 49.0, 51.0}};

@@ -218,7 +218,7 @@ def _check_error(exc: Exception, args: dict[str, Any]) -> None:
 
 
 def _check_solution(sol: Any, args: dict[str, Any]) -> None:
-    assert isinstance(sol, _core.ContactSolution), args
+    assert isinstance(sol, _core.SymmetricSolution), args
     assert math.isfinite(sol.a), args
     assert sol.a > 0.0, args
     assert math.isfinite(sol.p0), args

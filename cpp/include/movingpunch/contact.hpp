@@ -45,7 +45,7 @@ MediumSpec medium_of(const ContactParams& p);
 // Throws std::invalid_argument naming the parameter and its valid range.
 void validate(const ContactParams& p);
 
-class ContactSolution {
+class SymmetricSolution {
  public:
   const ContactParams& params() const noexcept { return params_; }
   double a() const noexcept { return a_; }                // a/h
@@ -131,9 +131,9 @@ class ContactSolution {
   const KernelK1& kernel() const noexcept { return *kernel_; }
 
  private:
-  friend ContactSolution solve_contact(const ContactParams& p);
+  friend SymmetricSolution solve_contact(const ContactParams& p);
   // The indentation and validity checks of a solved contact (contact.cpp).
-  friend void finish_checks(ContactSolution& sol, const ContactParams& p,
+  friend void finish_checks(SymmetricSolution& sol, const ContactParams& p,
                             const PunchProfile& profile);
   ContactParams params_{};
   double a_ = 0, p0_ = 0, delta_ = 0, vcr_ = 0, vr_ = 0, phi1_ = 0, err_ = 0, elapsed_ = 0;
@@ -172,6 +172,6 @@ class ContactSolution {
 // Solves the contact problem. Throws std::invalid_argument (bad input),
 // SupercriticalSpeedError (vstar >= V*_cr), UnphysicalContactError (unless
 // allow_unphysical) and ConvergenceError.
-ContactSolution solve_contact(const ContactParams& p);
+SymmetricSolution solve_contact(const ContactParams& p);
 
 }  // namespace movingpunch

@@ -270,11 +270,11 @@ class DampedSolution {
   int iterations() const noexcept { return iterations_; }
   // Kernel tables this solve built (0: all reused from the process-wide cache).
   int kernel_builds() const noexcept { return kernel_builds_; }
-  // Seconds spent in each stage (as ContactSolution's): the critical-speed
+  // Seconds spent in each stage (as SymmetricSolution's): the critical-speed
   // lookup, fetching or building the kernel table, the width iteration over
   // the N ladder (without the kernel), and the rest (the scan for other
   // steady states, the estimates, the validity checks). They sum to elapsed().
-  using StageSeconds = ContactSolution::StageSeconds;
+  using StageSeconds = SymmetricSolution::StageSeconds;
   const StageSeconds& stage_seconds() const noexcept { return stage_seconds_; }
   int collocation_n() const noexcept { return n_; }
   double elapsed() const noexcept { return elapsed_; }
@@ -287,7 +287,7 @@ class DampedSolution {
   const std::vector<double>& other_half_widths() const noexcept { return other_widths_; }
 
   // p(x)/(P/h) (0 outside the contact; x not NaN). The overloads on a vector
-  // of points here and below are ContactSolution's (one binding for both).
+  // of points here and below are SymmetricSolution's (one binding for both).
   double pressure(double x) const;
   Eigen::VectorXd pressure(const Eigen::Ref<const Eigen::VectorXd>& x) const;
   // Transformed pressure p^(alpha)/(P/h) = int p e^{-i alpha x} dx, any alpha.
@@ -313,7 +313,7 @@ class DampedSolution {
   double bottom_slope(double x) const;
   double bottom_displacement(double x) const;
   // Vertical surface displacement v(x, 0)/h (any finite x; negative under the
-  // punch; 0 beyond |x| > kFarField as the undamped ContactSolution's).
+  // punch; 0 beyond |x| > kFarField as the undamped SymmetricSolution's).
   double surface_displacement(double x) const;
   Eigen::VectorXd surface_displacement(const Eigen::Ref<const Eigen::VectorXd>& x) const;
   // Indentation delta/h, the punch's rigid approach: the gap
@@ -333,7 +333,7 @@ class DampedSolution {
   // the end coefficients K_end = lim sqrt(2 pi) d^(-gamma_end) p(x) over
   // (P/h) h^(-gamma_end) as the distance d to that end goes to 0 (gamma_end =
   // end_exponents(), -1/2 without friction: K = lim sqrt(2 pi d) p, the
-  // undamped ContactSolution::end_coefficient), and the bound on the error of
+  // undamped SymmetricSolution::end_coefficient), and the bound on the error of
   // each. 0 for bounded ends.
   double end_coefficient_back() const noexcept { return end_k_back_; }
   double end_coefficient_front() const noexcept { return end_k_front_; }

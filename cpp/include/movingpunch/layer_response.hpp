@@ -118,8 +118,11 @@ class LayerModel {
   ModeField mode_field(double t) const;
 
   // A function of (t, vstar) that changes sign exactly where a free wave of
-  // wavenumber t exists (a real pole of the response). Used by the
-  // critical-speed search; its sign convention is arbitrary.
+  // wavenumber t exists (a real pole of the response), as vstar varies at a
+  // fixed t (the critical-speed search scans vstar). Its sign convention is
+  // arbitrary and differs between t < kSmallT (the transfer matrix) and t >=
+  // kSmallT (the modal columns): scanned over t at a fixed vstar it also
+  // changes sign at kSmallT.
   double dispersion(double t) const;
 
  private:

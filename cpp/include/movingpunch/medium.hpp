@@ -28,6 +28,7 @@
 #pragma once
 
 #include <complex>
+#include <iterator>
 #include <limits>
 #include <memory>
 #include <string>
@@ -56,6 +57,32 @@ struct Sublayer {
   double rho = 1.0;
   double gamma = 0.0;
 };
+
+// The largest |gamma_h| of a graded sublayer (the modulus changes by e^50
+// across the layer at most), the most sublayers, and the largest ratio of a
+// sublayer's (or the substrate's) mu or rho to the top's.
+inline constexpr double kMaxGamma = 50.0;
+inline constexpr std::size_t kMaxSublayers = 64;
+inline constexpr double kMaxModulusRatio = 1e12;
+
+// The sublayer's scalars, in the order of a sublayer's row in the bindings
+// (Python's movingpunch.media.SUBLAYER_ROW, the same names): validate(),
+// MediumSpec::key() and the bindings' rows loop over this table, so a new
+// scalar of a sublayer is a member above and a row here.
+struct SublayerField {
+  const char* name;
+  double Sublayer::* member;
+  double lo, hi;  // its range (require_in_range, errors.hpp)
+  bool lo_open, hi_open;
+};
+inline constexpr SublayerField kSublayerFields[] = {
+    {"thickness", &Sublayer::thickness, 0.0, 1.0, true, false},
+    {"mu", &Sublayer::mu, 0.0, kMaxModulusRatio, true, false},
+    {"nu", &Sublayer::nu, 0.0, 0.5, false, true},
+    {"rho", &Sublayer::rho, 0.0, kMaxModulusRatio, true, false},
+    {"gamma_h", &Sublayer::gamma, -kMaxGamma, kMaxGamma, false, false},
+};
+inline constexpr std::size_t kSublayerRow = std::size(kSublayerFields);
 
 enum class BaseKind {
   springs,  // sigma_y = (kw + kp t^2 - i damping sqrt(vstar) t) v, tau = 0; kw = inf: rigid
@@ -95,13 +122,6 @@ std::string describe(const MediumSpec& m);
 // every mu, rho > 0 finite, nu in [0, 0.5), |gamma_h| <= kMaxGamma, the
 // base's own ranges.
 void validate(const MediumSpec& m);
-
-// The largest |gamma_h| of a graded sublayer (the modulus changes by e^50
-// across the layer at most), the most sublayers, and the largest ratio of a
-// sublayer's (or the substrate's) mu or rho to the top's.
-inline constexpr double kMaxGamma = 50.0;
-inline constexpr std::size_t kMaxSublayers = 64;
-inline constexpr double kMaxModulusRatio = 1e12;
 
 // ---------------------------------------------------------------------------
 // The medium at one speed.
@@ -181,8 +201,9 @@ class Medium {
   virtual bool real() const noexcept = 0;
   virtual MediumResponse surface_response(double t) const = 0;
   virtual std::unique_ptr<const ModeProfile> mode(double t) const = 0;
-  // A function of t changing sign exactly where a free wave of wavenumber t
-  // exists at this speed (arbitrary sign convention).
+  // A function changing sign exactly where a free wave of wavenumber t exists,
+  // as the speed varies at a fixed t (arbitrary sign convention, which may
+  // differ between wavenumbers: compare values at one t only).
   virtual double dispersion(double t) const = 0;
 
   // M1 - phi1 decays at least like exp(-decay_rate() t) (times a polynomial):
