@@ -15,143 +15,21 @@
 #include <stdexcept>
 #include <vector>
 
+#include "media_reference.hpp"
 #include "movingpunch/damped.hpp"
 #include "movingpunch/errors.hpp"
 #include "movingpunch/jacobi.hpp"
 #include "movingpunch/medium.hpp"
 
 using namespace movingpunch;
+using namespace movingpunch::testing;
 
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kPi = 3.14159265358979323846;
 
-MediumSpec springs(std::vector<Sublayer> layers, double kw, double kp = 0.0) {
-  MediumSpec m;
-  m.layers = std::move(layers);
-  m.base.kind = BaseKind::springs;
-  m.base.kw = kw;
-  m.base.kp = kp;
-  return m;
-}
-
-MediumSpec half_space(std::vector<Sublayer> layers, BaseKind kind, double mu, double nu,
-                      double rho) {
-  MediumSpec m;
-  m.layers = std::move(layers);
-  m.base.kind = kind;
-  m.base.mu = mu;
-  m.base.nu = nu;
-  m.base.rho = rho;
-  return m;
-}
-
-// K identical sublayers of unequal thicknesses.
-std::vector<Sublayer> identical(int K, double nu) {
-  const std::vector<double> w{0.37, 0.11, 0.23, 0.19, 0.1};
-  std::vector<Sublayer> out;
-  double sum = 0.0;
-  for (int i = 0; i < K; ++i) sum += w[static_cast<size_t>(i)];
-  for (int i = 0; i < K; ++i) out.push_back({w[static_cast<size_t>(i)] / sum, 1.0, nu, 1.0, 0.0});
-  double total = 0.0;
-  for (int i = 0; i + 1 < K; ++i) total += out[static_cast<size_t>(i)].thickness;
-  out.back().thickness = 1.0 - total;
-  return out;
-}
-
 std::vector<Sublayer> mixed() {
   return {{0.3, 1.0, 0.2, 1.0, 0.0}, {0.45, 0.35, 0.3, 0.8, 0.0}, {0.25, 2.5, 0.25, 1.6, 0.0}};
-}
-
-// ---- a naive long-double evaluation --------------------------------------
-using LD = long double;
-using M4 = std::array<std::array<LD, 4>, 4>;
-using V4 = std::array<LD, 4>;
-
-M4 mul(const M4& a, const M4& b) {
-  M4 c{};
-  for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j) {
-      LD s = 0;
-      for (int k = 0; k < 4; ++k) s += a[i][k] * b[k][j];
-      c[i][j] = s;
-    }
-  return c;
-}
-
-// exp(B) by scaling and squaring with a Taylor series.
-M4 expm(M4 B) {
-  LD norm = 0;
-  for (auto& r : B) {
-    LD s = 0;
-    for (LD x : r) s += std::fabs(x);
-    norm = std::max(norm, s);
-  }
-  int sq = 0;
-  while (norm > 0.125L) {
-    norm /= 2;
-    ++sq;
-  }
-  const LD f = std::ldexp(1.0L, -sq);
-  for (auto& r : B)
-    for (LD& x : r) x *= f;
-  M4 P{}, term{};
-  for (int i = 0; i < 4; ++i) P[i][i] = term[i][i] = 1;
-  for (int k = 1; k < 40; ++k) {
-    term = mul(term, B);
-    for (auto& r : term)
-      for (LD& x : r) x /= k;
-    for (int i = 0; i < 4; ++i)
-      for (int j = 0; j < 4; ++j) P[i][j] += term[i][j];
-  }
-  for (int i = 0; i < sq; ++i) P = mul(P, P);
-  return P;
-}
-
-// The state matrix (d/d(alpha y) of [U, W, tau/alpha, sigma/alpha], stresses
-// over the material's own modulus) at local speed s.
-M4 state_matrix(LD s, LD nu) {
-  const LD kappa = 3 - 4 * nu, c2 = (kappa + 1) / (kappa - 1);
-  M4 A{};
-  A[0] = {0, 1, 1, 0};
-  A[1] = {-(c2 - 2) / c2, 0, 0, 1 / c2};
-  A[2] = {4 * (c2 - 1) / c2 - s, 0, 0, (c2 - 2) / c2};
-  A[3] = {0, -s, -1, 0};
-  return A;
-}
-
-V4 solve4(M4 a, V4 b) {
-  for (int c = 0; c < 4; ++c) {
-    int p = c;
-    for (int r = c + 1; r < 4; ++r)
-      if (std::fabs(a[r][c]) > std::fabs(a[p][c])) p = r;
-    std::swap(a[c], a[p]);
-    std::swap(b[c], b[p]);
-    for (int r = c + 1; r < 4; ++r) {
-      const LD f = a[r][c] / a[c][c];
-      for (int k = c; k < 4; ++k) a[r][k] -= f * a[c][k];
-      b[r] -= f * b[c];
-    }
-  }
-  V4 x{};
-  for (int r = 3; r >= 0; --r) {
-    LD s = b[r];
-    for (int k = r + 1; k < 4; ++k) s -= a[r][k] * x[k];
-    x[r] = s / a[r][r];
-  }
-  return x;
-}
-
-V4 eigvec(const M4& A, LD lam) {
-  M4 a{};
-  V4 b{};
-  for (int r = 1; r < 4; ++r) {
-    for (int k = 1; k < 4; ++k) a[r - 1][k - 1] = A[r][k] - (r == k ? lam : 0);
-    b[r - 1] = -A[r][0];
-  }
-  a[3][3] = 1;
-  const auto x = solve4(a, b);
-  return {1, x[0], x[1], x[2]};
 }
 
 // The top load (T0, S0) = (tau/alpha, sigma/alpha) at y = 0: the surface's

@@ -149,8 +149,8 @@ TEST(Medium, EverySublayerFieldIsValidatedAndKeyedByTheTable) {
   ASSERT_NO_THROW(validate(ok));
   for (const SublayerField& f : kSublayerFields) {
     const double span = std::isfinite(f.hi - f.lo) ? f.hi - f.lo : 1.0;
-    for (const double bad : {f.lo - 1e-3 * span, f.hi + 1e-3 * span,
-                             std::numeric_limits<double>::quiet_NaN()}) {
+    for (const double bad :
+         {f.lo - 1e-3 * span, f.hi + 1e-3 * span, std::numeric_limits<double>::quiet_NaN()}) {
       MediumSpec m = ok;
       m.layers[1].*f.member = bad;
       try {

@@ -13,142 +13,19 @@
 #include <string>
 #include <vector>
 
+#include "media_reference.hpp"
 #include "movingpunch/dispersion.hpp"
 #include "movingpunch/errors.hpp"
 #include "movingpunch/layer_response.hpp"
 #include "stack.hpp"
 
 using namespace movingpunch;
+using namespace movingpunch::testing;
 
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-MediumSpec springs(std::vector<Sublayer> layers, double kw, double kp = 0.0) {
-  MediumSpec m;
-  m.layers = std::move(layers);
-  m.base.kind = BaseKind::springs;
-  m.base.kw = kw;
-  m.base.kp = kp;
-  return m;
-}
-
-MediumSpec half_space(std::vector<Sublayer> layers, BaseKind kind, double mu, double nu,
-                      double rho) {
-  MediumSpec m;
-  m.layers = std::move(layers);
-  m.base.kind = kind;
-  m.base.mu = mu;
-  m.base.nu = nu;
-  m.base.rho = rho;
-  return m;
-}
-
-// K identical sublayers of unequal thicknesses.
-std::vector<Sublayer> identical(int K, double nu) {
-  const std::vector<double> w{0.37, 0.11, 0.23, 0.19, 0.1};
-  std::vector<Sublayer> out;
-  double sum = 0.0;
-  for (int i = 0; i < K; ++i) sum += w[static_cast<size_t>(i)];
-  for (int i = 0; i < K; ++i) out.push_back({w[static_cast<size_t>(i)] / sum, 1.0, nu, 1.0, 0.0});
-  double total = 0.0;
-  for (int i = 0; i + 1 < K; ++i) total += out[static_cast<size_t>(i)].thickness;
-  out.back().thickness = 1.0 - total;
-  return out;
-}
-
 double rel(double a, double b) { return std::fabs(a - b) / std::max(std::fabs(b), 1e-300); }
-
-// ---- a naive long-double evaluation --------------------------------------
-using LD = long double;
-using M4 = std::array<std::array<LD, 4>, 4>;
-
-M4 mul(const M4& a, const M4& b) {
-  M4 c{};
-  for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j) {
-      LD s = 0;
-      for (int k = 0; k < 4; ++k) s += a[i][k] * b[k][j];
-      c[i][j] = s;
-    }
-  return c;
-}
-
-// exp(B) by scaling and squaring with a Taylor series.
-M4 expm(M4 B) {
-  LD norm = 0;
-  for (auto& r : B) {
-    LD s = 0;
-    for (LD x : r) s += std::fabs(x);
-    norm = std::max(norm, s);
-  }
-  int sq = 0;
-  while (norm > 0.125L) {
-    norm /= 2;
-    ++sq;
-  }
-  const LD f = std::ldexp(1.0L, -sq);
-  for (auto& r : B)
-    for (LD& x : r) x *= f;
-  M4 P{}, term{};
-  for (int i = 0; i < 4; ++i) P[i][i] = term[i][i] = 1;
-  for (int k = 1; k < 40; ++k) {
-    term = mul(term, B);
-    for (auto& r : term)
-      for (LD& x : r) x /= k;
-    for (int i = 0; i < 4; ++i)
-      for (int j = 0; j < 4; ++j) P[i][j] += term[i][j];
-  }
-  for (int i = 0; i < sq; ++i) P = mul(P, P);
-  return P;
-}
-
-// The state matrix of a material (stresses over its own modulus) at local speed s.
-M4 state_matrix(LD s, LD nu) {
-  const LD kappa = 3 - 4 * nu, c2 = (kappa + 1) / (kappa - 1);
-  M4 A{};
-  A[0] = {0, 1, 1, 0};
-  A[1] = {-(c2 - 2) / c2, 0, 0, 1 / c2};
-  A[2] = {4 * (c2 - 1) / c2 - s, 0, 0, (c2 - 2) / c2};
-  A[3] = {0, -s, -1, 0};
-  return A;
-}
-
-// Solves the 4 x 4 system a x = b (Gaussian elimination, partial pivoting).
-std::array<LD, 4> solve4(M4 a, std::array<LD, 4> b) {
-  for (int c = 0; c < 4; ++c) {
-    int p = c;
-    for (int r = c + 1; r < 4; ++r)
-      if (std::fabs(a[r][c]) > std::fabs(a[p][c])) p = r;
-    std::swap(a[c], a[p]);
-    std::swap(b[c], b[p]);
-    for (int r = c + 1; r < 4; ++r) {
-      const LD f = a[r][c] / a[c][c];
-      for (int k = c; k < 4; ++k) a[r][k] -= f * a[c][k];
-      b[r] -= f * b[c];
-    }
-  }
-  std::array<LD, 4> x{};
-  for (int r = 3; r >= 0; --r) {
-    LD s = b[r];
-    for (int k = r + 1; k < 4; ++k) s -= a[r][k] * x[k];
-    x[r] = s / a[r][r];
-  }
-  return x;
-}
-
-// An eigenvector [1, v1, v2, v3] of A for the eigenvalue lam (distinct roots).
-std::array<LD, 4> eigvec(const M4& A, LD lam) {
-  // Rows 1..3 of (A - lam I) v = 0 with v0 = 1.
-  M4 a{};
-  std::array<LD, 4> b{};
-  for (int r = 1; r < 4; ++r) {
-    for (int k = 1; k < 4; ++k) a[r - 1][k - 1] = A[r][k] - (r == k ? lam : 0);
-    b[r - 1] = -A[r][0];
-  }
-  a[3][3] = 1;
-  const auto x = solve4(a, b);
-  return {1, x[0], x[1], x[2]};
-}
 
 // M1 and U0 of the medium by the naive product of the sublayers' transfer
 // matrices applied to the bottom condition (z(0) = [U0, W0, 0, -1]).
