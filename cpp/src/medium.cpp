@@ -22,6 +22,14 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // The softest springs any solve accepts (contact.cpp's kMinKw).
 constexpr double kMinKw = 1e-12;
 
+// A real mode state of the homogeneous layer and its sigma_x (Hooke's law).
+ModeState real_state(const WaveConstants& c, const Eigen::Vector4d& z) {
+  ModeState s;
+  s.z = z.cast<cplx>();
+  s.sx = sigma_x_hat(c, z);
+  return s;
+}
+
 // The homogeneous layer on springs (LayerModel) behind the interface.
 class HomogeneousMode final : public ModeProfile {
  public:
@@ -29,25 +37,13 @@ class HomogeneousMode final : public ModeProfile {
   ModeState remainder(double y, bool /*below*/) const override {
     // As the stresses always took it: the state minus the half-plane state,
     // then Hooke's law on the difference (one material).
-    const Eigen::Vector4d r = field_.state(y) - field_.half_plane_state(y);
-    ModeState s;
-    s.z = r.cast<cplx>();
-    s.sx = sigma_x_hat(*c_, r);
-    return s;
+    return real_state(*c_, field_.state(y) - field_.half_plane_state(y));
   }
   ModeState half_plane(double y) const override {
-    const Eigen::Vector4d h = field_.half_plane_state(y);
-    ModeState s;
-    s.z = h.cast<cplx>();
-    s.sx = sigma_x_hat(*c_, h);
-    return s;
+    return real_state(*c_, field_.half_plane_state(y));
   }
   ModeState state(double y, bool /*below*/) const override {
-    const Eigen::Vector4d z = field_.state(y);
-    ModeState s;
-    s.z = z.cast<cplx>();
-    s.sx = sigma_x_hat(*c_, z);
-    return s;
+    return real_state(*c_, field_.state(y));
   }
 
  private:
@@ -69,11 +65,7 @@ class DampedHomogeneousMode final : public ModeProfile {
     return s;
   }
   ModeState half_plane(double y) const override {
-    const Eigen::Vector4d h = field_.half_plane_state(y);
-    ModeState s;
-    s.z = h.cast<cplx>();
-    s.sx = sigma_x_hat(*c_, h);
-    return s;
+    return real_state(*c_, field_.half_plane_state(y));
   }
   ModeState state(double y, bool /*below*/) const override {
     ModeState s;

@@ -23,7 +23,7 @@ inline MediumSpec springs(std::vector<Sublayer> layers, double kw, double kp = 0
 }
 
 inline MediumSpec half_space(std::vector<Sublayer> layers, BaseKind kind, double mu, double nu,
-                      double rho) {
+                             double rho) {
   MediumSpec m;
   m.layers = std::move(layers);
   m.base.kind = kind;
@@ -45,7 +45,6 @@ inline std::vector<Sublayer> identical(int K, double nu) {
   out.back().thickness = 1.0 - total;
   return out;
 }
-
 
 // ---- a naive long-double evaluation --------------------------------------
 using LD = long double;
