@@ -379,10 +379,11 @@ def solve(
     shorthand) or ``HalfSpace(mu, nu, rho, interface)``. Giving ``nu=`` with
     ``layers=``, or ``kw=``/``kp=``/``damping=`` with ``base=``, is an
     InvalidParameterError naming it. One homogeneous sublayer on springs is
-    the paper's layer, solved exactly as the shorthand is. A layered medium
-    or a half-space base runs on the symmetric solver (frictionless,
-    undamped, symmetric profiles); the other combinations are refused, by
-    name, until they are supported.
+    the paper's layer, solved exactly as the shorthand is. Every medium
+    takes every punch profile,
+    friction, asymmetric tables and several contact zones; not yet, each
+    refused by name: damped springs under a stack (``damping``), a graded
+    top sublayer (``layers``), and several zones under a half-space base.
 
     ``numerics`` (``movingpunch.Numerics``: tol, n, allow_unphysical,
     contact as one checked value) stands for those four keywords; giving
