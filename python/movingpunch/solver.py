@@ -380,10 +380,10 @@ def solve(
     ``layers=``, or ``kw=``/``kp=``/``damping=`` with ``base=``, is an
     InvalidParameterError naming it. One homogeneous sublayer on springs is
     the paper's layer, solved exactly as the shorthand is. Every medium
-    takes every punch profile,
-    friction, asymmetric tables and several contact zones; not yet, each
-    refused by name: damped springs under a stack (``damping``), a graded
-    top sublayer (``layers``), and several zones under a half-space base.
+    takes every punch profile, friction, asymmetric tables and several
+    contact zones; not yet, each refused by name: damped springs under a
+    stack (``damping``), a graded top sublayer (``layers``), and several
+    zones under a half-space base.
 
     ``numerics`` (``movingpunch.Numerics``: tol, n, allow_unphysical,
     contact as one checked value) stands for those four keywords; giving
