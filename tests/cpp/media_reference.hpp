@@ -139,4 +139,78 @@ inline std::array<LD, 4> eigvec(const M4& A, LD lam) {
   return {1, x[0], x[1], x[2]};
 }
 
+// The top state's unknowns under the top load (T0, S0) = (tau/alpha,
+// sigma_y/alpha) at y = 0, given the product P of the sublayers' transfer
+// matrices (z(-1) = P z(0)): x[0], x[1] = U0, W0 (x[2], x[3]: the bonded
+// half-space's decaying amplitudes), from the base's conditions (clamped:
+// U = W = 0 at y = -1, whatever the base).
+inline std::array<LD, 4> naive_top_unknowns(const M4& P, const MediumSpec& m, double vstar,
+                                            double t, LD T0, LD S0, bool clamped = false) {
+  auto zrow = [&](int r, std::array<LD, 4>& row, LD& rhs) {
+    row = {P[r][0], P[r][1], 0, 0};
+    rhs = -(P[r][2] * T0 + P[r][3] * S0);
+  };
+  M4 a{};
+  std::array<LD, 4> b{};
+  const BaseSpec& base = m.base;
+  if (clamped) {
+    std::array<LD, 4> row;
+    LD rhs;
+    zrow(0, row, rhs);
+    a[0] = row;
+    b[0] = rhs;
+    zrow(1, row, rhs);
+    a[1] = row;
+    b[1] = rhs;
+    a[2][2] = a[3][3] = 1;
+  } else if (base.kind == BaseKind::half_space_bonded) {
+    const LD s2 = static_cast<LD>(vstar) * base.rho / base.mu;
+    const M4 A2 = state_matrix(s2, base.nu);
+    const LD c2 = (4 - 4 * static_cast<LD>(base.nu)) / (2 - 4 * static_cast<LD>(base.nu));
+    auto vT = eigvec(A2, std::sqrt(1 - s2)), vL = eigvec(A2, std::sqrt(1 - s2 / c2));
+    for (int r = 0; r < 4; ++r) {
+      std::array<LD, 4> row;
+      LD rhs;
+      zrow(r, row, rhs);
+      const LD sc = r >= 2 ? static_cast<LD>(base.mu) : 1.0L;
+      row[2] = -vT[static_cast<size_t>(r)] * sc;
+      row[3] = -vL[static_cast<size_t>(r)] * sc;
+      a[r] = row;
+      b[r] = rhs;
+    }
+  } else {
+    std::array<LD, 4> row;
+    LD rhs;
+    zrow(2, row, rhs);  // tau(-1) = 0
+    a[0] = row;
+    b[0] = rhs;
+    LD k;  // sigma/alpha t = k W
+    if (base.kind == BaseKind::springs) {
+      k = base.kw + base.kp * static_cast<LD>(t) * t;
+    } else {
+      const LD s2 = static_cast<LD>(vstar) * base.rho / base.mu;
+      const LD kap = 3 - 4 * static_cast<LD>(base.nu), c2 = (kap + 1) / (kap - 1);
+      const LD nT = std::sqrt(1 - s2), nL = std::sqrt(1 - s2 / c2);
+      const LD phi = (1 - nT * nT) * nL / (4 * nL * nT - (1 + nT * nT) * (1 + nT * nT));
+      k = static_cast<LD>(t) * base.mu / phi;
+    }
+    if (std::isinf(k)) {
+      zrow(1, row, rhs);
+    } else {
+      std::array<LD, 4> r3, r1;
+      LD h3, h1;
+      zrow(3, r3, h3);
+      zrow(1, r1, h1);
+      for (int j = 0; j < 4; ++j)
+        row[static_cast<size_t>(j)] =
+            t * r3[static_cast<size_t>(j)] - k * r1[static_cast<size_t>(j)];
+      rhs = t * h3 - k * h1;
+    }
+    a[1] = row;
+    b[1] = rhs;
+    a[2][2] = a[3][3] = 1;
+  }
+  return solve4(a, b);
+}
+
 }  // namespace movingpunch::testing

@@ -49,72 +49,8 @@ std::array<double, 2> naive(const MediumSpec& m, double vstar, double t, bool cl
       }
     P = mul(E, P);
   }
-  // z(-1) = P z0; unknowns U0, W0 (and a, b for a bonded half-space).
-  auto zrow = [&](int r, std::array<LD, 4>& row, LD& rhs) {
-    row = {P[r][0], P[r][1], 0, 0};
-    rhs = P[r][3];  // moves -(-1) P[r][3] to the right side: P z0 = ... + (-1) P[r][3]
-  };
-  M4 a{};
-  std::array<LD, 4> b{};
-  const BaseSpec& base = m.base;
-  if (clamped) {
-    std::array<LD, 4> row;
-    LD rhs;
-    zrow(0, row, rhs);
-    a[0] = row;
-    b[0] = rhs;
-    zrow(1, row, rhs);
-    a[1] = row;
-    b[1] = rhs;
-    a[2][2] = a[3][3] = 1;
-  } else if (base.kind == BaseKind::half_space_bonded) {
-    const LD s2 = static_cast<LD>(vstar) * base.rho / base.mu;
-    const M4 A2 = state_matrix(s2, base.nu);
-    const LD c2 = (4 - 4 * static_cast<LD>(base.nu)) / (2 - 4 * static_cast<LD>(base.nu));
-    auto vT = eigvec(A2, std::sqrt(1 - s2)), vL = eigvec(A2, std::sqrt(1 - s2 / c2));
-    for (int r = 0; r < 4; ++r) {
-      std::array<LD, 4> row;
-      LD rhs;
-      zrow(r, row, rhs);
-      const LD sc = r >= 2 ? static_cast<LD>(base.mu) : 1.0L;
-      row[2] = -vT[static_cast<size_t>(r)] * sc;
-      row[3] = -vL[static_cast<size_t>(r)] * sc;
-      a[r] = row;
-      b[r] = rhs;
-    }
-  } else {
-    std::array<LD, 4> row;
-    LD rhs;
-    zrow(2, row, rhs);  // tau(-1) = 0
-    a[0] = row;
-    b[0] = rhs;
-    LD k;  // sigma/alpha t = k W
-    if (base.kind == BaseKind::springs) {
-      k = base.kw + base.kp * static_cast<LD>(t) * t;
-    } else {
-      const LD s2 = static_cast<LD>(vstar) * base.rho / base.mu;
-      const LD kap = 3 - 4 * static_cast<LD>(base.nu), c2 = (kap + 1) / (kap - 1);
-      const LD nT = std::sqrt(1 - s2), nL = std::sqrt(1 - s2 / c2);
-      const LD phi = (1 - nT * nT) * nL / (4 * nL * nT - (1 + nT * nT) * (1 + nT * nT));
-      k = static_cast<LD>(t) * base.mu / phi;
-    }
-    if (std::isinf(k)) {
-      zrow(1, row, rhs);
-    } else {
-      std::array<LD, 4> r3, r1;
-      LD h3, h1;
-      zrow(3, r3, h3);
-      zrow(1, r1, h1);
-      for (int j = 0; j < 4; ++j)
-        row[static_cast<size_t>(j)] =
-            t * r3[static_cast<size_t>(j)] - k * r1[static_cast<size_t>(j)];
-      rhs = t * h3 - k * h1;
-    }
-    a[1] = row;
-    b[1] = rhs;
-    a[2][2] = a[3][3] = 1;
-  }
-  const auto x = solve4(a, b);
+  // z0 = [U0, W0, 0, -1].
+  const auto x = naive_top_unknowns(P, m, vstar, t, 0.0L, -1.0L, clamped);
   return {static_cast<double>(-x[1]), static_cast<double>(x[0])};
 }
 
