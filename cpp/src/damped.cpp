@@ -1939,6 +1939,17 @@ Eigen::VectorXd at_points(const Eigen::Ref<const Eigen::VectorXd>& x, F f) {
   return out;
 }
 
+// Row k of a stress integrand table: [sigma_x, sigma_y, tau] real parts,
+// then imaginary parts (the columns filon_columns transforms).
+void set_stress_row(Eigen::MatrixXd& G, Eigen::Index k, cplx sx, cplx sy, cplx tau) {
+  G(k, 0) = sx.real();
+  G(k, 1) = sy.real();
+  G(k, 2) = tau.real();
+  G(k, 3) = sx.imag();
+  G(k, 4) = sy.imag();
+  G(k, 5) = tau.imag();
+}
+
 }  // namespace
 
 double DampedSolution::pressure(double x) const {
@@ -2100,12 +2111,7 @@ std::shared_ptr<const Eigen::MatrixXd> DampedSolution::friction_depth_coefficien
     const cplx sx =
         i * fr * (ep * z(0) + (c.c2 - 2.0) / c.c2 * z(3) - c0 * std::exp(-al) / al) * ph;
     const cplx sy = i * fr * z(3) * ph, tau = fr * z(2) * ph;
-    G(k, 0) = sx.real();
-    G(k, 1) = sy.real();
-    G(k, 2) = tau.real();
-    G(k, 3) = sx.imag();
-    G(k, 4) = sy.imag();
-    G(k, 5) = tau.imag();
+    set_stress_row(G, k, sx, sy, tau);
   }
   return f.filon_columns(G);
 }
@@ -2423,12 +2429,7 @@ std::shared_ptr<const Eigen::MatrixXd> DampedSolution::depth_coefficients(const 
       const ModeState st = nodes.modes[q]->remainder(y, false);
       const cplx ph = nodes.ph[q];
       const cplx sx = st.sx * ph, sy = st.z(3) * ph, tau = cplx(0.0, -1.0) * st.z(2) * ph;
-      G(k, 0) = sx.real();
-      G(k, 1) = sy.real();
-      G(k, 2) = tau.real();
-      G(k, 3) = sx.imag();
-      G(k, 4) = sy.imag();
-      G(k, 5) = tau.imag();
+      set_stress_row(G, k, sx, sy, tau);
       continue;
     }
     if (al < DampedLayerModel::kSmallT) {
@@ -2449,12 +2450,7 @@ std::shared_ptr<const Eigen::MatrixXd> DampedSolution::depth_coefficients(const 
     const cplx ph = nodes.ph[q];
     const cplx sx = cplx(ax * r_re(0) + ay * r_re(3), ax * r_im(0) + ay * r_im(3)) * ph;
     const cplx sy = cplx(r_re(3), r_im(3)) * ph, tau = cplx(r_im(2), -r_re(2)) * ph;
-    G(k, 0) = sx.real();
-    G(k, 1) = sy.real();
-    G(k, 2) = tau.real();
-    G(k, 3) = sx.imag();
-    G(k, 4) = sy.imag();
-    G(k, 5) = tau.imag();
+    set_stress_row(G, k, sx, sy, tau);
   }
   auto coef = f.filon_columns(G);
   std::lock_guard<std::mutex> lock(field_cache_->mutex);
