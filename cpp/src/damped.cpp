@@ -520,22 +520,25 @@ double critical_vstar_of(const DampedParams& p) {
   return critical_speed(*p.medium).vstar;
 }
 
+void validate_asymmetric_medium(const MediumSpec& m) {
+  validate(m);
+  if (m.layers[0].gamma != 0.0)
+    throw InvalidParameter(
+        "layers", "a homogeneous top sublayer (graded ones below it)",
+        "layers: a graded top sublayer is not solved yet (its response reaches the "
+        "half-plane's only as a series in gamma/alpha, which the kernel must take out "
+        "exactly); put a homogeneous sublayer on top or use a staircase of sublayers");
+  if (!m.homogeneous() && m.base.kind == BaseKind::springs && m.base.damping != 0.0)
+    throw InvalidParameter(
+        "damping", "0 under a stack of sublayers (damped springs: the homogeneous layer only)",
+        "damping: damped springs under a stack of sublayers are not supported yet (the stack's "
+        "propagation is real); given damping = " +
+            std::to_string(m.base.damping) + " under " + describe(m));
+}
+
 void validate(const DampedParams& p) {
   if (p.medium) {
-    validate(*p.medium);
-    const MediumSpec& m = *p.medium;
-    if (m.layers[0].gamma != 0.0)
-      throw InvalidParameter(
-          "layers", "a homogeneous top sublayer (graded ones below it)",
-          "layers: a graded top sublayer is not solved yet (its response reaches the "
-          "half-plane's only as a series in gamma/alpha, which the kernel must take out "
-          "exactly); put a homogeneous sublayer on top or use a staircase of sublayers");
-    if (!m.homogeneous() && m.base.kind == BaseKind::springs && m.base.damping != 0.0)
-      throw InvalidParameter(
-          "damping", "0 under a stack of sublayers (damped springs: the homogeneous layer only)",
-          "damping: damped springs under a stack of sublayers are not supported yet (the stack's "
-          "propagation is real); given damping = " +
-              std::to_string(m.base.damping) + " under " + describe(m));
+    validate_asymmetric_medium(*p.medium);
     // The scalar checks on the medium's own values (nu: the top's; damping
     // > 0 unless friction or an asymmetric table asks for this solver).
     DampedParams r = with_medium_scalars(p);

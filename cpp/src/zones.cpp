@@ -670,18 +670,7 @@ std::vector<PunchProfile> validate_zones(const ZonesParams& prm) {
   if (prm.layer.medium) {
     // The medium's own checks and refusals (as solve_damped's), then its
     // scalars as the homogeneous layer's below.
-    const MediumSpec& m = *prm.layer.medium;
-    validate(m);
-    if (m.layers[0].gamma != 0.0)
-      throw InvalidParameter("layers", "a homogeneous top sublayer (graded ones below it)",
-                             "layers: a graded top sublayer is not solved yet; put a homogeneous "
-                             "sublayer on top or use a staircase of sublayers");
-    if (!m.homogeneous() && m.base.kind == BaseKind::springs && m.base.damping != 0.0)
-      throw InvalidParameter(
-          "damping", "0 under a stack of sublayers (damped springs: the homogeneous layer only)",
-          "damping: damped springs under a stack of sublayers are not supported yet (the "
-          "stack's propagation is real); given " +
-              describe(m));
+    validate_asymmetric_medium(*prm.layer.medium);
   }
   const DampedParams L = with_medium_scalars(prm.layer);
   require_in_range("vstar", L.vstar, 0.0, 1.0, false, true);

@@ -221,6 +221,11 @@ double critical_vstar_of(const DampedParams& p);
 // solver cannot take on it: a graded top sublayer, a damped base under a
 // stack or a half-space).
 void validate(const DampedParams& p);
+// The medium's own checks (validate(MediumSpec)) and what the asymmetric
+// solver cannot take on it yet, as InvalidParameter naming it: a graded top
+// sublayer (layers), damped springs under a stack (damping). Shared by
+// solve_damped's and solve_zones' checks.
+void validate_asymmetric_medium(const MediumSpec& m);
 
 class DampedSolution {
  public:
