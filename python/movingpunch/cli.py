@@ -504,27 +504,24 @@ def _solve_train(
             parameter="radius",
         )
     punches = [Punch(shape, load, at) for load, at in args.punch]
-    if medium is not None:
-        # On the medium (solve_punches refuses what it cannot take yet,
-        # naming it: a train under a half-space, damped springs under a stack).
-        return solve_punches(
-            punches,
-            vstar=args.vstar,
-            tol=args.tol,
-            friction=args.friction,
-            layers=list(medium.layers),
-            base=medium.base,
-        )
+    # On a medium solve_punches refuses what it cannot take yet, naming it (a
+    # train under a half-space, damped springs under a stack).
     return solve_punches(
         punches,
         vstar=args.vstar,
-        kw=args.kw,
-        nu=0.2 if args.nu is None else args.nu,
         tol=args.tol,
-        damping=args.damping,
-        kp=args.kp,
         friction=args.friction,
+        **_medium_args(args, medium),
     )
+
+
+def _medium_args(args: argparse.Namespace, medium: Medium | None) -> dict[str, Any]:
+    """The medium as solve and solve_punches take it: the springs' and the
+    layer's shorthand, or ``layers=``/``base=``."""
+    if medium is None:
+        nu = 0.2 if args.nu is None else args.nu
+        return {"kw": args.kw, "nu": nu, "damping": args.damping, "kp": args.kp}
+    return {"layers": list(medium.layers), "base": medium.base}
 
 
 def _zone_text(zones: Sequence[tuple[float, float]]) -> str:
@@ -548,11 +545,7 @@ def _cmd_solve(args: argparse.Namespace) -> int:
     if args.punch:
         s = _solve_train(args, profile, medium)
     else:
-        spring_args: dict[str, Any] = (
-            {"kw": args.kw, "nu": args.nu, "damping": args.damping, "kp": args.kp}
-            if medium is None
-            else {"layers": list(medium.layers), "base": medium.base}
-        )
+        spring_args = _medium_args(args, medium)
         s = solve(
             vstar=args.vstar,
             radius=args.radius if profile is None else None,
