@@ -67,16 +67,24 @@ def _median_ms(run: Callable[[int], object], repeat: int) -> float:
     return statistics.median(times)
 
 
-def measure(medium: dict[str, object], repeat: int) -> tuple[float, float, float]:
+def _warm_cold(
+    case: dict[str, float], medium: dict[str, object], repeat: int
+) -> tuple[float, float, mp.ContactSolution]:
+    """Median warm and cold solve times (ms) of ``case`` on ``medium`` (another
+    load each time), and a warm solution."""
+
     def solve(i: int, cold: bool = False) -> mp.ContactSolution:
         if cold:
             mp.clear_kernel_cache()
-        return mp.solve(**CASE, load=0.002 * (1 + 1e-3 * i), **medium)  # type: ignore[arg-type]
+        return mp.solve(**case, load=0.002 * (1 + 1e-3 * i), **medium)  # type: ignore[arg-type]
 
     cold = _median_ms(lambda i: solve(i, cold=True), repeat)
     solve(0)
-    warm = _median_ms(solve, repeat)
-    s = solve(0)
+    return _median_ms(solve, repeat), cold, solve(0)
+
+
+def measure(medium: dict[str, object], repeat: int) -> tuple[float, float, float]:
+    warm, cold, s = _warm_cold(CASE, medium, repeat)
     x = np.linspace(-3.0, 3.0, 97)
     y = np.linspace(-1.0, 0.0, 41)
     field = _median_ms(lambda _i: s.stress_field(x, y), max(3, repeat // 2))
@@ -85,15 +93,8 @@ def measure(medium: dict[str, object], repeat: int) -> tuple[float, float, float
 
 def measure_friction(medium: dict[str, object], repeat: int) -> tuple[float, float]:
     """Warm and cold solves with friction 0.3 (the asymmetric solver)."""
-
-    def solve(i: int, cold: bool = False) -> mp.ContactSolution:
-        if cold:
-            mp.clear_kernel_cache()
-        return mp.solve(**FRICTION, load=0.002 * (1 + 1e-3 * i), **medium)  # type: ignore[arg-type]
-
-    cold = _median_ms(lambda i: solve(i, cold=True), repeat)
-    solve(0)
-    return _median_ms(solve, repeat), cold
+    warm, cold, _ = _warm_cold(FRICTION, medium, repeat)
+    return warm, cold
 
 
 def main() -> None:
