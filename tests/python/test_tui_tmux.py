@@ -7,8 +7,10 @@ from __future__ import annotations
 
 import os
 import shlex
+import shutil
 import subprocess
 import sys
+import tempfile
 import time
 from collections.abc import Callable, Iterator
 
@@ -22,24 +24,30 @@ TIMEOUT = 60.0
 
 
 class Tmux:
-    """One tmux server on a private socket (never the user's)."""
+    """One tmux server on a private socket (never the user's), a socket file
+    of its own per test: a server killed by the previous test may still be
+    exiting when the next one starts (CI once failed on that race)."""
 
     def __init__(self, socket: str) -> None:
         self.socket = socket
 
     def run(self, *args: str, check: bool = True) -> str:
         proc = subprocess.run(
-            ["tmux", "-L", self.socket, *args],
+            ["tmux", "-S", self.socket, *args],
             capture_output=True,
             text=True,
             timeout=30,
-            check=check,
+            check=False,
         )
+        if check and proc.returncode != 0:
+            raise AssertionError(
+                f"tmux {args[0]} failed ({proc.returncode}): {proc.stderr.strip()}"
+            )
         return proc.stdout
 
     def alive(self) -> bool:
         proc = subprocess.run(
-            ["tmux", "-L", self.socket, "has-session", "-t", "mp"],
+            ["tmux", "-S", self.socket, "has-session", "-t", "mp"],
             capture_output=True,
             timeout=30,
             check=False,
@@ -73,7 +81,8 @@ class Tmux:
 @pytest.fixture
 def tmux() -> Iterator[Tmux]:
     need("tmux")  # skipped without tmux (a failure under scripts/test.sh)
-    session = Tmux(f"movingpunch-test-{os.getpid()}")
+    folder = tempfile.mkdtemp(prefix="mp-tmux-")  # short: sockets cap paths near 100
+    session = Tmux(os.path.join(folder, "socket"))
     command = shlex.join([sys.executable, "-m", "movingpunch"])
     session.run(
         "new-session", "-d", "-s", "mp", "-x", "80", "-y", "24", "env",
@@ -84,6 +93,10 @@ def tmux() -> Iterator[Tmux]:
         yield session
     finally:
         session.run("kill-server", check=False)
+        deadline = time.monotonic() + 10.0
+        while session.alive() and time.monotonic() < deadline:
+            time.sleep(0.1)
+        shutil.rmtree(folder, ignore_errors=True)
 
 
 def a_text(vstar: float) -> str:
