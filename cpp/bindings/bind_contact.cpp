@@ -10,8 +10,8 @@
 #include <Eigen/Dense>
 
 #include "bindings.hpp"
+#include "movingpunch/asymmetric.hpp"
 #include "movingpunch/contact.hpp"
-#include "movingpunch/damped.hpp"
 #include "movingpunch/errors.hpp"
 #include "movingpunch/profile.hpp"
 
@@ -95,10 +95,10 @@ void bind_contact(py::module_& m) {
         d["size"] = i.size;
         d["hits"] = i.hits;
         d["misses"] = i.misses;
-        const KernelCacheInfo j = damped_kernel_cache_info();
-        d["damped_size"] = j.size;
-        d["damped_hits"] = j.hits;
-        d["damped_misses"] = j.misses;
+        const KernelCacheInfo j = asymmetric_kernel_cache_info();
+        d["asymmetric_size"] = j.size;
+        d["asymmetric_hits"] = j.hits;
+        d["asymmetric_misses"] = j.misses;
         return d;
       },
       "Process-wide k1 kernel cache: tables held (size), requests served (hits), "

@@ -25,7 +25,7 @@ void bind_zones(py::module_& m) {
       .def_readonly("b", &ZoneResult::b, "U-series coefficients of p/(P_zone/h)/sqrt(1 - r^2).")
       .def_property_readonly(
           "solution", [](const ZoneResult& z) { return z.solution(); },
-          "The zone as a DampedSolution of its own load (its pressure and the layer's response "
+          "The zone as a AsymmetricSolution of its own load (its pressure and the layer's response "
           "to it; the whole response is the sum over the zones).")
       .def_readonly("min_pressure", &ZoneResult::min_pressure, "min p/(P_zone/h) on the zone.")
       .def_readonly("margin", &ZoneResult::margin,

@@ -171,8 +171,8 @@ inline std::shared_ptr<const MediumSpec> medium_spec(const LayerRows& layers,
   return m;
 }
 
-// The inputs every solve takes (ContactParams, DampedParams: the same names),
-// from the keyword arguments of solve_contact / solve_damped.
+// The inputs every solve takes (ContactParams, AsymmetricParams: the same names),
+// from the keyword arguments of solve_contact / solve_asymmetric.
 template <class P>
 P solve_params(double vstar, double kw, double radius, double load, double nu, double tol,
                bool allow_unphysical, int n) {
@@ -189,7 +189,7 @@ P solve_params(double vstar, double kw, double radius, double load, double nu, d
 }
 
 // The members every contact result binds alike (SymmetricSolution,
-// DampedSolution: the same C++ names and signatures), bound once here; each
+// AsymmetricSolution: the same C++ names and signatures), bound once here; each
 // bind_<area>() adds what only its result has. Docstrings say "the contact
 // ends" for both (-a, a) and (-b, a).
 template <class T>
@@ -284,7 +284,7 @@ void bind_errors(pybind11::module_& m);
 void bind_interrupt(pybind11::module_& m);
 void bind_layer(pybind11::module_& m);
 void bind_contact(pybind11::module_& m);
-void bind_damped(pybind11::module_& m);
+void bind_asymmetric(pybind11::module_& m);
 void bind_zones(pybind11::module_& m);
 
 }  // namespace movingpunch::bindings

@@ -17,6 +17,6 @@ PYBIND11_MODULE(_core, m) {
   movingpunch::bindings::bind_interrupt(m);
   movingpunch::bindings::bind_layer(m);
   movingpunch::bindings::bind_contact(m);
-  movingpunch::bindings::bind_damped(m);
+  movingpunch::bindings::bind_asymmetric(m);
   movingpunch::bindings::bind_zones(m);
 }

@@ -77,7 +77,7 @@ void validate(const ContactParams& p) {
   // a table), named as the API names them.
   (void)PunchProfile(p.profile, p.radius, p.half_width, p.table_x, p.table_y);
   // The undamped solver is symmetric: an asymmetric table takes the
-  // asymmetric one (solve_damped; movingpunch.solve routes it there).
+  // asymmetric one (solve_asymmetric; movingpunch.solve routes it there).
   if (p.profile == ProfileKind::table) check_profile_table(p.table_x, p.table_y, true);
   require_in_range("load", p.load, 0.0, 1e6, true, false);
   require_in_range("tol", p.tol, 1e-14, 1e-2, false, false);

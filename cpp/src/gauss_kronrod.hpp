@@ -1,5 +1,5 @@
 // Gauss-Kronrod 7-15 rule (QUADPACK qk15), shared by the k1 quadrature
-// (kernel.cpp) and the damped layer's (damped.cpp). Internal header.
+// (kernel.cpp) and the damped layer's (asymmetric.cpp). Internal header.
 #pragma once
 
 namespace movingpunch::detail {

@@ -1,5 +1,5 @@
 // The process-wide caches of kernel tables: the real k1 tables (kernel.hpp)
-// and the damped kernel tables (damped.hpp). One LRU policy for both.
+// and the damped kernel tables (asymmetric.hpp). One LRU policy for both.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include <mutex>
 #include <vector>
 
-#include "movingpunch/damped.hpp"
+#include "movingpunch/asymmetric.hpp"
 #include "movingpunch/kernel.hpp"
 
 namespace movingpunch {
@@ -109,9 +109,9 @@ RangeCache<KernelK1, std::vector<double>>& k1_cache() {
 
 // A damped table's evaluation costs the same whatever its range (pieces):
 // no upper ratio. Keyed on the medium (Medium::key()) and the friction.
-RangeCache<DampedKernel, std::vector<double>>& damped_cache() {
-  static RangeCache<DampedKernel, std::vector<double>> c(kDampedKernelCacheCapacity,
-                                                         std::numeric_limits<double>::infinity());
+RangeCache<AsymmetricKernel, std::vector<double>>& asymmetric_cache() {
+  static RangeCache<AsymmetricKernel, std::vector<double>> c(
+      kDampedKernelCacheCapacity, std::numeric_limits<double>::infinity());
   return c;
 }
 
@@ -145,34 +145,34 @@ std::shared_ptr<const KernelK1> cached_kernel(const std::shared_ptr<const Medium
       built, grow ? kGrowth : 1.0);
 }
 
-std::shared_ptr<const DampedKernel> cached_damped_kernel(
+std::shared_ptr<const AsymmetricKernel> cached_damped_kernel(
     const std::shared_ptr<const Medium>& medium, double min_range, double build_range, bool* built,
     double friction) {
   std::vector<double> key = medium->key();  // kp is irrelevant on a rigid base: one key for it
   key.push_back(friction);
-  return damped_cache().get(
+  return asymmetric_cache().get(
       key, min_range, build_range,
-      [&](double range, const std::shared_ptr<const DampedKernel>& shorter) {
-        if (shorter) return std::make_shared<const DampedKernel>(*shorter, range);
-        return std::make_shared<const DampedKernel>(medium, range, friction);
+      [&](double range, const std::shared_ptr<const AsymmetricKernel>& shorter) {
+        if (shorter) return std::make_shared<const AsymmetricKernel>(*shorter, range);
+        return std::make_shared<const AsymmetricKernel>(medium, range, friction);
       },
       built);
 }
 
-std::shared_ptr<const DampedKernel> cached_damped_kernel(double vstar, double kw, double nu,
-                                                         double damping, double min_range,
-                                                         double build_range, bool* built, double kp,
-                                                         double friction) {
+std::shared_ptr<const AsymmetricKernel> cached_damped_kernel(double vstar, double kw, double nu,
+                                                             double damping, double min_range,
+                                                             double build_range, bool* built,
+                                                             double kp, double friction) {
   return cached_damped_kernel(make_medium(homogeneous_medium(kw, nu, kp, damping), vstar),
                               min_range, build_range, built, friction);
 }
 
 KernelCacheInfo kernel_cache_info() { return k1_cache().info(); }
-KernelCacheInfo damped_kernel_cache_info() { return damped_cache().info(); }
+KernelCacheInfo asymmetric_kernel_cache_info() { return asymmetric_cache().info(); }
 
 void clear_kernel_cache() {
   k1_cache().clear();
-  damped_cache().clear();
+  asymmetric_cache().clear();
 }
 
 }  // namespace movingpunch

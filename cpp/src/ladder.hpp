@@ -1,14 +1,14 @@
 // Internal: the N-ladder driver shared by every solver that refines its
 // collocation size N (the symmetric solver's width and flat-punch g(1)
-// ladders, contact.cpp; the asymmetric solver, damped.cpp; the damped flat
-// punch, damped_flat.cpp; several zones, zones.cpp). The driver owns the loop
+// ladders, contact.cpp; the asymmetric solver, asymmetric.cpp; the damped flat
+// punch, asymmetric_flat.cpp; several zones, zones.cpp). The driver owns the loop
 // over the sizes, the chain of solved sizes and the changes of each refined
 // quantity between successive sizes, the failure policy (a size that has no
 // solution: give up, refine N with the chain restarted, or keep the last size
 // that solved) and the stop. A solver supplies only its solve at N, the
 // changes between two of its states, its verdict (its own estimates and
 // stopping rule) and how it treats a failure. The estimates themselves
-// (refinement_estimate, ladder_stop) are in movingpunch/damped.hpp. Not a
+// (refinement_estimate, ladder_stop) are in movingpunch/asymmetric.hpp. Not a
 // public header.
 #pragma once
 
@@ -119,7 +119,7 @@ LadderRun<State, Q> run_ladder(const std::vector<int>& sizes, Solve&& solve, Cha
   return run;
 }
 
-// A verdict from ladder_stop (movingpunch/damped.hpp: go_on, converged,
+// A verdict from ladder_stop (movingpunch/asymmetric.hpp: go_on, converged,
 // stalled).
 template <class Stop>
 Verdict ladder_verdict(Stop s) {

@@ -1,5 +1,5 @@
 // The layer's regularised exponential basis and its small-t transfer matrix,
-// shared by the undamped (layer_response.cpp) and damped (damped.cpp) layer
+// shared by the undamped (layer_response.cpp) and damped (asymmetric.cpp) layer
 // responses: the basis is real for both, only the bottom condition differs.
 // Internal header.
 #pragma once

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "layer_basis.hpp"
-#include "movingpunch/damped.hpp"
+#include "movingpunch/asymmetric.hpp"
 #include "movingpunch/errors.hpp"
 #include "stack.hpp"
 

@@ -3,7 +3,7 @@
 // the contact's centre), the closed-form (half-plane, log-singular) parts of
 // the displacements and stresses. Shared by the undamped outputs
 // (contact.cpp, stresses.cpp: g even, `step` 2 sums the even terms only) and
-// the damped ones (damped.cpp: any g, `step` 1). A flat punch's pressure
+// the damped ones (asymmetric.cpp: any g, `step` 1). A flat punch's pressure
 // p(a r) = sum_n b_n T_n(r)/sqrt(1 - r^2) (square-root singular ends) has its
 // own closed forms, chosen by the trailing SeriesKind argument (default U).
 #pragma once

@@ -1,5 +1,5 @@
 // Internal: the parts of the contact-width solve shared by the symmetric
-// (undamped, contact.cpp) and the asymmetric (damped, damped.cpp) problems:
+// (undamped, contact.cpp) and the asymmetric (damped, asymmetric.cpp) problems:
 // the supported widths, the collocation-size ladder, the first width guess
 // and the messages (the bracketed root on ln(width): roots.hpp). The two
 // problems differ only where the physics does (the kernel, one unknown end

@@ -71,13 +71,13 @@ const Legendre& gauss_legendre8() {
 // evaluated by direct sums instead.
 class ZoneKernel {
  public:
-  explicit ZoneKernel(std::shared_ptr<const DampedKernel> k) : k_(std::move(k)) {
-    const DampedQuadrature& q = k_->quadrature();
+  explicit ZoneKernel(std::shared_ptr<const AsymmetricKernel> k) : k_(std::move(k)) {
+    const AsymmetricQuadrature& q = k_->quadrature();
     const double phi1 = std::fabs(k_->model().phi1());
     for (std::size_t i = 0; i < q.m1.size(); ++i)
       abs_f_ += q.panels.weight[i] * std::abs(q.m1[i] - k_->model().phi1()) / phi1;
   }
-  const std::shared_ptr<const DampedKernel>& table() const noexcept { return k_; }
+  const std::shared_ptr<const AsymmetricKernel>& table() const noexcept { return k_; }
   const Medium& model() const noexcept { return k_->model(); }
   double range() const noexcept { return k_->range(); }
   double operator()(double u) const { return std::fabs(u) <= k_->range() ? (*k_)(u) : far(u); }
@@ -99,7 +99,7 @@ class ZoneKernel {
  private:
   static constexpr double kWidth = 0.25;
   static constexpr int kDegree = 24;
-  std::shared_ptr<const DampedKernel> k_;
+  std::shared_ptr<const AsymmetricKernel> k_;
   double abs_f_ = 0.0;
   mutable std::mutex mutex_;
   mutable std::unordered_map<long long, std::vector<double>> pieces_;
@@ -158,7 +158,7 @@ std::vector<double> kernel_windows(const ZoneKernel& K) {
     for (const auto& [k, v] : memo)
       if (k == key) return v;
   }
-  const DampedKernel& table = *K.table();
+  const AsymmetricKernel& table = *K.table();
   std::vector<double> out;
   for (int k = -1; k < kWindows - 1; ++k) {
     const double lo = std::ldexp(1.0, k), hi = 2.0 * lo;
@@ -611,7 +611,7 @@ double zones_dissipation(const ZonesSolution& s) {
   double out = 0.0;
   for (int g = 0; g < groups; ++g) {
     const ZoneResult* first = nullptr;
-    std::vector<DampedSolution> parts;
+    std::vector<AsymmetricSolution> parts;
     std::vector<double> loads;
     double total = 0.0, lo = kInf, hi = -kInf;
     for (const ZoneResult& z : s.zones) {
@@ -626,7 +626,7 @@ double zones_dissipation(const ZonesSolution& s) {
       hi = std::max(hi, c + z.half);
     }
     if (first == nullptr) continue;
-    const DampedKernel& K = *first->kernel;
+    const AsymmetricKernel& K = *first->kernel;
     const Medium& model = K.model();
     // |p^|^2 oscillates with the distances between the zones: pieces of at
     // most 1.5/(hi - lo) (and 0.5) in alpha, 8 Gauss points each.
@@ -653,7 +653,7 @@ double zones_dissipation(const ZonesSolution& s) {
   return out;
 }
 
-DampedSolution ZoneResult::solution() const {
+AsymmetricSolution ZoneResult::solution() const {
   return zone_solution(params, kernel, offset, half, b);
 }
 
@@ -668,11 +668,11 @@ double ulp(double x) {
 // The checks of solve_zones' input; the punches' profiles.
 std::vector<PunchProfile> validate_zones(const ZonesParams& prm) {
   if (prm.layer.medium) {
-    // The medium's own checks and refusals (as solve_damped's), then its
+    // The medium's own checks and refusals (as solve_asymmetric's), then its
     // scalars as the homogeneous layer's below.
     validate_asymmetric_medium(*prm.layer.medium);
   }
-  const DampedParams L = with_medium_scalars(prm.layer);
+  const AsymmetricParams L = with_medium_scalars(prm.layer);
   require_in_range("vstar", L.vstar, 0.0, 1.0, false, true);
   require_in_range("kw", L.kw, 1e-12, kInf, false, false, true);
   require_in_range("nu", L.nu, 0.0, 0.5, false, true);
@@ -741,7 +741,7 @@ std::vector<PunchProfile> validate_zones(const ZonesParams& prm) {
 // solve_zones splits a train into), in its own coordinates.
 ZonesSolution solve_connected(const ZonesParams& prm, const std::vector<PunchProfile>& prof) {
   const auto t0 = std::chrono::steady_clock::now();
-  const DampedParams L = with_medium_scalars(prm.layer);
+  const AsymmetricParams L = with_medium_scalars(prm.layer);
   const int nz = static_cast<int>(prm.zones.size());
   ZonesSolution out;
   out.rayleigh_vstar = rayleigh_vstar(L.nu);
@@ -783,7 +783,7 @@ ZonesSolution solve_connected(const ZonesParams& prm, const std::vector<PunchPro
   auto table_need = [&](const Eigen::VectorXd& ends) {
     return std::min(range_need(ends), std::max(4.0 * widest_hull(ends) + 2.0, 256.0));
   };
-  std::shared_ptr<const DampedKernel> kern;
+  std::shared_ptr<const AsymmetricKernel> kern;
   std::shared_ptr<const Medium> medium;
   std::unique_ptr<ZoneKernel> zk;
   auto kernel = [&](double need) -> const ZoneKernel& {
@@ -888,7 +888,7 @@ ZonesSolution solve_connected(const ZonesParams& prm, const std::vector<PunchPro
         // from changes shrinking by 3.5e-3 claimed 1.3e-10 at 64): the ends'
         // estimate is never below twice the last change (the last change
         // bounds the error only where the previous size's is smaller; as a
-        // profile's and the flat punch's, damped.cpp and damped_flat.cpp).
+        // profile's and the flat punch's, asymmetric.cpp and asymmetric_flat.cpp).
         est_e.estimate = std::max(est_e.estimate, 2.0 * d_ends.back() + floor_e);
         est_p = refinement_estimate(c.sizes, d_p, 64.0 * kEps * pmax);
         return detail::ladder_verdict(
@@ -1008,7 +1008,7 @@ ZonesSolution solve_connected(const ZonesParams& prm, const std::vector<PunchPro
   // 1/sqrt(2 d)) at a relative distance d >= 1e-3 from an end; plus round-off.
   {
     out.max_pressure = pmax / total;
-    const DampedQuadrature& quad = kern->quadrature();
+    const AsymmetricQuadrature& quad = kern->quadrature();
     const double phi2 = kern->model().phi2();
     double im2 = 0.0;
     for (std::size_t i = 0; i < quad.m2.size(); ++i)
@@ -1030,7 +1030,7 @@ ZonesSolution solve_connected(const ZonesParams& prm, const std::vector<PunchPro
   // The sampling step: the surface's band (gap_scan.hpp) from the kernel's
   // quadrature of |M1 - phi1|.
   const double step = [&] {
-    const DampedQuadrature& quad = kern->quadrature();
+    const AsymmetricQuadrature& quad = kern->quadrature();
     const double phi1 = kern->model().phi1();
     return detail::gap_step(
         detail::response_band(quad.panels.alpha, quad.panels.weight,
@@ -1126,7 +1126,7 @@ bool same_group(const ZonesParams& a, const ZonesParams& b) {
 ZonesSolution solve_zones(const ZonesParams& prm) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::vector<PunchProfile> prof = validate_zones(prm);
-  const DampedParams L = with_medium_scalars(prm.layer);
+  const AsymmetricParams L = with_medium_scalars(prm.layer);
   {
     const double vr = rayleigh_vstar(L.nu), vcr = critical_vstar_of(L);
     if (!(L.vstar < vr) || (!(L.damping > 0.0) && !(L.vstar < vcr)))

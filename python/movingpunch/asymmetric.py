@@ -149,7 +149,7 @@ class AsymmetricSolution(ResultFields):
     """Half-widths (a + b)/(2h) of other contacts that carry the same load
     (above V*_cr the steady solution need not be unique; to about 1 %).
     Empty when none was found on [w/8, 4w]."""
-    _impl: _core.DampedSolution = field(repr=False, compare=False)
+    _impl: _core.AsymmetricSolution = field(repr=False, compare=False)
     _profile: PunchProfile | None = field(default=None, repr=False, compare=False)
     _medium: Medium | None = field(default=None, repr=False, compare=False)
 
@@ -301,7 +301,7 @@ def solve_asymmetric(
             rayleigh_vstar=vr,
         )
     layered = medium.core_args() if medium is not None else {}
-    impl = _core.solve_damped(
+    impl = _core.solve_asymmetric(
         **{**inputs, **shape.core_args(), **layered}, allow_unphysical=flag, n=size
     )
     if medium is not None and isinstance(medium.base, HalfSpace):

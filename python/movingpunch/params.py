@@ -137,7 +137,7 @@ def _presets_note() -> str:
 
 
 FRICTION_MAX = 10.0
-"""Largest Coulomb friction coefficient taken (cpp/src/damped.cpp validate):
+"""Largest Coulomb friction coefficient taken (cpp/src/asymmetric.cpp validate):
 real coefficients lie below about 2; at f = 10 the trailing end's exponent
 is already below 0.08 (a near-jump of the pressure) and beyond it the
 contact grows and the solve's cost with it (f = 100: minutes)."""

@@ -807,7 +807,7 @@ def kernel_cache_info() -> dict[str, int]:
     """The process-wide cache of k1 kernel tables: ``size`` (tables held),
     ``hits`` (solves that reused a table), ``misses`` (tables built); and the
     same for the asymmetric solver's (damped and/or frictional) kernel
-    tables: ``damped_size``, ``damped_hits``, ``damped_misses``.
+    tables: ``asymmetric_size``, ``asymmetric_hits``, ``asymmetric_misses``.
 
     Tables are keyed on (vstar, kw, nu, tol, kp), so solves that change only the
     radius or the load reuse one table (when the cached table covers the new

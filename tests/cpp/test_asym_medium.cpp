@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "media_reference.hpp"
-#include "movingpunch/damped.hpp"
+#include "movingpunch/asymmetric.hpp"
 #include "movingpunch/errors.hpp"
 #include "movingpunch/jacobi.hpp"
 #include "movingpunch/medium.hpp"
@@ -185,8 +185,8 @@ TEST(AsymMedium, DampedHomogeneousLayerIsAMedium) {
 
 namespace {
 
-DampedParams stack_params(const MediumSpec& spec, double friction) {
-  DampedParams p;
+AsymmetricParams stack_params(const MediumSpec& spec, double friction) {
+  AsymmetricParams p;
   p.vstar = 0.2;
   p.radius = 50.0;
   p.load = 0.004;
@@ -196,7 +196,8 @@ DampedParams stack_params(const MediumSpec& spec, double friction) {
   return p;
 }
 
-void expect_same_contact(const DampedSolution& a, const DampedSolution& b, const char* what) {
+void expect_same_contact(const AsymmetricSolution& a, const AsymmetricSolution& b,
+                         const char* what) {
   const double tol = 1e-10 + 2.0 * (a.error_estimate() + b.error_estimate());
   EXPECT_NEAR(a.left(), b.left(), tol) << what;
   EXPECT_NEAR(a.right(), b.right(), tol) << what;
@@ -210,7 +211,7 @@ void expect_same_contact(const DampedSolution& a, const DampedSolution& b, const
 }
 
 // int p = P (the series' weight) and p >= 0 on the contact.
-void expect_equilibrium(const DampedSolution& s, const char* what) {
+void expect_equilibrium(const AsymmetricSolution& s, const char* what) {
   const int m = 4000;
   double sum = 0.0, pmin = kInf;
   for (int i = 0; i < m; ++i) {
@@ -230,12 +231,12 @@ void expect_equilibrium(const DampedSolution& s, const char* what) {
 // K identical sublayers with friction 0.3: the homogeneous layer's contact.
 TEST(AsymMedium, IdenticalSublayersWithFrictionGiveTheHomogeneousContact) {
   const double kw = 1.0, nu = 0.2;
-  DampedParams h = stack_params(homogeneous_medium(kw, nu), 0.3);
+  AsymmetricParams h = stack_params(homogeneous_medium(kw, nu), 0.3);
   h.medium = nullptr;
   h.kw = kw;
   h.nu = nu;
-  const DampedSolution ref = solve_damped(h);
-  const DampedSolution st = solve_damped(stack_params(springs(identical(3, nu), kw), 0.3));
+  const AsymmetricSolution ref = solve_asymmetric(h);
+  const AsymmetricSolution st = solve_asymmetric(stack_params(springs(identical(3, nu), kw), 0.3));
   expect_same_contact(st, ref, "cylinder, friction 0.3");
   expect_equilibrium(st, "cylinder, friction 0.3");
   EXPECT_NEAR(st.end_exponents().front, ref.end_exponents().front, 1e-15);
@@ -247,18 +248,18 @@ TEST(AsymMedium, IdenticalSublayersWithFrictionGiveTheHomogeneousContact) {
 TEST(AsymMedium, IdenticalSublayersRoundedFlatAndTableGiveTheHomogeneousContact) {
   const double kw = 2.0, nu = 0.25;
   // A rounded flat with friction.
-  DampedParams p = stack_params(springs(identical(3, nu), kw), 0.3);
+  AsymmetricParams p = stack_params(springs(identical(3, nu), kw), 0.3);
   p.profile = ProfileKind::rounded_flat;
   p.half_width = 0.05;
   p.radius = 20.0;
   p.tol = 1e-10;
-  DampedParams h = p;
+  AsymmetricParams h = p;
   h.medium = nullptr;
   h.kw = kw;
   h.nu = nu;
-  expect_same_contact(solve_damped(p), solve_damped(h), "rounded flat, friction 0.3");
+  expect_same_contact(solve_asymmetric(p), solve_asymmetric(h), "rounded flat, friction 0.3");
   // An asymmetric table, frictionless and undamped.
-  DampedParams q = stack_params(springs(identical(3, nu), kw), 0.0);
+  AsymmetricParams q = stack_params(springs(identical(3, nu), kw), 0.0);
   q.profile = ProfileKind::table;
   for (int i = 0; i <= 40; ++i) {
     const double x = -0.6 + 1.2 * i / 40.0;
@@ -267,11 +268,11 @@ TEST(AsymMedium, IdenticalSublayersRoundedFlatAndTableGiveTheHomogeneousContact)
   }
   q.load = 0.002;
   q.tol = 1e-10;
-  DampedParams g = q;
+  AsymmetricParams g = q;
   g.medium = nullptr;
   g.kw = kw;
   g.nu = nu;
-  const DampedSolution a = solve_damped(q), b = solve_damped(g);
+  const AsymmetricSolution a = solve_asymmetric(q), b = solve_asymmetric(g);
   expect_same_contact(a, b, "asymmetric table");
   expect_equilibrium(a, "asymmetric table");
   // The stresses at depth (the stack's mode profiles, an interface and the
@@ -288,13 +289,13 @@ TEST(AsymMedium, IdenticalSublayersRoundedFlatAndTableGiveTheHomogeneousContact)
 // The flat punch with friction on identical sublayers: the homogeneous layer's
 // end coefficients.
 TEST(AsymMedium, IdenticalSublayersFlatWithFrictionGiveTheHomogeneousEnds) {
-  DampedParams p = stack_params(springs(identical(2, 0.2), 1.0), 0.3);
+  AsymmetricParams p = stack_params(springs(identical(2, 0.2), 1.0), 0.3);
   p.profile = ProfileKind::flat;
   p.half_width = 0.3;
   p.tol = 1e-10;
-  DampedParams h = p;
+  AsymmetricParams h = p;
   h.medium = nullptr;
-  const DampedSolution a = solve_damped(p), b = solve_damped(h);
+  const AsymmetricSolution a = solve_asymmetric(p), b = solve_asymmetric(h);
   const double tol = 1e-9 + 2.0 * b.end_coefficient_error();
   EXPECT_NEAR(a.end_coefficient_back(), b.end_coefficient_back(), tol);
   EXPECT_NEAR(a.end_coefficient_front(), b.end_coefficient_front(), tol);
@@ -313,11 +314,11 @@ TEST(AsymMedium, BondedHalfSpaceOfTheOwnMaterialIsTheFrictionalHalfPlane) {
   const WaveConstants c = wave_constants(s, nu);
   const EndExponents e = end_exponents(f, tangential_half_plane(c).Phi);
   for (double load : {1e-4, 4e-3}) {
-    DampedParams p = stack_params(spec, f);
+    AsymmetricParams p = stack_params(spec, f);
     p.vstar = s;
     p.load = load;
     p.tol = 1e-11;
-    const DampedSolution sol = solve_damped(p);
+    const AsymmetricSolution sol = solve_asymmetric(p);
     const double w = std::sqrt(c.phi1 * p.radius * load / (2.0 * kPi * e.front * e.back));
     const double centre = w * (e.back - e.front);
     EXPECT_NEAR(sol.half_width(), w, 1e-9 * w) << load;
@@ -334,8 +335,8 @@ TEST(AsymMedium, BondedHalfSpaceOfTheOwnMaterialIsTheFrictionalHalfPlane) {
 // base's contact.
 TEST(AsymMedium, SmoothHalfSpaceWithFrictionRuns) {
   const std::vector<Sublayer> two{{0.4, 1.0, 0.2, 1.0, 0.0}, {0.6, 0.5, 0.3, 1.0, 0.0}};
-  const DampedSolution a =
-      solve_damped(stack_params(half_space(two, BaseKind::half_space_smooth, 2.0, 0.3, 1.0), 0.3));
+  const AsymmetricSolution a = solve_asymmetric(
+      stack_params(half_space(two, BaseKind::half_space_smooth, 2.0, 0.3, 1.0), 0.3));
   expect_equilibrium(a, "smooth half-space");
   EXPECT_TRUE(a.warnings().empty());
   EXPECT_GT(a.right(), 0.0);
@@ -347,7 +348,7 @@ TEST(AsymMedium, RefusesUnsupportedCombinationsByName) {
   MediumSpec damped = springs(identical(2, 0.2), 1.0);
   damped.base.damping = 0.5;
   try {
-    (void)solve_damped(stack_params(damped, 0.3));
+    (void)solve_asymmetric(stack_params(damped, 0.3));
     FAIL() << "a damped base under a stack was accepted";
   } catch (const InvalidParameter& e) {
     EXPECT_EQ(e.name(), "damping");
@@ -355,13 +356,13 @@ TEST(AsymMedium, RefusesUnsupportedCombinationsByName) {
   MediumSpec graded = springs(identical(2, 0.2), 1.0);
   graded.layers[0].gamma = 0.5;
   try {
-    (void)solve_damped(stack_params(graded, 0.3));
+    (void)solve_asymmetric(stack_params(graded, 0.3));
     FAIL() << "a graded top sublayer was accepted";
   } catch (const InvalidParameter& e) {
     EXPECT_EQ(e.name(), "layers");
   }
   // Depth outputs on a stack: refused, naming what.
-  const DampedSolution s = solve_damped(stack_params(springs(identical(2, 0.2), 1.0), 0.3));
+  const AsymmetricSolution s = solve_asymmetric(stack_params(springs(identical(2, 0.2), 1.0), 0.3));
   EXPECT_THROW((void)s.stress_x(0.0, -0.5), std::invalid_argument);
   EXPECT_TRUE(std::isfinite(s.surface_stress(0.0)));
   EXPECT_TRUE(std::isfinite(s.surface_slope(0.0)));

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-#include "movingpunch/damped.hpp"
+#include "movingpunch/asymmetric.hpp"
 #include "movingpunch/errors.hpp"
 #include "movingpunch/jacobi.hpp"
 #include "test_helpers.hpp"
@@ -16,7 +16,7 @@ namespace mp = movingpunch;
 namespace {
 constexpr double kPi = 3.14159265358979323846;
 
-mp::DampedParams sliding(double vstar, double kw, double damping, double f) {
+mp::AsymmetricParams sliding(double vstar, double kw, double damping, double f) {
   return mp::testing::paper_asymmetric(vstar, kw, damping, f);
 }
 }  // namespace
@@ -44,9 +44,9 @@ TEST(Friction, BarPoleAtSmallWavenumber) {
 }
 
 TEST(Friction, ZeroFrictionIsUnchanged) {
-  const mp::DampedSolution a = mp::solve_damped(sliding(0.2, 1.0, 0.1, 0.0));
-  mp::DampedParams p = sliding(0.2, 1.0, 0.1, 0.0);
-  const mp::DampedSolution b = mp::solve_damped(p);
+  const mp::AsymmetricSolution a = mp::solve_asymmetric(sliding(0.2, 1.0, 0.1, 0.0));
+  mp::AsymmetricParams p = sliding(0.2, 1.0, 0.1, 0.0);
+  const mp::AsymmetricSolution b = mp::solve_asymmetric(p);
   EXPECT_EQ(a.left(), b.left());
   EXPECT_EQ(a.end_exponents().back, 0.5);
   EXPECT_EQ(a.tangential_force(), 0.0);
@@ -54,9 +54,9 @@ TEST(Friction, ZeroFrictionIsUnchanged) {
 
 TEST(Friction, HalfPlaneSlidingCylinder) {
   // Rigid base at rest, a << h: w^2 = phi1 R P/(2 pi gb gf), c = w (gb - gf).
-  mp::DampedParams p = sliding(0.0, std::numeric_limits<double>::infinity(), 0.0, 0.5);
+  mp::AsymmetricParams p = sliding(0.0, std::numeric_limits<double>::infinity(), 0.0, 0.5);
   p.load = 2e-11;
-  const mp::DampedSolution s = mp::solve_damped(p);
+  const mp::AsymmetricSolution s = mp::solve_asymmetric(p);
   const double phi = 0.375, gb = std::atan2(1.0, 0.5 * phi) / kPi, gf = 1.0 - gb;
   const double w = std::sqrt(0.8 * 100.0 * 2e-11 / (2.0 * kPi * gb * gf));
   EXPECT_NEAR(s.end_exponents().back, gb, 1e-14);
@@ -65,8 +65,8 @@ TEST(Friction, HalfPlaneSlidingCylinder) {
 }
 
 TEST(Friction, RefusesBadInput) {
-  EXPECT_THROW(mp::solve_damped(sliding(0.2, 1.0, 0.0, -0.1)), std::invalid_argument);
-  EXPECT_THROW(mp::solve_damped(sliding(0.2, 1.0, 0.0, std::nan(""))), std::invalid_argument);
-  EXPECT_THROW(mp::solve_damped(sliding(0.2, 1.0, 0.0, 0.0)), std::invalid_argument);
-  EXPECT_THROW(mp::solve_damped(sliding(0.6, 1.0, 0.0, 0.3)), mp::SupercriticalSpeedError);
+  EXPECT_THROW(mp::solve_asymmetric(sliding(0.2, 1.0, 0.0, -0.1)), std::invalid_argument);
+  EXPECT_THROW(mp::solve_asymmetric(sliding(0.2, 1.0, 0.0, std::nan(""))), std::invalid_argument);
+  EXPECT_THROW(mp::solve_asymmetric(sliding(0.2, 1.0, 0.0, 0.0)), std::invalid_argument);
+  EXPECT_THROW(mp::solve_asymmetric(sliding(0.6, 1.0, 0.0, 0.3)), mp::SupercriticalSpeedError);
 }

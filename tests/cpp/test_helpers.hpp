@@ -5,8 +5,8 @@
 
 #include <Eigen/Dense>
 
+#include "movingpunch/asymmetric.hpp"
 #include "movingpunch/contact.hpp"
-#include "movingpunch/damped.hpp"
 
 namespace movingpunch::testing {
 
@@ -22,8 +22,8 @@ inline ContactParams paper(double vstar, double kw) {
 }
 
 // The same on the asymmetric solver: damping and Coulomb friction f.
-inline DampedParams paper_asymmetric(double vstar, double kw, double damping, double f = 0.0) {
-  DampedParams p;
+inline AsymmetricParams paper_asymmetric(double vstar, double kw, double damping, double f = 0.0) {
+  AsymmetricParams p;
   p.vstar = vstar;
   p.kw = kw;
   p.radius = 100.0;

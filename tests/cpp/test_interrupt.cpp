@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include "movingpunch/asymmetric.hpp"
 #include "movingpunch/contact.hpp"
-#include "movingpunch/damped.hpp"
 #include "movingpunch/dispersion.hpp"
 #include "movingpunch/interrupt.hpp"
 #include "movingpunch/kernel.hpp"
@@ -110,8 +110,8 @@ TEST(Interrupt, SolveEndsWithInterruptedNotAnotherError) {
   EXPECT_EQ(polls, 2);
 }
 
-TEST(Interrupt, DampedSolveEndsWithInterrupted) {
-  mp::DampedParams p;
+TEST(Interrupt, AsymmetricSolveEndsWithInterrupted) {
+  mp::AsymmetricParams p;
   p.vstar = 0.2137;
   p.kw = 1.37;
   p.radius = 100.0;
@@ -119,7 +119,7 @@ TEST(Interrupt, DampedSolveEndsWithInterrupted) {
   p.damping = 0.0137;
   mp::clear_kernel_cache();
   mp::InterruptScope scope([] { return true; }, 0ns);
-  EXPECT_THROW((void)mp::solve_damped(p), mp::Interrupted);
+  EXPECT_THROW((void)mp::solve_asymmetric(p), mp::Interrupted);
 }
 
 // A poll that never stops changes nothing: the same result, bit for bit, as
@@ -150,11 +150,11 @@ TEST(Interrupt, PollThatNeverStopsChangesNothing) {
 // round-off, and the integral of (M1 - phi1)/phi1 agrees with the undamped
 // quadrature's (an independent rule and stopping test on the same M1) to
 // 1e-10 relative.
-TEST(BoundedWork, DampedQuadratureNearCriticalStopsAtRoundOff) {
+TEST(BoundedWork, AsymmetricQuadratureNearCriticalStopsAtRoundOff) {
   const double kw = 1e4, nu = 0.4048225797622928, kp = 3.0;
   const double v = mp::critical_vstar(kw, nu, kp) * (1.0 - 1e-7);
   const auto damped = mp::make_medium(mp::homogeneous_medium(kw, nu, kp, 0.0), v);
-  const mp::DampedQuadrature q = mp::build_damped_quadrature(*damped, 1e-15, 0.0);
+  const mp::AsymmetricQuadrature q = mp::build_damped_quadrature(*damped, 1e-15, 0.0);
   EXPECT_LT(q.panels.panel_centre.size(), 2000u);
   const auto undamped = mp::make_medium(mp::homogeneous_medium(kw, nu, kp), v);
   // Reach::field (the decay of the field at the bottom): the undamped rule then ends near the

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "ladder.hpp"
-#include "movingpunch/damped.hpp"
+#include "movingpunch/asymmetric.hpp"
 #include "movingpunch/errors.hpp"
 #include "solve_skeleton.hpp"
 

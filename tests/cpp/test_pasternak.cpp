@@ -9,8 +9,8 @@
 #include <stdexcept>
 
 #include "layer_basis.hpp"
+#include "movingpunch/asymmetric.hpp"
 #include "movingpunch/contact.hpp"
-#include "movingpunch/damped.hpp"
 #include "movingpunch/dispersion.hpp"
 #include "movingpunch/errors.hpp"
 #include "movingpunch/kernel.hpp"
@@ -78,7 +78,7 @@ TEST(Pasternak, RejectsBadKpNamingIt) {
     ContactParams c;
     c.kp = bad;
     EXPECT_THROW(validate(c), InvalidParameter);
-    DampedParams d;
+    AsymmetricParams d;
     d.damping = 0.1;
     d.kp = bad;
     EXPECT_THROW(validate(d), InvalidParameter);

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "movingpunch/asymmetric.hpp"
 #include "movingpunch/contact.hpp"
-#include "movingpunch/damped.hpp"
 #include "roots.hpp"
 #include "solve_skeleton.hpp"
 
@@ -132,7 +132,7 @@ TEST(SolveSkeleton, BothSolversRefuseOutOfRangeWidthsWithTheSharedMessage) {
   u.vstar = 0.3;
   u.radius = 100.0;
   u.load = 1e-300;
-  mp::DampedParams dp;
+  mp::AsymmetricParams dp;
   dp.vstar = 0.3;
   dp.radius = 100.0;
   dp.load = 1e-300;
@@ -145,7 +145,7 @@ TEST(SolveSkeleton, BothSolversRefuseOutOfRangeWidthsWithTheSharedMessage) {
     EXPECT_NE(std::string(e.what()).find(range), std::string::npos) << e.what();
   }
   try {
-    (void)mp::solve_damped(dp);
+    (void)mp::solve_asymmetric(dp);
     FAIL() << "damped: no error";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find(range), std::string::npos) << e.what();
@@ -154,20 +154,20 @@ TEST(SolveSkeleton, BothSolversRefuseOutOfRangeWidthsWithTheSharedMessage) {
   }
 }
 
-TEST(DampedScanMemo, WarmSolvesReuseTheScanWithoutChangingAnyResult) {
+TEST(AsymmetricScanMemo, WarmSolvesReuseTheScanWithoutChangingAnyResult) {
   // Above V*_cr with light damping three contacts carry R P/(mu h^2) = 0.25
   // (docs/damped.md section 5). The scan's lambda(w) at its lattice points is
   // memoised per kernel table and N: a warm solve (memo hit), and one after a
   // fixed-n solve on the same table (another N in the memo), must give the
   // cold solve's numbers exactly; a cold solve from an empty cache too.
-  mp::DampedParams p;
+  mp::AsymmetricParams p;
   p.vstar = 0.65;
   p.kw = 1.0;
   p.nu = 0.2;
   p.radius = 100.0;
   p.load = 0.0025;
   p.damping = 0.01;
-  auto same = [](const mp::DampedSolution& a, const mp::DampedSolution& b) {
+  auto same = [](const mp::AsymmetricSolution& a, const mp::AsymmetricSolution& b) {
     EXPECT_EQ(a.left(), b.left());
     EXPECT_EQ(a.right(), b.right());
     EXPECT_EQ(a.error_estimate(), b.error_estimate());
@@ -176,16 +176,16 @@ TEST(DampedScanMemo, WarmSolvesReuseTheScanWithoutChangingAnyResult) {
     EXPECT_EQ(a.other_half_widths(), b.other_half_widths());
   };
   mp::clear_kernel_cache();
-  const mp::DampedSolution cold = mp::solve_damped(p);
+  const mp::AsymmetricSolution cold = mp::solve_asymmetric(p);
   ASSERT_EQ(cold.other_half_widths().size(), 2u) << cold.validity();
-  const mp::DampedSolution warm = mp::solve_damped(p);
+  const mp::AsymmetricSolution warm = mp::solve_asymmetric(p);
   same(cold, warm);
-  mp::DampedParams fixed = p;
+  mp::AsymmetricParams fixed = p;
   fixed.n = 48;
-  (void)mp::solve_damped(fixed);
-  same(cold, mp::solve_damped(p));
+  (void)mp::solve_asymmetric(fixed);
+  same(cold, mp::solve_asymmetric(p));
   mp::clear_kernel_cache();
-  same(cold, mp::solve_damped(p));
+  same(cold, mp::solve_asymmetric(p));
   // The three states as docs/damped.md section 5 gives them (0.459, 0.728,
   // 1.120; the scan's linear interpolation: to ~1 %).
   const double w = 0.5 * (cold.right() - cold.left());

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "movingpunch/asymmetric.hpp"
 #include "movingpunch/contact.hpp"
-#include "movingpunch/damped.hpp"
 #include "movingpunch/dispersion.hpp"
 #include "movingpunch/errors.hpp"
 #include "movingpunch/zones.hpp"
@@ -35,19 +35,19 @@ mp::ZonePunch cylinder(double load, double at) {
 
 // The asymmetric solver's single contact the zones are compared with:
 // V* = 0.5, kw h/mu = 1, damping 0.3 (R/h = 100, P/(mu h) = 0.002, tol 1e-11).
-mp::DampedSolution damped_reference() {
-  mp::DampedParams d;
+mp::AsymmetricSolution damped_reference() {
+  mp::AsymmetricParams d;
   d.vstar = 0.5;
   d.kw = 1.0;
   d.damping = 0.3;
   d.tol = 1e-11;
-  return mp::solve_damped(d);
+  return mp::solve_asymmetric(d);
 }
 
 }  // namespace
 
 TEST(Zones, OneZoneIsTheAsymmetricSolversContact) {
-  const mp::DampedSolution ref = damped_reference();
+  const mp::AsymmetricSolution ref = damped_reference();
   mp::ZonesParams p = layer(0.5, 1.0, 0.3);
   p.punches = {cylinder(0.002, 0.0)};
   p.zones = {{0, ref.left() * 0.9, ref.right() * 1.1}};
@@ -116,7 +116,7 @@ TEST(Zones, BadInputIsRefused) {
 // separate groups, each about its own axis: no table spans the distance),
 // and a damped pair's dissipation is the sum of each one's.
 TEST(Zones, PunchesAMillionApartAreEachTheSinglePunch) {
-  const mp::DampedSolution ref = damped_reference();
+  const mp::AsymmetricSolution ref = damped_reference();
   mp::ZonesParams p = layer(0.5, 1.0, 0.3);
   p.punches = {cylinder(0.002, -5e5), cylinder(0.002, 5e5)};
   p.zones = {{0, -5e5 + ref.left(), -5e5 + ref.right()}, {1, 5e5 + ref.left(), 5e5 + ref.right()}};

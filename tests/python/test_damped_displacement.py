@@ -14,7 +14,7 @@
   field's complex potentials).
 
 The interior of the field at finite damping is checked against a direct
-Fourier sum in tests/cpp/test_damped_displacement.cpp.
+Fourier sum in tests/cpp/test_asymmetric_displacement.cpp.
 """
 
 from __future__ import annotations

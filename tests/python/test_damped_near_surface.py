@@ -14,7 +14,7 @@ included, each against an anchor computed independently of it:
   field decays, as it does subcritically with damping).
 
 The interior at finite damping (0.1 and 1) is checked against a direct
-Fourier sum without split in tests/cpp/test_damped_stress_field.cpp, to
+Fourier sum without split in tests/cpp/test_asymmetric_stress_field.cpp, to
 1e-10 of the peak pressure at depths from -1e-3 to -1.
 """
 

@@ -570,7 +570,7 @@ def test_friction_bounds_are_the_cores() -> None:
     probes += [math.nextafter(10.0, 0.0), math.nan, math.inf]
 
     def call(x: float) -> None:
-        _core.solve_damped(
+        _core.solve_asymmetric(
             vstar=0.2,
             kw=1.0,
             radius=100.0,

@@ -456,7 +456,7 @@ def fuzz_asymmetric_profiles(
     """Each call: a profile as fuzz_profiles draws it (sometimes shifted off
     x = 0: an asymmetric table), damping from {0, 0.1, 0.5} and friction from
     {0, 0.3, 1} (kernel tables are cached per inputs), through
-    _core.solve_damped. damping = friction = 0 with a symmetric shape is
+    _core.solve_asymmetric. damping = friction = 0 with a symmetric shape is
     refused naming the parameter; a solution must be finite with the contact
     a flat punch's face, reaching past a rounded flat's face or within a
     table; an error must be the package's."""
@@ -484,7 +484,7 @@ def fuzz_asymmetric_profiles(
             args["friction"] = float(draw._pick([0.0, 0.3, 1.0]))
             args["n"] = 0
             args["tol"] = 1e-8
-            sol, exc = _attempt(lambda args=args: _core.solve_damped(**args))
+            sol, exc = _attempt(lambda args=args: _core.solve_asymmetric(**args))
             if exc is not None:
                 _check_error(exc, args)
                 outcomes[type(exc).__name__] += 1

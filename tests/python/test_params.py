@@ -176,10 +176,12 @@ def test_core_errors_of_other_functions_name_the_parameter() -> None:
     assert info.value.parameter == "nu"
     damped = {**GOOD, "damping": -1.0, "n": 0}
     with pytest.raises(InvalidParameterError) as info:
-        _core.solve_damped(**damped, allow_unphysical=False)
+        _core.solve_asymmetric(**damped, allow_unphysical=False)
     assert info.value.parameter == "damping"
     with pytest.raises(InvalidParameterError) as info:
-        _core.solve_damped(**{**damped, "damping": 0.1, "n": 3}, allow_unphysical=False)
+        _core.solve_asymmetric(
+            **{**damped, "damping": 0.1, "n": 3}, allow_unphysical=False
+        )
     assert info.value.parameter == "n"
     impl = _core.solve_contact(**GOOD, n=0, allow_unphysical=False)
     for x, y, name in (([math.nan], [-0.5], "x"), ([0.0], [0.5], "y")):

@@ -177,7 +177,7 @@ std::shared_ptr<const KernelK1> cached_kernel(const LayerModel& model, double to
                                               double build_range, bool* built = nullptr,
                                               bool grow = true);
 KernelCacheInfo kernel_cache_info();
-// Clears the k1 tables and the damped kernel tables (damped.hpp).
+// Clears the k1 tables and the damped kernel tables (asymmetric.hpp).
 void clear_kernel_cache();
 
 }  // namespace movingpunch

@@ -160,7 +160,7 @@ struct FullResponse {
   cplx Wqb{0.0, 0.0};
 };
 
-class DampedLayerModel;  // damped.hpp: the homogeneous layer on damped springs
+class DampedLayerModel;  // asymmetric.hpp: the homogeneous layer on damped springs
 
 // The state of one mode at a depth: [U, W, tau/alpha, sigma_y/alpha] and
 // sigma_x/alpha (of the material on the chosen side of an interface), for the
@@ -232,7 +232,7 @@ class Medium {
   // (-1, 0)); empty for one sublayer.
   virtual std::vector<double> interfaces() const { return {}; }
 
-  // --- The asymmetric solver's reads (damped.hpp, zones.hpp).
+  // --- The asymmetric solver's reads (asymmetric.hpp, zones.hpp).
   // The normal and tangential loads' responses (FullResponse), t >= 0 (t = 0:
   // the limits; Uq, Wq are NaN there on a shear-free base, the bar pole).
   virtual FullResponse full_response(double t) const = 0;

@@ -23,7 +23,7 @@
 
 #include <Eigen/Dense>
 
-#include "movingpunch/damped.hpp"
+#include "movingpunch/asymmetric.hpp"
 #include "movingpunch/profile.hpp"
 
 namespace movingpunch {
@@ -47,7 +47,7 @@ struct ZonesParams {
   // The layer and the numerics: vstar, kw, nu, damping, kp, tol, n (0: the
   // ladder 16, 24, 32, ...; else that size alone); friction must be 0; the
   // load and the profile fields are unused (each punch has its own).
-  DampedParams layer;
+  AsymmetricParams layer;
   std::vector<ZonePunch> punches;
   std::vector<ZoneSpan> zones;  // the start: disjoint, every punch at least one zone
   // The ladder's first size (layer.n = 0): 8 from a close start (a train
@@ -74,12 +74,12 @@ struct ZoneResult {
   // Built on each call (its Fourier nodes cost about a millisecond).
   // Relative to its punch's axis `origin` (= that punch's at): evaluate it
   // at x - origin (so that a train far from x = 0 keeps its digits).
-  DampedSolution solution() const;
-  double origin = 0;                           // x/h of its punch's axis
-  double offset = 0;                           // its centre relative to origin
-  double half = 0;                             // its half-width
-  DampedParams params;                         // the layer, load = the zone's
-  std::shared_ptr<const DampedKernel> kernel;  // the solve's kernel table
+  AsymmetricSolution solution() const;
+  double origin = 0;                               // x/h of its punch's axis
+  double offset = 0;                               // its centre relative to origin
+  double half = 0;                                 // its half-width
+  AsymmetricParams params;                         // the layer, load = the zone's
+  std::shared_ptr<const AsymmetricKernel> kernel;  // the solve's kernel table
 };
 
 struct ZonesSolution {

@@ -11,7 +11,7 @@
 #include <Eigen/Dense>
 
 #include "bindings.hpp"
-#include "movingpunch/damped.hpp"
+#include "movingpunch/asymmetric.hpp"
 #include "movingpunch/jacobi.hpp"
 
 namespace py = pybind11;
@@ -32,109 +32,112 @@ Eigen::VectorXd each(const VectorRef& x, F f) {
 
 }  // namespace
 
-void bind_damped(py::module_& m) {
+void bind_asymmetric(py::module_& m) {
   using Release = py::call_guard<py::gil_scoped_release>;
 
-  auto cls = bind_result_class<DampedSolution>(
-      m, "DampedSolution",
-      "Result of solve_damped (dimensionless: h = 1, mu = 1, pressures per P/h). "
+  auto cls = bind_result_class<AsymmetricSolution>(
+      m, "AsymmetricSolution",
+      "Result of solve_asymmetric (dimensionless: h = 1, mu = 1, pressures per P/h). "
       "Not constructible from Python.");
-  cls.def_property_readonly("left", &DampedSolution::left,
+  cls.def_property_readonly("left", &AsymmetricSolution::left,
                             "Trailing end -b/h of the contact (-b, a).")
-      .def_property_readonly("right", &DampedSolution::right,
+      .def_property_readonly("right", &AsymmetricSolution::right,
                              "Leading end a/h of the contact (-b, a).")
-      .def_property_readonly("centre", &DampedSolution::centre, "Centre (a - b)/(2h).")
-      .def_property_readonly("half_width", &DampedSolution::half_width, "Half-width (a + b)/(2h).")
-      .def_property_readonly("drag", &DampedSolution::drag,
+      .def_property_readonly("centre", &AsymmetricSolution::centre, "Centre (a - b)/(2h).")
+      .def_property_readonly("half_width", &AsymmetricSolution::half_width,
+                             "Half-width (a + b)/(2h).")
+      .def_property_readonly("drag", &AsymmetricSolution::drag,
                              "Horizontal force on the punch over P, int p x/R dx / P "
                              "(positive: opposes the motion).")
-      .def_property_readonly("friction", &DampedSolution::friction,
+      .def_property_readonly("friction", &AsymmetricSolution::friction,
                              "Coulomb friction f: the shear traction on the layer is f p, "
                              "towards +x (the direction of motion).")
-      .def_property_readonly("tangential_force", &DampedSolution::tangential_force,
+      .def_property_readonly("tangential_force", &AsymmetricSolution::tangential_force,
                              "Tangential (friction) force on the punch over P, f "
                              "(positive: opposes the motion).")
       .def_property_readonly(
           "end_exponents",
-          [](const DampedSolution& s) {
+          [](const AsymmetricSolution& s) {
             return std::make_tuple(s.end_exponents().back, s.end_exponents().front);
           },
           "(gamma_back, gamma_front): p ~ (x + b)^gamma_back (a - x)^gamma_front.")
       .def_property_readonly(
           "end_coefficients",
-          [](const DampedSolution& s) {
+          [](const AsymmetricSolution& s) {
             return std::make_tuple(s.end_coefficient_back(), s.end_coefficient_front());
           },
           "(K_back, K_front) of a flat punch: lim sqrt(2 pi) d^(-gamma) p over (P/h) "
           "h^(-gamma) as the distance d to that end goes to 0; (0, 0) for bounded ends.")
-      .def_property_readonly("end_coefficient_error", &DampedSolution::end_coefficient_error,
+      .def_property_readonly("end_coefficient_error", &AsymmetricSolution::end_coefficient_error,
                              "Estimated absolute error of each of end_coefficients.")
-      .def_property_readonly("coupling", &DampedSolution::coupling,
+      .def_property_readonly("coupling", &AsymmetricSolution::coupling,
                              "Coupling constant Phi(vstar, nu) of the local term f Phi p.")
-      .def_property_readonly("series_truncation", &DampedSolution::series_truncation,
+      .def_property_readonly("series_truncation", &AsymmetricSolution::series_truncation,
                              "Bound on the pressure's error over P/h from the truncation of "
                              "its (tail-extended) series: a profile's kinks (0 for the "
                              "cylinder).")
-      .def_property_readonly("pressure_error_estimate", &DampedSolution::pressure_error_estimate,
+      .def_property_readonly("pressure_error_estimate",
+                             &AsymmetricSolution::pressure_error_estimate,
                              "Bound on the error of p/(P/h) at a fixed relative position "
                              "r = (x - c)/w in the contact.")
-      .def_property_readonly("stress_error_estimate", &DampedSolution::stress_error_estimate,
+      .def_property_readonly("stress_error_estimate", &AsymmetricSolution::stress_error_estimate,
                              "Bound on the error of the surface sigma_x/(P/h) more than "
                              "1e-3 (a + b)/2 from the contact ends.")
-      .def_property_readonly("max_pressure", &DampedSolution::max_pressure,
+      .def_property_readonly("max_pressure", &AsymmetricSolution::max_pressure,
                              "Maximum of p/(P/h) on the contact.")
       .def_property_readonly(
           "other_half_widths",
-          [](const DampedSolution& s) { return py::tuple(py::cast(s.other_half_widths())); },
+          [](const AsymmetricSolution& s) { return py::tuple(py::cast(s.other_half_widths())); },
           "Half-widths (a+b)/(2h) of other contacts carrying the same load (above "
           "V*_cr the steady solution need not be unique); empty when unique.")
       .def(
-          "dissipation", [](const DampedSolution& s) { return s.dissipation(); }, Release(),
+          "dissipation", [](const AsymmetricSolution& s) { return s.dissipation(); }, Release(),
           "Power dissipated in the dashpots over P V (equals drag by the energy balance).")
       .def(
           "surface_slope",
-          [](const DampedSolution& s, const VectorRef& x) {
+          [](const AsymmetricSolution& s, const VectorRef& x) {
             return each(x, [&](double v) { return s.surface_slope(v); });
           },
           "x"_a, Release(), "Surface slope dv/dx(x, 0) at each x/h.")
       .def(
           "bottom_slope",
-          [](const DampedSolution& s, const VectorRef& x) {
+          [](const AsymmetricSolution& s, const VectorRef& x) {
             return each(x, [&](double v) { return s.bottom_slope(v); });
           },
           "x"_a, Release(), "Slope dv/dx(x, -h) of the bottom face at each x/h.")
       .def(
           "stress_x",
-          [](const DampedSolution& s, double x, const VectorRef& y) {
+          [](const AsymmetricSolution& s, double x, const VectorRef& y) {
             return each(y, [&](double v) { return s.stress_x(x, v); });
           },
           "x"_a, "y"_a, Release(),
           "sigma_x(x, y)/(P/h) at one x/h and each y/h in [-1, -1e-3] or 0.")
       .def(
           "bottom_displacement",
-          [](const DampedSolution& s, const VectorRef& x) {
+          [](const AsymmetricSolution& s, const VectorRef& x) {
             return each(x, [&](double v) { return s.bottom_displacement(v); });
           },
           "x"_a, Release(), "Displacement v(x, -h)/h of the bottom face at each x/h.")
-      .def("__repr__", [](const DampedSolution& s) {
-        return py::str("<movingpunch._core.DampedSolution left={!r} right={!r} drag={!r}>")
+      .def("__repr__", [](const AsymmetricSolution& s) {
+        return py::str("<movingpunch._core.AsymmetricSolution left={!r} right={!r} drag={!r}>")
             .format(s.left(), s.right(), s.drag());
       });
 
   m.def(
-      "solve_damped",
+      "solve_asymmetric",
       [](double vstar, double kw, double radius, double load, double nu, double damping, double tol,
          bool allow_unphysical, int n, double kp, double friction, const std::string& profile,
          double half_width, const std::vector<double>& table_x, const std::vector<double>& table_y,
          const LayerRows& layers, const std::string& base, double base_mu, double base_nu,
          double base_rho) {
-        auto p = solve_params<DampedParams>(vstar, kw, radius, load, nu, tol, allow_unphysical, n);
+        auto p =
+            solve_params<AsymmetricParams>(vstar, kw, radius, load, nu, tol, allow_unphysical, n);
         p.damping = damping;
         p.kp = kp;
         p.friction = friction;
         set_profile(p, profile, half_width, table_x, table_y);
         p.medium = medium_spec(layers, base, kw, kp, damping, base_mu, base_nu, base_rho);
-        return solve_damped(p);
+        return solve_asymmetric(p);
       },
       py::kw_only(), "vstar"_a, "kw"_a, "radius"_a, "load"_a, "nu"_a, "damping"_a, "tol"_a,
       "allow_unphysical"_a, "n"_a = 0, "kp"_a = 0.0, "friction"_a = 0.0, "profile"_a = "cylinder",

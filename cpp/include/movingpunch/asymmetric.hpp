@@ -99,7 +99,7 @@ class DampedLayerModel {
 // Adaptive (Gauss-Kronrod 7/15) panels on [0, alpha_max] resolving
 // M1 - phi1, M2 - phi2 and Wb of a damped layer; nodes in the order of
 // kernel.hpp's AlphaQuadrature (so FilonIntegrator applies).
-struct DampedQuadrature {
+struct AsymmetricQuadrature {
   AlphaQuadrature panels;  // nodes, weights, panel centres/half-widths
   std::vector<cplx> m1, m2, wb;
   std::vector<DampedResponse> r;  // the whole response at each node
@@ -111,22 +111,23 @@ struct DampedQuadrature {
 // friction > 0: the panels resolve friction (Wq - Wq_inf)/phi1 too. Any
 // medium (its full_response; the panels end where its slowest field decays
 // below 1e-18, field_decay_rate).
-DampedQuadrature build_damped_quadrature(const Medium& model, double tol, double friction = 0.0);
+AsymmetricQuadrature build_damped_quadrature(const Medium& model, double tol,
+                                             double friction = 0.0);
 
-// The regular kernel K(u) of the damped equation (damped_kernel() below) for
+// The regular kernel K(u) of the damped equation (asymmetric_kernel() below) for
 // one medium (Medium::key()) and friction: the alpha quadrature and its Filon
 // coefficients (range-independent, shared by every table of these inputs) and
 // a piecewise Chebyshev table (degree 24 on equal pieces of width <= 1) on
 // |u| <= range(), built from direct Filon sums and checked piece by piece
 // (the last coefficients at round-off). Beyond the range: direct sums.
 // Immutable and shared between solves (cached_damped_kernel).
-class DampedKernel {
+class AsymmetricKernel {
  public:
   // friction > 0: the kernel of the frictional equation, K - f K_t with the
   // effective response M1 - i f Wq (docs/theory.md section 14).
-  DampedKernel(std::shared_ptr<const Medium> model, double range, double friction = 0.0);
+  AsymmetricKernel(std::shared_ptr<const Medium> model, double range, double friction = 0.0);
   // A wider table on the quadrature of `other` (no new layer responses).
-  DampedKernel(const DampedKernel& other, double range);
+  AsymmetricKernel(const AsymmetricKernel& other, double range);
 
   double operator()(double u) const;  // the table on |u| <= range(), direct() beyond
   void many(const double* u, double* out, std::size_t n) const;  // out[i] = (*this)(u[i])
@@ -138,7 +139,7 @@ class DampedKernel {
   double table_error() const noexcept { return table_error_; }
   const Medium& model() const noexcept { return *base_->model; }
   const std::shared_ptr<const Medium>& model_ptr() const noexcept { return base_->model; }
-  const DampedQuadrature& quadrature() const noexcept { return base_->quad; }
+  const AsymmetricQuadrature& quadrature() const noexcept { return base_->quad; }
   const FilonIntegrator& filon() const noexcept { return *base_->filon; }
   const std::vector<double>& kr() const noexcept { return base_->kr; }
   const std::vector<double>& ki() const noexcept { return base_->ki; }
@@ -147,7 +148,7 @@ class DampedKernel {
   static constexpr int kDegree = 24;
   struct Base {
     std::shared_ptr<const Medium> model;
-    DampedQuadrature quad;
+    AsymmetricQuadrature quad;
     std::shared_ptr<const FilonIntegrator> filon;
     std::vector<double> kr, ki;  // Filon coefficients of Re, Im (M1 - phi1)/phi1
     double friction = 0.0;
@@ -167,18 +168,19 @@ class DampedKernel {
 // evicted beyond kDampedKernelCacheCapacity; thread-safe; emptied by
 // clear_kernel_cache() (kernel.hpp).
 inline constexpr std::size_t kDampedKernelCacheCapacity = 16;
-std::shared_ptr<const DampedKernel> cached_damped_kernel(
+std::shared_ptr<const AsymmetricKernel> cached_damped_kernel(
     const std::shared_ptr<const Medium>& medium, double min_range, double build_range,
     bool* built = nullptr, double friction = 0.0);
 // The homogeneous layer of (vstar, kw, nu, damping, kp) (make_medium).
-std::shared_ptr<const DampedKernel> cached_damped_kernel(double vstar, double kw, double nu,
-                                                         double damping, double min_range,
-                                                         double build_range, bool* built = nullptr,
-                                                         double kp = 0.0, double friction = 0.0);
-KernelCacheInfo damped_kernel_cache_info();
+std::shared_ptr<const AsymmetricKernel> cached_damped_kernel(double vstar, double kw, double nu,
+                                                             double damping, double min_range,
+                                                             double build_range,
+                                                             bool* built = nullptr, double kp = 0.0,
+                                                             double friction = 0.0);
+KernelCacheInfo asymmetric_kernel_cache_info();
 
 // Dimensionless inputs (h = 1, mu = 1).
-struct DampedParams {
+struct AsymmetricParams {
   double vstar = 0;     // 0 <= vstar < V*_R (supercritical allowed)
   double kw = 1;        // k_w h / mu in [1e-12, inf]
   double radius = 100;  // R / h > 0
@@ -193,7 +195,7 @@ struct DampedParams {
   double kp = 0;  // k_p / (mu h) in [0, kMaxKp]: Pasternak shear layer (0: Winkler)
   // The medium (medium.hpp), as ContactParams': null, the homogeneous layer
   // of (kw, nu, kp, damping); otherwise this stack and base (kw, nu, kp and
-  // damping are then ignored: solve_damped reads them from it).
+  // damping are then ignored: solve_asymmetric reads them from it).
   std::shared_ptr<const MediumSpec> medium;
   // The punch's shape, as ContactParams' (profile.hpp, docs/theory.md
   // section 13): a cylinder of `radius` (the default); a rounded flat
@@ -207,29 +209,29 @@ struct DampedParams {
 };
 
 // The medium of p: *p.medium, or the homogeneous layer of (kw, nu, kp, damping).
-MediumSpec medium_of(const DampedParams& p);
+MediumSpec medium_of(const AsymmetricParams& p);
 // p with kw, nu, kp and damping read from p.medium when it is set (nu: the
 // top sublayer's; kw = inf, kp = 0 under a half-space), so that messages
 // and width guesses see the medium's own values.
-DampedParams with_medium_scalars(const DampedParams& p);
+AsymmetricParams with_medium_scalars(const AsymmetricParams& p);
 // The critical vstar of p's medium (critical_vstar(kw, nu, kp) for the
 // homogeneous layer; critical_speed(spec) otherwise).
-double critical_vstar_of(const DampedParams& p);
+double critical_vstar_of(const AsymmetricParams& p);
 
 // Throws std::invalid_argument naming the parameter and its valid range (a
 // medium: its own checks, and InvalidParameter for what the asymmetric
 // solver cannot take on it: a graded top sublayer, a damped base under a
 // stack or a half-space).
-void validate(const DampedParams& p);
+void validate(const AsymmetricParams& p);
 // The medium's own checks (validate(MediumSpec)) and what the asymmetric
 // solver cannot take on it yet, as InvalidParameter naming it: a graded top
 // sublayer (layers), damped springs under a stack (damping). Shared by
-// solve_damped's and solve_zones' checks.
+// solve_asymmetric's and solve_zones' checks.
 void validate_asymmetric_medium(const MediumSpec& m);
 
-class DampedSolution {
+class AsymmetricSolution {
  public:
-  const DampedParams& params() const noexcept { return params_; }
+  const AsymmetricParams& params() const noexcept { return params_; }
   double left() const noexcept { return centre_ - half_; }   // -b/h (trailing end)
   double right() const noexcept { return centre_ + half_; }  // a/h (leading end)
   double centre() const noexcept { return centre_; }
@@ -347,7 +349,7 @@ class DampedSolution {
   // g's coefficients: Chebyshev U_n without friction, Jacobi P_n^(front, back) with it
   // (a flat punch: Jacobi P_n^(front, back) of its exponents, front + back = -1).
   const Eigen::VectorXd& g_coefficients() const noexcept { return b_; }
-  // The punch's shape (DampedParams::punch()).
+  // The punch's shape (AsymmetricParams::punch()).
   const PunchProfile& punch() const noexcept { return *punch_; }
   // A profile whose slope has a kink (a rounded flat) or a table: bound on
   // what the series of g leaves out beyond its (half-plane tail extended)
@@ -357,12 +359,12 @@ class DampedSolution {
   const Medium& model() const noexcept { return *model_; }
 
  private:
-  friend DampedSolution solve_damped(const DampedParams& p);
-  friend DampedSolution solve_damped_flat(const DampedParams& p);
-  friend DampedSolution zone_solution(const DampedParams& p,
-                                      std::shared_ptr<const DampedKernel> kernel, double centre,
-                                      double half, const Eigen::VectorXd& b);
-  DampedParams params_{};
+  friend AsymmetricSolution solve_asymmetric(const AsymmetricParams& p);
+  friend AsymmetricSolution solve_asymmetric_flat(const AsymmetricParams& p);
+  friend AsymmetricSolution zone_solution(const AsymmetricParams& p,
+                                          std::shared_ptr<const AsymmetricKernel> kernel,
+                                          double centre, double half, const Eigen::VectorXd& b);
+  AsymmetricParams params_{};
   double end_k_back_ = 0, end_k_front_ = 0, end_k_err_ = 0;
   double centre_ = 0, half_ = 0, drag_ = 0, vcr_ = 0, vr_ = 0, err_ = 0, elapsed_ = 0;
   double perr_ = 0, serr_ = 0, max_p_ = 0, margin_ = 0, trunc_ = 0;
@@ -391,7 +393,7 @@ class DampedSolution {
   // f Cq (1/pi) int p/(xi - x) - (f C0/pi) int p arctan(x - xi) (theory.md section 14).
   double friction_surface_terms(double x, const JacobiSeries& s, double c, double w) const;
   std::shared_ptr<const Medium> model_;
-  std::shared_ptr<const DampedKernel> kernel_;
+  std::shared_ptr<const AsymmetricKernel> kernel_;
   // The homogeneous layer behind model_ (its closed-form modal fields: the
   // depth outputs' fast path), or null: a layered medium, whose depth
   // outputs are refused (layered_refusal names them).
@@ -423,7 +425,7 @@ class DampedSolution {
   };
   // Resolving p^'s own oscillation (freq 2w; the centre's phase is shifted
   // out): Filon integrals at any x (surface sigma_x, the estimates, the
-  // dissipation). Built by solve_damped.
+  // dissipation). Built by solve_asymmetric.
   std::shared_ptr<const Fine> light_;
   // Resolving e^{i alpha x} for |x| <= 3 (a + b) too (the direct sums of the
   // bottom outputs): built on first use, then shared.
@@ -511,15 +513,15 @@ class DampedSolution {
 // Solves the damped contact problem (damping > 0). Throws std::invalid_argument
 // (bad input), SupercriticalSpeedError (vstar >= V*_R), UnphysicalContactError
 // (unless allow_unphysical) and ConvergenceError.
-DampedSolution solve_damped(const DampedParams& p);
+AsymmetricSolution solve_asymmetric(const AsymmetricParams& p);
 
-// The flat punch (profile flat) on the asymmetric solver (damped_flat.cpp;
+// The flat punch (profile flat) on the asymmetric solver (asymmetric_flat.cpp;
 // docs/theory.md section 14, "The flat punch on the asymmetric solver"): the
 // contact is the face (-b, b), p = (P/h) w(r) g(r) with w = (1 - r)^alpha
 // (1 + r)^beta, alpha = gamma_front - 1, beta = gamma_back - 1, by
 // Gauss-Jacobi collocation (jacobi_flat_nodes) and equilibrium, over the N
-// ladder until the end coefficients meet tol. solve_damped dispatches here.
-DampedSolution solve_damped_flat(const DampedParams& p);
+// ladder until the end coefficients meet tol. solve_asymmetric dispatches here.
+AsymmetricSolution solve_asymmetric_flat(const AsymmetricParams& p);
 
 // One zone of a several-zone contact (zones.hpp) as a solution of its own:
 // the pressure p = (P/h) sqrt(1 - r^2) sum b_n U_n(r), r = (x - centre)/half,
@@ -528,8 +530,9 @@ DampedSolution solve_damped_flat(const DampedParams& p);
 // stress, displacement, fields). The several-zone result sums its zones'
 // outputs (superposition); its own checks and estimates replace this one's
 // (valid(), the estimates and drag() are not set here).
-DampedSolution zone_solution(const DampedParams& p, std::shared_ptr<const DampedKernel> kernel,
-                             double centre, double half, const Eigen::VectorXd& b);
+AsymmetricSolution zone_solution(const AsymmetricParams& p,
+                                 std::shared_ptr<const AsymmetricKernel> kernel, double centre,
+                                 double half, const Eigen::VectorXd& b);
 
 // Error estimate of the last member of a sequence x_0, x_1, ... computed at
 // sizes n_0 < n_1 < ..., from the changes d_k = |x_k - x_{k-1}| (changes[k-1]
@@ -637,7 +640,7 @@ double max_abs_sine_series_long(const Eigen::VectorXd& b, int head);
 // The regular kernel of the damped equation,
 //   K(u) = (1/phi1) int_0^inf [Re(M1 - phi1) sin(alpha u) + Im(M1 - phi1) cos(alpha u)] d alpha,
 // (= k1(u) of kernel.hpp when damping -> 0), by Filon quadrature; exposed for tests.
-double damped_kernel(const FilonIntegrator& f, const std::vector<double>& kr,
-                     const std::vector<double>& ki, double u);
+double asymmetric_kernel(const FilonIntegrator& f, const std::vector<double>& kr,
+                         const std::vector<double>& ki, double u);
 
 }  // namespace movingpunch

@@ -1,6 +1,6 @@
 // The moving punch on a damped (Kelvin-Voigt) Winkler foundation: complex
 // layer response, asymmetric contact (-b, a), drag. See docs/damped.md.
-#include "movingpunch/damped.hpp"
+#include "movingpunch/asymmetric.hpp"
 
 #include <algorithm>
 #include <array>
@@ -282,7 +282,7 @@ DPanel eval_dpanel(const Medium& m, double lo, double hi, double friction) {
 
 }  // namespace
 
-DampedQuadrature build_damped_quadrature(const Medium& model, double tol, double friction) {
+AsymmetricQuadrature build_damped_quadrature(const Medium& model, double tol, double friction) {
   if (!(tol > 0.0)) throw std::invalid_argument("damped quadrature: tol must be > 0");
   // The slowest field, the base face's response Wb, decays like (1 + t)
   // exp(-nT t) (nT: the homogeneous layer's; a stack's travel time through
@@ -292,7 +292,7 @@ DampedQuadrature build_damped_quadrature(const Medium& model, double tol, double
     throw std::invalid_argument(
         "asymmetric solver: the medium's response does not decay at short waves (a graded "
         "top sublayer): not supported");
-  DampedQuadrature q;
+  AsymmetricQuadrature q;
   double& amax = q.panels.alpha_max;
   amax = (std::log(1e18) + std::log1p(4.0 * 60.0 / nT)) / nT;
   const double w0 = 0.5;
@@ -352,8 +352,8 @@ DampedQuadrature build_damped_quadrature(const Medium& model, double tol, double
   return q;
 }
 
-double damped_kernel(const FilonIntegrator& f, const std::vector<double>& kr,
-                     const std::vector<double>& ki, double u) {
+double asymmetric_kernel(const FilonIntegrator& f, const std::vector<double>& kr,
+                         const std::vector<double>& ki, double u) {
   const auto [re, im] = f.integral_pair_exact(u, kr, ki);  // = integral() twice, bit for bit
   return re.imag() + im.real();
 }
@@ -361,7 +361,8 @@ double damped_kernel(const FilonIntegrator& f, const std::vector<double>& kr,
 // ---------------------------------------------------------------------------
 // The tabulated kernel
 
-DampedKernel::DampedKernel(std::shared_ptr<const Medium> model, double range, double friction)
+AsymmetricKernel::AsymmetricKernel(std::shared_ptr<const Medium> model, double range,
+                                   double friction)
     : range_(range) {
   require_in_range("kernel range", range, 0.0, 1e6, true, false);
   require_in_range("friction", friction, 0.0, kInf, false, true);
@@ -390,24 +391,24 @@ DampedKernel::DampedKernel(std::shared_ptr<const Medium> model, double range, do
   tabulate();
 }
 
-DampedKernel::DampedKernel(const DampedKernel& other, double range)
+AsymmetricKernel::AsymmetricKernel(const AsymmetricKernel& other, double range)
     : base_(other.base_), range_(range) {
   require_in_range("kernel range", range, 0.0, 1e6, true, false);
   tabulate();
 }
 
-double DampedKernel::direct(double u) const {
-  return damped_kernel(*base_->filon, base_->kr, base_->ki, u);
+double AsymmetricKernel::direct(double u) const {
+  return asymmetric_kernel(*base_->filon, base_->kr, base_->ki, u);
 }
 
-void DampedKernel::tabulate() {
+void AsymmetricKernel::tabulate() {
   // K is analytic in the strip |Im u| < 2 nT (M1 - phi1 decays like
   // exp(-2 nT alpha)): on pieces of width <= 1 a degree-24 interpolant is at
   // round-off for nT >~ 0.5; each piece is checked by its last coefficients
   // and the width halved until every piece passes.
   constexpr int D = kDegree;
   double abs_f = 0.0;  // int |f|: the scale of the Filon sums' round-off
-  const DampedQuadrature& q = base_->quad;
+  const AsymmetricQuadrature& q = base_->quad;
   for (std::size_t i = 0; i < q.m1.size(); ++i)
     abs_f += q.panels.weight[i] * std::abs(q.m1[i] - model().phi1()) / std::fabs(model().phi1());
   // Narrower pieces until the last coefficients are at the values' round-off,
@@ -445,7 +446,7 @@ void DampedKernel::tabulate() {
   }
 }
 
-void DampedKernel::many(const double* u, double* out, std::size_t n) const {
+void AsymmetricKernel::many(const double* u, double* out, std::size_t n) const {
   // Four Clenshaw recurrences interleaved (each is a chain of dependent steps).
   constexpr int D = kDegree, L = 4;
   const std::size_t pieces = coef_.size() / (D + 1);
@@ -479,7 +480,7 @@ void DampedKernel::many(const double* u, double* out, std::size_t n) const {
   for (; i < n; ++i) out[i] = (*this)(u[i]);
 }
 
-double DampedKernel::operator()(double u) const {
+double AsymmetricKernel::operator()(double u) const {
   if (!(std::fabs(u) <= range_)) return direct(u);
   constexpr int D = kDegree;
   const std::size_t pieces = coef_.size() / (D + 1);
@@ -491,12 +492,12 @@ double DampedKernel::operator()(double u) const {
 // ---------------------------------------------------------------------------
 // Validation
 
-MediumSpec medium_of(const DampedParams& p) {
+MediumSpec medium_of(const AsymmetricParams& p) {
   return p.medium ? *p.medium : homogeneous_medium(p.kw, p.nu, p.kp, p.damping);
 }
 
-DampedParams with_medium_scalars(const DampedParams& p) {
-  DampedParams q = p;
+AsymmetricParams with_medium_scalars(const AsymmetricParams& p) {
+  AsymmetricParams q = p;
   if (!p.medium) return q;
   const MediumSpec& m = *p.medium;
   q.nu = m.layers[0].nu;
@@ -512,9 +513,9 @@ DampedParams with_medium_scalars(const DampedParams& p) {
   return q;
 }
 
-double critical_vstar_of(const DampedParams& p) {
+double critical_vstar_of(const AsymmetricParams& p) {
   if (!p.medium || p.medium->homogeneous()) {
-    const DampedParams q = with_medium_scalars(p);
+    const AsymmetricParams q = with_medium_scalars(p);
     return critical_vstar(q.kw, q.nu, q.kp);
   }
   return critical_speed(*p.medium).vstar;
@@ -536,12 +537,12 @@ void validate_asymmetric_medium(const MediumSpec& m) {
             std::to_string(m.base.damping) + " under " + describe(m));
 }
 
-void validate(const DampedParams& p) {
+void validate(const AsymmetricParams& p) {
   if (p.medium) {
     validate_asymmetric_medium(*p.medium);
     // The scalar checks on the medium's own values (nu: the top's; damping
     // > 0 unless friction or an asymmetric table asks for this solver).
-    DampedParams r = with_medium_scalars(p);
+    AsymmetricParams r = with_medium_scalars(p);
     r.medium = nullptr;
     validate(r);
     return;
@@ -734,7 +735,7 @@ struct WidthEval {
 // g = -(w/(phi1 lambda)) G and c = -w gamma; equilibrium gives lambda(w).
 // The (N + 1) x (N + 1) collocation matrix for a trial half-width w:
 // W_i [1/(r_i - s_k) - w K(w (s_k - r_i))] and the centre unknown's column of ones.
-Eigen::MatrixXd collocation_matrix(const ChebyshevNodes& nd, double w, const DampedKernel& K) {
+Eigen::MatrixXd collocation_matrix(const ChebyshevNodes& nd, double w, const AsymmetricKernel& K) {
   const int n = nd.n;
   Eigen::MatrixXd M(n + 1, n + 1);
   // Column-major: the kernel's values column by column, in one batch.
@@ -754,7 +755,7 @@ Eigen::MatrixXd collocation_matrix(const ChebyshevNodes& nd, double w, const Dam
   return M;
 }
 
-WidthEval eval_width(const ChebyshevNodes& nd, double w, const DampedKernel& K, double phi1) {
+WidthEval eval_width(const ChebyshevNodes& nd, double w, const AsymmetricKernel& K, double phi1) {
   const int n = nd.n;
   const Eigen::MatrixXd M = collocation_matrix(nd, w, K);
   const Eigen::VectorXd x = M.partialPivLu().solve(nd.s);
@@ -900,7 +901,7 @@ std::vector<double> scan_points(double lo, double hi) {
 // scan are computed afresh. Entries of tables no longer alive are dropped.
 class ScanMemo {
  public:
-  static std::vector<double> lambdas(const std::shared_ptr<const DampedKernel>& K,
+  static std::vector<double> lambdas(const std::shared_ptr<const AsymmetricKernel>& K,
                                      const ChebyshevNodes& ns, const std::vector<double>& xs,
                                      double phi1) {
     static ScanMemo memo;
@@ -935,14 +936,14 @@ class ScanMemo {
  private:
   static constexpr long kNoKey = std::numeric_limits<long>::min();
   struct Entry {
-    std::weak_ptr<const DampedKernel> table;
-    const DampedKernel* raw = nullptr;
+    std::weak_ptr<const AsymmetricKernel> table;
+    const AsymmetricKernel* raw = nullptr;
     std::map<std::pair<int, long>, double> values;
   };
   std::mutex mutex_;
   std::vector<Entry> entries_;
   // The entry of the live table K (mutex_ held).
-  Entry& entry(const std::shared_ptr<const DampedKernel>& K) {
+  Entry& entry(const std::shared_ptr<const AsymmetricKernel>& K) {
     entries_.erase(std::remove_if(entries_.begin(), entries_.end(),
                                   [](const Entry& e) { return e.table.expired(); }),
                    entries_.end());
@@ -1125,8 +1126,8 @@ class SlopeProjection {
 // condition gamma(c) = 0, gamma the centre unknown of M [G; gamma] = B q(c)
 // (B: Q_m at the collocation points), i.e. z . B q(c) with z the last row of
 // M^-1; then the load P(w) = -pi w W . G/phi1 and g = -G/(phi1 P).
-WidthEval eval_width_profile(const ChebyshevNodes& nd, double w, const DampedKernel& K, double phi1,
-                             const SlopeProjection& proj, const PunchProfile& prof,
+WidthEval eval_width_profile(const ChebyshevNodes& nd, double w, const AsymmetricKernel& K,
+                             double phi1, const SlopeProjection& proj, const PunchProfile& prof,
                              double c_guess) {
   const int n = nd.n;
   const Eigen::PartialPivLU<Eigen::MatrixXd> lu(collocation_matrix(nd, w, K));
@@ -1207,15 +1208,15 @@ WidthEval eval_width_profile(const ChebyshevNodes& nd, double w, const DampedKer
 
 }  // namespace
 
-DampedSolution solve_damped(const DampedParams& prm_in) {
-  // The flat punch (index +1, no width iteration): damped_flat.cpp.
-  if (prm_in.profile == ProfileKind::flat) return solve_damped_flat(prm_in);
+AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
+  // The flat punch (index +1, no width iteration): asymmetric_flat.cpp.
+  if (prm_in.profile == ProfileKind::flat) return solve_asymmetric_flat(prm_in);
   const auto t0 = std::chrono::steady_clock::now();
   validate(prm_in);
   // kw, nu, kp, damping: the medium's own (nu: the top sublayer's).
-  const DampedParams prm = with_medium_scalars(prm_in);
+  const AsymmetricParams prm = with_medium_scalars(prm_in);
   const bool homogeneous = !prm.medium || prm.medium->homogeneous();
-  DampedSolution s;
+  AsymmetricSolution s;
   s.params_ = prm;
   s.vr_ = rayleigh_vstar(prm.nu);
   s.vcr_ = critical_vstar_of(prm);
@@ -1241,10 +1242,10 @@ DampedSolution solve_damped(const DampedParams& prm_in) {
   // widths the solve needs: |u| <= 2w for a trial half-width w, 8 w_final for
   // the scan of lambda(w) on [w/8, 4w], 4 w_final for the gap. Twice the need
   // when built: a slightly wider contact (the next point of a sweep) reuses it.
-  std::shared_ptr<const DampedKernel> kern;
+  std::shared_ptr<const AsymmetricKernel> kern;
   std::shared_ptr<const Medium> medium;
   double kernel_seconds = 0.0;
-  auto kernel = [&](double need) -> const DampedKernel& {
+  auto kernel = [&](double need) -> const AsymmetricKernel& {
     if (!kern || kern->range() < need) {
       const auto tk = std::chrono::steady_clock::now();
       bool built = false;
@@ -1450,7 +1451,7 @@ DampedSolution solve_damped(const DampedParams& prm_in) {
         // derivative) converge irregularly, fast and slow by turns as N moves
         // the nodes against the kinks: their estimate is never below the last
         // change (the previous size's error), as the flat punch's
-        // (damped_flat.cpp) and the symmetric solver's (contact.cpp). A damped
+        // (asymmetric_flat.cpp) and the symmetric solver's (contact.cpp). A damped
         // rounded flat at tol 2.8e-3 changed by 3.2e-5, 7.0e-8 at N = 16, 24
         // and was 1.05e-9 off at 24: the extrapolation claimed 2.0e-11.
         if (!cylinder) est_e.estimate = std::max(est_e.estimate, d_ends.back() + floor_e);
@@ -1731,7 +1732,7 @@ DampedSolution solve_damped(const DampedParams& prm_in) {
     s.atan_rule_ = *cached_gauss_jacobi(js.size() + 64 + static_cast<int>(std::ceil(8.0 * s.half_)),
                                         s.exps_.front, s.exps_.back);
   }
-  s.light_ = std::make_shared<const DampedSolution::Fine>(
+  s.light_ = std::make_shared<const AsymmetricSolution::Fine>(
       s.build_fine(2.0 * s.half_, have_change ? &db : nullptr, &dphat));
 
   // Surface sigma_x = -phi2 p - (1/pi) Re int_0^inf (M2 - phi2) p^ e^{i alpha x}
@@ -1748,7 +1749,7 @@ DampedSolution solve_damped(const DampedParams& prm_in) {
     const double phi2 = model->phi2();
     double gain = 0.0;
     if (have_change) {
-      const DampedSolution::Fine& f = *s.light_;
+      const AsymmetricSolution::Fine& f = *s.light_;
       std::vector<cplx> amp(f.alpha.size());
       for (std::size_t i = 0; i < f.alpha.size(); ++i)
         amp[i] = s.surface_stress_integrand(f.r[i], f.alpha[i]) * dphat[i];
@@ -1779,7 +1780,7 @@ DampedSolution solve_damped(const DampedParams& prm_in) {
       gain = std::max(std::fabs(phi2), dmax / d_p.back());
     } else {
       double im2 = 0.0;
-      const DampedQuadrature& quad = kern->quadrature();
+      const AsymmetricQuadrature& quad = kern->quadrature();
       for (std::size_t i = 0; i < quad.m2.size(); ++i)
         im2 += quad.panels.weight[i] *
                std::abs(s.surface_stress_integrand(quad.r[i], quad.panels.alpha[i]));
@@ -1789,7 +1790,7 @@ DampedSolution solve_damped(const DampedParams& prm_in) {
       if (frictional) gain = std::numeric_limits<double>::infinity();
     }
     double sabs = 0.0;
-    const DampedSolution::Fine& f = *s.light_;
+    const AsymmetricSolution::Fine& f = *s.light_;
     for (std::size_t i = 0; i < f.alpha.size(); ++i)
       sabs += f.weight[i] * std::abs(s.surface_stress_integrand(f.r[i], f.alpha[i])) *
               std::abs(f.phat[i]);
@@ -1843,7 +1844,7 @@ DampedSolution solve_damped(const DampedParams& prm_in) {
   // surface's shortest wave and refined at every dip (gap_scan.hpp).
   s.min_gap_ = kInf;
   {
-    const DampedQuadrature& quad = kern->quadrature();
+    const AsymmetricQuadrature& quad = kern->quadrature();
     const double phi1m = kern->model().phi1();
     const double step = detail::gap_step(
         detail::response_band(quad.panels.alpha, quad.panels.weight,
@@ -1896,12 +1897,13 @@ DampedSolution solve_damped(const DampedParams& prm_in) {
   return s;
 }
 
-DampedSolution zone_solution(const DampedParams& prm, std::shared_ptr<const DampedKernel> kernel,
-                             double centre, double half, const Eigen::VectorXd& b) {
+AsymmetricSolution zone_solution(const AsymmetricParams& prm,
+                                 std::shared_ptr<const AsymmetricKernel> kernel, double centre,
+                                 double half, const Eigen::VectorXd& b) {
   if (prm.friction != 0.0) throw std::invalid_argument("zone_solution: frictionless zones only");
   if (!(half > 0.0) || !std::isfinite(centre) || b.size() < 1)
     throw std::invalid_argument("zone_solution: a zone needs half > 0, a finite centre and b");
-  DampedSolution s;
+  AsymmetricSolution s;
   s.params_ = prm;
   s.vr_ = rayleigh_vstar(prm.nu);
   s.vcr_ = critical_vstar_of(prm);
@@ -1912,7 +1914,7 @@ DampedSolution zone_solution(const DampedParams& prm, std::shared_ptr<const Damp
   s.half_ = half;
   s.b_ = b;
   s.n_ = static_cast<int>(b.size());
-  s.light_ = std::make_shared<const DampedSolution::Fine>(s.build_fine(2.0 * half));
+  s.light_ = std::make_shared<const AsymmetricSolution::Fine>(s.build_fine(2.0 * half));
   const int m = std::max(64, 2 * static_cast<int>(b.size()) + 2);
   for (int i = 1; i <= m; ++i) {
     const double th = i * kPi / (m + 1), r = std::cos(th);
@@ -1955,7 +1957,7 @@ void set_stress_row(Eigen::MatrixXd& G, Eigen::Index k, cplx sx, cplx sy, cplx t
 
 }  // namespace
 
-double DampedSolution::pressure(double x) const {
+double AsymmetricSolution::pressure(double x) const {
   if (std::isnan(x)) throw InvalidParameter("x", "not NaN", "pressure: x must not be NaN");
   const double r = (x - centre_) / half_;
   if (jac_ && jac_->singular() && std::fabs(r) == 1.0) {
@@ -1968,7 +1970,7 @@ double DampedSolution::pressure(double x) const {
   return u_series(b_, r) * std::sqrt(1.0 - r * r);
 }
 
-cplx DampedSolution::pressure_transform(double alpha) const {
+cplx AsymmetricSolution::pressure_transform(double alpha) const {
   if (jac_) {
     // w e^{-i alpha c} int w(r) g(r) e^{-i alpha w r} dr by Gauss-Jacobi (jtr_
     // resolves alpha up to the quadrature's alpha_max; beyond, a rule of its own).
@@ -2001,14 +2003,14 @@ double bar_pole(const Medium& m) {
 
 }  // namespace
 
-const DampedLayerModel* DampedSolution::layer() const { return model_->homogeneous_layer(); }
+const DampedLayerModel* AsymmetricSolution::layer() const { return model_->homogeneous_layer(); }
 
-cplx DampedSolution::bottom_w(const DampedResponse& r) const {
+cplx AsymmetricSolution::bottom_w(const DampedResponse& r) const {
   if (!(params_.friction > 0.0)) return r.Wb;
   return r.Wb + cplx(0.0, params_.friction) * r.Wqb;
 }
 
-cplx DampedSolution::surface_stress_integrand(const DampedResponse& r, double alpha) const {
+cplx AsymmetricSolution::surface_stress_integrand(const DampedResponse& r, double alpha) const {
   const double phi2 = model_->phi2();
   if (!(params_.friction > 0.0)) return r.M2 - phi2;
   const WaveConstants& c = model_->top();
@@ -2017,8 +2019,8 @@ cplx DampedSolution::surface_stress_integrand(const DampedResponse& r, double al
   return r.M2 - phi2 - cplx(0.0, params_.friction) * tq;
 }
 
-double DampedSolution::friction_surface_terms(double x, const JacobiSeries& ser, double c,
-                                              double w) const {
+double AsymmetricSolution::friction_surface_terms(double x, const JacobiSeries& ser, double c,
+                                                  double w) const {
   // f Cq (1/pi) int p/(xi - x) - (f C0/pi) int p(xi) arctan(x - xi) d xi for p(c + w r) = w(r)
   // g(r).
   const WaveConstants& wc = model_->top();
@@ -2027,7 +2029,7 @@ double DampedSolution::friction_surface_terms(double x, const JacobiSeries& ser,
   return f * cq * ser.cauchy((x - c) / w) + bar_term(x, ser, c, w);
 }
 
-double DampedSolution::bar_term(double x, const JacobiSeries& ser, double c, double w) const {
+double AsymmetricSolution::bar_term(double x, const JacobiSeries& ser, double c, double w) const {
   const double c0 = bar_pole(*model_);
   if (c0 == 0.0) return 0.0;  // a bonded half-space takes the net horizontal force
   double at = 0.0;
@@ -2092,7 +2094,8 @@ Eigen::Vector3d jacobi_half_plane(const WaveConstants& c, const JacobiSeries& js
 
 }  // namespace
 
-std::shared_ptr<const Eigen::MatrixXd> DampedSolution::friction_depth_coefficients(double y) const {
+std::shared_ptr<const Eigen::MatrixXd> AsymmetricSolution::friction_depth_coefficients(
+    double y) const {
   if (!layer()) layered_refusal(*model_, "the stress field below the surface");
   // The shear traction's remainder (state i f z_q less its half-plane mix,
   // the bar pole C0 e^-alpha/alpha out of sigma_x) at depth y: Filon
@@ -2119,7 +2122,8 @@ std::shared_ptr<const Eigen::MatrixXd> DampedSolution::friction_depth_coefficien
   return f.filon_columns(G);
 }
 
-std::shared_ptr<const DampedSolution::BottomFriction> DampedSolution::bottom_friction() const {
+std::shared_ptr<const AsymmetricSolution::BottomFriction> AsymmetricSolution::bottom_friction()
+    const {
   if (!layer()) layered_refusal(*model_, "the stresses at the base");
   std::lock_guard<std::mutex> lock(bottom_friction_cache_->mutex);
   auto& bp = bottom_friction_cache_->data;
@@ -2191,7 +2195,7 @@ cplx u_series_transform(const Eigen::VectorXd& b_, double centre_, double half_,
 
 }  // namespace
 
-double DampedSolution::surface_slope(double x) const {
+double AsymmetricSolution::surface_slope(double x) const {
   // -(phi1/pi) int p/(xi - x) + (phi1/pi) int p(xi) K(x - xi) d xi, per P/h times load.
   const double phi1 = model_->phi1(), w = half_, z = (x - centre_) / w;
   double cauchy = 0.0;  // sum b_n (1/pi) int sqrt(1-r^2) U_n/(r - z) dr
@@ -2227,12 +2231,12 @@ double DampedSolution::surface_slope(double x) const {
   return params_.load * phi1 * (-cauchy + w * kern);
 }
 
-DampedSolution::Fine DampedSolution::build_fine(double freq, const Eigen::VectorXd* db,
-                                                std::vector<cplx>* dphat) const {
+AsymmetricSolution::Fine AsymmetricSolution::build_fine(double freq, const Eigen::VectorXd* db,
+                                                        std::vector<cplx>* dphat) const {
   Fine f;
   f.freq = freq;
   AlphaQuadrature panels;
-  const DampedQuadrature& Q = kernel_->quadrature();
+  const AsymmetricQuadrature& Q = kernel_->quadrature();
   const auto& P = Q.panels;
   const double width = std::min(0.5, 1.5 / std::max(freq, 1e-300));
   for (std::size_t p = 0; p < P.panel_centre.size(); ++p) {
@@ -2273,7 +2277,7 @@ DampedSolution::Fine DampedSolution::build_fine(double freq, const Eigen::Vector
   return f;
 }
 
-std::shared_ptr<Eigen::MatrixXd> DampedSolution::Fine::filon_columns(
+std::shared_ptr<Eigen::MatrixXd> AsymmetricSolution::Fine::filon_columns(
     const Eigen::MatrixXd& G) const {
   const Eigen::Index nq = G.rows();
   auto coef = std::make_shared<Eigen::MatrixXd>(nq, G.cols());
@@ -2286,8 +2290,8 @@ std::shared_ptr<Eigen::MatrixXd> DampedSolution::Fine::filon_columns(
   return coef;
 }
 
-void DampedSolution::Fine::coefficients(const std::vector<cplx>& g, std::vector<double>& c_re,
-                                        std::vector<double>& c_im) const {
+void AsymmetricSolution::Fine::coefficients(const std::vector<cplx>& g, std::vector<double>& c_re,
+                                            std::vector<double>& c_im) const {
   std::vector<double> re(g.size()), im(g.size());
   for (std::size_t i = 0; i < g.size(); ++i) {
     re[i] = g[i].real();
@@ -2297,12 +2301,12 @@ void DampedSolution::Fine::coefficients(const std::vector<cplx>& g, std::vector<
   c_im = filon->coefficients(im);
 }
 
-double DampedSolution::Fine::fourier(const std::vector<double>& c_re,
-                                     const std::vector<double>& c_im, double x) const {
+double AsymmetricSolution::Fine::fourier(const std::vector<double>& c_re,
+                                         const std::vector<double>& c_im, double x) const {
   return filon->integral(x, c_re).real() - filon->integral(x, c_im).imag();
 }
 
-std::shared_ptr<const DampedSolution::Fine> DampedSolution::fine_for(double x) const {
+std::shared_ptr<const AsymmetricSolution::Fine> AsymmetricSolution::fine_for(double x) const {
   const double need = 2.0 * half_ + std::fabs(centre_) + std::fabs(x);
   {
     std::lock_guard<std::mutex> lock(fine_cache_->mutex);
@@ -2313,20 +2317,21 @@ std::shared_ptr<const DampedSolution::Fine> DampedSolution::fine_for(double x) c
   return std::make_shared<const Fine>(build_fine(need));
 }
 
-Eigen::VectorXd DampedSolution::pressure(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+Eigen::VectorXd AsymmetricSolution::pressure(const Eigen::Ref<const Eigen::VectorXd>& x) const {
   return at_points(x, [this](double v) { return pressure(v); });
 }
 
-Eigen::VectorXd DampedSolution::surface_stress(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+Eigen::VectorXd AsymmetricSolution::surface_stress(
+    const Eigen::Ref<const Eigen::VectorXd>& x) const {
   return at_points(x, [this](double v) { return surface_stress(v); });
 }
 
-Eigen::VectorXd DampedSolution::surface_displacement(
+Eigen::VectorXd AsymmetricSolution::surface_displacement(
     const Eigen::Ref<const Eigen::VectorXd>& x) const {
   return at_points(x, [this](double v) { return surface_displacement(v); });
 }
 
-double DampedSolution::surface_stress(double x) const {
+double AsymmetricSolution::surface_stress(double x) const {
   if (!std::isfinite(x)) throw std::invalid_argument("surface_stress: x must be finite");
   const Fine& f = *light_;
   const double s = -model_->phi2() * pressure(x) - f.fourier(f.sx_re, f.sx_im, x - centre_) / kPi;
@@ -2334,7 +2339,7 @@ double DampedSolution::surface_stress(double x) const {
   return s;
 }
 
-Eigen::Vector3d DampedSolution::stresses(double x, double y) const {
+Eigen::Vector3d AsymmetricSolution::stresses(double x, double y) const {
   const Eigen::VectorXd xs = Eigen::VectorXd::Constant(1, x), ys = Eigen::VectorXd::Constant(1, y);
   const StressField g = stress_field(xs, ys);
   return {g.sigma_x(0, 0), g.sigma_y(0, 0), g.tau_xy(0, 0)};
@@ -2352,7 +2357,7 @@ Eigen::Vector3d DampedSolution::stresses(double x, double y) const {
 // surface row y = 0 is surface_stress, -p and 0 (the same split: the
 // remainder there is -(M2 - phi2), the closed form -phi2 p, -p, 0).
 
-std::shared_ptr<const DampedSolution::FieldNodes> DampedSolution::field_nodes() const {
+std::shared_ptr<const AsymmetricSolution::FieldNodes> AsymmetricSolution::field_nodes() const {
   std::lock_guard<std::mutex> lock(field_cache_->mutex);
   auto& np = field_cache_->nodes;
   if (np) return np;
@@ -2406,8 +2411,8 @@ std::shared_ptr<const DampedSolution::FieldNodes> DampedSolution::field_nodes() 
   return np;
 }
 
-std::shared_ptr<const Eigen::MatrixXd> DampedSolution::depth_coefficients(const FieldNodes& nodes,
-                                                                          double y) const {
+std::shared_ptr<const Eigen::MatrixXd> AsymmetricSolution::depth_coefficients(
+    const FieldNodes& nodes, double y) const {
   constexpr std::size_t kDepthsKept = 4;
   {
     std::lock_guard<std::mutex> lock(field_cache_->mutex);
@@ -2463,8 +2468,8 @@ std::shared_ptr<const Eigen::MatrixXd> DampedSolution::depth_coefficients(const 
   return coef;
 }
 
-StressField DampedSolution::stress_field(const Eigen::Ref<const Eigen::VectorXd>& x,
-                                         const Eigen::Ref<const Eigen::VectorXd>& y) const {
+StressField AsymmetricSolution::stress_field(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                             const Eigen::Ref<const Eigen::VectorXd>& y) const {
   detail::check_grid(x, y);
   if (jac_ && !layer())
     layered_refusal(*model_, "the stress field below the surface with friction");
@@ -2545,12 +2550,12 @@ StressField DampedSolution::stress_field(const Eigen::Ref<const Eigen::VectorXd>
   return g;
 }
 
-double DampedSolution::stress_x(double x, double y) const {
+double AsymmetricSolution::stress_x(double x, double y) const {
   if (y == 0.0) return surface_stress(x);  // the surface: the local term split off
   return stresses(x, y)(0);
 }
 
-double DampedSolution::bottom_displacement(double x) const {
+double AsymmetricSolution::bottom_displacement(double x) const {
   // v(x, -1) = (1/2pi) int (Wb/alpha) p^ e^{i alpha x}; Wb/alpha -> -1/kw at alpha -> 0.
   // Friction: Wb + i f Wqb (the shear traction's bottom W vanishes at alpha -> 0).
   if (model_->long_wave_m1() != 0.0)
@@ -2565,7 +2570,7 @@ double DampedSolution::bottom_displacement(double x) const {
   return params_.load * sum / kPi;
 }
 
-double DampedSolution::bottom_slope(double x) const {
+double AsymmetricSolution::bottom_slope(double x) const {
   // dv/dx(x, -1) = (1/2pi) int i alpha (Wb/alpha) p^ e^{i alpha x}, per P/h times load.
   const auto f = fine_for(x);
   double sum = 0.0;
@@ -2576,7 +2581,7 @@ double DampedSolution::bottom_slope(double x) const {
   return params_.load * sum / kPi;
 }
 
-double DampedSolution::dissipation() const {
+double AsymmetricSolution::dissipation() const {
   // damping sqrt(s) int (v_b')^2 dx / load, with int (v_b')^2 = (load^2/pi) int_0^inf |Wb p^|^2.
   double sum = 0.0;
   const Fine& f = *light_;
@@ -2595,7 +2600,7 @@ double DampedSolution::dissipation() const {
 // closed form from the U-series of p (potentials.hpp). W/alpha stays finite at
 // alpha -> 0 (kw > 0: v^(0) = -p^(0)/kw).
 
-double DampedSolution::arctan_integral(double x) const {
+double AsymmetricSolution::arctan_integral(double x) const {
   // int p(xi) arctan(x - xi) d xi / (P/h) by atan_rule_ (friction only).
   double at = 0.0;
   for (Eigen::Index j = 0; j < atan_rule_.x.size(); ++j)
@@ -2604,8 +2609,8 @@ double DampedSolution::arctan_integral(double x) const {
   return half_ * at;
 }
 
-Eigen::VectorXd DampedSolution::friction_displacement(const Eigen::Ref<const Eigen::VectorXd>& x,
-                                                      double y) const {
+Eigen::VectorXd AsymmetricSolution::friction_displacement(
+    const Eigen::Ref<const Eigen::VectorXd>& x, double y) const {
   // v(x, y)/h = load (1/pi) Re int [W_n + i f W_q]/alpha p^ e^{i alpha x}, split as
   // the frictionless displacement is (the half-plane mixes times (1 - e^-alpha)
   // in closed form), and the shear traction's pole W_q(0, y)/alpha (the bar's
@@ -2672,7 +2677,7 @@ Eigen::VectorXd DampedSolution::friction_displacement(const Eigen::Ref<const Eig
   return v;
 }
 
-std::shared_ptr<const DampedSolution::Surface> DampedSolution::surface() const {
+std::shared_ptr<const AsymmetricSolution::Surface> AsymmetricSolution::surface() const {
   std::lock_guard<std::mutex> lock(surface_cache_->mutex);
   auto& sp = surface_cache_->surface;
   if (sp) return sp;
@@ -2697,7 +2702,7 @@ std::shared_ptr<const DampedSolution::Surface> DampedSolution::surface() const {
   return sp;
 }
 
-double DampedSolution::surface_value(const Surface& s, double x) const {
+double AsymmetricSolution::surface_value(const Surface& s, double x) const {
   // -(1/pi) Re int [M1 - phi1 (1 - e^-a)]/a p^ e^{iax}
   // - (phi1/(2 pi)) int p ln(1 + (x - xi)^2) + (phi1/pi) int p ln|x - xi|,
   // the last = phi1 w [(b0/2) ln w + sum b_n L_n((x - c)/w)].
@@ -2711,7 +2716,7 @@ double DampedSolution::surface_value(const Surface& s, double x) const {
   return -smooth - phi1 / (2.0 * kPi) * w * l1 + phi1 * w * lp;
 }
 
-double DampedSolution::surface_displacement(double x) const {
+double AsymmetricSolution::surface_displacement(double x) const {
   if (!std::isfinite(x))
     throw InvalidParameter("x", "finite",
                            "surface_displacement: x must be finite, got " + std::to_string(x));
@@ -2722,7 +2727,7 @@ double DampedSolution::surface_displacement(double x) const {
   return params_.load * surface_value(*surface(), x);
 }
 
-double DampedSolution::indentation() const {
+double AsymmetricSolution::indentation() const {
   if (model_->long_wave_m1() != 0.0)
     layered_refusal(*model_, "the indentation (a logarithmic far field under a half-space)");
   if (jac_) {  // the punch's rigid approach at the contact's centre
@@ -2735,8 +2740,8 @@ double DampedSolution::indentation() const {
   return surface()->indentation;
 }
 
-Eigen::MatrixXd DampedSolution::displacement(const Eigen::Ref<const Eigen::VectorXd>& x,
-                                             const Eigen::Ref<const Eigen::VectorXd>& y) const {
+Eigen::MatrixXd AsymmetricSolution::displacement(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                                 const Eigen::Ref<const Eigen::VectorXd>& y) const {
   detail::check_grid(x, y);
   if (model_->long_wave_m1() != 0.0)
     layered_refusal(*model_, "the displacement (a logarithmic far field under a half-space)");

@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
+#include "movingpunch/asymmetric.hpp"
 #include "movingpunch/collocation.hpp"
 #include "movingpunch/contact.hpp"
-#include "movingpunch/damped.hpp"
 #include "movingpunch/dispersion.hpp"
 #include "movingpunch/errors.hpp"
 #include "movingpunch/kernel.hpp"
@@ -25,7 +25,7 @@ using mp::cplx;
 
 namespace {
 
-mp::DampedParams damped(double vstar, double kw, double damping) {
+mp::AsymmetricParams damped(double vstar, double kw, double damping) {
   return mp::testing::paper_asymmetric(vstar, kw, damping);
 }
 
@@ -128,7 +128,7 @@ TEST(DampedLayer, RejectsBadDamping) {
   }
 }
 
-TEST(DampedKernel, ZeroDampingIsK1) {
+TEST(AsymmetricKernel, ZeroDampingIsK1) {
   const auto d = mp::make_medium(mp::homogeneous_medium(1.0, 0.2, 0.0, 0.0), 0.2);
   const auto q = mp::build_damped_quadrature(*d, 1e-12);
   const mp::FilonIntegrator f(q.panels);
@@ -140,7 +140,7 @@ TEST(DampedKernel, ZeroDampingIsK1) {
   const auto kr = f.coefficients(re), ki = f.coefficients(im);
   const mp::KernelK1 k1(mp::LayerModel(0.2, 1.0, 0.2), 1e-12, 3.0);
   for (double u : {-2.5, -0.4, 0.0, 0.1, 0.7, 2.9})
-    EXPECT_NEAR(mp::damped_kernel(f, kr, ki, u), k1(u), 1e-9) << u;
+    EXPECT_NEAR(mp::asymmetric_kernel(f, kr, ki, u), k1(u), 1e-9) << u;
 }
 
 // damping = 1e-9 reproduces the undamped solver and the paper's Table 1.
@@ -148,7 +148,7 @@ TEST(DampedContact, TinyDampingReproducesTable1) {
   const double kws[] = {0.1, 1.0, 10.0, std::numeric_limits<double>::infinity()};
   const double paper[] = {0.3729, 0.3306, 0.3152, 0.3117};
   for (int i = 0; i < 4; ++i) {
-    const auto s = mp::solve_damped(damped(1e-3, kws[i], 1e-9));
+    const auto s = mp::solve_asymmetric(damped(1e-3, kws[i], 1e-9));
     const auto u = mp::solve_contact(mp::testing::paper(1e-3, kws[i]));
     EXPECT_NEAR(s.right(), paper[i], 5e-5);
     EXPECT_NEAR(s.right(), u.a(), 1e-8);
@@ -166,7 +166,7 @@ TEST(DampedContact, TinyDampingReproducesTable1) {
 }
 
 TEST(DampedContact, DepthStressMatchesUndampedSolver) {
-  const auto s = mp::solve_damped(damped(0.2, 1.0, 1e-9));
+  const auto s = mp::solve_asymmetric(damped(0.2, 1.0, 1e-9));
   const auto u = mp::solve_contact(mp::testing::paper(0.2, 1.0));
   // The damped and the undamped evaluations (each a closed-form half-plane
   // part plus a remainder, on their own nodes), down to and at the surface.
@@ -185,7 +185,7 @@ TEST(DampedContact, DepthStressMatchesUndampedSolver) {
 TEST(DampedContact, FaceConditionsInRealSpace) {
   for (const double vstar : {0.2, 0.65}) {
     const auto p = damped(vstar, 1.0, 0.3);
-    const auto s = mp::solve_damped(p);
+    const auto s = mp::solve_asymmetric(p);
     const double beta = p.damping * std::sqrt(vstar);
     for (double x : {-1.5, -0.3, 0.0, 0.4, 1.0, 2.5}) {
       const Eigen::Vector3d b = s.stresses(x, -1.0);
@@ -209,7 +209,7 @@ TEST(DampedContact, FaceConditionsInRealSpace) {
 
 // The whole field (sigma_x, sigma_y, tau_xy) against the undamped solver.
 TEST(DampedContact, StressFieldMatchesUndampedSolver) {
-  const auto s = mp::solve_damped(damped(0.2, 1.0, 1e-9));
+  const auto s = mp::solve_asymmetric(damped(0.2, 1.0, 1e-9));
   const auto u = mp::solve_contact(mp::testing::paper(0.2, 1.0));
   const Eigen::VectorXd xs = mp::testing::vec({-0.6, 0.0, 0.2, 0.37, 1.0});
   const Eigen::VectorXd ys = mp::testing::vec({-1.0, -0.5, -0.05, -0.002, -1e-5, 0.0});
@@ -224,7 +224,7 @@ TEST(DampedContact, StressFieldMatchesUndampedSolver) {
 }
 
 TEST(DampedContact, NoEffectAtRest) {
-  const auto s = mp::solve_damped(damped(0.0, 1.0, 5.0));
+  const auto s = mp::solve_asymmetric(damped(0.0, 1.0, 5.0));
   EXPECT_NEAR(s.right(), 0.330419, 1e-6);  // the static study cited by the paper
   EXPECT_NEAR(s.left(), -s.right(), 1e-12);
   EXPECT_LT(std::fabs(s.drag()), 1e-14);
@@ -233,7 +233,7 @@ TEST(DampedContact, NoEffectAtRest) {
 TEST(DampedContact, DragVanishesWithSpeed) {
   double prev = std::numeric_limits<double>::infinity();
   for (double v : {1e-2, 1e-4, 1e-6}) {
-    const double drag = mp::solve_damped(damped(v, 1.0, 1.0)).drag();
+    const double drag = mp::solve_asymmetric(damped(v, 1.0, 1.0)).drag();
     EXPECT_GT(drag, 0.0);
     EXPECT_LT(drag, 0.2 * prev);  // drag ~ damping sqrt(vstar) at low speed
     prev = drag;
@@ -250,7 +250,7 @@ TEST(DampedContact, EnergyBalance) {
   for (const Case c :
        {Case{0.2, 1.0, 0.1}, Case{0.2, 1.0, 1.0}, Case{0.2, 0.1, 3.0}, Case{0.65, 1.0, 0.1},
         Case{0.65, 1.0, 0.01}, Case{0.3, 0.01, 0.1}, Case{0.8, 1.0, 0.01}}) {
-    const auto s = mp::solve_damped(damped(c.vstar, c.kw, c.damping));
+    const auto s = mp::solve_asymmetric(damped(c.vstar, c.kw, c.damping));
     EXPECT_GT(s.drag(), 0.0);
     EXPECT_NEAR(s.dissipation() / s.drag(), 1.0, 1e-6)
         << c.vstar << " " << c.kw << " " << c.damping;
@@ -269,7 +269,7 @@ TEST(DampedContact, LimitingAbsorptionAboveCriticalSpeed) {
   double r[4], l[4], dr[4];
   const double ds[4] = {1e-3, 1e-4, 1e-5, 1e-6};
   for (int i = 0; i < 4; ++i) {
-    const auto s = mp::solve_damped(damped(0.65, 1.0, ds[i]));
+    const auto s = mp::solve_asymmetric(damped(0.65, 1.0, ds[i]));
     r[i] = s.right();
     l[i] = s.left();
     dr[i] = s.drag();
@@ -290,10 +290,10 @@ TEST(DampedContact, LimitingAbsorptionAboveCriticalSpeed) {
 // Above V*_cr lambda(w) is not monotone: between the local maximum and
 // minimum of lambda(w) three contacts carry the same load; all are reported.
 TEST(DampedContact, MultipleSteadyStatesAreReported) {
-  EXPECT_TRUE(mp::solve_damped(damped(0.65, 1.0, 0.01)).other_half_widths().empty());
+  EXPECT_TRUE(mp::solve_asymmetric(damped(0.65, 1.0, 0.01)).other_half_widths().empty());
   auto p = damped(0.65, 1.0, 0.01);
   p.load = 0.0025;  // lambda = 0.25, inside the fold (0.21, 0.31)
-  const auto s = mp::solve_damped(p);
+  const auto s = mp::solve_asymmetric(p);
   ASSERT_EQ(s.other_half_widths().size(), 2u);
   EXPECT_NEAR(s.half_width(), 0.459, 0.01);
   EXPECT_NEAR(s.other_half_widths()[0], 0.728, 0.02);
@@ -303,15 +303,15 @@ TEST(DampedContact, MultipleSteadyStatesAreReported) {
 
 TEST(DampedContact, RayleighSpeedIsRefused) {
   const double vr = mp::rayleigh_vstar(0.2);
-  EXPECT_THROW(mp::solve_damped(damped(vr, 1.0, 0.1)), mp::SupercriticalSpeedError);
-  EXPECT_THROW(mp::solve_damped(damped(0.9, 1.0, 0.1)), mp::SupercriticalSpeedError);
-  EXPECT_NO_THROW(mp::solve_damped(damped(0.8, 1.0, 0.1)));
+  EXPECT_THROW(mp::solve_asymmetric(damped(vr, 1.0, 0.1)), mp::SupercriticalSpeedError);
+  EXPECT_THROW(mp::solve_asymmetric(damped(0.9, 1.0, 0.1)), mp::SupercriticalSpeedError);
+  EXPECT_NO_THROW(mp::solve_asymmetric(damped(0.8, 1.0, 0.1)));
 }
 
 TEST(DampedContact, ValidatesDamping) {
   for (double d : {0.0, -1.0, std::nan(""), std::numeric_limits<double>::infinity()}) {
     try {
-      (void)mp::solve_damped(damped(0.2, 1.0, d));
+      (void)mp::solve_asymmetric(damped(0.2, 1.0, d));
       ADD_FAILURE() << d;
     } catch (const std::invalid_argument& e) {
       EXPECT_NE(std::string(e.what()).find("damping"), std::string::npos) << e.what();
@@ -321,11 +321,11 @@ TEST(DampedContact, ValidatesDamping) {
 
 TEST(DampedContact, HardCases) {
   // Large damping: the dashpots lock the base; drag small, energy balanced.
-  const auto big = mp::solve_damped(damped(0.6, 1.0, 1e3));
+  const auto big = mp::solve_asymmetric(damped(0.6, 1.0, 1e3));
   EXPECT_NEAR(big.dissipation() / big.drag(), 1.0, 1e-6);
   // Tiny damping a hair below V*_cr: the undamped width.
   const double vcr = mp::critical_vstar(1.0, 0.2);
-  const auto near = mp::solve_damped(damped(vcr * (1.0 - 1e-6), 1.0, 1e-8));
+  const auto near = mp::solve_asymmetric(damped(vcr * (1.0 - 1e-6), 1.0, 1e-8));
   const auto und = mp::solve_contact(mp::testing::paper(vcr * (1.0 - 1e-6), 1.0));
   EXPECT_NEAR(near.right(), und.a(), 1e-5);
   EXPECT_NEAR(near.left(), -und.a(), 1e-5);
@@ -338,22 +338,22 @@ TEST(DampedContact, HardCases) {
   // Supercritical on a very soft foundation with a wide contact (a + b ~ 5h).
   auto p = damped(0.3, 0.01, 0.1);
   p.load = 0.02;
-  const auto wide = mp::solve_damped(p);
+  const auto wide = mp::solve_asymmetric(p);
   EXPECT_GT(wide.half_width(), 2.0);
   EXPECT_NEAR(wide.dissipation() / wide.drag(), 1.0, 1e-6);
   EXPECT_TRUE(wide.valid());
   // Dashpots alone (kw -> 0) far above V*_cr: a bounded steady state (the
   // wake stays sunk); the limit is reached smoothly and energy balances.
-  const auto d12 = mp::solve_damped(damped(0.3, 1e-12, 1.0));
-  const auto d6 = mp::solve_damped(damped(0.3, 1e-6, 1.0));
+  const auto d12 = mp::solve_asymmetric(damped(0.3, 1e-12, 1.0));
+  const auto d6 = mp::solve_asymmetric(damped(0.3, 1e-6, 1.0));
   EXPECT_NEAR(d12.right(), d6.right(), 1e-6);
   EXPECT_NEAR(d12.left(), d6.left(), 1e-6);
   EXPECT_NEAR(d12.dissipation() / d12.drag(), 1.0, 1e-6);
   // Lighter damping there separates the contact: flagged, never silent.
   p.damping = 0.01;
-  EXPECT_THROW(mp::solve_damped(p), mp::UnphysicalContactError);
+  EXPECT_THROW(mp::solve_asymmetric(p), mp::UnphysicalContactError);
   p.allow_unphysical = true;
-  const auto bad = mp::solve_damped(p);
+  const auto bad = mp::solve_asymmetric(p);
   EXPECT_FALSE(bad.valid());
   EXPECT_LT(bad.min_pressure(), 0.0);
 }
@@ -361,7 +361,7 @@ TEST(DampedContact, HardCases) {
 // The refinement rule on a synthetic sequence with a known error: x_N =
 // rho^N. The estimate of the last member bounds its error and is within a
 // factor 100 of it; round-off changes and stagnation are recognised.
-TEST(DampedRefinement, EstimateOfAGeometricSequence) {
+TEST(AsymmetricRefinement, EstimateOfAGeometricSequence) {
   for (double rho : {0.3, 0.6, 0.85}) {
     const std::vector<int> n = {8, 12, 16, 24, 32};
     for (std::size_t m = 3; m <= n.size(); ++m) {
@@ -392,7 +392,7 @@ TEST(DampedRefinement, EstimateOfAGeometricSequence) {
 // sequence x_N = N^-p (a profile's kinks) is bounded too, within a factor
 // 100; so is the honesty fuzz's rounded flat (changes 2.09e-5, 2.4e-8 at
 // N = 12, 16; error 1.14e-9 at 16; the geometric reading alone: 3.0e-10).
-TEST(DampedRefinement, ASingleReadingOfAnAlgebraicRate) {
+TEST(AsymmetricRefinement, ASingleReadingOfAnAlgebraicRate) {
   for (double p : {1.0, 2.0, 4.0, 10.6, 20.0}) {
     const std::vector<int> sizes = {8, 12, 16};
     auto x = [&](int n) { return std::pow(static_cast<double>(n), -p); };
@@ -415,7 +415,7 @@ TEST(DampedRefinement, ASingleReadingOfAnAlgebraicRate) {
 // trusted: the ladder goes on (a rounded flat with friction: changes 9.2e-5,
 // 1.05e-8 at N = 12, 16, then an error 1.8e-8 at 16); a third change that
 // keeps the rate confirms it.
-TEST(DampedRefinement, AnUnconfirmedRateGoesOn) {
+TEST(AsymmetricRefinement, AnUnconfirmedRateGoesOn) {
   const auto u = mp::refinement_estimate({8, 12, 16}, {9.2e-5, 1.05e-8}, 1e-18);
   EXPECT_TRUE(u.unconfirmed);
   EXPECT_LT(u.estimate, 1.8e-8);  // the extrapolation alone would stop here
@@ -439,7 +439,7 @@ TEST(DampedRefinement, AnUnconfirmedRateGoesOn) {
 // sequence x_m = rho^m: it bounds |x_N| within a small factor, stops once
 // the references' own estimate is small, and is infinite when a reference
 // has no solution.
-TEST(DampedRefinement, FixedSizeErrorFromFinerSizes) {
+TEST(AsymmetricRefinement, FixedSizeErrorFromFinerSizes) {
   for (double rho : {0.5, 0.8, 0.95}) {
     for (int n : {2, 4, 6, 16}) {
       std::vector<int> asked;
@@ -474,7 +474,7 @@ TEST(DampedRefinement, FixedSizeErrorFromFinerSizes) {
 }
 
 // Series scans against direct evaluation on a fine grid.
-TEST(DampedRefinement, SeriesScans) {
+TEST(AsymmetricRefinement, SeriesScans) {
   Eigen::VectorXd b(5);
   b << 1.0, -0.3, 0.45, 0.2, -0.1;
   double mx = 0.0, mn = 1e300, arg = 0.0;
@@ -500,14 +500,14 @@ TEST(DampedRefinement, SeriesScans) {
 // The N ladder refines on the pressure, not only the ends: at the issue's
 // case the ends are converged at N = 12 but p is not (2e-9 there); the
 // pressure against a fixed-N reference meets tol and the estimates bound it.
-TEST(DampedRefinement, PressureMeetsTol) {
+TEST(AsymmetricRefinement, PressureMeetsTol) {
   auto p = damped(0.65, 1.0, 0.1);
   p.tol = 1e-11;
-  const auto s = mp::solve_damped(p);
+  const auto s = mp::solve_asymmetric(p);
   auto q = p;
   q.n = 32;
   q.tol = 1e-14;
-  const auto ref = mp::solve_damped(q);
+  const auto ref = mp::solve_asymmetric(q);
   EXPECT_GT(s.collocation_n(), 12);
   EXPECT_TRUE(s.warnings().empty()) << s.warnings().front();
   double err = 0.0;
@@ -526,7 +526,7 @@ TEST(DampedRefinement, PressureMeetsTol) {
   auto f = p;
   f.n = 8;
   f.tol = 1e-13;
-  const auto coarse = mp::solve_damped(f);
+  const auto coarse = mp::solve_asymmetric(f);
   ASSERT_FALSE(coarse.warnings().empty());
   EXPECT_NE(coarse.warnings().front().find("x tol"), std::string::npos);
 }
@@ -534,14 +534,14 @@ TEST(DampedRefinement, PressureMeetsTol) {
 // The tabulated kernel against its direct Filon sums (a second evaluation
 // of the same integral, point by point): within the table's own error bound,
 // and that bound at round-off, sub- and supercritical and near resonance.
-TEST(DampedKernelTable, MatchesDirectSumsWithinItsBound) {
+TEST(AsymmetricKernelTable, MatchesDirectSumsWithinItsBound) {
   struct Case {
     double vstar, kw, damping;
   };
   for (const Case c :
        {Case{0.2, 1.0, 0.1}, Case{0.65, 1.0, 0.1}, Case{0.8, 1.0, 0.01}, Case{0.3, 0.01, 1.0}}) {
     const auto model = mp::make_medium(mp::homogeneous_medium(c.kw, 0.2, 0.0, c.damping), c.vstar);
-    const mp::DampedKernel k(model, 3.0);
+    const mp::AsymmetricKernel k(model, 3.0);
     EXPECT_LT(k.table_error(), 1e-13) << c.vstar;
     double worst = 0.0;
     std::vector<double> us, batch;
@@ -559,7 +559,7 @@ TEST(DampedKernelTable, MatchesDirectSumsWithinItsBound) {
     // Beyond the range: the direct sums.
     EXPECT_EQ(k(7.5), k.direct(7.5));
     // A wider table on the same quadrature agrees inside the narrower range.
-    const mp::DampedKernel wide(k, 9.0);
+    const mp::AsymmetricKernel wide(k, 9.0);
     for (double u : {-2.9, -0.3, 0.0, 0.7, 2.5})
       EXPECT_NEAR(wide(u), k(u), k.table_error() + wide.table_error()) << u;
   }
@@ -568,20 +568,20 @@ TEST(DampedKernelTable, MatchesDirectSumsWithinItsBound) {
 // The process-wide cache: a second solve that changes only the load or the
 // radius builds nothing and equals a solve from an empty cache; other inputs
 // build their own table; clear_kernel_cache() empties it.
-TEST(DampedKernelTable, CachedAcrossSolves) {
+TEST(AsymmetricKernelTable, CachedAcrossSolves) {
   mp::clear_kernel_cache();
-  const auto first = mp::solve_damped(damped(0.65, 1.0, 0.1));
+  const auto first = mp::solve_asymmetric(damped(0.65, 1.0, 0.1));
   EXPECT_GE(first.kernel_builds(), 1);
   auto p = damped(0.65, 1.0, 0.1);
   p.load = 0.0021;
-  const auto second = mp::solve_damped(p);
+  const auto second = mp::solve_asymmetric(p);
   EXPECT_EQ(second.kernel_builds(), 0);
   p.radius = 90.0;
-  EXPECT_EQ(mp::solve_damped(p).kernel_builds(), 0);
+  EXPECT_EQ(mp::solve_asymmetric(p).kernel_builds(), 0);
   p.radius = 100.0;
   mp::clear_kernel_cache();
-  EXPECT_EQ(mp::damped_kernel_cache_info().size, 0u);
-  const auto fresh = mp::solve_damped(p);
+  EXPECT_EQ(mp::asymmetric_kernel_cache_info().size, 0u);
+  const auto fresh = mp::solve_asymmetric(p);
   EXPECT_GE(fresh.kernel_builds(), 1);
   EXPECT_NEAR(second.left(), fresh.left(), 1e-13);
   EXPECT_NEAR(second.right(), fresh.right(), 1e-13);

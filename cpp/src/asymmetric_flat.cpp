@@ -21,7 +21,7 @@
 #include <stdexcept>
 
 #include "ladder.hpp"
-#include "movingpunch/damped.hpp"
+#include "movingpunch/asymmetric.hpp"
 #include "movingpunch/dispersion.hpp"
 #include "movingpunch/errors.hpp"
 #include "solve_skeleton.hpp"
@@ -36,7 +36,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // g at the nodes of the collocation system of size nd.n (the kernel's values
 // in one batch, as eval_width's).
-Eigen::VectorXd flat_nodal_g(const ChebyshevNodes& nd, double w, const DampedKernel& K) {
+Eigen::VectorXd flat_nodal_g(const ChebyshevNodes& nd, double w, const AsymmetricKernel& K) {
   const int n = nd.n, m = n - 1;
   Eigen::MatrixXd M(n, n);
   std::vector<double> u(static_cast<std::size_t>(n) * m), kv(u.size());
@@ -58,17 +58,17 @@ Eigen::VectorXd flat_nodal_g(const ChebyshevNodes& nd, double w, const DampedKer
 
 }  // namespace
 
-DampedSolution solve_damped_flat(const DampedParams& prm_in) {
+AsymmetricSolution solve_asymmetric_flat(const AsymmetricParams& prm_in) {
   const auto t0 = std::chrono::steady_clock::now();
   validate(prm_in);
   // kw, nu, kp, damping: the medium's own (nu: the top sublayer's).
-  const DampedParams prm = with_medium_scalars(prm_in);
+  const AsymmetricParams prm = with_medium_scalars(prm_in);
   if (prm.profile != ProfileKind::flat)
-    throw std::invalid_argument("solve_damped_flat: the profile must be flat");
+    throw std::invalid_argument("solve_asymmetric_flat: the profile must be flat");
   auto since_start = [&t0] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   };
-  DampedSolution s;
+  AsymmetricSolution s;
   s.params_ = prm;
   s.punch_ = std::make_shared<const PunchProfile>(prm.punch());
   s.vr_ = rayleigh_vstar(prm.nu);
@@ -88,7 +88,7 @@ DampedSolution solve_damped_flat(const DampedParams& prm_in) {
   s.exps_.front = al;
 
   double kernel_seconds = 0.0;
-  std::shared_ptr<const DampedKernel> kern;
+  std::shared_ptr<const AsymmetricKernel> kern;
   {
     const auto tk = std::chrono::steady_clock::now();
     bool built = false;
@@ -193,7 +193,7 @@ DampedSolution solve_damped_flat(const DampedParams& prm_in) {
                                              : est_g.estimate);
   if (prm.n > 0 && prm.n <= kFixedFinerMax && n_done == prm.n) {
     // A fixed small N: its error from finer sizes (fixed_size_error,
-    // damped.hpp), on the end coefficients and on g.
+    // asymmetric.hpp), on the end coefficients and on g.
     JacobiSeries r_js;
     double r_kb = 0.0, r_kf = 0.0;
     bool r_have = false;
@@ -227,7 +227,7 @@ DampedSolution solve_damped_flat(const DampedParams& prm_in) {
     est_k.estimate = kInf;
     est_g.estimate = kInf;
   } else if (prm.n > 0 && d_k.size() == 1) {
-    // A fixed n with one change: twice it (as the cylinder's, damped.cpp).
+    // A fixed n with one change: twice it (as the cylinder's, asymmetric.cpp).
     est_k.estimate = std::max(est_k.estimate, 2.0 * d_k.back() + floor_k);
     est_g.estimate = std::max(est_g.estimate, 2.0 * d_g.back() + floor_g);
   }
@@ -306,7 +306,7 @@ DampedSolution solve_damped_flat(const DampedParams& prm_in) {
       *cached_gauss_jacobi(js.size() + 64 + static_cast<int>(std::ceil(8.0 * w)), al, be);
   std::vector<cplx> dphat;
   const Eigen::VectorXd unused_db;
-  s.light_ = std::make_shared<const DampedSolution::Fine>(
+  s.light_ = std::make_shared<const AsymmetricSolution::Fine>(
       s.build_fine(2.0 * w, have_change ? &unused_db : nullptr, &dphat));
 
   // Surface sigma_x is linear in p: its change between the last two sizes at
@@ -316,7 +316,7 @@ DampedSolution solve_damped_flat(const DampedParams& prm_in) {
   // cylinder's.
   {
     const double phi2 = model->phi2();
-    const DampedSolution::Fine& f = *s.light_;
+    const AsymmetricSolution::Fine& f = *s.light_;
     double gain = kInf, pin = 0.0;
     std::vector<double> rs;
     for (int j = 0; j < 96; ++j) {

@@ -12,7 +12,7 @@
 
 #include <Eigen/Dense>
 
-#include "movingpunch/damped.hpp"
+#include "movingpunch/asymmetric.hpp"
 #include "movingpunch/errors.hpp"
 
 namespace mp = movingpunch;
@@ -25,7 +25,7 @@ constexpr double kPi = 3.14159265358979323846;
 // v(x, y)/h = (load/pi) Re int_0^A (W(alpha, y)/alpha) p^(alpha) e^{i alpha x} d alpha,
 // W = alpha v^/p^ (the state's second row), by 8-point Gauss-Legendre on
 // panels of width `fine` below alpha = 10 (the resonant peaks) and 0.1 beyond.
-double direct_displacement(const mp::DampedSolution& s, double x, double y) {
+double direct_displacement(const mp::AsymmetricSolution& s, double x, double y) {
   static const double gx[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267,
                                0.9602898564975363};
   static const double gw[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745,
@@ -49,17 +49,17 @@ double direct_displacement(const mp::DampedSolution& s, double x, double y) {
 
 }  // namespace
 
-TEST(DampedDisplacement, DepthFieldEqualsDirectFourierSum) {
+TEST(AsymmetricDisplacement, DepthFieldEqualsDirectFourierSum) {
   struct Case {
     double vstar, damping;
   };
   // Subcritical, and above V*_cr(kw = 1) = 0.5717 (the contact lies ahead).
   for (const Case cs : {Case{0.2, 1.0}, Case{0.65, 0.1}}) {
-    mp::DampedParams p;  // the paper's radius, load and nu by default
+    mp::AsymmetricParams p;  // the paper's radius, load and nu by default
     p.vstar = cs.vstar;
     p.kw = 1.0;
     p.damping = cs.damping;
-    const mp::DampedSolution s = mp::solve_damped(p);
+    const mp::AsymmetricSolution s = mp::solve_asymmetric(p);
     const Eigen::Vector4d xs(-2.0, s.left() + 0.3 * s.half_width(), s.centre(), 1.5);
     const Eigen::Vector3d ys(-0.15, -0.5, -0.85);
     const Eigen::MatrixXd v = s.displacement(xs, ys);
@@ -72,11 +72,11 @@ TEST(DampedDisplacement, DepthFieldEqualsDirectFourierSum) {
   }
 }
 
-TEST(DampedDisplacement, RefusesBadPoints) {
-  mp::DampedParams p;
+TEST(AsymmetricDisplacement, RefusesBadPoints) {
+  mp::AsymmetricParams p;
   p.vstar = 0.2;
   p.damping = 0.1;
-  const mp::DampedSolution s = mp::solve_damped(p);
+  const mp::AsymmetricSolution s = mp::solve_asymmetric(p);
   const Eigen::VectorXd x = Eigen::VectorXd::Constant(1, 0.1);
   const Eigen::VectorXd bad_y = Eigen::VectorXd::Constant(1, 0.25);
   const Eigen::VectorXd nan_x = Eigen::VectorXd::Constant(1, std::nan(""));

@@ -1,4 +1,4 @@
-// The flat punch on the asymmetric solver (cpp/src/damped_flat.cpp) against
+// The flat punch on the asymmetric solver (cpp/src/asymmetric_flat.cpp) against
 // closed forms: the half-plane's p = P/(pi sqrt(b^2 - x^2)) and, with
 // friction, the static half-plane's Gauss-Jacobi form (K. L. Johnson, Contact
 // Mechanics 1985, section 2.8); the energy balance (dissipation by Parseval on
@@ -8,7 +8,7 @@
 #include <cmath>
 #include <limits>
 
-#include "movingpunch/damped.hpp"
+#include "movingpunch/asymmetric.hpp"
 #include "movingpunch/errors.hpp"
 
 namespace mp = movingpunch;
@@ -16,8 +16,8 @@ namespace mp = movingpunch;
 namespace {
 constexpr double kPi = 3.14159265358979323846;
 
-mp::DampedParams flat(double b) {
-  mp::DampedParams p;
+mp::AsymmetricParams flat(double b) {
+  mp::AsymmetricParams p;
   p.profile = mp::ProfileKind::flat;
   p.half_width = b;
   p.vstar = 0.2;
@@ -27,10 +27,10 @@ mp::DampedParams flat(double b) {
 }
 }  // namespace
 
-TEST(DampedFlat, HalfPlaneLimit) {
-  mp::DampedParams p = flat(1e-4);
+TEST(AsymmetricFlat, HalfPlaneLimit) {
+  mp::AsymmetricParams p = flat(1e-4);
   p.damping = 0.5;
-  const mp::DampedSolution s = mp::solve_damped(p);
+  const mp::AsymmetricSolution s = mp::solve_asymmetric(p);
   const double b = 1e-4, k = 1.0 / std::sqrt(kPi * b);
   EXPECT_NEAR(s.end_coefficient_back(), k, 1e-6 * k);
   EXPECT_NEAR(s.end_coefficient_front(), k, 1e-6 * k);
@@ -44,13 +44,13 @@ TEST(DampedFlat, HalfPlaneLimit) {
   EXPECT_TRUE(s.valid());
 }
 
-TEST(DampedFlat, StaticFrictionalHalfPlaneClosedForm) {
+TEST(AsymmetricFlat, StaticFrictionalHalfPlaneClosedForm) {
   // p = C (b - x)^(gf - 1) (b + x)^(gb - 1), cot(pi gb) = f Phi, C = sin(pi gb)/pi.
-  mp::DampedParams p = flat(1e-8);
+  mp::AsymmetricParams p = flat(1e-8);
   p.vstar = 0.0;
   p.kw = std::numeric_limits<double>::infinity();
   p.friction = 0.6;
-  const mp::DampedSolution s = mp::solve_damped(p);
+  const mp::AsymmetricSolution s = mp::solve_asymmetric(p);
   const double phi = (1.0 - 2.0 * 0.2) / (2.0 * (1.0 - 0.2));
   const double gb = std::atan2(1.0, 0.6 * phi) / kPi, gf = 1.0 - gb, b = 1e-8;
   EXPECT_NEAR(s.end_exponents().back, gb - 1.0, 1e-14);
@@ -63,11 +63,11 @@ TEST(DampedFlat, StaticFrictionalHalfPlaneClosedForm) {
   EXPECT_EQ(s.tangential_force(), 0.6);
 }
 
-TEST(DampedFlat, DissipationIsTheEdgesForces) {
-  mp::DampedParams p = flat(1.0);
+TEST(AsymmetricFlat, DissipationIsTheEdgesForces) {
+  mp::AsymmetricParams p = flat(1.0);
   p.kw = 1.0;
   p.damping = 0.5;
-  const mp::DampedSolution s = mp::solve_damped(p);
+  const mp::AsymmetricSolution s = mp::solve_asymmetric(p);
   const double kb = s.end_coefficient_back(), kf = s.end_coefficient_front();
   EXPECT_GT(kf, kb);
   const double edges = p.load * s.phi1() * (kf * kf - kb * kb) / 4.0;
@@ -75,11 +75,11 @@ TEST(DampedFlat, DissipationIsTheEdgesForces) {
   EXPECT_NEAR(s.dissipation(), edges, 1e-8 * edges);
 }
 
-TEST(DampedFlat, BadInputsAreRefused) {
-  mp::DampedParams p = flat(0.5);
+TEST(AsymmetricFlat, BadInputsAreRefused) {
+  mp::AsymmetricParams p = flat(0.5);
   p.damping = 0.0;  // neither damping nor friction: the undamped solver's
-  EXPECT_THROW(mp::solve_damped(p), mp::InvalidParameter);
+  EXPECT_THROW(mp::solve_asymmetric(p), mp::InvalidParameter);
   p.damping = 0.1;
   p.half_width = 0.0;
-  EXPECT_THROW(mp::solve_damped(p), mp::InvalidParameter);
+  EXPECT_THROW(mp::solve_asymmetric(p), mp::InvalidParameter);
 }

@@ -13,7 +13,7 @@
 
 #include <Eigen/Dense>
 
-#include "movingpunch/damped.hpp"
+#include "movingpunch/asymmetric.hpp"
 #include "movingpunch/errors.hpp"
 
 namespace mp = movingpunch;
@@ -29,7 +29,8 @@ constexpr double kPi = 3.14159265358979323846;
 // on panels of width 0.02 below alpha = 10 (the resonant peaks) and 0.25
 // beyond (|x| <= 2: with p^ at most 1 radian per panel).
 // Returns one row per x: (sigma_x, sigma_y, tau_xy).
-Eigen::MatrixXd direct_stresses(const mp::DampedSolution& s, const Eigen::VectorXd& xs, double y) {
+Eigen::MatrixXd direct_stresses(const mp::AsymmetricSolution& s, const Eigen::VectorXd& xs,
+                                double y) {
   static const double gx[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267,
                                0.9602898564975363};
   static const double gw[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745,
@@ -60,17 +61,17 @@ Eigen::MatrixXd direct_stresses(const mp::DampedSolution& s, const Eigen::Vector
   return out;
 }
 
-mp::DampedSolution solve(double vstar, double damping) {
-  mp::DampedParams p;  // the paper's radius, load and nu by default
+mp::AsymmetricSolution solve(double vstar, double damping) {
+  mp::AsymmetricParams p;  // the paper's radius, load and nu by default
   p.vstar = vstar;
   p.kw = 1.0;
   p.damping = damping;
-  return mp::solve_damped(p);
+  return mp::solve_asymmetric(p);
 }
 
 }  // namespace
 
-TEST(DampedStressField, DepthFieldEqualsDirectFourierSum) {
+TEST(AsymmetricStressField, DepthFieldEqualsDirectFourierSum) {
   struct Case {
     double vstar, damping;
     std::vector<double> ys;
@@ -79,7 +80,7 @@ TEST(DampedStressField, DepthFieldEqualsDirectFourierSum) {
   // y = -1e-3 is the depth the old plain Fourier integral stopped at.
   for (const Case& cs :
        {Case{0.2, 1.0, {-1e-3, -0.15, -0.5, -1.0}}, Case{0.65, 0.1, {-0.02, -0.3, -0.85, -1.0}}}) {
-    const mp::DampedSolution s = solve(cs.vstar, cs.damping);
+    const mp::AsymmetricSolution s = solve(cs.vstar, cs.damping);
     Eigen::VectorXd xs(6);
     xs << -2.0, s.left() + 0.01 * s.half_width(), s.left() + 0.3 * s.half_width(), s.centre(),
         s.right() - 0.01 * s.half_width(), 1.5;
@@ -102,8 +103,8 @@ TEST(DampedStressField, DepthFieldEqualsDirectFourierSum) {
   }
 }
 
-TEST(DampedStressField, SurfaceRowIsTheSurfaceValues) {
-  const mp::DampedSolution s = solve(0.65, 0.1);
+TEST(AsymmetricStressField, SurfaceRowIsTheSurfaceValues) {
+  const mp::AsymmetricSolution s = solve(0.65, 0.1);
   Eigen::VectorXd xs(5);
   xs << -2.0, s.left() + 0.2 * s.half_width(), s.centre(), s.right() - 1e-6, 3.0;
   const mp::StressField f = s.stress_field(xs, Eigen::VectorXd::Zero(1));
@@ -115,8 +116,8 @@ TEST(DampedStressField, SurfaceRowIsTheSurfaceValues) {
   }
 }
 
-TEST(DampedStressField, RefusesBadPoints) {
-  const mp::DampedSolution s = solve(0.2, 0.1);
+TEST(AsymmetricStressField, RefusesBadPoints) {
+  const mp::AsymmetricSolution s = solve(0.2, 0.1);
   const Eigen::VectorXd x = Eigen::VectorXd::Constant(1, 0.1);
   for (const double y : {0.25, 1e-300, -1.0 - 1e-12, std::nan("")})
     EXPECT_THROW((void)s.stress_field(x, Eigen::VectorXd::Constant(1, y)), mp::InvalidParameter)
