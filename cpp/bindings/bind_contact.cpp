@@ -134,28 +134,27 @@ void bind_contact(py::module_& m) {
       [](double vstar, double kw, double radius, double load, double nu, double tol,
          bool allow_unphysical, int n, double kp, const std::string& profile, double half_width,
          const std::vector<double>& table_x, const std::vector<double>& table_y,
-         const LayerRows& layers, const std::string& base, double base_mu, double base_nu,
-         double base_rho) {
+         const LayerRows& layers, const std::string& base, const HalfSpaceRow& half_space) {
         ContactParams p =
             solve_params<ContactParams>(vstar, kw, radius, load, nu, tol, allow_unphysical, n);
         p.kp = kp;
         set_profile(p, profile, half_width, table_x, table_y);
-        p.medium = medium_spec(layers, base, kw, kp, 0.0, base_mu, base_nu, base_rho);
+        p.medium = medium_spec(layers, base, kw, kp, 0.0, half_space);
         return solve_contact(p);
       },
       py::kw_only(), "vstar"_a, "kw"_a, "radius"_a, "load"_a, "nu"_a, "tol"_a, "allow_unphysical"_a,
       "n"_a = 0, "kp"_a = 0.0, "profile"_a = "cylinder", "half_width"_a = 0.0,
       "table_x"_a = std::vector<double>{}, "table_y"_a = std::vector<double>{},
-      "layers"_a = LayerRows{}, "base"_a = "springs", "base_mu"_a = 1.0, "base_nu"_a = 0.2,
-      "base_rho"_a = 1.0, Interruptible(),
+      "layers"_a = LayerRows{}, "base"_a = "springs", "half_space"_a = default_half_space_row(),
+      Interruptible(),
       "Solves the moving-punch contact problem (dimensionless inputs: vstar = "
       "rho V^2/mu, kw = k_w h/mu, radius = R/h, load = P/(mu h), nu, tol on a/h, "
       "kp = k_p/(mu h) the Pasternak shear layer, 0: springs alone; profile: the "
       "punch's shape, 'cylinder' (radius), 'flat' (half_width), 'rounded_flat' "
       "(half_width, radius) or 'table' (table_x, table_y); layers: the sublayers as "
       "(thickness, mu, nu, rho, gamma_h) rows, top to bottom (empty: one homogeneous layer of "
-      "nu), on the base 'springs' (kw, kp), 'bonded' or 'smooth' (a half-space of base_mu, "
-      "base_nu, base_rho)). "
+      "nu), on the base 'springs' (kw, kp), 'bonded' or 'smooth' (a half-space: half_space = its "
+      "row, HALF_SPACE_FIELDS). "
       "Raises InvalidParameterError, SupercriticalSpeedError, "
       "UnphysicalContactError (unless allow_unphysical) or ConvergenceError.");
 }

@@ -97,6 +97,11 @@ void bind_layer(py::module_& m) {
     for (std::size_t i = 0; i < kSublayerRow; ++i) names[i] = kSublayerFields[i].name;
     m.attr("SUBLAYER_FIELDS") = names;  // a sublayer's row (medium.hpp kSublayerFields)
   }
+  {
+    py::tuple names(kHalfSpaceRow);
+    for (std::size_t i = 0; i < kHalfSpaceRow; ++i) names[i] = kHalfSpaceFields[i].name;
+    m.attr("HALF_SPACE_FIELDS") = names;  // a half-space's row (medium.hpp kHalfSpaceFields)
+  }
 
   m.def(
       "first_wave_vstar",
@@ -107,24 +112,22 @@ void bind_layer(py::module_& m) {
 
   m.def(
       "medium_critical_speed",
-      [](const LayerRows& layers, const std::string& base, double kw, double kp, double base_mu,
-         double base_nu, double base_rho) {
-        const auto spec =
-            medium_spec(require_layers(layers), base, kw, kp, 0.0, base_mu, base_nu, base_rho);
+      [](const LayerRows& layers, const std::string& base, double kw, double kp,
+         const HalfSpaceRow& half_space) {
+        const auto spec = medium_spec(require_layers(layers), base, kw, kp, 0.0, half_space);
         const CriticalSpeed c = critical_speed(*spec);
         return std::make_pair(c.vstar, c.t);
       },
       py::kw_only(), "layers"_a, "base"_a = "springs", "kw"_a = 1.0, "kp"_a = 0.0,
-      "base_mu"_a = 1.0, "base_nu"_a = 0.2, "base_rho"_a = 1.0, Release(),
+      "half_space"_a = default_half_space_row(), Release(),
       "(V*_cr, t) of a medium (see solve_contact for its arguments): the lowest speed of a "
       "free steady wave and its wavenumber alpha h (inf or 0: an infimum approached as "
       "alpha h -> inf or 0).");
   m.def(
       "medium_response",
       [](const VectorRef& t, double vstar, const LayerRows& layers, const std::string& base,
-         double kw, double kp, double base_mu, double base_nu, double base_rho) {
-        const auto spec =
-            medium_spec(require_layers(layers), base, kw, kp, 0.0, base_mu, base_nu, base_rho);
+         double kw, double kp, const HalfSpaceRow& half_space) {
+        const auto spec = medium_spec(require_layers(layers), base, kw, kp, 0.0, half_space);
         const std::shared_ptr<const Medium> med = make_medium(*spec, vstar);
         Eigen::MatrixXcd out(t.size(), 4);
         for (Eigen::Index i = 0; i < t.size(); ++i) {
@@ -134,7 +137,7 @@ void bind_layer(py::module_& m) {
         return out;
       },
       "t"_a, py::kw_only(), "vstar"_a, "layers"_a, "base"_a = "springs", "kw"_a = 1.0, "kp"_a = 0.0,
-      "base_mu"_a = 1.0, "base_nu"_a = 0.2, "base_rho"_a = 1.0, Release(),
+      "half_space"_a = default_half_space_row(), Release(),
       "The surface responses (M1, M2, alpha u^, alpha v^ per unit transformed pressure; "
       "columns, complex) of a medium at each t = alpha h > 0 (see solve_contact).");
   m.def("layer_response", &layer_response, "t"_a, "vstar"_a, "kw"_a, "nu"_a, "method"_a = "auto",

@@ -66,10 +66,9 @@ void bind_zones(py::module_& m) {
       [](double vstar, double kw, double nu, double damping, double kp, double tol, int n,
          const std::vector<PunchTuple>& punches,
          const std::vector<std::tuple<int, double, double>>& zones, int first_n,
-         const LayerRows& layers, const std::string& base, double base_mu, double base_nu,
-         double base_rho) {
+         const LayerRows& layers, const std::string& base, const HalfSpaceRow& half_space) {
         ZonesParams p;
-        p.layer.medium = medium_spec(layers, base, kw, kp, damping, base_mu, base_nu, base_rho);
+        p.layer.medium = medium_spec(layers, base, kw, kp, damping, half_space);
         p.layer.vstar = vstar;
         p.layer.kw = kw;
         p.layer.nu = nu;
@@ -94,10 +93,10 @@ void bind_zones(py::module_& m) {
       },
       py::kw_only(), "vstar"_a, "kw"_a, "nu"_a, "damping"_a, "kp"_a, "tol"_a, "n"_a, "punches"_a,
       "zones"_a, "first_n"_a = 24, "layers"_a = LayerRows{}, "base"_a = "springs",
-      "base_mu"_a = 1.0, "base_nu"_a = 0.2, "base_rho"_a = 1.0, Interruptible(),
+      "half_space"_a = default_half_space_row(), Interruptible(),
       "Solves one contact set (zones: (punch, left, right) from left to right, disjoint) "
       "under punches ((profile, radius, half_width, table_x, table_y, load, at)) by Newton's "
-      "method on the zone ends; frictionless. layers, base, base_mu, base_nu, base_rho: the "
+      "method on the zone ends; frictionless. layers, base, half_space: the "
       "medium, as solve_contact's. Raises InvalidParameterError, "
       "SupercriticalSpeedError or ConvergenceError.");
 }

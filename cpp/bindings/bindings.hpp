@@ -133,14 +133,23 @@ void set_profile(P& p, const std::string& profile, double half_width,
 
 // A medium from Python: sublayers as (thickness, mu, nu, rho, gamma_h) rows
 // top to bottom, the base's kind ("springs", "bonded", "smooth"), the
-// springs' (kw, kp, damping) and the half-space's (mu, nu, rho). Null for no
+// springs' (kw, kp, damping) and the half-space's row (kHalfSpaceFields). Null for no
 // sublayers and springs: the homogeneous layer of the solve's kw, nu, kp.
 // A sublayer's row: its scalars in the order of kSublayerFields (medium.hpp).
 using LayerRows = std::vector<std::array<double, kSublayerRow>>;
+// The half-space's row: its scalars in the order of kHalfSpaceFields.
+using HalfSpaceRow = std::array<double, kHalfSpaceRow>;
+// The row of BaseSpec's defaults (the bindings' default `half_space=`).
+inline HalfSpaceRow default_half_space_row() {
+  const BaseSpec b;
+  HalfSpaceRow r{};
+  for (std::size_t i = 0; i < kHalfSpaceRow; ++i) r[i] = b.*kHalfSpaceFields[i].member;
+  return r;
+}
 inline std::shared_ptr<const MediumSpec> medium_spec(const LayerRows& layers,
                                                      const std::string& base, double kw, double kp,
-                                                     double damping, double base_mu, double base_nu,
-                                                     double base_rho) {
+                                                     double damping,
+                                                     const HalfSpaceRow& half_space) {
   if (layers.empty() && base == "springs") return nullptr;
   if (layers.empty())
     throw InvalidParameter("layers", "at least one sublayer",
@@ -164,9 +173,8 @@ inline std::shared_ptr<const MediumSpec> medium_spec(const LayerRows& layers,
   m->base.kw = kw;
   m->base.kp = kp;
   m->base.damping = damping;
-  m->base.mu = base_mu;
-  m->base.nu = base_nu;
-  m->base.rho = base_rho;
+  for (std::size_t i = 0; i < kHalfSpaceRow; ++i)
+    m->base.*kHalfSpaceFields[i].member = half_space[i];
   validate(*m);
   return m;
 }

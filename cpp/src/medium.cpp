@@ -166,9 +166,7 @@ std::vector<double> MediumSpec::key() const {
     k.push_back(std::isinf(base.kw) ? 0.0 : base.kp);
     k.push_back(base.damping);
   } else {
-    k.push_back(base.mu);
-    k.push_back(base.nu);
-    k.push_back(base.rho);
+    for (const HalfSpaceField& f : kHalfSpaceFields) k.push_back(base.*f.member);
   }
   return k;
 }
@@ -196,8 +194,13 @@ std::string describe(const MediumSpec& m) {
     if (b.kp != 0.0) o << ", kp = " << b.kp;
     if (b.damping != 0.0) o << ", damping = " << b.damping;
   } else {
-    o << "a " << (b.kind == BaseKind::half_space_bonded ? "bonded" : "smooth") << " half-space (mu "
-      << b.mu << ", nu " << b.nu << ", rho " << b.rho << ")";
+    o << "a " << (b.kind == BaseKind::half_space_bonded ? "bonded" : "smooth") << " half-space (";
+    const char* sep = "";
+    for (const HalfSpaceField& f : kHalfSpaceFields) {
+      o << sep << f.name << " " << b.*f.member;
+      sep = ", ";
+    }
+    o << ")";
   }
   return o.str();
 }
@@ -246,9 +249,9 @@ void validate(const MediumSpec& m) {
       break;
     case BaseKind::half_space_bonded:
     case BaseKind::half_space_smooth:
-      require_in_range("base.mu", b.mu, 0.0, kMaxModulusRatio, true, false);
-      require_in_range("base.nu", b.nu, 0.0, 0.5, false, true);
-      require_in_range("base.rho", b.rho, 0.0, kMaxModulusRatio, true, false);
+      for (const HalfSpaceField& f : kHalfSpaceFields)
+        require_in_range((std::string("base.") + f.name).c_str(), b.*f.member, f.lo, f.hi,
+                         f.lo_open, f.hi_open);
       break;
   }
 }

@@ -1,5 +1,6 @@
 # Hand-written stub of the private compiled module movingpunch._core
 # (cpp/bindings/*.cpp). Keep in step with the bindings.
+from collections.abc import Sequence
 from types import ModuleType, TracebackType
 
 import numpy as np
@@ -11,6 +12,7 @@ __version__: str
 _errors: ModuleType
 
 SUBLAYER_FIELDS: tuple[str, ...]
+HALF_SPACE_FIELDS: tuple[str, ...]
 
 def rayleigh_vstar(nu: float) -> float: ...
 def phi1(vstar: float, nu: float) -> float: ...
@@ -22,9 +24,7 @@ def medium_critical_speed(
     base: str = "springs",
     kw: float = 1.0,
     kp: float = 0.0,
-    base_mu: float = 1.0,
-    base_nu: float = 0.2,
-    base_rho: float = 1.0,
+    half_space: Sequence[float] = ...,
 ) -> tuple[float, float]: ...
 def medium_response(
     t: npt.ArrayLike,
@@ -34,9 +34,7 @@ def medium_response(
     base: str = "springs",
     kw: float = 1.0,
     kp: float = 0.0,
-    base_mu: float = 1.0,
-    base_nu: float = 0.2,
-    base_rho: float = 1.0,
+    half_space: Sequence[float] = ...,
 ) -> npt.NDArray[np.complex128]: ...
 def first_wave_vstar(t: float, kw: float, nu: float, kp: float = 0.0) -> float: ...
 def layer_response(
@@ -96,9 +94,7 @@ def solve_contact(
     table_y: list[float] = ...,
     layers: list[tuple[float, ...]] = ...,
     base: str = "springs",
-    base_mu: float = 1.0,
-    base_nu: float = 0.2,
-    base_rho: float = 1.0,
+    half_space: Sequence[float] = ...,
 ) -> SymmetricSolution: ...
 def check_profile_table(
     x: list[float], y: list[float], require_symmetric: bool = False
@@ -195,9 +191,7 @@ def solve_asymmetric(
     table_y: list[float] = ...,
     layers: list[tuple[float, float, float, float, float]] = ...,
     base: str = "springs",
-    base_mu: float = 1.0,
-    base_nu: float = 0.2,
-    base_rho: float = 1.0,
+    half_space: Sequence[float] = ...,
 ) -> AsymmetricSolution: ...
 def damped_layer_response(
     t: float, vstar: float, kw: float, nu: float, damping: float, kp: float = 0.0
@@ -369,7 +363,5 @@ def solve_zones(
     first_n: int = 24,
     layers: list[tuple[float, float, float, float, float]] = ...,
     base: str = "springs",
-    base_mu: float = 1.0,
-    base_nu: float = 0.2,
-    base_rho: float = 1.0,
+    half_space: Sequence[float] = ...,
 ) -> ZonesSolution: ...

@@ -90,6 +90,9 @@ class ValueType:
     """Optional ``CLI`` positions given all or none."""
     TITLE: ClassVar[str] = "{fields}"
     """``describe()``: ``{fields}`` and each of ``CHOICES`` filled in."""
+    ROW: ClassVar[tuple[str, ...]] = ()
+    """The core's row of this type (``row()``): the names of its C++ field
+    table (empty: the core takes no row of it)."""
 
     def __post_init__(self) -> None:
         cls = type(self).__name__
@@ -135,6 +138,11 @@ class ValueType:
         words = {name: getattr(self, name) for name in self.CHOICES}
         return self.TITLE.format(fields=", ".join(shown), **words)
 
+    def row(self) -> tuple[float, ...]:
+        """The values of ``ROW``, as the core takes them (``layers=`` rows,
+        ``half_space=``)."""
+        return tuple(float(getattr(self, n)) for n in self.ROW)
+
     def to_dict(self) -> dict[str, object]:
         """``kind`` and every field, as a scene's table holds them."""
         out: dict[str, object] = {"kind": self.KIND}
@@ -147,6 +155,10 @@ SUBLAYER_ROW: tuple[str, ...] = tuple(_core.SUBLAYER_FIELDS)
 """A sublayer's row as the core takes it (``_core`` ``layers=``): the C++
 ``Sublayer``'s field table (cpp/include/movingpunch/medium.hpp
 ``kSublayerFields``), whose names are those of the value types' fields."""
+
+HALF_SPACE_ROW: tuple[str, ...] = tuple(_core.HALF_SPACE_FIELDS)
+"""A half-space's row as the core takes it (``_core`` ``half_space=``): the
+C++ ``BaseSpec``'s half-space field table (``kHalfSpaceFields``)."""
 
 
 @dataclass(frozen=True)
@@ -166,13 +178,11 @@ class Layer(ValueType):
     CLI_REQUIRED: ClassVar[int] = 3
     TITLE: ClassVar[str] = "layer {fields}"
 
+    ROW: ClassVar[tuple[str, ...]] = SUBLAYER_ROW
+
     @property
     def gamma_h(self) -> float:
         return 0.0
-
-    def row(self) -> tuple[float, ...]:
-        """``SUBLAYER_ROW`` of this sublayer, as the core takes it."""
-        return tuple(float(getattr(self, n)) for n in SUBLAYER_ROW)
 
 
 @dataclass(frozen=True)
@@ -194,10 +204,7 @@ class GradedLayer(ValueType):
     CLI_REQUIRED: ClassVar[int] = 3
     CLI_TOGETHER: ClassVar[tuple[str, ...]] = ("mu", "rho")
     TITLE: ClassVar[str] = "graded layer {fields} at its top"
-
-    def row(self) -> tuple[float, ...]:
-        """``SUBLAYER_ROW`` of this sublayer, as the core takes it."""
-        return tuple(float(getattr(self, n)) for n in SUBLAYER_ROW)
+    ROW: ClassVar[tuple[str, ...]] = SUBLAYER_ROW
 
 
 Sublayer = Layer | GradedLayer
@@ -237,6 +244,7 @@ class HalfSpace(ValueType):
     CLI: ClassVar[tuple[str, ...]] = ("mu", "nu", "rho")
     CLI_REQUIRED: ClassVar[int] = 2
     TITLE: ClassVar[str] = "{interface} half-space ({fields})"
+    ROW: ClassVar[tuple[str, ...]] = HALF_SPACE_ROW
 
 
 Base = Winkler | HalfSpace
@@ -373,8 +381,7 @@ class Medium:
         if isinstance(base, Winkler):
             out.update(base="springs")
         else:
-            out.update(base=base.interface)
-            out.update((f"base_{n}", getattr(base, n)) for n in HalfSpace.FIELDS)
+            out.update(base=base.interface, half_space=base.row())
         return out
 
     def describe(self) -> str:

@@ -968,6 +968,7 @@ def solve_punches(
     cancel: Cancel | None = None,
     layers: Sequence[Sublayer] | None = None,
     base: Base | None = None,
+    numerics: Numerics | None = None,
 ) -> ContactSolution:
     """Solves a train of rigid punches moving together at one speed
     (``Punch(profile, load, at=x0)`` each; positions x/h of their axes in the
@@ -987,10 +988,23 @@ def solve_punches(
     UnphysicalContactError (no contact set found) and ConvergenceError.
     ``cancel``: a ``movingpunch.Cancel`` token, as ``movingpunch.solve``'s
     (the search for each contact set stops at its next solve).
+    ``numerics``: ``movingpunch.Numerics`` instead of ``tol`` and ``n`` (a
+    train searches its contact sets itself: its ``allow_unphysical`` must
+    be False and its ``contact`` "auto").
     """
     from movingpunch.asymmetric import check_damping, check_friction
 
     t0 = time.perf_counter()
+    if numerics is not None:
+        tol, n, allow, contact = numerics.keywords(tol=tol, n=n)
+        if allow or contact != "auto":
+            raise InvalidParameterError(
+                "numerics: a train of punches finds its contact sets itself; "
+                "give Numerics(tol=..., n=...) with allow_unphysical=False and "
+                f'contact="auto", got {numerics!r}',
+                parameter="numerics",
+                allowed='Numerics with allow_unphysical=False, contact="auto"',
+            )
     given: object = punches  # anything, at run time
     if isinstance(given, (str, bytes)) or not isinstance(given, Sequence) or not given:
         raise InvalidParameterError(

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <sstream>
 #include <stdexcept>
 
 #include "movingpunch/contact.hpp"
@@ -140,28 +141,55 @@ TEST(Medium, DescribeNamesTheMedium) {
   EXPECT_EQ(describe(m), "2 sublayers (1 graded) on a smooth half-space (mu 10, nu 0.3, rho 2)");
 }
 
-// The sublayer's field table drives validate() and the cache key: every
-// field out of its range (just past each end, and NaN) is refused naming
-// "layers[1].<field>"; a change of any field changes the key.
-TEST(Medium, EverySublayerFieldIsValidatedAndKeyedByTheTable) {
-  MediumSpec ok;
-  ok.layers = {Sublayer{0.5, 1.0, 0.2, 1.0, 0.0}, Sublayer{0.5, 0.5, 0.3, 0.8, 0.5}};
+// A field table drives validate() and the cache key: every field of `table`
+// out of its range (just past each end, and NaN) is refused naming
+// prefix + "<field>"; a change of any field changes the key. `part(m)` is the
+// struct the table's members belong to (a sublayer, the base) in medium m.
+template <class Table, class Part>
+void expect_table_validated_and_keyed(const MediumSpec& ok, const Table& table, Part part,
+                                      const std::string& prefix) {
   ASSERT_NO_THROW(validate(ok));
-  for (const SublayerField& f : kSublayerFields) {
+  for (const auto& f : table) {
     const double span = std::isfinite(f.hi - f.lo) ? f.hi - f.lo : 1.0;
     for (const double bad :
          {f.lo - 1e-3 * span, f.hi + 1e-3 * span, std::numeric_limits<double>::quiet_NaN()}) {
       MediumSpec m = ok;
-      m.layers[1].*f.member = bad;
+      part(m).*f.member = bad;
       try {
         validate(m);
         ADD_FAILURE() << f.name << " = " << bad << " accepted";
       } catch (const InvalidParameter& e) {
-        EXPECT_EQ(e.name(), std::string("layers[1].") + f.name) << e.what();
+        EXPECT_EQ(e.name(), prefix + f.name) << e.what();
       }
     }
     MediumSpec moved = ok;
-    moved.layers[1].*f.member = 0.5 * (ok.layers[1].*f.member + 0.45);
+    part(moved).*f.member = 0.5 * (part(moved).*f.member + 0.45);
     EXPECT_NE(moved.key(), ok.key()) << f.name;
+  }
+}
+
+TEST(Medium, EverySublayerFieldIsValidatedAndKeyedByTheTable) {
+  MediumSpec ok;
+  ok.layers = {Sublayer{0.5, 1.0, 0.2, 1.0, 0.0}, Sublayer{0.5, 0.5, 0.3, 0.8, 0.5}};
+  expect_table_validated_and_keyed(
+      ok, kSublayerFields, [](MediumSpec& m) -> Sublayer& { return m.layers[1]; }, "layers[1].");
+}
+
+// The half-space's table also drives describe(), on both interfaces.
+TEST(Medium, EveryHalfSpaceFieldIsValidatedKeyedAndDescribedByTheTable) {
+  for (const BaseKind kind : {BaseKind::half_space_bonded, BaseKind::half_space_smooth}) {
+    MediumSpec ok;
+    ok.layers = {Sublayer{1.0, 1.0, 0.2, 1.0, 0.0}};
+    ok.base.kind = kind;
+    ok.base.mu = 0.5;
+    ok.base.nu = 0.3;
+    ok.base.rho = 0.8;
+    expect_table_validated_and_keyed(
+        ok, kHalfSpaceFields, [](MediumSpec& m) -> BaseSpec& { return m.base; }, "base.");
+    for (const HalfSpaceField& f : kHalfSpaceFields) {
+      std::ostringstream shown;
+      shown << f.name << " " << ok.base.*f.member;
+      EXPECT_NE(describe(ok).find(shown.str()), std::string::npos) << describe(ok);
+    }
   }
 }

@@ -29,6 +29,7 @@ from movingpunch._cli_media import cli_form, medium_of, parse_cli
 from movingpunch.errors import InvalidParameterError, SceneError
 from movingpunch.media import (
     BASE_TYPES,
+    HALF_SPACE_ROW,
     SUBLAYER_ROW,
     SUBLAYER_TYPES,
     GradedLayer,
@@ -124,6 +125,7 @@ def test_the_editor_and_the_core_row_hold_every_sublayer_field() -> None:
     assert set(SUBLAYER_FIELDS) == fields
     assert set(SUBLAYER_ROW) == fields
     assert HALF_SPACE_FIELDS == HalfSpace.FIELDS
+    assert set(HALF_SPACE_ROW) == set(HalfSpace.FIELDS)
     for name in (*SUBLAYER_FIELDS, *HALF_SPACE_FIELDS):
         assert HEADINGS[name] == SPECS[name].heading
 
@@ -146,7 +148,7 @@ def test_api_takes_the_field_and_refuses_a_bad_value_by_name(
     if isinstance(value, (Layer, GradedLayer)):
         assert args["layers"][1][SUBLAYER_ROW.index(name)] == good
     elif isinstance(value, HalfSpace):
-        assert args[f"base_{name}"] == good
+        assert args["half_space"][HALF_SPACE_ROW.index(name)] == good
     else:
         assert getattr(medium.base, name) == good  # solve's kw, kp, damping
     for bad in (bad_value(name), math.nan, "1"):
@@ -445,3 +447,24 @@ def test_solve_takes_the_numerics_as_its_keywords() -> None:
         mp.solve(**physical, numerics=numerics, tol=1e-4)
     assert info.value.parameter == "tol"
     assert "numerics=" in str(info.value)
+
+
+def test_solve_punches_takes_the_numerics_as_its_keywords() -> None:
+    train = [
+        mp.Punch(mp.Cylinder(100.0), 0.002, at=-1.5),
+        mp.Punch(mp.Cylinder(100.0), 0.002, at=1.5),
+    ]
+    by_value = mp.solve_punches(
+        train, vstar=0.5, kw=1.0, numerics=mp.Numerics(tol=1e-6)
+    )
+    by_keyword = mp.solve_punches(train, vstar=0.5, kw=1.0, tol=1e-6)
+    assert by_value.tol == by_keyword.tol == 1e-6
+    assert by_value.contact_zones == by_keyword.contact_zones
+    with pytest.raises(InvalidParameterError) as info:
+        mp.solve_punches(train, vstar=0.5, kw=1.0, numerics=mp.Numerics(), tol=1e-4)
+    assert info.value.parameter == "tol"
+    for odd in (mp.Numerics(contact="single"), mp.Numerics(allow_unphysical=True)):
+        with pytest.raises(InvalidParameterError) as info:
+            mp.solve_punches(train, vstar=0.5, kw=1.0, numerics=odd)
+        assert info.value.parameter == "numerics"
+        assert 'contact="auto"' in str(info.value)

@@ -69,12 +69,14 @@ inline constexpr double kMaxModulusRatio = 1e12;
 // (Python's movingpunch.media.SUBLAYER_ROW, the same names): validate(),
 // MediumSpec::key() and the bindings' rows loop over this table, so a new
 // scalar of a sublayer is a member above and a row here.
-struct SublayerField {
+template <class T>
+struct ScalarField {
   const char* name;
-  double Sublayer::* member;
+  double T::* member;
   double lo, hi;  // its range (require_in_range, errors.hpp)
   bool lo_open, hi_open;
 };
+using SublayerField = ScalarField<Sublayer>;
 inline constexpr SublayerField kSublayerFields[] = {
     {"thickness", &Sublayer::thickness, 0.0, 1.0, true, false},
     {"mu", &Sublayer::mu, 0.0, kMaxModulusRatio, true, false},
@@ -97,6 +99,19 @@ struct BaseSpec {
   double damping = 0.0;
   double mu = 1.0, nu = 0.2, rho = 1.0;  // half-space: relative to the top sublayer
 };
+
+// The half-space's scalars, in the order of its row in the bindings
+// (`half_space=`; Python's movingpunch.media.HALF_SPACE_ROW): validate() (as
+// "base.<name>"), MediumSpec::key(), describe() and the bindings loop over
+// this table, so a new scalar of the substrate is a member above and a row
+// here.
+using HalfSpaceField = ScalarField<BaseSpec>;
+inline constexpr HalfSpaceField kHalfSpaceFields[] = {
+    {"mu", &BaseSpec::mu, 0.0, kMaxModulusRatio, true, false},
+    {"nu", &BaseSpec::nu, 0.0, 0.5, false, true},
+    {"rho", &BaseSpec::rho, 0.0, kMaxModulusRatio, true, false},
+};
+inline constexpr std::size_t kHalfSpaceRow = std::size(kHalfSpaceFields);
 
 struct MediumSpec {
   std::vector<Sublayer> layers{Sublayer{}};
