@@ -23,6 +23,7 @@ from movingpunch.tui.model import Params, fmt
 from movingpunch.tui.scene_files import SceneState
 from movingpunch.tui.screens.main import (
     DEBOUNCE_SECONDS,
+    MainScreen,
     _still_typing,
     _still_typing_in,
 )
@@ -420,3 +421,36 @@ async def test_back_from_a_refused_value_to_the_shown_one_clears_the_error() -> 
         assert_summary_is(app, fig4_with())
         assert status_text(app) == "ready"
         assert screen.query_one(ParamsPanel).message("vstar") == ""
+
+
+@sync
+async def test_keys_sent_at_once_after_escape_and_i_go_where_the_user_sent_them() -> (
+    None
+):
+    """Escape, then ``i`` and a value, all queued before the app takes the
+    first (a fast typist on a busy machine; CI once saw ``e`` open Export):
+    escape leaves the kw input at once, ``i`` moves to V*, and ``07e`` is
+    typed there, not into kw nor to the screen's keys. ``i`` typed inside an
+    input stays a letter."""
+    app = create_app(SceneState(Params()), show_timing=False, cursor_blink=False)
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        screen = screen_of(app)
+        kw = screen.query_one("#in-kw", Input)
+        vstar = screen.query_one("#in-vstar", Input)
+        kw.focus()
+        await pilot.pause()
+        kw_before, vstar_before = kw.value, vstar.value
+        for key in ("end", ".", "escape", "i", "end", "0", "7", "e"):
+            deliver(app, key)
+        await settle(pilot)
+        assert isinstance(app.screen, MainScreen), app.screen
+        assert kw.value == kw_before + "."
+        assert vstar.value == vstar_before + "07e"
+        assert screen.focused is vstar
+        # Inside an input, i is a letter (an error, not a move).
+        for key in ("i",):
+            deliver(app, key)
+        await settle(pilot)
+        assert vstar.value == vstar_before + "07ei"
+        assert screen.focused is vstar

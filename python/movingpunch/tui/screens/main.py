@@ -164,9 +164,17 @@ class MainScreen(Screen[None]):
         Binding(FULL_TEXT_KEY, "messages", "All"),  # shown while one is shortened
         Binding(FULL_TEXT_KEY, "all_messages", "All", show=False),
         Binding("q", "quit", "Quit"),
-        Binding("escape", "leave_input", "Leave input", key_display="esc"),
+        # Priority: the app handles these as it takes each key from the
+        # terminal, before it hands the next key on; a key handed to the
+        # focused input would reach the screen's bindings only after the
+        # keys typed behind it had gone where the focus was (Escape then
+        # ``i07e`` fast on a busy machine: ``i07e`` went to the old input,
+        # or ``e`` to Export).
+        Binding(
+            "escape", "leave_input", "Leave input", key_display="esc", priority=True
+        ),
         Binding("escape", "cancel", "Cancel", key_display="esc"),
-        Binding("i", "edit", "Edit the inputs", show=False),
+        Binding("i", "edit", "Edit the inputs", show=False, priority=True),
         Binding("m", "toggle_quantity", "σx/VM", show=False),
         Binding("w", "toggle_sweep", "Sweep R/P", show=False),
         *(
@@ -881,6 +889,8 @@ class MainScreen(Screen[None]):
             return isinstance(self.focused, Input)
         if action == "cancel":  # escape outside the inputs, while computing
             return self._in_flight is not None and not isinstance(self.focused, Input)
+        if action == "edit":  # `i` typed into an input is a letter
+            return not isinstance(self.focused, Input)
         if action == "messages":  # shown while a message is shortened
             return any(m.shortened for m in self.query(MessageLine))
         return True
