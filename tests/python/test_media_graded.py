@@ -51,13 +51,13 @@ def _check_physical(s: mp.Solution) -> None:
     assert float(np.min(p)) >= -1e-9 * float(np.max(p))
 
 
-@pytest.mark.parametrize("gamma", [1.0, -3.0, 5.0])
+@pytest.mark.parametrize("gamma", [1.0, -3.0])
 def test_graded_top_is_physical(gamma: float) -> None:
-    s = _graded(gamma, tol=1e-9)
+    s = _graded(gamma, tol=1e-8)
     _check_physical(s)
     # Softer with depth (gamma > 0) widens the contact against the
     # homogeneous layer, stiffer narrows it.
-    h = mp.solve(vstar=V, radius=R, load=P, kw=KW, nu=0.2, tol=1e-9)
+    h = mp.solve(vstar=V, radius=R, load=P, kw=KW, nu=0.2, tol=1e-8)
     assert (s.a > h.a) == (gamma > 0)
 
 
@@ -75,8 +75,9 @@ def test_small_gamma_tends_to_the_homogeneous_layer_linearly() -> None:
     assert p4 == pytest.approx(p6, rel=2e-3)
 
 
+@pytest.mark.slow
 def test_error_estimates_bound_the_true_error() -> None:
-    ref = _graded(1.0, tol=1e-12)
+    ref = _graded(1.0, tol=1e-10)
     for tol in (1e-6, 1e-8):
         s = _graded(1.0, tol=tol)
         assert abs(s.a - ref.a) <= s.error_estimate + ref.error_estimate
