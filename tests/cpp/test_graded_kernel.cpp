@@ -137,18 +137,18 @@ TEST(GradedKernel, ClosedFormTransformsAgreeWithQuadrature) {
     for (int i = 2; i < k; ++i) fact *= i;  // (k-1)!
     for (const double u : {-2.5, -0.4, 0.05, 0.7, 3.0}) {
       const double exact = s.smooth(u) + s.singular(u);
-      const double ref = adaptive([&](double x) { return std::pow(x, k - 1) * u / (x * x + u * u); },
-                                  0.0, L, 1e-16) /
-                         fact;
+      const double ref =
+          adaptive([&](double x) { return std::pow(x, k - 1) * u / (x * x + u * u); }, 0.0, L,
+                   1e-16) /
+          fact;
       EXPECT_NEAR(exact, ref, 1e-13 * std::max(1.0, std::fabs(ref))) << k << " " << u;
     }
     for (const double t : {0.0, 0.01, 1.0, 30.0, 150.0, 1000.0}) {
       // Absolute tolerance 1e-15 of the integral's size, min(L^k/k, (k-1)!/t^k).
       const double size = std::min(std::pow(L, k) / k, fact / std::pow(t, k));
-      const double ref =
-          adaptive([&](double x) { return std::pow(x, k - 1) * std::exp(-t * x); }, 0.0, L,
-                   1e-15 * size) /
-          fact;
+      const double ref = adaptive([&](double x) { return std::pow(x, k - 1) * std::exp(-t * x); },
+                                  0.0, L, 1e-15 * size) /
+                         fact;
       EXPECT_NEAR(s.value(t), ref, 1e-13 * std::fabs(ref) + 1e-300) << k << " " << t;
     }
     // The sine transform itself, the integral in t: on [0, T] by quadrature,
@@ -159,8 +159,8 @@ TEST(GradedKernel, ClosedFormTransformsAgreeWithQuadrature) {
       const double T = 60.0;
       double num = 0.0;
       for (double lo = 0.0; lo < T; lo += 1.0)
-        num += adaptive([&](double x) { return s.value(x) * std::sin(x * u); }, lo, lo + 1.0,
-                        1e-14);
+        num +=
+            adaptive([&](double x) { return s.value(x) * std::sin(x * u); }, lo, lo + 1.0, 1e-14);
       // int_T^inf t^-k sin(tu) dt = sum_j (k)_j u^-(j+1) T^-(k+j) cos(T u - j pi/2)
       // (integration by parts; (k)_j the rising factorial).
       double tail = 0.0, coef = 1.0 / u;
@@ -218,7 +218,9 @@ TEST(GradedKernel, KernelAgreesWithPlainQuadratureAndSeriesTail) {
     double num = 0.0;
     for (double lo = 0.0; lo < A; lo += 0.5)
       num += adaptive(
-          [&](double t) { return (med->surface_response(t).M1.real() - phi1) / phi1 * std::sin(t * u); },
+          [&](double t) {
+            return (med->surface_response(t).M1.real() - phi1) / phi1 * std::sin(t * u);
+          },
           lo, lo + 0.5, 1e-15);
     double tail = 0.0;
     for (int kk = 1; kk <= 20; ++kk) {
