@@ -147,7 +147,9 @@ def test_stack_bonded_interface_continuity_and_jump() -> None:
 
 def test_stack_a_flat_punch_on_a_graded_top_sublayer_is_refused_by_name() -> None:
     with pytest.raises(mp.InvalidParameterError, match="flat punch") as info:
-        _solve(
+        mp.solve(
+            vstar=0.2,
+            load=P,
             layers=[mp.GradedLayer(1.0, thickness=1.0)],
             kw=1.0,
             profile=mp.Flat(half_width=0.2),
