@@ -63,12 +63,12 @@ void validate(const ContactParams& p) {
   require_in_range("kp", p.kp, 0.0, kMaxKp, false, false);
   if (p.medium) {
     validate(*p.medium);
-    if (p.medium->layers[0].gamma != 0.0)
+    if (p.medium->layers[0].gamma != 0.0 && p.profile == ProfileKind::flat)
       throw InvalidParameter(
-          "layers", "a homogeneous top sublayer (graded ones below it)",
-          "layers: a graded top sublayer is not solved yet (its response reaches the "
-          "half-plane's only as a series in gamma/alpha, which the kernel must take out "
-          "exactly); put a homogeneous sublayer on top or use a staircase of sublayers");
+          "profile", "a bounded contact (cylinder, rounded flat, table) on a graded top sublayer",
+          "profile: a flat punch on a graded top sublayer is not solved yet (its first-kind "
+          "collocation does not integrate the graded kernel's sgn and u ln|u| terms exactly); "
+          "use a rounded flat, or put a homogeneous sublayer on top");
     if (p.medium->base.kind == BaseKind::springs && p.medium->base.damping != 0.0)
       throw InvalidParameter("damping", "0 on the symmetric solver",
                              "damping: a damped base is solved by the asymmetric solver");
@@ -139,15 +139,22 @@ class Problem {
     ++evaluations_;
     const auto ksum = [&k](double u, double v) { return k.sum(u, v); };
     const Eigen::VectorXd G =
-        cylinder()
+        cylinder() && k.singular().empty()
             ? solve_unit_collocation_sum(nodes, a, ksum)
-            : Eigen::VectorXd(
-                  unit_collocation_matrix(nodes, a, ksum).partialPivLu().solve(rhs(nodes, a)));
+            : Eigen::VectorXd(matrix(nodes, a, k).partialPivLu().solve(rhs(nodes, a)));
     const double sum = 2.0 * nodes.w.head(nodes.n / 2).dot(G);
     if (G_out) *G_out = G;
     return load_factor(a) * sum;
   }
   bool cylinder() const { return prof_.kind() == ProfileKind::cylinder; }
+  // The folded collocation matrix: the regular part of k1 by Gauss-Chebyshev,
+  // a graded top's singular terms exactly (singular_collocation_matrix).
+  static Eigen::MatrixXd matrix(const ChebyshevNodes& nodes, double a, const KernelK1& k) {
+    Eigen::MatrixXd M =
+        unit_collocation_matrix(nodes, a, [&k](double u, double v) { return k.sum(u, v); });
+    if (!k.singular().empty()) M += singular_collocation_matrix(nodes, a, k.singular());
+    return M;
+  }
   // The right-hand side of the folded system, k = 1..N/2: s_k (cylinder: the
   // slope a s_k/R over a/R) or the profile's slope, through its exact
   // Chebyshev projection of degree < N + 1, sum_m d_m T_m(s_k) (m odd),
@@ -192,7 +199,7 @@ class Problem {
     ++evaluations_;
     const int h = nodes.n / 2;
     Linearised L;
-    L.M = unit_collocation_matrix(nodes, a, [&k](double u, double v) { return k.sum(u, v); });
+    L.M = matrix(nodes, a, k);
     const Eigen::PartialPivLU<Eigen::MatrixXd> lu(L.M);
     L.G = lu.solve(rhs(nodes, a));
     L.lambda = lu.transpose().solve(nodes.w.head(h));
