@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include <Eigen/Dense>
+#include <sstream>
 #include <stdexcept>
 
 #include "chebyshev.hpp"
@@ -204,6 +205,10 @@ double KernelSubtraction::singular(double u) const {
   return out;
 }
 
+// The most panels a graded top's kernel quadrature may take (about 1e3 per
+// few seconds cold on one loaded core; build_alpha_quadrature refuses more).
+constexpr int kMaxGradedPanels = 3000;
+
 AlphaQuadrature build_alpha_quadrature(const Medium& model, double tol, double max_frequency,
                                        Reach reach, const KernelSubtraction& sub) {
   if (!(tol > 0.0)) throw std::invalid_argument("kernel quadrature: tol must be > 0");
@@ -246,6 +251,24 @@ AlphaQuadrature build_alpha_quadrature(const Medium& model, double tol, double m
   const double width = std::min(1.0, 2.0 / max_frequency);
   const int n0 = std::max(1, static_cast<int>(std::ceil(q.alpha_max / width)));
   const double w0 = q.alpha_max / n0;
+  // A graded top whose series needs few terms over a wide table (|gamma|
+  // times the contact's half-width large: the terms' size caps K) leaves a
+  // slow tail the panels must follow to alpha_max: beyond this many panels
+  // (about 10 s on one core) it is refused rather than run for minutes.
+  if (!sub.empty() && n0 > kMaxGradedPanels) {
+    std::ostringstream msg;
+    msg << "gamma_h: a graded top sublayer with gamma_h = " << as.gamma
+        << " under a contact this wide (the kernel's range |u| <= " << 4.0 * max_frequency
+        << ") needs its series' tail integrated to alpha h = " << q.alpha_max << " ("
+        << n0 << " panels, above " << kMaxGradedPanels
+        << "): not solved in reasonable time; a smaller |gamma_h| of the top sublayer, a "
+           "narrower contact (smaller load or radius), or a homogeneous top sublayer over the "
+           "graded one is solved";
+    throw InvalidParameter("gamma_h",
+                           "|gamma_h| of the top sublayer times the contact's half-width a/h "
+                           "within the kernel's reach (|gamma_h| <= 5 at a/h <= 2 solves)",
+                           msg.str());
+  }
   std::vector<Panel> work, done;
   for (int i = n0 - 1; i >= 1; --i) work.push_back(eval_panel(model, i * w0, (i + 1) * w0, sub));
   // The first panel, split down to a Pasternak base's long-wave scale
@@ -574,21 +597,36 @@ std::vector<double> integrand(const AlphaQuadrature& q, double phi1) {
   return f;
 }
 
-// The subtraction of a graded top for a table of range `range`: terms while
-// the largest, b_k u^(k-1)/(k-1)! at u = range/2 (the collocation's |u| <= 2a),
-// stays below 1e3 (the singular and smooth parts cancel beyond u ~ L: each
-// carries eps times it), at most 8.
-KernelSubtraction graded_subtraction(const Medium& m, double range) {
+// The largest size of a subtraction's terms on the table, sum_k |b_k|
+// u^(k-1)/(k-1)! at u = range/2 (the collocation's |u| <= 2a): the singular
+// and smooth parts cancel beyond u ~ L, each carrying eps times it.
+double subtraction_magnitude(const KernelSubtraction& s, double range) {
+  double out = 0.0;
+  for (std::size_t i = 0; i < s.b.size(); ++i)
+    out += std::fabs(s.b[i]) * std::pow(0.5 * range, static_cast<double>(i)) *
+           inv_factorial(static_cast<int>(i));
+  return out;
+}
+
+// The subtraction of a graded top for a table of range `range` and
+// tolerance `tol`: terms while the largest, b_k u^(k-1)/(k-1)! at u =
+// range/2, stays below max(1e3, 1e-2 tol/eps) (its cancellation's round-off,
+// counted in the table's round-off, stays below 1e-2 tol), at most 8. Fewer
+// terms leave a slower algebraic tail, which the quadrature must follow far
+// (alpha_max up to 2e4: minutes at |gamma| a ~ 5 with the old cap 1e3).
+KernelSubtraction graded_subtraction(const Medium& m, double range, double tol) {
   const KernelAsymptotics& as = m.kernel_asymptotics();
   KernelSubtraction s;
   if (as.a.empty()) return s;
+  constexpr double eps = 2.220446049250313e-16;
   const double g = std::fabs(as.gamma), uc = 0.5 * range;
+  const double cap = std::max(1e3, 1e-2 * tol / eps);
   s.L = 1.0 / std::max(1.0, g);
   for (std::size_t i = 0; i < std::min<std::size_t>(8, as.a.size()); ++i) {
     const int k = static_cast<int>(i) + 1;
     const double bk = as.a[i] * std::pow(as.gamma, k);
     const double mag = std::fabs(bk) * std::pow(uc, k - 1) * inv_factorial(k - 1);
-    if (i > 0 && mag > 1e3) break;
+    if (i > 0 && mag > cap) break;
     s.b.push_back(bk);
   }
   return s;
@@ -608,7 +646,7 @@ KernelK1::KernelK1(std::shared_ptr<const Medium> medium, double tol, double rang
   // The panels resolve M1 (and, for the displacement, the transform of a
   // pressure of half-width ~ range/4); sin(alpha u) is integrated exactly by
   // the Filon rule, so the grid does not grow with the range.
-  sub_ = graded_subtraction(*model_, range_);
+  sub_ = graded_subtraction(*model_, range_, tol_);
   singular_ = singular_terms(sub_);
   quad_ = build_alpha_quadrature(*model_, tol_, 0.25 * range_, Reach::surface, sub_);
   filon_ = std::make_shared<const FilonIntegrator>(quad_);
@@ -655,7 +693,9 @@ KernelK1::KernelK1(std::shared_ptr<const Medium> medium, double tol, double rang
       // round-off of the values (Filon sums of terms up to int |f|).
       table_error_ = 2.0 * tail + dropped + quad_.tail_bound;
       table_order_ = n + 1;
-      table_roundoff_ = 4.0 * eps * (abs_integral(quad_, model_->phi1()) + vmax);
+      table_roundoff_ = 4.0 * eps *
+                        (abs_integral(quad_, model_->phi1()) + vmax +
+                         subtraction_magnitude(sub_, range_));
       c.resize(std::max<std::size_t>(last, 2));
       coef_ = std::move(c);
       for (std::size_t m = 1; m < coef_.size(); m += 2) odd_.push_back(coef_[m]);
@@ -705,7 +745,9 @@ void KernelK1::build_pieces() {
   // of Filon sums of terms up to int |f|.
   constexpr double eps = 2.220446049250313e-16;
   table_error_ = coarse.tail_bound;
-  table_roundoff_ = 4.0 * eps * (abs_integral(coarse, model_->phi1()) + vmax);
+  table_roundoff_ = 4.0 * eps *
+                    (abs_integral(coarse, model_->phi1()) + vmax +
+                     subtraction_magnitude(sub_, range_));
   value_quad_ = coarse;
 }
 

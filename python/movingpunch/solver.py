@@ -571,6 +571,17 @@ def _solve_layered(
         )
     if single.valid or flag:
         return single
+    graded_top = (
+        isinstance(medium.layers[0], GradedLayer) and medium.layers[0].gamma_h != 0
+    )
+    if zoned and graded_top:
+        raise UnphysicalContactError(
+            f"vstar={single.vstar:.8g}, {medium.describe()}, {shape.describe()}, "
+            f"load={single.load:.8g}: {single.validity} (a/h = {single.a:.8g}); "
+            "several contact zones on a graded top sublayer are not supported yet "
+            "(the zones' solver does not take the graded kernel's singular terms); "
+            "allow_unphysical=True returns the single contact, flagged"
+        )
     if zoned and isinstance(medium.base, HalfSpace):
         raise UnphysicalContactError(
             f"vstar={single.vstar:.8g}, {medium.describe()}, {shape.describe()}, "

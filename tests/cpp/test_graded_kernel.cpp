@@ -244,12 +244,12 @@ TEST(GradedKernel, KernelAgreesWithPlainQuadratureAndSeriesTail) {
 // the ends, docs/theory.md section 16.5: no polynomial g converges faster),
 // and every fixed-N estimate bounds its true error.
 TEST(GradedKernel, ContactConvergesLikeNMinus4WithHonestEstimates) {
-  const ContactSolution ref = solve_contact(graded_params(1.0, 0.2, 1.0, 1e-10));
+  const SymmetricSolution ref = solve_contact(graded_params(1.0, 0.2, 1.0, 1e-10));
   ASSERT_TRUE(ref.valid());
   EXPECT_LT(ref.error_estimate(), 1e-10 * ref.a());
   std::vector<double> err;
   for (const int n : {16, 32}) {
-    const ContactSolution s = solve_contact(graded_params(1.0, 0.2, 1.0, 1e-12, n));
+    const SymmetricSolution s = solve_contact(graded_params(1.0, 0.2, 1.0, 1e-12, n));
     err.push_back(std::fabs(s.a() - ref.a()));
     EXPECT_LE(err.back(), s.error_estimate() + ref.error_estimate()) << n;
   }
@@ -263,10 +263,10 @@ TEST(GradedKernel, ContactConvergesLikeNMinus4WithHonestEstimates) {
 TEST(GradedKernel, SmallGammaTendsToTheHomogeneousLayerLinearly) {
   ContactParams p0 = graded_params(0.0, 0.3, 1.0, 1e-13);  // the homogeneous layer
   p0.medium.reset();
-  const ContactSolution h = solve_contact(p0);
+  const SymmetricSolution h = solve_contact(p0);
   ASSERT_TRUE(h.valid());
-  const ContactSolution g4 = solve_contact(graded_params(1e-4, 0.3, 1.0, 1e-13));
-  const ContactSolution g6 = solve_contact(graded_params(1e-6, 0.3, 1.0, 1e-13));
+  const SymmetricSolution g4 = solve_contact(graded_params(1e-4, 0.3, 1.0, 1e-13));
+  const SymmetricSolution g6 = solve_contact(graded_params(1e-6, 0.3, 1.0, 1e-13));
   const double d4 = (g4.a() - h.a()) / 1e-4, d6 = (g6.a() - h.a()) / 1e-6;
   EXPECT_GT(std::fabs(d4), 1e-3);  // the grading moves a/h at first order
   EXPECT_NEAR(d4, d6, 2e-3 * std::fabs(d6));
