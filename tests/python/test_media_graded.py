@@ -14,6 +14,7 @@
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -109,3 +110,80 @@ def test_staircase_converges_to_the_graded_layer_like_k_minus_2() -> None:
     # graded layer's, not a nearby value.
     extrapolated = (4 * diffs[2] - diffs[1]) / 3
     assert abs(extrapolated) < 0.25 * abs(diffs[2])
+
+
+@pytest.mark.slow
+def test_gamma_5_solves_within_its_estimate() -> None:
+    """|gamma_h| = 5 at the default tol: the kernel's subtraction keeps the
+    terms its round-off allows (it stalled at alpha h = 2e4 before); the
+    N ladder's a/h estimate bounds the difference from a tight solve."""
+    s = _graded(5.0, tol=1e-6)
+    _check_physical(s)
+    assert s.error_estimate <= 1e-6 * s.a
+    # The collocation converges like N^-4 (the pressure's (1 - r) ln(1 - r)
+    # ends): measured a/h 2.0054233021733 (N 192, the ladder's), ...2993693
+    # (384), ...2991932 (768). N = 384 on the same kernel as the reference.
+    ref = _graded(5.0, tol=1e-6, n=384)
+    assert abs(s.a - ref.a) <= s.error_estimate + ref.error_estimate
+    assert abs(s.a - ref.a) > 0.1 * s.error_estimate  # the estimate is not lavish
+    h = mp.solve(vstar=V, radius=R, load=P, kw=KW, nu=0.2, tol=1e-8)
+    assert s.a > h.a  # softer with depth: wider
+
+
+def test_a_graded_top_beyond_the_kernels_reach_is_refused_by_name() -> None:
+    # |gamma_h| 4 under a contact of a/h ~ 4: the series' tail would need
+    # the panels to alpha h = 2e4 (minutes); refused, naming gamma_h.
+    with pytest.raises(mp.InvalidParameterError) as err:
+        _graded(4.0, radius=100.0, load=0.5, tol=1e-6)
+    assert err.value.parameter == "gamma_h"
+    assert "gamma_h = 4" in str(err.value)
+
+
+def test_friction_and_several_zones_on_a_graded_top_are_refused() -> None:
+    with pytest.raises(mp.InvalidParameterError) as err:
+        _graded(1.0, friction=0.3, tol=1e-6)
+    assert err.value.parameter == "layers"
+
+
+def _stated_bound(s: mp.Solution) -> float:
+    """The surface stress's tail bound stated in the solution's warning."""
+    found = [w for w in s.warnings if w.startswith("approximate near the surface")]
+    assert len(found) == 1, s.warnings
+    m = re.search(r"may be off by up to ([0-9.e+-]+)", found[0])
+    assert m is not None, found[0]
+    return float(m.group(1))
+
+
+@pytest.mark.slow
+def test_surface_stress_and_indentation_against_a_staircase() -> None:
+    """A staircase of K homogeneous sublayers (whose mode remainders decay
+    exponentially: no gamma/alpha tail) as the reference. Its surface sigma_x
+    converges like K^-1 (the surface modulus is the top step's, e^(gamma/2K)
+    off the graded one), its indentation like K^-2 (measured: differences
+    -0.0315, -0.0161 at x = 0; 4.8e-6, 1.2e-6). On the graded top, sigma_x at
+    y = 0 leaves out the remainder's tail: the solution says so, with a bound
+    that covers the difference from the K^-1 extrapolation (measured 9e-4,
+    bound 6e-3); the indentation agrees with the K^-2 extrapolation far
+    inside its stated (pessimistic) bound."""
+    gamma = 1.0
+    xs = np.array([0.0, 0.3, 0.6, 1.2, 2.0])
+    s = _graded(gamma, tol=1e-8)
+    bound = _stated_bound(s)
+    sx = np.asarray(s.surface_stress(xs))
+    stairs, deltas = [], []
+    for k in (16, 32):
+        lam = math.exp(gamma / (2 * k))
+        layers = [
+            mp.Layer(1.0 / k, mu=math.exp(-gamma * i / k), rho=math.exp(-gamma * i / k))
+            for i in range(k)
+        ]
+        st = mp.solve(
+            vstar=V, radius=R, load=P * lam, kw=KW * lam, tol=1e-8, layers=layers
+        )
+        stairs.append(np.asarray(st.surface_stress(xs)))
+        deltas.append(st.indentation)
+    ref = 2 * stairs[1] - stairs[0]
+    assert np.all(np.abs(sx - ref) <= bound)
+    assert np.max(np.abs(sx - ref)) < 0.1 * np.max(np.abs(stairs[1] - stairs[0]))
+    ref_delta = (4 * deltas[1] - deltas[0]) / 3
+    assert s.indentation == pytest.approx(ref_delta, rel=5e-6)
