@@ -8,7 +8,7 @@ P/(mu h) 0.002, on
     0.5 subbase mu 0.1) on kw 1;
   * a homogeneous top 0.3 over a graded sublayer 0.7 (gamma h 2) on kw 1;
   * a graded TOP sublayer (gamma h 2, the whole thickness) on kw 1: its
-    kernel's slow series taken out exactly (docs/theory.md section 16.6);
+    kernel's slow series taken out exactly (docs/theory.md section 16.5);
   * the layer on a bonded half-space (mu 0.5, nu 0.3);
 the warm solve (the kernel cached: another load each time), the cold solve
 (kernel cache cleared first) and the TUI's 97 x 41 stress map, medians over

@@ -1015,7 +1015,7 @@ double fixed_size_g_error(Problem& prob, const BoundedSolve& bs, const Eigen::Ve
 //    exponentially small): (2/pi) C E (2/3) A^(-3/2), falling like
 //    e^(nT A y) below the surface.
 struct GradedTails {
-  double indentation = 0.0;  // absolute, in the indentation's units
+  double indentation = 0.0;     // absolute, in the indentation's units
   double surface_stress = 0.0;  // absolute, sigma_x/(P/h) at y = 0
   double field_reach = 0.0;     // alpha_max h of the field quadrature
 };
@@ -1023,7 +1023,8 @@ struct GradedTails {
 double transform_envelope(SeriesKind kind, double a, const Eigen::VectorXd& b, double A) {
   constexpr int kSamples = 513;
   std::vector<double> al(kSamples), g(kSamples);
-  for (int i = 0; i < kSamples; ++i) al[static_cast<std::size_t>(i)] = A * std::pow(64.0, i / (kSamples - 1.0));
+  for (int i = 0; i < kSamples; ++i)
+    al[static_cast<std::size_t>(i)] = A * std::pow(64.0, i / (kSamples - 1.0));
   series_cosine_transforms(b, kind, a, al.data(), g.data(), g.size());
   double e = 0.0;
   for (std::size_t i = 0; i < al.size(); ++i)
@@ -1049,8 +1050,8 @@ GradedTails graded_tails(const KernelK1& k, SeriesKind kind, double a, const Eig
   out.field_reach = Af;
   const double cs = std::max(std::fabs(m.mode(Af)->remainder(0.0).sx.real()) * Af,
                              std::fabs(m.mode(2.0 * Af)->remainder(0.0).sx.real()) * 2.0 * Af);
-  out.surface_stress = 2.0 / kPi * cs * transform_envelope(kind, a, b, Af) * (2.0 / 3.0) *
-                       std::pow(Af, -1.5);
+  out.surface_stress =
+      2.0 / kPi * cs * transform_envelope(kind, a, b, Af) * (2.0 / 3.0) * std::pow(Af, -1.5);
   return out;
 }
 
@@ -1076,7 +1077,8 @@ void finish_checks(SymmetricSolution& sol, const ContactParams& p, const PunchPr
       sol.warnings_.push_back(
           "approximate near the surface: on a graded top the stresses at y = 0 leave out the "
           "mode remainder's gamma/alpha tail beyond alpha h = " +
-          format_g(t.field_reach) + " (not counted in stress_error_estimate): sigma_x/(P/h) "
+          format_g(t.field_reach) +
+          " (not counted in stress_error_estimate): sigma_x/(P/h) "
           "there may be off by up to " +
           format_g(t.surface_stress) + " (" + format_g(t.surface_stress / std::fabs(sol.p0_)) +
           " of p0), falling like exp(" + format_g(t.field_reach) +

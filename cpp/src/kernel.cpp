@@ -259,8 +259,8 @@ AlphaQuadrature build_alpha_quadrature(const Medium& model, double tol, double m
     std::ostringstream msg;
     msg << "gamma_h: a graded top sublayer with gamma_h = " << as.gamma
         << " under a contact this wide (the kernel's range |u| <= " << 4.0 * max_frequency
-        << ") needs its series' tail integrated to alpha h = " << q.alpha_max << " ("
-        << n0 << " panels, above " << kMaxGradedPanels
+        << ") needs its series' tail integrated to alpha h = " << q.alpha_max << " (" << n0
+        << " panels, above " << kMaxGradedPanels
         << "): not solved in reasonable time; a smaller |gamma_h| of the top sublayer, a "
            "narrower contact (smaller load or radius), or a homogeneous top sublayer over the "
            "graded one is solved";
@@ -693,9 +693,9 @@ KernelK1::KernelK1(std::shared_ptr<const Medium> medium, double tol, double rang
       // round-off of the values (Filon sums of terms up to int |f|).
       table_error_ = 2.0 * tail + dropped + quad_.tail_bound;
       table_order_ = n + 1;
-      table_roundoff_ = 4.0 * eps *
-                        (abs_integral(quad_, model_->phi1()) + vmax +
-                         subtraction_magnitude(sub_, range_));
+      table_roundoff_ =
+          4.0 * eps *
+          (abs_integral(quad_, model_->phi1()) + vmax + subtraction_magnitude(sub_, range_));
       c.resize(std::max<std::size_t>(last, 2));
       coef_ = std::move(c);
       for (std::size_t m = 1; m < coef_.size(); m += 2) odd_.push_back(coef_[m]);
@@ -745,9 +745,9 @@ void KernelK1::build_pieces() {
   // of Filon sums of terms up to int |f|.
   constexpr double eps = 2.220446049250313e-16;
   table_error_ = coarse.tail_bound;
-  table_roundoff_ = 4.0 * eps *
-                    (abs_integral(coarse, model_->phi1()) + vmax +
-                     subtraction_magnitude(sub_, range_));
+  table_roundoff_ =
+      4.0 * eps *
+      (abs_integral(coarse, model_->phi1()) + vmax + subtraction_magnitude(sub_, range_));
   value_quad_ = coarse;
 }
 
