@@ -7,6 +7,8 @@ P/(mu h) 0.002, on
   * a 3-sublayer pavement-like stack (0.2 asphalt, 0.3 base mu 0.3,
     0.5 subbase mu 0.1) on kw 1;
   * a homogeneous top 0.3 over a graded sublayer 0.7 (gamma h 2) on kw 1;
+  * a graded TOP sublayer (gamma h 2, the whole thickness) on kw 1: its
+    kernel's slow series taken out exactly (docs/theory.md section 16.5);
   * the layer on a bonded half-space (mu 0.5, nu 0.3);
 the warm solve (the kernel cached: another load each time), the cold solve
 (kernel cache cleared first) and the TUI's 97 x 41 stress map, medians over
@@ -49,12 +51,21 @@ MEDIA: dict[str, dict[str, object]] = {
         "layers": [mp.Layer(0.3), mp.GradedLayer(2.0, thickness=0.7)],
         "base": mp.Winkler(1.0),
     },
+    "graded top": {
+        "layers": [mp.GradedLayer(2.0, thickness=1.0)],
+        "base": mp.Winkler(1.0),
+    },
     "half-space base": {
         "layers": [mp.Layer(1.0)],
         "base": mp.HalfSpace(0.5, 0.3),
     },
 }
-TARGETS = {"3-sublayer stack": 3.0, "graded sublayer": 3.0, "half-space base": 2.0}
+TARGETS = {
+    "3-sublayer stack": 3.0,
+    "graded sublayer": 3.0,
+    "graded top": 3.0,
+    "half-space base": 2.0,
+}
 FRICTION = {"vstar": 0.05, "radius": 100.0, "friction": 0.3}
 
 

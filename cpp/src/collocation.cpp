@@ -1,8 +1,12 @@
 #include "movingpunch/collocation.hpp"
 
 #include "bessel.hpp"
+#include "movingpunch/kernel.hpp"
 
 #include <array>
+#include <map>
+#include <memory>
+#include <mutex>
 
 #include <algorithm>
 #include <cmath>
@@ -69,6 +73,101 @@ Eigen::VectorXd solve_unit_collocation_sum(
     const std::function<double(double, double)>& kernel_sum) {
   const int h = nodes.n / 2;
   return unit_collocation_matrix(nodes, a, kernel_sum).partialPivLu().solve(nodes.s.head(h));
+}
+
+std::vector<double> singular_moments(int n_max, int power, int sigma, double s) {
+  if (n_max < 1 || power < 0 || sigma < 0 || sigma > 2 || !(std::fabs(s) < 1.0))
+    throw std::invalid_argument("singular_moments: n_max >= 1, power >= 0, |s| < 1 required");
+  const int top = n_max + power;
+  const double th = std::acos(s);
+  // M_{0,n} = int sqrt(1 - r^2) U_n(r) sigma(r - s) dr (r = cos theta:
+  // sqrt(1 - r^2) U_n dr = -sin((n+1) theta) sin(theta) d theta).
+  std::vector<double> m(static_cast<std::size_t>(top + 1), 0.0);
+  for (int n = 0; n <= top; ++n) {
+    double v = 0.0;
+    if (sigma == 0) {
+      v = n == 0 ? 0.5 * kPi : 0.0;
+    } else if (sigma == 1) {
+      // int_0^th - int_th^pi of (cos(n x) - cos((n+2) x))/2.
+      const double G = n == 0 ? 0.5 * (th - 0.5 * std::sin(2.0 * th))
+                              : 0.5 * (std::sin(n * th) / n - std::sin((n + 2) * th) / (n + 2));
+      v = 2.0 * G - (n == 0 ? 0.5 * kPi : 0.0);
+    } else {
+      // sqrt(1 - r^2) U_n = (T_n - T_{n+2}) / (2 sqrt(1 - r^2)) and
+      // int ln|r - s| T_m / sqrt(1 - r^2) dr = -pi ln 2 (m = 0), -pi T_m(s)/m.
+      auto Lm = [&](int q) { return q == 0 ? -kPi * std::log(2.0) : -kPi * std::cos(q * th) / q; };
+      v = 0.5 * (Lm(n) - Lm(n + 2));
+    }
+    m[static_cast<std::size_t>(n)] = v;
+  }
+  // Moments of r^l: r U_n = (U_{n+1} + U_{n-1})/2 (U_{-1} = 0); then
+  // (r - s)^power by the binomial sum.
+  std::vector<double> out(static_cast<std::size_t>(n_max), 0.0);
+  double binom = 1.0;  // C(power, l)
+  std::vector<double> cur = m;
+  for (int l = 0; l <= power; ++l) {
+    const double c = binom * std::pow(-s, power - l);
+    for (int n = 0; n < n_max; ++n)
+      out[static_cast<std::size_t>(n)] += c * cur[static_cast<std::size_t>(n)];
+    if (l == power) break;
+    std::vector<double> next(cur.size(), 0.0);
+    for (int n = 0; n + 1 < static_cast<int>(cur.size()); ++n)
+      next[static_cast<std::size_t>(n)] =
+          0.5 * (cur[static_cast<std::size_t>(n + 1)] +
+                 (n > 0 ? cur[static_cast<std::size_t>(n - 1)] : 0.0));
+    cur.swap(next);
+    binom = binom * (power - l) / (l + 1);
+  }
+  return out;
+}
+
+namespace {
+
+// B(k, j) = W_j (4/pi) sum_{n even < N} U_n(r_j) M_n(s_k) for the moments M of
+// (r - s)^p sigma(r - s): independent of a and of the coefficients, cached
+// per (N, p, sigma) (the width iteration assembles many matrices at one N).
+const Eigen::MatrixXd& moment_block(const ChebyshevNodes& nodes, int p, int sigma) {
+  static std::mutex mutex;
+  static std::map<std::array<int, 3>, std::shared_ptr<const Eigen::MatrixXd>> cache;
+  const std::array<int, 3> key{nodes.n, p, sigma};
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    const auto it = cache.find(key);
+    if (it != cache.end()) return *it->second;
+  }
+  const int n = nodes.n, h = n / 2;
+  Eigen::MatrixXd U(h, n);
+  for (int j = 0; j < h; ++j) {
+    const double th = (j + 1) * kPi / (n + 1);
+    for (int q = 0; q < n; ++q)
+      U(j, q) = (q % 2 == 0) ? std::sin((q + 1) * th) / std::sin(th) : 0.0;
+  }
+  Eigen::MatrixXd Mom(h, n);
+  for (int k = 0; k < h; ++k) {
+    const std::vector<double> m = singular_moments(n, p, sigma, nodes.s(k));
+    for (int q = 0; q < n; ++q) Mom(k, q) = m[static_cast<std::size_t>(q)];
+  }
+  auto B = std::make_shared<Eigen::MatrixXd>(Mom * U.transpose());
+  for (int j = 0; j < h; ++j) B->col(j) *= nodes.w(j) * (4.0 / kPi);
+  std::lock_guard<std::mutex> lock(mutex);
+  if (cache.size() > 256) cache.clear();
+  auto& slot = cache[key];
+  if (!slot) slot = std::move(B);
+  return *slot;
+}
+
+}  // namespace
+
+Eigen::MatrixXd singular_collocation_matrix(const ChebyshevNodes& nodes, double a,
+                                            const std::vector<KernelSingularTerm>& terms) {
+  const int h = nodes.n / 2;
+  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(h, h);
+  for (const KernelSingularTerm& t : terms) {
+    const double scale = a * t.coef * std::pow(a, t.power);
+    M += scale * moment_block(nodes, t.power, t.log ? 2 : 1);
+    if (t.log) M += scale * std::log(a) * moment_block(nodes, t.power, 0);
+  }
+  return M;
 }
 
 Eigen::VectorXd u_coefficients(const ChebyshevNodes& nodes, const Eigen::VectorXd& g_full) {

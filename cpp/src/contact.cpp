@@ -63,12 +63,12 @@ void validate(const ContactParams& p) {
   require_in_range("kp", p.kp, 0.0, kMaxKp, false, false);
   if (p.medium) {
     validate(*p.medium);
-    if (p.medium->layers[0].gamma != 0.0)
+    if (p.medium->layers[0].gamma != 0.0 && p.profile == ProfileKind::flat)
       throw InvalidParameter(
-          "layers", "a homogeneous top sublayer (graded ones below it)",
-          "layers: a graded top sublayer is not solved yet (its response reaches the "
-          "half-plane's only as a series in gamma/alpha, which the kernel must take out "
-          "exactly); put a homogeneous sublayer on top or use a staircase of sublayers");
+          "profile", "a bounded contact (cylinder, rounded flat, table) on a graded top sublayer",
+          "profile: a flat punch on a graded top sublayer is not solved yet (its first-kind "
+          "collocation does not integrate the graded kernel's sgn and u ln|u| terms exactly); "
+          "use a rounded flat, or put a homogeneous sublayer on top");
     if (p.medium->base.kind == BaseKind::springs && p.medium->base.damping != 0.0)
       throw InvalidParameter("damping", "0 on the symmetric solver",
                              "damping: a damped base is solved by the asymmetric solver");
@@ -139,15 +139,22 @@ class Problem {
     ++evaluations_;
     const auto ksum = [&k](double u, double v) { return k.sum(u, v); };
     const Eigen::VectorXd G =
-        cylinder()
+        cylinder() && k.singular().empty()
             ? solve_unit_collocation_sum(nodes, a, ksum)
-            : Eigen::VectorXd(
-                  unit_collocation_matrix(nodes, a, ksum).partialPivLu().solve(rhs(nodes, a)));
+            : Eigen::VectorXd(matrix(nodes, a, k).partialPivLu().solve(rhs(nodes, a)));
     const double sum = 2.0 * nodes.w.head(nodes.n / 2).dot(G);
     if (G_out) *G_out = G;
     return load_factor(a) * sum;
   }
   bool cylinder() const { return prof_.kind() == ProfileKind::cylinder; }
+  // The folded collocation matrix: the regular part of k1 by Gauss-Chebyshev,
+  // a graded top's singular terms exactly (singular_collocation_matrix).
+  static Eigen::MatrixXd matrix(const ChebyshevNodes& nodes, double a, const KernelK1& k) {
+    Eigen::MatrixXd M =
+        unit_collocation_matrix(nodes, a, [&k](double u, double v) { return k.sum(u, v); });
+    if (!k.singular().empty()) M += singular_collocation_matrix(nodes, a, k.singular());
+    return M;
+  }
   // The right-hand side of the folded system, k = 1..N/2: s_k (cylinder: the
   // slope a s_k/R over a/R) or the profile's slope, through its exact
   // Chebyshev projection of degree < N + 1, sum_m d_m T_m(s_k) (m odd),
@@ -192,7 +199,7 @@ class Problem {
     ++evaluations_;
     const int h = nodes.n / 2;
     Linearised L;
-    L.M = unit_collocation_matrix(nodes, a, [&k](double u, double v) { return k.sum(u, v); });
+    L.M = matrix(nodes, a, k);
     const Eigen::PartialPivLU<Eigen::MatrixXd> lu(L.M);
     L.G = lu.solve(rhs(nodes, a));
     L.lambda = lu.transpose().solve(nodes.w.head(h));
@@ -996,6 +1003,58 @@ double fixed_size_g_error(Problem& prob, const BoundedSolve& bs, const Eigen::Ve
 // contact with bounded ends, no penetration on a < |x| <= 3a (within a table's
 // extent). A flat punch has no surface beside its face (square corners):
 // min_gap is +inf.
+// A graded top (docs/theory.md section 16.5): the alpha integrals stop at
+// alpha_max while the response reaches the half-plane's only like gamma/alpha.
+// Bounds of what they leave out, from |r(alpha)| <= C/alpha beyond alpha_max
+// (C measured at alpha_max and 2 alpha_max, the larger) and the transform of
+// p, |p~(alpha)| <= E alpha^(-3/2) (the square-root ends; E sampled on
+// [alpha_max, 64 alpha_max], doubled):
+//  * the indentation, (2/pi) P int |p~| |M1 - phi1|/alpha: (2/pi) P C E (2/5) A^(-5/2);
+//  * the surface sigma_x/(P/h), whose field quadrature stops at the reach of
+//    the mode's exponential part (the remainder at y = 0 is C/alpha, not
+//    exponentially small): (2/pi) C E (2/3) A^(-3/2), falling like
+//    e^(nT A y) below the surface.
+struct GradedTails {
+  double indentation = 0.0;     // absolute, in the indentation's units
+  double surface_stress = 0.0;  // absolute, sigma_x/(P/h) at y = 0
+  double field_reach = 0.0;     // alpha_max h of the field quadrature
+};
+
+double transform_envelope(SeriesKind kind, double a, const Eigen::VectorXd& b, double A) {
+  constexpr int kSamples = 513;
+  std::vector<double> al(kSamples), g(kSamples);
+  for (int i = 0; i < kSamples; ++i)
+    al[static_cast<std::size_t>(i)] = A * std::pow(64.0, i / (kSamples - 1.0));
+  series_cosine_transforms(b, kind, a, al.data(), g.data(), g.size());
+  double e = 0.0;
+  for (std::size_t i = 0; i < al.size(); ++i)
+    e = std::max(e, std::fabs(g[i]) * std::pow(al[i], 1.5));
+  return 2.0 * e;
+}
+
+GradedTails graded_tails(const KernelK1& k, SeriesKind kind, double a, const Eigen::VectorXd& b,
+                         double load) {
+  GradedTails out;
+  const Medium& m = k.model();
+  // The indentation: the kernel's quadrature (the displacement's panels).
+  const double A = k.quadrature().alpha_max;
+  const double phi1 = m.phi1();
+  const double cm = std::max(std::fabs(m.surface_response(A).M1.real() - phi1) * A,
+                             std::fabs(m.surface_response(2.0 * A).M1.real() - phi1) * 2.0 * A);
+  out.indentation =
+      2.0 / kPi * load * cm * transform_envelope(kind, a, b, A) * 0.4 * std::pow(A, -2.5);
+  // The surface stress: the field quadrature's reach (build_alpha_quadrature,
+  // Reach::field: no subtraction there).
+  const double rate = m.field_decay_rate();
+  const double Af = (std::log(1e18) + std::log1p(4.0 * 60.0 / rate)) / rate;
+  out.field_reach = Af;
+  const double cs = std::max(std::fabs(m.mode(Af)->remainder(0.0).sx.real()) * Af,
+                             std::fabs(m.mode(2.0 * Af)->remainder(0.0).sx.real()) * 2.0 * Af);
+  out.surface_stress =
+      2.0 / kPi * cs * transform_envelope(kind, a, b, Af) * (2.0 / 3.0) * std::pow(Af, -1.5);
+  return out;
+}
+
 void finish_checks(SymmetricSolution& sol, const ContactParams& p, const PunchProfile& prof) {
   const double a = sol.a_;
   const bool t_kind = sol.kind_ == SeriesKind::T;
@@ -1005,6 +1064,26 @@ void finish_checks(SymmetricSolution& sol, const ContactParams& p, const PunchPr
   if (!std::isfinite(sol.delta_))
     throw ConvergenceError("the indentation came out non-finite (N = " + std::to_string(sol.n_) +
                            "); the solution is not trusted");
+  if (!sol.kernel_->singular().empty()) {
+    const GradedTails t = graded_tails(*sol.kernel_, sol.kind_, a, sol.b_, p.load);
+    if (!(t.indentation <= p.tol * std::fabs(sol.delta_)))
+      sol.warnings_.push_back(
+          "tol not met: the indentation on a graded top leaves out the displacement's "
+          "gamma/alpha tail beyond alpha h = " +
+          format_g(sol.kernel_->quadrature().alpha_max) + ", bounded by " +
+          format_g(t.indentation) + " (" + format_g(t.indentation / std::fabs(sol.delta_)) +
+          " relative, above tol = " + format_g(p.tol) + ")");
+    if (!(t.surface_stress <= p.tol * std::fabs(sol.p0_)))
+      sol.warnings_.push_back(
+          "approximate near the surface: on a graded top the stresses at y = 0 leave out the "
+          "mode remainder's gamma/alpha tail beyond alpha h = " +
+          format_g(t.field_reach) +
+          " (not counted in stress_error_estimate): sigma_x/(P/h) "
+          "there may be off by up to " +
+          format_g(t.surface_stress) + " (" + format_g(t.surface_stress / std::fabs(sol.p0_)) +
+          " of p0), falling like exp(" + format_g(t.field_reach) +
+          " nT y) below it; sigma_y = -p and tau = 0 there are exact");
+  }
 
   // Validity: p >= 0 on the contact and no penetration on a < |x| <= 3a.
   double pmin = kInf, gmin = kInf, gmax = 0.0, x_pmin = 0.0;

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include <Eigen/Dense>
+#include <sstream>
 #include <stdexcept>
 
 #include "chebyshev.hpp"
@@ -27,6 +28,7 @@ struct Panel {
   double lo, hi;
   double nodes[15];
   double m1[15];
+  double sub[15];
   double kronrod, error;
   double resabs;      // integral of |f|
   double floor;       // round-off floor of the rule on this panel
@@ -35,7 +37,7 @@ struct Panel {
   double systematic;  // the part of truncation that is not round-off
 };
 
-Panel eval_panel(const Medium& model, double lo, double hi) {
+Panel eval_panel(const Medium& model, double lo, double hi, const KernelSubtraction& sub) {
   check_interrupt();  // 15 layer responses: microseconds
   Panel p{};
   p.lo = lo;
@@ -50,7 +52,8 @@ Panel eval_panel(const Medium& model, double lo, double hi) {
     const double x = c + sgn * h * kXgk[k];
     p.nodes[j] = x;
     p.m1[j] = model.surface_response(x).M1.real();
-    const double f = (p.m1[j] - phi1) / phi1;
+    p.sub[j] = sub.empty() ? 0.0 : sub.value(x);
+    const double f = (p.m1[j] - phi1) / phi1 - p.sub[j];
     fv[j] = f;
     fk += kWgk[k] * f;
     fabs_sum += kWgk[k] * std::fabs(f);
@@ -98,8 +101,116 @@ double kronrod_weight(int j, double h) {
 
 }  // namespace
 
+namespace {
+
+// 1/k!, k = 0 .. 20.
+double inv_factorial(int k) {
+  double f = 1.0;
+  for (int i = 2; i <= k; ++i) f /= i;
+  return f;
+}
+
+}  // namespace
+
+double KernelSubtraction::value(double t) const {
+  const double x = L * t;
+  double out = 0.0;
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    const int k = static_cast<int>(i) + 1;
+    double r;
+    if (x <= 40.0) {
+      // R_k = L^k e^-x sum_j x^j/(k+j)!: positive terms, no cancellation.
+      double term = inv_factorial(k), sum = 0.0;
+      for (int j = 0; j < 400; ++j) {
+        sum += term;
+        term *= x / (k + j + 1);
+        if (term <= 1e-18 * sum && j > x) break;
+      }
+      r = std::pow(L, k) * std::exp(-x) * sum;
+    } else {
+      // R_k = t^-k (1 - e^-x sum_{j<k} x^j/j!): the correction is below e^-40 x^k.
+      double term = 1.0, sum = 0.0;
+      for (int j = 0; j < k; ++j) {
+        sum += term;
+        term *= x / (j + 1);
+      }
+      r = std::pow(t, -k) * (1.0 - std::exp(-x) * sum);
+    }
+    out += b[i] * r;
+  }
+  return out;
+}
+
+double KernelSubtraction::smooth(double u) const {
+  // u^(2i+1) L^(j-1-2i) / (j-1-2i) summed by running powers; the last term
+  // of each j by one arctan or log for all (j even: -(-1)^m u^(2m) arctan(u/L);
+  // j odd: (-1)^m u^(2m+1) ln(L^2 + u^2)/2).
+  const double at = std::atan(u / L), lg = 0.5 * std::log(L * L + u * u);
+  const double u2 = u * u;
+  double out = 0.0, fact = 1.0;  // j!
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    const int j = static_cast<int>(i);
+    if (j > 1) fact *= j;
+    double v = 0.0;
+    if (j % 2 == 0) {
+      const int m = j / 2;
+      double up = u, sign = 1.0;  // u^(2q+1), (-1)^q
+      for (int q = 0; q < m; ++q) {
+        v += sign * up * std::pow(L, 2 * m - 1 - 2 * q) / (2 * m - 1 - 2 * q);
+        up *= u2;
+        sign = -sign;
+      }
+      v -= ((m % 2) ? -1.0 : 1.0) * std::pow(u2, m) * at;
+    } else {
+      const int m = (j - 1) / 2;
+      double up = u, sign = 1.0;
+      for (int q = 0; q < m; ++q) {
+        v += sign * up * std::pow(L, 2 * m - 2 * q) / (2 * m - 2 * q);
+        up *= u2;
+        sign = -sign;
+      }
+      v += ((m % 2) ? -1.0 : 1.0) * std::pow(u2, m) * u * lg;
+    }
+    out += b[i] * v / fact;
+  }
+  return out;
+}
+
+std::vector<KernelSingularTerm> singular_terms(const KernelSubtraction& s) {
+  std::vector<KernelSingularTerm> out;
+  for (std::size_t i = 0; i < s.b.size(); ++i) {
+    const int j = static_cast<int>(i);
+    KernelSingularTerm t;
+    t.power = j;
+    if (j % 2 == 0) {
+      const int m = j / 2;
+      t.log = false;
+      t.coef = s.b[i] * ((m % 2) ? -1.0 : 1.0) * 0.5 * kPi * inv_factorial(j);
+    } else {
+      const int m = (j - 1) / 2;
+      t.log = true;
+      t.coef = -s.b[i] * ((m % 2) ? -1.0 : 1.0) * inv_factorial(j);
+    }
+    out.push_back(t);
+  }
+  return out;
+}
+
+double KernelSubtraction::singular(double u) const {
+  if (u == 0.0) return 0.0;
+  double out = 0.0;
+  for (const KernelSingularTerm& t : singular_terms(*this))
+    out +=
+        t.coef * std::pow(u, t.power) * (t.log ? std::log(std::fabs(u)) : (u < 0.0 ? -1.0 : 1.0));
+  return out;
+}
+
+// The most panels a graded top's kernel quadrature may take (about 1e3 per
+// few seconds cold on one loaded core; build_alpha_quadrature refuses more).
+constexpr int kMaxGradedPanels = 3000;
+
 AlphaQuadrature build_alpha_quadrature(const Medium& model, double tol, double max_frequency,
-                                       Reach reach) {
+                                       Reach reach, const KernelSubtraction& sub) {
   if (!(tol > 0.0)) throw std::invalid_argument("kernel quadrature: tol must be > 0");
   if (!(max_frequency > 0.0) || !std::isfinite(max_frequency))
     throw std::invalid_argument("kernel quadrature: max_frequency must be finite and > 0");
@@ -112,17 +223,59 @@ AlphaQuadrature build_alpha_quadrature(const Medium& model, double tol, double m
     throw std::invalid_argument(
         "kernel quadrature: the medium's decay rate must be finite and > 0");
   q.alpha_max = (std::log(1e18) + std::log1p(4.0 * 60.0 / rate)) / rate;
+  const KernelAsymptotics& as = model.kernel_asymptotics();
+  if (!as.a.empty() && reach == Reach::surface && sub.empty())
+    throw std::invalid_argument(
+        "kernel quadrature: a graded top's M1 - phi1 decays algebraically; its asymptotics "
+        "must be subtracted");
+  if (!sub.empty()) {
+    if (reach != Reach::surface)
+      throw std::invalid_argument("kernel quadrature: a subtraction applies to the surface only");
+    // The reflection off the top sublayer's bottom (its grading's margin),
+    // the regularisation e^(-L t) (L t)^(K-1), the series' own range
+    // (t > |gamma|/radius) and the algebraic tail |a_{K+1}| (|gamma|/t)^(K+1),
+    // whose integral beyond A is below 1e-3 tol.
+    const int K = static_cast<int>(sub.b.size());
+    const double g = std::fabs(as.gamma);
+    const double next =
+        static_cast<std::size_t>(K) < as.a.size() ? std::fabs(as.a[K]) : std::fabs(as.next);
+    const double a_exp = (std::log(1e18) + as.margin + std::log1p(4.0 * 60.0 / rate)) / rate;
+    const double a_reg = (45.0 + 3.0 * K) / sub.L;
+    const double a_ser = 4.0 * g / as.radius;
+    const double a_alg = std::pow(next * std::pow(g, K + 1) / (K * 1e-3 * tol), 1.0 / K);
+    q.alpha_max = std::min(kMaxAlphaGraded, std::max({a_exp, a_reg, a_ser, a_alg}));
+    q.tail_bound = next * std::pow(g, K + 1) / (K * std::pow(q.alpha_max, K));
+    q.subtraction = sub;
+  }
   // Panels narrow enough that sin(alpha u) turns at most ~2 radians on one.
   const double width = std::min(1.0, 2.0 / max_frequency);
   const int n0 = std::max(1, static_cast<int>(std::ceil(q.alpha_max / width)));
   const double w0 = q.alpha_max / n0;
+  // A graded top whose series needs few terms over a wide table (|gamma|
+  // times the contact's half-width large: the terms' size caps K) leaves a
+  // slow tail the panels must follow to alpha_max: beyond this many panels
+  // (about 10 s on one core) it is refused rather than run for minutes.
+  if (!sub.empty() && n0 > kMaxGradedPanels) {
+    std::ostringstream msg;
+    msg << "gamma_h: a graded top sublayer with gamma_h = " << as.gamma
+        << " under a contact this wide (the kernel's range |u| <= " << 4.0 * max_frequency
+        << ") needs its series' tail integrated to alpha h = " << q.alpha_max << " (" << n0
+        << " panels, above " << kMaxGradedPanels
+        << "): not solved in reasonable time; a smaller |gamma_h| of the top sublayer, a "
+           "narrower contact (smaller load or radius), or a homogeneous top sublayer over the "
+           "graded one is solved";
+    throw InvalidParameter("gamma_h",
+                           "|gamma_h| of the top sublayer times the contact's half-width a/h "
+                           "within the kernel's reach (|gamma_h| <= 5 at a/h <= 2 solves)",
+                           msg.str());
+  }
   std::vector<Panel> work, done;
-  for (int i = n0 - 1; i >= 1; --i) work.push_back(eval_panel(model, i * w0, (i + 1) * w0));
+  for (int i = n0 - 1; i >= 1; --i) work.push_back(eval_panel(model, i * w0, (i + 1) * w0, sub));
   // The first panel, split down to a Pasternak base's long-wave scale
   // (layer_basis.hpp; one panel for springs alone).
   const std::vector<double> first = model.first_panel_edges(w0);
   for (std::size_t i = first.size() - 1; i >= 1; --i)
-    work.push_back(eval_panel(model, first[i - 1], first[i]));
+    work.push_back(eval_panel(model, first[i - 1], first[i], sub));
   const double panel_tol = tol / n0;
   int evaluations = n0 + static_cast<int>(first.size()) - 2;
   while (!work.empty()) {
@@ -141,8 +294,8 @@ AlphaQuadrature build_alpha_quadrature(const Medium& model, double tol, double m
       continue;
     }
     const double mid = 0.5 * (p.lo + p.hi);
-    work.push_back(eval_panel(model, mid, p.hi));
-    work.push_back(eval_panel(model, p.lo, mid));
+    work.push_back(eval_panel(model, mid, p.hi, sub));
+    work.push_back(eval_panel(model, p.lo, mid, sub));
     evaluations += 2;
   }
   std::sort(done.begin(), done.end(), [](const Panel& a, const Panel& b) { return a.lo < b.lo; });
@@ -155,6 +308,7 @@ AlphaQuadrature build_alpha_quadrature(const Medium& model, double tol, double m
       q.alpha.push_back(p.nodes[j]);
       q.weight.push_back(kronrod_weight(j, h));
       q.m1.push_back(p.m1[j]);
+      q.sub.push_back(p.sub[j]);
     }
     // Truncation (QUADPACK's rescaled estimate, not the stopping floor) plus
     // the round-off of the sum itself.
@@ -162,6 +316,7 @@ AlphaQuadrature build_alpha_quadrature(const Medium& model, double tol, double m
     q.panel_error.push_back(p.systematic);
     q.panel_roundoff.push_back(p.round_rms);
   }
+  q.error_estimate += q.tail_bound;
   return q;
 }
 
@@ -431,8 +586,50 @@ namespace {
 double abs_integral(const AlphaQuadrature& q, double phi1) {
   double sum = 0.0;
   for (std::size_t i = 0; i < q.alpha.size(); ++i)
-    sum += q.weight[i] * std::fabs((q.m1[i] - phi1) / phi1);
+    sum += q.weight[i] * std::fabs((q.m1[i] - phi1) / phi1 - q.sub[i]);
   return sum;
+}
+
+// The integrand f - S at the nodes of q.
+std::vector<double> integrand(const AlphaQuadrature& q, double phi1) {
+  std::vector<double> f(q.alpha.size());
+  for (std::size_t i = 0; i < f.size(); ++i) f[i] = (q.m1[i] - phi1) / phi1 - q.sub[i];
+  return f;
+}
+
+// The largest size of a subtraction's terms on the table, sum_k |b_k|
+// u^(k-1)/(k-1)! at u = range/2 (the collocation's |u| <= 2a): the singular
+// and smooth parts cancel beyond u ~ L, each carrying eps times it.
+double subtraction_magnitude(const KernelSubtraction& s, double range) {
+  double out = 0.0;
+  for (std::size_t i = 0; i < s.b.size(); ++i)
+    out += std::fabs(s.b[i]) * std::pow(0.5 * range, static_cast<double>(i)) *
+           inv_factorial(static_cast<int>(i));
+  return out;
+}
+
+// The subtraction of a graded top for a table of range `range` and
+// tolerance `tol`: terms while the largest, b_k u^(k-1)/(k-1)! at u =
+// range/2, stays below max(1e3, 1e-2 tol/eps) (its cancellation's round-off,
+// counted in the table's round-off, stays below 1e-2 tol), at most 8. Fewer
+// terms leave a slower algebraic tail, which the quadrature must follow far
+// (alpha_max up to 2e4: minutes at |gamma| a ~ 5 with the old cap 1e3).
+KernelSubtraction graded_subtraction(const Medium& m, double range, double tol) {
+  const KernelAsymptotics& as = m.kernel_asymptotics();
+  KernelSubtraction s;
+  if (as.a.empty()) return s;
+  constexpr double eps = 2.220446049250313e-16;
+  const double g = std::fabs(as.gamma), uc = 0.5 * range;
+  const double cap = std::max(1e3, 1e-2 * tol / eps);
+  s.L = 1.0 / std::max(1.0, g);
+  for (std::size_t i = 0; i < std::min<std::size_t>(8, as.a.size()); ++i) {
+    const int k = static_cast<int>(i) + 1;
+    const double bk = as.a[i] * std::pow(as.gamma, k);
+    const double mag = std::fabs(bk) * std::pow(uc, k - 1) * inv_factorial(k - 1);
+    if (i > 0 && mag > cap) break;
+    s.b.push_back(bk);
+  }
+  return s;
 }
 }  // namespace
 
@@ -449,11 +646,11 @@ KernelK1::KernelK1(std::shared_ptr<const Medium> medium, double tol, double rang
   // The panels resolve M1 (and, for the displacement, the transform of a
   // pressure of half-width ~ range/4); sin(alpha u) is integrated exactly by
   // the Filon rule, so the grid does not grow with the range.
-  quad_ = build_alpha_quadrature(*model_, tol_, 0.25 * range_);
+  sub_ = graded_subtraction(*model_, range_, tol_);
+  singular_ = singular_terms(sub_);
+  quad_ = build_alpha_quadrature(*model_, tol_, 0.25 * range_, Reach::surface, sub_);
   filon_ = std::make_shared<const FilonIntegrator>(quad_);
-  std::vector<double> f(quad_.alpha.size());
-  for (std::size_t i = 0; i < f.size(); ++i) f[i] = (quad_.m1[i] - model_->phi1()) / model_->phi1();
-  f_coef_ = filon_->coefficients(f);
+  f_coef_ = filon_->coefficients(integrand(quad_, model_->phi1()));
   // A long table (many oscillations of k1 on |u| <= range) is held piecewise:
   // its cost is then proportional to the range, and so is no evaluation's.
   if (range_ * quad_.alpha_max > kPieceBandwidth) {
@@ -466,7 +663,7 @@ KernelK1::KernelK1(std::shared_ptr<const Medium> medium, double tol, double rang
     std::vector<double> vals(static_cast<std::size_t>(n / 2));
     for (int j = 0; j < n / 2; ++j) {
       const double x = std::cos(kPi * (j + 0.5) / n);
-      vals[static_cast<std::size_t>(j)] = direct(range_ * x);
+      vals[static_cast<std::size_t>(j)] = numeric(range_ * x);
     }
     std::vector<double> c(static_cast<std::size_t>(n), 0.0);
     double cmax = 0.0;
@@ -494,9 +691,11 @@ KernelK1::KernelK1(std::shared_ptr<const Medium> medium, double tol, double rang
         dropped += std::fabs(c[m]);
       // The table's error: the series' tail, what was dropped, and the
       // round-off of the values (Filon sums of terms up to int |f|).
-      table_error_ = 2.0 * tail + dropped;
+      table_error_ = 2.0 * tail + dropped + quad_.tail_bound;
       table_order_ = n + 1;
-      table_roundoff_ = 4.0 * eps * (abs_integral(quad_, model_->phi1()) + vmax);
+      table_roundoff_ =
+          4.0 * eps *
+          (abs_integral(quad_, model_->phi1()) + vmax + subtraction_magnitude(sub_, range_));
       c.resize(std::max<std::size_t>(last, 2));
       coef_ = std::move(c);
       for (std::size_t m = 1; m < coef_.size(); m += 2) odd_.push_back(coef_[m]);
@@ -515,12 +714,9 @@ void KernelK1::build_pieces() {
   // half-width range/4 (the displacement), many times more of them on a wide
   // table.
   constexpr int D = kPieceDegree;
-  const AlphaQuadrature coarse = build_alpha_quadrature(*model_, tol_, 1.0);
+  const AlphaQuadrature coarse = build_alpha_quadrature(*model_, tol_, 1.0, Reach::surface, sub_);
   const FilonIntegrator filon(coarse);
-  std::vector<double> f(coarse.alpha.size());
-  for (std::size_t i = 0; i < f.size(); ++i)
-    f[i] = (coarse.m1[i] - model_->phi1()) / model_->phi1();
-  const std::vector<double> fc = filon.coefficients(f);
+  const std::vector<double> fc = filon.coefficients(integrand(coarse, model_->phi1()));
   std::vector<FilonIntegrator::cplx> K;
   double vmax = 0.0;
   auto value = [&](double u) {
@@ -548,15 +744,22 @@ void KernelK1::build_pieces() {
   // Interpolation is exact to ~1e-17 relative; the values carry the round-off
   // of Filon sums of terms up to int |f|.
   constexpr double eps = 2.220446049250313e-16;
-  table_error_ = 0.0;
-  table_roundoff_ = 4.0 * eps * (abs_integral(coarse, model_->phi1()) + vmax);
+  table_error_ = coarse.tail_bound;
+  table_roundoff_ =
+      4.0 * eps *
+      (abs_integral(coarse, model_->phi1()) + vmax + subtraction_magnitude(sub_, range_));
   value_quad_ = coarse;
 }
 
-double KernelK1::direct(double u) const {
+double KernelK1::numeric(double u) const {
   std::vector<FilonIntegrator::cplx> K;
   filon_->weights(u, K);
   return FilonIntegrator::apply(K, f_coef_).imag();
+}
+
+double KernelK1::direct(double u) const {
+  if (sub_.empty()) return numeric(u);
+  return numeric(u) + sub_.smooth(u) + sub_.singular(u);
 }
 
 double KernelK1::piece(double u) const {
@@ -569,7 +772,12 @@ double KernelK1::piece(double u) const {
   return u < 0.0 ? -v : v;
 }
 
-double KernelK1::operator()(double u) const { return piece_coef_.empty() ? global(u) : piece(u); }
+double KernelK1::table(double u) const { return piece_coef_.empty() ? global(u) : piece(u); }
+
+double KernelK1::operator()(double u) const {
+  if (sub_.empty()) return table(u);
+  return table(u) + sub_.smooth(u) + sub_.singular(u);
+}
 
 // The series is odd, sum_j c_{2j+1} T_{2j+1}(x): Clenshaw on the odd terms
 // with T_{m+2} = 2 T_2 T_m - T_{m-2}, T_2 = 2 x^2 - 1, gives x (b_0 - b_1)
@@ -587,6 +795,7 @@ double KernelK1::global(double u) const {
 }
 
 double KernelK1::sum(double u, double v) const {
+  if (!sub_.empty()) return table(u) + table(v) + sub_.smooth(u) + sub_.smooth(v);
   if (!piece_coef_.empty()) return piece(u) + piece(v);
   // Two recurrences interleaved (each is a chain of dependent steps).
   const double x = u / range_, z = v / range_;

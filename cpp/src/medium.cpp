@@ -171,6 +171,11 @@ std::vector<double> MediumSpec::key() const {
   return k;
 }
 
+const KernelAsymptotics& Medium::kernel_asymptotics() const noexcept {
+  static const KernelAsymptotics none{};
+  return none;
+}
+
 std::vector<double> Medium::key() const {
   std::vector<double> k{vstar()};
   const std::vector<double> s = spec().key();

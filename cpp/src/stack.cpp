@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <limits>
 #include <map>
 #include <mutex>
@@ -475,7 +476,8 @@ class StackMedium final : public Medium {
       : core_(spec, vstar),
         spec_(spec),
         s_(vstar),
-        top_(wave_constants(vstar, spec.layers[0].nu)) {}
+        top_(wave_constants(vstar, spec.layers[0].nu)),
+        asym_(graded_kernel_asymptotics(spec, vstar)) {}
 
   double vstar() const noexcept override { return s_; }
   const WaveConstants& top() const noexcept override { return top_; }
@@ -540,9 +542,11 @@ class StackMedium final : public Medium {
     return core_.dispersion(t);
   }
   double decay_rate() const noexcept override {
-    const Sublayer& l = spec_.layers[0];
-    return l.gamma != 0.0 ? 0.0 : 2.0 * top_.nT * l.thickness;
+    // The reflection off the top sublayer's bottom (a graded top's M1 - phi1
+    // also carries its slow series, kernel_asymptotics()).
+    return 2.0 * top_.nT * spec_.layers[0].thickness;
   }
+  const KernelAsymptotics& kernel_asymptotics() const noexcept override { return asym_; }
   // The remainder (state minus the top's half-plane state) at any depth
   // decays at least as slowly as the state at the bottom, exp(-t sum nT_i
   // h_i) (each sublayer's shear rate, the slower of its two), or the top's
@@ -597,6 +601,7 @@ class StackMedium final : public Medium {
   double s_;
   WaveConstants top_;
   TangentialHalfPlane tq_ = tangential_half_plane(top_);
+  KernelAsymptotics asym_;
 };
 
 // The lowest vstar < smax of a free wave of wavenumber t (smax if none).
@@ -712,6 +717,95 @@ double graded_half_space_m1(const WaveConstants& c, double eps) {
 }
 
 }  // namespace
+
+namespace {
+
+// F(eps) = M1 of the graded half-space at complex eps (as graded_half_space_m1;
+// the ratio of minors does not depend on the basis of the subspace).
+std::complex<double> graded_half_space_m1c(const WaveConstants& c, std::complex<double> eps) {
+  using Mat4c = Eigen::Matrix4cd;
+  Mat4c M = c.A.cast<std::complex<double>>();
+  M(2, 2) -= eps;
+  M(3, 3) -= eps;
+  Mat4c X = M;
+  for (int k = 0; k < 100; ++k) {
+    const Mat4c Xn = 0.5 * (X + X.inverse());
+    const double d = (Xn - X).cwiseAbs().maxCoeff();
+    X = Xn;
+    if (d <= 1e-15 * X.cwiseAbs().maxCoeff()) break;
+  }
+  const Mat4c Pr = 0.5 * (Mat4c::Identity() + X);
+  const Eigen::Matrix<std::complex<double>, 4, 2> S =
+      Pr * detail::modal_columns(c, 1.0, 0.0).leftCols<2>().cast<std::complex<double>>();
+  const std::complex<double> p12 = S(1, 0) * S(2, 1) - S(1, 1) * S(2, 0);
+  const std::complex<double> p23 = S(2, 0) * S(3, 1) - S(2, 1) * S(3, 0);
+  return -p12 / p23;
+}
+
+std::vector<double> series_on_circle(const WaveConstants& c, double r, int kmax) {
+  constexpr int M = 64;
+  std::vector<std::complex<double>> F(M);
+  for (int j = 0; j < M; ++j) F[j] = graded_half_space_m1c(c, std::polar(r, 2.0 * kPi * j / M));
+  std::vector<double> out(static_cast<std::size_t>(kmax + 1));
+  for (int k = 0; k <= kmax; ++k) {
+    std::complex<double> sum = 0.0;
+    for (int j = 0; j < M; ++j) sum += F[j] * std::polar(std::pow(r, -k), -2.0 * kPi * j * k / M);
+    out[static_cast<std::size_t>(k)] = sum.real() / M;
+  }
+  return out;
+}
+
+}  // namespace
+
+GradedSeries graded_top_series(double vstar, double nu, int kmax) {
+  if (kmax < 1 || kmax > 40) throw std::invalid_argument("graded_top_series: kmax in [1, 40]");
+  const WaveConstants c = wave_constants(vstar, nu);
+  // F is analytic in eps within a disc (the half-space's eigenvalues stay
+  // off the imaginary axis, no Rayleigh pole): the trapezoidal rule on the
+  // circle |eps| = r (64 points, error (r/rho)^64) at r and 0.8 r, from
+  // r = nT/2; the two agree to round-off where r is inside the disc.
+  // Near the Rayleigh speed F has a pole close to eps = 0 (the graded
+  // half-space's Rayleigh wave): the circle is halved until c_0 is the
+  // half-plane's phi1 (wave_constants, independent) and the two circles agree.
+  GradedSeries g;
+  for (double r1 = 0.5 * c.nT; r1 > 1e-6 * c.nT; r1 *= 0.5) {
+    const double r2 = 0.8 * r1;
+    const std::vector<double> a = series_on_circle(c, r1, kmax + 1);
+    const std::vector<double> b = series_on_circle(c, r2, kmax + 1);
+    g.radius = r1;
+    g.c.assign(a.begin(), a.end() - 1);
+    g.next = std::fabs(a.back());
+    g.agreement = 0.0;
+    const double scale0 = std::max(1.0, std::fabs(c.phi1));
+    for (int k = 0; k <= kmax + 1; ++k)
+      g.agreement = std::max(
+          g.agreement, std::fabs(a[static_cast<std::size_t>(k)] - b[static_cast<std::size_t>(k)]) *
+                           std::pow(r2, k) / scale0);
+    if (std::fabs(a[0] - c.phi1) <= 1e-11 * scale0 && g.agreement < 1e-11) break;
+  }
+  return g;
+}
+
+KernelAsymptotics graded_kernel_asymptotics(const MediumSpec& spec, double vstar) {
+  KernelAsymptotics as;
+  const Sublayer& top = spec.layers[0];
+  if (top.gamma == 0.0) return as;
+  constexpr int kmax = 10;
+  const GradedSeries g = graded_top_series(vstar, top.nu, kmax);
+  if (!(g.agreement < 1e-9))
+    throw std::runtime_error("graded top: the kernel's series in gamma/t did not converge");
+  const double phi1 = g.c[0];
+  as.gamma = top.gamma;
+  for (int k = 1; k <= kmax; ++k) as.a.push_back(g.c[static_cast<std::size_t>(k)] / phi1);
+  // The next coefficient, and a margin for those beyond it (they grow like
+  // radius^-k): twice it.
+  as.next = 2.0 * g.next / std::fabs(phi1);
+  as.radius = g.radius;
+  // The reflection off the graded top's bottom: its modulus changes by
+  // e^(gamma d) across it.
+  as.margin = std::fabs(top.gamma) * top.thickness;
+  return as;
+}
 
 GradedAsymptotics graded_top_asymptotics(double vstar, double nu) {
   const WaveConstants c = wave_constants(vstar, nu);

@@ -24,6 +24,7 @@
 #pragma once
 
 #include <memory>
+#include <vector>
 
 #include "movingpunch/dispersion.hpp"
 #include "movingpunch/medium.hpp"
@@ -66,5 +67,25 @@ struct GradedAsymptotics {
   double c2 = 0;
 };
 GradedAsymptotics graded_top_asymptotics(double vstar, double nu);
+
+// The whole series F(eps) = sum_k c_k eps^k (c_0 = phi1), k <= kmax, of the
+// graded half-space's M1 (M1(t) = F(gamma/t) + O(e^(-2 nT d t))), from its
+// values at complex eps: Cauchy's integral by the trapezoidal rule on the
+// circle |eps| = radius (64 points; nT/2, halved until c_0 = phi1 and the
+// circle 0.8 radius agrees: `agreement`, the largest difference of c_k r2^k,
+// relative to max(1, |phi1|)). `next` = |c_{kmax+1}|. Independent of
+// graded_top_asymptotics' real differences (tests compare the two).
+struct GradedSeries {
+  std::vector<double> c;
+  double next = 0;
+  double radius = 0;
+  double agreement = 0;
+};
+GradedSeries graded_top_series(double vstar, double nu, int kmax);
+
+// The kernel asymptotics of spec's top sublayer at vstar (medium.hpp): empty
+// for a homogeneous top; for a graded one a_k = c_k/phi1 (k <= 10) from
+// graded_top_series, next = 2 |c_11|/phi1, the series' radius, margin |gamma| d.
+KernelAsymptotics graded_kernel_asymptotics(const MediumSpec& spec, double vstar);
 
 }  // namespace movingpunch

@@ -529,15 +529,18 @@ def _solve_layered(
             parameter="damping",
             allowed="0 under layers= (damping > 0: the homogeneous layer only)",
         )
-    if isinstance(medium.layers[0], GradedLayer) and medium.layers[0].gamma_h != 0:
+    if (
+        isinstance(medium.layers[0], GradedLayer)
+        and medium.layers[0].gamma_h != 0
+        and shape.kind == "flat"
+    ):
         raise InvalidParameterError(
-            "layers: a graded TOP sublayer is not solved yet: its response reaches "
-            "the half-plane's only as a series in gamma/alpha, and the kernel must "
-            "take that series out exactly (a plain quadrature stalls at 1e-4 ... "
-            "1e-6); put a homogeneous sublayer on top (a graded one below it is "
-            "solved) or model the grading as a staircase of Layer(...)",
-            parameter="layers",
-            allowed="a homogeneous top sublayer (graded ones below it)",
+            "profile: a flat punch on a graded TOP sublayer is not solved yet (its "
+            "first-kind collocation does not integrate the graded kernel's sgn and "
+            "u ln|u| terms exactly); use a rounded flat, or put a homogeneous "
+            "sublayer on top",
+            parameter="profile",
+            allowed="a bounded contact (cylinder, rounded flat, table) on a graded top",
         )
     fric = check_friction(friction)
     asymmetric_shape = isinstance(shape, Profile) and not shape.symmetric
@@ -568,6 +571,17 @@ def _solve_layered(
         )
     if single.valid or flag:
         return single
+    graded_top = (
+        isinstance(medium.layers[0], GradedLayer) and medium.layers[0].gamma_h != 0
+    )
+    if zoned and graded_top:
+        raise UnphysicalContactError(
+            f"vstar={single.vstar:.8g}, {medium.describe()}, {shape.describe()}, "
+            f"load={single.load:.8g}: {single.validity} (a/h = {single.a:.8g}); "
+            "several contact zones on a graded top sublayer are not supported yet "
+            "(the zones' solver does not take the graded kernel's singular terms); "
+            "allow_unphysical=True returns the single contact, flagged"
+        )
     if zoned and isinstance(medium.base, HalfSpace):
         raise UnphysicalContactError(
             f"vstar={single.vstar:.8g}, {medium.describe()}, {shape.describe()}, "

@@ -430,7 +430,11 @@ TEST(Stack, GradedTopApproachesItsHalfPlaneLikeGammaOverT) {
     EXPECT_NEAR(r1, 2.0, 0.05) << "gamma " << gamma;
     EXPECT_NEAR(r2, 2.0, 0.05) << "gamma " << gamma;
     EXPECT_GT(std::fabs(q[3]), 1e-3);  // a real 1/t term, proportional to gamma
-    EXPECT_EQ(med->decay_rate(), 0.0);
+    // decay_rate() is the reflection's; the slow series is the kernel's
+    // asymptotics (test_graded_kernel.cpp checks its coefficients).
+    EXPECT_NEAR(med->decay_rate(), 2.0 * std::sqrt(1.0 - 0.2) * 0.5, 1e-15);
+    EXPECT_EQ(med->kernel_asymptotics().gamma, gamma);
+    EXPECT_NEAR(med->kernel_asymptotics().a[0] * gamma, q[3] / med->phi1(), 1e-2 * std::fabs(q[3]));
   }
 }
 

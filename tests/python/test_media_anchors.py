@@ -145,10 +145,16 @@ def test_stack_bonded_interface_continuity_and_jump() -> None:
     assert d.base_vertical is None
 
 
-def test_stack_a_graded_top_sublayer_is_refused_until_its_kernel_is_exact() -> None:
-    with pytest.raises(mp.InvalidParameterError, match="graded") as info:
-        _solve(layers=[mp.GradedLayer(1.0, thickness=1.0)], kw=1.0)
-    assert info.value.parameter == "layers"
+def test_stack_a_flat_punch_on_a_graded_top_sublayer_is_refused_by_name() -> None:
+    with pytest.raises(mp.InvalidParameterError, match="flat punch") as info:
+        mp.solve(
+            vstar=0.2,
+            load=P,
+            layers=[mp.GradedLayer(1.0, thickness=1.0)],
+            kw=1.0,
+            profile=mp.Flat(half_width=0.2),
+        )
+    assert info.value.parameter == "profile"
 
 
 def test_stack_unsupported_combinations_are_refused_by_name() -> None:

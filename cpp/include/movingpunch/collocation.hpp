@@ -6,6 +6,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 #include <Eigen/Dense>
 
@@ -41,6 +42,21 @@ Eigen::VectorXd solve_unit_collocation_sum(const ChebyshevNodes& nodes, double a
 // + k(a (-r_j - s_k)))].
 Eigen::MatrixXd unit_collocation_matrix(const ChebyshevNodes& nodes, double a,
                                         const std::function<double(double, double)>& kernel_sum);
+
+// The singular terms of a graded top's kernel (kernel.hpp), integrated
+// exactly: the folded N/2 x N/2 matrix to add to unit_collocation_matrix's
+// (whose kernel_sum then carries the regular part only), entry (k, j) =
+// a W_j (4/pi) sum_{n even < N} U_n(r_j) Q_n(s_k), Q_n(s) = sum over the terms of
+// coef int_{-1}^{1} sqrt(1 - r^2) U_n(r) (a (r - s))^power sigma(a (r - s)) dr,
+// sigma = sgn or ln|.|: the exact integral of the degree N - 1 interpolant of g
+// against each term (moments in closed form, docs/theory.md section 16.5).
+struct KernelSingularTerm;
+Eigen::MatrixXd singular_collocation_matrix(const ChebyshevNodes& nodes, double a,
+                                            const std::vector<KernelSingularTerm>& terms);
+
+// int_{-1}^{1} sqrt(1 - r^2) U_n(r) (r - s)^power sigma(r - s) dr for n = 0..n_max - 1
+// (sigma: 0 = 1, 1 = sgn, 2 = ln|.|), |s| < 1.
+std::vector<double> singular_moments(int n_max, int power, int sigma, double s);
 
 // Coefficients b_n (n = 0..N-1) of g(r) = sum b_n U_n(r) from the nodal values
 // at all N nodes (exact for polynomials of degree < N).

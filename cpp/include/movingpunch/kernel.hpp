@@ -16,6 +16,40 @@
 
 namespace movingpunch {
 
+// The exact part of a graded top's kernel (docs/theory.md section 16.5).
+// f(t) = (M1 - phi1)/phi1 ~ sum_k b_k t^-k (b_k = a_k gamma^k) as t -> inf;
+// the quadrature integrates f - S, S(t) = sum_{k=1}^{K} b_k R_k(t),
+//   R_k(t) = (1/(k-1)!) int_0^L s^(k-1) e^(-t s) ds = t^-k P(k, L t)
+// (P the regularised lower incomplete gamma function: R_k = t^-k up to
+// e^(-L t) (L t)^(k-1)/(k-1)!, finite at t = 0), and adds the sine transform
+// of S in closed form:
+//   int_0^inf R_k(t) sin(t u) dt = (1/(k-1)!) int_0^L s^(k-1) u/(s^2 + u^2) ds
+//     = singular_k(u) + smooth_k(u),
+// singular_k = (-1)^m (pi/2)/(2m)! u^(2m) sgn(u)  (k = 2m + 1),
+//            = -(-1)^m/(2m+1)! u^(2m+1) ln|u|     (k = 2m + 2),
+// smooth_k analytic for |Im u| < L (arctan(u/L), ln(L^2 + u^2) and
+// polynomials). The collocation integrates the singular parts exactly
+// against the density's Chebyshev expansion (collocation.hpp).
+struct KernelSubtraction {
+  std::vector<double> b;  // b_1 .. b_K
+  double L = 1.0;
+  bool empty() const noexcept { return b.empty(); }
+  // S(t) = sum_k b_k R_k(t), t >= 0.
+  double value(double t) const;
+  // sum_k b_k smooth_k(u).
+  double smooth(double u) const;
+  // sum_k b_k singular_k(u) (u != 0; 0 at u = 0).
+  double singular(double u) const;
+};
+
+// One singular term coef * u^power * (log ? ln|u| : sgn(u)) of a kernel.
+struct KernelSingularTerm {
+  int power = 0;
+  bool log = false;
+  double coef = 0.0;
+};
+std::vector<KernelSingularTerm> singular_terms(const KernelSubtraction& s);
+
 struct AlphaQuadrature {
   std::vector<double> alpha;                     // nodes, 15 per panel, ascending
   std::vector<double> weight;                    // weights
@@ -29,6 +63,12 @@ struct AlphaQuadrature {
   // its |K15 - G7| being round-off there) and the rms round-off of the nodal values (2 eps (1 + |f|
   // + f^2) each, independent: eps |f|^2 near a resonance). Empty if not filled.
   std::vector<double> panel_error, panel_roundoff;
+  // The subtracted asymptotics (empty but for a graded top: then the rule
+  // integrates f - S), S at the nodes, and a bound of the integral of
+  // |f - S| beyond alpha_max (the algebraic tail; 0 otherwise).
+  KernelSubtraction subtraction;
+  std::vector<double> sub;
+  double tail_bound = 0;
 };
 
 // How far in alpha a quadrature must reach: until M1 - phi1 at the surface
@@ -38,8 +78,13 @@ enum class Reach { surface, field };
 // Adaptive quadrature nodes for integrals of (M1 - phi1) times an oscillation
 // of frequency up to `max_frequency`, resolved to absolute tolerance `tol`,
 // on [0, alpha_max] where the medium's decay (of `reach`) is negligible.
+// With a non-empty `sub` (reach surface only) the integrand is f - S
+// (KernelSubtraction) and alpha_max also covers the algebraic tail of f - S,
+// |a_{K+1}| (gamma/t)^(K+1) (Medium::kernel_asymptotics), up to kMaxAlphaGraded.
 AlphaQuadrature build_alpha_quadrature(const Medium& model, double tol, double max_frequency,
-                                       Reach reach = Reach::surface);
+                                       Reach reach = Reach::surface,
+                                       const KernelSubtraction& sub = {});
+inline constexpr double kMaxAlphaGraded = 2e4;
 
 // Fourier integrals int g(alpha) e^{i alpha x} d alpha over the panels of a
 // quadrature, exact for the degree-14 interpolant of g on each panel (Filon):
@@ -90,9 +135,14 @@ class KernelK1 {
   // The homogeneous layer of `model`.
   KernelK1(const LayerModel& model, double tol, double range);
 
-  double operator()(double u) const;  // any |u| <= range()
-  // k1(u) + k1(v), the two evaluated together (faster than two calls).
+  double operator()(double u) const;  // any |u| <= range(): the whole k1
+  // The regular part k1 - singular terms at u and v, added (faster than two
+  // calls): the whole k1(u) + k1(v) unless singular() is non-empty (a graded
+  // top), whose terms the collocation integrates exactly.
   double sum(double u, double v) const;
+  // The singular terms of k1 (empty but for a graded top).
+  const std::vector<KernelSingularTerm>& singular() const noexcept { return singular_; }
+  const KernelSubtraction& subtraction() const noexcept { return sub_; }
   double range() const noexcept { return range_; }
   const AlphaQuadrature& quadrature() const noexcept { return quad_; }
   const Medium& model() const noexcept { return *model_; }
@@ -126,6 +176,10 @@ class KernelK1 {
   std::shared_ptr<const Medium> model_;
   double tol_;
   double range_;
+  KernelSubtraction sub_;
+  std::vector<KernelSingularTerm> singular_;
+  double numeric(double u) const;  // the tabulated part (Filon sum)
+  double table(double u) const;
   AlphaQuadrature quad_;
   std::shared_ptr<const FilonIntegrator> filon_;
   std::vector<double> f_coef_;  // Legendre coefficients of (M1 - phi1)/phi1 per panel

@@ -200,6 +200,22 @@ class ModeProfile {
   virtual ModeState state(double y, bool below = false) const;
 };
 
+// The kernel's slow asymptotics of a medium whose top material is graded
+// (docs/theory.md section 16.5): f(t) = (M1(t) - phi1)/phi1 tends to 0 only
+// as the series sum_k a[k-1] (gamma/t)^k (t = alpha h -> inf), plus terms
+// below exp(-margin - rate t) (rate = Medium::decay_rate()). Empty (a = {}):
+// f decays exponentially (every homogeneous top). `next` bounds |a_{K+1}|
+// (the first coefficient not in a); `radius` is the radius in gamma/t
+// within which the series converges (the coefficients grow like
+// radius^-k).
+struct KernelAsymptotics {
+  double gamma = 0.0;
+  std::vector<double> a;
+  double next = 0.0;
+  double radius = 1.0;
+  double margin = 0.0;
+};
+
 class Medium {
  public:
   virtual ~Medium() = default;
@@ -243,6 +259,9 @@ class Medium {
   // a/h with a gain of about 10 (measured: 1.8e-12 relative at 0.999 V*_R,
   // phi1 = 333, on a stiff bonded half-space): 50.
   virtual double roundoff_gain() const noexcept { return 2e-3; }
+  // A graded top's slow asymptotics of M1 (KernelAsymptotics); the default,
+  // an empty one, for every medium whose M1 - phi1 decays exponentially.
+  virtual const KernelAsymptotics& kernel_asymptotics() const noexcept;
   // Depths of the interfaces between sublayers (descending, strictly inside
   // (-1, 0)); empty for one sublayer.
   virtual std::vector<double> interfaces() const { return {}; }
