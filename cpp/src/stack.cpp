@@ -692,6 +692,20 @@ double stack_small_t_m1(const MediumSpec& spec, double vstar) {
 
 namespace {
 
+// sign(M) by Newton's iteration X <- (X + X^-1)/2, real or complex M with no
+// eigenvalue on the imaginary axis.
+template <class Mat>
+Mat matrix_sign(const Mat& M) {
+  Mat X = M;
+  for (int k = 0; k < 100; ++k) {
+    const Mat Xn = 0.5 * (X + X.inverse());
+    const double d = (Xn - X).cwiseAbs().maxCoeff();
+    X = Xn;
+    if (d <= 1e-15 * X.cwiseAbs().maxCoeff()) break;
+  }
+  return X;
+}
+
 // M1 of the graded half-space of generator A - eps D (surface modulus 1).
 double graded_half_space_m1(const WaveConstants& c, double eps) {
   Mat4 M = c.A;
@@ -699,13 +713,7 @@ double graded_half_space_m1(const WaveConstants& c, double eps) {
   M(3, 3) -= eps;
   // sign(M) by Newton's iteration X <- (X + X^-1)/2 (no eigenvalue of M on
   // the imaginary axis: nT > 0, |eps| small).
-  Mat4 X = M;
-  for (int k = 0; k < 100; ++k) {
-    const Mat4 Xn = 0.5 * (X + X.inverse());
-    const double d = (Xn - X).cwiseAbs().maxCoeff();
-    X = Xn;
-    if (d <= 1e-15 * X.cwiseAbs().maxCoeff()) break;
-  }
+  const Mat4 X = matrix_sign(M);
   // The projector onto the downward-decaying solutions (Re lambda > 0),
   // applied to the homogeneous half-plane's modes.
   const Mat4 Pr = 0.5 * (Mat4::Identity() + X);
@@ -727,13 +735,7 @@ std::complex<double> graded_half_space_m1c(const WaveConstants& c, std::complex<
   Mat4c M = c.A.cast<std::complex<double>>();
   M(2, 2) -= eps;
   M(3, 3) -= eps;
-  Mat4c X = M;
-  for (int k = 0; k < 100; ++k) {
-    const Mat4c Xn = 0.5 * (X + X.inverse());
-    const double d = (Xn - X).cwiseAbs().maxCoeff();
-    X = Xn;
-    if (d <= 1e-15 * X.cwiseAbs().maxCoeff()) break;
-  }
+  const Mat4c X = matrix_sign(M);
   const Mat4c Pr = 0.5 * (Mat4c::Identity() + X);
   const Eigen::Matrix<std::complex<double>, 4, 2> S =
       Pr * detail::modal_columns(c, 1.0, 0.0).leftCols<2>().cast<std::complex<double>>();

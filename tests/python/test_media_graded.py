@@ -20,6 +20,7 @@ import numpy as np
 import pytest
 
 import movingpunch as mp
+from test_media_anchors import _check_physical
 
 R, P, V, KW = 10.0, 0.05, 0.2, 1.0
 
@@ -37,19 +38,6 @@ def _graded(gamma: float, **kw: object) -> mp.Solution:
     s = mp.solve(**args)  # type: ignore[arg-type]
     assert isinstance(s, mp.Solution)
     return s
-
-
-def _check_physical(s: mp.Solution) -> None:
-    """int p = P (Gauss-Chebyshev on the contact), p >= 0, valid (no
-    penetration outside the contact: the solver's own gap scan)."""
-    assert s.valid, s.validity
-    a = s.a
-    n = 400
-    t = np.cos((2 * np.arange(1, n + 1) - 1) * math.pi / (2 * n))
-    p = np.asarray(s.pressure(a * t))
-    total = a * math.pi / n * float(np.sum(p * np.sqrt(1 - t**2)))
-    assert total == pytest.approx(1.0, rel=1e-9)
-    assert float(np.min(p)) >= -1e-9 * float(np.max(p))
 
 
 @pytest.mark.parametrize("gamma", [1.0, -3.0])
