@@ -495,3 +495,18 @@ class Numerics:
                     allowed="omitted when numerics= is given",
                 )
         return self.tol, self.n, self.allow_unphysical, self.contact
+
+
+def numerics_keywords(
+    numerics: object, **given: object
+) -> tuple[float | str, int | None, bool, str]:
+    """``numerics.keywords(**given)`` for a solve's ``numerics=`` argument,
+    which must be a :class:`Numerics` (anything else: InvalidParameterError
+    naming ``numerics``)."""
+    if not isinstance(numerics, Numerics):
+        raise InvalidParameterError(
+            f"numerics must be a movingpunch.Numerics, got {numerics!r}",
+            parameter="numerics",
+            allowed="a movingpunch.Numerics(tol, n, allow_unphysical, contact)",
+        )
+    return numerics.keywords(**given)

@@ -399,8 +399,8 @@ def solve(
     from movingpunch.asymmetric import check_damping, check_friction, solve_asymmetric
 
     if numerics is not None:
-        tol, n, allow_unphysical, contact = numerics.keywords(
-            tol=tol, n=n, allow_unphysical=allow_unphysical, contact=contact
+        tol, n, allow_unphysical, contact = params.numerics_keywords(
+            numerics, tol=tol, n=n, allow_unphysical=allow_unphysical, contact=contact
         )
     medium: Medium | None = None
     if layers is not None or base is not None:
@@ -1010,7 +1010,7 @@ def solve_punches(
 
     t0 = time.perf_counter()
     if numerics is not None:
-        tol, n, allow, contact = numerics.keywords(tol=tol, n=n)
+        tol, n, allow, contact = params.numerics_keywords(numerics, tol=tol, n=n)
         if allow or contact != "auto":
             raise InvalidParameterError(
                 "numerics: a train of punches finds its contact sets itself; "

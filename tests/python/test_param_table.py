@@ -468,3 +468,13 @@ def test_solve_punches_takes_the_numerics_as_its_keywords() -> None:
             mp.solve_punches(train, vstar=0.5, kw=1.0, numerics=odd)
         assert info.value.parameter == "numerics"
         assert 'contact="auto"' in str(info.value)
+
+
+def test_numerics_of_the_wrong_type_is_refused_by_name() -> None:
+    for bad in ("x", 3, 1e-6, {"tol": 1e-6}):
+        with pytest.raises(InvalidParameterError) as info:
+            mp.solve(vstar=0.2, kw=1.0, radius=100.0, load=0.002, numerics=bad)  # type: ignore[arg-type]
+        assert info.value.parameter == "numerics"
+        with pytest.raises(InvalidParameterError) as info:
+            mp.solve_punches([mp.Punch(100.0, 0.002)], vstar=0.2, kw=1.0, numerics=bad)  # type: ignore[arg-type]
+        assert info.value.parameter == "numerics"
