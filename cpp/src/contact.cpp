@@ -137,11 +137,7 @@ class Problem {
   double load_of(const ChebyshevNodes& nodes, double a, Eigen::VectorXd* G_out) {
     const KernelK1& k = kernel(a);
     ++evaluations_;
-    const auto ksum = [&k](double u, double v) { return k.sum(u, v); };
-    const Eigen::VectorXd G =
-        cylinder() && k.singular().empty()
-            ? solve_unit_collocation_sum(nodes, a, ksum)
-            : Eigen::VectorXd(matrix(nodes, a, k).partialPivLu().solve(rhs(nodes, a)));
+    const Eigen::VectorXd G = matrix(nodes, a, k).partialPivLu().solve(rhs(nodes, a));
     const double sum = 2.0 * nodes.w.head(nodes.n / 2).dot(G);
     if (G_out) *G_out = G;
     return load_factor(a) * sum;
@@ -149,9 +145,29 @@ class Problem {
   bool cylinder() const { return prof_.kind() == ProfileKind::cylinder; }
   // The folded collocation matrix: the regular part of k1 by Gauss-Chebyshev,
   // a graded top's singular terms exactly (singular_collocation_matrix).
+  // (unit_collocation_matrix's entries, k1 at all of them at once.)
   static Eigen::MatrixXd matrix(const ChebyshevNodes& nodes, double a, const KernelK1& k) {
-    Eigen::MatrixXd M =
-        unit_collocation_matrix(nodes, a, [&k](double u, double v) { return k.sum(u, v); });
+    const int h = nodes.n / 2;
+    const std::size_t hh = static_cast<std::size_t>(h) * static_cast<std::size_t>(h);
+    thread_local std::vector<double> up, um, ks;
+    up.resize(hh);
+    um.resize(hh);
+    ks.resize(hh);
+    for (int kk = 0; kk < h; ++kk)
+      for (int j = 0; j < h; ++j) {
+        const std::size_t e = static_cast<std::size_t>(kk * h + j);
+        up[e] = a * (nodes.r(j) - nodes.s(kk));
+        um[e] = a * (-nodes.r(j) - nodes.s(kk));
+      }
+    k.sum_many(up.data(), um.data(), ks.data(), hh);
+    Eigen::MatrixXd M(h, h);
+    for (int kk = 0; kk < h; ++kk)
+      for (int j = 0; j < h; ++j) {
+        const double r = nodes.r(j), s = nodes.s(kk);
+        const double u1 = r - s, u2 = -r - s;
+        M(kk, j) =
+            nodes.w(j) * (1.0 / u1 + 1.0 / u2 + a * ks[static_cast<std::size_t>(kk * h + j)]);
+      }
     if (!k.singular().empty()) M += singular_collocation_matrix(nodes, a, k.singular());
     return M;
   }
@@ -502,31 +518,68 @@ double kernel_perturbation(const KernelK1& k, double a, const Eigen::VectorXd& l
   if (q.panel_error.size() == q.panel_centre.size() &&
       q.panel_roundoff.size() == q.panel_centre.size()) {
     const double worst = 2.0 * a * lam1 * wg1;  // |dS| per unit error of k1, any shape
+    // |S| at a panel's ends and its 15 nodes, alpha = c + h x_k, from the
+    // phases e^{i a c r_j} of its centre (per panel) times e^{i a h x_k r_j}
+    // (per distinct half-width h): 2 (rows + cols) sin/cos per panel in place
+    // of 17 times as many (they were most of a stack's solve).
+    using cplx = std::complex<double>;
+    constexpr int kPoints = 17;  // the two ends, then the 15 nodes
+    std::array<double, kPoints> x{};
+    x[0] = -1.0;
+    x[1] = 1.0;
+    for (int n = 0; n < 15; ++n)
+      x[static_cast<std::size_t>(n) + 2] =
+          (q.alpha[static_cast<std::size_t>(n)] - q.panel_centre[0]) / q.panel_half[0];
+    const Eigen::Index m = std::max(rows, cols);
+    auto nodes_of = [&](Eigen::Index j, bool row) { return row ? row_nodes(j) : col_nodes(j); };
+    std::vector<double> widths;
+    std::vector<std::vector<cplx>> offsets;  // per width: [k][row j, then col j]
+    std::vector<cplx> centre(static_cast<std::size_t>(2 * m));
     for (std::size_t i = 0; i < q.panel_centre.size(); ++i) {
       const double e = q.panel_error[i], r = q.panel_roundoff[i];
       if (!((e + r) * worst > 1e-4 * eps * std::fabs(S))) continue;  // negligible
-      // |S| at the panel's ends and its 15 nodes; the systematic error takes
-      // the largest, each node's round-off (2 eps (1 + |f| + f^2) w) its own.
-      auto sens = [&](double alpha) {
-        const double al = a * alpha;
+      const double hw = q.panel_half[i], c = q.panel_centre[i];
+      std::size_t w = 0;
+      while (w < widths.size() && widths[w] != hw) ++w;
+      if (w == widths.size()) {
+        widths.push_back(hw);
+        std::vector<cplx> t(static_cast<std::size_t>(kPoints * 2 * m), cplx(0.0));
+        for (int k = 0; k < kPoints; ++k)
+          for (Eigen::Index j = 0; j < m; ++j)
+            for (int side = 0; side < 2; ++side) {
+              const Eigen::Index lim = side == 0 ? rows : cols;
+              if (j >= lim) continue;
+              const double ph = a * hw * x[static_cast<std::size_t>(k)] * nodes_of(j, side == 0);
+              t[static_cast<std::size_t>((k * 2 + side) * m + j)] =
+                  cplx(std::cos(ph), std::sin(ph));
+            }
+        offsets.push_back(std::move(t));
+      }
+      const std::vector<cplx>& t = offsets[w];
+      for (Eigen::Index j = 0; j < m; ++j) {
+        if (j < rows) centre[static_cast<std::size_t>(j)] = std::polar(1.0, a * c * row_nodes(j));
+        if (j < cols)
+          centre[static_cast<std::size_t>(m + j)] = std::polar(1.0, a * c * col_nodes(j));
+      }
+      auto sens = [&](int k) {
+        const cplx* tr = t.data() + static_cast<std::size_t>(k * 2 * m);
+        const cplx* tc = tr + m;
         double s1 = 0.0, s2 = 0.0;
-        for (Eigen::Index j = 0; j < std::max(rows, cols); ++j) {
-          if (j < rows) s1 += lambda(j) * std::sin(al * row_nodes(j));
-          if (j < cols) s2 += wG(j) * std::cos(al * col_nodes(j));
-        }
+        for (Eigen::Index j = 0; j < rows; ++j)
+          s1 += lambda(j) * (centre[static_cast<std::size_t>(j)] * tr[j]).imag();
+        for (Eigen::Index j = 0; j < cols; ++j)
+          s2 += wG(j) * (centre[static_cast<std::size_t>(m + j)] * tc[j]).real();
         return 2.0 * a * std::fabs(s1 * s2);
       };
-      double smax = std::max(sens(q.panel_centre[i] - q.panel_half[i]),
-                             sens(q.panel_centre[i] + q.panel_half[i]));
+      double smax = std::max(sens(0), sens(1));
       double round2 = 0.0;
       for (std::size_t n = 15 * i; n < 15 * i + 15 && n < q.alpha.size(); ++n) {
-        const double sn = sens(q.alpha[n]);
+        const double sn = sens(static_cast<int>(n - 15 * i) + 2);
         smax = std::max(smax, sn);
         const double f = std::fabs((q.m1[n] - phi1) / phi1);
         const double sigma = 2.0 * eps * (1.0 + f + f * f) * q.weight[n];
         round2 += (sigma * sn) * (sigma * sn);
       }
-      (void)r;
       dS += e * smax;
       dS_round2 += round2;
     }
@@ -1120,9 +1173,7 @@ void finish_checks(SymmetricSolution& sol, const ContactParams& p, const PunchPr
     // carries waves shorter than a.
     const double x_end = std::min(3.0 * a, prof.extent());
     if (x_end > a) {
-      const AlphaQuadrature& q = sol.kernel_->quadrature();
-      const double step = detail::gap_step(detail::response_band(
-          q.alpha, q.weight, [&](std::size_t i) { return std::fabs(q.m1[i] - sol.phi1_); }));
+      const double step = detail::gap_step(sol.displacement_band_);
       const detail::GapMinimum m = detail::scan_gap_values(
           [&](double x) { return -sol.delta_ + prof.height(x) - sol.surface_displacement(x); }, a,
           x_end, step, 48, true);
@@ -1426,20 +1477,69 @@ Eigen::VectorXd SymmetricSolution::pressure(const Eigen::Ref<const Eigen::Vector
 // e^-alpha)]/alpha and ptilde the exact transform of the Chebyshev series of p.
 void SymmetricSolution::prepare_displacement() {
   const AlphaQuadrature& q = kernel_->quadrature();
-  std::vector<double> g(q.alpha.size());
-  series_cosine_transforms(b_, kind_, a_, q.alpha.data(), g.data(), g.size());
-  // A half-space base: M1 -> m0 != 0 as alpha -> 0; m0 e^-alpha/alpha is
-  // taken out too (its cosine transform is a constant, dropped with the
-  // reference point, minus (m0/2) ln(1 + u^2)).
+  // f = [M1 - phi1 (1 - e^-alpha)]/alpha at the nodes. A half-space base:
+  // M1 -> m0 != 0 as alpha -> 0; m0 e^-alpha/alpha is taken out too (its
+  // cosine transform is a constant, dropped with the reference point, minus
+  // (m0/2) ln(1 + u^2)).
   m0_ = kernel_->model().long_wave_m1();
+  const std::size_t panels = q.panel_centre.size();
+  std::vector<double> g(q.alpha.size());
   for (std::size_t i = 0; i < q.alpha.size(); ++i) {
     const double al = q.alpha[i];
     if (m0_ == 0.0)
-      g[i] *= (q.m1[i] - phi1_ * (-std::expm1(-al))) / al;
+      g[i] = (q.m1[i] - phi1_ * (-std::expm1(-al))) / al;
     else
-      g[i] *= (q.m1[i] - phi1_ * (-std::expm1(-al)) - m0_ * std::exp(-al)) / al;
+      g[i] = (q.m1[i] - phi1_ * (-std::expm1(-al)) - m0_ * std::exp(-al)) / al;
   }
+  // The panels reach alpha_max for k1 (|M1 - phi1| negligible); the
+  // displacement's integrand f ptilde also carries the pressure's transform
+  // ptilde (exact, per node: the costly part). Its Filon sums stop at the
+  // panel beyond which the integral of |f ptilde| is below 2^-56 of its
+  // whole, under the sums' own round-off: first by the bound |ptilde| <=
+  // int_0^a |p| <= a (pi/2) sum |b_n| (n + 1) (kind U; kind T: a pi sum |b_n|)
+  // times the rule's integral of |f| beyond (ptilde is evaluated only up to
+  // there), then by the values themselves. (A thin top sublayer makes
+  // alpha_max 5x the homogeneous layer's; ptilde at every node and the gap
+  // scan's Filon sums over every panel then cost most of a solve.)
+  std::vector<double> f_tail(panels + 1, 0.0);
+  for (std::size_t p = panels; p-- > 0;) {
+    double panel = 0.0;
+    for (std::size_t i = 15 * p; i < 15 * p + 15; ++i) panel += q.weight[i] * std::fabs(g[i]);
+    f_tail[p] = f_tail[p + 1] + panel;
+  }
+  double p_bound = 0.0;
+  for (Eigen::Index n = 0; n < b_.size(); ++n)
+    p_bound += std::fabs(b_(n)) * (kind_ == SeriesKind::T ? 1.0 : static_cast<double>(n + 1));
+  p_bound *= a_ * (kind_ == SeriesKind::T ? kPi : 0.5 * kPi);
+  double total = 0.0;
+  std::size_t keep = 0;
+  std::vector<double> pt(15);
+  while (keep < panels) {
+    series_cosine_transforms(b_, kind_, a_, q.alpha.data() + 15 * keep, pt.data(), 15);
+    for (std::size_t j = 0; j < 15; ++j) {
+      g[15 * keep + j] *= pt[j];
+      total += q.weight[15 * keep + j] * std::fabs(g[15 * keep + j]);
+    }
+    ++keep;
+    if (f_tail[keep] * p_bound <= 0x1p-56 * total) break;
+  }
+  double tail = 0.0;
+  while (keep > 1) {
+    double panel = 0.0;
+    for (std::size_t i = 15 * (keep - 1); i < 15 * keep; ++i)
+      panel += q.weight[i] * std::fabs(g[i]);
+    if (!(tail + panel <= 0x1p-56 * total)) break;
+    tail += panel;
+    --keep;
+  }
+  g.resize(15 * keep);
   smooth_coef_ = kernel_->filon().coefficients(g);
+  // The displacement's band (the gap scan's sampling, finish_checks): the
+  // wavenumber below which all but 1e-6 of the integral of |f ptilde| lies.
+  // (The band of |M1 - phi1| alone, without the pressure's transform, is
+  // several times wider on a thin top: three times the samples.)
+  displacement_band_ = detail::response_band(
+      q.alpha, q.weight, [&](std::size_t i) { return i < g.size() ? std::fabs(g[i]) : 0.0; });
   // (phi1 / (2 pi)) int p ln(1 + (x - xi)^2) d xi by Gauss-Chebyshev (U)
   // quadrature: the nodes and g at them do not depend on x (potentials.hpp).
   detail::log1p_rule(b_, a_, log1p_r_, log1p_w_, kind_);

@@ -478,11 +478,11 @@ void FilonIntegrator::bessel_by_width(double ax, std::vector<std::array<double, 
 }
 
 std::vector<double> FilonIntegrator::coefficients(const std::vector<double>& g) const {
-  if (g.size() != centre_.size() * 15)
-    throw std::invalid_argument("Filon: one value per quadrature node expected");
+  if (g.size() % 15 != 0 || g.size() > centre_.size() * 15)
+    throw std::invalid_argument("Filon: one value per quadrature node (of the first panels)");
   const auto& inv = legendre_from_nodes();
   std::vector<double> c(g.size());
-  for (std::size_t p = 0; p < centre_.size(); ++p) {
+  for (std::size_t p = 0; p < g.size() / 15; ++p) {
     const Eigen::Map<const Eigen::Matrix<double, 15, 1>> v(g.data() + 15 * p);
     Eigen::Map<Eigen::Matrix<double, 15, 1>> out(c.data() + 15 * p);
     out = inv * v;
@@ -531,7 +531,11 @@ void FilonIntegrator::integrals(double x, const std::array<const std::vector<dou
       rot[w] = cplx(std::cos(widths_[w] * x), std::sin(widths_[w] * x));
   }
   cplx e(1.0, 0.0);
-  for (std::size_t p = 0; p < centre_.size(); ++p) {
+  // Coefficients for the first panels only (an integrand negligible beyond
+  // them, SymmetricSolution::prepare_displacement): the sum stops there.
+  std::size_t panels = centre_.size();
+  for (std::size_t v = 0; v < M; ++v) panels = std::min(panels, c[v]->size() / 15);
+  for (std::size_t p = 0; p < panels; ++p) {
     const std::array<double, 15>& j = bessel[width_of_[p]];
     const double arg = centre_[p] * x;
     const bool adjoins = Rotate && p % 8 != 0 &&
@@ -555,6 +559,13 @@ void FilonIntegrator::integrals(double x, const std::array<const std::vector<dou
 }
 
 FilonIntegrator::cplx FilonIntegrator::integral(double x, const std::vector<double>& c) const {
+  std::array<cplx, 1> out;
+  integrals<1, true>(x, {&c}, out);
+  return out[0];
+}
+
+FilonIntegrator::cplx FilonIntegrator::integral_exact(double x,
+                                                      const std::vector<double>& c) const {
   std::array<cplx, 1> out;
   integrals<1, false>(x, {&c}, out);
   return out[0];
@@ -637,7 +648,8 @@ KernelK1::KernelK1(const LayerModel& model, double tol, double range)
     : KernelK1(make_medium(homogeneous_medium(model.kw(), model.nu(), model.kp()), model.vstar()),
                tol, range) {}
 
-KernelK1::KernelK1(std::shared_ptr<const Medium> medium, double tol, double range)
+KernelK1::KernelK1(std::shared_ptr<const Medium> medium, double tol, double range,
+                   const KernelK1* shorter)
     : model_(std::move(medium)), tol_(tol), range_(range) {
   if (!model_ || !model_->real())
     throw std::invalid_argument("KernelK1: a medium with a real response is required");
@@ -648,9 +660,22 @@ KernelK1::KernelK1(std::shared_ptr<const Medium> medium, double tol, double rang
   // the Filon rule, so the grid does not grow with the range.
   sub_ = graded_subtraction(*model_, range_, tol_);
   singular_ = singular_terms(sub_);
-  quad_ = build_alpha_quadrature(*model_, tol_, 0.25 * range_, Reach::surface, sub_);
-  filon_ = std::make_shared<const FilonIntegrator>(quad_);
-  f_coef_ = filon_->coefficients(integrand(quad_, model_->phi1()));
+  // A longer table of the same medium (the cache's growth) keeps the
+  // shorter one's quadrature when its inputs are the same: the panels'
+  // width min(1, 2/max_frequency) and the subtraction (the first solve on a
+  // stack grows its table once: the quadrature was half of each build).
+  const auto width = [](double range) { return std::min(1.0, 2.0 / (0.25 * range)); };
+  if (shorter && shorter->tol_ == tol_ && shorter->model_->key() == model_->key() &&
+      width(shorter->range_) == width(range_) && shorter->sub_.b == sub_.b &&
+      shorter->sub_.L == sub_.L) {
+    quad_ = shorter->quad_;
+    filon_ = shorter->filon_;
+    f_coef_ = shorter->f_coef_;
+  } else {
+    quad_ = build_alpha_quadrature(*model_, tol_, 0.25 * range_, Reach::surface, sub_);
+    filon_ = std::make_shared<const FilonIntegrator>(quad_);
+    f_coef_ = filon_->coefficients(integrand(quad_, model_->phi1()));
+  }
   // A long table (many oscillations of k1 on |u| <= range) is held piecewise:
   // its cost is then proportional to the range, and so is no evaluation's.
   if (range_ * quad_.alpha_max > kPieceBandwidth) {
@@ -714,15 +739,17 @@ void KernelK1::build_pieces() {
   // half-width range/4 (the displacement), many times more of them on a wide
   // table.
   constexpr int D = kPieceDegree;
-  const AlphaQuadrature coarse = build_alpha_quadrature(*model_, tol_, 1.0, Reach::surface, sub_);
-  const FilonIntegrator filon(coarse);
-  const std::vector<double> fc = filon.coefficients(integrand(coarse, model_->phi1()));
-  std::vector<FilonIntegrator::cplx> K;
+  // (Panels of width min(1, 2/max_frequency): quad_'s own when its
+  // max_frequency, range/4, is at most 2; then quad_ is reused.)
+  const bool same = 0.25 * range_ <= 2.0;
+  const AlphaQuadrature coarse =
+      same ? quad_ : build_alpha_quadrature(*model_, tol_, 1.0, Reach::surface, sub_);
+  const std::shared_ptr<const FilonIntegrator> filon =
+      same ? filon_ : std::make_shared<const FilonIntegrator>(coarse);
+  const std::vector<double> fc =
+      same ? f_coef_ : filon->coefficients(integrand(coarse, model_->phi1()));
   double vmax = 0.0;
-  auto value = [&](double u) {
-    filon.weights(u, K);
-    return FilonIntegrator::apply(K, fc).imag();
-  };
+  auto value = [&](double u) { return filon->integral_exact(u, fc).imag(); };
   const double band = std::max(quad_.alpha_max, coarse.alpha_max);
   const std::size_t pieces = static_cast<std::size_t>(std::ceil(range_ * band / 8.0));
   const double w = range_ / static_cast<double>(pieces);
@@ -792,6 +819,35 @@ double KernelK1::global(double u) const {
     b1 = b0;
   }
   return x * (b1 - b2);
+}
+
+void KernelK1::sum_many(const double* u, const double* v, double* out, std::size_t n) const {
+  std::size_t i = 0;
+  if (sub_.empty() && piece_coef_.empty()) {
+    // Eight recurrences interleaved (four pairs): each is a chain of
+    // dependent steps, the chains independent. The same arithmetic as sum().
+    constexpr std::size_t L = 8;
+    for (; i + L / 2 <= n; i += L / 2) {
+      std::array<double, L> x{}, y{}, b1{}, b2{};
+      for (std::size_t l = 0; l < L / 2; ++l) {
+        x[2 * l] = u[i + l] / range_;
+        x[2 * l + 1] = v[i + l] / range_;
+      }
+      for (std::size_t l = 0; l < L; ++l) y[l] = 2.0 * (2.0 * x[l] * x[l] - 1.0);
+      for (std::size_t j = odd_.size(); j-- > 0;) {
+        const double c = odd_[j];
+        for (std::size_t l = 0; l < L; ++l) {
+          const double b0 = c + y[l] * b1[l] - b2[l];
+          b2[l] = b1[l];
+          b1[l] = b0;
+        }
+      }
+      for (std::size_t l = 0; l < L / 2; ++l)
+        out[i + l] =
+            x[2 * l] * (b1[2 * l] - b2[2 * l]) + x[2 * l + 1] * (b1[2 * l + 1] - b2[2 * l + 1]);
+    }
+  }
+  for (; i < n; ++i) out[i] = sum(u[i], v[i]);
 }
 
 double KernelK1::sum(double u, double v) const {

@@ -140,7 +140,7 @@ std::shared_ptr<const KernelK1> cached_kernel(const std::shared_ptr<const Medium
           const double global_max = KernelK1::kPieceBandwidth / shorter->quadrature().alpha_max;
           if (std::max(build_range, min_range) <= global_max) range = std::min(range, global_max);
         }
-        return std::make_shared<const KernelK1>(model, tol, range);
+        return std::make_shared<const KernelK1>(model, tol, range, shorter.get());
       },
       built, grow ? kGrowth : 1.0);
 }

@@ -3,8 +3,10 @@
 // one that never asks changes nothing.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstddef>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -193,10 +195,27 @@ TEST(BoundedWork, ExactFilonPairIsTwoIntegralsBitForBit) {
   const std::vector<double> c1 = f.coefficients(g1), c2 = f.coefficients(g2);
   for (double x : {-37.5, -1.0, -1e-3, 0.0, 0.25, 2.0, 11.0, 400.0}) {
     const auto [a, b] = f.integral_pair_exact(x, c1, c2);
-    const auto a1 = f.integral(x, c1), b1 = f.integral(x, c2);
+    const auto a1 = f.integral_exact(x, c1), b1 = f.integral_exact(x, c2);
     EXPECT_EQ(a.real(), a1.real()) << x;
     EXPECT_EQ(a.imag(), a1.imag()) << x;
     EXPECT_EQ(b.real(), b1.real()) << x;
     EXPECT_EQ(b.imag(), b1.imag()) << x;
+    // integral(): the phases by rotation, to a few 1e-15 of the sum of |terms|.
+    const auto a2 = f.integral(x, c1);
+    EXPECT_NEAR(a2.real(), a1.real(), 1e-14) << x;
+    EXPECT_NEAR(a2.imag(), a1.imag(), 1e-14) << x;
   }
+  // Coefficients of the first P panels only: the sum over those panels,
+  // which is the whole sum less the rest's (g = 0 beyond them).
+  const std::size_t P = static_cast<std::size_t>(f.panels()) / 2;
+  std::vector<double> g_head(g1.begin(), g1.begin() + static_cast<std::ptrdiff_t>(15 * P));
+  std::vector<double> g_zero = g1;
+  std::fill(g_zero.begin() + static_cast<std::ptrdiff_t>(15 * P), g_zero.end(), 0.0);
+  const std::vector<double> ch = f.coefficients(g_head), cz = f.coefficients(g_zero);
+  ASSERT_EQ(ch.size(), 15 * P);
+  for (double x : {0.0, 0.7, 9.0}) {
+    EXPECT_NEAR(f.integral_exact(x, ch).real(), f.integral_exact(x, cz).real(), 1e-15) << x;
+    EXPECT_NEAR(f.integral_exact(x, ch).imag(), f.integral_exact(x, cz).imag(), 1e-15) << x;
+  }
+  EXPECT_THROW(f.coefficients(std::vector<double>(16, 0.0)), std::invalid_argument);
 }

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <complex>
+#include <cstddef>
 #include <limits>
 #include <vector>
 
@@ -136,7 +137,7 @@ TEST(Kernel, LongTableIsPiecewiseAndMatchesDirectQuadrature) {
 // evaluations, for the global odd series and for a piecewise table; and the
 // odd-term Clenshaw recurrence matches the direct quadrature.
 TEST(Kernel, PairSumMatchesTwoEvaluations) {
-  const KernelK1 global(LayerModel(0.2, 0.1, 0.2), 1e-10, 8.5);
+  const KernelK1 global(LayerModel(0.2, 0.1, 0.2), 1e-10, 5.0);
   ASSERT_FALSE(global.piecewise());
   const KernelK1 pieces(LayerModel(0.8539047076137971, 6504951049.121735, 0.3), 1e-10, 210.0);
   ASSERT_TRUE(pieces.piecewise());
@@ -148,9 +149,47 @@ TEST(Kernel, PairSumMatchesTwoEvaluations) {
                   1e-14 * (1.0 + std::fabs((*k)(u)) + std::fabs((*k)(v))));
     }
   }
+  // sum_many: sum() at every pair (interleaved recurrences, the same
+  // arithmetic), for any count (blocks and the rest).
+  for (const KernelK1* k : {&global, &pieces}) {
+    const double L = k->range();
+    for (std::size_t n : {0u, 1u, 3u, 4u, 9u, 64u}) {
+      std::vector<double> u(n), v(n), out(n, -1.0);
+      for (std::size_t i = 0; i < n; ++i) {
+        u[i] = L * std::sin(0.37 * static_cast<double>(i) + 0.1);
+        v[i] = -L * 0.999 * std::cos(0.11 * static_cast<double>(i));
+      }
+      k->sum_many(u.data(), v.data(), out.data(), n);
+      for (std::size_t i = 0; i < n; ++i) EXPECT_EQ(out[i], k->sum(u[i], v[i])) << n << " " << i;
+    }
+  }
   for (int i = -20; i <= 20; ++i) {
-    const double u = 8.5 * i / 20.0;
+    const double u = 5.0 * i / 20.0;
     EXPECT_NEAR(global(u), global.direct(u), 1e-10) << u;
     EXPECT_DOUBLE_EQ(global(-u), -global(u));
   }
+}
+
+// A longer table grown from a shorter one of the same medium (the cache's
+// growth) reuses its quadrature when the panels it needs are the same, and
+// is then the table built afresh, bit for bit; a range that needs narrower
+// panels builds its own.
+TEST(Kernel, GrownTableReusesTheQuadratureOnlyWhenItIsTheSame) {
+  const auto medium = make_medium(homogeneous_medium(1.0, 0.2), 0.3);
+  const KernelK1 shorter(medium, 1e-10, 1.5);
+  const KernelK1 fresh(medium, 1e-10, 6.0);
+  const KernelK1 grown(medium, 1e-10, 6.0, &shorter);
+  EXPECT_EQ(grown.quadrature().alpha, fresh.quadrature().alpha);
+  EXPECT_EQ(&grown.filon(), &shorter.filon());  // shared, not rebuilt
+  for (int i = -12; i <= 12; ++i) {
+    const double u = 6.0 * i / 12.0;
+    EXPECT_EQ(grown(u), fresh(u)) << u;
+  }
+  // range 40: panels of width 2/(40/4) = 0.2 < 1: its own quadrature.
+  const KernelK1 wide(medium, 1e-10, 40.0, &shorter);
+  EXPECT_NE(&wide.filon(), &shorter.filon());
+  EXPECT_GT(wide.quadrature().alpha.size(), shorter.quadrature().alpha.size());
+  // Another medium's table is never reused.
+  const KernelK1 other(make_medium(homogeneous_medium(2.0, 0.2), 0.3), 1e-10, 6.0, &shorter);
+  EXPECT_NE(&other.filon(), &shorter.filon());
 }

@@ -158,6 +158,9 @@ class SymmetricSolution {
   // Filon coefficients of f(alpha) ptilde(alpha) on the kernel's panels, with
   // f = [M1 - phi1 (1 - e^-alpha)]/alpha the smooth part of the Green's function.
   std::vector<double> smooth_coef_;
+  // The wavenumber band of the displacement beside the contact (the gap
+  // scan's sampling): of |f ptilde|, all but 1e-6 of its integral below it.
+  double displacement_band_ = 0.0;
   // lim M1(t -> 0) of the medium (0 on springs) and, when it is not 0, the
   // Green's integral at the reference point (medium.hpp).
   double m0_ = 0.0, greens_reference_ = 0.0;

@@ -95,15 +95,20 @@ class FilonIntegrator {
   using cplx = std::complex<double>;
   explicit FilonIntegrator(const AlphaQuadrature& q);
   int panels() const noexcept { return static_cast<int>(centre_.size()); }
-  // Legendre coefficients (15 per panel) of g given at the quadrature nodes.
+  // Legendre coefficients (15 per panel) of g given at the quadrature nodes
+  // (of every panel, or of the first ones only).
   std::vector<double> coefficients(const std::vector<double>& g) const;
   // Row of weights K(p, k) with int g e^{i alpha x} = sum K(p, k) c(p, k).
   void weights(double x, std::vector<cplx>& K) const;
   // int g cos(alpha x) (real part) and int g sin(alpha x) (imaginary part).
   static cplx apply(const std::vector<cplx>& K, const std::vector<double>& c);
   // The same as apply(weights(x), c), fused: no weight vector, one complex
-  // multiplication per panel instead of one per coefficient.
+  // multiplication per panel instead of one per coefficient, most phases by
+  // rotation (as integral_pair: a few 1e-15 relative). A c holding the
+  // first P panels' coefficients only (15 P values) sums those panels.
   cplx integral(double x, const std::vector<double>& c) const;
+  // integral(x, c) with every phase by sin/cos (to round-off: the k1 tables).
+  cplx integral_exact(double x, const std::vector<double>& c) const;
   // integral(x, c1) and integral(x, c2) (to a few 1e-15 relative) sharing
   // the Bessel functions and the phases, most phases by rotation.
   std::pair<cplx, cplx> integral_pair(double x, const std::vector<double>& c1,
@@ -131,7 +136,10 @@ class KernelK1 {
   static constexpr double kPieceBandwidth = 600.0;
   // Tabulates k1 on |u| <= range to tolerance tol (absolute, k1 is O(1)),
   // for a medium with a real response (Medium::real()).
-  KernelK1(std::shared_ptr<const Medium> medium, double tol, double range);
+  // `shorter`: a table of the same medium and tol (the cache's growth) whose
+  // quadrature is reused when it is the one this range needs.
+  KernelK1(std::shared_ptr<const Medium> medium, double tol, double range,
+           const KernelK1* shorter = nullptr);
   // The homogeneous layer of `model`.
   KernelK1(const LayerModel& model, double tol, double range);
 
@@ -140,6 +148,8 @@ class KernelK1 {
   // calls): the whole k1(u) + k1(v) unless singular() is non-empty (a graded
   // top), whose terms the collocation integrates exactly.
   double sum(double u, double v) const;
+  // out[i] = sum(u[i], v[i]) for i < n, several recurrences interleaved.
+  void sum_many(const double* u, const double* v, double* out, std::size_t n) const;
   // The singular terms of k1 (empty but for a graded top).
   const std::vector<KernelSingularTerm>& singular() const noexcept { return singular_; }
   const KernelSubtraction& subtraction() const noexcept { return sub_; }
