@@ -155,8 +155,9 @@ class SymmetricSolution {
   std::shared_ptr<const KernelK1> kernel_;
   struct FieldCache;
   std::shared_ptr<FieldCache> field_cache_;
-  // Filon coefficients of f(alpha) ptilde(alpha) on the kernel's panels, with
-  // f = [M1 - phi1 (1 - e^-alpha)]/alpha the smooth part of the Green's function.
+  // Filon coefficients of f(alpha) ptilde(alpha) on the kernel's panels (the
+  // first ones: beyond, |f ptilde| is below the sums' round-off), with f =
+  // [M1 - phi1 (1 - e^-alpha)]/alpha the smooth part of the Green's function.
   std::vector<double> smooth_coef_;
   // The wavenumber band of the displacement beside the contact (the gap
   // scan's sampling): of |f ptilde|, all but 1e-6 of its integral below it.
