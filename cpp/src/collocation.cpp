@@ -55,14 +55,36 @@ Eigen::VectorXd solve_unit_collocation(const ChebyshevNodes& nodes, double a,
 
 Eigen::MatrixXd unit_collocation_matrix(const ChebyshevNodes& nodes, double a,
                                         const std::function<double(double, double)>& kernel_sum) {
+  return unit_collocation_matrix(
+      nodes, a, [&kernel_sum](const double* u, const double* v, double* out, std::size_t n) {
+        for (std::size_t i = 0; i < n; ++i) out[i] = kernel_sum(u[i], v[i]);
+      });
+}
+
+Eigen::MatrixXd unit_collocation_matrix(const ChebyshevNodes& nodes, double a,
+                                        const KernelSums& sums) {
   const int h = nodes.n / 2;
+  const std::size_t hh = static_cast<std::size_t>(h) * static_cast<std::size_t>(h);
+  thread_local std::vector<double> up, um, ks;
+  up.resize(hh);
+  um.resize(hh);
+  ks.resize(hh);
+  // Entry (k, j) at k h + j: s_k > 0 for k = 1..N/2; r_j > 0, its mirror -r_j
+  // carries the same g.
+  for (int k = 0; k < h; ++k)
+    for (int j = 0; j < h; ++j) {
+      const std::size_t e = static_cast<std::size_t>(k * h + j);
+      up[e] = a * (nodes.r(j) - nodes.s(k));
+      um[e] = a * (-nodes.r(j) - nodes.s(k));
+    }
+  sums(up.data(), um.data(), ks.data(), hh);
   Eigen::MatrixXd M(h, h);
-  for (int k = 0; k < h; ++k) {  // s_k > 0 for k = 1..N/2
+  for (int k = 0; k < h; ++k) {
     const double s = nodes.s(k);
-    for (int j = 0; j < h; ++j) {  // r_j > 0; its mirror -r_j carries the same g
+    for (int j = 0; j < h; ++j) {
       const double r = nodes.r(j);
-      const double up = r - s, um = -r - s;
-      M(k, j) = nodes.w(j) * (1.0 / up + 1.0 / um + a * kernel_sum(a * up, a * um));
+      M(k, j) = nodes.w(j) *
+                (1.0 / (r - s) + 1.0 / (-r - s) + a * ks[static_cast<std::size_t>(k * h + j)]);
     }
   }
   return M;

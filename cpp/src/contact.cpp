@@ -145,29 +145,11 @@ class Problem {
   bool cylinder() const { return prof_.kind() == ProfileKind::cylinder; }
   // The folded collocation matrix: the regular part of k1 by Gauss-Chebyshev,
   // a graded top's singular terms exactly (singular_collocation_matrix).
-  // (unit_collocation_matrix's entries, k1 at all of them at once.)
   static Eigen::MatrixXd matrix(const ChebyshevNodes& nodes, double a, const KernelK1& k) {
-    const int h = nodes.n / 2;
-    const std::size_t hh = static_cast<std::size_t>(h) * static_cast<std::size_t>(h);
-    thread_local std::vector<double> up, um, ks;
-    up.resize(hh);
-    um.resize(hh);
-    ks.resize(hh);
-    for (int kk = 0; kk < h; ++kk)
-      for (int j = 0; j < h; ++j) {
-        const std::size_t e = static_cast<std::size_t>(kk * h + j);
-        up[e] = a * (nodes.r(j) - nodes.s(kk));
-        um[e] = a * (-nodes.r(j) - nodes.s(kk));
-      }
-    k.sum_many(up.data(), um.data(), ks.data(), hh);
-    Eigen::MatrixXd M(h, h);
-    for (int kk = 0; kk < h; ++kk)
-      for (int j = 0; j < h; ++j) {
-        const double r = nodes.r(j), s = nodes.s(kk);
-        const double u1 = r - s, u2 = -r - s;
-        M(kk, j) =
-            nodes.w(j) * (1.0 / u1 + 1.0 / u2 + a * ks[static_cast<std::size_t>(kk * h + j)]);
-      }
+    Eigen::MatrixXd M = unit_collocation_matrix(
+        nodes, a, [&k](const double* u, const double* v, double* out, std::size_t n) {
+          k.sum_many(u, v, out, n);
+        });
     if (!k.singular().empty()) M += singular_collocation_matrix(nodes, a, k.singular());
     return M;
   }
@@ -531,7 +513,6 @@ double kernel_perturbation(const KernelK1& k, double a, const Eigen::VectorXd& l
       x[static_cast<std::size_t>(n) + 2] =
           (q.alpha[static_cast<std::size_t>(n)] - q.panel_centre[0]) / q.panel_half[0];
     const Eigen::Index m = std::max(rows, cols);
-    auto nodes_of = [&](Eigen::Index j, bool row) { return row ? row_nodes(j) : col_nodes(j); };
     std::vector<double> widths;
     std::vector<std::vector<cplx>> offsets;  // per width: [k][row j, then col j]
     std::vector<cplx> centre(static_cast<std::size_t>(2 * m));
@@ -544,15 +525,12 @@ double kernel_perturbation(const KernelK1& k, double a, const Eigen::VectorXd& l
       if (w == widths.size()) {
         widths.push_back(hw);
         std::vector<cplx> t(static_cast<std::size_t>(kPoints * 2 * m), cplx(0.0));
-        for (int k = 0; k < kPoints; ++k)
-          for (Eigen::Index j = 0; j < m; ++j)
-            for (int side = 0; side < 2; ++side) {
-              const Eigen::Index lim = side == 0 ? rows : cols;
-              if (j >= lim) continue;
-              const double ph = a * hw * x[static_cast<std::size_t>(k)] * nodes_of(j, side == 0);
-              t[static_cast<std::size_t>((k * 2 + side) * m + j)] =
-                  cplx(std::cos(ph), std::sin(ph));
-            }
+        for (int k = 0; k < kPoints; ++k) {
+          const double ahx = a * hw * x[static_cast<std::size_t>(k)];
+          cplx* tk = t.data() + static_cast<std::size_t>(k * 2 * m);
+          for (Eigen::Index j = 0; j < rows; ++j) tk[j] = std::polar(1.0, ahx * row_nodes(j));
+          for (Eigen::Index j = 0; j < cols; ++j) tk[m + j] = std::polar(1.0, ahx * col_nodes(j));
+        }
         offsets.push_back(std::move(t));
       }
       const std::vector<cplx>& t = offsets[w];
@@ -1501,12 +1479,14 @@ void SymmetricSolution::prepare_displacement() {
   // there), then by the values themselves. (A thin top sublayer makes
   // alpha_max 5x the homogeneous layer's; ptilde at every node and the gap
   // scan's Filon sums over every panel then cost most of a solve.)
+  // The rule's integral of |g| over panel p.
+  const auto mass = [&](std::size_t p) {
+    double m = 0.0;
+    for (std::size_t i = 15 * p; i < 15 * p + 15; ++i) m += q.weight[i] * std::fabs(g[i]);
+    return m;
+  };
   std::vector<double> f_tail(panels + 1, 0.0);
-  for (std::size_t p = panels; p-- > 0;) {
-    double panel = 0.0;
-    for (std::size_t i = 15 * p; i < 15 * p + 15; ++i) panel += q.weight[i] * std::fabs(g[i]);
-    f_tail[p] = f_tail[p + 1] + panel;
-  }
+  for (std::size_t p = panels; p-- > 0;) f_tail[p] = f_tail[p + 1] + mass(p);
   double p_bound = 0.0;
   for (Eigen::Index n = 0; n < b_.size(); ++n)
     p_bound += std::fabs(b_(n)) * (kind_ == SeriesKind::T ? 1.0 : static_cast<double>(n + 1));
@@ -1516,18 +1496,14 @@ void SymmetricSolution::prepare_displacement() {
   std::vector<double> pt(15);
   while (keep < panels) {
     series_cosine_transforms(b_, kind_, a_, q.alpha.data() + 15 * keep, pt.data(), 15);
-    for (std::size_t j = 0; j < 15; ++j) {
-      g[15 * keep + j] *= pt[j];
-      total += q.weight[15 * keep + j] * std::fabs(g[15 * keep + j]);
-    }
+    for (std::size_t j = 0; j < 15; ++j) g[15 * keep + j] *= pt[j];
+    total += mass(keep);
     ++keep;
     if (f_tail[keep] * p_bound <= 0x1p-56 * total) break;
   }
   double tail = 0.0;
   while (keep > 1) {
-    double panel = 0.0;
-    for (std::size_t i = 15 * (keep - 1); i < 15 * keep; ++i)
-      panel += q.weight[i] * std::fabs(g[i]);
+    const double panel = mass(keep - 1);
     if (!(tail + panel <= 0x1p-56 * total)) break;
     tail += panel;
     --keep;

@@ -209,6 +209,12 @@ double KernelSubtraction::singular(double u) const {
 // few seconds cold on one loaded core; build_alpha_quadrature refuses more).
 constexpr int kMaxGradedPanels = 3000;
 
+namespace {
+// The width of build_alpha_quadrature's first panels: sin(alpha u) turns at
+// most ~2 radians on one for u up to max_frequency.
+double panel_width(double max_frequency) { return std::min(1.0, 2.0 / max_frequency); }
+}  // namespace
+
 AlphaQuadrature build_alpha_quadrature(const Medium& model, double tol, double max_frequency,
                                        Reach reach, const KernelSubtraction& sub) {
   if (!(tol > 0.0)) throw std::invalid_argument("kernel quadrature: tol must be > 0");
@@ -248,7 +254,7 @@ AlphaQuadrature build_alpha_quadrature(const Medium& model, double tol, double m
     q.subtraction = sub;
   }
   // Panels narrow enough that sin(alpha u) turns at most ~2 radians on one.
-  const double width = std::min(1.0, 2.0 / max_frequency);
+  const double width = panel_width(max_frequency);
   const int n0 = std::max(1, static_cast<int>(std::ceil(q.alpha_max / width)));
   const double w0 = q.alpha_max / n0;
   // A graded top whose series needs few terms over a wide table (|gamma|
@@ -664,10 +670,9 @@ KernelK1::KernelK1(std::shared_ptr<const Medium> medium, double tol, double rang
   // shorter one's quadrature when its inputs are the same: the panels'
   // width min(1, 2/max_frequency) and the subtraction (the first solve on a
   // stack grows its table once: the quadrature was half of each build).
-  const auto width = [](double range) { return std::min(1.0, 2.0 / (0.25 * range)); };
   if (shorter && shorter->tol_ == tol_ && shorter->model_->key() == model_->key() &&
-      width(shorter->range_) == width(range_) && shorter->sub_.b == sub_.b &&
-      shorter->sub_.L == sub_.L) {
+      panel_width(0.25 * shorter->range_) == panel_width(0.25 * range_) &&
+      shorter->sub_.b == sub_.b && shorter->sub_.L == sub_.L) {
     quad_ = shorter->quad_;
     filon_ = shorter->filon_;
     f_coef_ = shorter->f_coef_;
@@ -739,9 +744,8 @@ void KernelK1::build_pieces() {
   // half-width range/4 (the displacement), many times more of them on a wide
   // table.
   constexpr int D = kPieceDegree;
-  // (Panels of width min(1, 2/max_frequency): quad_'s own when its
-  // max_frequency, range/4, is at most 2; then quad_ is reused.)
-  const bool same = 0.25 * range_ <= 2.0;
+  // (quad_ when its panels, for max_frequency range/4, are these.)
+  const bool same = panel_width(0.25 * range_) == panel_width(1.0);
   const AlphaQuadrature coarse =
       same ? quad_ : build_alpha_quadrature(*model_, tol_, 1.0, Reach::surface, sub_);
   const std::shared_ptr<const FilonIntegrator> filon =

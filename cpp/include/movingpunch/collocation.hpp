@@ -42,6 +42,11 @@ Eigen::VectorXd solve_unit_collocation_sum(const ChebyshevNodes& nodes, double a
 // + k(a (-r_j - s_k)))].
 Eigen::MatrixXd unit_collocation_matrix(const ChebyshevNodes& nodes, double a,
                                         const std::function<double(double, double)>& kernel_sum);
+// The same with the kernel's sums at every entry in one call: sums(u, v, out,
+// n) sets out[i] = k(u[i]) + k(v[i]) for i < n (KernelK1::sum_many).
+using KernelSums = std::function<void(const double*, const double*, double*, std::size_t)>;
+Eigen::MatrixXd unit_collocation_matrix(const ChebyshevNodes& nodes, double a,
+                                        const KernelSums& sums);
 
 // The singular terms of a graded top's kernel (kernel.hpp), integrated
 // exactly: the folded N/2 x N/2 matrix to add to unit_collocation_matrix's
