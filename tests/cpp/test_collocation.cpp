@@ -106,6 +106,33 @@ TEST(Collocation, CosineTransformHoldsAtHighBesselOrders) {
     EXPECT_NEAR(u_series_cosine_transform(b, 1.0, w), expect, 1e-13 * (n + 1) / w)
         << "order " << r.order;
   }
+  // Large arguments at low orders (the upward recurrence from Hankel's
+  // expansion of J_0, J_1): T_0 sums J_0, U_0 J_1, U_2 J_3. References from
+  // scipy.special.jv (the C++ library's J_0(200.5) is off by 2e-12
+  // relative).
+  const struct {
+    double w, j0, j1, j3;
+  } large[] = {{200.5, 0.012453299390357279, -0.054924246437864151, 0.054664871431923397},
+               {317.0, -0.020858619092434669, 0.039630479778886743, -0.039364124527591193},
+               {1000.0, 0.024786686152420172, 0.0047283119070895231, -0.0048274208252039466},
+               {4321.5, -0.0063038485189203172, -0.010372615950565111, 0.010378446378008114},
+               {30000.0, -0.0045573449277751983, -0.00067183951934767492, 0.00067244715936613819}};
+  for (const auto& r : large) {
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(3);
+    b(0) = 1.0;
+    const double tol = 4e-16 / std::sqrt(r.w);  // of J ~ sqrt(2 / (pi w))
+    EXPECT_NEAR(series_cosine_transform(b, SeriesKind::T, 1.0, r.w), r.j0 * 0.5 * kPi,
+                tol * 0.5 * kPi)
+        << r.w;
+    EXPECT_NEAR(u_series_cosine_transform(b, 1.0, r.w), r.j1 * 0.5 * kPi / r.w,
+                tol * 0.5 * kPi / r.w)
+        << r.w;
+    b.setZero();
+    b(2) = 1.0;
+    EXPECT_NEAR(u_series_cosine_transform(b, 1.0, r.w), -3.0 * r.j3 * 0.5 * kPi / r.w,
+                3.0 * tol * 0.5 * kPi / r.w)
+        << r.w;
+  }
   // Small arguments (downward recurrence) against the library, which is
   // accurate there.
   for (int n : {0, 2, 10, 40}) {

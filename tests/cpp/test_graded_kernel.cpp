@@ -271,3 +271,29 @@ TEST(GradedKernel, SmallGammaTendsToTheHomogeneousLayerLinearly) {
   EXPECT_GT(std::fabs(d4), 1e-3);  // the grading moves a/h at first order
   EXPECT_NEAR(d4, d6, 2e-3 * std::fabs(d6));
 }
+
+// The collocation's pair sums on a graded top (the regular part: table plus
+// the smooth closed forms): sum_many interleaves the table's recurrences and
+// adds the closed forms after each pair, the same arithmetic as sum(), bit
+// for bit; and sum is the whole k1 less its singular terms at both points.
+TEST(GradedKernel, PairSumsOfTheRegularPartMatchBitForBit) {
+  const auto med = make_stack_medium(graded_top(2.0, 1.0), 0.05);
+  const KernelK1 k(med, 1e-10, 2.0);
+  ASSERT_FALSE(k.singular().empty());
+  ASSERT_FALSE(k.piecewise());
+  const double L = k.range();
+  for (std::size_t n : {0u, 1u, 3u, 4u, 9u, 64u}) {
+    std::vector<double> u(n), v(n), out(n, -1.0);
+    for (std::size_t i = 0; i < n; ++i) {
+      u[i] = L * std::sin(0.37 * static_cast<double>(i) + 0.1);
+      v[i] = -L * 0.999 * std::cos(0.11 * static_cast<double>(i));
+    }
+    k.sum_many(u.data(), v.data(), out.data(), n);
+    for (std::size_t i = 0; i < n; ++i) {
+      EXPECT_EQ(out[i], k.sum(u[i], v[i])) << n << " " << i;
+      const double whole = k(u[i]) + k(v[i]);
+      const double singular = k.subtraction().singular(u[i]) + k.subtraction().singular(v[i]);
+      EXPECT_NEAR(out[i], whole - singular, 1e-12 * (1.0 + std::fabs(whole) + std::fabs(singular)));
+    }
+  }
+}
