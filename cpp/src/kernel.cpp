@@ -207,8 +207,11 @@ constexpr int kMaxGradedPanels = 3000;
 
 namespace {
 // The width of build_alpha_quadrature's first panels: sin(alpha u) turns at
-// most ~2 radians on one for u up to max_frequency.
-double panel_width(double max_frequency) { return std::min(1.0, 2.0 / max_frequency); }
+// most ~2 radians on one for u up to max_frequency, and at most the medium's
+// panel_scale() (the surface's; 1 for the field).
+double panel_width(const Medium& model, double max_frequency, Reach reach) {
+  return std::min(reach == Reach::surface ? model.panel_scale() : 1.0, 2.0 / max_frequency);
+}
 }  // namespace
 
 AlphaQuadrature build_alpha_quadrature(const Medium& model, double tol, double max_frequency,
@@ -250,7 +253,7 @@ AlphaQuadrature build_alpha_quadrature(const Medium& model, double tol, double m
     q.subtraction = sub;
   }
   // Panels narrow enough that sin(alpha u) turns at most ~2 radians on one.
-  const double width = panel_width(max_frequency);
+  const double width = panel_width(model, max_frequency, reach);
   const int n0 = std::max(1, static_cast<int>(std::ceil(q.alpha_max / width)));
   const double w0 = q.alpha_max / n0;
   // A graded top whose series needs few terms over a wide table (|gamma|
@@ -667,7 +670,8 @@ KernelK1::KernelK1(std::shared_ptr<const Medium> medium, double tol, double rang
   // width min(1, 2/max_frequency) and the subtraction (the first solve on a
   // stack grows its table once: the quadrature was half of each build).
   if (shorter && shorter->tol_ == tol_ && shorter->model_->key() == model_->key() &&
-      panel_width(0.25 * shorter->range_) == panel_width(0.25 * range_) &&
+      panel_width(*model_, 0.25 * shorter->range_, Reach::surface) ==
+          panel_width(*model_, 0.25 * range_, Reach::surface) &&
       shorter->sub_.b == sub_.b && shorter->sub_.L == sub_.L) {
     quad_ = shorter->quad_;
     filon_ = shorter->filon_;
@@ -689,7 +693,7 @@ KernelK1::KernelK1(std::shared_ptr<const Medium> medium, double tol, double rang
     std::vector<double> vals(static_cast<std::size_t>(n / 2));
     for (int j = 0; j < n / 2; ++j) {
       const double x = std::cos(kPi * (j + 0.5) / n);
-      vals[static_cast<std::size_t>(j)] = numeric(range_ * x);
+      vals[static_cast<std::size_t>(j)] = regular(range_ * x);
     }
     std::vector<double> c(static_cast<std::size_t>(n), 0.0);
     double cmax = 0.0;
@@ -741,7 +745,8 @@ void KernelK1::build_pieces() {
   // table.
   constexpr int D = kPieceDegree;
   // (quad_ when its panels, for max_frequency range/4, are these.)
-  const bool same = panel_width(0.25 * range_) == panel_width(1.0);
+  const bool same = panel_width(*model_, 0.25 * range_, Reach::surface) ==
+                    panel_width(*model_, 1.0, Reach::surface);
   const AlphaQuadrature coarse =
       same ? quad_ : build_alpha_quadrature(*model_, tol_, 1.0, Reach::surface, sub_);
   const std::shared_ptr<const FilonIntegrator> filon =
@@ -749,7 +754,11 @@ void KernelK1::build_pieces() {
   const std::vector<double> fc =
       same ? f_coef_ : filon->coefficients(integrand(coarse, model_->phi1()));
   double vmax = 0.0;
-  auto value = [&](double u) { return filon->integral_exact(u, fc).imag(); };
+  // (A graded top's smooth closed forms tabulated with the quadrature's part.)
+  auto value = [&](double u) {
+    const double q = filon->integral_exact(u, fc).imag();
+    return sub_.empty() ? q : q + sub_.smooth(u);
+  };
   const double band = std::max(quad_.alpha_max, coarse.alpha_max);
   const std::size_t pieces = static_cast<std::size_t>(std::ceil(range_ * band / 8.0));
   const double w = range_ / static_cast<double>(pieces);
@@ -784,6 +793,10 @@ double KernelK1::numeric(double u) const {
   return FilonIntegrator::apply(K, f_coef_).imag();
 }
 
+double KernelK1::regular(double u) const {
+  return sub_.empty() ? numeric(u) : numeric(u) + sub_.smooth(u);
+}
+
 double KernelK1::direct(double u) const {
   if (sub_.empty()) return numeric(u);
   return numeric(u) + sub_.smooth(u) + sub_.singular(u);
@@ -803,7 +816,7 @@ double KernelK1::table(double u) const { return piece_coef_.empty() ? global(u) 
 
 double KernelK1::operator()(double u) const {
   if (sub_.empty()) return table(u);
-  return table(u) + sub_.smooth(u) + sub_.singular(u);
+  return table(u) + sub_.singular(u);
 }
 
 // The series is odd, sum_j c_{2j+1} T_{2j+1}(x): Clenshaw on the odd terms
@@ -825,8 +838,7 @@ void KernelK1::sum_many(const double* u, const double* v, double* out, std::size
   std::size_t i = 0;
   if (piece_coef_.empty()) {
     // Eight recurrences interleaved (four pairs): each is a chain of
-    // dependent steps, the chains independent. The same arithmetic as sum()
-    // (a graded top's smooth closed forms added after the pair, in its order).
+    // dependent steps, the chains independent. The same arithmetic as sum().
     constexpr std::size_t L = 8;
     for (; i + L / 2 <= n; i += L / 2) {
       std::array<double, L> x{}, y{}, b1{}, b2{};
@@ -846,16 +858,12 @@ void KernelK1::sum_many(const double* u, const double* v, double* out, std::size
       for (std::size_t l = 0; l < L / 2; ++l)
         out[i + l] =
             x[2 * l] * (b1[2 * l] - b2[2 * l]) + x[2 * l + 1] * (b1[2 * l + 1] - b2[2 * l + 1]);
-      if (!sub_.empty())
-        for (std::size_t l = 0; l < L / 2; ++l)
-          out[i + l] = out[i + l] + sub_.smooth(u[i + l]) + sub_.smooth(v[i + l]);
     }
   }
   for (; i < n; ++i) out[i] = sum(u[i], v[i]);
 }
 
 double KernelK1::sum(double u, double v) const {
-  if (!sub_.empty()) return table(u) + table(v) + sub_.smooth(u) + sub_.smooth(v);
   if (!piece_coef_.empty()) return piece(u) + piece(v);
   // Two recurrences interleaved (each is a chain of dependent steps).
   const double x = u / range_, z = v / range_;

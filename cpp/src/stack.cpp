@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -546,6 +547,7 @@ class StackMedium final : public Medium {
     // also carries its slow series, kernel_asymptotics()).
     return 2.0 * top_.nT * spec_.layers[0].thickness;
   }
+  double panel_scale() const noexcept override { return std::clamp(2.0 / decay_rate(), 1.0, 8.0); }
   const KernelAsymptotics& kernel_asymptotics() const noexcept override { return asym_; }
   // The remainder (state minus the top's half-plane state) at any depth
   // decays at least as slowly as the state at the bottom, exp(-t sum nT_i
@@ -759,8 +761,32 @@ std::vector<double> series_on_circle(const WaveConstants& c, double r, int kmax)
 
 }  // namespace
 
+namespace {
+GradedSeries compute_graded_top_series(double vstar, double nu, int kmax);
+}  // namespace
+
 GradedSeries graded_top_series(double vstar, double nu, int kmax) {
   if (kmax < 1 || kmax > 40) throw std::invalid_argument("graded_top_series: kmax in [1, 40]");
+  // Each solve on a graded top makes its medium, and the series (two
+  // circles of 64 complex matrix sign functions, ~0.6 ms) depends on the
+  // speed and nu only: kept as the critical speeds are.
+  static std::mutex mutex;
+  static std::map<std::tuple<double, double, int>, GradedSeries> cache;
+  const auto key = std::make_tuple(vstar, nu, kmax);
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    const auto it = cache.find(key);
+    if (it != cache.end()) return it->second;
+  }
+  const GradedSeries g = compute_graded_top_series(vstar, nu, kmax);
+  std::lock_guard<std::mutex> lock(mutex);
+  if (cache.size() > 4096) cache.clear();
+  cache[key] = g;
+  return g;
+}
+
+namespace {
+GradedSeries compute_graded_top_series(double vstar, double nu, int kmax) {
   const WaveConstants c = wave_constants(vstar, nu);
   // F is analytic in eps within a disc (the half-space's eigenvalues stay
   // off the imaginary axis, no Rayleigh pole): the trapezoidal rule on the
@@ -787,6 +813,8 @@ GradedSeries graded_top_series(double vstar, double nu, int kmax) {
   }
   return g;
 }
+
+}  // namespace
 
 KernelAsymptotics graded_kernel_asymptotics(const MediumSpec& spec, double vstar) {
   KernelAsymptotics as;

@@ -165,6 +165,10 @@ class KernelK1 {
   bool piecewise() const noexcept { return !piece_coef_.empty(); }
   // Direct Filon quadrature (no Chebyshev table); any u.
   double direct(double u) const;
+  // What the table holds: the quadrature's part plus, on a graded top, the
+  // subtracted series' smooth closed forms (direct() less the singular
+  // terms; one table read per entry instead of an arctan and a log).
+  double regular(double u) const;
   // Where the tabulated k1 can be wrong, for error estimates: the quadrature
   // whose panels produced the table's values (its panel_error and
   // panel_roundoff bound the error of each panel's share of k1(u) =

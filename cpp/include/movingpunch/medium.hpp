@@ -240,6 +240,13 @@ class Medium {
   // M1 - phi1 decays at least like exp(-decay_rate() t) (times a polynomial):
   // 2 nT for the homogeneous layer (a reflection off its bottom).
   virtual double decay_rate() const noexcept = 0;
+  // The widest alpha panel the surface quadrature starts from
+  // (build_alpha_quadrature, which then splits where M1 needs it): 1 for the
+  // homogeneous layer, as always. A stack's M1 - phi1 is a sum of decaying
+  // exponentials beyond its long waves (every sublayer subsonic), varying
+  // by e^2 over 2 / decay_rate(): a thin top sublayer's slow tail needs no
+  // unit panels (3-5x fewer nodes, and every displacement sums over them).
+  virtual double panel_scale() const noexcept { return 1.0; }
   // The slowest decay of the mode's remainder at any depth of the stack
   // (nT for the homogeneous layer: the field at its bottom).
   virtual double field_decay_rate() const noexcept = 0;
