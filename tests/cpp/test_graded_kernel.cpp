@@ -297,3 +297,45 @@ TEST(GradedKernel, PairSumsOfTheRegularPartMatchBitForBit) {
     }
   }
 }
+
+// A stack's surface quadrature starts from panels Medium::panel_scale() wide
+// (8 / decay_rate: a thin top sublayer's slow exponential tail), split where
+// its own error estimate asks. Its k1 table against a plain adaptive
+// quadrature of (M1 - phi1)/phi1 sin(alpha u) on unit intervals (the
+// homogeneous layer's panels), and it takes fewer panels than unit ones.
+TEST(StackKernel, ThinTopFromWidePanelsMatchesPlainQuadrature) {
+  MediumSpec m;
+  Sublayer top, mid, bottom;
+  top.thickness = 0.2;
+  top.nu = 0.35;
+  mid.thickness = 0.3;
+  mid.mu = 0.3;
+  mid.nu = 0.3;
+  mid.rho = 0.9;
+  bottom.thickness = 0.5;
+  bottom.mu = 0.1;
+  bottom.nu = 0.3;
+  bottom.rho = 0.8;
+  m.layers = {top, mid, bottom};
+  m.base.kind = BaseKind::springs;
+  m.base.kw = 1.0;
+  EXPECT_EQ(make_medium(homogeneous_medium(1.0, 0.2), 0.05)->panel_scale(), 1.0);
+  for (const double vstar : {0.05, 0.11}) {
+    const auto med = make_stack_medium(m, vstar);
+    EXPECT_GT(med->panel_scale(), 4.0);
+    const KernelK1 k(med, 1e-10, 2.0);
+    const AlphaQuadrature& q = k.quadrature();
+    EXPECT_LT(static_cast<double>(q.panel_centre.size()), 0.5 * q.alpha_max);
+    const double phi1 = med->phi1();
+    for (const double u : {0.05, 0.4, 1.1, 1.9}) {
+      double plain = 0.0;
+      for (double lo = 0.0; lo < q.alpha_max; lo += 1.0)
+        plain += adaptive(
+            [&](double t) {
+              return (med->surface_response(t).M1.real() - phi1) / phi1 * std::sin(t * u);
+            },
+            lo, std::min(lo + 1.0, q.alpha_max), 1e-14);
+      EXPECT_NEAR(k(u), plain, 1e-10) << "vstar " << vstar << " u " << u;
+    }
+  }
+}

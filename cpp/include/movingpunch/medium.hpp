@@ -243,8 +243,8 @@ class Medium {
   // The widest alpha panel the surface quadrature starts from
   // (build_alpha_quadrature, which then splits where M1 needs it): 1 for the
   // homogeneous layer, as always. A stack's M1 - phi1 is a sum of decaying
-  // exponentials beyond its long waves (every sublayer subsonic), varying
-  // by e^2 over 2 / decay_rate(): a thin top sublayer's slow tail needs no
+  // exponentials beyond its long waves (every sublayer subsonic), falling
+  // by e^8 over 8 / decay_rate(): a thin top sublayer's slow tail needs no
   // unit panels (3-5x fewer nodes, and every displacement sums over them).
   virtual double panel_scale() const noexcept { return 1.0; }
   // The slowest decay of the mode's remainder at any depth of the stack
