@@ -130,11 +130,15 @@ def interleaved(rounds: int) -> dict[str, tuple[float, float, float, float]]:
         for i in range(rounds):
             for name, m in MEDIA.items():
                 out[name].append(once(m, i + 1, kind))
+
+    def ratio(times: list[float], base: list[float]) -> float:
+        return statistics.median(t / t0 for t, t0 in zip(times, base, strict=True))
+
     h = "homogeneous"
     return {
         name: (
-            statistics.median(w / w0 for w, w0 in zip(warm[name], warm[h], strict=True)),
-            statistics.median(c / c0 for c, c0 in zip(cold[name], cold[h], strict=True)),
+            ratio(warm[name], warm[h]),
+            ratio(cold[name], cold[h]),
             statistics.median(warm[name]),
             statistics.median(cold[name]),
         )

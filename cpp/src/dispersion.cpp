@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "critical_search.hpp"
+#include "memo.hpp"
 #include "movingpunch/errors.hpp"
 #include "movingpunch/layer_response.hpp"
 #include "roots.hpp"
@@ -83,17 +84,8 @@ CriticalSpeed critical_speed(double kw, double nu, double kp) {
   if (std::isinf(kw)) kp = 0.0;
   static std::mutex mutex;
   static std::map<std::tuple<double, double, double>, CriticalSpeed> cache;
-  const auto key = std::make_tuple(kw, nu, kp);
-  {
-    std::lock_guard<std::mutex> lock(mutex);
-    const auto it = cache.find(key);
-    if (it != cache.end()) return it->second;
-  }
-  const CriticalSpeed c = compute_critical(kw, nu, kp);
-  std::lock_guard<std::mutex> lock(mutex);
-  if (cache.size() > 4096) cache.clear();
-  cache[key] = c;
-  return c;
+  return detail::memoized(mutex, cache, std::make_tuple(kw, nu, kp),
+                          [&] { return compute_critical(kw, nu, kp); });
 }
 
 }  // namespace movingpunch

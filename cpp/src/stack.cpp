@@ -18,6 +18,7 @@
 
 #include "critical_search.hpp"
 #include "layer_basis.hpp"
+#include "memo.hpp"
 #include "movingpunch/errors.hpp"
 #include "roots.hpp"
 
@@ -676,17 +677,7 @@ CriticalSpeed stack_critical_speed(const MediumSpec& spec) {
   check_spec(spec);
   static std::mutex mutex;
   static std::map<std::vector<double>, CriticalSpeed> cache;
-  const std::vector<double> key = spec.key();
-  {
-    std::lock_guard<std::mutex> lock(mutex);
-    const auto it = cache.find(key);
-    if (it != cache.end()) return it->second;
-  }
-  const CriticalSpeed c = compute_critical(spec);
-  std::lock_guard<std::mutex> lock(mutex);
-  if (cache.size() > 4096) cache.clear();
-  cache[key] = c;
-  return c;
+  return detail::memoized(mutex, cache, spec.key(), [&] { return compute_critical(spec); });
 }
 
 double stack_small_t_m1(const MediumSpec& spec, double vstar) {
@@ -775,17 +766,8 @@ GradedSeries graded_top_series(double vstar, double nu, int kmax) {
   // speed and nu only: kept as the critical speeds are.
   static std::mutex mutex;
   static std::map<std::tuple<double, double, int>, GradedSeries> cache;
-  const auto key = std::make_tuple(vstar, nu, kmax);
-  {
-    std::lock_guard<std::mutex> lock(mutex);
-    const auto it = cache.find(key);
-    if (it != cache.end()) return it->second;
-  }
-  const GradedSeries g = compute_graded_top_series(vstar, nu, kmax);
-  std::lock_guard<std::mutex> lock(mutex);
-  if (cache.size() > 4096) cache.clear();
-  cache[key] = g;
-  return g;
+  return detail::memoized(mutex, cache, std::make_tuple(vstar, nu, kmax),
+                          [&] { return compute_graded_top_series(vstar, nu, kmax); });
 }
 
 namespace {

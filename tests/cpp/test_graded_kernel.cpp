@@ -6,6 +6,8 @@
 // subtracted functions against quadrature; the exact moments of the singular
 // terms against adaptive quadrature; the contact's N convergence against a
 // tight reference, and the limit gamma -> 0 against the homogeneous layer.
+// And a stack's kernel from its wide first panels (Medium::panel_scale)
+// against a plain adaptive quadrature on unit intervals.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -304,19 +306,9 @@ TEST(GradedKernel, PairSumsOfTheRegularPartMatchBitForBit) {
 // quadrature of (M1 - phi1)/phi1 sin(alpha u) on unit intervals (the
 // homogeneous layer's panels), and it takes fewer panels than unit ones.
 TEST(StackKernel, ThinTopFromWidePanelsMatchesPlainQuadrature) {
+  // bench_media's pavement: {thickness, mu, nu, rho, gamma} top to bottom.
   MediumSpec m;
-  Sublayer top, mid, bottom;
-  top.thickness = 0.2;
-  top.nu = 0.35;
-  mid.thickness = 0.3;
-  mid.mu = 0.3;
-  mid.nu = 0.3;
-  mid.rho = 0.9;
-  bottom.thickness = 0.5;
-  bottom.mu = 0.1;
-  bottom.nu = 0.3;
-  bottom.rho = 0.8;
-  m.layers = {top, mid, bottom};
+  m.layers = {{0.2, 1.0, 0.35, 1.0, 0.0}, {0.3, 0.3, 0.3, 0.9, 0.0}, {0.5, 0.1, 0.3, 0.8, 0.0}};
   m.base.kind = BaseKind::springs;
   m.base.kw = 1.0;
   EXPECT_EQ(make_medium(homogeneous_medium(1.0, 0.2), 0.05)->panel_scale(), 1.0);
