@@ -667,7 +667,7 @@ KernelK1::KernelK1(std::shared_ptr<const Medium> medium, double tol, double rang
   singular_ = singular_terms(sub_);
   // A longer table of the same medium (the cache's growth) keeps the
   // shorter one's quadrature when its inputs are the same: the panels'
-  // width min(1, 2/max_frequency) and the subtraction (the first solve on a
+  // width (panel_width) and the subtraction (the first solve on a
   // stack grows its table once: the quadrature was half of each build).
   if (shorter && shorter->tol_ == tol_ && shorter->model_->key() == model_->key() &&
       panel_width(*model_, 0.25 * shorter->range_, Reach::surface) ==

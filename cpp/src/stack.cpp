@@ -753,24 +753,6 @@ std::vector<double> series_on_circle(const WaveConstants& c, double r, int kmax)
   return out;
 }
 
-}  // namespace
-
-namespace {
-GradedSeries compute_graded_top_series(double vstar, double nu, int kmax);
-}  // namespace
-
-GradedSeries graded_top_series(double vstar, double nu, int kmax) {
-  if (kmax < 1 || kmax > 40) throw std::invalid_argument("graded_top_series: kmax in [1, 40]");
-  // Each solve on a graded top makes its medium, and the series (two
-  // circles of 64 complex matrix sign functions, ~0.6 ms) depends on the
-  // speed and nu only: kept as the critical speeds are.
-  static std::mutex mutex;
-  static std::map<std::tuple<double, double, int>, GradedSeries> cache;
-  return detail::memoized(mutex, cache, std::make_tuple(vstar, nu, kmax),
-                          [&] { return compute_graded_top_series(vstar, nu, kmax); });
-}
-
-namespace {
 GradedSeries compute_graded_top_series(double vstar, double nu, int kmax) {
   const WaveConstants c = wave_constants(vstar, nu);
   // F is analytic in eps within a disc (the half-space's eigenvalues stay
@@ -800,6 +782,17 @@ GradedSeries compute_graded_top_series(double vstar, double nu, int kmax) {
 }
 
 }  // namespace
+
+GradedSeries graded_top_series(double vstar, double nu, int kmax) {
+  if (kmax < 1 || kmax > 40) throw std::invalid_argument("graded_top_series: kmax in [1, 40]");
+  // Each solve on a graded top makes its medium, and the series (two
+  // circles of 64 complex matrix sign functions, ~0.6 ms) depends on the
+  // speed and nu only: kept as the critical speeds are.
+  static std::mutex mutex;
+  static std::map<std::tuple<double, double, int>, GradedSeries> cache;
+  return detail::memoized(mutex, cache, std::make_tuple(vstar, nu, kmax),
+                          [&] { return compute_graded_top_series(vstar, nu, kmax); });
+}
 
 KernelAsymptotics graded_kernel_asymptotics(const MediumSpec& spec, double vstar) {
   KernelAsymptotics as;

@@ -274,10 +274,10 @@ TEST(GradedKernel, SmallGammaTendsToTheHomogeneousLayerLinearly) {
   EXPECT_NEAR(d4, d6, 2e-3 * std::fabs(d6));
 }
 
-// The collocation's pair sums on a graded top (the regular part: table plus
-// the smooth closed forms): sum_many interleaves the table's recurrences and
-// adds the closed forms after each pair, the same arithmetic as sum(), bit
-// for bit; and sum is the whole k1 less its singular terms at both points.
+// The collocation's pair sums on a graded top (the regular part: the table
+// holds the quadrature's values plus the smooth closed forms): sum_many
+// interleaves the table's recurrences, the same arithmetic as sum(), bit for
+// bit; and sum is the whole k1 less its singular terms at both points.
 TEST(GradedKernel, PairSumsOfTheRegularPartMatchBitForBit) {
   const auto med = make_stack_medium(graded_top(2.0, 1.0), 0.05);
   const KernelK1 k(med, 1e-10, 2.0);
