@@ -157,6 +157,8 @@ def main() -> None:
     parser.add_argument("--repeat", type=int, default=7)
     parser.add_argument("--rounds", type=int, default=40)
     args = parser.parse_args()
+    if args.repeat < 1 or args.rounds < 1:
+        parser.error("--repeat and --rounds must be at least 1")
     print(f"load average {os.getloadavg()}")
     rows = {name: measure(m, args.repeat) for name, m in MEDIA.items()}
     w0, c0, f0 = rows["homogeneous"]
