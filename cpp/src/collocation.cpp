@@ -287,7 +287,7 @@ void bessel_j01_large(double w, double& j0, double& j1) {
       q1 += sg * t1;
     }
     const double d = static_cast<double>(2 * k + 1) * (2 * k + 1);
-    t0 *= (0.0 - d) * inv / (8.0 * (k + 1));
+    t0 *= -d * inv / (8.0 * (k + 1));
     t1 *= (4.0 - d) * inv / (8.0 * (k + 1));
     if (std::fabs(t0) + std::fabs(t1) < 1e-18) break;
   }

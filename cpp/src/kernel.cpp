@@ -798,8 +798,7 @@ double KernelK1::regular(double u) const {
 }
 
 double KernelK1::direct(double u) const {
-  if (sub_.empty()) return numeric(u);
-  return numeric(u) + sub_.smooth(u) + sub_.singular(u);
+  return sub_.empty() ? numeric(u) : regular(u) + sub_.singular(u);
 }
 
 double KernelK1::piece(double u) const {
