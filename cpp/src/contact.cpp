@@ -605,7 +605,7 @@ double kernel_perturbation(const KernelK1& k, double a, const Eigen::VectorXd& l
 SymmetricSolution::ErrorBudget error_budget(Problem& prob, const ContactParams& p,
                                             const ChebyshevNodes& nodes,
                                             const Problem::Linearised& lin, double a,
-                                            double collocation, double roundoff) {
+                                            double collocation, double roundoff, double root_a) {
   constexpr double eps = std::numeric_limits<double>::epsilon();
   const int h = nodes.n / 2;
   const Eigen::VectorXd w = nodes.w.head(h);
@@ -620,8 +620,11 @@ SymmetricSolution::ErrorBudget error_budget(Problem& prob, const ContactParams& 
   SymmetricSolution::ErrorBudget b;
   b.collocation = collocation;
   // Newton's step from the residual (the residual's own noise is the
-  // round-off part below).
-  b.root = a * std::fabs(std::log(lin.load / p.load)) / slope;
+  // round-off part below): of the width solved at N, root_a (an
+  // extrapolated a, BoundedSolve, carries the collocation's load error by
+  // design: its estimate is `collocation`).
+  const double root_load = root_a == a ? lin.load : prob.load_of(nodes, root_a, nullptr);
+  b.root = root_a * std::fabs(std::log(root_load / p.load)) / slope;
 
   const KernelK1& k = prob.kernel(a);
   const Eigen::VectorXd wG = w.cwiseProduct(lin.G);
@@ -866,6 +869,11 @@ struct BoundedSolve {
   // and width.
   int ref_n = 0;
   double ref_a = 0.0;
+  // A graded top's ladder (algebraic convergence): a is the limit
+  // extrapolated through the chain's last three sizes (extrapolate_n4n5),
+  // `change` its estimate, and raw_a the width solved at the final N.
+  bool extrapolated = false;
+  double raw_a = 0.0;
 };
 
 BoundedSolve solve_bounded(Problem& prob, const ContactParams& p, const PunchProfile& prof,
@@ -906,6 +914,8 @@ BoundedSolve solve_bounded(Problem& prob, const ContactParams& p, const PunchPro
   ChebyshevNodes nodes;
   int ref_n = 0;
   double ref_a = 0.0;
+  bool extrapolated = false;
+  double raw_a = 0.0;
   if (p.n != 0 && p.n <= kFixedFinerMax) {
     // Fixed N: the estimate compares with finer sizes (fixed_size_reference);
     // the finest is kept to estimate g's error (solve_contact).
@@ -961,6 +971,20 @@ BoundedSolve solve_bounded(Problem& prob, const ContactParams& p, const PunchPro
       double a;
       ChebyshevNodes nodes;
     };
+    // A cylinder on a graded top converges like N^-4 (docs/theory.md section
+    // 16.5): its ladder also reads the limit extrapolated through the last
+    // three sizes, and stops once two successive limits agree to tol while
+    // the raw changes fall (the extrapolated limit's error is 4 ... 20 times
+    // below that difference on five graded media; the raw a at the same N is
+    // 100 times further off).
+    const bool algebraic =
+        prof.kind() == ProfileKind::cylinder && !prob.kernel(a).singular().empty();
+    auto limit = [](const detail::LadderChain<Member, 1>& c, std::size_t last) {
+      const int n[3] = {c.sizes[last - 2], c.sizes[last - 1], c.sizes[last]};
+      const double x[3] = {c.states[last - 2].a, c.states[last - 1].a, c.states[last].a};
+      return detail::extrapolate_n4n5(n, x);
+    };
+    double limit_a = 0.0, limit_error = kInf;
     const detail::LadderRun<Member, 1> run = detail::run_ladder<1, Member>(
         detail::size_ladder(kSizes.back()),
         [&](int n) {
@@ -972,7 +996,17 @@ BoundedSolve solve_bounded(Problem& prob, const ContactParams& p, const PunchPro
           return std::array<double, 1>{std::fabs(cur.a - prev.a)};
         },
         [&](const detail::LadderChain<Member, 1>& c) {
-          return change_verdict(c, c.last().a, width_tol, change);
+          const detail::Verdict v = change_verdict(c, c.last().a, width_tol, change);
+          if (v != detail::Verdict::go_on || !algebraic || c.size() < 4) return v;
+          const std::vector<double>& ch = c.changes[0];
+          const std::size_t k = ch.size();
+          if (!(ch[k - 1] < ch[k - 2] && ch[k - 2] < ch[k - 3])) return v;
+          const double now = limit(c, c.size() - 1), before = limit(c, c.size() - 2);
+          const double e = std::fabs(now - before);
+          if (!(std::isfinite(now) && e <= width_tol * now)) return v;
+          limit_a = now;
+          limit_error = e;
+          return detail::Verdict::converged;
         },
         [](const std::exception& e, const detail::LadderAt& at) {
           if (at.last) return detail::OnFailure::rethrow;
@@ -989,7 +1023,15 @@ BoundedSolve solve_bounded(Problem& prob, const ContactParams& p, const PunchPro
     nodes = run.chain.last().nodes;
     for (const Member& m : run.chain.states) chain_a.push_back(m.a);
     chain_n = run.chain.sizes;
-    change = collocation_error(chain_n, chain_a);
+    if (std::isfinite(limit_error)) {
+      // The extrapolated limit (its estimate, not the raw chain's).
+      extrapolated = true;
+      raw_a = a;
+      a = limit_a;
+      change = limit_error;
+    } else {
+      change = collocation_error(chain_n, chain_a);
+    }
   }
 
   // The displacement (indentation, validity) integrates the transform of p,
@@ -997,10 +1039,17 @@ BoundedSolve solve_bounded(Problem& prob, const ContactParams& p, const PunchPro
   // grew past what they resolve, extend the kernel and re-solve on it.
   if (prob.kernel_ptr()->range() < 4.0 * a) {
     prob.ensure_range(table_range(a));
-    a = solve_width(prob, p, nodes, p.load, a, xtol, range);
+    if (extrapolated) {
+      // The same N on the wider table: the limit moves with the raw width.
+      const double moved = solve_width(prob, p, nodes, p.load, raw_a, xtol, range);
+      a += moved - raw_a;
+      raw_a = moved;
+    } else {
+      a = solve_width(prob, p, nodes, p.load, a, xtol, range);
+    }
   }
 
-  return BoundedSolve{a, nodes, chain_n, chain_a, change, ref_n, ref_a};
+  return BoundedSolve{a, nodes, chain_n, chain_a, change, ref_n, ref_a, extrapolated, raw_a};
 }
 
 // g at a fixed N against the finest reference (BoundedSolve): the bound on
@@ -1051,16 +1100,32 @@ struct GradedTails {
   double field_reach = 0.0;     // alpha_max h of the field quadrature
 };
 
-double transform_envelope(SeriesKind kind, double a, const Eigen::VectorXd& b, double A) {
-  constexpr int kSamples = 513;
-  std::vector<double> al(kSamples), g(kSamples);
-  for (int i = 0; i < kSamples; ++i)
-    al[static_cast<std::size_t>(i)] = A * std::pow(64.0, i / (kSamples - 1.0));
+// max |p~(alpha)| alpha^(3/2) over [A, 64 A], doubled, for each A in `from`
+// (p~ the cosine transform of the series b): one sweep over their union,
+// 256 samples per factor 64 in alpha. Beyond alpha a ~ 400 the samples are
+// farther apart than the transform's period 2 pi/a and fall at unrelated
+// phases of it: the largest of 256 |cos| is below 0.95 with probability
+// 0.8^256 ~ 1e-25, and the doubling covers the rest.
+template <std::size_t K>
+std::array<double, K> transform_envelopes(SeriesKind kind, double a, const Eigen::VectorXd& b,
+                                          const std::array<double, K>& from) {
+  constexpr double kPerFactor64 = 256.0;
+  const double lo = *std::min_element(from.begin(), from.end());
+  const double hi = 64.0 * *std::max_element(from.begin(), from.end());
+  const int samples =
+      1 + static_cast<int>(std::ceil(kPerFactor64 * std::log(hi / lo) / std::log(64.0)));
+  std::vector<double> al(static_cast<std::size_t>(samples)), g(al.size());
+  for (int i = 0; i < samples; ++i)
+    al[static_cast<std::size_t>(i)] = lo * std::pow(hi / lo, i / (samples - 1.0));
   series_cosine_transforms(b, kind, a, al.data(), g.data(), g.size());
-  double e = 0.0;
-  for (std::size_t i = 0; i < al.size(); ++i)
-    e = std::max(e, std::fabs(g[i]) * std::pow(al[i], 1.5));
-  return 2.0 * e;
+  std::array<double, K> e{};
+  for (std::size_t k = 0; k < K; ++k) {
+    for (std::size_t i = 0; i < al.size(); ++i)
+      if (al[i] >= from[k] * (1.0 - 1e-12) && al[i] <= 64.0 * from[k] * (1.0 + 1e-12))
+        e[k] = std::max(e[k], std::fabs(g[i]) * std::pow(al[i], 1.5));
+    e[k] *= 2.0;
+  }
+  return e;
 }
 
 GradedTails graded_tails(const KernelK1& k, SeriesKind kind, double a, const Eigen::VectorXd& b,
@@ -1072,17 +1137,16 @@ GradedTails graded_tails(const KernelK1& k, SeriesKind kind, double a, const Eig
   const double phi1 = m.phi1();
   const double cm = std::max(std::fabs(m.surface_response(A).M1.real() - phi1) * A,
                              std::fabs(m.surface_response(2.0 * A).M1.real() - phi1) * 2.0 * A);
-  out.indentation =
-      2.0 / kPi * load * cm * transform_envelope(kind, a, b, A) * 0.4 * std::pow(A, -2.5);
   // The surface stress: the field quadrature's reach (build_alpha_quadrature,
   // Reach::field: no subtraction there).
   const double rate = m.field_decay_rate();
   const double Af = (std::log(1e18) + std::log1p(4.0 * 60.0 / rate)) / rate;
+  const std::array<double, 2> env = transform_envelopes<2>(kind, a, b, {A, Af});
+  out.indentation = 2.0 / kPi * load * cm * env[0] * 0.4 * std::pow(A, -2.5);
   out.field_reach = Af;
   const double cs = std::max(std::fabs(m.mode(Af)->remainder(0.0).sx.real()) * Af,
                              std::fabs(m.mode(2.0 * Af)->remainder(0.0).sx.real()) * 2.0 * Af);
-  out.surface_stress =
-      2.0 / kPi * cs * transform_envelope(kind, a, b, Af) * (2.0 / 3.0) * std::pow(Af, -1.5);
+  out.surface_stress = 2.0 / kPi * cs * env[1] * (2.0 / 3.0) * std::pow(Af, -1.5);
   return out;
 }
 
@@ -1346,7 +1410,7 @@ SymmetricSolution solve_contact(const ContactParams& p) {
     sol.kind_ = SeriesKind::U;
     if (p.n != 0) sol.g_err_ = fixed_size_g_error(prob, bs, sol.b_);
     sol.iterations_ = prob.evaluations();
-    if (chain_a.size() >= 2 && std::isfinite(change)) {
+    if (chain_a.size() >= 2 && std::isfinite(change) && !bs.extrapolated) {
       change = collocation_error(chain_n, chain_a, coefficient_rate(sol.b_));
       // A profile's kinks (a rounded flat's corners, a table's spline) make
       // the ends converge irregularly as N moves the nodes against them: a
@@ -1357,7 +1421,8 @@ SymmetricSolution solve_contact(const ContactParams& p) {
       if (prof.kind() != ProfileKind::cylinder)
         change = std::max(change, std::fabs(chain_a.back() - chain_a[chain_a.size() - 2]));
     }
-    sol.budget_ = error_budget(prob, p, nodes, lin, a, change, roundoff);
+    sol.budget_ =
+        error_budget(prob, p, nodes, lin, a, change, roundoff, bs.extrapolated ? bs.raw_a : a);
     const SymmetricSolution::ErrorBudget& eb = sol.budget_;
     sol.err_ = eb.collocation + eb.root + eb.kernel + eb.roundoff;
     if (!(sol.err_ <= p.tol * a)) {

@@ -40,6 +40,25 @@ inline std::vector<int> size_ladder(int max_n) {
   return out;
 }
 
+// The limit of a/h on a graded top (docs/theory.md section 16.5), whose g
+// carries (1 - r) ln(1 - r) at both ends: a_N = a + C N^-4 + D N^-5 + ...
+// (Navot's expansion for an end singularity theta^3 ln theta in the
+// collocation's angle), eliminated through three sizes n[0] < n[1] < n[2].
+inline double extrapolate_n4n5(const int* n, const double* x) {
+  // x_i - x_2 = C (t_i^4 - 1) + D (t_i^5 - 1), t_i = n_2/n_i; a = x_2 - C - D.
+  double m[2][2], d[2];
+  for (int i = 0; i < 2; ++i) {
+    const double t = static_cast<double>(n[2]) / n[i];
+    m[i][0] = t * t * t * t - 1.0;
+    m[i][1] = t * t * t * t * t - 1.0;
+    d[i] = x[i] - x[2];
+  }
+  const double det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
+  const double c = (d[0] * m[1][1] - d[1] * m[0][1]) / det;
+  const double dd = (m[0][0] * d[1] - m[1][0] * d[0]) / det;
+  return x[2] - c - dd;
+}
+
 // The first width guess for a contact carrying lambda = R P/(mu h^2) on a
 // layer with phi1 (its half-plane compliance), Winkler kw and nu: the
 // half-plane (Hertz) width a_H, unless the wide-contact width a_W of a layer

@@ -193,3 +193,20 @@ TEST(AsymmetricScanMemo, WarmSolvesReuseTheScanWithoutChangingAnyResult) {
   EXPECT_NEAR(cold.other_half_widths()[0], 0.728, 0.01);
   EXPECT_NEAR(cold.other_half_widths()[1], 1.120, 0.015);
 }
+
+// The graded top's ladder limit (contact.cpp, solve_bounded): exact for
+// a_N = a + C N^-4 + D N^-5 at any three sizes, and it removes N^-4 from a
+// sequence with an N^-6 remainder (the error falls from C N^-4 to O(N^-6)).
+TEST(SolveSkeleton, LimitThroughThreeSizesRemovesNMinus4AndNMinus5) {
+  auto seq = [](double n, double e) {
+    return 0.4650568523 + 3.1 * std::pow(n, -4.0) - 7.0 * std::pow(n, -5.0) + e * std::pow(n, -6.0);
+  };
+  const int n[3] = {16, 24, 32};
+  const double x[3] = {seq(16, 0.0), seq(24, 0.0), seq(32, 0.0)};
+  EXPECT_NEAR(d::extrapolate_n4n5(n, x), 0.4650568523, 1e-15);
+  const double y[3] = {seq(16, 50.0), seq(24, 50.0), seq(32, 50.0)};
+  const double raw = std::fabs(y[2] - 0.4650568523);
+  const double lim = std::fabs(d::extrapolate_n4n5(n, y) - 0.4650568523);
+  EXPECT_LT(lim, 0.05 * raw);
+  EXPECT_LT(lim, 50.0 * std::pow(32.0, -6.0));  // measured 0.6 of it
+}
