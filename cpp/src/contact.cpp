@@ -516,7 +516,30 @@ double kernel_perturbation(const KernelK1& k, double a, const Eigen::VectorXd& l
     std::vector<double> widths;
     std::vector<std::vector<cplx>> offsets;  // per width: [k][row j, then col j]
     std::vector<cplx> centre(static_cast<std::size_t>(2 * m));
-    for (std::size_t i = 0; i < q.panel_centre.size(); ++i) {
+    // The panels by their bound at any shape, (e + 3 sum sigma) worst, the
+    // largest first; once what the rest could add at most is below 1 % of
+    // what the sensitivity-weighted ones add, it is added as it stands (an
+    // upper bound: most panels of a long algebraic tail are far below).
+    const std::size_t panels = q.panel_centre.size();
+    std::vector<double> crude(panels, 0.0);
+    double rest = 0.0;
+    auto sigma_of = [&](std::size_t n) {
+      const double f = std::fabs((q.m1[n] - phi1) / phi1);
+      return 2.0 * eps * (1.0 + f + f * f) * q.weight[n];
+    };
+    for (std::size_t i = 0; i < panels; ++i) {
+      double sig = 0.0;
+      for (std::size_t n = 15 * i; n < 15 * i + 15 && n < q.alpha.size(); ++n) sig += sigma_of(n);
+      crude[i] = (q.panel_error[i] + 3.0 * sig) * worst;
+      rest += crude[i];
+    }
+    std::vector<std::size_t> order(panels);
+    for (std::size_t i = 0; i < panels; ++i) order[i] = i;
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t l, std::size_t r) { return crude[l] > crude[r]; });
+    for (const std::size_t i : order) {
+      if (rest <= 1e-2 * (dS + 3.0 * std::sqrt(dS_round2))) break;
+      rest -= crude[i];
       const double e = q.panel_error[i], r = q.panel_roundoff[i];
       if (!((e + r) * worst > 1e-4 * eps * std::fabs(S))) continue;  // negligible
       const double hw = q.panel_half[i], c = q.panel_centre[i];
@@ -554,13 +577,13 @@ double kernel_perturbation(const KernelK1& k, double a, const Eigen::VectorXd& l
       for (std::size_t n = 15 * i; n < 15 * i + 15 && n < q.alpha.size(); ++n) {
         const double sn = sens(static_cast<int>(n - 15 * i) + 2);
         smax = std::max(smax, sn);
-        const double f = std::fabs((q.m1[n] - phi1) / phi1);
-        const double sigma = 2.0 * eps * (1.0 + f + f * f) * q.weight[n];
+        const double sigma = sigma_of(n);
         round2 += (sigma * sn) * (sigma * sn);
       }
       dS += e * smax;
       dS_round2 += round2;
     }
+    dS += std::max(rest, 0.0);
   } else {
     dS += q.error_estimate * 2.0 * a * lam1 * wg1;
   }
@@ -569,19 +592,25 @@ double kernel_perturbation(const KernelK1& k, double a, const Eigen::VectorXd& l
   // any shape in the worst case for a piecewise table; its round-off,
   // independent for each of the N^2/2 entries.
   if (k.table_order() > 0) {
-    double tmax = 0.0;
-    for (int m : {k.table_order(), k.table_order() + 2}) {
-      double sum = 0.0;
-      for (Eigen::Index kk = 0; kk < rows; ++kk)
-        for (Eigen::Index j = 0; j < cols; ++j) {
-          const double up = a * (col_nodes(j) - row_nodes(kk)) / k.range();
-          const double um = a * (-col_nodes(j) - row_nodes(kk)) / k.range();
-          sum += lambda(kk) * wG(j) *
-                 (std::cos(m * std::acos(std::clamp(up, -1.0, 1.0))) +
-                  std::cos(m * std::acos(std::clamp(um, -1.0, 1.0))));
+    // T_m(u) = cos(m theta) and T_{m+2}(u) = cos(m theta) cos 2 theta -
+    // sin(m theta) sin 2 theta, theta = acos u: one acos and one sincos per
+    // entry for both orders.
+    const int m = k.table_order();
+    double sum_m = 0.0, sum_m2 = 0.0;
+    for (Eigen::Index kk = 0; kk < rows; ++kk)
+      for (Eigen::Index j = 0; j < cols; ++j) {
+        const double lw = lambda(kk) * wG(j);
+        for (const double sg : {1.0, -1.0}) {
+          const double u =
+              std::clamp(a * (sg * col_nodes(j) - row_nodes(kk)) / k.range(), -1.0, 1.0);
+          const double th = std::acos(u);
+          const double cm = std::cos(m * th), sm = std::sin(m * th);
+          const double c2 = 2.0 * u * u - 1.0, s2 = 2.0 * u * std::sqrt(1.0 - u * u);
+          sum_m += lw * cm;
+          sum_m2 += lw * (cm * c2 - sm * s2);
         }
-      tmax = std::max(tmax, std::fabs(a * sum));
-    }
+      }
+    const double tmax = std::max(std::fabs(a * sum_m), std::fabs(a * sum_m2));
     dS += 3.0 * k.table_error() * tmax;
   } else {
     dS += k.table_error() * 2.0 * a * lam1 * wg1;
@@ -1602,8 +1631,7 @@ double SymmetricSolution::greens_integral(double x) const {
   // (T: (1/pi) int T_0/sqrt(1 - t^2) = 1, so ln a b0).
   const double s = x / a;
   double lp = (kind_ == SeriesKind::T ? 1.0 : 0.5) * b_(0) * std::log(a);
-  for (Eigen::Index n = 0; n <= last; n += 2)
-    lp += b_(n) * log_potential(static_cast<int>(n), s, kind_);
+  lp += detail::log_potential_even(b_, last, s, kind_);
   const double log_part = -phi1_ * a * lp;
 
   // (phi1 / (2 pi)) int p ln(1 + (x - xi)^2) d xi on the precomputed nodes:
