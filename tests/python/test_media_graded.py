@@ -203,6 +203,8 @@ def test_the_ladders_limit_meets_tol_against_a_raw_reference(
     # The raw ladder needed N = 96 for 1e-8; the limit stops at 32 or 48,
     # where the raw width is 30 ... 100 times further off than the limit.
     assert s.collocation_n <= 48
-    raw = _graded(gamma, vstar=vstar, radius=radius, load=load, tol=1e-8, n=s.collocation_n)
+    raw = _graded(
+        gamma, vstar=vstar, radius=radius, load=load, tol=1e-8, n=s.collocation_n
+    )
     assert abs(raw.a - ref.a) > 10.0 * err
     _check_physical(s)
