@@ -1622,7 +1622,6 @@ void SymmetricSolution::prepare_displacement() {
 // -(m0/2) ln(1 + u^2) up to a constant; beyond kFarField the smooth part is 0).
 double SymmetricSolution::greens_integral(double x) const {
   const double a = a_;
-  const Eigen::Index last = last_even_term(b_);
   const double smooth = std::fabs(x) > kFarField
                             ? 0.0
                             : 2.0 / kPi * kernel_->filon().integral(x, smooth_coef_).real();
@@ -1631,7 +1630,9 @@ double SymmetricSolution::greens_integral(double x) const {
   // (T: (1/pi) int T_0/sqrt(1 - t^2) = 1, so ln a b0).
   const double s = x / a;
   double lp = (kind_ == SeriesKind::T ? 1.0 : 0.5) * b_(0) * std::log(a);
-  lp += detail::log_potential_even(b_, last, s, kind_);
+  // The even terms at once (one w for all: the series' log potential on the
+  // real axis, its real part).
+  lp += detail::log_potential(b_, detail::cplx_t(s, 0.0), 2, kind_).real();
   const double log_part = -phi1_ * a * lp;
 
   // (phi1 / (2 pi)) int p ln(1 + (x - xi)^2) d xi on the precomputed nodes:

@@ -67,40 +67,6 @@ inline double log_potential(int n, double x, SeriesKind kind = SeriesKind::U) {
   return sg * 0.5 * (-std::exp(-n * th) / n + std::exp(-(n + 2) * th) / (n + 2));
 }
 
-// sum_{n = 0, 2, ..., last} b(n) log_potential(n, x, kind): the even terms of
-// a series (g even), with one acos or acosh for all of them (T_n by the
-// recurrence T_{n+2} = 2 T_2 T_n - T_{n-2} on |x| <= 1, powers of
-// e^{-acosh|x|} beyond); the same values to round-off.
-inline double log_potential_even(const Eigen::VectorXd& b, Eigen::Index last, double x,
-                                 SeriesKind kind = SeriesKind::U) {
-  using potentials::kLn2;
-  const double ax = std::fabs(x);
-  const bool u_kind = kind == SeriesKind::U;
-  double sum = 0.0;
-  if (ax <= 1.0) {
-    const double c = std::clamp(x, -1.0, 1.0), t2 = 2.0 * c * c - 1.0;
-    sum = b(0) * (u_kind ? 0.5 * c * c - 0.25 - 0.5 * kLn2 : -kLn2);
-    double tp = 1.0, tn = t2;  // T_{n-2}, T_n for n = 2
-    for (Eigen::Index n = 2; n <= last; n += 2) {
-      const double tnext = 2.0 * t2 * tn - tp;  // T_{n+2}
-      const double dn = static_cast<double>(n);
-      sum += b(n) * (u_kind ? 0.5 * (tnext / (dn + 2.0) - tn / dn) : -tn / dn);
-      tp = tn;
-      tn = tnext;
-    }
-    return sum;
-  }
-  const double th = std::acosh(ax), q = std::exp(-th), q2 = q * q;
-  sum = b(0) * (u_kind ? 0.5 * th + 0.25 * q2 - 0.5 * kLn2 : th - kLn2);
-  double qn = q2;  // q^n for n = 2
-  for (Eigen::Index n = 2; n <= last; n += 2) {
-    const double dn = static_cast<double>(n);
-    sum += b(n) * (u_kind ? 0.5 * (-qn / dn + qn * q2 / (dn + 2.0)) : -qn / dn);
-    qn *= q2;
-  }
-  return sum;
-}
-
 using cplx_t = std::complex<double>;
 
 // w(z) = z - sqrt(z^2 - 1) on the branch ~ 1/(2z) at infinity (cut [-1, 1]),
