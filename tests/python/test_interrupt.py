@@ -130,6 +130,9 @@ def test_a_handlers_own_exception_stops_the_solve_and_the_next_solve_works() -> 
             print("stopped", exc.args[0], flush=True)
         s = mp.solve(vstar=0.2, kw=1.0, radius=100, load=0.002)
         print("after", repr(s.a), flush=True)
+        mp.clear_kernel_cache()
+        s = mp.solve(vstar=0.2, kw=1.0, radius=100, load=0.002)
+        print("fresh", repr(s.a), flush=True)
         """
     )
     _wait_for_line(proc, "solving")
@@ -137,8 +140,15 @@ def test_a_handlers_own_exception_stops_the_solve_and_the_next_solve_works() -> 
     assert proc.returncode == 0, err
     lines = out.split()
     assert lines[:2] == ["stopped", str(int(signal.SIGINT))], out
+    # Bit for bit from the same (empty) kernel cache; the solve right after
+    # the stop reuses the table the stopped solve left (a complete one, of
+    # another range: round-off apart), so within the estimate. (The parent's
+    # cache depends on the tests its worker ran before.)
+    mp.clear_kernel_cache()
     reference = mp.solve(vstar=0.2, kw=1.0, radius=100, load=0.002)
-    assert float(lines[lines.index("after") + 1]) == reference.a
+    assert float(lines[lines.index("fresh") + 1]) == reference.a
+    after = float(lines[lines.index("after") + 1])
+    assert abs(after - reference.a) <= reference.error_estimate
 
 
 def test_ctrl_c_interrupts_a_long_cli_solve() -> None:
