@@ -209,7 +209,10 @@ Eigen::VectorXd u_coefficients(const ChebyshevNodes& nodes, const Eigen::VectorX
 
 double series_minimum(const Eigen::VectorXd& b, SeriesKind kind, double* r_min) {
   if (b.size() == 0) throw std::invalid_argument("series_minimum: no coefficients");
-  auto g_of = [kind](const Eigen::VectorXd& c, double r) { return series(c, r, kind); };
+  const bool even = odd_terms_zero(b);
+  auto g_of = [kind, even](const Eigen::VectorXd& c, double r) {
+    return even ? even_series(c, r, kind) : series(c, r, kind);
+  };
   // 16 (N + 1) + 256 angles resolve every extremum of the degree-N polynomial.
   const int m = std::max(400, 16 * static_cast<int>(b.size() + 1) + 256);
   int best = 0;
@@ -266,7 +269,14 @@ Eigen::Index last_even_term(const Eigen::VectorXd& b) {
 
 namespace detail {
 
-// J_0(w) and J_1(w) at w > 200 by Hankel's asymptotic expansion,
+// Below this argument Hankel's expansion of J_0, J_1 (bessel_j01_large)
+// runs out of terms before double precision (at w = 20 it needs 37 of its
+// 40, at 12 it is 1e-11 off); above it, 21 or fewer give 4e-16 of the
+// amplitude, and the upward recurrence to orders below w keeps 1e-14
+// (against a long-double Miller recurrence; scipy's jv is 7e-14 off there).
+constexpr double kHankelMin = 25.0;
+
+// J_0(w) and J_1(w) at w > kHankelMin by Hankel's asymptotic expansion,
 // J_nu = sqrt(2/(pi w)) (P cos chi - Q sin chi), chi = w - (nu/2 + 1/4) pi,
 // with P, Q the even and odd terms of sum_k (-1)^floor(k/2) a_k(nu) / w^k,
 // a_k = a_{k-1} (4 nu^2 - (2k - 1)^2) / (8k): the terms fall by ~k/(4w) each,
@@ -274,21 +284,31 @@ namespace detail {
 // graded top's solve, in the transform's envelope at w up to 3e4, and its
 // J_0(200.5) is 2e-12 off scipy's).
 void bessel_j01_large(double w, double& j0, double& j1) {
+  // 1/(k + 1) for the terms' ratios (no division in the loop).
+  static const std::array<double, 40> recip = [] {
+    std::array<double, 40> r{};
+    for (std::size_t k = 0; k < r.size(); ++k) r[k] = 1.0 / static_cast<double>(k + 1);
+    return r;
+  }();
   double p0 = 0.0, q0 = 0.0, p1 = 0.0, q1 = 0.0;
   double t0 = 1.0, t1 = 1.0;  // a_k(nu) / w^k
-  const double inv = 1.0 / w;
-  for (int k = 0; k < 40; ++k) {
-    const double sg = (k / 2) % 2 == 0 ? 1.0 : -1.0;
-    if (k % 2 == 0) {
-      p0 += sg * t0;
-      p1 += sg * t1;
-    } else {
-      q0 += sg * t0;
-      q1 += sg * t1;
-    }
-    const double d = static_cast<double>(2 * k + 1) * (2 * k + 1);
-    t0 *= -d * inv / (8.0 * (k + 1));
-    t1 *= (4.0 - d) * inv / (8.0 * (k + 1));
+  const double inv8 = 0.125 / w;
+  // Terms k = 2j (into P) and 2j + 1 (into Q), both of sign (-1)^j.
+  double sg = 1.0;
+  for (std::size_t k = 0; k < 40; k += 2) {
+    p0 += sg * t0;
+    p1 += sg * t1;
+    double d = static_cast<double>(2 * k + 1) * static_cast<double>(2 * k + 1);
+    double c = inv8 * recip[k];
+    t0 *= -d * c;
+    t1 *= (4.0 - d) * c;
+    q0 += sg * t0;
+    q1 += sg * t1;
+    d = static_cast<double>(2 * k + 3) * static_cast<double>(2 * k + 3);
+    c = inv8 * recip[k + 1];
+    t0 *= -d * c;
+    t1 *= (4.0 - d) * c;
+    sg = -sg;
     if (std::fabs(t0) + std::fabs(t1) < 1e-18) break;
   }
   const double sn = std::sin(w), cs = std::cos(w);
@@ -302,13 +322,14 @@ void bessel_j01_large(double w, double& j0, double& j1) {
 }
 
 // J_0(w) .. J_kmax(w), w > 0, all at once: upward recurrence from
-// bessel_j01_large's J_0, J_1 while the order stays below w > 200 (stable there),
+// bessel_j01_large's J_0, J_1 while the order stays below w > kHankelMin
+// (stable there: it costs kmax steps where Miller's costs w + 20 + 4 sqrt(w)),
 // Miller's downward recurrence normalised by J_0 + 2 sum J_2k = 1 otherwise
 // (within 5e-15 of scipy's J_n up to w = 200, and without the library's slow
 // J_0, J_1; see u_series_cosine_transforms).
 void bessel_orders(double w, int kmax, std::vector<double>& J) {
   J.assign(static_cast<std::size_t>(kmax) + 1, 0.0);
-  if (kmax + 1 < w && w > 200.0) {
+  if (kmax + 1 < w && w > kHankelMin) {
     double j0, j1;
     bessel_j01_large(w, j0, j1);
     J[0] = j0;
@@ -343,14 +364,16 @@ void bessel_orders(double w, int kmax, std::vector<double>& J) {
 
 using detail::bessel_orders;
 
-double series_cosine_transform(const Eigen::VectorXd& b, SeriesKind kind, double a, double alpha) {
+namespace {
+// series_cosine_transform with b's last even term (last_even_term) given.
+double cosine_transform_to(const Eigen::VectorXd& b, SeriesKind kind, double a, double alpha,
+                           Eigen::Index last) {
   const bool t_kind = kind == SeriesKind::T;
   const double w = alpha * a;
   if (w < 1e-8) {
     // U: J_1(w)/w -> 1/2; T: J_0(w) -> 1; higher orders vanish.
     return t_kind ? 0.5 * b(0) * kPi * a : 0.5 * b(0) * 0.5 * kPi * a;
   }
-  Eigen::Index last = last_even_term(b);
   // J_nu(w) <= (w/2)^nu / nu!: negligible once the order exceeds the argument
   // by 40; higher orders are smaller.
   while (last > 0 && static_cast<double>(last + 1) > w + 40.0) last -= 2;
@@ -365,6 +388,11 @@ double series_cosine_transform(const Eigen::VectorXd& b, SeriesKind kind, double
       sum += b(n) * static_cast<double>(n + 1) * sg * J[static_cast<std::size_t>(n) + 1];
   }
   return t_kind ? sum * 0.5 * kPi * a : sum * 0.5 * kPi * a / w;
+}
+}  // namespace
+
+double series_cosine_transform(const Eigen::VectorXd& b, SeriesKind kind, double a, double alpha) {
+  return cosine_transform_to(b, kind, a, alpha, last_even_term(b));
 }
 
 double u_series_cosine_transform(const Eigen::VectorXd& b, double a, double alpha) {
@@ -394,11 +422,13 @@ void series_cosine_transforms(const Eigen::VectorXd& b, SeriesKind kind, double 
       const double wi = alpha[i] * a;
       Eigen::Index last = last_all;
       while (last > 0 && static_cast<double>(last + 1) > wi + 40.0) last -= 2;
-      // Miller's recurrence also above the orders (w > kmax): normalised by
-      // J_0 + 2 sum J_2k = 1 it stays within 5e-15 of scipy's J_n up to w =
-      // 200, and avoids the library's slow J_0, J_1 of the upward branch.
-      if (wi < 1e-8 || wi > 200.0) {
-        out[i] = series_cosine_transform(b, kind, a, alpha[i]);
+      // Miller's recurrence (normalised by J_0 + 2 sum J_2k = 1, within 5e-15
+      // of scipy's J_n up to w = 200) where the orders reach the argument;
+      // above them, from w = kHankelMin, the upward branch (bessel_orders:
+      // a graded top's panels reach w ~ 60, where Miller's start is 3 times
+      // the orders).
+      if (wi < 1e-8 || (wi > detail::kHankelMin && static_cast<double>(last) + 2.0 < wi)) {
+        out[i] = cosine_transform_to(b, kind, a, alpha[i], last_all);
       } else {
         idx[static_cast<std::size_t>(lanes)] = i;
         w[static_cast<std::size_t>(lanes)] = wi;
@@ -502,6 +532,29 @@ double t_series(const Eigen::VectorXd& b, double r) {
 
 double series(const Eigen::VectorXd& b, double r, SeriesKind kind) {
   return kind == SeriesKind::T ? t_series(b, r) : u_series(b, r);
+}
+
+double even_series(const Eigen::VectorXd& b, double r, SeriesKind kind) {
+  // phi_k = X_{2k}: phi_{k+1} = x phi_k - phi_{k-1}, x = 2 T_2(r) = 4 r^2 - 2;
+  // Clenshaw's y_k = b_{2k} + x y_{k+1} - y_{k+2} sums to y_0 phi_0 + y_1
+  // (phi_1 - x phi_0): U, phi_1 = x + 1, so y_0 + y_1; T, phi_1 = x/2, so
+  // y_0 - (x/2) y_1.
+  const double x = 4.0 * r * r - 2.0;
+  double y1 = 0.0, y2 = 0.0;
+  const Eigen::Index top = b.size() == 0 ? -2 : 2 * ((b.size() - 1) / 2);
+  for (Eigen::Index m = top; m >= 0; m -= 2) {
+    const double y0 = b(m) + x * y1 - y2;
+    y2 = y1;
+    y1 = y0;
+  }
+  // Here y1 = y_0 and y2 = y_1.
+  return kind == SeriesKind::T ? y1 - 0.5 * x * y2 : y1 + y2;
+}
+
+bool odd_terms_zero(const Eigen::VectorXd& b) {
+  for (Eigen::Index m = 1; m < b.size(); m += 2)
+    if (b(m) != 0.0) return false;
+  return true;
 }
 
 FirstKindNodes first_kind_nodes(int n) {

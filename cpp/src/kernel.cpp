@@ -465,10 +465,15 @@ void spherical_bessel_many(const double* z, std::size_t n, std::array<double, 15
 
 FilonIntegrator::FilonIntegrator(const AlphaQuadrature& q)
     : centre_(q.panel_centre), half_(q.panel_half) {
-  // Panels share a few half-widths (bisections of one width).
+  // Panels share a few half-widths (bisections of one width), equal but for
+  // their last bits (i w0 - (i - 1) w0 rounds: a graded top's 14 were 4).
+  // One within 1e-14 of another shares its Bessel functions: j_n(h' alpha x)
+  // is then off by 1e-14 of h x, within what the nodes' own rounding
+  // (1e-16 of alpha, a phase error alpha x 1e-16) already leaves.
   width_of_.reserve(half_.size());
   for (const double h : half_) {
-    const auto it = std::find(widths_.begin(), widths_.end(), h);
+    const auto it = std::find_if(widths_.begin(), widths_.end(),
+                                 [h](double w) { return std::fabs(w - h) <= 1e-14 * h; });
     width_of_.push_back(static_cast<std::size_t>(it - widths_.begin()));
     if (it == widths_.end()) widths_.push_back(h);
   }
@@ -680,6 +685,22 @@ KernelK1::KernelK1(std::shared_ptr<const Medium> medium, double tol, double rang
     quad_ = build_alpha_quadrature(*model_, tol_, 0.25 * range_, Reach::surface, sub_);
     filon_ = std::make_shared<const FilonIntegrator>(quad_);
     f_coef_ = filon_->coefficients(integrand(quad_, model_->phi1()));
+  }
+  if (!singular_.empty()) {
+    // Per medium and reach: four responses a solve need not repeat (they
+    // were a twentieth of a warm graded-top solve).
+    const double A = quad_.alpha_max, phi1 = model_->phi1();
+    tails_.surface_c =
+        std::max(std::fabs(model_->surface_response(A).M1.real() - phi1) * A,
+                 std::fabs(model_->surface_response(2.0 * A).M1.real() - phi1) * 2.0 * A);
+    // The field quadrature's reach (build_alpha_quadrature, Reach::field: no
+    // subtraction there).
+    const double rate = model_->field_decay_rate();
+    const double Af = (std::log(1e18) + std::log1p(4.0 * 60.0 / rate)) / rate;
+    tails_.field_reach = Af;
+    tails_.field_c =
+        std::max(std::fabs(model_->mode(Af)->remainder(0.0).sx.real()) * Af,
+                 std::fabs(model_->mode(2.0 * Af)->remainder(0.0).sx.real()) * 2.0 * Af);
   }
   // A long table (many oscillations of k1 on |u| <= range) is held piecewise:
   // its cost is then proportional to the range, and so is no evaluation's.

@@ -78,6 +78,33 @@ TEST(Collocation, UCoefficientsInterpolate) {
     EXPECT_NEAR(u_series(b, r), 1.0 + r * r - 3.0 * std::pow(r, 4), 1e-13);
 }
 
+TEST(Collocation, EvenSeriesMatchesTheFullRecurrence) {
+  // An even g (no odd terms), both kinds, odd and even lengths: Clenshaw in
+  // steps of two against the full recurrence and against the defining sums
+  // U_n(cos t) = sin((n + 1) t)/sin t, T_n(cos t) = cos(n t).
+  for (const int size : {1, 2, 7, 34}) {
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(size);
+    for (int n = 0; n < size; n += 2) b(n) = std::cos(1.3 * n + 0.4) / (1.0 + n);
+    ASSERT_TRUE(odd_terms_zero(b));
+    for (const double t : {0.0, 0.3, 1.1, 1.5707963267948966, 2.9, 3.1}) {
+      const double r = std::cos(t);
+      double u = 0.0, tt = 0.0;
+      for (int n = 0; n < size; ++n) {
+        u += b(n) * (t == 0.0 ? n + 1.0 : std::sin((n + 1) * t) / std::sin(t));
+        tt += b(n) * std::cos(n * t);
+      }
+      for (const SeriesKind kind : {SeriesKind::U, SeriesKind::T}) {
+        const double want = kind == SeriesKind::U ? u : tt;
+        EXPECT_NEAR(even_series(b, r, kind), series(b, r, kind), 1e-14) << size << " " << t;
+        EXPECT_NEAR(even_series(b, r, kind), want, 1e-12) << size << " " << t;
+      }
+    }
+  }
+  Eigen::VectorXd odd = Eigen::VectorXd::Zero(4);
+  odd(3) = 1e-300;
+  EXPECT_FALSE(odd_terms_zero(odd));
+}
+
 TEST(Collocation, RejectsOddOrTinyN) {
   EXPECT_THROW(chebyshev_nodes(7), std::invalid_argument);
   EXPECT_THROW(chebyshev_nodes(0), std::invalid_argument);
@@ -132,6 +159,48 @@ TEST(Collocation, CosineTransformHoldsAtHighBesselOrders) {
     EXPECT_NEAR(u_series_cosine_transform(b, 1.0, r.w), -3.0 * r.j3 * 0.5 * kPi / r.w,
                 3.0 * tol * 0.5 * kPi / r.w)
         << r.w;
+  }
+  // Moderate arguments above the orders (25 < w <= 200: Hankel's J_0, J_1
+  // and the upward recurrence since the graded top's panels reach there):
+  // T_0 sums J_0, U_0 J_1, U_2 J_3, U_22 J_23. References from a long-double
+  // Miller recurrence started at order 2w + 100 (its J_0, J_1 agree with
+  // scipy.special.j0, j1 to 6e-16; scipy's jv is 7e-14 off here), within
+  // 2e-15 of the amplitude sqrt(2 / (pi w)).
+  const struct {
+    double w, j0, j1, j3, j23;
+  } moderate[] = {
+      {25.5, 0.14406215754684787, -0.062048536491484105, 0.0386871703066162, 0.23201924188732115},
+      {31.25, 0.08239920414269862, -0.11522838548383534, 0.10373733641968633, -0.17213328371184894},
+      {47.75, -0.11395261382459274, 0.017420362617125266, -0.007813471515923343,
+       -0.08780227816414866},
+      {66.5, -0.0945348255659813, 0.024511501476355956, -0.01878085404295398,
+       -0.058334576561289334},
+      {99.125, -0.04668290030976295, -0.06537475612182513, 0.06720532817191374,
+       -0.03807851907763939},
+      {150.375, 0.023110765671267772, -0.060746326609006494, 0.060110085295896266,
+       -0.0344709308510282}};
+  for (const auto& r : moderate) {
+    const double tol = 2e-15 * std::sqrt(2.0 / (kPi * r.w));
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(23);
+    b(0) = 1.0;
+    EXPECT_NEAR(series_cosine_transform(b.head(1), SeriesKind::T, 1.0, r.w), r.j0 * 0.5 * kPi,
+                tol * 0.5 * kPi)
+        << r.w;
+    EXPECT_NEAR(u_series_cosine_transform(b.head(1), 1.0, r.w), r.j1 * 0.5 * kPi / r.w,
+                tol * 0.5 * kPi / r.w)
+        << r.w;
+    for (int n : {2, 22}) {
+      b.setZero();
+      b(n) = 1.0;
+      const double j = n == 2 ? r.j3 : r.j23;
+      const double sg = (n / 2) % 2 == 0 ? 1.0 : -1.0;
+      // The batched transform (four lanes, or one by one) and the single one.
+      double batched = 0.0;
+      u_series_cosine_transforms(b, 1.0, &r.w, &batched, 1);
+      for (const double got : {u_series_cosine_transform(b, 1.0, r.w), batched})
+        EXPECT_NEAR(got, sg * (n + 1) * j * 0.5 * kPi / r.w, (n + 1) * tol * 0.5 * kPi / r.w)
+            << r.w << " order " << n + 1;
+    }
   }
   // Small arguments (downward recurrence) against the library, which is
   // accurate there.

@@ -93,6 +93,12 @@ void u_series_cosine_transforms(const Eigen::VectorXd& b, double a, const double
 double t_series(const Eigen::VectorXd& b, double r);
 // g(r) = sum b_n U_n(r) or sum b_n T_n(r).
 double series(const Eigen::VectorXd& b, double r, SeriesKind kind);
+// The same for a series with no odd terms (b_1 = b_3 = ... = 0, an even g:
+// the symmetric contacts), by Clenshaw's recurrence in steps of two,
+// X_{n+2} = 2 T_2(r) X_n - X_{n-2}: half the work.
+double even_series(const Eigen::VectorXd& b, double r, SeriesKind kind);
+// Whether every odd coefficient is exactly 0.
+bool odd_terms_zero(const Eigen::VectorXd& b);
 // The minimum of series(b, r, kind) on -1 <= r <= 1 (the scan and refinement
 // of u_series_minimum); its abscissa in *r_min.
 double series_minimum(const Eigen::VectorXd& b, SeriesKind kind, double* r_min = nullptr);

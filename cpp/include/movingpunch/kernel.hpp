@@ -152,6 +152,18 @@ class KernelK1 {
   void sum_many(const double* u, const double* v, double* out, std::size_t n) const;
   // The singular terms of k1 (empty but for a graded top).
   const std::vector<KernelSingularTerm>& singular() const noexcept { return singular_; }
+  // A graded top's slow tails beyond the quadratures' reach, medium
+  // constants of the bounds a solve makes of what they leave out
+  // (graded_tails, contact.cpp): |M1 - phi1| <= surface_c/alpha beyond
+  // alpha_max and the mode remainder's |sigma_x(0)| <= field_c/alpha beyond
+  // field_reach (each the larger of alpha |.| at the reach and twice it).
+  // Zero but for a graded top.
+  struct GradedTailConstants {
+    double surface_c = 0.0;
+    double field_reach = 0.0;
+    double field_c = 0.0;
+  };
+  const GradedTailConstants& graded_tail_constants() const noexcept { return tails_; }
   const KernelSubtraction& subtraction() const noexcept { return sub_; }
   double range() const noexcept { return range_; }
   const AlphaQuadrature& quadrature() const noexcept { return quad_; }
@@ -192,6 +204,7 @@ class KernelK1 {
   double range_;
   KernelSubtraction sub_;
   std::vector<KernelSingularTerm> singular_;
+  GradedTailConstants tails_;
   double numeric(double u) const;  // the tabulated part (Filon sum)
   double table(double u) const;
   AlphaQuadrature quad_;
