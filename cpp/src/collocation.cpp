@@ -195,12 +195,24 @@ Eigen::MatrixXd singular_collocation_matrix(const ChebyshevNodes& nodes, double 
 Eigen::VectorXd u_coefficients(const ChebyshevNodes& nodes, const Eigen::VectorXd& g_full) {
   const int n = nodes.n;
   Eigen::VectorXd b = Eigen::VectorXd::Zero(n);
+  // (1 - r^2) U_m(r) = sin(th) sin((m+1) th), th = i pi/(n + 1): every
+  // sine is one of sin(k pi/(n + 1)), k = (m + 1) i mod 2 (n + 1) (a table
+  // of 2 (n + 1) in place of n^2 sines).
+  const int period = 2 * (n + 1);
+  thread_local std::vector<double> sines;
+  sines.resize(static_cast<std::size_t>(period));
+  for (int k = 0; k < period; ++k) sines[static_cast<std::size_t>(k)] = std::sin(k * kPi / (n + 1));
+  thread_local std::vector<double> sg;  // sin(th_i) g_i
+  sg.resize(static_cast<std::size_t>(n));
+  for (int i = 1; i <= n; ++i)
+    sg[static_cast<std::size_t>(i - 1)] = sines[static_cast<std::size_t>(i)] * g_full(i - 1);
   for (int m = 0; m < n; ++m) {
     double sum = 0.0;
+    int k = 0;
     for (int i = 1; i <= n; ++i) {
-      const double th = i * kPi / (n + 1);
-      // (1 - r^2) U_m(r) = sin(th) sin((m+1) th)
-      sum += std::sin(th) * std::sin((m + 1) * th) * g_full(i - 1);
+      k += m + 1;
+      if (k >= period) k -= period;
+      sum += sg[static_cast<std::size_t>(i - 1)] * sines[static_cast<std::size_t>(k)];
     }
     b(m) = 2.0 * sum / (n + 1);
   }
@@ -409,6 +421,10 @@ void series_cosine_transforms(const Eigen::VectorXd& b, SeriesKind kind, double 
   constexpr int L = 4;
   const bool t_kind = kind == SeriesKind::T;
   const Eigen::Index last_all = last_even_term(b);
+  // Arguments above the orders and kHankelMin: the upward branch, four at a
+  // time after the others (upward_transforms).
+  thread_local std::vector<std::size_t> upward;
+  upward.clear();
   std::size_t i = 0;
   while (i < count) {
     // Gather up to L arguments for Miller's recurrence; the others (tiny or
@@ -427,8 +443,10 @@ void series_cosine_transforms(const Eigen::VectorXd& b, SeriesKind kind, double 
       // above them, from w = kHankelMin, the upward branch (bessel_orders:
       // a graded top's panels reach w ~ 60, where Miller's start is 3 times
       // the orders).
-      if (wi < 1e-8 || (wi > detail::kHankelMin && static_cast<double>(last) + 2.0 < wi)) {
+      if (wi < 1e-8) {
         out[i] = cosine_transform_to(b, kind, a, alpha[i], last_all);
+      } else if (wi > detail::kHankelMin && static_cast<double>(last) + 2.0 < wi) {
+        upward.push_back(i);
       } else {
         idx[static_cast<std::size_t>(lanes)] = i;
         w[static_cast<std::size_t>(lanes)] = wi;
@@ -502,6 +520,42 @@ void series_cosine_transforms(const Eigen::VectorXd& b, SeriesKind kind, double 
       const double total = norm[q] - cur[q];  // J_0 + 2 sum J_2k
       out[idx[q]] = t_kind ? sum[q] / total * 0.5 * kPi * a : sum[q] / total * 0.5 * kPi * a / w[q];
     }
+  }
+  if (upward.empty()) return;
+  // The upward branch, L lanes at once: J_0, J_1 by Hankel's expansion, then
+  // J_{k+1} = (2k/w) J_k - J_{k-1} to kmax < w - 1, summed on the way (no
+  // table of J). coef[m] as in Miller's branch above.
+  const int kmax = static_cast<int>(last_all) + 1;
+  thread_local std::vector<double> cu;
+  cu.assign(static_cast<std::size_t>(kmax) + 1, 0.0);
+  if (t_kind) {
+    for (int m = 0; m < kmax; m += 2)
+      cu[static_cast<std::size_t>(m)] = b(m) * ((m / 2) % 2 == 0 ? 1.0 : -1.0);
+  } else {
+    for (int m = 1; m <= kmax; m += 2)
+      cu[static_cast<std::size_t>(m)] =
+          b(m - 1) * static_cast<double>(m) * (((m - 1) / 2) % 2 == 0 ? 1.0 : -1.0);
+  }
+  for (std::size_t g = 0; g < upward.size(); g += L) {
+    const std::size_t lanes = std::min<std::size_t>(L, upward.size() - g);
+    std::array<double, L> w{}, inv{}, prev{}, cur{}, sum{};
+    for (std::size_t l = 0; l < L; ++l) {
+      w[l] = alpha[upward[g + std::min(l, lanes - 1)]] * a;  // padding repeats the last
+      inv[l] = 2.0 / w[l];
+      detail::bessel_j01_large(w[l], prev[l], cur[l]);
+      sum[l] = cu[0] * prev[l] + (kmax >= 1 ? cu[1] * cur[l] : 0.0);
+    }
+    for (int k = 1; k < kmax; ++k) {
+      const double c = cu[static_cast<std::size_t>(k) + 1], fk = static_cast<double>(k);
+      for (std::size_t l = 0; l < L; ++l) {
+        const double next = fk * inv[l] * cur[l] - prev[l];
+        sum[l] += c * next;
+        prev[l] = cur[l];
+        cur[l] = next;
+      }
+    }
+    for (std::size_t l = 0; l < lanes; ++l)
+      out[upward[g + l]] = t_kind ? sum[l] * 0.5 * kPi * a : sum[l] * 0.5 * kPi * a / w[l];
   }
 }
 

@@ -465,15 +465,12 @@ void spherical_bessel_many(const double* z, std::size_t n, std::array<double, 15
 
 FilonIntegrator::FilonIntegrator(const AlphaQuadrature& q)
     : centre_(q.panel_centre), half_(q.panel_half) {
-  // Panels share a few half-widths (bisections of one width), equal but for
-  // their last bits (i w0 - (i - 1) w0 rounds: a graded top's 14 were 4).
-  // One within 1e-14 of another shares its Bessel functions: j_n(h' alpha x)
-  // is then off by 1e-14 of h x, within what the nodes' own rounding
-  // (1e-16 of alpha, a phase error alpha x 1e-16) already leaves.
+  // Panels share a few half-widths (bisections of one width). (Widths equal
+  // but for their last bits stay apart: sharing one's Bessel functions moved
+  // k1 near V*_cr by more than a/h's error estimate allowed.)
   width_of_.reserve(half_.size());
   for (const double h : half_) {
-    const auto it = std::find_if(widths_.begin(), widths_.end(),
-                                 [h](double w) { return std::fabs(w - h) <= 1e-14 * h; });
+    const auto it = std::find(widths_.begin(), widths_.end(), h);
     width_of_.push_back(static_cast<std::size_t>(it - widths_.begin()));
     if (it == widths_.end()) widths_.push_back(h);
   }
