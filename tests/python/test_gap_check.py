@@ -143,7 +143,9 @@ def test_graded_top_valid_means_no_penetration_on_a_fine_grid(
     assert s.valid
     gap, x, dip = _fine_gap(s)
     scale = max(abs(s.indentation), s.a**2 / s.radius)
-    assert gap >= -1e-6 * scale, f"the surface rises {-gap:.4g} h above the punch at {x:.6g}"
+    assert gap >= -1e-6 * scale, (
+        f"the surface rises {-gap:.4g} h above the punch at {x:.6g}"
+    )
     assert s.min_gap <= dip + 1e-6 * scale
     # Beside the contact the gap opens: the solver's minimum is that of the
     # fine grid off the contact's end (within the grid's step there).
