@@ -148,14 +148,16 @@ namespace {
 // B(k, j) = W_j (4/pi) sum_{n even < N} U_n(r_j) M_n(s_k) for the moments M of
 // (r - s)^p sigma(r - s): independent of a and of the coefficients, cached
 // per (N, p, sigma) (the width iteration assembles many matrices at one N).
-const Eigen::MatrixXd& moment_block(const ChebyshevNodes& nodes, int p, int sigma) {
+// (Shared, not a reference into the cache: another thread's insertion may
+// clear it.)
+std::shared_ptr<const Eigen::MatrixXd> moment_block(const ChebyshevNodes& nodes, int p, int sigma) {
   static std::mutex mutex;
   static std::map<std::array<int, 3>, std::shared_ptr<const Eigen::MatrixXd>> cache;
   const std::array<int, 3> key{nodes.n, p, sigma};
   {
     std::lock_guard<std::mutex> lock(mutex);
     const auto it = cache.find(key);
-    if (it != cache.end()) return *it->second;
+    if (it != cache.end()) return it->second;
   }
   const int n = nodes.n, h = n / 2;
   Eigen::MatrixXd U(h, n);
@@ -175,7 +177,7 @@ const Eigen::MatrixXd& moment_block(const ChebyshevNodes& nodes, int p, int sigm
   if (cache.size() > 256) cache.clear();
   auto& slot = cache[key];
   if (!slot) slot = std::move(B);
-  return *slot;
+  return slot;
 }
 
 }  // namespace
@@ -186,8 +188,8 @@ Eigen::MatrixXd singular_collocation_matrix(const ChebyshevNodes& nodes, double 
   Eigen::MatrixXd M = Eigen::MatrixXd::Zero(h, h);
   for (const KernelSingularTerm& t : terms) {
     const double scale = a * t.coef * std::pow(a, t.power);
-    M += scale * moment_block(nodes, t.power, t.log ? 2 : 1);
-    if (t.log) M += scale * std::log(a) * moment_block(nodes, t.power, 0);
+    M += scale * *moment_block(nodes, t.power, t.log ? 2 : 1);
+    if (t.log) M += scale * std::log(a) * *moment_block(nodes, t.power, 0);
   }
   return M;
 }
@@ -416,6 +418,24 @@ void u_series_cosine_transforms(const Eigen::VectorXd& b, double a, const double
   series_cosine_transforms(b, SeriesKind::U, a, alpha, out, count);
 }
 
+namespace {
+// coef[m], m < size: the weight of J_m in a cosine transform's sum (orders
+// up to kmax): U, b_n (n+1) (-1)^{n/2} at m = n + 1 (odd); T, b_n
+// (-1)^{n/2} at m = n (even); 0 elsewhere.
+void bessel_weights(const Eigen::VectorXd& b, bool t_kind, int kmax, std::size_t size,
+                    std::vector<double>& coef) {
+  coef.assign(size, 0.0);
+  if (t_kind) {
+    for (int m = 0; m < kmax; m += 2)
+      coef[static_cast<std::size_t>(m)] = b(m) * ((m / 2) % 2 == 0 ? 1.0 : -1.0);
+  } else {
+    for (int m = 1; m <= kmax; m += 2)
+      coef[static_cast<std::size_t>(m)] =
+          b(m - 1) * static_cast<double>(m) * (((m - 1) / 2) % 2 == 0 ? 1.0 : -1.0);
+  }
+}
+}  // namespace
+
 void series_cosine_transforms(const Eigen::VectorXd& b, SeriesKind kind, double a,
                               const double* alpha, double* out, std::size_t count) {
   constexpr int L = 4;
@@ -463,18 +483,8 @@ void series_cosine_transforms(const Eigen::VectorXd& b, SeriesKind kind, double 
     const double top = std::max(static_cast<double>(kmax), wmax);
     int start = static_cast<int>(top + 20.0 + 4.0 * std::sqrt(top));
     start += start % 2;
-    // coef[m]: the weight of J_m: U, b_n (n+1) (-1)^{n/2} at m = n + 1 (odd);
-    // T, b_n (-1)^{n/2} at m = n (even).
     thread_local std::vector<double> coef;
-    coef.assign(static_cast<std::size_t>(start) + 1, 0.0);
-    if (t_kind) {
-      for (int m = 0; m < kmax; m += 2)
-        coef[static_cast<std::size_t>(m)] = b(m) * ((m / 2) % 2 == 0 ? 1.0 : -1.0);
-    } else {
-      for (int m = 1; m <= kmax; m += 2)
-        coef[static_cast<std::size_t>(m)] =
-            b(m - 1) * static_cast<double>(m) * (((m - 1) / 2) % 2 == 0 ? 1.0 : -1.0);
-    }
+    bessel_weights(b, t_kind, kmax, static_cast<std::size_t>(start) + 1, coef);
     std::array<double, L> up{}, cur{}, norm{}, sum{}, inv{};
     for (int l = 0; l < L; ++l) {
       cur[static_cast<std::size_t>(l)] = 1e-280;
@@ -524,18 +534,10 @@ void series_cosine_transforms(const Eigen::VectorXd& b, SeriesKind kind, double 
   if (upward.empty()) return;
   // The upward branch, L lanes at once: J_0, J_1 by Hankel's expansion, then
   // J_{k+1} = (2k/w) J_k - J_{k-1} to kmax < w - 1, summed on the way (no
-  // table of J). coef[m] as in Miller's branch above.
+  // table of J).
   const int kmax = static_cast<int>(last_all) + 1;
   thread_local std::vector<double> cu;
-  cu.assign(static_cast<std::size_t>(kmax) + 1, 0.0);
-  if (t_kind) {
-    for (int m = 0; m < kmax; m += 2)
-      cu[static_cast<std::size_t>(m)] = b(m) * ((m / 2) % 2 == 0 ? 1.0 : -1.0);
-  } else {
-    for (int m = 1; m <= kmax; m += 2)
-      cu[static_cast<std::size_t>(m)] =
-          b(m - 1) * static_cast<double>(m) * (((m - 1) / 2) % 2 == 0 ? 1.0 : -1.0);
-  }
+  bessel_weights(b, t_kind, kmax, static_cast<std::size_t>(kmax) + 1, cu);
   for (std::size_t g = 0; g < upward.size(); g += L) {
     const std::size_t lanes = std::min<std::size_t>(L, upward.size() - g);
     std::array<double, L> w{}, inv{}, prev{}, cur{}, sum{};
