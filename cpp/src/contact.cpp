@@ -541,20 +541,28 @@ double kernel_perturbation(const KernelK1& k, double a, const Eigen::VectorXd& l
     for (std::size_t i = 0; i < panels; ++i) order[i] = i;
     std::sort(order.begin(), order.end(),
               [&](std::size_t l, std::size_t r) { return crude[l] > crude[r]; });
-    for (const std::size_t i : order) {
-      if (rest <= 1e-2 * (dS + 3.0 * std::sqrt(dS_round2))) break;
-      rest -= crude[i];
-      const double e = q.panel_error[i], r = q.panel_roundoff[i];
-      if (!((e + r) * worst > 1e-4 * eps * std::fabs(S))) continue;  // negligible
-      const double hw = q.panel_half[i], c = q.panel_centre[i];
-      // (Bisected panels' half-widths differ in their last bits: 14 "distinct"
-      // ones of a graded top were 4. A phase a h x r off by 1e-12 of itself
-      // is nothing to a bound.)
-      std::size_t w = 0;
-      while (w < widths.size() && !(std::fabs(widths[w] - hw) <= 1e-12 * hw)) ++w;
-      if (w == widths.size()) {
+    // The distinct half-widths (bisections of one width, equal but for their
+    // last bits within 1e-12: a graded top's 14 were 4; a phase a h x r
+    // off by 1e-12 of itself is nothing to a bound), ascending, and their
+    // offsets: the narrowest by sin/cos, each twice as wide as the one
+    // before by squaring its (e^{2 i phi} = (e^{i phi})^2: a few 1e-16).
+    for (std::size_t i = 0; i < panels; ++i) {
+      const double hw = q.panel_half[i];
+      if (std::none_of(widths.begin(), widths.end(),
+                       [hw](double v) { return std::fabs(v - hw) <= 1e-12 * hw; }))
         widths.push_back(hw);
-        std::vector<double> tc(kPoints * per), ts(kPoints * per);
+    }
+    std::sort(widths.begin(), widths.end());
+    for (std::size_t w = 0; w < widths.size(); ++w) {
+      const double hw = widths[w];
+      std::vector<double> tc(kPoints * per), ts(kPoints * per);
+      if (w > 0 && std::fabs(hw - 2.0 * widths[w - 1]) <= 1e-12 * hw) {
+        const std::vector<double>&pc = off_c[w - 1], &ps = off_s[w - 1];
+        for (std::size_t e = 0; e < tc.size(); ++e) {
+          tc[e] = pc[e] * pc[e] - ps[e] * ps[e];
+          ts[e] = 2.0 * pc[e] * ps[e];
+        }
+      } else {
         for (std::size_t k = 0; k < static_cast<std::size_t>(kPoints); ++k) {
           const double ahx = a * hw * x[k];
           for (std::size_t j = 0; j < nr; ++j) {
@@ -568,9 +576,18 @@ double kernel_perturbation(const KernelK1& k, double a, const Eigen::VectorXd& l
             ts[k * per + nr + j] = std::sin(ph);
           }
         }
-        off_c.push_back(std::move(tc));
-        off_s.push_back(std::move(ts));
       }
+      off_c.push_back(std::move(tc));
+      off_s.push_back(std::move(ts));
+    }
+    for (const std::size_t i : order) {
+      if (rest <= 1e-2 * (dS + 3.0 * std::sqrt(dS_round2))) break;
+      rest -= crude[i];
+      const double e = q.panel_error[i], r = q.panel_roundoff[i];
+      if (!((e + r) * worst > 1e-4 * eps * std::fabs(S))) continue;  // negligible
+      const double hw = q.panel_half[i], c = q.panel_centre[i];
+      std::size_t w = 0;
+      while (w < widths.size() && !(std::fabs(widths[w] - hw) <= 1e-12 * hw)) ++w;
       const double* tc = off_c[w].data();
       const double* ts = off_s[w].data();
       for (std::size_t j = 0; j < nr; ++j) {
