@@ -1001,6 +1001,29 @@ void weighted_nodes(const PunchProfile& prof, double c, double w, double a, doub
   }
 }
 
+// The rounded flat's slope (zero on the face |x| <= b, (|x| - b)/R sgn x
+// beyond) on (c - w, c + w) against P_m^(a, b) and its weight: int
+// f'(c + w s) (1 - s)^a (1 + s)^b P_m(s) ds, m < count, in closed form (the
+// slope is linear on each piece: jacobi_upper_moments, jacobi_lower_moments).
+std::vector<double> rounded_flat_moments(const PunchProfile& prof, double c, double w, double a,
+                                         double b, int count) {
+  std::vector<double> out(static_cast<std::size_t>(std::max(count, 0)), 0.0);
+  if (count <= 0) return out;
+  const double face = prof.face(), inv_r = 1.0 / prof.radius();
+  const double s_right = (face - c) / w, s_left = (-face - c) / w;
+  if (s_right < 1.0) {  // x > b: f' = (x - b)/R = ((c - b) + w s)/R
+    const JacobiMoments m = jacobi_upper_moments(a, b, s_right, count);
+    for (std::size_t k = 0; k < out.size(); ++k)
+      out[k] += ((c - face) * m.I[k] + w * m.J[k]) * inv_r;
+  }
+  if (s_left > -1.0) {  // x < -b: f' = (x + b)/R
+    const JacobiMoments m = jacobi_lower_moments(a, b, s_left, count);
+    for (std::size_t k = 0; k < out.size(); ++k)
+      out[k] += ((c + face) * m.I[k] + w * m.J[k]) * inv_r;
+  }
+  return out;
+}
+
 class SlopeProjection {
  public:
   // Without friction (jacobi false) the T_m; with it P_m^(a, b), (a, b) =
@@ -1084,6 +1107,11 @@ class SlopeProjection {
       if (!d.empty()) d[0] *= 0.5;
       return d;
     }
+    if (prof_.kind() == ProfileKind::rounded_flat) {
+      std::vector<double> q = rounded_flat_moments(prof_, c, w, a_, b_, count);
+      for (int m = 0; m < count; ++m) q[static_cast<std::size_t>(m)] /= jacobi_norm(m, a_, b_);
+      return q;
+    }
     std::vector<double> q(static_cast<std::size_t>(count), 0.0);
     std::vector<double> P(static_cast<std::size_t>(count));
     const bool table = prof_.kind() == ProfileKind::table;
@@ -1108,6 +1136,11 @@ class SlopeProjection {
   // h_m = int Q_m^2 (1 - s)^a (1 + s)^b ds by a rule exact for them.
   const std::vector<double>& norms(int count) const {
     if (static_cast<int>(norms_.size()) >= count) return norms_;
+    if (jacobi_) {
+      norms_.resize(static_cast<std::size_t>(count));
+      for (int m = 0; m < count; ++m) norms_[static_cast<std::size_t>(m)] = jacobi_norm(m, a_, b_);
+      return norms_;
+    }
     const auto held = cached_rule(count + 2, a_, b_);
     const JacobiRule& rule = *held;
     norms_.assign(static_cast<std::size_t>(count), 0.0);
@@ -1621,7 +1654,14 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
   if (!cylinder) {
     // drag = int p f'(x) dx / P = w int weight(r) g(r) f'(c + w r) dr.
     const double c = s.centre_, w = s.half_;
-    if (frictional) {
+    if (frictional && kinked) {  // sum_n c_n int weight P_n f', in closed form
+      const std::vector<double> mom =
+          rounded_flat_moments(prof, c, w, js.alpha(), js.beta(), js.size());
+      double sum = 0.0;
+      for (int n = 0; n < js.size(); ++n)
+        sum += js.coefficients()(n) * mom[static_cast<std::size_t>(n)];
+      s.drag_ = w * sum;
+    } else if (frictional) {
       double sum = 0.0;
       weighted_nodes(prof, c, w, s.exps_.front, s.exps_.back, js.size() + 64,
                      [&](double r, double wt) { sum += wt * js.g(r) * prof.slope(c + w * r); });
@@ -1731,6 +1771,7 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
     s.jtr_omega_ = kern->quadrature().panels.alpha_max * s.half_;
     s.atan_rule_ = *cached_gauss_jacobi(js.size() + 64 + static_cast<int>(std::ceil(8.0 * s.half_)),
                                         s.exps_.front, s.exps_.back);
+    s.atan_wg_ = s.atan_weights(js);
   }
   s.light_ = std::make_shared<const AsymmetricSolution::Fine>(
       s.build_fine(2.0 * s.half_, have_change ? &db : nullptr, &dphat));
@@ -1756,6 +1797,7 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
       std::vector<double> amp_re, amp_im;
       f.coefficients(amp, amp_re, amp_im);
       double dmax = 0.0;
+      const Eigen::VectorXd dwg = frictional ? s.atan_weights(dseries) : Eigen::VectorXd();
       for (int j = 0; j < 96; ++j) {
         double r;
         if (j < 64) {
@@ -1773,7 +1815,7 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
         double local = 0.0;
         if (frictional) {
           dp = dseries.density(r);
-          local = s.friction_surface_terms(x, dseries, s.centre_, s.half_);
+          local = s.friction_surface_terms(x, dseries, dwg, s.centre_, s.half_);
         }
         dmax = std::max(dmax, std::fabs(-phi2 * dp - sum / kPi + local));
       }
@@ -2019,22 +2061,29 @@ cplx AsymmetricSolution::surface_stress_integrand(const DampedResponse& r, doubl
   return r.M2 - phi2 - cplx(0.0, params_.friction) * tq;
 }
 
-double AsymmetricSolution::friction_surface_terms(double x, const JacobiSeries& ser, double c,
+Eigen::VectorXd AsymmetricSolution::atan_weights(const JacobiSeries& ser) const {
+  Eigen::VectorXd wg(atan_rule_.x.size());
+  ser.g_values(atan_rule_.x.data(), static_cast<int>(wg.size()), wg.data());
+  return (wg.array() * atan_rule_.w.array()).matrix();
+}
+
+double AsymmetricSolution::friction_surface_terms(double x, const JacobiSeries& ser,
+                                                  const Eigen::VectorXd& wg, double c,
                                                   double w) const {
   // f Cq (1/pi) int p/(xi - x) - (f C0/pi) int p(xi) arctan(x - xi) d xi for p(c + w r) = w(r)
   // g(r).
   const WaveConstants& wc = model_->top();
   const double ep = 4.0 * (wc.c2 - 1.0) / wc.c2;
   const double cq = ep * model_->tangential().Uq, f = params_.friction;
-  return f * cq * ser.cauchy((x - c) / w) + bar_term(x, ser, c, w);
+  return f * cq * ser.cauchy((x - c) / w) + bar_term(x, wg, c, w);
 }
 
-double AsymmetricSolution::bar_term(double x, const JacobiSeries& ser, double c, double w) const {
+double AsymmetricSolution::bar_term(double x, const Eigen::VectorXd& wg, double c, double w) const {
   const double c0 = bar_pole(*model_);
   if (c0 == 0.0) return 0.0;  // a bonded half-space takes the net horizontal force
   double at = 0.0;
   for (Eigen::Index j = 0; j < atan_rule_.x.size(); ++j)
-    at += atan_rule_.w(j) * ser.g(atan_rule_.x(j)) * std::atan(x - c - w * atan_rule_.x(j));
+    at += wg(j) * std::atan(x - c - w * atan_rule_.x(j));
   return -params_.friction * c0 / kPi * w * at;
 }
 
@@ -2256,7 +2305,11 @@ AsymmetricSolution::Fine AsymmetricSolution::build_fine(double freq, const Eigen
         f.r.push_back(m == 1 ? Q.r[15 * p + static_cast<std::size_t>(j)]
                              : model_->full_response(a));
         cplx dp = 0.0;
-        if (jac_) {
+        if (jac_ && db != nullptr && a >= 0.0 && a * half_ <= jtr_omega_) {
+          const auto [t, t2] = jtr_->both(a * half_);
+          f.phat.push_back(half_ * std::exp(cplx(0.0, -a * centre_)) * t);
+          dp = half_ * t2;
+        } else if (jac_) {
           f.phat.push_back(pressure_transform(a));
           if (db != nullptr) dp = half_ * jtr_->second(a * half_);
         } else {
@@ -2335,7 +2388,7 @@ double AsymmetricSolution::surface_stress(double x) const {
   if (!std::isfinite(x)) throw std::invalid_argument("surface_stress: x must be finite");
   const Fine& f = *light_;
   const double s = -model_->phi2() * pressure(x) - f.fourier(f.sx_re, f.sx_im, x - centre_) / kPi;
-  if (jac_) return s + friction_surface_terms(x, *jac_, centre_, half_);
+  if (jac_) return s + friction_surface_terms(x, *jac_, atan_wg_, centre_, half_);
   return s;
 }
 
@@ -2529,7 +2582,7 @@ StressField AsymmetricSolution::stress_field(const Eigen::Ref<const Eigen::Vecto
         const BottomFriction& bf = *bottom_friction();
         const double u = x(j) - centre_;
         g.sigma_x(i, j) =
-            f.fourier(bf.sx_re, bf.sx_im, u) / kPi + bar_term(x(j), *jac_, centre_, half_);
+            f.fourier(bf.sx_re, bf.sx_im, u) / kPi + bar_term(x(j), atan_wg_, centre_, half_);
         g.sigma_y(i, j) = f.fourier(bf.sy_re, bf.sy_im, u) / kPi;
         g.tau_xy(i, j) = f.fourier(bf.t_re, bf.t_im, u) / kPi;
         continue;
@@ -2537,7 +2590,7 @@ StressField AsymmetricSolution::stress_field(const Eigen::Ref<const Eigen::Vecto
       if (jac_) {
         const Eigen::Vector3d hp =
             jacobi_half_plane(c, *jac_, half_, x(j) - centre_, y(i), params_.friction);
-        g.sigma_x(i, j) = rem(j, i) + hp(0) + bar_term(x(j), *jac_, centre_, half_);
+        g.sigma_x(i, j) = rem(j, i) + hp(0) + bar_term(x(j), atan_wg_, centre_, half_);
         g.sigma_y(i, j) = rem(j, ny + i) + hp(1);
         g.tau_xy(i, j) = rem(j, 2 * ny + i) + hp(2);
         continue;
@@ -2604,8 +2657,7 @@ double AsymmetricSolution::arctan_integral(double x) const {
   // int p(xi) arctan(x - xi) d xi / (P/h) by atan_rule_ (friction only).
   double at = 0.0;
   for (Eigen::Index j = 0; j < atan_rule_.x.size(); ++j)
-    at += atan_rule_.w(j) * jac_->g(atan_rule_.x(j)) *
-          std::atan(x - centre_ - half_ * atan_rule_.x(j));
+    at += atan_wg_(j) * std::atan(x - centre_ - half_ * atan_rule_.x(j));
   return half_ * at;
 }
 

@@ -304,6 +304,7 @@ AsymmetricSolution solve_asymmetric_flat(const AsymmetricParams& prm_in) {
       std::make_shared<const JacobiTransform>(js, s.jtr_omega_, have_change ? &dseries : nullptr);
   s.atan_rule_ =
       *cached_gauss_jacobi(js.size() + 64 + static_cast<int>(std::ceil(8.0 * w)), al, be);
+  s.atan_wg_ = s.atan_weights(js);
   std::vector<cplx> dphat;
   const Eigen::VectorXd unused_db;
   s.light_ = std::make_shared<const AsymmetricSolution::Fine>(
@@ -336,12 +337,13 @@ AsymmetricSolution solve_asymmetric_flat(const AsymmetricParams& prm_in) {
       std::vector<double> amp_re, amp_im;
       f.coefficients(amp, amp_re, amp_im);
       double dmax = 0.0;
+      const Eigen::VectorXd dwg = frictional ? s.atan_weights(dseries) : Eigen::VectorXd();
       for (double r : rs) {
         const double x = w * r;
         const auto re_im = f.filon->integral_pair(x, amp_re, amp_im);
         const double sum = re_im.first.real() - re_im.second.imag();
         const double dp = std::fabs(r) < 1.0 ? dseries.density(r) : 0.0;
-        const double local = frictional ? s.friction_surface_terms(x, dseries, 0.0, w) : 0.0;
+        const double local = frictional ? s.friction_surface_terms(x, dseries, dwg, 0.0, w) : 0.0;
         dmax = std::max(dmax, std::fabs(-phi2 * dp - sum / kPi + local));
       }
       gain = std::max(std::fabs(phi2), dmax / dg_ref);

@@ -238,9 +238,31 @@ inline Eigen::Vector3d half_plane_stresses(const WaveConstants& c, const Eigen::
 // m = 8000 for 0.37 <= a/h <= 35: 7.5e-16 relative).
 // Kind T: int g(r)/sqrt(1 - r^2) ln(1 + (u - a r)^2) dr, g = sum b_n T_n, by
 // Gauss-Chebyshev of the first kind (nodes cos((2i - 1) pi/(2m)), weights pi/m).
-inline void log1p_rule(const Eigen::VectorXd& b, double a, std::vector<double>& r,
+// Only the terms that the logarithm sees: ln(1 + (u - a r)^2) = 2 Re ln(r - z0)
+// + const, z0 = (u + i)/a, whose T_k coefficients are at most 4 rho(z0)^-k / k
+// with rho(z0) >= rho; its moments against sqrt(1 - r^2) U_n (pi/4 (t_n (1 +
+// delta_n0) - t_{n+2})) or T_n/sqrt(1 - r^2) (pi/2 t_n) are therefore at most
+// 3 pi rho^-n / n, and the terms n >= K of g whose share sum |b_n| 4 pi
+// rho^-n / n stays below 1e-17 of sum |b_n| are left out
+// (a profile's tail-extended series has thousands of terms, the logarithm
+// sees a few dozen).
+inline void log1p_rule(const Eigen::VectorXd& b_all, double a, std::vector<double>& r,
                        std::vector<double>& wg, SeriesKind kind = SeriesKind::U) {
   const double rho = 1.0 / a + std::sqrt(1.0 + 1.0 / (a * a));
+  Eigen::Index keep = b_all.size();
+  {
+    const double total = b_all.cwiseAbs().sum(), lr = std::log(rho);
+    double tail = 0.0;
+    while (keep > 1) {
+      const double n = static_cast<double>(keep - 1);
+      const double share =
+          std::fabs(b_all(keep - 1)) * 4.0 * potentials::kPi * std::exp(-n * lr) / std::max(n, 1.0);
+      if (tail + share > 1e-17 * total) break;
+      tail += share;
+      --keep;
+    }
+  }
+  const Eigen::VectorXd b = b_all.head(keep);
   const int m = std::max(
       16, static_cast<int>(b.size()) / 2 + static_cast<int>(std::ceil(8.5 / std::log10(rho))) + 8);
   r.resize(static_cast<std::size_t>(m));

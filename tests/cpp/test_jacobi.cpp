@@ -142,3 +142,67 @@ TEST(Jacobi, CachedRulesOutliveTheCachesClearing) {
   const auto again = mp::cached_gauss_jacobi(40, 0.3, -0.3);
   EXPECT_EQ(again->x(0), fresh.x(0));
 }
+
+// The moments of P_m^(a, b) against its weight over [s0, 1] and [-1, s0]
+// (Rodrigues' formula and the recurrence of s P_m) against brute force: a
+// 400-node Gauss-Jacobi rule on the piece carrying its end's singular factor,
+// P_m by the three-term recurrence (jacobi_p) at each node. That rule's own
+// weights are good to about 2e-12 at 400 nodes (checked against the
+// incomplete beta function below), hence the tolerance.
+TEST(Jacobi, MomentsOverAPieceMatchBruteForce) {
+  struct Case {
+    double a, b;
+  };
+  for (const Case cs : {Case{-0.539284, -0.460716}, Case{0.539284, 0.460716}, Case{0.3, -0.7},
+                        Case{-0.5, -0.5}, Case{0.5, 0.5}}) {
+    for (double s0 : {-0.97, -0.48, 0.0, 0.31, 0.9}) {
+      const int count = 41;
+      const mp::JacobiMoments up = mp::jacobi_upper_moments(cs.a, cs.b, s0, count);
+      const mp::JacobiMoments lo = mp::jacobi_lower_moments(cs.a, cs.b, s0, count);
+      // [s0, 1]: s = s0 + L (1 + x)/2, (1 - s)^a = (L/2)^a (1 - x)^a.
+      const mp::JacobiRule ru = mp::gauss_jacobi(400, cs.a, 0.0);
+      const mp::JacobiRule rl = mp::gauss_jacobi(400, 0.0, cs.b);
+      for (int m = 0; m < count; ++m) {
+        double iu = 0, ju = 0, il = 0, jl = 0;
+        const double L = 1.0 - s0, Ll = 1.0 + s0;
+        for (int i = 0; i < 400; ++i) {
+          const double s = s0 + L * 0.5 * (1.0 + ru.x(i));
+          double p;
+          mp::jacobi_p(m, cs.a, cs.b, s, &p);
+          const double wt = ru.w(i) * 0.5 * L * std::pow(0.5 * L, cs.a) * std::pow(1.0 + s, cs.b);
+          iu += wt * p;
+          ju += wt * p * s;
+          const double t = -1.0 + Ll * 0.5 * (1.0 + rl.x(i));
+          mp::jacobi_p(m, cs.a, cs.b, t, &p);
+          const double wl = rl.w(i) * 0.5 * Ll * std::pow(0.5 * Ll, cs.b) * std::pow(1.0 - t, cs.a);
+          il += wl * p;
+          jl += wl * p * t;
+        }
+        const double scale = 1.0 + std::sqrt(mp::jacobi_norm(m, cs.a, cs.b));
+        const std::size_t k = static_cast<std::size_t>(m);
+        EXPECT_NEAR(up.I[k], iu, 4e-12 * scale)
+            << cs.a << " " << cs.b << " s0 " << s0 << " m " << m;
+        EXPECT_NEAR(up.J[k], ju, 4e-12 * scale)
+            << cs.a << " " << cs.b << " s0 " << s0 << " m " << m;
+        EXPECT_NEAR(lo.I[k], il, 4e-12 * scale)
+            << cs.a << " " << cs.b << " s0 " << s0 << " m " << m;
+        EXPECT_NEAR(lo.J[k], jl, 4e-12 * scale)
+            << cs.a << " " << cs.b << " s0 " << s0 << " m " << m;
+      }
+    }
+  }
+  // I_0 against the regularised incomplete beta function (t = (1 + s)/2:
+  // int_{s0}^{1} w = 2^(a+b+1) B(b+1, a+1) (1 - I_t0(b+1, a+1))), computed
+  // aside to 40 digits (mpmath.betainc, a = 0.3, b = -0.7).
+  EXPECT_NEAR(mp::jacobi_upper_moments(0.3, -0.7, 0.9, 1).I[0], 0.02421595959261280649, 1e-15);
+  EXPECT_NEAR(mp::jacobi_upper_moments(0.3, -0.7, 0.31, 1).I[0], 0.34300065891050121982, 1e-14);
+  EXPECT_NEAR(mp::jacobi_upper_moments(0.3, -0.7, 0.0, 1).I[0], 0.6105548773144193644, 2e-14);
+  EXPECT_NEAR(mp::jacobi_lower_moments(0.3, -0.7, -0.48, 1).I[0], 3.3085809416188511727, 1e-13);
+  // The whole interval: orthogonality (I_m = h_0 delta_m0) and the ends.
+  const mp::JacobiMoments all = mp::jacobi_upper_moments(0.3, -0.7, -1.0, 5);
+  EXPECT_NEAR(all.I[0], mp::jacobi_norm(0, 0.3, -0.7), 1e-14);
+  for (int m = 1; m < 5; ++m) EXPECT_EQ(all.I[static_cast<std::size_t>(m)], 0.0);
+  EXPECT_EQ(mp::jacobi_upper_moments(0.3, -0.7, 1.0, 5).I[0], 0.0);
+  EXPECT_THROW(mp::jacobi_upper_moments(-1.0, 0.0, 0.0, 5), std::invalid_argument);
+  EXPECT_THROW(mp::jacobi_lower_moments(0.0, 0.0, std::nan(""), 5), std::invalid_argument);
+}

@@ -382,8 +382,11 @@ class AsymmetricSolution {
   EndExponents exps_{};
   std::shared_ptr<const JacobiSeries> jac_;
   std::shared_ptr<const JacobiTransform> jtr_;
-  double jtr_omega_ = 0;  // the largest alpha w jtr_ resolves
-  JacobiRule atan_rule_;  // Gauss-Jacobi rule of friction_surface_terms' arctan integral
+  double jtr_omega_ = 0;     // the largest alpha w jtr_ resolves
+  JacobiRule atan_rule_;     // Gauss-Jacobi rule of friction_surface_terms' arctan integral
+  Eigen::VectorXd atan_wg_;  // its weights times jac_'s g at its nodes
+  // A series' weights on atan_rule_ (its weights times the series' g there).
+  Eigen::VectorXd atan_weights(const JacobiSeries& ser) const;
   // alpha v^(alpha, -1)/p^ of the loads together: Wb (+ i f Wqb with friction).
   cplx bottom_w(const DampedResponse& r) const;
   // The surface sigma_x integrand's regular part per unit p^ at alpha > 0:
@@ -391,7 +394,9 @@ class AsymmetricSolution {
   cplx surface_stress_integrand(const DampedResponse& r, double alpha) const;
   // The surface sigma_x's parts that are closed forms of p with friction:
   // f Cq (1/pi) int p/(xi - x) - (f C0/pi) int p arctan(x - xi) (theory.md section 14).
-  double friction_surface_terms(double x, const JacobiSeries& s, double c, double w) const;
+  // `wg`: atan_weights(s).
+  double friction_surface_terms(double x, const JacobiSeries& s, const Eigen::VectorXd& wg,
+                                double c, double w) const;
   std::shared_ptr<const Medium> model_;
   std::shared_ptr<const AsymmetricKernel> kernel_;
   // The homogeneous layer behind model_ (its closed-form modal fields: the
@@ -502,7 +507,8 @@ class AsymmetricSolution {
   mutable double friction_indentation_ = std::nan("");
   // -(f C0/pi) int p(xi) arctan(x - xi) d xi: the layer's bar term (the
   // shear-free base carries no horizontal force; theory.md section 14).
-  double bar_term(double x, const JacobiSeries& ser, double c, double w) const;
+  // (`wg`: atan_weights of the series.)
+  double bar_term(double x, const Eigen::VectorXd& wg, double c, double w) const;
   std::shared_ptr<const FieldNodes> field_nodes() const;
   double surface_value(const Surface& s, double x) const;  // v(x, 0)/(P/(mu h))
   // With db: dphat[i] = the transform of the U-series db (centre 0) at node i.

@@ -16,6 +16,7 @@
 
 #include <complex>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -62,6 +63,26 @@ JacobiRule gauss_jacobi(int n, double a, double b);
 // 256 rules the cache is emptied, and the pointer keeps its rule alive).
 std::shared_ptr<const JacobiRule> cached_gauss_jacobi(int n, double a, double b);
 
+// h_n = int_{-1}^{1} (1 - x)^a (1 + x)^b (P_n^(a, b))^2 dx (a, b > -1).
+double jacobi_norm(int n, double a, double b);
+
+// The moments of P_m = P_m^(a, b) (a, b > -1) against its weight w = (1 - s)^a
+// (1 + s)^b over part of [-1, 1], m = 0 .. count - 1:
+//   upper: I_m = int_{s0}^{1} w P_m ds, J_m = int_{s0}^{1} s w P_m ds;
+//   lower: the same over [-1, s0].
+// I_m (m >= 1) in closed form by Rodrigues' formula, w P_m = -(1/(2m)) d/ds
+// [(1 - s)^(a+1) (1 + s)^(b+1) P_{m-1}^(a+1, b+1)]; I_0 by a 32-node
+// Gauss-Jacobi rule from the nearer end (its other factor is analytic well
+// beyond the piece); J from I by the three-term recurrence of s P_m. The
+// projections of a piecewise linear slope (the rounded flat punch's) onto
+// the P_m are sums of these: O(count), exact to round-off, where a quadrature
+// needs O(count^2) work and a rule of 2 count nodes.
+struct JacobiMoments {
+  std::vector<double> I, J;
+};
+JacobiMoments jacobi_upper_moments(double a, double b, double s0, int count);
+JacobiMoments jacobi_lower_moments(double a, double b, double s0, int count);
+
 // The collocation nodes of the rule above in ChebyshevNodes' layout (so that
 // the damped solver's width evaluation applies unchanged): r = zeros of
 // P_N^(alpha, 1 - alpha), s = zeros of P_{N+1}^(-alpha, alpha - 1), w =
@@ -102,7 +123,10 @@ class JacobiSeries {
   const Eigen::VectorXd& coefficients() const noexcept { return c_; }
   int size() const noexcept { return static_cast<int>(c_.size()); }
 
-  double g(double r) const;        // the series (any real r)
+  double g(double r) const;  // the series (any real r)
+  // g at m points r[0..m-1] into out[0..m-1] (the recurrences of eight points
+  // interleaved: several times faster than m calls of g on long series).
+  void g_values(const double* r, int m, double* out) const;
   double weight(double r) const;   // (1 - r)^alpha (1 + r)^beta on [-1, 1], 0 outside
   double density(double r) const;  // weight(r) g(r)
   // int_{-1}^{1} w g dr (= int p / (P/h) / half-width) and int w g r dr.
@@ -141,19 +165,32 @@ class JacobiSeries {
   // q = 2, shift = 1 (alpha + beta = 1); q = 1/2, shift = -1 (alpha + beta = -1).
   int shift() const noexcept { return singular() ? -1 : 1; }
   double poly_factor() const noexcept { return singular() ? 0.5 : 2.0; }
-  // cauchy()'s Gauss-Jacobi rule for |x| >= 1.2 (N + 60 nodes) times g there.
-  Eigen::VectorXd far_x_, far_wg_;
+  // The three-term recurrences of P^(alpha, beta) and P^(-alpha, -beta) with
+  // their coefficients divided out once, and cauchy()'s Gauss-Jacobi rule for
+  // |x| >= 1.2 (N + 60 nodes) times g there, built on first use (thread-safe;
+  // copies share it: a series never changes).
+  struct Derived;
+  std::shared_ptr<Derived> derived_;
+  const Derived& derived() const;
+  struct Far {
+    Eigen::VectorXd x, wg;
+  };
+  const Far& far() const;
 };
 
 // int_{-1}^{1} w(r) g(r) e^{-i omega r} dr at many omega (|omega| <= omega_max)
-// by one Gauss-Jacobi rule of N + omega_max + 40 nodes (exact to round-off:
-// the integrand is entire, the rule resolves the oscillation).
+// by one Gauss-Jacobi rule of L + omega_max + 40 nodes (exact to round-off:
+// the integrand is entire, the rule resolves the oscillation), L the length
+// beyond which the terms' transforms, bounded by sqrt(h_0 h_m) omega^m/m!,
+// add less than 1e-17 of sum |c_m| sqrt(h_0 h_m).
 class JacobiTransform {
  public:
   // With `second` (same alpha, at most as long as s): its transform too (second()).
   JacobiTransform(const JacobiSeries& s, double omega_max, const JacobiSeries* second = nullptr);
   std::complex<double> operator()(double omega) const { return sum(gw_, omega); }
   std::complex<double> second(double omega) const { return sum(gw2_, omega); }
+  // Both at once (one set of phases).
+  std::pair<std::complex<double>, std::complex<double>> both(double omega) const;
 
  private:
   JacobiRule rule_;

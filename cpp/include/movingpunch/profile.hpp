@@ -47,6 +47,8 @@ class PunchProfile {
   bool symmetric() const noexcept { return symmetric_; }
   // The flat face's half-width b (0 for a cylinder or a table).
   double face() const noexcept { return face_; }
+  // The cylinder's radius or the rounded flat's corner radius (0 otherwise).
+  double radius() const noexcept { return radius_; }
   // True for the flat punch: the contact is the face, its ends are
   // square-root singular (index +1, SeriesKind::T).
   bool singular_ends() const noexcept { return kind_ == ProfileKind::flat; }
