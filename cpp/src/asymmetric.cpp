@@ -697,6 +697,39 @@ double max_abs_sine_series_long(const Eigen::VectorXd& b, int head) {
   return best;
 }
 
+double max_abs_density_long(const JacobiSeries& js, int head) {
+  const Eigen::Index h = std::min<Eigen::Index>(js.size(), head);
+  if (h == js.size()) return js.max_abs_density();
+  // As max_abs_sine_series_long: the head's samples locate the three largest
+  // values, the whole series is sampled on 401 angles within two sample
+  // spacings of each.
+  const JacobiSeries hs(js.alpha(), js.beta(), js.coefficients().head(h));
+  const int m = 8 * static_cast<int>(h + 1) + 64;
+  std::vector<double> r(static_cast<std::size_t>(m) - 1), g(r.size());
+  for (int j = 1; j < m; ++j) r[static_cast<std::size_t>(j - 1)] = std::cos(kPi * j / m);
+  hs.g_values(r.data(), static_cast<int>(r.size()), g.data());
+  std::vector<std::pair<double, int>> top;
+  for (std::size_t i = 0; i < r.size(); ++i)
+    top.emplace_back(std::fabs(hs.weight(r[i]) * g[i]), static_cast<int>(i) + 1);
+  const std::size_t keep = std::min<std::size_t>(3, top.size());
+  std::partial_sort(top.begin(), top.begin() + static_cast<std::ptrdiff_t>(keep), top.end(),
+                    [](const auto& x, const auto& y) { return x.first > y.first; });
+  std::vector<double> fine;
+  for (std::size_t t = 0; t < keep; ++t) {
+    const double th0 = kPi * top[t].second / m, dth = kPi / m;
+    for (int q = 0; q <= 400; ++q)
+      fine.push_back(std::cos(std::clamp(th0 + dth * (4.0 * q / 400.0 - 2.0), 0.0, kPi)));
+  }
+  std::vector<double> gf(fine.size());
+  js.g_values(fine.data(), static_cast<int>(fine.size()), gf.data());
+  double best = 0.0;
+  for (std::size_t i = 0; i < fine.size(); ++i) {
+    const double w = js.weight(fine[i]);
+    if (w != 0.0) best = std::max(best, std::fabs(w * gf[i]));
+  }
+  return best;
+}
+
 double max_abs_sine_series(const Eigen::VectorXd& b) {
   const Eigen::Index n = b.size();
   const int m = 8 * static_cast<int>(n + 1) + 64;
@@ -1608,7 +1641,8 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
   // A profile's per-size pmax bounds its tail by sum |b_n| (the stopping
   // rule's scale); what is reported is the whole series' largest value.
   if (!cylinder)
-    pmax = frictional ? js.max_abs_density() : max_abs_sine_series_long(bk, 4 * nd.n + 64);
+    pmax = frictional ? max_abs_density_long(js, 4 * nd.n + 64)
+                      : max_abs_sine_series_long(bk, 4 * nd.n + 64);
   s.max_p_ = pmax;
   {
     const double scale_e = ws.w + std::fabs(ws.c);
@@ -1769,7 +1803,8 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
     s.jtr_ = std::make_shared<const JacobiTransform>(
         js, kern->quadrature().panels.alpha_max * s.half_, have_change ? &dseries : nullptr);
     s.jtr_omega_ = kern->quadrature().panels.alpha_max * s.half_;
-    s.atan_rule_ = *cached_gauss_jacobi(js.size() + 64 + static_cast<int>(std::ceil(8.0 * s.half_)),
+    // (Its size rounded up to 64: shared between the solves of a sweep.)
+    s.atan_rule_ = *cached_gauss_jacobi((js.size() + 127 + static_cast<int>(std::ceil(8.0 * s.half_))) / 64 * 64,
                                         s.exps_.front, s.exps_.back);
     s.atan_wg_ = s.atan_weights(js);
   }
@@ -1868,7 +1903,12 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
   // The margin before separation: min over r of p/((P/h) sqrt(1 - r^2)) = g(r).
   // (A profile's on the collocated head: its tail's kink is resolved only
   // to series_truncation anyway.)
-  s.margin_ = frictional ? js.min_g()
+  s.margin_ = frictional
+                  ? (cylinder ? js.min_g()
+                              : JacobiSeries(js.alpha(), js.beta(),
+                                             js.coefficients().head(std::min<Eigen::Index>(
+                                                 js.size(), 4 * nd.n + 64)))
+                                    .min_g())
               : cylinder
                   ? u_series_minimum(s.b_)
                   : u_series_minimum(s.b_.head(std::min<Eigen::Index>(s.b_.size(), 4 * nd.n + 64)));
@@ -2211,7 +2251,12 @@ namespace {
 cplx u_series_transform(const Eigen::VectorXd& b_, double centre_, double half_, double alpha,
                         const Eigen::VectorXd* b2, double centre2, cplx* t2) {
   const double w = half_, om = std::fabs(alpha) * w;
-  const int n = static_cast<int>(b_.size());
+  // Terms k >= K = e om + 64 add at most (pi/2) max|b| sum_{m >= K}
+  // (om/2)^m/m! <= pi max|b| 2^-64 (J_{k+1}(om)/om <= (om/2)^k/(2 (k+1)!) and
+  // (e om/(2m))^m <= 2^-m beyond m = e om): below round-off, and a profile's
+  // tail-extended series has thousands of terms where K is a few hundred.
+  const int n = static_cast<int>(
+      std::min<double>(static_cast<double>(b_.size()), std::ceil(2.718281828459045 * om) + 64.0));
   const bool two = b2 != nullptr && t2 != nullptr && b2->size() == b_.size();
   cplx sum = 0.0, sum2 = 0.0;
   if (om < 1e-8) {

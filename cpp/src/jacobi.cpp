@@ -681,10 +681,10 @@ JacobiTransform::JacobiTransform(const JacobiSeries& s, double omega_max,
                                  const JacobiSeries* second) {
   // Only the terms that reach |omega| <= omega_max (a profile's tail-extended
   // series has a thousand, of which the transform sees a few dozen), by a
-  // rule exact for them (its size rounded up to 16: shared between solves).
+  // rule exact for them (its size rounded up to 64: shared between solves).
   const double om = std::ceil(std::fabs(omega_max));
   const int len = std::max(transform_length(s, om), second ? transform_length(*second, om) : 0);
-  const int m = (len + static_cast<int>(om) + 40 + 15) / 16 * 16;
+  const int m = (len + static_cast<int>(om) + 40 + 63) / 64 * 64;
   rule_ = *cached_gauss_jacobi(m, s.alpha(), s.beta());
   gw_.resize(m);
   gw2_ = Eigen::VectorXd::Zero(m);

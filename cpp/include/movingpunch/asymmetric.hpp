@@ -642,6 +642,8 @@ double max_abs_sine_series(const Eigen::VectorXd& b);
 // `head` terms locate the three largest values, the whole series is sampled
 // finely around them (the tail only shifts them a little).
 double max_abs_sine_series_long(const Eigen::VectorXd& b, int head);
+// The same for a Jacobi series' density w g.
+double max_abs_density_long(const JacobiSeries& js, int head);
 
 // The regular kernel of the damped equation,
 //   K(u) = (1/phi1) int_0^inf [Re(M1 - phi1) sin(alpha u) + Im(M1 - phi1) cos(alpha u)] d alpha,
