@@ -1804,8 +1804,9 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
         js, kern->quadrature().panels.alpha_max * s.half_, have_change ? &dseries : nullptr);
     s.jtr_omega_ = kern->quadrature().panels.alpha_max * s.half_;
     // (Its size rounded up to 64: shared between the solves of a sweep.)
-    s.atan_rule_ = *cached_gauss_jacobi((js.size() + 127 + static_cast<int>(std::ceil(8.0 * s.half_))) / 64 * 64,
-                                        s.exps_.front, s.exps_.back);
+    s.atan_rule_ = *cached_gauss_jacobi(
+        (js.size() + 127 + static_cast<int>(std::ceil(8.0 * s.half_))) / 64 * 64, s.exps_.front,
+        s.exps_.back);
     s.atan_wg_ = s.atan_weights(js);
   }
   s.light_ = std::make_shared<const AsymmetricSolution::Fine>(
@@ -1903,12 +1904,11 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
   // The margin before separation: min over r of p/((P/h) sqrt(1 - r^2)) = g(r).
   // (A profile's on the collocated head: its tail's kink is resolved only
   // to series_truncation anyway.)
-  s.margin_ = frictional
-                  ? (cylinder ? js.min_g()
-                              : JacobiSeries(js.alpha(), js.beta(),
-                                             js.coefficients().head(std::min<Eigen::Index>(
-                                                 js.size(), 4 * nd.n + 64)))
-                                    .min_g())
+  s.margin_ = frictional ? (cylinder ? js.min_g()
+                                     : JacobiSeries(js.alpha(), js.beta(),
+                                                    js.coefficients().head(std::min<Eigen::Index>(
+                                                        js.size(), 4 * nd.n + 64)))
+                                           .min_g())
               : cylinder
                   ? u_series_minimum(s.b_)
                   : u_series_minimum(s.b_.head(std::min<Eigen::Index>(s.b_.size(), 4 * nd.n + 64)));
