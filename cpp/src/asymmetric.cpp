@@ -2057,7 +2057,7 @@ cplx AsymmetricSolution::pressure_transform(double alpha) const {
     // w e^{-i alpha c} int w(r) g(r) e^{-i alpha w r} dr by Gauss-Jacobi (jtr_
     // resolves alpha up to the quadrature's alpha_max; beyond, a rule of its own).
     const double a = std::fabs(alpha), om = a * half_;
-    const cplx t = om <= jtr_omega_ ? (*jtr_)(om) : JacobiTransform(*jac_, om)(om);
+    const cplx t = om <= jtr_omega_ ? (*jtr_)(om) : JacobiTransform(*jac_, om, nullptr, false)(om);
     const cplx ph = half_ * std::exp(cplx(0.0, -a * centre_)) * t;
     return alpha < 0.0 ? std::conj(ph) : ph;
   }

@@ -678,7 +678,7 @@ int transform_length(const JacobiSeries& s, double omega_max) {
 }  // namespace
 
 JacobiTransform::JacobiTransform(const JacobiSeries& s, double omega_max,
-                                 const JacobiSeries* second) {
+                                 const JacobiSeries* second, bool interpolate) {
   // Only the terms that reach |omega| <= omega_max (a profile's tail-extended
   // series has a thousand, of which the transform sees a few dozen), by a
   // rule exact for them (its size rounded up to 64: shared between solves).
@@ -697,9 +697,50 @@ JacobiTransform::JacobiTransform(const JacobiSeries& s, double omega_max,
     head2.g_values(rule_.x.data(), m, gw2_.data());
     gw2_.array() *= rule_.w.array();
   }
+  // The Chebyshev interpolant in omega (see the header).
+  const double L = 0.5 * std::fabs(omega_max);
+  if (interpolate && L > 0.0 && std::isfinite(L)) {
+    int K = std::max(8, static_cast<int>(std::ceil(L)));
+    while (std::log(8.0) + (K + 1.0) * std::log(0.5 * L) - std::lgamma(K + 2.0) > std::log(1e-17))
+      ++K;
+    half_range_ = L;
+    nodes_.resize(static_cast<std::size_t>(K) + 1);
+    bary_.resize(nodes_.size());
+    v1_.resize(K + 1);
+    v2_.resize(K + 1);
+    for (int j = 0; j <= K; ++j) {
+      const double t = std::cos(kPi * j / K);
+      nodes_[static_cast<std::size_t>(j)] = t;
+      bary_[static_cast<std::size_t>(j)] =
+          (j % 2 == 0 ? 1.0 : -1.0) * (j == 0 || j == K ? 0.5 : 1.0);
+      const double omega = L * (1.0 + t);
+      std::complex<double> a = 0.0, b = 0.0;
+      for (Eigen::Index i = 0; i < gw_.size(); ++i) {
+        const std::complex<double> e(std::cos(omega * rule_.x(i)), -std::sin(omega * rule_.x(i)));
+        a += gw_(i) * e;
+        b += gw2_(i) * e;
+      }
+      v1_(j) = a;
+      v2_(j) = b;
+    }
+  }
 }
 
 std::pair<std::complex<double>, std::complex<double>> JacobiTransform::both(double omega) const {
+  if (half_range_ > 0.0 && omega >= 0.0 && omega <= 2.0 * half_range_) {
+    const double t = omega / half_range_ - 1.0;
+    std::complex<double> num1 = 0.0, num2 = 0.0;
+    double den = 0.0;
+    for (std::size_t j = 0; j < nodes_.size(); ++j) {
+      const double d = t - nodes_[j];
+      if (d == 0.0) return {v1_(static_cast<Eigen::Index>(j)), v2_(static_cast<Eigen::Index>(j))};
+      const double q = bary_[j] / d;
+      num1 += q * v1_(static_cast<Eigen::Index>(j));
+      num2 += q * v2_(static_cast<Eigen::Index>(j));
+      den += q;
+    }
+    return {num1 / den, num2 / den};
+  }
   std::complex<double> a = 0.0, b = 0.0;
   for (Eigen::Index i = 0; i < gw_.size(); ++i) {
     const std::complex<double> e(std::cos(omega * rule_.x(i)), -std::sin(omega * rule_.x(i)));

@@ -274,3 +274,27 @@ TEST(Jacobi, TruncatedTransformMatchesTheWholeSeries) {
   EXPECT_NEAR(t(0.0).real(), c(0) * mp::jacobi_norm(0, alpha, 1.0 - alpha), 5e-13);
   EXPECT_NEAR(t(0.0).imag(), 0.0, 1e-15);
 }
+
+// The transform's Chebyshev interpolant in omega against the direct sum on the
+// same rule (no interpolant), at 200 frequencies across [0, omega_max] and at
+// its ends; beyond omega_max both are the direct sum.
+TEST(Jacobi, TransformInterpolantMatchesTheDirectSum) {
+  for (double omega_max : {0.7, 13.0, 64.0, 180.0}) {
+    Eigen::VectorXd c(30);
+    for (int k = 0; k < 30; ++k) c(k) = std::sin(1.3 * k + 0.2) / (1.0 + k);
+    const mp::JacobiSeries s(0.62, c);
+    Eigen::VectorXd c2 = 0.5 * c;
+    const mp::JacobiSeries s2(0.62, c2);
+    const mp::JacobiTransform fast(s, omega_max, &s2);
+    const mp::JacobiTransform direct(s, omega_max, &s2, false);
+    const double scale = c.cwiseAbs().sum() * 2.0;
+    for (int j = 0; j <= 200; ++j) {
+      const double om = omega_max * j / 200.0 * (j % 7 == 3 ? 0.999 : 1.0);
+      const auto f = fast.both(om), d = direct.both(om);
+      EXPECT_LE(std::abs(f.first - d.first), 2e-14 * scale) << omega_max << " " << om;
+      EXPECT_LE(std::abs(f.second - d.second), 2e-14 * scale) << omega_max << " " << om;
+      EXPECT_LE(std::abs(fast(om) - f.first), 0.0);
+    }
+    EXPECT_EQ(fast(1.5 * omega_max), direct(1.5 * omega_max));
+  }
+}
