@@ -363,7 +363,6 @@ JacobiMoments jacobi_lower_moments(double a, double b, double s0, int count) {
   out.I = std::move(I);
   return out;
 }
-// namespace
 
 JacobiSeries::JacobiSeries(double alpha, Eigen::VectorXd c)
     : JacobiSeries(alpha, 1.0 - alpha, std::move(c)) {}
@@ -713,13 +712,7 @@ JacobiTransform::JacobiTransform(const JacobiSeries& s, double omega_max,
       nodes_[static_cast<std::size_t>(j)] = t;
       bary_[static_cast<std::size_t>(j)] =
           (j % 2 == 0 ? 1.0 : -1.0) * (j == 0 || j == K ? 0.5 : 1.0);
-      const double omega = L * (1.0 + t);
-      std::complex<double> a = 0.0, b = 0.0;
-      for (Eigen::Index i = 0; i < gw_.size(); ++i) {
-        const std::complex<double> e(std::cos(omega * rule_.x(i)), -std::sin(omega * rule_.x(i)));
-        a += gw_(i) * e;
-        b += gw2_(i) * e;
-      }
+      const auto [a, b] = direct(L * (1.0 + t));
       v1_(j) = a;
       v2_(j) = b;
     }
@@ -741,6 +734,10 @@ std::pair<std::complex<double>, std::complex<double>> JacobiTransform::both(doub
     }
     return {num1 / den, num2 / den};
   }
+  return direct(omega);
+}
+
+std::pair<std::complex<double>, std::complex<double>> JacobiTransform::direct(double omega) const {
   std::complex<double> a = 0.0, b = 0.0;
   for (Eigen::Index i = 0; i < gw_.size(); ++i) {
     const std::complex<double> e(std::cos(omega * rule_.x(i)), -std::sin(omega * rule_.x(i)));
@@ -748,14 +745,6 @@ std::pair<std::complex<double>, std::complex<double>> JacobiTransform::both(doub
     b += gw2_(i) * e;
   }
   return {a, b};
-}
-
-std::complex<double> JacobiTransform::sum(const Eigen::VectorXd& gw, double omega) const {
-  std::complex<double> out = 0.0;
-  for (Eigen::Index i = 0; i < gw.size(); ++i)
-    out +=
-        gw(i) * std::complex<double>(std::cos(omega * rule_.x(i)), -std::sin(omega * rule_.x(i)));
-  return out;
 }
 
 }  // namespace movingpunch

@@ -197,7 +197,8 @@ class JacobiTransform {
  private:
   JacobiRule rule_;
   Eigen::VectorXd gw_, gw2_;
-  std::complex<double> sum(const Eigen::VectorXd& gw, double omega) const;
+  // Both by the rule's sums (one set of phases).
+  std::pair<std::complex<double>, std::complex<double>> direct(double omega) const;
   // On 0 <= omega <= omega_max the transforms are entire of exponential type
   // 1: their Chebyshev interpolants in omega (K + 1 points, L = omega_max/2)
   // are within 8 sum|gw| (L/2)^(K+1)/(K+1)! of them (Jacobi-Anger: the
