@@ -4,6 +4,8 @@
    kernel: cold) run with jobs=1 (one process) and jobs=N (it and N-1
    spawned workers, their start-up included), and with the automatic choice
    (jobs=None). The speed-up jobs=1 / jobs=N is printed.
+   A 20 000-point vstar sweep the same way, and on a local Dask cluster
+   of --jobs single-threaded workers (started before the timing).
 2. A 20 000-point one-group load sweep (one kernel, cheap points): the
    chunked pool against this process.
 3. Loading and validating a 20 000-point kw sweep (O(1) critical speeds).
@@ -19,18 +21,20 @@ overhead, which the load of other processes barely changes, while the
 wall-clock speed-up needs idle cores. The machine's load average is printed
 before and after. Never asserts a time.
 
-    .venv/bin/python benchmarks/bench_jobs.py [--repeat 3] [--jobs 2]
+    .venv/bin/python benchmarks/bench_jobs.py [--repeat 3] [--jobs 2] [--only vstar20k]
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
+import importlib
 import json
 import os
 import subprocess
 import sys
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 
 from movingpunch.scene import Scene, Sweep
 
@@ -70,16 +74,18 @@ if __name__ == "__main__":
     spec = json.loads(sys.argv[1])
     scene = Scene.from_toml(spec["scene"])
     c0, t0 = cpu(), time.perf_counter()
-    result = scene.run(jobs=spec["jobs"])
+    result = scene.run(jobs=spec["jobs"], dask=spec.get("dask"))
     wall, used = time.perf_counter() - t0, cpu() - c0
     print(json.dumps({"wall": wall, "cpu": used, "jobs": result.jobs}))
 """
 
 
-def run_cold(scene: str, jobs: int | None) -> dict[str, float]:
-    """One run of ``scene`` (TOML text) in a fresh Python process."""
+def run_cold(scene: str, jobs: int | None, dask: str | None = None) -> dict[str, float]:
+    """One run of ``scene`` (TOML text) in a fresh Python process (on the
+    Dask scheduler at ``dask`` if given)."""
+    spec = {"scene": scene, "jobs": jobs, "dask": dask}
     out = subprocess.run(
-        [sys.executable, "-c", _CHILD, json.dumps({"scene": scene, "jobs": jobs})],
+        [sys.executable, "-c", _CHILD, json.dumps(spec)],
         check=True,
         capture_output=True,
         text=True,
@@ -87,10 +93,12 @@ def run_cold(scene: str, jobs: int | None) -> dict[str, float]:
     return json.loads(out.stdout.splitlines()[-1])  # type: ignore[no-any-return]
 
 
-def timed(scene: str, jobs: int | None, repeat: int) -> tuple[float, float, int]:
+def timed(
+    scene: str, jobs: int | None, repeat: int, dask: str | None = None
+) -> tuple[float, float, int]:
     """(best wall-clock seconds, best CPU seconds, processes used) of
     ``repeat`` cold runs."""
-    runs = [run_cold(scene, jobs) for _ in range(repeat)]
+    runs = [run_cold(scene, jobs, dask) for _ in range(repeat)]
     return (
         min(r["wall"] for r in runs),
         min(r["cpu"] for r in runs),
@@ -112,7 +120,9 @@ def load_average() -> str:
     return f"load average {one:.2f} (1 min), {five:.2f} (5 min)"
 
 
-def compare(name: str, scene: Scene, jobs: int, repeat: int) -> None:
+def compare(
+    name: str, scene: Scene, jobs: int, repeat: int, dask: str | None = None
+) -> None:
     text = scene.to_toml()
     serial, serial_cpu, _ = timed(text, 1, repeat)
     pooled, pooled_cpu, _ = timed(text, jobs, repeat)
@@ -124,15 +134,55 @@ def compare(name: str, scene: Scene, jobs: int, repeat: int) -> None:
         f"speed-up {serial / pooled:.2f}x, CPU overhead {pooled_cpu / serial_cpu:.2f}x"
     )
     print(f"  jobs=None    {auto:8.3f} s   (chose {auto_jobs} process(es))")
+    if dask is not None:  # the workers' CPU is not this process's: wall only
+        on_dask, _, _ = timed(text, 1, repeat, dask)
+        print(f"  dask         {on_dask:8.3f} s   speed-up {serial / on_dask:.2f}x")
+
+
+@contextlib.contextmanager
+def local_cluster(workers: int) -> Iterator[str | None]:
+    """The address of a local Dask cluster of ``workers`` single-threaded
+    worker processes (None without Dask), started before and closed after
+    the timings: a user's cluster is already running."""
+    try:
+        distributed = importlib.import_module("distributed")
+    except ImportError:
+        print("dask: not installed (pip install 'movingpunch[dask]'): skipped")
+        yield None
+        return
+    with distributed.LocalCluster(
+        n_workers=workers,
+        threads_per_worker=1,
+        processes=True,
+        host="127.0.0.1",
+        dashboard_address=None,
+    ) as cluster:
+        yield cluster.scheduler_address
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument(
+        "--only",
+        choices=["vstar20k"],
+        help="only the 20 000-point vstar sweep (jobs, automatic, Dask)",
+    )
     args = parser.parse_args()
     print(load_average())
 
+    with local_cluster(args.jobs) as address:
+        compare(
+            "20 000-point vstar sweep, cold (a kernel per point)",
+            Scene(params=PARAMS, sweep=Sweep.range("vstar", 0.0, 0.5, 20_000)),
+            args.jobs,
+            args.repeat,
+            address,
+        )
+    if args.only is not None:
+        print(load_average())
+        return
     compare(
         "2000-point vstar sweep, cold (a kernel per point)",
         Scene(params=PARAMS, sweep=Sweep.range("vstar", 0.0, 0.5, 2000)),

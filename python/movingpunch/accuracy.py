@@ -314,7 +314,7 @@ class _Target:
             parts = {name: float(s.stage_times.get(name, 0.0)) for name in CORE_STAGES}
             return {key: s}, [key], s.elapsed, parts, s.kernel_builds
         scene = replace(self.scene, tol=tol)
-        result = scene.run(jobs=1)
+        result = scene.run(jobs=1, keep_solutions=True)
         sols = {_key(_params_of(s)): s for s in result.solutions}
         base = [_key(scene.point(v)) for v in scene.curve_values()]
         stages: dict[str, float] = {}

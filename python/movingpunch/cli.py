@@ -911,14 +911,14 @@ def _jobs(text: str) -> int:
 def _cmd_run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
-    from movingpunch.outputs import prepare, publish
+    from movingpunch.outputs import Content, prepare, publish
     from movingpunch.scene import ascii_plots, format_summary, load_scene
     from movingpunch.scene._export import (
         format_json,
         format_tables,
         pyplot,
-        render_outputs,
         render_pngs,
+        stream_outputs,
     )
 
     # --format json without --out: the result as one JSON document on
@@ -970,7 +970,9 @@ def _cmd_run(args: argparse.Namespace) -> int:
     # closes stdout early (| head) does not cost the files.
     written = []
     if out_dir is not None:
-        files = [] if json_out else render_outputs(result, args.format or "csv")
+        files: list[tuple[str, Content]] = []
+        if not json_out:
+            files += stream_outputs(result, args.format or "csv")
         if args.png:
             files += render_pngs(result)
         written = publish(out_dir, files)

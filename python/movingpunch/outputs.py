@@ -34,7 +34,7 @@ import shutil
 import stat
 import tempfile
 import unicodedata
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from pathlib import Path
 
 from movingpunch.errors import OutputError
@@ -197,7 +197,12 @@ def _kept_mode(target: Path) -> int | None:
     return stat.S_IMODE(st.st_mode) & 0o777 if stat.S_ISREG(st.st_mode) else None
 
 
-def _write_file(path: Path, data: bytes, mode: int | None) -> None:
+Content = bytes | Iterable[bytes]
+"""A file's content: whole, or in pieces written as they come (a long
+table is then never whole in memory)."""
+
+
+def _write_file(path: Path, data: Content, mode: int | None) -> None:
     """Creates ``path`` (it must not exist) with ``data``, flushed to disk.
     Created with 0o666, which the kernel masks with the umask; ``mode``
     (an overwritten file's) is set exactly."""
@@ -206,7 +211,11 @@ def _write_file(path: Path, data: bytes, mode: int | None) -> None:
     with open(fd, "wb") as f:
         if mode is not None:
             os.chmod(path, mode)
-        f.write(data)
+        if isinstance(data, bytes):
+            f.write(data)
+        else:
+            for piece in data:
+                f.write(piece)
         f.flush()
         os.fsync(f.fileno())
 
@@ -236,9 +245,10 @@ def _fsync_dir(directory: Path) -> None:
             os.close(fd)
 
 
-def publish(out_dir: str | Path, files: Sequence[tuple[str, bytes]]) -> list[Path]:
-    """Writes ``files`` (plain file name, content) into ``out_dir``: all of
-    them or, on any failure, none (the previous files stay as they were).
+def publish(out_dir: str | Path, files: Sequence[tuple[str, Content]]) -> list[Path]:
+    """Writes ``files`` (plain file name, content: bytes, or pieces of bytes
+    written as they come) into ``out_dir``: all of them or, on any failure,
+    none (the previous files stay as they were).
     Creates ``out_dir`` and its missing parents. Returns the paths written;
     raises ``OutputError`` (one line: the path and the reason)."""
     directory = Path(out_dir)

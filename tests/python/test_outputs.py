@@ -400,14 +400,16 @@ def failing_on(
     return patched
 
 
-def full_disk_on(nth: int) -> Callable[[Path, bytes, int | None], None]:
+def full_disk_on(nth: int) -> Callable[[Path, outputs.Content, int | None], None]:
     """``outputs._write_file`` whose nth call writes half of its data and
     then fails with ENOSPC, as a disk that fills up does."""
     real = outputs._write_file
     calls = [0]
 
-    def write(path: Path, data: bytes, mode: int | None) -> None:
+    def write(path: Path, data: outputs.Content, mode: int | None) -> None:
         calls[0] += 1
+        if not isinstance(data, bytes):  # a table in pieces
+            data = b"".join(data)
         if calls[0] == nth:
             real(path, data[: len(data) // 2], mode)
             raise ENOSPC

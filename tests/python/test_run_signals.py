@@ -10,6 +10,7 @@ performance assertions."""
 from __future__ import annotations
 
 import contextlib
+import itertools
 import os
 import signal
 import subprocess
@@ -25,6 +26,7 @@ import pytest
 
 import movingpunch as mp
 from movingpunch.scene import Scene, Sweep, Vary, _plan
+from movingpunch.scene._solve import point_key
 
 # About 20 000 cold solves: minutes of work at any --jobs on two cores.
 LONG_SWEEP = """\
@@ -297,26 +299,44 @@ def test_chunks_cover_the_sweep_in_solve_order(sweep: Sweep, jobs: int) -> None:
     plan = _plan.plan_sweep(Scene(params=BASE, vary=vary, sweep=sweep))
     target = _plan.chunk_target(plan, jobs, _plan.CHUNK_MIN, _plan.CHUNK_MAX)
     chunks = _plan.split_chunks(plan, target)
-    # Every point once, in the plan's order (descending lambda in a group).
-    assert [k for chunk in chunks for _, keys in chunk for k in keys] == plan.keys
-    assert len(chunks) >= min(jobs, len(plan.keys))
+    # Every key once, in the plan's order (descending lambda in a group).
+    ranges = [r for chunk in chunks for r in chunk]
+    assert ranges[0][0] == 0
+    assert ranges[-1][1] == plan.n_keys
+    assert all(a[1] == b[0] for a, b in itertools.pairwise(ranges))
+    assert len(chunks) >= min(jobs, plan.n_keys)
+    starts = plan.starts.tolist()
+    for g in range(plan.n_groups):  # one group: one kernel, lambda descending
+        members = plan.keys[starts[g] : starts[g + 1]]
+        assert (members[:, :7] == members[0, :7]).all()
+        assert (np.diff(members[:, 7]) < 0).all()
     for chunk in chunks:
-        assert len({group for group, _ in chunk}) == len(chunk)
-        for group, keys in chunk:
-            assert all(k[: len(group)] == group for k in keys)
+        groups = [plan.group(lo) for lo, _ in chunk]
+        assert len(set(groups)) == len(chunk)
+        for lo, hi in chunk:
+            assert hi > lo
+            assert all(plan.group(k) == plan.group(lo) for k in range(lo, hi))
         seconds = sum(
             _plan._point_seconds(plan, i == 0)
-            for _, keys in chunk
-            for i in range(len(keys))
+            for lo, hi in chunk
+            for i in range(hi - lo)
         )
         assert seconds <= target + _plan._point_seconds(plan, True)
-        assert sum(len(keys) for _, keys in chunk) <= _plan._CHUNK_POINTS
+        assert sum(hi - lo for lo, hi in chunk) <= _plan._CHUNK_POINTS
     # A group that fits in a chunk is in one chunk (one kernel build).
     cold, warm = _plan._point_seconds(plan, True), _plan._point_seconds(plan, False)
-    for group, members in plan.groups.items():
-        if cold + (len(members) - 1) * warm <= target:
-            holders = [c for c in chunks if any(g == group for g, _ in c)]
-            assert len(holders) == 1, group
+    for g in range(plan.n_groups):
+        lo, hi = starts[g], starts[g + 1]
+        if cold + (hi - lo - 1) * warm <= target:
+            holders = [c for c in chunks if any(a <= lo < b for a, b in c)]
+            assert len(holders) == 1, g
+            assert (lo, hi) in holders[0]
+    # Every point's key is the key of its parameters (point_key).
+    sw = plan.scene.sweep
+    for i, v in enumerate(plan.scene.curve_values()):
+        for j in range(0, len(sw.values), max(len(sw.values) // 50, 1)):
+            p = plan.scene.point(v, **{sw.param: sw.values[j]})
+            assert plan.key(int(plan.index[i, j])) == point_key(p, plan.scene.tol)
     # Never thousands of units: the in-flight bound makes the pool's waits
     # O(jobs) whatever the sweep.
     assert len(chunks) <= 4 * jobs + _plan._sweep_seconds(plan) / _plan.CHUNK_MIN

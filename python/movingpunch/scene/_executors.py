@@ -18,7 +18,7 @@ from collections.abc import Callable, Iterator, Mapping, Sequence
 from multiprocessing import resource_tracker
 from multiprocessing.connection import Connection
 from multiprocessing.connection import wait as connection_wait
-from typing import Any
+from typing import Any, overload
 
 from movingpunch.errors import ClusterError, MissingExtraError, WorkerError
 from movingpunch.scene._plan import (
@@ -250,6 +250,28 @@ class _WorkerPool:
             self.alive_r.close()
 
 
+class _Tasks(Sequence[list[dict[str, Any]]]):
+    """The tasks of each chunk, made when the chunk is sent (those of a
+    million-point sweep would take a hundred megabytes at once)."""
+
+    def __init__(self, plan: SweepPlan, chunks: Sequence[Chunk]) -> None:
+        self.plan, self.chunks = plan, chunks
+
+    def __len__(self) -> int:
+        return len(self.chunks)
+
+    @overload
+    def __getitem__(self, i: int) -> list[dict[str, Any]]: ...
+    @overload
+    def __getitem__(self, i: slice) -> Sequence[list[dict[str, Any]]]: ...
+    def __getitem__(
+        self, i: int | slice
+    ) -> list[dict[str, Any]] | Sequence[list[dict[str, Any]]]:
+        if isinstance(i, slice):
+            return [chunk_tasks(self.plan, c) for c in self.chunks[i]]
+        return chunk_tasks(self.plan, self.chunks[i])
+
+
 def pool_map(
     plan: SweepPlan,
     chunks: Sequence[Chunk],
@@ -270,7 +292,7 @@ def pool_map(
     try:
         pool.start(n_jobs - 1)
         pool.run(
-            [chunk_tasks(plan, chunk) for chunk in chunks],
+            _Tasks(plan, chunks),
             lambda i, outs: consume(chunks[i], outs),
             solve_here=solve_chunk,
         )

@@ -10,7 +10,7 @@ import importlib
 import io
 import json
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterable, Iterator, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -33,6 +33,7 @@ __all__ = [
     "read_json",
     "render_outputs",
     "render_pngs",
+    "stream_outputs",
     "write_outputs",
     "write_pngs",
 ]
@@ -189,7 +190,14 @@ def format_summary(result: SceneResult, hints: Sequence[str] = ()) -> str:
                     f"{_QUANTITY_LABELS[q]} ({label})" if label else _QUANTITY_LABELS[q]
                 )
         rows = []
-        for j, x in enumerate(sw.values):
+        n_rows = len(sw.values)
+        shown_rows = (
+            list(range(n_rows))
+            if n_rows <= _SUMMARY_ROWS
+            else [*range(_SUMMARY_ENDS), *range(n_rows - _SUMMARY_ENDS, n_rows)]
+        )
+        for j in shown_rows:
+            x = sw.values[j]
             row = [_fmt(float(x))]
             for i in range(len(sw.labels)):
                 for q in sw.quantities:
@@ -200,7 +208,13 @@ def format_summary(result: SceneResult, hints: Sequence[str] = ()) -> str:
                         value = shown(value, scale=_drag_scale(scene, i, at, reach))
                     row.append(_fmt(value) + ("" if sw.valid[i, j] else " !"))
             rows.append(row)
-        out += _table(header, rows)
+        table = _table(header, rows)
+        if n_rows > _SUMMARY_ROWS:  # the header line, then the first rows
+            cut = 1 + _SUMMARY_ENDS
+            left_out = n_rows - 2 * _SUMMARY_ENDS
+            elided = f"  ... {left_out} rows not shown (--out DIR writes all)"
+            table = [*table[:cut], elided, *table[cut:]]
+        out += table
         if not sw.valid.all():
             out.append(
                 "  ! not a valid single contact (p < 0, penetration or failed solve)"
@@ -230,6 +244,12 @@ def format_summary(result: SceneResult, hints: Sequence[str] = ()) -> str:
         [[s.name, str(s.count), f"{s.seconds:.4f}"] for s in result.stages],
     )
     return "\n".join(out)
+
+
+_SUMMARY_ROWS = 1000
+"""Rows of a sweep's table the summary shows whole; a longer one shows its
+first and last _SUMMARY_ENDS (the files hold every row)."""
+_SUMMARY_ENDS = 20
 
 
 def format_zones(zones: Sequence[Sequence[float]]) -> str:
@@ -580,38 +600,57 @@ def _metadata(result: SceneResult, output: str, title: str) -> dict[str, str]:
     }
 
 
-def render_outputs(result: SceneResult, fmt: str = "csv") -> list[tuple[str, bytes]]:
-    """(file name, content) of one ``<scene>-<output>.csv`` (or ``.json``)
-    per output and one for the sweep, each with the scene (as TOML) and the
-    package version as metadata."""
+def stream_outputs(
+    result: SceneResult, fmt: str = "csv"
+) -> list[tuple[str, Iterable[bytes]]]:
+    """(file name, content in pieces) of one ``<scene>-<output>.csv`` (or
+    ``.json``) per output and one for the sweep, each with the scene (as
+    TOML) and the package version as metadata. The pieces are made as they
+    are written (``publish``): a long sweep's file never sits whole in
+    memory."""
     if fmt not in ("csv", "json"):
         raise ValueError(f"format must be 'csv' or 'json', got {fmt!r}")
     stem = _stem(result.scene)
     scene_toml = result.scene.to_toml()
-    rendered: list[tuple[str, bytes]] = []
-    for output, title, columns, details in _tables(result):
-        meta = _metadata(result, output, title)
-        if fmt == "csv":
-            body = _csv(meta, scene_toml, columns, details)
-        else:
-            body = _json(meta, scene_toml, columns, details)
-        rendered.append((f"{stem}-{output}.{fmt}", body.encode("utf-8")))
-    return rendered
+    pieces = _csv_pieces if fmt == "csv" else _json_pieces
+    return [
+        (
+            f"{stem}-{output}.{fmt}",
+            _encoded(
+                pieces(_metadata(result, output, title), scene_toml, columns, details)
+            ),
+        )
+        for output, title, columns, details in _tables(result)
+    ]
+
+
+def _encoded(pieces: Iterable[str]) -> Iterator[bytes]:
+    for piece in pieces:
+        yield piece.encode("utf-8")
+
+
+def render_outputs(result: SceneResult, fmt: str = "csv") -> list[tuple[str, bytes]]:
+    """``stream_outputs`` with each file's content whole."""
+    return [(name, b"".join(body)) for name, body in stream_outputs(result, fmt)]
 
 
 def write_outputs(result: SceneResult, out_dir: Path, fmt: str = "csv") -> list[Path]:
-    """Writes ``render_outputs(result, fmt)`` into ``out_dir`` (created if
+    """Writes ``stream_outputs(result, fmt)`` into ``out_dir`` (created if
     missing): every file or, on a failure, none (``publish``). Returns the
     paths written."""
-    return publish(out_dir, render_outputs(result, fmt))
+    return publish(out_dir, stream_outputs(result, fmt))
 
 
-def _csv(
+_ROWS = 4096
+"""Rows of a table formatted at a time."""
+
+
+def _csv_pieces(
     meta: Mapping[str, str],
     scene_toml: str,
     columns: Mapping[str, FloatArray],
     details: Mapping[str, Any] | None = None,
-) -> str:
+) -> Iterator[str]:
     lines = [f"# {k}: {v}" for k, v in meta.items()]
     # Details (contact zones, per-punch results): one JSON text a line.
     lines += [
@@ -621,11 +660,21 @@ def _csv(
     lines.append("# columns: " + ",".join(columns))
     lines.append("# scene:")
     lines += [f"#   {line}" if line else "#" for line in scene_toml.splitlines()]
+    yield "\n".join(lines) + "\n"
     arrays = [np.asarray(v, dtype=np.float64) for v in columns.values()]
     n = len(arrays[0]) if arrays else 0
-    for i in range(n):
-        lines.append(",".join(repr(float(a[i])) for a in arrays))
-    return "\n".join(lines) + "\n"
+    for start in range(0, n, _ROWS):
+        rows = zip(*(a[start : start + _ROWS].tolist() for a in arrays), strict=True)
+        yield "".join(",".join(map(repr, row)) + "\n" for row in rows)
+
+
+def _csv(
+    meta: Mapping[str, str],
+    scene_toml: str,
+    columns: Mapping[str, FloatArray],
+    details: Mapping[str, Any] | None = None,
+) -> str:
+    return "".join(_csv_pieces(meta, scene_toml, columns, details))
 
 
 def _json_float(x: float) -> float | str:
@@ -666,16 +715,46 @@ def _json_data(
     }
 
 
+def _json_pieces(
+    meta: Mapping[str, str],
+    scene_toml: str,
+    columns: Mapping[str, FloatArray],
+    details: Mapping[str, Any] | None = None,
+) -> Iterator[str]:
+    """The text of ``json.dumps(doc, indent=1)`` of the file's document
+    (its metadata, details, scene and columns), the columns formatted
+    ``_ROWS`` values at a time."""
+    data = {k: _json_safe(v) for k, v in (details or {}).items()}
+    doc = {**meta, **data, "scene": scene_toml, "columns": {}}
+    head = json.dumps(doc, indent=1, allow_nan=False)
+    tail = "{}\n}"
+    assert head.endswith(tail)
+    if not columns:
+        yield head + "\n"
+        return
+    yield head[: -len(tail)] + "{\n"
+    for i, (name, values) in enumerate(columns.items()):
+        key = ("" if i == 0 else ",\n") + "  " + json.dumps(name) + ": "
+        arr = np.asarray(values, dtype=np.float64)
+        if len(arr) == 0:
+            yield key + "[]"
+            continue
+        yield key + "[\n"
+        for start in range(0, len(arr), _ROWS):
+            block = arr[start : start + _ROWS].tolist()
+            text = ",\n".join("   " + json.dumps(_json_float(x)) for x in block)
+            yield text + (",\n" if start + _ROWS < len(arr) else "\n")
+        yield "  ]"
+    yield "\n }\n}\n"
+
+
 def _json(
     meta: Mapping[str, str],
     scene_toml: str,
     columns: Mapping[str, FloatArray],
     details: Mapping[str, Any] | None = None,
 ) -> str:
-    data = _json_data(columns, details)
-    cols = data.pop("columns")
-    doc = {**meta, **data, "scene": scene_toml, "columns": cols}
-    return json.dumps(doc, indent=1, allow_nan=False) + "\n"
+    return "".join(_json_pieces(meta, scene_toml, columns, details))
 
 
 def format_json(result: SceneResult, hints: Sequence[str] = ()) -> str:

@@ -144,7 +144,7 @@ PEAK_QUANTITIES = frozenset(
 
 MAX_POINTS = 100_000
 MAX_GRID = 1001  # per axis of a stress field
-MAX_SWEEP = 100_000
+MAX_SWEEP = 2_000_000  # points of a sweep (times its vary values)
 """Most points a sweep computes in all: sweep values times vary values."""
 MAX_VARY = 20
 MAX_SCENE_BYTES = 1 << 20

@@ -2,75 +2,205 @@
 that share a kernel, widest contact first), the estimated cost of each point,
 whether worker processes pay for themselves, the chunks sent to workers, and
 the sweep's table assembled from the numbers of each key.
+
+A plan holds arrays, never an object per point: the keys (one row of
+``Key`` per unique solve), the row of every point's key, and every point's
+radius and load (about 40 bytes a point and 90 a key), so that a sweep of a
+million points plans in tens of megabytes.
 """
 
 from __future__ import annotations
 
+import itertools
+import math
 import os
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+import numpy.typing as npt
 
 from movingpunch.media import Medium
 from movingpunch.profiles import PunchProfile
 from movingpunch.scene._model import PEAK_QUANTITIES, SceneData
 from movingpunch.scene._result import SweepTable
-from movingpunch.scene._solve import Key, curve_label, point_key, radius_ratio
+from movingpunch.scene._solve import (
+    NO_SPRINGS,
+    Key,
+    curve_label,
+)
 from movingpunch.zones import Punch
 
-__all__ = ["SweepPlan", "build_sweep_table", "plan_sweep", "split_chunks"]
+__all__ = [
+    "SweepPlan",
+    "SweepValues",
+    "build_sweep_table",
+    "plan_sweep",
+    "split_chunks",
+]
+
+FloatArray = npt.NDArray[np.float64]
+IntArray = npt.NDArray[np.intp]
+
+# The columns of a key (``point_key``): the first seven are its group's.
+_GROUP = 7
+_LAMBDA = 7
 
 
 @dataclass
 class SweepPlan:
-    """A sweep's points and the unique keys to solve, grouped by shared
-    kernel (vstar, kw, nu, tol, damping, kp, friction), each group in
-    descending lambda."""
+    """A sweep's unique keys in solve order, grouped by shared kernel
+    (vstar, kw, nu, tol, damping, kp, friction), each group in descending
+    lambda; and where each point's numbers come from.
 
-    points: list[list[dict[str, float]]]  # [curve][grid] -> parameters
-    keys: list[Key]  # unique keys, in solve order
-    groups: dict[tuple[float, ...], list[Key]]
-    representative: dict[Key, dict[str, float]]
+    ``keys[k]`` is key ``k`` (``point_key`` of its points); ``starts``
+    bounds the groups (group g: keys ``starts[g]:starts[g + 1]``);
+    ``index[i, j]`` is the key of point j of curve i; ``rep[k]`` the flat
+    index (curve * grid + j) of the first point with key k, whose
+    parameters are solved (``point``)."""
+
+    scene: SceneData
+    keys: FloatArray  # (n_keys, 9)
+    starts: IntArray  # (n_groups + 1,)
+    index: IntArray  # (n_curves, n_grid)
+    rep: IntArray  # (n_keys,)
+    radius: FloatArray  # (n_curves, n_grid): each point's radius
+    load: FloatArray  # (n_curves, n_grid): each point's load
     want_peaks: bool
     damped: bool
-    profile: PunchProfile | None = None
-    contact: str = "auto"
-    punches: tuple[Punch, ...] = ()
-    medium: Medium | None = None
+
+    @property
+    def n_keys(self) -> int:
+        return len(self.keys)
+
+    @property
+    def n_groups(self) -> int:
+        return len(self.starts) - 1
+
+    def key(self, k: int) -> Key:
+        """Key ``k`` as ``point_key`` gives it."""
+        row = self.keys[k]
+        return (
+            float(row[0]),
+            float(row[1]),
+            float(row[2]),
+            float(row[3]),
+            float(row[4]),
+            float(row[5]),
+            float(row[6]),
+            float(row[7]),
+            float(row[8]),
+        )
+
+    def group(self, k: int) -> tuple[float, ...]:
+        """The group (shared kernel) of key ``k``."""
+        return tuple(float(x) for x in self.keys[k, :_GROUP])
+
+    def point(self, k: int) -> dict[str, float]:
+        """The parameters of the point solved for key ``k``."""
+        sw = self.scene.sweep
+        assert sw is not None
+        curve, j = divmod(int(self.rep[k]), len(sw.values))
+        return self.scene.point(
+            self.scene.curve_values()[curve], **{sw.param: sw.values[j]}
+        )
+
+    def find(self, key: Key) -> int | None:
+        """The row of ``key`` among the plan's keys, or None."""
+        hit = np.flatnonzero(np.all(self.keys == np.asarray(key), axis=1))
+        return int(hit[0]) if len(hit) else None
+
+    @property
+    def profile(self) -> PunchProfile | None:
+        return self.scene.profile
+
+    @property
+    def contact(self) -> str:
+        return self.scene.contact
+
+    @property
+    def punches(self) -> tuple[Punch, ...]:
+        return tuple(self.scene.punches)
+
+    @property
+    def medium(self) -> Medium | None:
+        return self.scene.medium
+
+
+def _key_columns(
+    p: Mapping[str, float], param: str, grid: FloatArray, tol: float
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """The key columns (n_grid, 9) of one curve's points (``point_key`` on
+    arrays: the same products, so the same keys), their radius and load."""
+    n = len(grid)
+
+    def column(name: str, default: float) -> FloatArray:
+        if name == param:
+            return grid
+        return np.full(n, float(p.get(name, default)))
+
+    radius, load = column("radius", 0.0), column("load", 0.0)
+    with np.errstate(invalid="ignore", over="ignore"):
+        lam = np.where(np.isfinite(radius), radius * load, -load)
+    cols = [
+        column("vstar", 0.0),
+        column("kw", NO_SPRINGS),
+        column("nu", 0.0),
+        np.full(n, tol),
+        column("damping", 0.0),
+        column("kp", 0.0),
+        column("friction", 0.0),
+        lam,
+        column("spacing", 0.0),
+    ]
+    # + 0.0: a -0.0 is the key of 0.0 (tuples compare them equal).
+    return np.stack(cols, axis=1) + 0.0, radius, load
 
 
 def plan_sweep(scene: SceneData) -> SweepPlan:
     assert scene.sweep is not None
     sw = scene.sweep
-    points = [
-        [scene.point(v, **{sw.param: x}) for x in sw.values]
-        for v in scene.curve_values()
-    ]
-    representative: dict[Key, dict[str, float]] = {}
-    for row in points:
-        for p in row:
-            representative.setdefault(point_key(p, scene.tol), p)
-    groups: dict[tuple[float, ...], list[Key]] = {}
-    for key in representative:
-        groups.setdefault(key[:7], []).append(key)
-    for members in groups.values():
-        members.sort(key=lambda k: -k[7])  # descending lambda: widest kernel first
-    keys = [k for members in groups.values() for k in members]
+    grid = np.asarray(sw.values, dtype=np.float64)
+    curves = scene.curve_values()
+    parts = [_key_columns(scene.point(v), sw.param, grid, scene.tol) for v in curves]
+    every = np.concatenate([k for k, _, _ in parts])
+    radius = np.stack([r for _, r, _ in parts])
+    load = np.stack([q for _, _, q in parts])
+    del parts
+    # Solve order: by group, then descending lambda (the widest kernel
+    # first), then spacing; lexsort is stable, so equal keys keep the order
+    # of their points and the first of them is the representative.
+    sort_cols = [every[:, c] for c in range(_GROUP)]
+    sort_cols += [-every[:, _LAMBDA], every[:, 8]]
+    order = np.lexsort(sort_cols[::-1])
+    del sort_cols
+    ordered = every[order]
+    del every
+    new = np.ones(len(ordered), dtype=bool)
+    new[1:] = np.any(ordered[1:] != ordered[:-1], axis=1)
+    keys = np.ascontiguousarray(ordered[new])
+    del ordered
+    rep = order[new].astype(np.intp)
+    index = np.empty(len(order), dtype=np.intp)
+    index[order] = np.cumsum(new) - 1
+    del order, new
+    group_new = np.ones(len(keys), dtype=bool)
+    group_new[1:] = np.any(keys[1:, :_GROUP] != keys[:-1, :_GROUP], axis=1)
+    starts = np.append(np.flatnonzero(group_new), len(keys)).astype(np.intp)
     want_peaks = any(q in PEAK_QUANTITIES for q in sw.quantities)
-    damped = any(k[4] > 0.0 or k[6] > 0.0 for k in keys)  # the asymmetric solver
+    # the asymmetric solver: damping or friction
+    damped = bool(np.any(keys[:, 4] > 0.0) or np.any(keys[:, 6] > 0.0))
     return SweepPlan(
-        points,
-        keys,
-        groups,
-        representative,
-        want_peaks,
-        damped,
-        scene.profile,
-        scene.contact,
-        tuple(scene.punches),
-        scene.medium,
+        scene=scene,
+        keys=keys,
+        starts=starts,
+        index=index.reshape(len(curves), len(grid)),
+        rep=rep,
+        radius=radius,
+        load=load,
+        want_peaks=want_peaks,
+        damped=damped,
     )
 
 
@@ -92,8 +222,9 @@ CHUNK_MIN, CHUNK_MAX = 0.02, 0.1
 DASK_CHUNK_MIN, DASK_CHUNK_MAX = 0.05, 1.0
 _CHUNK_POINTS = 1000
 
-# One unit of work: (group, keys) pieces, each contiguous points of one group.
-Chunk = list[tuple[tuple[float, ...], list[Key]]]
+# One unit of work: pieces (first key, end key), each contiguous keys of one
+# group.
+Chunk = list[tuple[int, int]]
 
 
 def _point_seconds(plan: SweepPlan, cold: bool) -> float:
@@ -108,7 +239,7 @@ def _point_seconds(plan: SweepPlan, cold: bool) -> float:
 def _sweep_seconds(plan: SweepPlan) -> float:
     """The estimated serial time of the sweep."""
     cold, warm = _point_seconds(plan, True), _point_seconds(plan, False)
-    return sum(cold + (len(m) - 1) * warm for m in plan.groups.values())
+    return plan.n_groups * cold + (plan.n_keys - plan.n_groups) * warm
 
 
 def default_jobs() -> int:
@@ -127,45 +258,50 @@ def use_workers(
     pays for starting the workers."""
     if dask is not None:
         return True
-    if n_jobs <= 1 or len(plan.keys) <= 1:
+    if n_jobs <= 1 or plan.n_keys <= 1:
         return False
     saved = _sweep_seconds(plan) * (1.0 - 1.0 / n_jobs)
     return not auto_jobs or saved > _STARTUP_SECONDS
 
 
 def split_chunks(plan: SweepPlan, target: float) -> list[Chunk]:
-    """The sweep's points in chunks of about ``target`` seconds, in solve
-    order: a chunk holds contiguous points of one or more groups, so that a
+    """The sweep's keys in chunks of about ``target`` seconds, in solve
+    order: a chunk holds contiguous keys of one or more groups, so that a
     group split across chunks still reuses its kernel within each (the first
-    point of each piece, the widest contact, builds it). A group that fits
+    key of each piece, the widest contact, builds it). A group that fits
     in a chunk is never split: the chunk is closed before it instead."""
     chunks: list[Chunk] = []
     pieces: Chunk = []
     seconds, count = 0.0, 0
     cold, warm = _point_seconds(plan, True), _point_seconds(plan, False)
-    for group, members in plan.groups.items():
-        whole = cold + (len(members) - 1) * warm
+    limit = target * (1 + 1e-9)
+    bounds = plan.starts.tolist()
+    for lo, hi in itertools.pairwise(bounds):
+        size = hi - lo
+        whole = cold + (size - 1) * warm
         if (
             pieces
             and whole <= target
-            and (
-                seconds + whole > target * (1 + 1e-9)
-                or count + len(members) > _CHUNK_POINTS
-            )
+            and (seconds + whole > limit or count + size > _CHUNK_POINTS)
         ):
             chunks.append(pieces)
             pieces, seconds, count = [], 0.0, 0
-        piece: list[Key] | None = None
-        for key in members:
-            if piece is None:
-                piece = []
-                pieces.append((group, piece))
-            seconds += _point_seconds(plan, cold=not piece)
-            piece.append(key)
-            count += 1
-            if seconds >= target or count >= _CHUNK_POINTS:
+        start = lo
+        while start < hi:
+            # The keys of this group that join the open chunk: up to the
+            # first that brings it to ``target`` seconds or _CHUNK_POINTS.
+            need = target - seconds - cold  # seconds left after the first key
+            by_seconds = (
+                1 if need <= 0 else (1 + math.ceil(need / warm) if warm > 0 else hi)
+            )
+            take = min(hi - start, by_seconds, _CHUNK_POINTS - count)
+            pieces.append((start, start + take))
+            seconds += cold + (take - 1) * warm
+            count += take
+            start += take
+            if take == by_seconds or seconds >= target or count >= _CHUNK_POINTS:
                 chunks.append(pieces)
-                pieces, piece, seconds, count = [], None, 0.0, 0
+                pieces, seconds, count = [], 0.0, 0
     if pieces:
         chunks.append(pieces)
     return chunks
@@ -181,55 +317,91 @@ def chunk_target(plan: SweepPlan, n: int, lo: float, hi: float) -> float:
 
 
 def chunk_tasks(plan: SweepPlan, chunk: Chunk) -> list[dict[str, Any]]:
-    """A chunk as the tasks ``_solve_chunk`` takes (plain data: it is
+    """A chunk as the tasks ``solve_chunk`` takes (plain data: it is
     pickled to a worker)."""
-    return [
-        {
-            "vstar": group[0],
-            "kw": group[1],
-            "nu": group[2],
-            "tol": group[3],
-            "damping": group[4],
-            "kp": group[5],
-            "friction": group[6],
-            "points": [
-                (plan.representative[k]["radius"], plan.representative[k]["load"])
-                for k in keys
-            ],
-            "peaks": plan.want_peaks,
-            "profile": plan.profile,
-            "contact": plan.contact,
-            "punches": plan.punches,
-            "medium": plan.medium,
-            "spacings": [plan.representative[k].get("spacing") for k in keys],
-        }
-        for group, keys in chunk
-    ]
+    sw = plan.scene.sweep
+    assert sw is not None
+    tasks = []
+    for lo, hi in chunk:
+        group = plan.group(lo)
+        rep = plan.rep[lo:hi]
+        spacings: list[float | None] = [None] * (hi - lo)
+        if "spacing" in plan.point(lo):  # a train placed by the sweep or vary
+            spacings = [plan.point(k).get("spacing") for k in range(lo, hi)]
+        tasks.append(
+            {
+                "vstar": group[0],
+                "kw": group[1],
+                "nu": group[2],
+                "tol": group[3],
+                "damping": group[4],
+                "kp": group[5],
+                "friction": group[6],
+                "points": list(
+                    zip(
+                        plan.radius.ravel()[rep].tolist(),
+                        plan.load.ravel()[rep].tolist(),
+                        strict=True,
+                    )
+                ),
+                "peaks": plan.want_peaks,
+                "profile": plan.profile,
+                "contact": plan.contact,
+                "punches": plan.punches,
+                "medium": plan.medium,
+                "spacings": spacings,
+            }
+        )
+    return tasks
+
+
+class SweepValues:
+    """The numbers of each key that the sweep's table needs (its quantities,
+    ``valid``, and the load and radius solved, which rescale the indentation
+    and the drag to each point), in arrays; a failed key's message."""
+
+    def __init__(self, plan: SweepPlan) -> None:
+        sw = plan.scene.sweep
+        assert sw is not None
+        n = plan.n_keys
+        self.names = (*sw.quantities, "valid", "load", "radius")
+        self.data = {q: np.full(n, np.nan) for q in self.names}
+        self.errors: dict[int, str] = {}
+
+    def set(self, k: int, res: Mapping[str, float] | str) -> None:
+        if isinstance(res, str):
+            self.errors[k] = res
+            return
+        for q in self.names:
+            self.data[q][k] = res[q]
 
 
 def build_sweep_table(
-    scene: SceneData, plan: SweepPlan, values: Mapping[Key, dict[str, float] | str]
+    scene: SceneData, plan: SweepPlan, values: SweepValues
 ) -> SweepTable:
     sw = scene.sweep
     assert sw is not None
-    n_curves, n_grid = len(plan.points), len(sw.values)
-    data = {q: np.full((n_curves, n_grid), np.nan) for q in sw.quantities}
-    valid = np.zeros((n_curves, n_grid), dtype=bool)
+    index = plan.index
+    failed = np.zeros(plan.n_keys, dtype=bool)
+    failed[list(values.errors)] = True
+    solved_load = values.data["load"][index]
+    solved_radius = values.data["radius"][index]
+    data: dict[str, FloatArray] = {}
+    for q in sw.quantities:
+        value = values.data[q][index]
+        if q == "indentation":  # v = load * V(lambda)
+            value = value * (plan.load / solved_load)
+        elif q == "drag":  # int p x/R dx / P at fixed lambda (1 if equal: inf)
+            same = solved_radius == plan.radius
+            with np.errstate(invalid="ignore", divide="ignore"):
+                value = value * np.where(same, 1.0, solved_radius / plan.radius)
+        data[q] = np.where(failed[index], np.nan, value)
+    valid = ~failed[index] & (values.data["valid"][index] == 1.0)
     errors: dict[tuple[int, int], str] = {}
-    for i, row in enumerate(plan.points):
-        for j, p in enumerate(row):
-            res = values[point_key(p, scene.tol)]
-            if isinstance(res, str):
-                errors[(i, j)] = res
-                continue
-            for q in sw.quantities:
-                value = res[q]
-                if q == "indentation":  # v = load * V(lambda)
-                    value *= p["load"] / res["load"]
-                elif q == "drag":  # int p x/R dx / P at fixed lambda
-                    value *= radius_ratio(res["radius"], p["radius"])
-                data[q][i, j] = value
-            valid[i, j] = bool(res["valid"])
+    if values.errors:
+        for flat in np.flatnonzero(failed[index].ravel()).tolist():
+            k = int(index.ravel()[flat])
+            errors[divmod(flat, len(sw.values))] = values.errors[k]
     vary_param = scene.vary.param if scene.vary is not None else None
     return SweepTable(
         param=sw.param,

@@ -157,8 +157,10 @@ class RunRecord:
     outputs: Mapping[str, OutputData]
     sweep: SweepTable | None
     solutions: tuple[ContactSolution, ...]
-    """Contact solutions computed in this process (sweep points solved in
-    worker processes or on Dask return their numbers only)."""
+    """Contact solutions of the scene's curves computed in this process;
+    a sweep's points only with ``Scene.run(keep_solutions=True)`` (and never
+    those solved in worker processes or on Dask: they return their numbers
+    only)."""
     stages: list[Stage]
     total_seconds: float
     """Wall-clock time of the whole run."""

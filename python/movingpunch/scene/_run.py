@@ -25,6 +25,7 @@ from movingpunch.scene._plan import (
     CHUNK_MIN,
     Chunk,
     SweepPlan,
+    SweepValues,
     build_sweep_table,
     chunk_target,
     default_jobs,
@@ -33,7 +34,7 @@ from movingpunch.scene._plan import (
     use_workers,
 )
 from movingpunch.scene._result import OutputData, RunRecord, SweepTable
-from movingpunch.scene._solve import Key, RunState, point_key, point_quantities
+from movingpunch.scene._solve import RunState, point_key, point_quantities
 
 __all__ = ["run_scene"]
 
@@ -50,6 +51,7 @@ def run_scene(
     dask: str | None = None,
     dask_timeout: float | None = None,
     on_dask: DaskEvents | None = None,
+    keep_solutions: bool = False,
 ) -> RunRecord:
     """Runs ``scene`` (see ``Scene.run``): all the result but the scene."""
     if jobs is not None and (
@@ -70,9 +72,14 @@ def run_scene(
     remote = sweep_plan is not None and use_workers(
         sweep_plan, n_jobs, dask, auto_jobs=jobs is None
     )
-    sweep_keys = set(sweep_plan.keys) if sweep_plan is not None else set()
     # Points solved elsewhere are solved again here if an output needs them.
-    run.total = len(sweep_keys) + len(base_keys if remote else base_keys - sweep_keys)
+    run.total = len(base_keys)
+    if sweep_plan is not None:
+        shared = sum(sweep_plan.find(k) is not None for k in base_keys)
+        run.total += sweep_plan.n_keys - (0 if remote else shared)
+    # A sweep keeps its numbers, not its solutions (unless asked): the
+    # curves' solutions are kept for their outputs.
+    run.keep = None if keep_solutions else base_keys
 
     sweep_table: SweepTable | None = None
     used_jobs = 1
@@ -111,16 +118,17 @@ def _run_sweep(
 ) -> tuple[SweepTable, int]:
     scene = run.scene
     assert scene.sweep is not None
-    values: dict[Key, dict[str, float] | str] = {}
+    values = SweepValues(plan)
     if not remote:
-        for key in plan.keys:
+        for k in range(plan.n_keys):
+            p = plan.point(k)
             try:
-                s = run.solution(plan.representative[key])
+                s = run.solution(p)
                 found: list[str] = []
-                values[key] = point_quantities(s, plan.want_peaks, run.stages, found)
-                run.note_warnings(key, plan.representative[key], found)
+                values.set(k, point_quantities(s, plan.want_peaks, run.stages, found))
+                run.note_warnings(plan.key(k), p, found)
             except MovingPunchError as exc:
-                values[key] = str(exc)
+                values.set(k, str(exc))
                 run.tick()
         return build_sweep_table(scene, plan, values), 1
 
@@ -129,13 +137,14 @@ def _run_sweep(
 
     def consume(chunk: Chunk, outs: Sequence[Mapping[str, Any]]) -> None:
         check_cancelled()  # a cancelled run stops the pool (movingpunch.cancel)
-        for (_, keys), out in zip(chunk, outs, strict=True):
+        for (lo, hi), out in zip(chunk, outs, strict=True):
             run.stages.merge(out["stages"])
-            for key, res in zip(keys, out["results"], strict=True):
-                values[key] = res
-            for key, found in zip(keys, out["warnings"], strict=True):
-                run.note_warnings(key, plan.representative[key], found)
-        run.tick(sum(len(keys) for _, keys in chunk))
+            for k, res in zip(range(lo, hi), out["results"], strict=True):
+                values.set(k, res)
+            for k, found in zip(range(lo, hi), out["warnings"], strict=True):
+                if found:
+                    run.note_warnings(plan.key(k), plan.point(k), found)
+        run.tick(sum(hi - lo for lo, hi in chunk))
 
     if dask is not None:
         timeout, on_dask = dask_options

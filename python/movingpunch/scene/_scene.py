@@ -148,6 +148,7 @@ class Scene:
         dask_timeout: float | None = None,
         on_dask: Callable[[str, float], None] | None = None,
         cancel: Cancel | None = None,
+        keep_solutions: bool = False,
     ) -> SceneResult:
         """Computes what the scene asks for, and only that.
 
@@ -159,8 +160,15 @@ class Scene:
         ``progress(done, total)`` is called as solves finish. ``cancel``: a
         ``movingpunch.Cancel`` token whose ``cancel()`` stops the run with
         ``movingpunch.Cancelled`` (a sweep on worker processes between
-        chunks, its pool shut down).
+        chunks, its pool shut down). ``keep_solutions``: keep every sweep
+        point solved in this process in ``solutions`` (by default a sweep
+        keeps only its table, so that its memory does not grow with its
+        points beyond the table itself; the curves' solutions are kept).
         """
+        if not isinstance(keep_solutions, bool):
+            raise TypeError(
+                f"keep_solutions must be True or False, got {keep_solutions!r}"
+            )
         if dask_timeout is not None and not (
             isinstance(dask_timeout, (int, float))
             and math.isfinite(dask_timeout)
@@ -177,6 +185,7 @@ class Scene:
                 dask=dask,
                 dask_timeout=dask_timeout,
                 on_dask=on_dask,
+                keep_solutions=keep_solutions,
             )
         return SceneResult(scene=self, **vars(record))
 

@@ -250,6 +250,8 @@ class RunState:
     done: int = 0
     total: int = 0
     progress: Callable[[int, int], None] | None = None
+    keep: set[Key] | None = None
+    """The keys whose solutions are kept (``memo``) once solved; None: all."""
 
     def tick(self, n: int = 1) -> None:
         self.done += n
@@ -257,9 +259,12 @@ class RunState:
             self.progress(self.done, self.total)
 
     def solution(self, p: Mapping[str, float]) -> ContactSolution:
+        """The solution of point ``p``: solved once, kept if its key is one
+        ``keep`` names (a sweep's other points are solved, read and let go)."""
         key = point_key(p, self.scene.tol)
-        if key not in self.memo:
-            self.memo[key] = solve_point(
+        found = self.memo.get(key)
+        if found is None:
+            found = solve_point(
                 p,
                 self.scene.tol,
                 self.stages,
@@ -268,9 +273,11 @@ class RunState:
                 self.scene.punches,
                 self.scene.medium,
             )
-            self.note_warnings(key, p, result_warnings(self.memo[key]))
+            if self.keep is None or key in self.keep:
+                self.memo[key] = found
+            self.note_warnings(key, p, result_warnings(found))
             self.tick()
-        return self.memo[key]
+        return found
 
     def note_warnings(
         self, key: Key, p: Mapping[str, float], found: Sequence[str]
