@@ -820,8 +820,9 @@ def _add_scene_commands(sub: Any) -> None:
         type=_jobs,
         default=None,
         metavar="N",
-        help="worker processes for a sweep (default: the cores this process "
-        "may use, when the sweep is long enough to gain from them; 1: none)",
+        help="at most N processes for a sweep (default: the cores this process "
+        "may use); a sweep too short to gain from worker processes runs in "
+        "this one (the summary's 'jobs 1')",
     )
     run_p.add_argument(
         "--dask",
@@ -965,6 +966,13 @@ def _cmd_run(args: argparse.Namespace) -> int:
             status.close()
         if bar is not None:
             bar.close()
+    explicit_jobs = args.jobs is not None and args.jobs > 1
+    if explicit_jobs and result.jobs == 1 and scene.sweep is not None:
+        sys.stderr.write(
+            f"{PROG}: note: --jobs {args.jobs}: the sweep ran in this "
+            "process (too short for worker processes to pay for their "
+            "start-up)\n"
+        )
     hints = _scene_hints(result)
     # The files first (all of them or none), then the text: a reader that
     # closes stdout early (| head) does not cost the files.

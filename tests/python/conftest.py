@@ -191,6 +191,16 @@ def _assert_one_line_error(proc: Completed, *words: str) -> None:
 
 
 @pytest.fixture
+def pool_pays(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Worker processes start on any sweep of more than one point (their
+    start-up estimated free): the pool's own tests run small sweeps on it,
+    which ``jobs`` would otherwise keep in this process."""
+    from movingpunch.scene import _plan
+
+    monkeypatch.setattr(_plan, "_STARTUP_SECONDS", 0.0)
+
+
+@pytest.fixture
 def run_cli() -> Callable[..., Completed]:
     """``run_cli(*args, cwd=None, timeout=CLI_TIMEOUT)``: ``python -m
     movingpunch ARGS`` in a subprocess; stdout and stderr captured as text,

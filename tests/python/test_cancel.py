@@ -223,6 +223,7 @@ def test_a_cancelled_sweep_stops_at_its_next_point() -> None:
     assert done[-1] == 3, f"points solved after the cancel: {done}"
 
 
+@pytest.mark.usefixtures("pool_pays")
 def test_a_cancelled_sweep_on_worker_processes_stops_its_pool() -> None:
     import multiprocessing
 

@@ -619,6 +619,7 @@ def test_accuracy_ladder_of_a_profile(profile: Any) -> None:
         assert rung.error_a <= max(rung.error_estimate, 1e-15)
 
 
+@pytest.mark.usefixtures("pool_pays")
 def test_profile_scene_sweep_in_worker_processes() -> None:
     """A rounded-flat load sweep gives the same widths in this process and in
     two worker processes (the profile is pickled with the tasks), and each

@@ -349,12 +349,29 @@ def test_automatic_jobs_run_small_sweeps_here() -> None:
     cold = _plan.plan_sweep(
         Scene(params=BASE, sweep=Sweep.range("vstar", 0.0, 0.5, 2000))
     )
-    assert not _plan.use_workers(small, 2, None, auto_jobs=True)
-    assert _plan.use_workers(small, 2, None, auto_jobs=False)  # asked for
-    assert _plan.use_workers(cold, 2, None, auto_jobs=True)
-    assert not _plan.use_workers(cold, 1, None, auto_jobs=True)
+    assert not _plan.use_workers(small, 2, None)  # jobs=2 is a limit
+    assert _plan.use_workers(small, 2, "tcp://127.0.0.1:1")  # Dask: as asked
+    assert _plan.use_workers(cold, 2, None)
+    assert not _plan.use_workers(cold, 1, None)
 
 
+def test_jobs_on_a_small_sweep_run_here_with_the_same_numbers() -> None:
+    """--jobs 2 on a sweep too small to pay for a worker: no process is
+    started (result.jobs 1), the numbers are the serial ones."""
+    import multiprocessing
+
+    scene = Scene(params=BASE, sweep=Sweep.range("load", 1e-3, 4e-3, 40))
+    before = set(multiprocessing.active_children())
+    pooled = scene.run(jobs=2)
+    assert pooled.jobs == 1
+    assert set(multiprocessing.active_children()) <= before
+    serial = scene.run(jobs=1)
+    assert pooled.sweep is not None
+    assert serial.sweep is not None
+    np.testing.assert_array_equal(pooled.sweep.data["a"], serial.sweep.data["a"])
+
+
+@pytest.mark.usefixtures("pool_pays")
 def test_a_group_split_across_workers_gives_the_serial_numbers() -> None:
     """One load group in chunks on two processes: the numbers of the serial
     run (each chunk rebuilds or reuses its kernel; the answer is the same)."""

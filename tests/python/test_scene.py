@@ -434,6 +434,7 @@ def test_points_with_equal_radius_times_load_are_solved_once() -> None:
             )
 
 
+@pytest.mark.usefixtures("pool_pays")
 def test_worker_processes_give_the_same_numbers() -> None:
     scene = dataclasses.replace(
         Scene.bundled("fig2"),

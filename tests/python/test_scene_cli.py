@@ -70,6 +70,8 @@ def test_run_writes_csv_and_json_that_load_back(
         "run", "table1", "--format", "json", "--out", ".", "--jobs", "2", cwd=tmp_path
     )
     assert proc.returncode == 0, proc.stderr
+    # 8 points: too few to pay for a worker, and it says so.
+    assert "--jobs 2: the sweep ran in this process" in proc.stderr
     meta, cols = read_json(tmp_path / "table1-sweep.json")
     assert meta["scene"] == Scene.bundled("table1")
     assert cols["kw"][-1] == math.inf

@@ -505,6 +505,7 @@ def test_the_accuracy_report_covers_a_train() -> None:
         assert rung.bounded, rung
 
 
+@pytest.mark.usefixtures("pool_pays")
 def test_a_train_sweep_in_worker_processes_gives_the_same_numbers() -> None:
     scene = Scene.bundled("spacing")
     here, pooled = scene.run(jobs=1), scene.run(jobs=2)

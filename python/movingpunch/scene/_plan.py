@@ -69,6 +69,8 @@ class SweepPlan:
     load: FloatArray  # (n_curves, n_grid): each point's load
     want_peaks: bool
     damped: bool
+    spaced: bool = False
+    """Its points place a train of punches by their spacing."""
 
     @property
     def n_keys(self) -> int:
@@ -191,7 +193,9 @@ def plan_sweep(scene: SceneData) -> SweepPlan:
     want_peaks = any(q in PEAK_QUANTITIES for q in sw.quantities)
     # the asymmetric solver: damping or friction
     damped = bool(np.any(keys[:, 4] > 0.0) or np.any(keys[:, 6] > 0.0))
+    spaced = "spacing" in scene.point(curves[0], **{sw.param: sw.values[0]})
     return SweepPlan(
+        spaced=spaced,
         scene=scene,
         keys=keys,
         starts=starts,
@@ -214,6 +218,7 @@ _COLD_SECONDS, _WARM_SECONDS, _PEAKS_SECONDS = 1.5e-3, 3e-4, 3e-2
 _DAMPED_SECONDS = 0.7
 _TRAIN_SECONDS = 0.01  # two to four punches (the bundled spacing scene: 5 ms)
 _STARTUP_SECONDS = 0.6
+_PAY_MARGIN = 1.5  # the saving a pool must promise, in start-ups
 # A chunk (the unit of work a worker is sent) is sized to about
 # 1/_CHUNKS_PER_JOB of a worker's share, within [CHUNK_MIN, CHUNK_MAX]
 # seconds (on Dask [DASK_CHUNK_MIN, DASK_CHUNK_MAX]) and _CHUNK_POINTS points.
@@ -250,18 +255,18 @@ def default_jobs() -> int:
     return os.cpu_count() or 1
 
 
-def use_workers(
-    plan: SweepPlan, n_jobs: int, dask: str | None, *, auto_jobs: bool
-) -> bool:
-    """Whether the sweep goes to worker processes (or Dask): never for one
-    point or one job; with automatic jobs only when the estimated time saved
-    pays for starting the workers."""
+def use_workers(plan: SweepPlan, n_jobs: int, dask: str | None) -> bool:
+    """Whether the sweep goes to worker processes (or Dask, always when
+    given): never for one point or one job, and only when the estimated time
+    the workers save exceeds _PAY_MARGIN times their start-up. ``jobs`` is
+    a limit, not an order: a sweep too small to pay for a pool runs in this
+    process, never slower than serial (``RunRecord.jobs`` says 1)."""
     if dask is not None:
         return True
     if n_jobs <= 1 or plan.n_keys <= 1:
         return False
     saved = _sweep_seconds(plan) * (1.0 - 1.0 / n_jobs)
-    return not auto_jobs or saved > _STARTUP_SECONDS
+    return saved > _PAY_MARGIN * _STARTUP_SECONDS
 
 
 def split_chunks(plan: SweepPlan, target: float) -> list[Chunk]:
@@ -318,16 +323,17 @@ def chunk_target(plan: SweepPlan, n: int, lo: float, hi: float) -> float:
 
 def chunk_tasks(plan: SweepPlan, chunk: Chunk) -> list[dict[str, Any]]:
     """A chunk as the tasks ``solve_chunk`` takes (plain data: it is
-    pickled to a worker)."""
-    sw = plan.scene.sweep
-    assert sw is not None
+    pickled to a worker). A few microseconds a piece: a cold sweep's chunk
+    is hundreds of one-point groups."""
+    rep_radius = plan.radius.ravel()[plan.rep[chunk[0][0] : chunk[-1][1]]]
+    rep_load = plan.load.ravel()[plan.rep[chunk[0][0] : chunk[-1][1]]]
+    first = chunk[0][0]
+    spaced = plan.spaced
     tasks = []
     for lo, hi in chunk:
-        group = plan.group(lo)
-        rep = plan.rep[lo:hi]
-        spacings: list[float | None] = [None] * (hi - lo)
-        if "spacing" in plan.point(lo):  # a train placed by the sweep or vary
-            spacings = [plan.point(k).get("spacing") for k in range(lo, hi)]
+        group = plan.keys[lo, :_GROUP].tolist()
+        radius = rep_radius[lo - first : hi - first].tolist()
+        load = rep_load[lo - first : hi - first].tolist()
         tasks.append(
             {
                 "vstar": group[0],
@@ -337,19 +343,17 @@ def chunk_tasks(plan: SweepPlan, chunk: Chunk) -> list[dict[str, Any]]:
                 "damping": group[4],
                 "kp": group[5],
                 "friction": group[6],
-                "points": list(
-                    zip(
-                        plan.radius.ravel()[rep].tolist(),
-                        plan.load.ravel()[rep].tolist(),
-                        strict=True,
-                    )
-                ),
+                "points": list(zip(radius, load, strict=True)),
                 "peaks": plan.want_peaks,
                 "profile": plan.profile,
                 "contact": plan.contact,
                 "punches": plan.punches,
                 "medium": plan.medium,
-                "spacings": spacings,
+                "spacings": (
+                    [plan.point(k).get("spacing") for k in range(lo, hi)]
+                    if spaced
+                    else [None] * (hi - lo)
+                ),
             }
         )
     return tasks

@@ -69,9 +69,7 @@ def run_scene(
     )
     base_keys = {point_key(p, scene.tol) for p in base_points}
     sweep_plan = plan_sweep(scene) if scene.sweep is not None else None
-    remote = sweep_plan is not None and use_workers(
-        sweep_plan, n_jobs, dask, auto_jobs=jobs is None
-    )
+    remote = sweep_plan is not None and use_workers(sweep_plan, n_jobs, dask)
     # Points solved elsewhere are solved again here if an output needs them.
     run.total = len(base_keys)
     if sweep_plan is not None:

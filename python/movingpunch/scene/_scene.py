@@ -152,8 +152,10 @@ class Scene:
     ) -> SceneResult:
         """Computes what the scene asks for, and only that.
 
-        ``jobs``: worker processes for a sweep (``None``: all cores; 1: in
-        this process). ``dask``: address of a Dask scheduler to run the sweep
+        ``jobs``: at most this many processes for a sweep (``None``: all
+        cores; 1: this process alone); a sweep too short for worker processes
+        to pay for their start-up runs in this process (``result.jobs`` is
+        then 1). ``dask``: address of a Dask scheduler to run the sweep
         on instead; ``dask_timeout``: seconds any wait on it may last
         (default ``DASK_CONNECT_TIMEOUT``, 20); ``on_dask(event, value)``
         hears ``("connecting", timeout)`` and ``("connected", workers)``.
