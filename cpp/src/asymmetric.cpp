@@ -1946,7 +1946,12 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
     }
   }
   s.valid_ = true;
-  std::ostringstream why;
+  std::vector<std::string> why;
+  const auto num = [](double x) {
+    std::ostringstream o;
+    o << x;
+    return o.str();
+  };
   // The gap's scale: w^2/R for a cylinder, w times the slope at the ends otherwise.
   const double gap_scale =
       cylinder ? s.half_ * s.half_ / prm.radius
@@ -1954,15 +1959,21 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
                                      std::fabs(prof.slope(s.centre_ + s.half_)), 1e-300});
   if (s.min_p_ < -1e-8) {
     s.valid_ = false;
-    why << "pressure negative inside the contact (min p/(P/h) = " << s.min_p_ << "); ";
+    why.push_back("the pressure is negative inside the contact (min p/(P/h) = " + num(s.min_p_) +
+                  "): the contact separates");
   }
   if (s.min_gap_ < -1e-6 * gap_scale) {
     s.valid_ = false;
-    why << "the punch penetrates the surface beside the contact (min gap/h = " << s.min_gap_
-        << "); ";
+    why.push_back("the punch penetrates the surface beside the contact (min gap/h = " +
+                  num(s.min_gap_) + ")");
   }
-  s.validity_ = s.valid_ ? "valid: p >= 0 on the contact and no penetration within 2(a+b) of it"
-                         : "invalid: " + why.str();
+  if (s.valid_) {
+    s.validity_ = "valid: p >= 0 on the contact and no penetration within 2(a+b) of it";
+  } else {
+    s.validity_ = "invalid: " + why.front();
+    for (std::size_t i = 1; i < why.size(); ++i) s.validity_ += "; " + why[i];
+    s.validity_ += "; the single-contact solution is unphysical";
+  }
   if (!s.other_widths_.empty()) {
     std::ostringstream note;
     note << "; not unique: the load is also carried by contacts of half-width (a+b)/2 ~";

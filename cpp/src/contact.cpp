@@ -1507,7 +1507,7 @@ SymmetricSolution solve_contact(const ContactParams& p) {
     if (!prob.cylinder()) extend_series(sol.b_, sol.trunc_, prof, a, phi1 * p.load);
     sol.p0_ = u_series(sol.b_, 0.0);
     const std::string kinks = kink_truncation_warning(
-        sol.trunc_, sol.p0_, prof.describe(),
+        sol.trunc_, sol.p0_, sol.profile_text_,
         prof.kind() == ProfileKind::rounded_flat ? a - prof.face() : std::nan(""));
     if (!kinks.empty()) sol.warnings_.push_back(kinks);
   }

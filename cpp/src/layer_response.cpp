@@ -80,6 +80,10 @@ double c2_of(double nu) {
 
 double rayleigh_vstar(double nu) {
   require_in_range("nu", nu, 0.0, 0.5, false, true);
+  // The last nu's value (a pure function: every solve asks for its layer's,
+  // a sweep the same nu thousands of times; the bisection costs microseconds).
+  thread_local double last_nu = -1.0, last_vr = 0.0;
+  if (nu == last_nu) return last_vr;
   const double c2 = c2_of(nu);
   // rayleigh_over_s is positive at s = 0 (2 - 2/c2 >= 1) and negative near s = 1.
   double lo = 0.0, hi = 1.0 - 1e-300;
@@ -87,7 +91,9 @@ double rayleigh_vstar(double nu) {
     const double mid = 0.5 * (lo + hi);
     (rayleigh_over_s(mid, c2) > 0.0 ? lo : hi) = mid;
   }
-  return 0.5 * (lo + hi);
+  last_nu = nu;
+  last_vr = 0.5 * (lo + hi);
+  return last_vr;
 }
 
 WaveConstants wave_constants(double vstar, double nu) {

@@ -392,12 +392,15 @@ def classify(name: str, value: object) -> tuple[float, str]:
     (an integer beyond float range), "finite" (NaN or an infinity the
     range refuses) or "range". Presets and integers are not handled here."""
     spec = SPECS[name]
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+    if type(value) is float:  # the usual case, without the ABC's check
+        x = value
+    elif isinstance(value, bool) or not isinstance(value, numbers.Real):
         return math.nan, "type"
-    try:
-        x = float(value)
-    except OverflowError:
-        return math.nan, "overflow"
+    else:
+        try:
+            x = float(value)
+        except OverflowError:
+            return math.nan, "overflow"
     if math.isnan(x) or (math.isinf(x) and not (spec.inf_ok and x > 0)):
         return x, "finite"
     return x, "" if spec.contains(x) else "range"

@@ -468,7 +468,17 @@ def solve(
             shape, vstar, springs_kw, load, nu, accuracy, flag or zoned, size, kp
         )
 
-    single = single_at(tol, n)
+    try:
+        single = single_at(tol, n)
+    except UnphysicalContactError as err:
+        if mode != "auto" or fric == 0.0:
+            raise
+        raise UnphysicalContactError(
+            f"{err}; contact 'auto' looks for separated contact zones only "
+            "without friction (friction = 0): lower the friction or the speed, "
+            "or pass allow_unphysical=True to get the single contact flagged "
+            "invalid"
+        ) from None
     if zoned and single.valid and n is None and single.tol > _CONFIRM_TOL:
         # A coarse tolerance stops on the contact's ends, which converge
         # before the pressure's shape: near the critical speed p(0) can

@@ -234,6 +234,54 @@ def test_near_critical_soft_foundation_paper_load_separates(kw: float) -> None:
     assert s.pressure(np.linspace(-s.a, s.a, 401)).min() < 0.0
 
 
+@pytest.mark.parametrize("profile", [None, mp.RoundedFlat(0.3, 100.0)])
+def test_a_hair_below_critical_on_a_soft_foundation_auto_finds_two_zones(
+    profile: mp.RoundedFlat | None,
+) -> None:
+    """kw 0.1, V* = 0.99999 V*_cr, the paper's load, contact "auto": the
+    single contact lifts off at its centre; the answer is two zones, each
+    with p >= 0 and no penetration, carrying the load (issue 27 had it fail
+    after a 12 s search)."""
+    vstar = mp.critical_vstar(0.1) * (1 - 1e-5)
+    shape: dict[str, Any] = (
+        {"radius": 100.0} if profile is None else {"profile": profile}
+    )
+    s = mp.solve(vstar=vstar, kw=0.1, load=0.002, contact="auto", **shape)
+    assert s.valid
+    assert s.warnings == ()
+    assert len(s.contact_zones) == 2
+    (l0, r0), (l1, r1) = s.contact_zones
+    assert l0 < r0 < 0.0 < l1 < r1
+    assert l0 == pytest.approx(-r1, rel=1e-9)  # symmetric
+    x = np.concatenate([np.linspace(l0, r0, 101), np.linspace(l1, r1, 101)])
+    p = s.pressure(x)
+    assert p.min() >= -1e-9 * p.max()
+    assert s.min_pressure >= 0.0
+    total = sum(
+        np.trapezoid(s.pressure(np.linspace(a, b, 4001)), np.linspace(a, b, 4001))
+        for a, b in s.contact_zones
+    )
+    assert total == pytest.approx(1.0, rel=2e-3)  # int p dx / P (trapezoid)
+
+
+def test_a_hair_below_critical_with_friction_is_a_clear_refusal() -> None:
+    """Friction there: several zones are solved frictionless only, so the
+    single contact is refused, naming why and what to do."""
+    vstar = mp.critical_vstar(0.1) * (1 - 1e-5)
+    args = {"vstar": vstar, "kw": 0.1, "radius": 100.0, "load": 0.002}
+    with pytest.raises(mp.UnphysicalContactError) as info:
+        mp.solve(friction=0.3, contact="auto", **args)
+    msg = str(info.value)
+    assert "negative inside the contact" in msg
+    assert "contact separates" in msg
+    assert "only without friction" in msg
+    assert "allow_unphysical=True" in msg
+    assert not msg.rstrip().endswith(";")
+    s = mp.solve(friction=0.3, allow_unphysical=True, **args)
+    assert not s.valid
+    assert s.min_pressure < 0.0
+
+
 @pytest.mark.parametrize("eps", NEAR_EPS)
 @pytest.mark.parametrize("kw", [0.01, 0.1])
 def test_near_critical_soft_foundation_light_load_stays_valid(
