@@ -2618,6 +2618,11 @@ StressField AsymmetricSolution::stress_field(const Eigen::Ref<const Eigen::Vecto
   g.sigma_x.resize(ny, nx);
   g.sigma_y.resize(ny, nx);
   g.tau_xy.resize(ny, nx);
+  // The shear traction's arctan term depends on x alone: once per column.
+  Eigen::VectorXd bar = Eigen::VectorXd::Zero(nx);
+  if (jac_)
+    for (Eigen::Index j = 0; j < nx; ++j)
+      if (std::fabs(x(j)) <= kFarField) bar(j) = bar_term(x(j), atan_wg_, centre_, half_);
   for (Eigen::Index i = 0; i < ny; ++i)
     for (Eigen::Index j = 0; j < nx; ++j) {
       if (y(i) == 0.0) {
@@ -2637,8 +2642,7 @@ StressField AsymmetricSolution::stress_field(const Eigen::Ref<const Eigen::Vecto
         // integrand decays like e^{-nT alpha}), plus the shear traction's.
         const BottomFriction& bf = *bottom_friction();
         const double u = x(j) - centre_;
-        g.sigma_x(i, j) =
-            f.fourier(bf.sx_re, bf.sx_im, u) / kPi + bar_term(x(j), atan_wg_, centre_, half_);
+        g.sigma_x(i, j) = f.fourier(bf.sx_re, bf.sx_im, u) / kPi + bar(j);
         g.sigma_y(i, j) = f.fourier(bf.sy_re, bf.sy_im, u) / kPi;
         g.tau_xy(i, j) = f.fourier(bf.t_re, bf.t_im, u) / kPi;
         continue;
@@ -2646,7 +2650,7 @@ StressField AsymmetricSolution::stress_field(const Eigen::Ref<const Eigen::Vecto
       if (jac_) {
         const Eigen::Vector3d hp =
             jacobi_half_plane(c, *jac_, half_, x(j) - centre_, y(i), params_.friction);
-        g.sigma_x(i, j) = rem(j, i) + hp(0) + bar_term(x(j), atan_wg_, centre_, half_);
+        g.sigma_x(i, j) = rem(j, i) + hp(0) + bar(j);
         g.sigma_y(i, j) = rem(j, ny + i) + hp(1);
         g.tau_xy(i, j) = rem(j, 2 * ny + i) + hp(2);
         continue;

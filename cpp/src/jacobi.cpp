@@ -547,15 +547,32 @@ std::complex<double> JacobiSeries::cauchy_upper(std::complex<double> z,
     }
     return (Z * gz - q * poly) / sa;
   }
-  C sum = 0.0, dsum = 0.0;
+  // sum wg_i/(x_i - z) (and wg_i/(x_i - z)^2) in real arithmetic: 1/(x - z)
+  // = (dx + i y)/(dx^2 + y^2), dx = x - Re z, y = Im z (z is off the cut
+  // here: no overflow for the library's complex division to guard against,
+  // which had taken three quarters of a stress map).
   const Far& f = far();
-  for (Eigen::Index i = 0; i < f.x.size(); ++i) {
-    const C d = 1.0 / (f.x(i) - z);
-    sum += f.wg(i) * d;
-    dsum += f.wg(i) * d * d;
+  const double zr = z.real(), zi = z.imag();
+  double sr = 0.0, si = 0.0, dr = 0.0, di = 0.0;
+  const Eigen::Index m = f.x.size();
+  if (derivative) {
+    for (Eigen::Index i = 0; i < m; ++i) {
+      const double dx = f.x(i) - zr, inv = 1.0 / (dx * dx + zi * zi);
+      const double re = dx * inv, im = zi * inv, w = f.wg(i);
+      sr += w * re;
+      si += w * im;
+      dr += w * (re - im) * (re + im);
+      di += w * 2.0 * re * im;
+    }
+    *derivative = C(dr, di) / kPi;
+  } else {
+    for (Eigen::Index i = 0; i < m; ++i) {
+      const double dx = f.x(i) - zr, inv = f.wg(i) / (dx * dx + zi * zi);
+      sr += dx * inv;
+      si += zi * inv;
+    }
   }
-  if (derivative) *derivative = dsum / kPi;
-  return sum / kPi;
+  return C(sr, si) / kPi;
 }
 
 double JacobiSeries::closed_form_radius() const {

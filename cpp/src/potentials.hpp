@@ -77,10 +77,45 @@ inline cplx_t w_of(cplx_t z, cplx_t* root = nullptr) {
   return 1.0 / (z + r);
 }
 
+// The suffix sums tail(k) = sum_{m >= k} (m + 1) |b_m| (k = 0 .. size; tail(size)
+// = 0) of a U-series: what potential_terms needs to cut its potentials short.
+inline Eigen::VectorXd potential_tails(const Eigen::VectorXd& b) {
+  Eigen::VectorXd t = Eigen::VectorXd::Zero(b.size() + 1);
+  for (Eigen::Index k = b.size(); k-- > 0;)
+    t(k) = t(k + 1) + static_cast<double>(k + 1) * std::fabs(b(k));
+  return t;
+}
+
+// The terms of a U-series' potentials (cauchy_potential and its derivative)
+// that reach 1e-17 of sum (m + 1) |b_m| at z: the terms m >= N add at most
+// |w|^(N+1) tail(N) to either (|b_m w^(m+1)| and (m + 1)|b_m w^(m+1)|), so N is
+// the first with |w(z)|^(N+1) tail(N) <= 1e-17 tail(0) (binary search: both
+// factors fall with N). Off the contact |w| is well below 1 and a profile's
+// tail-extended series (thousands of terms) is summed for a few dozen.
+inline Eigen::Index potential_terms(const Eigen::VectorXd& tail, double q) {
+  const Eigen::Index n = tail.size() - 1;
+  if (n <= 0 || !(q < 1.0) || !(tail(0) > 0.0)) return std::max<Eigen::Index>(n, 0);
+  if (!(q > 0.0)) return 1;
+  const double lq = std::log(q), limit = std::log(1e-17 * tail(0));
+  const auto enough = [&](Eigen::Index k) {
+    return !(tail(k) > 0.0) || static_cast<double>(k + 1) * lq + std::log(tail(k)) <= limit;
+  };
+  Eigen::Index lo = 0, hi = n;  // enough(hi) holds (tail(n) = 0)
+  while (lo < hi) {
+    const Eigen::Index mid = lo + (hi - lo) / 2;
+    if (enough(mid))
+      hi = mid;
+    else
+      lo = mid + 1;
+  }
+  return lo;
+}
+
 // Phi(z) = sum b_n w^{n+1} = (1/pi) int p(a t)/(P/h) / (z - t) dt (n = 0, step, 2 step, ...);
-// kind T: Phi(z) = sum b_n w^n / sqrt(z^2 - 1).
+// kind T: Phi(z) = sum b_n w^n / sqrt(z^2 - 1). `terms`: the first terms only
+// (potential_terms; -1: all).
 inline cplx_t cauchy_potential(const Eigen::VectorXd& b, cplx_t z, int step,
-                               SeriesKind kind = SeriesKind::U) {
+                               SeriesKind kind = SeriesKind::U, Eigen::Index terms = -1) {
   if (kind == SeriesKind::T) {
     cplx_t r;
     const cplx_t w = w_of(z, &r), ws = step == 1 ? w : w * w;
@@ -92,8 +127,9 @@ inline cplx_t cauchy_potential(const Eigen::VectorXd& b, cplx_t z, int step,
     return sum / r;
   }
   const cplx_t w = w_of(z), ws = step == 1 ? w : w * w;
+  const Eigen::Index end = terms < 0 ? b.size() : std::min(terms, b.size());
   cplx_t pw = w, sum = 0.0;
-  for (Eigen::Index n = 0; n < b.size(); n += step) {
+  for (Eigen::Index n = 0; n < end; n += step) {
     sum += b(n) * pw;
     pw *= ws;
   }
@@ -103,7 +139,8 @@ inline cplx_t cauchy_potential(const Eigen::VectorXd& b, cplx_t z, int step,
 // Phi'(z) = -sum b_n (n+1) w^{n+1} / sqrt(z^2 - 1); kind T:
 // Phi'(z) = -sum b_n w^n (n sqrt(z^2 - 1) + z) / sqrt(z^2 - 1)^3.
 inline cplx_t cauchy_potential_derivative(const Eigen::VectorXd& b, cplx_t z, int step,
-                                          SeriesKind kind = SeriesKind::U) {
+                                          SeriesKind kind = SeriesKind::U,
+                                          Eigen::Index terms = -1) {
   cplx_t r;
   const cplx_t w = w_of(z, &r), ws = step == 1 ? w : w * w;
   if (kind == SeriesKind::T) {
@@ -114,8 +151,9 @@ inline cplx_t cauchy_potential_derivative(const Eigen::VectorXd& b, cplx_t z, in
     }
     return -sum / (r * r * r);
   }
+  const Eigen::Index end = terms < 0 ? b.size() : std::min(terms, b.size());
   cplx_t pw = w, sum = 0.0;
-  for (Eigen::Index n = 0; n < b.size(); n += step) {
+  for (Eigen::Index n = 0; n < end; n += step) {
     sum += b(n) * static_cast<double>(n + 1) * pw;
     pw *= ws;
   }
@@ -205,9 +243,12 @@ inline double half_plane_displacement(const WaveConstants& c, const Eigen::Vecto
 // e^{n alpha y} gives Re F(z_n), the sin-type tau Im F(z_n), F = i Phi,
 // z_n = (x - i n y)/a. At y = 0 (upper side of the cut) sigma_x = -phi2 p,
 // sigma_y = -p, tau = 0.
+// `tail` (potential_tails of a U-series b, or null): each potential sums only
+// the terms that reach it (potential_terms).
 inline Eigen::Vector3d half_plane_stresses(const WaveConstants& c, const Eigen::VectorXd& b,
                                            double a, double x, double y, int step,
-                                           SeriesKind kind = SeriesKind::U) {
+                                           SeriesKind kind = SeriesKind::U,
+                                           const Eigen::VectorXd* tail = nullptr) {
   const double nT = c.nT, nL = c.nL, d = c.delta;
   const Eigen::Vector4d vT(1.0, -1.0 / nT, (1.0 + nT * nT) / nT, -2.0);
   const Eigen::Vector4d dv(0.0, c.dW, c.dT, c.dS);
@@ -215,11 +256,15 @@ inline Eigen::Vector3d half_plane_stresses(const WaveConstants& c, const Eigen::
   const double kT[3] = {c.hp1 * sigma_x_hat(c, vT), c.hp1 * vT(3), c.hp1 * vT(2)};
   const double kL[3] = {c.hp2 * sigma_x_hat(c, dv), c.hp2 * dv(3), c.hp2 * dv(2)};
   const double kD[3] = {c.hp2 * sigma_x_hat(c, vT), c.hp2 * vT(3), c.hp2 * vT(2)};
-  auto F = [&b, step, kind](cplx_t z) {
-    return cplx_t(0.0, 1.0) * cauchy_potential(b, z, step, kind);
+  const auto terms = [&](cplx_t z) -> Eigen::Index {
+    return tail != nullptr && kind == SeriesKind::U ? potential_terms(*tail, std::abs(w_of(z)))
+                                                    : -1;
   };
-  auto dF = [&b, step, kind](cplx_t z) {
-    return cplx_t(0.0, 1.0) * cauchy_potential_derivative(b, z, step, kind);
+  auto F = [&](cplx_t z) {
+    return cplx_t(0.0, 1.0) * cauchy_potential(b, z, step, kind, terms(z));
+  };
+  auto dF = [&](cplx_t z) {
+    return cplx_t(0.0, 1.0) * cauchy_potential_derivative(b, z, step, kind, terms(z));
   };
   const cplx_t zT = z_of(x, nT, y, a), zL = z_of(x, nL, y, a);
   const cplx_t fT = F(zT), fL = F(zL);

@@ -22,6 +22,7 @@ FieldEvaluator::FieldEvaluator(std::shared_ptr<const Medium> medium, double a,
     : model_(std::move(medium)), a_(a), b_(b), kind_(kind) {
   if (!(a > 0.0) || !std::isfinite(a)) throw std::invalid_argument("field: a must be > 0");
   for (Eigen::Index n = 1; n < b_.size(); n += 2) b_(n) = 0.0;
+  if (kind_ == SeriesKind::U) tails_ = detail::potential_tails(b_);
   // Panels resolve the remainder and the transform of p (frequency a); the
   // oscillation in x is integrated exactly by the Filon rule.
   quad_ = build_alpha_quadrature(*model_, tol, 2.0 * a, Reach::field);
@@ -120,7 +121,8 @@ StressField FieldEvaluator::stresses(const Eigen::Ref<const Eigen::VectorXd>& x,
         f.tau_xy(j, i) = 0.0;
         continue;
       }
-      const Eigen::Vector3d hp = detail::half_plane_stresses(c, b_, a_, x(i), y(j), 2, kind_);
+      const Eigen::Vector3d hp =
+          detail::half_plane_stresses(c, b_, a_, x(i), y(j), 2, kind_, &tails_);
       f.sigma_x(j, i) += hp(0);
       f.sigma_y(j, i) += hp(1);
       f.tau_xy(j, i) += hp(2);

@@ -104,6 +104,38 @@ TEST(JacobiFlat, CauchyOffTheCutMatchesQuadrature) {
   }
 }
 
+TEST(JacobiFlat, FarRuleValueAndDerivativeOfALongSeries) {
+  // A 300-term series (closed form only within rho < 10^(5/300) ~ 1.04):
+  // the far rule off the cut against quadrature of the complex integrand,
+  // its derivative against a central difference of the value.
+  const double a = -0.3, b = -0.7;
+  Eigen::VectorXd c(300);
+  for (Eigen::Index m = 0; m < c.size(); ++m)
+    c(m) = std::cos(0.7 * static_cast<double>(m)) / (1.0 + static_cast<double>(m * m));
+  const mp::JacobiSeries s(a, b, c);
+  for (const std::complex<double> z :
+       {std::complex<double>(0.2, 0.4), std::complex<double>(-0.9, 0.15),
+        std::complex<double>(1.3, 0.05), std::complex<double>(-4.0, 2.0)}) {
+    const std::complex<double> got = s.cauchy_upper(z);
+    const double re = tanh_sinh([&](double t, double om, double op) {
+                        return (std::pow(om, a) * std::pow(op, b) * s.g(t) / (t - z)).real();
+                      }) /
+                      kPi;
+    const double im = tanh_sinh([&](double t, double om, double op) {
+                        return (std::pow(om, a) * std::pow(op, b) * s.g(t) / (t - z)).imag();
+                      }) /
+                      kPi;
+    EXPECT_NEAR(got.real(), re, 1e-9 * (1.0 + std::abs(got))) << z;
+    EXPECT_NEAR(got.imag(), im, 1e-9 * (1.0 + std::abs(got))) << z;
+    std::complex<double> der;
+    // The same value with it (its loop groups the products differently).
+    EXPECT_NEAR(std::abs(s.cauchy_upper(z, &der) - got), 0.0, 1e-14 * std::abs(got)) << z;
+    const double h = 1e-5;
+    const std::complex<double> fd = (s.cauchy_upper(z + h) - s.cauchy_upper(z - h)) / (2.0 * h);
+    EXPECT_NEAR(std::abs(der - fd), 0.0, 1e-7 * (1.0 + std::abs(der))) << z;
+  }
+}
+
 TEST(JacobiFlat, HalfIsFirstKindGaussChebyshev) {
   // alpha = beta = -1/2: r_i = cos((2i - 1) pi/(2N)), W_i/pi = 1/N, s_k = cos(k pi/N).
   for (int n : {2, 7, 24}) {

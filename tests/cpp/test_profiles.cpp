@@ -223,3 +223,30 @@ TEST(Profiles, EvenLogPotentialSumMatchesTermByTerm) {
       }
     }
 }
+
+// The stress field's potentials of a long U-series cut at potential_terms
+// agree with the whole sums to the bound's 1e-17 of sum (m + 1)|b_m| (plus
+// the sums' own round-off), and are cut short off the contact.
+TEST(Potentials, CutSeriesMatchTheWholeSums) {
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(4096);
+  for (Eigen::Index m = 0; m < b.size(); m += 2)
+    b(m) = std::cos(0.3 * static_cast<double>(m)) / (1.0 + static_cast<double>(m) * m);
+  const Eigen::VectorXd tail = detail::potential_tails(b);
+  ASSERT_EQ(tail.size(), b.size() + 1);
+  EXPECT_EQ(tail(b.size()), 0.0);
+  for (const std::complex<double> z :
+       {std::complex<double>(0.3, 0.01), std::complex<double>(0.3, 0.4),
+        std::complex<double>(1.5, 0.02), std::complex<double>(-4.0, 0.5),
+        std::complex<double>(0.999, 1e-6)}) {
+    const Eigen::Index n = detail::potential_terms(tail, std::abs(detail::w_of(z)));
+    const std::complex<double> whole = detail::cauchy_potential(b, z, 2);
+    const std::complex<double> cut = detail::cauchy_potential(b, z, 2, SeriesKind::U, n);
+    const std::complex<double> dwhole = detail::cauchy_potential_derivative(b, z, 2);
+    const std::complex<double> dcut =
+        detail::cauchy_potential_derivative(b, z, 2, SeriesKind::U, n);
+    const double r = std::abs(std::sqrt(z - 1.0) * std::sqrt(z + 1.0));
+    EXPECT_LE(std::abs(cut - whole), 1e-15 * tail(0)) << z;
+    EXPECT_LE(std::abs(dcut - dwhole), 1e-15 * tail(0) / r) << z;
+    if (std::abs(detail::w_of(z)) < 0.5) EXPECT_LT(n, 64) << z;  // off the contact: few terms
+  }
+}

@@ -56,6 +56,7 @@ class FieldEvaluator {
   std::shared_ptr<const Medium> model_;  // outlives the mode profiles
   double a_;
   Eigen::VectorXd b_;
+  Eigen::VectorXd tails_;  // detail::potential_tails of b_ (kind U)
   SeriesKind kind_ = SeriesKind::U;
   AlphaQuadrature quad_;
   std::unique_ptr<FilonIntegrator> filon_;
