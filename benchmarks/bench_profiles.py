@@ -10,7 +10,7 @@ the plain NumPy/SciPy peer's cylinder solve (../shared/bench/peer_numpy.py,
 N = 24, the paper's problem) run in the same process. Prints the machine's
 load average; never asserts a time.
 
-    .venv/bin/python benchmarks/bench_profiles.py [--repeat 5]
+    .venv/bin/python benchmarks/bench_profiles.py [--repeat 5] [--maps]
 """
 
 from __future__ import annotations
@@ -93,15 +93,37 @@ def _median_ms(run: Any, repeat: int, cold: bool) -> float:
     return statistics.median(times)
 
 
+def _map_ms(run: Any, repeat: int) -> float:
+    """Best ms of the TUI's stress map (97 x over +-3 h, 41 depths) of a
+    fresh solution (nothing of a previous map reused)."""
+    x, y = np.linspace(-3.0, 3.0, 97), np.linspace(-1.0, 0.0, 41)
+    best = float("inf")
+    for k in range(repeat):
+        s: Any = run(LOAD * (1.0 + 1e-3 * (k + 1)))
+        t0 = time.perf_counter()
+        s.stress_field(x, y)
+        best = min(best, 1e3 * (time.perf_counter() - t0))
+    return best
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=5)
+    parser.add_argument(
+        "--maps",
+        action="store_true",
+        help="also the TUI's 97x41 stress map of each solution (its best of "
+        "--repeat, each on a fresh solution) and its ratio to the cylinder's",
+    )
     args = parser.parse_args()
     print(f"load average: {os.getloadavg()[0]:.2f} ({os.cpu_count()} cores)")
     peer_ms = peer_cylinder_ms(args.repeat)
     header = (
         f"{'profile':18} {'options':13} {'cold ms':>9} {'warm ms':>9} {'warm/peer':>9}"
     )
+    if args.maps:
+        header += f" {'map ms':>9} {'map/cyl':>8}"
+    map_base: list[float] = []
     print(header)
     print("-" * len(header))
     for name, prof in PROFILES.items():
@@ -117,7 +139,12 @@ def main() -> None:
             except mp.MovingPunchError as exc:
                 print(f"{name:18} {label:13} {type(exc).__name__}")
                 continue
-            print(f"{name:18} {label:13} {cold:9.1f} {warm:9.1f} {warm / peer_ms:9.3f}")
+            line = f"{name:18} {label:13} {cold:9.1f} {warm:9.1f} {warm / peer_ms:9.3f}"
+            if args.maps:
+                ms = _map_ms(run, args.repeat)
+                map_base = map_base or [ms]  # the first row: the cylinder's
+                line += f" {ms:9.1f} {ms / map_base[0]:8.1f}"
+            print(line)
 
 
 if __name__ == "__main__":

@@ -2618,6 +2618,8 @@ StressField AsymmetricSolution::stress_field(const Eigen::Ref<const Eigen::Vecto
   g.sigma_x.resize(ny, nx);
   g.sigma_y.resize(ny, nx);
   g.tau_xy.resize(ny, nx);
+  // The half-plane potentials of a U-series sum the terms that reach them.
+  const Eigen::VectorXd tails = jac_ ? Eigen::VectorXd() : detail::potential_tails(b_);
   // The shear traction's arctan term depends on x alone: once per column.
   Eigen::VectorXd bar = Eigen::VectorXd::Zero(nx);
   if (jac_)
@@ -2655,7 +2657,8 @@ StressField AsymmetricSolution::stress_field(const Eigen::Ref<const Eigen::Vecto
         g.tau_xy(i, j) = rem(j, 2 * ny + i) + hp(2);
         continue;
       }
-      const Eigen::Vector3d hp = detail::half_plane_stresses(c, b_, half_, x(j) - centre_, y(i), 1);
+      const Eigen::Vector3d hp =
+          detail::half_plane_stresses(c, b_, half_, x(j) - centre_, y(i), 1, SeriesKind::U, &tails);
       g.sigma_x(i, j) = rem(j, i) + hp(0);
       g.sigma_y(i, j) = rem(j, ny + i) + hp(1);
       g.tau_xy(i, j) = rem(j, 2 * ny + i) + hp(2);
