@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 import movingpunch as mp
-from movingpunch.scene import ClusterError, Scene, Sweep, _executors
+from movingpunch.scene import ClusterError, Scene, Sweep, _executors, _plan
 
 
 def _scene() -> Scene:
@@ -54,6 +54,41 @@ def test_dask_sweep_matches_the_local_sweep(
     # Four groups (one per kw), one task each: four kernel builds.
     assert remote.stage("kernel").count == 4
     assert remote.stage("contact").count == 12
+
+
+def test_a_dask_sweep_of_more_chunks_than_it_sends_ahead(
+    local_cluster: Callable[..., Any], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """One chunk sent ahead per worker (the window at its smallest): every
+    chunk is still submitted as the earlier ones come back, in order, and
+    the numbers are the local run's."""
+    monkeypatch.setattr(_executors, "_DASK_AHEAD", 1)
+    monkeypatch.setattr(_plan, "DASK_CHUNK_MIN", 0.003)
+    monkeypatch.setattr(_executors, "DASK_CHUNK_MIN", 0.003)
+    scene = Scene(
+        params={"vstar": 0.2, "kw": 1.0, "radius": 100.0, "load": 0.002, "nu": 0.2},
+        sweep=Sweep.range("vstar", 0.0, 0.4, 40, quantities=("a", "p0")),
+    )
+    plan = _plan.plan_sweep(scene)
+    chunks = _plan.split_chunks(
+        plan, _plan.chunk_target(plan, 2, 0.003, _plan.DASK_CHUNK_MAX)
+    )
+    assert len(chunks) >= 10  # many more than the window of 2
+    local = scene.run(jobs=1)
+    seen: list[tuple[int, int]] = []
+    with local_cluster(n_workers=2, threads_per_worker=1, processes=False) as cluster:
+        remote = scene.run(
+            dask=cluster.scheduler_address,
+            progress=lambda done, total: seen.append((done, total)),
+        )
+    assert remote.sweep is not None
+    assert local.sweep is not None
+    for q in ("a", "p0"):
+        np.testing.assert_allclose(
+            remote.sweep.data[q], local.sweep.data[q], rtol=1e-12
+        )
+    assert seen[-1] == (40, 40)
+    assert len(seen) >= 10  # one progress step per chunk
 
 
 @pytest.mark.needs("dask")

@@ -48,6 +48,7 @@ client connects, ``("connected", workers)`` once the scheduler answered
 _IN_FLIGHT = 2
 _TAIL = 2
 _STOP_SECONDS = 2.0  # how long stopped workers get to exit before SIGKILL
+_DASK_AHEAD = 4  # chunks submitted ahead per Dask worker
 
 
 # ----------------------------------------------------------------------------
@@ -367,13 +368,25 @@ def dask_map(
         if on_dask is not None:
             on_dask("connected", float(workers))
         chunks = make_chunks(max(workers, 1), DASK_CHUNK_MIN, DASK_CHUNK_MAX)
-        futures = [
-            client.submit(solve_chunk, chunk_tasks(plan, chunk), pure=False)
-            for chunk in chunks
-        ]
-        index = {fut.key: i for i, fut in enumerate(futures)}
-        done = distributed.as_completed(futures, loop=client.loop, with_results=True)
-        remaining, last = len(futures), time.monotonic()
+        # At most _DASK_AHEAD chunks per worker submitted ahead: a long
+        # sweep's tasks are made as they are sent, never all at once.
+        ahead = _DASK_AHEAD * max(workers, 1)
+        index: dict[Any, int] = {}
+        done = distributed.as_completed(loop=client.loop, with_results=True)
+        sent = 0
+
+        def submit_next() -> None:
+            nonlocal sent
+            fut = client.submit(
+                solve_chunk, chunk_tasks(plan, chunks[sent]), pure=False
+            )
+            index[fut.key] = sent
+            done.add(fut)
+            sent += 1
+
+        while sent < min(ahead, len(chunks)):
+            submit_next()
+        remaining, last = len(chunks), time.monotonic()
         while remaining:
             if not done.has_ready():
                 if time.monotonic() - last > timeout:
@@ -390,7 +403,9 @@ def dask_map(
                 raise ClusterError(f"dask: a task was lost: {result!r}")
             remaining -= 1
             last = time.monotonic()
-            consume(chunks[index[fut.key]], result)
+            consume(chunks[index.pop(fut.key)], result)
+            if sent < len(chunks):
+                submit_next()
     except (OSError, TimeoutError) as exc:
         raise ClusterError(
             f"dask: the scheduler at {address!r} failed: {exc}"
