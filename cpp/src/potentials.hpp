@@ -112,10 +112,12 @@ inline Eigen::Index potential_terms(const Eigen::VectorXd& tail, double q) {
 }
 
 // Phi(z) = sum b_n w^{n+1} = (1/pi) int p(a t)/(P/h) / (z - t) dt (n = 0, step, 2 step, ...);
-// kind T: Phi(z) = sum b_n w^n / sqrt(z^2 - 1). `terms`: the first terms only
-// (potential_terms; -1: all).
+// kind T: Phi(z) = sum b_n w^n / sqrt(z^2 - 1). `tail` (potential_tails of a
+// U-series b, or null: every term): only the terms that reach z
+// (potential_terms).
 inline cplx_t cauchy_potential(const Eigen::VectorXd& b, cplx_t z, int step,
-                               SeriesKind kind = SeriesKind::U, Eigen::Index terms = -1) {
+                               SeriesKind kind = SeriesKind::U,
+                               const Eigen::VectorXd* tail = nullptr) {
   if (kind == SeriesKind::T) {
     cplx_t r;
     const cplx_t w = w_of(z, &r), ws = step == 1 ? w : w * w;
@@ -127,7 +129,8 @@ inline cplx_t cauchy_potential(const Eigen::VectorXd& b, cplx_t z, int step,
     return sum / r;
   }
   const cplx_t w = w_of(z), ws = step == 1 ? w : w * w;
-  const Eigen::Index end = terms < 0 ? b.size() : std::min(terms, b.size());
+  const Eigen::Index end =
+      tail != nullptr ? std::min(potential_terms(*tail, std::abs(w)), b.size()) : b.size();
   cplx_t pw = w, sum = 0.0;
   for (Eigen::Index n = 0; n < end; n += step) {
     sum += b(n) * pw;
@@ -140,7 +143,7 @@ inline cplx_t cauchy_potential(const Eigen::VectorXd& b, cplx_t z, int step,
 // Phi'(z) = -sum b_n w^n (n sqrt(z^2 - 1) + z) / sqrt(z^2 - 1)^3.
 inline cplx_t cauchy_potential_derivative(const Eigen::VectorXd& b, cplx_t z, int step,
                                           SeriesKind kind = SeriesKind::U,
-                                          Eigen::Index terms = -1) {
+                                          const Eigen::VectorXd* tail = nullptr) {
   cplx_t r;
   const cplx_t w = w_of(z, &r), ws = step == 1 ? w : w * w;
   if (kind == SeriesKind::T) {
@@ -151,7 +154,8 @@ inline cplx_t cauchy_potential_derivative(const Eigen::VectorXd& b, cplx_t z, in
     }
     return -sum / (r * r * r);
   }
-  const Eigen::Index end = terms < 0 ? b.size() : std::min(terms, b.size());
+  const Eigen::Index end =
+      tail != nullptr ? std::min(potential_terms(*tail, std::abs(w)), b.size()) : b.size();
   cplx_t pw = w, sum = 0.0;
   for (Eigen::Index n = 0; n < end; n += step) {
     sum += b(n) * static_cast<double>(n + 1) * pw;
@@ -256,15 +260,9 @@ inline Eigen::Vector3d half_plane_stresses(const WaveConstants& c, const Eigen::
   const double kT[3] = {c.hp1 * sigma_x_hat(c, vT), c.hp1 * vT(3), c.hp1 * vT(2)};
   const double kL[3] = {c.hp2 * sigma_x_hat(c, dv), c.hp2 * dv(3), c.hp2 * dv(2)};
   const double kD[3] = {c.hp2 * sigma_x_hat(c, vT), c.hp2 * vT(3), c.hp2 * vT(2)};
-  const auto terms = [&](cplx_t z) -> Eigen::Index {
-    return tail != nullptr && kind == SeriesKind::U ? potential_terms(*tail, std::abs(w_of(z)))
-                                                    : -1;
-  };
-  auto F = [&](cplx_t z) {
-    return cplx_t(0.0, 1.0) * cauchy_potential(b, z, step, kind, terms(z));
-  };
+  auto F = [&](cplx_t z) { return cplx_t(0.0, 1.0) * cauchy_potential(b, z, step, kind, tail); };
   auto dF = [&](cplx_t z) {
-    return cplx_t(0.0, 1.0) * cauchy_potential_derivative(b, z, step, kind, terms(z));
+    return cplx_t(0.0, 1.0) * cauchy_potential_derivative(b, z, step, kind, tail);
   };
   const cplx_t zT = z_of(x, nT, y, a), zL = z_of(x, nL, y, a);
   const cplx_t fT = F(zT), fL = F(zL);

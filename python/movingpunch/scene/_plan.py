@@ -82,22 +82,12 @@ class SweepPlan:
 
     def key(self, k: int) -> Key:
         """Key ``k`` as ``point_key`` gives it."""
-        row = self.keys[k]
-        return (
-            float(row[0]),
-            float(row[1]),
-            float(row[2]),
-            float(row[3]),
-            float(row[4]),
-            float(row[5]),
-            float(row[6]),
-            float(row[7]),
-            float(row[8]),
-        )
+        key: Key = tuple(self.keys[k].tolist())
+        return key
 
     def group(self, k: int) -> tuple[float, ...]:
         """The group (shared kernel) of key ``k``."""
-        return tuple(float(x) for x in self.keys[k, :_GROUP])
+        return tuple(self.keys[k, :_GROUP].tolist())
 
     def point(self, k: int) -> dict[str, float]:
         """The parameters of the point solved for key ``k``."""
@@ -331,7 +321,7 @@ def chunk_tasks(plan: SweepPlan, chunk: Chunk) -> list[dict[str, Any]]:
     spaced = plan.spaced
     tasks = []
     for lo, hi in chunk:
-        group = plan.keys[lo, :_GROUP].tolist()
+        group = plan.group(lo)
         radius = rep_radius[lo - first : hi - first].tolist()
         load = rep_load[lo - first : hi - first].tolist()
         tasks.append(
