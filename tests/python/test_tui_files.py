@@ -282,6 +282,15 @@ async def test_open_and_save_suggest_the_last_file(tmp_path: Path) -> None:
 # -- 3. asking before overwriting --------------------------------------------
 
 
+@pytest.fixture
+def slow_confirm(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The repeated-key guard at 3 s: a repeated enter sent a moment after
+    the question stays within it on a loaded machine (at 0.3 s a busy CI
+    once let it through as a confirmation)."""
+    monkeypatch.setattr(PathPrompt, "CONFIRM_AFTER", 3.0)
+
+
+@pytest.mark.usefixtures("slow_confirm")
 @sync
 async def test_export_twice_to_the_same_name_asks(tmp_path: Path) -> None:
     target = tmp_path / "movingpunch-pressure.csv"
