@@ -228,11 +228,18 @@ double series_minimum(const Eigen::VectorXd& b, SeriesKind kind, double* r_min) 
     return even ? even_series(c, r, kind) : series(c, r, kind);
   };
   // 16 (N + 1) + 256 angles resolve every extremum of the degree-N polynomial.
+  // An even g takes the same value at r and -r, the later of the two never
+  // below the earlier: the half r >= 0 finds the same first minimum.
   const int m = std::max(400, 16 * static_cast<int>(b.size() + 1) + 256);
+  thread_local std::vector<double> cosines;
+  if (cosines.size() != static_cast<std::size_t>(m + 1)) {
+    cosines.resize(static_cast<std::size_t>(m + 1));
+    for (int i = 0; i <= m; ++i) cosines[static_cast<std::size_t>(i)] = std::cos(kPi * i / m);
+  }
   int best = 0;
   double gbest = g_of(b, 1.0);
-  for (int i = 1; i <= m; ++i) {
-    const double g = g_of(b, std::cos(kPi * i / m));
+  for (int i = 1, last = even ? m / 2 : m; i <= last; ++i) {
+    const double g = g_of(b, cosines[static_cast<std::size_t>(i)]);
     if (g < gbest) {
       gbest = g;
       best = i;

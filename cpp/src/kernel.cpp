@@ -750,6 +750,109 @@ KernelK1::KernelK1(std::shared_ptr<const Medium> medium, double tol, double rang
       break;
     }
   }
+  tabulate_greens();
+}
+
+namespace {
+
+// E1(x) for x >= 1 by its continued fraction (modified Lentz).
+double exponential_integral_e1(double x) {
+  constexpr double tiny = 1e-300, eps = 1e-16;
+  double b = x + 1.0, c = 1.0 / tiny, d = 1.0 / b, h = d;
+  for (int i = 1; i < 200; ++i) {
+    const double an = -static_cast<double>(i) * i;
+    b += 2.0;
+    d = 1.0 / (an * d + b);
+    c = b + an / c;
+    const double del = c * d;
+    h *= del;
+    if (std::fabs(del - 1.0) < eps) break;
+  }
+  return h * std::exp(-x);
+}
+
+}  // namespace
+
+// The antiderivative of the odd table, sum_k c_k T_k(t) (k odd, t = u/range):
+// int_0^t T_1 = (T_2 + T_0)/4 and, for k >= 3, int T_k = [T_{k+1}/(k+1) -
+// T_{k-1}/(k-1)]/2 + const; the constant makes K1(0) = 0. An even series in
+// t, held as sum_j E_j T_j(T_2(t)) (T_{2j}(t) = T_j(T_2(t))).
+void KernelK1::tabulate_greens() {
+  if (!piece_coef_.empty() || !sub_.empty() || model_->long_wave_m1() != 0.0 || odd_.empty())
+    return;
+  std::vector<double> e(odd_.size() + 1, 0.0);  // e[j]: of T_{2j}(t)
+  for (std::size_t j = 0; j < odd_.size(); ++j) {
+    const double k = 2.0 * static_cast<double>(j) + 1.0;
+    if (j == 0) {
+      e[1] += 0.25 * odd_[0];
+      continue;
+    }
+    e[j + 1] += odd_[j] / (2.0 * (k + 1.0));
+    e[j] -= odd_[j] / (2.0 * (k - 1.0));
+  }
+  // T_{2j}(0) = (-1)^j.
+  double at0 = 0.0;
+  for (std::size_t j = 0; j < e.size(); ++j) at0 += (j % 2 == 0 ? 1.0 : -1.0) * e[j];
+  e[0] -= at0;
+  for (double& v : e) v *= range_;
+  const double phi1 = model_->phi1();
+  double g0 = 0.0;
+  for (std::size_t i = 0; i < quad_.alpha.size(); ++i) {
+    const double al = quad_.alpha[i];
+    g0 += quad_.weight[i] * (quad_.m1[i] - phi1 * (-std::expm1(-al))) / al;
+  }
+  greens_zero_ = g0 + phi1 * exponential_integral_e1(std::max(quad_.alpha_max, 1.0));
+  greens_mass_.assign(quad_.panel_centre.size(), 0.0);
+  for (std::size_t i = 0; i < quad_.alpha.size(); ++i) {
+    const double al = quad_.alpha[i];
+    greens_mass_[i / 15] +=
+        quad_.weight[i] * std::fabs(quad_.m1[i] - phi1 * (-std::expm1(-al))) / al;
+  }
+  k1_integral_ = std::move(e);
+}
+
+void KernelK1::k1_integrals(const double* u, double* out, std::size_t n) const {
+  // Clenshaw on sum_j E_j T_j(y), y = T_2(u / range): four chains at once,
+  // in registers (independent chains of dependent steps).
+  const std::size_t J = k1_integral_.size();
+  const double* E = k1_integral_.data();
+  const double inv = 1.0 / range_;
+  const auto y2 = [&](double v) {
+    const double x = v * inv;
+    return 2.0 * (2.0 * x * x - 1.0);
+  };
+  std::size_t i = 0;
+  for (; i + 4 <= n; i += 4) {
+    const double ya = y2(u[i]), yb = y2(u[i + 1]), yc = y2(u[i + 2]), yd = y2(u[i + 3]);
+    double a1 = 0, a2 = 0, b1 = 0, b2 = 0, c1 = 0, c2 = 0, d1 = 0, d2 = 0;
+    for (std::size_t j = J; j-- > 1;) {
+      const double c = E[j];
+      const double a0 = c + ya * a1 - a2, b0 = c + yb * b1 - b2;
+      const double c0 = c + yc * c1 - c2, d0 = c + yd * d1 - d2;
+      a2 = a1;
+      a1 = a0;
+      b2 = b1;
+      b1 = b0;
+      c2 = c1;
+      c1 = c0;
+      d2 = d1;
+      d1 = d0;
+    }
+    out[i] = E[0] + 0.5 * ya * a1 - a2;
+    out[i + 1] = E[0] + 0.5 * yb * b1 - b2;
+    out[i + 2] = E[0] + 0.5 * yc * c1 - c2;
+    out[i + 3] = E[0] + 0.5 * yd * d1 - d2;
+  }
+  for (; i < n; ++i) {
+    const double y = y2(u[i]);
+    double b1 = 0, b2 = 0;
+    for (std::size_t j = J; j-- > 1;) {
+      const double b0 = E[j] + y * b1 - b2;
+      b2 = b1;
+      b1 = b0;
+    }
+    out[i] = E[0] + 0.5 * y * b1 - b2;
+  }
 }
 
 void KernelK1::build_pieces() {

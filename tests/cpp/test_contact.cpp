@@ -71,6 +71,34 @@ TEST(Contact, SurfaceFollowsThePunchInsideTheContact) {
   EXPECT_GT(s.indentation(), 0.0);
 }
 
+// The displacement has two routes: the kernel table's Green's function
+// (|x| + a within the table's range: the indentation, the gap check) and the
+// Filon sum of the pressure's transform (beyond). They are independent
+// evaluations of one integral and meet without a step at the table's edge.
+TEST(Contact, DisplacementRoutesMeetAtTheTablesEdge) {
+  for (double kw : {1.0, 10.0}) {
+    ContactParams p = paper(0.2, kw);
+    for (bool flat : {false, true}) {
+      if (flat) {
+        p.profile = ProfileKind::flat;
+        p.half_width = 0.3;
+      }
+      const SymmetricSolution s = solve_contact(p);
+      ASSERT_TRUE(s.kernel().greens_tabulated());
+      const double edge = s.kernel().range() - s.a();
+      ASSERT_GT(edge, 2.0 * s.a());
+      // The inside route extrapolated linearly across the edge (its
+      // curvature leaves ~1e-13 of the indentation at h = 1e-7).
+      const double h = 1e-7;
+      const double in =
+          3.0 * s.surface_displacement(edge - h) - 2.0 * s.surface_displacement(edge - 2.0 * h);
+      EXPECT_NEAR(in, s.surface_displacement(edge + h), 2e-12 * s.indentation())
+          << "kw " << kw << " flat " << flat;
+      EXPECT_DOUBLE_EQ(s.surface_displacement(0.0), -s.indentation());
+    }
+  }
+}
+
 TEST(Contact, SupercriticalSpeedIsRefused) {
   try {
     solve_contact(paper(0.6, 1.0));

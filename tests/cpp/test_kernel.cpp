@@ -1,6 +1,7 @@
 // The regular kernel k1: table vs quadrature vs an independent integration.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <complex>
 #include <cstddef>
@@ -39,7 +40,65 @@ double static_rigid_k1(double u, double nu) {
   }
   return sum / phi1;
 }
+// The smooth part of the static rigid-base Green's function by the same
+// independent rule: G_s(u) = int_0^40 [M1 - phi1 (1 - e^-t)]/t cos(t u) dt
+// (beyond 40, phi1 E1(40) < 1e-19).
+double static_rigid_greens_smooth(double u, double nu) {
+  static const double x[10] = {0.0765265211334973, 0.2277858511416451, 0.3737060887154195,
+                               0.5108670019508271, 0.6360536807265150, 0.7463319064601508,
+                               0.8391169718222188, 0.9122344282513259, 0.9639719272779138,
+                               0.9931285991850949};
+  static const double w[10] = {0.1527533871307258, 0.1491729864726037, 0.1420961093183820,
+                               0.1316886384491766, 0.1181945319615184, 0.1019301198172404,
+                               0.0832767415767048, 0.0626720483341091, 0.0406014298003869,
+                               0.0176140071391521};
+  const double phi1 = 1.0 - nu;
+  double sum = 0.0;
+  const int panels = 4000;
+  const double hw = 40.0 / panels / 2.0;
+  for (int p = 0; p < panels; ++p) {
+    const double c = (2 * p + 1) * hw;
+    for (int j = 0; j < 10; ++j)
+      for (double sg : {-1.0, 1.0}) {
+        const double t = c + sg * hw * x[j];
+        const double m1 = phi1 * (std::cosh(2 * t) - 1.0) / (std::sinh(2 * t) + 2 * t);
+        sum += hw * w[j] * (m1 + phi1 * std::expm1(-t)) / t * std::cos(t * u);
+      }
+  }
+  return sum;
+}
 }  // namespace
+
+// The displacement's Green's function from the table (greens_zero and the
+// antiderivative K1 of k1): G_s(u) = G_s(0) - phi1 K1(u) - (phi1/2) ln(1 +
+// u^2) against the independent integration of its cosine transform.
+TEST(Kernel, TabulatedGreensFunctionMatchesIndependentIntegration) {
+  const double inf = std::numeric_limits<double>::infinity();
+  const double nu = 0.2, phi1 = 1.0 - nu;
+  const KernelK1 k(LayerModel(0.0, inf, nu), 1e-12, 3.0);
+  ASSERT_TRUE(k.greens_tabulated());
+  EXPECT_NEAR(k.greens_zero(), static_rigid_greens_smooth(0.0, nu), 1e-11);
+  std::vector<double> u{0.0, 0.05, 0.4, 1.0, 2.2, -2.2, 3.0, -0.7, 1.3};
+  std::vector<double> K(u.size());
+  k.k1_integrals(u.data(), K.data(), u.size());  // four chains and a remainder
+  for (std::size_t i = 0; i < u.size(); ++i) {
+    const double g = k.greens_zero() - phi1 * (K[i] + 0.5 * std::log1p(u[i] * u[i]));
+    EXPECT_NEAR(g, static_rigid_greens_smooth(u[i], nu), 3e-11) << "u " << u[i];
+  }
+  EXPECT_NEAR(K[0], 0.0, 1e-15);  // K1(0) = 0 up to the series' round-off
+  EXPECT_EQ(K[4], K[5]);          // even
+  // K1' = k1: a central difference of the antiderivative is the table.
+  for (double v : {0.3, 1.7}) {
+    const double h = 1e-4;
+    std::array<double, 2> uu{v - h, v + h}, kk{};
+    k.k1_integrals(uu.data(), kk.data(), 2);
+    EXPECT_NEAR((kk[1] - kk[0]) / (2 * h), k(v), 1e-8) << v;
+  }
+  // A piecewise table is not tabulated (the solution reads the Filon route).
+  const auto spring = make_medium(homogeneous_medium(1.0, 0.2), 0.3);
+  EXPECT_FALSE(KernelK1(spring, 1e-10, 40.0).greens_tabulated());
+  EXPECT_TRUE(KernelK1(spring, 1e-10, 2.0).greens_tabulated());
+}
 
 TEST(Kernel, StaticRigidBaseMatchesIndependentIntegration) {
   const double inf = std::numeric_limits<double>::infinity();

@@ -155,22 +155,28 @@ class SymmetricSolution {
   std::shared_ptr<const KernelK1> kernel_;
   struct FieldCache;
   std::shared_ptr<FieldCache> field_cache_;
-  // Filon coefficients of f(alpha) ptilde(alpha) on the kernel's panels (the
-  // first ones: beyond, |f ptilde| is below the sums' round-off), with f =
-  // [M1 - phi1 (1 - e^-alpha)]/alpha the smooth part of the Green's function.
-  std::vector<double> smooth_coef_;
-  // The wavenumber band of the displacement beside the contact (the gap
-  // scan's sampling): of |f ptilde|, all but 1e-6 of its integral below it.
-  double displacement_band_ = 0.0;
-  // lim M1(t -> 0) of the medium (0 on springs) and, when it is not 0, the
-  // Green's integral at the reference point (medium.hpp).
-  double m0_ = 0.0, greens_reference_ = 0.0;
-  // Gauss-Chebyshev (U) nodes r_i of the ln(1 + (x - xi)^2) part of the
-  // displacement and their weights times sqrt(1 - r^2)^2 g(r_i), per solution.
-  std::vector<double> log1p_r_, log1p_w_;
-  // Helpers for displacement: (1/pi) int p(xi) G(x - xi) d xi.
+  // lim M1(t -> 0) of the medium (0 on springs; medium.hpp).
+  double m0_ = 0.0;
+  // The displacement by the kernel's table (KernelK1::greens_tabulated):
+  // (1/pi) int p(xi)/(P/h) G(x - xi) d xi = table_const_ - (phi1/pi) a
+  // sum_j table_w_[j] K1(x - a table_r_[j]) + the log part, exact
+  // Gauss-Chebyshev for the polynomial K1 (g cut at K1's degree: the rest is
+  // orthogonal to it), for |x| <= table_reach_ (the table's range less a;
+  // negative: not tabulated).
+  std::vector<double> table_r_, table_w_;
+  double table_const_ = 0.0, table_reach_ = -1.0;
+  void prepare_table();
+  double greens_table(double x) const;
+  // -(phi1/pi) int p ln|x - xi| d xi (exact, the series' log potential).
+  double log_part(double x) const;
+  // The Filon route (any x): built on first use (beyond the table's reach,
+  // or every x where there is no table), then shared by copies.
+  struct FilonDisplacement;
+  std::shared_ptr<FilonDisplacement> filon_;
+  const FilonDisplacement& filon_displacement() const;
+  double filon_integral(const FilonDisplacement& f, double x) const;
+  // (1/pi) int p(xi)/(P/h) G(x - xi) d xi by the route that reaches x.
   double greens_integral(double x) const;
-  void prepare_displacement();
 };
 
 // Solves the contact problem. Throws std::invalid_argument (bad input),

@@ -198,6 +198,27 @@ class KernelK1 {
   double table_roundoff() const noexcept { return table_roundoff_; }
   const FilonIntegrator& filon() const noexcept { return *filon_; }
 
+  // The surface displacement's Green's function from the table (a global
+  // table of a medium with M1(0) = 0 and no subtracted series):
+  //   G(u) = int_0^inf (M1/alpha) cos(alpha u) d alpha
+  //        = greens_zero() - phi1 [K1(u) + ln|u|],   K1(u) = int_0^u k1,
+  // since d/du of the smooth part int [M1 - phi1 (1 - e^-alpha)]/alpha cos
+  // is -phi1 k1(u) - phi1 u/(1 + u^2) (docs/theory.md section 7.4).
+  bool greens_tabulated() const noexcept { return !k1_integral_.empty(); }
+  // G_s(0) = int_0^inf [M1 - phi1 (1 - e^-alpha)]/alpha d alpha (the
+  // quadrature to alpha_max, phi1 E1(alpha_max) beyond).
+  double greens_zero() const noexcept { return greens_zero_; }
+  // K1(u) for |u| <= range(): out[i] = K1(u[i]), eight recurrences
+  // interleaved. Its degree in u is k1_integral_degree() (the table's + 1).
+  void k1_integrals(const double* u, double* out, std::size_t n) const;
+  int k1_integral_degree() const noexcept { return 2 * static_cast<int>(k1_integral_.size()) - 2; }
+  // Per panel of quadrature(), the rule's integral of |f|, f = [M1 - phi1
+  // (1 - e^-alpha)]/alpha (the Green's function's smooth part): with a bound
+  // of the pressure's transform, how much of the displacement lies beyond a
+  // wavenumber (the gap scan's sampling; SymmetricSolution). Filled when
+  // greens_tabulated().
+  const std::vector<double>& greens_panel_mass() const noexcept { return greens_mass_; }
+
  private:
   std::shared_ptr<const Medium> model_;
   double tol_;
@@ -223,6 +244,12 @@ class KernelK1 {
   double table_error_ = 0, table_roundoff_ = 0;
   int table_order_ = 0;
   double piece_width_ = 0;
+  // K1(u) = range * sum_j k1_integral_[j] T_j(T_2(u / range)) (empty: not
+  // greens_tabulated()).
+  std::vector<double> k1_integral_;
+  double greens_zero_ = 0.0;
+  std::vector<double> greens_mass_;
+  void tabulate_greens();
   double global(double u) const;
   double piece(double u) const;
   void build_pieces();
