@@ -1754,9 +1754,40 @@ void SymmetricSolution::prepare_table() {
   const double load_integral = a_ * b_(0) * (kind_ == SeriesKind::T ? kPi : 0.5 * kPi);
   table_const_ = k.greens_zero() * load_integral / kPi;
   table_reach_ = k.range() - a_;
+  // The convolution is itself a polynomial in x, of degree D (even with g:
+  // D/2 in y = T_2(x/X)), X the reach: interpolated at as many first-kind
+  // nodes as it has terms it is exact (up to round-off), and each point of
+  // the gap scan (about 60) then costs one short recurrence instead of m.
+  // Where it has more terms than the scan has points, each point is summed.
+  table_f_even_ = odd_terms_zero(b_);
+  const int terms = table_f_even_ ? D / 2 + 1 : D + 1;
+  table_f_.clear();
+  if (terms > 48) return;
+  const auto J = static_cast<std::size_t>(terms);
+  std::vector<double> y(J), f(J);
+  for (std::size_t k = 0; k < J; ++k) {
+    y[k] = std::cos(kPi * (static_cast<double>(k) + 0.5) / static_cast<double>(J));
+    const double x =
+        table_f_even_ ? table_reach_ * std::sqrt(0.5 * (1.0 + y[k])) : table_reach_ * y[k];
+    f[k] = k1_convolution(x);
+  }
+  // c_j = (2 - [j = 0])/J sum_k f_k T_j(y_k), T_j by its recurrence.
+  table_f_.assign(J, 0.0);
+  for (std::size_t k = 0; k < J; ++k) {
+    double t0 = 1.0, t1 = y[k];
+    table_f_[0] += f[k];
+    for (std::size_t j = 1; j < J; ++j) {
+      table_f_[j] += f[k] * t1;
+      const double t2 = 2.0 * y[k] * t1 - t0;
+      t0 = t1;
+      t1 = t2;
+    }
+  }
+  for (std::size_t j = 0; j < J; ++j) table_f_[j] *= (j == 0 ? 1.0 : 2.0) / static_cast<double>(J);
 }
 
-double SymmetricSolution::greens_table(double x) const {
+// sum_j w_j K1(x - a r_j): the pressure against K1, exactly (prepare_table).
+double SymmetricSolution::k1_convolution(double x) const {
   constexpr std::size_t kBatch = 64;
   std::array<double, kBatch> u{}, v{};
   double sum = 0.0;
@@ -1766,7 +1797,26 @@ double SymmetricSolution::greens_table(double x) const {
     kernel_->k1_integrals(u.data(), v.data(), w);
     for (std::size_t l = 0; l < w; ++l) sum += table_w_[i + l] * v[l];
   }
-  return table_const_ - phi1_ / kPi * a_ * sum + log_part(x);
+  return sum;
+}
+
+double SymmetricSolution::greens_table(double x) const {
+  double f = 0.0;
+  if (table_f_.empty()) {
+    f = k1_convolution(x);
+  } else {
+    // Clenshaw on sum_j c_j T_j(y): y = T_2(x/X) (even) or x/X.
+    const double t = x / table_reach_;
+    const double y = table_f_even_ ? 2.0 * t * t - 1.0 : t;
+    double b1 = 0.0, b2 = 0.0;
+    for (std::size_t j = table_f_.size(); j-- > 1;) {
+      const double b0 = table_f_[j] + 2.0 * y * b1 - b2;
+      b2 = b1;
+      b1 = b0;
+    }
+    f = table_f_[0] + y * b1 - b2;
+  }
+  return table_const_ - phi1_ / kPi * a_ * f + log_part(x);
 }
 
 double SymmetricSolution::log_part(double x) const {

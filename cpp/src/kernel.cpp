@@ -517,6 +517,47 @@ void FilonIntegrator::weights(double x, std::vector<cplx>& K) const {
   }
 }
 
+FilonIntegrator::cplx FilonIntegrator::weights_applied(double x,
+                                                       const std::vector<double>& c) const {
+  check_interrupt();
+  // apply(weights(x), c)'s arithmetic in its order, each weight made where
+  // it is used: i^k multiplies by a sign and swaps parts (exact).
+  const double ax = std::fabs(x), sgn = x < 0.0 ? -1.0 : 1.0;
+  thread_local std::vector<std::array<double, 15>> bessel;
+  bessel_by_width(ax, bessel);
+  double re = 0.0, im = 0.0;
+  for (std::size_t p = 0; p < centre_.size(); ++p) {
+    const std::array<double, 15>& j = bessel[width_of_[p]];
+    const cplx phase = half_[p] * std::exp(cplx(0.0, centre_[p] * x));
+    const double* cp = c.data() + 15 * p;
+    for (int k = 0; k < 15; ++k) {
+      const double jk = (k % 2 == 1 && sgn < 0.0) ? -j[static_cast<std::size_t>(k)]
+                                                  : j[static_cast<std::size_t>(k)];
+      const double wr = phase.real() * (2.0 * jk), wi = phase.imag() * (2.0 * jk);
+      double kr = wr, ki = wi;  // times i^k
+      switch (k % 4) {
+        case 1:
+          kr = -wi;
+          ki = wr;
+          break;
+        case 2:
+          kr = -wr;
+          ki = -wi;
+          break;
+        case 3:
+          kr = wi;
+          ki = -wr;
+          break;
+        default:
+          break;
+      }
+      re += kr * cp[k];
+      im += ki * cp[k];
+    }
+  }
+  return {re, im};
+}
+
 template <std::size_t M, bool Rotate>
 void FilonIntegrator::integrals(double x, const std::array<const std::vector<double>*, M>& c,
                                 std::array<cplx, M>& out) const {
@@ -908,11 +949,7 @@ void KernelK1::build_pieces() {
   value_quad_ = coarse;
 }
 
-double KernelK1::numeric(double u) const {
-  std::vector<FilonIntegrator::cplx> K;
-  filon_->weights(u, K);
-  return FilonIntegrator::apply(K, f_coef_).imag();
-}
+double KernelK1::numeric(double u) const { return filon_->weights_applied(u, f_coef_).imag(); }
 
 double KernelK1::regular(double u) const {
   return sub_.empty() ? numeric(u) : numeric(u) + sub_.smooth(u);

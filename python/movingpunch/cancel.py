@@ -74,7 +74,10 @@ def cancellable(fn: Callable[_P, _T]) -> Callable[_P, _T]:
 
     @functools.wraps(fn)
     def call(*args: _P.args, **kwargs: _P.kwargs) -> _T:
-        with bound(kwargs.get("cancel")):
+        token = kwargs.get("cancel")
+        if token is None:  # nothing to bind: no context manager
+            return fn(*args, **kwargs)
+        with bound(token):
             return fn(*args, **kwargs)
 
     return call

@@ -411,6 +411,8 @@ def check(name: str, value: object) -> float:
     ``tol``). Raises InvalidParameterError whose message names the parameter
     and its range, with ``parameter`` and ``allowed`` set."""
     spec = SPECS[name]
+    if type(value) is float and spec.contains(value):  # the usual case, at once
+        return value
     if name == "tol" and isinstance(value, str):
         preset = PRESETS.get(value.strip().lower())
         if preset is not None:

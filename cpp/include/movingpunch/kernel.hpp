@@ -102,6 +102,9 @@ class FilonIntegrator {
   void weights(double x, std::vector<cplx>& K) const;
   // int g cos(alpha x) (real part) and int g sin(alpha x) (imaginary part).
   static cplx apply(const std::vector<cplx>& K, const std::vector<double>& c);
+  // apply(weights(x), c), bit for bit (but signed zeros), without the
+  // weight vector (the k1 tables' values).
+  cplx weights_applied(double x, const std::vector<double>& c) const;
   // The same as apply(weights(x), c), fused: no weight vector, one complex
   // multiplication per panel instead of one per coefficient, most phases by
   // rotation (as integral_pair: a few 1e-15 relative). A c holding the
