@@ -13,9 +13,10 @@
 using namespace movingpunch;
 
 namespace {
-// Independent composite 20-point Gauss-Legendre integration of the closed-form
-// static rigid-base M1: k1(u) = int_0^40 (M1 - phi1) sin(alpha u) / phi1.
-double static_rigid_k1(double u, double nu) {
+// Independent composite 20-point Gauss-Legendre integration on [0, 40] of
+// f(t, M1(t)), M1 the closed-form static rigid-base response (4000 panels).
+template <class F>
+double static_rigid_integral(double nu, const F& f) {
   static const double x[10] = {0.0765265211334973, 0.2277858511416451, 0.3737060887154195,
                                0.5108670019508271, 0.6360536807265150, 0.7463319064601508,
                                0.8391169718222188, 0.9122344282513259, 0.9639719272779138,
@@ -34,38 +35,26 @@ double static_rigid_k1(double u, double nu) {
       for (double sg : {-1.0, 1.0}) {
         const double t = c + sg * hw * x[j];
         const double m1 = phi1 * (std::cosh(2 * t) - 1.0) / (std::sinh(2 * t) + 2 * t);
-        const double m1_safe = t > 300 ? phi1 : m1;
-        sum += hw * w[j] * (m1_safe - phi1) * std::sin(t * u);
-      }
-  }
-  return sum / phi1;
-}
-// The smooth part of the static rigid-base Green's function by the same
-// independent rule: G_s(u) = int_0^40 [M1 - phi1 (1 - e^-t)]/t cos(t u) dt
-// (beyond 40, phi1 E1(40) < 1e-19).
-double static_rigid_greens_smooth(double u, double nu) {
-  static const double x[10] = {0.0765265211334973, 0.2277858511416451, 0.3737060887154195,
-                               0.5108670019508271, 0.6360536807265150, 0.7463319064601508,
-                               0.8391169718222188, 0.9122344282513259, 0.9639719272779138,
-                               0.9931285991850949};
-  static const double w[10] = {0.1527533871307258, 0.1491729864726037, 0.1420961093183820,
-                               0.1316886384491766, 0.1181945319615184, 0.1019301198172404,
-                               0.0832767415767048, 0.0626720483341091, 0.0406014298003869,
-                               0.0176140071391521};
-  const double phi1 = 1.0 - nu;
-  double sum = 0.0;
-  const int panels = 4000;
-  const double hw = 40.0 / panels / 2.0;
-  for (int p = 0; p < panels; ++p) {
-    const double c = (2 * p + 1) * hw;
-    for (int j = 0; j < 10; ++j)
-      for (double sg : {-1.0, 1.0}) {
-        const double t = c + sg * hw * x[j];
-        const double m1 = phi1 * (std::cosh(2 * t) - 1.0) / (std::sinh(2 * t) + 2 * t);
-        sum += hw * w[j] * (m1 + phi1 * std::expm1(-t)) / t * std::cos(t * u);
+        sum += hw * w[j] * f(t, m1);
       }
   }
   return sum;
+}
+
+// k1(u) = int_0^40 (M1 - phi1) sin(alpha u) / phi1.
+double static_rigid_k1(double u, double nu) {
+  const double phi1 = 1.0 - nu;
+  return static_rigid_integral(nu,
+                               [&](double t, double m1) { return (m1 - phi1) * std::sin(t * u); }) /
+         phi1;
+}
+
+// The smooth part of the Green's function, G_s(u) = int_0^40 [M1 - phi1 (1 -
+// e^-t)]/t cos(t u) dt (beyond 40, phi1 E1(40) < 1e-19).
+double static_rigid_greens_smooth(double u, double nu) {
+  const double phi1 = 1.0 - nu;
+  return static_rigid_integral(
+      nu, [&](double t, double m1) { return (m1 + phi1 * std::expm1(-t)) / t * std::cos(t * u); });
 }
 }  // namespace
 
