@@ -1169,8 +1169,8 @@ struct SymmetricSolution::FilonDisplacement {
 // which computes no pressure transform: the lowest panel edge A beyond which
 // the displacement's waves, at most (2 load/pi) int_A^inf |f| |ptilde| (f the
 // Green's function's smooth part), stay below 1e-8 of the indentation (a
-// hundredth of the gap check's floor), with |ptilde(alpha)| <= Pb min(1/2, c (alpha a)^(-4/3))
-// at each panel's lower end: ptilde = (pi/2) a sum b_n (n + 1) i^n
+// hundredth of the gap check's floor), with |ptilde(alpha)| <= Pb min(1/2,
+// c (alpha a)^(-4/3)) at each panel's lower end: ptilde = (pi/2) a sum b_n (n + 1) i^n
 // J_{n+1}(z)/z (z = alpha a), |J_nu(z)| <= min(z/2, 1) (nu >= 1) and
 // Landau's |J_nu(z)| <= c z^(-1/3), c = 0.7858; Pb = (pi/2) a sum |b_n| (n + 1).
 double table_band(const SymmetricSolution& sol, double load) {
@@ -1325,8 +1325,8 @@ void finish_checks(SymmetricSolution& sol, const ContactParams& p, const PunchPr
     // carries waves shorter than a.
     const double x_end = std::min(3.0 * a, prof.extent());
     if (x_end > a) {
-      // The band of the route the scan reads (the table's: of the medium,
-      // the pressure's transform not computed; it only narrows the band).
+      // The band of the route the scan reads (the table's: from an
+      // envelope of the pressure's transform, which it does not compute).
       const double step = detail::gap_step(
           x_end <= sol.table_reach_ ? table_band(sol, p.load) : sol.filon_displacement().band);
       const detail::GapMinimum m = detail::scan_gap_values(
@@ -1759,26 +1759,23 @@ void SymmetricSolution::prepare_table() {
   // nodes as it has terms it is exact (up to round-off), and each point of
   // the gap scan (about 60) then costs one short recurrence instead of m.
   // Where it has more terms than the scan has points, each point is summed.
-  table_f_even_ = odd_terms_zero(b_);
-  const int terms = table_f_even_ ? D / 2 + 1 : D + 1;
+  // (An even g, as every symmetric solve's: D/2 + 1 terms in y.)
   table_f_.clear();
-  if (terms > 48) return;
-  const auto J = static_cast<std::size_t>(terms);
+  if (!odd_terms_zero(b_) || D / 2 + 1 > 48) return;
+  const auto J = static_cast<std::size_t>(D / 2 + 1);
   std::vector<double> y(J), f(J);
-  for (std::size_t k = 0; k < J; ++k) {
-    y[k] = std::cos(kPi * (static_cast<double>(k) + 0.5) / static_cast<double>(J));
-    const double x =
-        table_f_even_ ? table_reach_ * std::sqrt(0.5 * (1.0 + y[k])) : table_reach_ * y[k];
-    f[k] = k1_convolution(x);
+  for (std::size_t i = 0; i < J; ++i) {
+    y[i] = std::cos(kPi * (static_cast<double>(i) + 0.5) / static_cast<double>(J));
+    f[i] = k1_convolution(table_reach_ * std::sqrt(0.5 * (1.0 + y[i])));
   }
-  // c_j = (2 - [j = 0])/J sum_k f_k T_j(y_k), T_j by its recurrence.
+  // c_j = (2 - [j = 0])/J sum_i f_i T_j(y_i), T_j by its recurrence.
   table_f_.assign(J, 0.0);
-  for (std::size_t k = 0; k < J; ++k) {
-    double t0 = 1.0, t1 = y[k];
-    table_f_[0] += f[k];
+  for (std::size_t i = 0; i < J; ++i) {
+    double t0 = 1.0, t1 = y[i];
+    table_f_[0] += f[i];
     for (std::size_t j = 1; j < J; ++j) {
-      table_f_[j] += f[k] * t1;
-      const double t2 = 2.0 * y[k] * t1 - t0;
+      table_f_[j] += f[i] * t1;
+      const double t2 = 2.0 * y[i] * t1 - t0;
       t0 = t1;
       t1 = t2;
     }
@@ -1805,9 +1802,9 @@ double SymmetricSolution::greens_table(double x) const {
   if (table_f_.empty()) {
     f = k1_convolution(x);
   } else {
-    // Clenshaw on sum_j c_j T_j(y): y = T_2(x/X) (even) or x/X.
+    // Clenshaw on sum_j c_j T_j(y), y = T_2(x/X).
     const double t = x / table_reach_;
-    const double y = table_f_even_ ? 2.0 * t * t - 1.0 : t;
+    const double y = 2.0 * t * t - 1.0;
     double b1 = 0.0, b2 = 0.0;
     for (std::size_t j = table_f_.size(); j-- > 1;) {
       const double b0 = table_f_[j] + 2.0 * y * b1 - b2;

@@ -166,10 +166,8 @@ class SymmetricSolution {
   std::vector<double> table_r_, table_w_;
   double table_const_ = 0.0, table_reach_ = -1.0;
   // The convolution sum_j table_w_[j] K1(x - a table_r_[j]) as a Chebyshev
-  // series on |x| <= table_reach_ (in T_2(x/X) when g is even; empty: summed
-  // at each x).
+  // series in T_2(x/X) on |x| <= X = table_reach_ (empty: summed at each x).
   std::vector<double> table_f_;
-  bool table_f_even_ = true;
   void prepare_table();
   double k1_convolution(double x) const;
   double greens_table(double x) const;
