@@ -206,7 +206,7 @@ class KernelK1 {
   //   G(u) = int_0^inf (M1/alpha) cos(alpha u) d alpha
   //        = greens_zero() - phi1 [K1(u) + ln|u|],   K1(u) = int_0^u k1,
   // since d/du of the smooth part int [M1 - phi1 (1 - e^-alpha)]/alpha cos
-  // is -phi1 k1(u) - phi1 u/(1 + u^2) (docs/theory.md section 7.4).
+  // is -phi1 k1(u) - phi1 u/(1 + u^2) (docs/theory.md section 6).
   bool greens_tabulated() const noexcept { return !k1_integral_.empty(); }
   // G_s(0) = int_0^inf [M1 - phi1 (1 - e^-alpha)]/alpha d alpha (the
   // quadrature to alpha_max, phi1 E1(alpha_max) beyond).
