@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "chebyshev.hpp"
 #include "gap_scan.hpp"
 #include "ladder.hpp"
 #include "movingpunch/collocation.hpp"
@@ -1802,16 +1803,10 @@ double SymmetricSolution::greens_table(double x) const {
   if (table_f_.empty()) {
     f = k1_convolution(x);
   } else {
-    // Clenshaw on sum_j c_j T_j(y), y = T_2(x/X).
+    // sum_j c_j T_j(y), y = T_2(x/X).
     const double t = x / table_reach_;
-    const double y = 2.0 * t * t - 1.0;
-    double b1 = 0.0, b2 = 0.0;
-    for (std::size_t j = table_f_.size(); j-- > 1;) {
-      const double b0 = table_f_[j] + 2.0 * y * b1 - b2;
-      b2 = b1;
-      b1 = b0;
-    }
-    f = table_f_[0] + y * b1 - b2;
+    f = detail::chebyshev_sum(table_f_.data(), static_cast<int>(table_f_.size()) - 1,
+                              2.0 * t * t - 1.0);
   }
   return table_const_ - phi1_ / kPi * a_ * f + log_part(x);
 }
