@@ -671,14 +671,34 @@ double sine_series(const Eigen::VectorXd& b, double th) {
   }
   return sum;
 }
+
+// sine_series at four angles, the recurrences interleaved (each as
+// sine_series', bit for bit).
+void sine_series4(const Eigen::VectorXd& b, const double* th, double* out) {
+  double c2[4], sm1[4], s0[4], sum[4];
+  for (int q = 0; q < 4; ++q) {
+    c2[q] = 2.0 * std::cos(th[q]);
+    sm1[q] = 0.0;
+    s0[q] = std::sin(th[q]);
+    sum[q] = 0.0;
+  }
+  for (Eigen::Index k = 0; k < b.size(); ++k)
+    for (int q = 0; q < 4; ++q) {
+      sum[q] += b(k) * s0[q];
+      const double sn = c2[q] * s0[q] - sm1[q];
+      sm1[q] = s0[q];
+      s0[q] = sn;
+    }
+  for (int q = 0; q < 4; ++q) out[q] = sum[q];
+}
 }  // namespace
 
 double max_abs_sine_series_long(const Eigen::VectorXd& b, int head) {
   const Eigen::Index h = std::min<Eigen::Index>(b.size(), head);
   if (h == b.size()) return max_abs_sine_series(b);
   // The head's samples (8 (h + 1) + 64 angles) locate the largest values;
-  // the whole series is then sampled finely (400 angles) within two sample
-  // spacings of the three largest.
+  // the whole series is then sampled finely within two sample spacings of
+  // the three largest.
   const Eigen::VectorXd bh = b.head(h);
   const int m = 8 * static_cast<int>(h + 1) + 64;
   std::vector<std::pair<double, int>> top;
@@ -686,15 +706,51 @@ double max_abs_sine_series_long(const Eigen::VectorXd& b, int head) {
   const std::size_t keep = std::min<std::size_t>(3, top.size());
   std::partial_sort(top.begin(), top.begin() + static_cast<std::ptrdiff_t>(keep), top.end(),
                     [](const auto& x, const auto& y) { return x.first > y.first; });
-  double best = 0.0;
+  // Around each: 41 angles (a tenth of the head's spacing apart), then
+  // golden-section refinement on the best one's neighbours (to 1e-9 of
+  // that spacing).
+  double best = 0.0, best_th = 0.0;
+  constexpr int kFine = 44;  // 41 angles and three repeats of the last
   for (std::size_t t = 0; t < keep; ++t) {
     const double th0 = kPi * top[t].second / m, dth = kPi / m;
-    for (int q = 0; q <= 400; ++q) {
-      const double th = std::clamp(th0 + dth * (4.0 * q / 400.0 - 2.0), 0.0, kPi);
-      best = std::max(best, std::fabs(sine_series(b, th)));
+    double th[kFine], val[4];
+    for (int q = 0; q < kFine; ++q)
+      th[q] = std::clamp(th0 + dth * (0.1 * std::min(q, 40) - 2.0), 0.0, kPi);
+    for (int q = 0; q < kFine; q += 4) {
+      sine_series4(b, th + q, val);
+      for (int v = 0; v < 4; ++v)
+        if (std::fabs(val[v]) > best) {
+          best = std::fabs(val[v]);
+          best_th = th[q + v];
+        }
     }
   }
-  return best;
+  const double g = 0.1 * kPi / m;  // the fine spacing
+  double lo = std::max(0.0, best_th - g), hi = std::min(kPi, best_th + g);
+  constexpr double kInvPhi = 0.6180339887498949;
+  double x1 = hi - kInvPhi * (hi - lo), x2 = lo + kInvPhi * (hi - lo);
+  double f1 = std::fabs(sine_series(b, x1)), f2 = std::fabs(sine_series(b, x2));
+  while (hi - lo > 1e-9 * g) {
+    if (f1 > f2) {
+      hi = x2;
+      x2 = x1;
+      f2 = f1;
+      x1 = hi - kInvPhi * (hi - lo);
+      f1 = std::fabs(sine_series(b, x1));
+    } else {
+      lo = x1;
+      x1 = x2;
+      f1 = f2;
+      x2 = lo + kInvPhi * (hi - lo);
+      f2 = std::fabs(sine_series(b, x2));
+    }
+  }
+  return std::max({best, f1, f2});
+}
+
+double head_sine_bound(const Eigen::VectorXd& b, int head) {
+  const Eigen::Index h = std::min<Eigen::Index>(b.size(), head);
+  return max_abs_sine_series(b.head(h)) + b.tail(b.size() - h).cwiseAbs().sum();
 }
 
 double max_abs_density_long(const JacobiSeries& js, int head) {
@@ -734,19 +790,16 @@ double max_abs_sine_series(const Eigen::VectorXd& b) {
   const Eigen::Index n = b.size();
   const int m = 8 * static_cast<int>(n + 1) + 64;
   double best = 0.0;
-  for (int j = 1; j < m; ++j) {
-    const double th = kPi * j / m;
-    // sum b_k sin((k+1) th) by the recurrence s_{k+1} = 2 cos(th) s_k - s_{k-1}.
-    const double c2 = 2.0 * std::cos(th);
-    double sm1 = 0.0, s0 = std::sin(th), sum = 0.0;
-    for (Eigen::Index k = 0; k < n; ++k) {
-      sum += b(k) * s0;
-      const double sn = c2 * s0 - sm1;
-      sm1 = s0;
-      s0 = sn;
-    }
-    best = std::max(best, std::fabs(sum));
+  // sum b_k sin((k+1) th) by the recurrence s_{k+1} = 2 cos(th) s_k - s_{k-1}
+  // (sine_series), four angles at a time.
+  int j = 1;
+  for (; j + 4 <= m; j += 4) {
+    const double th[4] = {kPi * j / m, kPi * (j + 1) / m, kPi * (j + 2) / m, kPi * (j + 3) / m};
+    double val[4];
+    sine_series4(b, th, val);
+    for (double v : val) best = std::max(best, std::fabs(v));
   }
+  for (; j < m; ++j) best = std::max(best, std::fabs(sine_series(b, kPi * j / m)));
   return best;
 }
 
@@ -1389,13 +1442,8 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
     for (Eigen::Index m = n; m < len; ++m)
       coef(m) = q[static_cast<std::size_t>(m + 1)] * tail_scale;
   };
-  // max |sqrt(1 - r^2) sum b_n U_n| bounded by the sampled maximum of the
-  // first `head` terms plus sum |b_n| beyond (|sqrt(1 - r^2) U_n| <= 1).
-  auto head_sine_max = [](const Eigen::VectorXd& b, int head) {
-    const Eigen::Index h = std::min<Eigen::Index>(b.size(), head);
-    return max_abs_sine_series(b.head(h)) + b.tail(b.size() - h).cwiseAbs().sum();
-  };
-  // The same for a Jacobi series: |w P_n| <= 2 on [-1, 1] (w <= 2 for
+  // max |sqrt(1 - r^2) sum b_n U_n| of a long series: head_sine_bound. The
+  // same for a Jacobi series: |w P_n| <= 2 on [-1, 1] (w <= 2 for
   // alpha + beta = 1; measured |w P_n| <= 0.17 for n >= 64).
   auto head_density_max = [&](const Eigen::VectorXd& c, int head) {
     const Eigen::Index h = std::min<Eigen::Index>(c.size(), head);
@@ -1456,7 +1504,7 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
     } else {
       b = u_coefficients(nds, wsz.g);
       if (!cylinder) extend_tail(b, wsz.c, wsz.w);
-      pm = cylinder ? max_abs_sine_series(b) : head_sine_max(b, 4 * nds.n + 64);
+      pm = cylinder ? max_abs_sine_series(b) : head_sine_bound(b, 4 * nds.n + 64);
     }
     return b;
   };
@@ -1468,7 +1516,7 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
     diff.head(b1.size()) += b1;
     diff.head(b2.size()) -= b2;
     return cylinder ? (frictional ? j1.minus(j2).max_abs_density() : max_abs_sine_series(diff))
-                    : (frictional ? head_density_max(diff, head) : head_sine_max(diff, head));
+                    : (frictional ? head_density_max(diff, head) : head_sine_bound(diff, head));
   };
   // The ladder (ladder.hpp). Per size: the ends and the U-coefficients of g
   // (with friction its Jacobi series); the changes between successive sizes
@@ -1915,11 +1963,11 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
 
   // Validity: p >= 0 on the contact, no penetration beside it.
   s.min_p_ = kInf;
-  for (int i = 0; i <= 400; ++i) {
-    const double r = -1.0 + 2.0 * i / 400.0;
-    s.min_p_ =
-        std::min(s.min_p_, frictional ? js.density(r)
-                                      : u_series(s.b_, r) * std::sqrt(std::max(0.0, 1.0 - r * r)));
+  if (frictional) {
+    for (int i = 0; i <= 400; ++i)
+      s.min_p_ = std::min(s.min_p_, js.density(-1.0 + 2.0 * i / 400.0));
+  } else {
+    s.min_p_ = min_pressure_on_grid(s.b_);
   }
   // gap(x) = int_edge^x (f'(xi) - v'(xi)) d xi beside each end, out to 2w
   // (up to a table's end: beyond, no punch), sampled to resolve the
@@ -1992,7 +2040,7 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
 
 AsymmetricSolution zone_solution(const AsymmetricParams& prm,
                                  std::shared_ptr<const AsymmetricKernel> kernel, double centre,
-                                 double half, const Eigen::VectorXd& b) {
+                                 double half, const Eigen::VectorXd& b, int head) {
   if (prm.friction != 0.0) throw std::invalid_argument("zone_solution: frictionless zones only");
   if (!(half > 0.0) || !std::isfinite(centre) || b.size() < 1)
     throw std::invalid_argument("zone_solution: a zone needs half > 0, a finite centre and b");
@@ -2008,19 +2056,23 @@ AsymmetricSolution zone_solution(const AsymmetricParams& prm,
   s.b_ = b;
   s.n_ = static_cast<int>(b.size());
   s.light_ = std::make_shared<const AsymmetricSolution::Fine>(s.build_fine(2.0 * half));
-  const int m = std::max(64, 2 * static_cast<int>(b.size()) + 2);
+  // A tail-extended series: the kernel's nodes for its collocated head (the
+  // kernel is smooth), as a profile's solve (solve_asymmetric).
+  const Eigen::Index len = b.size();
+  const Eigen::Index lead = head > 0 ? std::min<Eigen::Index>(len, 4 * head + 64) : len;
+  const int m = std::max(64, 2 * static_cast<int>(lead) + 2);
+  std::vector<double> g(static_cast<std::size_t>(m));
+  for (int i = 1; i <= m; ++i) s.slope_r_.push_back(std::cos(i * kPi / (m + 1)));
+  u_series(s.b_, s.slope_r_.data(), g.data(), m);
   for (int i = 1; i <= m; ++i) {
-    const double th = i * kPi / (m + 1), r = std::cos(th);
-    s.slope_r_.push_back(r);
-    s.slope_wg_.push_back(std::sin(th) * std::sin(th) / (m + 1) * u_series(s.b_, r));
+    const double th = i * kPi / (m + 1);
+    s.slope_wg_.push_back(std::sin(th) * std::sin(th) / (m + 1) *
+                          g[static_cast<std::size_t>(i - 1)]);
   }
-  s.max_p_ = max_abs_sine_series(b);
-  s.margin_ = u_series_minimum(b);
-  s.min_p_ = kInf;
-  for (int i = 0; i <= 400; ++i) {
-    const double r = -1.0 + 2.0 * i / 400.0;
-    s.min_p_ = std::min(s.min_p_, u_series(b, r) * std::sqrt(std::max(0.0, 1.0 - r * r)));
-  }
+  s.max_p_ =
+      lead < len ? max_abs_sine_series_long(b, static_cast<int>(lead)) : max_abs_sine_series(b);
+  s.margin_ = u_series_minimum(b.head(lead));
+  s.min_p_ = min_pressure_on_grid(b);
   return s;
 }
 

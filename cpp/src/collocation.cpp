@@ -587,6 +587,34 @@ double u_series(const Eigen::VectorXd& b, double r) {
   return clenshaw(b, r, 0).first;
 }
 
+void u_series(const Eigen::VectorXd& b, const double* r, double* out, int count) {
+  constexpr int W = 8;
+  const double* c = b.data();
+  int i = 0;
+  for (; i + W <= count; i += W) {
+    double x[W], b1[W] = {}, b2[W] = {};
+    for (int k = 0; k < W; ++k) x[k] = r[i + k];
+    for (Eigen::Index m = b.size() - 1; m >= 0; --m)
+      for (int k = 0; k < W; ++k) {
+        const double b0 = c[m] + 2.0 * x[k] * b1[k] - b2[k];
+        b2[k] = b1[k];
+        b1[k] = b0;
+      }
+    for (int k = 0; k < W; ++k) out[i + k] = b1[k];
+  }
+  for (; i < count; ++i) out[i] = u_series(b, r[i]);
+}
+
+double min_pressure_on_grid(const Eigen::VectorXd& b, double sign) {
+  std::array<double, 401> r{}, g{};
+  for (int i = 0; i <= 400; ++i) r[static_cast<std::size_t>(i)] = -1.0 + 2.0 * i / 400.0;
+  u_series(b, r.data(), g.data(), 401);
+  double out = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < r.size(); ++i)
+    out = std::min(out, sign * g[i] * std::sqrt(std::max(0.0, 1.0 - r[i] * r[i])));
+  return out;
+}
+
 double t_series(const Eigen::VectorXd& b, double r) {
   // T_{n+1} = 2 r T_n - T_{n-1}, T_0 = 1, T_1 = r: c_0 + r b_1 - b_2.
   const auto [b1, b2] = clenshaw(b, r, 1);

@@ -228,6 +228,7 @@ class System {
   }
 
   int unknowns() const { return 2 * nz_; }
+  double phi1() const { return phi1_; }
   int n() const { return n_; }
   double centre(int j) const { return c_[static_cast<std::size_t>(j)]; }
   double half(int j) const { return w_[static_cast<std::size_t>(j)]; }
@@ -242,7 +243,83 @@ class System {
   }
   // Coefficients b (U series) of zone j's G.
   Eigen::VectorXd coefficients(int j) const { return C_ * G_.col(j); }
+  // A rounded flat's zone: its slope's kinks (the face's ends) leave G's
+  // series a slow tail, b_m ~ m^-2, that the collocated terms do not hold.
+  // Beyond them the series is the half-plane's, b_m = d_{m+1}/phi1 (the
+  // zone's own Cauchy integral maps U_m onto T_{m+1}, d the slope's
+  // T-coefficients on the zone), up to the layer's and the other zones'
+  // coupling, negligible that far out, as on the single contact
+  // (docs/theory.md sections 13 and 15.2).
+  bool kinked(int j) const {
+    return prof_[static_cast<std::size_t>(punch_of(j))].kind() == ProfileKind::rounded_flat;
+  }
+  // Zone j's series extended by that tail to `len` terms (a kinked zone's;
+  // the collocated one otherwise); truncation: a bound on what it leaves,
+  // sum |b_m| beyond (|sqrt(1 - r^2) U_m| <= 1; the slope's coefficients'
+  // closed-form bound, PunchProfile::slope_chebyshev_tail).
+  static constexpr int kTailTerms = 4096;
+  Eigen::VectorXd extended(int j, int len = kTailTerms) const {
+    Eigen::VectorXd b = b_[static_cast<std::size_t>(j)].head(n_);
+    if (!kinked(j) || n_ >= len) return b;
+    const int k = punch_of(j);
+    const std::vector<double> d = prof_[static_cast<std::size_t>(k)].slope_chebyshev_at(
+        centre(j) - p_.punches[static_cast<std::size_t>(k)].at, half(j), len + 1);
+    b.conservativeResize(len);
+    for (int m = n_; m < len; ++m) b(m) = d[static_cast<std::size_t>(m + 1)] / phi1_;
+    return b;
+  }
+  double truncation(int j, int len = kTailTerms) const {
+    if (!kinked(j) || n_ >= len) return 0.0;
+    // d_m summed to 4 len, the closed-form bound beyond.
+    const int k = punch_of(j);
+    const PunchProfile& pf = prof_[static_cast<std::size_t>(k)];
+    const double c = centre(j) - p_.punches[static_cast<std::size_t>(k)].at, w = half(j);
+    const std::vector<double> d = pf.slope_chebyshev_at(c, w, 4 * len + 1);
+    double sum = pf.slope_chebyshev_tail(c, w, 4 * len);
+    for (std::size_t m = static_cast<std::size_t>(len) + 1; m < d.size(); ++m)
+      sum += std::fabs(d[m]);
+    return sum / std::fabs(phi1_);
+  }
+  // Zone j's series for the outputs: extended to kTailTerms after
+  // extend_all (a kinked zone's), the collocated one otherwise.
+  const Eigen::VectorXd& series(int j) const {
+    const Eigen::VectorXd& e = ext_[static_cast<std::size_t>(j)];
+    return e.size() > 0 ? e : b_[static_cast<std::size_t>(j)];
+  }
+  void extend_all() {
+    ext_.assign(static_cast<std::size_t>(nz_), Eigen::VectorXd());
+    for (int j = 0; j < nz_; ++j)
+      if (kinked(j)) ext_[static_cast<std::size_t>(j)] = extended(j);
+  }
   double load(int j) const { return loads_(j); }
+  // A kinked zone's Cauchy integral beyond its collocated terms at a point
+  // beside it, sum_{m >= n} b_m q^(m+1) = (1/phi1) sum_{k > n} d_k q^k (the
+  // whole tail, not only kTailTerms): for |q| > 1/2 from the slope's Poisson
+  // sum in closed form less its first terms, else from d_{n+1} ..
+  // d_{n+kShort} (what is left below 2^-70 of sum |d|). qn = q^(n+1).
+  static constexpr int kShort = 64;
+  double kinked_tail(int j, double q, double qn) const {
+    const std::vector<double>& d = d_[static_cast<std::size_t>(j)];
+    double tail = 0.0;
+    if (std::fabs(q) > 0.5) {
+      const int k = punch_of(j);
+      tail = prof_[static_cast<std::size_t>(k)].slope_chebyshev_poisson(
+          centre(j) - p_.punches[static_cast<std::size_t>(k)].at, half(j), q);
+      double qk = 1.0, head = 0.0;  // d_0/2 + sum_{k <= n} d_k q^k (d_0 halved in d_)
+      for (int m = 0; m <= n_; ++m) {
+        head += d[static_cast<std::size_t>(m)] * qk;
+        qk *= q;
+      }
+      tail -= head;
+    } else {
+      double qk = qn;
+      for (std::size_t m = static_cast<std::size_t>(n_) + 1; m < d.size(); ++m) {
+        tail += d[m] * qk;
+        qk *= q;
+      }
+    }
+    return tail / phi1_;
+  }
 
   // Sets the ends e = (l_0, r_0, l_1, ...) and solves; F the scaled end
   // conditions. False when the ends are not admissible (a zone inverted,
@@ -263,6 +340,14 @@ class System {
       w_[static_cast<std::size_t>(j)] = 0.5 * (r - l);
     }
     const int n = n_, rows = nz_ * (n + 1), cols = nz_ * (n + 1);
+    // (A zone's last matrix blocks stand when its centre and half-width are
+    // those of the last evaluation that built the matrix, bit for bit.)
+    auto same_zone = [&](int i) {
+      const auto ui = static_cast<std::size_t>(i);
+      return M_.rows() == rows && mc_.size() == c_.size() && mc_[ui] == c_[ui] && mw_[ui] == w_[ui];
+    };
+    d_.assign(static_cast<std::size_t>(nz_), std::vector<double>());
+    ext_.assign(static_cast<std::size_t>(nz_), Eigen::VectorXd());
     Eigen::MatrixXd M = Eigen::MatrixXd::Zero(rows, cols);
     Eigen::VectorXd rhs(rows);
     // The kernel's values, zone pair by zone pair, in one batch each.
@@ -270,14 +355,36 @@ class System {
     Eigen::MatrixXd Z(n + 1, n);
     for (int j = 0; j < nz_; ++j) {
       const double cj = c_[static_cast<std::size_t>(j)], wj = w_[static_cast<std::size_t>(j)];
-      for (int k = 0; k <= n; ++k) rhs(j * (n + 1) + k) = slope(punch_of(j), cj + wj * nd_.s(k));
+      const int pj = punch_of(j);
+      const PunchProfile& pf = prof_[static_cast<std::size_t>(pj)];
+      if (kinked(j)) {
+        // The slope's projection onto T_0 .. T_n: its kinks at the face's
+        // ends would alias its Chebyshev tail onto the values (as on the
+        // single contact, docs/theory.md section 13). d_0 .. d_{n + kShort}
+        // are kept for vslope.
+        std::vector<double>& d = d_[static_cast<std::size_t>(j)];
+        d = pf.slope_chebyshev_at(cj - p_.punches[static_cast<std::size_t>(pj)].at, wj,
+                                  n + kShort + 1);
+        d[0] *= 0.5;
+        for (int k = 0; k <= n; ++k)
+          rhs(j * (n + 1) + k) = detail::chebyshev_sum(d.data(), n, nd_.s(k));
+      } else {
+        for (int k = 0; k <= n; ++k) rhs(j * (n + 1) + k) = slope(pj, cj + wj * nd_.s(k));
+      }
       for (int i = 0; i < nz_; ++i) {
         const double ci = c_[static_cast<std::size_t>(i)], wi = w_[static_cast<std::size_t>(i)];
+        auto block = M.block(j * (n + 1), i * (n + 1), n + 1, n);
+        // A block depends on zones i and j alone: kept from the last
+        // evaluation when neither moved (a finite-difference Jacobian moves
+        // one end at a time).
+        if (same_zone(i) && same_zone(j)) {
+          block = M_.block(j * (n + 1), i * (n + 1), n + 1, n);
+          continue;
+        }
         for (int q = 0; q < n; ++q)
           for (int k = 0; k <= n; ++k)
             u[static_cast<std::size_t>(q) * (n + 1) + k] = cj + wj * nd_.s(k) - ci - wi * nd_.r(q);
         K_.many(u.data(), kv.data(), u.size());
-        auto block = M.block(j * (n + 1), i * (n + 1), n + 1, n);
         for (int q = 0; q < n; ++q)
           for (int k = 0; k <= n; ++k)
             block(k, q) = phi1_ * nd_.w(q) * wi * kv[static_cast<std::size_t>(q) * (n + 1) + k];
@@ -301,6 +408,9 @@ class System {
       }
       M.block(j * (n + 1), j * (n + 1) + n, n + 1, 1).setOnes();
     }
+    M_ = M;
+    mc_ = c_;
+    mw_ = w_;
     const Eigen::PartialPivLU<Eigen::MatrixXd> lu(M);
     const Eigen::VectorXd x = lu.solve(rhs);
     if (!x.allFinite()) return false;
@@ -333,8 +443,11 @@ class System {
     return F.allFinite();
   }
 
-  // v'(x, 0) of the current state, any x (inside a zone: the principal value).
-  double vslope(double x) const {
+  // v'(x, 0) of the current state, any x (inside a zone: the principal
+  // value): phi1 sum_i [Cauchy_i(x) + w_i kern_i(x)] over the zones. Without
+  // `kernel` the kernel's part is left out: kernel_part, smooth (the gap
+  // checks interpolate it).
+  double vslope(double x, bool kernel = true) const {
     double sum = 0.0;
     thread_local std::vector<double> u, kv;
     u.resize(static_cast<std::size_t>(n_));
@@ -345,9 +458,12 @@ class System {
       const double z = (x - ci) / wi;
       double cauchy = 0.0;
       if (std::fabs(z) <= 1.0) {
+        // (Inside a zone: the collocated terms; a kinked zone's extended
+        // series once extend_all has run.)
+        const Eigen::VectorXd& bs = series(i);
         double tkm1 = 1.0, tk = z;
-        for (int m = 0; m < n_; ++m) {
-          cauchy += b(m) * tk;
+        for (Eigen::Index m = 0; m < bs.size(); ++m) {
+          cauchy += bs(m) * tk;
           const double tn = 2.0 * z * tk - tkm1;
           tkm1 = tk;
           tk = tn;
@@ -359,6 +475,11 @@ class System {
           cauchy += b(m) * qm;
           qm *= qz;
         }
+        if (kinked(i)) cauchy += kinked_tail(i, qz, qm);
+      }
+      if (!kernel) {
+        sum += cauchy;
+        continue;
       }
       for (int q = 0; q < n_; ++q) u[static_cast<std::size_t>(q)] = x - ci - wi * nd_.r(q);
       K_.many(u.data(), kv.data(), u.size());
@@ -367,6 +488,26 @@ class System {
       sum += cauchy + wi * kern;
     }
     return phi1_ * sum;
+  }
+  // sum_i w_i kern_i(x): the kernel's part of v'(x)/phi1 (the regular kernel
+  // K is analytic in a strip about the real axis: smooth on every zone).
+  double kernel_part(double x) const {
+    thread_local std::vector<double> u, kv;
+    u.resize(static_cast<std::size_t>(n_) * static_cast<std::size_t>(nz_));
+    kv.resize(u.size());
+    for (int i = 0; i < nz_; ++i)
+      for (int q = 0; q < n_; ++q)
+        u[static_cast<std::size_t>(i * n_ + q)] =
+            x - c_[static_cast<std::size_t>(i)] - w_[static_cast<std::size_t>(i)] * nd_.r(q);
+    K_.many(u.data(), kv.data(), u.size());
+    double sum = 0.0;
+    for (int i = 0; i < nz_; ++i) {
+      double kern = 0.0;
+      for (int q = 0; q < n_; ++q)
+        kern += nd_.w(q) * G_(q, i) * kv[static_cast<std::size_t>(i * n_ + q)];
+      sum += w_[static_cast<std::size_t>(i)] * kern;
+    }
+    return sum;
   }
 
   // int_a^b v'(x) dx between two zone ends (v' has square-root cusps at
@@ -395,9 +536,55 @@ class System {
   double S_, phi1_;
   Eigen::MatrixXd C_, G_;
   Eigen::VectorXd eps_, loads_;
-  std::vector<Eigen::VectorXd> b_;
+  std::vector<Eigen::VectorXd> b_, ext_;  // collocated; a kinked zone's extended (extend_all)
+  std::vector<std::vector<double>> d_;    // a kinked zone's slope coefficients (d_0 halved)
   std::vector<double> c_, w_;
+  // The last matrix built and the zones it was built for (eval's cache).
+  Eigen::MatrixXd M_;
+  std::vector<double> mc_, mw_;
   std::vector<std::pair<int, int>> pairs_;
+};
+
+// A smooth function on [a, b] as its Chebyshev interpolant at the points of
+// the first kind, of degree 16, 32, 64 or 128: the first whose last two
+// coefficients are at the round-off of its values (64 eps of the largest);
+// none (ok() false: evaluate directly) when even 128 is not.
+class SmoothInterpolant {
+ public:
+  template <class F>
+  SmoothInterpolant(const F& f, double a, double b) : mid_(0.5 * (a + b)), half_(0.5 * (b - a)) {
+    for (int d = 16; d <= 128 && half_ > 0.0; d *= 2) {
+      const int m = d + 1;
+      std::vector<double> v(static_cast<std::size_t>(m));
+      double vmax = 0.0;
+      for (int j = 0; j < m; ++j) {
+        v[static_cast<std::size_t>(j)] = f(mid_ + half_ * std::cos(kPi * (j + 0.5) / m));
+        vmax = std::max(vmax, std::fabs(v[static_cast<std::size_t>(j)]));
+      }
+      c_.assign(static_cast<std::size_t>(m), 0.0);
+      for (int k = 0; k < m; ++k) {
+        double sum = 0.0;
+        for (int j = 0; j < m; ++j)
+          sum += v[static_cast<std::size_t>(j)] * std::cos(kPi * k * (j + 0.5) / m);
+        c_[static_cast<std::size_t>(k)] = (k == 0 ? 1.0 : 2.0) * sum / m;
+      }
+      if (!std::isfinite(vmax)) break;
+      if (std::fabs(c_[static_cast<std::size_t>(d - 1)]) +
+              std::fabs(c_[static_cast<std::size_t>(d)]) <=
+          64.0 * kEps * vmax)
+        return;
+    }
+    c_.clear();
+  }
+  bool ok() const { return !c_.empty(); }
+  double operator()(double x) const {
+    return detail::chebyshev_sum(c_.data(), static_cast<int>(c_.size()) - 1,
+                                 std::clamp((x - mid_) / half_, -1.0, 1.0));
+  }
+
+ private:
+  double mid_, half_;
+  std::vector<double> c_;
 };
 
 // Newton's method on the ends from e (in place); evaluations counted. J: the
@@ -619,7 +806,7 @@ double zones_dissipation(const ZonesSolution& s) {
       if (first == nullptr) first = &z;
       // Each zone relative to the group's first (its phases e^{-i alpha x} small).
       const double c = (z.origin - first->origin) + z.offset;
-      parts.push_back(zone_solution(z.params, z.kernel, c, z.half, z.b));
+      parts.push_back(zone_solution(z.params, z.kernel, c, z.half, z.b, z.head));
       loads.push_back(z.load);
       total += z.load;
       lo = std::min(lo, c - z.half);
@@ -654,7 +841,7 @@ double zones_dissipation(const ZonesSolution& s) {
 }
 
 AsymmetricSolution ZoneResult::solution() const {
-  return zone_solution(params, kernel, offset, half, b);
+  return zone_solution(params, kernel, offset, half, b, head);
 }
 
 namespace {
@@ -836,7 +1023,11 @@ ZonesSolution solve_connected(const ZonesParams& prm, const std::vector<PunchPro
     Eigen::VectorXd e;
     std::vector<Eigen::VectorXd> b;
     double step = 0.0;  // Newton's uncertainty in the ends (newton())
+    int n = 0;
   };
+  // The head of a size-n series whose sampled maximum stands for the
+  // whole (a kinked zone's tail is bounded by sum |b|: head_sine_bound).
+  auto head_of = [](int n) { return 4 * n + 64; };
   std::string failure_text;  // a larger size's failure (it stops the ladder)
   std::exception_ptr failure;
   const detail::LadderRun<Member, 2> run = detail::run_ladder<2, Member>(
@@ -850,15 +1041,18 @@ ZonesSolution solve_connected(const ZonesParams& prm, const std::vector<PunchPro
           sys = std::make_unique<System>(prm, prof, kernel(table_need(e)), n, S);
           step = newton(*sys, e, out.iterations, jac, have_jac, max_it, mirror);
         }
-        Member m{e, std::vector<Eigen::VectorXd>(static_cast<std::size_t>(nz)), step};
+        Member m{e, std::vector<Eigen::VectorXd>(static_cast<std::size_t>(nz)), step, n};
         pmax = 0.0;
         for (int j = 0; j < nz; ++j) {
-          m.b[static_cast<std::size_t>(j)] = sys->coefficients(j);
-          pmax = std::max(pmax, max_abs_sine_series(m.b[static_cast<std::size_t>(j)]));
+          m.b[static_cast<std::size_t>(j)] = sys->extended(j);
+          pmax = std::max(pmax, head_sine_bound(m.b[static_cast<std::size_t>(j)], head_of(n)));
         }
         return m;
       },
       [&](const Member& prev, const Member& cur) {
+        // A kinked zone's change bounded on the head of the larger size's
+        // series (beyond it both tails are the half-plane's: they differ
+        // only as the ends do).
         double dp = 0.0;
         for (int j = 0; j < nz; ++j) {
           const Eigen::VectorXd& bj = cur.b[static_cast<std::size_t>(j)];
@@ -866,7 +1060,7 @@ ZonesSolution solve_connected(const ZonesParams& prm, const std::vector<PunchPro
           Eigen::VectorXd db = Eigen::VectorXd::Zero(std::max(bj.size(), bp.size()));
           db.head(bj.size()) += bj;
           db.head(bp.size()) -= bp;
-          dp = std::max(dp, max_abs_sine_series(db));
+          dp = std::max(dp, head_sine_bound(db, head_of(cur.n)));
         }
         return std::array<double, 2>{(cur.e - prev.e).lpNorm<Eigen::Infinity>(), dp};
       },
@@ -936,6 +1130,39 @@ ZonesSolution solve_connected(const ZonesParams& prm, const std::vector<PunchPro
     sys->eval(e, F);
     out.residual = F.lpNorm<Eigen::Infinity>();
   }
+  // The kinked zones' tails (for the checks and the outputs) and what they
+  // leave out: added to the pressure's estimate; above 1e-3 of the largest
+  // pressure a warning names the profile (as the single contact's).
+  sys->extend_all();
+  {
+    // (The largest pressure reported: the whole series' (the ladder's
+    // scale bounds a kinked zone's tail by sum |b_n|).)
+    double trunc = 0.0, pbig = 0.0;
+    int worst = -1;
+    for (int j = 0; j < nz; ++j) {
+      if (!sys->kinked(j)) {
+        pbig = std::max(pbig, max_abs_sine_series(sys->series(j)));
+        continue;
+      }
+      const double t = sys->truncation(j);
+      pbig = std::max(pbig, max_abs_sine_series_long(sys->series(j), head_of(sys->n())));
+      if (t > trunc || worst < 0) {
+        trunc = t;
+        worst = j;
+      }
+    }
+    if (worst >= 0) {
+      pmax = pbig;
+      out.pressure_error_estimate += trunc;
+      const int k = sys->punch_of(worst);
+      const PunchProfile& pf = prof[static_cast<std::size_t>(k)];
+      const std::string kinks = kink_truncation_warning(
+          trunc, u_series(sys->series(worst), 0.0), pf.describe(),
+          std::fabs(sys->centre(worst) - prm.punches[static_cast<std::size_t>(k)].at) +
+              sys->half(worst) - pf.face());
+      if (!kinks.empty()) out.warnings.push_back(kinks);
+    }
+  }
 
   // The zones (their solutions are built on demand: ZoneResult::solution).
   for (int j = 0; j < nz; ++j) {
@@ -956,17 +1183,17 @@ ZonesSolution solve_connected(const ZonesParams& prm, const std::vector<PunchPro
     z.params.table_y.clear();
     z.kernel = kern;
     const double scale = z.load != 0.0 ? z.load : 1.0;
-    z.b = sys->coefficients(j) / scale;
+    z.b = sys->series(j) / scale;
+    z.head = sys->n();
     const double sign = z.load < 0 ? -1.0 : 1.0;
     double rmin = 0.0;
-    z.margin = u_series_minimum(z.b, &rmin) * sign;
+    // (A kinked zone's margin on its collocated head, as the single
+    // contact's: the tail's kink is resolved only to its truncation anyway.)
+    z.margin =
+        u_series_minimum(z.b.head(std::min<Eigen::Index>(z.b.size(), head_of(z.head))), &rmin) *
+        sign;
     z.margin_x = sys->centre(j) + sys->half(j) * rmin;
-    z.min_pressure = kInf;
-    for (int i = 0; i <= 400; ++i) {
-      const double r = -1.0 + 2.0 * i / 400.0;
-      z.min_pressure =
-          std::min(z.min_pressure, sign * u_series(z.b, r) * std::sqrt(std::max(0.0, 1.0 - r * r)));
-    }
+    z.min_pressure = min_pressure_on_grid(z.b, sign);
     out.zones.push_back(std::move(z));
   }
   // Per punch: where the indentation is taken, and the drag.
@@ -986,9 +1213,20 @@ ZonesSolution solve_connected(const ZonesParams& prm, const std::vector<PunchPro
     double drag = 0.0;
     for (int j = 0; j < nz; ++j) {
       if (out.zones[static_cast<std::size_t>(j)].punch != k) continue;
-      const Eigen::VectorXd b = sys->coefficients(j);
-      const int m = std::max(64, 2 * sys->n() + 2);
+      const Eigen::VectorXd& b = sys->series(j);
       const double c = sys->centre(j), w = sys->half(j);
+      if (sys->kinked(j)) {
+        // int sqrt(1 - r^2) U_n T_m dr = (pi/4)(delta_nm (1 + delta_m0) - delta_m,n+2),
+        // f'(c + w r) = d_0/2 + sum d_m T_m: w (pi/4) sum_n b_n (d_n - d_{n+2}).
+        const std::vector<double> d = prof[static_cast<std::size_t>(k)].slope_chebyshev_at(
+            c - prm.punches[static_cast<std::size_t>(k)].at, w, static_cast<int>(b.size()) + 2);
+        double sum = 0.0;
+        for (Eigen::Index n = 0; n < b.size(); ++n)
+          sum += b(n) * (d[static_cast<std::size_t>(n)] - d[static_cast<std::size_t>(n + 2)]);
+        drag += w * 0.25 * kPi * sum;
+        continue;
+      }
+      const int m = std::max(64, 2 * sys->n() + 2);
       for (int i = 1; i <= m; ++i) {
         const double th = i * kPi / (m + 1), r = std::cos(th);
         drag += kPi * w * std::sin(th) * std::sin(th) / (m + 1) * u_series(b, r) *
@@ -1036,6 +1274,7 @@ ZonesSolution solve_connected(const ZonesParams& prm, const std::vector<PunchPro
         detail::response_band(quad.panels.alpha, quad.panels.weight,
                               [&](std::size_t i) { return std::abs(quad.m1[i] - phi1); }));
   }();
+  const double phi1m = sys->phi1();
   for (int k = 0; k < np; ++k) {
     std::vector<int> mine;
     for (int j = 0; j < nz; ++j)
@@ -1048,7 +1287,19 @@ ZonesSolution solve_connected(const ZonesParams& prm, const std::vector<PunchPro
       out.gap_scale =
           std::max(out.gap_scale, sys->half(j) * std::max(std::fabs(sys->slope(k, e(2 * j))),
                                                           std::fabs(sys->slope(k, e(2 * j + 1)))));
-    auto gap_slope = [&](double x) { return sys->slope(k, x) - sys->vslope(x); };
+    // gap' = f_k' - v': the kernel's part of v' from its interpolant on
+    // the scanned interval (when it reaches round-off there; directly
+    // otherwise), the Cauchy integrals directly.
+    std::unique_ptr<SmoothInterpolant> smooth;
+    auto gap_slope = [&](double x) {
+      if (smooth) return sys->slope(k, x) - (sys->vslope(x, false) + phi1m * (*smooth)(x));
+      return sys->slope(k, x) - sys->vslope(x);
+    };
+    auto interpolate = [&](double from, double to) {
+      smooth = std::make_unique<SmoothInterpolant>([&](double x) { return sys->kernel_part(x); },
+                                                   std::min(from, to), std::max(from, to));
+      if (!smooth->ok()) smooth.reset();
+    };
     auto note = [&](double gap, double x, int after) {
       if (!std::isfinite(gap))
         throw ConvergenceError(
@@ -1075,6 +1326,7 @@ ZonesSolution solve_connected(const ZonesParams& prm, const std::vector<PunchPro
       }
       const double len = std::min(reach, room);
       if (!(len > 0.0)) continue;
+      interpolate(edge, edge + side * len);
       const detail::GapMinimum m =
           detail::scan_gap_slope(gap_slope, edge, edge + side * len, 0.0, step, 32, true, false);
       note(m.gap, m.x, -1);
@@ -1082,6 +1334,7 @@ ZonesSolution solve_connected(const ZonesParams& prm, const std::vector<PunchPro
     for (const auto& [j, jn] : sys->pairs()) {
       if (sys->punch_of(j) != k) continue;
       const double a = e(2 * j + 1), b = e(2 * jn);
+      interpolate(a, b);
       const detail::GapMinimum m =
           detail::scan_gap_slope(gap_slope, a, b, 0.0, step, 32, true, true);
       note(m.gap, m.x, j);

@@ -3,6 +3,7 @@
 // Cauchy potentials) against direct quadrature.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <vector>
@@ -109,6 +110,63 @@ TEST(Profiles, OffCentreProjectionMatchesQuadrature) {
       EXPECT_NEAR(d[static_cast<std::size_t>(m)], 2.0 / M * sum, 1e-9) << m;
     }
   }
+}
+
+TEST(Profiles, KinkedSlopeSeriesClosedFormsAgreeWithSumsAndQuadrature) {
+  // The rounded flat's slope on an off-centre contact (both kinks inside,
+  // one inside, none): its far coefficients d_m against a composite
+  // midpoint rule split at the kinks; the closed-form bound on sum_{m > L}
+  // |d_m| against the sum itself (bounds it, by at most 4 times); the
+  // Poisson sum d_0/2 + sum d_k q^k against the series summed term by term
+  // (zones.cpp sums a zone's whole Cauchy tail with it).
+  const PunchProfile rf(ProfileKind::rounded_flat, 2.0, 0.3);
+  struct Case {
+    double c, w;
+  };
+  for (const Case cs : {Case{-0.12, 0.65}, Case{0.2, 0.3}, Case{0.9, 0.4}}) {
+    const int count = 20001;
+    const std::vector<double> d = rf.slope_chebyshev_at(cs.c, cs.w, count);
+    std::vector<double> cuts{0.0, kPi};
+    for (double x : {0.3, -0.3})
+      if (std::fabs(x - cs.c) < cs.w) cuts.push_back(std::acos((x - cs.c) / cs.w));
+    std::sort(cuts.begin(), cuts.end());
+    for (int m : {2, 3, 17, 400, 3001}) {
+      double sum = 0.0;
+      for (std::size_t p = 0; p + 1 < cuts.size(); ++p) {
+        const int M = 400000;
+        const double h = (cuts[p + 1] - cuts[p]) / M;
+        for (int j = 0; j < M; ++j) {
+          const double th = cuts[p] + (j + 0.5) * h;
+          sum += h * rf.slope(cs.c + cs.w * std::cos(th)) * std::cos(m * th);
+        }
+      }
+      EXPECT_NEAR(d[static_cast<std::size_t>(m)], 2.0 / kPi * sum, 1e-12) << cs.c << " " << m;
+    }
+    for (int L : {16, 128, 4096}) {
+      double sum = 0.0;
+      for (int m = L + 1; m < count; ++m) sum += std::fabs(d[static_cast<std::size_t>(m)]);
+      const double bound = rf.slope_chebyshev_tail(cs.c, cs.w, L);
+      EXPECT_GE(bound, sum) << cs.c << " " << L;
+      if (cs.c != 0.9) EXPECT_LE(bound, 4.0 * sum) << cs.c << " " << L;  // (0.9: no kink inside)
+    }
+    for (double q : {-0.97, -0.6, -0.3, 0.1, 0.4, 0.9, 0.99}) {
+      double sum = 0.5 * d[0], qk = 1.0;
+      for (int k = 1; k < count; ++k) {
+        qk *= q;
+        sum += d[static_cast<std::size_t>(k)] * qk;
+      }
+      const double rest = rf.slope_chebyshev_tail(cs.c, cs.w, count - 1);
+      EXPECT_NEAR(rf.slope_chebyshev_poisson(cs.c, cs.w, q), sum, 1e-15 + rest) << cs.c << " " << q;
+    }
+  }
+  // The cylinder: its two terms; a table: no closed form.
+  const PunchProfile cyl(ProfileKind::cylinder, 5.0, 0.0);
+  EXPECT_DOUBLE_EQ(cyl.slope_chebyshev_poisson(0.1, 0.4, 0.5), (0.1 + 0.4 * 0.5) / 5.0);
+  EXPECT_EQ(cyl.slope_chebyshev_tail(0.1, 0.4, 3), 0.0);
+  const PunchProfile tab(ProfileKind::table, 0.0, 0.0, {-1.0, -0.5, 0.0, 0.5, 1.0},
+                         {0.1, 0.02, 0.0, 0.02, 0.1});
+  EXPECT_TRUE(std::isnan(tab.slope_chebyshev_poisson(0.0, 0.5, 0.5)));
+  EXPECT_TRUE(std::isinf(tab.slope_chebyshev_tail(0.0, 0.5, 8)));
 }
 
 TEST(Profiles, SlopeProjectionMatchesQuadrature) {

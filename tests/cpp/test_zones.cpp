@@ -5,11 +5,13 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 #include "movingpunch/asymmetric.hpp"
 #include "movingpunch/contact.hpp"
 #include "movingpunch/dispersion.hpp"
 #include "movingpunch/errors.hpp"
+#include "movingpunch/profile.hpp"
 #include "movingpunch/zones.hpp"
 
 namespace mp = movingpunch;
@@ -59,6 +61,49 @@ TEST(Zones, OneZoneIsTheAsymmetricSolversContact) {
   // The energy balance: the dashpots take the drag's power.
   EXPECT_NEAR(mp::zones_dissipation(z), z.drag_total, 1e-7 * z.drag_total);
   EXPECT_NEAR(z.zones[0].load, 0.002, 1e-14);
+}
+
+TEST(Zones, OneRoundedFlatZoneIsTheAsymmetricSolversContact) {
+  // The kinked slope (a rounded flat's face ends inside the zone):
+  // collocated by its projection, the series extended by the half-plane
+  // tail (docs/theory.md section 15.2), as the asymmetric solver's profile.
+  mp::AsymmetricParams d;
+  d.vstar = 0.2;
+  d.kw = 1.0;
+  d.damping = 0.3;
+  d.tol = 1e-11;
+  d.profile = mp::ProfileKind::rounded_flat;
+  d.half_width = 0.3;
+  d.radius = 100.0;
+  const mp::AsymmetricSolution ref = mp::solve_asymmetric(d);
+  mp::ZonesParams p = layer(0.2, 1.0, 0.3);
+  mp::ZonePunch k = cylinder(0.002, 0.0);
+  k.profile = mp::ProfileKind::rounded_flat;
+  k.half_width = 0.3;
+  p.punches = {k};
+  p.zones = {{0, ref.left() * 0.9, ref.right() * 1.1}};
+  const mp::ZonesSolution z = mp::solve_zones(p);
+  ASSERT_EQ(z.zones.size(), 1U);
+  EXPECT_TRUE(z.warnings.empty());
+  EXPECT_NEAR(z.zones[0].left, ref.left(), 1e-9);
+  EXPECT_NEAR(z.zones[0].right, ref.right(), 1e-9);
+  EXPECT_NEAR(z.drag[0], ref.drag(), 1e-9 * std::fabs(ref.drag()));
+  EXPECT_NEAR(mp::zones_dissipation(z), z.drag_total, 1e-7 * z.drag_total);
+  // The collocated head and the tail: 4096 terms, whose coefficients
+  // beyond the head are the half-plane's (b_m = d_{m+1}/(phi1 P)).
+  const mp::ZoneResult& zr = z.zones[0];
+  EXPECT_EQ(zr.b.size(), 4096);
+  EXPECT_LT(zr.head, 64);
+  const mp::PunchProfile prof = k.punch();
+  const std::vector<double> dm = prof.slope_chebyshev_at(zr.offset, zr.half, 4097);
+  for (int m : {zr.head, 1000, 4095})
+    EXPECT_NEAR(zr.b(m), dm[static_cast<std::size_t>(m + 1)] / (z.phi1 * zr.load),
+                1e-14 * std::fabs(zr.b(0)));
+  // The whole series' pressure at the zone's centre agrees with the
+  // asymmetric solver's (both heads converged, both tails the half-plane's).
+  const mp::AsymmetricSolution one = zr.solution();
+  EXPECT_NEAR(one.pressure(0.0), ref.pressure(0.0), 1e-8 * ref.pressure(0.0));
+  EXPECT_NEAR(z.max_pressure, ref.max_pressure(), 1e-8 * ref.max_pressure());
 }
 
 TEST(Zones, FarApartPunchesAreSinglePunches) {

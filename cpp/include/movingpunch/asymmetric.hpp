@@ -363,7 +363,8 @@ class AsymmetricSolution {
   friend AsymmetricSolution solve_asymmetric_flat(const AsymmetricParams& p);
   friend AsymmetricSolution zone_solution(const AsymmetricParams& p,
                                           std::shared_ptr<const AsymmetricKernel> kernel,
-                                          double centre, double half, const Eigen::VectorXd& b);
+                                          double centre, double half, const Eigen::VectorXd& b,
+                                          int head);
   AsymmetricParams params_{};
   double end_k_back_ = 0, end_k_front_ = 0, end_k_err_ = 0;
   double centre_ = 0, half_ = 0, drag_ = 0, vcr_ = 0, vr_ = 0, err_ = 0, elapsed_ = 0;
@@ -535,10 +536,12 @@ AsymmetricSolution solve_asymmetric_flat(const AsymmetricParams& p);
 // ends, with the outputs of the layer's response to it (surface slope,
 // stress, displacement, fields). The several-zone result sums its zones'
 // outputs (superposition); its own checks and estimates replace this one's
-// (valid(), the estimates and drag() are not set here).
+// (valid(), the estimates and drag() are not set here). A tail-extended
+// series (a rounded flat's zone) gives its collocated `head` (0: all of b):
+// the kernel's quadrature nodes and the margin take that head's size.
 AsymmetricSolution zone_solution(const AsymmetricParams& p,
                                  std::shared_ptr<const AsymmetricKernel> kernel, double centre,
-                                 double half, const Eigen::VectorXd& b);
+                                 double half, const Eigen::VectorXd& b, int head = 0);
 
 // Error estimate of the last member of a sequence x_0, x_1, ... computed at
 // sizes n_0 < n_1 < ..., from the changes d_k = |x_k - x_{k-1}| (changes[k-1]
@@ -640,8 +643,13 @@ LadderStop ladder_stop(double tol, const RefinementEstimate& a, double last_a, d
 double max_abs_sine_series(const Eigen::VectorXd& b);
 // The same for a long series (a profile's tail-extended one): the first
 // `head` terms locate the three largest values, the whole series is sampled
-// finely around them (the tail only shifts them a little).
+// finely around them (the tail only shifts them a little) and the largest
+// sample refined by golden section.
 double max_abs_sine_series_long(const Eigen::VectorXd& b, int head);
+// A bound on max |sqrt(1 - r^2) sum b_k U_k(r)| of a long series: the
+// sampled maximum of its first `head` terms (max_abs_sine_series) plus
+// sum |b_k| beyond them (|sqrt(1 - r^2) U_k| <= 1).
+double head_sine_bound(const Eigen::VectorXd& b, int head);
 // The same for a Jacobi series' density w g.
 double max_abs_density_long(const JacobiSeries& js, int head);
 

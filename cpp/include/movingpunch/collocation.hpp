@@ -69,6 +69,14 @@ Eigen::VectorXd u_coefficients(const ChebyshevNodes& nodes, const Eigen::VectorX
 
 // g(r) = sum b_n U_n(r) for |r| <= 1 (Clenshaw).
 double u_series(const Eigen::VectorXd& b, double r);
+// The same at count points r[i] into out[i], eight recurrences interleaved
+// (each point's arithmetic as u_series', bit for bit: a long series' many
+// points at the speed of the multiplier, not of its latency).
+void u_series(const Eigen::VectorXd& b, const double* r, double* out, int count);
+
+// min of sign sqrt(1 - r^2) sum b_n U_n(r) on the 401 points r = -1 + i/200:
+// the solutions' min_pressure (per P/h) from their U-series.
+double min_pressure_on_grid(const Eigen::VectorXd& b, double sign = 1.0);
 
 // The minimum of g(r) = sum b_n U_n(r) on -1 <= r <= 1 (a dense scan of
 // max(401, 16 (N + 1) + 257) Chebyshev points, then golden-section refinement

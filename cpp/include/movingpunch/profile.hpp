@@ -67,6 +67,17 @@ class PunchProfile {
   // midpoint rule on max(16 count + 64, 8192) angles for a table. Throws
   // std::domain_error when (c - w, c + w) leaves a table.
   std::vector<double> slope_chebyshev_at(double c, double w, int count) const;
+  // A bound on sum_{m > from} |d_m| of slope_chebyshev_at(c, w, .) (from >=
+  // 1): in closed form for the rounded flat (|d_m| <= C/(m^2 - 1)), 0 for the
+  // cylinder and the flat punch (whose slope on a contact is linear or 0),
+  // infinity for a table (no bound is known).
+  double slope_chebyshev_tail(double c, double w, int from) const;
+  // The sum d_0/2 + sum_{k>=1} d_k q^k of slope_chebyshev_at(c, w, .) for
+  // |q| < 1 (its Poisson integral, in closed form): for the cylinder, the
+  // flat punch and the rounded flat; NaN for a table and |q| >= 1. (A
+  // bounded zone's half-plane Cauchy integral beside it, every term of its
+  // series at once: zones.cpp.)
+  double slope_chebyshev_poisson(double c, double w, double q) const;
   // The x where the shape's kinks lie (the rounded flat's face ends -b, b;
   // none otherwise): quadratures of the slope split there.
   std::vector<double> kinks() const;

@@ -65,7 +65,10 @@ struct ZoneResult {
   double left = 0, right = 0;
   double load = 0;  // int p over the zone, P_zone/(mu h)
   // p = (P_zone/h) sqrt(1 - r^2) sum b_n U_n(r), r = (x - centre)/half.
+  // A rounded flat's zone: the collocated `head` terms and the half-plane's
+  // tail beyond them (its slope's kinks), 4096 terms in all.
   Eigen::VectorXd b;
+  int head = 0;             // the collocated terms (the zone's N)
   double min_pressure = 0;  // min p/(|P_zone|/h) on the zone
   double margin = 0;        // min over the open zone of p/((|P_zone|/h) sqrt(1 - r^2))
   double margin_x = 0;      // where
