@@ -8,8 +8,8 @@ solves, their ratio (the issue asks at most 4x), and both against the plain
 NumPy/SciPy peer's cylinder solve (../shared/bench/peer_numpy.py, N = 24, the
 paper's problem) run in the same process. Also the separated contact of one
 punch (the paper's soft foundation at 0.99 V*_cr: two zones) against the
-single contact it replaces. Prints the machine's load average; never
-asserts a time.
+single contact it replaces, and a train of 8 rounded flats against one.
+Prints the machine's load average; never asserts a time.
 
     .venv/bin/python benchmarks/bench_zones.py [--repeat 7]
 """
@@ -86,6 +86,26 @@ def main() -> None:
     print(
         f"separated (kw 0.1, 0.99 V*cr): single contact {a:.2f} ms, "
         f"two zones {b:.2f} ms ({b / a:.1f}x; {b / peer_ms:.3f} of the peer)"
+    )
+    # Issue 27: a train of 8 rounded flats (0.3/100, 3 h apart, kw 1) against
+    # one rounded flat; the train must converge without a warning.
+    flat = mp.RoundedFlat(0.3, 100.0)
+
+    def one_flat(load: float) -> object:
+        return mp.solve(vstar=0.2, kw=1.0, profile=flat, load=load)
+
+    def eight_flats(load: float) -> object:
+        punches = [mp.Punch(flat, load, at=3.0 * (i - 3.5)) for i in range(8)]
+        s = mp.solve_punches(punches, vstar=0.2, kw=1.0)
+        if s.warnings:
+            raise SystemExit(f"the train of 8 rounded flats warned: {s.warnings}")
+        return s
+
+    a = _warm_median_ms(one_flat, args.repeat)
+    b = _warm_median_ms(eight_flats, args.repeat)
+    print(
+        f"8 rounded flats 0.3/100, 3 h apart (V* 0.2, kw 1): one {a:.2f} ms, "
+        f"train {b:.1f} ms ({b / a:.1f}x one; issue 27 asks at most 30x)"
     )
 
 
