@@ -1882,10 +1882,15 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
       f.coefficients(amp, amp_re, amp_im);
       double dmax = 0.0;
       const Eigen::VectorXd dwg = frictional ? s.atan_weights(dseries) : Eigen::VectorXd();
+      // (The series' change at the 64 points inside, summed together.)
+      std::array<double, 64> rin{}, din{};
+      for (int j = 0; j < 64; ++j)
+        rin[static_cast<std::size_t>(j)] = 0.999 * std::cos(kPi * (j + 0.5) / 64.0);
+      if (!frictional) u_series(db, rin.data(), din.data(), 64);
       for (int j = 0; j < 96; ++j) {
         double r;
         if (j < 64) {
-          r = 0.999 * std::cos(kPi * (j + 0.5) / 64.0);
+          r = rin[static_cast<std::size_t>(j)];
         } else {
           const int q = j - 64;
           r = (q % 2 == 0 ? 1.0 : -1.0) * (1.0 + 5.0 * std::pow((q / 2 + 0.5) / 16.0, 2.0));
@@ -1895,7 +1900,8 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
         // Bessel functions and the phases.
         const auto re_im = f.filon->integral_pair(x - s.centre_, amp_re, amp_im);
         const double sum = re_im.first.real() - re_im.second.imag();
-        double dp = std::fabs(r) < 1.0 ? u_series(db, r) * std::sqrt(1.0 - r * r) : 0.0;
+        double dp =
+            j < 64 && !frictional ? din[static_cast<std::size_t>(j)] * std::sqrt(1.0 - r * r) : 0.0;
         double local = 0.0;
         if (frictional) {
           dp = dseries.density(r);
@@ -1943,10 +1949,13 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
     }
   } else {
     const int m = std::max(64, 2 * slope_terms + 2);
+    std::vector<double> g(static_cast<std::size_t>(m));
+    for (int i = 1; i <= m; ++i) s.slope_r_.push_back(std::cos(i * kPi / (m + 1)));
+    u_series(s.b_, s.slope_r_.data(), g.data(), m);
     for (int i = 1; i <= m; ++i) {
-      const double th = i * kPi / (m + 1), r = std::cos(th);
-      s.slope_r_.push_back(r);
-      s.slope_wg_.push_back(std::sin(th) * std::sin(th) / (m + 1) * u_series(s.b_, r));
+      const double th = i * kPi / (m + 1);
+      s.slope_wg_.push_back(std::sin(th) * std::sin(th) / (m + 1) *
+                            g[static_cast<std::size_t>(i - 1)]);
     }
   }
   // The margin before separation: min over r of p/((P/h) sqrt(1 - r^2)) = g(r).
@@ -1984,9 +1993,18 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
       const double room = side < 0 ? edge - prof.lower() : prof.upper() - edge;
       const double len = std::min(2.0 * s.half_, room);
       if (!(len > 0.0)) continue;
+      // The kernel's part of v' (smooth) from its interpolant on the scanned
+      // interval when that reaches round-off (docs/theory.md section 15.2),
+      // the Cauchy integral directly.
+      const double lo = std::min(edge, edge + side * len), hi = std::max(edge, edge + side * len);
+      const detail::SmoothInterpolant smooth([&](double x) { return s.kernel_part(x); }, lo, hi);
+      const double lp = prm.load * s.model_->phi1();
+      auto gap_slope = [&](double x) {
+        if (smooth.ok()) return prof.slope(x) - lp * (-s.cauchy_part(x) + s.half_ * smooth(x));
+        return prof.slope(x) - s.surface_slope(x);
+      };
       const detail::GapMinimum m =
-          detail::scan_gap_slope([&](double x) { return prof.slope(x) - s.surface_slope(x); }, edge,
-                                 edge + side * len, 0.0, step, 24, true, false);
+          detail::scan_gap_slope(gap_slope, edge, edge + side * len, 0.0, step, 24, true, false);
       if (!std::isfinite(m.gap))
         throw ConvergenceError(
             "the gap beside the contact came out non-finite; the solution is not trusted");
@@ -2354,7 +2372,11 @@ cplx u_series_transform(const Eigen::VectorXd& b_, double centre_, double half_,
 
 double AsymmetricSolution::surface_slope(double x) const {
   // -(phi1/pi) int p/(xi - x) + (phi1/pi) int p(xi) K(x - xi) d xi, per P/h times load.
-  const double phi1 = model_->phi1(), w = half_, z = (x - centre_) / w;
+  return params_.load * model_->phi1() * (-cauchy_part(x) + half_ * kernel_part(x));
+}
+
+double AsymmetricSolution::cauchy_part(double x) const {
+  const double w = half_, z = (x - centre_) / w;
   double cauchy = 0.0;  // sum b_n (1/pi) int sqrt(1-r^2) U_n/(r - z) dr
   const int n = static_cast<int>(b_.size());
   if (jac_) {
@@ -2369,23 +2391,31 @@ double AsymmetricSolution::surface_slope(double x) const {
       tk = tn;
     }
   } else {
+    // Beside the contact: sum b_k q^(k+1), stopped where |q|^(k+1), a bound
+    // on what is left relative to sum |b_k| (|q| < 1), falls below 1e-17 (a
+    // long, tail-extended series stops far short of its length).
     const double q = z - (z > 0 ? 1.0 : -1.0) * std::sqrt(z * z - 1.0);
     double qk = q;
     for (int k = 0; k < n; ++k) {
+      if (std::fabs(qk) < 1e-17) break;
       cauchy -= b_(k) * qk;
       qk *= q;
     }
   }
+  return cauchy;
+}
+
+double AsymmetricSolution::kernel_part(double x) const {
   // Kernel part by Gauss-Chebyshev (U) quadrature of p K: (1/pi) int
   // sqrt(1-r^2) f ~ sum W_i f(r_i), on the nodes prepared by the solve.
   thread_local std::vector<double> u, kv;
   u.resize(slope_r_.size());
   kv.resize(u.size());
-  for (std::size_t i = 0; i < u.size(); ++i) u[i] = x - centre_ - w * slope_r_[i];
+  for (std::size_t i = 0; i < u.size(); ++i) u[i] = x - centre_ - half_ * slope_r_[i];
   kernel_->many(u.data(), kv.data(), u.size());
   double kern = 0.0;
   for (std::size_t i = 0; i < u.size(); ++i) kern += slope_wg_[i] * kv[i];
-  return params_.load * phi1 * (-cauchy + w * kern);
+  return kern;
 }
 
 AsymmetricSolution::Fine AsymmetricSolution::build_fine(double freq, const Eigen::VectorXd* db,

@@ -1,5 +1,10 @@
-// Private: evaluation of Chebyshev series shared by the k1 and damped tables.
+// Private: evaluation of Chebyshev series shared by the k1 and damped tables,
+// and the interpolant of a smooth function the gap checks read.
 #pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
 
 namespace movingpunch::detail {
 
@@ -14,5 +19,49 @@ inline double chebyshev_sum(const double* c, int degree, double x) {
   }
   return c[0] + x * b1 - b2;
 }
+
+// A smooth function on [a, b] as its Chebyshev interpolant at the points of
+// the first kind, of degree 16, 32, 64 or 128: the first whose last two
+// coefficients are at the round-off of its values (64 eps of the largest);
+// none (ok() false: evaluate directly) when even 128 is not.
+class SmoothInterpolant {
+ public:
+  template <class F>
+  SmoothInterpolant(const F& f, double a, double b) : mid_(0.5 * (a + b)), half_(0.5 * (b - a)) {
+    for (int d = 16; d <= 128 && half_ > 0.0; d *= 2) {
+      const int m = d + 1;
+      std::vector<double> v(static_cast<std::size_t>(m));
+      double vmax = 0.0;
+      for (int j = 0; j < m; ++j) {
+        v[static_cast<std::size_t>(j)] =
+            f(mid_ + half_ * std::cos(3.14159265358979323846 * (j + 0.5) / m));
+        vmax = std::max(vmax, std::fabs(v[static_cast<std::size_t>(j)]));
+      }
+      c_.assign(static_cast<std::size_t>(m), 0.0);
+      for (int k = 0; k < m; ++k) {
+        double sum = 0.0;
+        for (int j = 0; j < m; ++j)
+          sum +=
+              v[static_cast<std::size_t>(j)] * std::cos(3.14159265358979323846 * k * (j + 0.5) / m);
+        c_[static_cast<std::size_t>(k)] = (k == 0 ? 1.0 : 2.0) * sum / m;
+      }
+      if (!std::isfinite(vmax)) break;
+      if (std::fabs(c_[static_cast<std::size_t>(d - 1)]) +
+              std::fabs(c_[static_cast<std::size_t>(d)]) <=
+          64.0 * 2.220446049250313e-16 * vmax)
+        return;
+    }
+    c_.clear();
+  }
+  bool ok() const { return !c_.empty(); }
+  double operator()(double x) const {
+    return chebyshev_sum(c_.data(), static_cast<int>(c_.size()) - 1,
+                         std::clamp((x - mid_) / half_, -1.0, 1.0));
+  }
+
+ private:
+  double mid_, half_;
+  std::vector<double> c_;
+};
 
 }  // namespace movingpunch::detail

@@ -545,48 +545,6 @@ class System {
   std::vector<std::pair<int, int>> pairs_;
 };
 
-// A smooth function on [a, b] as its Chebyshev interpolant at the points of
-// the first kind, of degree 16, 32, 64 or 128: the first whose last two
-// coefficients are at the round-off of its values (64 eps of the largest);
-// none (ok() false: evaluate directly) when even 128 is not.
-class SmoothInterpolant {
- public:
-  template <class F>
-  SmoothInterpolant(const F& f, double a, double b) : mid_(0.5 * (a + b)), half_(0.5 * (b - a)) {
-    for (int d = 16; d <= 128 && half_ > 0.0; d *= 2) {
-      const int m = d + 1;
-      std::vector<double> v(static_cast<std::size_t>(m));
-      double vmax = 0.0;
-      for (int j = 0; j < m; ++j) {
-        v[static_cast<std::size_t>(j)] = f(mid_ + half_ * std::cos(kPi * (j + 0.5) / m));
-        vmax = std::max(vmax, std::fabs(v[static_cast<std::size_t>(j)]));
-      }
-      c_.assign(static_cast<std::size_t>(m), 0.0);
-      for (int k = 0; k < m; ++k) {
-        double sum = 0.0;
-        for (int j = 0; j < m; ++j)
-          sum += v[static_cast<std::size_t>(j)] * std::cos(kPi * k * (j + 0.5) / m);
-        c_[static_cast<std::size_t>(k)] = (k == 0 ? 1.0 : 2.0) * sum / m;
-      }
-      if (!std::isfinite(vmax)) break;
-      if (std::fabs(c_[static_cast<std::size_t>(d - 1)]) +
-              std::fabs(c_[static_cast<std::size_t>(d)]) <=
-          64.0 * kEps * vmax)
-        return;
-    }
-    c_.clear();
-  }
-  bool ok() const { return !c_.empty(); }
-  double operator()(double x) const {
-    return detail::chebyshev_sum(c_.data(), static_cast<int>(c_.size()) - 1,
-                                 std::clamp((x - mid_) / half_, -1.0, 1.0));
-  }
-
- private:
-  double mid_, half_;
-  std::vector<double> c_;
-};
-
 // Newton's method on the ends from e (in place); evaluations counted. J: the
 // Jacobian of the scaled conditions (in the ends), reused from the previous
 // size when `have_j` (the conditions are scaled alike at every size) and
@@ -1156,8 +1114,10 @@ ZonesSolution solve_connected(const ZonesParams& prm, const std::vector<PunchPro
       out.pressure_error_estimate += trunc;
       const int k = sys->punch_of(worst);
       const PunchProfile& pf = prof[static_cast<std::size_t>(k)];
+      double all = 0.0;  // the total load: the message's P
+      for (const ZonePunch& q : prm.punches) all += q.load;
       const std::string kinks = kink_truncation_warning(
-          trunc, u_series(sys->series(worst), 0.0), pf.describe(),
+          trunc / all, u_series(sys->series(worst), 0.0) / all, pf.describe(),
           std::fabs(sys->centre(worst) - prm.punches[static_cast<std::size_t>(k)].at) +
               sys->half(worst) - pf.face());
       if (!kinks.empty()) out.warnings.push_back(kinks);
@@ -1290,14 +1250,14 @@ ZonesSolution solve_connected(const ZonesParams& prm, const std::vector<PunchPro
     // gap' = f_k' - v': the kernel's part of v' from its interpolant on
     // the scanned interval (when it reaches round-off there; directly
     // otherwise), the Cauchy integrals directly.
-    std::unique_ptr<SmoothInterpolant> smooth;
+    std::unique_ptr<detail::SmoothInterpolant> smooth;
     auto gap_slope = [&](double x) {
       if (smooth) return sys->slope(k, x) - (sys->vslope(x, false) + phi1m * (*smooth)(x));
       return sys->slope(k, x) - sys->vslope(x);
     };
     auto interpolate = [&](double from, double to) {
-      smooth = std::make_unique<SmoothInterpolant>([&](double x) { return sys->kernel_part(x); },
-                                                   std::min(from, to), std::max(from, to));
+      smooth = std::make_unique<detail::SmoothInterpolant>(
+          [&](double x) { return sys->kernel_part(x); }, std::min(from, to), std::max(from, to));
       if (!smooth->ok()) smooth.reset();
     };
     auto note = [&](double gap, double x, int after) {

@@ -301,6 +301,10 @@ class AsymmetricSolution {
   cplx pressure_transform(double alpha) const;
   // Surface slope dv/dx(x, 0) (any x; = x/R inside the contact).
   double surface_slope(double x) const;
+  // surface_slope's parts per load phi1: its Cauchy integral (with
+  // friction the local term too) and its kernel's (smooth) part.
+  double cauchy_part(double x) const;
+  double kernel_part(double x) const;
   // sigma_x(x, 0)/(P/h), any x.
   double surface_stress(double x) const;
   Eigen::VectorXd surface_stress(const Eigen::Ref<const Eigen::VectorXd>& x) const;
