@@ -92,6 +92,31 @@ TEST(Jacobi, DiscreteRuleAtTheCompanionZeros) {
   }
 }
 
+TEST(Jacobi, CollocationNodesAreKeptPerSizeAndExponent) {
+  // The nodes are built once per (n, alpha) and kept: a second call gives
+  // the same nodes bit for bit, another exponent or size its own (each
+  // the zeros of its own P_n), however the calls interleave.
+  for (int pass = 0; pass < 2; ++pass)
+    for (double a : {0.37, 0.37 + 1e-15, 0.6})
+      for (int n : {10, 12}) {
+        const mp::ChebyshevNodes nd = mp::jacobi_collocation_nodes(n, a);
+        ASSERT_EQ(nd.r.size(), n);
+        ASSERT_EQ(nd.s.size(), n + 1);
+        for (int i = 0; i < n; ++i) {
+          double p = 0.0, dp = 0.0;
+          mp::jacobi_p(n, a, 1.0 - a, nd.r(i), &p, &dp);
+          EXPECT_LT(std::fabs(p), 1e-12 * std::fabs(dp)) << a << " " << n << " " << i;
+        }
+        const mp::ChebyshevNodes again = mp::jacobi_collocation_nodes(n, a);
+        EXPECT_EQ(again.r, nd.r);
+        EXPECT_EQ(again.s, nd.s);
+        EXPECT_EQ(again.w, nd.w);
+      }
+  const mp::ChebyshevNodes f = mp::jacobi_flat_nodes(10, -0.4, -0.6);
+  EXPECT_EQ(f.s.size(), 9);  // the flat punch's (its own kind in the cache)
+  EXPECT_NE(mp::jacobi_collocation_nodes(10, 0.6).r, f.r);
+}
+
 TEST(Jacobi, TransformMatchesQuadrature) {
   Eigen::VectorXd c(3);
   c << 1.0, 0.4, -0.3;
