@@ -227,20 +227,27 @@ std::shared_ptr<const JacobiRule> cached_gauss_jacobi(int n, double a, double b)
 }
 
 namespace {
-// The collocation nodes of (n, a, b, kind), built once per process (a sweep
-// over loads at one speed and friction solves with the same exponents at
-// every point): kept as gauss_jacobi's rules are (cached_gauss_jacobi).
-template <class Build>
-ChebyshevNodes cached_nodes(int n, double a, double b, int kind, const Build& build) {
+// The collocation nodes of P_n^(a, b): its Gauss-Jacobi rule (descending,
+// as chebyshev_nodes: r_1 = cos(pi/(N + 1)) is the largest) and the zeros
+// of P_m^(-a, -b), m = n + 1 (friction) or n - 1 (the flat punch); built
+// once per process (a sweep over loads at one speed and friction solves
+// with the same exponents at every point) and kept, as gauss_jacobi's rules
+// are (cached_gauss_jacobi).
+ChebyshevNodes cached_nodes(int n, double a, double b, int m) {
   static std::mutex mu;
   static std::map<std::tuple<int, double, double, int>, ChebyshevNodes> cache;
-  const auto key = std::make_tuple(n, a, b, kind);
+  const auto key = std::make_tuple(n, a, b, m);
   {
     const std::lock_guard<std::mutex> lock(mu);
     const auto it = cache.find(key);
     if (it != cache.end()) return it->second;
   }
-  ChebyshevNodes nd = build();
+  const JacobiRule rule = gauss_jacobi(n, a, b);
+  ChebyshevNodes nd;
+  nd.n = n;
+  nd.r = rule.x.reverse();
+  nd.w = rule.w.reverse() / kPi;
+  nd.s = jacobi_zeros(m, -a, -b).reverse();
   const std::lock_guard<std::mutex> lock(mu);
   if (cache.size() >= 512) cache.clear();  // a long sweep over many exponents
   cache.emplace(key, nd);
@@ -252,32 +259,14 @@ ChebyshevNodes jacobi_collocation_nodes(int n, double alpha) {
   if (n < 2) throw std::invalid_argument("jacobi_collocation_nodes: n must be >= 2");
   if (!(alpha > 0.0 && alpha < 1.0))
     throw std::invalid_argument("jacobi_collocation_nodes: alpha must be in (0, 1)");
-  const double beta = 1.0 - alpha;
-  return cached_nodes(n, alpha, beta, 0, [&] {
-    const JacobiRule rule = gauss_jacobi(n, alpha, beta);
-    ChebyshevNodes nd;
-    nd.n = n;
-    // Descending, as chebyshev_nodes (r_1 = cos(pi/(N + 1)) is the largest).
-    nd.r = rule.x.reverse();
-    nd.w = rule.w.reverse() / kPi;
-    nd.s = jacobi_zeros(n + 1, -alpha, -beta).reverse();
-    return nd;
-  });
+  return cached_nodes(n, alpha, 1.0 - alpha, n + 1);
 }
 
 ChebyshevNodes jacobi_flat_nodes(int n, double alpha, double beta) {
   if (n < 2) throw std::invalid_argument("jacobi_flat_nodes: n must be >= 2");
   if (!(alpha > -1.0 && alpha < 0.0) || !(std::fabs(alpha + beta + 1.0) <= 1e-12))
     throw std::invalid_argument("jacobi_flat_nodes: need alpha in (-1, 0) and alpha + beta = -1");
-  return cached_nodes(n, alpha, beta, 1, [&] {
-    const JacobiRule rule = gauss_jacobi(n, alpha, beta);
-    ChebyshevNodes nd;
-    nd.n = n;
-    nd.r = rule.x.reverse();
-    nd.w = rule.w.reverse() / kPi;
-    nd.s = jacobi_zeros(n - 1, -alpha, -beta).reverse();
-    return nd;
-  });
+  return cached_nodes(n, alpha, beta, n - 1);
 }
 
 // The norm h_n = int w P_n^2. n = 0 apart: the general formula's
