@@ -447,8 +447,9 @@ double PunchProfile::slope_chebyshev_poisson(double c, double w, double q) const
       };
       auto piece = [&](double A, double a, double b) {  // int_a^b (A + w cos th) P d th
         const double d0 = i0(b) - i0(a);
-        if (std::fabs(q) <
-            0.25) {  // int cos th P = sum_k 2 q^k int cos th cos k th (+ the k = 0 term)
+        // Small |q|: int cos th P = int cos th + sum_k 2 q^k int cos th cos k th
+        // (40 terms: below 0.25^40); the closed form's 1/q would cancel.
+        if (std::fabs(q) < 0.25) {
           double sum = std::sin(b) - std::sin(a), qk = 1.0;
           for (int k = 1; k < 40; ++k) {
             qk *= q;
