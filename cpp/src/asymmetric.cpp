@@ -1948,15 +1948,7 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
       s.slope_wg_.push_back(rule.w(i) / kPi * js.g(rule.x(i)));
     }
   } else {
-    const int m = std::max(64, 2 * slope_terms + 2);
-    std::vector<double> g(static_cast<std::size_t>(m));
-    for (int i = 1; i <= m; ++i) s.slope_r_.push_back(std::cos(i * kPi / (m + 1)));
-    u_series(s.b_, s.slope_r_.data(), g.data(), m);
-    for (int i = 1; i <= m; ++i) {
-      const double th = i * kPi / (m + 1);
-      s.slope_wg_.push_back(std::sin(th) * std::sin(th) / (m + 1) *
-                            g[static_cast<std::size_t>(i - 1)]);
-    }
+    s.set_u_slope_nodes(std::max(64, 2 * slope_terms + 2));
   }
   // The margin before separation: min over r of p/((P/h) sqrt(1 - r^2)) = g(r).
   // (A profile's on the collocated head: its tail's kink is resolved only
@@ -2078,15 +2070,7 @@ AsymmetricSolution zone_solution(const AsymmetricParams& prm,
   // kernel is smooth), as a profile's solve (solve_asymmetric).
   const Eigen::Index len = b.size();
   const Eigen::Index lead = head > 0 ? std::min<Eigen::Index>(len, 4 * head + 64) : len;
-  const int m = std::max(64, 2 * static_cast<int>(lead) + 2);
-  std::vector<double> g(static_cast<std::size_t>(m));
-  for (int i = 1; i <= m; ++i) s.slope_r_.push_back(std::cos(i * kPi / (m + 1)));
-  u_series(s.b_, s.slope_r_.data(), g.data(), m);
-  for (int i = 1; i <= m; ++i) {
-    const double th = i * kPi / (m + 1);
-    s.slope_wg_.push_back(std::sin(th) * std::sin(th) / (m + 1) *
-                          g[static_cast<std::size_t>(i - 1)]);
-  }
+  s.set_u_slope_nodes(std::max(64, 2 * static_cast<int>(lead) + 2));
   s.max_p_ =
       lead < len ? max_abs_sine_series_long(b, static_cast<int>(lead)) : max_abs_sine_series(b);
   s.margin_ = u_series_minimum(b.head(lead));
@@ -2369,6 +2353,19 @@ cplx u_series_transform(const Eigen::VectorXd& b_, double centre_, double half_,
 }
 
 }  // namespace
+
+void AsymmetricSolution::set_u_slope_nodes(int m) {
+  // Gauss-Chebyshev (U): r_i = cos(i pi/(m + 1)), weights sin^2/(m + 1) times g.
+  std::vector<double> g(static_cast<std::size_t>(m));
+  slope_r_.clear();
+  slope_wg_.clear();
+  for (int i = 1; i <= m; ++i) slope_r_.push_back(std::cos(i * kPi / (m + 1)));
+  u_series(b_, slope_r_.data(), g.data(), m);
+  for (int i = 1; i <= m; ++i) {
+    const double th = i * kPi / (m + 1);
+    slope_wg_.push_back(std::sin(th) * std::sin(th) / (m + 1) * g[static_cast<std::size_t>(i - 1)]);
+  }
+}
 
 double AsymmetricSolution::surface_slope(double x) const {
   // -(phi1/pi) int p/(xi - x) + (phi1/pi) int p(xi) K(x - xi) d xi, per P/h times load.

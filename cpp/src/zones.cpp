@@ -253,32 +253,26 @@ class System {
   bool kinked(int j) const {
     return prof_[static_cast<std::size_t>(punch_of(j))].kind() == ProfileKind::rounded_flat;
   }
+  // Zone j's slope coefficients d_0 .. d_{count-1} on the zone (relative to
+  // its punch's axis; slope_chebyshev_at's convention, d_0 not halved).
+  std::vector<double> slope_coefficients(int j, int count) const {
+    const int k = punch_of(j);
+    return prof_[static_cast<std::size_t>(k)].slope_chebyshev_at(
+        centre(j) - p_.punches[static_cast<std::size_t>(k)].at, half(j), count);
+  }
   // Zone j's series extended by that tail to `len` terms (a kinked zone's;
-  // the collocated one otherwise); truncation: a bound on what it leaves,
-  // sum |b_m| beyond (|sqrt(1 - r^2) U_m| <= 1; the slope's coefficients'
-  // closed-form bound, PunchProfile::slope_chebyshev_tail).
+  // the collocated one otherwise), from its slope's coefficients d.
   static constexpr int kTailTerms = 4096;
-  Eigen::VectorXd extended(int j, int len = kTailTerms) const {
+  Eigen::VectorXd extended(int j, int len, const std::vector<double>& d) const {
     Eigen::VectorXd b = b_[static_cast<std::size_t>(j)].head(n_);
     if (!kinked(j) || n_ >= len) return b;
-    const int k = punch_of(j);
-    const std::vector<double> d = prof_[static_cast<std::size_t>(k)].slope_chebyshev_at(
-        centre(j) - p_.punches[static_cast<std::size_t>(k)].at, half(j), len + 1);
     b.conservativeResize(len);
     for (int m = n_; m < len; ++m) b(m) = d[static_cast<std::size_t>(m + 1)] / phi1_;
     return b;
   }
-  double truncation(int j, int len = kTailTerms) const {
-    if (!kinked(j) || n_ >= len) return 0.0;
-    // d_m summed to 4 len, the closed-form bound beyond.
-    const int k = punch_of(j);
-    const PunchProfile& pf = prof_[static_cast<std::size_t>(k)];
-    const double c = centre(j) - p_.punches[static_cast<std::size_t>(k)].at, w = half(j);
-    const std::vector<double> d = pf.slope_chebyshev_at(c, w, 4 * len + 1);
-    double sum = pf.slope_chebyshev_tail(c, w, 4 * len);
-    for (std::size_t m = static_cast<std::size_t>(len) + 1; m < d.size(); ++m)
-      sum += std::fabs(d[m]);
-    return sum / std::fabs(phi1_);
+  Eigen::VectorXd extended(int j) const {
+    return kinked(j) ? extended(j, kTailTerms, slope_coefficients(j, kTailTerms + 1))
+                     : b_[static_cast<std::size_t>(j)];
   }
   // Zone j's series for the outputs: extended to kTailTerms after
   // extend_all (a kinked zone's), the collocated one otherwise.
@@ -286,10 +280,29 @@ class System {
     const Eigen::VectorXd& e = ext_[static_cast<std::size_t>(j)];
     return e.size() > 0 ? e : b_[static_cast<std::size_t>(j)];
   }
+  // After extend_all: a kinked zone's slope coefficients d_0 .. d_{4 kTailTerms}
+  // (its drag's), and a bound on what its extended series leaves out,
+  // sum |b_m| beyond kTailTerms (|sqrt(1 - r^2) U_m| <= 1): d summed to
+  // 4 kTailTerms, the closed-form bound beyond (PunchProfile::slope_chebyshev_tail).
+  const std::vector<double>& slope_coefficients(int j) const {
+    return dl_[static_cast<std::size_t>(j)];
+  }
+  double truncation(int j) const { return trunc_[static_cast<std::size_t>(j)]; }
   void extend_all() {
     ext_.assign(static_cast<std::size_t>(nz_), Eigen::VectorXd());
-    for (int j = 0; j < nz_; ++j)
-      if (kinked(j)) ext_[static_cast<std::size_t>(j)] = extended(j);
+    dl_.assign(static_cast<std::size_t>(nz_), std::vector<double>());
+    trunc_.assign(static_cast<std::size_t>(nz_), 0.0);
+    for (int j = 0; j < nz_; ++j) {
+      if (!kinked(j) || n_ >= kTailTerms) continue;
+      const auto ju = static_cast<std::size_t>(j);
+      dl_[ju] = slope_coefficients(j, 4 * kTailTerms + 1);
+      ext_[ju] = extended(j, kTailTerms, dl_[ju]);
+      const int k = punch_of(j);
+      double sum = prof_[static_cast<std::size_t>(k)].slope_chebyshev_tail(
+          centre(j) - p_.punches[static_cast<std::size_t>(k)].at, half(j), 4 * kTailTerms);
+      for (std::size_t m = kTailTerms + 1; m < dl_[ju].size(); ++m) sum += std::fabs(dl_[ju][m]);
+      trunc_[ju] = sum / std::fabs(phi1_);
+    }
   }
   double load(int j) const { return loads_(j); }
   // A kinked zone's Cauchy integral beyond its collocated terms at a point
@@ -449,9 +462,6 @@ class System {
   // checks interpolate it).
   double vslope(double x, bool kernel = true) const {
     double sum = 0.0;
-    thread_local std::vector<double> u, kv;
-    u.resize(static_cast<std::size_t>(n_));
-    kv.resize(u.size());
     for (int i = 0; i < nz_; ++i) {
       const double ci = c_[static_cast<std::size_t>(i)], wi = w_[static_cast<std::size_t>(i)];
       const Eigen::VectorXd& b = b_[static_cast<std::size_t>(i)];
@@ -477,37 +487,29 @@ class System {
         }
         if (kinked(i)) cauchy += kinked_tail(i, qz, qm);
       }
-      if (!kernel) {
-        sum += cauchy;
-        continue;
-      }
-      for (int q = 0; q < n_; ++q) u[static_cast<std::size_t>(q)] = x - ci - wi * nd_.r(q);
-      K_.many(u.data(), kv.data(), u.size());
-      double kern = 0.0;
-      for (int q = 0; q < n_; ++q) kern += nd_.w(q) * G_(q, i) * kv[static_cast<std::size_t>(q)];
-      sum += cauchy + wi * kern;
+      sum += kernel ? cauchy + wi * zone_kernel(i, x) : cauchy;
     }
     return phi1_ * sum;
   }
   // sum_i w_i kern_i(x): the kernel's part of v'(x)/phi1 (the regular kernel
   // K is analytic in a strip about the real axis: smooth on every zone).
   double kernel_part(double x) const {
-    thread_local std::vector<double> u, kv;
-    u.resize(static_cast<std::size_t>(n_) * static_cast<std::size_t>(nz_));
-    kv.resize(u.size());
-    for (int i = 0; i < nz_; ++i)
-      for (int q = 0; q < n_; ++q)
-        u[static_cast<std::size_t>(i * n_ + q)] =
-            x - c_[static_cast<std::size_t>(i)] - w_[static_cast<std::size_t>(i)] * nd_.r(q);
-    K_.many(u.data(), kv.data(), u.size());
     double sum = 0.0;
-    for (int i = 0; i < nz_; ++i) {
-      double kern = 0.0;
-      for (int q = 0; q < n_; ++q)
-        kern += nd_.w(q) * G_(q, i) * kv[static_cast<std::size_t>(i * n_ + q)];
-      sum += w_[static_cast<std::size_t>(i)] * kern;
-    }
+    for (int i = 0; i < nz_; ++i) sum += w_[static_cast<std::size_t>(i)] * zone_kernel(i, x);
     return sum;
+  }
+  // kern_i(x) = sum_q W_q G_qi K(x - c_i - w_i r_q): zone i's Gauss-Chebyshev
+  // sum of its density against the regular kernel.
+  double zone_kernel(int i, double x) const {
+    thread_local std::vector<double> u, kv;
+    u.resize(static_cast<std::size_t>(n_));
+    kv.resize(u.size());
+    const double ci = c_[static_cast<std::size_t>(i)], wi = w_[static_cast<std::size_t>(i)];
+    for (int q = 0; q < n_; ++q) u[static_cast<std::size_t>(q)] = x - ci - wi * nd_.r(q);
+    K_.many(u.data(), kv.data(), u.size());
+    double kern = 0.0;
+    for (int q = 0; q < n_; ++q) kern += nd_.w(q) * G_(q, i) * kv[static_cast<std::size_t>(q)];
+    return kern;
   }
 
   // int_a^b v'(x) dx between two zone ends (v' has square-root cusps at
@@ -538,6 +540,8 @@ class System {
   Eigen::VectorXd eps_, loads_;
   std::vector<Eigen::VectorXd> b_, ext_;  // collocated; a kinked zone's extended (extend_all)
   std::vector<std::vector<double>> d_;    // a kinked zone's slope coefficients (d_0 halved)
+  std::vector<std::vector<double>> dl_;   // the same to 4 kTailTerms (extend_all; d_0 whole)
+  std::vector<double> trunc_;             // extend_all's truncation bounds
   std::vector<double> c_, w_;
   // The last matrix built and the zones it was built for (eval's cache).
   Eigen::MatrixXd M_;
@@ -1175,11 +1179,10 @@ ZonesSolution solve_connected(const ZonesParams& prm, const std::vector<PunchPro
       if (out.zones[static_cast<std::size_t>(j)].punch != k) continue;
       const Eigen::VectorXd& b = sys->series(j);
       const double c = sys->centre(j), w = sys->half(j);
-      if (sys->kinked(j)) {
+      if (!sys->slope_coefficients(j).empty()) {  // a kinked zone (extend_all)
         // int sqrt(1 - r^2) U_n T_m dr = (pi/4)(delta_nm (1 + delta_m0) - delta_m,n+2),
         // f'(c + w r) = d_0/2 + sum d_m T_m: w (pi/4) sum_n b_n (d_n - d_{n+2}).
-        const std::vector<double> d = prof[static_cast<std::size_t>(k)].slope_chebyshev_at(
-            c - prm.punches[static_cast<std::size_t>(k)].at, w, static_cast<int>(b.size()) + 2);
+        const std::vector<double>& d = sys->slope_coefficients(j);  // to 4 kTailTerms + 1
         double sum = 0.0;
         for (Eigen::Index n = 0; n < b.size(); ++n)
           sum += b(n) * (d[static_cast<std::size_t>(n)] - d[static_cast<std::size_t>(n + 2)]);

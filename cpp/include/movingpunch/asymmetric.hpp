@@ -411,6 +411,8 @@ class AsymmetricSolution {
   // Gauss-Chebyshev (U) nodes r_i and weights times g(r_i) of surface_slope's
   // kernel integral.
   std::vector<double> slope_r_, slope_wg_;
+  // slope_r_ and slope_wg_ for the U-series b_ on m Gauss-Chebyshev nodes.
+  void set_u_slope_nodes(int m);
   // Fine Gauss-Kronrod nodes (the quadrature's panels split so that each
   // resolves oscillations of frequency `freq`), with the response and the
   // transformed pressure at each node.
