@@ -753,6 +753,37 @@ double head_sine_bound(const Eigen::VectorXd& b, int head) {
   return max_abs_sine_series(b.head(h)) + b.tail(b.size() - h).cwiseAbs().sum();
 }
 
+namespace {
+// max |w g| of a series whose terms are all of high degree (a tail block):
+// sampled at about two angles per degree (four per oscillation), the three
+// largest samples refined on 41-point grids spanning a sample spacing on
+// either side.
+double max_abs_density_coarse(const JacobiSeries& js) {
+  const int m = 2 * (js.size() + 1) + 64;
+  std::vector<double> r(static_cast<std::size_t>(m) - 1), g(r.size());
+  for (int j = 1; j < m; ++j) r[static_cast<std::size_t>(j - 1)] = std::cos(kPi * j / m);
+  js.g_values(r.data(), static_cast<int>(r.size()), g.data());
+  std::vector<std::pair<double, int>> top;
+  for (std::size_t i = 0; i < r.size(); ++i)
+    top.emplace_back(std::fabs(js.weight(r[i]) * g[i]), static_cast<int>(i) + 1);
+  const std::size_t keep = std::min<std::size_t>(3, top.size());
+  std::partial_sort(top.begin(), top.begin() + static_cast<std::ptrdiff_t>(keep), top.end(),
+                    [](const auto& x, const auto& y) { return x.first > y.first; });
+  double best = keep ? top.front().first : 0.0;
+  std::vector<double> fine;
+  for (std::size_t t = 0; t < keep; ++t) {
+    const double th0 = kPi * top[t].second / m, dth = kPi / m;
+    for (int q = 0; q <= 40; ++q)
+      fine.push_back(std::cos(std::clamp(th0 + dth * (q / 20.0 - 1.0), 0.0, kPi)));
+  }
+  std::vector<double> gf(fine.size());
+  js.g_values(fine.data(), static_cast<int>(fine.size()), gf.data());
+  for (std::size_t i = 0; i < fine.size(); ++i)
+    best = std::max(best, std::fabs(js.weight(fine[i]) * gf[i]));
+  return best;
+}
+}  // namespace
+
 double max_abs_density_long(const JacobiSeries& js, int head) {
   const Eigen::Index h = std::min<Eigen::Index>(js.size(), head);
   if (h == js.size()) return js.max_abs_density();
@@ -1118,29 +1149,18 @@ class SlopeProjection {
       : prof_(prof), jacobi_(jacobi), a_(-alpha), b_(alpha - 1.0) {}
 
   bool jacobi() const noexcept { return jacobi_; }
-  // A table's projection uses fixed nodes (no kinks): q_m = sum_j A_jm f'(c + w s_j).
-  bool nodal() const noexcept { return prof_.kind() == ProfileKind::table; }
+  // A table's Jacobi projection uses fixed nodes: q_m = sum_j A_jm f'(c + w s_j)
+  // (its T projection is exact, PunchProfile::slope_chebyshev_at).
+  bool nodal() const noexcept { return jacobi_ && prof_.kind() == ProfileKind::table; }
   // For a table and the functional zeta . q: the offsets w s_j and the
   // weights Z_j = sum_m A_jm zeta_m, so that zeta . q(c) = sum_j Z_j f'(c + w s_j)
-  // (the same rule as coefficients(): midpoint angles or Gauss-Jacobi nodes).
+  // (the same Gauss-Jacobi nodes as coefficients()).
   void nodal_functional(const Eigen::VectorXd& zeta, double w, std::vector<double>& xs,
                         std::vector<double>& zw) const {
     const int count = static_cast<int>(zeta.size());
     xs.clear();
     zw.clear();
     std::vector<double> P(static_cast<std::size_t>(count));
-    if (!jacobi_) {
-      const int M = std::max(16 * count + 64, 8192);
-      for (int j = 0; j < M; ++j) {
-        const double th = (j + 0.5) * kPi / M;
-        basis(std::cos(th), count, P.data());  // T_m(cos th) = cos(m th)
-        double z = 0.5 * zeta(0);
-        for (int m = 1; m < count; ++m) z += zeta(m) * P[static_cast<std::size_t>(m)];
-        xs.push_back(w * std::cos(th));
-        zw.push_back(2.0 / M * z);
-      }
-      return;
-    }
     const int M = std::max(16 * count + 64, 2048);
     const auto held = cached_rule(M, a_, b_);
     const JacobiRule& rule = *held;
@@ -1770,7 +1790,7 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
       // flat with f = 0.3: 2 to 6 times the actual error at lengths 64 to 512).
       Eigen::VectorXd block = s.b_;
       block.head(len / 2).setZero();
-      s.trunc_ = 2.0 * JacobiSeries(s.exps_.front, block).max_abs_density();
+      s.trunc_ = 2.0 * max_abs_density_coarse(JacobiSeries(s.exps_.front, block));
     } else {
       const std::vector<double> q = proj.coefficients(c, w, 4 * static_cast<int>(len) + 1);
       double sum = 0.0;
@@ -1803,11 +1823,18 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
     if (cylinder) {
       lam = ScanMemo::lambdas(kern, ns, xs, phi1);
     } else {  // a profile's load curve depends on its shape: not memoised
+      // Each width's centre search starts from the nearest width's centre
+      // (the scan's widths are ordered; the found contact's centre first).
+      double guess = s.centre_;
       for (double x : xs) {
         const double w = std::exp(x);
-        lam.push_back(w > w0 && w <= wmax
-                          ? eval_width_profile(ns, w, *kern, phi1, proj, prof, s.centre_).lambda
-                          : std::nan(""));
+        if (!(w > w0 && w <= wmax)) {
+          lam.push_back(std::nan(""));
+          continue;
+        }
+        const WidthEval e = eval_width_profile(ns, w, *kern, phi1, proj, prof, guess);
+        if (std::isfinite(e.lambda)) guess = e.centre;
+        lam.push_back(e.lambda);
       }
     }
     double prev_x = lo, prev_f = std::nan("");

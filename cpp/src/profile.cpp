@@ -287,21 +287,12 @@ std::vector<double> PunchProfile::slope_chebyshev(double a, int count) const {
       return d;
     }
     case ProfileKind::table: {
-      // Midpoint rule: per angle, cos(m th) for odd m by the recurrence
-      // cos((m + 2) th) = 2 cos(2 th) cos(m th) - cos((m - 2) th).
-      const int M = std::max(16 * count + 64, 8192);
-      for (int j = 0; j < M; ++j) {
-        const double th = (j + 0.5) * kPi / M;
-        const double f = slope(a * std::cos(th)) * 2.0 / M;
-        const double c2 = 2.0 * std::cos(2.0 * th);
-        double prev = std::cos(-th), cur = std::cos(th);  // cos(-th), cos(th)
-        for (int q = 0; q < count; ++q) {
-          d[static_cast<std::size_t>(q)] += f * cur;
-          const double next = c2 * cur - prev;
-          prev = cur;
-          cur = next;
-        }
-      }
+      // (4/pi) int_0^{pi/2}: twice the half range's moments, odd m (exact).
+      if (outside(a, lower_, upper_)) beyond(a, lower_, upper_);
+      if (outside(-a, lower_, upper_)) beyond(-a, lower_, upper_);
+      const std::vector<double> half = table_cos_moments(0.0, a, 0.5 * kPi, 2 * count);
+      for (int q = 0; q < count; ++q)
+        d[static_cast<std::size_t>(q)] = 2.0 * half[static_cast<std::size_t>(2 * q + 1)];
       return d;
     }
   }
@@ -326,6 +317,89 @@ double linear_cos_integral(int m, double A, double w, double t0, double t1) {
   return F(t1) - F(t0);
 }
 }  // namespace
+
+std::vector<double> PunchProfile::table_cos_moments(double c, double w, double theta_end,
+                                                    int count) const {
+  // The spline's slope is a quadratic q_i(x) on each knot interval; with
+  // x = c + w cos th it is g0 + g1 cos th + g2 cos 2 th there, and
+  // int cos(k th) cos(m th) = (F_{|m-k|} + F_{m+k})/2 with F_j(th) = sin(j th)/j
+  // (F_0 = th). Summed over the pieces between the breakpoints th_b (the
+  // knots inside the range), the antiderivatives telescope: each breakpoint
+  // contributes F_j(th_b) times the jump of (g0, g1, g2) across it, the range's
+  // end the last piece's F_j(theta_end) (F_j(0) = 0).
+  constexpr double kPi = 3.14159265358979323846;
+  std::vector<double> d(static_cast<std::size_t>(std::max(count, 0)), 0.0);
+  if (count <= 0) return d;
+  const int last = static_cast<int>(x_.size()) - 2;  // the last interval
+  const double x_top = c + w, x_end = c + w * std::cos(theta_end);
+  auto interval = [&](double x) {  // the interval holding x (just below it at a knot)
+    const auto it = std::lower_bound(x_.begin(), x_.end(), x);
+    return std::clamp(static_cast<int>(it - x_.begin()) - 1, 0, last);
+  };
+  // (g0, g1, g2) of interval i: f'(x) = (-M_i l^2 + M_{i+1} r^2)/(2 h) + (y_{i+1} -
+  // y_i)/h - (M_{i+1} - M_i) h/6, l = x_{i+1} - x, r = x - x_i, x = c + w u.
+  auto piece = [&](int i, double g[3]) {
+    const auto s = static_cast<std::size_t>(i);
+    const double h = x_[s + 1] - x_[s], L0 = x_[s + 1] - c, R0 = c - x_[s];
+    const double mi = m_[s], mj = m_[s + 1];
+    const double e0 =
+        (-mi * L0 * L0 + mj * R0 * R0) / (2.0 * h) + (y_[s + 1] - y_[s]) / h - (mj - mi) * h / 6.0;
+    const double e1 = w * (mi * L0 + mj * R0) / h, e2 = w * w * (mj - mi) / (2.0 * h);
+    g[0] = e0 + 0.5 * e2;  // u^2 = (1 + cos 2 th)/2
+    g[1] = e1;
+    g[2] = 0.5 * e2;
+  };
+  // H_k(j) = sum_b jump_k(b) F_j(th_b) + g_k(last piece) F_j(theta_end), j <= count + 1.
+  const int J = count + 2;
+  std::vector<double> H(3 * static_cast<std::size_t>(J), 0.0);
+  // th = acos(u), u = cos th (the breakpoint's (x - c)/w).
+  auto add = [&](double th, double u, const double g[3]) {
+    // F_j(th) = sin(j th)/j by rotation, recomputed every 32 steps.
+    const double s1 = std::sqrt((1.0 - u) * (1.0 + u)), c1 = u;
+    double sj = 0.0, cj = 1.0;
+    for (int j = 0; j < J; ++j) {
+      if (j % 32 == 0) {
+        if (j > 0) {
+          sj = std::sin(j * th);
+          cj = std::cos(j * th);
+        }
+      } else {
+        const double sn = sj * c1 + cj * s1;
+        cj = cj * c1 - sj * s1;
+        sj = sn;
+      }
+      const double F = j == 0 ? th : sj / j;
+      const auto o = static_cast<std::size_t>(j);
+      H[o] += g[0] * F;
+      H[static_cast<std::size_t>(J) + o] += g[1] * F;
+      H[2 * static_cast<std::size_t>(J) + o] += g[2] * F;
+    }
+  };
+  // Knots strictly inside (x_end, x_top), from the top (th increasing).
+  int above = interval(x_top);
+  double ga[3];
+  piece(above, ga);
+  for (int k = above; k >= 1 && x_[static_cast<std::size_t>(k)] > x_end; --k) {
+    const double xk = x_[static_cast<std::size_t>(k)];
+    if (xk >= x_top) continue;
+    double gb[3];
+    piece(k - 1, gb);
+    const double jump[3] = {ga[0] - gb[0], ga[1] - gb[1], ga[2] - gb[2]};
+    const double u = std::clamp((xk - c) / w, -1.0, 1.0);
+    add(std::acos(u), u, jump);
+    std::copy(gb, gb + 3, ga);
+  }
+  add(theta_end, std::cos(theta_end), ga);
+  for (int m = 0; m < count; ++m) {
+    double sum = 0.0;
+    for (int k = 0; k <= 2; ++k) {
+      const double* Hk = H.data() + static_cast<std::size_t>(k) * static_cast<std::size_t>(J);
+      sum += Hk[std::abs(m - k)] + Hk[m + k];
+    }
+    d[static_cast<std::size_t>(m)] = sum / kPi;
+  }
+  return d;
+}
 
 std::vector<double> PunchProfile::slope_chebyshev_at(double c, double w, int count) const {
   constexpr double kPi = 3.14159265358979323846;
@@ -382,22 +456,7 @@ std::vector<double> PunchProfile::slope_chebyshev_at(double c, double w, int cou
     case ProfileKind::table: {
       if (outside(c - w, lower_, upper_)) beyond(c - w, lower_, upper_);
       if (outside(c + w, lower_, upper_)) beyond(c + w, lower_, upper_);
-      const int M = std::max(16 * count + 64, 8192);
-      for (int j = 0; j < M; ++j) {
-        const double th = (j + 0.5) * kPi / M;
-        double f = 0.0;
-        spline(std::clamp(c + w * std::cos(th), lower_, upper_), &f);
-        f *= 2.0 / M;
-        const double c1 = std::cos(th), c2 = 2.0 * c1;
-        double prev = c1, cur = 1.0;  // cos(-th), cos(0)
-        for (int m = 0; m < count; ++m) {
-          d[static_cast<std::size_t>(m)] += f * cur;
-          const double next = c2 * cur - prev;
-          prev = cur;
-          cur = next;
-        }
-      }
-      return d;
+      return table_cos_moments(c, w, kPi, count);
     }
   }
   return d;

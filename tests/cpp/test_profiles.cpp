@@ -10,6 +10,7 @@
 
 #include "movingpunch/collocation.hpp"
 #include "movingpunch/errors.hpp"
+#include "movingpunch/jacobi.hpp"
 #include "movingpunch/profile.hpp"
 #include "potentials.hpp"
 
@@ -307,4 +308,75 @@ TEST(Potentials, CutSeriesMatchTheWholeSums) {
     EXPECT_LE(std::abs(dcut - dwhole), 1e-15 * tail(0) / r) << z;
     if (std::abs(detail::w_of(z)) < 0.5) EXPECT_LT(n, 64) << z;  // off the contact: few terms
   }
+}
+
+TEST(Profiles, TableProjectionIsExactOnTheSplinePieces) {
+  // A table's slope projection is summed in closed form over the spline's
+  // pieces. Anchors: (1) a table of a cubic, which the not-a-knot spline
+  // reproduces, has the slope's three coefficients and nothing else; (2) an
+  // unevenly spaced convex table against Gauss-Legendre quadrature in th
+  // split at every knot (exact to round-off on each smooth piece), off
+  // centre (slope_chebyshev_at) and centred (slope_chebyshev's odd terms).
+  {
+    std::vector<double> x, y;
+    for (int i = 0; i <= 40; ++i) {
+      const double xi = -2.0 + 0.1 * i;
+      x.push_back(xi);
+      y.push_back(0.5 * xi * xi + xi * xi * xi / 30.0);
+    }
+    const PunchProfile cubic(ProfileKind::table, 0.0, 0.0, x, y);
+    const double c = 0.31, w = 1.2;
+    const std::vector<double> d = cubic.slope_chebyshev_at(c, w, 40);
+    EXPECT_NEAR(d[0], 2.0 * (c + c * c / 10.0 + w * w / 20.0), 1e-13);
+    EXPECT_NEAR(d[1], w * (1.0 + c / 5.0), 1e-13);
+    EXPECT_NEAR(d[2], w * w / 20.0, 1e-13);
+    for (int m = 3; m < 40; ++m) EXPECT_NEAR(d[static_cast<std::size_t>(m)], 0.0, 1e-13) << m;
+  }
+  std::vector<double> x, y;
+  for (int i = 0; i <= 60; ++i) {
+    const double t = -1.0 + 2.0 * i / 60.0;
+    const double xi = 2.5 * t + 0.4 * std::sin(3.0 * t);  // uneven spacing
+    x.push_back(xi);
+    y.push_back(std::exp(0.8 * xi) - 0.8 * xi + 0.05 * xi * xi * xi * xi);
+  }
+  const PunchProfile tab(ProfileKind::table, 0.0, 0.0, x, y);
+  const auto gl = gauss_jacobi(24, 0.0, 0.0);
+  // (2/pi) int_0^th_end f'(c + w cos th) cos(m th), split at the knots.
+  auto reference = [&](double c, double w, double th_end, int m) {
+    std::vector<double> cuts = {0.0, th_end};
+    for (double xk : x) {
+      const double u = (xk - c) / w;
+      if (u > -1.0 && u < 1.0 && std::acos(u) < th_end) cuts.push_back(std::acos(u));
+    }
+    std::sort(cuts.begin(), cuts.end());
+    double s = 0.0;
+    for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
+      // Sub-pieces of at most one radian of m th.
+      const int parts = 1 + static_cast<int>((m + 1) * (cuts[i + 1] - cuts[i]));
+      for (int p = 0; p < parts; ++p) {
+        const double lo = cuts[i] + (cuts[i + 1] - cuts[i]) * p / parts;
+        const double hi = cuts[i] + (cuts[i + 1] - cuts[i]) * (p + 1) / parts;
+        const double mid = 0.5 * (lo + hi), half = 0.5 * (hi - lo);
+        for (Eigen::Index j = 0; j < gl.x.size(); ++j) {
+          const double th = mid + half * gl.x(j);
+          s += half * gl.w(j) * tab.slope(c + w * std::cos(th)) * std::cos(m * th);
+        }
+      }
+    }
+    return 2.0 / kPi * s;
+  };
+  const double c = -0.37, w = 1.6;
+  const std::vector<double> d = tab.slope_chebyshev_at(c, w, 301);
+  double scale = 0.0;
+  for (double v : d) scale = std::max(scale, std::fabs(v));
+  for (int m : {0, 1, 2, 3, 7, 20, 64, 150, 300})
+    EXPECT_NEAR(d[static_cast<std::size_t>(m)], reference(c, w, kPi, m), 1e-13 * scale) << m;
+  // Centred: slope_chebyshev(a, .)[q] = (4/pi) int_0^{pi/2} f'(a cos th) cos((2q + 1) th).
+  const double a = 1.3;
+  const std::vector<double> ds = tab.slope_chebyshev(a, 40);
+  for (int q : {0, 1, 5, 39})
+    EXPECT_NEAR(ds[static_cast<std::size_t>(q)], 2.0 * reference(0.0, a, 0.5 * kPi, 2 * q + 1),
+                1e-13 * scale)
+        << q;
+  EXPECT_THROW(tab.slope_chebyshev_at(0.5, 2.5, 8), std::domain_error);
 }

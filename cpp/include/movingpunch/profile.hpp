@@ -55,16 +55,15 @@ class PunchProfile {
   // The Chebyshev-T coefficients d_1, d_3, ..., d_{2 count - 1} of the slope
   // on a contact of half-width a, f'(a s) = sum_m d_m T_m(s) (odd in s):
   // d_m = (2/pi) int_0^pi f'(a cos th) cos(m th) d th; in closed form for the
-  // cylinder and the rounded flat (whose slope has a kink at |x| = b), by a
-  // midpoint rule on max(16 count + 64, 8192) angles for a table (its spline's
-  // slope is C^1: the aliased error, ~ d_{2M}, is independent of the count
-  // below 500 terms, so a/h does not drift with N).
+  // cylinder, the rounded flat (whose slope has a kink at |x| = b) and a table
+  // (its spline's slope is piecewise quadratic: summed over the knots, no
+  // quadrature error, so a/h does not drift with N).
   std::vector<double> slope_chebyshev(double a, int count) const;
   // The Chebyshev-T coefficients d_0 .. d_{count-1} of the slope on the
   // contact (c - w, c + w), f'(c + w s) = d_0/2 + sum_{m>=1} d_m T_m(s), any
   // parity: d_m = (2/pi) int_0^pi f'(c + w cos th) cos(m th) d th; in closed
-  // form for the cylinder and the rounded flat (split at its kinks), by a
-  // midpoint rule on max(16 count + 64, 8192) angles for a table. Throws
+  // form for the cylinder, the rounded flat (split at its kinks) and a table
+  // (over its spline's pieces: O(knots on the contact x count)). Throws
   // std::domain_error when (c - w, c + w) leaves a table.
   std::vector<double> slope_chebyshev_at(double c, double w, int count) const;
   // A bound on sum_{m > from} |d_m| of slope_chebyshev_at(c, w, .) (from >=
@@ -93,6 +92,10 @@ class PunchProfile {
   std::vector<double> x_, y_, m_;
   double y0_ = 0;  // the spline at x = 0
   double spline(double x, double* slope) const;
+  // (2/pi) int_0^theta_end f'(c + w cos th) cos(m th) d th, m < count, for the
+  // table's spline, exactly (its slope is piecewise quadratic): O(knots in
+  // the range x count).
+  std::vector<double> table_cos_moments(double c, double w, double theta_end, int count) const;
 };
 
 // Checks a profile table as PunchProfile does (the same messages), without
