@@ -6,8 +6,9 @@ tabulated parabola, the same parabola shifted by 0.2 h (asymmetric), a flat
 punch b/h 0.5), each with no damping or friction, damping 0.5, friction 0.3
 and both: the cold solve (kernel cache cleared first) and the warm one (the
 table cached, another load), medians over --repeat solves, and their ratio to
-the plain NumPy/SciPy peer's cylinder solve (../shared/bench/peer_numpy.py,
-N = 24, the paper's problem) run in the same process. Prints the machine's
+the plain NumPy baseline's cylinder solve (benchmarks/baseline_numpy.py, the
+project's own implementation of the paper's method, N = 24) run in the same
+process. Prints the machine's
 load average; never asserts a time.
 
     .venv/bin/python benchmarks/bench_profiles.py [--repeat 5] [--maps]
@@ -16,22 +17,22 @@ load average; never asserts a time.
 from __future__ import annotations
 
 import argparse
-import importlib.util
 import os
 import statistics
 import sys
 import time
 from pathlib import Path
-from types import ModuleType
 from typing import Any
 
 import numpy as np
 
 import movingpunch as mp
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import baseline_numpy
+
 BASE = {"vstar": 0.2, "kw": 1.0, "nu": 0.2}
 LOAD = 0.002
-PEER = Path(__file__).resolve().parents[2] / "shared" / "bench" / "peer_numpy.py"
 
 
 def _table(x0: float) -> mp.Profile:
@@ -54,31 +55,16 @@ EXTRAS: dict[str, dict[str, float]] = {
 }
 
 
-def _peer() -> ModuleType | None:
-    if not PEER.exists():
-        return None
-    spec = importlib.util.spec_from_file_location("peer_numpy", PEER)
-    assert spec is not None
-    assert spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    sys.modules["peer_numpy"] = module
-    spec.loader.exec_module(module)
-    return module
-
-
 def peer_cylinder_ms(repeat: int) -> float:
-    """Median ms of the peer's cylinder solve (the paper's problem, N = 24),
-    printed; nan without the peer."""
-    peer = _peer()
-    if peer is None:
-        return float("nan")
+    """Median ms of the NumPy baseline's cylinder solve (the paper's problem,
+    N = 24), printed."""
     t = []
     for _ in range(repeat):
         t0 = time.perf_counter()
-        peer.solve(0.2, 0.2, 1.0, 100.0, 500.0)
+        baseline_numpy.solve(0.2, 0.2, 1.0, 100.0, 500.0)
         t.append(1e3 * (time.perf_counter() - t0))
     ms = statistics.median(t)
-    print(f"peer (NumPy/SciPy, cylinder, N = 24): {ms:.1f} ms")
+    print(f"NumPy baseline (cylinder, N = 24): {ms:.1f} ms")
     return ms
 
 

@@ -5,7 +5,7 @@ table cached; the loads varied by 1e-3 per repeat so no result is reused) of
 one punch (``mp.solve``, the single contact) and of a two-punch train
 (``mp.solve_punches``, each punch as the single one), medians over --repeat
 solves, their ratio (the issue asks at most 4x), and both against the plain
-NumPy/SciPy peer's cylinder solve (../shared/bench/peer_numpy.py, N = 24, the
+NumPy baseline's cylinder solve (benchmarks/baseline_numpy.py, N = 24, the
 paper's problem) run in the same process. Also the separated contact of one
 punch (the paper's soft foundation at 0.99 V*_cr: two zones) against the
 single contact it replaces, and a train of 8 rounded flats against one.

@@ -417,7 +417,7 @@ TEST(Stack, DispersionChangesSignWhereTheLayersDoes) {
 
 TEST(Stack, GradedTopApproachesItsHalfPlaneLikeGammaOverT) {
   // The graded response tends to the top's half-plane value as a series in
-  // gamma/t (physics.md section 11): t (M1 - phi1) -> c1 gamma, with the
+  // gamma/t (docs/theory.md §16): t (M1 - phi1) -> c1 gamma, with the
   // next term O(1/t), across the depth where the deeper structure is cut.
   for (double gamma : {2.0, -3.0}) {
     const auto med = make_stack_medium(

@@ -201,7 +201,7 @@ def test_the_reference_is_independent_of_its_size_and_matches_table_1() -> None:
         other = mp.solve(**case, tol=1e-14, n=96)
         assert abs(ref.a - other.a) <= 1e-14
         assert abs(ref.p0 - other.p0) <= 1e-12
-    # physics.md section 8: V* = 0, R/h = 100, P/(mu h) = 0.002, nu = 0.2.
+    # docs/theory.md §11: V* = 0, R/h = 100, P/(mu h) = 0.002, nu = 0.2.
     for kw, a in (
         (0.1, 0.372478),
         (1.0, 0.330419),

@@ -1,7 +1,7 @@
 """The solver against independent anchors: the paper's Table 1, the moving
 half-plane (Hertz) limit, closed forms of the layer response, the critical
 speed table, conservation of load, and an independent integration of the
-indentation. Anchors are from ../shared/docs/physics.md."""
+indentation. Anchors are listed in docs/theory.md §11."""
 
 from __future__ import annotations
 
@@ -212,7 +212,7 @@ def test_radius_and_load_enter_only_through_their_product() -> None:
 
 
 def test_pressure_maximum_moves_off_centre_but_stays_valid() -> None:
-    # physics.md section 7: kw = 0.1, vstar = 0.2, R/h = 100, P/(mu h) = 0.01.
+    # docs/theory.md §9: kw = 0.1, vstar = 0.2, R/h = 100, P/(mu h) = 0.01.
     sol = mp.solve(vstar=0.2, kw=0.1, radius=100.0, load=0.01, nu=0.2)
     assert sol.valid
     x = np.linspace(0, sol.a, 200)

@@ -24,7 +24,7 @@ GOOD: dict[str, Any] = {
     "tol": 1e-8,
 }
 
-# V*_cr(kw = 1, nu = 0.2) and V*_R(nu = 0.2): docs/physics.md section 6.
+# V*_cr(kw = 1, nu = 0.2) and V*_R(nu = 0.2): docs/theory.md §8.
 CRITICAL_KW1 = 0.5716928
 RAYLEIGH = 0.8299135134
 

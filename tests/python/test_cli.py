@@ -436,7 +436,7 @@ def test_solve_on_one_layer_given_by_layer_is_the_paper_layer(
     run_cli: Callable[..., subprocess.CompletedProcess[str]],
 ) -> None:
     """--layer 1,1,0.2 on --kw 1 is the paper's layer: Table 1's a/h
-    (physics.md section 8), and the medium shown in the table."""
+    (docs/theory.md §11), and the medium shown in the table."""
     proc = run_cli("solve", *TABLE1_CASE, "--kw", "1", "--layer", "1,1,0.2")
     assert proc.returncode == 0, proc.stderr
     assert number_after("a/h", proc.stdout) == pytest.approx(0.330419, abs=1e-6)

@@ -37,7 +37,7 @@ from movingpunch import cli
 INF = math.inf
 NU = 0.2
 PAPER = {"radius": 100.0, "load": 0.002, "nu": NU}
-# physics.md section 8: a/h at V* = 0 (R/h = 100, P/(mu h) = 0.002, nu = 0.2).
+# docs/theory.md §11: a/h at V* = 0 (R/h = 100, P/(mu h) = 0.002, nu = 0.2).
 TABLE1_STATIC = {0.1: 0.372478, 1.0: 0.330419, 10.0: 0.315037, INF: 0.311557}
 # The longest one solve of the slow hard cases may take (as in test_fuzz.py):
 # beyond it the call counts as a hang. The measured times are in the docs.
@@ -68,7 +68,7 @@ def hertz_a(vstar: float, lam: float, nu: float = NU) -> float:
 
 
 def half_plane_phi1(s: float, nu: float) -> float:
-    """phi1 from its closed form (physics.md section 3), written out here so
+    """phi1 from its closed form (docs/theory.md §4), written out here so
     the Hertz anchor does not use the package's own phi1. At s = 0 it is the
     static 1 - nu (the closed form is 0/0 there)."""
     if s == 0.0:
@@ -301,7 +301,7 @@ def test_near_critical_soft_foundation_light_load_stays_valid(
 def surface_rise(s: mp.Solution, x: np.ndarray, t_max: float = 3000.0) -> np.ndarray:
     """v(0, 0) - v(x, 0) up to a constant factor, by direct quadrature of the
     wavenumber integral: int_0^inf M1(t)/t p^(t) (1 - cos t x) dt with the exact
-    transform of the pressure's Chebyshev-U series (physics.md section 4) and
+    transform of the pressure's Chebyshev-U series (docs/theory.md §5) and
     M1 sampled from layer_response. Independent of the core's Filon rule.
     The integrand's x-free part (the Bessel sum: seconds) is computed once
     per solution and reused for every x."""
@@ -759,7 +759,7 @@ def test_small_contact_is_hertz(kw: float, vstar: float) -> None:
 @pytest.mark.parametrize("lam", [1e-6, 1e-2, 0.2, 10.0])
 @pytest.mark.parametrize("kw", [0.1, INF])
 def test_only_radius_times_load_matters(kw: float, lam: float) -> None:
-    # physics.md section 1: a/h depends on R/h and P/(mu h) only through R P.
+    # docs/theory.md §3: a/h depends on R/h and P/(mu h) only through R P.
     widths = [
         mp.solve(vstar=0.1, kw=kw, radius=r, load=lam / r).a
         for r in (1e-3, 1e-1, 10.0, 1e3, 1e5)

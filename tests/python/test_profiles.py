@@ -106,7 +106,7 @@ def test_flat_on_the_layer_against_a_numpy_solve(
 @pytest.mark.parametrize("kw", [1.0, 0.1])
 def test_wide_flat_punch_indentation_is_the_long_wave_compliance(kw: float) -> None:
     """b >> h: the face presses P/(2b) almost uniformly, and the layer answers
-    long waves with v = -p h (1/kw + (1 - nu)/2)/mu (physics.md section 3),
+    long waves with v = -p h (1/kw + (1 - nu)/2)/mu (docs/theory.md §4),
     so delta -> (P/(2b)) (1/kw + (1 - nu)/2); the gap is O(h/b) (halves as
     b doubles: measured -2.1 %, -1.1 % at kw = 1, b = 20, 40)."""
     gaps = []
@@ -146,7 +146,7 @@ def test_flat_punch_surface_follows_the_face(kp: float) -> None:
 
 def test_flat_punch_separation_is_reported() -> None:
     """A wide flat punch on a soft foundation near V*_cr: the pressure goes
-    negative on the face (physics.md section 6: the bounded solution needs
+    negative on the face (docs/theory.md §8: the bounded solution needs
     int p cos(alpha_c x) ~ 0, which a positive p over a face with
     alpha_c b > pi/2 cannot meet)."""
     kw = 0.01

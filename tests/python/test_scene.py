@@ -1,7 +1,7 @@
 """Scenes through the Python API: the format, its validation, what a run
 computes (and what it does not), sweeps reusing work, exports.
 
-Physical numbers are checked against the anchors of physics.md (Table 1, the
+Physical numbers are checked against the anchors of docs/theory.md §11 (Table 1, the
 critical speeds); the rest are structural or invariance checks."""
 
 from __future__ import annotations
@@ -32,10 +32,10 @@ from movingpunch.scene import (
 
 BASE = {"vstar": 0.2, "kw": 1.0, "radius": 100.0, "load": 0.002, "nu": 0.2}
 
-# physics.md section 8: a/h at R/h = 100, P/(mu h) = 0.002, nu = 0.2.
+# docs/theory.md §11: a/h at R/h = 100, P/(mu h) = 0.002, nu = 0.2.
 TABLE1_STATIC = {0.1: 0.372478, 1.0: 0.330419, 10.0: 0.315037, math.inf: 0.311557}
 TABLE1_PAPER = {0.1: 0.3729, 1.0: 0.3306, 10.0: 0.3152, math.inf: 0.3117}
-# physics.md section 6: V*_cr at nu = 0.2.
+# docs/theory.md §8: V*_cr at nu = 0.2.
 CRITICAL = {0.01: 0.0869126, 0.1: 0.2475216, 1.0: 0.5716928, 10.0: 0.8185946}
 RAYLEIGH = 0.8299135
 

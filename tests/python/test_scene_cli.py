@@ -16,7 +16,7 @@ import pytest
 import movingpunch as mp
 from movingpunch.scene import Scene, read_csv, read_json
 
-# physics.md section 8: a/h at R/h = 100, P/(mu h) = 0.002, nu = 0.2.
+# docs/theory.md §11: a/h at R/h = 100, P/(mu h) = 0.002, nu = 0.2.
 TABLE1 = {
     "0.1": (0.372478, 0.3729),
     "1": (0.330419, 0.3306),

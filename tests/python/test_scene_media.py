@@ -28,7 +28,7 @@ from movingpunch.scene._export import (
     write_outputs,
 )
 
-# physics.md section 8 / the paper's Table 1: a/h of the layer (nu = 0.2) on
+# docs/theory.md §11 / the paper's Table 1: a/h of the layer (nu = 0.2) on
 # k_w h/mu = 1 at V* = 0, R/h = 100, P/(mu h) = 0.002.
 TABLE1_KW1 = 0.330419
 

@@ -4,7 +4,7 @@ depth, the paper's surface formula (Eqs. 23-24, from M2 of ``layer_response``),
 an independent modal solution of the layer written here in NumPy, the moving
 half-plane limit, continuity toward the surface and in V*, the surface
 displacement computed two ways, the paper's statements on its Figs. 4-6, and
-convergence in the tolerance. Anchors are from ../shared/docs/physics.md."""
+convergence in the tolerance. Anchors are listed in docs/theory.md §11."""
 
 from __future__ import annotations
 
@@ -170,7 +170,7 @@ def test_stress_field_agrees_with_surface_and_depth_stress(
 
 
 def _m2_surface_stress(s: Any, x: float) -> float:
-    """sigma_x(x, 0)/(P/h) from the paper's Eqs. (23)-(24) (physics.md 5):
+    """sigma_x(x, 0)/(P/h) from the paper's Eqs. (23)-(24) (docs/theory.md §7):
     -phi2 p(x) - (2/pi) int (M2 - phi2) p^(alpha) cos(alpha x) d alpha, with M2
     from ``layer_response`` and p^ by Gauss-Chebyshev on the pressure."""
     n = 96

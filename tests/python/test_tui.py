@@ -77,7 +77,7 @@ async def test_starts_on_the_papers_fig4_case() -> None:
         assert p.grid_label == "x/h"
         assert p.value_label == "p(x)/(P/h)"
         assert np.trapezoid(p.series[0].values, p.grid) == pytest.approx(1.0, rel=2e-3)
-        # The gauge shows V*_cr(kw = 1) = 0.5716928 (physics notes) and V*_R.
+        # The gauge shows V*_cr(kw = 1) = 0.5716928 (docs/theory.md §8) and V*_R.
         limits = screen.query_one(Gauge).limits
         assert limits is not None
         assert limits[1] == pytest.approx(0.5716928, rel=1e-6)
@@ -252,7 +252,7 @@ async def test_unphysical_and_convergence_errors_are_inline() -> None:
         await settle(pilot)
         screen = screen_of(app)
         # kw = 0.01 makes V* = 0.2 supercritical; V* = 0.086 (1 % below V*_cr)
-        # with the paper's load separates the contact (physics notes, §7):
+        # with the paper's load separates the contact (docs/theory.md §9):
         # unphysical as a single contact (contact auto finds its zones).
         await type_into(pilot, "contact", "single")
         await type_into(pilot, "kw", "0.01")
