@@ -154,8 +154,113 @@ void jacobi_p(int n, double a, double b, double x, double* p, double* dp) {
   *p = jacobi_series(unit, a, b, x, 0, dp);
 }
 
+namespace {
+constexpr int kLanes = 8;
+// P_n^(a, b) and its derivative at count <= kLanes points together: the
+// arithmetic of jacobi_series (so jacobi_p's values, bit for bit), each
+// step's coefficients computed once for all the points and no allocation
+// (a rule of a thousand nodes evaluates P_n at each node three to five
+// times).
+void jacobi_p_lanes(int n, double a, double b, const double* x, int count, double* p, double* dp) {
+  double z[kLanes], p0[kLanes], p1[kLanes], d0[kLanes], d1[kLanes];
+  for (int l = 0; l < kLanes; ++l) {
+    z[l] = l < count ? x[l] : 0.0;
+    p0[l] = 1.0;
+    p1[l] = 0.5 * ((a + b + 2.0) * z[l] + (a - b));
+    d0[l] = 0.0;
+    d1[l] = 0.5 * (a + b + 2.0);
+  }
+  for (int k = 1; k < n; ++k) {
+    const double kk = k, s = 2.0 * kk + a + b;
+    const double c0 = 2.0 * (kk + 1.0) * (kk + a + b + 1.0) * s;
+    const double c1x = (s + 1.0) * (s + 2.0) * s;
+    const double c2 = 2.0 * (kk + a) * (kk + b) * (s + 2.0);
+    for (int l = 0; l < kLanes; ++l) {
+      const double c1 = (s + 1.0) * ((s + 2.0) * s * z[l] + a * a - b * b);
+      const double p2 = (c1 * p1[l] - c2 * p0[l]) / c0;
+      const double d2 = (c1 * d1[l] + c1x * p1[l] - c2 * d0[l]) / c0;
+      p0[l] = p1[l];
+      p1[l] = p2;
+      d0[l] = d1[l];
+      d1[l] = d2;
+    }
+  }
+  for (int l = 0; l < count; ++l) {
+    p[l] = n == 0 ? 1.0 : p1[l];
+    dp[l] = n == 0 ? 0.0 : d1[l];
+  }
+}
+}  // namespace
+
+namespace {
+// Newton's method on P_n from the guesses x, kLanes nodes at a time, at most
+// `steps` steps a node (a node stops once its step is below `done`). Returns
+// the largest last step taken.
+double newton_zeros(int n, double a, double b, Eigen::VectorXd& x, int steps, double done) {
+  double worst = 0.0;
+  for (int i0 = 0; i0 < n; i0 += kLanes) {
+    const int count = std::min(kLanes, n - i0);
+    bool active[kLanes];
+    double last[kLanes] = {};
+    for (int l = 0; l < kLanes; ++l) active[l] = l < count;
+    for (int it = 0; it < steps; ++it) {
+      double p[kLanes], dp[kLanes];
+      jacobi_p_lanes(n, a, b, x.data() + i0, count, p, dp);
+      bool any = false;
+      for (int l = 0; l < count; ++l) {
+        if (!active[l]) continue;
+        if (dp[l] == 0.0) {
+          active[l] = false;
+          last[l] = std::numeric_limits<double>::infinity();
+          continue;
+        }
+        const double step = p[l] / dp[l];
+        x(i0 + l) -= step;
+        last[l] = std::fabs(step);
+        if (std::fabs(step) < done) active[l] = false;
+        any = any || active[l];
+      }
+      if (!any) break;
+    }
+    for (int l = 0; l < count; ++l) worst = std::max(worst, last[l]);
+  }
+  return worst;
+}
+
+// The zeros from Gatteschi and Pittaluga's asymptotic approximation
+// (accurate to O(n^-4) inside, |a|, |b| <= 1/2 best; Szego, Orthogonal
+// Polynomials, section 8.9): theta_k = phi_k + [(1/4 - a^2) cot(phi_k/2) -
+// (1/4 - b^2) tan(phi_k/2)]/(2 rho)^2, phi_k = (k + a/2 - 1/4) pi/rho,
+// rho = n + (a + b + 1)/2, x_k = cos theta_k; then Newton until a step is
+// below 1e-13 (the next would be below C 1e-26, C = |P''/(2 P')| <= n^3 at
+// the ends: round-off). O(n^2) with a small constant (the eigenvalues cost
+// several times as much at n = 1000). False unless every node converged to
+// n distinct zeros in (-1, 1): the caller then takes the eigenvalues.
+bool asymptotic_zeros(int n, double a, double b, Eigen::VectorXd& x) {
+  const double rho = n + 0.5 * (a + b + 1.0);
+  x.resize(n);
+  for (int k = 1; k <= n; ++k) {
+    const double phi = (k + 0.5 * a - 0.25) * kPi / rho, t = std::tan(0.5 * phi);
+    const double th = phi + ((0.25 - a * a) / t - (0.25 - b * b) * t) / (4.0 * rho * rho);
+    x(k - 1) = std::cos(std::clamp(th, 0.0, kPi));
+  }
+  const double worst = newton_zeros(n, a, b, x, 10, 1e-13);
+  std::sort(x.data(), x.data() + n);
+  if (!(worst < 1e-13)) return false;
+  for (int i = 0; i < n; ++i)
+    if (!(std::fabs(x(i)) < 1.0) || (i > 0 && !(x(i) - x(i - 1) > 1e-12))) return false;
+  return true;
+}
+}  // namespace
+
 Eigen::VectorXd jacobi_zeros(int n, double a, double b) {
   if (n < 1) throw std::invalid_argument("jacobi_zeros: n must be >= 1");
+  Eigen::VectorXd x(n);
+  // Large rules (a long series' far-field and arctan rules, a profile's
+  // projections) from the asymptotic guesses; small ones, and any the
+  // guesses fail, from the Jacobi matrix's eigenvalues.
+  if (n >= 32 && std::fabs(a) <= 1.0 && std::fabs(b) <= 1.0 && asymptotic_zeros(n, a, b, x))
+    return x;
   Eigen::VectorXd diag(n), sub(std::max(n - 1, 0));
   for (int k = 0; k < n; ++k) {
     const double s = 2.0 * k + a + b;
@@ -170,7 +275,6 @@ Eigen::VectorXd jacobi_zeros(int n, double a, double b) {
       bk = 4.0 * kk * (kk + a) * (kk + b) * (kk + a + b) / (s * s * (s + 1.0) * (s - 1.0));
     sub(k - 1) = std::sqrt(bk);
   }
-  Eigen::VectorXd x(n);
   if (n == 1) {
     x(0) = diag(0);
   } else {
@@ -178,16 +282,7 @@ Eigen::VectorXd jacobi_zeros(int n, double a, double b) {
     es.computeFromTridiagonal(diag, sub, Eigen::EigenvaluesOnly);
     x = es.eigenvalues();
   }
-  for (int i = 0; i < n; ++i) {  // Newton polish
-    for (int it = 0; it < 3; ++it) {
-      double p, dp;
-      jacobi_p(n, a, b, x(i), &p, &dp);
-      if (dp == 0.0) break;
-      const double step = p / dp;
-      x(i) -= step;
-      if (std::fabs(step) < 1e-17) break;
-    }
-  }
+  newton_zeros(n, a, b, x, 3, 1e-17);  // polish
   std::sort(x.data(), x.data() + n);
   return x;
 }
@@ -201,10 +296,14 @@ JacobiRule gauss_jacobi(int n, double a, double b) {
                       std::lgamma(n + b + 1.0) - std::lgamma(n + a + b + 1.0) -
                       std::lgamma(n + 1.0);
   const double cst = std::exp(ln_c);
-  for (int i = 0; i < n; ++i) {
-    double p, dp;
-    jacobi_p(n, a, b, r.x(i), &p, &dp);
-    r.w(i) = cst / ((1.0 - r.x(i) * r.x(i)) * dp * dp);
+  for (int i0 = 0; i0 < n; i0 += kLanes) {
+    const int count = std::min(kLanes, n - i0);
+    double p[kLanes], dp[kLanes];
+    jacobi_p_lanes(n, a, b, r.x.data() + i0, count, p, dp);
+    for (int l = 0; l < count; ++l) {
+      const double xi = r.x(i0 + l);
+      r.w(i0 + l) = cst / ((1.0 - xi * xi) * dp[l] * dp[l]);
+    }
   }
   return r;
 }

@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <complex>
+#include <tuple>
+#include <vector>
 
 #include "movingpunch/collocation.hpp"
 #include "movingpunch/jacobi.hpp"
@@ -321,5 +323,38 @@ TEST(Jacobi, TransformInterpolantMatchesTheDirectSum) {
       EXPECT_LE(std::abs(fast(om) - f.first), 0.0);
     }
     EXPECT_EQ(fast(1.5 * omega_max), direct(1.5 * omega_max));
+  }
+}
+
+TEST(Jacobi, LargeRulesAreTheZerosWithTheirWeights) {
+  // gauss_jacobi evaluates P_n at several nodes together (and finds a large
+  // rule's nodes by Newton from asymptotic guesses): its nodes are zeros of
+  // P_n (a Newton step from each moves it by less than 1e-15), its weights are
+  // cst/((1 - x^2) P_n'(x)^2) with jacobi_p's derivative bit for bit, and the rule
+  // is exact for a high-degree polynomial (P_{n-1}^2 against h_{n-1}).
+  for (const auto& [n, a, b] : std::vector<std::tuple<int, double, double>>{{1, 0.3, 0.7},
+                                                                            {7, -0.4, -0.6},
+                                                                            {9, 0.46, 0.54},
+                                                                            {1100, -0.46, -0.54},
+                                                                            {1152, 0.2, 0.8}}) {
+    const mp::JacobiRule r = mp::gauss_jacobi(n, a, b);
+    const double ln_c = (a + b + 1.0) * std::log(2.0) + std::lgamma(n + a + 1.0) +
+                        std::lgamma(n + b + 1.0) - std::lgamma(n + a + b + 1.0) -
+                        std::lgamma(n + 1.0);
+    for (int i = 0; i < n; i += std::max(1, n / 97)) {
+      double p, dp;
+      mp::jacobi_p(n, a, b, r.x(i), &p, &dp);
+      EXPECT_LT(std::fabs(p / dp), 1e-15) << n << " " << i;
+      EXPECT_EQ(r.w(i), std::exp(ln_c) / ((1.0 - r.x(i) * r.x(i)) * dp * dp)) << n << " " << i;
+    }
+    if (n > 1) {
+      double sum = 0.0;
+      for (int i = 0; i < n; ++i) {
+        double p;
+        mp::jacobi_p(n - 1, a, b, r.x(i), &p);
+        sum += r.w(i) * p * p;
+      }
+      EXPECT_NEAR(sum, mp::jacobi_norm(n - 1, a, b), 1e-11 * mp::jacobi_norm(n - 1, a, b)) << n;
+    }
   }
 }
