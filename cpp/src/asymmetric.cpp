@@ -7,10 +7,12 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <list>
 #include <map>
 #include <mutex>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 
 #include "bessel.hpp"
 #include "chebyshev.hpp"
@@ -1158,20 +1160,13 @@ class SlopeProjection {
   void nodal_functional(const Eigen::VectorXd& zeta, double w, std::vector<double>& xs,
                         std::vector<double>& zw) const {
     const int count = static_cast<int>(zeta.size());
-    xs.clear();
-    zw.clear();
-    std::vector<double> P(static_cast<std::size_t>(count));
-    const int M = std::max(16 * count + 64, 2048);
-    const auto held = cached_rule(M, a_, b_);
-    const JacobiRule& rule = *held;
-    const std::vector<double>& h = norms(count);
-    for (Eigen::Index j = 0; j < rule.x.size(); ++j) {
-      basis(rule.x(j), count, P.data());
-      double z = 0.0;
-      for (int m = 0; m < count; ++m)
-        z += zeta(m) * P[static_cast<std::size_t>(m)] / h[static_cast<std::size_t>(m)];
-      xs.push_back(w * rule.x(j));
-      zw.push_back(rule.w(j) * z);
+    const NodalBasis& nb = nodal_basis(count);
+    const Eigen::VectorXd z = nb.P.topRows(count).transpose() * zeta;
+    xs.resize(nb.s.size());
+    zw.resize(nb.s.size());
+    for (std::size_t j = 0; j < nb.s.size(); ++j) {
+      xs[j] = w * nb.s[j];
+      zw[j] = z(static_cast<Eigen::Index>(j));
     }
   }
   double a() const noexcept { return a_; }
@@ -1218,10 +1213,18 @@ class SlopeProjection {
       for (int m = 0; m < count; ++m) q[static_cast<std::size_t>(m)] /= jacobi_norm(m, a_, b_);
       return q;
     }
+    if (prof_.kind() == ProfileKind::table) {  // q = B f'(c + w s_j) (nodal_basis)
+      const NodalBasis& nb = nodal_basis(count);
+      std::vector<double> xs(nb.s.size()), fs(nb.s.size());
+      for (std::size_t j = 0; j < xs.size(); ++j) xs[j] = c + w * nb.s[j];
+      prof_.slopes(xs.data(), static_cast<int>(xs.size()), fs.data());
+      const Eigen::VectorXd q =
+          nb.P.topRows(count) * Eigen::Map<const Eigen::VectorXd>(fs.data(), nb.P.cols());
+      return std::vector<double>(q.data(), q.data() + count);
+    }
     std::vector<double> q(static_cast<std::size_t>(count), 0.0);
     std::vector<double> P(static_cast<std::size_t>(count));
-    const bool table = prof_.kind() == ProfileKind::table;
-    const int M = table ? std::max(16 * count + 64, 2048) : 2 * count + 64;
+    const int M = 2 * count + 64;
     weighted_nodes(prof_, c, w, a_, b_, M, [&](double s, double weight) {
       const double fs = prof_.slope(c + w * s) * weight;
       if (fs == 0.0) return;
@@ -1239,6 +1242,51 @@ class SlopeProjection {
   bool jacobi_;
   double a_, b_;
   mutable std::vector<double> norms_;
+  // A table's projection by the Gauss-Jacobi rule of M = max(16 count + 64,
+  // 2048) nodes s_j on the whole contact (a table has no kinks): the matrix
+  // B_mj = w_j Q_m(s_j)/h_m, so that each projection is one matrix-vector
+  // product (it ran the recurrence of Q_m at every node). Kept between
+  // solves for the two most recent (M, exponents) (a load sweep's; a ladder's
+  // sizes share M = 2048, each M's matrix grown to the largest count asked).
+  struct NodalBasis {
+    std::vector<double> s;
+    Eigen::MatrixXd P;
+  };
+  mutable std::map<int, std::shared_ptr<const NodalBasis>> nodal_;
+  const NodalBasis& nodal_basis(int count) const {
+    const int M = std::max(16 * count + 64, 2048);
+    std::shared_ptr<const NodalBasis>& mine = nodal_[M];
+    if (mine && mine->P.rows() >= count) return *mine;
+    using Key = std::tuple<int, double, double>;
+    static std::mutex mu;
+    static std::list<std::pair<Key, std::shared_ptr<const NodalBasis>>> kept;
+    const Key key{M, a_, b_};
+    {
+      const std::lock_guard<std::mutex> lock(mu);
+      for (const auto& [k, nb] : kept)
+        if (k == key && nb->P.rows() >= count) return *(mine = nb);
+    }
+    // (At least 64 rows, or as many as share this M: a ladder grows once.)
+    const int rows = std::max(count, std::min(64, (M - 64) / 16));
+    auto nb = std::make_shared<NodalBasis>();
+    const auto held = cached_rule(M, a_, b_);
+    const JacobiRule& rule = *held;
+    const std::vector<double>& h = norms(rows);
+    nb->s.assign(rule.x.data(), rule.x.data() + rule.x.size());
+    nb->P.resize(rows, rule.x.size());
+    std::vector<double> P(static_cast<std::size_t>(rows));
+    for (Eigen::Index j = 0; j < rule.x.size(); ++j) {
+      basis(rule.x(j), rows, P.data());
+      for (int m = 0; m < rows; ++m)
+        nb->P(m, j) = rule.w(j) * P[static_cast<std::size_t>(m)] / h[static_cast<std::size_t>(m)];
+    }
+    mine = nb;
+    const std::lock_guard<std::mutex> lock(mu);
+    kept.remove_if([&](const auto& e) { return e.first == key; });
+    kept.emplace_front(key, mine);
+    if (kept.size() > 2) kept.pop_back();
+    return *mine;
+  }
   // h_m = int Q_m^2 (1 - s)^a (1 + s)^b ds by a rule exact for them.
   const std::vector<double>& norms(int count) const {
     if (static_cast<int>(norms_.size()) >= count) return norms_;
@@ -1282,10 +1330,13 @@ WidthEval eval_width_profile(const ChebyshevNodes& nd, double w, const Asymmetri
   // not move with c, as sum_j Z_j f'(c + w s_j) with Z = A zeta once per width.
   std::vector<double> zs, zw;
   if (proj.nodal()) proj.nodal_functional(zeta, w, zs, zw);
+  std::vector<double> xs(zs.size()), fs(zs.size());
   auto gamma = [&](double c) {
     if (proj.nodal()) {
+      for (std::size_t j = 0; j < zs.size(); ++j) xs[j] = c + zs[j];
+      prof.slopes(xs.data(), static_cast<int>(xs.size()), fs.data());
       double sum = 0.0;
-      for (std::size_t j = 0; j < zs.size(); ++j) sum += zw[j] * prof.slope(c + zs[j]);
+      for (std::size_t j = 0; j < zs.size(); ++j) sum += zw[j] * fs[j];
       return sum;
     }
     const std::vector<double> q = proj.coefficients(c, w, n + 1);

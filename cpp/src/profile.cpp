@@ -199,6 +199,15 @@ PunchProfile::PunchProfile(ProfileKind kind, double radius, double half_width,
       const auto last = static_cast<std::size_t>(n - 1);
       m_[last] = (1.0 + hl / hm) * m_[last - 1] - (hl / hm) * m_[last - 2];
       y0_ = spline(0.0, nullptr);
+      // The slope on interval i in r = x - x_i: d0 + d1 r + d2 r^2 (spline()'s
+      // slope expanded), for slopes().
+      dq_.resize(3 * (x.size() - 1));
+      for (std::size_t i = 0; i + 1 < x.size(); ++i) {
+        const double hi = x_[i + 1] - x_[i];
+        dq_[3 * i] = -m_[i] * hi / 2.0 + (y_[i + 1] - y_[i]) / hi - (m_[i + 1] - m_[i]) * hi / 6.0;
+        dq_[3 * i + 1] = m_[i];
+        dq_[3 * i + 2] = (m_[i + 1] - m_[i]) / (2.0 * hi);
+      }
       break;
     }
   }
@@ -243,6 +252,31 @@ double PunchProfile::slope(double x) const {
     }
   }
   return 0.0;
+}
+
+void PunchProfile::slopes(const double* x, int n, double* out) const {
+  if (kind_ != ProfileKind::table || n <= 0) {
+    for (int i = 0; i < n; ++i) out[i] = slope(x[i]);
+    return;
+  }
+  // Ascending points walk the knots once (any other order: one by one).
+  for (int i = 1; i < n; ++i)
+    if (!(x[i] >= x[i - 1])) {
+      for (int j = 0; j < n; ++j) out[j] = slope(x[j]);
+      return;
+    }
+  if (outside(x[0], lower_, upper_)) beyond(x[0], lower_, upper_);
+  if (outside(x[n - 1], lower_, upper_)) beyond(x[n - 1], lower_, upper_);
+  const std::size_t last = x_.size() - 2;
+  std::size_t k = static_cast<std::size_t>(
+      std::clamp<std::ptrdiff_t>(std::upper_bound(x_.begin(), x_.end(), x[0]) - x_.begin() - 1, 0,
+                                 static_cast<std::ptrdiff_t>(last)));
+  for (int i = 0; i < n; ++i) {
+    const double xi = std::clamp(x[i], lower_, upper_);
+    while (k < last && x_[k + 1] <= xi) ++k;
+    const double r = xi - x_[k];
+    out[i] = dq_[3 * k] + r * (dq_[3 * k + 1] + r * dq_[3 * k + 2]);
+  }
 }
 
 double PunchProfile::height(double x) const {
@@ -318,10 +352,44 @@ double linear_cos_integral(int m, double A, double w, double t0, double t1) {
 }
 }  // namespace
 
+std::vector<SlopePiece> PunchProfile::slope_pieces(double c, double w) const {
+  std::vector<SlopePiece> out;
+  if (kind_ != ProfileKind::table) return out;
+  const int last = static_cast<int>(x_.size()) - 2;  // the last interval
+  // f'(x) = (-M_i l^2 + M_{i+1} r^2)/(2 h) + (y_{i+1} - y_i)/h - (M_{i+1} - M_i) h/6
+  // on interval i (l = x_{i+1} - x, r = x - x_i), with x = c + w t.
+  auto piece = [&](int i, double lo, double hi) {
+    const auto k = static_cast<std::size_t>(i);
+    const double h = x_[k + 1] - x_[k], L0 = x_[k + 1] - c, R0 = c - x_[k];
+    const double mi = m_[k], mj = m_[k + 1];
+    SlopePiece p;
+    p.lo = lo;
+    p.hi = hi;
+    p.e0 =
+        (-mi * L0 * L0 + mj * R0 * R0) / (2.0 * h) + (y_[k + 1] - y_[k]) / h - (mj - mi) * h / 6.0;
+    p.e1 = w * (mi * L0 + mj * R0) / h;
+    p.e2 = w * w * (mj - mi) / (2.0 * h);
+    out.push_back(p);
+  };
+  // The interval just above c - w, then one piece per knot inside (c - w, c + w).
+  const auto first = std::upper_bound(x_.begin(), x_.end(), c - w);
+  int i = std::clamp(static_cast<int>(first - x_.begin()) - 1, 0, last);
+  double lo = -1.0;
+  for (int k = i + 1; k <= last && x_[static_cast<std::size_t>(k)] < c + w; ++k) {
+    const double t = std::clamp((x_[static_cast<std::size_t>(k)] - c) / w, -1.0, 1.0);
+    if (t <= lo) continue;
+    piece(i, lo, t);
+    lo = t;
+    i = k;
+  }
+  piece(i, lo, 1.0);
+  return out;
+}
+
 std::vector<double> PunchProfile::table_cos_moments(double c, double w, double theta_end,
                                                     int count) const {
-  // The spline's slope is a quadratic q_i(x) on each knot interval; with
-  // x = c + w cos th it is g0 + g1 cos th + g2 cos 2 th there, and
+  // The spline's slope is a quadratic e0 + e1 t + e2 t^2 on each piece
+  // (slope_pieces); with t = cos th it is g0 + g1 cos th + g2 cos 2 th, and
   // int cos(k th) cos(m th) = (F_{|m-k|} + F_{m+k})/2 with F_j(th) = sin(j th)/j
   // (F_0 = th). Summed over the pieces between the breakpoints th_b (the
   // knots inside the range), the antiderivatives telescope: each breakpoint
@@ -330,29 +398,16 @@ std::vector<double> PunchProfile::table_cos_moments(double c, double w, double t
   constexpr double kPi = 3.14159265358979323846;
   std::vector<double> d(static_cast<std::size_t>(std::max(count, 0)), 0.0);
   if (count <= 0) return d;
-  const int last = static_cast<int>(x_.size()) - 2;  // the last interval
-  const double x_top = c + w, x_end = c + w * std::cos(theta_end);
-  auto interval = [&](double x) {  // the interval holding x (just below it at a knot)
-    const auto it = std::lower_bound(x_.begin(), x_.end(), x);
-    return std::clamp(static_cast<int>(it - x_.begin()) - 1, 0, last);
-  };
-  // (g0, g1, g2) of interval i: f'(x) = (-M_i l^2 + M_{i+1} r^2)/(2 h) + (y_{i+1} -
-  // y_i)/h - (M_{i+1} - M_i) h/6, l = x_{i+1} - x, r = x - x_i, x = c + w u.
-  auto piece = [&](int i, double g[3]) {
-    const auto s = static_cast<std::size_t>(i);
-    const double h = x_[s + 1] - x_[s], L0 = x_[s + 1] - c, R0 = c - x_[s];
-    const double mi = m_[s], mj = m_[s + 1];
-    const double e0 =
-        (-mi * L0 * L0 + mj * R0 * R0) / (2.0 * h) + (y_[s + 1] - y_[s]) / h - (mj - mi) * h / 6.0;
-    const double e1 = w * (mi * L0 + mj * R0) / h, e2 = w * w * (mj - mi) / (2.0 * h);
-    g[0] = e0 + 0.5 * e2;  // u^2 = (1 + cos 2 th)/2
-    g[1] = e1;
-    g[2] = 0.5 * e2;
+  const std::vector<SlopePiece> pieces = slope_pieces(c, w);
+  auto cosines = [](const SlopePiece& p, double g[3]) {
+    g[0] = p.e0 + 0.5 * p.e2;  // t^2 = (1 + cos 2 th)/2
+    g[1] = p.e1;
+    g[2] = 0.5 * p.e2;
   };
   // H_k(j) = sum_b jump_k(b) F_j(th_b) + g_k(last piece) F_j(theta_end), j <= count + 1.
   const int J = count + 2;
   std::vector<double> H(3 * static_cast<std::size_t>(J), 0.0);
-  // th = acos(u), u = cos th (the breakpoint's (x - c)/w).
+  // th = acos(u), u = cos th (the breakpoint's t).
   auto add = [&](double th, double u, const double g[3]) {
     // F_j(th) = sin(j th)/j by rotation, recomputed every 32 steps.
     const double s1 = std::sqrt((1.0 - u) * (1.0 + u)), c1 = u;
@@ -375,21 +430,20 @@ std::vector<double> PunchProfile::table_cos_moments(double c, double w, double t
       H[2 * static_cast<std::size_t>(J) + o] += g[2] * F;
     }
   };
-  // Knots strictly inside (x_end, x_top), from the top (th increasing).
-  int above = interval(x_top);
+  // From the top piece (th = 0) down to t_end = cos theta_end.
+  const double t_end = std::cos(theta_end);
+  std::size_t idx = pieces.size() - 1;
   double ga[3];
-  piece(above, ga);
-  for (int k = above; k >= 1 && x_[static_cast<std::size_t>(k)] > x_end; --k) {
-    const double xk = x_[static_cast<std::size_t>(k)];
-    if (xk >= x_top) continue;
+  cosines(pieces[idx], ga);
+  for (; idx > 0 && pieces[idx].lo > t_end; --idx) {
     double gb[3];
-    piece(k - 1, gb);
+    cosines(pieces[idx - 1], gb);
     const double jump[3] = {ga[0] - gb[0], ga[1] - gb[1], ga[2] - gb[2]};
-    const double u = std::clamp((xk - c) / w, -1.0, 1.0);
+    const double u = pieces[idx].lo;
     add(std::acos(u), u, jump);
     std::copy(gb, gb + 3, ga);
   }
-  add(theta_end, std::cos(theta_end), ga);
+  add(theta_end, t_end, ga);
   for (int m = 0; m < count; ++m) {
     double sum = 0.0;
     for (int k = 0; k <= 2; ++k) {

@@ -380,3 +380,30 @@ TEST(Profiles, TableProjectionIsExactOnTheSplinePieces) {
         << q;
   EXPECT_THROW(tab.slope_chebyshev_at(0.5, 2.5, 8), std::domain_error);
 }
+
+TEST(Profiles, TableSlopesAtManyPointsAreSlopeAtEach) {
+  // slopes() walks a table's knots once for ascending points (its slope's
+  // polynomial per interval): slope()'s values to round-off, any order, the
+  // knots themselves included; outside the table it throws as slope() does.
+  std::vector<double> x, y;
+  for (int i = 0; i <= 50; ++i) {
+    const double t = -1.0 + 2.0 * i / 50.0;
+    x.push_back(2.0 * t + 0.3 * std::sin(2.0 * t));
+    y.push_back(std::cosh(x.back()) + 0.1 * x.back());
+  }
+  const PunchProfile tab(ProfileKind::table, 0.0, 0.0, x, y);
+  std::vector<double> pts;
+  for (int i = 0; i <= 700; ++i) pts.push_back(x.front() + (x.back() - x.front()) * i / 700.0);
+  pts.insert(pts.end(), x.begin(), x.end());
+  std::sort(pts.begin(), pts.end());
+  std::vector<double> out(pts.size());
+  tab.slopes(pts.data(), static_cast<int>(pts.size()), out.data());
+  for (std::size_t i = 0; i < pts.size(); ++i)
+    EXPECT_NEAR(out[i], tab.slope(pts[i]), 1e-13 * (1.0 + std::fabs(tab.slope(pts[i])))) << i;
+  std::reverse(pts.begin(), pts.end());  // descending: one by one
+  tab.slopes(pts.data(), static_cast<int>(pts.size()), out.data());
+  for (std::size_t i = 0; i < pts.size(); ++i) EXPECT_EQ(out[i], tab.slope(pts[i])) << i;
+  const double beyond[2] = {0.0, x.back() + 0.1};
+  double two[2];
+  EXPECT_THROW(tab.slopes(beyond, 2, two), std::domain_error);
+}

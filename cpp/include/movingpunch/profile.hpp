@@ -8,6 +8,12 @@
 
 namespace movingpunch {
 
+// A table's slope on a contact (c - w, c + w) is a quadratic in t = (x - c)/w
+// between the knots: f'(c + w t) = e0 + e1 t + e2 t^2 on lo <= t <= hi.
+struct SlopePiece {
+  double lo, hi, e0, e1, e2;
+};
+
 enum class ProfileKind {
   cylinder,      // f = x^2/(2 R) (the parabolic approximation of a circle)
   flat,          // a flat face |x| <= b with square corners: the contact is the face
@@ -34,6 +40,10 @@ class PunchProfile {
   ProfileKind kind() const noexcept { return kind_; }
   // f'(x). Throws std::domain_error beyond extent().
   double slope(double x) const;
+  // slope() at n points (a table's ascending points in one walk over its
+  // knots, its slope's polynomial per interval: slope()'s values to
+  // round-off). Throws as slope() does.
+  void slopes(const double* x, int n, double* out) const;
   // f(x) - f(0). Throws std::domain_error beyond extent().
   double height(double x) const;
   // The largest |x| the shape is defined to on both sides: min(-x_0, x_{n-1})
@@ -77,6 +87,10 @@ class PunchProfile {
   // bounded zone's half-plane Cauchy integral beside it, every term of its
   // series at once: zones.cpp.)
   double slope_chebyshev_poisson(double c, double w, double q) const;
+  // A table's slope on (c - w, c + w) piece by piece, ascending in t and
+  // covering [-1, 1] (one piece per knot interval; a contact past the table's
+  // ends extends its end pieces); empty for the other shapes.
+  std::vector<SlopePiece> slope_pieces(double c, double w) const;
   // The x where the shape's kinks lie (the rounded flat's face ends -b, b;
   // none otherwise): quadratures of the slope split there.
   std::vector<double> kinks() const;
@@ -90,7 +104,8 @@ class PunchProfile {
   bool symmetric_ = true;
   // The table's not-a-knot cubic spline: knots, values, second derivatives.
   std::vector<double> x_, y_, m_;
-  double y0_ = 0;  // the spline at x = 0
+  double y0_ = 0;           // the spline at x = 0
+  std::vector<double> dq_;  // the slope on interval i: d0 + d1 r + d2 r^2, r = x - x_i
   double spline(double x, double* slope) const;
   // (2/pi) int_0^theta_end f'(c + w cos th) cos(m th) d th, m < count, for the
   // table's spline, exactly (its slope is piecewise quadratic): O(knots in
