@@ -6,6 +6,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <list>
 #include <map>
@@ -1020,33 +1021,42 @@ std::vector<double> scan_points(double lo, double hi) {
 // scan are computed afresh. Entries of tables no longer alive are dropped.
 class ScanMemo {
  public:
+  // lambda at the scan's points xs (ln w): from the memo where a lattice
+  // point was computed before for this kernel table, shape and size, else by
+  // eval(w) (NaN for a width it does not take). `shape` names the punch's
+  // shape exactly (empty for the cylinder, whose lambda = R P needs none).
   static std::vector<double> lambdas(const std::shared_ptr<const AsymmetricKernel>& K,
-                                     const ChebyshevNodes& ns, const std::vector<double>& xs,
-                                     double phi1) {
+                                     const std::vector<double>& shape, int n,
+                                     const std::vector<double>& xs,
+                                     const std::function<double(double)>& eval) {
     static ScanMemo memo;
     std::vector<double> out(xs.size(), std::nan(""));
     std::vector<long> keys(xs.size(), kNoKey);
+    std::vector<char> known(xs.size(), 0);
     for (std::size_t i = 1; i + 1 < xs.size(); ++i) {
       const double k = std::round(xs[i] / kScanStep);
       if (static_cast<double>(k) * kScanStep == xs[i]) keys[i] = static_cast<long>(k);
     }
     {
       const std::lock_guard<std::mutex> lock(memo.mutex_);
-      const auto& values = memo.entry(K).values;
+      const auto& values = memo.entry(K, shape);
       for (std::size_t i = 0; i < xs.size(); ++i) {
-        const auto it = keys[i] == kNoKey ? values.end() : values.find({ns.n, keys[i]});
-        if (it != values.end()) out[i] = it->second;
+        const auto it = keys[i] == kNoKey ? values.end() : values.find({n, keys[i]});
+        if (it != values.end()) {
+          out[i] = it->second;
+          known[i] = 1;
+        }
       }
     }
     std::vector<std::pair<std::pair<int, long>, double>> fresh;
     for (std::size_t i = 0; i < xs.size(); ++i) {
-      if (!std::isnan(out[i])) continue;
-      out[i] = eval_width(ns, std::exp(xs[i]), *K, phi1).lambda;
-      if (keys[i] != kNoKey) fresh.push_back({{ns.n, keys[i]}, out[i]});
+      if (known[i]) continue;
+      out[i] = eval(std::exp(xs[i]));
+      if (keys[i] != kNoKey) fresh.push_back({{n, keys[i]}, out[i]});
     }
     if (!fresh.empty()) {
       const std::lock_guard<std::mutex> lock(memo.mutex_);
-      auto& values = memo.entry(K).values;
+      auto& values = memo.entry(K, shape);
       for (const auto& kv : fresh) values.insert(kv);
     }
     return out;
@@ -1054,24 +1064,44 @@ class ScanMemo {
 
  private:
   static constexpr long kNoKey = std::numeric_limits<long>::min();
+  static constexpr std::size_t kShapes = 32;  // per table: a sweep over shapes
+  using Values = std::map<std::pair<int, long>, double>;
   struct Entry {
     std::weak_ptr<const AsymmetricKernel> table;
     const AsymmetricKernel* raw = nullptr;
-    std::map<std::pair<int, long>, double> values;
+    std::map<std::vector<double>, Values> shapes;
   };
   std::mutex mutex_;
   std::vector<Entry> entries_;
-  // The entry of the live table K (mutex_ held).
-  Entry& entry(const std::shared_ptr<const AsymmetricKernel>& K) {
+  // The values of the live table K and this shape (mutex_ held).
+  Values& entry(const std::shared_ptr<const AsymmetricKernel>& K,
+                const std::vector<double>& shape) {
     entries_.erase(std::remove_if(entries_.begin(), entries_.end(),
                                   [](const Entry& e) { return e.table.expired(); }),
                    entries_.end());
+    Entry* found = nullptr;
     for (Entry& e : entries_)
-      if (e.raw == K.get()) return e;
-    entries_.push_back({K, K.get(), {}});
-    return entries_.back();
+      if (e.raw == K.get()) found = &e;
+    if (!found) {
+      entries_.push_back({K, K.get(), {}});
+      found = &entries_.back();
+    }
+    if (found->shapes.size() >= kShapes && !found->shapes.count(shape)) found->shapes.clear();
+    return found->shapes[shape];
   }
 };
+
+// The exact name of a punch's shape for ScanMemo (kind, radius, face, and a
+// table's points).
+std::vector<double> shape_key(const AsymmetricParams& prm) {
+  std::vector<double> key{static_cast<double>(static_cast<int>(prm.profile)), prm.radius,
+                          prm.half_width};
+  if (prm.profile == ProfileKind::table) {
+    key.insert(key.end(), prm.table_x.begin(), prm.table_x.end());
+    key.insert(key.end(), prm.table_y.begin(), prm.table_y.end());
+  }
+  return key;
+}
 
 // ---------------------------------------------------------------------------
 // A punch profile's slope on the asymmetric solver (docs/theory.md section
@@ -1872,21 +1902,19 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
     const std::vector<double> xs = scan_points(lo, hi);
     std::vector<double> lam;
     if (cylinder) {
-      lam = ScanMemo::lambdas(kern, ns, xs, phi1);
-    } else {  // a profile's load curve depends on its shape: not memoised
-      // Each width's centre search starts from the nearest width's centre
-      // (the scan's widths are ordered; the found contact's centre first).
+      lam = ScanMemo::lambdas(kern, {}, ns.n, xs,
+                              [&](double w) { return eval_width(ns, w, *kern, phi1).lambda; });
+    } else {
+      // A profile's load curve depends on its shape (not on the load): kept
+      // per shape. Each width's centre search starts from the last width's
+      // centre (the scan's widths are ordered; the found contact's first).
       double guess = s.centre_;
-      for (double x : xs) {
-        const double w = std::exp(x);
-        if (!(w > w0 && w <= wmax)) {
-          lam.push_back(std::nan(""));
-          continue;
-        }
+      lam = ScanMemo::lambdas(kern, shape_key(prm), ns.n, xs, [&](double w) {
+        if (!(w > w0 && w <= wmax)) return std::nan("");
         const WidthEval e = eval_width_profile(ns, w, *kern, phi1, proj, prof, guess);
         if (std::isfinite(e.lambda)) guess = e.centre;
-        lam.push_back(e.lambda);
-      }
+        return e.lambda;
+      });
     }
     double prev_x = lo, prev_f = std::nan("");
     for (std::size_t i = 0; i < xs.size(); ++i) {

@@ -410,3 +410,32 @@ def test_max_pressure_is_the_pressures_largest_value(extra: dict[str, float]) ->
     s = mp.solve(**BASE, profile=mp.RoundedFlat(0.3, 100.0), **extra)
     x = np.linspace(*s.contact_interval, 200001)[1:-1]
     assert s.max_pressure == pytest.approx(float(np.max(s.pressure(x))), rel=1e-7)
+
+
+def test_the_load_curve_scan_is_kept_per_shape() -> None:
+    """Above V*_cr a load can be carried by several contacts; the scan of the
+    load curve lambda(w) that finds them is kept per kernel table and shape
+    (it does not depend on the load). Kept values must give what a fresh
+    scan gives, and one shape's values must never answer for another's."""
+    soft = {"vstar": 0.65, "kw": 1.0, "damping": 0.01, "nu": 0.2}
+    several = {"profile": mp.RoundedFlat(0.1, 50.0), "load": 0.003}
+
+    def fresh(**kw: Any) -> Any:
+        mp.clear_kernel_cache()  # the kept scans go with their tables
+        return mp.solve(**soft, **kw)
+
+    a = fresh(**several)
+    assert len(a.other_half_widths) == 2  # measured: 0.776, 0.890
+    b = mp.solve(**soft, **several)  # the kept scan
+    assert b.other_half_widths == pytest.approx(a.other_half_widths, rel=1e-12)
+    # Other shapes on the same table after it: as fresh.
+    for other in (
+        {"profile": mp.RoundedFlat(0.1, 100.0), "load": 0.002},
+        {"profile": mp.RoundedFlat(0.2, 50.0), "load": 0.003},
+        {"radius": 50.0, "load": 0.003},
+    ):
+        mp.solve(**soft, **several)
+        kept = mp.solve(**soft, **other)
+        new = fresh(**other)
+        assert len(kept.other_half_widths) == len(new.other_half_widths), other
+        assert kept.other_half_widths == pytest.approx(new.other_half_widths, rel=1e-9)
