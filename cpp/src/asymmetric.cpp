@@ -791,8 +791,7 @@ double max_abs_density_long(const JacobiSeries& js, int head) {
   const Eigen::Index h = std::min<Eigen::Index>(js.size(), head);
   if (h == js.size()) return js.max_abs_density();
   // As max_abs_sine_series_long: the head's samples locate the three largest
-  // values, the whole series is sampled on 401 angles within two sample
-  // spacings of each.
+  // values, the whole series is sampled within two sample spacings of each.
   const JacobiSeries hs(js.alpha(), js.beta(), js.coefficients().head(h));
   const int m = 8 * static_cast<int>(h + 1) + 64;
   std::vector<double> r(static_cast<std::size_t>(m) - 1), g(r.size());
@@ -804,20 +803,49 @@ double max_abs_density_long(const JacobiSeries& js, int head) {
   const std::size_t keep = std::min<std::size_t>(3, top.size());
   std::partial_sort(top.begin(), top.begin() + static_cast<std::ptrdiff_t>(keep), top.end(),
                     [](const auto& x, const auto& y) { return x.first > y.first; });
-  std::vector<double> fine;
+  // Around each: 41 angles (a tenth of the head's spacing apart), then
+  // golden-section refinement on the best one's neighbours (to 1e-9 of that
+  // spacing), as max_abs_sine_series_long.
+  std::vector<double> fine_th, fine;
   for (std::size_t t = 0; t < keep; ++t) {
     const double th0 = kPi * top[t].second / m, dth = kPi / m;
-    for (int q = 0; q <= 400; ++q)
-      fine.push_back(std::cos(std::clamp(th0 + dth * (4.0 * q / 400.0 - 2.0), 0.0, kPi)));
+    for (int q = 0; q <= 40; ++q) {
+      fine_th.push_back(std::clamp(th0 + dth * (0.1 * q - 2.0), 0.0, kPi));
+      fine.push_back(std::cos(fine_th.back()));
+    }
   }
   std::vector<double> gf(fine.size());
   js.g_values(fine.data(), static_cast<int>(fine.size()), gf.data());
-  double best = 0.0;
+  double best = 0.0, best_th = 0.0;
   for (std::size_t i = 0; i < fine.size(); ++i) {
-    const double w = js.weight(fine[i]);
-    if (w != 0.0) best = std::max(best, std::fabs(w * gf[i]));
+    const double v = std::fabs(js.weight(fine[i]) * gf[i]);
+    if (v > best) {
+      best = v;
+      best_th = fine_th[i];
+    }
   }
-  return best;
+  auto at = [&](double th) { return std::fabs(js.density(std::cos(th))); };
+  const double gs = 0.1 * kPi / m;  // the fine spacing
+  double lo = std::max(0.0, best_th - gs), hi = std::min(kPi, best_th + gs);
+  constexpr double kInvPhi = 0.6180339887498949;
+  double x1 = hi - kInvPhi * (hi - lo), x2 = lo + kInvPhi * (hi - lo);
+  double f1 = at(x1), f2 = at(x2);
+  while (hi - lo > 1e-9 * gs) {
+    if (f1 > f2) {
+      hi = x2;
+      x2 = x1;
+      f2 = f1;
+      x1 = hi - kInvPhi * (hi - lo);
+      f1 = at(x1);
+    } else {
+      lo = x1;
+      x1 = x2;
+      f1 = f2;
+      x2 = lo + kInvPhi * (hi - lo);
+      f2 = at(x2);
+    }
+  }
+  return std::max({best, f1, f2});
 }
 
 double max_abs_sine_series(const Eigen::VectorXd& b) {
