@@ -3,7 +3,8 @@
 Each case runs in a fresh Python process (its imports done before the
 timing): its first solve on the paper's layer (V* 0.2, kw 1, nu 0.2,
 P/(mu h) 0.002), which finds the critical speed, builds the kernel table and
-any rule the path needs, then the median of --repeat solves at other loads
+any rule the path needs (the asymmetric table: 801 points of a parabola
+shifted by 0.2 h), then the median of --repeat solves at other loads
 (everything cached). Prints first, warm and their ratio, and the machine's
 load average; never asserts a time.
 
@@ -30,12 +31,16 @@ CASES = {
     "rounded flat, damping 0.5": (
         "dict(profile=mp.RoundedFlat(0.3, 100.0), damping=0.5)"
     ),
+    "asymmetric table": "dict(profile=TABLE)",
+    "asymmetric table, friction 0.3": "dict(profile=TABLE, friction=0.3)",
 }
 
 _CHILD = """
 import json, statistics, sys, time
 import movingpunch as mp
-kw = eval(sys.argv[1], {"mp": mp})
+_xs = [-1.5 + 4.0 * i / 800 for i in range(801)]  # the parabola x^2/200 shifted by 0.2
+TABLE = mp.Profile(tuple(_xs), tuple((x - 0.2) ** 2 / 200.0 for x in _xs))
+kw = eval(sys.argv[1], {"mp": mp, "TABLE": TABLE})
 repeat = int(sys.argv[2])
 base = {"vstar": 0.2, "kw": 1.0, "nu": 0.2}
 t0 = time.perf_counter()

@@ -2557,6 +2557,17 @@ AsymmetricSolution::Fine AsymmetricSolution::build_fine(double freq, const Eigen
   const AsymmetricQuadrature& Q = kernel_->quadrature();
   const auto& P = Q.panels;
   const double width = std::min(0.5, 1.5 / std::max(freq, 1e-300));
+  std::size_t total = 0;  // panels after splitting (reserved: a few hundred nodes)
+  for (std::size_t p = 0; p < P.panel_centre.size(); ++p)
+    total += static_cast<std::size_t>(
+        std::max(1, static_cast<int>(std::ceil(2.0 * P.panel_half[p] / width))));
+  panels.panel_centre.reserve(total);
+  panels.panel_half.reserve(total);
+  f.alpha.reserve(15 * total);
+  f.weight.reserve(15 * total);
+  f.r.reserve(15 * total);
+  f.phat.reserve(15 * total);
+  if (db != nullptr) dphat->reserve(dphat->size() + 15 * total);
   for (std::size_t p = 0; p < P.panel_centre.size(); ++p) {
     const double lo = P.panel_centre[p] - P.panel_half[p];
     const double len = 2.0 * P.panel_half[p];
