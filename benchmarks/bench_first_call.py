@@ -5,8 +5,10 @@ timing): its first solve on the paper's layer (V* 0.2, kw 1, nu 0.2,
 P/(mu h) 0.002), which finds the critical speed, builds the kernel table and
 any rule the path needs (the asymmetric table: 801 points of a parabola
 shifted by 0.2 h), then the median of --repeat solves at other loads
-(everything cached). Prints first, warm and their ratio, and the machine's
-load average; never asserts a time.
+(everything cached), and the median of --repeat solves at new speeds
+V* = 0.21, 0.22, ... (a speed sweep's points: new end exponents, kernel
+tables and rules). Prints first, warm, new-speed and their ratios, and the
+machine's load average; never asserts a time.
 
     .venv/bin/python benchmarks/bench_first_call.py [--repeat 5]
 """
@@ -51,7 +53,13 @@ for k in range(repeat):
     t0 = time.perf_counter()
     mp.solve(**base, load=0.002 * (1 + 1e-3 * (k + 1)), **kw)
     warm.append(time.perf_counter() - t0)
-print(json.dumps({"first": first, "warm": statistics.median(warm)}))
+speed = []  # a speed sweep's point: new end exponents, kernel and rules
+for k in range(repeat):
+    t0 = time.perf_counter()
+    mp.solve(**{**base, "vstar": 0.2 + 0.01 * (k + 1)}, load=0.002, **kw)
+    speed.append(time.perf_counter() - t0)
+print(json.dumps({"first": first, "warm": statistics.median(warm),
+                  "speed": statistics.median(speed)}))
 """
 
 
@@ -60,7 +68,10 @@ def main() -> None:
     parser.add_argument("--repeat", type=int, default=5)
     args = parser.parse_args()
     print(f"load average: {os.getloadavg()[0]:.2f} ({os.cpu_count()} cores)")
-    print(f"{'path':28} {'first ms':>9} {'warm ms':>9} {'first/warm':>10}")
+    print(
+        f"{'path':30} {'first ms':>9} {'warm ms':>9} {'first/warm':>10} "
+        f"{'new V* ms':>10} {'/warm':>6}"
+    )
     for name, expr in CASES.items():
         out = subprocess.run(
             [sys.executable, "-c", _CHILD, expr, str(args.repeat)],
@@ -69,8 +80,11 @@ def main() -> None:
             text=True,
         )
         r = json.loads(out.stdout.splitlines()[-1])
-        first, warm = 1e3 * r["first"], 1e3 * r["warm"]
-        print(f"{name:28} {first:9.2f} {warm:9.2f} {first / warm:10.1f}")
+        first, warm, speed = 1e3 * r["first"], 1e3 * r["warm"], 1e3 * r["speed"]
+        print(
+            f"{name:30} {first:9.2f} {warm:9.2f} {first / warm:10.1f} "
+            f"{speed:10.2f} {speed / warm:6.1f}"
+        )
     print(f"load average: {os.getloadavg()[0]:.2f}")
 
 
