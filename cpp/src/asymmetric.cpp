@@ -696,6 +696,33 @@ void sine_series4(const Eigen::VectorXd& b, const double* th, double* out) {
 }
 }  // namespace
 
+namespace {
+// Golden-section search for the largest f on [lo, hi] (around a sampled
+// maximum), down to a bracket of tol: the larger of its last two values.
+template <class F>
+double golden_max(const F& f, double lo, double hi, double tol) {
+  constexpr double kInvPhi = 0.6180339887498949;
+  double x1 = hi - kInvPhi * (hi - lo), x2 = lo + kInvPhi * (hi - lo);
+  double f1 = f(x1), f2 = f(x2);
+  while (hi - lo > tol) {
+    if (f1 > f2) {
+      hi = x2;
+      x2 = x1;
+      f2 = f1;
+      x1 = hi - kInvPhi * (hi - lo);
+      f1 = f(x1);
+    } else {
+      lo = x1;
+      x1 = x2;
+      f1 = f2;
+      x2 = lo + kInvPhi * (hi - lo);
+      f2 = f(x2);
+    }
+  }
+  return std::max(f1, f2);
+}
+}  // namespace
+
 double max_abs_sine_series_long(const Eigen::VectorXd& b, int head) {
   const Eigen::Index h = std::min<Eigen::Index>(b.size(), head);
   if (h == b.size()) return max_abs_sine_series(b);
@@ -729,26 +756,9 @@ double max_abs_sine_series_long(const Eigen::VectorXd& b, int head) {
     }
   }
   const double g = 0.1 * kPi / m;  // the fine spacing
-  double lo = std::max(0.0, best_th - g), hi = std::min(kPi, best_th + g);
-  constexpr double kInvPhi = 0.6180339887498949;
-  double x1 = hi - kInvPhi * (hi - lo), x2 = lo + kInvPhi * (hi - lo);
-  double f1 = std::fabs(sine_series(b, x1)), f2 = std::fabs(sine_series(b, x2));
-  while (hi - lo > 1e-9 * g) {
-    if (f1 > f2) {
-      hi = x2;
-      x2 = x1;
-      f2 = f1;
-      x1 = hi - kInvPhi * (hi - lo);
-      f1 = std::fabs(sine_series(b, x1));
-    } else {
-      lo = x1;
-      x1 = x2;
-      f1 = f2;
-      x2 = lo + kInvPhi * (hi - lo);
-      f2 = std::fabs(sine_series(b, x2));
-    }
-  }
-  return std::max({best, f1, f2});
+  return std::max(best,
+                  golden_max([&](double th) { return std::fabs(sine_series(b, th)); },
+                             std::max(0.0, best_th - g), std::min(kPi, best_th + g), 1e-9 * g));
 }
 
 double head_sine_bound(const Eigen::VectorXd& b, int head) {
@@ -757,12 +767,9 @@ double head_sine_bound(const Eigen::VectorXd& b, int head) {
 }
 
 namespace {
-// max |w g| of a series whose terms are all of high degree (a tail block):
-// sampled at about two angles per degree (four per oscillation), the three
-// largest samples refined on 41-point grids spanning a sample spacing on
-// either side.
-double max_abs_density_coarse(const JacobiSeries& js) {
-  const int m = 2 * (js.size() + 1) + 64;
+// |w g| of a Jacobi series at the angles pi j/m (0 < j < m): the three
+// largest, as (value, j), largest first.
+std::vector<std::pair<double, int>> largest_density_samples(const JacobiSeries& js, int m) {
   std::vector<double> r(static_cast<std::size_t>(m) - 1), g(r.size());
   for (int j = 1; j < m; ++j) r[static_cast<std::size_t>(j - 1)] = std::cos(kPi * j / m);
   js.g_values(r.data(), static_cast<int>(r.size()), g.data());
@@ -772,6 +779,18 @@ double max_abs_density_coarse(const JacobiSeries& js) {
   const std::size_t keep = std::min<std::size_t>(3, top.size());
   std::partial_sort(top.begin(), top.begin() + static_cast<std::ptrdiff_t>(keep), top.end(),
                     [](const auto& x, const auto& y) { return x.first > y.first; });
+  top.resize(keep);
+  return top;
+}
+
+// max |w g| of a series whose terms are all of high degree (a tail block):
+// sampled at about two angles per degree (four per oscillation), the three
+// largest samples refined on 41-point grids spanning a sample spacing on
+// either side.
+double max_abs_density_coarse(const JacobiSeries& js) {
+  const int m = 2 * (js.size() + 1) + 64;
+  const std::vector<std::pair<double, int>> top = largest_density_samples(js, m);
+  const std::size_t keep = top.size();
   double best = keep ? top.front().first : 0.0;
   std::vector<double> fine;
   for (std::size_t t = 0; t < keep; ++t) {
@@ -794,15 +813,8 @@ double max_abs_density_long(const JacobiSeries& js, int head) {
   // values, the whole series is sampled within two sample spacings of each.
   const JacobiSeries hs(js.alpha(), js.beta(), js.coefficients().head(h));
   const int m = 8 * static_cast<int>(h + 1) + 64;
-  std::vector<double> r(static_cast<std::size_t>(m) - 1), g(r.size());
-  for (int j = 1; j < m; ++j) r[static_cast<std::size_t>(j - 1)] = std::cos(kPi * j / m);
-  hs.g_values(r.data(), static_cast<int>(r.size()), g.data());
-  std::vector<std::pair<double, int>> top;
-  for (std::size_t i = 0; i < r.size(); ++i)
-    top.emplace_back(std::fabs(hs.weight(r[i]) * g[i]), static_cast<int>(i) + 1);
-  const std::size_t keep = std::min<std::size_t>(3, top.size());
-  std::partial_sort(top.begin(), top.begin() + static_cast<std::ptrdiff_t>(keep), top.end(),
-                    [](const auto& x, const auto& y) { return x.first > y.first; });
+  const std::vector<std::pair<double, int>> top = largest_density_samples(hs, m);
+  const std::size_t keep = top.size();
   // Around each: 41 angles (a tenth of the head's spacing apart), then
   // golden-section refinement on the best one's neighbours (to 1e-9 of that
   // spacing), as max_abs_sine_series_long.
@@ -824,28 +836,10 @@ double max_abs_density_long(const JacobiSeries& js, int head) {
       best_th = fine_th[i];
     }
   }
-  auto at = [&](double th) { return std::fabs(js.density(std::cos(th))); };
-  const double gs = 0.1 * kPi / m;  // the fine spacing
-  double lo = std::max(0.0, best_th - gs), hi = std::min(kPi, best_th + gs);
-  constexpr double kInvPhi = 0.6180339887498949;
-  double x1 = hi - kInvPhi * (hi - lo), x2 = lo + kInvPhi * (hi - lo);
-  double f1 = at(x1), f2 = at(x2);
-  while (hi - lo > 1e-9 * gs) {
-    if (f1 > f2) {
-      hi = x2;
-      x2 = x1;
-      f2 = f1;
-      x1 = hi - kInvPhi * (hi - lo);
-      f1 = at(x1);
-    } else {
-      lo = x1;
-      x1 = x2;
-      f1 = f2;
-      x2 = lo + kInvPhi * (hi - lo);
-      f2 = at(x2);
-    }
-  }
-  return std::max({best, f1, f2});
+  const double g = 0.1 * kPi / m;  // the fine spacing
+  return std::max(best,
+                  golden_max([&](double th) { return std::fabs(js.density(std::cos(th))); },
+                             std::max(0.0, best_th - g), std::min(kPi, best_th + g), 1e-9 * g));
 }
 
 double max_abs_sine_series(const Eigen::VectorXd& b) {
