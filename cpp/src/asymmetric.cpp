@@ -2551,10 +2551,14 @@ AsymmetricSolution::Fine AsymmetricSolution::build_fine(double freq, const Eigen
   const AsymmetricQuadrature& Q = kernel_->quadrature();
   const auto& P = Q.panels;
   const double width = std::min(0.5, 1.5 / std::max(freq, 1e-300));
-  std::size_t total = 0;  // panels after splitting (reserved: a few hundred nodes)
-  for (std::size_t p = 0; p < P.panel_centre.size(); ++p)
-    total += static_cast<std::size_t>(
-        std::max(1, static_cast<int>(std::ceil(2.0 * P.panel_half[p] / width))));
+  // Each panel split into pieces no wider than `width` (counted first: the
+  // vectors are reserved, a few hundred nodes).
+  std::vector<int> split(P.panel_centre.size());
+  std::size_t total = 0;
+  for (std::size_t p = 0; p < split.size(); ++p) {
+    split[p] = std::max(1, static_cast<int>(std::ceil(2.0 * P.panel_half[p] / width)));
+    total += static_cast<std::size_t>(split[p]);
+  }
   panels.panel_centre.reserve(total);
   panels.panel_half.reserve(total);
   f.alpha.reserve(15 * total);
@@ -2565,7 +2569,7 @@ AsymmetricSolution::Fine AsymmetricSolution::build_fine(double freq, const Eigen
   for (std::size_t p = 0; p < P.panel_centre.size(); ++p) {
     const double lo = P.panel_centre[p] - P.panel_half[p];
     const double len = 2.0 * P.panel_half[p];
-    const int m = std::max(1, static_cast<int>(std::ceil(len / width)));
+    const int m = split[p];
     for (int q = 0; q < m; ++q) {
       const double c = lo + (q + 0.5) * len / m, h = 0.5 * len / m;
       panels.panel_centre.push_back(c);

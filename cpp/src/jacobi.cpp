@@ -44,43 +44,9 @@ EndExponents end_exponents(double f, double Phi) {
 }
 
 namespace {
-// sum_k c_k P_{k + shift}^(a, b)(z) and its derivative (*dsum, if given) by
-// the three-term recurrence, real or complex z; any a, b with a + b != -2.
-template <class T>
-T jacobi_series(const Eigen::VectorXd& c, double a, double b, T z, int shift, T* dsum) {
-  const int n = static_cast<int>(c.size());
-  T p0 = 1.0, p1 = 0.5 * ((a + b + 2.0) * z + (a - b)), d0 = 0.0, d1 = 0.5 * (a + b + 2.0);
-  T sum = 0.0, ds = 0.0;
-  auto add = [&](int degree, const T& p, const T& d) {
-    const int k = degree - shift;
-    if (k >= 0 && k < n) {
-      sum += c(k) * p;
-      ds += c(k) * d;
-    }
-  };
-  add(0, p0, d0);
-  add(1, p1, d1);
-  for (int k = 1; k < n + shift - 1; ++k) {
-    const double kk = k, s = 2.0 * kk + a + b;
-    const double c0 = 2.0 * (kk + 1.0) * (kk + a + b + 1.0) * s;
-    const T c1 = (s + 1.0) * ((s + 2.0) * s * z + a * a - b * b);
-    const double c1x = (s + 1.0) * (s + 2.0) * s;
-    const double c2 = 2.0 * (kk + a) * (kk + b) * (s + 2.0);
-    const T p2 = (c1 * p1 - c2 * p0) / c0;
-    const T d2 = (c1 * d1 + c1x * p1 - c2 * d0) / c0;
-    p0 = p1;
-    p1 = p2;
-    d0 = d1;
-    d1 = d2;
-    add(k + 1, p1, d1);
-  }
-  if (dsum) *dsum = ds;
-  return sum;
-}
-
 // The recurrence P_0 = 1, P_1 = A_0 z + B_0, P_{k+1} = (A_k z + B_k) P_k -
 // C_k P_{k-1} (k >= 1) of P^(a, b), for degrees up to `top` (the coefficients
-// of jacobi_series' loop, divided once).
+// of jacobi_p's recurrence, divided once).
 struct Recurrence {
   std::vector<double> A, B, C;
 };
@@ -148,22 +114,17 @@ T recurrence_series(const Recurrence& R, const Eigen::VectorXd& c, T z, int shif
 }
 }  // namespace
 
-void jacobi_p(int n, double a, double b, double x, double* p, double* dp) {
-  Eigen::VectorXd unit = Eigen::VectorXd::Zero(n + 1);
-  unit(n) = 1.0;
-  *p = jacobi_series(unit, a, b, x, 0, dp);
-}
-
 namespace {
 constexpr int kLanes = 8;
-// P_n^(a, b) and its derivative at count <= kLanes points together: the
-// arithmetic of jacobi_series (so jacobi_p's values, bit for bit), each
-// step's coefficients computed once for all the points and no allocation
-// (a rule of a thousand nodes evaluates P_n at each node three to five
-// times).
+// P_n^(a, b) and its derivative at count <= kLanes points together by the
+// three-term recurrence (any a, b with a + b != -2), each step's
+// coefficients computed once for all the points and no allocation (a rule of
+// a thousand nodes evaluates P_n at each node three to five times; jacobi_p
+// is its one-lane case).
+template <int L = kLanes>
 void jacobi_p_lanes(int n, double a, double b, const double* x, int count, double* p, double* dp) {
-  double z[kLanes], p0[kLanes], p1[kLanes], d0[kLanes], d1[kLanes];
-  for (int l = 0; l < kLanes; ++l) {
+  double z[L], p0[L], p1[L], d0[L], d1[L];
+  for (int l = 0; l < L; ++l) {
     z[l] = l < count ? x[l] : 0.0;
     p0[l] = 1.0;
     p1[l] = 0.5 * ((a + b + 2.0) * z[l] + (a - b));
@@ -175,7 +136,7 @@ void jacobi_p_lanes(int n, double a, double b, const double* x, int count, doubl
     const double c0 = 2.0 * (kk + 1.0) * (kk + a + b + 1.0) * s;
     const double c1x = (s + 1.0) * (s + 2.0) * s;
     const double c2 = 2.0 * (kk + a) * (kk + b) * (s + 2.0);
-    for (int l = 0; l < kLanes; ++l) {
+    for (int l = 0; l < L; ++l) {
       const double c1 = (s + 1.0) * ((s + 2.0) * s * z[l] + a * a - b * b);
       const double p2 = (c1 * p1[l] - c2 * p0[l]) / c0;
       const double d2 = (c1 * d1[l] + c1x * p1[l] - c2 * d0[l]) / c0;
@@ -191,6 +152,12 @@ void jacobi_p_lanes(int n, double a, double b, const double* x, int count, doubl
   }
 }
 }  // namespace
+
+void jacobi_p(int n, double a, double b, double x, double* p, double* dp) {
+  double d = 0.0;
+  jacobi_p_lanes<1>(n, a, b, &x, 1, p, &d);
+  if (dp) *dp = d;
+}
 
 namespace {
 // Newton's method on P_n from the guesses x, kLanes nodes at a time, at most

@@ -356,20 +356,11 @@ std::vector<SlopePiece> PunchProfile::slope_pieces(double c, double w) const {
   std::vector<SlopePiece> out;
   if (kind_ != ProfileKind::table) return out;
   const int last = static_cast<int>(x_.size()) - 2;  // the last interval
-  // f'(x) = (-M_i l^2 + M_{i+1} r^2)/(2 h) + (y_{i+1} - y_i)/h - (M_{i+1} - M_i) h/6
-  // on interval i (l = x_{i+1} - x, r = x - x_i), with x = c + w t.
+  // f' = d0 + d1 r + d2 r^2 on interval i (dq_), r = x - x_i = R0 + w t.
   auto piece = [&](int i, double lo, double hi) {
     const auto k = static_cast<std::size_t>(i);
-    const double h = x_[k + 1] - x_[k], L0 = x_[k + 1] - c, R0 = c - x_[k];
-    const double mi = m_[k], mj = m_[k + 1];
-    SlopePiece p;
-    p.lo = lo;
-    p.hi = hi;
-    p.e0 =
-        (-mi * L0 * L0 + mj * R0 * R0) / (2.0 * h) + (y_[k + 1] - y_[k]) / h - (mj - mi) * h / 6.0;
-    p.e1 = w * (mi * L0 + mj * R0) / h;
-    p.e2 = w * w * (mj - mi) / (2.0 * h);
-    out.push_back(p);
+    const double d0 = dq_[3 * k], d1 = dq_[3 * k + 1], d2 = dq_[3 * k + 2], R0 = c - x_[k];
+    out.push_back({lo, hi, d0 + R0 * (d1 + R0 * d2), w * (d1 + 2.0 * R0 * d2), w * w * d2});
   };
   // The interval just above c - w, then one piece per knot inside (c - w, c + w).
   const auto first = std::upper_bound(x_.begin(), x_.end(), c - w);
