@@ -64,6 +64,11 @@ TOL = 1e-8
 
 
 def load_peer(path: Path) -> ModuleType:
+    if not path.is_file():
+        raise SystemExit(
+            f"--peer: no such file {path} "
+            "(a module with solve(nu, vstar, kw, R, mu_over_P))"
+        )
     spec = importlib.util.spec_from_file_location("peer_numpy", path)
     if spec is None or spec.loader is None:
         raise SystemExit(f"cannot load the peer from {path}")
