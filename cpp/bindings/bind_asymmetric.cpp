@@ -128,28 +128,30 @@ void bind_asymmetric(py::module_& m) {
       [](double vstar, double kw, double radius, double load, double nu, double damping, double tol,
          bool allow_unphysical, int n, double kp, double friction, const std::string& profile,
          double half_width, const std::vector<double>& table_x, const std::vector<double>& table_y,
-         const LayerRows& layers, const std::string& base, const HalfSpaceRow& half_space) {
+         const LayerRows& layers, const std::string& base, const HalfSpaceRow& half_space,
+         const MaterialRows& materials) {
         auto p =
             solve_params<AsymmetricParams>(vstar, kw, radius, load, nu, tol, allow_unphysical, n);
         p.damping = damping;
         p.kp = kp;
         p.friction = friction;
         set_profile(p, profile, half_width, table_x, table_y);
-        p.medium = medium_spec(layers, base, kw, kp, damping, half_space);
+        p.medium = medium_spec(layers, base, kw, kp, damping, half_space, materials);
         return solve_asymmetric(p);
       },
       py::kw_only(), "vstar"_a, "kw"_a, "radius"_a, "load"_a, "nu"_a, "damping"_a, "tol"_a,
       "allow_unphysical"_a, "n"_a = 0, "kp"_a = 0.0, "friction"_a = 0.0, "profile"_a = "cylinder",
       "half_width"_a = 0.0, "table_x"_a = std::vector<double>{},
       "table_y"_a = std::vector<double>{}, "layers"_a = LayerRows{}, "base"_a = "springs",
-      "half_space"_a = default_half_space_row(), Interruptible(),
+      "half_space"_a = default_half_space_row(), "materials"_a = MaterialRows{}, Interruptible(),
       "Solves the contact problem on a damped (Kelvin-Voigt) foundation, damping = "
       "c_w c_T/mu > 0. Raises InvalidParameterError, SupercriticalSpeedError (vstar >= "
       "V*_R), UnphysicalContactError (unless allow_unphysical) or ConvergenceError. "
       "friction = f >= 0: Coulomb friction (damping may then be 0). profile: the punch's "
       "shape as solve_contact's ('cylinder', 'rounded_flat' or 'table'; an asymmetric table "
       "solves here with damping = 0 and friction = 0 too). layers, base, half_space: the medium, "
-      "as solve_contact's (damping > 0: the homogeneous layer only).");
+      "as solve_contact's (damping > 0: the homogeneous layer only); materials: per sublayer "
+      "(weights, deborahs, shift) of a viscoelastic material (empty weights: elastic).");
 
   m.def(
       "tangential_half_plane",

@@ -146,10 +146,18 @@ inline HalfSpaceRow default_half_space_row() {
   for (std::size_t i = 0; i < kHalfSpaceRow; ++i) r[i] = b.*kHalfSpaceFields[i].member;
   return r;
 }
+// The sublayers' materials (viscoelastic.hpp), one per row or none: (the
+// branches' weights, their deborah numbers, the shift factor); empty weights:
+// elastic.
+using MaterialRows = std::vector<std::tuple<std::vector<double>, std::vector<double>, double>>;
 inline std::shared_ptr<const MediumSpec> medium_spec(const LayerRows& layers,
                                                      const std::string& base, double kw, double kp,
-                                                     double damping,
-                                                     const HalfSpaceRow& half_space) {
+                                                     double damping, const HalfSpaceRow& half_space,
+                                                     const MaterialRows& materials = {}) {
+  if (!materials.empty() && materials.size() != layers.size())
+    throw InvalidParameter("materials", "one per sublayer",
+                           "materials: " + std::to_string(materials.size()) + " given for " +
+                               std::to_string(layers.size()) + " sublayers");
   if (layers.empty() && base == "springs") return nullptr;
   if (layers.empty())
     throw InvalidParameter("layers", "at least one sublayer",
@@ -159,6 +167,12 @@ inline std::shared_ptr<const MediumSpec> medium_spec(const LayerRows& layers,
   for (const auto& r : layers) {
     Sublayer l;
     for (std::size_t i = 0; i < kSublayerRow; ++i) l.*kSublayerFields[i].member = r[i];
+    if (!materials.empty()) {
+      const auto& [weights, deborahs, shift] = materials[m->layers.size()];
+      l.visco.weights = weights;
+      l.visco.deborahs = deborahs;
+      l.visco.shift = shift;
+    }
     m->layers.push_back(l);
   }
   if (base == "springs")

@@ -85,8 +85,14 @@ cplx u_series_transform(const Eigen::VectorXd& b, double centre, double half, do
 // ---------------------------------------------------------------------------
 // Complex layer response
 
-DampedLayerModel::DampedLayerModel(double vstar, double kw, double nu, double damping, double kp)
-    : c_(wave_constants(vstar, nu)), kw_(kw), damping_(damping), rigid_(std::isinf(kw)), kp_(kp) {
+DampedLayerModel::DampedLayerModel(double vstar, double kw, double nu, double damping, double kp,
+                                   Viscoelastic visco)
+    : c_(wave_constants(vstar, nu)),
+      kw_(kw),
+      damping_(damping),
+      rigid_(std::isinf(kw)),
+      kp_(kp),
+      visco_(std::move(visco)) {
   require_in_range("kw", kw, 0.0, kInf, true, false, true);
   require_in_range("damping", damping, 0.0, kInf, false, true);
   require_in_range("kp", kp, 0.0, kMaxKp, false, false);
@@ -95,7 +101,8 @@ DampedLayerModel::DampedLayerModel(double vstar, double kw, double nu, double da
 }
 
 cplx DampedLayerModel::foundation(double t) const noexcept {
-  return {kw_ + kp_ * t * t, -beta_ * t};
+  const cplx k{kw_ + kp_ * t * t, -beta_ * t};
+  return visco_.empty() ? k : k / visco_.modulus(t);
 }
 
 DampedResponse DampedLayerModel::response_modal(double t) const {
@@ -231,8 +238,11 @@ namespace {
 // The kernel's integrand (M1 - phi1)/phi1; with friction f > 0 that of the
 // effective response M1 - i f Wq less its half-plane limit phi1 - i f Wq_inf
 // (docs/theory.md section 14).
-cplx kernel_integrand(const Medium& m, const DampedResponse& r, double friction) {
+cplx kernel_integrand(const Medium& m, const DampedResponse& r, double t, double friction) {
   const double phi1 = m.phi1();
+  // A viscoelastic top: less its whole half-plane part (the memory's slow
+  // tail is the collocation's, MemoryKernel).
+  if (m.memory() != nullptr) return (r.M1 - m.half_plane_m1(t)) / phi1;
   if (!(friction > 0.0)) return (r.M1 - phi1) / phi1;
   return (r.M1 - phi1 - cplx(0.0, friction) * (r.Wq - m.tangential().Wq)) / phi1;
 }
@@ -255,7 +265,7 @@ DPanel eval_dpanel(const Medium& m, double lo, double hi, double friction) {
   double fmax = 0.0;
   for (int j = 0; j < 15; ++j) {
     p.r[j] = m.full_response(gk_node(j, c, h));
-    const cplx f = kernel_integrand(m, p.r[j], friction);
+    const cplx f = kernel_integrand(m, p.r[j], gk_node(j, c, h), friction);
     const cplx b = p.r[j].Wb;
     kf += gk_weight(j, h) * f;
     gf += g_weight(j, h) * f;
@@ -270,7 +280,8 @@ DPanel eval_dpanel(const Medium& m, double lo, double hi, double friction) {
   // resasc = int |f - mean f| by the same rule.
   double ra_f = 0.0, ra_b = 0.0;
   for (int j = 0; j < 15; ++j) {
-    ra_f += gk_weight(j, h) * std::abs(kernel_integrand(m, p.r[j], friction) - kf / (2.0 * h));
+    ra_f += gk_weight(j, h) *
+            std::abs(kernel_integrand(m, p.r[j], gk_node(j, c, h), friction) - kf / (2.0 * h));
     ra_b += gk_weight(j, h) * std::abs(p.r[j].Wb - kb / (2.0 * h));
   }
   auto qk = [](double e, double resasc) {
@@ -382,8 +393,8 @@ AsymmetricKernel::AsymmetricKernel(std::shared_ptr<const Medium> model, double r
   for (std::size_t i = 0; i < re.size(); ++i) {
     re[i] = (b->quad.m1[i].real() - phi1) / phi1;
     im[i] = b->quad.m1[i].imag() / phi1;
-    if (friction > 0.0) {  // M1 - i f (Wq - Wq_inf)
-      const cplx k = kernel_integrand(*b->model, b->quad.r[i], friction);
+    if (friction > 0.0 || b->model->memory() != nullptr) {  // M1 - i f (Wq - Wq_inf); M1 - H
+      const cplx k = kernel_integrand(*b->model, b->quad.r[i], b->quad.panels.alpha[i], friction);
       re[i] = k.real();
       im[i] = k.imag();
     }
@@ -540,16 +551,45 @@ void validate_asymmetric_medium(const MediumSpec& m) {
             std::to_string(m.base.damping) + " under " + describe(m));
 }
 
+namespace {
+void validate_scalars(const AsymmetricParams& p, bool material_dissipates);
+}  // namespace
+
 void validate(const AsymmetricParams& p) {
   if (p.medium) {
     validate_asymmetric_medium(*p.medium);
     // The scalar checks on the medium's own values (nu: the top's; damping
-    // > 0 unless friction or an asymmetric table asks for this solver).
+    // > 0 unless friction, an asymmetric table or a viscoelastic layer asks
+    // for this solver).
     AsymmetricParams r = with_medium_scalars(p);
     r.medium = nullptr;
-    validate(r);
+    const bool visco = p.medium->viscoelastic();
+    if (visco) {
+      if (p.vstar != 0.0)
+        throw InvalidParameter(
+            "vstar", "0 on a viscoelastic layer (quasi-static: the speed is in deborah)",
+            "vstar: a viscoelastic layer is solved quasi-statically (inertia neglected, vstar = "
+            "0; the speed enters through deborah = V tau/h); given vstar = " +
+                std::to_string(p.vstar));
+      if (p.friction != 0.0)
+        throw InvalidParameter("friction", "0 on a viscoelastic layer (not yet)",
+                               "friction: a viscoelastic layer is solved frictionless (friction "
+                               "= 0) so far; given friction = " +
+                                   std::to_string(p.friction));
+      if (p.punch().kind() != ProfileKind::cylinder)
+        throw InvalidParameter("profile", "a cylinder on a viscoelastic layer (not yet)",
+                               "profile: a viscoelastic layer is solved under a cylinder so far; "
+                               "given the " +
+                                   p.punch().describe());
+    }
+    validate_scalars(r, visco);
     return;
   }
+  validate_scalars(p, false);
+}
+
+namespace {
+void validate_scalars(const AsymmetricParams& p, bool material_dissipates) {
   require_in_range("vstar", p.vstar, 0.0, 1.0, false, true);
   require_in_range("kw", p.kw, 1e-12, kInf, false, false, true);
   // The shape's parameters (the cylinder's radius, a face's half-width, a
@@ -563,7 +603,8 @@ void validate(const AsymmetricParams& p) {
   // exponent is below 0.08 (a near-jump) and larger f costs minutes.
   require_in_range("friction", p.friction, 0.0, 10.0, false, false);
   // Without friction damping = 0 is the undamped solver's (contact.hpp).
-  require_in_range("damping", p.damping, 0.0, kInf, !(p.friction > 0.0) && !asymmetric_shape, true);
+  require_in_range("damping", p.damping, 0.0, kInf,
+                   !(p.friction > 0.0) && !asymmetric_shape && !material_dissipates, true);
   require_in_range("kp", p.kp, 0.0, kMaxKp, false, false);
   require_in_range("tol", p.tol, 1e-14, 1e-2, false, false);
   if (p.n != 0 && (p.n < 2 || p.n > 1024 || p.n % 2 != 0))
@@ -571,6 +612,7 @@ void validate(const AsymmetricParams& p) {
         "n", "0 (automatic) or an even integer in [2, 1024]",
         "n must be 0 (automatic) or an even integer in [2, 1024], got " + std::to_string(p.n));
 }
+}  // namespace
 
 // ---------------------------------------------------------------------------
 // Refinement estimates and series scans
@@ -893,6 +935,8 @@ Eigen::MatrixXd collocation_matrix(const ChebyshevNodes& nd, double w, const Asy
       const double d = nd.r(i) - nd.s(k);
       M(k, i) = nd.w(i) * (1.0 / d - w * kv[static_cast<std::size_t>(i) * (n + 1) + k]);
     }
+  // A viscoelastic top's memory, integrated exactly against the density.
+  if (const MemoryKernel* mem = K.model().memory()) M.leftCols(n) += mem->collocation_block(nd, w);
   M.col(n).setOnes();
   return M;
 }
@@ -1472,7 +1516,10 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
   if (!(prm.damping > 0.0) && !(prm.vstar < s.vcr_))
     throw SupercriticalSpeedError(prm.vstar, s.vcr_, s.vr_);
   const WaveConstants wc = wave_constants(prm.vstar, prm.nu);
-  const double phi1 = wc.phi1;
+  // The Cauchy term's coefficient: a viscoelastic top's unrelaxed half-plane's.
+  const double phi1 = prm.medium && prm.medium->viscoelastic()
+                          ? wc.phi1 / prm.medium->layers[0].visco.ratio()
+                          : wc.phi1;
   // Friction: Gauss-Jacobi collocation with the end exponents of
   // cot(pi back) = f Phi (docs/theory.md section 14); none: Gauss-Chebyshev.
   const bool frictional = prm.friction > 0.0;
@@ -2104,10 +2151,13 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
   s.min_gap_ = kInf;
   {
     const AsymmetricQuadrature& quad = kern->quadrature();
-    const double phi1m = kern->model().phi1();
+    const Medium& km = kern->model();
+    // The surface's shortest wave: where M1 differs from its half-plane part
+    // (a viscoelastic top's memory is added exactly, memory_part).
     const double step = detail::gap_step(
-        detail::response_band(quad.panels.alpha, quad.panels.weight,
-                              [&](std::size_t i) { return std::abs(quad.m1[i] - phi1m); }));
+        detail::response_band(quad.panels.alpha, quad.panels.weight, [&](std::size_t i) {
+          return std::abs(quad.m1[i] - km.half_plane_m1(quad.panels.alpha[i]));
+        }));
     for (int side = -1; side <= 1; side += 2) {
       const double edge = s.centre_ + side * s.half_;
       const double room = side < 0 ? edge - prof.lower() : prof.upper() - edge;
@@ -2117,10 +2167,14 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
       // interval when that reaches round-off (docs/theory.md section 15.2),
       // the Cauchy integral directly.
       const double lo = std::min(edge, edge + side * len), hi = std::max(edge, edge + side * len);
-      const detail::SmoothInterpolant smooth([&](double x) { return s.kernel_part(x); }, lo, hi);
+      // (A viscoelastic top's memory part, whose derivative has the pressure's
+      // square root at the edge, is added directly.)
+      const detail::SmoothInterpolant smooth([&](double x) { return s.regular_part(x); }, lo, hi);
       const double lp = prm.load * s.model_->phi1();
       auto gap_slope = [&](double x) {
-        if (smooth.ok()) return prof.slope(x) - lp * (-s.cauchy_part(x) + s.half_ * smooth(x));
+        if (smooth.ok())
+          return prof.slope(x) -
+                 lp * (-s.cauchy_part(x) + s.half_ * (smooth(x) + s.memory_part(x)));
         return prof.slope(x) - s.surface_slope(x);
       };
       const detail::GapMinimum m =
@@ -2268,6 +2322,16 @@ double bar_pole(const Medium& m) {
 }
 
 // What the asymmetric solver does not evaluate on a layered medium yet.
+// What the asymmetric solver does not evaluate on a viscoelastic layer yet.
+void memory_refusal(const Medium& m, const std::string& what) {
+  if (m.memory() == nullptr) return;
+  throw std::invalid_argument(
+      what + " on " + describe(m.spec()) +
+      " is not available yet (the memory of its half-plane part is integrated at the surface, "
+      "not yet at depth); the contact, pressure, drag, dissipation, surface slope, surface "
+      "displacement, indentation and the stresses are");
+}
+
 [[noreturn]] void layered_refusal(const Medium& m, const std::string& what) {
   throw std::invalid_argument(
       what + " on " + describe(m.spec()) +
@@ -2530,7 +2594,15 @@ double AsymmetricSolution::cauchy_part(double x) const {
   return cauchy;
 }
 
-double AsymmetricSolution::kernel_part(double x) const {
+double AsymmetricSolution::kernel_part(double x) const { return regular_part(x) + memory_part(x); }
+
+double AsymmetricSolution::memory_part(double x) const {
+  // A viscoelastic top's memory part, exact against the U-series of g.
+  const MemoryKernel* mem = model_->memory();
+  return mem ? mem->apply(b_, (x - centre_) / half_, half_) / half_ : 0.0;
+}
+
+double AsymmetricSolution::regular_part(double x) const {
   // Kernel part by Gauss-Chebyshev (U) quadrature of p K: (1/pi) int
   // sqrt(1-r^2) f ~ sum W_i f(r_i), on the nodes prepared by the solve.
   thread_local std::vector<double> u, kv;
@@ -2919,10 +2991,73 @@ double AsymmetricSolution::bottom_slope(double x) const {
   return params_.load * sum / kPi;
 }
 
+namespace {
+
+// beta (1/T - beta atan(1/(beta T))) = int_T^inf (beta t/(1 + beta^2 t^2)) t^-3 dt.
+double memory_tail(double beta, double T) {
+  const double z = 1.0 / (beta * T);
+  if (z > 0.1) return beta * (1.0 / T - beta * std::atan(z));
+  // beta^2 (z - atan z) by its series (the difference cancels).
+  double term = z * z * z, sum = 0.0;
+  for (int k = 1; k < 40; ++k) {
+    const double add = ((k % 2) ? 1.0 : -1.0) * term / (2 * k + 1);
+    sum += add;
+    if (std::fabs(add) < 1e-18 * std::fabs(sum)) break;
+    term *= z * z;
+  }
+  return beta * beta * sum;
+}
+
+}  // namespace
+
 double AsymmetricSolution::dissipation() const {
+  const Fine& f = *light_;
+  if (const MemoryKernel* mem = model_->memory()) {
+    // A viscoelastic layer: the power the surface takes in, by Parseval,
+    // (load/pi) int_0^inf Im M1 |p^|^2 (Im M1 >= 0 mode by mode: the
+    // material's loss). Im (M1 - H) decays exponentially: the fine nodes;
+    // Im H = phi1 sum_k c_k beta_k t/(1 + beta_k^2 t^2) only like 1/t:
+    // Gauss-Legendre panels to T = 2000/w (geometric from the spectrum's
+    // shortest scale, at most pi/w wide: |p^|^2 oscillates with period pi/w),
+    // and beyond T the leading term of |p^|^2, (pi/4)(A_a^2 + A_b^2)/t^3
+    // (p ~ A sqrt(distance) at each end), in closed form.
+    const RetardationSpectrum& sp = mem->spectrum();
+    const double phi1 = model_->phi1();
+    double sum = 0.0;
+    for (std::size_t i = 0; i < f.alpha.size(); ++i)
+      sum += f.weight[i] * (f.r[i].M1 - model_->half_plane_m1(f.alpha[i])).imag() *
+             std::norm(f.phat[i]);
+    auto im_h = [&](double t) {
+      double v = 0.0;
+      for (std::size_t k = 0; k < sp.c.size(); ++k)
+        v += sp.c[k] * sp.beta[k] * t / (1.0 + sp.beta[k] * sp.beta[k] * t * t);
+      return phi1 * v;
+    };
+    const double w = half_, T = 2000.0 / w, wide = kPi / w;
+    const double beta_max = *std::max_element(sp.beta.begin(), sp.beta.end());
+    static const std::shared_ptr<const JacobiRule> gl = cached_gauss_jacobi(16, 0.0, 0.0);
+    double lo = 0.0, hi = std::min(wide, 1e-3 / beta_max), mem_sum = 0.0;
+    while (lo < T) {
+      const double c = 0.5 * (lo + hi), h = 0.5 * (hi - lo);
+      for (Eigen::Index q = 0; q < gl->x.size(); ++q) {
+        const double t = c + h * gl->x(q);
+        mem_sum += h * gl->w(q) * im_h(t) * std::norm(pressure_transform(t));
+      }
+      lo = hi;
+      hi = std::min({T, 2.0 * lo, lo + wide});
+    }
+    double ga = 0.0, gb = 0.0;  // g(1), g(-1)
+    for (Eigen::Index n = 0; n < b_.size(); ++n) {
+      ga += b_(n) * static_cast<double>(n + 1);
+      gb += b_(n) * static_cast<double>(n + 1) * ((n % 2) ? -1.0 : 1.0);
+    }
+    double tail = 0.0;
+    for (std::size_t k = 0; k < sp.c.size(); ++k) tail += sp.c[k] * memory_tail(sp.beta[k], T);
+    tail *= phi1 * 0.25 * kPi * (2.0 / w) * (ga * ga + gb * gb);
+    return params_.load * (sum + mem_sum + tail) / kPi;
+  }
   // damping sqrt(s) int (v_b')^2 dx / load, with int (v_b')^2 = (load^2/pi) int_0^inf |Wb p^|^2.
   double sum = 0.0;
-  const Fine& f = *light_;
   for (std::size_t i = 0; i < f.alpha.size(); ++i)
     sum += f.weight[i] * std::norm(bottom_w(f.r[i]) * f.phat[i]);
   return model_->base_damper() * params_.load * sum / kPi;
@@ -3022,12 +3157,13 @@ std::shared_ptr<const AsymmetricSolution::Surface> AsymmetricSolution::surface()
     layered_refusal(*model_, "the displacement (a logarithmic far field under a half-space)");
   auto s = std::make_shared<Surface>();
   const Fine& f = *light_;
-  const double phi1 = model_->phi1();
   std::vector<cplx> g(f.alpha.size());
   for (std::size_t i = 0; i < g.size(); ++i) {
+    // M1 less its half-plane part H (1 - e^-alpha): H = phi1 for an elastic
+    // top, (1 - nu)/m(alpha) for a viscoelastic one (memory_displacement).
     const double al = f.alpha[i];
-    g[i] =
-        (f.r[i].M1 + phi1 * std::expm1(-al)) / al * f.phat[i] * std::exp(cplx(0.0, al * centre_));
+    g[i] = (f.r[i].M1 + model_->half_plane_m1(al) * std::expm1(-al)) / al * f.phat[i] *
+           std::exp(cplx(0.0, al * centre_));
   }
   f.coefficients(g, s->smooth_re, s->smooth_im);
   detail::log1p_rule(b_, half_, s->log1p_r, s->log1p_w);
@@ -3050,7 +3186,51 @@ double AsymmetricSolution::surface_value(const Surface& s, double x) const {
   double lp = 0.5 * b_(0) * std::log(w);
   for (Eigen::Index n = 0; n < b_.size(); ++n)
     lp += b_(n) * detail::log_potential(static_cast<int>(n), u / w);
-  return -smooth - phi1 / (2.0 * kPi) * w * l1 + phi1 * w * lp;
+  const double hp = -w * l1 / (2.0 * kPi) + w * lp;  // U(x), the half-plane potential
+  return -smooth + phi1 * hp + (model_->memory() ? phi1 * memory_displacement(s, x, hp) : 0.0);
+}
+
+double AsymmetricSolution::memory_displacement(const Surface& s, double x, double hp) const {
+  // -(1/pi) Re int g(alpha)(1 - e^-alpha)/alpha p^ e^{i alpha x} = sum_k c_k (e_k * U)(x)
+  // (g = sum_k c_k/(1 - i beta_k alpha), e_k its causal exponential (1/beta_k)
+  // e^{u/beta_k}, u < 0; U = (1/pi) int p ln|x - xi| - (1/2pi) int p ln(1 + (x - xi)^2),
+  // hp). The logarithm's part through the basis' potentials L_n (L_n' = h_n):
+  // e * L_n = L_n + J_n (by parts), the moments' J_n = (lambda J_n)/lambda;
+  // the smooth ln(1 + .^2) part by Gauss-Legendre against the exponential.
+  const RetardationSpectrum& sp = model_->memory()->spectrum();
+  const double w = half_, sx = (x - centre_) / w;
+  const int count = static_cast<int>(b_.size());
+  std::vector<double> mom(static_cast<std::size_t>(count));
+  static const std::shared_ptr<const JacobiRule> gl = cached_gauss_jacobi(16, 0.0, 0.0);
+  double out = 0.0;
+  for (std::size_t k = 0; k < sp.c.size(); ++k) {
+    const double beta = sp.beta[k], lam = w / beta;
+    memory_moments(sx, lam, count, mom.data());
+    double jn = 0.0;
+    for (int n = 0; n < count; ++n) jn += b_(n) * mom[static_cast<std::size_t>(n)];
+    // int_0^inf (1/beta) e^{-eta/beta} Lambda(x + eta) d eta, Lambda = int p ln(1 + (.)^2):
+    // panels at the weight's e-folds and geometric from 1/4 (Lambda is
+    // analytic within 1 of the real axis and logarithmic far out).
+    std::vector<double> cuts{0.0};
+    for (double e = 0.25; e < 48.0 * beta; e *= 2.0) cuts.push_back(e);
+    for (double m : {1.0, 2.0, 4.0, 8.0, 16.0, 24.0, 32.0, 40.0, 48.0}) cuts.push_back(m * beta);
+    std::sort(cuts.begin(), cuts.end());
+    cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+    double conv = 0.0;
+    for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
+      const double c = 0.5 * (cuts[i] + cuts[i + 1]), h = 0.5 * (cuts[i + 1] - cuts[i]);
+      for (Eigen::Index q = 0; q < gl->x.size(); ++q) {
+        const double eta = c + h * gl->x(q);
+        conv += h * gl->w(q) * std::exp(-eta / beta) / beta *
+                detail::log1p_sum(s.log1p_r, s.log1p_w, w, x + eta - centre_);
+      }
+    }
+    // e * U = e * (w lp) - (1/2pi) e * Lambda, with e * (w lp) = w lp + w sum b_n J_n and
+    // w lp = hp + (1/2pi) Lambda(x).
+    const double lam_x = w * detail::log1p_sum(s.log1p_r, s.log1p_w, w, x - centre_);
+    out += sp.c[k] * (hp + lam_x / (2.0 * kPi) + w * jn / lam - w * conv / (2.0 * kPi));
+  }
+  return out;
 }
 
 double AsymmetricSolution::surface_displacement(double x) const {
@@ -3082,6 +3262,17 @@ Eigen::MatrixXd AsymmetricSolution::displacement(const Eigen::Ref<const Eigen::V
   detail::check_grid(x, y);
   if (model_->long_wave_m1() != 0.0)
     layered_refusal(*model_, "the displacement (a logarithmic far field under a half-space)");
+  if (model_->memory()) {
+    // A viscoelastic top: the surface (its memory in closed form); below it
+    // not yet.
+    if ((y.array() != 0.0).any()) memory_refusal(*model_, "the displacement below the surface");
+    const std::shared_ptr<const Surface> sf = surface();
+    Eigen::MatrixXd v(y.size(), x.size());
+    for (Eigen::Index j = 0; j < x.size(); ++j)
+      v.col(j).setConstant(std::fabs(x(j)) > kFarField ? 0.0
+                                                       : params_.load * surface_value(*sf, x(j)));
+    return v;
+  }
   if (jac_) {
     Eigen::MatrixXd v(y.size(), x.size());
     for (Eigen::Index i = 0; i < y.size(); ++i) v.row(i) = friction_displacement(x, y(i));

@@ -134,6 +134,112 @@ class HomogeneousMedium final : public Medium {
   DampedLayerModel damped_;
 };
 
+// A quasi-static (vstar = 0) viscoelastic homogeneous layer on springs
+// (docs/theory.md section 17): the elastic layer in units of its modulus at
+// each frequency, mu_0 m(t), on springs kw(t)/m(t) (DampedLayerModel with
+// the material), its displacements divided by m(t) (stresses per unit
+// pressure do not depend on the modulus). The half-plane part of M1,
+// (1 - nu)/m(t), reaches its unrelaxed value (1 - nu)/m(inf) only like 1/t:
+// the kernel's quadrature subtracts it whole (half_plane_m1) and the
+// collocation takes its memory exactly (memory()).
+class ViscoelasticMode final : public ModeProfile {
+ public:
+  ViscoelasticMode(const LayerModel& m, const DampedLayerModel& d, double t, cplx modulus)
+      : field_(m.mode_field(t)), damped_(&d), c_(&m.constants()), t_(t), m_(modulus) {}
+  ModeState remainder(double y, bool below) const override {
+    const ModeState z = state(y, below), h = half_plane(y);
+    ModeState s;
+    s.z = z.z - h.z;
+    s.sx = z.sx - h.sx;
+    return s;
+  }
+  ModeState half_plane(double y) const override {
+    ModeState s = real_state(*c_, field_.half_plane_state(y));
+    s.z(0) /= m_;
+    s.z(1) /= m_;
+    return s;
+  }
+  ModeState state(double y, bool /*below*/) const override {
+    ModeState s;
+    s.z = damped_->state(t_, y);
+    // sigma_x from the displacement per mu_0 m(t) (Hooke's law at that modulus).
+    s.sx = 4.0 * (c_->c2 - 1.0) / c_->c2 * s.z(0) + (c_->c2 - 2.0) / c_->c2 * s.z(3);
+    s.z(0) /= m_;
+    s.z(1) /= m_;
+    return s;
+  }
+
+ private:
+  ModeField field_;
+  const DampedLayerModel* damped_;
+  const WaveConstants* c_;
+  double t_;
+  cplx m_;
+};
+
+class ViscoelasticLayerMedium final : public Medium {
+ public:
+  ViscoelasticLayerMedium(const MediumSpec& spec, double vstar)
+      : spec_(spec),
+        model_(vstar, spec.base.kw, spec.layers[0].nu, spec.base.kp),
+        damped_(vstar, spec.base.kw, spec.layers[0].nu, 0.0, spec.base.kp, spec.layers[0].visco),
+        visco_(spec.layers[0].visco),
+        memory_(retardation_spectrum(visco_)) {
+    top_ = model_.constants();
+    // The Cauchy term's coefficient: the unrelaxed half-plane's.
+    top_.phi1 = model_.constants().phi1 / memory_.spectrum().ratio;
+  }
+  double vstar() const noexcept override { return model_.vstar(); }
+  const WaveConstants& top() const noexcept override { return top_; }
+  bool real() const noexcept override { return false; }
+  MediumResponse surface_response(double t) const override {
+    const FullResponse r = full_response(t);
+    return MediumResponse{r.M1, r.M2, r.U0, r.W0};
+  }
+  std::unique_ptr<const ModeProfile> mode(double t) const override {
+    return std::make_unique<ViscoelasticMode>(model_, damped_, t, visco_.modulus(t));
+  }
+  FullResponse full_response(double t) const override {
+    FullResponse r = damped_.response(t);
+    const cplx m = visco_.modulus(t);
+    for (cplx* v : {&r.M1, &r.U0, &r.W0, &r.Wb, &r.Uq, &r.Wq, &r.Wqb}) *v /= m;
+    return r;
+  }
+  Eigen::Vector4cd normal_state(double t, double y) const override {
+    Eigen::Vector4cd z = damped_.state(t, y);
+    z.head<2>() /= visco_.modulus(t);
+    return z;
+  }
+  Eigen::Vector4cd tangential_state(double t, double y) const override {
+    Eigen::Vector4cd z = damped_.tangential_state(t, y);
+    z.head<2>() /= visco_.modulus(t);
+    return z;
+  }
+  const TangentialHalfPlane& tangential() const noexcept override { return damped_.tangential(); }
+  double bar_compliance() const noexcept override {
+    return 1.0 / (4.0 * (top_.c2 - 1.0) / top_.c2 - top_.s);
+  }
+  double dispersion(double t) const override { return model_.dispersion(t); }
+  double decay_rate() const noexcept override { return 2.0 * top_.nT; }
+  double field_decay_rate() const noexcept override { return top_.nT; }
+  std::vector<double> first_panel_edges(double w) const override {
+    return detail::foundation_panel_edges(model_.kw(), model_.kp(), w);
+  }
+  cplx half_plane_m1(double t) const override {
+    return model_.constants().phi1 / visco_.modulus(t);
+  }
+  const MemoryKernel* memory() const noexcept override { return &memory_; }
+  const MediumSpec& spec() const noexcept override { return spec_; }
+
+ private:
+  MediumSpec spec_;
+  LayerModel model_;
+  DampedLayerModel damped_;
+  Viscoelastic visco_;
+  MemoryKernel memory_;
+  WaveConstants top_;
+};
+
 std::string str(double x) {
   std::ostringstream o;
   o << x;
@@ -168,7 +274,21 @@ std::vector<double> MediumSpec::key() const {
   } else {
     for (const HalfSpaceField& f : kHalfSpaceFields) k.push_back(base.*f.member);
   }
+  // Each sublayer's material (its branches' count, weights, deborah numbers
+  // and shift): empty for elastic stacks, so their keys are unchanged.
+  if (viscoelastic())
+    for (const Sublayer& l : layers) {
+      k.push_back(static_cast<double>(l.visco.weights.size()));
+      k.insert(k.end(), l.visco.weights.begin(), l.visco.weights.end());
+      k.insert(k.end(), l.visco.deborahs.begin(), l.visco.deborahs.end());
+      k.push_back(l.visco.shift);
+    }
   return k;
+}
+
+bool MediumSpec::viscoelastic() const noexcept {
+  return std::any_of(layers.begin(), layers.end(),
+                     [](const Sublayer& l) { return !l.visco.empty(); });
 }
 
 const KernelAsymptotics& Medium::kernel_asymptotics() const noexcept {
@@ -188,6 +308,15 @@ std::string describe(const MediumSpec& m) {
   o.precision(6);
   const std::size_t graded = static_cast<std::size_t>(std::count_if(
       m.layers.begin(), m.layers.end(), [](const Sublayer& l) { return l.gamma != 0.0; }));
+  if (m.viscoelastic()) {
+    const Viscoelastic& v = m.layers[0].visco;
+    if (v.weights.size() == 1)
+      o << "a viscoelastic layer (Zener, ratio " << v.ratio() << ", deborah "
+        << v.shift * v.deborahs[0] << ") on ";
+    else
+      o << "a viscoelastic layer (Prony, " << v.weights.size() << " branches, ratio " << v.ratio()
+        << ") on ";
+  }
   if (m.layers.size() > 1 || graded > 0) {
     o << m.layers.size() << (m.layers.size() == 1 ? " sublayer" : " sublayers");
     if (graded > 0) o << " (" << graded << " graded)";
@@ -233,6 +362,7 @@ void validate(const MediumSpec& m) {
     const std::string at = "layers[" + std::to_string(i) + "].";
     for (const SublayerField& f : kSublayerFields)
       require_in_range((at + f.name).c_str(), l.*f.member, f.lo, f.hi, f.lo_open, f.hi_open);
+    validate(l.visco, at + "viscoelastic");
     total += l.thickness;
   }
   if (m.layers[0].mu != 1.0 || m.layers[0].rho != 1.0)
@@ -263,12 +393,36 @@ void validate(const MediumSpec& m) {
 
 std::shared_ptr<const Medium> make_medium(const MediumSpec& spec, double vstar) {
   validate(spec);
+  if (spec.viscoelastic()) {
+    if (spec.layers.size() != 1 || spec.base.kind != BaseKind::springs ||
+        spec.layers[0].gamma != 0.0)
+      throw InvalidParameter(
+          "layers", "one homogeneous viscoelastic layer on springs",
+          "layers: a viscoelastic sublayer is solved as one homogeneous layer on springs (not "
+          "yet in a stack, graded, or on a half-space); given " +
+              describe(spec));
+    if (vstar != 0.0)
+      throw InvalidParameter(
+          "vstar", "0 for a viscoelastic layer (quasi-static: the speed enters through deborah)",
+          "vstar: a viscoelastic layer is solved quasi-statically (inertia neglected, vstar = 0; "
+          "the speed enters through deborah = V tau/h); given vstar = " +
+              str(vstar));
+    if (spec.base.damping != 0.0)
+      throw InvalidParameter(
+          "damping", "0 under a viscoelastic layer",
+          "damping: dashpots under a quasi-static viscoelastic layer act through "
+          "damping sqrt(vstar) = 0; give damping = 0 (the layer's material dissipates)");
+    return std::make_shared<const ViscoelasticLayerMedium>(spec, vstar);
+  }
   if (spec.homogeneous()) return std::make_shared<const HomogeneousMedium>(spec, vstar);
   return make_stack_medium(spec, vstar);
 }
 
 CriticalSpeed critical_speed(const MediumSpec& spec) {
   validate(spec);
+  // A viscoelastic layer: its relaxed (softest, slowest) elastic layer's.
+  if (spec.viscoelastic() && spec.layers.size() == 1 && spec.base.kind == BaseKind::springs)
+    return critical_speed(spec.base.kw, spec.layers[0].nu, spec.base.kp);
   if (spec.homogeneous()) return critical_speed(spec.base.kw, spec.layers[0].nu, spec.base.kp);
   return stack_critical_speed(spec);
 }

@@ -35,7 +35,15 @@ from movingpunch.asymmetric import AsymmetricSolution
 from movingpunch.cancel import Cancel
 from movingpunch.contract import ContactSolution
 from movingpunch.fields import StressField, StressPeaks
-from movingpunch.media import GradedLayer, HalfSpace, Layer, Medium, Winkler
+from movingpunch.media import (
+    GradedLayer,
+    HalfSpace,
+    Layer,
+    Medium,
+    Prony,
+    Winkler,
+    Zener,
+)
 from movingpunch.params import Numerics
 from movingpunch.profiles import Cylinder, Flat, Profile, PunchProfile, RoundedFlat
 from movingpunch.scene import Scene, SceneError, SceneResult, bundled_scenes
@@ -89,6 +97,7 @@ __all__ = [
     "Numerics",
     "OutputError",
     "Profile",
+    "Prony",
     "Punch",
     "PunchProfile",
     "PunchResult",
@@ -102,6 +111,7 @@ __all__ = [
     "SupercriticalSpeedError",
     "UnphysicalContactError",
     "Winkler",
+    "Zener",
     "ZonedSolution",
     "__version__",
     "bundled_scenes",

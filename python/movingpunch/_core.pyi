@@ -192,6 +192,7 @@ def solve_asymmetric(
     layers: list[tuple[float, float, float, float, float]] = ...,
     base: str = "springs",
     half_space: Sequence[float] = ...,
+    materials: Sequence[tuple[Sequence[float], Sequence[float], float]] = ...,
 ) -> AsymmetricSolution: ...
 def damped_layer_response(
     t: float, vstar: float, kw: float, nu: float, damping: float, kp: float = 0.0

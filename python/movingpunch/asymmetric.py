@@ -285,8 +285,10 @@ def solve_asymmetric(
     inputs["radius"] = shape.nominal_radius
     inputs["friction"] = check_friction(friction)
     asymmetric_shape = isinstance(shape, Profile) and not shape.symmetric
+    dissipative = medium is not None and medium.viscoelastic
     inputs["damping"] = check_damping(
-        damping, positive=inputs["friction"] == 0 and not asymmetric_shape
+        damping,
+        positive=inputs["friction"] == 0 and not asymmetric_shape and not dissipative,
     )
     flag = _check_flag("allow_unphysical", allow_unphysical)
     size = _check_asymmetric_size(n)

@@ -43,8 +43,11 @@ __all__ = [
     "HalfSpace",
     "Layer",
     "Medium",
+    "Prony",
     "ValueType",
+    "Viscoelastic",
     "Winkler",
+    "Zener",
     "resolve_medium",
 ]
 
@@ -81,6 +84,10 @@ class ValueType:
     and the terminal UI show them; each is a key of ``params.SPECS``."""
     CHOICES: ClassVar[dict[str, tuple[str, ...]]] = {}
     """Fields that take one of a few words (a half-space's ``interface``)."""
+    MATERIALS: ClassVar[tuple[str, ...]] = ()
+    """Fields that hold a material value (a layer's ``viscoelastic``: a
+    ``Zener`` or ``Prony``, or None), not a scalar: ``describe()`` and
+    ``to_dict()`` show them; the core takes them as its ``materials=``."""
     CLI: ClassVar[tuple[str, ...]] = ()
     """The positions of the command line's comma-separated values (empty:
     not an option of its own)."""
@@ -151,6 +158,169 @@ class ValueType:
         return out
 
 
+def _material_number(
+    value: object, what: str, lo: float, hi: float, parameter: str = ""
+) -> float:
+    """``value`` as a finite float in [lo, hi], or InvalidParameterError whose
+    message names ``what`` (e.g. "Prony.weights[1]") and whose parameter is
+    ``parameter`` (default: ``what``'s last name, "weights")."""
+    name = parameter or what.rsplit(".", 1)[-1].split("[")[0]
+    allowed = f"a finite number in [{lo:g}, {hi:g}]"
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.floating)):
+        raise InvalidParameterError(
+            f"{what} must be a number, got {value!r}", parameter=name, allowed=allowed
+        )
+    v = float(value)
+    if not (math.isfinite(v) and lo <= v <= hi):
+        raise InvalidParameterError(
+            f"{what} must be in [{lo:g}, {hi:g}], got {v!r}",
+            parameter=name,
+            allowed=allowed,
+        )
+    return v
+
+
+MAX_VISCO_RATIO = 1e6
+"""The largest mu_inf/mu_0 of a viscoelastic material (the core's kMaxViscoRatio)."""
+MAX_DEBORAH = 1e12
+"""The largest deborah number V tau/h of a branch (the core's kMaxDeborah; the
+smallest non-zero one is 1e-12, 0 relaxes the branch at once)."""
+
+
+@dataclass(frozen=True)
+class Zener:
+    """A standard linear solid in shear (docs/theory.md section 17): the
+    relaxed modulus mu_0 is the sublayer's ``mu``, the unrelaxed one
+    mu_inf = ``ratio`` mu_0 (ratio >= 1; 1 is elastic), relaxing with the time
+    tau at constant strain, ``deborah`` = V tau/h (0: relaxed at once, the
+    elastic layer of mu_0). Poisson's ratio is the sublayer's at every
+    frequency. Solved quasi-statically: ``vstar=0`` (inertia neglected), the
+    speed entering through ``deborah`` alone."""
+
+    ratio: float
+    deborah: float
+
+    def __post_init__(self) -> None:
+        object.__setattr__(
+            self,
+            "ratio",
+            _material_number(self.ratio, "Zener.ratio", 1.0, MAX_VISCO_RATIO),
+        )
+        object.__setattr__(
+            self,
+            "deborah",
+            _material_number(self.deborah, "Zener.deborah", 0.0, MAX_DEBORAH),
+        )
+
+    def branches(self) -> tuple[tuple[float, ...], tuple[float, ...], float]:
+        """(weights, deborah numbers, shift) of its generalised Maxwell form:
+        one branch of weight ratio - 1 (none when elastic)."""
+        if self.ratio == 1.0 or self.deborah == 0.0:
+            return (), (), 1.0
+        return (self.ratio - 1.0,), (self.deborah,), 1.0
+
+    def modulus(self, t: npt.ArrayLike) -> npt.NDArray[np.complex128]:
+        """mu(omega)/mu_0 at t = alpha h (omega = alpha V; time factor
+        e^{-i omega t}: Im < 0, a loss): (1 - i ratio deborah t)/(1 - i deborah t)."""
+        return _modulus(self.branches(), t)
+
+    def describe(self) -> str:
+        return f"Zener ratio {self.ratio:g}, deborah {self.deborah:g}"
+
+    def to_dict(self) -> dict[str, object]:
+        return {"kind": "zener", "ratio": self.ratio, "deborah": self.deborah}
+
+
+@dataclass(frozen=True)
+class Prony:
+    """A generalised Maxwell solid in shear (a Prony series, as measured
+    master curves are given): mu(omega)/mu_0 = 1 + sum_j weights_j
+    (-i omega tau_j)/(1 - i omega tau_j), with ``deborahs`` = V tau_j/h at the
+    reference temperature and ``shift`` = a_T, the time-temperature shift
+    factor applied to every tau_j. mu_inf/mu_0 = 1 + sum of the weights."""
+
+    weights: tuple[float, ...]
+    deborahs: tuple[float, ...]
+    shift: float = 1.0
+
+    def __post_init__(self) -> None:
+        for name in ("weights", "deborahs"):
+            value = getattr(self, name)
+            if isinstance(value, (str, bytes)) or not isinstance(
+                value, (Sequence, np.ndarray)
+            ):
+                raise InvalidParameterError(
+                    f"Prony.{name} must be a sequence of numbers, got {value!r}",
+                    parameter=name,
+                    allowed="a sequence of numbers",
+                )
+        w = tuple(
+            _material_number(v, f"Prony.weights[{i}]", 0.0, MAX_VISCO_RATIO - 1.0)
+            for i, v in enumerate(self.weights)
+        )
+        d = tuple(
+            _material_number(v, f"Prony.deborahs[{i}]", 0.0, MAX_DEBORAH)
+            for i, v in enumerate(self.deborahs)
+        )
+        if len(w) != len(d) or not w:
+            raise InvalidParameterError(
+                f"Prony: {len(w)} weights and {len(d)} deborah numbers; give one "
+                "relaxation time per branch, at least one branch",
+                parameter="deborahs",
+                allowed="as many deborah numbers as weights, at least one",
+            )
+        if any(v <= 0.0 for v in w):
+            raise InvalidParameterError(
+                f"Prony.weights must be > 0, got {w!r}",
+                parameter="weights",
+                allowed=f"(0, {MAX_VISCO_RATIO - 1:g}]",
+            )
+        shift = _material_number(self.shift, "Prony.shift", 0.0, 1e12)
+        if shift <= 0.0:
+            raise InvalidParameterError(
+                f"Prony.shift must be > 0, got {shift!r}",
+                parameter="shift",
+                allowed="(0, 1e12]",
+            )
+        object.__setattr__(self, "weights", w)
+        object.__setattr__(self, "deborahs", d)
+        object.__setattr__(self, "shift", shift)
+
+    def branches(self) -> tuple[tuple[float, ...], tuple[float, ...], float]:
+        """(weights, deborah numbers, shift), as the core takes them."""
+        return self.weights, self.deborahs, self.shift
+
+    def modulus(self, t: npt.ArrayLike) -> npt.NDArray[np.complex128]:
+        """mu(omega)/mu_0 at t = alpha h (omega = alpha V; e^{-i omega t})."""
+        return _modulus(self.branches(), t)
+
+    def describe(self) -> str:
+        return f"Prony {len(self.weights)} branches, shift {self.shift:g}"
+
+    def to_dict(self) -> dict[str, object]:
+        return {
+            "kind": "prony",
+            "weights": list(self.weights),
+            "deborahs": list(self.deborahs),
+            "shift": self.shift,
+        }
+
+
+Viscoelastic = Zener | Prony
+
+
+def _modulus(
+    branches: tuple[tuple[float, ...], tuple[float, ...], float], t: npt.ArrayLike
+) -> npt.NDArray[np.complex128]:
+    weights, deborahs, shift = branches
+    tt = np.asarray(t, dtype=np.float64)
+    m = np.ones(tt.shape, dtype=np.complex128)
+    for g, d in zip(weights, deborahs, strict=True):
+        z = -1j * tt * d * shift
+        m = m + g * z / (1.0 + z)
+    return m
+
+
 SUBLAYER_ROW: tuple[str, ...] = tuple(_core.SUBLAYER_FIELDS)
 """A sublayer's row as the core takes it (``_core`` ``layers=``): the C++
 ``Sublayer``'s field table (cpp/include/movingpunch/medium.hpp
@@ -171,18 +341,50 @@ class Layer(ValueType):
     mu: float = 1.0
     nu: float = 0.2
     rho: float = 1.0
+    viscoelastic: Zener | Prony | None = None
+    """A viscoelastic material (``Zener`` or ``Prony``; None: elastic): ``mu``
+    is then its relaxed modulus mu_0."""
 
     KIND: ClassVar[str] = "layer"
     FIELDS: ClassVar[tuple[str, ...]] = ("thickness", "mu", "nu", "rho")
+    MATERIALS: ClassVar[tuple[str, ...]] = ("viscoelastic",)
     CLI: ClassVar[tuple[str, ...]] = ("thickness", "mu", "nu", "rho")
     CLI_REQUIRED: ClassVar[int] = 3
     TITLE: ClassVar[str] = "layer {fields}"
 
     ROW: ClassVar[tuple[str, ...]] = SUBLAYER_ROW
 
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        v = self.viscoelastic
+        if v is not None and not isinstance(v, (Zener, Prony)):
+            raise InvalidParameterError(
+                f"Layer.viscoelastic must be movingpunch.Zener(...), Prony(...) or "
+                f"None, got {v!r}",
+                parameter="viscoelastic",
+                allowed="Zener(ratio, deborah), Prony(weights, deborahs, shift), None",
+            )
+
     @property
     def gamma_h(self) -> float:
         return 0.0
+
+    @property
+    def elastic(self) -> bool:
+        """No viscoelastic branch (none given, or a Zener of ratio 1 or deborah 0)."""
+        return self.viscoelastic is None or not self.viscoelastic.branches()[0]
+
+    def describe(self) -> str:
+        text = super().describe()
+        if self.viscoelastic is not None:
+            text += f", {self.viscoelastic.describe()}"
+        return text
+
+    def to_dict(self) -> dict[str, object]:
+        out = super().to_dict()
+        if self.viscoelastic is not None:
+            out["viscoelastic"] = self.viscoelastic.to_dict()
+        return out
 
 
 @dataclass(frozen=True)
@@ -311,8 +513,14 @@ class Medium:
         return (
             len(self.layers) == 1
             and isinstance(self.layers[0], Layer)
+            and self.layers[0].elastic
             and isinstance(self.base, Winkler)
         )
+
+    @property
+    def viscoelastic(self) -> bool:
+        """A sublayer has a viscoelastic material (with a branch)."""
+        return any(isinstance(s, Layer) and not s.elastic for s in self.layers)
 
     @property
     def nu(self) -> float:
@@ -359,7 +567,10 @@ class Medium:
         a free steady wave (alpha h inf or 0: an infimum approached by short
         or long waves; docs/media.md)."""
         base = self.base
-        if self.homogeneous:
+        if self.homogeneous or (
+            self.viscoelastic and len(self.layers) == 1 and isinstance(base, Winkler)
+        ):
+            # A viscoelastic layer: its relaxed (slowest) elastic layer's.
             assert isinstance(base, Winkler)
             vc, t = _core.critical_speed(base.kw, self.nu, base.kp)
         else:
@@ -378,6 +589,13 @@ class Medium:
             return {}
         base = self.base
         out: dict[str, Any] = {"layers": [s.row() for s in self.layers]}
+        if self.viscoelastic:
+            out["materials"] = [
+                s.viscoelastic.branches()
+                if isinstance(s, Layer) and s.viscoelastic is not None
+                else ((), (), 1.0)
+                for s in self.layers
+            ]
         if isinstance(base, Winkler):
             out.update(base="springs")
         else:

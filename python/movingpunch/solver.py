@@ -559,7 +559,7 @@ def _solve_layered(
     kw = springs.kw if springs else math.inf
     kp = springs.kp if springs else 0.0
     single: Solution | AsymmetricSolution
-    if fric > 0 or asymmetric_shape:
+    if fric > 0 or asymmetric_shape or medium.viscoelastic:
         single = solve_asymmetric(
             vstar=vstar,
             kw=kw,
@@ -590,6 +590,13 @@ def _solve_layered(
             f"load={single.load:.8g}: {single.validity} (a/h = {single.a:.8g}); "
             "several contact zones on a graded top sublayer are not supported yet "
             "(the zones' solver does not take the graded kernel's singular terms); "
+            "allow_unphysical=True returns the single contact, flagged"
+        )
+    if zoned and medium.viscoelastic:
+        raise UnphysicalContactError(
+            f"vstar={single.vstar:.8g}, {medium.describe()}, {shape.describe()}, "
+            f"load={single.load:.8g}: {single.validity} (a/h = {single.a:.8g}); "
+            "several contact zones on a viscoelastic layer are not supported yet; "
             "allow_unphysical=True returns the single contact, flagged"
         )
     if zoned and isinstance(medium.base, HalfSpace):

@@ -104,11 +104,11 @@ def range_named(text: str, name: str) -> bool:
 
 @pytest.mark.parametrize("cls", TYPES, ids=lambda c: c.__name__)
 def test_the_field_table_is_the_dataclass(cls: type[ValueType]) -> None:
-    """FIELDS and CHOICES are exactly the dataclass's fields; each scalar
+    """FIELDS, CHOICES and MATERIALS are exactly the dataclass's fields; each scalar
     is a row of SPECS whose default is the type's (where it has one); the
     command line's positions are fields."""
     declared = {f.name for f in dataclasses.fields(cls)}  # type: ignore[arg-type]
-    assert declared == {*cls.FIELDS, *cls.CHOICES}
+    assert declared == {*cls.FIELDS, *cls.CHOICES, *cls.MATERIALS}
     for name in cls.FIELDS:
         assert name in SPECS
         default = cls.default(name)

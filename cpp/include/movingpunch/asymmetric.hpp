@@ -53,7 +53,12 @@ class DampedLayerModel {
   // vstar in [0, 1), kw in (0, inf], nu in [0, 0.5), damping >= 0 finite,
   // kp in [0, kMaxKp] (the Pasternak shear layer; 0: springs alone);
   // throws std::invalid_argument naming the parameter otherwise.
-  DampedLayerModel(double vstar, double kw, double nu, double damping, double kp = 0.0);
+  // visco: a quasi-static viscoelastic layer (vstar = 0; viscoelastic.hpp):
+  // the layer in units of its modulus at each frequency, mu_0 m(t), so that
+  // the foundation is kw(alpha)/m(t) and the displacements of the response
+  // are per mu_0 m(t) (the medium divides them by m(t), medium.cpp).
+  DampedLayerModel(double vstar, double kw, double nu, double damping, double kp = 0.0,
+                   Viscoelastic visco = {});
 
   const WaveConstants& constants() const noexcept { return c_; }
   double vstar() const noexcept { return c_.s; }
@@ -64,7 +69,8 @@ class DampedLayerModel {
   double phi1() const noexcept { return c_.phi1; }
   double phi2() const noexcept { return c_.phi2; }
   bool rigid_base() const noexcept { return rigid_; }
-  // kw(alpha) = kw + kp t^2 - i damping sqrt(vstar) t for alpha = t > 0.
+  // kw(alpha) = kw + kp t^2 - i damping sqrt(vstar) t for alpha = t > 0
+  // (over m(t) for a viscoelastic layer).
   cplx foundation(double t) const noexcept;
 
   // Response at t = alpha h >= 0 (t = 0: the exact limit M1 = 0, Wb = 0).
@@ -94,6 +100,7 @@ class DampedLayerModel {
   double beta_;  // damping sqrt(vstar)
   double kp_ = 0.0;
   TangentialHalfPlane tq_;
+  Viscoelastic visco_;
 };
 
 // Adaptive (Gauss-Kronrod 7/15) panels on [0, alpha_max] resolving
@@ -302,9 +309,13 @@ class AsymmetricSolution {
   // Surface slope dv/dx(x, 0) (any x; = x/R inside the contact).
   double surface_slope(double x) const;
   // surface_slope's parts per load phi1: its Cauchy integral (with
-  // friction the local term too) and its kernel's (smooth) part.
+  // friction the local term too) and its kernel's part: the smooth
+  // remainder's (regular_part) and a viscoelastic top's memory
+  // (memory_part, 0 for an elastic one; kernel_part is their sum).
   double cauchy_part(double x) const;
   double kernel_part(double x) const;
+  double regular_part(double x) const;
+  double memory_part(double x) const;
   // sigma_x(x, 0)/(P/h), any x.
   double surface_stress(double x) const;
   Eigen::VectorXd surface_stress(const Eigen::Ref<const Eigen::VectorXd>& x) const;
@@ -461,6 +472,9 @@ class AsymmetricSolution {
   };
   std::shared_ptr<SurfaceCache> surface_cache_ = std::make_shared<SurfaceCache>();
   std::shared_ptr<const Surface> surface() const;
+  // A viscoelastic top's memory part of the surface displacement per load
+  // phi1 at x, given U(x) (the half-plane potential, hp).
+  double memory_displacement(const Surface& s, double x, double hp) const;
   // The stress field's y-independent node data (on light_), prepared on first
   // use: per node p^ e^{i alpha c} and d (real and imaginary parts): for
   // alpha < kSmallT the top state z(0) (DampedLayerModel::state_coefficients),

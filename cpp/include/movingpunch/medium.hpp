@@ -39,6 +39,7 @@
 #include "movingpunch/dispersion.hpp"
 #include "movingpunch/jacobi.hpp"
 #include "movingpunch/layer_response.hpp"
+#include "movingpunch/viscoelastic.hpp"
 
 namespace movingpunch {
 
@@ -51,11 +52,19 @@ namespace movingpunch {
 // exp(gamma_h (y - y_top)) from the sublayer's top value (y up, h = 1; 0:
 // homogeneous; the wave speeds stay constant).
 struct Sublayer {
+  Sublayer() = default;
+  // The elastic scalars in their table's order (kSublayerFields).
+  Sublayer(double thickness_, double mu_, double nu_ = 0.2, double rho_ = 1.0, double gamma_ = 0.0)
+      : thickness(thickness_), mu(mu_), nu(nu_), rho(rho_), gamma(gamma_) {}
   double thickness = 1.0;
   double mu = 1.0;
   double nu = 0.2;
   double rho = 1.0;
   double gamma = 0.0;
+  // A viscoelastic material (viscoelastic.hpp; empty: elastic): mu is then
+  // the relaxed modulus mu_0, the shear modulus at frequency omega is
+  // mu m(alpha h) (docs/theory.md section 17).
+  Viscoelastic visco;
 };
 
 // The largest |gamma_h| of a graded sublayer (the modulus changes by e^50
@@ -118,8 +127,11 @@ struct MediumSpec {
   BaseSpec base;
   // One homogeneous sublayer on springs: the paper's layer (LayerModel).
   bool homogeneous() const noexcept {
-    return layers.size() == 1 && layers[0].gamma == 0.0 && base.kind == BaseKind::springs;
+    return layers.size() == 1 && layers[0].gamma == 0.0 && layers[0].visco.empty() &&
+           base.kind == BaseKind::springs;
   }
+  // True when a sublayer is viscoelastic.
+  bool viscoelastic() const noexcept;
   // The numbers that identify the medium (cache keys).
   std::vector<double> key() const;
 };
@@ -293,6 +305,14 @@ class Medium {
   // The dashpots' coefficient damping sqrt(vstar) (springs with damping; 0
   // otherwise): the base dissipates base_damper() int |v(x, -1)_x|^2 dx.
   virtual double base_damper() const noexcept { return 0.0; }
+  // A viscoelastic top's half-plane surface compliance H(t), which the
+  // kernel's quadrature subtracts from M1 (the rest decays exponentially):
+  // phi1() (a constant) for an elastic top; for a quasi-static viscoelastic
+  // one (1 - nu)/m(t) = phi1 (1 + memory(t)) (viscoelastic.hpp), whose
+  // slow part the collocation takes exactly (memory()).
+  virtual cplx half_plane_m1(double /*t*/) const { return phi1(); }
+  // The memory part of the kernel of a viscoelastic top (null: none).
+  virtual const MemoryKernel* memory() const noexcept { return nullptr; }
   // The homogeneous layer on springs as DampedLayerModel (its closed-form
   // modal fields are the fast path of the asymmetric solver's depth
   // outputs); null for any other medium.

@@ -14,7 +14,7 @@ import threading
 from collections import OrderedDict
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field, replace
-from typing import Literal, cast
+from typing import Any, Literal, cast
 
 import numpy as np
 import numpy.typing as npt
@@ -1288,7 +1288,8 @@ def parse_sublayer(row: int, texts: dict[str, str]) -> Sublayer:
                     allowed="1 for the top sublayer",
                 )
     if values.get("gamma_h", 0.0) == 0.0:
-        return Layer(**{n: v for n, v in values.items() if n in Layer.FIELDS})
+        scalars: dict[str, Any] = {n: v for n, v in values.items() if n in Layer.FIELDS}
+        return Layer(**scalars)
     return GradedLayer(**{n: v for n, v in values.items() if n in GradedLayer.FIELDS})
 
 

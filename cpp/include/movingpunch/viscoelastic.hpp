@@ -1,0 +1,110 @@
+// Viscoelastic sublayers: a generalised Maxwell (Prony) solid in shear with a
+// constant Poisson's ratio (docs/theory.md section 17).
+//
+// Time convention: a mode e^{i alpha x}, x = x1 - V t, oscillates at a
+// material point as e^{-i omega t} with omega = alpha V, and the shear modulus
+// at that frequency, over the relaxed (long-time) modulus mu_0, is
+//   m(t) = 1 + sum_j g_j (-i t D_j)/(1 - i t D_j),   t = alpha h,
+// D_j = shift V tau_j / h (tau_j: the branch's relaxation time at constant
+// strain, shift: a time-temperature shift factor a_T). Im m < 0 for t > 0:
+// the material dissipates (positive work per cycle). The standard linear
+// solid (Zener) is one branch: g = ratio - 1, D = deborah, and then
+//   m(t) = (1 - i ratio deborah t)/(1 - i deborah t).
+// m(inf) = 1 + sum g_j = mu_inf/mu_0 (the unrelaxed, instantaneous modulus).
+//
+// Quasi-statically (no inertia) the half-plane's surface compliance is
+// (1 - nu)/m(t) (over mu_0); over its unrelaxed value (1 - nu)/m(inf),
+//   m(inf)/m(t) - 1 = sum_k c_k / (1 - i beta_k t)   (c_k > 0, beta_k > 0),
+// the retardation spectrum: -1/beta_k (in s = -i t) are the zeros of m, which
+// interlace its poles -1/D_j. Its kernel is a causal memory: in x it is the
+// convolution with sum_k (c_k/beta_k) e^{x/beta_k} (x < 0: the material ahead
+// of a point was loaded earlier), and the collocation integrates it exactly
+// against the pressure's Chebyshev series (MemoryKernel).
+#pragma once
+
+#include <complex>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+namespace movingpunch {
+
+struct ChebyshevNodes;  // collocation.hpp
+
+// The material of a viscoelastic sublayer. Empty (no branches): elastic.
+struct Viscoelastic {
+  std::vector<double> weights;   // g_j > 0: the branch's modulus over mu_0
+  std::vector<double> deborahs;  // V tau_j / h > 0 (before the shift)
+  double shift = 1.0;            // a_T > 0, multiplies every tau_j
+  bool empty() const noexcept { return weights.empty(); }
+  // mu_inf / mu_0 = 1 + sum g_j.
+  double ratio() const noexcept;
+  // m(t) (above), t >= 0.
+  std::complex<double> modulus(double t) const;
+};
+
+// The standard linear solid: ratio = mu_inf/mu_0 >= 1 (1: elastic, no branch),
+// deborah = V tau / h >= 0 (0: elastic with mu_0, no branch).
+Viscoelastic zener(double ratio, double deborah);
+
+// The limits a material's numbers must stay within (InvalidParameter names
+// them): at most kMaxBranches branches, each g_j in (0, kMaxViscoRatio - 1],
+// D_j shift in [kMinDeborah, kMaxDeborah] (or exactly 0 with the branch then
+// dropped: the relaxed limit), 1 + sum g_j <= kMaxViscoRatio.
+inline constexpr std::size_t kMaxBranches = 32;
+inline constexpr double kMaxViscoRatio = 1e6;
+inline constexpr double kMinDeborah = 1e-12;
+inline constexpr double kMaxDeborah = 1e12;
+
+// Throws InvalidParameter naming `where` (e.g. "layers[0].viscoelastic")
+// and the offending number and its range.
+void validate(const Viscoelastic& v, const std::string& where);
+
+// The retardation spectrum of a material (above): c_k, beta_k, ascending in
+// beta; sum c_k = m(inf) - 1. Exact for one branch; otherwise the zeros of
+// m by bisection in log(-s) between its poles (to round-off).
+struct RetardationSpectrum {
+  std::vector<double> c, beta;
+  double ratio = 1.0;  // m(inf)
+  // m(inf)/m(t) - 1 by the sum (t >= 0).
+  std::complex<double> memory(double t) const;
+};
+RetardationSpectrum retardation_spectrum(const Viscoelastic& v);
+
+// The memory part of the kernel of the asymmetric equation (docs/damped.md
+// section 2, the term -(1/pi) int p(xi) K(x - xi) d xi) for a quasi-static
+// viscoelastic top:
+//   K_m(u) = sum_k c_k pi H[e_k](u),  e_k(u) = e^{u/beta_k}/beta_k (u < 0),
+// H the Hilbert transform (1/pi) p.v. int f(xi)/(u - xi) d xi. Against the
+// density g(r) sqrt(1 - r^2) = sum_n b_n U_n(r) sqrt(1 - r^2) on a contact
+// of half-width w (r = (xi - c)/w, s = (x - c)/w):
+//   (w/pi) int sqrt(1 - r^2) U_n(r) K_m(w (s - r)) dr = sum_k c_k lambda_k J_n(s, lambda_k),
+//   J_n(s, l) = int_s^inf e^{-l (x - s)} h_n(x) dx,  lambda_k = w/beta_k,
+// h_n = H[sqrt(1 - r^2) U_n]: T_{n+1}(x) on [-1, 1], (x - sgn(x) sqrt(x^2 -
+// 1))^{n+1} beyond. J_n has no singularity (the kernel's logarithm is in the
+// Hilbert transform of the basis, taken exactly), and l J_n -> h_n(s) as l
+// -> inf (the relaxed limit: c_k times the Cauchy term), -> 0 as l -> 0.
+class MemoryKernel {
+ public:
+  explicit MemoryKernel(RetardationSpectrum spectrum);
+  const RetardationSpectrum& spectrum() const noexcept { return spec_; }
+  bool empty() const noexcept { return spec_.c.empty(); }
+  // out[n] = sum_k c_k lambda_k J_n(s, lambda_k), n < count, for the half-width w.
+  void moments(double s, double w, int count, double* out) const;
+  // The collocation block B(k, i), (N + 1) x N, added to the asymmetric
+  // matrix's W_i [1/(r_i - s_k) - w K(w (s_k - r_i))]:
+  //   B(k, i) = -2 W_i sum_n U_n(r_i) moments_n(s_k).
+  Eigen::MatrixXd collocation_block(const ChebyshevNodes& nodes, double w) const;
+  // w (1/pi) int sqrt(1 - r^2) g(r) K_m(x - c - w r) dr for g = sum b_n U_n
+  // (the slope's memory part at any x; s = (x - c)/w any real).
+  double apply(const Eigen::VectorXd& b, double s, double w) const;
+
+ private:
+  RetardationSpectrum spec_;
+};
+
+// l J_n(s, l) for n < count (one retardation time; MemoryKernel sums them).
+void memory_moments(double s, double l, int count, double* out);
+
+}  // namespace movingpunch

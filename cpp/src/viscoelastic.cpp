@@ -1,0 +1,369 @@
+// Viscoelastic sublayers: the material, its retardation spectrum and the
+// memory part of the kernel (movingpunch/viscoelastic.hpp; docs/theory.md
+// section 17).
+#include "movingpunch/viscoelastic.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <sstream>
+#include <utility>
+
+#include "movingpunch/collocation.hpp"
+#include "movingpunch/errors.hpp"
+#include "movingpunch/jacobi.hpp"
+
+namespace movingpunch {
+
+namespace {
+
+using cplx = std::complex<double>;
+
+std::string num(double x) {
+  std::ostringstream o;
+  o.precision(17);
+  o << x;
+  return o.str();
+}
+
+// The branches with D_j = shift deborah_j > 0, equal relaxation times merged,
+// sorted by D descending (poles -1/D_j of m in s = -i t ascending in |s|).
+std::vector<std::pair<double, double>> branches(const Viscoelastic& v) {
+  std::vector<std::pair<double, double>> out;  // (D, g)
+  for (std::size_t j = 0; j < v.weights.size(); ++j) {
+    const double D = v.shift * v.deborahs[j];
+    if (!(D > 0.0)) continue;  // instantaneous relaxation: the relaxed modulus
+    auto it = std::find_if(out.begin(), out.end(), [D](const auto& b) { return b.first == D; });
+    if (it != out.end())
+      it->second += v.weights[j];
+    else
+      out.emplace_back(D, v.weights[j]);
+  }
+  std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  return out;
+}
+
+}  // namespace
+
+double Viscoelastic::ratio() const noexcept {
+  return 1.0 + std::accumulate(weights.begin(), weights.end(), 0.0);
+}
+
+std::complex<double> Viscoelastic::modulus(double t) const {
+  cplx m = 1.0;
+  for (std::size_t j = 0; j < weights.size(); ++j) {
+    const double D = shift * deborahs[j];
+    const cplx z(0.0, -t * D);  // -i t D
+    m += weights[j] * z / (1.0 + z);
+  }
+  return m;
+}
+
+Viscoelastic zener(double ratio, double deborah) {
+  require_in_range("ratio", ratio, 1.0, kMaxViscoRatio, false, false);
+  require_in_range("deborah", deborah, 0.0, kMaxDeborah, false, false);
+  Viscoelastic v;
+  if (ratio > 1.0 && deborah > 0.0) {
+    v.weights = {ratio - 1.0};
+    v.deborahs = {deborah};
+  }
+  return v;
+}
+
+void validate(const Viscoelastic& v, const std::string& where) {
+  if (v.weights.size() != v.deborahs.size())
+    throw InvalidParameter(where, "as many deborah numbers as weights",
+                           where + ": " + std::to_string(v.weights.size()) + " weights and " +
+                               std::to_string(v.deborahs.size()) +
+                               " deborah numbers given; one relaxation time per branch");
+  if (v.weights.size() > kMaxBranches)
+    throw InvalidParameter(where, "at most " + std::to_string(kMaxBranches) + " branches",
+                           where + ": " + std::to_string(v.weights.size()) +
+                               " branches given, at most " + std::to_string(kMaxBranches));
+  require_in_range((where + ".shift").c_str(), v.shift, 0.0, 1e12, true, false);
+  for (std::size_t j = 0; j < v.weights.size(); ++j) {
+    const std::string at = where + "[" + std::to_string(j) + "]";
+    require_in_range((at + ".weight").c_str(), v.weights[j], 0.0, kMaxViscoRatio - 1.0, true,
+                     false);
+    require_in_range((at + ".deborah").c_str(), v.deborahs[j], 0.0, kMaxDeborah, false, false);
+    const double D = v.shift * v.deborahs[j];
+    if (D != 0.0 && !(D >= kMinDeborah && D <= kMaxDeborah))
+      throw InvalidParameter(at + ".deborah",
+                             "shift * deborah 0 or in [" + num(kMinDeborah) + ", " +
+                                 num(kMaxDeborah) + "]",
+                             at + ": shift * deborah = " + num(D) + " is outside [" +
+                                 num(kMinDeborah) + ", " + num(kMaxDeborah) +
+                                 "] (0: the branch relaxes at once, the relaxed modulus)");
+  }
+  if (!(v.ratio() <= kMaxViscoRatio))
+    throw InvalidParameter(where, "1 + sum of the weights <= " + num(kMaxViscoRatio),
+                           where + ": mu_inf/mu_0 = 1 + sum of the weights = " + num(v.ratio()) +
+                               " exceeds " + num(kMaxViscoRatio));
+}
+
+std::complex<double> RetardationSpectrum::memory(double t) const {
+  cplx out = 0.0;
+  for (std::size_t k = 0; k < c.size(); ++k) out += c[k] / cplx(1.0, -beta[k] * t);
+  return out;
+}
+
+RetardationSpectrum retardation_spectrum(const Viscoelastic& v) {
+  const auto br = branches(v);
+  RetardationSpectrum out;
+  out.ratio = 1.0;
+  for (const auto& b : br) out.ratio += b.second;
+  if (br.empty()) return out;
+  if (br.size() == 1) {
+    // The Zener solid: m = (1 - i ratio D t)/(1 - i D t), beta = ratio D, c = ratio - 1.
+    out.c = {br[0].second};
+    out.beta = {out.ratio * br[0].first};
+    return out;
+  }
+  // m(y) = 1 - sum g_j y D_j/(1 - y D_j) (s = -y): decreasing between its
+  // poles y_j = 1/D_j, from +inf to -inf; one zero in (0, y_1) and in each
+  // (y_j, y_{j+1}), none beyond the last (m -> ratio > 0).
+  auto m_of = [&br](double y) {
+    double m = 1.0;
+    for (const auto& b : br) m -= b.second * y * b.first / (1.0 - y * b.first);
+    return m;
+  };
+  for (std::size_t k = 0; k < br.size(); ++k) {
+    double lo = k == 0 ? 1e-30 / br[0].first : 1.0 / br[k - 1].first;
+    double hi = 1.0 / br[k].first;
+    // Bisection in log y to the last bit (m is monotone between the poles).
+    for (int it = 0; it < 400; ++it) {
+      const double mid = std::sqrt(lo * hi);
+      if (!(mid > lo && mid < hi)) break;
+      (m_of(mid) > 0.0 ? lo : hi) = mid;
+    }
+    const double y = std::sqrt(lo * hi);
+    double dm = 0.0;  // dm/ds = -dm/dy at the zero
+    for (const auto& b : br) dm += b.second * b.first / ((1.0 - y * b.first) * (1.0 - y * b.first));
+    const double beta = 1.0 / y;
+    out.beta.push_back(beta);
+    out.c.push_back(out.ratio * beta / dm);
+  }
+  // Ascending beta (the zeros were found ascending in y).
+  std::reverse(out.beta.begin(), out.beta.end());
+  std::reverse(out.c.begin(), out.c.end());
+  return out;
+}
+
+// ---------------------------------------------------------------------------
+// The memory moments l J_n(s, l)
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// acosh(1 + e), accurate for small e >= 0.
+double acosh1p(double e) { return std::log1p(e + std::sqrt(e * (2.0 + e))); }
+
+// One quadrature node: its weight (the exponential weight l e^{-l eta}, the
+// Jacobian and the Gauss weight) and the value whose powers or Chebyshev
+// polynomials are h_n there: inside [-1, 1], x (h_n = T_{n+1}(x)); beyond,
+// rho = x - sgn(x) sqrt(x^2 - 1) (h_n = rho^{n+1}).
+struct Node {
+  double weight;
+  double value;
+  bool inside;
+};
+
+}  // namespace
+
+void memory_moments(double s, double l, int count, double* out) {
+  if (count <= 0) return;
+  if (!std::isfinite(s) || !(l > 0.0) || !std::isfinite(l))
+    throw std::invalid_argument("memory_moments: s finite and l > 0 finite required");
+  std::fill(out, out + count, 0.0);
+  static const std::shared_ptr<const JacobiRule> gl = cached_gauss_jacobi(16, 0.0, 0.0);
+  const Eigen::VectorXd& gx = gl->x;
+  const Eigen::VectorXd& gw = gl->w;
+  // The exponential weight's segments in eta = x - s (units 1/l): each a
+  // factor e^8 at most, to e^-48 (2e-21).
+  static constexpr double kSteps[] = {0, 1, 2, 4, 8, 16, 24, 32, 40, 48};
+  std::vector<double> cuts;
+  for (double k : kSteps) cuts.push_back(k / l);
+  // The branch points x = +-1 of h_n.
+  const double end = cuts.back();
+  for (double e : {-1.0 - s, 1.0 - s})
+    if (e > 0.0 && e < end) cuts.push_back(e);
+  std::sort(cuts.begin(), cuts.end());
+  cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+  const double freq = static_cast<double>(count + 1);
+  thread_local std::vector<Node> nodes;
+  nodes.clear();
+  // eta-parametrised piece [e0, e1] (x = s + eta, analytic on it): n0 pieces.
+  auto eta_piece = [&](double e0, double e1, bool inside) {
+    const double c = 0.5 * (e0 + e1), h = 0.5 * (e1 - e0);
+    for (Eigen::Index q = 0; q < gx.size(); ++q) {
+      const double eta = c + h * gx(q), x = s + eta;
+      double v = x;
+      if (!inside) {
+        const double ax = std::fabs(x), r = 1.0 / (ax + std::sqrt((ax - 1.0) * (ax + 1.0)));
+        v = x > 0.0 ? r : -r;
+      }
+      nodes.push_back({l * std::exp(-l * eta) * h * gw(q), v, inside});
+    }
+  };
+  for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
+    const double e0 = cuts[i], e1 = cuts[i + 1];
+    if (!(e1 > e0)) continue;
+    const double xm = s + 0.5 * (e0 + e1);
+    if (std::fabs(xm) <= 1.0) {
+      // Inside: pieces of at most 8/(count + 1) in theta (T_{n+1} = cos((n+1) theta)).
+      const double t0 = std::acos(std::clamp(s + e0, -1.0, 1.0));
+      const double t1 = std::acos(std::clamp(s + e1, -1.0, 1.0));
+      const int m = std::max(1, static_cast<int>(std::ceil(std::fabs(t0 - t1) * freq / 8.0)));
+      double prev = e0;
+      for (int j = 1; j <= m; ++j) {
+        const double next =
+            j == m ? e1 : std::cos(t0 + (t1 - t0) * static_cast<double>(j) / m) - s;
+        if (next > prev) eta_piece(prev, next, true);
+        prev = std::max(prev, next);
+      }
+      continue;
+    }
+    // Beyond +-1: rho^{n+1} = e^{-(n+1) phi}, |x| = cosh phi.
+    const bool right = xm > 0.0;
+    const double d0 = right ? s + e0 - 1.0 : -1.0 - (s + e1);  // distance of the near end from 1
+    const double len = e1 - e0;
+    if (d0 >= 2.0 * len) {
+      // Far from the branch point for its length: analytic in eta.
+      const double ax = right ? s + e0 : -(s + e1);
+      const double dphi = len / std::sqrt((ax - 1.0) * (ax + 1.0));
+      const int m = std::max(1, static_cast<int>(std::ceil(dphi * freq / 8.0)));
+      for (int j = 0; j < m; ++j) eta_piece(e0 + len * j / m, j + 1 == m ? e1 : e0 + len * (j + 1) / m, false);
+      continue;
+    }
+    // Near the branch point: parametrised by phi (x - 1 or -1 - x exact).
+    const double ea = right ? s + e0 - 1.0 : -1.0 - (s + e1);
+    const double eb = right ? s + e1 - 1.0 : -1.0 - (s + e0);
+    const double pa = acosh1p(std::max(0.0, ea)), pb = acosh1p(std::max(0.0, eb));
+    // eta at |x| = cosh phi: right: (cosh phi - 1) - (s - 1); left: (-1 - s) - (cosh phi - 1).
+    double p = pa;
+    while (p < pb) {
+      const double step = std::min({1.0, std::max(8.0 / freq, 0.5 * p), pb - p});
+      const double q1 = p + step >= pb ? pb : p + step;
+      const double c = 0.5 * (p + q1), h = 0.5 * (q1 - p);
+      for (Eigen::Index q = 0; q < gx.size(); ++q) {
+        const double phi = c + h * gx(q);
+        // One exponential: e = e^{phi/2} = 1 + em (em = expm1, exact for small phi).
+        const double em = std::expm1(0.5 * phi), e = 1.0 + em;
+        const double sh = 0.5 * em * (2.0 + em) / e;  // sinh(phi/2)
+        const double cm1 = 2.0 * sh * sh;             // cosh phi - 1
+        const double sinh_phi = sh * (e + 1.0 / e);   // 2 sinh(phi/2) cosh(phi/2)
+        const double eta = right ? cm1 - (s - 1.0) : (-1.0 - s) - cm1;
+        const double r = 1.0 / (e * e);  // e^{-phi}
+        nodes.push_back({l * std::exp(-l * eta) * sinh_phi * h * gw(q), right ? r : -r, false});
+      }
+      p = q1;
+    }
+  }
+  // Sum over the nodes: T_{n+1}(x) by its recurrence (|x| <= 1), rho^{n+1},
+  // eight nodes at a time (independent recurrences side by side).
+  constexpr int L = 8;
+  thread_local std::vector<double> w_in, v_in, w_out, v_out;
+  w_in.clear();
+  v_in.clear();
+  w_out.clear();
+  v_out.clear();
+  for (const Node& nd : nodes) {
+    (nd.inside ? w_in : w_out).push_back(nd.weight);
+    (nd.inside ? v_in : v_out).push_back(nd.value);
+  }
+  // Padded to a multiple of L with zero weights.
+  for (auto* p : {&w_in, &w_out}) p->resize((p->size() + L - 1) / L * L, 0.0);
+  v_in.resize(w_in.size(), 0.0);
+  v_out.resize(w_out.size(), 0.0);
+  // Per lane and order, summed over the lanes at the end.
+  thread_local std::vector<double> acc;
+  acc.assign(static_cast<std::size_t>(count) * L, 0.0);
+  for (std::size_t b = 0; b < w_in.size(); b += L) {
+    double x2[L], wt[L], tm[L], t[L];
+    for (int l = 0; l < L; ++l) {
+      x2[l] = 2.0 * v_in[b + l];
+      wt[l] = w_in[b + l];
+      tm[l] = 1.0;
+      t[l] = v_in[b + l];
+    }
+    double* a = acc.data();
+    for (int n = 0; n < count; ++n, a += L) {
+      for (int l = 0; l < L; ++l) {
+        a[l] += wt[l] * t[l];
+        const double tn = x2[l] * t[l] - tm[l];
+        tm[l] = t[l];
+        t[l] = tn;
+      }
+    }
+  }
+  for (std::size_t b = 0; b < w_out.size(); b += L) {
+    double r[L], pw[L];
+    double wmax = 0.0;
+    for (int l = 0; l < L; ++l) {
+      r[l] = v_out[b + l];
+      pw[l] = w_out[b + l] * r[l];
+      wmax = std::max(wmax, std::fabs(w_out[b + l]));
+    }
+    double rmax = 0.0;
+    for (int l = 0; l < L; ++l) rmax = std::max(rmax, std::fabs(r[l]));
+    double bound = wmax * rmax;  // |w rho^{n+1}| <= wmax rmax^{n+1}
+    double* a = acc.data();
+    for (int n = 0; n < count && bound > 1e-300; ++n, a += L) {
+      for (int l = 0; l < L; ++l) {
+        a[l] += pw[l];
+        pw[l] *= r[l];
+      }
+      bound *= rmax;
+    }
+  }
+  for (int n = 0; n < count; ++n) {
+    double sum = 0.0;
+    for (int l = 0; l < L; ++l) sum += acc[static_cast<std::size_t>(n) * L + l];
+    out[n] += sum;
+  }
+}
+
+MemoryKernel::MemoryKernel(RetardationSpectrum spectrum) : spec_(std::move(spectrum)) {}
+
+void MemoryKernel::moments(double s, double w, int count, double* out) const {
+  std::fill(out, out + count, 0.0);
+  thread_local std::vector<double> one;
+  one.resize(static_cast<std::size_t>(std::max(count, 0)));
+  for (std::size_t k = 0; k < spec_.c.size(); ++k) {
+    memory_moments(s, w / spec_.beta[k], count, one.data());
+    for (int n = 0; n < count; ++n) out[n] += spec_.c[k] * one[static_cast<std::size_t>(n)];
+  }
+}
+
+Eigen::MatrixXd MemoryKernel::collocation_block(const ChebyshevNodes& nodes, double w) const {
+  const int n = nodes.n;
+  Eigen::MatrixXd mom(n + 1, n);
+  std::vector<double> row(static_cast<std::size_t>(n));
+  for (int k = 0; k <= n; ++k) {
+    moments(nodes.s(k), w, n, row.data());
+    for (int q = 0; q < n; ++q) mom(k, q) = row[static_cast<std::size_t>(q)];
+  }
+  // U(q, i) = U_q(r_i) = sin((q + 1) th_i)/sin(th_i), th_i = i pi/(n + 1).
+  Eigen::MatrixXd U(n, n);
+  for (int i = 0; i < n; ++i) {
+    const double th = (i + 1) * kPi / (n + 1);
+    for (int q = 0; q < n; ++q) U(q, i) = std::sin((q + 1) * th) / std::sin(th);
+  }
+  Eigen::MatrixXd B = mom * U;
+  for (int i = 0; i < n; ++i) B.col(i) *= -2.0 * nodes.w(i);
+  return B;
+}
+
+double MemoryKernel::apply(const Eigen::VectorXd& b, double s, double w) const {
+  const int n = static_cast<int>(b.size());
+  thread_local std::vector<double> mom;
+  mom.resize(static_cast<std::size_t>(n));
+  moments(s, w, n, mom.data());
+  double sum = 0.0;
+  for (int q = 0; q < n; ++q) sum += b(q) * mom[static_cast<std::size_t>(q)];
+  return sum;
+}
+
+}  // namespace movingpunch

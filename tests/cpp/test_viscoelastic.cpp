@@ -1,0 +1,253 @@
+// Viscoelastic layers (movingpunch/viscoelastic.hpp, docs/theory.md section
+// 17): the material, its retardation spectrum, the memory kernel's moments
+// against an independent quadrature of the kernel in closed form, and the
+// layer's responses (the elastic limits, positive dissipation).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <complex>
+#include <functional>
+#include <vector>
+
+#include "movingpunch/asymmetric.hpp"
+#include "movingpunch/collocation.hpp"
+#include "movingpunch/errors.hpp"
+#include "movingpunch/medium.hpp"
+#include "movingpunch/viscoelastic.hpp"
+
+namespace mp = movingpunch;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+mp::Viscoelastic prony3() {
+  mp::Viscoelastic v;
+  v.weights = {0.5, 2.0, 4.0};
+  v.deborahs = {0.02, 0.3, 5.0};
+  v.shift = 1.5;
+  return v;
+}
+
+// e^z E1(z) continued to z < 0 as -e^z Ei(-z) (the principal value): the
+// Hilbert transform of the causal exponential, (1/beta) F(u/beta) = pi H[e](u).
+double F(double z) {
+  if (z > 0.0) return -std::exp(z) * std::expint(-z);
+  return -std::exp(z) * std::expint(-z);
+}
+
+// tanh-sinh quadrature of f on [a, b] (end singularities of log type).
+double tanh_sinh(const std::function<double(double)>& f, double a, double b) {
+  const double c = 0.5 * (a + b), h = 0.5 * (b - a);
+  const double step = 1.0 / 128.0;
+  double sum = 0.0;
+  for (int k = -6 * 128; k <= 6 * 128; ++k) {
+    const double t = k * step;
+    const double u = 0.5 * kPi * std::sinh(t);
+    const double x = std::tanh(u);
+    const double wgt = 0.5 * kPi * std::cosh(t) / (std::cosh(u) * std::cosh(u));
+    const double r = c + h * x;
+    if (!(r > a && r < b)) continue;
+    sum += wgt * f(r);
+  }
+  return h * sum * step;
+}
+
+}  // namespace
+
+TEST(Viscoelastic, ZenerModulusAndSpectrum) {
+  const mp::Viscoelastic z = mp::zener(3.0, 0.2);
+  EXPECT_DOUBLE_EQ(z.ratio(), 3.0);
+  for (double t : {0.0, 0.1, 1.0, 7.0, 1e3}) {
+    const std::complex<double> m = z.modulus(t);
+    const std::complex<double> want =
+        std::complex<double>(1.0, -3.0 * 0.2 * t) / std::complex<double>(1.0, -0.2 * t);
+    EXPECT_NEAR(std::abs(m - want), 0.0, 1e-15 * std::abs(want));
+    if (t > 0.0) EXPECT_LT(m.imag(), 0.0);  // e^{-i omega t}: a loss
+  }
+  const mp::RetardationSpectrum sp = mp::retardation_spectrum(z);
+  ASSERT_EQ(sp.c.size(), 1u);
+  EXPECT_DOUBLE_EQ(sp.c[0], 2.0);
+  EXPECT_DOUBLE_EQ(sp.beta[0], 3.0 * 0.2);
+  // ratio 1 or deborah 0: elastic (no branch).
+  EXPECT_TRUE(mp::zener(1.0, 0.5).empty());
+  EXPECT_TRUE(mp::zener(2.0, 0.0).empty());
+}
+
+TEST(Viscoelastic, PronySpectrumIsThePartialFractionsOfTheCompliance) {
+  const mp::Viscoelastic v = prony3();
+  const mp::RetardationSpectrum sp = mp::retardation_spectrum(v);
+  ASSERT_EQ(sp.c.size(), 3u);
+  double csum = 0.0;
+  for (std::size_t k = 0; k < sp.c.size(); ++k) {
+    EXPECT_GT(sp.c[k], 0.0);
+    EXPECT_GT(sp.beta[k], 0.0);
+    if (k > 0) EXPECT_GT(sp.beta[k], sp.beta[k - 1]);
+    csum += sp.c[k];
+  }
+  EXPECT_NEAR(csum, v.ratio() - 1.0, 1e-13 * v.ratio());
+  for (double t : {1e-3, 0.05, 0.7, 3.0, 40.0, 1e4}) {
+    const std::complex<double> want = v.ratio() / v.modulus(t) - 1.0;
+    EXPECT_NEAR(std::abs(sp.memory(t) - want), 0.0, 1e-13 * (1.0 + std::abs(want))) << t;
+  }
+}
+
+TEST(Viscoelastic, BadMaterialsAreRefusedByName) {
+  mp::Viscoelastic v = prony3();
+  v.deborahs.pop_back();
+  EXPECT_THROW(mp::validate(v, "layers[0].viscoelastic"), mp::InvalidParameter);
+  v = prony3();
+  v.weights[1] = -1.0;
+  try {
+    mp::validate(v, "layers[0].viscoelastic");
+    FAIL();
+  } catch (const mp::InvalidParameter& e) {
+    EXPECT_NE(std::string(e.what()).find("layers[0].viscoelastic[1].weight"), std::string::npos);
+  }
+  v = prony3();
+  v.deborahs[0] = std::nan("");
+  EXPECT_THROW(mp::validate(v, "v"), mp::InvalidParameter);
+  v = prony3();
+  v.shift = 0.0;
+  EXPECT_THROW(mp::validate(v, "v"), mp::InvalidParameter);
+  EXPECT_THROW(mp::zener(0.5, 0.1), mp::InvalidParameter);
+  EXPECT_THROW(mp::zener(2.0, -0.1), mp::InvalidParameter);
+}
+
+// The moments l J_n(s, l) against (w/pi) int sqrt(1 - r^2) U_n(r) K(w (s - r)) dr
+// with K(u) = (1/beta) F(u/beta) in closed form (exponential integrals),
+// integrated by tanh-sinh on both sides of the logarithmic point r = s: the
+// Hilbert transform taken by hand on one side, the kernel on the other.
+TEST(Viscoelastic, MemoryMomentsAreTheKernelsIntegrals) {
+  for (double beta : {0.07, 0.6, 4.0}) {
+    for (double w : {0.3, 1.1}) {
+      for (double s : {-0.93, -0.2, 0.0, 0.55, 0.99}) {
+        const int count = 9;
+        std::vector<double> got(count);
+        mp::memory_moments(s, w / beta, count, got.data());
+        const double ts = std::acos(s);
+        for (int n = 0; n < count; ++n) {
+          auto f = [&](double th) {
+            const double u = w * (s - std::cos(th));
+            return std::sin(th) * std::sin((n + 1) * th) * F(u / beta) / beta;
+          };
+          const double want = (w / kPi) * (tanh_sinh(f, 0.0, ts) + tanh_sinh(f, ts, kPi));
+          EXPECT_NEAR(got[static_cast<std::size_t>(n)], want, 2e-11 * (1.0 + std::fabs(want)))
+              << "beta " << beta << " w " << w << " s " << s << " n " << n;
+        }
+      }
+    }
+  }
+}
+
+TEST(Viscoelastic, MemoryMomentsBesideTheContactAndInTheLimits) {
+  // Beside the contact (|s| > 1): against the same kernel integral (no
+  // singular point inside).
+  const double beta = 0.5, w = 0.8;
+  for (double s : {-2.5, -1.2, 1.05, 1.7, 6.0}) {
+    std::vector<double> got(6);
+    mp::memory_moments(s, w / beta, 6, got.data());
+    for (int n = 0; n < 6; ++n) {
+      auto f = [&](double th) {
+        return std::sin(th) * std::sin((n + 1) * th) * F(w * (s - std::cos(th)) / beta) / beta;
+      };
+      const double want = (w / kPi) * tanh_sinh(f, 0.0, kPi);
+      EXPECT_NEAR(got[static_cast<std::size_t>(n)], want, 2e-11 * (1.0 + std::fabs(want)))
+          << s << " " << n;
+    }
+  }
+  // l -> inf: h_n(s) (the relaxed limit: T_{n+1}(s) on the contact, the
+  // Cauchy term's image beside it), with an error O(1/l).
+  for (double s : {-0.7, 0.3, 1.4, -3.0}) {
+    const int count = 12;
+    std::vector<double> got(count);
+    mp::memory_moments(s, 1e11, count, got.data());
+    for (int n = 0; n < count; ++n) {
+      const double want = std::fabs(s) <= 1.0
+                              ? std::cos((n + 1) * std::acos(s))
+                              : std::pow(s - std::copysign(std::sqrt(s * s - 1.0), s), n + 1);
+      EXPECT_NEAR(got[static_cast<std::size_t>(n)], want, 1e-9) << s << " " << n;
+    }
+  }
+  // l -> 0: l J_n -> 0 (like l ln(1/l) for n = 0).
+  std::vector<double> tiny(4);
+  mp::memory_moments(0.2, 1e-10, 4, tiny.data());
+  for (double v : tiny) EXPECT_LT(std::fabs(v), 1e-8);
+}
+
+TEST(Viscoelastic, CollocationBlockIsTheCauchyTermInTheRelaxedLimit) {
+  // c lambda J_n -> c T_{n+1}(s_k) as lambda -> inf: the block becomes c
+  // W_i/(r_i - s_k), exactly the discrete Cauchy term (Gauss-Chebyshev).
+  mp::RetardationSpectrum sp;
+  sp.c = {1.5};
+  sp.beta = {1e-11};
+  sp.ratio = 2.5;
+  const mp::MemoryKernel mk(sp);
+  const mp::ChebyshevNodes nd = mp::chebyshev_nodes(16);
+  const Eigen::MatrixXd B = mk.collocation_block(nd, 0.7);
+  for (int k = 0; k <= nd.n; ++k)
+    for (int i = 0; i < nd.n; ++i)
+      EXPECT_NEAR(B(k, i), 1.5 * nd.w(i) / (nd.r(i) - nd.s(k)), 1e-8) << k << " " << i;
+}
+
+TEST(Viscoelastic, LayerResponseLimitsAndPositiveDissipation) {
+  mp::MediumSpec spec = mp::homogeneous_medium(1.0, 0.25);
+  spec.layers[0].visco = mp::zener(4.0, 0.3);
+  const auto m = mp::make_medium(spec, 0.0);
+  EXPECT_FALSE(m->real());
+  ASSERT_NE(m->memory(), nullptr);
+  EXPECT_NEAR(m->phi1(), 0.75 / 4.0, 1e-15);
+  // The relaxed and the unrelaxed elastic layers (mu_0 = 1 and mu_inf = 4:
+  // the compliance over 4, the springs relatively 4 times softer).
+  const auto relaxed = mp::make_medium(mp::homogeneous_medium(1.0, 0.25), 0.0);
+  const auto unrelaxed = mp::make_medium(mp::homogeneous_medium(0.25, 0.25), 0.0);
+  for (double t : {1e-4, 0.01, 0.2, 1.0, 3.0, 12.0}) {
+    const mp::FullResponse r = m->full_response(t);
+    // Positive dissipation mode by mode: Im M1 > 0.
+    EXPECT_GT(r.M1.imag(), 0.0) << t;
+    // Stresses per unit pressure: those of the elastic layer on springs kw/m(t).
+    EXPECT_TRUE(std::isfinite(r.M2.real()));
+    (void)relaxed;
+  }
+  // deborah -> 0 and -> inf: the relaxed and unrelaxed layers' M1.
+  mp::MediumSpec fast = spec, slow = spec;
+  slow.layers[0].visco = mp::zener(4.0, 1e-12);
+  fast.layers[0].visco = mp::zener(4.0, 1e12);
+  const auto ms = mp::make_medium(slow, 0.0), mf = mp::make_medium(fast, 0.0);
+  for (double t : {0.05, 0.5, 2.0, 8.0}) {
+    EXPECT_NEAR(std::abs(ms->full_response(t).M1 - relaxed->full_response(t).M1), 0.0, 1e-10) << t;
+    EXPECT_NEAR(std::abs(mf->full_response(t).M1 - 0.25 * unrelaxed->full_response(t).M1), 0.0,
+                1e-10)
+        << t;
+  }
+  // The whole half-plane part: M1 - (1 - nu)/m(t) decays exponentially.
+  for (double t : {20.0, 30.0}) {
+    const std::complex<double> rem = m->full_response(t).M1 - m->half_plane_m1(t);
+    EXPECT_LT(std::abs(rem), 1e-6 * std::exp(-2.0 * (t - 20.0)) + 1e-15) << t;
+  }
+}
+
+TEST(Viscoelastic, OnlyTheQuasiStaticSingleLayerIsMadeAndEachRefusalNamesItsParameter) {
+  mp::MediumSpec spec = mp::homogeneous_medium(1.0, 0.25);
+  spec.layers[0].visco = mp::zener(2.0, 0.1);
+  try {
+    mp::make_medium(spec, 0.1);
+    FAIL();
+  } catch (const mp::InvalidParameter& e) {
+    EXPECT_EQ(e.name(), "vstar");
+  }
+  mp::MediumSpec stack = spec;
+  stack.layers = {mp::Sublayer(0.5, 1.0, 0.25), mp::Sublayer(0.5, 2.0, 0.3)};
+  stack.layers[0].visco = mp::zener(2.0, 0.1);
+  try {
+    mp::make_medium(stack, 0.0);
+    FAIL();
+  } catch (const mp::InvalidParameter& e) {
+    EXPECT_EQ(e.name(), "layers");
+  }
+  // Keys tell materials apart.
+  mp::MediumSpec other = spec;
+  other.layers[0].visco = mp::zener(2.0, 0.2);
+  EXPECT_NE(spec.key(), other.key());
+  EXPECT_NE(spec.key(), mp::homogeneous_medium(1.0, 0.25).key());
+}

@@ -1,0 +1,363 @@
+"""Viscoelastic layers (issue 28; docs/theory.md section 17): a rigid cylinder
+on a quasi-static standard linear solid (Zener) or generalised Maxwell
+(Prony) layer on springs.
+
+Independent anchors:
+
+* Hunter's closed form for a rigid cylinder rolling on a viscoelastic
+  (standard linear solid) half-space: S. C. Hunter, "The rolling contact of a
+  rigid cylinder with a viscoelastic half space", J. Appl. Mech. 28 (1961)
+  611-617 (reproduced by B. N. J. Persson, Eur. Phys. J. E 33 (2010) 327).
+  ``hunter`` below is our own derivation of it (docs/theory.md section 17.4):
+  with Q = p - D p' the contact problem becomes a Cauchy equation with a
+  linear right side, and the two ends' conditions are linear in its
+  coefficients with the modified Bessel functions I0, I1 of a/(V tau) and K0,
+  K1 of a/(ratio V tau). The layer solver approaches it like (a0/h)^2.
+* The elastic limits: deborah -> 0 is the elastic layer of the relaxed
+  modulus mu_0, deborah -> inf that of the unrelaxed mu_inf = ratio mu_0
+  (load and kw over the ratio in mu_0's units), ratio = 1 the elastic layer.
+* The energy balance: the drag (from the collocation's pressure and the
+  punch's slope) equals the power the layer dissipates per unit distance,
+  computed independently by Parseval on the surface from Im M1.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from scipy import optimize, special
+
+import movingpunch as mp
+from movingpunch.errors import InvalidParameterError
+
+NU = 0.2
+PHI0 = 1.0 - NU  # the relaxed static half-plane's phi1
+R = 100.0
+
+
+def hunter(ratio: float, D: float, radius: float, load: float, phi0: float):
+    """(centre, half-width, drag) of a rigid cylinder (radius R) pressed by P
+    (per mu_0) sliding quasi-statically over a standard-linear-solid half-plane
+    of relaxed compliance factor phi0 = 1 - nu, unrelaxed modulus ratio mu_0,
+    D = V tau (tau: relaxation at constant strain), all lengths in one unit.
+
+    Q = p - D p' solves phi0 H[Q] = (x - ratio D)/R on the contact:
+    Q(r) = [A0 - f0 r + f1 (1 - r^2)]/sqrt(1 - r^2) (x = c + w r) with
+    f1 = w/(phi0 R), f0 = (c - ratio D)/(phi0 R); p(-b) = 0 and the
+    undifferentiated equation give
+        A0 I0(k) + f0 I1(k) + f1 I1(k)/k = 0,      k = w/D,
+        A0 K0(k') - f0 K1(k') - f1 K1(k')/k' = 0,  k' = w/(ratio D),
+    and P = pi w (A0 + f1/2); drag = int p x/R / P = (c - D)/R - pi w^2 f0/(2 P R)."""
+
+    def coefficients(w: float) -> tuple[float, float]:
+        k, kp = w / D, w / (ratio * D)
+        # Exponentially scaled: only the ratios within each row matter.
+        i0, i1 = special.ive(0, k), special.ive(1, k)
+        k0, k1 = special.kve(0, kp), special.kve(1, kp)
+        a, f = np.linalg.solve(np.array([[i0, i1], [k0, -k1]]), [-i1 / k, k1 / kp])
+        return float(a), float(f)  # A0/f1, f0/f1
+
+    def carried(w: float) -> float:
+        a, _ = coefficients(w)
+        return math.pi * w * w / (phi0 * radius) * (a + 0.5) - load
+
+    w0 = math.sqrt(2.0 * phi0 * radius * load / math.pi)  # the relaxed Hertz width
+    w = optimize.brentq(
+        carried, 0.4 * w0 / math.sqrt(ratio), 2.0 * w0, xtol=1e-15, rtol=1e-15
+    )
+    _, f = coefficients(w)
+    c = ratio * D + w * f
+    f0 = f * w / (phi0 * radius)
+    drag = (c - D) / radius - math.pi * w * w * f0 / (2.0 * load * radius)
+    return c, w, drag
+
+
+def zener_solve(ratio: float, deborah: float, load: float, kw: float = 1.0, **kw_):
+    layer = mp.Layer(nu=NU, viscoelastic=mp.Zener(ratio, deborah))
+    return mp.solve(
+        vstar=0.0, load=load, radius=R, layers=[layer], base=mp.Winkler(kw), **kw_
+    )
+
+
+def half_plane_case(ratio: float, v_tau: float, a0: float):
+    """The layer's and Hunter's (ends, drag R/a0) at Hertz half-width a0/h
+    (relaxed) and V tau/a0 = v_tau."""
+    load = math.pi * a0 * a0 / (2.0 * PHI0 * R)
+    D = v_tau * a0
+    c, w, drag = hunter(ratio, D, R, load, PHI0)
+    s = zener_solve(ratio, D, load)
+    left, right = s.contact_interval
+    err_ends = max(abs(right - (c + w)), abs(left - (c - w))) / a0
+    err_drag = abs(s.drag - drag) * R / a0
+    return err_ends, err_drag, drag * R / a0, s
+
+
+@pytest.mark.parametrize("ratio", [2.0, 10.0])
+@pytest.mark.parametrize("v_tau", [0.3, 1.0])
+def test_the_layer_approaches_hunters_half_plane_like_a0_squared(ratio, v_tau):
+    e1, d1, _, _ = half_plane_case(ratio, v_tau, 0.02)
+    e2, d2, _, s = half_plane_case(ratio, v_tau, 0.01)
+    # (a0/h)^2: halving a0/h divides the difference by about 4.
+    assert 3.0 < e1 / e2 < 5.0, (e1, e2)
+    assert 2.5 < d1 / d2 < 5.0, (d1, d2)
+    assert e2 < 1e-3
+    assert d2 < 1e-3
+    assert s.valid
+    assert not s.warnings
+
+
+@pytest.mark.parametrize("ratio", [2.0, 10.0])
+def test_the_resistance_curve_and_its_maximum_follow_hunters(ratio):
+    """(F/P)(R/a0) against V tau/a0 rises and falls (the bell curve); its
+    maximum from the layer at a0/h = 0.01 is Hunter's to 1e-3."""
+
+    def hunter_curve(v_tau: float) -> float:
+        a0 = 1.0
+        load = math.pi * a0 * a0 / (2.0 * PHI0 * R)
+        return hunter(ratio, v_tau * a0, R, load, PHI0)[2] * R / a0
+
+    best = optimize.minimize_scalar(
+        lambda lv: -hunter_curve(math.exp(lv)), bounds=(-5, 3), method="bounded"
+    )
+    v_max, f_max = math.exp(best.x), -best.fun
+    # A maximum inside: both sides lower.
+    assert hunter_curve(0.5 * v_max) < f_max
+    assert hunter_curve(2.0 * v_max) < f_max
+    layer = [
+        half_plane_case(ratio, v, 0.01)[3].drag * R / 0.01
+        for v in (0.5 * v_max, v_max, 2.0 * v_max)
+    ]
+    assert layer[1] > layer[0]
+    assert layer[1] > layer[2]
+    assert abs(layer[1] - f_max) < 1e-3 * f_max, (layer[1], f_max)
+
+
+def test_deborah_zero_and_infinity_are_the_relaxed_and_unrelaxed_layers():
+    ratio, load, kw = 2.0, 0.002, 1.0
+    relaxed = mp.solve(vstar=0.0, load=load, radius=R, kw=kw, nu=NU)
+    # mu_inf = ratio mu_0: in its own units the load and kw are over the ratio.
+    unrelaxed = mp.solve(vstar=0.0, load=load / ratio, radius=R, kw=kw / ratio, nu=NU)
+    slow = zener_solve(ratio, 1e-12, load, kw)
+    fast = zener_solve(ratio, 1e12, load, kw)
+    assert slow.contact_interval == pytest.approx((-relaxed.a, relaxed.a), abs=1e-10)
+    assert fast.contact_interval == pytest.approx(
+        (-unrelaxed.a, unrelaxed.a), abs=1e-10
+    )
+    assert abs(slow.drag) < 1e-10
+    assert abs(fast.drag) < 1e-10
+
+
+def test_ratio_one_and_deborah_zero_are_the_elastic_layer_exactly():
+    elastic = mp.solve(vstar=0.0, load=0.002, radius=R, kw=1.0, nu=NU)
+    for v in (mp.Zener(1.0, 0.3), mp.Zener(3.0, 0.0)):
+        s = mp.solve(
+            vstar=0.0,
+            load=0.002,
+            radius=R,
+            layers=[mp.Layer(nu=NU, viscoelastic=v)],
+            base=mp.Winkler(1.0),
+        )
+        assert type(s) is type(elastic)
+        assert s.a == elastic.a
+
+
+def _integral(s) -> float:
+    """int p dx/(P/h) by Gauss-Chebyshev (second kind) at 400 nodes."""
+    left, right = s.contact_interval
+    c, w = 0.5 * (left + right), 0.5 * (right - left)
+    m = 400
+    th = np.arange(1, m + 1) * math.pi / (m + 1)
+    return float(
+        w * math.pi / (m + 1) * np.sum(np.sin(th) * s.pressure(c + w * np.cos(th)))
+    )
+
+
+CASES = [
+    (mp.Zener(2.0, 0.05), 1.0, 0.002),
+    (mp.Zener(10.0, 0.3), 1.0, 0.002),
+    (mp.Zener(1000.0, 0.01), 1.0, 0.002),
+    (mp.Zener(3.0, 0.1), 0.1, 0.002),
+    (mp.Zener(3.0, 0.1), math.inf, 0.01),
+    (mp.Prony((0.5, 2.0, 4.0), (0.02, 0.3, 5.0), 1.5), 1.0, 0.002),
+]
+
+
+@pytest.mark.parametrize(("material", "kw", "load"), CASES)
+def test_drag_is_the_dissipation_and_the_pressure_carries_the_load(material, kw, load):
+    s = mp.solve(
+        vstar=0.0,
+        load=load,
+        radius=R,
+        layers=[mp.Layer(nu=NU, viscoelastic=material)],
+        base=mp.Winkler(kw),
+    )
+    assert s.valid
+    assert not s.warnings
+    assert s.drag > 0.0  # it resists the motion
+    assert abs(s.drag - s.dissipation) <= 1e-10 * s.drag
+    assert abs(_integral(s) - 1.0) < 1e-10
+    left, right = s.contact_interval
+    x = np.linspace(left, right, 801)[1:-1]
+    assert np.all(s.pressure(x) >= 0.0)
+    # The contact shifts forward (towards +x, the direction of motion).
+    assert left + right > 0.0
+    # The slope is the punch's on the contact.
+    xs = np.linspace(left, right, 9)[1:-1]
+    assert np.allclose(s.surface_slope(xs), xs / R, rtol=1e-8, atol=1e-12)
+
+
+def test_prony_limits_and_the_shift_factor():
+    weights, deborahs = (0.5, 2.0, 4.0), (0.02, 0.3, 5.0)
+
+    def prony(ds, shift=1.0, load=0.002):
+        return mp.solve(
+            vstar=0.0,
+            load=load,
+            radius=R,
+            layers=[mp.Layer(nu=NU, viscoelastic=mp.Prony(weights, ds, shift))],
+            base=mp.Winkler(1.0),
+        )
+
+    # The shift multiplies every relaxation time.
+    a = prony(deborahs, shift=2.0)
+    b = prony(tuple(2.0 * d for d in deborahs))
+    assert a.contact_interval == b.contact_interval
+    assert a.drag == b.drag
+    # All relaxed / all unrelaxed: the elastic layers of mu_0 and 7.5 mu_0.
+    relaxed = mp.solve(vstar=0.0, load=0.002, radius=R, kw=1.0, nu=NU)
+    unrelaxed = mp.solve(vstar=0.0, load=0.002 / 7.5, radius=R, kw=1.0 / 7.5, nu=NU)
+    assert prony((1e-12,) * 3).contact_interval == pytest.approx(
+        (-relaxed.a, relaxed.a), abs=1e-10
+    )
+    assert prony((1e12,) * 3).contact_interval == pytest.approx(
+        (-unrelaxed.a, unrelaxed.a), abs=1e-10
+    )
+
+
+def test_the_modulus_and_its_sign():
+    z = mp.Zener(3.0, 0.2)
+    t = np.array([0.0, 0.5, 2.0, 1e4])
+    want = (1 - 3j * 0.2 * t) / (1 - 0.2j * t)
+    assert np.allclose(z.modulus(t), want, rtol=1e-15)
+    assert np.all(z.modulus(t[1:]).imag < 0)  # e^{-i omega t}: a loss
+    p = mp.Prony((2.0,), (0.2,))
+    assert np.allclose(p.modulus(t), want, rtol=1e-15)
+
+
+def test_what_is_not_solved_yet_is_refused_by_name():
+    layer = [mp.Layer(nu=NU, viscoelastic=mp.Zener(2.0, 0.1))]
+    args = {"load": 0.002, "layers": layer, "base": mp.Winkler(1.0)}
+    with pytest.raises(InvalidParameterError) as e:
+        mp.solve(vstar=0.1, radius=R, **args)
+    assert e.value.parameter == "vstar"
+    with pytest.raises(InvalidParameterError) as e:
+        mp.solve(vstar=0.0, radius=R, friction=0.2, **args)
+    assert e.value.parameter == "friction"
+    with pytest.raises(InvalidParameterError) as e:
+        mp.solve(vstar=0.0, profile=mp.RoundedFlat(0.3, 100.0), **args)
+    assert e.value.parameter == "profile"
+    with pytest.raises(InvalidParameterError) as e:
+        mp.solve(
+            vstar=0.0,
+            radius=R,
+            load=0.002,
+            layers=layer,
+            base=mp.Winkler(1.0, damping=0.5),
+        )
+    assert e.value.parameter == "damping"
+    two = [
+        mp.Layer(0.5, nu=NU, viscoelastic=mp.Zener(2.0, 0.1)),
+        mp.Layer(0.5, mu=2.0, nu=0.3),
+    ]
+    with pytest.raises(InvalidParameterError) as e:
+        mp.solve(vstar=0.0, radius=R, load=0.002, layers=two, base=mp.Winkler(1.0))
+    assert e.value.parameter == "layers"
+    s = mp.solve(vstar=0.0, radius=R, **args)
+    with pytest.raises(InvalidParameterError, match="not available yet"):
+        s.displacement([0.1], -0.5)
+    assert s.displacement([0.1, 0.4], 0.0) == pytest.approx(
+        s.surface_displacement([0.1, 0.4]), rel=1e-14
+    )
+
+
+@pytest.mark.parametrize(
+    ("make", "parameter"),
+    [
+        (lambda: mp.Zener(0.5, 0.1), "ratio"),
+        (lambda: mp.Zener(2.0, float("nan")), "deborah"),
+        (lambda: mp.Zener(2.0, -1.0), "deborah"),
+        (lambda: mp.Zener(float("inf"), 0.1), "ratio"),
+        (lambda: mp.Zener("2", 0.1), "ratio"),
+        (lambda: mp.Prony((1.0, 2.0), (0.1,)), "deborahs"),
+        (lambda: mp.Prony((1.0, -2.0), (0.1, 0.2)), "weights"),
+        (lambda: mp.Prony((1.0,), (0.1,), shift=0.0), "shift"),
+        (lambda: mp.Prony("ab", (0.1,)), "weights"),
+        (lambda: mp.Layer(viscoelastic="zener"), "viscoelastic"),
+    ],
+)
+def test_bad_materials_name_their_parameter(make, parameter):
+    with pytest.raises(InvalidParameterError) as e:
+        make()
+    assert e.value.parameter == parameter
+
+
+def test_the_medium_says_it_is_viscoelastic():
+    layer = mp.Layer(nu=NU, viscoelastic=mp.Zener(2.0, 0.1))
+    m = mp.Medium((layer,), mp.Winkler(1.0))
+    assert m.viscoelastic
+    assert not m.homogeneous
+    assert "Zener ratio 2, deborah 0.1" in m.describe()
+    assert layer.to_dict()["viscoelastic"] == {
+        "kind": "zener",
+        "ratio": 2.0,
+        "deborah": 0.1,
+    }
+    assert not mp.Medium(
+        (mp.Layer(viscoelastic=mp.Zener(1.0, 0.1)),), mp.Winkler(1.0)
+    ).viscoelastic
+
+
+@pytest.mark.parametrize("material,kw,load", CASES[:2] + CASES[3:5])
+def test_the_surface_displacement_is_the_punch_on_the_contact_and_the_slope_beside(
+    material, kw, load
+):
+    """The displacement (its memory through the basis' potentials and an
+    exponential convolution) against two independent things: the punch's
+    shape on the contact (v = x^2/2R - delta) and the slope beside it (from
+    the collocation's kernel and the memory's moments)."""
+    s = mp.solve(
+        vstar=0.0,
+        load=load,
+        radius=R,
+        layers=[mp.Layer(nu=NU, viscoelastic=material)],
+        base=mp.Winkler(kw),
+    )
+    left, right = s.contact_interval
+    x = np.linspace(left, right, 9)[1:-1]
+    v = s.surface_displacement(x)
+    # v = -(delta - x^2/2R) on the contact (v up, the punch pressed down by delta).
+    assert np.allclose(
+        v - x * x / (2 * R), -s.indentation, rtol=0, atol=1e-9 * s.indentation
+    )
+    for side in (-1, 1):
+        edge = right if side > 0 else left
+        for d in (0.05, 0.3):
+            xs, h = edge + side * d * (right - left), 1e-4 * (right - left)
+            f = s.surface_displacement(xs + h * np.array([-2.0, -1.0, 1.0, 2.0]))
+            slope = (f[0] - 8 * f[1] + 8 * f[2] - f[3]) / (12 * h)  # O(h^4)
+            assert abs(slope - s.surface_slope(xs)) < 1e-7 * (right - left) / R, (
+                side,
+                d,
+            )
+
+
+def test_the_indentation_in_the_elastic_limits():
+    ratio, load, kw = 2.0, 0.002, 1.0
+    relaxed = mp.solve(vstar=0.0, load=load, radius=R, kw=kw, nu=NU)
+    unrelaxed = mp.solve(vstar=0.0, load=load / ratio, radius=R, kw=kw / ratio, nu=NU)
+    slow = zener_solve(ratio, 1e-12, load, kw)
+    fast = zener_solve(ratio, 1e12, load, kw)
+    assert slow.indentation == pytest.approx(relaxed.indentation, rel=1e-9)
+    assert fast.indentation == pytest.approx(unrelaxed.indentation, rel=1e-9)
