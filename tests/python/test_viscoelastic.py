@@ -319,7 +319,7 @@ def test_the_medium_says_it_is_viscoelastic():
     ).viscoelastic
 
 
-@pytest.mark.parametrize("material,kw,load", CASES[:2] + CASES[3:5])
+@pytest.mark.parametrize(("material", "kw", "load"), CASES[:2] + CASES[3:5])
 def test_the_surface_displacement_is_the_punch_on_the_contact_and_the_slope_beside(
     material, kw, load
 ):
