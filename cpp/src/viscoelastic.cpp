@@ -6,6 +6,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <numeric>
 #include <sstream>
 #include <utility>
@@ -89,12 +92,11 @@ void validate(const Viscoelastic& v, const std::string& where) {
     require_in_range((at + ".deborah").c_str(), v.deborahs[j], 0.0, kMaxDeborah, false, false);
     const double D = v.shift * v.deborahs[j];
     if (D != 0.0 && !(D >= kMinDeborah && D <= kMaxDeborah))
-      throw InvalidParameter(at + ".deborah",
-                             "shift * deborah 0 or in [" + num(kMinDeborah) + ", " +
-                                 num(kMaxDeborah) + "]",
-                             at + ": shift * deborah = " + num(D) + " is outside [" +
-                                 num(kMinDeborah) + ", " + num(kMaxDeborah) +
-                                 "] (0: the branch relaxes at once, the relaxed modulus)");
+      throw InvalidParameter(
+          at + ".deborah",
+          "shift * deborah 0 or in [" + num(kMinDeborah) + ", " + num(kMaxDeborah) + "]",
+          at + ": shift * deborah = " + num(D) + " is outside [" + num(kMinDeborah) + ", " +
+              num(kMaxDeborah) + "] (0: the branch relaxes at once, the relaxed modulus)");
   }
   if (!(v.ratio() <= kMaxViscoRatio))
     throw InvalidParameter(where, "1 + sum of the weights <= " + num(kMaxViscoRatio),
@@ -172,23 +174,28 @@ struct Node {
 
 }  // namespace
 
-void memory_moments(double s, double l, int count, double* out) {
-  if (count <= 0) return;
-  if (!std::isfinite(s) || !(l > 0.0) || !std::isfinite(l))
-    throw std::invalid_argument("memory_moments: s finite and l > 0 finite required");
-  std::fill(out, out + count, 0.0);
+namespace {
+
+// The exponential weight's segments in eta = x - s (units 1/l): each a
+// factor e^8 at most, to e^-48 (2e-21).
+constexpr double kSteps[] = {0, 1, 2, 4, 8, 16, 24, 32, 40, 48};
+constexpr double kReach = 48.0;
+
+// Adds l int_{s + e0}^{s + e1} e^{-l (x - s)} h_n(x) dx to out[n], n < count
+// (0 <= e0 < e1 <= kReach/l).
+void add_segment(double s, double l, double e0_in, double e1_in, int count, double* out) {
   static const std::shared_ptr<const JacobiRule> gl = cached_gauss_jacobi(16, 0.0, 0.0);
   const Eigen::VectorXd& gx = gl->x;
   const Eigen::VectorXd& gw = gl->w;
-  // The exponential weight's segments in eta = x - s (units 1/l): each a
-  // factor e^8 at most, to e^-48 (2e-21).
-  static constexpr double kSteps[] = {0, 1, 2, 4, 8, 16, 24, 32, 40, 48};
-  std::vector<double> cuts;
-  for (double k : kSteps) cuts.push_back(k / l);
+  thread_local std::vector<double> cuts;
+  cuts.clear();
+  cuts.push_back(e0_in);
+  cuts.push_back(e1_in);
+  for (double k : kSteps)
+    if (k / l > e0_in && k / l < e1_in) cuts.push_back(k / l);
   // The branch points x = +-1 of h_n.
-  const double end = cuts.back();
   for (double e : {-1.0 - s, 1.0 - s})
-    if (e > 0.0 && e < end) cuts.push_back(e);
+    if (e > e0_in && e < e1_in) cuts.push_back(e);
   std::sort(cuts.begin(), cuts.end());
   cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
   const double freq = static_cast<double>(count + 1);
@@ -218,8 +225,7 @@ void memory_moments(double s, double l, int count, double* out) {
       const int m = std::max(1, static_cast<int>(std::ceil(std::fabs(t0 - t1) * freq / 8.0)));
       double prev = e0;
       for (int j = 1; j <= m; ++j) {
-        const double next =
-            j == m ? e1 : std::cos(t0 + (t1 - t0) * static_cast<double>(j) / m) - s;
+        const double next = j == m ? e1 : std::cos(t0 + (t1 - t0) * static_cast<double>(j) / m) - s;
         if (next > prev) eta_piece(prev, next, true);
         prev = std::max(prev, next);
       }
@@ -234,7 +240,8 @@ void memory_moments(double s, double l, int count, double* out) {
       const double ax = right ? s + e0 : -(s + e1);
       const double dphi = len / std::sqrt((ax - 1.0) * (ax + 1.0));
       const int m = std::max(1, static_cast<int>(std::ceil(dphi * freq / 8.0)));
-      for (int j = 0; j < m; ++j) eta_piece(e0 + len * j / m, j + 1 == m ? e1 : e0 + len * (j + 1) / m, false);
+      for (int j = 0; j < m; ++j)
+        eta_piece(e0 + len * j / m, j + 1 == m ? e1 : e0 + len * (j + 1) / m, false);
       continue;
     }
     // Near the branch point: parametrised by phi (x - 1 or -1 - x exact).
@@ -325,6 +332,38 @@ void memory_moments(double s, double l, int count, double* out) {
   }
 }
 
+void check_moment_args(double s, double l) {
+  if (!std::isfinite(s) || !(l > 0.0) || !std::isfinite(l))
+    throw std::invalid_argument("memory_moments: s finite and l > 0 finite required");
+}
+
+}  // namespace
+
+void memory_moments(double s, double l, int count, double* out) {
+  if (count <= 0) return;
+  check_moment_args(s, l);
+  std::fill(out, out + count, 0.0);
+  add_segment(s, l, 0.0, kReach / l, count, out);
+}
+
+void memory_moments_descending(const double* s, int rows, double l, int count, double* out) {
+  if (count <= 0 || rows <= 0) return;
+  for (int k = 0; k < rows; ++k) check_moment_args(s[k], l);
+  for (int k = 1; k < rows; ++k)
+    if (!(s[k] < s[k - 1]))
+      throw std::invalid_argument("memory_moments_descending: s must be strictly descending");
+  memory_moments(s[0], l, count, out);
+  // G(s_k) = l int_{s_k}^{s_{k-1}} e^{-l (x - s_k)} h_n + e^{-l (s_{k-1} - s_k)} G(s_{k-1}):
+  // one short segment a row (the factor <= 1: stable downwards).
+  for (int k = 1; k < rows; ++k) {
+    double* row = out + static_cast<std::size_t>(k) * count;
+    const double* prev = row - count;
+    const double gap = s[k - 1] - s[k], f = std::exp(-l * gap);
+    for (int n = 0; n < count; ++n) row[n] = f * prev[n];
+    add_segment(s[k], l, 0.0, std::min(gap, kReach / l), count, row);
+  }
+}
+
 MemoryKernel::MemoryKernel(RetardationSpectrum spectrum) : spec_(std::move(spectrum)) {}
 
 void MemoryKernel::moments(double s, double w, int count, double* out) const {
@@ -339,21 +378,39 @@ void MemoryKernel::moments(double s, double w, int count, double* out) const {
 
 Eigen::MatrixXd MemoryKernel::collocation_block(const ChebyshevNodes& nodes, double w) const {
   const int n = nodes.n;
-  Eigen::MatrixXd mom(n + 1, n);
-  std::vector<double> row(static_cast<std::size_t>(n));
-  for (int k = 0; k <= n; ++k) {
-    moments(nodes.s(k), w, n, row.data());
-    for (int q = 0; q < n; ++q) mom(k, q) = row[static_cast<std::size_t>(q)];
+  // The collocation points descend (s_k = cos((2k - 1) pi/(2(N + 1)))): the
+  // moments of all rows in one downward sweep per retardation time.
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  RowMajor mom = RowMajor::Zero(n + 1, n), one(n + 1, n);
+  for (std::size_t k = 0; k < spec_.c.size(); ++k) {
+    memory_moments_descending(nodes.s.data(), n + 1, w / spec_.beta[k], n, one.data());
+    mom += spec_.c[k] * one;
   }
-  // U(q, i) = U_q(r_i) = sin((q + 1) th_i)/sin(th_i), th_i = i pi/(n + 1).
-  Eigen::MatrixXd U(n, n);
+  return mom * *basis_weights(nodes);
+}
+
+std::shared_ptr<const Eigen::MatrixXd> MemoryKernel::basis_weights(const ChebyshevNodes& nodes) {
+  // -2 W_i U_q(r_i) (U_q(r_i) = sin((q + 1) th_i)/sin(th_i), th_i = i pi/(n + 1)),
+  // per size: the width iteration assembles many blocks at one N.
+  static std::mutex mutex;
+  static std::map<int, std::shared_ptr<const Eigen::MatrixXd>> cache;
+  const int n = nodes.n;
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    const auto it = cache.find(n);
+    if (it != cache.end()) return it->second;
+  }
+  auto U = std::make_shared<Eigen::MatrixXd>(n, n);
   for (int i = 0; i < n; ++i) {
     const double th = (i + 1) * kPi / (n + 1);
-    for (int q = 0; q < n; ++q) U(q, i) = std::sin((q + 1) * th) / std::sin(th);
+    for (int q = 0; q < n; ++q)
+      (*U)(q, i) = -2.0 * nodes.w(i) * std::sin((q + 1) * th) / std::sin(th);
   }
-  Eigen::MatrixXd B = mom * U;
-  for (int i = 0; i < n; ++i) B.col(i) *= -2.0 * nodes.w(i);
-  return B;
+  std::lock_guard<std::mutex> lock(mutex);
+  if (cache.size() > 64) cache.clear();
+  auto& slot = cache[n];
+  if (!slot) slot = std::move(U);
+  return slot;
 }
 
 double MemoryKernel::apply(const Eigen::VectorXd& b, double s, double w) const {

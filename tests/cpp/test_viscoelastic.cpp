@@ -251,3 +251,23 @@ TEST(Viscoelastic, OnlyTheQuasiStaticSingleLayerIsMadeAndEachRefusalNamesItsPara
   EXPECT_NE(spec.key(), other.key());
   EXPECT_NE(spec.key(), mp::homogeneous_medium(1.0, 0.25).key());
 }
+
+TEST(Viscoelastic, DescendingRowsAreEachRowsMoments) {
+  // The recursion over the collocation points against each point's own
+  // moments (small, moderate and large l; the rows of N = 24).
+  const mp::ChebyshevNodes nd = mp::chebyshev_nodes(24);
+  const int rows = nd.n + 1, count = nd.n;
+  for (double l : {1e-6, 0.3, 4.0, 90.0, 3e4}) {
+    std::vector<double> all(static_cast<std::size_t>(rows) * count), one(count);
+    mp::memory_moments_descending(nd.s.data(), rows, l, count, all.data());
+    for (int k = 0; k < rows; ++k) {
+      mp::memory_moments(nd.s(k), l, count, one.data());
+      for (int n = 0; n < count; ++n)
+        EXPECT_NEAR(all[static_cast<std::size_t>(k) * count + n], one[n], 1e-13)
+            << "l " << l << " k " << k << " n " << n;
+    }
+  }
+  const double bad[] = {0.1, 0.3};
+  std::vector<double> out(4);
+  EXPECT_THROW(mp::memory_moments_descending(bad, 2, 1.0, 2, out.data()), std::invalid_argument);
+}

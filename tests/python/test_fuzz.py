@@ -598,6 +598,99 @@ def test_fuzz_friction_400() -> None:
 
 
 # --------------------------------------------------------------------------
+# Viscoelastic layers (issue 28): Zener materials of every ratio and deborah
+# (and bad ones) on one layer on springs, quasi-static.
+
+RATIO_POOL = [1.0, 1.0 + 1e-9, 1.5, 2.0, 10.0, 1000.0, 1e6]
+RATIO_BAD: list[Any] = [0.999, 0.0, -2.0, 1e6 * (1 + 1e-9), NAN, INF, "2", None]
+DEBORAH_POOL = [0.0, 1e-12, 1e-6, 1e-3, 0.05, 0.3, 3.0, 1e3, 1e12]
+DEBORAH_BAD: list[Any] = [-1e-300, -0.1, 1e12 * (1 + 1e-9), NAN, INF, -INF, "0.1", None]
+
+
+def fuzz_viscoelastic(calls: int, seed: int) -> collections.Counter[str]:
+    """Each call: a Zener material from the pools (or a bad ratio or
+    deborah), kw and nu from small pools, a load of lambda = R P/(mu_0 h^2)
+    log-uniform in [1e-6, 0.05], tol 1e-8 or a preset. A bad material must be
+    refused naming ratio or deborah; a solve must give finite ends, p >= 0 at
+    the contact's middle, a drag >= 0 equal to the dissipation (1e-8 of it,
+    down to its round-off 1e-13 a/R: the energy balance); any error must be
+    the package's."""
+    draw = Draw(seed)
+    rng = np.random.default_rng(seed + 1)
+    outcomes: collections.Counter[str] = collections.Counter()
+    for _ in range(calls):
+        kw = float(draw._pick([0.1, 1.0, 10.0, INF]))
+        nu = float(draw._pick([0.0, 0.2, 0.3, 0.45]))
+        lam = draw._loguniform(1e-6, 0.05)
+        tol: Any = 1e-8 if rng.random() < 0.8 else draw._pick(["draft", 1e-10])
+        bad = rng.random() < 0.2
+        ratio: Any = draw._pick(RATIO_POOL)
+        deborah: Any = draw._pick(DEBORAH_POOL)
+        if bad and rng.random() < 0.5:
+            ratio = draw._pick(RATIO_BAD)
+        elif bad:
+            deborah = draw._pick(DEBORAH_BAD)
+        args = {"ratio": ratio, "deborah": deborah, "kw": kw, "nu": nu, "lam": lam}
+
+        def run(
+            ratio: Any = ratio,
+            deborah: Any = deborah,
+            nu: float = nu,
+            lam: float = lam,
+            tol: Any = tol,
+            kw: float = kw,
+        ) -> Any:
+            layer = mp.Layer(nu=nu, viscoelastic=mp.Zener(ratio, deborah))
+            return mp.solve(
+                vstar=0.0,
+                radius=100.0,
+                load=lam / 100.0,
+                tol=tol,
+                layers=[layer],
+                base=mp.Winkler(kw),
+                allow_unphysical=True,
+            )
+
+        sol, exc = _attempt(run)
+        if exc is not None:
+            _check_error(exc, args)
+            if bad:
+                assert isinstance(exc, mp.InvalidParameterError), args
+                assert exc.parameter in ("ratio", "deborah"), args
+            outcomes[type(exc).__name__] += 1
+            continue
+        assert not bad, args
+        back, front = sol.contact_interval
+        assert math.isfinite(back), args
+        assert math.isfinite(front), args
+        assert back < front, args
+        assert sol.pressure(0.5 * (back + front)) >= 0.0, args
+        drag = sol.drag
+        assert math.isfinite(drag), args
+        assert drag >= -1e-12, args
+        diss = sol.dissipation
+        # Relative, down to the drag's own round-off (eps of the centre, a/R);
+        # unless a warning says the memory's boundary layer is not resolved.
+        floor = 1e-13 * (front - back) / 100.0
+        if not any("viscoelastic memory" in w for w in sol.warnings):
+            assert abs(drag - diss) <= 1e-8 * abs(drag) + floor, (args, drag, diss)
+        else:
+            outcomes["warned"] += 1
+        outcomes["solved"] += 1
+    assert outcomes["solved"] >= 0.5 * calls, outcomes
+    return outcomes
+
+
+def test_fuzz_viscoelastic_16() -> None:
+    _run_with_watchdog(lambda: fuzz_viscoelastic(16, seed=28), 240.0)
+
+
+@pytest.mark.slow
+def test_fuzz_viscoelastic_200() -> None:
+    _run_with_watchdog(lambda: fuzz_viscoelastic(200, seed=2828), 2400.0)
+
+
+# --------------------------------------------------------------------------
 # Honesty (issue 25): loose tolerances, explicit small N, far-apart trains
 # and stiff foundations near V*_cr. Each call runs in a worker process that is
 # killed past CALL_BOUND seconds (a hang fails the test, naming the case);

@@ -361,3 +361,19 @@ def test_the_indentation_in_the_elastic_limits():
     fast = zener_solve(ratio, 1e12, load, kw)
     assert slow.indentation == pytest.approx(relaxed.indentation, rel=1e-9)
     assert fast.indentation == pytest.approx(unrelaxed.indentation, rel=1e-9)
+
+
+def test_an_unresolved_memory_boundary_layer_is_said():
+    """deborah 1e-6 under a contact of a/h ~ 0.019: the retardation length
+    (2e-6 h) is far below the nodes' spacing at the ends, the ladder's sizes
+    all miss the trailing boundary layer alike and its estimates are at
+    round-off; the result says what it could not resolve (and the drag and
+    the dissipation, which weigh that layer, differ by far more than tol)."""
+    layer = mp.Layer(nu=NU, viscoelastic=mp.Zener(2.0, 1e-6))
+    s = mp.solve(
+        vstar=0.0, load=6.918e-6, radius=R, layers=[layer], base=mp.Winkler(10.0)
+    )
+    assert any("viscoelastic memory" in w for w in s.warnings), s.warnings
+    assert abs(s.drag - s.dissipation) > 1e-8 * s.drag
+    # Resolved memories do not warn.
+    assert not zener_solve(2.0, 0.05, 0.002).warnings

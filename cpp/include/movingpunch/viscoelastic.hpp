@@ -23,6 +23,7 @@
 #pragma once
 
 #include <complex>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -99,6 +100,8 @@ class MemoryKernel {
   // w (1/pi) int sqrt(1 - r^2) g(r) K_m(x - c - w r) dr for g = sum b_n U_n
   // (the slope's memory part at any x; s = (x - c)/w any real).
   double apply(const Eigen::VectorXd& b, double s, double w) const;
+  // -2 W_i U_q(r_i) (q, i < N): the block's basis, kept per size N.
+  static std::shared_ptr<const Eigen::MatrixXd> basis_weights(const ChebyshevNodes& nodes);
 
  private:
   RetardationSpectrum spec_;
@@ -106,5 +109,9 @@ class MemoryKernel {
 
 // l J_n(s, l) for n < count (one retardation time; MemoryKernel sums them).
 void memory_moments(double s, double l, int count, double* out);
+// The same at rows points s[0] > s[1] > ... (out: rows x count, row-major),
+// by the recursion G(s_k) = (the segment [s_k, s_{k-1}]) + e^{-l (s_{k-1} -
+// s_k)} G(s_{k-1}): one short segment a row after the first.
+void memory_moments_descending(const double* s, int rows, double l, int count, double* out);
 
 }  // namespace movingpunch

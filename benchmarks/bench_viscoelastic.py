@@ -1,0 +1,99 @@
+"""What a viscoelastic layer costs (issue 28): a Zener layer's warm solve
+against the same layer elastic, and a resistance curve of 100 speeds.
+
+* Warm solve (kernel table cached; the load varied by 1e-3 per repeat so no
+  result is reused), median over --repeat: the quasi-static Zener layer
+  (ratio 2, deborah 0.1, kw 1, R/h 100, P/(mu_0 h) 0.002) against the elastic
+  layer of mu_0 on the paper's path (``mp.solve``, the symmetric solver) and
+  on the asymmetric solver (the same layer with friction 1e-12, the path the
+  viscoelastic layer takes), and against the plain NumPy baseline's cylinder
+  solve (benchmarks/baseline_numpy.py) run in the same process.
+* A resistance curve: drag against the speed of one material, 100 deborah
+  numbers log-spaced over 1e-3 ... 10 (quasi-static: the speed enters through
+  deborah alone; each speed is a new medium, so a new kernel table), run
+  twice: the first run, and the second (the process warm; the tables are
+  kept only for the 16 most recent media).
+
+Prints the machine's load average; never asserts a time.
+
+    .venv/bin/python benchmarks/bench_viscoelastic.py [--repeat 7]
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import statistics
+import time
+from collections.abc import Callable
+
+import numpy as np
+from bench_profiles import LOAD, peer_cylinder_ms
+
+import movingpunch as mp
+
+RADIUS, KW, NU = 100.0, 1.0, 0.2
+
+
+def _median_ms(run: Callable[[float], object], repeat: int) -> float:
+    run(LOAD)  # warm: the kernel table
+    times = []
+    for k in range(repeat):
+        t0 = time.perf_counter()
+        run(LOAD * (1.0 + 1e-3 * (k + 1)))
+        times.append(1e3 * (time.perf_counter() - t0))
+    return statistics.median(times)
+
+
+def zener(
+    load: float, deborah: float = 0.1, ratio: float = 2.0
+) -> mp.AsymmetricSolution:
+    layer = mp.Layer(nu=NU, viscoelastic=mp.Zener(ratio, deborah))
+    s = mp.solve(
+        vstar=0.0, load=load, radius=RADIUS, layers=[layer], base=mp.Winkler(KW)
+    )
+    assert isinstance(s, mp.AsymmetricSolution)
+    return s
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeat", type=int, default=7)
+    parser.add_argument("--speeds", type=int, default=100)
+    args = parser.parse_args()
+    print(f"load average: {os.getloadavg()[0]:.2f} ({os.cpu_count()} cores)")
+    peer_ms = peer_cylinder_ms(args.repeat)
+    visco = _median_ms(zener, args.repeat)
+    elastic = _median_ms(
+        lambda load: mp.solve(vstar=0.0, load=load, radius=RADIUS, kw=KW, nu=NU),
+        args.repeat,
+    )
+    asym = _median_ms(
+        lambda load: mp.solve(
+            vstar=0.0, load=load, radius=RADIUS, kw=KW, nu=NU, friction=1e-12
+        ),
+        args.repeat,
+    )
+    print(f"{'warm solve':44} {'ms':>8} {'visco/it':>9}")
+    for name, ms in (
+        ("Zener layer (ratio 2, deborah 0.1)", visco),
+        ("elastic layer, symmetric solver", elastic),
+        ("elastic layer, asymmetric solver", asym),
+        ("NumPy baseline cylinder (N = 24)", peer_ms),
+    ):
+        print(f"{name:44} {ms:8.2f} {visco / ms:9.1f}")
+    deborahs = np.geomspace(1e-3, 10.0, args.speeds)
+    for run in ("first", "second"):
+        t0 = time.perf_counter()
+        drags = [zener(LOAD, float(d)).drag for d in deborahs]
+        total = time.perf_counter() - t0
+        k = int(np.argmax(drags))
+        print(
+            f"resistance curve, {args.speeds} speeds ({run} run): {total:.2f} s "
+            f"({1e3 * total / args.speeds:.1f} ms a speed); largest drag "
+            f"{drags[k]:.4g} at deborah {deborahs[k]:.3g}"
+        )
+
+
+if __name__ == "__main__":
+    main()
