@@ -52,11 +52,15 @@ class HomogeneousMode final : public ModeProfile {
 };
 
 // The damped layer's mode (complex): DampedLayerModel::state, the same
-// half-plane part (the base does not enter it).
+// half-plane part (the base does not enter it). A quasi-static viscoelastic
+// layer's too (ViscoelasticLayerMedium): the layer in units of its modulus
+// mu_0 m(t), so that its displacements (both the state's and the half-plane
+// part's) are divided by m(t); 1 for an elastic layer.
 class DampedHomogeneousMode final : public ModeProfile {
  public:
-  DampedHomogeneousMode(const LayerModel& m, const DampedLayerModel& d, double t)
-      : field_(m.mode_field(t)), damped_(&d), c_(&m.constants()), t_(t) {}
+  DampedHomogeneousMode(const LayerModel& m, const DampedLayerModel& d, double t,
+                        cplx modulus = 1.0)
+      : field_(m.mode_field(t)), damped_(&d), c_(&m.constants()), t_(t), m_(modulus) {}
   ModeState remainder(double y, bool below) const override {
     const ModeState z = state(y, below), h = half_plane(y);
     ModeState s;
@@ -65,12 +69,16 @@ class DampedHomogeneousMode final : public ModeProfile {
     return s;
   }
   ModeState half_plane(double y) const override {
-    return real_state(*c_, field_.half_plane_state(y));
+    ModeState s = real_state(*c_, field_.half_plane_state(y));
+    if (m_ != 1.0) s.z.head<2>() /= m_;
+    return s;
   }
   ModeState state(double y, bool /*below*/) const override {
     ModeState s;
     s.z = damped_->state(t_, y);
+    // sigma_x by Hooke's law at the modulus of the state's units.
     s.sx = 4.0 * (c_->c2 - 1.0) / c_->c2 * s.z(0) + (c_->c2 - 2.0) / c_->c2 * s.z(3);
+    if (m_ != 1.0) s.z.head<2>() /= m_;
     return s;
   }
 
@@ -79,6 +87,7 @@ class DampedHomogeneousMode final : public ModeProfile {
   const DampedLayerModel* damped_;
   const WaveConstants* c_;
   double t_;
+  cplx m_;
 };
 
 class HomogeneousMedium final : public Medium {
@@ -142,41 +151,6 @@ class HomogeneousMedium final : public Medium {
 // (1 - nu)/m(t), reaches its unrelaxed value (1 - nu)/m(inf) only like 1/t:
 // the kernel's quadrature subtracts it whole (half_plane_m1) and the
 // collocation takes its memory exactly (memory()).
-class ViscoelasticMode final : public ModeProfile {
- public:
-  ViscoelasticMode(const LayerModel& m, const DampedLayerModel& d, double t, cplx modulus)
-      : field_(m.mode_field(t)), damped_(&d), c_(&m.constants()), t_(t), m_(modulus) {}
-  ModeState remainder(double y, bool below) const override {
-    const ModeState z = state(y, below), h = half_plane(y);
-    ModeState s;
-    s.z = z.z - h.z;
-    s.sx = z.sx - h.sx;
-    return s;
-  }
-  ModeState half_plane(double y) const override {
-    ModeState s = real_state(*c_, field_.half_plane_state(y));
-    s.z(0) /= m_;
-    s.z(1) /= m_;
-    return s;
-  }
-  ModeState state(double y, bool /*below*/) const override {
-    ModeState s;
-    s.z = damped_->state(t_, y);
-    // sigma_x from the displacement per mu_0 m(t) (Hooke's law at that modulus).
-    s.sx = 4.0 * (c_->c2 - 1.0) / c_->c2 * s.z(0) + (c_->c2 - 2.0) / c_->c2 * s.z(3);
-    s.z(0) /= m_;
-    s.z(1) /= m_;
-    return s;
-  }
-
- private:
-  ModeField field_;
-  const DampedLayerModel* damped_;
-  const WaveConstants* c_;
-  double t_;
-  cplx m_;
-};
-
 class ViscoelasticLayerMedium final : public Medium {
  public:
   ViscoelasticLayerMedium(const MediumSpec& spec, double vstar)
@@ -197,7 +171,7 @@ class ViscoelasticLayerMedium final : public Medium {
     return MediumResponse{r.M1, r.M2, r.U0, r.W0};
   }
   std::unique_ptr<const ModeProfile> mode(double t) const override {
-    return std::make_unique<ViscoelasticMode>(model_, damped_, t, visco_.modulus(t));
+    return std::make_unique<DampedHomogeneousMode>(model_, damped_, t, visco_.modulus(t));
   }
   FullResponse full_response(double t) const override {
     FullResponse r = damped_.response(t);

@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any, ClassVar
 
@@ -48,6 +48,7 @@ __all__ = [
     "Viscoelastic",
     "Winkler",
     "Zener",
+    "material_from_dict",
     "resolve_medium",
 ]
 
@@ -307,6 +308,49 @@ class Prony:
 
 
 Viscoelastic = Zener | Prony
+
+MATERIAL_KEYS: dict[str, tuple[str, ...]] = {
+    "zener": ("kind", "ratio", "deborah"),
+    "prony": ("kind", "weights", "deborahs", "shift"),
+}
+"""A material's keys in a scene (``viscoelastic = { kind = "zener", ... }``)."""
+
+
+def material_from_dict(raw: object, where: str) -> Zener | Prony:
+    """The material of ``to_dict()``'s table (a scene's ``viscoelastic``):
+    ``kind`` "zener" (ratio, deborah) or "prony" (weights, deborahs, shift);
+    InvalidParameterError naming ``where`` and the key otherwise."""
+    kinds = " or ".join(f'"{k}"' for k in MATERIAL_KEYS)
+    if not isinstance(raw, Mapping):
+        raise InvalidParameterError(
+            f"{where} must be a table with kind {kinds}, got {raw!r}",
+            parameter="viscoelastic",
+            allowed=f"a table with kind {kinds}",
+        )
+    kind = raw.get("kind")
+    if kind not in MATERIAL_KEYS:
+        raise InvalidParameterError(
+            f"{where}.kind must be {kinds}, got {kind!r}",
+            parameter="kind",
+            allowed=kinds,
+        )
+    for key in raw:
+        if key not in MATERIAL_KEYS[kind]:
+            raise InvalidParameterError(
+                f"{where}.{key}: unknown key of a {kind} material",
+                parameter=str(key),
+                allowed=", ".join(MATERIAL_KEYS[kind]),
+            )
+    for key in MATERIAL_KEYS[kind][1:]:
+        if key not in raw and key != "shift":
+            raise InvalidParameterError(
+                f"{where}.{key}: missing",
+                parameter=key,
+                allowed=", ".join(MATERIAL_KEYS[kind]),
+            )
+    if kind == "zener":
+        return Zener(raw["ratio"], raw["deborah"])
+    return Prony(raw["weights"], raw["deborahs"], raw.get("shift", 1.0))
 
 
 def _modulus(

@@ -538,6 +538,15 @@ FRICTION_POOL = [0.0, 1e-300, 1e-12, 0.05, 0.3, 1.0, 3.0, 10.0]
 FRICTION_BAD: list[Any] = [-1e-300, -0.1, 10.000001, 1e308, NAN, INF, -INF, "0.3", None]
 
 
+def _finite_interval(sol: Any, args: dict[str, Any]) -> tuple[float, float]:
+    """An asymmetric solution's contact (-b, a): finite, b < a."""
+    back, front = sol.contact_interval
+    assert math.isfinite(back), args
+    assert math.isfinite(front), args
+    assert back < front, args
+    return back, front
+
+
 def fuzz_friction(calls: int, seed: int) -> collections.Counter[str]:
     """Each call: a friction from the pool (or a bad value), damping 0 or
     0.1, kw, nu and kp from small pools (kernel tables are cached per inputs),
@@ -570,10 +579,7 @@ def fuzz_friction(calls: int, seed: int) -> collections.Counter[str]:
             outcomes[type(exc).__name__] += 1
             continue
         assert not bad, args
-        back, front = sol.contact_interval
-        assert math.isfinite(back), args
-        assert math.isfinite(front), args
-        assert back < front, args
+        back, front = _finite_interval(sol, args)
         gb, gf = sol.end_exponents
         assert gb + gf == pytest.approx(1.0, abs=1e-15), args
         f = float(args["friction"])
@@ -660,10 +666,7 @@ def fuzz_viscoelastic(calls: int, seed: int) -> collections.Counter[str]:
             outcomes[type(exc).__name__] += 1
             continue
         assert not bad, args
-        back, front = sol.contact_interval
-        assert math.isfinite(back), args
-        assert math.isfinite(front), args
-        assert back < front, args
+        back, front = _finite_interval(sol, args)
         assert sol.pressure(0.5 * (back + front)) >= 0.0, args
         drag = sol.drag
         assert math.isfinite(drag), args

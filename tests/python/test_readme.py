@@ -465,6 +465,10 @@ def test_readme_python_runs(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> 
     x, y = space["x"], space["y"]
     table = mp.solve(vstar=0.2, kw=1, load=0.002, profile=mp.Profile(x, y))  # type: ignore[arg-type]
     assert f"{table.a:.5f}" == "0.37288"
+    visco: Any = space["visco"]
+    assert [round(e, 4) for e in visco.contact_interval] == [-0.2507, 0.3186]
+    assert f"{visco.drag:.4g}" == "0.0005424"
+    assert abs(visco.drag - visco.dissipation) < 1e-10 * visco.drag
 
 
 def test_layout_paths_exist() -> None:

@@ -58,7 +58,8 @@ CONTACT_MODES: tuple[str, ...] = ("auto", "single")
 MAX_PUNCHES = 16
 
 LAYER_KEYS: dict[str, tuple[str, ...]] = {
-    cls.KIND: ("kind", *cls.FIELDS, *cls.CHOICES) for cls in SUBLAYER_TYPES
+    cls.KIND: ("kind", *cls.FIELDS, *cls.CHOICES, *cls.MATERIALS)
+    for cls in SUBLAYER_TYPES
 }
 """``[[layers]]``: the keys of each kind of sublayer (``kind`` defaults to
 "layer"; ``movingpunch.Layer`` and ``GradedLayer``: their field tables)."""

@@ -25,6 +25,7 @@ from movingpunch.media import (
     Sublayer,
     ValueType,
     Winkler,
+    material_from_dict,
     resolve_medium,
 )
 from movingpunch.params import OPTIONAL, PRESETS, SPECS, classify
@@ -182,6 +183,14 @@ def _value_of(c: Checker, where: str, cls: type[_V], t: Mapping[str, Any]) -> _V
     for name, words in cls.CHOICES.items():
         if name in t:
             values[name] = c.string(f"{where}.{name}", t[name], words)
+    for name in cls.MATERIALS:
+        if name in t:
+            try:
+                values[name] = material_from_dict(t[name], f"{where}.{name}")
+            except InvalidParameterError as exc:
+                raise c.fail(
+                    f"{where}.{name}", str(exc), exc.allowed or "", exc.parameter
+                ) from exc
     try:
         return cls(**values)
     except InvalidParameterError as exc:  # pragma: no cover - c.param checked
