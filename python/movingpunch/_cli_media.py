@@ -1,13 +1,16 @@
 """The medium options of the command line (``movingpunch solve`` and
 ``movingpunch critical``): ``--layer T,MU,NU[,RHO]`` and
 ``--graded T,GAMMA_H,NU[,MU,RHO]`` (repeated, top to bottom, in command-line
-order), ``--half-space MU,NU[,RHO][,bonded|smooth]``; and the medium they give
-(``movingpunch.media``). Every error names the option and its form.
+order), ``--half-space MU,NU[,RHO][,bonded|smooth]``, the top sublayer's
+material ``--zener RATIO,DEBORAH`` or ``--prony W1,D1[,W2,D2...]`` (with
+``--shift A_T``); and the medium they give (``movingpunch.media``). Every
+error names the option and its form.
 """
 
 from __future__ import annotations
 
 import argparse
+import dataclasses
 from typing import TypeVar
 
 from movingpunch.errors import InvalidParameterError
@@ -16,8 +19,10 @@ from movingpunch.media import (
     HalfSpace,
     Layer,
     Medium,
+    Prony,
     Sublayer,
     ValueType,
+    Zener,
     resolve_medium,
 )
 from movingpunch.params import SPECS
@@ -126,6 +131,39 @@ def _half_space(text: str) -> HalfSpace:
     return parse_cli("--half-space", HalfSpace, text)
 
 
+def _numbers(option: str, form: str, text: str) -> list[float]:
+    try:
+        return [float(p.strip()) for p in text.split(",")]
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"{option} must be {form}: comma-separated numbers, got {text!r}"
+        ) from None
+
+
+def _zener(text: str) -> Zener:
+    """argparse type of --zener: a standard linear solid (the top sublayer's)."""
+    values = _numbers("--zener", "RATIO,DEBORAH", text)
+    if len(values) != 2:
+        raise argparse.ArgumentTypeError(
+            f"--zener must be RATIO,DEBORAH: two numbers, got {text!r}"
+        )
+    try:
+        return Zener(*values)
+    except InvalidParameterError as err:
+        raise argparse.ArgumentTypeError(f"--zener {text}: {err}") from None
+
+
+def _prony(text: str) -> tuple[float, ...]:
+    """argparse type of --prony: the branches' (weight, deborah) pairs."""
+    values = _numbers("--prony", "W1,D1[,W2,D2...]", text)
+    if not values or len(values) % 2:
+        raise argparse.ArgumentTypeError(
+            f"--prony must be W1,D1[,W2,D2...]: pairs of a weight and a deborah "
+            f"number, got {text!r}"
+        )
+    return tuple(values)
+
+
 OPTIONS: dict[str, MediumType] = {
     "--layer": Layer,
     "--graded": GradedLayer,
@@ -171,6 +209,32 @@ def add_medium_options(p: argparse.ArgumentParser) -> None:
         f"instead of springs: {cli_fields_help(HalfSpace)} (smooth: "
         "frictionless). Not with --kw, --kp, --damping",
     )
+    material = p.add_mutually_exclusive_group()
+    material.add_argument(
+        "--zener",
+        type=_zener,
+        default=None,
+        metavar="RATIO,DEBORAH",
+        help="the top sublayer is a standard linear solid: mu_inf/mu_0 = RATIO "
+        ">= 1 (its MU is mu_0), DEBORAH = V tau/h >= 0; solved quasi-statically "
+        "(--vstar 0), giving the drag and the dissipation (docs/theory.md "
+        "section 17)",
+    )
+    material.add_argument(
+        "--prony",
+        type=_prony,
+        default=None,
+        metavar="W1,D1[,W2,D2...]",
+        help="the top sublayer is a generalised Maxwell solid: each branch's "
+        "modulus over mu_0 (W > 0) and deborah number V tau/h; with --shift",
+    )
+    p.add_argument(
+        "--shift",
+        type=float,
+        default=None,
+        metavar="A_T",
+        help="the time-temperature shift factor a_T > 0 of --prony (default 1)",
+    )
 
 
 def medium_of(args: argparse.Namespace) -> Medium | None:
@@ -178,7 +242,8 @@ def medium_of(args: argparse.Namespace) -> Medium | None:
     --nu on the springs of --kw); conflicts name the options."""
     layers: list[Sublayer] | None = args.layers
     base: HalfSpace | None = args.half_space
-    if layers is None and base is None:
+    material = _material_of(args)
+    if layers is None and base is None and material is None:
         return None
     if layers is not None and args.nu is not None:
         raise InvalidParameterError(
@@ -203,6 +268,15 @@ def medium_of(args: argparse.Namespace) -> Medium | None:
         )
     if layers is None:
         layers = [Layer(nu=0.2 if args.nu is None else args.nu)]
+    if material is not None:
+        top = layers[0]
+        if not isinstance(top, Layer):
+            raise InvalidParameterError(
+                "--zener/--prony: the top sublayer must be a homogeneous --layer "
+                "(a graded one cannot be viscoelastic)",
+                parameter="layers",
+            )
+        layers = [dataclasses.replace(top, viscoelastic=material), *layers[1:]]
     try:
         kp = getattr(args, "kp", 0.0)
         damping = getattr(args, "damping", 0.0)
@@ -221,3 +295,25 @@ def medium_of(args: argparse.Namespace) -> Medium | None:
                 allowed=err.allowed,
             ) from None
         raise
+
+
+def _material_of(args: argparse.Namespace) -> Zener | Prony | None:
+    """The top sublayer's material of --zener or --prony (with --shift)."""
+    zener: Zener | None = getattr(args, "zener", None)
+    pairs: tuple[float, ...] | None = getattr(args, "prony", None)
+    shift: float | None = getattr(args, "shift", None)
+    if shift is not None and pairs is None:
+        raise InvalidParameterError(
+            "--shift is the time-temperature shift of --prony; give --prony too",
+            parameter="shift",
+        )
+    if zener is not None:
+        return zener
+    if pairs is None:
+        return None
+    try:
+        return Prony(pairs[0::2], pairs[1::2], 1.0 if shift is None else shift)
+    except InvalidParameterError as err:
+        raise InvalidParameterError(
+            f"--prony/--shift: {err}", parameter=err.parameter, allowed=err.allowed
+        ) from None

@@ -617,6 +617,13 @@ class Medium:
             # A viscoelastic layer: its relaxed (slowest) elastic layer's.
             assert isinstance(base, Winkler)
             vc, t = _core.critical_speed(base.kw, self.nu, base.kp)
+        elif self.viscoelastic:
+            raise InvalidParameterError(
+                "layers: a viscoelastic sublayer is solved as one layer on springs "
+                f"so far (not in a stack or on a half-space); given {self.describe()}",
+                parameter="layers",
+                allowed="one viscoelastic layer on Winkler springs",
+            )
         else:
             springs = base if isinstance(base, Winkler) else None
             vc, t = _core.medium_critical_speed(

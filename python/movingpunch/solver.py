@@ -50,6 +50,7 @@ from movingpunch.media import (
     Base,
     GradedLayer,
     HalfSpace,
+    Layer,
     Medium,
     Sublayer,
     Winkler,
@@ -1088,6 +1089,16 @@ def solve_punches(
         singles.append(alone[key])
     if len(punches) == 1 and punches[0].at == 0.0:
         return singles[0]
+    if layers is not None and any(
+        isinstance(s, Layer) and not s.elastic for s in layers
+    ):
+        raise InvalidParameterError(
+            "layers: a train of punches on a viscoelastic layer is not supported "
+            "yet (the zones' solver does not take the material's memory); one "
+            "punch at x = 0 solves",
+            parameter="layers",
+            allowed="elastic sublayers for a train of punches",
+        )
     if isinstance(base, HalfSpace):
         raise InvalidParameterError(
             "base: a train of punches on a half-space base is not supported yet "

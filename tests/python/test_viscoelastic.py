@@ -23,7 +23,10 @@ Independent anchors:
 
 from __future__ import annotations
 
+import json
 import math
+import subprocess
+from collections.abc import Callable
 
 import numpy as np
 import pytest
@@ -277,6 +280,13 @@ def test_what_is_not_solved_yet_is_refused_by_name():
     with pytest.raises(InvalidParameterError) as e:
         mp.solve(vstar=0.0, radius=R, load=0.002, layers=two, base=mp.Winkler(1.0))
     assert e.value.parameter == "layers"
+    with pytest.raises(InvalidParameterError) as e:
+        mp.critical_vstar(layers=two, base=mp.Winkler(1.0))
+    assert e.value.parameter == "layers"
+    train = [mp.Punch(mp.Cylinder(R), 0.002, at) for at in (-1.0, 1.0)]
+    with pytest.raises(InvalidParameterError) as e:
+        mp.solve_punches(train, vstar=0.0, layers=layer, base=mp.Winkler(1.0))
+    assert e.value.parameter == "layers"
     s = mp.solve(vstar=0.0, radius=R, **args)
     with pytest.raises(InvalidParameterError, match="not available yet"):
         s.displacement([0.1], -0.5)
@@ -462,3 +472,47 @@ def test_a_scene_takes_a_viscoelastic_layer_and_writes_it_back():
 def test_a_scene_with_a_bad_material_names_it(edit, named):
     with pytest.raises(mp.SceneError, match=r"layers\[0\]\.viscoelastic"):
         mp.Scene.from_toml(SCENE.replace(edit, named))
+
+
+def test_the_command_line_takes_the_top_sublayers_material(
+    run_cli: Callable[..., subprocess.CompletedProcess[str]],
+) -> None:
+    base = ("solve", "--vstar", "0", "--kw", "1", "--radius", "100", "--load", "0.002")
+    proc = run_cli(*base, "--zener", "2,0.1", "--json")
+    assert proc.returncode == 0, proc.stderr
+    data = json.loads(proc.stdout)
+    direct = zener_solve(2.0, 0.1, 0.002)
+    assert data["drag"] == pytest.approx(direct.drag, rel=1e-12)
+    assert data["contact_interval"][0] == pytest.approx(
+        direct.contact_interval[0], rel=1e-12
+    )
+    proc = run_cli(*base, "--prony", "1,0.02,3,0.5", "--shift", "2", "--json")
+    assert proc.returncode == 0, proc.stderr
+    layer = mp.Layer(nu=NU, viscoelastic=mp.Prony((1.0, 3.0), (0.02, 0.5), 2.0))
+    want = mp.solve(
+        vstar=0.0, load=0.002, radius=R, layers=[layer], base=mp.Winkler(1.0)
+    )
+    assert json.loads(proc.stdout)["drag"] == pytest.approx(want.drag, rel=1e-12)
+    for bad, named in (
+        (("--zener", "0.5,0.1"), "Zener.ratio"),
+        (("--zener", "2"), "RATIO,DEBORAH"),
+        (("--prony", "1,0.1,2"), "W1,D1"),
+        (("--shift", "2"), "--shift"),
+        (("--zener", "2,0.1", "--prony", "1,0.1"), "not allowed with"),
+    ):
+        proc = run_cli(*base, *bad)
+        assert proc.returncode == 2, bad
+        assert named in proc.stderr, (bad, proc.stderr)
+
+
+def test_the_terminal_ui_refuses_a_viscoelastic_scene_instead_of_losing_it():
+    """The panel's sublayer inputs hold the elastic fields only: opening the
+    scene would drop the material and solve the elastic layer silently."""
+    from movingpunch.tui import model, scene_files
+
+    scene = mp.Scene.from_toml(SCENE)
+    with pytest.raises(mp.SceneError, match="viscoelastic") as e:
+        scene_files.from_scene(scene)
+    assert e.value.parameter == "layers"
+    with pytest.raises(InvalidParameterError, match="viscoelastic"):
+        model.with_medium(model.Params(), scene.medium.layers, None)

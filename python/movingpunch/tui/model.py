@@ -1363,6 +1363,13 @@ def with_medium(
             allowed="one or more sublayers, top to bottom",
         )
     check_thicknesses(layers)
+    if any(isinstance(s, Layer) and not s.elastic for s in layers):
+        raise InvalidParameterError(
+            "layers: a viscoelastic sublayer is not edited in the terminal UI yet "
+            "(its material would be lost)",
+            parameter="layers",
+            allowed="elastic sublayers in the terminal UI",
+        )
     top = layers[0]
     if len(layers) == 1 and isinstance(top, Layer):
         return replace(params, layers=(), half_space=half_space, nu=top.nu)

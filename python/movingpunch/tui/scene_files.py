@@ -134,6 +134,17 @@ def from_scene(scene: Scene) -> SceneState:
         else Overlay(scene.vary.param, tuple(float(v) for v in scene.vary.values))
     )
     medium = scene.medium
+    if medium is not None and medium.viscoelastic:
+        # The panel's sublayer inputs hold the elastic fields only: opened,
+        # the material would be lost and the elastic layer solved.
+        raise SceneError(
+            scene.name or "(scene)",
+            "layers",
+            "has a viscoelastic sublayer, which the terminal UI does not edit yet "
+            "(its material would be lost)",
+            "elastic sublayers here; run it with `movingpunch run` or from Python",
+            "layers",
+        )
     if medium is not None:
         # [[layers]] and [base]: under a half-space params holds no springs.
         half_space = medium.base if isinstance(medium.base, HalfSpace) else None
