@@ -423,8 +423,11 @@ void AsymmetricKernel::tabulate() {
   constexpr int D = kDegree;
   double abs_f = 0.0;  // int |f|: the scale of the Filon sums' round-off
   const AsymmetricQuadrature& q = base_->quad;
+  // (M1 less its half-plane part: phi1, or a viscoelastic top's whole
+  // (1 - nu)/m(t), whose slow memory the table does not hold.)
   for (std::size_t i = 0; i < q.m1.size(); ++i)
-    abs_f += q.panels.weight[i] * std::abs(q.m1[i] - model().phi1()) / std::fabs(model().phi1());
+    abs_f += q.panels.weight[i] * std::abs(q.m1[i] - model().half_plane_m1(q.panels.alpha[i])) /
+             std::fabs(model().phi1());
   // Narrower pieces until the last coefficients are at the values' round-off,
   // or stop shrinking (noise: near-resonant peaks make the Filon sums'
   // round-off larger than this estimate of it), or the pieces reach 1/8.

@@ -9,7 +9,6 @@
 #include <map>
 #include <memory>
 #include <mutex>
-#include <numeric>
 #include <sstream>
 #include <utility>
 
@@ -49,8 +48,17 @@ std::vector<std::pair<double, double>> branches(const Viscoelastic& v) {
 
 }  // namespace
 
+bool Viscoelastic::empty() const noexcept {
+  for (std::size_t j = 0; j < weights.size() && j < deborahs.size(); ++j)
+    if (shift * deborahs[j] > 0.0) return false;
+  return true;
+}
+
 double Viscoelastic::ratio() const noexcept {
-  return 1.0 + std::accumulate(weights.begin(), weights.end(), 0.0);
+  double r = 1.0;
+  for (std::size_t j = 0; j < weights.size() && j < deborahs.size(); ++j)
+    if (shift * deborahs[j] > 0.0) r += weights[j];
+  return r;
 }
 
 std::complex<double> Viscoelastic::modulus(double t) const {

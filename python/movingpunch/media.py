@@ -288,8 +288,13 @@ class Prony:
         object.__setattr__(self, "shift", shift)
 
     def branches(self) -> tuple[tuple[float, ...], tuple[float, ...], float]:
-        """(weights, deborah numbers, shift), as the core takes them."""
-        return self.weights, self.deborahs, self.shift
+        """(weights, deborah numbers, shift) of the branches that relax in
+        time, as the core takes them (a branch of deborah 0 relaxes at once
+        and adds nothing at any frequency; none left: elastic)."""
+        kept = [
+            (w, d) for w, d in zip(self.weights, self.deborahs, strict=True) if d > 0
+        ]
+        return tuple(w for w, _ in kept), tuple(d for _, d in kept), self.shift
 
     def modulus(self, t: npt.ArrayLike) -> npt.NDArray[np.complex128]:
         """mu(omega)/mu_0 at t = alpha h (omega = alpha V; e^{-i omega t})."""

@@ -72,6 +72,17 @@ TEST(Viscoelastic, ZenerModulusAndSpectrum) {
   // ratio 1 or deborah 0: elastic (no branch).
   EXPECT_TRUE(mp::zener(1.0, 0.5).empty());
   EXPECT_TRUE(mp::zener(2.0, 0.0).empty());
+  // A branch of deborah 0 relaxes at once: no stiffness at any frequency,
+  // not in the ratio, not in the spectrum.
+  mp::Viscoelastic v;
+  v.weights = {1.0, 2.0};
+  v.deborahs = {0.0, 0.1};
+  EXPECT_FALSE(v.empty());
+  EXPECT_DOUBLE_EQ(v.ratio(), 3.0);
+  EXPECT_DOUBLE_EQ(mp::retardation_spectrum(v).ratio, 3.0);
+  v.deborahs = {0.0, 0.0};
+  EXPECT_TRUE(v.empty());
+  EXPECT_DOUBLE_EQ(v.ratio(), 1.0);
 }
 
 TEST(Viscoelastic, PronySpectrumIsThePartialFractionsOfTheCompliance) {

@@ -77,11 +77,15 @@ def hunter(ratio: float, D: float, radius: float, load: float, phi0: float):
     return c, w, drag
 
 
-def zener_solve(ratio: float, deborah: float, load: float, kw: float = 1.0, **kw_):
-    layer = mp.Layer(nu=NU, viscoelastic=mp.Zener(ratio, deborah))
+def material_solve(material, load: float, kw: float = 1.0, **kw_):
+    layer = mp.Layer(nu=NU, viscoelastic=material)
     return mp.solve(
         vstar=0.0, load=load, radius=R, layers=[layer], base=mp.Winkler(kw), **kw_
     )
+
+
+def zener_solve(ratio: float, deborah: float, load: float, kw: float = 1.0, **kw_):
+    return material_solve(mp.Zener(ratio, deborah), load, kw, **kw_)
 
 
 def half_plane_case(ratio: float, v_tau: float, a0: float):
@@ -192,13 +196,7 @@ CASES = [
 
 @pytest.mark.parametrize(("material", "kw", "load"), CASES)
 def test_drag_is_the_dissipation_and_the_pressure_carries_the_load(material, kw, load):
-    s = mp.solve(
-        vstar=0.0,
-        load=load,
-        radius=R,
-        layers=[mp.Layer(nu=NU, viscoelastic=material)],
-        base=mp.Winkler(kw),
-    )
+    s = material_solve(material, load, kw)
     assert s.valid
     assert not s.warnings
     assert s.drag > 0.0  # it resists the motion
@@ -340,13 +338,7 @@ def test_the_surface_displacement_is_the_punch_on_the_contact_and_the_slope_besi
     exponential convolution) against two independent things: the punch's
     shape on the contact (v = x^2/2R - delta) and the slope beside it (from
     the collocation's kernel and the memory's moments)."""
-    s = mp.solve(
-        vstar=0.0,
-        load=load,
-        radius=R,
-        layers=[mp.Layer(nu=NU, viscoelastic=material)],
-        base=mp.Winkler(kw),
-    )
+    s = material_solve(material, load, kw)
     left, right = s.contact_interval
     x = np.linspace(left, right, 9)[1:-1]
     v = s.surface_displacement(x)
@@ -516,3 +508,18 @@ def test_the_terminal_ui_refuses_a_viscoelastic_scene_instead_of_losing_it():
     assert e.value.parameter == "layers"
     with pytest.raises(InvalidParameterError, match="viscoelastic"):
         model.with_medium(model.Params(), scene.medium.layers, None)
+
+
+def test_a_branch_of_deborah_zero_adds_nothing():
+    """A branch that relaxes at once is no stiffness at any frequency: the
+    Prony (1, 2) with deborahs (0, 0.1) is the Zener of ratio 3 (the
+    unrelaxed modulus counted it, and the solve went wrong, before), and a
+    Prony of such branches only is the elastic layer, on its own path."""
+    z = zener_solve(3.0, 0.1, 0.002)
+    p = material_solve(mp.Prony((1.0, 2.0), (0.0, 0.1)), 0.002)
+    assert p.contact_interval == pytest.approx(z.contact_interval, abs=1e-14)
+    assert p.drag == pytest.approx(z.drag, rel=1e-12)
+    elastic = mp.solve(vstar=0.0, load=0.002, radius=R, kw=1.0, nu=NU)
+    only = material_solve(mp.Prony((1.0,), (0.0,)), 0.002)
+    assert type(only) is type(elastic)
+    assert only.a == elastic.a

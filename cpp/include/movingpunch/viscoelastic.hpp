@@ -38,8 +38,10 @@ struct Viscoelastic {
   std::vector<double> weights;   // g_j > 0: the branch's modulus over mu_0
   std::vector<double> deborahs;  // V tau_j / h > 0 (before the shift)
   double shift = 1.0;            // a_T > 0, multiplies every tau_j
-  bool empty() const noexcept { return weights.empty(); }
-  // mu_inf / mu_0 = 1 + sum g_j.
+  // No branch that relaxes in time (shift * deborah > 0; a branch of deborah
+  // 0 relaxes at once and adds nothing at any frequency): elastic.
+  bool empty() const noexcept;
+  // mu_inf / mu_0 = 1 + sum g_j over those branches (the spectrum's ratio).
   double ratio() const noexcept;
   // m(t) (above), t >= 0.
   std::complex<double> modulus(double t) const;
