@@ -579,10 +579,20 @@ void validate(const AsymmetricParams& p) {
                                "friction: a viscoelastic layer is solved frictionless (friction "
                                "= 0) so far; given friction = " +
                                    std::to_string(p.friction));
-      if (p.punch().kind() != ProfileKind::cylinder)
-        throw InvalidParameter("profile", "a cylinder on a viscoelastic layer (not yet)",
-                               "profile: a viscoelastic layer is solved under a cylinder so far; "
-                               "given the " +
+      // A smooth punch with bounded ends: the memory's moments are those of
+      // the bounded density's U-series (a flat face's index +1 density is
+      // not), and on a rounded flat the pressure did not converge (its
+      // estimate 3e-3 at N = 512 after 25 s at deborah 1e-12, where the
+      // elastic layer's kinks converge: the kinks with the memory are not
+      // resolved yet).
+      const ProfileKind kind = p.punch().kind();
+      if (kind == ProfileKind::flat || kind == ProfileKind::rounded_flat)
+        throw InvalidParameter("profile",
+                               "a smooth punch (cylinder or convex table) on a viscoelastic layer",
+                               "profile: a " + std::string(profile_kind_name(kind)) +
+                                   " punch on a viscoelastic layer is not solved yet (the "
+                                   "memory at the face's ends or kinks is not resolved); a "
+                                   "cylinder or a convex table is; given the " +
                                    p.punch().describe());
     }
     validate_scalars(r, visco);

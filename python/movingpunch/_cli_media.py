@@ -131,37 +131,55 @@ def _half_space(text: str) -> HalfSpace:
     return parse_cli("--half-space", HalfSpace, text)
 
 
-def _numbers(option: str, form: str, text: str) -> list[float]:
+def _times(option: str, form: str, text: str) -> tuple[list[float], list[float], bool]:
+    """The numbers of --zener/--prony split into the moduli (odd places) and
+    the times (even places), and whether the times are relaxation times
+    (each written tau=T) rather than deborah numbers."""
+    parts = [p.strip() for p in text.split(",")]
+    taus = [p.lower().startswith("tau=") for p in parts[1::2]]
+    if any(taus) and not all(taus):
+        raise argparse.ArgumentTypeError(
+            f"{option} must be {form}: give every time as a deborah number or every "
+            f"one as tau=T (h/c_T0), got {text!r}"
+        )
+    parts[1::2] = [p[4:] if t else p for p, t in zip(parts[1::2], taus, strict=True)]
     try:
-        return [float(p.strip()) for p in text.split(",")]
+        values = [float(p) for p in parts]
     except ValueError:
         raise argparse.ArgumentTypeError(
             f"{option} must be {form}: comma-separated numbers, got {text!r}"
         ) from None
+    return values[0::2], values[1::2], bool(taus) and all(taus)
 
 
 def _zener(text: str) -> Zener:
-    """argparse type of --zener: a standard linear solid (the top sublayer's)."""
-    values = _numbers("--zener", "RATIO,DEBORAH", text)
-    if len(values) != 2:
+    """argparse type of --zener: a standard linear solid (the top sublayer's),
+    RATIO,DEBORAH or RATIO,tau=TAU."""
+    form = "RATIO,DEBORAH or RATIO,tau=TAU"
+    ratios, times, by_tau = _times("--zener", form, text)
+    if len(ratios) != 1 or len(times) != 1:
         raise argparse.ArgumentTypeError(
-            f"--zener must be RATIO,DEBORAH: two numbers, got {text!r}"
+            f"--zener must be {form}: two numbers, got {text!r}"
         )
     try:
-        return Zener(*values)
+        if by_tau:
+            return Zener(ratios[0], tau=times[0])
+        return Zener(ratios[0], times[0])
     except InvalidParameterError as err:
         raise argparse.ArgumentTypeError(f"--zener {text}: {err}") from None
 
 
-def _prony(text: str) -> tuple[float, ...]:
-    """argparse type of --prony: the branches' (weight, deborah) pairs."""
-    values = _numbers("--prony", "W1,D1[,W2,D2...]", text)
-    if not values or len(values) % 2:
+def _prony(text: str) -> tuple[tuple[float, ...], tuple[float, ...], bool]:
+    """argparse type of --prony: the branches' weights, their deborah numbers
+    (or relaxation times, each tau=T), and whether they are times."""
+    form = "W1,D1[,W2,D2...] or W1,tau=T1[,W2,tau=T2...]"
+    weights, times, by_tau = _times("--prony", form, text)
+    if not weights or len(weights) != len(times):
         raise argparse.ArgumentTypeError(
-            f"--prony must be W1,D1[,W2,D2...]: pairs of a weight and a deborah "
-            f"number, got {text!r}"
+            f"--prony must be {form}: pairs of a weight and a deborah number (or a "
+            f"relaxation time), got {text!r}"
         )
-    return tuple(values)
+    return tuple(weights), tuple(times), by_tau
 
 
 OPTIONS: dict[str, MediumType] = {
@@ -218,7 +236,8 @@ def add_medium_options(p: argparse.ArgumentParser) -> None:
         help="the top sublayer is a standard linear solid: mu_inf/mu_0 = RATIO "
         ">= 1 (its MU is mu_0), DEBORAH = V tau/h >= 0; solved quasi-statically "
         "(--vstar 0), giving the drag and the dissipation (docs/theory.md "
-        "section 17)",
+        "section 17). RATIO,tau=TAU gives the relaxation time in h/c_T0 instead "
+        "(deborah = sqrt(vstar) TAU; with --quasi-static)",
     )
     material.add_argument(
         "--prony",
@@ -226,7 +245,16 @@ def add_medium_options(p: argparse.ArgumentParser) -> None:
         default=None,
         metavar="W1,D1[,W2,D2...]",
         help="the top sublayer is a generalised Maxwell solid: each branch's "
-        "modulus over mu_0 (W > 0) and deborah number V tau/h; with --shift",
+        "modulus over mu_0 (W > 0) and deborah number V tau/h (or tau=T, its "
+        "relaxation time in h/c_T0); with --shift",
+    )
+    p.add_argument(
+        "--quasi-static",
+        dest="quasi_static",
+        action="store_true",
+        help="neglect the layer's inertia: the solve runs at vstar 0 and --vstar "
+        "sets only the relaxation of a --zener/--prony given by tau= (deborah "
+        "= sqrt(vstar) tau; docs/media.md)",
     )
     p.add_argument(
         "--shift",
@@ -243,7 +271,14 @@ def medium_of(args: argparse.Namespace) -> Medium | None:
     layers: list[Sublayer] | None = args.layers
     base: HalfSpace | None = args.half_space
     material = _material_of(args)
+    quasi_static = bool(getattr(args, "quasi_static", False))
     if layers is None and base is None and material is None:
+        if quasi_static:
+            raise InvalidParameterError(
+                "--quasi-static needs a layer whose material takes its relaxation "
+                "from the speed: --zener RATIO,tau=TAU or --prony W1,tau=T1,...",
+                parameter="inertia",
+            )
         return None
     if layers is not None and args.nu is not None:
         raise InvalidParameterError(
@@ -286,6 +321,7 @@ def medium_of(args: argparse.Namespace) -> Medium | None:
             kw=None if base is not None else args.kw,
             kp=None if base is not None else kp,
             damping=None if base is not None else damping,
+            inertia=not quasi_static,
         )
     except InvalidParameterError as err:
         if err.parameter == "layers":
@@ -300,7 +336,9 @@ def medium_of(args: argparse.Namespace) -> Medium | None:
 def _material_of(args: argparse.Namespace) -> Zener | Prony | None:
     """The top sublayer's material of --zener or --prony (with --shift)."""
     zener: Zener | None = getattr(args, "zener", None)
-    pairs: tuple[float, ...] | None = getattr(args, "prony", None)
+    pairs: tuple[tuple[float, ...], tuple[float, ...], bool] | None = getattr(
+        args, "prony", None
+    )
     shift: float | None = getattr(args, "shift", None)
     if shift is not None and pairs is None:
         raise InvalidParameterError(
@@ -312,7 +350,11 @@ def _material_of(args: argparse.Namespace) -> Zener | Prony | None:
     if pairs is None:
         return None
     try:
-        return Prony(pairs[0::2], pairs[1::2], 1.0 if shift is None else shift)
+        weights, times, by_tau = pairs
+        shift_ = 1.0 if shift is None else shift
+        if by_tau:
+            return Prony(weights, shift=shift_, taus=times)
+        return Prony(weights, times, shift_)
     except InvalidParameterError as err:
         raise InvalidParameterError(
             f"--prony/--shift: {err}", parameter=err.parameter, allowed=err.allowed

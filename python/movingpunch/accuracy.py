@@ -223,7 +223,7 @@ def _solve_point(
     else:
         springs = {"kw": kw, "kp": kp, "damping": damping}
         here = medium if kw == NO_SPRINGS else point_medium(medium, springs)
-        args.update(layers=list(here.layers), base=here.base)
+        args.update(here.solve_args())
     # As a scene solves it: several zones where the single contact separates
     # (their ends are then the ends compared), else the single contact,
     # flagged when unphysical.

@@ -504,14 +504,22 @@ def _solve_train(
             parameter="radius",
         )
     punches = [Punch(shape, load, at) for load, at in args.punch]
+    if medium is not None and not medium.inertia:
+        raise InvalidParameterError(
+            "--quasi-static cannot be used with --punch (a train is solved with "
+            "the layer's inertia)",
+            parameter="inertia",
+        )
     # On a medium solve_punches refuses what it cannot take yet, naming it (a
     # train under a half-space, damped springs under a stack).
+    spring_args = _medium_args(args, medium)
+    spring_args.pop("inertia", None)  # (True: refused above otherwise)
     return solve_punches(
         punches,
         vstar=args.vstar,
         tol=args.tol,
         friction=args.friction,
-        **_medium_args(args, medium),
+        **spring_args,
     )
 
 
@@ -521,7 +529,7 @@ def _medium_args(args: argparse.Namespace, medium: Medium | None) -> dict[str, A
     if medium is None:
         nu = 0.2 if args.nu is None else args.nu
         return {"kw": args.kw, "nu": nu, "damping": args.damping, "kp": args.kp}
-    return {"layers": list(medium.layers), "base": medium.base}
+    return medium.solve_args()
 
 
 def _zone_text(zones: Sequence[tuple[float, float]]) -> str:
@@ -566,14 +574,21 @@ def _cmd_solve(args: argparse.Namespace) -> int:
         data = s.to_dict()
         if medium is not None:
             data["medium"] = medium.to_dict()
+            if not medium.inertia:  # the solve's vstar is 0; the speed's:
+                data["quasi_static_vstar"] = args.vstar
         if peaks is not None:
             data["stress"] = dataclasses.asdict(peaks)
         data["hints"] = list(hints)
         print(json.dumps(data, indent=2))
         return 0
     springs = medium is None or isinstance(medium.base, Winkler)
+    speed = [("V* = ρV²/μ", _fmt(s.vstar))]
+    if medium is not None and not medium.inertia:
+        speed = [("V* = ρV²/μ", f"{_fmt(args.vstar)} (quasi-static: solved at 0)")]
+    if medium is not None and medium.speed_dependent:
+        speed.append(("medium at V*", medium.at_speed(args.vstar).describe()))
     inputs = [
-        ("V* = ρV²/μ", _fmt(s.vstar)),
+        *speed,
         *([("medium", medium.describe())] if medium is not None else []),
         ("k_w h/μ", _fmt(s.kw) if springs else "- (half-space)"),
         ("k_p/(μh) (Pasternak)", _fmt(s.kp)),

@@ -188,18 +188,47 @@ MAX_DEBORAH = 1e12
 smallest non-zero one is 1e-12, 0 relaxes the branch at once)."""
 
 
+def _speed_deborah(tau: float, vstar: float, what: str) -> float:
+    """The deborah number V tau/h = sqrt(vstar) tau* of a relaxation time
+    tau* = tau c_T0/h at the speed vstar (InvalidParameterError naming vstar
+    beyond MAX_DEBORAH)."""
+    d = math.sqrt(vstar) * tau
+    if not d <= MAX_DEBORAH:
+        raise InvalidParameterError(
+            f"vstar = {vstar!r} gives {what} a deborah number sqrt(vstar) tau = "
+            f"{d:.6g} beyond {MAX_DEBORAH:g}",
+            parameter="vstar",
+            allowed=f"sqrt(vstar) tau <= {MAX_DEBORAH:g}",
+        )
+    return d
+
+
+def _unresolved(what: str) -> InvalidParameterError:
+    return InvalidParameterError(
+        f"{what} is given by its relaxation time tau (in units of h/c_T0): its "
+        "deborah number sqrt(vstar) tau needs the speed (solve() resolves it; "
+        "at_speed(vstar) gives the material at a speed)",
+        parameter="tau",
+        allowed="a material at a speed (at_speed(vstar)) or given by deborah",
+    )
+
+
 @dataclass(frozen=True)
 class Zener:
     """A standard linear solid in shear (docs/theory.md section 17): the
     relaxed modulus mu_0 is the sublayer's ``mu``, the unrelaxed one
     mu_inf = ``ratio`` mu_0 (ratio >= 1; 1 is elastic), relaxing with the time
-    tau at constant strain, ``deborah`` = V tau/h (0: relaxed at once, the
-    elastic layer of mu_0). Poisson's ratio is the sublayer's at every
-    frequency. Solved quasi-statically: ``vstar=0`` (inertia neglected), the
-    speed entering through ``deborah`` alone."""
+    tau at constant strain. Give ``deborah`` = V tau/h (the material at one
+    speed; 0: relaxed at once, the elastic layer of mu_0), or ``tau`` = the
+    relaxation time in units of h/c_T0 (c_T0 = sqrt(mu_0/rho) of the top
+    sublayer): the material itself, whose deborah number sqrt(vstar) tau
+    follows the speed of each solve (a speed sweep of one material). Solved
+    quasi-statically: ``vstar=0``, or ``inertia=False`` with a ``tau``
+    (the speed then sets the relaxation only)."""
 
     ratio: float
-    deborah: float
+    deborah: float | None = None
+    tau: float | None = None
 
     def __post_init__(self) -> None:
         object.__setattr__(
@@ -207,15 +236,38 @@ class Zener:
             "ratio",
             _material_number(self.ratio, "Zener.ratio", 1.0, MAX_VISCO_RATIO),
         )
-        object.__setattr__(
-            self,
-            "deborah",
-            _material_number(self.deborah, "Zener.deborah", 0.0, MAX_DEBORAH),
-        )
+        if (self.deborah is None) == (self.tau is None):
+            raise InvalidParameterError(
+                "Zener: give one of deborah (V tau/h, at one speed) and tau (the "
+                f"relaxation time in h/c_T0), got deborah={self.deborah!r}, "
+                f"tau={self.tau!r}",
+                parameter="deborah" if self.deborah is None else "tau",
+                allowed="exactly one of deborah and tau",
+            )
+        for name in ("deborah", "tau"):
+            value = getattr(self, name)
+            if value is not None:
+                checked = _material_number(value, f"Zener.{name}", 0.0, MAX_DEBORAH)
+                object.__setattr__(self, name, checked)
+
+    @property
+    def relaxes(self) -> bool:
+        """It relaxes in time at a speed > 0 (ratio > 1 and a time > 0)."""
+        time = self.deborah if self.deborah is not None else self.tau
+        return self.ratio != 1.0 and bool(time)
+
+    def at_speed(self, vstar: float) -> Zener:
+        """The material at the speed vstar (deborah = sqrt(vstar) tau); itself
+        when given by deborah."""
+        if self.tau is None:
+            return self
+        return Zener(self.ratio, _speed_deborah(self.tau, vstar, "Zener.tau"))
 
     def branches(self) -> tuple[tuple[float, ...], tuple[float, ...], float]:
         """(weights, deborah numbers, shift) of its generalised Maxwell form:
         one branch of weight ratio - 1 (none when elastic)."""
+        if self.deborah is None:
+            raise _unresolved("Zener(tau=...)")
         if self.ratio == 1.0 or self.deborah == 0.0:
             return (), (), 1.0
         return (self.ratio - 1.0,), (self.deborah,), 1.0
@@ -226,10 +278,28 @@ class Zener:
         return _modulus(self.branches(), t)
 
     def describe(self) -> str:
+        if self.tau is not None:
+            return f"Zener ratio {self.ratio:g}, tau {self.tau:g} h/c_T0"
         return f"Zener ratio {self.ratio:g}, deborah {self.deborah:g}"
 
     def to_dict(self) -> dict[str, object]:
-        return {"kind": "zener", "ratio": self.ratio, "deborah": self.deborah}
+        time = "deborah" if self.tau is None else "tau"
+        return {"kind": "zener", "ratio": self.ratio, time: getattr(self, time)}
+
+
+def _material_numbers(
+    value: object, what: str, lo: float, hi: float
+) -> tuple[float, ...]:
+    if isinstance(value, (str, bytes)) or not isinstance(value, (Sequence, np.ndarray)):
+        name = what.rsplit(".", 1)[-1]
+        raise InvalidParameterError(
+            f"{what} must be a sequence of numbers, got {value!r}",
+            parameter=name,
+            allowed="a sequence of numbers",
+        )
+    return tuple(
+        _material_number(v, f"{what}[{i}]", lo, hi) for i, v in enumerate(value)
+    )
 
 
 @dataclass(frozen=True)
@@ -237,38 +307,33 @@ class Prony:
     """A generalised Maxwell solid in shear (a Prony series, as measured
     master curves are given): mu(omega)/mu_0 = 1 + sum_j weights_j
     (-i omega tau_j)/(1 - i omega tau_j), with ``deborahs`` = V tau_j/h at the
-    reference temperature and ``shift`` = a_T, the time-temperature shift
+    reference temperature (the material at one speed), or ``taus`` = tau_j in
+    units of h/c_T0 (the material itself: deborah_j = sqrt(vstar) tau_j at
+    each solve's speed), and ``shift`` = a_T, the time-temperature shift
     factor applied to every tau_j. mu_inf/mu_0 = 1 + sum of the weights."""
 
     weights: tuple[float, ...]
-    deborahs: tuple[float, ...]
+    deborahs: tuple[float, ...] | None = None
     shift: float = 1.0
+    taus: tuple[float, ...] | None = None
 
     def __post_init__(self) -> None:
-        for name in ("weights", "deborahs"):
-            value = getattr(self, name)
-            if isinstance(value, (str, bytes)) or not isinstance(
-                value, (Sequence, np.ndarray)
-            ):
-                raise InvalidParameterError(
-                    f"Prony.{name} must be a sequence of numbers, got {value!r}",
-                    parameter=name,
-                    allowed="a sequence of numbers",
-                )
-        w = tuple(
-            _material_number(v, f"Prony.weights[{i}]", 0.0, MAX_VISCO_RATIO - 1.0)
-            for i, v in enumerate(self.weights)
-        )
-        d = tuple(
-            _material_number(v, f"Prony.deborahs[{i}]", 0.0, MAX_DEBORAH)
-            for i, v in enumerate(self.deborahs)
-        )
+        w = _material_numbers(self.weights, "Prony.weights", 0.0, MAX_VISCO_RATIO - 1.0)
+        if (self.deborahs is None) == (self.taus is None):
+            raise InvalidParameterError(
+                "Prony: give one of deborahs (V tau_j/h, at one speed) and taus "
+                "(the relaxation times in h/c_T0)",
+                parameter="deborahs" if self.deborahs is None else "taus",
+                allowed="exactly one of deborahs and taus",
+            )
+        name = "deborahs" if self.taus is None else "taus"
+        d = _material_numbers(getattr(self, name), f"Prony.{name}", 0.0, MAX_DEBORAH)
         if len(w) != len(d) or not w:
             raise InvalidParameterError(
-                f"Prony: {len(w)} weights and {len(d)} deborah numbers; give one "
+                f"Prony: {len(w)} weights and {len(d)} {name}; give one "
                 "relaxation time per branch, at least one branch",
-                parameter="deborahs",
-                allowed="as many deborah numbers as weights, at least one",
+                parameter=name,
+                allowed=f"as many {name} as weights, at least one",
             )
         if any(v <= 0.0 for v in w):
             raise InvalidParameterError(
@@ -284,13 +349,29 @@ class Prony:
                 allowed="(0, 1e12]",
             )
         object.__setattr__(self, "weights", w)
-        object.__setattr__(self, "deborahs", d)
+        object.__setattr__(self, name, d)
         object.__setattr__(self, "shift", shift)
+
+    @property
+    def relaxes(self) -> bool:
+        """A branch relaxes in time at a speed > 0 (a time > 0)."""
+        times = self.deborahs if self.deborahs is not None else self.taus
+        return any(t > 0 for t in times or ())
+
+    def at_speed(self, vstar: float) -> Prony:
+        """The material at the speed vstar (deborahs = sqrt(vstar) taus);
+        itself when given by deborahs."""
+        if self.taus is None:
+            return self
+        d = tuple(_speed_deborah(t, vstar, "Prony.taus") for t in self.taus)
+        return Prony(self.weights, d, self.shift)
 
     def branches(self) -> tuple[tuple[float, ...], tuple[float, ...], float]:
         """(weights, deborah numbers, shift) of the branches that relax in
         time, as the core takes them (a branch of deborah 0 relaxes at once
         and adds nothing at any frequency; none left: elastic)."""
+        if self.deborahs is None:
+            raise _unresolved("Prony(taus=...)")
         kept = [
             (w, d) for w, d in zip(self.weights, self.deborahs, strict=True) if d > 0
         ]
@@ -301,13 +382,15 @@ class Prony:
         return _modulus(self.branches(), t)
 
     def describe(self) -> str:
-        return f"Prony {len(self.weights)} branches, shift {self.shift:g}"
+        given = "" if self.taus is None else " (taus in h/c_T0)"
+        return f"Prony {len(self.weights)} branches{given}, shift {self.shift:g}"
 
     def to_dict(self) -> dict[str, object]:
+        name = "deborahs" if self.taus is None else "taus"
         return {
             "kind": "prony",
             "weights": list(self.weights),
-            "deborahs": list(self.deborahs),
+            name: list(getattr(self, name)),
             "shift": self.shift,
         }
 
@@ -315,8 +398,8 @@ class Prony:
 Viscoelastic = Zener | Prony
 
 MATERIAL_KEYS: dict[str, tuple[str, ...]] = {
-    "zener": ("kind", "ratio", "deborah"),
-    "prony": ("kind", "weights", "deborahs", "shift"),
+    "zener": ("kind", "ratio", "deborah", "tau"),
+    "prony": ("kind", "weights", "deborahs", "taus", "shift"),
 }
 """A material's keys in a scene (``viscoelastic = { kind = "zener", ... }``)."""
 
@@ -346,16 +429,30 @@ def material_from_dict(raw: object, where: str) -> Zener | Prony:
                 parameter=str(key),
                 allowed=", ".join(MATERIAL_KEYS[kind]),
             )
-    for key in MATERIAL_KEYS[kind][1:]:
-        if key not in raw and key != "shift":
-            raise InvalidParameterError(
-                f"{where}.{key}: missing",
-                parameter=key,
-                allowed=", ".join(MATERIAL_KEYS[kind]),
-            )
+    required, times = (
+        ("ratio", ("deborah", "tau"))
+        if kind == "zener"
+        else ("weights", ("deborahs", "taus"))
+    )
+    if required not in raw:
+        raise InvalidParameterError(
+            f"{where}.{required}: missing",
+            parameter=required,
+            allowed=", ".join(MATERIAL_KEYS[kind]),
+        )
+    given = [t for t in times if t in raw]
+    if len(given) != 1:
+        raise InvalidParameterError(
+            f"{where}: give one of {times[0]} (at one speed) and {times[1]} (the "
+            f"relaxation time in h/c_T0), got {', '.join(given) or 'neither'}",
+            parameter=times[0] if not given else times[1],
+            allowed=f"exactly one of {times[0]} and {times[1]}",
+        )
     if kind == "zener":
-        return Zener(raw["ratio"], raw["deborah"])
-    return Prony(raw["weights"], raw["deborahs"], raw.get("shift", 1.0))
+        return Zener(raw["ratio"], raw.get("deborah"), raw.get("tau"))
+    return Prony(
+        raw["weights"], raw.get("deborahs"), raw.get("shift", 1.0), raw.get("taus")
+    )
 
 
 def _modulus(
@@ -421,7 +518,13 @@ class Layer(ValueType):
     @property
     def elastic(self) -> bool:
         """No viscoelastic branch (none given, or a Zener of ratio 1 or deborah 0)."""
-        return self.viscoelastic is None or not self.viscoelastic.branches()[0]
+        return self.viscoelastic is None or not self.viscoelastic.relaxes
+
+    def at_speed(self, vstar: float) -> Layer:
+        """This sublayer with its material at the speed vstar (``Zener.at_speed``)."""
+        v = self.viscoelastic
+        at = v if v is None else v.at_speed(vstar)
+        return self if at is v else dataclasses.replace(self, viscoelastic=at)
 
     def describe(self) -> str:
         text = super().describe()
@@ -552,10 +655,34 @@ def fields_table() -> str:
 class Medium:
     """The resolved medium of a solve: its sublayers (top to bottom) and its
     base. ``homogeneous``: one homogeneous sublayer on springs (the paper's
-    layer, solved exactly as ``kw=``/``nu=`` are)."""
+    layer, solved exactly as ``kw=``/``nu=`` are). ``inertia`` False: its
+    inertia neglected (quasi-static; the speed vstar then only sets the
+    relaxation of the materials given by ``tau``: ``solve(inertia=False)``)."""
 
     layers: tuple[Sublayer, ...]
     base: Base
+    inertia: bool = True
+
+    @property
+    def speed_dependent(self) -> bool:
+        """A material is given by its relaxation times (``tau``/``taus``):
+        its deborah numbers follow the speed (``at_speed``)."""
+        return any(
+            isinstance(s, Layer)
+            and s.viscoelastic is not None
+            and s.viscoelastic.at_speed(1.0) is not s.viscoelastic
+            for s in self.layers
+        )
+
+    def at_speed(self, vstar: float) -> Medium:
+        """The medium with every material at the speed vstar (deborah =
+        sqrt(vstar) tau); itself when none is given by tau."""
+        layers = tuple(
+            s.at_speed(vstar) if isinstance(s, Layer) else s for s in self.layers
+        )
+        if all(a is b for a, b in zip(layers, self.layers, strict=True)):
+            return self
+        return dataclasses.replace(self, layers=layers)
 
     @property
     def homogeneous(self) -> bool:
@@ -658,15 +785,24 @@ class Medium:
             out.update(base=base.interface, half_space=base.row())
         return out
 
+    def solve_args(self) -> dict[str, Any]:
+        """The medium as ``movingpunch.solve`` takes it: ``layers=``,
+        ``base=`` and ``inertia=``."""
+        return {"layers": list(self.layers), "base": self.base, "inertia": self.inertia}
+
     def describe(self) -> str:
         parts = "; ".join(s.describe() for s in self.layers)
-        return f"{parts} on {self.base.describe()}"
+        still = "" if self.inertia else ", quasi-static (inertia neglected)"
+        return f"{parts} on {self.base.describe()}{still}"
 
     def to_dict(self) -> dict[str, object]:
-        return {
+        out: dict[str, object] = {
             "layers": [s.to_dict() for s in self.layers],
             "base": self.base.to_dict(),
         }
+        if not self.inertia:
+            out["inertia"] = False
+        return out
 
 
 def _sublayers(layers: object) -> tuple[Sublayer, ...]:
@@ -722,6 +858,7 @@ def resolve_medium(
     kp: object = None,
     damping: object = None,
     nu: object = None,
+    inertia: bool = True,
 ) -> Medium:
     """The medium of a solve's keyword arguments. ``layers``/``base`` are the
     value types; ``kw``, ``kp``, ``damping`` and ``nu`` their shorthand
@@ -771,4 +908,4 @@ def resolve_medium(
         )
     else:
         sub = _sublayers(layers)
-    return Medium(layers=sub, base=base)
+    return Medium(layers=sub, base=base, inertia=inertia)

@@ -258,6 +258,7 @@ def solve(
     contact: Literal["single"],
     layers: Sequence[Sublayer] | None = ...,
     base: Base | None = ...,
+    inertia: bool = ...,
     numerics: Numerics | None = ...,
     cancel: Cancel | None = ...,
 ) -> Solution: ...
@@ -281,6 +282,7 @@ def solve(
     contact: str = ...,
     layers: Sequence[Sublayer] | None = ...,
     base: Base | None = ...,
+    inertia: bool = ...,
     numerics: Numerics | None = ...,
     cancel: Cancel | None = ...,
 ) -> ContactSolution: ...
@@ -304,6 +306,7 @@ def solve(
     contact: str = "auto",
     layers: Sequence[Sublayer] | None = None,
     base: Base | None = None,
+    inertia: bool = True,
     numerics: Numerics | None = None,
     cancel: Cancel | None = None,
 ) -> ContactSolution:
@@ -386,6 +389,17 @@ def solve(
     stack (``damping``), a graded top sublayer (``layers``), and several
     zones under a half-space base.
 
+    A ``Layer(..., viscoelastic=Zener(ratio, deborah=...))`` (or ``Prony``)
+    is a viscoelastic sublayer (docs/theory.md section 17), solved
+    quasi-statically: at ``vstar=0``, the speed entering through the deborah
+    numbers. A material given by its relaxation time instead
+    (``Zener(ratio, tau=...)``, tau in units of h/c_T0) takes its deborah
+    number sqrt(vstar) tau from the speed; ``inertia=False`` then neglects the
+    layer's inertia (the solve's vstar is 0 and the solution's ``vstar`` is
+    0; the speed sets the relaxation only), which is how a speed sweep of one
+    material runs. ``inertia=False`` with vstar > 0 and no such material is an
+    InvalidParameterError naming vstar (the speed would change nothing).
+
     ``numerics`` (``movingpunch.Numerics``: tol, n, allow_unphysical,
     contact as one checked value) stands for those four keywords; giving
     one of them too is an InvalidParameterError naming it.
@@ -404,6 +418,7 @@ def solve(
             numerics, tol=tol, n=n, allow_unphysical=allow_unphysical, contact=contact
         )
     medium: Medium | None = None
+    inert = _check_flag("inertia", inertia)
     if layers is not None or base is not None:
         medium = resolve_medium(
             layers=layers,
@@ -412,13 +427,21 @@ def solve(
             kp=kp if kp != 0.0 else None,
             damping=damping if damping != 0.0 else None,
             nu=nu,
+            inertia=inert,
         )
+        if medium.speed_dependent or not inert:
+            speed = _check_vstar(vstar)
+            if not inert:
+                vstar = _quasi_static(medium, speed)
+            medium = medium.at_speed(speed)
         if medium.homogeneous:
             # The paper's layer: the shorthand's own path, bit for bit.
             springs = medium.base
             assert isinstance(springs, Winkler)
             kw, kp, damping, nu = springs.kw, springs.kp, springs.damping, medium.nu
             medium = None
+    elif not inert:
+        vstar = _quasi_static(None, _check_vstar(vstar))
     if medium is not None:
         return _solve_layered(
             medium,
@@ -510,6 +533,40 @@ def solve(
         ) from err
 
 
+def _quasi_static(medium: Medium | None, vstar: float) -> float:
+    """The solve's vstar under ``inertia=False``: 0 (the inertia neglected);
+    the speed must then be 0 or set a material's relaxation (``tau``), else
+    InvalidParameterError naming vstar."""
+    if vstar > 0.0 and (medium is None or not medium.speed_dependent):
+        raise InvalidParameterError(
+            f"vstar = {vstar!r} with inertia=False changes nothing: the layer's "
+            "inertia is neglected and no material takes its relaxation from the "
+            "speed (give a viscoelastic sublayer by its relaxation time, "
+            "Zener(ratio, tau=...), or vstar=0)",
+            parameter="vstar",
+            allowed="0 with inertia=False, unless a material is given by tau",
+        )
+    if vstar > 0.0:
+        assert medium is not None
+        below_critical_speed(medium, vstar)
+    return 0.0
+
+
+def below_critical_speed(medium: Medium, vstar: float) -> None:
+    """A quasi-static speed stays below the medium's critical speed (the
+    relaxed layer's for a viscoelastic one): beyond it the inertia neglected
+    would be the whole story. InvalidParameterError naming vstar."""
+    vcr = medium.critical_speed()[0]
+    if not vstar < vcr:
+        raise InvalidParameterError(
+            f"vstar = {vstar!r} with inertia=False is at or above the critical "
+            f"speed V*_cr = {vcr:.10g} of the (relaxed) medium, where the inertia "
+            "neglected dominates; the quasi-static layer is fair for vstar << 1",
+            parameter="vstar",
+            allowed=f"0 <= vstar < {vcr:.10g} with inertia=False",
+        )
+
+
 def _solve_layered(
     medium: Medium,
     vstar: float,
@@ -554,6 +611,15 @@ def _solve_layered(
             allowed="a bounded contact (cylinder, rounded flat, table) on a graded top",
         )
     fric = check_friction(friction)
+    if medium.viscoelastic and _check_vstar(vstar) != 0.0:
+        raise InvalidParameterError(
+            f"vstar = {vstar!r}: a viscoelastic layer with inertia is not solved "
+            "yet (the quasi-static layer is: vstar=0 with the speed in the "
+            "deborah numbers, or the material given by its relaxation time, "
+            "Zener(ratio, tau=...), with inertia=False)",
+            parameter="vstar",
+            allowed="0 beside a viscoelastic sublayer (or inertia=False)",
+        )
     asymmetric_shape = isinstance(shape, Profile) and not shape.symmetric
     zoned = mode == "auto" and fric == 0.0 and not isinstance(shape, Flat)
     springs = medium.base if isinstance(medium.base, Winkler) else None

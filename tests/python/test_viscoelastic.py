@@ -212,6 +212,47 @@ def test_drag_is_the_dissipation_and_the_pressure_carries_the_load(material, kw,
     assert np.allclose(s.surface_slope(xs), xs / R, rtol=1e-8, atol=1e-12)
 
 
+def tilted_table(tilt: float = 1e-3) -> mp.Profile:
+    """A convex table: the cylinder's parabola tilted by ``tilt`` (an
+    asymmetric punch: a sliding wheel's worn profile)."""
+    x = np.linspace(-0.6, 0.6, 49)
+    return mp.Profile(tuple(x), tuple(x * x / (2.0 * R) + tilt * x))
+
+
+def test_a_table_on_a_viscoelastic_layer_meets_its_elastic_limits_and_balance():
+    """A convex (here asymmetric) table on the Zener layer: deborah 1e-12 and
+    1e12 are the relaxed and unrelaxed elastic layers under the same table
+    (the elastic asymmetric solver), on the ends to 1e-10; between them the
+    drag is the dissipation to 1e-10, the pressure carries the load and is
+    >= 0."""
+    table, load, ratio = tilted_table(), 0.002, 2.0
+
+    def on(material):
+        layer = mp.Layer(nu=NU, viscoelastic=material)
+        return mp.solve(
+            vstar=0.0, load=load, profile=table, layers=[layer], base=mp.Winkler(1.0)
+        )
+
+    relaxed = mp.solve(vstar=0.0, load=load, profile=table, kw=1.0, nu=NU)
+    unrelaxed = mp.solve(
+        vstar=0.0, load=load / ratio, profile=table, kw=1.0 / ratio, nu=NU
+    )
+    slow, fast = on(mp.Zener(ratio, 1e-12)), on(mp.Zener(ratio, 1e12))
+    assert slow.contact_interval == pytest.approx(relaxed.contact_interval, abs=1e-10)
+    assert fast.contact_interval == pytest.approx(unrelaxed.contact_interval, abs=1e-10)
+    s = on(mp.Zener(ratio, 0.05))
+    assert s.valid
+    assert not s.warnings
+    assert s.drag > 1e-5
+    assert abs(s.drag - s.dissipation) <= 1e-10 * s.drag
+    assert abs(_integral(s) - 1.0) < 1e-10
+    left, right = s.contact_interval
+    x = np.linspace(left, right, 801)[1:-1]
+    assert np.all(s.pressure(x) >= 0.0)
+    # The memory shifts the contact forward of the relaxed one's.
+    assert left + right > sum(relaxed.contact_interval)
+
+
 def test_prony_limits_and_the_shift_factor():
     weights, deborahs = (0.5, 2.0, 4.0), (0.02, 0.3, 5.0)
 
@@ -259,9 +300,10 @@ def test_what_is_not_solved_yet_is_refused_by_name():
     with pytest.raises(InvalidParameterError) as e:
         mp.solve(vstar=0.0, radius=R, friction=0.2, **args)
     assert e.value.parameter == "friction"
-    with pytest.raises(InvalidParameterError) as e:
-        mp.solve(vstar=0.0, profile=mp.RoundedFlat(0.3, 100.0), **args)
-    assert e.value.parameter == "profile"
+    for shape in (mp.RoundedFlat(0.3, 100.0), mp.Flat(0.1)):
+        with pytest.raises(InvalidParameterError, match="not solved yet") as e:
+            mp.solve(vstar=0.0, profile=shape, **args)
+        assert e.value.parameter == "profile"
     with pytest.raises(InvalidParameterError) as e:
         mp.solve(
             vstar=0.0,
@@ -458,7 +500,9 @@ def test_a_scene_takes_a_viscoelastic_layer_and_writes_it_back():
         ("ratio = 2.0", "ratio = 0.5"),
         ('kind = "zener"', 'kind = "maxwell"'),
         ("deborah = 0.1", "deborah = -1.0"),
-        ("deborah = 0.1", "tau = 0.1"),
+        ("deborah = 0.1", "deborah = 0.1, tau = 0.1"),
+        ("deborah = 0.1", "tau = -1.0"),
+        ("deborah = 0.1", "shift = 1.0"),
     ],
 )
 def test_a_scene_with_a_bad_material_names_it(edit, named):
@@ -497,17 +541,18 @@ def test_the_command_line_takes_the_top_sublayers_material(
         assert named in proc.stderr, (bad, proc.stderr)
 
 
-def test_the_terminal_ui_refuses_a_viscoelastic_scene_instead_of_losing_it():
-    """The panel's sublayer inputs hold the elastic fields only: opening the
-    scene would drop the material and solve the elastic layer silently."""
+def test_the_terminal_ui_keeps_a_viscoelastic_scenes_material():
+    """The medium editor holds the material (it used to refuse such a scene:
+    its elastic inputs would have dropped it): opened and saved, the scene's
+    medium is the same."""
     from movingpunch.tui import model, scene_files
 
     scene = mp.Scene.from_toml(SCENE)
-    with pytest.raises(mp.SceneError, match="viscoelastic") as e:
-        scene_files.from_scene(scene)
-    assert e.value.parameter == "layers"
-    with pytest.raises(InvalidParameterError, match="viscoelastic"):
-        model.with_medium(model.Params(), scene.medium.layers, None)
+    state = scene_files.from_scene(scene)
+    assert state.params.medium() == scene.medium
+    assert scene_files.to_scene(state).medium == scene.medium
+    params = model.with_medium(model.Params(), scene.medium.layers, None)
+    assert params.layers == scene.medium.layers
 
 
 def test_a_branch_of_deborah_zero_adds_nothing():

@@ -7,6 +7,7 @@ Plain data: nothing here validates, reads files or computes.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
@@ -125,9 +126,8 @@ SWEEP_QUANTITIES: dict[str, str] = {
     "min_pressure": "minimum of p/(P/h) on the contact",
     "critical_vstar": "critical speed V*_cr(kw, nu, kp)",
     "phi1": "moving half-plane factor phi1",
-    "drag": "horizontal force of the pressure on the punch over P (0 without "
-    "damping or friction)",
-    "contact_start": "trailing end -b/h of the contact (-a/h without damping)",
+    "drag": "drag F/P (from damping, friction or a viscoelastic layer)",
+    "contact_start": "trailing end -b/h of the contact (-a/h when symmetric)",
     "contact_end": "leading end a/h of the contact",
     "zones": "number of contact zones (1: a single contact; more: a separated "
     "contact or a train of punches)",
@@ -337,4 +337,6 @@ def point_medium(medium: Medium, p: Mapping[str, float]) -> Medium:
     if isinstance(medium.base, HalfSpace):
         return medium
     springs = Winkler(p["kw"], p.get("kp", 0.0), p.get("damping", 0.0))
-    return medium if springs == medium.base else Medium(medium.layers, springs)
+    return (
+        medium if springs == medium.base else dataclasses.replace(medium, base=springs)
+    )

@@ -125,7 +125,7 @@ def solve_point(
         args.update(kw=p["kw"], nu=p["nu"], damping=_damping(p), kp=_kp(p))
     else:
         m = point_medium(medium, p)
-        args.update(layers=list(m.layers), base=m.base)
+        args.update(m.solve_args())
     # A sweep goes on through unphysical points: contact "auto" finds the
     # zones where the single contact separates, and where no contact set is
     # found (or with "single") the point is the single contact, flagged

@@ -274,7 +274,9 @@ def _from_mapping(data: Mapping[str, Any], source: str) -> dict[str, Any]:
 
     if "params" not in data:
         raise c.fail("params", "missing", "a table [params] with " + ", ".join(PARAMS))
-    raw_params = c.table("params", data["params"], (*PARAMS, "profile", "contact"))
+    raw_params = c.table(
+        "params", data["params"], (*PARAMS, "profile", "contact", "inertia")
+    )
     profile = (
         parse_profile(c, raw_params["profile"]) if "profile" in raw_params else None
     )
@@ -331,6 +333,24 @@ def _from_mapping(data: Mapping[str, Any], source: str) -> dict[str, Any]:
         elif name_ not in OPTIONAL:  # optional, 0
             raise c.fail(key, "missing", allowed_text(name_), name_)
 
+    inertia = True
+    if "inertia" in raw_params:
+        inertia = raw_params["inertia"]
+        if not isinstance(inertia, bool):
+            raise c.fail(
+                "params.inertia",
+                f"must be true or false, got {show(inertia)}",
+                "true (the default) or false (quasi-static: the layer's inertia "
+                "neglected, vstar setting only the relaxation of a material given "
+                "by tau)",
+            )
+        if layers is None:
+            raise c.fail(
+                "params.inertia",
+                "is given without [[layers]]: the quasi-static speed sets the "
+                "relaxation of a viscoelastic sublayer given by tau",
+                "inertia beside [[layers]] with a material of tau (taus)",
+            )
     medium: Medium | None = None
     if layers is not None or base is not None:
         if base is None:  # the springs of [params]
@@ -339,7 +359,7 @@ def _from_mapping(data: Mapping[str, Any], source: str) -> dict[str, Any]:
             )
         if layers is None:  # the homogeneous layer of [params] nu
             layers = (Layer(nu=params["nu"]),)
-        medium = Medium(layers, base)
+        medium = Medium(layers, base, inertia)
 
     tol = DEFAULT_TOL
     if "accuracy" in data:
@@ -473,6 +493,8 @@ def to_toml(scene: SceneData) -> str:
             lines.append(f"{name} = {_toml_value(scene.params[name])}")
     if scene.contact != "auto":
         lines.append(f"contact = {_toml_value(scene.contact)}")
+    if medium is not None and not medium.inertia:
+        lines.append("inertia = false")
     if profile is not None:
         lines += ["", "[params.profile]"]
         lines += [f"{k} = {_toml_value(v)}" for k, v in profile.to_dict().items()]

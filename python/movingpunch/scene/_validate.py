@@ -229,7 +229,9 @@ def _check_medium(c: Checker, scene: SceneData, raw: dict[str, Any]) -> Medium |
             "Medium(layers=(Layer(...), ...), base=Winkler(...) or HalfSpace(...))",
         )
     try:
-        medium = resolve_medium(layers=list(medium.layers), base=medium.base)
+        medium = resolve_medium(
+            layers=list(medium.layers), base=medium.base, inertia=medium.inertia
+        )
     except InvalidParameterError as exc:
         raise _media_fail(
             c, "base" if exc.parameter == "base" else "layers", exc
@@ -946,7 +948,7 @@ def _check_speeds(scene: SceneData, c: Checker) -> None:
             combos.append((p, where))
     seen: set[tuple[float, float, float, bool, float]] = set()
     medium = getattr(scene, "medium", None)
-    layered = medium is not None and not medium.homogeneous
+    layered = medium is not None and (not medium.homogeneous or not medium.inertia)
     for p, where in combos:
         if layered:
             assert medium is not None
@@ -1009,7 +1011,38 @@ def _check_medium_speed(
 ) -> None:
     """vstar < V*_cr of a layered medium (or one on a half-space) at the
     point ``p``; unchecked where the core cannot compute V*_cr (the run
-    reports why)."""
+    reports why). A quasi-static medium (inertia false) has no bound: its
+    speed must set the relaxation of a material given by tau, whose deborah
+    numbers it must keep in range; a viscoelastic one with inertia takes
+    vstar = 0 only (inertia in it is not solved yet)."""
+    from movingpunch.solver import below_critical_speed
+
+    speed = p["vstar"]
+    if not medium.inertia or (medium.viscoelastic and speed > 0.0):
+        if medium.inertia:
+            raise c.fail(
+                where["vstar"],
+                f"vstar = {speed:.10g} beside a viscoelastic sublayer: a "
+                "viscoelastic layer with inertia is not solved yet",
+                "vstar = 0 (the speed in the deborah numbers), or [params] "
+                "inertia = false with the material given by tau",
+                "vstar",
+            )
+        if speed > 0.0 and not medium.speed_dependent:
+            raise c.fail(
+                where["vstar"],
+                f"vstar = {speed:.10g} with inertia = false changes nothing: no "
+                "material takes its relaxation from the speed",
+                "vstar = 0, or a viscoelastic sublayer given by tau (taus)",
+                "vstar",
+            )
+        try:
+            if speed > 0.0:
+                medium.at_speed(speed)
+                below_critical_speed(medium, speed)
+        except InvalidParameterError as exc:
+            raise c.fail(where["vstar"], str(exc), exc.allowed or "", "vstar") from exc
+        return
     vcr = medium_critical_speed(medium)
     if vcr is None or p["vstar"] == 0.0 or p["vstar"] < vcr:
         return

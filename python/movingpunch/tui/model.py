@@ -29,8 +29,10 @@ from movingpunch.media import (
     HalfSpace,
     Layer,
     Medium,
+    Prony,
     Sublayer,
     Winkler,
+    Zener,
 )
 from movingpunch.params import OPTIONAL, PHYSICAL
 from movingpunch.params import check as check_param
@@ -273,6 +275,9 @@ class Params:
     half_space: HalfSpace | None = None
     """The base: an elastic half-space under the layers; None: the springs
     ``kw``, ``kp`` and ``damping``."""
+    inertia: bool = True
+    """The layer's inertia (False: quasi-static, vstar setting only the
+    relaxation of a viscoelastic material given by tau; the medium editor)."""
 
     def medium(self) -> Medium | None:
         """The medium ``movingpunch.solve`` takes as ``layers=``/``base=``;
@@ -283,7 +288,7 @@ class Params:
         base: Winkler | HalfSpace = self.half_space or Winkler(
             self.kw, self.kp, self.damping
         )
-        return Medium(layers=layers, base=base)
+        return Medium(layers=layers, base=base, inertia=self.inertia)
 
     def interfaces(self) -> tuple[float, ...]:
         """y/h of the interfaces between sublayers, top to bottom (the
@@ -300,15 +305,27 @@ class Params:
         springs): ``2 sublayers on springs``, ``graded on bonded half-space``."""
         if self.medium() is None:
             return ""
+        top = self.layers[0] if self.layers else None
+        material = top.viscoelastic if isinstance(top, Layer) else None
         if len(self.layers) > 1:
             stack = f"{len(self.layers)} sublayers"
-        elif self.layers and isinstance(self.layers[0], GradedLayer):
-            stack = f"graded gamma h={fmt(self.layers[0].gamma_h, 4)}"
+        elif isinstance(top, GradedLayer):
+            stack = f"graded gamma h={fmt(top.gamma_h, 4)}"
+        elif isinstance(material, Zener):
+            time = (
+                f"tau={fmt(material.tau, 4)}"
+                if material.tau is not None
+                else f"De={fmt(float(material.deborah or 0.0), 4)}"
+            )
+            stack = f"Zener {fmt(material.ratio, 4)}, {time}"
+        elif isinstance(material, Prony):
+            stack = "Prony layer"
         else:
             stack = "layer"
+        still = "" if self.inertia else ", quasi-static"
         if self.half_space is None:
-            return f"{stack} on springs"
-        return f"{stack} on {self.half_space.interface} half-space"
+            return f"{stack} on springs{still}"
+        return f"{stack} on {self.half_space.interface} half-space{still}"
 
     def applies(self, name: str) -> bool:
         """Whether the parameter ``name`` means something for this medium:
@@ -426,9 +443,10 @@ class Params:
         if against is not None and extra == against._zones_label():
             extra = []
         medium = self.medium_label()
-        if against is not None and (self.layers, self.half_space) == (
+        if against is not None and (self.layers, self.half_space, self.inertia) == (
             against.layers,
             against.half_space,
+            against.inertia,
         ):
             medium = ""
         elif against is not None and not medium:
@@ -512,6 +530,9 @@ class SweepSpec:
     points: int = 13
     spacing: str = "log"
     """``"log"`` or ``"linear"``."""
+    quantity: str = "a"
+    """What is plotted: ``"a"`` (a/h) or ``"drag"`` (F/P: the resistance
+    curve of a damped, rough or viscoelastic case)."""
 
     @property
     def is_range(self) -> bool:
@@ -752,7 +773,14 @@ def _solve(params: Params) -> ContactSolution:
     if params.punches and medium is not None:
         # A train on the medium (solve_punches refuses what it cannot take
         # yet, naming it: a train under a half-space, damped springs under a
-        # stack).
+        # stack, a viscoelastic layer).
+        if not medium.inertia:
+            raise InvalidParameterError(
+                "inertia: a train of punches is solved with the layer's inertia "
+                "(the quasi-static layer takes one punch)",
+                parameter="inertia",
+                allowed="inertia on beside a train",
+            )
         return solve_punches(
             params.train(),
             vstar=params.vstar,
@@ -771,8 +799,7 @@ def _solve(params: Params) -> ContactSolution:
             tol=params.tol,
             friction=params.friction,
             contact=params.contact,
-            layers=list(medium.layers),
-            base=medium.base,
+            **medium.solve_args(),
         )
     if params.punches:
         return solve_punches(
@@ -1105,33 +1132,43 @@ def _sweep(
     total = len(solved) * len(grid)
     done = 0
     series = []
+    quantity = spec.quantity
     for label, params, _ in solved:
         values = np.full(len(grid), np.nan)
         for j, x in enumerate(grid):
             if stop():
                 return None
             point = params.with_value(spec.param, float(x))
-            a = cache.get_or_make(("a", point), functools.partial(_a_or_nan, point))
-            assert isinstance(a, float)
-            values[j] = a
+            got = cache.get_or_make(
+                (quantity, point), functools.partial(_quantity_or_nan, point, quantity)
+            )
+            assert isinstance(got, float)
+            values[j] = got
             done += 1
             report(done, total)
         series.append(Series(label, values))
     swept = GRID_LABELS[spec.param]
+    what = "Contact half-width" if quantity == "a" else "Drag F/P"
     return Curves(
         tab="sweep",
-        title=f"Contact half-width against {swept}",
+        title=f"{what} against {swept}",
         grid_label=swept,
-        value_label="a/h",
+        value_label="a/h" if quantity == "a" else "drag/P",
         grid=grid,
         series=tuple(series),
         log_grid=spec.is_range and spec.spacing == "log",
     )
 
 
-def _a_or_nan(params: Params) -> float:
+SWEPT_QUANTITIES = ("a", "drag")
+"""What the sweep tab plots: a/h, or the drag F/P."""
+
+
+def _quantity_or_nan(params: Params, quantity: str) -> float:
+    """a/h or the drag of the solve of ``params``; NaN where it fails (a
+    point beyond the critical speed, a refused medium)."""
     try:
-        return _solve(params).a
+        return float(getattr(_solve(params), quantity))
     except MovingPunchError:
         return math.nan
 
@@ -1326,6 +1363,74 @@ def normalised(thicknesses: Sequence[float]) -> tuple[float, ...]:
     return tuple(out)
 
 
+MATERIAL_KINDS: dict[str, str] = {
+    "elastic": "elastic",
+    "zener-deborah": "Zener, deborah",
+    "zener-tau": "Zener, tau (h/c_T0)",
+    "prony": "Prony (as loaded)",
+}
+"""The medium editor's material selector per sublayer: elastic, a standard
+linear solid given by its deborah number V tau/h (one speed) or by its
+relaxation time tau in h/c_T0 (deborah = sqrt(vstar) tau: the speed of the
+panel sets it), or a scene's Prony series, kept as loaded."""
+
+
+def material_of(sub: Sublayer) -> tuple[str, str, str]:
+    """(kind, ratio text, time text) of a sublayer's material for the editor."""
+    v = sub.viscoelastic if isinstance(sub, Layer) else None
+    if v is None:
+        return "elastic", "2", "0.1"
+    if isinstance(v, Prony):
+        return "prony", "", ""
+    if v.tau is not None:
+        return "zener-tau", fmt(v.ratio, 10), fmt(v.tau, 10)
+    return "zener-deborah", fmt(v.ratio, 10), fmt(float(v.deborah or 0.0), 10)
+
+
+def parse_material(
+    row: int, kind: str, ratio: str, time: str, kept: Zener | Prony | None = None
+) -> Zener | Prony | None:
+    """The material of sublayer ``row`` from the editor's selector (a key of
+    ``MATERIAL_KINDS``) and the texts of its ratio and time; "prony" keeps
+    ``kept`` (a scene's series). Raises InvalidParameterError naming the row
+    and the parameter (``.parameter``: "ratio", "deborah" or "tau")."""
+    if kind not in MATERIAL_KINDS:
+        raise InvalidParameterError(
+            f"sublayer {row}: material must be one of {', '.join(MATERIAL_KINDS)}, "
+            f"got {kind!r}",
+            parameter="viscoelastic",
+            allowed=", ".join(MATERIAL_KINDS),
+        )
+    if kind == "elastic":
+        return None
+    if kind == "prony":
+        if not isinstance(kept, Prony):
+            raise InvalidParameterError(
+                f"sublayer {row}: a Prony series comes from a scene file; here "
+                "choose elastic or Zener",
+                parameter="viscoelastic",
+                allowed="elastic, Zener (deborah or tau)",
+            )
+        return kept
+    time_name = "tau" if kind == "zener-tau" else "deborah"
+    values: dict[str, float] = {}
+    for name, text in (("ratio", ratio), (time_name, time)):
+        try:
+            values[name] = float(text.strip())
+        except ValueError:
+            raise InvalidParameterError(
+                f"sublayer {row}: {name} must be a number, got {text!r}",
+                parameter=name,
+                allowed="ratio >= 1; deborah, tau >= 0",
+            ) from None
+    try:
+        return Zener(**values)
+    except InvalidParameterError as exc:
+        raise InvalidParameterError(
+            f"sublayer {row}: {exc}", parameter=exc.parameter, allowed=exc.allowed
+        ) from None
+
+
 def parse_base(kind: str, texts: dict[str, str]) -> HalfSpace | None:
     """The base chosen: None for the springs (``kind`` "springs"), else a
     half-space ``kind`` "bonded" or "smooth" of the texts typed (mu, nu,
@@ -1350,11 +1455,15 @@ def parse_base(kind: str, texts: dict[str, str]) -> HalfSpace | None:
 
 
 def with_medium(
-    params: Params, layers: Sequence[Sublayer], half_space: HalfSpace | None
+    params: Params,
+    layers: Sequence[Sublayer],
+    half_space: HalfSpace | None,
+    inertia: bool = True,
 ) -> Params:
     """``params`` on the medium of ``layers`` (top to bottom; their
-    thicknesses checked) and the base. One homogeneous sublayer is the
-    panel's layer: its ν goes to the ν input and ``layers`` stays ()."""
+    thicknesses checked), the base and the layer's ``inertia``. One
+    homogeneous elastic sublayer with inertia is the panel's layer: its ν
+    goes to the ν input and ``layers`` stays ()."""
     layers = tuple(layers)
     if not layers:
         raise InvalidParameterError(
@@ -1363,14 +1472,14 @@ def with_medium(
             allowed="one or more sublayers, top to bottom",
         )
     check_thicknesses(layers)
-    if any(isinstance(s, Layer) and not s.elastic for s in layers):
-        raise InvalidParameterError(
-            "layers: a viscoelastic sublayer is not edited in the terminal UI yet "
-            "(its material would be lost)",
-            parameter="layers",
-            allowed="elastic sublayers in the terminal UI",
-        )
     top = layers[0]
-    if len(layers) == 1 and isinstance(top, Layer):
-        return replace(params, layers=(), half_space=half_space, nu=top.nu)
-    return replace(params, layers=layers, half_space=half_space)
+    if (
+        len(layers) == 1
+        and isinstance(top, Layer)
+        and top.viscoelastic is None
+        and inertia
+    ):
+        return replace(
+            params, layers=(), half_space=half_space, nu=top.nu, inertia=True
+        )
+    return replace(params, layers=layers, half_space=half_space, inertia=inertia)

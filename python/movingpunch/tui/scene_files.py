@@ -134,23 +134,12 @@ def from_scene(scene: Scene) -> SceneState:
         else Overlay(scene.vary.param, tuple(float(v) for v in scene.vary.values))
     )
     medium = scene.medium
-    if medium is not None and medium.viscoelastic:
-        # The panel's sublayer inputs hold the elastic fields only: opened,
-        # the material would be lost and the elastic layer solved.
-        raise SceneError(
-            scene.name or "(scene)",
-            "layers",
-            "has a viscoelastic sublayer, which the terminal UI does not edit yet "
-            "(its material would be lost)",
-            "elastic sublayers here; run it with `movingpunch run` or from Python",
-            "layers",
-        )
     if medium is not None:
         # [[layers]] and [base]: under a half-space params holds no springs.
         half_space = medium.base if isinstance(medium.base, HalfSpace) else None
         if half_space is not None:
             params = replace(params, kw=Params.kw, kp=0.0, damping=0.0)
-        params = with_medium(params, medium.layers, half_space)
+        params = with_medium(params, medium.layers, half_space, medium.inertia)
     sweep = None if scene.sweep is None else _sweep_spec(scene.sweep)
     return SceneState(
         params=params,
@@ -163,7 +152,9 @@ def from_scene(scene: Scene) -> SceneState:
 
 def _sweep_spec(sweep: Sweep) -> SweepSpec:
     """A scene's sweep as the a/h tab's: a range stays a range (start, stop,
-    points, spacing), explicit values stay explicit."""
+    points, spacing), explicit values stay explicit; it plots the drag when
+    that is the scene's first quantity (a resistance curve), else a/h."""
+    quantity = "drag" if sweep.quantities[:1] == ("drag",) else "a"
     if sweep.is_range:
         assert sweep.start is not None
         assert sweep.stop is not None
@@ -173,8 +164,10 @@ def _sweep_spec(sweep: Sweep) -> SweepSpec:
             stop=float(sweep.stop),
             points=int(sweep.points or len(sweep.values)),
             spacing=sweep.spacing,
+            quantity=quantity,
         )
-    return SweepSpec(param=sweep.param, values=tuple(float(v) for v in sweep.values))
+    values = tuple(float(v) for v in sweep.values)
+    return SweepSpec(param=sweep.param, values=values, quantity=quantity)
 
 
 def _sweep_of(spec: SweepSpec, params: Params) -> Sweep:
@@ -182,7 +175,7 @@ def _sweep_of(spec: SweepSpec, params: Params) -> Sweep:
     written as start, stop, points and spacing; explicit values as values."""
     if spec.values is not None:
         values = tuple(float(v) for v in spec.values)
-        return Sweep(param=spec.param, values=values, quantities=("a",))
+        return Sweep(param=spec.param, values=values, quantities=(spec.quantity,))
     start, stop = spec.bounds(params)
     return Sweep.range(
         spec.param,
@@ -190,7 +183,7 @@ def _sweep_of(spec: SweepSpec, params: Params) -> Sweep:
         float(stop),
         spec.points,
         spacing=spec.spacing,
-        quantities=("a",),
+        quantities=(spec.quantity,),
     )
 
 

@@ -47,7 +47,7 @@ KEYS: tuple[tuple[str, str], ...] = (
     ("v", "overlay one parameter at several values"),
     ("l", "the medium: sublayers and the base"),
     ("m", "field tab: σx or von Mises"),
-    ("w", "a/h sweep: against P/(μh) or R/h"),
+    ("w", "a/h sweep over P/(μh), R/h (and V*, drag)"),
     ("F2 ... F6", "the paper's Figs 2-6 (bundled scenes)"),
     ("o / s", "open / save a scene file (TOML)"),
     ("e", "export the tab's data to CSV"),

@@ -176,7 +176,7 @@ class MainScreen(Screen[None]):
         Binding("escape", "cancel", "Cancel", key_display="esc"),
         Binding("i", "edit", "Edit the inputs", show=False, priority=True),
         Binding("m", "toggle_quantity", "σx/VM", show=False),
-        Binding("w", "toggle_sweep", "Sweep R/P", show=False),
+        Binding("w", "toggle_sweep", "Sweep R/P/V*", show=False),
         *(
             Binding(str(i + 1), f"show_tab('{tab}')", TAB_TITLES[tab], show=False)
             for i, tab in enumerate(TABS)
@@ -958,15 +958,32 @@ class MainScreen(Screen[None]):
         self._reconcile(soon=False)
 
     def action_toggle_sweep(self) -> None:
-        # load -> radius (-> spacing for a train) -> load
+        # a/h against load -> radius (-> spacing for a train); on a quasi-static
+        # material given by tau, then a/h and the drag against its speed.
         order = [
-            "load",
-            "radius",
-            *(["spacing"] if len(self.params.punches) > 1 else []),
+            ("load", "a"),
+            ("radius", "a"),
+            *([("spacing", "a")] if len(self.params.punches) > 1 else []),
         ]
-        now = self.sweep.param
-        param = order[(order.index(now) + 1) % len(order)] if now in order else "load"
-        self.sweep = SweepSpec(param=param)
+        medium = self.params.medium()
+        if medium is not None and not medium.inertia and medium.speed_dependent:
+            order += [("vstar", "a"), ("vstar", "drag")]
+        now = (self.sweep.param, self.sweep.quantity)
+        param, quantity = (
+            order[(order.index(now) + 1) % len(order)] if now in order else order[0]
+        )
+        if param == "vstar":
+            # Four decades around the speed (or from 1e-10 at rest).
+            centre = max(self.params.vstar, 1e-8)
+            self.sweep = SweepSpec(
+                param=param,
+                start=centre / 100.0,
+                stop=centre * 100.0,
+                points=21,
+                quantity=quantity,
+            )
+        else:
+            self.sweep = SweepSpec(param=param)
         self.action_show_tab("sweep")
         self._reconcile(soon=False)
 
@@ -992,7 +1009,9 @@ class MainScreen(Screen[None]):
         if choice is None:
             return
         try:
-            params = model.with_medium(self.params, choice.layers, choice.half_space)
+            params = model.with_medium(
+                self.params, choice.layers, choice.half_space, choice.inertia
+            )
         except InvalidParameterError as exc:  # (the editor checks it first)
             self.notify(_one_line(exc), severity="error")
             return

@@ -1,8 +1,12 @@
 """The medium editor (key ``l`` on the main screen): the sublayers, top to
 bottom, each a row of inputs (the fields of ``movingpunch.media``'s sublayer types:
 thickness h_i/h, μ_i/μ_1, ν, ρ_i/ρ_1, gamma h; gamma h ≠ 0 makes it a graded
-sublayer), and the base (the springs of the panel, or
-an elastic half-space bonded to the stack or in frictionless contact).
+sublayer) over its material (elastic, or a Zener solid of modulus ratio
+μ∞/μ₀ given by its deborah number Vτ/h or its relaxation time τ in h/c_T0; a
+scene's Prony series is kept as loaded), the base (the springs of the panel,
+or an elastic half-space bonded to the stack or in frictionless contact) and
+the layer's inertia (on, or neglected: quasi-static, the panel's V* then
+setting only a material's relaxation, deborah = √V* τ).
 
 Every input is checked as it is typed, as the panel's are: a message names
 the sublayer, the parameter and its valid range, and the editor is not
@@ -22,17 +26,20 @@ from textual.screen import ModalScreen
 from textual.widgets import Footer, Input, Label, Select, Static
 
 from movingpunch.errors import InvalidParameterError
-from movingpunch.media import HalfSpace, Layer, Sublayer
+from movingpunch.media import HalfSpace, Layer, Prony, Sublayer, Zener
 from movingpunch.params import SPECS
 from movingpunch.tui.model import (
     BASE_KINDS,
     HALF_SPACE_FIELDS,
+    MATERIAL_KINDS,
     SUBLAYER_FIELDS,
     Params,
     check_thicknesses,
     fmt,
+    material_of,
     normalised,
     parse_base,
+    parse_material,
     parse_param,
     parse_sublayer,
 )
@@ -61,41 +68,130 @@ BASE_LABELS: dict[str, str] = {
 }
 
 
+INERTIA_LABELS: dict[str, str] = {
+    "on": "inertia on",
+    "off": "quasi-static (inertia neglected)",
+}
+
+
 @dataclass(frozen=True)
 class MediumChoice:
-    """What the editor returns: the sublayers and the base (None: springs)."""
+    """What the editor returns: the sublayers, the base (None: springs) and
+    the layer's inertia."""
 
     layers: tuple[Sublayer, ...]
     half_space: HalfSpace | None
+    inertia: bool = True
 
 
 def _rows_of(params: Params) -> list[Sublayer]:
     return list(params.layers) or [Layer(1.0, nu=params.nu)]
 
 
-class SublayerRow(Horizontal):
-    """One sublayer: its number and an input per ``SUBLAYER_FIELDS``."""
+MATERIAL_INPUTS = ("ratio", "time")
+"""The material line's inputs: the modulus ratio and the deborah number or
+relaxation time (by the selector)."""
+
+
+class SublayerRow(Vertical):
+    """One sublayer: its number and an input per ``SUBLAYER_FIELDS``, and
+    under them its material (a selector, the modulus ratio and the time)."""
 
     def __init__(self, sub: Sublayer) -> None:
-        super().__init__(classes="sublayer-row")
+        super().__init__(classes="sublayer")
         self._sub = sub
+        v = sub.viscoelastic if isinstance(sub, Layer) else None
+        self._kept: Zener | Prony | None = v
+        """A scene's Prony series (the selector's "prony" keeps it)."""
 
     def compose(self) -> ComposeResult:
-        yield Label("", classes="sublayer-number")
-        for name in SUBLAYER_FIELDS:
-            value = float(getattr(self._sub, name))
+        with Horizontal(classes="sublayer-row"):
+            yield Label("", classes="sublayer-number")
+            for name in SUBLAYER_FIELDS:
+                value = float(getattr(self._sub, name))
+                yield Input(
+                    fmt(value, 10),
+                    classes=f"medium-input f-{name}",
+                    compact=True,
+                    select_on_focus=False,
+                )
+        kind, ratio, time = material_of(self._sub)
+        kinds = [
+            (label, k)
+            for k, label in MATERIAL_KINDS.items()
+            if k != "prony" or isinstance(self._kept, Prony)
+        ]
+        with Horizontal(classes="material-row"):
+            yield Label("", classes="sublayer-number")
+            yield Select(
+                kinds, value=kind, allow_blank=False, compact=True, classes="m-kind"
+            )
+            yield Label("μ∞/μ₀", classes="material-label")
             yield Input(
-                fmt(value, 10),
-                classes=f"medium-input f-{name}",
+                ratio,
+                classes="medium-input m-ratio",
                 compact=True,
                 select_on_focus=False,
             )
+            yield Label("", classes="material-label m-time-label")
+            yield Input(
+                time, classes="medium-input m-time", compact=True, select_on_focus=False
+            )
+            yield Label("", classes="material-note")
+
+    def on_mount(self) -> None:
+        self.show_material()
 
     def box(self, name: str) -> Input:
+        if name in MATERIAL_INPUTS:
+            return self.query_one(f".m-{name}", Input)
         return self.query_one(f".f-{name}", Input)
+
+    @property
+    def material_kind(self) -> str:
+        return str(self.query_one(".m-kind", Select).value)
+
+    def show_material(self) -> None:
+        """Shows the ratio and time inputs a Zener takes (the time's label by
+        the selector) and a kept Prony series' description."""
+        kind = self.material_kind
+        zener = kind.startswith("zener")
+        for name in MATERIAL_INPUTS:
+            self.box(name).display = zener
+        self.query_one(".m-ratio", Input).display = zener
+        label = self.query_one(".m-time-label", Label)
+        label.update("τ c/h" if kind == "zener-tau" else "Vτ/h")
+        label.display = zener
+        for lab in self.query(".material-label"):
+            lab.display = zener
+        note = self.query_one(".material-note", Label)
+        kept = self._kept
+        note.update(kept.describe() if kind == "prony" and kept is not None else "")
 
     def texts(self) -> dict[str, str]:
         return {name: self.box(name).value for name in SUBLAYER_FIELDS}
+
+    def sublayer(self, row: int) -> Sublayer:
+        """The sublayer typed (its fields and material); raises
+        InvalidParameterError naming the row and the parameter."""
+        sub = parse_sublayer(row, self.texts())
+        material = parse_material(
+            row,
+            self.material_kind,
+            self.box("ratio").value,
+            self.box("time").value,
+            self._kept,
+        )
+        if material is None:
+            return sub
+        if not isinstance(sub, Layer):
+            raise InvalidParameterError(
+                f"sublayer {row}: a graded sublayer (gamma h != 0) cannot be "
+                "viscoelastic",
+                parameter="viscoelastic",
+                allowed="elastic, or gamma h = 0",
+            )
+        return replace(sub, viscoelastic=material)
 
 
 class MediumEditor(ModalScreen[MediumChoice | None]):
@@ -150,6 +246,15 @@ class MediumEditor(ModalScreen[MediumChoice | None]):
                         compact=True,
                         select_on_focus=False,
                     )
+            with Horizontal(id="inertia-row"):
+                yield Label("", classes="sublayer-number")
+                yield Select(
+                    [(label, k) for k, label in INERTIA_LABELS.items()],
+                    value="on" if self._params.inertia else "off",
+                    allow_blank=False,
+                    compact=True,
+                    id="inertia",
+                )
             yield Static("", id="medium-msg")
             yield Footer(compact=True)
 
@@ -184,13 +289,17 @@ class MediumEditor(ModalScreen[MediumChoice | None]):
             for name in HALF_SPACE_FIELDS
         }
 
+    @property
+    def inertia(self) -> bool:
+        return str(self.query_one("#inertia", Select).value) == "on"
+
     def choice(self) -> MediumChoice:
         """The medium typed; raises InvalidParameterError naming the
         sublayer (or the half-space), the parameter and its range."""
-        layers = [parse_sublayer(k, r.texts()) for k, r in enumerate(self.rows(), 1)]
+        layers = [r.sublayer(k) for k, r in enumerate(self.rows(), 1)]
         half_space = parse_base(self.base_kind, self._half_space_texts())
         check_thicknesses(layers)
-        return MediumChoice(tuple(layers), half_space)
+        return MediumChoice(tuple(layers), half_space, self.inertia)
 
     def validate(self) -> bool:
         """Marks every input holding an invalid value and shows the first
@@ -205,6 +314,14 @@ class MediumEditor(ModalScreen[MediumChoice | None]):
                 else:
                     bad = False
                 box.set_class(bad, "-invalid")
+            try:
+                row.sublayer(k)
+            except InvalidParameterError as exc:
+                wrong = exc.parameter
+            else:
+                wrong = None
+            row.box("ratio").set_class(wrong == "ratio", "-invalid")
+            row.box("time").set_class(wrong in ("deborah", "tau"), "-invalid")
         for name in HALF_SPACE_FIELDS:
             box = self.query_one(f".hs-{name}", Input)
             try:
@@ -224,7 +341,10 @@ class MediumEditor(ModalScreen[MediumChoice | None]):
             return False
         self.error = ""
         preview = replace(
-            self._params, layers=choice.layers, half_space=choice.half_space
+            self._params,
+            layers=choice.layers,
+            half_space=choice.half_space,
+            inertia=choice.inertia,
         )
         medium = preview.medium()
         assert medium is not None  # (layers given)
@@ -242,6 +362,8 @@ class MediumEditor(ModalScreen[MediumChoice | None]):
     def on_select_changed(self, event: Select.Changed) -> None:
         event.stop()
         self._show_base()
+        for row in self.rows():
+            row.show_material()
         self.validate()
 
     def on_input_submitted(self, event: Input.Submitted) -> None:

@@ -10,6 +10,7 @@ import math
 from collections.abc import Mapping, Sequence
 
 import numpy as np
+import numpy.typing as npt
 from rich.console import RenderableType
 from rich.style import Style
 from rich.text import Text
@@ -114,6 +115,9 @@ class CurvePlot(PlotextPlot):
                 plt.ylabel(data.value_label)
             if data.log_grid:
                 plt.xscale("log")
+                ticks = decade_ticks(data.grid)
+                if ticks:
+                    plt.xticks(ticks, [f"1e{round(math.log10(t))}" for t in ticks])
             plt.plotsize(width, plot_height)
             plt._set_size(width, plot_height)
             plt.theme(self._get_plotext_theme_name(self.app.theme))
@@ -332,3 +336,22 @@ class StressMap(Widget):
             out.append(text[:1], MASK_STYLE)
             out.append(text[1 : max(width - margin, 1)], "dim")
         return out
+
+
+def decade_ticks(grid: npt.ArrayLike, most: int = 6) -> list[float]:
+    """The powers of ten within a log grid's positive range, every k-th so
+    that at most ``most`` remain; none (plotext's own labels) when fewer than
+    three fit: plotext labels a log axis in fixed point, fine over a decade
+    or two (0.0002 ... 0.02) and unreadable over many (0.000000010)."""
+    g = np.asarray(grid, dtype=np.float64)
+    g = g[np.isfinite(g) & (g > 0)]
+    if len(g) == 0:
+        return []
+    lo, hi = (
+        math.ceil(math.log10(g.min()) - 1e-9),
+        math.floor(math.log10(g.max()) + 1e-9),
+    )
+    if hi - lo < 2:
+        return []
+    step = max(1, math.ceil((hi - lo + 1) / most))
+    return [10.0**k for k in range(lo, hi + 1, step)]

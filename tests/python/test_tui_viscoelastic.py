@@ -1,0 +1,189 @@
+"""Viscoelastic layers in the terminal UI (issue 28): the medium editor's
+material selector per sublayer (elastic, Zener by deborah or by tau, a
+scene's Prony series kept) and its inertia selector, the speed sweep of one
+material (``w``: a/h and the drag against V*), and the bundled bell-curve
+scene. Numbers on screen are checked against ``mp.solve``; the refusal of
+inertia in a viscoelastic layer is shown on the status line, never a number
+of another medium."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from textual.pilot import Pilot
+from textual.widgets import Select
+
+import movingpunch as mp
+from movingpunch.scene import Scene
+from movingpunch.tui import create_app
+from movingpunch.tui import model as tui_model
+from movingpunch.tui.model import Params
+from movingpunch.tui.scene_files import from_scene, to_scene
+from movingpunch.tui.widgets import CurvePlot
+from test_tui_media import open_editor, row, type_in
+from tui_pilot import assert_summary_is, screen_of, settle, status_text, sync
+
+SIZE = (100, 32)
+BELL = {"kw": 1.0, "radius": 100.0, "load": 0.002}
+
+
+def bell_layer(tau: float = 100.0) -> mp.Layer:
+    return mp.Layer(nu=0.3, viscoelastic=mp.Zener(10.0, tau=tau))
+
+
+async def choose(pilot: Pilot[None], select: Select[str], value: str) -> None:
+    select.value = value
+    await pilot.pause()
+
+
+@sync
+async def test_the_bundled_bell_scene_opens_with_its_material_and_its_curve() -> None:
+    scene = Scene.bundled("viscoelastic-bell")
+    state = from_scene(scene)
+    assert state.params.medium() == scene.medium
+    assert state.sweep is not None
+    assert state.sweep.quantity == "drag"
+    assert to_scene(state).medium == scene.medium
+    app = create_app(scene=state, cursor_blink=False, show_timing=False)
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        api = mp.solve(vstar=1e-6, layers=[bell_layer()], inertia=False, **BELL)
+        assert_summary_is(app, api, "the bell scene")
+        screen = screen_of(app)
+        screen.action_show_tab("sweep")
+        await settle(pilot)
+        data = screen.query_one("#plot-sweep", CurvePlot).curves
+        assert data is not None
+        assert data.title.startswith("Drag F/P against V*")
+        grid, drag = data.grid, data.series[0].values
+        k = int(np.argmax(drag))
+        assert 0 < k < len(grid) - 1  # the bell's maximum inside
+        # A point of the curve is the API's drag at that speed.
+        at = mp.solve(
+            vstar=float(grid[k]), layers=[bell_layer()], inertia=False, **BELL
+        )
+        assert drag[k] == at.drag
+
+
+@sync
+async def test_the_editor_makes_a_quasi_static_zener_layer() -> None:
+    """Elastic -> Zener (tau) and inertia off on the Fig. 4 case (V* = 0.2):
+    the summary is the API's quasi-static solve, deborah = sqrt(0.2) tau."""
+    app = create_app(cursor_blink=False, show_timing=False)
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        editor = await open_editor(pilot)
+        top = row(editor, 1)
+        assert top.material_kind == "elastic"
+        assert not top.box("ratio").display
+        await choose(pilot, top.query_one(".m-kind", Select), "zener-tau")
+        assert top.box("ratio").display
+        assert top.box("time").display
+        await type_in(pilot, top.box("ratio"), "4")
+        await type_in(pilot, top.box("time"), "0.5")
+        await choose(pilot, editor.query_one("#inertia", Select), "off")
+        assert editor.error == ""
+        await pilot.press("enter")
+        await settle(pilot)
+        screen = screen_of(app)
+        layer = mp.Layer(nu=0.2, viscoelastic=mp.Zener(4.0, tau=0.5))
+        assert screen.params.layers == (layer,)
+        assert not screen.params.inertia
+        api = mp.solve(
+            vstar=0.2, kw=1.0, radius=100.0, load=0.002, layers=[layer], inertia=False
+        )
+        at_rest = mp.solve(
+            vstar=0.0,
+            kw=1.0,
+            radius=100.0,
+            load=0.002,
+            layers=[mp.Layer(nu=0.2, viscoelastic=mp.Zener(4.0, math.sqrt(0.2) * 0.5))],
+        )
+        assert api.contact_interval == at_rest.contact_interval
+        assert_summary_is(app, api, "quasi-static Zener")
+        assert "quasi-static" in screen.params.medium_label()
+        # w: load, radius, then the material's speed: a/h, then the drag.
+        seen = []
+        for _ in range(4):
+            screen.action_toggle_sweep()
+            seen.append((screen.sweep.param, screen.sweep.quantity))
+        assert seen == [
+            ("radius", "a"),
+            ("vstar", "a"),
+            ("vstar", "drag"),
+            ("load", "a"),
+        ]
+
+
+@sync
+async def test_inertia_on_a_viscoelastic_layer_is_refused_on_the_status_line() -> None:
+    app = create_app(cursor_blink=False, show_timing=False)
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        screen = screen_of(app)
+        before = screen.result
+        editor = await open_editor(pilot)
+        top = row(editor, 1)
+        await choose(pilot, top.query_one(".m-kind", Select), "zener-deborah")
+        await type_in(pilot, top.box("time"), "0.1")
+        assert editor.error == ""
+        await pilot.press("enter")  # inertia on, V* = 0.2
+        await settle(pilot)
+        status = status_text(app)
+        assert "vstar" in status, status
+        assert "inertia" in status, status
+        assert "showing the result for medium" in status, status
+        assert screen.result is before  # never a number of this medium
+
+
+@sync
+async def test_garbage_in_the_material_is_named_and_never_applied() -> None:
+    app = create_app(cursor_blink=False, show_timing=False)
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        editor = await open_editor(pilot)
+        top = row(editor, 1)
+        await choose(pilot, top.query_one(".m-kind", Select), "zener-tau")
+        for box, text, said in (
+            ("ratio", "x", "ratio must be a number"),
+            ("ratio", "0.5", "Zener.ratio must be in [1"),
+            ("time", "-1", "Zener.tau must be in [0"),
+            ("time", "nan", "Zener.tau"),
+        ):
+            good = top.box(box).value
+            await type_in(pilot, top.box(box), text)
+            assert said in editor.error, editor.error
+            assert "sublayer 1" in editor.error, editor.error
+            assert top.box(box).has_class("-invalid")
+            await pilot.press("enter")
+            await pilot.pause()
+            assert pilot.app.screen is editor  # not applied
+            await type_in(pilot, top.box(box), good)
+            assert editor.error == ""
+        # A graded sublayer cannot carry a material.
+        await type_in(pilot, top.box("gamma_h"), "1")
+        assert "graded" in editor.error, editor.error
+
+
+def test_a_prony_series_is_kept_as_loaded() -> None:
+    prony = mp.Prony((1.0, 3.0), taus=(20.0, 400.0))
+    layers = (mp.Layer(nu=0.3, viscoelastic=prony),)
+    params = tui_model.with_medium(Params(), layers, None, inertia=False)
+    assert params.layers == layers
+    assert not params.inertia
+    assert tui_model.material_of(layers[0])[0] == "prony"
+    assert tui_model.parse_material(1, "prony", "", "", prony) is prony
+    # An elastic single layer with inertia is the panel's layer again.
+    back = tui_model.with_medium(params, (mp.Layer(nu=0.3),), None)
+    assert back.layers == ()
+    assert back.nu == 0.3
+    assert back.inertia
+
+
+def test_the_sweep_of_a_speed_keeps_its_quantity_in_a_saved_scene() -> None:
+    state = from_scene(Scene.bundled("viscoelastic-bell"))
+    scene = to_scene(state)
+    assert scene.sweep is not None
+    assert scene.sweep.quantities == ("drag",)
+    assert scene.sweep.param == "vstar"
