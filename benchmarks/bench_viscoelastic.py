@@ -13,6 +13,10 @@ against the same layer elastic, and a resistance curve of 100 speeds.
   deborah alone; each speed is a new medium, so a new kernel table), run
   twice: the first run, and the second (the process warm; the tables are
   kept only for the 16 most recent media).
+* The same as a user sweeps one material: ``Zener(ratio, tau=...)`` with
+  ``inertia=False`` over 100 speeds vstar (deborah = sqrt(vstar) tau), and
+  the bundled scene ``viscoelastic-bell`` (41 speeds) run with one and two
+  worker processes.
 
 Prints the machine's load average; never asserts a time.
 
@@ -92,6 +96,34 @@ def main() -> None:
             f"resistance curve, {args.speeds} speeds ({run} run): {total:.2f} s "
             f"({1e3 * total / args.speeds:.1f} ms a speed); largest drag "
             f"{drags[k]:.4g} at deborah {deborahs[k]:.3g}"
+        )
+    # One material (tau = 100 h/c_T0) swept by its speed, quasi-statically.
+    layer = mp.Layer(nu=NU, viscoelastic=mp.Zener(2.0, tau=100.0))
+    speeds = (deborahs / 100.0) ** 2
+    t0 = time.perf_counter()
+    for v in speeds:
+        mp.solve(
+            vstar=float(v),
+            load=LOAD,
+            radius=RADIUS,
+            layers=[layer],
+            base=mp.Winkler(KW),
+            inertia=False,
+        )
+    total = time.perf_counter() - t0
+    print(
+        f"one material by its speed (tau, inertia=False), {args.speeds} speeds: "
+        f"{total:.2f} s ({1e3 * total / args.speeds:.1f} ms a speed)"
+    )
+    for jobs in (1, 2):
+        scene = mp.Scene.bundled("viscoelastic-bell")
+        t0 = time.perf_counter()
+        result = scene.run(jobs=jobs)
+        total = time.perf_counter() - t0
+        assert result.sweep is not None
+        print(
+            f"scene viscoelastic-bell ({len(result.sweep.values)} speeds), "
+            f"jobs {jobs}: {total:.2f} s"
         )
 
 

@@ -12,13 +12,14 @@ range; the core checks them again. Computations release the GIL.
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import math
 import time
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from types import MappingProxyType
-from typing import TYPE_CHECKING, Any, Literal, overload
+from typing import TYPE_CHECKING, Any, Literal, cast, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -395,9 +396,10 @@ def solve(
     numbers. A material given by its relaxation time instead
     (``Zener(ratio, tau=...)``, tau in units of h/c_T0) takes its deborah
     number sqrt(vstar) tau from the speed; ``inertia=False`` then neglects the
-    layer's inertia (the solve's vstar is 0 and the solution's ``vstar`` is
-    0; the speed sets the relaxation only), which is how a speed sweep of one
-    material runs. ``inertia=False`` with vstar > 0 and no such material is an
+    layer's inertia (the layer is solved at rest with the material at that
+    speed; the solution's ``vstar`` is the speed and its medium says
+    ``inertia=False``), which is how a speed sweep of one material runs.
+    ``inertia=False`` with vstar > 0 and no such material is an
     InvalidParameterError naming vstar (the speed would change nothing).
 
     ``numerics`` (``movingpunch.Numerics``: tol, n, allow_unphysical,
@@ -433,6 +435,29 @@ def solve(
             speed = _check_vstar(vstar)
             if not inert:
                 vstar = _quasi_static(medium, speed)
+                if speed > 0.0:
+                    # Solved at rest on the material at its speed; the
+                    # solution's vstar is the speed (its medium says the
+                    # inertia was neglected).
+                    at = medium.at_speed(speed)
+                    still = solve(
+                        vstar=0.0,
+                        radius=radius,
+                        load=load,
+                        tol=tol,
+                        allow_unphysical=allow_unphysical,
+                        n=n,
+                        profile=profile,
+                        friction=friction,
+                        contact=contact,
+                        layers=list(at.layers),
+                        base=at.base,
+                        inertia=False,
+                    )
+                    quasi: ContactSolution = dataclasses.replace(
+                        cast(Any, still), vstar=speed, _medium=at
+                    )
+                    return quasi
             medium = medium.at_speed(speed)
         if medium.homogeneous:
             # The paper's layer: the shorthand's own path, bit for bit.

@@ -636,7 +636,19 @@ def fuzz_viscoelastic(calls: int, seed: int) -> collections.Counter[str]:
             ratio = draw._pick(RATIO_BAD)
         elif bad:
             deborah = draw._pick(DEBORAH_BAD)
-        args = {"ratio": ratio, "deborah": deborah, "kw": kw, "nu": nu, "lam": lam}
+        # Some draws give the material by its relaxation time at a speed,
+        # solved quasi-statically (inertia=False): deborah = sqrt(vstar) tau.
+        speed = 0.0
+        if not bad and rng.random() < 0.3 and float(deborah) > 0.0:
+            speed = draw._loguniform(1e-10, 0.3)
+        args = {
+            "ratio": ratio,
+            "deborah": deborah,
+            "kw": kw,
+            "nu": nu,
+            "lam": lam,
+            "vstar": speed,
+        }
 
         def run(
             ratio: Any = ratio,
@@ -645,16 +657,23 @@ def fuzz_viscoelastic(calls: int, seed: int) -> collections.Counter[str]:
             lam: float = lam,
             tol: Any = tol,
             kw: float = kw,
+            speed: float = speed,
         ) -> Any:
-            layer = mp.Layer(nu=nu, viscoelastic=mp.Zener(ratio, deborah))
+            material = (
+                mp.Zener(ratio, tau=min(deborah / math.sqrt(speed), 1e12))
+                if speed > 0.0
+                else mp.Zener(ratio, deborah)
+            )
+            layer = mp.Layer(nu=nu, viscoelastic=material)
             return mp.solve(
-                vstar=0.0,
+                vstar=speed,
                 radius=100.0,
                 load=lam / 100.0,
                 tol=tol,
                 layers=[layer],
                 base=mp.Winkler(kw),
                 allow_unphysical=True,
+                inertia=speed == 0.0,
             )
 
         sol, exc = _attempt(run)
@@ -663,9 +682,15 @@ def fuzz_viscoelastic(calls: int, seed: int) -> collections.Counter[str]:
             if bad:
                 assert isinstance(exc, mp.InvalidParameterError), args
                 assert exc.parameter in ("ratio", "deborah"), args
+            if isinstance(exc, mp.InvalidParameterError) and not bad:
+                # Only the quasi-static speed's bound (V*_cr of the relaxed layer).
+                assert speed > 0.0, args
+                assert exc.parameter == "vstar", args
             outcomes[type(exc).__name__] += 1
             continue
         assert not bad, args
+        assert sol.vstar == speed, args
+        assert sol.medium.inertia == (speed == 0.0), args
         back, front = _finite_interval(sol, args)
         assert sol.pressure(0.5 * (back + front)) >= 0.0, args
         drag = sol.drag

@@ -112,7 +112,9 @@ def test_inertia_false_is_the_material_at_its_deborah_number_at_rest(vstar):
         layers=[layer(mp.Zener(10.0, math.sqrt(vstar) * 100.0))],
         kw=1.0,
     )
-    assert s.vstar == 0.0  # the solve's: inertia neglected
+    assert s.vstar == vstar  # the speed (the inertia neglected: its medium says)
+    assert s.medium is not None
+    assert not s.medium.inertia
     assert s.contact_interval == at_rest.contact_interval
     assert s.drag == at_rest.drag
     assert s.drag > 0.0
@@ -353,3 +355,18 @@ def test_the_command_line_sweeps_one_material_quasi_statically(
         assert proc.returncode != 0
         assert said in proc.stderr, proc.stderr
         assert "Traceback" not in proc.stderr
+
+
+def test_the_accuracy_ladder_of_a_speed_sweep_compares_each_speed():
+    """The ladder keys each solution by its vstar: a quasi-static solution
+    carries its speed (it came back with vstar 0 before, so the ladder
+    compared one speed's contact with another's: errors of 0.2 in a/h)."""
+    from movingpunch import accuracy
+
+    scene = mp.Scene.from_toml(hunter_scene((1e-9, 1e-8, 1e-7)))
+    report = accuracy.accuracy_report(scene, (1e-4, 1e-8))
+    assert report is not None
+    assert report.points == 3
+    cols = report.columns()
+    assert np.all(cols["error_a"] < cols["tol"])
+    assert np.all(cols["error_a"] <= cols["error_estimate_a"])
