@@ -108,6 +108,11 @@ async def test_the_editor_makes_a_quasi_static_zener_layer() -> None:
         for _ in range(4):
             screen.action_toggle_sweep()
             seen.append((screen.sweep.param, screen.sweep.quantity))
+            if screen.sweep.param == "vstar":
+                # Below the relaxed critical speed (V* = 0.2 x 100 is not).
+                stop = screen.sweep.stop
+                assert stop is not None
+                assert stop == 0.95 * mp.critical_vstar(kw=1.0, nu=0.2)
         assert seen == [
             ("radius", "a"),
             ("vstar", "a"),

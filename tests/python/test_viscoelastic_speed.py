@@ -370,3 +370,18 @@ def test_the_accuracy_ladder_of_a_speed_sweep_compares_each_speed():
     cols = report.columns()
     assert np.all(cols["error_a"] < cols["tol"])
     assert np.all(cols["error_a"] <= cols["error_estimate_a"])
+
+
+def test_a_quasi_static_speed_just_below_the_relaxed_critical_speed_solves():
+    """Near the relaxed layer's V*_cr (nu 0.2, kw 1: 0.5717) the quasi-static
+    layer has nothing critical (no inertia): 0.999 V*_cr solves valid and
+    balanced, V*_cr itself is refused naming vstar."""
+    vcr = mp.critical_vstar(kw=1.0, nu=0.2)
+    material = mp.Zener(10.0, tau=0.5)
+    s = quasi_static(0.999 * vcr, material)
+    assert s.valid
+    assert s.vstar == 0.999 * vcr
+    assert abs(s.drag - s.dissipation) <= 1e-10 * s.drag
+    with pytest.raises(InvalidParameterError, match="critical") as err:
+        quasi_static(vcr, material)
+    assert err.value.parameter == "vstar"

@@ -32,6 +32,7 @@ screen keeps the last result the user saw.
 
 from __future__ import annotations
 
+import math
 import threading
 import time
 from dataclasses import replace
@@ -973,12 +974,18 @@ class MainScreen(Screen[None]):
             order[(order.index(now) + 1) % len(order)] if now in order else order[0]
         )
         if param == "vstar":
-            # Four decades around the speed (or from 1e-10 at rest).
+            # Four decades around the speed (or from 1e-10 at rest), below
+            # the relaxed layer's critical speed (the quasi-static bound).
             centre = max(self.params.vstar, 1e-8)
+            try:
+                top = 0.95 * model.medium_limits(self.params)[0]
+            except MovingPunchError:
+                top = math.inf
+            stop = min(centre * 100.0, top)
             self.sweep = SweepSpec(
                 param=param,
-                start=centre / 100.0,
-                stop=centre * 100.0,
+                start=min(centre / 100.0, 0.01 * stop),
+                stop=stop,
                 points=21,
                 quantity=quantity,
             )
