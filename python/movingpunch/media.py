@@ -185,7 +185,10 @@ MAX_VISCO_RATIO = 1e6
 """The largest mu_inf/mu_0 of a viscoelastic material (the core's kMaxViscoRatio)."""
 MAX_DEBORAH = 1e12
 """The largest deborah number V tau/h of a branch (the core's kMaxDeborah; the
-smallest non-zero one is 1e-12, 0 relaxes the branch at once)."""
+smallest non-zero one is MIN_DEBORAH, 0 relaxes the branch at once)."""
+MIN_DEBORAH = 1e-12
+"""The smallest non-zero deborah number (times the shift) of a branch (the
+core's kMinDeborah)."""
 
 
 def _speed_deborah(tau: float, vstar: float, what: str) -> float:
@@ -193,14 +196,27 @@ def _speed_deborah(tau: float, vstar: float, what: str) -> float:
     tau* = tau c_T0/h at the speed vstar (InvalidParameterError naming vstar
     beyond MAX_DEBORAH)."""
     d = math.sqrt(vstar) * tau
-    if not d <= MAX_DEBORAH:
+    if d != 0.0 and not MIN_DEBORAH <= d <= MAX_DEBORAH:
         raise InvalidParameterError(
             f"vstar = {vstar!r} gives {what} a deborah number sqrt(vstar) tau = "
-            f"{d:.6g} beyond {MAX_DEBORAH:g}",
+            f"{d:.6g}, outside [{MIN_DEBORAH:g}, {MAX_DEBORAH:g}] (the solver's "
+            "range; 0, at rest, relaxes it at once)",
             parameter="vstar",
-            allowed=f"sqrt(vstar) tau <= {MAX_DEBORAH:g}",
+            allowed=f"vstar = 0 or {MIN_DEBORAH:g} <= sqrt(vstar) tau <= "
+            f"{MAX_DEBORAH:g}",
         )
     return d
+
+
+def _deborah_floor(d: float, what: str, parameter: str) -> None:
+    """0 or at least MIN_DEBORAH (the core's range), else InvalidParameterError."""
+    if 0.0 < d < MIN_DEBORAH:
+        raise InvalidParameterError(
+            f"{what} = {d!r} is below {MIN_DEBORAH:g}, the smallest the solver "
+            "takes (0 relaxes the branch at once: the relaxed layer)",
+            parameter=parameter,
+            allowed=f"0 or [{MIN_DEBORAH:g}, {MAX_DEBORAH:g}]",
+        )
 
 
 def _unresolved(what: str) -> InvalidParameterError:
@@ -249,6 +265,8 @@ class Zener:
             if value is not None:
                 checked = _material_number(value, f"Zener.{name}", 0.0, MAX_DEBORAH)
                 object.__setattr__(self, name, checked)
+        if self.deborah is not None:
+            _deborah_floor(self.deborah, "Zener.deborah", "deborah")
 
     @property
     def relaxes(self) -> bool:
@@ -348,6 +366,9 @@ class Prony:
                 parameter="shift",
                 allowed="(0, 1e12]",
             )
+        if name == "deborahs":
+            for i, v in enumerate(d):
+                _deborah_floor(v * shift, f"Prony.deborahs[{i}] * shift", "deborahs")
         object.__setattr__(self, "weights", w)
         object.__setattr__(self, name, d)
         object.__setattr__(self, "shift", shift)
@@ -364,7 +385,15 @@ class Prony:
         if self.taus is None:
             return self
         d = tuple(_speed_deborah(t, vstar, "Prony.taus") for t in self.taus)
-        return Prony(self.weights, d, self.shift)
+        try:
+            return Prony(self.weights, d, self.shift)
+        except InvalidParameterError as exc:  # the shift times a deborah number
+            raise InvalidParameterError(
+                f"vstar = {vstar!r}: {exc}",
+                parameter="vstar",
+                allowed=f"vstar = 0 or shift sqrt(vstar) tau_j in "
+                f"[{MIN_DEBORAH:g}, {MAX_DEBORAH:g}]",
+            ) from None
 
     def branches(self) -> tuple[tuple[float, ...], tuple[float, ...], float]:
         """(weights, deborah numbers, shift) of the branches that relax in

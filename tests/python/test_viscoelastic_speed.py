@@ -79,6 +79,11 @@ def test_a_material_of_tau_takes_its_deborah_number_from_the_speed():
         (lambda: mp.Prony((1.0,), (0.1,), taus=(0.1,)), "taus"),
         (lambda: mp.Prony((1.0, 2.0), taus=(0.1,)), "taus"),
         (lambda: mp.Prony((1.0,), taus=(math.inf,)), "taus"),
+        # below the solver's smallest deborah number (0 relaxes at once)
+        (lambda: mp.Zener(2.0, 1e-14), "deborah"),
+        (lambda: mp.Prony((1.0,), (1e-10,), 1e-3), "deborahs"),
+        (lambda: mp.Zener(2.0, tau=1e-4).at_speed(1e-20), "vstar"),
+        (lambda: mp.Prony((1.0,), taus=(1e-4,), shift=1e-3).at_speed(1e-12), "vstar"),
     ],
 )
 def test_a_material_needs_one_kind_of_time(make, named):
