@@ -1011,10 +1011,11 @@ def _check_medium_speed(
 ) -> None:
     """vstar < V*_cr of a layered medium (or one on a half-space) at the
     point ``p``; unchecked where the core cannot compute V*_cr (the run
-    reports why). A quasi-static medium (inertia false) has no bound: its
-    speed must set the relaxation of a material given by tau, whose deborah
-    numbers it must keep in range; a viscoelastic one with inertia takes
-    vstar = 0 only (inertia in it is not solved yet)."""
+    reports why). A quasi-static medium (inertia false): its speed must set
+    the relaxation of a material given by tau, keep its deborah numbers in
+    range and stay below the relaxed layer's V*_cr (``below_critical_speed``);
+    a viscoelastic medium with inertia takes vstar = 0 only (inertia in it is
+    not solved yet)."""
     from movingpunch.solver import below_critical_speed
 
     speed = p["vstar"]
