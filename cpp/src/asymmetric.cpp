@@ -2373,16 +2373,6 @@ double bar_pole(const Medium& m) {
 }
 
 // What the asymmetric solver does not evaluate on a layered medium yet.
-// What the asymmetric solver does not evaluate on a viscoelastic layer yet.
-void memory_refusal(const Medium& m, const std::string& what) {
-  if (m.memory() == nullptr) return;
-  throw std::invalid_argument(
-      what + " on " + describe(m.spec()) +
-      " is not available yet (the memory of its half-plane part is integrated at the surface, "
-      "not yet at depth); the contact, pressure, drag, dissipation, surface slope, surface "
-      "displacement, indentation and the stresses are");
-}
-
 [[noreturn]] void layered_refusal(const Medium& m, const std::string& what) {
   throw std::invalid_argument(
       what + " on " + describe(m.spec()) +
@@ -3319,6 +3309,97 @@ double AsymmetricSolution::memory_displacement(const Surface& s, double x, doubl
   return out;
 }
 
+Eigen::VectorXd AsymmetricSolution::memory_depth_displacement(
+    const Eigen::Ref<const Eigen::VectorXd>& x, double y) const {
+  // v = (1/pi) Re int_0^inf W(alpha, y)/alpha p^ e^{i alpha u} d alpha, u = x - c,
+  // W the layer's (over m(alpha)). Its half-plane part W_hp(alpha, y)/m(alpha),
+  // W_hp the relaxed elastic half-plane's mode mix, regularised by (1 - e^-alpha)
+  // as on the elastic layer, is taken whole: with
+  //   1/m(alpha) = (1/m_inf) (1 + sum_k c_k/(1 - i beta_k alpha)),
+  // it is (1/m_inf) [HP(u) + sum_k c_k (e_k * HP)(u)], HP the closed-form
+  // half-plane displacement (potentials.hpp) and e_k * F = int_0^inf
+  // (1/beta_k) e^{-eta/beta_k} F(u + eta) d eta (the surface's convention,
+  // memory_displacement); what is left, [W - W_hp (1 - e^-alpha)/m(alpha)]/alpha,
+  // decays as on the elastic layer and is summed on the fine nodes.
+  const Fine& f = *light_;
+  const WaveConstants& c = model_->top();
+  const RetardationSpectrum& sp = model_->memory()->spectrum();
+  const double ratio = sp.ratio, phi1 = model_->phi1(), w = half_;
+  std::vector<cplx> g(f.alpha.size());
+  for (std::size_t k = 0; k < g.size(); ++k) {
+    const double al = f.alpha[k];
+    const Eigen::Matrix4d C = detail::modal_columns(c, al, y);
+    const double w_hp = c.hp1 * C(1, 0) + c.hp2 * C(1, 1);
+    const cplx inv_m = model_->half_plane_m1(al) / (phi1 * ratio);  // 1/m(alpha)
+    const cplx wl = model_->normal_state(al, y)(1);
+    g[k] =
+        (wl + w_hp * inv_m * std::expm1(-al)) / al * f.phat[k] * std::exp(cplx(0.0, al * centre_));
+  }
+  std::vector<double> g_re, g_im;
+  f.coefficients(g, g_re, g_im);
+  auto hp = [&](double u) { return detail::half_plane_displacement(c, b_, w, u, y, 1); };
+  static const std::shared_ptr<const JacobiRule> gl = cached_gauss_jacobi(16, 0.0, 0.0);
+  auto rule = [&](double lo, double hi, double u, double beta) {
+    const double m = 0.5 * (lo + hi), h = 0.5 * (hi - lo);
+    double sum = 0.0;
+    for (Eigen::Index q = 0; q < gl->x.size(); ++q) {
+      const double t = m + h * gl->x(q);
+      sum += gl->w(q) * std::exp(-t) * hp(u + beta * t);
+    }
+    return h * sum;
+  };
+  // The convolution's tolerance: 1e-14 of HP at the contact's centre (its
+  // scale) or of HP here, whichever is larger.
+  const double scale = std::fabs(hp(0.0));
+  Eigen::VectorXd v(x.size());
+  for (Eigen::Index j = 0; j < x.size(); ++j) {
+    if (std::fabs(x(j)) > kFarField) {
+      v(j) = 0.0;
+      continue;
+    }
+    const double u = x(j) - centre_, here = hp(u);
+    double mem = 0.0;
+    for (std::size_t k = 0; k < sp.c.size(); ++k) {
+      // int_0^40 e^-tau HP(u + beta tau) d tau (e^-40: 4e-18), on panels at
+      // the weight's e-folds and where u + beta tau meets the contact's
+      // ends, each halved until two halves agree with it to 1e-14 (HP varies
+      // on the scale |y| there).
+      const double beta = sp.beta[k];
+      std::vector<double> cuts{0.0, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0, 24.0, 32.0, 40.0};
+      for (double end : {-w - u, w - u})
+        if (end > 0.0 && end < 40.0 * beta) cuts.push_back(end / beta);
+      std::sort(cuts.begin(), cuts.end());
+      double conv = 0.0;
+      for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
+        if (!(cuts[i + 1] > cuts[i])) continue;
+        std::vector<std::pair<double, double>> todo{{cuts[i], cuts[i + 1]}};
+        int splits = 0;
+        while (!todo.empty()) {
+          const auto [lo, hi] = todo.back();
+          todo.pop_back();
+          const double mid = 0.5 * (lo + hi);
+          const double whole = rule(lo, hi, u, beta);
+          const double halves = rule(lo, mid, u, beta) + rule(mid, hi, u, beta);
+          if (std::fabs(whole - halves) <= 1e-14 * std::max(std::fabs(here), scale) ||
+              hi - lo < 1e-12) {
+            conv += halves;
+            continue;
+          }
+          if (++splits > 20000)
+            throw ConvergenceError(
+                "displacement: the memory's convolution at depth y = " + std::to_string(y) +
+                " did not settle (x = " + std::to_string(x(j)) + ")");
+          todo.emplace_back(lo, mid);
+          todo.emplace_back(mid, hi);
+        }
+      }
+      mem += sp.c[k] * conv;
+    }
+    v(j) = params_.load * (f.fourier(g_re, g_im, u) / kPi + (here + mem) / ratio);
+  }
+  return v;
+}
+
 double AsymmetricSolution::surface_displacement(double x) const {
   if (!std::isfinite(x))
     throw InvalidParameter("x", "finite",
@@ -3349,14 +3430,19 @@ Eigen::MatrixXd AsymmetricSolution::displacement(const Eigen::Ref<const Eigen::V
   if (model_->long_wave_m1() != 0.0)
     layered_refusal(*model_, "the displacement (a logarithmic far field under a half-space)");
   if (model_->memory()) {
-    // A viscoelastic top: the surface (its memory in closed form); below it
-    // not yet.
-    if ((y.array() != 0.0).any()) memory_refusal(*model_, "the displacement below the surface");
-    const std::shared_ptr<const Surface> sf = surface();
+    // A viscoelastic top: the surface (its memory in closed form), and
+    // below it the half-plane part's memory by a convolution in x
+    // (memory_depth_displacement).
     Eigen::MatrixXd v(y.size(), x.size());
-    for (Eigen::Index j = 0; j < x.size(); ++j)
-      v.col(j).setConstant(std::fabs(x(j)) > kFarField ? 0.0
-                                                       : params_.load * surface_value(*sf, x(j)));
+    for (Eigen::Index i = 0; i < y.size(); ++i) {
+      if (y(i) < 0.0) {
+        v.row(i) = memory_depth_displacement(x, y(i));
+        continue;
+      }
+      const std::shared_ptr<const Surface> sf = surface();
+      for (Eigen::Index j = 0; j < x.size(); ++j)
+        v(i, j) = std::fabs(x(j)) > kFarField ? 0.0 : params_.load * surface_value(*sf, x(j));
+    }
     return v;
   }
   if (jac_) {

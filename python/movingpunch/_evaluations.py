@@ -249,7 +249,19 @@ class Evaluations:
         ``stress_field``), from the stresses by Hooke's law of the material at
         each depth (``medium.material``); ``side`` picks the material at an
         interface depth (eps_x is continuous across a bonded interface, eps_y
-        jumps)."""
+        jumps). A viscoelastic sublayer's strains depend on its stress history
+        (Hooke's law with mu_0 would give the relaxed material's): refused,
+        InvalidParameterError naming ``layers`` (its stresses are given)."""
+        if self.medium.viscoelastic:
+            raise InvalidParameterError(
+                "layers: the strains of a viscoelastic sublayer depend on its stress "
+                "history (the material's memory) and are not computed yet (Hooke's "
+                "law with mu_0 would give the relaxed material's, not its own); its "
+                f"stresses are (stress_field); medium: {self.medium.describe()}",
+                parameter="layers",
+                allowed="elastic sublayers for strain_field, depth_strain, "
+                "design_strains",
+            )
         xs, ys, sx, sy, txy, below = self._stresses(x, y, side)
         mu, nu = self.medium.material(ys, below)
         ex, ey, gxy = plane_strains(sx, sy, txy, mu[:, None], nu[:, None])

@@ -344,11 +344,54 @@ def test_what_is_not_solved_yet_is_refused_by_name():
         mp.solve_punches(train, vstar=0.0, layers=layer, base=mp.Winkler(1.0))
     assert e.value.parameter == "layers"
     s = mp.solve(vstar=0.0, radius=R, **args)
-    with pytest.raises(InvalidParameterError, match="not available yet"):
-        s.displacement([0.1], -0.5)
     assert s.displacement([0.1, 0.4], 0.0) == pytest.approx(
         s.surface_displacement([0.1, 0.4]), rel=1e-14
     )
+    # Strains by Hooke's law with mu_0 would be the relaxed material's, not
+    # the layer's (they depend on its stress history): refused by name.
+    for strains in (
+        lambda: s.strain_field([0.0], [-0.5]),
+        lambda: s.depth_strain(-0.5),
+        lambda: s.design_strains(),
+    ):
+        with pytest.raises(InvalidParameterError, match="stress history") as e:
+            strains()
+        assert e.value.parameter == "layers"
+
+
+@pytest.mark.parametrize("y", [-0.01, -0.3, -1.0])
+def test_the_displacement_below_the_surface_meets_the_elastic_limits(y):
+    """deborah 1e-12 / 1e12: the relaxed and unrelaxed elastic layers'
+    displacement at depth (their own path, the elastic half-plane in closed
+    form), to 1e-9 of its largest value."""
+    ratio, load, kw = 2.0, 0.002, 1.0
+    x = np.linspace(-2.0, 2.0, 17)
+    relaxed = mp.solve(vstar=0.0, load=load, radius=R, kw=kw, nu=NU)
+    unrelaxed = mp.solve(vstar=0.0, load=load / ratio, radius=R, kw=kw / ratio, nu=NU)
+    for deborah, elastic in ((1e-12, relaxed), (1e12, unrelaxed)):
+        want = elastic.displacement(x, y)
+        got = zener_solve(ratio, deborah, load, kw).displacement(x, y)
+        assert np.max(np.abs(got - want)) < 1e-9 * np.max(np.abs(want)), deborah
+
+
+@pytest.mark.parametrize(
+    ("material", "kw", "load"),
+    [(mp.Zener(10.0, 0.1), 1.0, 0.002), (mp.Zener(1000.0, 0.01), 0.1, 0.002)],
+)
+def test_the_displacement_at_the_base_is_what_the_springs_push(material, kw, load):
+    """On Winkler springs sigma_y(x, -h) = k_w v(x, -h): the stress, whose
+    half-plane part has no memory (a stress per unit pressure does not depend
+    on the modulus), against the displacement, whose half-plane part at depth
+    carries the material's memory (its convolution taken there), to 1e-12.
+    And v at y -> 0 is the surface's (computed in closed form otherwise)."""
+    s = material_solve(material, load, kw)
+    x = np.linspace(-3.0, 3.0, 25)
+    v = s.displacement(x, -1.0)
+    sigma_y = s.stress_field(x, np.array([-1.0])).sigma_y[0]
+    assert np.max(np.abs(kw * v / load - sigma_y)) < 1e-12 * np.max(np.abs(sigma_y))
+    top = s.displacement(x, 0.0)
+    near = s.displacement(x, -1e-9)
+    assert np.max(np.abs(near - top)) < 1e-8 * np.max(np.abs(top))
 
 
 @pytest.mark.parametrize(

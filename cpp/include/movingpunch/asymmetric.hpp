@@ -475,6 +475,9 @@ class AsymmetricSolution {
   // A viscoelastic top's memory part of the surface displacement per load
   // phi1 at x, given U(x) (the half-plane potential, hp).
   double memory_displacement(const Surface& s, double x, double hp) const;
+  // A viscoelastic top's v(x, y)/(P/(mu h)) at depth y < 0 (one row).
+  Eigen::VectorXd memory_depth_displacement(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                            double y) const;
   // The stress field's y-independent node data (on light_), prepared on first
   // use: per node p^ e^{i alpha c} and d (real and imaginary parts): for
   // alpha < kSmallT the top state z(0) (DampedLayerModel::state_coefficients),
