@@ -91,6 +91,16 @@ void bind_asymmetric(py::module_& m) {
           "Half-widths (a+b)/(2h) of other contacts carrying the same load (above "
           "V*_cr the steady solution need not be unique); empty when unique.")
       .def(
+          "compliance_stress_field",
+          [](const AsymmetricSolution& s, const VectorRef& x, const VectorRef& y) {
+            StressField f = s.compliance_stress_field(x, y);
+            return std::make_tuple(std::move(f.sigma_x), std::move(f.sigma_y), std::move(f.tau_xy));
+          },
+          "x"_a, "y"_a, Release(),
+          "A viscoelastic top's stresses through its compliance, (1/m_inf) [sigma + sum_k c_k "
+          "(e_k * sigma)] along x/h, on the grid x/h by y/h: their Hooke strains at mu_0 are the "
+          "layer's strains (the stresses on an elastic top).")
+      .def(
           "dissipation", [](const AsymmetricSolution& s) { return s.dissipation(); }, Release(),
           "Power dissipated in the dashpots over P V (equals drag by the energy balance).")
       .def(

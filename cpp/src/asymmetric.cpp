@@ -3309,6 +3309,86 @@ double AsymmetricSolution::memory_displacement(const Surface& s, double x, doubl
   return out;
 }
 
+StressField AsymmetricSolution::compliance_stress_field(
+    const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& y) const {
+  StressField out = stress_field(x, y);
+  const MemoryKernel* mk = model_->memory();
+  if (mk == nullptr) return out;
+  // e_k * sigma (u) = int_0^40 e^-tau sigma(u + beta_k tau) d tau, on panels at
+  // the weight's e-folds and where u + beta tau meets the contact's ends
+  // (sigma's square-root cusps at the surface), each halved until two halves
+  // agree with it to 1e-13 of the largest stress at the depth.
+  const RetardationSpectrum& sp = mk->spectrum();
+  const double left = centre_ - half_, right = centre_ + half_;
+  static const std::shared_ptr<const JacobiRule> gl = cached_gauss_jacobi(16, 0.0, 0.0);
+  for (Eigen::Index i = 0; i < y.size(); ++i) {
+    const double yi = y(i);
+    double scale = 0.0;
+    for (Eigen::Index j = 0; j < x.size(); ++j)
+      for (const Eigen::MatrixXd* m : {&out.sigma_x, &out.sigma_y, &out.tau_xy})
+        scale = std::max(scale, std::fabs((*m)(i, j)));
+    scale = std::max(scale, stresses(centre_, yi).cwiseAbs().maxCoeff());
+    for (Eigen::Index j = 0; j < x.size(); ++j) {
+      const double u = x(j);
+      if (std::fabs(u) > kFarField) continue;  // 0 there, as the stresses
+      Eigen::Vector3d total(out.sigma_x(i, j), out.sigma_y(i, j), out.tau_xy(i, j));
+      Eigen::Vector3d mem = Eigen::Vector3d::Zero();
+      for (std::size_t k = 0; k < sp.c.size(); ++k) {
+        const double beta = sp.beta[k];
+        const Eigen::VectorXd row = Eigen::VectorXd::Constant(1, yi);
+        auto rule = [&](double lo, double hi) {
+          // The 16 nodes in one stress_field call (its sums shared).
+          const double m = 0.5 * (lo + hi), h = 0.5 * (hi - lo);
+          const Eigen::Index nq = gl->x.size();
+          Eigen::VectorXd at(nq), wt(nq);
+          for (Eigen::Index q = 0; q < nq; ++q) {
+            const double t = m + h * gl->x(q);
+            at(q) = u + beta * t;
+            wt(q) = gl->w(q) * std::exp(-t);
+          }
+          const StressField f = stress_field(at, row);
+          return Eigen::Vector3d(h * f.sigma_x.row(0).dot(wt), h * f.sigma_y.row(0).dot(wt),
+                                 h * f.tau_xy.row(0).dot(wt));
+        };
+        std::vector<double> cuts{0.0, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0, 24.0, 32.0, 40.0};
+        for (double end : {left - u, right - u})
+          if (end > 0.0 && end < 40.0 * beta) cuts.push_back(end / beta);
+        std::sort(cuts.begin(), cuts.end());
+        Eigen::Vector3d conv = Eigen::Vector3d::Zero();
+        int splits = 0;
+        for (std::size_t c = 0; c + 1 < cuts.size(); ++c) {
+          if (!(cuts[c + 1] > cuts[c])) continue;
+          std::vector<std::pair<double, double>> todo{{cuts[c], cuts[c + 1]}};
+          while (!todo.empty()) {
+            const auto [lo, hi] = todo.back();
+            todo.pop_back();
+            const double mid = 0.5 * (lo + hi);
+            const Eigen::Vector3d whole = rule(lo, hi);
+            const Eigen::Vector3d halves = rule(lo, mid) + rule(mid, hi);
+            if ((whole - halves).cwiseAbs().maxCoeff() <= 1e-13 * scale ||
+                (hi - lo) * beta < 1e-13) {
+              conv += halves;
+              continue;
+            }
+            if (++splits > 20000)
+              throw ConvergenceError(
+                  "strains: the memory's convolution at depth y = " + std::to_string(yi) +
+                  " did not settle (x = " + std::to_string(u) + ")");
+            todo.emplace_back(lo, mid);
+            todo.emplace_back(mid, hi);
+          }
+        }
+        mem += sp.c[k] * conv;
+      }
+      total = (total + mem) / sp.ratio;
+      out.sigma_x(i, j) = total(0);
+      out.sigma_y(i, j) = total(1);
+      out.tau_xy(i, j) = total(2);
+    }
+  }
+  return out;
+}
+
 Eigen::VectorXd AsymmetricSolution::memory_depth_displacement(
     const Eigen::Ref<const Eigen::VectorXd>& x, double y) const {
   // v = (1/pi) Re int_0^inf W(alpha, y)/alpha p^ e^{i alpha u} d alpha, u = x - c,

@@ -282,6 +282,9 @@ class AsymmetricSolution:
     def stress_field(
         self, x: _Array, y: _Array, below: bool = False
     ) -> tuple[_Array, _Array, _Array]: ...
+    def compliance_stress_field(
+        self, x: _Array, y: _Array
+    ) -> tuple[_Array, _Array, _Array]: ...
 
 class ZoneResult:
     @property

@@ -199,7 +199,7 @@ class Evaluations:
         return float(values[0]) if _is_scalar(x) else values.reshape(np.shape(x))
 
     def _stresses(
-        self, x: npt.ArrayLike, y: npt.ArrayLike, side: str
+        self, x: npt.ArrayLike, y: npt.ArrayLike, side: str, compliance: bool = False
     ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, FloatArray, bool]:
         xs = _flat(_as_points("x", x))
         ys = _flat(_depths(y))
@@ -214,6 +214,8 @@ class Evaluations:
         impl = self._impl
 
         def grid(xx: FloatArray, yy: FloatArray) -> tuple[FloatArray, ...]:
+            if compliance:  # a viscoelastic top's stresses through its compliance
+                return tuple(impl.compliance_stress_field(xx, yy))
             return tuple(impl.stress_field(xx, yy, below))
 
         sx, sy, txy = _chunked_grid(grid, xs, ys)
@@ -249,20 +251,13 @@ class Evaluations:
         ``stress_field``), from the stresses by Hooke's law of the material at
         each depth (``medium.material``); ``side`` picks the material at an
         interface depth (eps_x is continuous across a bonded interface, eps_y
-        jumps). A viscoelastic sublayer's strains depend on its stress history
-        (Hooke's law with mu_0 would give the relaxed material's): refused,
-        InvalidParameterError naming ``layers`` (its stresses are given)."""
-        if self.medium.viscoelastic:
-            raise InvalidParameterError(
-                "layers: the strains of a viscoelastic sublayer depend on its stress "
-                "history (the material's memory) and are not computed yet (Hooke's "
-                "law with mu_0 would give the relaxed material's, not its own); its "
-                f"stresses are (stress_field); medium: {self.medium.describe()}",
-                parameter="layers",
-                allowed="elastic sublayers for strain_field, depth_strain, "
-                "design_strains",
-            )
-        xs, ys, sx, sy, txy, below = self._stresses(x, y, side)
+        jumps). On a viscoelastic layer a mode's strain is its stress over
+        mu_0 m(alpha): the stresses pass through the material's compliance
+        along x (its memory, ``compliance_stress_field``) before Hooke's law
+        at the relaxed mu_0 (docs/theory.md section 17.5)."""
+        xs, ys, sx, sy, txy, below = self._stresses(
+            x, y, side, compliance=self.medium.viscoelastic
+        )
         mu, nu = self.medium.material(ys, below)
         ex, ey, gxy = plane_strains(sx, sy, txy, mu[:, None], nu[:, None])
         return StrainField(x=xs, y=ys, eps_x=ex, eps_y=ey, gamma_xy=gxy, side=side)

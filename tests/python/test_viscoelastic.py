@@ -347,16 +347,6 @@ def test_what_is_not_solved_yet_is_refused_by_name():
     assert s.displacement([0.1, 0.4], 0.0) == pytest.approx(
         s.surface_displacement([0.1, 0.4]), rel=1e-14
     )
-    # Strains by Hooke's law with mu_0 would be the relaxed material's, not
-    # the layer's (they depend on its stress history): refused by name.
-    for strains in (
-        lambda: s.strain_field([0.0], [-0.5]),
-        lambda: s.depth_strain(-0.5),
-        lambda: s.design_strains(),
-    ):
-        with pytest.raises(InvalidParameterError, match="stress history") as e:
-            strains()
-        assert e.value.parameter == "layers"
 
 
 @pytest.mark.parametrize("y", [-0.01, -0.3, -1.0])
@@ -372,6 +362,43 @@ def test_the_displacement_below_the_surface_meets_the_elastic_limits(y):
         want = elastic.displacement(x, y)
         got = zener_solve(ratio, deborah, load, kw).displacement(x, y)
         assert np.max(np.abs(got - want)) < 1e-9 * np.max(np.abs(want)), deborah
+
+
+def test_the_strains_meet_the_elastic_limits_and_the_displacement():
+    """A mode's strain is its stress over mu_0 m(alpha): deborah 1e-12 gives
+    the relaxed layer's strains, 1e12 the unrelaxed one's (per P/(mu_0 h):
+    its own over the ratio), to 1e-10; and eps_y is dv/dy of the
+    displacement (computed apart, through the half-plane's closed form and
+    its memory) to the central difference's 1e-7. (Hooke's law at mu_0 alone
+    gave the relaxed material's strains at every deborah before.)"""
+    ratio, load, kw = 2.0, 0.002, 1.0
+    x = np.linspace(-1.5, 1.5, 13)
+    ys = np.array([0.0, -0.3, -1.0])
+    relaxed = mp.solve(vstar=0.0, load=load, radius=R, kw=kw, nu=NU)
+    unrelaxed = mp.solve(vstar=0.0, load=load / ratio, radius=R, kw=kw / ratio, nu=NU)
+    for deborah, elastic, scale in ((1e-12, relaxed, 1.0), (1e12, unrelaxed, ratio)):
+        got = zener_solve(ratio, deborah, load, kw).strain_field(x, ys)
+        want = elastic.strain_field(x, ys)
+        for name in ("eps_x", "eps_y", "gamma_xy"):
+            g, w = getattr(got, name), getattr(want, name) / scale
+            assert np.max(np.abs(g - w)) < 1e-10 * np.max(np.abs(w)), (deborah, name)
+    s = zener_solve(10.0, 0.1, load, kw)
+    y0, h = -0.3, 1e-4
+    eps_y = s.strain_field(x, np.array([y0])).eps_y[0]
+    dv_dy = (s.displacement(x, y0 + h) - s.displacement(x, y0 - h)) / (2.0 * h) / load
+    assert np.max(np.abs(eps_y - dv_dy)) < 1e-7 * np.max(np.abs(eps_y))
+    # The design strain at the layer's bottom: between the relaxed and the
+    # unrelaxed layers' (the material stiffens with frequency).
+    bottom = s.design_strains().bottom_horizontal[0]
+    soft = mp.solve(vstar=0.0, load=load, radius=R, kw=kw, nu=NU)
+    stiff = mp.solve(vstar=0.0, load=load / 10.0, radius=R, kw=kw / 10.0, nu=NU)
+    lo, hi = sorted(
+        (
+            soft.design_strains().bottom_horizontal[0],
+            stiff.design_strains().bottom_horizontal[0] / 10.0,
+        )
+    )
+    assert lo < bottom < hi
 
 
 @pytest.mark.parametrize(

@@ -330,6 +330,14 @@ class AsymmetricSolution {
   // y. 0 beyond |x| > kFarField.
   StressField stress_field(const Eigen::Ref<const Eigen::VectorXd>& x,
                            const Eigen::Ref<const Eigen::VectorXd>& y) const;
+  // A viscoelastic top's stresses through its compliance, on the same grid:
+  // (1/m_inf) [sigma + sum_k c_k (e_k * sigma)] along x at each depth (e_k the
+  // material's causal exponentials), whose Hooke strains at the relaxed
+  // modulus mu_0 are the layer's strains (a mode's strain is its stress over
+  // mu_0 m(alpha), Poisson's ratio constant). The stresses themselves on an
+  // elastic top.
+  StressField compliance_stress_field(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                      const Eigen::Ref<const Eigen::VectorXd>& y) const;
   // Slope dv/dx(x, -1) and displacement v(x, -1)/h of the bottom face (any x;
   // the displacement needs a finite kw).
   double bottom_slope(double x) const;
