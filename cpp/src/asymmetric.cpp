@@ -3309,34 +3309,76 @@ double AsymmetricSolution::memory_displacement(const Surface& s, double x, doubl
   return out;
 }
 
+namespace {
+
+// A material's memory along x at one point: int_0^40 e^-tau F(u + beta tau)
+// d tau (e^-40: 4e-18; the causal exponential e_k * F of memory_displacement,
+// over beta), F valued in R^D. `panel(lo, hi)` is the 16-point Gauss-Legendre
+// sum of e^-tau F(u + beta tau) on [lo, hi] (in tau). Panels at the weight's
+// e-folds and where u + beta tau meets the contact's ends [left, right] (F's
+// kinks or cusps there), each halved until two halves agree with it to
+// `tol` (or are 1e-13 long in x); ConvergenceError naming `what` after 20000
+// halvings.
+template <class Panel>
+auto exponential_convolution(const Panel& panel, double u, double beta, double left, double right,
+                             double tol, const std::string& what) {
+  using V = decltype(panel(0.0, 1.0));
+  std::vector<double> cuts{0.0, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0, 24.0, 32.0, 40.0};
+  for (double end : {left - u, right - u})
+    if (end > 0.0 && end < 40.0 * beta) cuts.push_back(end / beta);
+  std::sort(cuts.begin(), cuts.end());
+  V conv = V::Zero();
+  int splits = 0;
+  for (std::size_t c = 0; c + 1 < cuts.size(); ++c) {
+    if (!(cuts[c + 1] > cuts[c])) continue;
+    std::vector<std::pair<double, double>> todo{{cuts[c], cuts[c + 1]}};
+    while (!todo.empty()) {
+      const auto [lo, hi] = todo.back();
+      todo.pop_back();
+      const double mid = 0.5 * (lo + hi);
+      const V whole = panel(lo, hi);
+      const V halves = panel(lo, mid) + panel(mid, hi);
+      if ((whole - halves).cwiseAbs().maxCoeff() <= tol || (hi - lo) * beta < 1e-13) {
+        conv += halves;
+        continue;
+      }
+      if (++splits > 20000)
+        throw ConvergenceError(
+            what + ": the memory's convolution did not settle (x = " + std::to_string(u) + ")");
+      todo.emplace_back(lo, mid);
+      todo.emplace_back(mid, hi);
+    }
+  }
+  return conv;
+}
+
+}  // namespace
+
 StressField AsymmetricSolution::compliance_stress_field(
     const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& y) const {
   StressField out = stress_field(x, y);
   const MemoryKernel* mk = model_->memory();
   if (mk == nullptr) return out;
-  // e_k * sigma (u) = int_0^40 e^-tau sigma(u + beta_k tau) d tau, on panels at
-  // the weight's e-folds and where u + beta tau meets the contact's ends
-  // (sigma's square-root cusps at the surface), each halved until two halves
-  // agree with it to 1e-13 of the largest stress at the depth.
+  // (1/m_inf) [sigma + sum_k c_k e_k * sigma] along x at each depth, the
+  // convolution to 1e-13 of the largest stress at the depth (the contact's
+  // ends: sigma's square-root cusps at the surface).
   const RetardationSpectrum& sp = mk->spectrum();
   const double left = centre_ - half_, right = centre_ + half_;
   static const std::shared_ptr<const JacobiRule> gl = cached_gauss_jacobi(16, 0.0, 0.0);
   for (Eigen::Index i = 0; i < y.size(); ++i) {
     const double yi = y(i);
-    double scale = 0.0;
+    const Eigen::VectorXd row = Eigen::VectorXd::Constant(1, yi);
+    double scale = stresses(centre_, yi).cwiseAbs().maxCoeff();
     for (Eigen::Index j = 0; j < x.size(); ++j)
       for (const Eigen::MatrixXd* m : {&out.sigma_x, &out.sigma_y, &out.tau_xy})
         scale = std::max(scale, std::fabs((*m)(i, j)));
-    scale = std::max(scale, stresses(centre_, yi).cwiseAbs().maxCoeff());
     for (Eigen::Index j = 0; j < x.size(); ++j) {
       const double u = x(j);
       if (std::fabs(u) > kFarField) continue;  // 0 there, as the stresses
       Eigen::Vector3d total(out.sigma_x(i, j), out.sigma_y(i, j), out.tau_xy(i, j));
-      Eigen::Vector3d mem = Eigen::Vector3d::Zero();
       for (std::size_t k = 0; k < sp.c.size(); ++k) {
         const double beta = sp.beta[k];
-        const Eigen::VectorXd row = Eigen::VectorXd::Constant(1, yi);
-        auto rule = [&](double lo, double hi) {
+        auto panel = [&](double lo, double hi) {
           // The 16 nodes in one stress_field call (its sums shared).
           const double m = 0.5 * (lo + hi), h = 0.5 * (hi - lo);
           const Eigen::Index nq = gl->x.size();
@@ -3350,37 +3392,10 @@ StressField AsymmetricSolution::compliance_stress_field(
           return Eigen::Vector3d(h * f.sigma_x.row(0).dot(wt), h * f.sigma_y.row(0).dot(wt),
                                  h * f.tau_xy.row(0).dot(wt));
         };
-        std::vector<double> cuts{0.0, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0, 24.0, 32.0, 40.0};
-        for (double end : {left - u, right - u})
-          if (end > 0.0 && end < 40.0 * beta) cuts.push_back(end / beta);
-        std::sort(cuts.begin(), cuts.end());
-        Eigen::Vector3d conv = Eigen::Vector3d::Zero();
-        int splits = 0;
-        for (std::size_t c = 0; c + 1 < cuts.size(); ++c) {
-          if (!(cuts[c + 1] > cuts[c])) continue;
-          std::vector<std::pair<double, double>> todo{{cuts[c], cuts[c + 1]}};
-          while (!todo.empty()) {
-            const auto [lo, hi] = todo.back();
-            todo.pop_back();
-            const double mid = 0.5 * (lo + hi);
-            const Eigen::Vector3d whole = rule(lo, hi);
-            const Eigen::Vector3d halves = rule(lo, mid) + rule(mid, hi);
-            if ((whole - halves).cwiseAbs().maxCoeff() <= 1e-13 * scale ||
-                (hi - lo) * beta < 1e-13) {
-              conv += halves;
-              continue;
-            }
-            if (++splits > 20000)
-              throw ConvergenceError(
-                  "strains: the memory's convolution at depth y = " + std::to_string(yi) +
-                  " did not settle (x = " + std::to_string(u) + ")");
-            todo.emplace_back(lo, mid);
-            todo.emplace_back(mid, hi);
-          }
-        }
-        mem += sp.c[k] * conv;
+        total += sp.c[k] * exponential_convolution(panel, u, beta, left, right, 1e-13 * scale,
+                                                   "strains at y = " + std::to_string(yi));
       }
-      total = (total + mem) / sp.ratio;
+      total /= sp.ratio;
       out.sigma_x(i, j) = total(0);
       out.sigma_y(i, j) = total(1);
       out.tau_xy(i, j) = total(2);
@@ -3419,17 +3434,9 @@ Eigen::VectorXd AsymmetricSolution::memory_depth_displacement(
   f.coefficients(g, g_re, g_im);
   auto hp = [&](double u) { return detail::half_plane_displacement(c, b_, w, u, y, 1); };
   static const std::shared_ptr<const JacobiRule> gl = cached_gauss_jacobi(16, 0.0, 0.0);
-  auto rule = [&](double lo, double hi, double u, double beta) {
-    const double m = 0.5 * (lo + hi), h = 0.5 * (hi - lo);
-    double sum = 0.0;
-    for (Eigen::Index q = 0; q < gl->x.size(); ++q) {
-      const double t = m + h * gl->x(q);
-      sum += gl->w(q) * std::exp(-t) * hp(u + beta * t);
-    }
-    return h * sum;
-  };
   // The convolution's tolerance: 1e-14 of HP at the contact's centre (its
-  // scale) or of HP here, whichever is larger.
+  // scale) or of HP here, whichever is larger (HP varies on the scale |y|
+  // near the contact's ends).
   const double scale = std::fabs(hp(0.0));
   Eigen::VectorXd v(x.size());
   for (Eigen::Index j = 0; j < x.size(); ++j) {
@@ -3440,40 +3447,19 @@ Eigen::VectorXd AsymmetricSolution::memory_depth_displacement(
     const double u = x(j) - centre_, here = hp(u);
     double mem = 0.0;
     for (std::size_t k = 0; k < sp.c.size(); ++k) {
-      // int_0^40 e^-tau HP(u + beta tau) d tau (e^-40: 4e-18), on panels at
-      // the weight's e-folds and where u + beta tau meets the contact's
-      // ends, each halved until two halves agree with it to 1e-14 (HP varies
-      // on the scale |y| there).
       const double beta = sp.beta[k];
-      std::vector<double> cuts{0.0, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0, 24.0, 32.0, 40.0};
-      for (double end : {-w - u, w - u})
-        if (end > 0.0 && end < 40.0 * beta) cuts.push_back(end / beta);
-      std::sort(cuts.begin(), cuts.end());
-      double conv = 0.0;
-      for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
-        if (!(cuts[i + 1] > cuts[i])) continue;
-        std::vector<std::pair<double, double>> todo{{cuts[i], cuts[i + 1]}};
-        int splits = 0;
-        while (!todo.empty()) {
-          const auto [lo, hi] = todo.back();
-          todo.pop_back();
-          const double mid = 0.5 * (lo + hi);
-          const double whole = rule(lo, hi, u, beta);
-          const double halves = rule(lo, mid, u, beta) + rule(mid, hi, u, beta);
-          if (std::fabs(whole - halves) <= 1e-14 * std::max(std::fabs(here), scale) ||
-              hi - lo < 1e-12) {
-            conv += halves;
-            continue;
-          }
-          if (++splits > 20000)
-            throw ConvergenceError(
-                "displacement: the memory's convolution at depth y = " + std::to_string(y) +
-                " did not settle (x = " + std::to_string(x(j)) + ")");
-          todo.emplace_back(lo, mid);
-          todo.emplace_back(mid, hi);
+      auto panel = [&](double lo, double hi) {
+        const double m = 0.5 * (lo + hi), h = 0.5 * (hi - lo);
+        double sum = 0.0;
+        for (Eigen::Index q = 0; q < gl->x.size(); ++q) {
+          const double t = m + h * gl->x(q);
+          sum += gl->w(q) * std::exp(-t) * hp(u + beta * t);
         }
-      }
-      mem += sp.c[k] * conv;
+        return Eigen::Matrix<double, 1, 1>(h * sum);
+      };
+      mem += sp.c[k] * exponential_convolution(panel, u, beta, -w, w,
+                                               1e-14 * std::max(std::fabs(here), scale),
+                                               "displacement at y = " + std::to_string(y))(0);
     }
     v(j) = params_.load * (f.fourier(g_re, g_im, u) / kPi + (here + mem) / ratio);
   }
