@@ -269,6 +269,12 @@ class Zener:
             _deborah_floor(self.deborah, "Zener.deborah", "deborah")
 
     @property
+    def speed_dependent(self) -> bool:
+        """Given by its relaxation time (``tau``): its deborah number follows
+        the speed (``at_speed``)."""
+        return self.tau is not None
+
+    @property
     def relaxes(self) -> bool:
         """It relaxes in time at a speed > 0 (ratio > 1 and a time > 0)."""
         time = self.deborah if self.deborah is not None else self.tau
@@ -372,6 +378,12 @@ class Prony:
         object.__setattr__(self, "weights", w)
         object.__setattr__(self, name, d)
         object.__setattr__(self, "shift", shift)
+
+    @property
+    def speed_dependent(self) -> bool:
+        """Given by its relaxation times (``taus``): its deborah numbers follow
+        the speed (``at_speed``)."""
+        return self.taus is not None
 
     @property
     def relaxes(self) -> bool:
@@ -699,7 +711,7 @@ class Medium:
         return any(
             isinstance(s, Layer)
             and s.viscoelastic is not None
-            and s.viscoelastic.at_speed(1.0) is not s.viscoelastic
+            and s.viscoelastic.speed_dependent
             for s in self.layers
         )
 

@@ -434,7 +434,7 @@ def solve(
         if medium.speed_dependent or not inert:
             speed = _check_vstar(vstar)
             if not inert:
-                vstar = _quasi_static(medium, speed)
+                _check_quasi_static(medium, speed)
                 if speed > 0.0:
                     # Solved at rest on the material at its speed; the
                     # solution's vstar is the speed (its medium says the
@@ -466,7 +466,7 @@ def solve(
             kw, kp, damping, nu = springs.kw, springs.kp, springs.damping, medium.nu
             medium = None
     elif not inert:
-        vstar = _quasi_static(None, _check_vstar(vstar))
+        _check_quasi_static(None, _check_vstar(vstar))
     if medium is not None:
         return _solve_layered(
             medium,
@@ -558,9 +558,9 @@ def solve(
         ) from err
 
 
-def _quasi_static(medium: Medium | None, vstar: float) -> float:
-    """The solve's vstar under ``inertia=False``: 0 (the inertia neglected);
-    the speed must then be 0 or set a material's relaxation (``tau``), else
+def _check_quasi_static(medium: Medium | None, vstar: float) -> None:
+    """A speed under ``inertia=False`` must be 0 or set a material's
+    relaxation (``tau``), below the medium's critical speed; else
     InvalidParameterError naming vstar."""
     if vstar > 0.0 and (medium is None or not medium.speed_dependent):
         raise InvalidParameterError(
@@ -574,7 +574,6 @@ def _quasi_static(medium: Medium | None, vstar: float) -> float:
     if vstar > 0.0:
         assert medium is not None
         below_critical_speed(medium, vstar)
-    return 0.0
 
 
 def below_critical_speed(medium: Medium, vstar: float) -> None:

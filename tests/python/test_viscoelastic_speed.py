@@ -102,6 +102,12 @@ def test_a_material_of_tau_has_no_modulus_without_a_speed():
     )
     elastic = mp.solve(vstar=0.0, radius=R, load=LOAD, kw=1.0, nu=NU)
     assert s.contact_interval == pytest.approx((-elastic.a, elastic.a), abs=1e-12)
+    # A time too short for any speed but rest is still the relaxed layer at
+    # rest (asking whether it follows the speed once resolved it at vstar 1).
+    tiny = mp.solve(
+        vstar=0.0, radius=R, load=LOAD, layers=[layer(mp.Zener(2.0, tau=1e-13))], kw=1.0
+    )
+    assert tiny.contact_interval == pytest.approx((-elastic.a, elastic.a), abs=1e-12)
 
 
 # -- the solve --------------------------------------------------------------
