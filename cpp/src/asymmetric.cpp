@@ -59,11 +59,87 @@ double g_weight(int j, double h) {
 }
 
 // Bottom spring row t S - k W, normalised by t + |k| (no overflow for any k, t).
-Eigen::RowVector4cd spring_row(const Eigen::RowVector4d& S, const Eigen::RowVector4d& W, double t,
+Eigen::RowVector4cd spring_row(const Eigen::RowVector4cd& S, const Eigen::RowVector4cd& W, double t,
                                cplx k, bool rigid) {
-  if (rigid) return W.cast<cplx>();
+  if (rigid) return W;
   const double n = t + std::abs(k);
-  return (t / n) * S.cast<cplx>() - (k / n) * W.cast<cplx>();
+  return (t / n) * S - (k / n) * W;
+}
+
+// The layer's regularised basis at depth y (complex), of real or complex constants.
+template <class C>
+Eigen::Matrix4cd columns(const C& c, double t, double y) {
+  return modal_columns(c, t, y).template cast<cplx>();
+}
+template <class C>
+Eigen::Matrix4cd transfer(const C& c, double t, double y) {
+  return transfer_matrix(c, t, y).template cast<cplx>();
+}
+
+// The boundary matrix on the modal basis (top tau, sigma_y; bottom tau, springs)
+// and the top/bottom columns.
+struct ModalSystem {
+  Eigen::Matrix4cd top, bot;
+  Eigen::PartialPivLU<Eigen::Matrix4cd> lu;
+};
+template <class C>
+ModalSystem modal_system(const C& c, double t, cplx k, bool rigid) {
+  ModalSystem m;
+  m.top = columns(c, t, 0.0);
+  m.bot = columns(c, t, -1.0);
+  Eigen::Matrix4cd M;
+  M.row(0) = m.top.row(2);
+  M.row(1) = m.top.row(3);
+  M.row(2) = m.bot.row(2);
+  M.row(3) = spring_row(m.bot.row(3), m.bot.row(1), t, k, rigid);
+  m.lu = M.partialPivLu();
+  return m;
+}
+
+template <class C>
+DampedResponse modal_response(const C& c, double t, cplx k, bool rigid) {
+  DampedResponse r;
+  const double c2 = c.c2;
+  const ModalSystem m = modal_system(c, t, k, rigid);
+  const Eigen::Vector4cd amp = m.lu.solve(Eigen::Vector4cd(0.0, -1.0, 0.0, 0.0));
+  // The unit tangential load (top T = 1, S = 0) on the same factorisation.
+  const Eigen::Vector4cd ampq = m.lu.solve(Eigen::Vector4cd(1.0, 0.0, 0.0, 0.0));
+  const Eigen::Vector4cd zq = m.top * ampq;
+  r.Uq = zq(0);
+  r.Wq = zq(1);
+  r.Wqb = (m.bot.row(1) * ampq)(0);
+  const Eigen::Vector4cd z0 = m.top * amp;
+  r.U0 = z0(0);
+  r.W0 = z0(1);
+  r.M1 = -z0(1);
+  r.M2 = (c2 - 2.0) / c2 - 4.0 * (c2 - 1.0) / c2 * z0(0);
+  r.Wb = (m.bot.row(1) * amp)(0);
+  return r;
+}
+
+template <class C>
+DampedResponse transfer_response(const C& c, double t, cplx k, bool rigid) {
+  const double c2 = c.c2;
+  DampedResponse r;
+  const Eigen::Matrix4cd P = transfer(c, t, -1.0);
+  Eigen::Matrix<cplx, 2, 4> R;
+  R.row(0) = P.row(2);
+  R.row(1) = spring_row(P.row(3), P.row(1), t, k, rigid);
+  const Eigen::Matrix2cd M = R.leftCols<2>();
+  const Eigen::Vector2cd rhs = R.col(3);
+  const Eigen::FullPivLU<Eigen::Matrix2cd> lu = M.fullPivLu();
+  const Eigen::Vector2cd x = lu.solve(rhs);
+  const Eigen::Vector2cd xq = lu.solve(Eigen::Vector2cd(-R.col(2)));
+  r.Uq = xq(0);
+  r.Wq = xq(1);
+  r.Wqb = (P.row(1) * Eigen::Vector4cd(xq(0), xq(1), 1.0, 0.0))(0);
+  const Eigen::Vector4cd z0(x(0), x(1), 0.0, -1.0);
+  r.U0 = x(0);
+  r.W0 = x(1);
+  r.M1 = -x(1);
+  r.M2 = (c2 - 2.0) / c2 - 4.0 * (c2 - 1.0) / c2 * x(0);
+  r.Wb = (P.row(1) * z0)(0);
+  return r;
 }
 
 // J_0 .. J_{nmax+1} at x >= 0 (collocation.cpp's recurrences).
@@ -98,6 +174,7 @@ DampedLayerModel::DampedLayerModel(double vstar, double kw, double nu, double da
   require_in_range("kp", kp, 0.0, kMaxKp, false, false);
   beta_ = damping * std::sqrt(vstar);
   tq_ = tangential_half_plane(c_);
+  inertial_ = !visco_.empty() && vstar > 0.0;
 }
 
 cplx DampedLayerModel::foundation(double t) const noexcept {
@@ -105,11 +182,16 @@ cplx DampedLayerModel::foundation(double t) const noexcept {
   return visco_.empty() ? k : k / visco_.modulus(t);
 }
 
+ComplexWaveConstants DampedLayerModel::constants_at(double t) const {
+  return complex_wave_constants(c_.s / visco_.modulus(t), c_.nu);
+}
+
 DampedResponse DampedLayerModel::response_modal(double t) const {
   if (!(t > 0.0)) throw std::invalid_argument("damped layer response: t must be > 0");
-  DampedResponse r;
-  const double c2 = c_.c2;
+  if (inertial_) return modal_response(constants_at(t), t, foundation(t), rigid_);
   if (t * c_.nT >= 400.0) {  // M1 - phi1 ~ exp(-2 nT t) underflows: the exact limit
+    const double c2 = c_.c2;
+    DampedResponse r;
     r.U0 = ((c2 - 2.0) / c2 - c_.phi2) * c2 / (4.0 * (c2 - 1.0));
     r.W0 = -c_.phi1;
     r.M1 = c_.phi1;
@@ -120,36 +202,16 @@ DampedResponse DampedLayerModel::response_modal(double t) const {
     r.Wqb = 0.0;
     return r;
   }
-  const Eigen::Matrix4d top = modal_columns(c_, t, 0.0), bot = modal_columns(c_, t, -1.0);
-  Eigen::Matrix4cd M;
-  M.row(0) = top.row(2).cast<cplx>();
-  M.row(1) = top.row(3).cast<cplx>();
-  M.row(2) = bot.row(2).cast<cplx>();
-  M.row(3) = spring_row(bot.row(3), bot.row(1), t, foundation(t), rigid_);
-  const Eigen::Vector4cd rhs(0.0, -1.0, 0.0, 0.0);
-  const Eigen::PartialPivLU<Eigen::Matrix4cd> lu = M.partialPivLu();
-  const Eigen::Vector4cd amp = lu.solve(rhs);
-  // The unit tangential load (top T = 1, S = 0) on the same factorisation.
-  const Eigen::Vector4cd ampq = lu.solve(Eigen::Vector4cd(1.0, 0.0, 0.0, 0.0));
-  const Eigen::Vector4cd zq = top.cast<cplx>() * ampq;
-  r.Uq = zq(0);
-  r.Wq = zq(1);
-  r.Wqb = (bot.row(1).cast<cplx>() * ampq)(0);
-  const Eigen::Vector4cd z0 = top.cast<cplx>() * amp;
-  r.U0 = z0(0);
-  r.W0 = z0(1);
-  r.M1 = -z0(1);
-  r.M2 = (c2 - 2.0) / c2 - 4.0 * (c2 - 1.0) / c2 * z0(0);
-  r.Wb = (bot.row(1).cast<cplx>() * amp)(0);
-  return r;
+  return modal_response(c_, t, foundation(t), rigid_);
 }
 
 DampedResponse DampedLayerModel::response_transfer(double t) const {
   if (!(t >= 0.0) || !(t <= 4.0))
     throw std::invalid_argument("damped layer response (transfer): t must be in [0, 4]");
-  const double c2 = c_.c2;
-  DampedResponse r;
   if (t == 0.0) {
+    // (The material's modulus is 1 at t = 0: the relaxed layer's limits.)
+    const double c2 = c_.c2;
+    DampedResponse r;
     r.U0 = c_.A(2, 3) / c_.A(2, 0);
     r.W0 = 0.0;
     r.M1 = 0.0;
@@ -161,25 +223,8 @@ DampedResponse DampedLayerModel::response_transfer(double t) const {
     r.Wqb = 0.0;
     return r;
   }
-  const Eigen::Matrix4d P = transfer_matrix(c_, t, -1.0);
-  Eigen::Matrix<cplx, 2, 4> R;
-  R.row(0) = P.row(2).cast<cplx>();
-  R.row(1) = spring_row(P.row(3), P.row(1), t, foundation(t), rigid_);
-  const Eigen::Matrix2cd M = R.leftCols<2>();
-  const Eigen::Vector2cd rhs = R.col(3);
-  const Eigen::FullPivLU<Eigen::Matrix2cd> lu = M.fullPivLu();
-  const Eigen::Vector2cd x = lu.solve(rhs);
-  const Eigen::Vector2cd xq = lu.solve(Eigen::Vector2cd(-R.col(2)));
-  r.Uq = xq(0);
-  r.Wq = xq(1);
-  r.Wqb = (P.row(1).cast<cplx>() * Eigen::Vector4cd(xq(0), xq(1), 1.0, 0.0))(0);
-  const Eigen::Vector4cd z0(x(0), x(1), 0.0, -1.0);
-  r.U0 = x(0);
-  r.W0 = x(1);
-  r.M1 = -x(1);
-  r.M2 = (c2 - 2.0) / c2 - 4.0 * (c2 - 1.0) / c2 * x(0);
-  r.Wb = (P.row(1).cast<cplx>() * z0)(0);
-  return r;
+  if (inertial_) return transfer_response(constants_at(t), t, foundation(t), rigid_);
+  return transfer_response(c_, t, foundation(t), rigid_);
 }
 
 DampedResponse DampedLayerModel::response(double t) const {
@@ -193,8 +238,11 @@ Eigen::Vector4cd DampedLayerModel::state(double t, double y) const {
   if (!(t > 0.0) || !std::isfinite(t) || !(y >= -1.0) || !(y <= 0.0))
     throw std::invalid_argument("damped state: need t > 0 finite and -1 <= y <= 0");
   const Eigen::Vector4cd z = state_coefficients(t);
-  if (t < kSmallT) return transfer_matrix(c_, t, y).cast<cplx>() * z;
-  return modal_columns(c_, t, y).cast<cplx>() * z;
+  if (inertial_) {
+    const ComplexWaveConstants c = constants_at(t);
+    return (t < kSmallT ? transfer(c, t, y) : columns(c, t, y)) * z;
+  }
+  return (t < kSmallT ? transfer(c_, t, y) : columns(c_, t, y)) * z;
 }
 
 Eigen::Vector4cd DampedLayerModel::state_coefficients(double t) const {
@@ -204,30 +252,24 @@ Eigen::Vector4cd DampedLayerModel::state_coefficients(double t) const {
     const DampedResponse r = response_transfer(t);
     return {r.U0, r.W0, 0.0, -1.0};
   }
-  const Eigen::Matrix4d top = modal_columns(c_, t, 0.0), bot = modal_columns(c_, t, -1.0);
-  Eigen::Matrix4cd M;
-  M.row(0) = top.row(2).cast<cplx>();
-  M.row(1) = top.row(3).cast<cplx>();
-  M.row(2) = bot.row(2).cast<cplx>();
-  M.row(3) = spring_row(bot.row(3), bot.row(1), t, foundation(t), rigid_);
-  return M.partialPivLu().solve(Eigen::Vector4cd(0.0, -1.0, 0.0, 0.0));
+  const Eigen::Vector4cd rhs(0.0, -1.0, 0.0, 0.0);
+  if (inertial_) return modal_system(constants_at(t), t, foundation(t), rigid_).lu.solve(rhs);
+  return modal_system(c_, t, foundation(t), rigid_).lu.solve(rhs);
 }
 
 Eigen::Vector4cd DampedLayerModel::tangential_state(double t, double y) const {
   if (!(t > 0.0) || !std::isfinite(t) || !(y >= -1.0) || !(y <= 0.0))
     throw std::invalid_argument("tangential state: need t > 0 finite and -1 <= y <= 0");
-  if (t < kSmallT) {
-    const DampedResponse r = response_transfer(t);
-    return transfer_matrix(c_, t, y).cast<cplx>() * Eigen::Vector4cd(r.Uq, r.Wq, 1.0, 0.0);
-  }
-  const Eigen::Matrix4d top = modal_columns(c_, t, 0.0), bot = modal_columns(c_, t, -1.0);
-  Eigen::Matrix4cd M;
-  M.row(0) = top.row(2).cast<cplx>();
-  M.row(1) = top.row(3).cast<cplx>();
-  M.row(2) = bot.row(2).cast<cplx>();
-  M.row(3) = spring_row(bot.row(3), bot.row(1), t, foundation(t), rigid_);
-  const Eigen::Vector4cd amp = M.partialPivLu().solve(Eigen::Vector4cd(1.0, 0.0, 0.0, 0.0));
-  return modal_columns(c_, t, y).cast<cplx>() * amp;
+  const Eigen::Vector4cd unit(1.0, 0.0, 0.0, 0.0);
+  auto of = [&](const auto& c) -> Eigen::Vector4cd {
+    if (t < kSmallT) {
+      const DampedResponse r = transfer_response(c, t, foundation(t), rigid_);
+      return transfer(c, t, y) * Eigen::Vector4cd(r.Uq, r.Wq, 1.0, 0.0);
+    }
+    return columns(c, t, y) * modal_system(c, t, foundation(t), rigid_).lu.solve(unit);
+  };
+  if (inertial_) return of(constants_at(t));
+  return of(c_);
 }
 
 // ---------------------------------------------------------------------------
@@ -568,12 +610,6 @@ void validate(const AsymmetricParams& p) {
     r.medium = nullptr;
     const bool visco = p.medium->viscoelastic();
     if (visco) {
-      if (p.vstar != 0.0)
-        throw InvalidParameter(
-            "vstar", "0 on a viscoelastic layer (quasi-static: the speed is in deborah)",
-            "vstar: a viscoelastic layer is solved quasi-statically (inertia neglected, vstar = "
-            "0; the speed enters through deborah = V tau/h); given vstar = " +
-                std::to_string(p.vstar));
       if (p.friction != 0.0)
         throw InvalidParameter("friction", "0 on a viscoelastic layer (not yet)",
                                "friction: a viscoelastic layer is solved frictionless (friction "
@@ -1531,7 +1567,7 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
   const WaveConstants wc = wave_constants(prm.vstar, prm.nu);
   // The Cauchy term's coefficient: a viscoelastic top's unrelaxed half-plane's.
   const double phi1 = prm.medium && prm.medium->viscoelastic()
-                          ? wc.phi1 / prm.medium->layers[0].visco.ratio()
+                          ? unrelaxed_phi1(prm.medium->layers[0].visco, prm.vstar, prm.nu)
                           : wc.phi1;
   // Friction: Gauss-Jacobi collocation with the end exponents of
   // cot(pi back) = f Phi (docs/theory.md section 14); none: Gauss-Chebyshev.
@@ -2134,6 +2170,13 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
       // no estimate from a single size.
       if (frictional) gain = std::numeric_limits<double>::infinity();
     }
+    // A viscoelastic top with inertia: its memory moves sigma_x by -phi2 sum_k
+    // d_k e_k * dp, at most |phi2| sum_k |d_k| max |dp| (int e_k = 1).
+    if (const RetardationSpectrum* sm = model->stress_memory()) {
+      double d = 0.0;
+      for (double c : sm->c) d += std::fabs(c);
+      gain += std::fabs(phi2) * d;
+    }
     double sabs = 0.0;
     const AsymmetricSolution::Fine& f = *s.light_;
     for (std::size_t i = 0; i < f.alpha.size(); ++i)
@@ -2381,6 +2424,23 @@ double bar_pole(const Medium& m) {
       "the stresses at depth)");
 }
 
+// A viscoelastic layer with inertia: its stresses (M2 and the modes at depth
+// reach their half-plane values only like 1/alpha, through the speed
+// vstar/m(alpha), and no memory takes them out yet) and its displacement
+// below the surface are refused by name; the contact, the pressure, the
+// drag, the dissipation, the surface slope and the surface displacement are
+// not.
+void inertial_refusal(const Medium& m, const std::string& what) {
+  if (m.memory() == nullptr || !(m.vstar() > 0.0)) return;
+  std::ostringstream o;
+  o.precision(10);
+  o << "vstar: " << what << " of a viscoelastic layer with inertia (vstar = " << m.vstar()
+    << " > 0) is not available yet; the contact, pressure, drag, dissipation, surface slope and "
+       "surface displacement are (and every output of the quasi-static layer: vstar = 0, or "
+       "inertia=False with the material given by tau)";
+  throw InvalidParameter("vstar", "0 for " + what + " of a viscoelastic layer", o.str());
+}
+
 }  // namespace
 
 const DampedLayerModel* AsymmetricSolution::layer() const { return model_->homogeneous_layer(); }
@@ -2392,7 +2452,7 @@ cplx AsymmetricSolution::bottom_w(const DampedResponse& r) const {
 
 cplx AsymmetricSolution::surface_stress_integrand(const DampedResponse& r, double alpha) const {
   const double phi2 = model_->phi2();
-  if (!(params_.friction > 0.0)) return r.M2 - phi2;
+  if (!(params_.friction > 0.0)) return r.M2 - model_->half_plane_m2(alpha);
   const WaveConstants& c = model_->top();
   const double ep = 4.0 * (c.c2 - 1.0) / c.c2, c0 = bar_pole(*model_);
   const cplx tq = ep * (r.Uq - model_->tangential().Uq) - c0 * std::exp(-alpha) / alpha;
@@ -2713,9 +2773,8 @@ AsymmetricSolution::Fine AsymmetricSolution::build_fine(double freq, const Eigen
   }
   f.filon = std::make_shared<const FilonIntegrator>(panels);
   std::vector<cplx> g(f.alpha.size());
-  const double phi2 = model_->phi2();
   for (std::size_t i = 0; i < g.size(); ++i)
-    g[i] = (jac_ ? surface_stress_integrand(f.r[i], f.alpha[i]) : f.r[i].M2 - phi2) * f.phat[i] *
+    g[i] = surface_stress_integrand(f.r[i], f.alpha[i]) * f.phat[i] *
            std::exp(cplx(0.0, f.alpha[i] * centre_));
   f.coefficients(g, f.sx_re, f.sx_im);
   return f;
@@ -2778,7 +2837,9 @@ Eigen::VectorXd AsymmetricSolution::surface_displacement(
 double AsymmetricSolution::surface_stress(double x) const {
   if (!std::isfinite(x)) throw std::invalid_argument("surface_stress: x must be finite");
   const Fine& f = *light_;
-  const double s = -model_->phi2() * pressure(x) - f.fourier(f.sx_re, f.sx_im, x - centre_) / kPi;
+  double local = pressure(x);
+  if (model_->stress_memory() != nullptr) local += stress_memory_part(x);
+  const double s = -model_->phi2() * local - f.fourier(f.sx_re, f.sx_im, x - centre_) / kPi;
   if (jac_) return s + friction_surface_terms(x, *jac_, atan_wg_, centre_, half_);
   return s;
 }
@@ -2915,6 +2976,24 @@ std::shared_ptr<const Eigen::MatrixXd> AsymmetricSolution::depth_coefficients(
 StressField AsymmetricSolution::stress_field(const Eigen::Ref<const Eigen::VectorXd>& x,
                                              const Eigen::Ref<const Eigen::VectorXd>& y) const {
   detail::check_grid(x, y);
+  if (model_->memory() != nullptr && model_->vstar() > 0.0) {
+    // A viscoelastic layer with inertia: the modes' half-plane part moves
+    // with vstar/m(alpha), so the remainder below the relaxed half-plane's
+    // decays only like e^{-nT alpha |y|}: exact to round-off where that is
+    // below 1e-13 at the fine nodes' last alpha, and on the surface (its own
+    // memory); refused by name between.
+    const double reach = 30.0 / (model_->top().nT * light_->alpha.back());
+    for (Eigen::Index i = 0; i < y.size(); ++i)
+      if (y(i) < 0.0 && y(i) > -reach) {
+        std::ostringstream o;
+        o.precision(6);
+        o << "y: the stresses of a viscoelastic layer with inertia (vstar = " << model_->vstar()
+          << ") are computed on the surface (y = 0) and at depths -1 <= y/h <= " << -reach
+          << " (the layer's lower part); given y = " << y(i)
+          << " (near the surface the modes' speed vstar/m(alpha) is not taken out yet)";
+        throw InvalidParameter("y", "0 or -1 <= y <= " + std::to_string(-reach), o.str());
+      }
+  }
   if (jac_ && !layer())
     layered_refusal(*model_, "the stress field below the surface with friction");
   const Fine& f = *light_;
@@ -3354,15 +3433,42 @@ auto exponential_convolution(const Panel& panel, double u, double beta, double l
 
 }  // namespace
 
+double AsymmetricSolution::stress_memory_part(double x) const {
+  // sum_k d_k (e_k * p)(x), e_k * p = int_0^inf e^-tau p(x + beta_k tau) d tau
+  // (the material ahead of x; memory_displacement's convention), to 1e-14 of
+  // the largest pressure: 0 beyond the contact's front end.
+  const RetardationSpectrum& sp = *model_->stress_memory();
+  const double left = centre_ - half_, right = centre_ + half_;
+  if (x >= right) return 0.0;
+  static const std::shared_ptr<const JacobiRule> gl = cached_gauss_jacobi(16, 0.0, 0.0);
+  double out = 0.0;
+  for (std::size_t k = 0; k < sp.c.size(); ++k) {
+    const double beta = sp.beta[k];
+    auto panel = [&](double lo, double hi) {
+      const double m = 0.5 * (lo + hi), h = 0.5 * (hi - lo);
+      double sum = 0.0;
+      for (Eigen::Index q = 0; q < gl->x.size(); ++q) {
+        const double t = m + h * gl->x(q);
+        sum += gl->w(q) * std::exp(-t) * pressure(x + beta * t);
+      }
+      return Eigen::Matrix<double, 1, 1>(h * sum);
+    };
+    out += sp.c[k] * exponential_convolution(panel, x, beta, left, right, 1e-14 * max_p_,
+                                             "surface stress")(0);
+  }
+  return out;
+}
+
 StressField AsymmetricSolution::compliance_stress_field(
     const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& y) const {
   StressField out = stress_field(x, y);
-  const MemoryKernel* mk = model_->memory();
-  if (mk == nullptr) return out;
+  const RetardationSpectrum* compliance = model_->compliance_memory();
+  if (compliance == nullptr) return out;
   // (1/m_inf) [sigma + sum_k c_k e_k * sigma] along x at each depth, the
   // convolution to 1e-13 of the largest stress at the depth (the contact's
-  // ends: sigma's square-root cusps at the surface).
-  const RetardationSpectrum& sp = mk->spectrum();
+  // ends: sigma's square-root cusps at the surface). The material's own
+  // compliance, with or without the layer's inertia.
+  const RetardationSpectrum& sp = *compliance;
   const double left = centre_ - half_, right = centre_ + half_;
   static const std::shared_ptr<const JacobiRule> gl = cached_gauss_jacobi(16, 0.0, 0.0);
   for (Eigen::Index i = 0; i < y.size(); ++i) {
@@ -3500,6 +3606,7 @@ Eigen::MatrixXd AsymmetricSolution::displacement(const Eigen::Ref<const Eigen::V
     // below it the half-plane part's memory by a convolution in x
     // (memory_depth_displacement).
     Eigen::MatrixXd v(y.size(), x.size());
+    if ((y.array() < 0.0).any()) inertial_refusal(*model_, "the displacement below the surface");
     for (Eigen::Index i = 0; i < y.size(); ++i) {
       if (y(i) < 0.0) {
         v.row(i) = memory_depth_displacement(x, y(i));

@@ -18,9 +18,12 @@ namespace movingpunch::detail {
 Eigen::Vector4d shear_vector(double m);
 // Columns (top shear mode, top divided difference, bottom shear mode, bottom
 // divided difference) at depth y, -1 <= y <= 0.
-Eigen::Matrix4d modal_columns(const WaveConstants& c, double t, double y);
+// Real or complex constants (layer_response.hpp; instantiated for both).
+template <class T>
+Eigen::Matrix<T, 4, 4> modal_columns(const BasicWaveConstants<T>& c, double t, double y);
 // exp(t y A) by its Taylor series (|t y| < 0.5).
-Eigen::Matrix4d transfer_matrix(const WaveConstants& c, double t, double y);
+template <class T>
+Eigen::Matrix<T, 4, 4> transfer_matrix(const BasicWaveConstants<T>& c, double t, double y);
 
 // Edges of the first quadrature panels on [0, w] for a base of stiffness
 // kw + kp t^2: a Pasternak layer puts the long-wave feature of the response

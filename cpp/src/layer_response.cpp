@@ -13,23 +13,43 @@ namespace detail {
 
 Eigen::Vector4d shear_vector(double m) { return {1.0, -1.0 / m, (1.0 + m * m) / m, -2.0}; }
 
+namespace {
+
+// e^z - 1 without cancellation, real or complex z.
+double expm1_of(double z) { return std::expm1(z); }
+std::complex<double> expm1_of(std::complex<double> z) {
+  // e^{x + iy} - 1 = (expm1(x) cos y - 2 sin^2(y/2)) + i e^x sin y.
+  const double sh = std::sin(0.5 * z.imag());
+  return {std::expm1(z.real()) * std::cos(z.imag()) - 2.0 * sh * sh,
+          std::exp(z.real()) * std::sin(z.imag())};
+}
+
+template <class T>
+Eigen::Matrix<T, 4, 1> shear_vector_of(T m) {
+  return {T(1.0), -1.0 / m, (1.0 + m * m) / m, T(-2.0)};
+}
+
+}  // namespace
+
 // The four columns of the regularised exponential basis at depth y.
-Eigen::Matrix4d modal_columns(const WaveConstants& c, double t, double y) {
-  const double nT = c.nT, nL = c.nL, d = c.delta;
+template <class T>
+Eigen::Matrix<T, 4, 4> modal_columns(const BasicWaveConstants<T>& c, double t, double y) {
+  using V = Eigen::Matrix<T, 4, 1>;
+  const T nT = c.nT, nL = c.nL, d = c.delta;
   // E(x) = (e^{d x} - 1)/d. For tiny d x its series, which holds at full
   // precision down to d = 0: expm1(d x)/d loses every digit once d is
   // subnormal (vstar < ~1e-308: d x is rounded to a few bits and divided
   // back), which moved a/h by 1e-6 at vstar = 1e-320.
-  auto E = [d](double x) {
-    const double dx = d * x;
-    return std::fabs(dx) < 1e-5 ? x * (1.0 + dx * (0.5 + dx / 6.0)) : std::expm1(dx) / d;
+  auto E = [d](double x) -> T {
+    const T dx = d * x;
+    return std::abs(dx) < 1e-5 ? x * (1.0 + dx * (0.5 + dx / 6.0)) : expm1_of(dx) / d;
   };
-  const Eigen::Vector4d vTp = shear_vector(nT), vTm = shear_vector(-nT);
-  const Eigen::Vector4d dvp(0.0, c.dW, c.dT, c.dS), dvm(0.0, -c.dW, -c.dT, c.dS);
-  Eigen::Matrix4d C;
-  const double et = std::exp(nT * t * y), el = std::exp(nL * t * y);
+  const V vTp = shear_vector_of<T>(nT), vTm = shear_vector_of<T>(-nT);
+  const V dvp(T(0.0), c.dW, c.dT, c.dS), dvm(T(0.0), -c.dW, -c.dT, c.dS);
+  Eigen::Matrix<T, 4, 4> C;
+  const T et = std::exp(nT * t * y), el = std::exp(nL * t * y);
   const double yb = y + 1.0;
-  const double ebt = std::exp(-nT * t * yb), ebl = std::exp(-nL * t * yb);
+  const T ebt = std::exp(-nT * t * yb), ebl = std::exp(-nL * t * yb);
   C.col(0) = et * vTp;
   C.col(1) = el * dvp + vTp * (et * E(t * y));
   C.col(2) = ebt * vTm;
@@ -39,10 +59,12 @@ Eigen::Matrix4d modal_columns(const WaveConstants& c, double t, double y) {
 
 // Transfer matrix exp(-t A) by its Taylor series (t < 0.5, |A| <= 6); with
 // depth y, exp(t y A) (z(y) = exp(t y A) z(0)).
-Eigen::Matrix4d transfer_matrix(const WaveConstants& c, double t, double y) {
-  Eigen::Matrix4d P = Eigen::Matrix4d::Identity();
-  Eigen::Matrix4d term = Eigen::Matrix4d::Identity();
-  const Eigen::Matrix4d B = (t * y) * c.A;
+template <class T>
+Eigen::Matrix<T, 4, 4> transfer_matrix(const BasicWaveConstants<T>& c, double t, double y) {
+  using M = Eigen::Matrix<T, 4, 4>;
+  M P = M::Identity();
+  M term = M::Identity();
+  const M B = (t * y) * c.A;
   for (int k = 1; k < 80; ++k) {
     term = term * B / static_cast<double>(k);
     P += term;
@@ -50,6 +72,11 @@ Eigen::Matrix4d transfer_matrix(const WaveConstants& c, double t, double y) {
   }
   return P;
 }
+
+template Eigen::Matrix4d modal_columns(const WaveConstants&, double, double);
+template Eigen::Matrix4cd modal_columns(const ComplexWaveConstants&, double, double);
+template Eigen::Matrix4d transfer_matrix(const WaveConstants&, double, double);
+template Eigen::Matrix4cd transfer_matrix(const ComplexWaveConstants&, double, double);
 
 }  // namespace detail
 
@@ -96,39 +123,56 @@ double rayleigh_vstar(double nu) {
   return last_vr;
 }
 
-WaveConstants wave_constants(double vstar, double nu) {
-  require_in_range("nu", nu, 0.0, 0.5, false, true);
-  require_in_range("vstar", vstar, 0.0, 1.0, false, true);
-  WaveConstants c;
-  const double s = vstar;
+namespace {
+
+// The closed forms of wave_constants, real or complex s (principal roots).
+template <class T>
+BasicWaveConstants<T> fill_constants(T s, double nu) {
+  BasicWaveConstants<T> c;
   c.s = s;
   c.nu = nu;
   c.c2 = c2_of(nu);
   const double c2 = c.c2;
   c.nT = std::sqrt(1.0 - s);
   c.nL = std::sqrt(1.0 - s / c2);
-  const double X = 1.0 + 1.0 / c2 - s / c2, Y = c.nL * c.nT;
+  const T X = 1.0 + 1.0 / c2 - s / c2, Y = c.nL * c.nT;
   const double one_minus_inv_c2 = 1.0 - 1.0 / c2;  // = 2 / (kappa + 1)
   c.delta = s * one_minus_inv_c2 / (c.nL + c.nT);
-  const double ratio = (c.nL + c.nT) / (one_minus_inv_c2 * c.nT);
+  const T ratio = (c.nL + c.nT) / (one_minus_inv_c2 * c.nT);
   c.dW = X / (1.0 + Y) * ratio;
   c.dT = ((-s * X / (1.0 + Y) - 2.0 * (1.0 - s) / c2) / (1.0 + Y)) * ratio;
   c.dS = (c.nL + c.nT) / one_minus_inv_c2;
-  const double den = 4.0 - s - 4.0 * X / (1.0 + Y);
+  const T den = 4.0 - s - 4.0 * X / (1.0 + Y);
   c.phi1 = c.nL / den;
   c.phi2 = (4.0 * X / (1.0 + Y) - 2.0 + 2.0 * (c2 - 2.0) / c2 - s * (c2 - 2.0) / c2) / den;
   // Half-plane amplitudes: tau(0) = hp1 q + hp2 dT = 0, sigma(0) = -2 hp1 + hp2 dS = -1.
   {
-    const double q = (1.0 + c.nT * c.nT) / c.nT;
-    const double det = q * c.dS + 2.0 * c.dT;
+    const T q = (1.0 + c.nT * c.nT) / c.nT;
+    const T det = q * c.dS + 2.0 * c.dT;
     c.hp1 = c.dT / det;
     c.hp2 = -q / det;
   }
-  c.A << 0.0, 1.0, 1.0, 0.0,                                 //
-      -(c2 - 2.0) / c2, 0.0, 0.0, 1.0 / c2,                  //
-      4.0 * (c2 - 1.0) / c2 - s, 0.0, 0.0, (c2 - 2.0) / c2,  //
-      0.0, -s, -1.0, 0.0;
+  const T zero{0.0}, one{1.0};
+  c.A << zero, one, one, zero,                                    //
+      T(-(c2 - 2.0) / c2), zero, zero, T(1.0 / c2),               //
+      4.0 * (c2 - 1.0) / c2 - s, zero, zero, T((c2 - 2.0) / c2),  //
+      zero, -s, -one, zero;
   return c;
+}
+
+}  // namespace
+
+WaveConstants wave_constants(double vstar, double nu) {
+  require_in_range("nu", nu, 0.0, 0.5, false, true);
+  require_in_range("vstar", vstar, 0.0, 1.0, false, true);
+  return fill_constants<double>(vstar, nu);
+}
+
+ComplexWaveConstants complex_wave_constants(std::complex<double> s, double nu) {
+  require_in_range("nu", nu, 0.0, 0.5, false, true);
+  if (!std::isfinite(s.real()) || !std::isfinite(s.imag()) || (s.imag() == 0.0 && s.real() >= 1.0))
+    throw std::invalid_argument("complex_wave_constants: s must be finite and not real >= 1");
+  return fill_constants<std::complex<double>>(s, nu);
 }
 
 double phi1(double vstar, double nu) {

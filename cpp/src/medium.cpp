@@ -143,14 +143,15 @@ class HomogeneousMedium final : public Medium {
   DampedLayerModel damped_;
 };
 
-// A quasi-static (vstar = 0) viscoelastic homogeneous layer on springs
-// (docs/theory.md section 17): the elastic layer in units of its modulus at
-// each frequency, mu_0 m(t), on springs kw(t)/m(t) (DampedLayerModel with
-// the material), its displacements divided by m(t) (stresses per unit
-// pressure do not depend on the modulus). The half-plane part of M1,
-// (1 - nu)/m(t), reaches its unrelaxed value (1 - nu)/m(inf) only like 1/t:
-// the kernel's quadrature subtracts it whole (half_plane_m1) and the
-// collocation takes its memory exactly (memory()).
+// A viscoelastic homogeneous layer on springs (docs/theory.md section 17):
+// the elastic layer in units of its modulus at each frequency, mu_0 m(t), on
+// springs kw(t)/m(t) at the speed vstar/m(t) (DampedLayerModel with the
+// material; complex wave constants when vstar > 0), its displacements
+// divided by m(t). The half-plane part of M1, H(t) = phi1(vstar/m(t))/m(t)
+// ((1 - nu)/m(t) at rest), reaches its unrelaxed value only like 1/t: the
+// kernel's quadrature subtracts it whole (half_plane_m1) and the collocation
+// takes its memory exactly (memory(): the retardation spectrum at rest, the
+// inertial spectrum of poles and cut otherwise, viscoelastic.hpp).
 class ViscoelasticLayerMedium final : public Medium {
  public:
   ViscoelasticLayerMedium(const MediumSpec& spec, double vstar)
@@ -158,10 +159,15 @@ class ViscoelasticLayerMedium final : public Medium {
         model_(vstar, spec.base.kw, spec.layers[0].nu, spec.base.kp),
         damped_(vstar, spec.base.kw, spec.layers[0].nu, 0.0, spec.base.kp, spec.layers[0].visco),
         visco_(spec.layers[0].visco),
-        memory_(retardation_spectrum(visco_)) {
+        inertial_(inertial_spectrum(visco_, vstar, spec.layers[0].nu)),
+        stress_(
+            inertial_spectrum(visco_, vstar, spec.layers[0].nu, 1e-13, HalfPlaneSymbol::stress)),
+        memory_(inertial_.spectrum) {
     top_ = model_.constants();
-    // The Cauchy term's coefficient: the unrelaxed half-plane's.
-    top_.phi1 = model_.constants().phi1 / memory_.spectrum().ratio;
+    // The Cauchy term's coefficient and the surface sigma_x's local one: the
+    // unrelaxed half-plane's (phi2 = 1 at rest whatever the modulus).
+    top_.phi1 = inertial_.h_inf;
+    top_.phi2 = stress_.h_inf;
   }
   double vstar() const noexcept override { return model_.vstar(); }
   const WaveConstants& top() const noexcept override { return top_; }
@@ -200,9 +206,16 @@ class ViscoelasticLayerMedium final : public Medium {
     return detail::foundation_panel_edges(model_.kw(), model_.kp(), w);
   }
   cplx half_plane_m1(double t) const override {
-    return model_.constants().phi1 / visco_.modulus(t);
+    return half_plane_compliance(visco_, model_.vstar(), top_.nu, t);
   }
   const MemoryKernel* memory() const noexcept override { return &memory_; }
+  cplx half_plane_m2(double t) const override {
+    return half_plane_stress(visco_, model_.vstar(), top_.nu, t);
+  }
+  const RetardationSpectrum* stress_memory() const noexcept override {
+    return stress_.spectrum.c.empty() ? nullptr : &stress_.spectrum;
+  }
+  const RetardationSpectrum* compliance_memory() const noexcept override { return &compliance_; }
   const MediumSpec& spec() const noexcept override { return spec_; }
 
  private:
@@ -210,6 +223,8 @@ class ViscoelasticLayerMedium final : public Medium {
   LayerModel model_;
   DampedLayerModel damped_;
   Viscoelastic visco_;
+  InertialSpectrum inertial_, stress_;
+  RetardationSpectrum compliance_ = retardation_spectrum(visco_);
   MemoryKernel memory_;
   WaveConstants top_;
 };
@@ -375,17 +390,11 @@ std::shared_ptr<const Medium> make_medium(const MediumSpec& spec, double vstar) 
           "layers: a viscoelastic sublayer is solved as one homogeneous layer on springs (not "
           "yet in a stack, graded, or on a half-space); given " +
               describe(spec));
-    if (vstar != 0.0)
-      throw InvalidParameter(
-          "vstar", "0 for a viscoelastic layer (quasi-static: the speed enters through deborah)",
-          "vstar: a viscoelastic layer is solved quasi-statically (inertia neglected, vstar = 0; "
-          "the speed enters through deborah = V tau/h); given vstar = " +
-              str(vstar));
     if (spec.base.damping != 0.0)
       throw InvalidParameter(
           "damping", "0 under a viscoelastic layer",
-          "damping: dashpots under a quasi-static viscoelastic layer act through "
-          "damping sqrt(vstar) = 0; give damping = 0 (the layer's material dissipates)");
+          "damping: dashpots under a viscoelastic layer are not built; give damping = 0 (the "
+          "layer's material dissipates)");
     return std::make_shared<const ViscoelasticLayerMedium>(spec, vstar);
   }
   if (spec.homogeneous()) return std::make_shared<const HomogeneousMedium>(spec, vstar);

@@ -15,10 +15,14 @@
 #include "movingpunch/collocation.hpp"
 #include "movingpunch/errors.hpp"
 #include "movingpunch/jacobi.hpp"
+#include "movingpunch/layer_response.hpp"
 
 namespace movingpunch {
 
 namespace {
+
+constexpr double kPiV = 3.14159265358979323846;
+constexpr double kInfV = std::numeric_limits<double>::infinity();
 
 using cplx = std::complex<double>;
 
@@ -158,6 +162,273 @@ RetardationSpectrum retardation_spectrum(const Viscoelastic& v) {
   std::reverse(out.beta.begin(), out.beta.end());
   std::reverse(out.c.begin(), out.c.end());
   return out;
+}
+
+// ---------------------------------------------------------------------------
+// The inertial half-plane's memory (a continuous spectrum)
+
+std::complex<double> half_plane_stress(const Viscoelastic& v, double vstar, double nu, double t) {
+  if (vstar == 0.0) return 1.0;  // phi2(0): no modulus in it
+  return complex_wave_constants(vstar / v.modulus(t), nu).phi2;
+}
+
+double unrelaxed_phi1(const Viscoelastic& v, double vstar, double nu) {
+  const double ratio = v.ratio();
+  return wave_constants(vstar / ratio, nu).phi1 / ratio;
+}
+
+std::complex<double> half_plane_compliance(const Viscoelastic& v, double vstar, double nu,
+                                           double t) {
+  const cplx m = v.modulus(t);
+  if (vstar == 0.0) return (1.0 - nu) / m;
+  return complex_wave_constants(vstar / m, nu).phi1 / m;
+}
+
+namespace {
+
+// phi1(z + i0), phi2(z + i0) at real z >= 0 and the parts of their pole:
+// nT = sqrt(1 - z - i0) and nL = sqrt(1 - z/c2 - i0) (-i sqrt(.) beyond
+// their branch points), phi1 = nL/den, phi2 = num2/den (wave_constants').
+struct CutValue {
+  cplx phi1, phi2, nL, num2, den_prime;
+};
+CutValue on_cut(double z, double c2) {
+  const cplx nT = z < 1.0 ? cplx(std::sqrt(1.0 - z), 0.0) : cplx(0.0, -std::sqrt(z - 1.0));
+  const cplx nL = z < c2 ? cplx(std::sqrt(1.0 - z / c2), 0.0) : cplx(0.0, -std::sqrt(z / c2 - 1.0));
+  const cplx X = 1.0 + 1.0 / c2 - z / c2, Y = nL * nT;
+  // (1 - Y)(1 + Y) = z X: beyond the shear point 4 X/(1 + Y) = 4 (1 - Y)/z
+  // (1 + Y and X both vanish at z = c2 + 1).
+  const cplx q = z > 1.0 ? 4.0 * (1.0 - Y) / z : 4.0 * X / (1.0 + Y);
+  const cplx den = 4.0 - z - q;
+  const cplx num2 = q - 2.0 + 2.0 * (c2 - 2.0) / c2 - z * (c2 - 2.0) / c2;
+  // d den/dz (below the shear branch point: the Rayleigh pole's residue).
+  const cplx dY = -nT / (2.0 * c2 * nL) - nL / (2.0 * nT);
+  const cplx dden = -1.0 - 4.0 * ((-1.0 / c2) * (1.0 + Y) - X * dY) / ((1.0 + Y) * (1.0 + Y));
+  return {nL / den, num2 / den, nL, num2, dden};
+}
+
+// m at t = -i y (real): 1 - sum g_j y D_j/(1 - y D_j); and S = sum g_j D_j/(1 - y D_j)^2
+// (m'(-i y) = -i S).
+struct AxisModulus {
+  double m, S;
+};
+AxisModulus modulus_on_axis(const std::vector<std::pair<double, double>>& br, double y) {
+  AxisModulus a{1.0, 0.0};
+  for (const auto& b : br) {
+    const double q = 1.0 - y * b.first;
+    a.m -= b.second * y * b.first / q;
+    a.S += b.second * b.first / (q * q);
+  }
+  return a;
+}
+
+}  // namespace
+
+InertialSpectrum inertial_spectrum(const Viscoelastic& v, double vstar, double nu, double tol,
+                                   HalfPlaneSymbol which) {
+  if (!(vstar >= 0.0) || !(vstar < rayleigh_vstar(nu)))
+    throw std::invalid_argument("inertial_spectrum: 0 <= vstar < the Rayleigh vstar required");
+  const bool stress = which == HalfPlaneSymbol::stress;
+  InertialSpectrum out;
+  const RetardationSpectrum qs = retardation_spectrum(v);
+  out.spectrum.ratio = qs.ratio;
+  if (vstar == 0.0 || qs.c.empty()) {
+    // At rest phi2 = 1 whatever the modulus: no memory in the stress symbol.
+    if (!stress) out.spectrum = qs;
+    out.h_inf = stress ? wave_constants(vstar / qs.ratio, nu).phi2 : unrelaxed_phi1(v, vstar, nu);
+    return out;
+  }
+  const auto br = branches(v);  // D descending: poles 1/D ascending
+  const double ratio = qs.ratio;
+  const double c2 = wave_constants(0.0, nu).c2;
+  const double vr = rayleigh_vstar(nu);
+  out.h_inf = stress ? wave_constants(vstar / ratio, nu).phi2 : unrelaxed_phi1(v, vstar, nu);
+  const double hinf = out.h_inf;
+  // The exact f on the real axis (the check).
+  auto f_exact = [&](double t) {
+    return (stress ? half_plane_stress(v, vstar, nu, t) : half_plane_compliance(v, vstar, nu, t)) /
+               hinf -
+           1.0;
+  };
+  // Per interval k (between the poles 1/D_{k-1} (0) and 1/D_k of m on the
+  // axis, m falling from +inf (1) to -inf through its zero 1/beta_k): the
+  // Rayleigh pole, the shear point y_s (m = vstar), the P point y_p (m =
+  // vstar/c2) and the zero y_b.
+  struct Piece {
+    double ga, gb;     // the piece in gaps below the interval's zero (ga > gb >= 0)
+    std::size_t zero;  // the index of that zero 1/beta in qs
+  };
+  std::vector<double> pole_c, pole_beta;
+  std::vector<Piece> pieces;
+  // m at y = y_K - gap in its factored form prod_k (1 - y beta_k)/prod_j (1 -
+  // y D_j) (m(0) = 1), the factor of the interval's own zero 1/beta_K taken
+  // from gap: near that zero m is small and its sum form (or y itself) would
+  // lose the relative accuracy that the cut's square-root ends need.
+  auto m_at = [&](std::size_t zero, double gap) {
+    const double y = 1.0 / qs.beta[zero] - gap;
+    double m = 1.0;
+    for (std::size_t k = 0; k < qs.beta.size(); ++k)
+      m *= k == zero ? qs.beta[k] * gap : 1.0 - y * qs.beta[k];
+    for (const auto& b : br) m /= 1.0 - y * b.first;
+    return m;
+  };
+  // The gap in (0, span) where m (increasing in the gap) equals target.
+  auto gap_root = [&](std::size_t zero, double span, double target) {
+    // Bisection in log(gap) to the last bit (m ~ beta_K gap S_K near 0).
+    // (span >= 1e-18: lo stays a normal number; the midpoint in logarithms,
+    // whose product would underflow.)
+    double lo = span * 1e-280, hi = span;
+    if (!(m_at(zero, lo) < target)) return lo;
+    auto mid_of = [](double a, double b) { return std::exp(0.5 * (std::log(a) + std::log(b))); };
+    for (int it = 0; it < 2000; ++it) {
+      const double mid = mid_of(lo, hi);
+      if (!(mid > lo && mid < hi)) break;
+      (m_at(zero, mid) < target ? lo : hi) = mid;
+    }
+    return mid_of(lo, hi);
+  };
+  for (std::size_t k = 0; k < br.size(); ++k) {
+    const double lo = k == 0 ? 0.0 : 1.0 / br[k - 1].first;
+    const std::size_t zero = qs.beta.size() - 1 - k;  // the zeros ascend in y
+    const double yb = 1.0 / qs.beta[zero], span = yb - lo;
+    const double gR = gap_root(zero, span, vstar / vr);
+    const double gs = gap_root(zero, gR, vstar);
+    const double gp = gap_root(zero, gs, vstar / c2);
+    // The pole at z = v_R (m_R = vstar/v_R; m'(-i y) = -i S, z' = i vstar
+    // S/m^2): c = -i Res/y_R, beta = 1/y_R, Res the residue in t of
+    // phi1(z)/(m H_inf) (c = -nL m_R/(H_inf den' vstar S y_R)) or of
+    // phi2(z)/H_inf (c = -num2 m_R^2/(H_inf den' vstar S y_R)).
+    const double yR = yb - gR;
+    const double S = modulus_on_axis(br, yR).S;
+    const CutValue cv = on_cut(vr, c2);
+    const double mR = vstar / vr;
+    const double top = stress ? cv.num2.real() * mR * mR : cv.nL.real() * mR;
+    pole_c.push_back(-top / (hinf * cv.den_prime.real() * vstar * S * yR));
+    pole_beta.push_back(1.0 / yR);
+    pieces.push_back({gs, gp, zero});
+    pieces.push_back({gp, 0.0, zero});
+  }
+  // The cut's density at y = y_K - gap: Im f_+/(pi y), f_+ = phi1(z + i0)/(m
+  // H_inf) - 1 (or phi2(z + i0)/H_inf - 1).
+  auto density = [&](std::size_t zero, double gap) {
+    const double m = m_at(zero, gap);
+    if (!(m > 0.0)) return 0.0;
+    const double y = 1.0 / qs.beta[zero] - gap;
+    const CutValue cv = on_cut(vstar / m, c2);
+    return (stress ? cv.phi2.imag() : cv.phi1.imag() / m) / hinf / (kPiV * y);
+  };
+  // Check grid: real t from 1e-3/y_max to 1e3/y_min, 40 a decade, and t = 0.
+  const double ymin = 1.0 / *std::max_element(pole_beta.begin(), pole_beta.end());
+  const double ymax = 1.0 / qs.beta.front();
+  std::vector<double> grid{0.0};
+  const double t0 = 1e-3 / ymax, t1 = 1e3 / ymin;
+  const int npts = static_cast<int>(std::ceil(40.0 * std::log10(t1 / t0)));
+  for (int i = 0; i <= npts; ++i) grid.push_back(t0 * std::pow(t1 / t0, double(i) / npts));
+  std::vector<cplx> exact(grid.size());
+  double scale = 1.0;  // tol is relative to the largest |f| (f(0) = H(0)/H_inf - 1 ~ ratio)
+  for (std::size_t i = 0; i < grid.size(); ++i) {
+    exact[i] = f_exact(grid[i]);
+    scale = std::max(scale, std::abs(exact[i]));
+  }
+  auto error_of = [&](const RetardationSpectrum& sp) {
+    double err = 0.0;
+    for (std::size_t i = 0; i < grid.size(); ++i)
+      err = std::max(err, std::abs(sp.memory(grid[i]) - exact[i]));
+    return err;
+  };
+  auto finish = [&](RetardationSpectrum sp, double err) {
+    // Ascending beta, as retardation_spectrum's.
+    std::vector<std::size_t> idx(sp.beta.size());
+    for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = i;
+    std::sort(idx.begin(), idx.end(), [&](auto a, auto b) { return sp.beta[a] < sp.beta[b]; });
+    out.spectrum.c.clear();
+    out.spectrum.beta.clear();
+    for (std::size_t i : idx) {
+      out.spectrum.c.push_back(sp.c[i]);
+      out.spectrum.beta.push_back(sp.beta[i]);
+    }
+    out.error = err;
+    return out;
+  };
+  for (int n = 16; n <= 256; n *= 2) {
+    RetardationSpectrum sp;
+    sp.ratio = ratio;
+    sp.c = pole_c;
+    sp.beta = pole_beta;
+    // The cut's terms of each interval (their beta span [lo, hi]).
+    std::vector<std::vector<std::pair<double, double>>> cut(br.size());  // (beta, c)
+    const std::shared_ptr<const JacobiRule> gl = cached_gauss_jacobi(n, 0.0, 0.0);
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+      const Piece& p = pieces[i];
+      for (Eigen::Index q = 0; q < gl->x.size(); ++q) {
+        // gap = gb + (ga - gb) cos^2(th/2), th in [0, pi] (the square roots
+        // at both ends analytic in th); |d gap| = (ga - gb)/2 sin th d th.
+        const double th = 0.5 * kPiV * (gl->x(q) + 1.0);
+        const double cb = std::cos(0.5 * th);
+        const double gap = p.gb + (p.ga - p.gb) * cb * cb;
+        const double wgt = 0.5 * kPiV * gl->w(q) * 0.5 * (p.ga - p.gb) * std::sin(th);
+        const double c = density(p.zero, gap) * wgt;
+        if (c == 0.0) continue;
+        cut[i / 2].emplace_back(1.0 / (1.0 / qs.beta[p.zero] - gap), c);
+      }
+    }
+    RetardationSpectrum full = sp;
+    for (const auto& terms : cut)
+      for (const auto& [beta, c] : terms) {
+        full.beta.push_back(beta);
+        full.c.push_back(c);
+      }
+    const double err = error_of(full);
+    out.error = err;
+    if (!(err <= tol * scale)) continue;
+    // Compressed: each interval's cut terms moved onto d + 1 Chebyshev points
+    // in log beta over their span (c'_j = sum_k c_k l_j(log beta_k), l_j the
+    // Lagrange basis): 1/(1 - i beta t) is analytic in log beta within pi/2
+    // of the real axis at every t, so a span of a few e-folds needs a few
+    // dozen points where the quadrature has 2n. Accepted once the whole
+    // sum still matches f to tol; else the quadrature's own terms.
+    for (int d = 4; d <= 64 && d + 1 < n; d += 4) {
+      RetardationSpectrum cmp = sp;
+      for (const auto& terms : cut) {
+        if (terms.empty()) continue;
+        double lo = kInfV, hi = -kInfV;
+        for (const auto& tc : terms) {
+          lo = std::min(lo, std::log(tc.first));
+          hi = std::max(hi, std::log(tc.first));
+        }
+        std::vector<double> xs(static_cast<std::size_t>(d) + 1), cs(xs.size(), 0.0);
+        for (int j = 0; j <= d; ++j)
+          xs[static_cast<std::size_t>(j)] = std::cos(kPiV * j / d);  // Chebyshev extrema
+        for (const auto& [beta, c] : terms) {
+          const double x = hi > lo ? (2.0 * std::log(beta) - lo - hi) / (hi - lo) : 0.0;
+          // Barycentric Lagrange basis at x (weights (-1)^j, halved at the ends).
+          double den = 0.0;
+          std::vector<double> l(xs.size());
+          std::size_t exact_node = xs.size();
+          for (std::size_t j = 0; j < xs.size(); ++j) {
+            const double wj = ((j % 2) ? -1.0 : 1.0) * ((j == 0 || j + 1 == xs.size()) ? 0.5 : 1.0);
+            if (x == xs[j]) exact_node = j;
+            l[j] = x == xs[j] ? 0.0 : wj / (x - xs[j]);
+            den += l[j];
+          }
+          for (std::size_t j = 0; j < xs.size(); ++j)
+            cs[j] += c * (exact_node < xs.size() ? (j == exact_node ? 1.0 : 0.0) : l[j] / den);
+        }
+        for (std::size_t j = 0; j < xs.size(); ++j) {
+          cmp.beta.push_back(std::exp(0.5 * (lo + hi) + 0.5 * (hi - lo) * xs[j]));
+          cmp.c.push_back(cs[j]);
+          if (!(hi > lo)) break;  // one point carries it all
+        }
+      }
+      const double e = error_of(cmp);
+      if (e <= tol * scale) return finish(cmp, e);
+    }
+    return finish(full, err);
+  }
+  std::ostringstream m;
+  m << "viscoelastic half-plane with inertia: the memory's spectrum did not reach " << tol
+    << " at 256 nodes a piece (vstar = " << vstar << ", error " << out.error << ")";
+  throw ConvergenceError(m.str());
 }
 
 // ---------------------------------------------------------------------------

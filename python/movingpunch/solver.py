@@ -635,15 +635,6 @@ def _solve_layered(
             allowed="a bounded contact (cylinder, rounded flat, table) on a graded top",
         )
     fric = check_friction(friction)
-    if medium.viscoelastic and _check_vstar(vstar) != 0.0:
-        raise InvalidParameterError(
-            f"vstar = {vstar!r}: a viscoelastic layer with inertia is not solved "
-            "yet (the quasi-static layer is: vstar=0 with the speed in the "
-            "deborah numbers, or the material given by its relaxation time, "
-            "Zener(ratio, tau=...), with inertia=False)",
-            parameter="vstar",
-            allowed="0 beside a viscoelastic sublayer (or inertia=False)",
-        )
     asymmetric_shape = isinstance(shape, Profile) and not shape.symmetric
     zoned = mode == "auto" and fric == 0.0 and not isinstance(shape, Flat)
     springs = medium.base if isinstance(medium.base, Winkler) else None

@@ -311,9 +311,6 @@ def test_what_is_not_solved_yet_is_refused_by_name():
     layer = [mp.Layer(nu=NU, viscoelastic=mp.Zener(2.0, 0.1))]
     args = {"load": 0.002, "layers": layer, "base": mp.Winkler(1.0)}
     with pytest.raises(InvalidParameterError) as e:
-        mp.solve(vstar=0.1, radius=R, **args)
-    assert e.value.parameter == "vstar"
-    with pytest.raises(InvalidParameterError) as e:
         mp.solve(vstar=0.0, radius=R, friction=0.2, **args)
     assert e.value.parameter == "friction"
     for shape in (mp.RoundedFlat(0.3, 100.0), mp.Flat(0.1)):

@@ -53,10 +53,11 @@ class DampedLayerModel {
   // vstar in [0, 1), kw in (0, inf], nu in [0, 0.5), damping >= 0 finite,
   // kp in [0, kMaxKp] (the Pasternak shear layer; 0: springs alone);
   // throws std::invalid_argument naming the parameter otherwise.
-  // visco: a quasi-static viscoelastic layer (vstar = 0; viscoelastic.hpp):
-  // the layer in units of its modulus at each frequency, mu_0 m(t), so that
-  // the foundation is kw(alpha)/m(t) and the displacements of the response
-  // are per mu_0 m(t) (the medium divides them by m(t), medium.cpp).
+  // visco: a viscoelastic layer (viscoelastic.hpp): the layer in units of
+  // its modulus at each frequency, mu_0 m(t), so that the foundation is
+  // kw(alpha)/m(t), the speed vstar/m(t) (complex wave constants at each t
+  // when vstar > 0) and the displacements of the response are per mu_0 m(t)
+  // (the medium divides them by m(t), medium.cpp).
   DampedLayerModel(double vstar, double kw, double nu, double damping, double kp = 0.0,
                    Viscoelastic visco = {});
 
@@ -101,6 +102,10 @@ class DampedLayerModel {
   double kp_ = 0.0;
   TangentialHalfPlane tq_;
   Viscoelastic visco_;
+  // A viscoelastic layer with inertia (vstar > 0): the wave constants of
+  // vstar/m(t) at each t (complex), constants_at.
+  bool inertial_ = false;
+  ComplexWaveConstants constants_at(double t) const;
 };
 
 // Adaptive (Gauss-Kronrod 7/15) panels on [0, alpha_max] resolving
@@ -483,6 +488,9 @@ class AsymmetricSolution {
   // A viscoelastic top's memory part of the surface displacement per load
   // phi1 at x, given U(x) (the half-plane potential, hp).
   double memory_displacement(const Surface& s, double x, double hp) const;
+  // A viscoelastic top with inertia: the surface sigma_x's memory,
+  // sum_k d_k (e_k * p)(x) (Medium::stress_memory()), added to p in -phi2 p.
+  double stress_memory_part(double x) const;
   // A viscoelastic top's v(x, y)/(P/(mu h)) at depth y < 0 (one row).
   Eigen::VectorXd memory_depth_displacement(const Eigen::Ref<const Eigen::VectorXd>& x,
                                             double y) const;

@@ -15,30 +15,38 @@
 //    difference (regular at vstar = 0, never overflows).
 #pragma once
 
+#include <complex>
+
 #include <Eigen/Dense>
 
 namespace movingpunch {
 
 // Wave constants of the layer for one (vstar, nu); everything the layer
 // response and the closed forms need, computed without cancellation.
-struct WaveConstants {
-  double s = 0;      // vstar
-  double nu = 0;     // Poisson's ratio
-  double c2 = 0;     // c_L^2 / c_T^2 = (kappa + 1) / (kappa - 1)
-  double nT = 1;     // sqrt(1 - s)
-  double nL = 1;     // sqrt(1 - s / c2)
-  double delta = 0;  // nL - nT >= 0, computed without cancellation
-  double phi1 = 0;   // lim_{alpha -> inf} M1 (moving half-plane factor)
-  double phi2 = 0;   // lim_{alpha -> inf} M2
+// T = double: a real speed (every elastic medium); T = std::complex<double>:
+// the complex vstar/m(t) of a viscoelastic layer with inertia, whose square
+// roots are the principal ones (Re > 0: s is never real beyond 1 there).
+template <class T>
+struct BasicWaveConstants {
+  T s{0};         // vstar
+  double nu = 0;  // Poisson's ratio
+  double c2 = 0;  // c_L^2 / c_T^2 = (kappa + 1) / (kappa - 1)
+  T nT{1};        // sqrt(1 - s)
+  T nL{1};        // sqrt(1 - s / c2)
+  T delta{0};     // nL - nT >= 0, computed without cancellation
+  T phi1{0};      // lim_{alpha -> inf} M1 (moving half-plane factor)
+  T phi2{0};      // lim_{alpha -> inf} M2
   // Divided differences (v_L - v_T) / delta of the mode vectors [U, W, T, S].
-  double dW = 0, dT = 0, dS = 0;
+  T dW{0}, dT{0}, dS{0};
   // Rows of the first-order system z' = alpha A z, z = [U, W, tau/alpha, sigma_y/alpha].
-  Eigen::Matrix4d A;
+  Eigen::Matrix<T, 4, 4> A;
   // Half-plane solution (sigma_y/alpha = -1, tau = 0 at y = 0) on the top
   // regularised basis: z_hp(y) = hp1 e^{nT t y} v_T + hp2 d(t, y), with
   // d = e^{nL t y} dv + v_T (e^{nL t y} - e^{nT t y}) / delta. Independent of t.
-  double hp1 = 0, hp2 = 0;
+  T hp1{0}, hp2{0};
 };
+using WaveConstants = BasicWaveConstants<double>;
+using ComplexWaveConstants = BasicWaveConstants<std::complex<double>>;
 
 // sigma_x / alpha from the state [U, W, tau/alpha, sigma_y/alpha] (Hooke's law).
 inline double sigma_x_hat(const WaveConstants& c, const Eigen::Vector4d& z) {
@@ -67,6 +75,10 @@ class ModeField {
 
 // Throws std::invalid_argument unless 0 <= vstar < 1 and 0 <= nu < 0.5.
 WaveConstants wave_constants(double vstar, double nu);
+// The same closed forms at a complex speed (a viscoelastic layer with inertia:
+// s = vstar/m(t), Im s >= 0); throws std::invalid_argument unless s is finite,
+// not real >= 1 and 0 <= nu < 0.5.
+ComplexWaveConstants complex_wave_constants(std::complex<double> s, double nu);
 
 // Rayleigh speed rho c_R^2 / mu for Poisson's ratio nu.
 double rayleigh_vstar(double nu);

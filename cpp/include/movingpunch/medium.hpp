@@ -313,6 +313,16 @@ class Medium {
   virtual cplx half_plane_m1(double /*t*/) const { return phi1(); }
   // The memory part of the kernel of a viscoelastic top (null: none).
   virtual const MemoryKernel* memory() const noexcept { return nullptr; }
+  // The top's half-plane surface sigma_x symbol, which the surface stress's
+  // quadrature subtracts from M2: phi2() (a constant) but for a viscoelastic
+  // top with inertia, phi2(vstar/m(t)) = phi2 (1 + sum_k d_k/(1 - i beta_k t)),
+  // whose memory (d_k, beta_k) stress_memory() gives (null: none).
+  virtual cplx half_plane_m2(double /*t*/) const { return phi2(); }
+  virtual const RetardationSpectrum* stress_memory() const noexcept { return nullptr; }
+  // A viscoelastic top's material compliance, m_inf/m(t) - 1 = sum_k c_k/(1 -
+  // i beta_k t) (its retardation spectrum; the memory() of the quasi-static
+  // layer, not of one with inertia); null for an elastic top.
+  virtual const RetardationSpectrum* compliance_memory() const noexcept { return nullptr; }
   // The homogeneous layer on springs as DampedLayerModel (its closed-form
   // modal fields are the fast path of the asymmetric solver's depth
   // outputs); null for any other medium.

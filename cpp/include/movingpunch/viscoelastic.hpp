@@ -75,6 +75,42 @@ struct RetardationSpectrum {
 };
 RetardationSpectrum retardation_spectrum(const Viscoelastic& v);
 
+// With inertia (docs/theory.md section 17.6): the half-plane's surface
+// compliance H(t) = phi1(vstar/m(t))/m(t) (over mu_0) over its unrelaxed value
+// H_inf = phi1(vstar/m_inf)/m_inf, less 1, as the same sum (the memory of
+// the material ahead of a point): f = H/H_inf - 1 is analytic off the
+// negative imaginary t axis, where m is real; there it has a pole where
+// vstar/m reaches the Rayleigh speed (one per branch: c_k exact from its
+// residue) and a cut where vstar/m >= 1 (the supersonic, radiating modes, up
+// to the zero of m), whose density Im f/(pi y) at t = -i y is integrated by
+// Gauss-Legendre nodes in angles that make its square-root ends analytic
+// (each node one term; the c_k of the cut may be of either sign). The nodes
+// are doubled until the sum matches f to `tol` relative to max |f| (f(0) =
+// H(0)/H_inf - 1 ~ m_inf - 1; over real t on a grid spanning the spectrum);
+// `error` is the largest difference found (absolute).
+// vstar = 0: retardation_spectrum. Requires 0 <= vstar < rayleigh_vstar(nu)
+// (std::invalid_argument otherwise); ConvergenceError if tol is not met at
+// 256 nodes a piece.
+// which = stress: the same for the surface sigma_x's half-plane symbol
+// phi2(vstar/m(t)) (no 1/m: stresses per unit pressure), over phi2(vstar/
+// m_inf): at rest it is constant (an empty spectrum).
+enum class HalfPlaneSymbol { compliance, stress };
+struct InertialSpectrum {
+  RetardationSpectrum spectrum;
+  double h_inf = 0;  // H_inf (phi2(vstar/m_inf) for the stress symbol)
+  double error = 0;  // max |sum - f| on the check grid
+};
+InertialSpectrum inertial_spectrum(const Viscoelastic& v, double vstar, double nu,
+                                   double tol = 1e-13,
+                                   HalfPlaneSymbol which = HalfPlaneSymbol::compliance);
+// H_inf = phi1(vstar/m_inf)/m_inf: the Cauchy term's coefficient.
+double unrelaxed_phi1(const Viscoelastic& v, double vstar, double nu);
+// phi2(vstar/m(t)), t >= 0: the surface sigma_x's half-plane symbol.
+std::complex<double> half_plane_stress(const Viscoelastic& v, double vstar, double nu, double t);
+// H(t) = phi1(vstar/m(t))/m(t), t >= 0 (principal roots).
+std::complex<double> half_plane_compliance(const Viscoelastic& v, double vstar, double nu,
+                                           double t);
+
 // The memory part of the kernel of the asymmetric equation (docs/damped.md
 // section 2, the term -(1/pi) int p(xi) K(x - xi) d xi) for a quasi-static
 // viscoelastic top:

@@ -1014,21 +1014,12 @@ def _check_medium_speed(
     reports why). A quasi-static medium (inertia false): its speed must set
     the relaxation of a material given by tau, keep its deborah numbers in
     range and stay below the relaxed layer's V*_cr (``below_critical_speed``);
-    a viscoelastic medium with inertia takes vstar = 0 only (inertia in it is
-    not solved yet)."""
+    a viscoelastic medium with inertia keeps its deborah numbers in range and
+    stays below the relaxed layer's V*_cr (the medium's)."""
     from movingpunch.solver import below_critical_speed
 
     speed = p["vstar"]
-    if not medium.inertia or (medium.viscoelastic and speed > 0.0):
-        if medium.inertia:
-            raise c.fail(
-                where["vstar"],
-                f"vstar = {speed:.10g} beside a viscoelastic sublayer: a "
-                "viscoelastic layer with inertia is not solved yet",
-                "vstar = 0 (the speed in the deborah numbers), or [params] "
-                "inertia = false with the material given by tau",
-                "vstar",
-            )
+    if not medium.inertia:
         if speed > 0.0 and not medium.speed_dependent:
             raise c.fail(
                 where["vstar"],
@@ -1044,6 +1035,11 @@ def _check_medium_speed(
         except InvalidParameterError as exc:
             raise c.fail(where["vstar"], str(exc), exc.allowed or "", "vstar") from exc
         return
+    if medium.speed_dependent and speed > 0.0:
+        try:
+            medium.at_speed(speed)
+        except InvalidParameterError as exc:
+            raise c.fail(where["vstar"], str(exc), exc.allowed or "", "vstar") from exc
     vcr = medium_critical_speed(medium)
     if vcr is None or p["vstar"] == 0.0 or p["vstar"] < vcr:
         return

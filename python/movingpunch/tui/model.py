@@ -215,7 +215,10 @@ GRID_LABELS: dict[str, str] = {
 
 
 def fmt(value: float, digits: int = 6) -> str:
-    """A compact number: ``inf`` for infinity, else ``digits`` significant."""
+    """A compact number: ``inf`` for infinity, ``n/a`` for NaN (a quantity
+    the medium does not give), else ``digits`` significant."""
+    if math.isnan(value):
+        return "n/a"
     if math.isinf(value):
         return "inf" if value > 0 else "-inf"
     return f"{value:.{digits}g}"
@@ -683,7 +686,10 @@ def summary_hints(s: Summary) -> tuple[str, ...]:
         indentation = s.indentation
         half = half_length((s.contact_interval,))
         load = s.params.load
-    peak = max(abs(s.p0), abs(s.top_tensile), abs(s.bottom_tensile))
+    peak = max(
+        [abs(s.p0)]
+        + [abs(v) for v in (s.top_tensile, s.bottom_tensile) if not math.isnan(v)]
+    )
     return regime_hints(
         indentation=indentation,
         half_length=half,
@@ -866,15 +872,21 @@ def medium_limits(params: Params) -> tuple[float, float]:
 
 def summary(cache: Cache, params: Params) -> Summary:
     s = solution(cache, params)
-    peaks = cache.get_or_make(("peaks", params), s.stress_peaks)
-    assert isinstance(peaks, StressPeaks)
+    try:
+        peaks = cache.get_or_make(("peaks", params), s.stress_peaks)
+        assert isinstance(peaks, StressPeaks)
+        top, bottom = peaks.top_tensile, peaks.bottom_tensile
+    except InvalidParameterError:
+        # An output the medium does not give (the stresses of a viscoelastic
+        # layer with inertia): shown as n/a, never another medium's number.
+        top = bottom = math.nan
     return Summary(
         params=params,
         a=s.a,
         p0=s.p0,
         indentation=s.indentation,
-        top_tensile=peaks.top_tensile,
-        bottom_tensile=peaks.bottom_tensile,
+        top_tensile=top,
+        bottom_tensile=bottom,
         iterations=s.iterations,
         error_estimate=s.error_estimate,
         elapsed=s.elapsed,
@@ -957,7 +969,11 @@ def compute(
             return None
         data = table
     elif request.tab == "field":
-        data = _field(cache, request.params, request.quantity)
+        try:
+            data = _field(cache, request.params, request.quantity)
+        except InvalidParameterError as exc:
+            # An output the medium does not give (the solve itself succeeded).
+            data = Notice("field", _one_line(exc))
     elif (
         request.tab == "sweep"
         and request.params.punches
@@ -980,7 +996,11 @@ def compute(
             return None
         data = out
     else:
-        data = _curves(cache, request.tab, solved, report, stop)
+        try:
+            data = _curves(cache, request.tab, solved, report, stop)
+        except InvalidParameterError as exc:
+            # An output the medium does not give (the solve itself succeeded).
+            data = Notice(request.tab, _one_line(exc))
     return Result(request=request, summary=head, data=data, notes=tuple(notes))
 
 
