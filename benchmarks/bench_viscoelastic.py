@@ -13,8 +13,12 @@ against the same layer elastic, and a resistance curve of 100 speeds.
   deborah alone; each speed is a new medium, so a new kernel table), run
   twice: the first run, and the second (the process warm; the tables are
   kept only for the 16 most recent media).
+* With the layer's inertia: the Zener layer and a three-branch Prony layer
+  moving at vstar 0.1 (warm), against the elastic layer at vstar 0.1 on the
+  asymmetric solver.
 * The same as a user sweeps one material: ``Zener(ratio, tau=...)`` with
-  ``inertia=False`` over 100 speeds vstar (deborah = sqrt(vstar) tau), and
+  ``inertia=False`` over 100 speeds vstar (deborah = sqrt(vstar) tau), the
+  same material moving with its inertia over 100 speeds 1e-4 ... 0.5, and
   the bundled scene ``viscoelastic-bell`` (41 speeds) run with one and two
   worker processes.
 
@@ -49,12 +53,15 @@ def _median_ms(run: Callable[[float], object], repeat: int) -> float:
     return statistics.median(times)
 
 
+PRONY = mp.Prony((1.0, 3.0, 0.5), (0.01, 1.0, 30.0))
+
+
 def zener(
-    load: float, deborah: float = 0.1, ratio: float = 2.0
+    load: float, deborah: float = 0.1, ratio: float = 2.0, vstar: float = 0.0
 ) -> mp.AsymmetricSolution:
     layer = mp.Layer(nu=NU, viscoelastic=mp.Zener(ratio, deborah))
     s = mp.solve(
-        vstar=0.0, load=load, radius=RADIUS, layers=[layer], base=mp.Winkler(KW)
+        vstar=vstar, load=load, radius=RADIUS, layers=[layer], base=mp.Winkler(KW)
     )
     assert isinstance(s, mp.AsymmetricSolution)
     return s
@@ -78,6 +85,25 @@ def main() -> None:
         ),
         args.repeat,
     )
+    # With the layer's inertia: the same layer moving at vstar 0.1, against
+    # the elastic layer at vstar 0.1 on the asymmetric solver.
+    moving = _median_ms(lambda load: zener(load, vstar=0.1), args.repeat)
+    prony = _median_ms(
+        lambda load: mp.solve(
+            vstar=0.1,
+            load=load,
+            radius=RADIUS,
+            layers=[mp.Layer(nu=NU, viscoelastic=PRONY)],
+            base=mp.Winkler(KW),
+        ),
+        args.repeat,
+    )
+    asym_moving = _median_ms(
+        lambda load: mp.solve(
+            vstar=0.1, load=load, radius=RADIUS, kw=KW, nu=NU, friction=1e-12
+        ),
+        args.repeat,
+    )
     print(f"{'warm solve':44} {'ms':>8} {'visco/it':>9}")
     for name, ms in (
         ("Zener layer (ratio 2, deborah 0.1)", visco),
@@ -86,6 +112,13 @@ def main() -> None:
         ("NumPy baseline cylinder (N = 24)", peer_ms),
     ):
         print(f"{name:44} {ms:8.2f} {visco / ms:9.1f}")
+    print(f"{'warm solve at vstar 0.1 (inertia)':44} {'ms':>8} {'/elastic':>9}")
+    for name, ms in (
+        ("Zener layer moving (ratio 2, deborah 0.1)", moving),
+        ("Prony layer moving (3 branches)", prony),
+        ("elastic layer moving, asymmetric solver", asym_moving),
+    ):
+        print(f"{name:44} {ms:8.2f} {ms / asym_moving:9.1f}")
     deborahs = np.geomspace(1e-3, 10.0, args.speeds)
     for run in ("first", "second"):
         t0 = time.perf_counter()
@@ -114,6 +147,23 @@ def main() -> None:
     print(
         f"one material by its speed (tau, inertia=False), {args.speeds} speeds: "
         f"{total:.2f} s ({1e3 * total / args.speeds:.1f} ms a speed)"
+    )
+    # The same material moving with its inertia (speeds below the relaxed
+    # layer's V*_cr): each speed a new medium (its memory of a pole and a cut).
+    moving_speeds = np.geomspace(1e-4, 0.5, args.speeds)
+    t0 = time.perf_counter()
+    for v in moving_speeds:
+        mp.solve(
+            vstar=float(v),
+            load=LOAD,
+            radius=RADIUS,
+            layers=[mp.Layer(nu=NU, viscoelastic=mp.Zener(2.0, tau=1.0))],
+            base=mp.Winkler(KW),
+        )
+    total = time.perf_counter() - t0
+    print(
+        f"one material moving (tau = 1, inertia), {args.speeds} speeds 1e-4 ... "
+        f"0.5: {total:.2f} s ({1e3 * total / args.speeds:.1f} ms a speed)"
     )
     for jobs in (1, 2):
         scene = mp.Scene.bundled("viscoelastic-bell")

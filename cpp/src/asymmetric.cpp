@@ -1948,7 +1948,8 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
       const double spacing = ws.w * (1.0 - std::cos(kPi / (nd.n + 1)));
       double weight = 0.0, beta_min = kInf;
       for (std::size_t k = 0; k < sp.c.size(); ++k) {
-        if (sp.beta[k] < 2.0 * spacing) weight += sp.c[k] * sp.beta[k] / ws.w;
+        // (|c_k|: the terms of a layer with inertia are of either sign.)
+        if (sp.beta[k] < 2.0 * spacing) weight += std::fabs(sp.c[k]) * sp.beta[k] / ws.w;
         beta_min = std::min(beta_min, sp.beta[k]);
       }
       if (weight > prm.tol) {
@@ -3431,15 +3432,12 @@ auto exponential_convolution(const Panel& panel, double u, double beta, double l
   return conv;
 }
 
-}  // namespace
-
-double AsymmetricSolution::stress_memory_part(double x) const {
-  // sum_k d_k (e_k * p)(x), e_k * p = int_0^inf e^-tau p(x + beta_k tau) d tau
-  // (the material ahead of x; memory_displacement's convention), to 1e-14 of
-  // the largest pressure: 0 beyond the contact's front end.
-  const RetardationSpectrum& sp = *model_->stress_memory();
-  const double left = centre_ - half_, right = centre_ + half_;
-  if (x >= right) return 0.0;
+// sum_k c_k int_0^40 e^-tau F(u + beta_k tau) d tau for a scalar F (the
+// spectrum's causal exponentials applied to F at u; exponential_convolution
+// per term, 16-point Gauss-Legendre panels).
+template <class F>
+double spectrum_convolution(const RetardationSpectrum& sp, const F& f, double u, double left,
+                            double right, double tol, const std::string& what) {
   static const std::shared_ptr<const JacobiRule> gl = cached_gauss_jacobi(16, 0.0, 0.0);
   double out = 0.0;
   for (std::size_t k = 0; k < sp.c.size(); ++k) {
@@ -3449,14 +3447,26 @@ double AsymmetricSolution::stress_memory_part(double x) const {
       double sum = 0.0;
       for (Eigen::Index q = 0; q < gl->x.size(); ++q) {
         const double t = m + h * gl->x(q);
-        sum += gl->w(q) * std::exp(-t) * pressure(x + beta * t);
+        sum += gl->w(q) * std::exp(-t) * f(u + beta * t);
       }
       return Eigen::Matrix<double, 1, 1>(h * sum);
     };
-    out += sp.c[k] * exponential_convolution(panel, x, beta, left, right, 1e-14 * max_p_,
-                                             "surface stress")(0);
+    out += sp.c[k] * exponential_convolution(panel, u, beta, left, right, tol, what)(0);
   }
   return out;
+}
+
+}  // namespace
+
+double AsymmetricSolution::stress_memory_part(double x) const {
+  // sum_k d_k (e_k * p)(x), e_k * p = int_0^inf e^-tau p(x + beta_k tau) d tau
+  // (the material ahead of x; memory_displacement's convention), to 1e-14 of
+  // the largest pressure: 0 beyond the contact's front end.
+  const double left = centre_ - half_, right = centre_ + half_;
+  if (x >= right) return 0.0;
+  return spectrum_convolution(
+      *model_->stress_memory(), [this](double at) { return pressure(at); }, x, left, right,
+      1e-14 * max_p_, "surface stress");
 }
 
 StressField AsymmetricSolution::compliance_stress_field(
@@ -3539,7 +3549,6 @@ Eigen::VectorXd AsymmetricSolution::memory_depth_displacement(
   std::vector<double> g_re, g_im;
   f.coefficients(g, g_re, g_im);
   auto hp = [&](double u) { return detail::half_plane_displacement(c, b_, w, u, y, 1); };
-  static const std::shared_ptr<const JacobiRule> gl = cached_gauss_jacobi(16, 0.0, 0.0);
   // The convolution's tolerance: 1e-14 of HP at the contact's centre (its
   // scale) or of HP here, whichever is larger (HP varies on the scale |y|
   // near the contact's ends).
@@ -3551,22 +3560,9 @@ Eigen::VectorXd AsymmetricSolution::memory_depth_displacement(
       continue;
     }
     const double u = x(j) - centre_, here = hp(u);
-    double mem = 0.0;
-    for (std::size_t k = 0; k < sp.c.size(); ++k) {
-      const double beta = sp.beta[k];
-      auto panel = [&](double lo, double hi) {
-        const double m = 0.5 * (lo + hi), h = 0.5 * (hi - lo);
-        double sum = 0.0;
-        for (Eigen::Index q = 0; q < gl->x.size(); ++q) {
-          const double t = m + h * gl->x(q);
-          sum += gl->w(q) * std::exp(-t) * hp(u + beta * t);
-        }
-        return Eigen::Matrix<double, 1, 1>(h * sum);
-      };
-      mem += sp.c[k] * exponential_convolution(panel, u, beta, -w, w,
-                                               1e-14 * std::max(std::fabs(here), scale),
-                                               "displacement at y = " + std::to_string(y))(0);
-    }
+    const double mem =
+        spectrum_convolution(sp, hp, u, -w, w, 1e-14 * std::max(std::fabs(here), scale),
+                             "displacement at y = " + std::to_string(y));
     v(j) = params_.load * (f.fourier(g_re, g_im, u) / kPi + (here + mem) / ratio);
   }
   return v;

@@ -161,7 +161,7 @@ class ViscoelasticLayerMedium final : public Medium {
         visco_(spec.layers[0].visco),
         inertial_(inertial_spectrum(visco_, vstar, spec.layers[0].nu)),
         stress_(
-            inertial_spectrum(visco_, vstar, spec.layers[0].nu, 1e-13, HalfPlaneSymbol::stress)),
+            inertial_spectrum(visco_, vstar, spec.layers[0].nu, 1e-12, HalfPlaneSymbol::stress)),
         memory_(inertial_.spectrum) {
     top_ = model_.constants();
     // The Cauchy term's coefficient and the surface sigma_x's local one: the

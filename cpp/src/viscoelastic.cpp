@@ -317,11 +317,12 @@ InertialSpectrum inertial_spectrum(const Viscoelastic& v, double vstar, double n
     const CutValue cv = on_cut(vstar / m, c2);
     return (stress ? cv.phi2.imag() : cv.phi1.imag() / m) / hinf / (kPiV * y);
   };
-  // Check grid: real t from 1e-3/y_max to 1e3/y_min, 40 a decade, and t = 0.
+  // Check grid: real t from 1e-3 y_min to 1e3 y_max, 40 a decade, and t = 0.
   const double ymin = 1.0 / *std::max_element(pole_beta.begin(), pole_beta.end());
   const double ymax = 1.0 / qs.beta.front();
   std::vector<double> grid{0.0};
-  const double t0 = 1e-3 / ymax, t1 = 1e3 / ymin;
+  // (1/(1 - i beta t) varies where t is about 1/beta = y.)
+  const double t0 = 1e-3 * ymin, t1 = 1e3 * ymax;
   const int npts = static_cast<int>(std::ceil(40.0 * std::log10(t1 / t0)));
   for (int i = 0; i <= npts; ++i) grid.push_back(t0 * std::pow(t1 / t0, double(i) / npts));
   std::vector<cplx> exact(grid.size());

@@ -234,10 +234,11 @@ def add_medium_options(p: argparse.ArgumentParser) -> None:
         default=None,
         metavar="RATIO,DEBORAH",
         help="the top sublayer is a standard linear solid: mu_inf/mu_0 = RATIO "
-        ">= 1 (its MU is mu_0), DEBORAH = V tau/h >= 0; solved quasi-statically "
-        "(--vstar 0), giving the drag and the dissipation (docs/theory.md "
-        "section 17). RATIO,tau=TAU gives the relaxation time in h/c_T0 instead "
-        "(deborah = sqrt(vstar) TAU; with --quasi-static)",
+        ">= 1 (its MU is mu_0), DEBORAH = V tau/h >= 0; solved moving at "
+        "--vstar with the layer's inertia (or at rest), giving the drag and the "
+        "dissipation (docs/theory.md section 17). RATIO,tau=TAU gives the "
+        "relaxation time in h/c_T0 instead (deborah = sqrt(vstar) TAU; "
+        "--quasi-static neglects the inertia)",
     )
     material.add_argument(
         "--prony",

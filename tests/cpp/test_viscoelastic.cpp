@@ -282,3 +282,88 @@ TEST(Viscoelastic, DescendingRowsAreEachRowsMoments) {
   std::vector<double> out(4);
   EXPECT_THROW(mp::memory_moments_descending(bad, 2, 1.0, 2, out.data()), std::invalid_argument);
 }
+
+// ---------------------------------------------------------------------------
+// With inertia (docs/theory.md section 17.6)
+
+TEST(Viscoelastic, ComplexWaveConstantsAtARealSpeedAreTheRealOnes) {
+  // The templated closed forms: complex s on the real axis gives the real
+  // constants, the modal columns and the transfer matrix to round-off.
+  for (double s : {1e-9, 0.1, 0.5, 0.85})
+    for (double nu : {0.0, 0.25, 0.49}) {
+      if (!(s < mp::rayleigh_vstar(nu))) continue;
+      const mp::WaveConstants r = mp::wave_constants(s, nu);
+      const mp::ComplexWaveConstants c = mp::complex_wave_constants({s, 0.0}, nu);
+      for (auto [a, b] :
+           {std::pair{r.phi1, c.phi1}, std::pair{r.phi2, c.phi2}, std::pair{r.nT, c.nT},
+            std::pair{r.nL, c.nL}, std::pair{r.dW, c.dW}, std::pair{r.dT, c.dT},
+            std::pair{r.dS, c.dS}, std::pair{r.hp1, c.hp1}, std::pair{r.hp2, c.hp2}}) {
+        EXPECT_NEAR(b.real(), a, 1e-14 * std::max(1.0, std::fabs(a))) << s << " " << nu;
+        EXPECT_EQ(b.imag(), 0.0);
+      }
+    }
+  EXPECT_THROW(mp::complex_wave_constants({1.5, 0.0}, 0.3), std::invalid_argument);
+  EXPECT_THROW(mp::complex_wave_constants({std::nan(""), 0.1}, 0.3), std::invalid_argument);
+}
+
+TEST(Viscoelastic, TheMovingLayersResponseIsTheElasticOneInTheLimits) {
+  // deborah 1e-12: m = 1 to 1e-12 t, the elastic layer at vstar; the
+  // response's displacements per mu_0 m (the damped model's units).
+  const mp::DampedLayerModel el(0.3, 2.0, 0.25, 0.0),
+      ve(0.3, 2.0, 0.25, 0.0, 0.0, mp::zener(3.0, 1e-12));
+  for (double t : {0.05, 0.4, 0.6, 2.0, 30.0}) {
+    const mp::DampedResponse a = el.response(t), b = ve.response(t);
+    EXPECT_NEAR(std::abs(a.M1 - b.M1), 0.0, 1e-10) << t;
+    EXPECT_NEAR(std::abs(a.M2 - b.M2), 0.0, 1e-10) << t;
+    EXPECT_NEAR(std::abs(a.Wb - b.Wb), 0.0, 1e-10) << t;
+    // Positive dissipation with a real material: Im M1 >= 0 once divided by m.
+    const mp::DampedLayerModel lossy(0.3, 2.0, 0.25, 0.0, 0.0, mp::zener(3.0, 0.5));
+    EXPECT_GE((lossy.response(t).M1 / mp::zener(3.0, 0.5).modulus(t)).imag(), 0.0) << t;
+  }
+}
+
+TEST(Viscoelastic, InertialSpectrumMatchesTheSymbolOffItsGrid) {
+  // The sum of the pole and the cut against phi1(vstar/m)/m (and phi2) at
+  // real t between the construction's check points (a factor 1.0123 off its
+  // grid) and far beyond it; its size and its reported error.
+  std::vector<mp::Viscoelastic> materials;
+  for (double ratio : {2.0, 10.0, 1000.0})
+    for (double D : {1e-12, 1e-3, 1.0, 1e12}) materials.push_back(mp::zener(ratio, D));
+  materials.push_back(prony3());
+  for (const mp::Viscoelastic& v : materials)
+    for (double vs : {1e-6, 0.3, 0.6})
+      for (auto which : {mp::HalfPlaneSymbol::compliance, mp::HalfPlaneSymbol::stress}) {
+        const bool stress = which == mp::HalfPlaneSymbol::stress;
+        const mp::InertialSpectrum sp = mp::inertial_spectrum(v, vs, 0.3, 1e-12, which);
+        ASSERT_LE(sp.spectrum.c.size(), 64u);
+        auto exact = [&](double t) {
+          return (stress ? mp::half_plane_stress(v, vs, 0.3, t)
+                         : mp::half_plane_compliance(v, vs, 0.3, t)) /
+                     sp.h_inf -
+                 1.0;
+        };
+        double scale = 1.0, worst = 0.0;
+        for (double t = 1e-16; t < 1e16; t *= 1.0123 * 3.7) {
+          const std::complex<double> f = exact(t);
+          scale = std::max(scale, std::abs(f));
+          worst = std::max(worst, std::abs(sp.spectrum.memory(t) - f));
+        }
+        EXPECT_LE(worst, 2e-12 * scale)
+            << "ratio " << v.ratio() << " vstar " << vs << " " << stress;
+        EXPECT_LE(sp.error, 1e-12 * scale);
+        // The unrelaxed limit: f -> 0 like 1/t (the sum's too).
+        EXPECT_LT(std::abs(sp.spectrum.memory(1e18)), 1e-6 * scale);
+      }
+  // At rest: the retardation spectrum, and no stress memory.
+  const mp::InertialSpectrum rest = mp::inertial_spectrum(prony3(), 0.0, 0.3);
+  EXPECT_EQ(rest.spectrum.beta, mp::retardation_spectrum(prony3()).beta);
+  EXPECT_TRUE(mp::inertial_spectrum(prony3(), 0.0, 0.3, 1e-13, mp::HalfPlaneSymbol::stress)
+                  .spectrum.c.empty());
+  EXPECT_THROW(mp::inertial_spectrum(prony3(), 0.9, 0.3), std::invalid_argument);
+  // Near the Rayleigh speed (0.99 v_R, ratio 1000): the round-off of the cut's
+  // density limits the sum to about 5e-14 of max |f|; 1e-13 is not met and
+  // says so.
+  EXPECT_THROW(mp::inertial_spectrum(mp::zener(1000.0, 10.0), 0.85, 0.3, 1e-13),
+               mp::ConvergenceError);
+  EXPECT_NO_THROW(mp::inertial_spectrum(mp::zener(1000.0, 10.0), 0.85, 0.3));
+}

@@ -605,7 +605,8 @@ def test_fuzz_friction_400() -> None:
 
 # --------------------------------------------------------------------------
 # Viscoelastic layers (issue 28): Zener materials of every ratio and deborah
-# (and bad ones) on one layer on springs, quasi-static.
+# (and bad ones) on one layer on springs, at rest, quasi-static at a speed or
+# moving with the layer's inertia.
 
 RATIO_POOL = [1.0, 1.0 + 1e-9, 1.5, 2.0, 10.0, 1000.0, 1e6]
 RATIO_BAD: list[Any] = [0.999, 0.0, -2.0, 1e6 * (1 + 1e-9), NAN, INF, "2", None]
@@ -637,10 +638,15 @@ def fuzz_viscoelastic(calls: int, seed: int) -> collections.Counter[str]:
         elif bad:
             deborah = draw._pick(DEBORAH_BAD)
         # Some draws give the material by its relaxation time at a speed,
-        # solved quasi-statically (inertia=False): deborah = sqrt(vstar) tau.
+        # solved quasi-statically (inertia=False): deborah = sqrt(vstar) tau;
+        # some move the layer with its inertia at the material's deborah.
         speed = 0.0
+        moving = False
         if not bad and rng.random() < 0.3 and float(deborah) > 0.0:
             speed = draw._loguniform(1e-10, 0.3)
+        elif not bad and rng.random() < 0.3:
+            speed = draw._loguniform(1e-10, 0.7)  # (beyond V*_cr at times)
+            moving = True
         args = {
             "ratio": ratio,
             "deborah": deborah,
@@ -648,6 +654,7 @@ def fuzz_viscoelastic(calls: int, seed: int) -> collections.Counter[str]:
             "nu": nu,
             "lam": lam,
             "vstar": speed,
+            "moving": moving,
         }
 
         def run(
@@ -658,10 +665,11 @@ def fuzz_viscoelastic(calls: int, seed: int) -> collections.Counter[str]:
             tol: Any = tol,
             kw: float = kw,
             speed: float = speed,
+            moving: bool = moving,
         ) -> Any:
             material = (
                 mp.Zener(ratio, tau=min(deborah / math.sqrt(speed), 1e12))
-                if speed > 0.0
+                if speed > 0.0 and not moving
                 else mp.Zener(ratio, deborah)
             )
             layer = mp.Layer(nu=nu, viscoelastic=material)
@@ -673,7 +681,7 @@ def fuzz_viscoelastic(calls: int, seed: int) -> collections.Counter[str]:
                 layers=[layer],
                 base=mp.Winkler(kw),
                 allow_unphysical=True,
-                inertia=speed == 0.0,
+                inertia=speed == 0.0 or moving,
             )
 
         sol, exc = _attempt(run)
@@ -685,12 +693,15 @@ def fuzz_viscoelastic(calls: int, seed: int) -> collections.Counter[str]:
             if isinstance(exc, mp.InvalidParameterError) and not bad:
                 # Only the quasi-static speed's bound (V*_cr of the relaxed layer).
                 assert speed > 0.0, args
+                assert not moving, args
                 assert exc.parameter == "vstar", args
+            if isinstance(exc, mp.SupercriticalSpeedError):
+                assert moving, args  # the moving layer's bound: V*_cr (relaxed)
             outcomes[type(exc).__name__] += 1
             continue
         assert not bad, args
         assert sol.vstar == speed, args
-        assert sol.medium.inertia == (speed == 0.0), args
+        assert sol.medium.inertia == (speed == 0.0 or moving), args
         back, front = _finite_interval(sol, args)
         assert sol.pressure(0.5 * (back + front)) >= 0.0, args
         drag = sol.drag
@@ -699,9 +710,12 @@ def fuzz_viscoelastic(calls: int, seed: int) -> collections.Counter[str]:
         diss = sol.dissipation
         # Relative, down to the drag's own round-off (eps of the centre, a/R);
         # unless a warning says the memory's boundary layer is not resolved.
+        # (A preset looser than 1e-8 may leave the memory's boundary layer
+        # unresolved without a warning: that is within its own tolerance.)
         floor = 1e-13 * (front - back) / 100.0
+        rel = max(1e-8, float(sol.tol))
         if not any("viscoelastic memory" in w for w in sol.warnings):
-            assert abs(drag - diss) <= 1e-8 * abs(drag) + floor, (args, drag, diss)
+            assert abs(drag - diss) <= rel * abs(drag) + floor, (args, drag, diss)
         else:
             outcomes["warned"] += 1
         outcomes["solved"] += 1

@@ -208,3 +208,35 @@ def test_the_sweep_of_a_speed_keeps_its_quantity_in_a_saved_scene() -> None:
     assert scene.sweep is not None
     assert scene.sweep.quantities == ("drag",)
     assert scene.sweep.param == "vstar"
+
+
+@sync
+async def test_w_sweeps_the_speed_of_a_moving_material() -> None:
+    """The bell scene with the inertia on (at V* = 1e-4): `w` goes on to the
+    drag against V* of the moving layer; a point of the curve is the API's
+    moving solve at that speed."""
+    text = Scene.bundled("viscoelastic-bell").to_toml().replace("inertia = false\n", "")
+    scene = Scene.from_toml(text.replace("vstar = 1e-06", "vstar = 0.0001"))
+    state = from_scene(scene)
+    assert state.params.inertia
+    app = create_app(scene=state, cursor_blink=False, show_timing=False)
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        screen = screen_of(app)
+        seen = []
+        for _ in range(5):  # the scene's (vstar, drag), round to it again
+            screen.action_toggle_sweep()
+            seen.append((screen.sweep.param, screen.sweep.quantity))
+            if seen[-1] == ("vstar", "drag"):
+                break
+        assert seen[-3:] == [("radius", "a"), ("vstar", "a"), ("vstar", "drag")], seen
+        await settle(pilot)
+        data = screen.query_one("#plot-sweep", CurvePlot).curves
+        assert data is not None
+        assert data.title.startswith("Drag F/P against V*")
+        grid, drag = data.grid, data.series[0].values
+        k = len(grid) // 2
+        at = mp.solve(vstar=float(grid[k]), layers=[bell_layer()], **BELL)
+        assert at.medium is not None
+        assert at.medium.inertia
+        assert drag[k] == at.drag

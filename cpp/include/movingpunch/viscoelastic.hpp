@@ -85,7 +85,9 @@ RetardationSpectrum retardation_spectrum(const Viscoelastic& v);
 // to the zero of m), whose density Im f/(pi y) at t = -i y is integrated by
 // Gauss-Legendre nodes in angles that make its square-root ends analytic
 // (each node one term; the c_k of the cut may be of either sign). The nodes
-// are doubled until the sum matches f to `tol` relative to max |f| (f(0) =
+// are doubled until the sum matches f to `tol` (default 1e-12: near the
+// Rayleigh speed round-off in the cut's density holds it to about 5e-14)
+// relative to max |f| (f(0) =
 // H(0)/H_inf - 1 ~ m_inf - 1; over real t on a grid spanning the spectrum);
 // `error` is the largest difference found (absolute).
 // vstar = 0: retardation_spectrum. Requires 0 <= vstar < rayleigh_vstar(nu)
@@ -101,7 +103,7 @@ struct InertialSpectrum {
   double error = 0;  // max |sum - f| on the check grid
 };
 InertialSpectrum inertial_spectrum(const Viscoelastic& v, double vstar, double nu,
-                                   double tol = 1e-13,
+                                   double tol = 1e-12,
                                    HalfPlaneSymbol which = HalfPlaneSymbol::compliance);
 // H_inf = phi1(vstar/m_inf)/m_inf: the Cauchy term's coefficient.
 double unrelaxed_phi1(const Viscoelastic& v, double vstar, double nu);

@@ -959,15 +959,16 @@ class MainScreen(Screen[None]):
         self._reconcile(soon=False)
 
     def action_toggle_sweep(self) -> None:
-        # a/h against load -> radius (-> spacing for a train); on a quasi-static
-        # material given by tau, then a/h and the drag against its speed.
+        # a/h against load -> radius (-> spacing for a train); on a material
+        # given by tau (moving or quasi-static), then a/h and the drag
+        # against its speed.
         order = [
             ("load", "a"),
             ("radius", "a"),
             *([("spacing", "a")] if len(self.params.punches) > 1 else []),
         ]
         medium = self.params.medium()
-        if medium is not None and not medium.inertia and medium.speed_dependent:
+        if medium is not None and medium.speed_dependent:
             order += [("vstar", "a"), ("vstar", "drag")]
         now = (self.sweep.param, self.sweep.quantity)
         param, quantity = (
@@ -975,7 +976,8 @@ class MainScreen(Screen[None]):
         )
         if param == "vstar":
             # Four decades around the speed (or from 1e-10 at rest), below
-            # the relaxed layer's critical speed (the quasi-static bound).
+            # the relaxed layer's critical speed (the bound with the inertia
+            # and without it).
             centre = max(self.params.vstar, 1e-8)
             try:
                 top = 0.95 * model.medium_limits(self.params)[0]
