@@ -442,48 +442,104 @@ constexpr double kPi = 3.14159265358979323846;
 // acosh(1 + e), accurate for small e >= 0.
 double acosh1p(double e) { return std::log1p(e + std::sqrt(e * (2.0 + e))); }
 
-// One quadrature node: its weight (the exponential weight l e^{-l eta}, the
-// Jacobian and the Gauss weight) and the value whose powers or Chebyshev
-// polynomials are h_n there: inside [-1, 1], x (h_n = T_{n+1}(x)); beyond,
-// rho = x - sgn(x) sqrt(x^2 - 1) (h_n = rho^{n+1}).
-struct Node {
-  double weight;
-  double value;
-  bool inside;
-};
-
-}  // namespace
-
-namespace {
-
 // The exponential weight's segments in eta = x - s (units 1/l): each a
 // factor e^8 at most, to e^-48 (2e-21).
 constexpr double kSteps[] = {0, 1, 2, 4, 8, 16, 24, 32, 40, 48};
 constexpr double kReach = 48.0;
+constexpr double kMaxEfolds = 8.0;  // kSteps' longest segment
 
-// Adds l int_{s + e0}^{s + e1} e^{-l (x - s)} h_n(x) dx to out[n], n < count
-// (0 <= e0 < e1 <= kReach/l).
-void add_segment(double s, double l, double e0_in, double e1_in, int count, double* out) {
+// The retardation times of one cluster of a MemoryKernel lie within this
+// factor. Its terms share one set of nodes, whose segments follow the
+// fastest decay out to the slowest one's reach (up to about 6 kClusterRatio
+// + 3 segments where one term has 9), so that the values h_n there (the
+// recurrences to order N) are evaluated once for all of them. Wider clusters
+// mean more nodes, narrower ones more clusters: on random spectra 4 did a
+// little better than 2 or 1.5 (the layers' spectra come in groups a factor
+// 1.01 ... 1.2 wide, far apart, which any of these keeps whole).
+constexpr double kClusterRatio = 4.0;
+
+// Quadrature nodes of one kind: inside [-1, 1] the value is x (h_n =
+// T_{n+1}(x)); beyond, rho = x - sgn(x) sqrt(x^2 - 1) (h_n = rho^{n+1}).
+// The weight at a node is jac times the exponential weight at eta.
+struct NodeList {
+  std::vector<double> eta;    // x - s
+  std::vector<double> jac;    // the Jacobian times the Gauss weight
+  std::vector<double> value;  // x or rho
+  void clear() {
+    eta.clear();
+    jac.clear();
+    value.clear();
+  }
+  void push(double e, double j, double v) {
+    eta.push_back(e);
+    jac.push_back(j);
+    value.push_back(v);
+  }
+  std::size_t size() const { return eta.size(); }
+};
+
+struct NodeSet {
+  NodeList inside, beyond;
+  void clear() {
+    inside.clear();
+    beyond.clear();
+  }
+};
+
+// Work arrays, one set a thread (one thread_local look-up a call).
+struct Scratch {
+  std::vector<double> cuts, ecuts, w_in, w_out, acc;
+  NodeSet nodes;
+  Eigen::MatrixXd H, W, M, P, G;
+};
+
+Scratch& scratch() {
+  thread_local Scratch s;
+  return s;
+}
+
+// The ends (eta, ascending from 0) of the exponential weights' segments for
+// the decay rates l[0] >= l[1] >= ... >= l[m - 1] > 0: kSteps/l[0], then
+// steps of kMaxEfolds e-folds of the fastest term not yet below e^-kReach,
+// to the slowest one's reach kReach/l[m - 1]. So no term varies by more than
+// e^kMaxEfolds on a segment while it matters, and beyond its own reach it is
+// below e^-kReach (as when it is cut off there alone). One term: kSteps/l.
+void exponential_cuts(const double* l, std::size_t m, std::vector<double>& cuts) {
+  cuts.clear();
+  for (double k : kSteps) cuts.push_back(k / l[0]);
+  const double end = kReach / l[m - 1];
+  std::size_t j = 0;
+  for (double e = cuts.back(); e < end; cuts.push_back(e)) {
+    while (j + 1 < m && l[j] * e >= kReach) ++j;
+    e = std::min(end, e + kMaxEfolds / l[j]);
+  }
+}
+
+// Appends the nodes of int_{s + e0}^{s + e1} (.) dx (0 <= e0 < e1) that
+// integrate h_n (n < count) against an exponential weight whose segments end
+// at `ecuts` (exponential_cuts): 16 Gauss-Legendre nodes on each piece, the
+// pieces analytic and short for the weight and for h_n's oscillation or
+// decay, the branch points x = +-1 taken in angles.
+void build_nodes(double s, double e0_in, double e1_in, const std::vector<double>& ecuts, int count,
+                 std::vector<double>& cuts, NodeSet& nodes) {
   static const std::shared_ptr<const JacobiRule> gl = cached_gauss_jacobi(16, 0.0, 0.0);
   const Eigen::VectorXd& gx = gl->x;
   const Eigen::VectorXd& gw = gl->w;
-  thread_local std::vector<double> cuts;
   cuts.clear();
   cuts.push_back(e0_in);
   cuts.push_back(e1_in);
-  for (double k : kSteps)
-    if (k / l > e0_in && k / l < e1_in) cuts.push_back(k / l);
+  for (double e : ecuts)
+    if (e > e0_in && e < e1_in) cuts.push_back(e);
   // The branch points x = +-1 of h_n.
   for (double e : {-1.0 - s, 1.0 - s})
     if (e > e0_in && e < e1_in) cuts.push_back(e);
   std::sort(cuts.begin(), cuts.end());
   cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
   const double freq = static_cast<double>(count + 1);
-  thread_local std::vector<Node> nodes;
-  nodes.clear();
   // eta-parametrised piece [e0, e1] (x = s + eta, analytic on it): n0 pieces.
   auto eta_piece = [&](double e0, double e1, bool inside) {
     const double c = 0.5 * (e0 + e1), h = 0.5 * (e1 - e0);
+    NodeList& list = inside ? nodes.inside : nodes.beyond;
     for (Eigen::Index q = 0; q < gx.size(); ++q) {
       const double eta = c + h * gx(q), x = s + eta;
       double v = x;
@@ -491,7 +547,7 @@ void add_segment(double s, double l, double e0_in, double e1_in, int count, doub
         const double ax = std::fabs(x), r = 1.0 / (ax + std::sqrt((ax - 1.0) * (ax + 1.0)));
         v = x > 0.0 ? r : -r;
       }
-      nodes.push_back({l * std::exp(-l * eta) * h * gw(q), v, inside});
+      list.push(eta, h * gw(q), v);
     }
   };
   for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
@@ -543,37 +599,44 @@ void add_segment(double s, double l, double e0_in, double e1_in, int count, doub
         const double sinh_phi = sh * (e + 1.0 / e);   // 2 sinh(phi/2) cosh(phi/2)
         const double eta = right ? cm1 - (s - 1.0) : (-1.0 - s) - cm1;
         const double r = 1.0 / (e * e);  // e^{-phi}
-        nodes.push_back({l * std::exp(-l * eta) * sinh_phi * h * gw(q), right ? r : -r, false});
+        nodes.beyond.push(eta, sinh_phi * h * gw(q), right ? r : -r);
       }
       p = q1;
     }
   }
-  // Sum over the nodes: T_{n+1}(x) by its recurrence (|x| <= 1), rho^{n+1},
-  // eight nodes at a time (independent recurrences side by side).
-  constexpr int L = 8;
-  thread_local std::vector<double> w_in, v_in, w_out, v_out;
-  w_in.clear();
-  v_in.clear();
-  w_out.clear();
-  v_out.clear();
-  for (const Node& nd : nodes) {
-    (nd.inside ? w_in : w_out).push_back(nd.weight);
-    (nd.inside ? v_in : v_out).push_back(nd.value);
-  }
-  // Padded to a multiple of L with zero weights.
-  for (auto* p : {&w_in, &w_out}) p->resize((p->size() + L - 1) / L * L, 0.0);
-  v_in.resize(w_in.size(), 0.0);
-  v_out.resize(w_out.size(), 0.0);
+}
+
+// Eight nodes at a time (independent recurrences side by side).
+constexpr int kLanes = 8;
+// Powers rho^{n+1}, or their products with the weights (below about 1: they
+// make up unit integrals), are dropped below this: they cannot matter, and
+// denormal arithmetic is slow.
+constexpr double kNegligible = 1e-300;
+
+// out[n] += sum over the nodes of w h_n, n < count (w_in: the weights of
+// nodes.inside, w_out: of nodes.beyond): T_{n+1}(x) by its recurrence
+// (|x| <= 1), rho^{n+1} by powers.
+void weighted_sum(const NodeSet& nodes, const std::vector<double>& w_in,
+                  const std::vector<double>& w_out, int count, std::vector<double>& acc,
+                  double* out) {
+  constexpr int L = kLanes;
   // Per lane and order, summed over the lanes at the end.
-  thread_local std::vector<double> acc;
   acc.assign(static_cast<std::size_t>(count) * L, 0.0);
+  // Lanes past the end: zero weights.
+  auto lanes = [](const std::vector<double>& v, const std::vector<double>& w, std::size_t b,
+                  double* vl, double* wl) {
+    for (int l = 0; l < L; ++l) {
+      const std::size_t i = b + static_cast<std::size_t>(l);
+      vl[l] = i < v.size() ? v[i] : 0.0;
+      wl[l] = i < v.size() ? w[i] : 0.0;
+    }
+  };
   for (std::size_t b = 0; b < w_in.size(); b += L) {
     double x2[L], wt[L], tm[L], t[L];
+    lanes(nodes.inside.value, w_in, b, t, wt);
     for (int l = 0; l < L; ++l) {
-      x2[l] = 2.0 * v_in[b + l];
-      wt[l] = w_in[b + l];
+      x2[l] = 2.0 * t[l];
       tm[l] = 1.0;
-      t[l] = v_in[b + l];
     }
     double* a = acc.data();
     for (int n = 0; n < count; ++n, a += L) {
@@ -586,18 +649,17 @@ void add_segment(double s, double l, double e0_in, double e1_in, int count, doub
     }
   }
   for (std::size_t b = 0; b < w_out.size(); b += L) {
-    double r[L], pw[L];
-    double wmax = 0.0;
+    double r[L], wt[L], pw[L];
+    lanes(nodes.beyond.value, w_out, b, r, wt);
+    double wmax = 0.0, rmax = 0.0;
     for (int l = 0; l < L; ++l) {
-      r[l] = v_out[b + l];
-      pw[l] = w_out[b + l] * r[l];
-      wmax = std::max(wmax, std::fabs(w_out[b + l]));
+      pw[l] = wt[l] * r[l];
+      wmax = std::max(wmax, std::fabs(wt[l]));
+      rmax = std::max(rmax, std::fabs(r[l]));
     }
-    double rmax = 0.0;
-    for (int l = 0; l < L; ++l) rmax = std::max(rmax, std::fabs(r[l]));
     double bound = wmax * rmax;  // |w rho^{n+1}| <= wmax rmax^{n+1}
     double* a = acc.data();
-    for (int n = 0; n < count && bound > 1e-300; ++n, a += L) {
+    for (int n = 0; n < count && bound > kNegligible; ++n, a += L) {
       for (int l = 0; l < L; ++l) {
         a[l] += pw[l];
         pw[l] *= r[l];
@@ -612,9 +674,286 @@ void add_segment(double s, double l, double e0_in, double e1_in, int count, doub
   }
 }
 
+// Adds l int_{s + e0}^{s + e1} e^{-l (x - s)} h_n(x) dx to out[n], n < count
+// (0 <= e0 < e1 <= kReach/l).
+void add_segment(double s, double l, double e0, double e1, int count, double* out) {
+  Scratch& w = scratch();
+  exponential_cuts(&l, 1, w.ecuts);
+  w.nodes.clear();
+  build_nodes(s, e0, e1, w.ecuts, count, w.cuts, w.nodes);
+  w.w_in.resize(w.nodes.inside.size());
+  w.w_out.resize(w.nodes.beyond.size());
+  for (auto [list, wt] : {std::pair{&w.nodes.inside, &w.w_in}, {&w.nodes.beyond, &w.w_out}})
+    for (std::size_t q = 0; q < list->size(); ++q)
+      (*wt)[q] = l * std::exp(-l * list->eta[q]) * list->jac[q];
+  weighted_sum(w.nodes, w.w_in, w.w_out, count, w.acc, out);
+}
+
+// One cluster of terms, l[0] >= ... >= l[m - 1] (c: their coefficients),
+// and the Taylor expansion of their exponentials about the middle rate lc:
+// with D = (l[0] - l[m - 1])/2 (|l_t - lc| <= D) and y = D eta,
+//   l_t e^{-l_t eta} = e^{-lc eta} sum_j mix(t, j) y^j,
+//   mix(t, j) = l_t (-(l_t - lc)/D)^j / j!,
+// and the sum of the weights sum_t c_t l_t e^{-l_t eta} = e^{-lc eta}
+// sum_j comb_j y^j (comb = mix^T c). Where D eta stays small (a narrow
+// cluster, a short segment) a few orders stand for all the terms: one
+// exponential a node and a short polynomial instead of one exponential a
+// term (and in the collocation block's matrix products fewer rows).
+struct Cluster {
+  const double* l = nullptr;
+  const double* c = nullptr;
+  std::size_t m = 0;
+  double lc = 0.0, D = 0.0;
+  // Orders below these cost less than the terms (for the sum of the
+  // weights; for term_sums at the moments' count).
+  int comb_cap = 0, term_cap = 0;
+  Eigen::MatrixXd mix;  // m x the orders used so far (extend)
+  Eigen::VectorXd comb;
+};
+
+// The expansion's truncation, below the sums' round-off.
+constexpr double kTaylorTol = 0.0625 * std::numeric_limits<double>::epsilon();
+// Costs a node in exponentials (a libm call, about 5.6 ns here): an order of
+// the expansion (a multiply-add over the nodes side by side, about 0.45 ns),
+// and a flop of term_sums' matrix products (about 4 a cycle, against some 16
+// cycles an exponential).
+constexpr double kOrderCost = 1.0 / 12.0;
+constexpr double kFlopCost = 1.0 / 64.0;
+
+// The orders j < cap that cost less than the terms: 1 exponential + j
+// per_order < m per_term.
+int order_cap(std::size_t m, double per_term, double per_order) {
+  return std::max(
+      1, static_cast<int>(std::ceil((static_cast<double>(m) * per_term - 1.0) / per_order)));
+}
+
+// The cluster of the rates l (descending) and coefficients c of m terms, for
+// moments to order count.
+void prepare_cluster(const double* l, const double* c, std::size_t m, int count, Cluster& cl) {
+  cl.l = l;
+  cl.c = c;
+  cl.m = m;
+  cl.lc = 0.5 * (l[0] + l[m - 1]);
+  cl.D = 0.5 * (l[0] - l[m - 1]);
+  const double flops = 2.0 * count * kFlopCost;  // a node's row of a matrix product
+  cl.comb_cap = order_cap(m, 1.0, kOrderCost);
+  cl.term_cap = order_cap(m, 1.0 + flops, kOrderCost + flops);
+  cl.mix.resize(static_cast<Eigen::Index>(m), 0);
+}
+
+// mix and comb to at least `orders` orders.
+void extend(Cluster& cl, int orders) {
+  const Eigen::Index have = cl.mix.cols();
+  if (orders <= have) return;
+  const auto mm = static_cast<Eigen::Index>(cl.m);
+  cl.mix.conservativeResize(mm, orders);
+  for (Eigen::Index t = 0; t < mm; ++t) {
+    const double ratio = cl.D > 0.0 ? -(cl.l[t] - cl.lc) / cl.D : 0.0;  // in [-1, 1]
+    double v = have == 0 ? cl.l[t] : cl.mix(t, have - 1) * ratio / static_cast<double>(have);
+    for (Eigen::Index j = have; j < orders; ++j) {
+      cl.mix(t, j) = v;
+      v *= ratio / static_cast<double>(j + 1);
+    }
+  }
+  cl.comb = cl.mix.transpose() * Eigen::Map<const Eigen::VectorXd>(cl.c, mm);
+}
+
+// The orders of the expansion (at most cap; cap: none found) for an
+// integral over eta in [0, len]. Its truncation after J orders, per unit c_t
+// and relative to the integral's scale 1, is below r (D len)^J/J! e^{D len}
+// (r = l_max/l_min: the remainder (D eta)^J/J! e^{D eta} on [0, len], times
+// the weight's mass), and below r (D/l_min)^J (the same remainder against
+// the weight e^{-lc eta} over all eta > 0). A segment `chained` to others in
+// one sum (the descending recursion) takes the first only: its bound is
+// relative to the segment's own mass, and the masses add up to one integral.
+int taylor_order(const Cluster& cl, double len, int cap, bool chained) {
+  const double lmin = cl.l[cl.m - 1], r = cl.l[0] / lmin, x = cl.D * len;
+  double whole = chained ? kInfV : r, part = r * std::exp(x);
+  for (int j = 1; j < cap; ++j) {
+    whole *= cl.D / lmin;
+    part *= x / j;
+    if (std::min(whole, part) <= kTaylorTol) return j;
+  }
+  return cap;
+}
+
+// The weights jac sum_t c_t l_t e^{-l_t eta} at the nodes (w_in:
+// nodes.inside, w_out: nodes.beyond; eta <= len): by the expansion when it
+// is cheaper, else term by term.
+void combined_weights(const NodeSet& nodes, Cluster& cl, double len, std::vector<double>& w_in,
+                      std::vector<double>& w_out) {
+  const int cap = cl.comb_cap;
+  const int order = taylor_order(cl, len, cap, false);
+  if (order < cap) extend(cl, order);
+  w_in.resize(nodes.inside.size());
+  w_out.resize(nodes.beyond.size());
+  for (auto [list, wt] : {std::pair{&nodes.inside, &w_in}, {&nodes.beyond, &w_out}}) {
+    const std::size_t size = list->size();
+    double* out = wt->data();
+    const double* eta = list->eta.data();
+    if (order < cap) {
+      // Horner's rule in y = D eta, over the nodes side by side.
+      for (std::size_t q = 0; q < size; ++q) out[q] = cl.comb(order - 1);
+      for (int j = order - 2; j >= 0; --j) {
+        const double cj = cl.comb(j);
+        for (std::size_t q = 0; q < size; ++q) out[q] = out[q] * (cl.D * eta[q]) + cj;
+      }
+      for (std::size_t q = 0; q < size; ++q) out[q] *= std::exp(-cl.lc * eta[q]) * list->jac[q];
+      continue;
+    }
+    for (std::size_t q = 0; q < size; ++q) {
+      double sum = 0.0;
+      for (std::size_t t = 0; t < cl.m; ++t) sum += cl.c[t] * cl.l[t] * std::exp(-cl.l[t] * eta[q]);
+      out[q] = sum * list->jac[q];
+    }
+  }
+}
+
+// P(t, n) = sum over the nodes (eta <= len) of l_t e^{-l_t eta} jac h_n,
+// t < m, n < count: the values h_n at a chunk of nodes as a matrix H, once
+// for all the terms, against a few functions of eta (the expansion's orders
+// when they cost less, else the terms' own weights) in one matrix product a
+// chunk; then mixed into the terms. `chained`: taylor_order.
+void term_sums(const NodeSet& nodes, Cluster& cl, double len, bool chained, int count, Scratch& w,
+               Eigen::MatrixXd& P) {
+  constexpr int L = kLanes;
+  constexpr Eigen::Index kChunk = 16 * L;  // nodes (a few pieces) a product
+  const auto mm = static_cast<Eigen::Index>(cl.m);
+  const int order = taylor_order(cl, len, cl.term_cap, chained);
+  const bool expand = order < cl.term_cap;
+  if (expand) extend(cl, order);
+  const Eigen::Index rows = expand ? order : mm;
+  w.H.resize(kChunk, count);
+  w.W.resize(rows, kChunk);
+  Eigen::MatrixXd& M = expand ? w.M : P;
+  M.setZero(rows, count);
+  for (const NodeList* list : {&nodes.inside, &nodes.beyond}) {
+    const bool inside = list == &nodes.inside;
+    const auto size = static_cast<Eigen::Index>(list->size());
+    for (Eigen::Index b0 = 0; b0 < size; b0 += kChunk) {
+      const Eigen::Index c = std::min(kChunk, size - b0);
+      for (Eigen::Index q = 0; q < c; ++q) {
+        const auto i = static_cast<std::size_t>(b0 + q);
+        const double eta = list->eta[i], jac = list->jac[i];
+        if (expand) {
+          const double y = cl.D * eta;
+          double v = std::exp(-cl.lc * eta) * jac;
+          for (Eigen::Index j = 0; j < rows; ++j, v *= y) w.W(j, q) = v;
+        } else {
+          for (Eigen::Index t = 0; t < mm; ++t)
+            w.W(t, q) = cl.l[t] * std::exp(-cl.l[t] * eta) * jac;
+        }
+      }
+      // H(q, n) = h_n at node b0 + q, lanes past the end at value 0 (unused).
+      for (Eigen::Index b = 0; b < c; b += L) {
+        double v[L];
+        for (int k = 0; k < L; ++k)
+          v[k] = b + k < c ? list->value[static_cast<std::size_t>(b0 + b + k)] : 0.0;
+        double* h = w.H.data() + b;  // column n at h + n kChunk
+        if (inside) {
+          double x2[L], tm[L];
+          for (int k = 0; k < L; ++k) {
+            x2[k] = 2.0 * v[k];
+            tm[k] = 1.0;
+          }
+          for (int n = 0; n < count; ++n, h += kChunk) {
+            for (int k = 0; k < L; ++k) {
+              h[k] = v[k];
+              const double tn = x2[k] * v[k] - tm[k];
+              tm[k] = v[k];
+              v[k] = tn;
+            }
+          }
+        } else {
+          double r[L], rmax = 0.0;
+          for (int k = 0; k < L; ++k) {
+            r[k] = v[k];
+            rmax = std::max(rmax, std::fabs(r[k]));
+          }
+          double bound = rmax;  // |rho^{n+1}| <= rmax^{n+1}
+          int n = 0;
+          for (; n < count && bound > kNegligible; ++n, h += kChunk) {
+            for (int k = 0; k < L; ++k) {
+              h[k] = v[k];
+              v[k] *= r[k];
+            }
+            bound *= rmax;
+          }
+          for (; n < count; ++n, h += kChunk)
+            for (int k = 0; k < L; ++k) h[k] = 0.0;
+        }
+      }
+      M.noalias() += w.W.leftCols(c) * w.H.topRows(c);
+    }
+  }
+  if (expand) P.noalias() = cl.mix.leftCols(rows) * M;
+}
+
+// Adds sum_t c_t l_t J_n(s, l_t) (n < count) over one cluster: one set of
+// nodes for all its terms (exponential_cuts), against the sum of their
+// exponential weights.
+void add_cluster(double s, Cluster& cl, int count, double* out) {
+  Scratch& w = scratch();
+  exponential_cuts(cl.l, cl.m, w.ecuts);
+  const double reach = w.ecuts.back();
+  w.nodes.clear();
+  build_nodes(s, 0.0, reach, w.ecuts, count, w.cuts, w.nodes);
+  combined_weights(w.nodes, cl, reach, w.w_in, w.w_out);
+  weighted_sum(w.nodes, w.w_in, w.w_out, count, w.acc, out);
+}
+
+// mom(k, n) += sum_t c_t l_t J_n(s_k, l_t) at the rows s[0] > s[1] > ...
+// (mom: rows x count, row-major) over one cluster: the descending recursion
+// of memory_moments_descending for each term, G_t(s_k) = (the segment [s_k,
+// s_{k-1}]) + e^{-l_t (s_{k-1} - s_k)} G_t(s_{k-1}), its segments' node
+// values evaluated once for all the terms (term_sums). A row whose gap to
+// the previous one exceeds the cluster's reach starts afresh (the carried
+// part is below e^-kReach), and one whose next row starts afresh needs no
+// G_t: the sum of the weights will do.
+void add_cluster_descending(const double* s, int rows, Cluster& cl, int count, double* mom) {
+  Scratch& w = scratch();
+  exponential_cuts(cl.l, cl.m, w.ecuts);
+  const double reach = w.ecuts.back();
+  const auto mm = static_cast<Eigen::Index>(cl.m);
+  const Eigen::Map<const Eigen::VectorXd> c(cl.c, mm);
+  Eigen::VectorXd cf(mm);  // c_t e^{-l_t gap}: the carried part of a row without G_t
+  w.G.resize(mm, count);
+  for (int k = 0; k < rows; ++k) {
+    Eigen::Map<Eigen::RowVectorXd> row(mom + static_cast<std::size_t>(k) * count, count);
+    const double gap = k == 0 ? kInfV : s[k - 1] - s[k], len = std::min(gap, reach);
+    const bool fresh = !(gap < reach);
+    const bool feeds = k + 1 < rows && s[k] - s[k + 1] < reach;
+    w.nodes.clear();
+    build_nodes(s[k], 0.0, len, w.ecuts, count, w.cuts, w.nodes);
+    if (feeds) {
+      term_sums(w.nodes, cl, len, !fresh, count, w, w.P);
+      if (fresh) {
+        w.G = w.P;
+      } else {
+        for (Eigen::Index t = 0; t < mm; ++t) w.G.row(t) *= std::exp(-cl.l[t] * gap);
+        w.G += w.P;
+      }
+      row += c.transpose() * w.G;
+      continue;
+    }
+    combined_weights(w.nodes, cl, len, w.w_in, w.w_out);
+    weighted_sum(w.nodes, w.w_in, w.w_out, count, w.acc, row.data());
+    if (!fresh) {
+      for (Eigen::Index t = 0; t < mm; ++t) cf(t) = c(t) * std::exp(-cl.l[t] * gap);
+      row += cf.transpose() * w.G;
+    }
+  }
+}
+
 void check_moment_args(double s, double l) {
   if (!std::isfinite(s) || !(l > 0.0) || !std::isfinite(l))
     throw std::invalid_argument("memory_moments: s finite and l > 0 finite required");
+}
+
+void check_descending(const double* s, int rows) {
+  for (int k = 1; k < rows; ++k)
+    if (!(s[k] < s[k - 1]))
+      throw std::invalid_argument("memory_moments_descending: s must be strictly descending");
 }
 
 }  // namespace
@@ -629,9 +968,7 @@ void memory_moments(double s, double l, int count, double* out) {
 void memory_moments_descending(const double* s, int rows, double l, int count, double* out) {
   if (count <= 0 || rows <= 0) return;
   for (int k = 0; k < rows; ++k) check_moment_args(s[k], l);
-  for (int k = 1; k < rows; ++k)
-    if (!(s[k] < s[k - 1]))
-      throw std::invalid_argument("memory_moments_descending: s must be strictly descending");
+  check_descending(s, rows);
   memory_moments(s[0], l, count, out);
   // G(s_k) = l int_{s_k}^{s_{k-1}} e^{-l (x - s_k)} h_n + e^{-l (s_{k-1} - s_k)} G(s_{k-1}):
   // one short segment a row (the factor <= 1: stable downwards).
@@ -644,27 +981,78 @@ void memory_moments_descending(const double* s, int rows, double l, int count, d
   }
 }
 
-MemoryKernel::MemoryKernel(RetardationSpectrum spectrum) : spec_(std::move(spectrum)) {}
+MemoryKernel::MemoryKernel(RetardationSpectrum spectrum) : spec_(std::move(spectrum)) {
+  // Clusters of retardation times within kClusterRatio, greedily from the
+  // shortest (the fastest decay, which sets a cluster's segments). A beta
+  // that is not a number sorts last, alone (refused there as memory_moments
+  // refuses it).
+  order_.resize(spec_.c.size());
+  for (std::size_t k = 0; k < order_.size(); ++k) order_[k] = k;
+  auto key = [this](std::size_t k) { return std::isnan(spec_.beta[k]) ? kInfV : spec_.beta[k]; };
+  std::stable_sort(order_.begin(), order_.end(),
+                   [&key](std::size_t a, std::size_t b) { return key(a) < key(b); });
+  for (std::size_t j = 0; j < order_.size(); ++j)
+    if (j == 0 || !(spec_.beta[order_[j]] <= kClusterRatio * spec_.beta[order_[starts_.back()]]))
+      starts_.push_back(j);
+  starts_.push_back(order_.size());
+}
 
 void MemoryKernel::moments(double s, double w, int count, double* out) const {
+  if (count <= 0) return;
   std::fill(out, out + count, 0.0);
-  thread_local std::vector<double> one;
-  one.resize(static_cast<std::size_t>(std::max(count, 0)));
-  for (std::size_t k = 0; k < spec_.c.size(); ++k) {
-    memory_moments(s, w / spec_.beta[k], count, one.data());
-    for (int n = 0; n < count; ++n) out[n] += spec_.c[k] * one[static_cast<std::size_t>(n)];
+  thread_local std::vector<double> one, l, c;
+  thread_local Cluster cluster;
+  one.resize(static_cast<std::size_t>(count));
+  for (std::size_t i = 0; i + 1 < starts_.size(); ++i) {
+    const std::size_t j0 = starts_[i], m = starts_[i + 1] - j0;
+    if (m == 1) {
+      // One term: memory_moments itself.
+      const std::size_t k = order_[j0];
+      memory_moments(s, w / spec_.beta[k], count, one.data());
+      for (int n = 0; n < count; ++n) out[n] += spec_.c[k] * one[static_cast<std::size_t>(n)];
+      continue;
+    }
+    l.resize(m);
+    c.resize(m);
+    for (std::size_t t = 0; t < m; ++t) {
+      const std::size_t k = order_[j0 + t];
+      l[t] = w / spec_.beta[k];
+      c[t] = spec_.c[k];
+      check_moment_args(s, l[t]);
+    }
+    prepare_cluster(l.data(), c.data(), m, count, cluster);
+    add_cluster(s, cluster, count, out);
   }
 }
 
 Eigen::MatrixXd MemoryKernel::collocation_block(const ChebyshevNodes& nodes, double w) const {
   const int n = nodes.n;
   // The collocation points descend (s_k = cos((2k - 1) pi/(2(N + 1)))): the
-  // moments of all rows in one downward sweep per retardation time.
+  // moments of all rows in one downward sweep per cluster of retardation times.
   using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   RowMajor mom = RowMajor::Zero(n + 1, n), one(n + 1, n);
-  for (std::size_t k = 0; k < spec_.c.size(); ++k) {
-    memory_moments_descending(nodes.s.data(), n + 1, w / spec_.beta[k], n, one.data());
-    mom += spec_.c[k] * one;
+  std::vector<double> l, c;
+  Cluster cluster;
+  for (std::size_t i = 0; i + 1 < starts_.size(); ++i) {
+    const std::size_t j0 = starts_[i], m = starts_[i + 1] - j0;
+    if (m == 1) {
+      // One term: memory_moments_descending itself.
+      const std::size_t k = order_[j0];
+      memory_moments_descending(nodes.s.data(), n + 1, w / spec_.beta[k], n, one.data());
+      mom += spec_.c[k] * one;
+      continue;
+    }
+    l.resize(m);
+    c.resize(m);
+    for (std::size_t t = 0; t < m; ++t) {
+      const std::size_t k = order_[j0 + t];
+      l[t] = w / spec_.beta[k];
+      c[t] = spec_.c[k];
+      for (int r = 0; r <= n; ++r) check_moment_args(nodes.s(r), l[t]);
+    }
+    check_descending(nodes.s.data(), n + 1);
+    prepare_cluster(l.data(), c.data(), m, n, cluster);
+    if (n > 0) add_cluster_descending(nodes.s.data(), n + 1, cluster, n, mom.data());
   }
   return mom * *basis_weights(nodes);
 }

@@ -145,6 +145,10 @@ class MemoryKernel {
 
  private:
   RetardationSpectrum spec_;
+  // The terms by beta ascending, in clusters of nearby retardation times
+  // (viscoelastic.cpp: kClusterRatio) that share their quadrature nodes:
+  // cluster i is order_[starts_[i]] .. order_[starts_[i + 1] - 1].
+  std::vector<std::size_t> order_, starts_;
 };
 
 // l J_n(s, l) for n < count (one retardation time; MemoryKernel sums them).
