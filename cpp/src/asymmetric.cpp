@@ -2425,20 +2425,19 @@ double bar_pole(const Medium& m) {
       "the stresses at depth)");
 }
 
-// A viscoelastic layer with inertia: its stresses (M2 and the modes at depth
-// reach their half-plane values only like 1/alpha, through the speed
-// vstar/m(alpha), and no memory takes them out yet) and its displacement
-// below the surface are refused by name; the contact, the pressure, the
-// drag, the dissipation, the surface slope and the surface displacement are
-// not.
+// A viscoelastic layer with inertia: its displacement below the surface
+// (the half-plane part's memory there is the quasi-static layer's, 1/m(alpha)
+// times the relaxed modes; with inertia the modes move with vstar/m(alpha))
+// is refused by name; everything else is given (the stresses from about
+// 0.002 h below the surface, stress_field).
 void inertial_refusal(const Medium& m, const std::string& what) {
   if (m.memory() == nullptr || !(m.vstar() > 0.0)) return;
   std::ostringstream o;
   o.precision(10);
   o << "vstar: " << what << " of a viscoelastic layer with inertia (vstar = " << m.vstar()
-    << " > 0) is not available yet; the contact, pressure, drag, dissipation, surface slope and "
-       "surface displacement are (and every output of the quasi-static layer: vstar = 0, or "
-       "inertia=False with the material given by tau)";
+    << " > 0) is not available yet; the contact, pressure, drag, dissipation, surface slope, "
+       "surface displacement and the stresses are (and every output of the quasi-static layer: "
+       "vstar = 0, or inertia=False with the material given by tau)";
   throw InvalidParameter("vstar", "0 for " + what + " of a viscoelastic layer", o.str());
 }
 
@@ -2974,27 +2973,106 @@ std::shared_ptr<const Eigen::MatrixXd> AsymmetricSolution::depth_coefficients(
   return coef;
 }
 
+void AsymmetricSolution::inertial_tail(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                       const Eigen::Ref<const Eigen::VectorXd>& y, double from,
+                                       Eigen::MatrixXd& rem) const {
+  // (1/pi) Re int_from^{36/(nT |y|)} [sx, sy, -i tau]_rem(alpha, y) p^ e^{i alpha x} d alpha
+  // for the depths whose remainder (the state less the relaxed half-plane's,
+  // ModeProfile::remainder) has not decayed by `from` (e^{-nT alpha |y|} >
+  // e^-36 there): Filon panels as the fine nodes' (width min(0.5, 1.5/(2w)):
+  // p^ e^{i alpha c} oscillates like e^{+-i alpha w}), the mode of each node
+  // built once for every depth.
+  const double rate = model_->top().nT;
+  const Eigen::Index nx = x.size(), ny = y.size();
+  double reach = from;
+  for (Eigen::Index i = 0; i < ny; ++i)
+    if (y(i) < 0.0) reach = std::max(reach, 36.0 / (rate * -y(i)));
+  if (!(reach > from)) return;
+  const double width = std::min(0.5, 1.5 / std::max(2.0 * half_, 1e-300));
+  const int panels = std::max(1, static_cast<int>(std::ceil((reach - from) / width)));
+  const double h = 0.5 * (reach - from) / panels;
+  AlphaQuadrature q;
+  q.panel_centre.reserve(static_cast<std::size_t>(panels));
+  q.panel_half.assign(static_cast<std::size_t>(panels), h);
+  q.alpha.reserve(15 * static_cast<std::size_t>(panels));
+  q.weight.reserve(q.alpha.capacity());
+  std::vector<std::unique_ptr<const ModeProfile>> modes;
+  std::vector<cplx> ph;
+  modes.reserve(q.alpha.capacity());
+  ph.reserve(q.alpha.capacity());
+  for (int p = 0; p < panels; ++p) {
+    check_interrupt();  // Ctrl-C: 15 layer modes a panel
+    const double c = from + (2 * p + 1) * h;
+    q.panel_centre.push_back(c);
+    for (int j = 0; j < 15; ++j) {
+      const double a = gk_node(j, c, h);
+      q.alpha.push_back(a);
+      q.weight.push_back(gk_weight(j, h));
+      modes.push_back(model_->mode(a));
+      ph.push_back(pressure_transform(a) * std::exp(cplx(0.0, a * centre_)));
+    }
+  }
+  const FilonIntegrator filon(q);
+  const auto nq = static_cast<Eigen::Index>(q.alpha.size());
+  Eigen::MatrixXd Wre = Eigen::MatrixXd::Zero(nx, nq), Wim = Eigen::MatrixXd::Zero(nx, nq);
+  std::vector<cplx> K;
+  for (Eigen::Index j = 0; j < nx; ++j) {
+    if (std::fabs(x(j)) > kFarField) continue;
+    filon.weights(x(j) - centre_, K);
+    for (Eigen::Index k = 0; k < nq; ++k) {
+      Wre(j, k) = K[static_cast<std::size_t>(k)].real();
+      Wim(j, k) = K[static_cast<std::size_t>(k)].imag();
+    }
+  }
+  std::vector<double> col(static_cast<std::size_t>(nq));
+  for (Eigen::Index i = 0; i < ny; ++i) {
+    if (!(y(i) < 0.0) || !(36.0 / (rate * -y(i)) > from)) continue;
+    const double end = 36.0 / (rate * -y(i));
+    Eigen::MatrixXd G = Eigen::MatrixXd::Zero(nq, 6);
+    for (Eigen::Index k = 0; k < nq; ++k) {
+      const auto qk = static_cast<std::size_t>(k);
+      if (q.alpha[qk] > end + 2.0 * h) break;  // (the rest below e^-36)
+      const ModeState st = modes[qk]->remainder(y(i), false);
+      set_stress_row(G, k, st.sx * ph[qk], st.z(3) * ph[qk], cplx(0.0, -1.0) * st.z(2) * ph[qk]);
+    }
+    Eigen::MatrixXd coef(nq, 6);
+    for (Eigen::Index m = 0; m < 6; ++m) {
+      Eigen::Map<Eigen::VectorXd>(col.data(), nq) = G.col(m);
+      const std::vector<double> cm = filon.coefficients(col);
+      coef.col(m) = Eigen::Map<const Eigen::VectorXd>(cm.data(), nq);
+    }
+    const Eigen::MatrixXd add = (Wre * coef.leftCols(3) - Wim * coef.rightCols(3)) / kPi;
+    rem.col(i) += add.col(0);
+    rem.col(ny + i) += add.col(1);
+    rem.col(2 * ny + i) += add.col(2);
+  }
+}
+
 StressField AsymmetricSolution::stress_field(const Eigen::Ref<const Eigen::VectorXd>& x,
                                              const Eigen::Ref<const Eigen::VectorXd>& y) const {
   detail::check_grid(x, y);
-  if (model_->memory() != nullptr && model_->vstar() > 0.0) {
-    // A viscoelastic layer with inertia: the modes' half-plane part moves
-    // with vstar/m(alpha), so the remainder below the relaxed half-plane's
-    // decays only like e^{-nT alpha |y|}: exact to round-off where that is
-    // below 1e-13 at the fine nodes' last alpha, and on the surface (its own
-    // memory); refused by name between.
-    const double reach = 30.0 / (model_->top().nT * light_->alpha.back());
+  // A viscoelastic layer with inertia: the modes' half-plane part moves with
+  // vstar/m(alpha), so the remainder below the relaxed half-plane's decays
+  // only like e^{-nT alpha |y|}. Beyond the fine nodes, depths where that is
+  // not below e^-36 at their end take the tail up to 36/(nT |y|)
+  // (inertial_tail); a depth shallower than kShallowest would need more than
+  // kTailReach of it: refused by name.
+  const bool inertial = model_->memory() != nullptr && model_->vstar() > 0.0;
+  const double tail_rate = inertial ? model_->top().nT : 0.0;
+  const double fine_end = light_->filon->upper();
+  constexpr double kTailReach = 2e4;
+  const double shallowest = inertial ? 36.0 / (tail_rate * kTailReach) : 0.0;
+  if (inertial)
     for (Eigen::Index i = 0; i < y.size(); ++i)
-      if (y(i) < 0.0 && y(i) > -reach) {
+      if (y(i) < 0.0 && y(i) > -shallowest) {
         std::ostringstream o;
         o.precision(6);
         o << "y: the stresses of a viscoelastic layer with inertia (vstar = " << model_->vstar()
-          << ") are computed on the surface (y = 0) and at depths -1 <= y/h <= " << -reach
-          << " (the layer's lower part); given y = " << y(i)
-          << " (near the surface the modes' speed vstar/m(alpha) is not taken out yet)";
-        throw InvalidParameter("y", "0 or -1 <= y <= " + std::to_string(-reach), o.str());
+          << ") are computed on the surface (y = 0) and at depths -1 <= y/h <= " << -shallowest
+          << " (shallower, the modes' tail beyond alpha h = " << kTailReach
+          << " would be summed); given y = " << y(i);
+        throw InvalidParameter("y", "0 or -1 <= y <= " + std::to_string(-shallowest), o.str());
       }
-  }
   if (jac_ && !layer())
     layered_refusal(*model_, "the stress field below the surface with friction");
   const Fine& f = *light_;
@@ -3029,6 +3107,7 @@ StressField AsymmetricSolution::stress_field(const Eigen::Ref<const Eigen::Vecto
   Eigen::MatrixXd rem =
       (Wre * coef.leftCols(3 * ny) - Wim * coef.rightCols(3 * ny)) / kPi;  // (nx, 3 ny)
   if (jac_) rem += (Wre * fcoef.leftCols(3 * ny) - Wim * fcoef.rightCols(3 * ny)) / kPi;
+  if (inertial) inertial_tail(x, y, fine_end, rem);
   StressField g;
   g.sigma_x.resize(ny, nx);
   g.sigma_y.resize(ny, nx);

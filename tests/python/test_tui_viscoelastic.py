@@ -2,9 +2,8 @@
 material selector per sublayer (elastic, Zener by deborah or by tau, a
 scene's Prony series kept) and its inertia selector, the speed sweep of one
 material (``w``: a/h and the drag against V*), and the bundled bell-curve
-scene. Numbers on screen are checked against ``mp.solve``; what a layer with
-inertia does not give yet (stresses near the surface below it) is said in its
-tab, never a number of another medium."""
+scene. Numbers on screen are checked against ``mp.solve``, never a number of
+another medium."""
 
 from __future__ import annotations
 
@@ -122,11 +121,10 @@ async def test_the_editor_makes_a_quasi_static_zener_layer() -> None:
 
 
 @sync
-async def test_inertia_on_a_viscoelastic_layer_shows_what_it_gives_and_lacks() -> None:
+async def test_inertia_on_a_viscoelastic_layer_shows_the_moving_solve() -> None:
     """Zener (deborah 0.1) with the inertia on at the Fig. 4 speed V* = 0.2:
-    the summary is the API's moving solve (drag, surface and bottom peaks);
-    the tabs whose stresses the layer with inertia does not give yet (the
-    field map, sigma_x against depth) say so instead of a plot."""
+    the summary is the API's moving solve (drag, surface and bottom peaks),
+    the surface and depth curves the API's."""
     app = create_app(cursor_blink=False, show_timing=False)
     async with app.run_test(size=SIZE) as pilot:
         await settle(pilot)
@@ -143,13 +141,12 @@ async def test_inertia_on_a_viscoelastic_layer_shows_what_it_gives_and_lacks() -
         api = mp.solve(vstar=0.2, kw=1.0, radius=100.0, load=0.002, layers=[layer])
         assert api.drag > 0.0
         assert_summary_is(app, api, "inertia on")
-        for tab in ("field", "depth"):
-            screen.action_show_tab(tab)
-            await settle(pilot)
-            data = screen.result.data
-            assert isinstance(data, tui_model.Notice), (tab, data)
-            assert "inertia" in data.text
-            assert "vstar" in data.text or "y:" in data.text
+        # sigma_x against depth: the API's below the contact's centre.
+        screen.action_show_tab("depth")
+        await settle(pilot)
+        depth = screen.query_one("#plot-depth", CurvePlot).curves
+        assert depth is not None
+        assert np.array_equal(depth.series[0].values, api.depth_stress(depth.grid))
         screen.action_show_tab("surface")
         await settle(pilot)
         curves = screen.query_one("#plot-surface", CurvePlot).curves
@@ -240,3 +237,30 @@ async def test_w_sweeps_the_speed_of_a_moving_material() -> None:
         assert at.medium is not None
         assert at.medium.inertia
         assert drag[k] == at.drag
+
+
+def test_an_output_the_medium_does_not_give_is_na_and_a_notice(monkeypatch) -> None:
+    """The summary's peaks and a tab's curves when the medium refuses the
+    stresses (an InvalidParameterError after a solve that succeeded; as the
+    stresses nearer the surface than the moving layer gives): n/a and a
+    notice naming why, never a number of another medium."""
+    layer = mp.Layer(nu=0.2, viscoelastic=mp.Zener(2.0, 0.1))
+    params = tui_model.with_medium(Params(), (layer,), None, inertia=True)
+
+    def refuse(*_args: object, **_kwargs: object) -> None:
+        raise mp.InvalidParameterError("y: not given here", parameter="y")
+
+    monkeypatch.setattr(mp.AsymmetricSolution, "stress_peaks", refuse)
+    monkeypatch.setattr(mp.AsymmetricSolution, "surface_stress", refuse)
+    cache = tui_model.Cache()
+    head = tui_model.summary(cache, params)
+    assert math.isnan(head.top_tensile)
+    assert math.isnan(head.bottom_tensile)
+    assert tui_model.fmt(head.top_tensile) == "n/a"
+    assert head.drag > 0.0
+    assert tui_model.summary_hints(head) is not None
+    result = tui_model.compute(
+        cache, tui_model.Request(generation=1, params=params, tab="surface")
+    )
+    assert isinstance(result.data, tui_model.Notice)
+    assert "not given here" in result.data.text

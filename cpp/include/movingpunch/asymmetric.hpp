@@ -491,6 +491,12 @@ class AsymmetricSolution {
   // A viscoelastic top with inertia: the surface sigma_x's memory,
   // sum_k d_k (e_k * p)(x) (Medium::stress_memory()), added to p in -phi2 p.
   double stress_memory_part(double x) const;
+  // A viscoelastic top with inertia: the stress remainder's tail beyond the
+  // fine nodes (from `from`) at shallow depths, added to rem (nx, 3 ny:
+  // stress_field's columns).
+  void inertial_tail(const Eigen::Ref<const Eigen::VectorXd>& x,
+                     const Eigen::Ref<const Eigen::VectorXd>& y, double from,
+                     Eigen::MatrixXd& rem) const;
   // A viscoelastic top's v(x, y)/(P/(mu h)) at depth y < 0 (one row).
   Eigen::VectorXd memory_depth_displacement(const Eigen::Ref<const Eigen::VectorXd>& x,
                                             double y) const;

@@ -95,6 +95,8 @@ class FilonIntegrator {
   using cplx = std::complex<double>;
   explicit FilonIntegrator(const AlphaQuadrature& q);
   int panels() const noexcept { return static_cast<int>(centre_.size()); }
+  // The upper end of the last panel (0 without panels).
+  double upper() const noexcept { return centre_.empty() ? 0.0 : centre_.back() + half_.back(); }
   // Legendre coefficients (15 per panel) of g given at the quadrature nodes
   // (of every panel, or of the first ones only).
   std::vector<double> coefficients(const std::vector<double>& g) const;
