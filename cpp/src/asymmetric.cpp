@@ -2425,22 +2425,6 @@ double bar_pole(const Medium& m) {
       "the stresses at depth)");
 }
 
-// A viscoelastic layer with inertia: its displacement below the surface
-// (the half-plane part's memory there is the quasi-static layer's, 1/m(alpha)
-// times the relaxed modes; with inertia the modes move with vstar/m(alpha))
-// is refused by name; everything else is given (the stresses from about
-// 0.002 h below the surface, stress_field).
-void inertial_refusal(const Medium& m, const std::string& what) {
-  if (m.memory() == nullptr || !(m.vstar() > 0.0)) return;
-  std::ostringstream o;
-  o.precision(10);
-  o << "vstar: " << what << " of a viscoelastic layer with inertia (vstar = " << m.vstar()
-    << " > 0) is not available yet; the contact, pressure, drag, dissipation, surface slope, "
-       "surface displacement and the stresses are (and every output of the quasi-static layer: "
-       "vstar = 0, or inertia=False with the material given by tau)";
-  throw InvalidParameter("vstar", "0 for " + what + " of a viscoelastic layer", o.str());
-}
-
 }  // namespace
 
 const DampedLayerModel* AsymmetricSolution::layer() const { return model_->homogeneous_layer(); }
@@ -2973,6 +2957,54 @@ std::shared_ptr<const Eigen::MatrixXd> AsymmetricSolution::depth_coefficients(
   return coef;
 }
 
+void AsymmetricSolution::check_inertial_depths(const Eigen::Ref<const Eigen::VectorXd>& y,
+                                               const char* what) const {
+  // The tail beyond the fine nodes reaches 36/(nT |y|); a depth shallower
+  // than 36/(nT kTailReach) would need more of it: refused by name (the
+  // surface row y = 0 is the surface's own).
+  constexpr double kTailReach = 2e4;
+  const double shallowest = 36.0 / (model_->top().nT * kTailReach);
+  for (Eigen::Index i = 0; i < y.size(); ++i)
+    if (y(i) < 0.0 && y(i) > -shallowest) {
+      std::ostringstream o;
+      o.precision(6);
+      o << "y: the " << what << " of a viscoelastic layer with inertia (vstar = " << model_->vstar()
+        << ") are computed on the surface (y = 0) and at depths -1 <= y/h <= " << -shallowest
+        << " (shallower, the modes' tail beyond alpha h = " << kTailReach
+        << " would be summed); given y = " << y(i);
+      throw InvalidParameter("y", "0 or -1 <= y <= " + std::to_string(-shallowest), o.str());
+    }
+}
+
+AlphaQuadrature AsymmetricSolution::tail_panels(double from, double reach,
+                                                std::vector<cplx>& ph) const {
+  // Gauss-Kronrod panels on [from, reach] as wide as the fine nodes' (min(0.5,
+  // 1.5/(2w)): p^ e^{i alpha c} oscillates like e^{+-i alpha w}), and p^ e^{i
+  // alpha c} at their nodes.
+  const double width = std::min(0.5, 1.5 / std::max(2.0 * half_, 1e-300));
+  const int panels = std::max(1, static_cast<int>(std::ceil((reach - from) / width)));
+  const double h = 0.5 * (reach - from) / panels;
+  AlphaQuadrature q;
+  q.panel_centre.reserve(static_cast<std::size_t>(panels));
+  q.panel_half.assign(static_cast<std::size_t>(panels), h);
+  q.alpha.reserve(15 * static_cast<std::size_t>(panels));
+  q.weight.reserve(q.alpha.capacity());
+  ph.clear();
+  ph.reserve(q.alpha.capacity());
+  for (int p = 0; p < panels; ++p) {
+    check_interrupt();  // Ctrl-C: the caller evaluates 15 layer modes a panel
+    const double c = from + (2 * p + 1) * h;
+    q.panel_centre.push_back(c);
+    for (int j = 0; j < 15; ++j) {
+      const double a = gk_node(j, c, h);
+      q.alpha.push_back(a);
+      q.weight.push_back(gk_weight(j, h));
+      ph.push_back(pressure_transform(a) * std::exp(cplx(0.0, a * centre_)));
+    }
+  }
+  return q;
+}
+
 void AsymmetricSolution::inertial_tail(const Eigen::Ref<const Eigen::VectorXd>& x,
                                        const Eigen::Ref<const Eigen::VectorXd>& y, double from,
                                        Eigen::MatrixXd& rem) const {
@@ -2988,30 +3020,12 @@ void AsymmetricSolution::inertial_tail(const Eigen::Ref<const Eigen::VectorXd>& 
   for (Eigen::Index i = 0; i < ny; ++i)
     if (y(i) < 0.0) reach = std::max(reach, 36.0 / (rate * -y(i)));
   if (!(reach > from)) return;
-  const double width = std::min(0.5, 1.5 / std::max(2.0 * half_, 1e-300));
-  const int panels = std::max(1, static_cast<int>(std::ceil((reach - from) / width)));
-  const double h = 0.5 * (reach - from) / panels;
-  AlphaQuadrature q;
-  q.panel_centre.reserve(static_cast<std::size_t>(panels));
-  q.panel_half.assign(static_cast<std::size_t>(panels), h);
-  q.alpha.reserve(15 * static_cast<std::size_t>(panels));
-  q.weight.reserve(q.alpha.capacity());
-  std::vector<std::unique_ptr<const ModeProfile>> modes;
   std::vector<cplx> ph;
-  modes.reserve(q.alpha.capacity());
-  ph.reserve(q.alpha.capacity());
-  for (int p = 0; p < panels; ++p) {
-    check_interrupt();  // Ctrl-C: 15 layer modes a panel
-    const double c = from + (2 * p + 1) * h;
-    q.panel_centre.push_back(c);
-    for (int j = 0; j < 15; ++j) {
-      const double a = gk_node(j, c, h);
-      q.alpha.push_back(a);
-      q.weight.push_back(gk_weight(j, h));
-      modes.push_back(model_->mode(a));
-      ph.push_back(pressure_transform(a) * std::exp(cplx(0.0, a * centre_)));
-    }
-  }
+  const AlphaQuadrature q = tail_panels(from, reach, ph);
+  std::vector<std::unique_ptr<const ModeProfile>> modes;
+  modes.reserve(q.alpha.size());
+  for (double a : q.alpha) modes.push_back(model_->mode(a));
+  const double h = q.panel_half.front();
   const FilonIntegrator filon(q);
   const auto nq = static_cast<Eigen::Index>(q.alpha.size());
   Eigen::MatrixXd Wre = Eigen::MatrixXd::Zero(nx, nq), Wim = Eigen::MatrixXd::Zero(nx, nq);
@@ -3055,24 +3069,10 @@ StressField AsymmetricSolution::stress_field(const Eigen::Ref<const Eigen::Vecto
   // vstar/m(alpha), so the remainder below the relaxed half-plane's decays
   // only like e^{-nT alpha |y|}. Beyond the fine nodes, depths where that is
   // not below e^-36 at their end take the tail up to 36/(nT |y|)
-  // (inertial_tail); a depth shallower than kShallowest would need more than
-  // kTailReach of it: refused by name.
+  // (inertial_tail; check_inertial_depths refuses the shallowest).
   const bool inertial = model_->memory() != nullptr && model_->vstar() > 0.0;
-  const double tail_rate = inertial ? model_->top().nT : 0.0;
   const double fine_end = light_->filon->upper();
-  constexpr double kTailReach = 2e4;
-  const double shallowest = inertial ? 36.0 / (tail_rate * kTailReach) : 0.0;
-  if (inertial)
-    for (Eigen::Index i = 0; i < y.size(); ++i)
-      if (y(i) < 0.0 && y(i) > -shallowest) {
-        std::ostringstream o;
-        o.precision(6);
-        o << "y: the stresses of a viscoelastic layer with inertia (vstar = " << model_->vstar()
-          << ") are computed on the surface (y = 0) and at depths -1 <= y/h <= " << -shallowest
-          << " (shallower, the modes' tail beyond alpha h = " << kTailReach
-          << " would be summed); given y = " << y(i);
-        throw InvalidParameter("y", "0 or -1 <= y <= " + std::to_string(-shallowest), o.str());
-      }
+  if (inertial) check_inertial_depths(y, "stresses");
   if (jac_ && !layer())
     layered_refusal(*model_, "the stress field below the surface with friction");
   const Fine& f = *light_;
@@ -3647,6 +3647,59 @@ Eigen::VectorXd AsymmetricSolution::memory_depth_displacement(
   return v;
 }
 
+Eigen::VectorXd AsymmetricSolution::inertial_depth_displacement(
+    const Eigen::Ref<const Eigen::VectorXd>& x, double y) const {
+  // v = (1/pi) Re int_0^inf W(alpha, y)/alpha p^ e^{i alpha x} d alpha (W per
+  // mu_0: the medium's state over m(alpha)), split as on the elastic layer:
+  // [W - W_hp (1 - e^-alpha)]/alpha with W_hp the relaxed half-plane's mode
+  // mix (closed form: half_plane_displacement), by Filon sums on the fine
+  // nodes and, since with inertia the remainder decays only like
+  // e^{-nT alpha |y|}, on tail panels beyond them to 36/(nT |y|) (the
+  // stresses' inertial_tail). y < 0.
+  const WaveConstants& c = model_->top();
+  auto integrand = [&](double al, cplx ph) {
+    const Eigen::Matrix4d C = detail::modal_columns(c, al, y);
+    const double w_hp = c.hp1 * C(1, 0) + c.hp2 * C(1, 1);
+    const cplx wl = model_->normal_state(al, y)(1);
+    return (wl + w_hp * std::expm1(-al)) / al * ph;
+  };
+  const Fine& f = *light_;
+  std::vector<cplx> g(f.alpha.size());
+  for (std::size_t k = 0; k < g.size(); ++k)
+    g[k] = integrand(f.alpha[k], f.phat[k] * std::exp(cplx(0.0, f.alpha[k] * centre_)));
+  std::vector<double> g_re, g_im;
+  f.coefficients(g, g_re, g_im);
+  const double from = f.filon->upper(), reach = 36.0 / (c.nT * -y);
+  std::vector<cplx> ph;
+  std::vector<double> t_re, t_im;
+  std::unique_ptr<const FilonIntegrator> tail;
+  if (reach > from) {
+    const AlphaQuadrature q = tail_panels(from, reach, ph);
+    std::vector<cplx> gt(q.alpha.size());
+    for (std::size_t k = 0; k < gt.size(); ++k) gt[k] = integrand(q.alpha[k], ph[k]);
+    tail = std::make_unique<const FilonIntegrator>(q);
+    std::vector<double> re(gt.size()), im(gt.size());
+    for (std::size_t k = 0; k < gt.size(); ++k) {
+      re[k] = gt[k].real();
+      im[k] = gt[k].imag();
+    }
+    t_re = tail->coefficients(re);
+    t_im = tail->coefficients(im);
+  }
+  Eigen::VectorXd v(x.size());
+  for (Eigen::Index j = 0; j < x.size(); ++j) {
+    if (std::fabs(x(j)) > kFarField) {
+      v(j) = 0.0;
+      continue;
+    }
+    const double u = x(j) - centre_;
+    double sum = f.fourier(g_re, g_im, u);
+    if (tail) sum += tail->integral(u, t_re).real() - tail->integral(u, t_im).imag();
+    v(j) = params_.load * (sum / kPi + detail::half_plane_displacement(c, b_, half_, u, y, 1));
+  }
+  return v;
+}
+
 double AsymmetricSolution::surface_displacement(double x) const {
   if (!std::isfinite(x))
     throw InvalidParameter("x", "finite",
@@ -3681,10 +3734,12 @@ Eigen::MatrixXd AsymmetricSolution::displacement(const Eigen::Ref<const Eigen::V
     // below it the half-plane part's memory by a convolution in x
     // (memory_depth_displacement).
     Eigen::MatrixXd v(y.size(), x.size());
-    if ((y.array() < 0.0).any()) inertial_refusal(*model_, "the displacement below the surface");
+    const bool inertial = model_->vstar() > 0.0;
+    if (inertial) check_inertial_depths(y, "displacements");
     for (Eigen::Index i = 0; i < y.size(); ++i) {
       if (y(i) < 0.0) {
-        v.row(i) = memory_depth_displacement(x, y(i));
+        v.row(i) =
+            inertial ? inertial_depth_displacement(x, y(i)) : memory_depth_displacement(x, y(i));
         continue;
       }
       const std::shared_ptr<const Surface> sf = surface();

@@ -197,13 +197,38 @@ def test_what_the_layer_with_inertia_does_not_give_is_refused_by_name():
     assert err.value.parameter == "y"
     assert "inertia" in str(err.value)
     with pytest.raises(InvalidParameterError) as err:
-        s.displacement(X, -0.5)
-    assert err.value.parameter == "vstar"
+        s.displacement(X, -1e-3)
+    assert err.value.parameter == "y"
     # The surface displacement is given: the punch's face on the contact.
     back, front = s.contact_interval
     xs = np.linspace(0.9 * back, 0.9 * front, 7)
     face = -s.indentation + xs**2 / (2.0 * R)
     assert np.max(np.abs(s.surface_displacement(xs) - face)) < 1e-9 * s.indentation
+
+
+@pytest.mark.parametrize(("deborah", "scale"), [(1e-12, 1.0), (1e12, 3.0)])
+def test_the_displacement_below_the_surface_meets_the_limits_and_the_springs(
+    deborah, scale
+):
+    """v(x, y) in the elastic limits (1e-10 of its scale) from the
+    base to y = -0.01; and the springs' law at the base, sigma_y(x, -h) =
+    k_w v(x, -h) (the stress and the displacement come by different routes),
+    for a material in between."""
+    s = visco(0.3, mp.Zener(3.0, deborah))
+    e = elastic(0.3, scale)
+    for y in (-1.0, -0.1, -0.01):
+        got, want = s.displacement(X, y), e.displacement(X, y)
+        assert np.max(np.abs(got - want)) < 1e-10 * np.max(np.abs(want)), y
+    s = visco(0.3, mp.Zener(3.0, 0.5))
+    v = s.displacement(X, -1.0)
+    sigma_y = s.stress_field(X, [-1.0]).sigma_y[0]
+    assert np.max(np.abs(sigma_y - KW * v / LOAD)) < 1e-12 * np.max(np.abs(sigma_y))
+    # It meets the surface's as y -> 0, linearly (the slope dv/dy is finite).
+    top = s.surface_displacement(X)
+    d1 = np.max(np.abs(s.displacement(X, -0.005) - top))
+    d2 = np.max(np.abs(s.displacement(X, -0.0025) - top))
+    assert d2 < 0.6 * d1
+    assert d2 < 0.01 * s.indentation
 
 
 def test_the_relaxed_critical_speed_bounds_the_moving_layer():

@@ -497,6 +497,17 @@ class AsymmetricSolution {
   void inertial_tail(const Eigen::Ref<const Eigen::VectorXd>& x,
                      const Eigen::Ref<const Eigen::VectorXd>& y, double from,
                      Eigen::MatrixXd& rem) const;
+  // InvalidParameter naming y for a depth closer to the surface than the
+  // tail's reach allows (about 0.002 h).
+  void check_inertial_depths(const Eigen::Ref<const Eigen::VectorXd>& y, const char* what) const;
+  // Its nodes: Gauss-Kronrod panels on [from, reach] as wide as the fine
+  // nodes', and p^ e^{i alpha c} at them (ph).
+  AlphaQuadrature tail_panels(double from, double reach, std::vector<cplx>& ph) const;
+  // A viscoelastic top with inertia: v(x, y)/(P/(mu h)) at depth y < 0 (one
+  // row): the elastic layer's split below the relaxed half-plane, its
+  // remainder's tail beyond the fine nodes summed to 36/(nT |y|).
+  Eigen::VectorXd inertial_depth_displacement(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                              double y) const;
   // A viscoelastic top's v(x, y)/(P/(mu h)) at depth y < 0 (one row).
   Eigen::VectorXd memory_depth_displacement(const Eigen::Ref<const Eigen::VectorXd>& x,
                                             double y) const;
