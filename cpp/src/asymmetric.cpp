@@ -14,6 +14,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <tuple>
+#include <utility>
 
 #include "bessel.hpp"
 #include "chebyshev.hpp"
@@ -58,39 +59,34 @@ double g_weight(int j, double h) {
   return k % 2 == 1 ? kWg[k / 2] * h : 0.0;
 }
 
-// Bottom spring row t S - k W, normalised by t + |k| (no overflow for any k, t).
-Eigen::RowVector4cd spring_row(const Eigen::RowVector4cd& S, const Eigen::RowVector4cd& W, double t,
-                               cplx k, bool rigid) {
-  if (rigid) return W;
+// Bottom spring row t S - k W, normalised by t + |k| (no overflow for any k,
+// t); S, W real or complex rows (cast as the real layer always cast them:
+// its results stay bit for bit).
+template <class Row>
+Eigen::RowVector4cd spring_row(const Row& S, const Row& W, double t, cplx k, bool rigid) {
+  if (rigid) return W.template cast<cplx>();
   const double n = t + std::abs(k);
-  return (t / n) * S - (k / n) * W;
+  return (t / n) * S.template cast<cplx>() - (k / n) * W.template cast<cplx>();
 }
 
-// The layer's regularised basis at depth y (complex), of real or complex constants.
+// The boundary matrix on the modal basis (top tau, sigma_y; bottom tau,
+// springs) and the top/bottom columns, in the constants' own scalar (real
+// for every elastic layer, complex with a viscoelastic layer's inertia).
 template <class C>
-Eigen::Matrix4cd columns(const C& c, double t, double y) {
-  return modal_columns(c, t, y).template cast<cplx>();
-}
-template <class C>
-Eigen::Matrix4cd transfer(const C& c, double t, double y) {
-  return transfer_matrix(c, t, y).template cast<cplx>();
-}
-
-// The boundary matrix on the modal basis (top tau, sigma_y; bottom tau, springs)
-// and the top/bottom columns.
 struct ModalSystem {
-  Eigen::Matrix4cd top, bot;
+  using Columns = decltype(modal_columns(std::declval<const C&>(), 0.0, 0.0));
+  Columns top, bot;
   Eigen::PartialPivLU<Eigen::Matrix4cd> lu;
 };
 template <class C>
-ModalSystem modal_system(const C& c, double t, cplx k, bool rigid) {
-  ModalSystem m;
-  m.top = columns(c, t, 0.0);
-  m.bot = columns(c, t, -1.0);
+ModalSystem<C> modal_system(const C& c, double t, cplx k, bool rigid) {
+  ModalSystem<C> m;
+  m.top = modal_columns(c, t, 0.0);
+  m.bot = modal_columns(c, t, -1.0);
   Eigen::Matrix4cd M;
-  M.row(0) = m.top.row(2);
-  M.row(1) = m.top.row(3);
-  M.row(2) = m.bot.row(2);
+  M.row(0) = m.top.row(2).template cast<cplx>();
+  M.row(1) = m.top.row(3).template cast<cplx>();
+  M.row(2) = m.bot.row(2).template cast<cplx>();
   M.row(3) = spring_row(m.bot.row(3), m.bot.row(1), t, k, rigid);
   m.lu = M.partialPivLu();
   return m;
@@ -100,20 +96,20 @@ template <class C>
 DampedResponse modal_response(const C& c, double t, cplx k, bool rigid) {
   DampedResponse r;
   const double c2 = c.c2;
-  const ModalSystem m = modal_system(c, t, k, rigid);
+  const ModalSystem<C> m = modal_system(c, t, k, rigid);
   const Eigen::Vector4cd amp = m.lu.solve(Eigen::Vector4cd(0.0, -1.0, 0.0, 0.0));
   // The unit tangential load (top T = 1, S = 0) on the same factorisation.
   const Eigen::Vector4cd ampq = m.lu.solve(Eigen::Vector4cd(1.0, 0.0, 0.0, 0.0));
-  const Eigen::Vector4cd zq = m.top * ampq;
+  const Eigen::Vector4cd zq = m.top.template cast<cplx>() * ampq;
   r.Uq = zq(0);
   r.Wq = zq(1);
-  r.Wqb = (m.bot.row(1) * ampq)(0);
-  const Eigen::Vector4cd z0 = m.top * amp;
+  r.Wqb = (m.bot.row(1).template cast<cplx>() * ampq)(0);
+  const Eigen::Vector4cd z0 = m.top.template cast<cplx>() * amp;
   r.U0 = z0(0);
   r.W0 = z0(1);
   r.M1 = -z0(1);
   r.M2 = (c2 - 2.0) / c2 - 4.0 * (c2 - 1.0) / c2 * z0(0);
-  r.Wb = (m.bot.row(1) * amp)(0);
+  r.Wb = (m.bot.row(1).template cast<cplx>() * amp)(0);
   return r;
 }
 
@@ -121,9 +117,9 @@ template <class C>
 DampedResponse transfer_response(const C& c, double t, cplx k, bool rigid) {
   const double c2 = c.c2;
   DampedResponse r;
-  const Eigen::Matrix4cd P = transfer(c, t, -1.0);
+  const auto P = transfer_matrix(c, t, -1.0);
   Eigen::Matrix<cplx, 2, 4> R;
-  R.row(0) = P.row(2);
+  R.row(0) = P.row(2).template cast<cplx>();
   R.row(1) = spring_row(P.row(3), P.row(1), t, k, rigid);
   const Eigen::Matrix2cd M = R.leftCols<2>();
   const Eigen::Vector2cd rhs = R.col(3);
@@ -132,13 +128,13 @@ DampedResponse transfer_response(const C& c, double t, cplx k, bool rigid) {
   const Eigen::Vector2cd xq = lu.solve(Eigen::Vector2cd(-R.col(2)));
   r.Uq = xq(0);
   r.Wq = xq(1);
-  r.Wqb = (P.row(1) * Eigen::Vector4cd(xq(0), xq(1), 1.0, 0.0))(0);
+  r.Wqb = (P.row(1).template cast<cplx>() * Eigen::Vector4cd(xq(0), xq(1), 1.0, 0.0))(0);
   const Eigen::Vector4cd z0(x(0), x(1), 0.0, -1.0);
   r.U0 = x(0);
   r.W0 = x(1);
   r.M1 = -x(1);
   r.M2 = (c2 - 2.0) / c2 - 4.0 * (c2 - 1.0) / c2 * x(0);
-  r.Wb = (P.row(1) * z0)(0);
+  r.Wb = (P.row(1).template cast<cplx>() * z0)(0);
   return r;
 }
 
@@ -238,11 +234,12 @@ Eigen::Vector4cd DampedLayerModel::state(double t, double y) const {
   if (!(t > 0.0) || !std::isfinite(t) || !(y >= -1.0) || !(y <= 0.0))
     throw std::invalid_argument("damped state: need t > 0 finite and -1 <= y <= 0");
   const Eigen::Vector4cd z = state_coefficients(t);
-  if (inertial_) {
-    const ComplexWaveConstants c = constants_at(t);
-    return (t < kSmallT ? transfer(c, t, y) : columns(c, t, y)) * z;
-  }
-  return (t < kSmallT ? transfer(c_, t, y) : columns(c_, t, y)) * z;
+  auto of = [&](const auto& c) -> Eigen::Vector4cd {
+    if (t < kSmallT) return transfer_matrix(c, t, y).template cast<cplx>() * z;
+    return modal_columns(c, t, y).template cast<cplx>() * z;
+  };
+  if (inertial_) return of(constants_at(t));
+  return of(c_);
 }
 
 Eigen::Vector4cd DampedLayerModel::state_coefficients(double t) const {
@@ -264,9 +261,11 @@ Eigen::Vector4cd DampedLayerModel::tangential_state(double t, double y) const {
   auto of = [&](const auto& c) -> Eigen::Vector4cd {
     if (t < kSmallT) {
       const DampedResponse r = transfer_response(c, t, foundation(t), rigid_);
-      return transfer(c, t, y) * Eigen::Vector4cd(r.Uq, r.Wq, 1.0, 0.0);
+      return transfer_matrix(c, t, y).template cast<cplx>() *
+             Eigen::Vector4cd(r.Uq, r.Wq, 1.0, 0.0);
     }
-    return columns(c, t, y) * modal_system(c, t, foundation(t), rigid_).lu.solve(unit);
+    const Eigen::Vector4cd amp = modal_system(c, t, foundation(t), rigid_).lu.solve(unit);
+    return modal_columns(c, t, y).template cast<cplx>() * amp;
   };
   if (inertial_) return of(constants_at(t));
   return of(c_);
