@@ -59,6 +59,18 @@ double g_weight(int j, double h) {
   return k % 2 == 1 ? kWg[k / 2] * h : 0.0;
 }
 
+// The Filon coefficients of the real and imaginary parts of g at the nodes.
+void filon_coefficients(const FilonIntegrator& filon, const std::vector<cplx>& g,
+                        std::vector<double>& c_re, std::vector<double>& c_im) {
+  std::vector<double> re(g.size()), im(g.size());
+  for (std::size_t i = 0; i < g.size(); ++i) {
+    re[i] = g[i].real();
+    im[i] = g[i].imag();
+  }
+  c_re = filon.coefficients(re);
+  c_im = filon.coefficients(im);
+}
+
 // Bottom spring row t S - k W, normalised by t + |k| (no overflow for any k,
 // t); S, W real or complex rows (cast as the real layer always cast them:
 // its results stay bit for bit).
@@ -2778,13 +2790,7 @@ std::shared_ptr<Eigen::MatrixXd> AsymmetricSolution::Fine::filon_columns(
 
 void AsymmetricSolution::Fine::coefficients(const std::vector<cplx>& g, std::vector<double>& c_re,
                                             std::vector<double>& c_im) const {
-  std::vector<double> re(g.size()), im(g.size());
-  for (std::size_t i = 0; i < g.size(); ++i) {
-    re[i] = g[i].real();
-    im[i] = g[i].imag();
-  }
-  c_re = filon->coefficients(re);
-  c_im = filon->coefficients(im);
+  filon_coefficients(*filon, g, c_re, c_im);
 }
 
 double AsymmetricSolution::Fine::fourier(const std::vector<double>& c_re,
@@ -3677,13 +3683,7 @@ Eigen::VectorXd AsymmetricSolution::inertial_depth_displacement(
     std::vector<cplx> gt(q.alpha.size());
     for (std::size_t k = 0; k < gt.size(); ++k) gt[k] = integrand(q.alpha[k], ph[k]);
     tail = std::make_unique<const FilonIntegrator>(q);
-    std::vector<double> re(gt.size()), im(gt.size());
-    for (std::size_t k = 0; k < gt.size(); ++k) {
-      re[k] = gt[k].real();
-      im[k] = gt[k].imag();
-    }
-    t_re = tail->coefficients(re);
-    t_im = tail->coefficients(im);
+    filon_coefficients(*tail, gt, t_re, t_im);
   }
   Eigen::VectorXd v(x.size());
   for (Eigen::Index j = 0; j < x.size(); ++j) {

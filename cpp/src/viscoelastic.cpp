@@ -1012,16 +1012,21 @@ void MemoryKernel::moments(double s, double w, int count, double* out) const {
       for (int n = 0; n < count; ++n) out[n] += spec_.c[k] * one[static_cast<std::size_t>(n)];
       continue;
     }
-    l.resize(m);
-    c.resize(m);
-    for (std::size_t t = 0; t < m; ++t) {
-      const std::size_t k = order_[j0 + t];
-      l[t] = w / spec_.beta[k];
-      c[t] = spec_.c[k];
-      check_moment_args(s, l[t]);
-    }
+    cluster_terms(j0, m, w, l, c);
+    for (double lt : l) check_moment_args(s, lt);
     prepare_cluster(l.data(), c.data(), m, count, cluster);
     add_cluster(s, cluster, count, out);
+  }
+}
+
+void MemoryKernel::cluster_terms(std::size_t j0, std::size_t m, double w, std::vector<double>& l,
+                                 std::vector<double>& c) const {
+  l.resize(m);
+  c.resize(m);
+  for (std::size_t t = 0; t < m; ++t) {
+    const std::size_t k = order_[j0 + t];
+    l[t] = w / spec_.beta[k];
+    c[t] = spec_.c[k];
   }
 }
 
@@ -1042,14 +1047,9 @@ Eigen::MatrixXd MemoryKernel::collocation_block(const ChebyshevNodes& nodes, dou
       mom += spec_.c[k] * one;
       continue;
     }
-    l.resize(m);
-    c.resize(m);
-    for (std::size_t t = 0; t < m; ++t) {
-      const std::size_t k = order_[j0 + t];
-      l[t] = w / spec_.beta[k];
-      c[t] = spec_.c[k];
-      for (int r = 0; r <= n; ++r) check_moment_args(nodes.s(r), l[t]);
-    }
+    cluster_terms(j0, m, w, l, c);
+    for (double lt : l)
+      for (int r = 0; r <= n; ++r) check_moment_args(nodes.s(r), lt);
     check_descending(nodes.s.data(), n + 1);
     prepare_cluster(l.data(), c.data(), m, n, cluster);
     if (n > 0) add_cluster_descending(nodes.s.data(), n + 1, cluster, n, mom.data());

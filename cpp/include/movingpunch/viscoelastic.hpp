@@ -149,6 +149,9 @@ class MemoryKernel {
   // (viscoelastic.cpp: kClusterRatio) that share their quadrature nodes:
   // cluster i is order_[starts_[i]] .. order_[starts_[i + 1] - 1].
   std::vector<std::size_t> order_, starts_;
+  // The m terms of the cluster from order_[j0]: lambda = w/beta and c.
+  void cluster_terms(std::size_t j0, std::size_t m, double w, std::vector<double>& l,
+                     std::vector<double>& c) const;
 };
 
 // l J_n(s, l) for n < count (one retardation time; MemoryKernel sums them).
