@@ -3017,21 +3017,40 @@ void AsymmetricSolution::inertial_tail(const Eigen::Ref<const Eigen::VectorXd>& 
   // for the depths whose remainder (the state less the relaxed half-plane's,
   // ModeProfile::remainder) has not decayed by `from` (e^{-nT alpha |y|} >
   // e^-36 there): Filon panels as the fine nodes' (width min(0.5, 1.5/(2w)):
-  // p^ e^{i alpha c} oscillates like e^{+-i alpha w}), the mode of each node
-  // built once for every depth.
+  // p^ e^{i alpha c} oscillates like e^{+-i alpha w}). The panels and their
+  // modes are kept for the farthest reach asked so far, and the Filon
+  // coefficients of the last few depths (they do not depend on x: the
+  // strains' convolutions along x ask one depth at many points).
   const double rate = model_->top().nT;
   const Eigen::Index nx = x.size(), ny = y.size();
   double reach = from;
   for (Eigen::Index i = 0; i < ny; ++i)
     if (y(i) < 0.0) reach = std::max(reach, 36.0 / (rate * -y(i)));
   if (!(reach > from)) return;
-  std::vector<cplx> ph;
-  const AlphaQuadrature q = tail_panels(from, reach, ph);
-  std::vector<std::unique_ptr<const ModeProfile>> modes;
-  modes.reserve(q.alpha.size());
-  for (double a : q.alpha) modes.push_back(model_->mode(a));
+  std::shared_ptr<const TailNodes> tail;
+  {
+    std::lock_guard<std::mutex> lock(field_cache_->mutex);
+    tail = field_cache_->tail;
+  }
+  if (!tail || tail->reach < reach) {
+    auto built = std::make_shared<TailNodes>();
+    built->reach = reach;
+    built->q = tail_panels(from, reach, built->ph);
+    built->modes.reserve(built->q.alpha.size());
+    for (double a : built->q.alpha) built->modes.push_back(model_->mode(a));
+    built->filon = std::make_shared<const FilonIntegrator>(built->q);
+    tail = built;
+    std::lock_guard<std::mutex> lock(field_cache_->mutex);
+    if (!field_cache_->tail || field_cache_->tail->reach < reach) {
+      field_cache_->tail = tail;
+      field_cache_->tail_depths.clear();
+    } else {
+      tail = field_cache_->tail;  // (a wider one built meanwhile)
+    }
+  }
+  const AlphaQuadrature& q = tail->q;
+  const FilonIntegrator& filon = *tail->filon;
   const double h = q.panel_half.front();
-  const FilonIntegrator filon(q);
   const auto nq = static_cast<Eigen::Index>(q.alpha.size());
   Eigen::MatrixXd Wre = Eigen::MatrixXd::Zero(nx, nq), Wim = Eigen::MatrixXd::Zero(nx, nq);
   std::vector<cplx> K;
@@ -3043,24 +3062,42 @@ void AsymmetricSolution::inertial_tail(const Eigen::Ref<const Eigen::VectorXd>& 
       Wim(j, k) = K[static_cast<std::size_t>(k)].imag();
     }
   }
+  constexpr std::size_t kDepthsKept = 4;
   std::vector<double> col(static_cast<std::size_t>(nq));
   for (Eigen::Index i = 0; i < ny; ++i) {
     if (!(y(i) < 0.0) || !(36.0 / (rate * -y(i)) > from)) continue;
-    const double end = 36.0 / (rate * -y(i));
-    Eigen::MatrixXd G = Eigen::MatrixXd::Zero(nq, 6);
-    for (Eigen::Index k = 0; k < nq; ++k) {
-      const auto qk = static_cast<std::size_t>(k);
-      if (q.alpha[qk] > end + 2.0 * h) break;  // (the rest below e^-36)
-      const ModeState st = modes[qk]->remainder(y(i), false);
-      set_stress_row(G, k, st.sx * ph[qk], st.z(3) * ph[qk], cplx(0.0, -1.0) * st.z(2) * ph[qk]);
+    std::shared_ptr<const Eigen::MatrixXd> coef;
+    {
+      std::lock_guard<std::mutex> lock(field_cache_->mutex);
+      if (field_cache_->tail == tail)
+        for (const auto& [depth, c] : field_cache_->tail_depths)
+          if (depth == y(i)) coef = c;
     }
-    Eigen::MatrixXd coef(nq, 6);
-    for (Eigen::Index m = 0; m < 6; ++m) {
-      Eigen::Map<Eigen::VectorXd>(col.data(), nq) = G.col(m);
-      const std::vector<double> cm = filon.coefficients(col);
-      coef.col(m) = Eigen::Map<const Eigen::VectorXd>(cm.data(), nq);
+    if (!coef) {
+      const double end = 36.0 / (rate * -y(i));
+      Eigen::MatrixXd G = Eigen::MatrixXd::Zero(nq, 6);
+      for (Eigen::Index k = 0; k < nq; ++k) {
+        const auto qk = static_cast<std::size_t>(k);
+        if (q.alpha[qk] > end + 2.0 * h) break;  // (the rest below e^-36)
+        const ModeState st = tail->modes[qk]->remainder(y(i), false);
+        const cplx ph = tail->ph[qk];
+        set_stress_row(G, k, st.sx * ph, st.z(3) * ph, cplx(0.0, -1.0) * st.z(2) * ph);
+      }
+      auto made = std::make_shared<Eigen::MatrixXd>(nq, 6);
+      for (Eigen::Index m = 0; m < 6; ++m) {
+        Eigen::Map<Eigen::VectorXd>(col.data(), nq) = G.col(m);
+        const std::vector<double> cm = filon.coefficients(col);
+        made->col(m) = Eigen::Map<const Eigen::VectorXd>(cm.data(), nq);
+      }
+      coef = made;
+      std::lock_guard<std::mutex> lock(field_cache_->mutex);
+      if (field_cache_->tail == tail) {
+        auto& kept = field_cache_->tail_depths;
+        if (kept.size() >= kDepthsKept) kept.erase(kept.begin());
+        kept.emplace_back(y(i), coef);
+      }
     }
-    const Eigen::MatrixXd add = (Wre * coef.leftCols(3) - Wim * coef.rightCols(3)) / kPi;
+    const Eigen::MatrixXd add = (Wre * coef->leftCols(3) - Wim * coef->rightCols(3)) / kPi;
     rem.col(i) += add.col(0);
     rem.col(ny + i) += add.col(1);
     rem.col(2 * ny + i) += add.col(2);

@@ -265,3 +265,20 @@ def test_the_command_line_solves_the_moving_layer(
     assert data["drag"] == direct.drag
     assert data["dissipation"] == pytest.approx(direct.drag, rel=1e-10)
     assert tuple(data["contact_interval"]) == direct.contact_interval
+
+
+@pytest.mark.parametrize(("deborah", "scale"), [(1e-12, 1.0), (1e12, 3.0)])
+def test_the_strains_near_the_surface_meet_the_elastic_limits(deborah, scale):
+    """The strains pass the stresses through the material's compliance along
+    x (the retardation spectrum, with or without inertia): near the surface,
+    where the stresses' tail beyond the fine nodes is summed, they are the
+    elastic layers' (the unrelaxed one's strains are its stresses over mu_inf:
+    in units of mu_0, divided by the ratio)."""
+    s = visco(0.3, mp.Zener(3.0, deborah))
+    e = elastic(0.3, scale)
+    xs = [0.0, 0.1]
+    got = s.strain_field(xs, [-0.05])
+    want = e.strain_field(xs, [-0.05])
+    for name in ("eps_x", "eps_y", "gamma_xy"):
+        a, b = getattr(got, name), getattr(want, name) / scale
+        assert np.max(np.abs(a - b)) < 1e-9 * np.max(np.abs(b)), name

@@ -527,9 +527,21 @@ class AsymmetricSolution {
     // remainder at any depth), instead of d_re, d_im and the bounds.
     std::vector<std::unique_ptr<const ModeProfile>> modes;
   };
+  // A viscoelastic top with inertia: the tail panels beyond the fine nodes
+  // (inertial_tail) up to `reach`, p^ e^{i alpha c} and the mode at each node.
+  struct TailNodes {
+    double reach = 0;
+    AlphaQuadrature q;
+    std::vector<cplx> ph;
+    std::vector<std::unique_ptr<const ModeProfile>> modes;
+    std::shared_ptr<const FilonIntegrator> filon;
+  };
   struct FieldCache {
     std::mutex mutex;
     std::shared_ptr<const FieldNodes> nodes;
+    // The tail of a layer with inertia and its last few depths' coefficients.
+    std::shared_ptr<const TailNodes> tail;
+    std::vector<std::pair<double, std::shared_ptr<const Eigen::MatrixXd>>> tail_depths;
     // The Filon coefficients of the remainder at the last few depths
     // (nq x 6: sigma_x, sigma_y, tau real parts, then imaginary parts): they do
     // not depend on x, so a search along one depth (the bottom's peaks, the
