@@ -67,6 +67,22 @@ def zener(
     return s
 
 
+def _sweep_seconds(material: mp.Zener, speeds: np.ndarray, inertia: bool) -> float:
+    """Seconds to solve the layer of ``material`` at every speed (vstar)."""
+    layer = mp.Layer(nu=NU, viscoelastic=material)
+    t0 = time.perf_counter()
+    for v in speeds:
+        mp.solve(
+            vstar=float(v),
+            load=LOAD,
+            radius=RADIUS,
+            layers=[layer],
+            base=mp.Winkler(KW),
+            inertia=inertia,
+        )
+    return time.perf_counter() - t0
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=7)
@@ -131,36 +147,16 @@ def main() -> None:
             f"{drags[k]:.4g} at deborah {deborahs[k]:.3g}"
         )
     # One material (tau = 100 h/c_T0) swept by its speed, quasi-statically.
-    layer = mp.Layer(nu=NU, viscoelastic=mp.Zener(2.0, tau=100.0))
-    speeds = (deborahs / 100.0) ** 2
-    t0 = time.perf_counter()
-    for v in speeds:
-        mp.solve(
-            vstar=float(v),
-            load=LOAD,
-            radius=RADIUS,
-            layers=[layer],
-            base=mp.Winkler(KW),
-            inertia=False,
-        )
-    total = time.perf_counter() - t0
+    total = _sweep_seconds(mp.Zener(2.0, tau=100.0), (deborahs / 100.0) ** 2, False)
     print(
         f"one material by its speed (tau, inertia=False), {args.speeds} speeds: "
         f"{total:.2f} s ({1e3 * total / args.speeds:.1f} ms a speed)"
     )
     # The same material moving with its inertia (speeds below the relaxed
     # layer's V*_cr): each speed a new medium (its memory of a pole and a cut).
-    moving_speeds = np.geomspace(1e-4, 0.5, args.speeds)
-    t0 = time.perf_counter()
-    for v in moving_speeds:
-        mp.solve(
-            vstar=float(v),
-            load=LOAD,
-            radius=RADIUS,
-            layers=[mp.Layer(nu=NU, viscoelastic=mp.Zener(2.0, tau=1.0))],
-            base=mp.Winkler(KW),
-        )
-    total = time.perf_counter() - t0
+    total = _sweep_seconds(
+        mp.Zener(2.0, tau=1.0), np.geomspace(1e-4, 0.5, args.speeds), True
+    )
     print(
         f"one material moving (tau = 1, inertia), {args.speeds} speeds 1e-4 ... "
         f"0.5: {total:.2f} s ({1e3 * total / args.speeds:.1f} ms a speed)"

@@ -125,6 +125,25 @@ double rayleigh_vstar(double nu) {
 
 namespace {
 
+// The half-plane's roots and factors at s: what phi1 and phi2 need (and the
+// rest of the constants build on).
+template <class T>
+struct HalfPlaneParts {
+  T nT, nL, X, Y, phi1, phi2;
+};
+template <class T>
+HalfPlaneParts<T> half_plane_parts(T s, double c2) {
+  HalfPlaneParts<T> h;
+  h.nT = std::sqrt(1.0 - s);
+  h.nL = std::sqrt(1.0 - s / c2);
+  h.X = 1.0 + 1.0 / c2 - s / c2;
+  h.Y = h.nL * h.nT;
+  const T den = 4.0 - s - 4.0 * h.X / (1.0 + h.Y);
+  h.phi1 = h.nL / den;
+  h.phi2 = (4.0 * h.X / (1.0 + h.Y) - 2.0 + 2.0 * (c2 - 2.0) / c2 - s * (c2 - 2.0) / c2) / den;
+  return h;
+}
+
 // The closed forms of wave_constants, real or complex s (principal roots).
 template <class T>
 BasicWaveConstants<T> fill_constants(T s, double nu) {
@@ -133,18 +152,18 @@ BasicWaveConstants<T> fill_constants(T s, double nu) {
   c.nu = nu;
   c.c2 = c2_of(nu);
   const double c2 = c.c2;
-  c.nT = std::sqrt(1.0 - s);
-  c.nL = std::sqrt(1.0 - s / c2);
-  const T X = 1.0 + 1.0 / c2 - s / c2, Y = c.nL * c.nT;
+  const HalfPlaneParts<T> hp = half_plane_parts(s, c2);
+  c.nT = hp.nT;
+  c.nL = hp.nL;
+  const T X = hp.X, Y = hp.Y;
+  c.phi1 = hp.phi1;
+  c.phi2 = hp.phi2;
   const double one_minus_inv_c2 = 1.0 - 1.0 / c2;  // = 2 / (kappa + 1)
   c.delta = s * one_minus_inv_c2 / (c.nL + c.nT);
   const T ratio = (c.nL + c.nT) / (one_minus_inv_c2 * c.nT);
   c.dW = X / (1.0 + Y) * ratio;
   c.dT = ((-s * X / (1.0 + Y) - 2.0 * (1.0 - s) / c2) / (1.0 + Y)) * ratio;
   c.dS = (c.nL + c.nT) / one_minus_inv_c2;
-  const T den = 4.0 - s - 4.0 * X / (1.0 + Y);
-  c.phi1 = c.nL / den;
-  c.phi2 = (4.0 * X / (1.0 + Y) - 2.0 + 2.0 * (c2 - 2.0) / c2 - s * (c2 - 2.0) / c2) / den;
   // Half-plane amplitudes: tau(0) = hp1 q + hp2 dT = 0, sigma(0) = -2 hp1 + hp2 dS = -1.
   {
     const T q = (1.0 + c.nT * c.nT) / c.nT;
@@ -168,11 +187,23 @@ WaveConstants wave_constants(double vstar, double nu) {
   return fill_constants<double>(vstar, nu);
 }
 
-ComplexWaveConstants complex_wave_constants(std::complex<double> s, double nu) {
+namespace {
+void check_complex_speed(std::complex<double> s, double nu) {
   require_in_range("nu", nu, 0.0, 0.5, false, true);
   if (!std::isfinite(s.real()) || !std::isfinite(s.imag()) || (s.imag() == 0.0 && s.real() >= 1.0))
     throw std::invalid_argument("complex_wave_constants: s must be finite and not real >= 1");
+}
+}  // namespace
+
+ComplexWaveConstants complex_wave_constants(std::complex<double> s, double nu) {
+  check_complex_speed(s, nu);
   return fill_constants<std::complex<double>>(s, nu);
+}
+
+ComplexHalfPlane complex_half_plane(std::complex<double> s, double nu) {
+  check_complex_speed(s, nu);
+  const HalfPlaneParts<std::complex<double>> h = half_plane_parts(s, c2_of(nu));
+  return {h.phi1, h.phi2};
 }
 
 double phi1(double vstar, double nu) {

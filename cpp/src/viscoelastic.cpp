@@ -169,7 +169,7 @@ RetardationSpectrum retardation_spectrum(const Viscoelastic& v) {
 
 std::complex<double> half_plane_stress(const Viscoelastic& v, double vstar, double nu, double t) {
   if (vstar == 0.0) return 1.0;  // phi2(0): no modulus in it
-  return complex_wave_constants(vstar / v.modulus(t), nu).phi2;
+  return complex_half_plane(vstar / v.modulus(t), nu).phi2;
 }
 
 double unrelaxed_phi1(const Viscoelastic& v, double vstar, double nu) {
@@ -181,7 +181,7 @@ std::complex<double> half_plane_compliance(const Viscoelastic& v, double vstar, 
                                            double t) {
   const cplx m = v.modulus(t);
   if (vstar == 0.0) return (1.0 - nu) / m;
-  return complex_wave_constants(vstar / m, nu).phi1 / m;
+  return complex_half_plane(vstar / m, nu).phi1 / m;
 }
 
 namespace {

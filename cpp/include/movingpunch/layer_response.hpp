@@ -79,6 +79,12 @@ WaveConstants wave_constants(double vstar, double nu);
 // s = vstar/m(t), Im s >= 0); throws std::invalid_argument unless s is finite,
 // not real >= 1 and 0 <= nu < 0.5.
 ComplexWaveConstants complex_wave_constants(std::complex<double> s, double nu);
+// Only its phi1 and phi2 (the half-plane factors, per wavenumber on the
+// kernel's and the stresses' hot paths), the same checks.
+struct ComplexHalfPlane {
+  std::complex<double> phi1, phi2;
+};
+ComplexHalfPlane complex_half_plane(std::complex<double> s, double nu);
 
 // Rayleigh speed rho c_R^2 / mu for Poisson's ratio nu.
 double rayleigh_vstar(double nu);
