@@ -16,6 +16,9 @@ against the same layer elastic, and a resistance curve of 100 speeds.
 * With the layer's inertia: the Zener layer and a three-branch Prony layer
   moving at vstar 0.1 (warm), against the elastic layer at vstar 0.1 on the
   asymmetric solver.
+* Viscoelastic sublayers in stacks moving at vstar 0.1 (a Zener course on
+  an elastic base on springs; a Zener soil under an elastic top on a
+  half-space), against the same stacks with their relaxed elastic moduli.
 * The same as a user sweeps one material: ``Zener(ratio, tau=...)`` with
   ``inertia=False`` over 100 speeds vstar (deborah = sqrt(vstar) tau), the
   same material moving with its inertia over 100 speeds 1e-4 ... 0.5, and
@@ -30,6 +33,7 @@ Prints the machine's load average; never asserts a time.
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import os
 import statistics
 import time
@@ -120,6 +124,44 @@ def main() -> None:
         ),
         args.repeat,
     )
+    # Viscoelastic sublayers in a stack (the complex propagation) against
+    # the same stacks elastic (the relaxed moduli): an asphalt course on a
+    # granular base on springs, and a lossy soil under an elastic top on a
+    # half-space, moving at vstar 0.1.
+    stacks = []
+    for name, layers, base in (
+        (
+            "Zener course on a base, springs",
+            [
+                mp.Layer(0.4, nu=NU, viscoelastic=mp.Zener(3.0, 0.5)),
+                mp.Layer(0.6, mu=2.0, nu=0.3, rho=1.2),
+            ],
+            mp.Winkler(KW),
+        ),
+        (
+            "Zener soil under a top, half-space",
+            [
+                mp.Layer(0.3, nu=NU),
+                mp.Layer(0.7, mu=0.5, nu=0.3, rho=0.8, viscoelastic=mp.Zener(4.0, 0.3)),
+            ],
+            mp.HalfSpace(mu=3.0, nu=0.25, rho=1.5),
+        ),
+    ):
+        relaxed = [dataclasses.replace(sub, viscoelastic=None) for sub in layers]
+        stacks.append(
+            (
+                name,
+                *(
+                    _median_ms(
+                        lambda load, ls=ls, b=base: mp.solve(
+                            vstar=0.1, load=load, radius=RADIUS, layers=ls, base=b
+                        ),
+                        args.repeat,
+                    )
+                    for ls in (layers, relaxed)
+                ),
+            )
+        )
     print(f"{'warm solve':44} {'ms':>8} {'visco/it':>9}")
     for name, ms in (
         ("Zener layer (ratio 2, deborah 0.1)", visco),
@@ -135,6 +177,9 @@ def main() -> None:
         ("elastic layer moving, asymmetric solver", asym_moving),
     ):
         print(f"{name:44} {ms:8.2f} {ms / asym_moving:9.1f}")
+    print(f"{'stack moving at vstar 0.1':44} {'ms':>8} {'/elastic':>9}")
+    for name, ms, elastic_ms in stacks:
+        print(f"{name:44} {ms:8.2f} {ms / elastic_ms:9.1f}")
     deborahs = np.geomspace(1e-3, 10.0, args.speeds)
     for run in ("first", "second"):
         t0 = time.perf_counter()

@@ -92,14 +92,15 @@ void bind_asymmetric(py::module_& m) {
           "V*_cr the steady solution need not be unique); empty when unique.")
       .def(
           "compliance_stress_field",
-          [](const AsymmetricSolution& s, const VectorRef& x, const VectorRef& y) {
-            StressField f = s.compliance_stress_field(x, y);
+          [](const AsymmetricSolution& s, const VectorRef& x, const VectorRef& y, bool below) {
+            StressField f = s.compliance_stress_field(x, y, below);
             return std::make_tuple(std::move(f.sigma_x), std::move(f.sigma_y), std::move(f.tau_xy));
           },
-          "x"_a, "y"_a, Release(),
-          "A viscoelastic top's stresses through its compliance, (1/m_inf) [sigma + sum_k c_k "
-          "(e_k * sigma)] along x/h, on the grid x/h by y/h: their Hooke strains at mu_0 are the "
-          "layer's strains (the stresses on an elastic top).")
+          "x"_a, "y"_a, "below"_a = false, Release(),
+          "The stresses through the compliance of the material at each depth, (1/m_inf) [sigma + "
+          "sum_k c_k (e_k * sigma)] along x/h in a viscoelastic sublayer, on the grid x/h by y/h: "
+          "their Hooke strains at its relaxed modulus are its strains (the stresses in an elastic "
+          "one); below: at an interface, the material below it.")
       .def(
           "dissipation", [](const AsymmetricSolution& s) { return s.dissipation(); }, Release(),
           "Power dissipated in the dashpots over P V (equals drag by the energy balance).")

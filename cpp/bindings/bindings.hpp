@@ -286,14 +286,7 @@ void bind_result_common(pybind11::class_<T>& cls) {
           "stress_field",
           [](const T& s, const VectorRef& x, const VectorRef& y, bool below) {
             StressField f;
-            if constexpr (std::is_same_v<T, SymmetricSolution>) {
-              f = s.stress_field(x, y, below);
-            } else {
-              if (below)
-                throw InvalidParameter("side", "'above' on the homogeneous layer",
-                                       "side: the asymmetric solver's layer has no interfaces");
-              f = s.stress_field(x, y);
-            }
+            f = s.stress_field(x, y, below);
             return std::make_tuple(std::move(f.sigma_x), std::move(f.sigma_y), std::move(f.tau_xy));
           },
           "x"_a, "y"_a, "below"_a = false, Release(),

@@ -11,6 +11,7 @@
 #include <list>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <tuple>
@@ -2906,12 +2907,13 @@ std::shared_ptr<const AsymmetricSolution::FieldNodes> AsymmetricSolution::field_
 }
 
 std::shared_ptr<const Eigen::MatrixXd> AsymmetricSolution::depth_coefficients(
-    const FieldNodes& nodes, double y) const {
+    const FieldNodes& nodes, double y, bool below) const {
   constexpr std::size_t kDepthsKept = 4;
+  const DepthKey key(y, below);
   {
     std::lock_guard<std::mutex> lock(field_cache_->mutex);
     for (const auto& [depth, coef] : field_cache_->depths)
-      if (depth == y) return coef;
+      if (depth == key) return coef;
   }
   const Fine& f = *light_;
   const WaveConstants& c = model_->top();
@@ -2927,8 +2929,8 @@ std::shared_ptr<const Eigen::MatrixXd> AsymmetricSolution::depth_coefficients(
     Eigen::Vector4d r_re, r_im;
     if (!nodes.modes.empty()) {
       // Any other medium: the node's own remainder (sigma_x of the material
-      // at y, the side above an interface).
-      const ModeState st = nodes.modes[q]->remainder(y, false);
+      // at y, at an interface the side asked).
+      const ModeState st = nodes.modes[q]->remainder(y, below);
       const cplx ph = nodes.ph[q];
       const cplx sx = st.sx * ph, sy = st.z(3) * ph, tau = cplx(0.0, -1.0) * st.z(2) * ph;
       set_stress_row(G, k, sx, sy, tau);
@@ -2958,7 +2960,7 @@ std::shared_ptr<const Eigen::MatrixXd> AsymmetricSolution::depth_coefficients(
   std::lock_guard<std::mutex> lock(field_cache_->mutex);
   auto& kept = field_cache_->depths;
   if (kept.size() >= kDepthsKept) kept.erase(kept.begin());
-  kept.emplace_back(y, coef);
+  kept.emplace_back(key, coef);
   return coef;
 }
 
@@ -3012,7 +3014,7 @@ AlphaQuadrature AsymmetricSolution::tail_panels(double from, double reach,
 
 void AsymmetricSolution::inertial_tail(const Eigen::Ref<const Eigen::VectorXd>& x,
                                        const Eigen::Ref<const Eigen::VectorXd>& y, double from,
-                                       Eigen::MatrixXd& rem) const {
+                                       Eigen::MatrixXd& rem, bool below) const {
   // (1/pi) Re int_from^{36/(nT |y|)} [sx, sy, -i tau]_rem(alpha, y) p^ e^{i alpha x} d alpha
   // for the depths whose remainder (the state less the relaxed half-plane's,
   // ModeProfile::remainder) has not decayed by `from` (e^{-nT alpha |y|} >
@@ -3071,7 +3073,7 @@ void AsymmetricSolution::inertial_tail(const Eigen::Ref<const Eigen::VectorXd>& 
       std::lock_guard<std::mutex> lock(field_cache_->mutex);
       if (field_cache_->tail == tail)
         for (const auto& [depth, c] : field_cache_->tail_depths)
-          if (depth == y(i)) coef = c;
+          if (depth == DepthKey(y(i), below)) coef = c;
     }
     if (!coef) {
       const double end = 36.0 / (rate * -y(i));
@@ -3079,7 +3081,7 @@ void AsymmetricSolution::inertial_tail(const Eigen::Ref<const Eigen::VectorXd>& 
       for (Eigen::Index k = 0; k < nq; ++k) {
         const auto qk = static_cast<std::size_t>(k);
         if (q.alpha[qk] > end + 2.0 * h) break;  // (the rest below e^-36)
-        const ModeState st = tail->modes[qk]->remainder(y(i), false);
+        const ModeState st = tail->modes[qk]->remainder(y(i), below);
         const cplx ph = tail->ph[qk];
         set_stress_row(G, k, st.sx * ph, st.z(3) * ph, cplx(0.0, -1.0) * st.z(2) * ph);
       }
@@ -3094,7 +3096,7 @@ void AsymmetricSolution::inertial_tail(const Eigen::Ref<const Eigen::VectorXd>& 
       if (field_cache_->tail == tail) {
         auto& kept = field_cache_->tail_depths;
         if (kept.size() >= kDepthsKept) kept.erase(kept.begin());
-        kept.emplace_back(y(i), coef);
+        kept.emplace_back(DepthKey(y(i), below), coef);
       }
     }
     const Eigen::MatrixXd add = (Wre * coef->leftCols(3) - Wim * coef->rightCols(3)) / kPi;
@@ -3105,7 +3107,8 @@ void AsymmetricSolution::inertial_tail(const Eigen::Ref<const Eigen::VectorXd>& 
 }
 
 StressField AsymmetricSolution::stress_field(const Eigen::Ref<const Eigen::VectorXd>& x,
-                                             const Eigen::Ref<const Eigen::VectorXd>& y) const {
+                                             const Eigen::Ref<const Eigen::VectorXd>& y,
+                                             bool below) const {
   detail::check_grid(x, y);
   // A viscoelastic layer with inertia: the modes' half-plane part moves with
   // vstar/m(alpha), so the remainder below the relaxed half-plane's decays
@@ -3129,7 +3132,7 @@ StressField AsymmetricSolution::stress_field(const Eigen::Ref<const Eigen::Vecto
   Eigen::MatrixXd fcoef = jac_ ? Eigen::MatrixXd::Zero(nq, 6 * ny) : Eigen::MatrixXd();
   for (Eigen::Index i = 0; i < ny; ++i) {
     if (y(i) == 0.0 || (jac_ && y(i) == -1.0)) continue;
-    const auto ci = depth_coefficients(*nodes, y(i));
+    const auto ci = depth_coefficients(*nodes, y(i), below);
     for (Eigen::Index m = 0; m < 6; ++m) coef.col(m * ny + i) = ci->col(m);
     if (jac_) {
       const auto fi = friction_depth_coefficients(y(i));
@@ -3149,7 +3152,7 @@ StressField AsymmetricSolution::stress_field(const Eigen::Ref<const Eigen::Vecto
   Eigen::MatrixXd rem =
       (Wre * coef.leftCols(3 * ny) - Wim * coef.rightCols(3 * ny)) / kPi;  // (nx, 3 ny)
   if (jac_) rem += (Wre * fcoef.leftCols(3 * ny) - Wim * fcoef.rightCols(3 * ny)) / kPi;
-  if (inertial) inertial_tail(x, y, fine_end, rem);
+  if (inertial) inertial_tail(x, y, fine_end, rem, below);
   StressField g;
   g.sigma_x.resize(ny, nx);
   g.sigma_y.resize(ny, nx);
@@ -3254,21 +3257,25 @@ double memory_tail(double beta, double T) {
 
 double AsymmetricSolution::dissipation() const {
   const Fine& f = *light_;
-  if (const MemoryKernel* mem = model_->memory()) {
-    // A viscoelastic layer: the power the surface takes in, by Parseval,
+  if (model_->spec().viscoelastic()) {
+    // A viscoelastic medium: the power the surface takes in, by Parseval,
     // (load/pi) int_0^inf Im M1 |p^|^2 (Im M1 >= 0 mode by mode: the
-    // material's loss). Im (M1 - H) decays exponentially: the fine nodes;
+    // materials' loss). Im (M1 - H) decays exponentially: the fine nodes
+    // (H = phi1, real, under an elastic top: the whole of it). A
+    // viscoelastic top's
     // Im H = phi1 sum_k c_k beta_k t/(1 + beta_k^2 t^2) only like 1/t:
     // Gauss-Legendre panels to T = 2000/w (geometric from the spectrum's
     // shortest scale, at most pi/w wide: |p^|^2 oscillates with period pi/w),
     // and beyond T the leading term of |p^|^2, (pi/4)(A_a^2 + A_b^2)/t^3
     // (p ~ A sqrt(distance) at each end), in closed form.
-    const RetardationSpectrum& sp = mem->spectrum();
-    const double phi1 = model_->phi1();
     double sum = 0.0;
     for (std::size_t i = 0; i < f.alpha.size(); ++i)
       sum += f.weight[i] * (f.r[i].M1 - model_->half_plane_m1(f.alpha[i])).imag() *
              std::norm(f.phat[i]);
+    const MemoryKernel* mem = model_->memory();
+    if (mem == nullptr) return params_.load * sum / kPi;
+    const RetardationSpectrum& sp = mem->spectrum();
+    const double phi1 = model_->phi1();
     auto im_h = [&](double t) {
       double v = 0.0;
       for (std::size_t k = 0; k < sp.c.size(); ++k)
@@ -3590,20 +3597,49 @@ double AsymmetricSolution::stress_memory_part(double x) const {
       1e-14 * max_p_, "surface stress");
 }
 
-StressField AsymmetricSolution::compliance_stress_field(
-    const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& y) const {
-  StressField out = stress_field(x, y);
-  const RetardationSpectrum* compliance = model_->compliance_memory();
-  if (compliance == nullptr) return out;
+namespace {
+
+// The index of the sublayer of `spec` at depth y (at an interface: the one
+// above it, or below it when `below`); -1 for the half-space's face (y = -1
+// below, under a half-space).
+int sublayer_at(const MediumSpec& spec, double y, bool below) {
+  const int K = static_cast<int>(spec.layers.size());
+  double bottom = 0.0;
+  for (int i = 0; i < K; ++i) {
+    bottom -= spec.layers[static_cast<std::size_t>(i)].thickness;
+    if (i + 1 == K) bottom = -1.0;
+    if (y == bottom) {
+      if (!below) return i;
+      return i + 1 < K ? i + 1 : (spec.base.kind == BaseKind::springs ? i : -1);
+    }
+    if (y > bottom || i + 1 == K) return i;
+  }
+  return K - 1;
+}
+
+}  // namespace
+
+StressField AsymmetricSolution::compliance_stress_field(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                                        const Eigen::Ref<const Eigen::VectorXd>& y,
+                                                        bool below) const {
+  StressField out = stress_field(x, y, below);
+  if (!model_->spec().viscoelastic()) return out;
   // (1/m_inf) [sigma + sum_k c_k e_k * sigma] along x at each depth, the
   // convolution to 1e-13 of the largest stress at the depth (the contact's
   // ends: sigma's square-root cusps at the surface). The material's own
-  // compliance, with or without the layer's inertia.
-  const RetardationSpectrum& sp = *compliance;
+  // compliance (that of the sublayer at the depth), with or without the
+  // medium's inertia.
+  const MediumSpec& spec = model_->spec();
+  std::vector<std::optional<RetardationSpectrum>> spectra(spec.layers.size());
   const double left = centre_ - half_, right = centre_ + half_;
   static const std::shared_ptr<const JacobiRule> gl = cached_gauss_jacobi(16, 0.0, 0.0);
   for (Eigen::Index i = 0; i < y.size(); ++i) {
     const double yi = y(i);
+    const int layer = sublayer_at(spec, yi, below);
+    if (layer < 0 || spec.layers[static_cast<std::size_t>(layer)].visco.empty()) continue;
+    auto& cached = spectra[static_cast<std::size_t>(layer)];
+    if (!cached) cached = retardation_spectrum(spec.layers[static_cast<std::size_t>(layer)].visco);
+    const RetardationSpectrum& sp = *cached;
     const Eigen::VectorXd row = Eigen::VectorXd::Constant(1, yi);
     double scale = stresses(centre_, yi).cwiseAbs().maxCoeff();
     for (Eigen::Index j = 0; j < x.size(); ++j)
@@ -3625,7 +3661,7 @@ StressField AsymmetricSolution::compliance_stress_field(
             at(q) = u + beta * t;
             wt(q) = gl->w(q) * std::exp(-t);
           }
-          const StressField f = stress_field(at, row);
+          const StressField f = stress_field(at, row, below);
           return Eigen::Vector3d(h * f.sigma_x.row(0).dot(wt), h * f.sigma_y.row(0).dot(wt),
                                  h * f.tau_xy.row(0).dot(wt));
         };

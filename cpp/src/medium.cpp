@@ -158,16 +158,12 @@ class ViscoelasticLayerMedium final : public Medium {
       : spec_(spec),
         model_(vstar, spec.base.kw, spec.layers[0].nu, spec.base.kp),
         damped_(vstar, spec.base.kw, spec.layers[0].nu, 0.0, spec.base.kp, spec.layers[0].visco),
-        visco_(spec.layers[0].visco),
-        inertial_(inertial_spectrum(visco_, vstar, spec.layers[0].nu)),
-        stress_(
-            inertial_spectrum(visco_, vstar, spec.layers[0].nu, 1e-12, HalfPlaneSymbol::stress)),
-        memory_(inertial_.spectrum) {
+        visco_(spec.layers[0].visco, vstar, spec.layers[0].nu) {
     top_ = model_.constants();
     // The Cauchy term's coefficient and the surface sigma_x's local one: the
     // unrelaxed half-plane's (phi2 = 1 at rest whatever the modulus).
-    top_.phi1 = inertial_.h_inf;
-    top_.phi2 = stress_.h_inf;
+    top_.phi1 = visco_.h_inf();
+    top_.phi2 = visco_.phi2_inf();
   }
   double vstar() const noexcept override { return model_.vstar(); }
   const WaveConstants& top() const noexcept override { return top_; }
@@ -205,27 +201,22 @@ class ViscoelasticLayerMedium final : public Medium {
   std::vector<double> first_panel_edges(double w) const override {
     return detail::foundation_panel_edges(model_.kw(), model_.kp(), w);
   }
-  cplx half_plane_m1(double t) const override {
-    return half_plane_compliance(visco_, model_.vstar(), top_.nu, t);
-  }
-  const MemoryKernel* memory() const noexcept override { return &memory_; }
-  cplx half_plane_m2(double t) const override {
-    return half_plane_stress(visco_, model_.vstar(), top_.nu, t);
-  }
+  cplx half_plane_m1(double t) const override { return visco_.m1(t); }
+  const MemoryKernel* memory() const noexcept override { return &visco_.memory(); }
+  cplx half_plane_m2(double t) const override { return visco_.m2(t); }
   const RetardationSpectrum* stress_memory() const noexcept override {
-    return stress_.spectrum.c.empty() ? nullptr : &stress_.spectrum;
+    return visco_.stress_memory();
   }
-  const RetardationSpectrum* compliance_memory() const noexcept override { return &compliance_; }
+  const RetardationSpectrum* compliance_memory() const noexcept override {
+    return &visco_.compliance_memory();
+  }
   const MediumSpec& spec() const noexcept override { return spec_; }
 
  private:
   MediumSpec spec_;
   LayerModel model_;
   DampedLayerModel damped_;
-  Viscoelastic visco_;
-  InertialSpectrum inertial_, stress_;
-  RetardationSpectrum compliance_ = retardation_spectrum(visco_);
-  MemoryKernel memory_;
+  ViscoelasticTop visco_;
   WaveConstants top_;
 };
 
@@ -297,18 +288,31 @@ std::string describe(const MediumSpec& m) {
   o.precision(6);
   const std::size_t graded = static_cast<std::size_t>(std::count_if(
       m.layers.begin(), m.layers.end(), [](const Sublayer& l) { return l.gamma != 0.0; }));
-  if (m.viscoelastic()) {
-    const Viscoelastic& v = m.layers[0].visco;
+  auto material = [&o](const Viscoelastic& v) {
     if (v.weights.size() == 1)
-      o << "a viscoelastic layer (Zener, ratio " << v.ratio() << ", deborah "
-        << v.shift * v.deborahs[0] << ") on ";
+      o << "Zener, ratio " << v.ratio() << ", deborah " << v.shift * v.deborahs[0];
     else
-      o << "a viscoelastic layer (Prony, " << v.weights.size() << " branches, ratio " << v.ratio()
-        << ") on ";
+      o << "Prony, " << v.weights.size() << " branches, ratio " << v.ratio();
+  };
+  if (m.viscoelastic() && m.layers.size() == 1) {
+    o << "a viscoelastic layer (";
+    material(m.layers[0].visco);
+    o << ") on ";
   }
   if (m.layers.size() > 1 || graded > 0) {
     o << m.layers.size() << (m.layers.size() == 1 ? " sublayer" : " sublayers");
     if (graded > 0) o << " (" << graded << " graded)";
+    if (m.layers.size() > 1 && m.viscoelastic()) {
+      // Each viscoelastic sublayer's material, by its index.
+      const char* sep = " (";
+      for (std::size_t i = 0; i < m.layers.size(); ++i) {
+        if (m.layers[i].visco.empty()) continue;
+        o << sep << "layers[" << i << "]: ";
+        material(m.layers[i].visco);
+        sep = "; ";
+      }
+      o << ")";
+    }
     o << " on ";
   }
   const BaseSpec& b = m.base;
@@ -383,19 +387,25 @@ void validate(const MediumSpec& m) {
 std::shared_ptr<const Medium> make_medium(const MediumSpec& spec, double vstar) {
   validate(spec);
   if (spec.viscoelastic()) {
-    if (spec.layers.size() != 1 || spec.base.kind != BaseKind::springs ||
-        spec.layers[0].gamma != 0.0)
-      throw InvalidParameter(
-          "layers", "one homogeneous viscoelastic layer on springs",
-          "layers: a viscoelastic sublayer is solved as one homogeneous layer on springs (not "
-          "yet in a stack, graded, or on a half-space); given " +
-              describe(spec));
-    if (spec.base.damping != 0.0)
+    for (std::size_t i = 0; i < spec.layers.size(); ++i)
+      if (!spec.layers[i].visco.empty() && spec.layers[i].gamma != 0.0)
+        throw InvalidParameter(
+            "layers[" + std::to_string(i) + "].viscoelastic",
+            "an elastic graded sublayer or a homogeneous viscoelastic one",
+            "layers[" + std::to_string(i) +
+                "]: a graded sublayer is elastic (a viscoelastic material takes a homogeneous "
+                "sublayer; a staircase of them grades it); given " +
+                describe(spec));
+    if (spec.base.kind == BaseKind::springs && spec.base.damping != 0.0)
       throw InvalidParameter(
           "damping", "0 under a viscoelastic layer",
           "damping: dashpots under a viscoelastic layer are not built; give damping = 0 (the "
           "layer's material dissipates)");
-    return std::make_shared<const ViscoelasticLayerMedium>(spec, vstar);
+    // One homogeneous layer on springs: its closed form; any other medium
+    // with a viscoelastic sublayer: the stack, propagated at complex moduli.
+    if (spec.layers.size() == 1 && spec.base.kind == BaseKind::springs)
+      return std::make_shared<const ViscoelasticLayerMedium>(spec, vstar);
+    return make_stack_medium(spec, vstar);
   }
   if (spec.homogeneous()) return std::make_shared<const HomogeneousMedium>(spec, vstar);
   return make_stack_medium(spec, vstar);

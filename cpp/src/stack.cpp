@@ -6,11 +6,14 @@
 #include <complex>
 #include <limits>
 #include <map>
+#include <memory>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <tuple>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -37,13 +40,31 @@ constexpr double kCut = 100.0;
 constexpr double kSliceNorm = 2.0;
 constexpr double kModalT = 0.5;
 
-using Mat42 = Eigen::Matrix<double, 4, 2>;
-using Vec4 = Eigen::Vector4d;
-using Mat4 = Eigen::Matrix4d;
+using cplx = std::complex<double>;
+template <class S>
+using Mat42T = Eigen::Matrix<S, 4, 2>;
+template <class S>
+using Vec4T = Eigen::Matrix<S, 4, 1>;
+template <class S>
+using Mat4T = Eigen::Matrix<S, 4, 4>;
+template <class S>
+using Mat2T = Eigen::Matrix<S, 2, 2>;
+using Mat42 = Mat42T<double>;
+using Vec4 = Vec4T<double>;
+using Mat4 = Mat4T<double>;
+
+// The real part of a real or complex quantity (the elastic sublayers of a
+// complex propagation have real constants stored as complex).
+inline double real_of(double x) { return x; }
+inline double real_of(cplx x) { return x.real(); }
+// |x| of a positive real root (as is) or of a complex one.
+inline double size_of(double x) { return x; }
+inline double size_of(cplx x) { return std::abs(x); }
 
 // exp(B) by its Taylor series (||B||_inf <= ~0.5).
-Mat4 taylor_exp(const Mat4& B) {
-  Mat4 P = Mat4::Identity(), term = Mat4::Identity();
+template <class S>
+Mat4T<S> taylor_exp(const Mat4T<S>& B) {
+  Mat4T<S> P = Mat4T<S>::Identity(), term = Mat4T<S>::Identity();
   for (int k = 1; k < 80; ++k) {
     term = term * B / static_cast<double>(k);
     P += term;
@@ -53,41 +74,70 @@ Mat4 taylor_exp(const Mat4& B) {
 }
 
 // Orthonormalises the columns of S by column operations (classical
-// Gram-Schmidt, twice): S_in = S_out R, R upper triangular with a positive
-// diagonal (the orientation of the basis is kept).
-Eigen::Matrix2d orthonormalise(Mat42& S) {
-  Eigen::Matrix2d R = Eigen::Matrix2d::Identity();
+// Gram-Schmidt, twice; the Hermitian product when complex): S_in = S_out R,
+// R upper triangular with a positive diagonal (the orientation of the basis
+// is kept).
+template <class S>
+Mat2T<S> orthonormalise(Mat42T<S>& M) {
+  Mat2T<S> R = Mat2T<S>::Identity();
   for (int pass = 0; pass < 2; ++pass) {
-    const double r11 = S.col(0).norm();
-    S.col(0) /= r11;
-    const double r12 = S.col(0).dot(S.col(1));
-    S.col(1) -= r12 * S.col(0);
-    const double r22 = S.col(1).norm();
-    S.col(1) /= r22;
-    Eigen::Matrix2d Rp;
-    Rp << r11, r12, 0.0, r22;
+    const double r11 = M.col(0).norm();
+    M.col(0) /= r11;
+    const S r12 = M.col(0).dot(M.col(1));
+    M.col(1) -= r12 * M.col(0);
+    const double r22 = M.col(1).norm();
+    M.col(1) /= r22;
+    Mat2T<S> Rp;
+    Rp << S(r11), r12, S(0.0), S(r22);
     R = Rp * R;
   }
   return R;
 }
 
-Mat4 stress_scale(double m) { return Vec4(1.0, 1.0, m, m).asDiagonal(); }
+template <class S>
+Mat4T<S> stress_scale(S m) {
+  return Vec4T<S>(S(1.0), S(1.0), m, m).asDiagonal();
+}
 
-// One sublayer at the speed.
+// An elastic sublayer's constants in a complex propagation (the same numbers).
+ComplexWaveConstants cast_constants(const WaveConstants& w) {
+  ComplexWaveConstants c;
+  c.s = w.s;
+  c.nu = w.nu;
+  c.c2 = w.c2;
+  c.nT = w.nT;
+  c.nL = w.nL;
+  c.delta = w.delta;
+  c.phi1 = w.phi1;
+  c.phi2 = w.phi2;
+  c.dW = w.dW;
+  c.dT = w.dT;
+  c.dS = w.dS;
+  c.A = w.A.cast<cplx>();
+  c.hp1 = w.hp1;
+  c.hp2 = w.hp2;
+  return c;
+}
+
+// One sublayer at the speed (and, complex, at one wavenumber: a
+// viscoelastic sublayer's modulus mu m(t) and constants at vstar rho/(mu m)).
+template <class S>
 struct Sub {
   double y_top = 0, y_bot = -1, d = 1;
-  double m_top = 1, gamma = 0;  // mu at the top (top sublayer's units), gamma_h
+  S m_top{1.0};      // mu at the top (top sublayer's relaxed units)
+  double gamma = 0;  // gamma_h
   bool graded = false;
-  WaveConstants c;  // local constants at s = vstar rho / mu
-  double m_at(double y) const { return graded ? m_top * std::exp(gamma * (y - y_top)) : m_top; }
-  double m_bot() const { return m_at(y_bot); }
-  double sx(const Vec4& z, double m) const {
+  BasicWaveConstants<S> c;  // local constants at s = vstar rho / mu
+  S m_at(double y) const { return graded ? m_top * std::exp(gamma * (y - y_top)) : m_top; }
+  S m_bot() const { return m_at(y_bot); }
+  S sx(const Vec4T<S>& z, S m) const {
     return m * 4.0 * (c.c2 - 1.0) / c.c2 * z(0) + (c.c2 - 2.0) / c.c2 * z(3);
   }
 };
 
 // One sublayer's map of the basis from its bottom to its top (scaled
 // variables: stresses over the local modulus).
+template <class S>
 struct Segment {
   int layer = 0;
   bool modal = false;
@@ -96,37 +146,51 @@ struct Segment {
   // Slices: from yhat = lo to 0 in n slices of width h, each exp(Bh).
   double lo = -1.0, h = 1.0;
   int n = 1;
-  Mat4 Bh = Mat4::Zero();
-  std::vector<Mat42> basis;                           // at each slice's bottom (normalised)
-  std::vector<Eigen::Matrix2d> R;                     // basis[k+1] R[k] = exp(Bh) basis[k]
-  Eigen::Matrix<double, 4, 2> Nul;                    // modal: amplitudes a = Nul c_raw
-  Mat42 in = Mat42::Zero();                           // normalised scaled input
-  Eigen::Matrix2d Rin = Eigen::Matrix2d::Identity();  // in = scaled input Rin^-1
+  Mat4T<S> Bh = Mat4T<S>::Zero();
+  std::vector<Mat42T<S>> basis;         // at each slice's bottom (normalised)
+  std::vector<Mat2T<S>> R;              // basis[k+1] R[k] = exp(Bh) basis[k]
+  Mat42T<S> Nul;                        // modal: amplitudes a = Nul c_raw
+  Mat42T<S> in = Mat42T<S>::Zero();     // normalised scaled input
+  Mat2T<S> Rin = Mat2T<S>::Identity();  // in = scaled input Rin^-1
 };
 
+template <class S>
 struct Propagation {
-  std::vector<Segment> segs;  // top sublayer first
-  Mat42 S_top;                // orthonormal basis at the surface
-  double orient = 1.0;        // +-1: the orientation relative to the transfer maps
-  bool cut = false;           // structure below segs.back() not evaluated
+  std::vector<Segment<S>> segs;  // top sublayer first
+  Mat42T<S> S_top;               // orthonormal basis at the surface
+  double orient = 1.0;           // +-1: the orientation relative to the transfer maps
+  bool cut = false;              // structure below segs.back() not evaluated
 };
 
 // The medium's data at one speed (no validation of the speed against the
-// critical one: the critical-speed search uses it at every speed).
+// critical one: the critical-speed search uses it at every speed). S =
+// double: the elastic stack (a viscoelastic sublayer: its relaxed elastic
+// one); S = complex: every sublayer at the wavenumber t of the constructor,
+// a viscoelastic one with its modulus mu m(t) (docs/media.md).
+template <class S>
 class Core {
  public:
-  Core(const MediumSpec& spec, double vstar) : spec_(spec), s_(vstar) {
+  Core(const MediumSpec& spec, double vstar, double t = 0.0) : spec_(spec), s_(vstar) {
     double y = 0.0;
     for (const Sublayer& l : spec.layers) {
-      Sub sb;
+      Sub<S> sb;
       sb.y_top = y;
       sb.d = l.thickness;
       y -= l.thickness;
       sb.y_bot = y;
-      sb.m_top = l.mu;
       sb.gamma = l.gamma;
       sb.graded = l.gamma != 0.0;
-      sb.c = wave_constants(vstar * l.rho / l.mu, l.nu);
+      if constexpr (std::is_same_v<S, double>) {
+        sb.m_top = l.mu;
+        sb.c = wave_constants(vstar * l.rho / l.mu, l.nu);
+      } else {
+        const cplx m = l.visco.empty() ? cplx(1.0) : l.visco.modulus(t);
+        sb.m_top = l.mu * m;
+        if (m == 1.0)
+          sb.c = cast_constants(wave_constants(vstar * l.rho / l.mu, l.nu));
+        else
+          sb.c = complex_wave_constants(vstar * l.rho / sb.m_top, l.nu);
+      }
       subs_.push_back(sb);
     }
     subs_.back().y_bot = -1.0;
@@ -135,42 +199,45 @@ class Core {
     if (b.kind != BaseKind::springs) sub_ = wave_constants(vstar * b.rho / b.mu, b.nu);
   }
 
-  const std::vector<Sub>& subs() const { return subs_; }
+  const std::vector<Sub<S>>& subs() const { return subs_; }
   const MediumSpec& spec() const { return spec_; }
 
   // The base's two-dimensional solution space at y = -1 (unscaled).
-  Mat42 base(double t) const {
+  Mat42T<S> base(double t) const {
     const BaseSpec& b = spec_.base;
-    Mat42 S = Mat42::Zero();
-    S(0, 0) = 1.0;
+    Mat42 M = Mat42::Zero();
+    M(0, 0) = 1.0;
     if (b.kind == BaseKind::springs) {
       const double k = b.kw + b.kp * t * t;
       if (std::isinf(k)) {
-        S(3, 1) = 1.0;
+        M(3, 1) = 1.0;
       } else {
         // t sigma/alpha = k W, as [t/(t+k)] sigma/alpha = [k/(t+k)] W.
-        S(1, 1) = 1.0 / (1.0 + k / t);
-        S(3, 1) = 1.0 / (1.0 + t / k);
+        M(1, 1) = 1.0 / (1.0 + k / t);
+        M(3, 1) = 1.0 / (1.0 + t / k);
       }
     } else if (b.kind == BaseKind::half_space_smooth) {
       // tau = 0; sigma = alpha mu2 v / phi1_2: phi1_2 = nL / den, regular form.
       const double sub_den = sub_.nL / sub_.phi1;
-      S(1, 1) = sub_.nL;
-      S(3, 1) = b.mu * sub_den;
+      M(1, 1) = sub_.nL;
+      M(3, 1) = b.mu * sub_den;
     } else {
       // The substrate's downward-decaying modes at its face (independent of t).
       const Mat4 C = detail::modal_columns(sub_, 1.0, 0.0);
-      S = stress_scale(b.mu) * C.leftCols<2>();
+      M = stress_scale(b.mu) * C.leftCols<2>();
     }
-    orthonormalise(S);
-    return S;
+    orthonormalise(M);
+    return M.template cast<S>();
   }
 
   // The attraction of the basis over the whole sublayer i at t.
-  double attraction(const Sub& sb, double t) const {
+  double attraction(const Sub<S>& sb, double t) const {
     const double td = t * sb.d;
-    if (!sb.graded) return 2.0 * td * sb.c.nT;
-    Mat4 G = sb.c.A;
+    if (!sb.graded) return 2.0 * td * real_of(sb.c.nT);
+    // (A graded sublayer is elastic: its constants are real.)
+    Mat4 G;
+    for (int r = 0; r < 4; ++r)
+      for (int k = 0; k < 4; ++k) G(r, k) = real_of(sb.c.A(r, k));
     const double g = sb.gamma / t;  // per unit t: the generator is t (A - g D)
     G(2, 2) -= g;
     G(3, 3) -= g;
@@ -183,16 +250,17 @@ class Core {
 
   // dispersion: homogeneous sublayers are never cut (their modal maps keep
   // a continuous orientation at every t), and the orientation is tracked.
-  Propagation propagate(double t, bool dispersion) const {
-    Propagation P;
+  Propagation<S> propagate(double t, bool dispersion) const {
+    Propagation<S> P;
     const int K = static_cast<int>(subs_.size());
     int i0 = K;
     double start_depth = 1.0;
     for (int i = 0; i < K; ++i) {
-      const Sub& sb = subs_[static_cast<size_t>(i)];
+      const Sub<S>& sb = subs_[static_cast<size_t>(i)];
       if (dispersion && !sb.graded) continue;
-      if (t * sb.d * 2.0 * std::max(sb.c.nL, 1.0) + std::fabs(sb.gamma) * sb.d < 0.5 * kCut)
-        continue;  // cannot reach kCut (|eigenvalues| <= t nL + |gamma|)
+      if (t * sb.d * 2.0 * std::max(size_of(sb.c.nL), 1.0) + std::fabs(sb.gamma) * sb.d <
+          0.5 * kCut)
+        continue;  // cannot reach kCut (|eigenvalues| <= t |nL| + |gamma|)
       const double a = attraction(sb, t);
       if (a >= kCut) {
         i0 = i;
@@ -202,23 +270,23 @@ class Core {
     }
     P.cut = i0 < K;
     const int last = P.cut ? i0 : K - 1;
-    std::vector<Segment> segs(static_cast<size_t>(last + 1));
-    Mat42 S = P.cut ? Mat42::Zero() : base(t);  // unscaled, at the current depth
+    std::vector<Segment<S>> segs(static_cast<size_t>(last + 1));
+    Mat42T<S> M = P.cut ? Mat42T<S>(Mat42T<S>::Zero()) : base(t);  // unscaled, at the current depth
     for (int i = last; i >= 0; --i) {
-      const Sub& sb = subs_[static_cast<size_t>(i)];
-      Segment& g = segs[static_cast<size_t>(i)];
+      const Sub<S>& sb = subs_[static_cast<size_t>(i)];
+      Segment<S>& g = segs[static_cast<size_t>(i)];
       g.layer = i;
       g.t_loc = t * sb.d;
       g.start = P.cut && i == i0;
-      Mat42 top;
+      Mat42T<S> top;
       if (g.start && !sb.graded) {
         g.modal = true;
         g.Nul.setZero();
-        g.Nul(0, 0) = g.Nul(1, 1) = 1.0;
-        top = detail::modal_columns(sb.c, g.t_loc, 0.0).leftCols<2>();
+        g.Nul(0, 0) = g.Nul(1, 1) = S(1.0);
+        top = detail::modal_columns(sb.c, g.t_loc, 0.0).template leftCols<2>();
       } else if (!sb.graded && g.t_loc >= kModalT) {
         g.modal = true;
-        g.in = stress_scale(1.0 / sb.m_bot()) * S;
+        g.in = stress_scale<S>(1.0 / sb.m_bot()) * M;
         g.Rin = orthonormalise(g.in);
         modal_step(sb, g, dispersion ? &P.orient : nullptr);
         top = detail::modal_columns(sb.c, g.t_loc, 0.0) * g.Nul;
@@ -226,110 +294,118 @@ class Core {
         // Slices of the constant-coefficient generator (scaled variables).
         if (g.start) {
           g.lo = -start_depth;
-          g.in = detail::modal_columns(sb.c, g.t_loc, 0.0).leftCols<2>();
+          g.in = detail::modal_columns(sb.c, g.t_loc, 0.0).template leftCols<2>();
         } else {
           g.lo = -1.0;
-          g.in = stress_scale(1.0 / sb.m_bot()) * S;
+          g.in = stress_scale<S>(1.0 / sb.m_bot()) * M;
         }
         g.Rin = orthonormalise(g.in);
         const double span = -g.lo;
-        Mat4 Dg = Mat4::Zero();
-        Dg(2, 2) = Dg(3, 3) = sb.gamma * sb.d;
-        const Mat4 Bspan = (g.t_loc * span) * sb.c.A - span * Dg;
+        Mat4T<S> Dg = Mat4T<S>::Zero();
+        Dg(2, 2) = Dg(3, 3) = S(sb.gamma * sb.d);
+        const Mat4T<S> Bspan = (g.t_loc * span) * sb.c.A - span * Dg;
         const double norm = Bspan.cwiseAbs().rowwise().sum().maxCoeff();
         g.n = std::max(1, static_cast<int>(std::ceil(norm / kSliceNorm)));
         g.h = span / g.n;
         g.Bh = (g.t_loc * g.h) * sb.c.A - g.h * Dg;
-        const Mat4 E = taylor_exp(g.Bh);
+        const Mat4T<S> E = taylor_exp<S>(g.Bh);
         g.basis.reserve(static_cast<size_t>(g.n) + 1);
         g.R.reserve(static_cast<size_t>(g.n));
         g.basis.push_back(g.in);
         for (int k = 0; k < g.n; ++k) {
-          Mat42 nxt = E * g.basis.back();
+          Mat42T<S> nxt = E * g.basis.back();
           g.R.push_back(orthonormalise(nxt));
           g.basis.push_back(nxt);
         }
         top = g.basis.back();
       }
       if (g.modal) orthonormalise(top);
-      S = stress_scale(sb.m_top) * top;
-      orthonormalise(S);  // the coefficient change is recovered by least squares
+      M = stress_scale<S>(sb.m_top) * top;
+      orthonormalise(M);  // the coefficient change is recovered by least squares
     }
-    P.S_top = S;
+    P.S_top = M;
     P.segs = std::move(segs);
     return P;
   }
 
   // The modal map of a homogeneous sublayer: amplitudes a (4) of its
   // regularised modes whose bottom state lies in span(in): a = Nul c.
-  static void modal_step(const Sub& sb, Segment& g, double* orient) {
-    const Mat4 Cb = detail::modal_columns(sb.c, g.t_loc, -1.0);
-    // The complement of the input span.
-    Eigen::HouseholderQR<Mat42> qr(g.in);
-    const Mat4 Q = qr.householderQ();
-    const Eigen::Matrix<double, 2, 4> G = Q.rightCols<2>().transpose() * Cb;
-    const Eigen::Matrix2d G1 = G.leftCols<2>(), G2 = G.rightCols<2>();
+  static void modal_step(const Sub<S>& sb, Segment<S>& g, double* orient) {
+    const Mat4T<S> Cb = detail::modal_columns(sb.c, g.t_loc, -1.0);
+    // The complement of the input span (its orthogonal complement's adjoint).
+    Eigen::HouseholderQR<Mat42T<S>> qr(g.in);
+    const Mat4T<S> Q = qr.householderQ();
+    const Eigen::Matrix<S, 2, 4> G = Q.template rightCols<2>().adjoint() * Cb;
+    const Mat2T<S> G1 = G.template leftCols<2>(), G2 = G.template rightCols<2>();
     const double scale = G2.cwiseAbs().maxCoeff();
-    if (scale > 0.0 && std::fabs(G2.determinant()) > 1e-8 * scale * scale) {
+    if (scale > 0.0 && std::abs(G2.determinant()) > 1e-8 * scale * scale) {
       // Canonical: the amplitudes of the top-face modes are the coordinates.
-      g.Nul.topRows<2>().setIdentity();
-      g.Nul.bottomRows<2>() = -G2.partialPivLu().solve(G1);
-      if (orient) {
-        // exp(t d A) in = C0 Cb^-1 in = C0 Nul W_top: the sign of det W_top.
-        // Cb's first two columns are [vT+, dv+] U with U upper triangular,
-        // positive diagonal (e^{-nT t d}, e^{-nL t d}): the same sign from
-        // the t-independent, well-conditioned [vT+, dv+, Cb(2), Cb(3)].
-        const WaveConstants& c = sb.c;
-        Mat4 Ct = Cb;
-        Ct.col(0) = detail::shear_vector(c.nT);
-        Ct.col(1) = Vec4(0.0, c.dW, c.dT, c.dS);
-        const Mat42 W = Ct.partialPivLu().solve(g.in);
-        if (W.topRows<2>().determinant() < 0.0) *orient = -*orient;
+      g.Nul.template topRows<2>().setIdentity();
+      g.Nul.template bottomRows<2>() = -G2.partialPivLu().solve(G1);
+      if constexpr (std::is_same_v<S, double>) {
+        if (orient) {
+          // exp(t d A) in = C0 Cb^-1 in = C0 Nul W_top: the sign of det W_top.
+          // Cb's first two columns are [vT+, dv+] U with U upper triangular,
+          // positive diagonal (e^{-nT t d}, e^{-nL t d}): the same sign from
+          // the t-independent, well-conditioned [vT+, dv+, Cb(2), Cb(3)].
+          const WaveConstants& c = sb.c;
+          Mat4 Ct = Cb;
+          Ct.col(0) = detail::shear_vector(c.nT);
+          Ct.col(1) = Vec4(0.0, c.dW, c.dT, c.dS);
+          const Mat42 W = Ct.partialPivLu().solve(g.in);
+          if (W.topRows<2>().determinant() < 0.0) *orient = -*orient;
+        }
       }
     } else {
       // A (rare) singular canonical form: any basis of the null space.
-      Eigen::FullPivLU<Eigen::Matrix<double, 2, 4>> lu(G);
-      Eigen::Matrix<double, 4, Eigen::Dynamic> k = lu.kernel();
-      g.Nul = k.leftCols<2>();
+      Eigen::FullPivLU<Eigen::Matrix<S, 2, 4>> lu(G);
+      Eigen::Matrix<S, 4, Eigen::Dynamic> k = lu.kernel();
+      g.Nul = k.template leftCols<2>();
     }
   }
 
   // The surface solution: coefficients c of P.S_top with tau = 0, sigma/alpha = -1.
-  static Eigen::Vector2d top_coefficients(const Propagation& P, double* p23_out = nullptr) {
-    Mat42 S = P.S_top;
-    const double p23_raw = S(2, 0) * S(3, 1) - S(2, 1) * S(3, 0);
-    if (p23_out) *p23_out = p23_raw * P.orient;
+  static Eigen::Matrix<S, 2, 1> top_coefficients(const Propagation<S>& P,
+                                                 double* p23_out = nullptr) {
+    Mat42T<S> M = P.S_top;
+    const S p23_raw = M(2, 0) * M(3, 1) - M(2, 1) * M(3, 0);
+    if constexpr (std::is_same_v<S, double>) {
+      if (p23_out) *p23_out = p23_raw * P.orient;
+    }
     // The tau row is O(t) as t -> 0: rescale it (the solution is unchanged).
-    const double tmax = std::max(std::fabs(S(2, 0)), std::fabs(S(2, 1)));
-    if (tmax > 0.0) S.row(2) /= tmax;
-    const double p23 = S(2, 0) * S(3, 1) - S(2, 1) * S(3, 0);
-    return Eigen::Vector2d(S(2, 1), -S(2, 0)) / p23;
+    const double tmax = std::max(std::abs(M(2, 0)), std::abs(M(2, 1)));
+    if (tmax > 0.0) M.row(2) /= tmax;
+    const S p23 = M(2, 0) * M(3, 1) - M(2, 1) * M(3, 0);
+    return Eigen::Matrix<S, 2, 1>(M(2, 1), -M(2, 0)) / p23;
   }
 
   // The unit tangential load's surface solution: coefficients c of P.S_top
   // with tau/alpha = 1, sigma_y = 0 (on a shear-free base they grow like
   // 1/t as t -> 0: the bar pole).
-  static Eigen::Vector2d tangential_coefficients(const Propagation& P) {
-    const Mat42& S = P.S_top;
-    const double p23 = S(2, 0) * S(3, 1) - S(2, 1) * S(3, 0);
-    return Eigen::Vector2d(S(3, 1), -S(3, 0)) / p23;
+  static Eigen::Matrix<S, 2, 1> tangential_coefficients(const Propagation<S>& P) {
+    const Mat42T<S>& M = P.S_top;
+    const S p23 = M(2, 0) * M(3, 1) - M(2, 1) * M(3, 0);
+    return Eigen::Matrix<S, 2, 1>(M(3, 1), -M(3, 0)) / p23;
   }
 
-  MediumResponse response(double t) const {
-    const Propagation P = propagate(t, false);
-    const Eigen::Vector2d c = top_coefficients(P);
-    const Vec4 z0 = P.S_top * c;
-    const WaveConstants& k = subs_[0].c;
-    MediumResponse r;
+  // The surface state of the normal load (as StackProfile's top state,
+  // without its downward pass) and M2 (sigma_x = mu(t) Ep U + ... at the
+  // top; mu = 1 for an elastic top).
+  FullResponse surface(double t) const {
+    const Propagation<S> P = propagate(t, false);
+    const Vec4T<S> z0 = P.S_top * top_coefficients(P);
+    const auto& k = subs_[0].c;
+    FullResponse r;
     r.U0 = z0(0);
     r.W0 = z0(1);
     r.M1 = -z0(1);
-    r.M2 = (k.c2 - 2.0) / k.c2 - 4.0 * (k.c2 - 1.0) / k.c2 * z0(0);
+    r.M2 = (k.c2 - 2.0) / k.c2 - 4.0 * (k.c2 - 1.0) / k.c2 * (subs_[0].m_top * z0(0));
     return r;
   }
 
   double dispersion(double t) const {
-    const Propagation P = propagate(t, true);
+    static_assert(std::is_same_v<S, double>, "the dispersion of the relaxed (real) stack");
+    const Propagation<S> P = propagate(t, true);
     double p23 = 0.0;
     top_coefficients(P, &p23);
     return p23;
@@ -338,44 +414,48 @@ class Core {
  private:
   MediumSpec spec_;
   double s_;
-  std::vector<Sub> subs_;
+  std::vector<Sub<S>> subs_;
   WaveConstants sub_;
 };
 
 // The solution of one wavenumber at every depth.
+template <class S>
 class StackProfile final : public ModeProfile {
  public:
   // The normal load's (tangential = false) or the unit tangential load's
-  // solution; P: the propagation at t (core.propagate(t, false)).
-  StackProfile(const Core& core, const WaveConstants& top, double t,
-               std::shared_ptr<const Propagation> P, bool tangential = false)
+  // solution; P: the propagation at t (core.propagate(t, false)). top: the
+  // top material's (relaxed) half-plane constants at vstar, m_top its
+  // modulus at t (a viscoelastic top: the half-plane part is the relaxed
+  // one in units of mu_0 m(t), as the homogeneous viscoelastic layer's).
+  StackProfile(const Core<S>& core, const WaveConstants& top, double t,
+               std::shared_ptr<const Propagation<S>> P, bool tangential = false)
       : subs_(core.subs()), top_(top), t_(t), P_(std::move(P)), tangential_(tangential) {
     // Downward pass: the state at each sublayer's top, its coordinates in
     // the sublayer's own basis (least squares: the state lies in its span),
     // and the state at its bottom, the next sublayer's top state.
-    Vec4 z =
-        P_->S_top * (tangential ? Core::tangential_coefficients(*P_) : Core::top_coefficients(*P_));
+    Vec4T<S> z = P_->S_top * (tangential ? Core<S>::tangential_coefficients(*P_)
+                                         : Core<S>::top_coefficients(*P_));
     z_top_ = z;
-    for (const Segment& g : P_->segs) {
-      const Sub& sb = subs_[static_cast<size_t>(g.layer)];
-      const Mat42 out =
-          g.modal ? Mat42(detail::modal_columns(sb.c, g.t_loc, 0.0) * g.Nul) : g.basis.back();
-      const Mat42 out_u = stress_scale(sb.m_top) * out;
-      const Eigen::Vector2d cg = out_u.colPivHouseholderQr().solve(z);
-      Vec4 zb;  // the unscaled state at the segment's bottom
+    for (const Segment<S>& g : P_->segs) {
+      const Sub<S>& sb = subs_[static_cast<size_t>(g.layer)];
+      const Mat42T<S> out =
+          g.modal ? Mat42T<S>(detail::modal_columns(sb.c, g.t_loc, 0.0) * g.Nul) : g.basis.back();
+      const Mat42T<S> out_u = stress_scale<S>(sb.m_top) * out;
+      const Eigen::Matrix<S, 2, 1> cg = out_u.colPivHouseholderQr().solve(z);
+      Vec4T<S> zb;  // the unscaled state at the segment's bottom
       if (g.modal) {
         amp_.push_back(g.Nul * cg);
         slice_c_.emplace_back();
-        zb = stress_scale(sb.m_bot()) * detail::modal_columns(sb.c, g.t_loc, -1.0) * amp_.back();
+        zb = stress_scale<S>(sb.m_bot()) * detail::modal_columns(sb.c, g.t_loc, -1.0) * amp_.back();
       } else {
-        amp_.push_back(Vec4::Zero());
-        std::vector<Eigen::Vector2d> ck(static_cast<size_t>(g.n) + 1);
+        amp_.push_back(Vec4T<S>::Zero());
+        std::vector<Eigen::Matrix<S, 2, 1>> ck(static_cast<size_t>(g.n) + 1);
         ck[static_cast<size_t>(g.n)] = cg;
         for (int k = g.n - 1; k >= 0; --k)
           ck[static_cast<size_t>(k)] =
-              g.R[static_cast<size_t>(k)].triangularView<Eigen::Upper>().solve(
+              g.R[static_cast<size_t>(k)].template triangularView<Eigen::Upper>().solve(
                   ck[static_cast<size_t>(k) + 1]);
-        zb = stress_scale(sb.m_at(sb.y_top + g.lo * sb.d)) * g.basis[0] * ck[0];
+        zb = stress_scale<S>(sb.m_at(sb.y_top + g.lo * sb.d)) * g.basis[0] * ck[0];
         slice_c_.push_back(std::move(ck));
       }
       ++done_;
@@ -389,35 +469,35 @@ class StackProfile final : public ModeProfile {
   }
 
   // The unscaled state at the surface and at the base face y = -1.
-  const Vec4& top_state() const { return z_top_; }
-  const Vec4& bottom_state() const { return z_bottom_; }
+  const Vec4T<S>& top_state() const { return z_top_; }
+  const Vec4T<S>& bottom_state() const { return z_bottom_; }
 
   ModeState remainder(double y, bool below) const override {
     const ModeState hp = half_plane(y);
     ModeState st;
-    double sxv = 0.0;
-    Vec4 z = Vec4::Zero();
+    S sxv{0.0};
+    Vec4T<S> z = Vec4T<S>::Zero();
     int i = locate(y, below);
     if (i >= 0 && i < done_) {
-      const Sub& sb = subs_[static_cast<size_t>(i)];
-      const Segment& g = P_->segs[static_cast<size_t>(i)];
+      const Sub<S>& sb = subs_[static_cast<size_t>(i)];
+      const Segment<S>& g = P_->segs[static_cast<size_t>(i)];
       const double yh = std::min(0.0, std::max(-1.0, (y - sb.y_top) / sb.d));
-      const double m = sb.m_at(y);
+      const S m = sb.m_at(y);
       if (g.modal) {
-        z = stress_scale(m) * detail::modal_columns(sb.c, g.t_loc, yh) *
+        z = stress_scale<S>(m) * detail::modal_columns(sb.c, g.t_loc, yh) *
             amp_[static_cast<size_t>(i)];
       } else if (yh >= g.lo) {
         const auto& ck = slice_c_[static_cast<size_t>(i)];
         int k = static_cast<int>(std::floor((yh - g.lo) / g.h));
         k = std::min(std::max(k, 0), g.n - 1);
         const double f = (yh - (g.lo + k * g.h)) / g.h;
-        z = stress_scale(m) * taylor_exp(f * g.Bh) * g.basis[static_cast<size_t>(k)] *
+        z = stress_scale<S>(m) * taylor_exp<S>(f * g.Bh) * g.basis[static_cast<size_t>(k)] *
             ck[static_cast<size_t>(k)];
       }
       sxv = sb.sx(z, m);
     } else if (i >= 0) {
       // Below the evaluated structure: the state is below e^-50 of the surface's.
-      const Sub& sb = subs_[static_cast<size_t>(i)];
+      const Sub<S>& sb = subs_[static_cast<size_t>(i)];
       sxv = sb.sx(z, sb.m_at(y));
     }
     for (int r = 0; r < 4; ++r) st.z(r) = z(r) - hp.z(r);
@@ -441,6 +521,9 @@ class StackProfile final : public ModeProfile {
     ModeState s;
     for (int r = 0; r < 4; ++r) s.z(r) = z(r);
     s.sx = sigma_x_hat(top_, z);
+    // A viscoelastic top: the relaxed half-plane in units of its modulus at t
+    // (its displacements over m(t); its stresses per unit load unchanged).
+    if constexpr (!std::is_same_v<S, double>) s.z.head<2>() /= subs_[0].m_top;
     return s;
   }
 
@@ -448,22 +531,22 @@ class StackProfile final : public ModeProfile {
   int locate(double y, bool below) const {
     const int K = static_cast<int>(subs_.size());
     for (int i = 0; i < K; ++i) {
-      const Sub& sb = subs_[static_cast<size_t>(i)];
+      const Sub<S>& sb = subs_[static_cast<size_t>(i)];
       if (i + 1 < K && y == sb.y_bot) return below ? i + 1 : i;
       if (y >= sb.y_bot || i + 1 == K) return i;
     }
     return K - 1;
   }
 
-  std::vector<Sub> subs_;
+  std::vector<Sub<S>> subs_;
   WaveConstants top_;
   double t_;
-  std::shared_ptr<const Propagation> P_;
+  std::shared_ptr<const Propagation<S>> P_;
   bool tangential_ = false;
-  Vec4 z_top_ = Vec4::Zero(), z_bottom_ = Vec4::Zero();
+  Vec4T<S> z_top_ = Vec4T<S>::Zero(), z_bottom_ = Vec4T<S>::Zero();
   int done_ = 0;
-  std::vector<Vec4> amp_;
-  std::vector<std::vector<Eigen::Vector2d>> slice_c_;
+  std::vector<Vec4T<S>> amp_;
+  std::vector<std::vector<Eigen::Matrix<S, 2, 1>>> slice_c_;
 };
 
 void check_spec(const MediumSpec& m) {
@@ -472,50 +555,77 @@ void check_spec(const MediumSpec& m) {
     throw std::invalid_argument("stack medium: a damped base (damping != 0) is not supported");
 }
 
+// A stack's responses at one wavenumber from its core (real: the elastic
+// stack; complex: the stack with its viscoelastic sublayers at t).
+template <class S>
+FullResponse responses(const Core<S>& core, const WaveConstants& top, double t) {
+  const auto P = std::make_shared<const Propagation<S>>(core.propagate(t, false));
+  const StackProfile<S> n(core, top, t, P, false);
+  const Vec4T<S>& z0 = n.top_state();
+  FullResponse r;
+  r.U0 = z0(0);
+  r.W0 = z0(1);
+  r.M1 = -z0(1);
+  // sigma_x = mu(t) Ep U + ... at the top (mu = 1 for an elastic top).
+  r.M2 = (top.c2 - 2.0) / top.c2 - 4.0 * (top.c2 - 1.0) / top.c2 * (core.subs()[0].m_top * z0(0));
+  r.Wb = n.bottom_state()(1);
+  const StackProfile<S> q(core, top, t, P, true);
+  r.Uq = q.top_state()(0);
+  r.Wq = q.top_state()(1);
+  r.Wqb = q.bottom_state()(1);
+  return r;
+}
+
 class StackMedium final : public Medium {
  public:
   StackMedium(const MediumSpec& spec, double vstar)
       : core_(spec, vstar),
         spec_(spec),
         s_(vstar),
-        top_(wave_constants(vstar, spec.layers[0].nu)),
-        asym_(graded_kernel_asymptotics(spec, vstar)) {}
+        relaxed_(wave_constants(vstar, spec.layers[0].nu)),
+        top_(relaxed_),
+        asym_(graded_kernel_asymptotics(spec, vstar)),
+        visco_(spec.viscoelastic()) {
+    if (!spec.layers[0].visco.empty()) {
+      // A viscoelastic top: the unrelaxed half-plane's Cauchy coefficient and
+      // surface sigma_x, and its memory (as the viscoelastic layer's).
+      top_visco_.emplace(spec.layers[0].visco, vstar, spec.layers[0].nu);
+      top_.phi1 = top_visco_->h_inf();
+      top_.phi2 = top_visco_->phi2_inf();
+    }
+  }
 
   double vstar() const noexcept override { return s_; }
   const WaveConstants& top() const noexcept override { return top_; }
-  bool real() const noexcept override { return true; }
+  bool real() const noexcept override { return !visco_; }
 
   MediumResponse surface_response(double t) const override {
     if (std::isnan(t) || t < 0.0)
       throw std::invalid_argument("stack response: t = alpha h must be >= 0");
     // t = 0: the limit, to double precision (every correction is O(t)).
-    return core_.response(t == 0.0 ? 1e-300 : t);
+    const double tt = t == 0.0 ? 1e-300 : t;
+    const FullResponse r = visco_ ? Core<cplx>(spec_, s_, tt).surface(tt) : core_.surface(tt);
+    return MediumResponse{r.M1, r.M2, r.U0, r.W0};
   }
   std::unique_ptr<const ModeProfile> mode(double t) const override {
     if (!(t > 0.0) || !std::isfinite(t))
       throw std::invalid_argument("stack mode: t = alpha h must be finite and > 0");
-    return std::make_unique<StackProfile>(core_, top_, t, propagation(t));
+    if (visco_) {
+      const Core<cplx> core(spec_, s_, t);
+      return std::make_unique<StackProfile<cplx>>(
+          core, relaxed_, t, std::make_shared<const Propagation<cplx>>(core.propagate(t, false)));
+    }
+    return std::make_unique<StackProfile<double>>(core_, relaxed_, t, propagation(t));
   }
 
   // The asymmetric solver's reads: one propagation, the normal and the
-  // tangential load's downward passes on it (real: the stack is elastic).
+  // tangential load's downward passes on it.
   FullResponse full_response(double t) const override {
     if (std::isnan(t) || t < 0.0)
       throw std::invalid_argument("stack response: t = alpha h must be >= 0");
     const double tt = t == 0.0 ? 1e-300 : t;
-    const auto P = propagation(tt);
-    const StackProfile n(core_, top_, tt, P, false), q(core_, top_, tt, P, true);
-    const Vec4& z0 = n.top_state();
-    const WaveConstants& k = top_;
-    FullResponse r;
-    r.U0 = z0(0);
-    r.W0 = z0(1);
-    r.M1 = -z0(1);
-    r.M2 = (k.c2 - 2.0) / k.c2 - 4.0 * (k.c2 - 1.0) / k.c2 * z0(0);
-    r.Wb = n.bottom_state()(1);
-    r.Uq = q.top_state()(0);
-    r.Wq = q.top_state()(1);
-    r.Wqb = q.bottom_state()(1);
+    FullResponse r = visco_ ? responses(Core<cplx>(spec_, s_, tt), relaxed_, tt)
+                            : responses(core_, relaxed_, tt);
     if (t == 0.0 && bar_compliance() != 0.0) r.Uq = r.Wq = std::nan("");  // the bar pole
     return r;
   }
@@ -526,7 +636,8 @@ class StackMedium final : public Medium {
   const TangentialHalfPlane& tangential() const noexcept override { return tq_; }
   // Shear-free bases (springs, rigid, a smooth half-space): the stack's bar,
   // 1/sum_i int (Ep_i mu_i(y) - vstar rho_i(y)) dy (a graded sublayer's
-  // modulus and density both scale by exp(gamma (y - y_top))).
+  // modulus and density both scale by exp(gamma (y - y_top)); a viscoelastic
+  // one's relaxed modulus: the bar is the long-wave, zero-frequency limit).
   double bar_compliance() const noexcept override {
     if (spec_.base.kind == BaseKind::half_space_bonded) return 0.0;
     double stiff = 0.0;
@@ -538,6 +649,8 @@ class StackMedium final : public Medium {
     }
     return 1.0 / stiff;
   }
+  // The relaxed stack's (the critical speed of a viscoelastic medium is its
+  // relaxed elastic one's).
   double dispersion(double t) const override {
     if (!(t > 0.0) || !std::isfinite(t))
       throw std::invalid_argument("stack dispersion: t = alpha h must be finite and > 0");
@@ -545,8 +658,9 @@ class StackMedium final : public Medium {
   }
   double decay_rate() const noexcept override {
     // The reflection off the top sublayer's bottom (a graded top's M1 - phi1
-    // also carries its slow series, kernel_asymptotics()).
-    return 2.0 * top_.nT * spec_.layers[0].thickness;
+    // also carries its slow series, kernel_asymptotics(); a viscoelastic
+    // top's relaxed shear rate is its slowest).
+    return 2.0 * relaxed_.nT * spec_.layers[0].thickness;
   }
   // (Medium::panel_scale.) M1 - phi1 falls by at most e^8 across a panel
   // of 8 / decay_rate() (between 1 and 8 wide); the adaptive rule splits it
@@ -555,13 +669,14 @@ class StackMedium final : public Medium {
   const KernelAsymptotics& kernel_asymptotics() const noexcept override { return asym_; }
   // The remainder (state minus the top's half-plane state) at any depth
   // decays at least as slowly as the state at the bottom, exp(-t sum nT_i
-  // h_i) (each sublayer's shear rate, the slower of its two), or the top's
-  // half-plane state there, exp(-nT_1 t), or the surface's reflection.
+  // h_i) (each sublayer's shear rate, the slower of its two; a viscoelastic
+  // one's relaxed), or the top's half-plane state there, exp(-nT_1 t), or
+  // the surface's reflection.
   double field_decay_rate() const noexcept override {
     double travel = 0.0;
     for (const Sublayer& l : spec_.layers)
       travel += l.thickness * std::sqrt(std::max(0.0, 1.0 - s_ * l.rho / l.mu));
-    double rate = std::min(travel, top_.nT);
+    double rate = std::min(travel, relaxed_.nT);
     const double surface = decay_rate();
     if (surface > 0.0) rate = std::min(rate, surface);
     return rate;
@@ -589,30 +704,56 @@ class StackMedium final : public Medium {
     }
     return out;
   }
+  // A viscoelastic top's half-plane parts and memories (ViscoelasticTop).
+  cplx half_plane_m1(double t) const override {
+    return top_visco_ ? top_visco_->m1(t) : cplx(top_.phi1);
+  }
+  const MemoryKernel* memory() const noexcept override {
+    return top_visco_ ? &top_visco_->memory() : nullptr;
+  }
+  cplx half_plane_m2(double t) const override {
+    return top_visco_ ? top_visco_->m2(t) : cplx(top_.phi2);
+  }
+  const RetardationSpectrum* stress_memory() const noexcept override {
+    return top_visco_ ? top_visco_->stress_memory() : nullptr;
+  }
+  const RetardationSpectrum* compliance_memory() const noexcept override {
+    return top_visco_ ? &top_visco_->compliance_memory() : nullptr;
+  }
   const MediumSpec& spec() const noexcept override { return spec_; }
 
  private:
-  std::shared_ptr<const Propagation> propagation(double t) const {
-    return std::make_shared<const Propagation>(core_.propagate(t, false));
+  std::shared_ptr<const Propagation<double>> propagation(double t) const {
+    return std::make_shared<const Propagation<double>>(core_.propagate(t, false));
   }
   Eigen::Vector4cd state_at(double t, double y, bool tangential) const {
     if (!(t > 0.0) || !std::isfinite(t) || !(y >= -1.0) || !(y <= 0.0))
       throw std::invalid_argument("stack state: need t > 0 finite and -1 <= y <= 0");
-    const StackProfile p(core_, top_, t, propagation(t), tangential);
+    if (visco_) {
+      const Core<cplx> core(spec_, s_, t);
+      const StackProfile<cplx> p(
+          core, relaxed_, t, std::make_shared<const Propagation<cplx>>(core.propagate(t, false)),
+          tangential);
+      return p.state(y).z;
+    }
+    const StackProfile<double> p(core_, relaxed_, t, propagation(t), tangential);
     return p.state(y).z;
   }
 
-  Core core_;
+  Core<double> core_;  // the elastic (a viscoelastic stack: relaxed) stack
   MediumSpec spec_;
   double s_;
-  WaveConstants top_;
-  TangentialHalfPlane tq_ = tangential_half_plane(top_);
+  WaveConstants relaxed_;  // the top material's half-plane constants (relaxed)
+  WaveConstants top_;      // the same with a viscoelastic top's unrelaxed phi1, phi2
+  TangentialHalfPlane tq_ = tangential_half_plane(relaxed_);
   KernelAsymptotics asym_;
+  bool visco_ = false;
+  std::optional<ViscoelasticTop> top_visco_;
 };
 
 // The lowest vstar < smax of a free wave of wavenumber t (smax if none).
 double first_wave(const MediumSpec& spec, double t, double smax) {
-  auto D = [&](double s) { return Core(spec, s).dispersion(t); };
+  auto D = [&](double s) { return Core<double>(spec, s).dispersion(t); };
   const int m = kFirstWaveScan;
   const double top = smax * (1.0 - 1e-13);
   double s_prev = 0.0, d_prev = D(0.0);

@@ -172,6 +172,15 @@ std::complex<double> half_plane_stress(const Viscoelastic& v, double vstar, doub
   return complex_half_plane(vstar / v.modulus(t), nu).phi2;
 }
 
+ViscoelasticTop::ViscoelasticTop(const Viscoelastic& v, double vstar, double nu)
+    : v_(v),
+      vstar_(vstar),
+      nu_(nu),
+      compliance_(inertial_spectrum(v, vstar, nu)),
+      stress_(inertial_spectrum(v, vstar, nu, 1e-12, HalfPlaneSymbol::stress)),
+      relaxation_(retardation_spectrum(v)),
+      memory_(compliance_.spectrum) {}
+
 double unrelaxed_phi1(const Viscoelastic& v, double vstar, double nu) {
   const double ratio = v.ratio();
   return wave_constants(vstar / ratio, nu).phi1 / ratio;

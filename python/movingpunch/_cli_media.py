@@ -3,8 +3,9 @@
 ``--graded T,GAMMA_H,NU[,MU,RHO]`` (repeated, top to bottom, in command-line
 order), ``--half-space MU,NU[,RHO][,bonded|smooth]``, the top sublayer's
 material ``--zener RATIO,DEBORAH`` or ``--prony W1,D1[,W2,D2...]`` (with
-``--shift A_T``); and the medium they give (``movingpunch.media``). Every
-error names the option and its form.
+``--shift A_T``; ``--visco-layer I`` puts it on another sublayer); and the
+medium they give (``movingpunch.media``). Every error names the option and
+its form.
 """
 
 from __future__ import annotations
@@ -233,7 +234,8 @@ def add_medium_options(p: argparse.ArgumentParser) -> None:
         type=_zener,
         default=None,
         metavar="RATIO,DEBORAH",
-        help="the top sublayer is a standard linear solid: mu_inf/mu_0 = RATIO "
+        help="the top sublayer (or --visco-layer's) is a standard linear solid: "
+        "mu_inf/mu_0 = RATIO "
         ">= 1 (its MU is mu_0), DEBORAH = V tau/h >= 0; solved moving at "
         "--vstar with the layer's inertia (or at rest), giving the drag and the "
         "dissipation (docs/theory.md section 17). RATIO,tau=TAU gives the "
@@ -245,7 +247,8 @@ def add_medium_options(p: argparse.ArgumentParser) -> None:
         type=_prony,
         default=None,
         metavar="W1,D1[,W2,D2...]",
-        help="the top sublayer is a generalised Maxwell solid: each branch's "
+        help="the top sublayer (or --visco-layer's) is a generalised Maxwell "
+        "solid: each branch's "
         "modulus over mu_0 (W > 0) and deborah number V tau/h (or tau=T, its "
         "relaxation time in h/c_T0); with --shift",
     )
@@ -263,6 +266,15 @@ def add_medium_options(p: argparse.ArgumentParser) -> None:
         default=None,
         metavar="A_T",
         help="the time-temperature shift factor a_T > 0 of --prony (default 1)",
+    )
+    p.add_argument(
+        "--visco-layer",
+        dest="visco_layer",
+        type=int,
+        default=None,
+        metavar="I",
+        help="the sublayer (0: the top, counted down the --layer stack) that "
+        "--zener/--prony makes viscoelastic (default 0)",
     )
 
 
@@ -304,15 +316,32 @@ def medium_of(args: argparse.Namespace) -> Medium | None:
         )
     if layers is None:
         layers = [Layer(nu=0.2 if args.nu is None else args.nu)]
+    at: int | None = getattr(args, "visco_layer", None)
+    if at is not None and material is None:
+        raise InvalidParameterError(
+            "--visco-layer says which sublayer --zener/--prony makes "
+            "viscoelastic; give --zener or --prony too",
+            parameter="visco_layer",
+        )
     if material is not None:
-        top = layers[0]
-        if not isinstance(top, Layer):
+        index = 0 if at is None else at
+        if not 0 <= index < len(layers):
             raise InvalidParameterError(
-                "--zener/--prony: the top sublayer must be a homogeneous --layer "
+                f"--visco-layer {index}: the stack has {len(layers)} "
+                f"sublayer{'s' if len(layers) > 1 else ''} (0 ... {len(layers) - 1}, "
+                "top to bottom in --layer order)",
+                parameter="visco_layer",
+                allowed=f"0 ... {len(layers) - 1}",
+            )
+        sub = layers[index]
+        if not isinstance(sub, Layer):
+            raise InvalidParameterError(
+                f"--zener/--prony: sublayer {index} must be a homogeneous --layer "
                 "(a graded one cannot be viscoelastic)",
                 parameter="layers",
             )
-        layers = [dataclasses.replace(top, viscoelastic=material), *layers[1:]]
+        replaced = dataclasses.replace(sub, viscoelastic=material)
+        layers = [*layers[:index], replaced, *layers[index + 1 :]]
     try:
         kp = getattr(args, "kp", 0.0)
         damping = getattr(args, "damping", 0.0)

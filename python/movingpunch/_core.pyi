@@ -283,7 +283,7 @@ class AsymmetricSolution:
         self, x: _Array, y: _Array, below: bool = False
     ) -> tuple[_Array, _Array, _Array]: ...
     def compliance_stress_field(
-        self, x: _Array, y: _Array
+        self, x: _Array, y: _Array, below: bool = False
     ) -> tuple[_Array, _Array, _Array]: ...
 
 class ZoneResult:

@@ -214,8 +214,8 @@ class Evaluations:
         impl = self._impl
 
         def grid(xx: FloatArray, yy: FloatArray) -> tuple[FloatArray, ...]:
-            if compliance:  # a viscoelastic top's stresses through its compliance
-                return tuple(impl.compliance_stress_field(xx, yy))
+            if compliance:  # through the compliance of each depth's material
+                return tuple(impl.compliance_stress_field(xx, yy, below))
             return tuple(impl.stress_field(xx, yy, below))
 
         sx, sy, txy = _chunked_grid(grid, xs, ys)
@@ -423,18 +423,27 @@ class Evaluations:
 
     def to_dict(self) -> dict[str, object]:
         """Every public field and every field of the contract, JSON-safe
-        (tuples become lists, non-finite floats "inf", "-inf", "nan")."""
+        (tuples become lists, non-finite floats "inf", "-inf", "nan"); a
+        field the medium does not give (the asymmetric solver's indentation
+        under a half-space: a logarithmic far field) is None."""
         names = [f.name for f in dataclasses.fields(self)]  # type: ignore[arg-type]
         names += [n for n in CONTRACT_FIELDS if n not in names]
         return {
             n: (
                 [p.to_dict() for p in self.punches]
                 if n == "punches"
-                else _json_safe(_listed(getattr(self, n)))
+                else _json_safe(_listed(self._given(n)))
             )
             for n in names
             if not n.startswith("_")
         }
+
+    def _given(self, name: str) -> object:
+        """The field ``name``, or None where the medium refuses it by name."""
+        try:
+            return getattr(self, name)
+        except InvalidParameterError:
+            return None
 
 
 def _listed(value: object) -> object:

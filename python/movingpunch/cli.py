@@ -382,6 +382,15 @@ def _build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _indentation_text(s: ContactSolution) -> str:
+    """The indentation, or "n/a" where the medium does not give it (the
+    asymmetric solver under a half-space: a logarithmic far field)."""
+    try:
+        return _fmt(s.indentation)
+    except InvalidParameterError:
+        return "n/a (a logarithmic far field under a half-space)"
+
+
 def _fmt(value: float | int | bool | str) -> str:
     if isinstance(value, (bool, int, str)):
         return str(value)
@@ -613,7 +622,7 @@ def _cmd_solve(args: argparse.Namespace) -> int:
         ("contact (x_back/h, x_front/h)", f"({_fmt(back)}, {_fmt(front)})"),
         *several,
         ("p0/(P/h)", _fmt(s.p0)),
-        ("indentation δ/h", _fmt(s.indentation)),
+        ("indentation δ/h", _indentation_text(s)),
         ("drag (∫p x/R dx)/P", _fmt(drag)),
         ("tangential force/P", _fmt(s.tangential_force)),
         ("end exponents (back, front)", "({}, {})".format(*map(_fmt, s.end_exponents))),

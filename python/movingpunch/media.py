@@ -790,17 +790,14 @@ class Medium:
             # A viscoelastic layer: its relaxed (slowest) elastic layer's.
             assert isinstance(base, Winkler)
             vc, t = _core.critical_speed(base.kw, self.nu, base.kp)
-        elif self.viscoelastic:
-            raise InvalidParameterError(
-                "layers: a viscoelastic sublayer is solved as one layer on springs "
-                f"so far (not in a stack or on a half-space); given {self.describe()}",
-                parameter="layers",
-                allowed="one viscoelastic layer on Winkler springs",
-            )
         else:
+            # (A stack with viscoelastic sublayers: its relaxed elastic stack's,
+            # which the rows alone describe.)
             springs = base if isinstance(base, Winkler) else None
+            args = self.core_args()
+            args.pop("materials", None)
             vc, t = _core.medium_critical_speed(
-                **self.core_args(),
+                **args,
                 kw=springs.kw if springs else math.inf,
                 kp=springs.kp if springs else 0.0,
             )

@@ -18,8 +18,10 @@ import math
 from collections.abc import Iterable
 from typing import TYPE_CHECKING
 
+from movingpunch.errors import InvalidParameterError
+
 if TYPE_CHECKING:
-    from movingpunch.contract import ContactSolution
+    from movingpunch.contract import ContactSolution, SolvedPunch
     from movingpunch.fields import StressPeaks
 
 __all__ = [
@@ -85,6 +87,13 @@ def regime_hints(
     return tuple(out)
 
 
+def _indentation(punch: SolvedPunch) -> float:
+    try:
+        return abs(float(punch.indentation))
+    except InvalidParameterError:
+        return math.nan
+
+
 def hints_for(
     solution: ContactSolution, peaks: StressPeaks | None = None
 ) -> tuple[str, ...]:
@@ -93,7 +102,10 @@ def hints_for(
     ``stress_peaks()``, which the caller has usually computed), the peak
     strain. Reads only the contract's fields."""
     punches = solution.punches  # a single contact's one, a train's own
-    indent = max(abs(float(p.indentation)) for p in punches)
+    # (NaN where the medium does not give the indentation: the asymmetric
+    # solver under a half-space, a logarithmic far field.)
+    given = [v for v in map(_indentation, punches) if math.isfinite(v)]
+    indent = max(given) if given else math.nan
     stresses = [abs(float(solution.p0))]
     if peaks is not None:
         stresses += [

@@ -267,13 +267,19 @@ class PunchResult:
         return _pointwise("x", x, self._impl.pressure)
 
     def to_dict(self) -> dict[str, object]:
+        """JSON-safe; the indentation None where the medium does not give it
+        (the asymmetric solver under a half-space: a logarithmic far field)."""
+        try:
+            indentation: float | None = self.indentation
+        except InvalidParameterError:
+            indentation = None
         return {
             "profile": self.profile.to_dict(),
             "load": self.load,
             "at": self.at,
             "contact_zones": [list(z) for z in self.contact_zones],
             "zone_loads": list(self.zone_loads),
-            "indentation": self.indentation,
+            "indentation": indentation,
             "drag": self.drag,
         }
 

@@ -238,7 +238,7 @@ TEST(Viscoelastic, LayerResponseLimitsAndPositiveDissipation) {
   }
 }
 
-TEST(Viscoelastic, OnlyTheSingleLayerIsMadeAndEachRefusalNamesItsParameter) {
+TEST(Viscoelastic, TheUnrelaxedConstantsAndEachRefusalNamesItsParameter) {
   mp::MediumSpec spec = mp::homogeneous_medium(1.0, 0.25);
   spec.layers[0].visco = mp::zener(2.0, 0.1);
   // With inertia: the unrelaxed half-plane's phi1 and phi2 (vstar/m_inf).
@@ -247,14 +247,26 @@ TEST(Viscoelastic, OnlyTheSingleLayerIsMadeAndEachRefusalNamesItsParameter) {
   EXPECT_NEAR(moving->phi2(), mp::phi2(0.05, 0.25), 1e-15);
   ASSERT_NE(moving->memory(), nullptr);
   ASSERT_NE(moving->stress_memory(), nullptr);
-  mp::MediumSpec stack = spec;
-  stack.layers = {mp::Sublayer(0.5, 1.0, 0.25), mp::Sublayer(0.5, 2.0, 0.3)};
-  stack.layers[0].visco = mp::zener(2.0, 0.1);
+  // A graded sublayer is elastic: a material there is refused by its index.
+  mp::MediumSpec graded = spec;
+  graded.layers = {mp::Sublayer(0.5, 1.0, 0.25), mp::Sublayer(0.5, 2.0, 0.3, 1.0, 1.5)};
+  graded.layers[1].visco = mp::zener(2.0, 0.1);
   try {
-    mp::make_medium(stack, 0.0);
+    mp::make_medium(graded, 0.0);
     FAIL();
   } catch (const mp::InvalidParameter& e) {
-    EXPECT_EQ(e.name(), "layers");
+    EXPECT_EQ(e.name(), "layers[1].viscoelastic");
+  }
+  // Dashpots under a viscoelastic stack: refused by name too.
+  mp::MediumSpec damped = spec;
+  damped.layers = {mp::Sublayer(0.5, 1.0, 0.25), mp::Sublayer(0.5, 2.0, 0.3)};
+  damped.layers[1].visco = mp::zener(2.0, 0.1);
+  damped.base.damping = 0.3;
+  try {
+    mp::make_medium(damped, 0.0);
+    FAIL();
+  } catch (const mp::InvalidParameter& e) {
+    EXPECT_EQ(e.name(), "damping");
   }
   // Keys tell materials apart.
   mp::MediumSpec other = spec;
@@ -366,4 +378,86 @@ TEST(Viscoelastic, InertialSpectrumMatchesTheSymbolOffItsGrid) {
   EXPECT_THROW(mp::inertial_spectrum(mp::zener(1000.0, 10.0), 0.85, 0.3, 1e-13),
                mp::ConvergenceError);
   EXPECT_NO_THROW(mp::inertial_spectrum(mp::zener(1000.0, 10.0), 0.85, 0.3));
+}
+
+// A viscoelastic layer cut into identical sublayers: the stack's complex
+// propagation against the single layer's closed form (the damped layer's
+// modes at vstar/m(t)), at rest and moving, every response of the
+// asymmetric solver, the states at depth and the half-plane parts.
+TEST(ViscoelasticStack, IdenticalSublayersAreTheClosedFormLayer) {
+  for (double vstar : {0.0, 0.3}) {
+    mp::MediumSpec one = mp::homogeneous_medium(2.0, 0.25);
+    one.layers[0].visco = mp::zener(3.0, 0.5);
+    mp::MediumSpec cut = one;
+    cut.layers = {mp::Sublayer(0.35, 1.0, 0.25), mp::Sublayer(0.65, 1.0, 0.25)};
+    for (auto& l : cut.layers) l.visco = mp::zener(3.0, 0.5);
+    const auto a = mp::make_medium(one, vstar), b = mp::make_medium(cut, vstar);
+    EXPECT_FALSE(b->real());
+    ASSERT_NE(b->memory(), nullptr);
+    EXPECT_EQ(a->phi1(), b->phi1());
+    EXPECT_EQ(a->phi2(), b->phi2());
+    EXPECT_EQ(b->spec().viscoelastic(), true);
+    for (double t : {1e-3, 0.05, 0.4, 0.7, 2.0, 9.0, 30.0}) {
+      const mp::FullResponse r = a->full_response(t), s = b->full_response(t);
+      const double scale = std::abs(r.M1);
+      EXPECT_LT(std::abs(r.M1 - s.M1), 1e-13 * scale) << vstar << " " << t;
+      EXPECT_LT(std::abs(r.M2 - s.M2), 1e-12 * (1.0 + std::abs(r.M2))) << vstar << " " << t;
+      EXPECT_LT(std::abs(r.Wb - s.Wb), 1e-12 * scale) << vstar << " " << t;
+      EXPECT_LT(std::abs(r.Uq - s.Uq), 1e-12 * std::abs(r.Uq)) << vstar << " " << t;
+      EXPECT_LT(std::abs(r.Wq - s.Wq), 1e-12 * std::abs(r.Wq) + 1e-15) << vstar << " " << t;
+      EXPECT_EQ(a->half_plane_m1(t), b->half_plane_m1(t));
+      EXPECT_EQ(a->half_plane_m2(t), b->half_plane_m2(t));
+      for (double y : {-0.2, -0.35, -0.8, -1.0}) {
+        const Eigen::Vector4cd za = a->normal_state(t, y), zb = b->normal_state(t, y);
+        EXPECT_LT((za - zb).norm(), 1e-12 * za.norm() + 1e-300) << vstar << " " << t << " " << y;
+        const mp::ModeState ra = a->mode(t)->remainder(y), rb = b->mode(t)->remainder(y);
+        EXPECT_LT(std::abs(ra.sx - rb.sx), 1e-11 * (std::abs(ra.sx) + za.norm()))
+            << vstar << " " << t << " " << y;
+      }
+    }
+  }
+}
+
+// An elastic top on a viscoelastic sublayer: the kernel's remainder M1 -
+// phi1 decays like the elastic stack's (no memory: the top is elastic), the
+// loss is positive mode by mode, and the limits are the elastic stacks of
+// mu_0 and mu_inf (the real propagation).
+TEST(ViscoelasticStack, ADeepSublayerMeetsTheElasticStacksAndDissipates) {
+  auto stack = [](double mu2, const mp::Viscoelastic& v, mp::BaseKind base) {
+    mp::MediumSpec m;
+    m.layers = {mp::Sublayer(0.3, 1.0, 0.25), mp::Sublayer(0.7, mu2, 0.3, 0.8)};
+    m.layers[1].visco = v;
+    m.base.kind = base;
+    m.base.kw = 2.0;
+    m.base.mu = 3.0;
+    m.base.nu = 0.25;
+    m.base.rho = 1.5;
+    return m;
+  };
+  for (mp::BaseKind base : {mp::BaseKind::springs, mp::BaseKind::half_space_bonded}) {
+    for (double vstar : {0.0, 0.2}) {
+      const auto m = mp::make_medium(stack(0.5, mp::zener(4.0, 0.3), base), vstar);
+      EXPECT_EQ(m->memory(), nullptr);
+      EXPECT_EQ(m->half_plane_m1(5.0), m->phi1());
+      EXPECT_NEAR(m->phi1(), mp::phi1(vstar, 0.25), 1e-15);
+      const auto relaxed = mp::make_medium(stack(0.5, {}, base), vstar);
+      const auto unrelaxed = mp::make_medium(stack(2.0, {}, base), vstar);
+      const auto slow = mp::make_medium(stack(0.5, mp::zener(4.0, 1e-12), base), vstar);
+      const auto fast = mp::make_medium(stack(0.5, mp::zener(4.0, 1e12), base), vstar);
+      for (double t : {1e-3, 0.1, 1.0, 4.0, 15.0}) {
+        EXPECT_GT(m->full_response(t).M1.imag(), 0.0) << t;  // e^{-i omega t}: a loss
+        const double r = std::abs(relaxed->surface_response(t).M1);
+        EXPECT_LT(std::abs(slow->surface_response(t).M1 - relaxed->surface_response(t).M1),
+                  1e-10 * r)
+            << t;
+        EXPECT_LT(std::abs(fast->surface_response(t).M1 - unrelaxed->surface_response(t).M1),
+                  1e-10 * r)
+            << t;
+      }
+      // M1 - phi1: the reflection off the top sublayer's bottom, e^{-2 nT 0.3 t}.
+      const double t = 60.0, rem = std::abs(m->surface_response(t).M1 - m->phi1());
+      EXPECT_LT(rem, 1e3 * std::exp(-2.0 * 0.3 * t * std::sqrt(1.0 - vstar)));
+      EXPECT_EQ(m->dispersion(2.0), relaxed->dispersion(2.0));
+    }
+  }
 }

@@ -264,3 +264,28 @@ def test_an_output_the_medium_does_not_give_is_na_and_a_notice(monkeypatch) -> N
     )
     assert isinstance(result.data, tui_model.Notice)
     assert "not given here" in result.data.text
+
+
+def test_a_viscoelastic_sublayer_on_a_half_space_in_the_panel() -> None:
+    """A lossy soil sublayer under an elastic top on a half-space: the
+    panel's summary is the API's solve (drag, contact); the indentation,
+    which the asymmetric solver does not give under a half-space (a
+    logarithmic far field), is n/a, never a number; the depth tab draws."""
+    soil = mp.Layer(0.7, mu=0.5, nu=0.3, rho=0.8, viscoelastic=mp.Zener(4.0, 0.3))
+    top = mp.Layer(0.3, nu=0.25)
+    base = mp.HalfSpace(mu=3.0, nu=0.25, rho=1.5)
+    params = tui_model.with_medium(
+        Params(vstar=0.2, radius=5.0, load=0.05), (top, soil), base, inertia=True
+    )
+    cache = tui_model.Cache()
+    head = tui_model.summary(cache, params)
+    api = mp.solve(vstar=0.2, radius=5.0, load=0.05, layers=[top, soil], base=base)
+    assert head.drag == api.drag > 0.0
+    assert head.contact_interval == api.contact_interval
+    assert math.isnan(head.indentation)
+    assert tui_model.fmt(head.indentation) == "n/a"
+    assert tui_model.summary_hints(head) is not None
+    result = tui_model.compute(
+        cache, tui_model.Request(generation=1, params=params, tab="depth")
+    )
+    assert not isinstance(result.data, tui_model.Notice)

@@ -326,16 +326,6 @@ def test_what_is_not_solved_yet_is_refused_by_name():
             base=mp.Winkler(1.0, damping=0.5),
         )
     assert e.value.parameter == "damping"
-    two = [
-        mp.Layer(0.5, nu=NU, viscoelastic=mp.Zener(2.0, 0.1)),
-        mp.Layer(0.5, mu=2.0, nu=0.3),
-    ]
-    with pytest.raises(InvalidParameterError) as e:
-        mp.solve(vstar=0.0, radius=R, load=0.002, layers=two, base=mp.Winkler(1.0))
-    assert e.value.parameter == "layers"
-    with pytest.raises(InvalidParameterError) as e:
-        mp.critical_vstar(layers=two, base=mp.Winkler(1.0))
-    assert e.value.parameter == "layers"
     train = [mp.Punch(mp.Cylinder(R), 0.002, at) for at in (-1.0, 1.0)]
     with pytest.raises(InvalidParameterError) as e:
         mp.solve_punches(train, vstar=0.0, layers=layer, base=mp.Winkler(1.0))

@@ -333,16 +333,19 @@ class AsymmetricSolution {
   // empty); throws InvalidParameter naming x or y otherwise. The half-plane
   // part in closed form, the rest by Filon sums: the cost does not depend on
   // y. 0 beyond |x| > kFarField.
+  // below: at an interface depth of a layered medium, sigma_x of the
+  // material below it (sigma_y and tau are continuous).
   StressField stress_field(const Eigen::Ref<const Eigen::VectorXd>& x,
-                           const Eigen::Ref<const Eigen::VectorXd>& y) const;
-  // A viscoelastic top's stresses through its compliance, on the same grid:
-  // (1/m_inf) [sigma + sum_k c_k (e_k * sigma)] along x at each depth (e_k the
-  // material's causal exponentials), whose Hooke strains at the relaxed
-  // modulus mu_0 are the layer's strains (a mode's strain is its stress over
-  // mu_0 m(alpha), Poisson's ratio constant). The stresses themselves on an
-  // elastic top.
+                           const Eigen::Ref<const Eigen::VectorXd>& y, bool below = false) const;
+  // The stresses through the compliance of the material at each depth, on
+  // the same grid: (1/m_inf) [sigma + sum_k c_k (e_k * sigma)] along x (e_k
+  // the material's causal exponentials) in a viscoelastic sublayer, whose
+  // Hooke strains at its relaxed modulus are its strains (a mode's strain is
+  // its stress over mu m(alpha), Poisson's ratio constant); the stresses
+  // themselves in an elastic one. below: as stress_field's.
   StressField compliance_stress_field(const Eigen::Ref<const Eigen::VectorXd>& x,
-                                      const Eigen::Ref<const Eigen::VectorXd>& y) const;
+                                      const Eigen::Ref<const Eigen::VectorXd>& y,
+                                      bool below = false) const;
   // Slope dv/dx(x, -1) and displacement v(x, -1)/h of the bottom face (any x;
   // the displacement needs a finite kw).
   double bottom_slope(double x) const;
@@ -495,8 +498,8 @@ class AsymmetricSolution {
   // fine nodes (from `from`) at shallow depths, added to rem (nx, 3 ny:
   // stress_field's columns).
   void inertial_tail(const Eigen::Ref<const Eigen::VectorXd>& x,
-                     const Eigen::Ref<const Eigen::VectorXd>& y, double from,
-                     Eigen::MatrixXd& rem) const;
+                     const Eigen::Ref<const Eigen::VectorXd>& y, double from, Eigen::MatrixXd& rem,
+                     bool below = false) const;
   // InvalidParameter naming y for a depth closer to the surface than the
   // tail's reach allows (about 0.002 h).
   void check_inertial_depths(const Eigen::Ref<const Eigen::VectorXd>& y, const char* what) const;
@@ -536,20 +539,23 @@ class AsymmetricSolution {
     std::vector<std::unique_ptr<const ModeProfile>> modes;
     std::shared_ptr<const FilonIntegrator> filon;
   };
+  // A depth and, at an interface, the side whose sigma_x is asked.
+  using DepthKey = std::pair<double, bool>;
   struct FieldCache {
     std::mutex mutex;
     std::shared_ptr<const FieldNodes> nodes;
     // The tail of a layer with inertia and its last few depths' coefficients.
     std::shared_ptr<const TailNodes> tail;
-    std::vector<std::pair<double, std::shared_ptr<const Eigen::MatrixXd>>> tail_depths;
+    // (Keyed by the depth and the side of an interface: DepthKey.)
+    std::vector<std::pair<DepthKey, std::shared_ptr<const Eigen::MatrixXd>>> tail_depths;
     // The Filon coefficients of the remainder at the last few depths
     // (nq x 6: sigma_x, sigma_y, tau real parts, then imaginary parts): they do
     // not depend on x, so a search along one depth (the bottom's peaks, the
     // foundation reaction) computes them once.
-    std::vector<std::pair<double, std::shared_ptr<const Eigen::MatrixXd>>> depths;
+    std::vector<std::pair<DepthKey, std::shared_ptr<const Eigen::MatrixXd>>> depths;
   };
-  std::shared_ptr<const Eigen::MatrixXd> depth_coefficients(const FieldNodes& nodes,
-                                                            double y) const;
+  std::shared_ptr<const Eigen::MatrixXd> depth_coefficients(const FieldNodes& nodes, double y,
+                                                            bool below = false) const;
   std::shared_ptr<FieldCache> field_cache_ = std::make_shared<FieldCache>();
   // Friction: the stresses on the bottom face y = -1 by the direct Fourier
   // integral (it converges there like e^{-nT alpha}: no half-plane part to

@@ -154,6 +154,36 @@ class MemoryKernel {
                      std::vector<double>& c) const;
 };
 
+// A viscoelastic TOP material's half-plane parts at one speed (every medium
+// whose top sublayer is viscoelastic: the layer on springs, a stack): the
+// Cauchy term's coefficient H_inf and the surface sigma_x's phi2(vstar/m_inf),
+// the symbols H(t) and phi2(vstar/m(t)) the kernel and the surface stress
+// subtract, and their memories (inertial_spectrum; at rest the retardation
+// spectrum and no stress memory).
+class ViscoelasticTop {
+ public:
+  ViscoelasticTop(const Viscoelastic& v, double vstar, double nu);
+  double h_inf() const noexcept { return compliance_.h_inf; }
+  double phi2_inf() const noexcept { return stress_.h_inf; }
+  std::complex<double> m1(double t) const { return half_plane_compliance(v_, vstar_, nu_, t); }
+  std::complex<double> m2(double t) const { return half_plane_stress(v_, vstar_, nu_, t); }
+  std::complex<double> modulus(double t) const { return v_.modulus(t); }
+  const MemoryKernel& memory() const noexcept { return memory_; }
+  // Null at rest (phi2 does not depend on the modulus there).
+  const RetardationSpectrum* stress_memory() const noexcept {
+    return stress_.spectrum.c.empty() ? nullptr : &stress_.spectrum;
+  }
+  // The material's own compliance memory m_inf/m(t) - 1.
+  const RetardationSpectrum& compliance_memory() const noexcept { return relaxation_; }
+
+ private:
+  Viscoelastic v_;
+  double vstar_, nu_;
+  InertialSpectrum compliance_, stress_;
+  RetardationSpectrum relaxation_;
+  MemoryKernel memory_;
+};
+
 // l J_n(s, l) for n < count (one retardation time; MemoryKernel sums them).
 void memory_moments(double s, double l, int count, double* out);
 // The same at rows points s[0] > s[1] > ... (out: rows x count, row-major),

@@ -82,6 +82,12 @@ def _fmt(x: float) -> str:
     return f"{x:.10g}"
 
 
+def _indentation_text(value: object) -> str:
+    """A punch's indentation; n/a where the medium does not give it (None:
+    the asymmetric solver under a half-space)."""
+    return "n/a" if value is None else _fmt(float(value))  # type: ignore[arg-type]
+
+
 _ENDS = ("a", "contact_start", "contact_end")
 
 
@@ -280,7 +286,7 @@ def _zone_lines(details: Mapping[str, Any], n: int, scene: Scene) -> list[str]:
                 f"    punch {k + 1} at x/h = {_fmt(float(d['at']))}: "
                 f"P/(μh) = {_fmt(float(d['load']))}, "
                 f"zones {format_zones(d['contact_zones'])}, "
-                f"δ/h = {_fmt(float(d['indentation']))}, "
+                f"δ/h = {_indentation_text(d['indentation'])}, "
                 f"drag/P = {_fmt(_punch_drag(d, scene, k))}"
             )
     return lines

@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 
 from movingpunch.contract import ContactSolution
+from movingpunch.errors import InvalidParameterError
 from movingpunch.fields import StressField
 from movingpunch.media import Medium, Winkler
 from movingpunch.scene._model import STRESS_COMPONENTS, point_medium
@@ -92,7 +93,7 @@ def _out_contact_width(run: RunState, spec: Any, solutions: _Solutions) -> Outpu
         # (int p x/R dx / P) scales as 1/radius, the indentation as the load.
         cols["drag"].append(s.drag * radius_ratio(s.radius, p["radius"]))
         cols["p0"].append(s.p0)
-        cols["indentation"].append(s.indentation * p["load"] / s.load)
+        cols["indentation"].append(given_indentation(s) * p["load"] / s.load)
         cols["zones"].append(float(len(s.contact_zones)))
         zones.append([[float(lo), float(hi)] for lo, hi in s.contact_zones])
         punches.append(_punch_dicts(s, p["load"] / s.load))
@@ -110,6 +111,15 @@ def _out_contact_width(run: RunState, spec: Any, solutions: _Solutions) -> Outpu
     )
 
 
+def given_indentation(s: ContactSolution) -> float:
+    """The indentation, NaN where the medium does not give it (the
+    asymmetric solver under a half-space: a logarithmic far field)."""
+    try:
+        return s.indentation
+    except InvalidParameterError:
+        return math.nan
+
+
 def _punch_dicts(s: ContactSolution, scale: float) -> list[dict[str, object]]:
     """``to_dict()`` of each punch of ``s`` (``ContactSolution.punches``: a
     single contact's one too); loads and indentations times ``scale`` (a
@@ -120,7 +130,8 @@ def _punch_dicts(s: ContactSolution, scale: float) -> list[dict[str, object]]:
         if scale != 1.0:
             d["load"] = punch.load * scale
             d["zone_loads"] = [x * scale for x in punch.zone_loads]
-            d["indentation"] = punch.indentation * scale
+            given = d["indentation"]  # None where the medium does not give it
+            d["indentation"] = None if given is None else punch.indentation * scale
         out.append(d)
     return out
 

@@ -335,6 +335,9 @@ def chunk_tasks(plan: SweepPlan, chunk: Chunk) -> list[dict[str, Any]]:
                 "friction": group[6],
                 "points": list(zip(radius, load, strict=True)),
                 "peaks": plan.want_peaks,
+                "indentation": "indentation" in plan.scene.sweep.quantities
+                if plan.scene.sweep is not None
+                else True,
                 "profile": plan.profile,
                 "contact": plan.contact,
                 "punches": plan.punches,

@@ -39,6 +39,10 @@ from movingpunch.scene._solve import RunState, point_key, point_quantities
 __all__ = ["run_scene"]
 
 
+def sweep_wants_indentation(scene: SceneData) -> bool:
+    return scene.sweep is None or "indentation" in scene.sweep.quantities
+
+
 def _needs_contact(scene: SceneData) -> bool:
     return any(kind != "critical_speed" for kind in scene.outputs)
 
@@ -123,7 +127,16 @@ def _run_sweep(
             try:
                 s = run.solution(p)
                 found: list[str] = []
-                values.set(k, point_quantities(s, plan.want_peaks, run.stages, found))
+                values.set(
+                    k,
+                    point_quantities(
+                        s,
+                        plan.want_peaks,
+                        run.stages,
+                        found,
+                        sweep_wants_indentation(scene),
+                    ),
+                )
                 run.note_warnings(plan.key(k), p, found)
             except MovingPunchError as exc:
                 values.set(k, str(exc))

@@ -20,7 +20,11 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from movingpunch.contract import ContactSolution
-from movingpunch.errors import MovingPunchError, UnphysicalContactError
+from movingpunch.errors import (
+    InvalidParameterError,
+    MovingPunchError,
+    UnphysicalContactError,
+)
 from movingpunch.media import Medium
 from movingpunch.profiles import PunchProfile
 from movingpunch.scene._model import (
@@ -141,10 +145,17 @@ def solve_point(
 
 
 def point_quantities(
-    s: ContactSolution, want_peaks: bool, stages: Stages, warnings: list[str]
+    s: ContactSolution,
+    want_peaks: bool,
+    stages: Stages,
+    warnings: list[str],
+    want_indentation: bool = True,
 ) -> dict[str, float]:
     """The sweep's numbers of one solved point; the stress peak search's
-    warnings (``StressPeaks.warnings``) are appended to ``warnings``."""
+    warnings (``StressPeaks.warnings``) are appended to ``warnings``. The
+    indentation a medium does not give (the asymmetric solver under a
+    half-space: a logarithmic far field) is NaN, with its refusal among the
+    warnings when the sweep asks for it."""
     q: dict[str, float] = {
         "a": s.a,
         "min_pressure": s.min_pressure,
@@ -154,9 +165,15 @@ def point_quantities(
         "load": s.load,
         "radius": s.radius,
     }
+    try:
+        indentation = s.indentation
+    except InvalidParameterError as exc:
+        indentation = math.nan
+        if want_indentation:
+            warnings.append(f"indentation: {exc}")
     q.update(
         p0=s.p0,
-        indentation=s.indentation,
+        indentation=indentation,
         drag=s.drag,
         contact_start=s.contact_interval[0],
         contact_end=s.contact_interval[1],
@@ -220,7 +237,11 @@ def solve_group(task: Mapping[str, Any]) -> dict[str, Any]:
                 task.get("medium"),
             )
             found = list(result_warnings(s))
-            results.append(point_quantities(s, task["peaks"], stages, found))
+            results.append(
+                point_quantities(
+                    s, task["peaks"], stages, found, task.get("indentation", True)
+                )
+            )
             warnings.append(found)
         except MovingPunchError as exc:
             results.append(str(exc))

@@ -20,7 +20,7 @@ import numpy as np
 import numpy.typing as npt
 
 from movingpunch.accuracy import LADDER, AccuracyReport, accuracy_report
-from movingpunch.contract import ContactSolution
+from movingpunch.contract import ContactSolution, SolvedPunch
 from movingpunch.errors import InvalidParameterError, MovingPunchError
 from movingpunch.fields import StressPeaks
 from movingpunch.media import (
@@ -839,6 +839,15 @@ def zones_of(s: ContactSolution) -> tuple[tuple[float, float], ...]:
     return tuple((float(lo), float(hi)) for lo, hi in s.contact_zones)
 
 
+def _indentation(s: ContactSolution | SolvedPunch) -> float:
+    """The indentation, NaN (shown n/a) where the medium does not give it
+    (the asymmetric solver under a half-space: a logarithmic far field)."""
+    try:
+        return float(s.indentation)
+    except InvalidParameterError:
+        return math.nan
+
+
 def _punch_summaries(s: ContactSolution) -> tuple[PunchSummary, ...]:
     """Each punch of a train (several punches, or one off the axis)."""
     punches = s.punches
@@ -848,7 +857,7 @@ def _punch_summaries(s: ContactSolution) -> tuple[PunchSummary, ...]:
         PunchSummary(
             load=float(p.load),
             at=float(p.at),
-            indentation=float(p.indentation),
+            indentation=_indentation(p),
             contact_zones=tuple((float(a), float(b)) for a, b in p.contact_zones),
         )
         for p in punches
@@ -884,7 +893,7 @@ def summary(cache: Cache, params: Params) -> Summary:
         params=params,
         a=s.a,
         p0=s.p0,
-        indentation=s.indentation,
+        indentation=_indentation(s),
         top_tensile=top,
         bottom_tensile=bottom,
         iterations=s.iterations,
