@@ -3437,20 +3437,22 @@ std::shared_ptr<const AsymmetricSolution::Surface> AsymmetricSolution::surface()
   std::lock_guard<std::mutex> lock(surface_cache_->mutex);
   auto& sp = surface_cache_->surface;
   if (sp) return sp;
-  if (model_->long_wave_m1() != 0.0)
-    layered_refusal(*model_, "the displacement (a logarithmic far field under a half-space)");
   auto s = std::make_shared<Surface>();
   const Fine& f = *light_;
+  // Under a half-space M1 -> m0 as alpha -> 0 (the substrate's half-plane):
+  // m0 e^-alpha/alpha comes out of the sum (its logarithm in x below).
+  s->m0 = model_->long_wave_m1();
   std::vector<cplx> g(f.alpha.size());
   for (std::size_t i = 0; i < g.size(); ++i) {
     // M1 less its half-plane part H (1 - e^-alpha): H = phi1 for an elastic
     // top, (1 - nu)/m(alpha) for a viscoelastic one (memory_displacement).
     const double al = f.alpha[i];
-    g[i] = (f.r[i].M1 + model_->half_plane_m1(al) * std::expm1(-al)) / al * f.phat[i] *
-           std::exp(cplx(0.0, al * centre_));
+    g[i] = (f.r[i].M1 + model_->half_plane_m1(al) * std::expm1(-al) - s->m0 * std::exp(-al)) / al *
+           f.phat[i] * std::exp(cplx(0.0, al * centre_));
   }
   f.coefficients(g, s->smooth_re, s->smooth_im);
   detail::log1p_rule(b_, half_, s->log1p_r, s->log1p_w);
+  if (s->m0 != 0.0) s->reference = surface_value(*s, kDisplacementReference);
   s->indentation = punch_->height(centre_) - params_.load * surface_value(*s, centre_);
   if (!std::isfinite(s->indentation))
     throw ConvergenceError("damped contact: the indentation came out non-finite (N = " +
@@ -3471,7 +3473,12 @@ double AsymmetricSolution::surface_value(const Surface& s, double x) const {
   for (Eigen::Index n = 0; n < b_.size(); ++n)
     lp += b_(n) * detail::log_potential(static_cast<int>(n), u / w);
   const double hp = -w * l1 / (2.0 * kPi) + w * lp;  // U(x), the half-plane potential
-  return -smooth + phi1 * hp + (model_->memory() ? phi1 * memory_displacement(s, x, hp) : 0.0);
+  // Under a half-space: -(m0/pi) Re int e^-a/a p^ e^{iax} = (m0/(2 pi)) int p
+  // ln(1 + (x - xi)^2) up to a constant, and the value at the reference point
+  // taken off (s.reference: 0 while it is computed).
+  const double far = s.m0 != 0.0 ? s.m0 * w * l1 / (2.0 * kPi) - s.reference : 0.0;
+  return -smooth + phi1 * hp + far +
+         (model_->memory() ? phi1 * memory_displacement(s, x, hp) : 0.0);
 }
 
 double AsymmetricSolution::memory_displacement(const Surface& s, double x, double hp) const {
@@ -3777,15 +3784,15 @@ double AsymmetricSolution::surface_displacement(double x) const {
     throw InvalidParameter("x", "finite",
                            "surface_displacement: x must be finite, got " + std::to_string(x));
   if (std::fabs(x) > kFarField) return 0.0;  // as SymmetricSolution's (stresses.hpp)
-  if (model_->long_wave_m1() != 0.0)
-    layered_refusal(*model_, "the displacement (a logarithmic far field under a half-space)");
+  if (jac_ && model_->long_wave_m1() != 0.0)
+    layered_refusal(*model_, "the displacement with friction (a logarithmic far field)");
   if (jac_) return friction_displacement(Eigen::VectorXd::Constant(1, x), 0.0)(0);
   return params_.load * surface_value(*surface(), x);
 }
 
 double AsymmetricSolution::indentation() const {
-  if (model_->long_wave_m1() != 0.0)
-    layered_refusal(*model_, "the indentation (a logarithmic far field under a half-space)");
+  if (jac_ && model_->long_wave_m1() != 0.0)
+    layered_refusal(*model_, "the indentation with friction (a logarithmic far field)");
   if (jac_) {  // the punch's rigid approach at the contact's centre
     std::lock_guard<std::mutex> lock(surface_cache_->mutex);
     if (!std::isnan(friction_indentation_)) return friction_indentation_;
@@ -3799,8 +3806,20 @@ double AsymmetricSolution::indentation() const {
 Eigen::MatrixXd AsymmetricSolution::displacement(const Eigen::Ref<const Eigen::VectorXd>& x,
                                                  const Eigen::Ref<const Eigen::VectorXd>& y) const {
   detail::check_grid(x, y);
-  if (model_->long_wave_m1() != 0.0)
-    layered_refusal(*model_, "the displacement (a logarithmic far field under a half-space)");
+  if (model_->long_wave_m1() != 0.0) {
+    // Under a half-space: the surface's, measured from x = kDisplacementReference
+    // (surface_value); below it not yet.
+    if (jac_ || (y.array() != 0.0).any())
+      layered_refusal(*model_,
+                      jac_ ? "the displacement with friction (a logarithmic far field)"
+                           : "the displacement below the surface (a logarithmic far field)");
+    const std::shared_ptr<const Surface> sf = surface();
+    Eigen::MatrixXd v(y.size(), x.size());
+    for (Eigen::Index i = 0; i < y.size(); ++i)
+      for (Eigen::Index j = 0; j < x.size(); ++j)
+        v(i, j) = std::fabs(x(j)) > kFarField ? 0.0 : params_.load * surface_value(*sf, x(j));
+    return v;
+  }
   if (model_->memory()) {
     // A viscoelastic top: the surface (its memory in closed form), and
     // below it the half-plane part's memory by a convolution in x

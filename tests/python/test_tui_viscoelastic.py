@@ -7,9 +7,11 @@ another medium."""
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
+import pytest
 from textual.pilot import Pilot
 from textual.widgets import Select
 
@@ -268,9 +270,10 @@ def test_an_output_the_medium_does_not_give_is_na_and_a_notice(monkeypatch) -> N
 
 def test_a_viscoelastic_sublayer_on_a_half_space_in_the_panel() -> None:
     """A lossy soil sublayer under an elastic top on a half-space: the
-    panel's summary is the API's solve (drag, contact); the indentation,
-    which the asymmetric solver does not give under a half-space (a
-    logarithmic far field), is n/a, never a number; the depth tab draws."""
+    panel's summary is the API's solve (drag, contact, the indentation from
+    the reference point); with friction, whose indentation the asymmetric
+    solver does not give under a half-space (a logarithmic far field), it is
+    n/a, never a number; the depth tab draws."""
     soil = mp.Layer(0.7, mu=0.5, nu=0.3, rho=0.8, viscoelastic=mp.Zener(4.0, 0.3))
     top = mp.Layer(0.3, nu=0.25)
     base = mp.HalfSpace(mu=3.0, nu=0.25, rho=1.5)
@@ -282,10 +285,23 @@ def test_a_viscoelastic_sublayer_on_a_half_space_in_the_panel() -> None:
     api = mp.solve(vstar=0.2, radius=5.0, load=0.05, layers=[top, soil], base=base)
     assert head.drag == api.drag > 0.0
     assert head.contact_interval == api.contact_interval
-    assert math.isnan(head.indentation)
-    assert tui_model.fmt(head.indentation) == "n/a"
-    assert tui_model.summary_hints(head) is not None
+    assert head.indentation == api.indentation > 0.0
     result = tui_model.compute(
         cache, tui_model.Request(generation=1, params=params, tab="depth")
     )
     assert not isinstance(result.data, tui_model.Notice)
+    # Friction on an elastic stack on a half-space: no indentation.
+    rough = dataclasses.replace(
+        tui_model.with_medium(
+            Params(vstar=0.2, radius=5.0, load=0.05),
+            (top, dataclasses.replace(soil, viscoelastic=None)),
+            base,
+            inertia=True,
+        ),
+        friction=0.2,
+    )
+    head = tui_model.summary(cache, rough)
+    assert math.isnan(head.indentation)
+    assert tui_model.fmt(head.indentation) == "n/a"
+    assert head.tangential_force == pytest.approx(0.2)
+    assert tui_model.summary_hints(head) is not None

@@ -247,6 +247,46 @@ quantities = ["drag", "contact_start", "contact_end"]
         assert table.data["contact_end"][0][j] == direct.contact_interval[1]
 
 
+@pytest.mark.parametrize("interface", ["bonded", "smooth"])
+@pytest.mark.parametrize("vstar", [0.0, 0.2])
+@pytest.mark.parametrize(("deborah", "scale"), [(1e-12, 1.0), (1e12, 4.0)])
+def test_the_surface_under_a_half_space_meets_the_elastic_stacks(
+    interface, vstar, deborah, scale
+):
+    """Under a half-space the surface displacement grows like ln|x|; it is
+    measured from x = 100 h (as the symmetric solver's): the viscoelastic
+    stack's (the asymmetric solver: the substrate's m0 e^-alpha/alpha taken
+    out of its Fourier sum as a logarithm in x) in the limits against the
+    elastic stacks' own (the symmetric solver), the indentation to 1e-10 of
+    itself and the displacement to 1e-9 of its largest value from x = -3 h
+    to 40 h."""
+    base = mp.HalfSpace(mu=3.0, nu=0.25, rho=1.5, interface=interface)
+    s = solve(deep_visco(mp.Zener(4.0, deborah)), base, vstar)
+    e = solve(deep_visco(None, mu=0.5 * scale), base, vstar)
+    assert s.indentation == pytest.approx(e.indentation, rel=1e-10)
+    x = np.array([-3.0, -0.5, 0.0, 0.2, 1.0, 5.0, 40.0, 100.0])
+    got, want = s.surface_displacement(x), e.surface_displacement(x)
+    assert np.max(np.abs(got - want)) < 1e-9 * np.max(np.abs(want))
+    assert abs(got[-1]) < 1e-15 * s.indentation  # the reference point
+    assert np.array_equal(s.displacement(x, 0.0), got)
+    # The punch's face on the contact (the rigid indentation).
+    back, front = s.contact_interval
+    on = np.linspace(0.9 * back, 0.9 * front, 7)
+    face = -s.indentation + on**2 / (2.0 * R)
+    assert np.max(np.abs(s.surface_displacement(on) - face)) < 1e-9 * s.indentation
+
+
+def test_below_the_surface_of_a_half_space_the_displacement_is_refused():
+    layers, base = CASES["deep-half-space"]
+    s = solve(layers, base, 0.2)
+    with pytest.raises(InvalidParameterError, match="below the surface"):
+        s.displacement(X, -0.5)
+    rough = solve(deep_visco(None), base, 0.2, friction=0.2)
+    with pytest.raises(InvalidParameterError, match="friction"):
+        rough.surface_displacement(X)
+    assert rough.to_dict()["indentation"] is None
+
+
 def test_the_relaxed_critical_speed_bounds_a_viscoelastic_stack():
     layers, base = CASES["deep-half-space"]
     relaxed = deep_visco(None)

@@ -481,6 +481,10 @@ class AsymmetricSolution {
   struct Surface {
     std::vector<double> smooth_re, smooth_im, log1p_r, log1p_w;
     double indentation = 0;
+    // Under a half-space (Medium::long_wave_m1() = m0 != 0): m0 e^-alpha/alpha
+    // is taken out of the Fourier sum and added as its logarithm in x, and
+    // every value is measured from the one at x = kDisplacementReference.
+    double m0 = 0, reference = 0;
   };
   struct SurfaceCache {
     std::mutex mutex;
