@@ -57,7 +57,9 @@ void bind_zones(py::module_& m) {
       .def_readonly("rayleigh_vstar", &ZonesSolution::rayleigh_vstar)
       .def_readonly("phi1", &ZonesSolution::phi1)
       .def("dissipation", &zones_dissipation, Release(),
-           "Power dissipated in the dashpots over P V (Parseval on the bottom face).");
+           "Power dissipated over P V: in the dashpots (Parseval on the bottom face) or in the "
+           "viscoelastic materials (Parseval on the surface, from Im M1); equals the drag by the "
+           "energy balance.");
 
   using PunchTuple = std::tuple<std::string, double, double, std::vector<double>,
                                 std::vector<double>, double, double>;
@@ -66,9 +68,10 @@ void bind_zones(py::module_& m) {
       [](double vstar, double kw, double nu, double damping, double kp, double tol, int n,
          const std::vector<PunchTuple>& punches,
          const std::vector<std::tuple<int, double, double>>& zones, int first_n,
-         const LayerRows& layers, const std::string& base, const HalfSpaceRow& half_space) {
+         const LayerRows& layers, const std::string& base, const HalfSpaceRow& half_space,
+         const MaterialRows& materials) {
         ZonesParams p;
-        p.layer.medium = medium_spec(layers, base, kw, kp, damping, half_space);
+        p.layer.medium = medium_spec(layers, base, kw, kp, damping, half_space, materials);
         p.layer.vstar = vstar;
         p.layer.kw = kw;
         p.layer.nu = nu;
@@ -93,11 +96,12 @@ void bind_zones(py::module_& m) {
       },
       py::kw_only(), "vstar"_a, "kw"_a, "nu"_a, "damping"_a, "kp"_a, "tol"_a, "n"_a, "punches"_a,
       "zones"_a, "first_n"_a = 24, "layers"_a = LayerRows{}, "base"_a = "springs",
-      "half_space"_a = default_half_space_row(), Interruptible(),
+      "half_space"_a = default_half_space_row(), "materials"_a = MaterialRows{}, Interruptible(),
       "Solves one contact set (zones: (punch, left, right) from left to right, disjoint) "
       "under punches ((profile, radius, half_width, table_x, table_y, load, at)) by Newton's "
-      "method on the zone ends; frictionless. layers, base, half_space: the "
-      "medium, as solve_contact's. Raises InvalidParameterError, "
+      "method on the zone ends; frictionless. layers, base, half_space, materials: the "
+      "medium, as solve_asymmetric's (a viscoelastic top's memory is taken exactly). Raises "
+      "InvalidParameterError, "
       "SupercriticalSpeedError or ConvergenceError.");
 }
 

@@ -45,15 +45,8 @@ using detail::kXgk;
 using detail::modal_columns;
 using detail::transfer_matrix;
 
-// Node j (0..14, ascending) of the rule on [c - h, c + h] and its Kronrod weight.
-double gk_node(int j, double c, double h) {
-  const int k = j < 7 ? j : (j == 7 ? 7 : 14 - j);
-  return c + (j < 7 ? -1.0 : 1.0) * h * kXgk[k];
-}
-double gk_weight(int j, double h) {
-  const int k = j < 7 ? j : (j == 7 ? 7 : 14 - j);
-  return kWgk[k] * h;
-}
+using detail::gk_node;
+using detail::gk_weight;
 // Gauss weight of node j (0 for Kronrod-only nodes).
 double g_weight(int j, double h) {
   const int k = j < 7 ? j : (j == 7 ? 7 : 14 - j);
@@ -3236,25 +3229,6 @@ double AsymmetricSolution::bottom_slope(double x) const {
   return params_.load * sum / kPi;
 }
 
-namespace {
-
-// beta (1/T - beta atan(1/(beta T))) = int_T^inf (beta t/(1 + beta^2 t^2)) t^-3 dt.
-double memory_tail(double beta, double T) {
-  const double z = 1.0 / (beta * T);
-  if (z > 0.1) return beta * (1.0 / T - beta * std::atan(z));
-  // beta^2 (z - atan z) by its series (the difference cancels).
-  double term = z * z * z, sum = 0.0;
-  for (int k = 1; k < 40; ++k) {
-    const double add = ((k % 2) ? 1.0 : -1.0) * term / (2 * k + 1);
-    sum += add;
-    if (std::fabs(add) < 1e-18 * std::fabs(sum)) break;
-    term *= z * z;
-  }
-  return beta * beta * sum;
-}
-
-}  // namespace
-
 double AsymmetricSolution::dissipation() const {
   const Fine& f = *light_;
   if (model_->spec().viscoelastic()) {
@@ -3292,7 +3266,8 @@ double AsymmetricSolution::dissipation() const {
     }
     auto tail_beyond = [&](double T) {
       double t = 0.0;
-      for (std::size_t k = 0; k < sp.c.size(); ++k) t += sp.c[k] * memory_tail(sp.beta[k], T);
+      for (std::size_t k = 0; k < sp.c.size(); ++k)
+        t += sp.c[k] * memory_tail_integral(sp.beta[k], T);
       return t * phi1 * 0.25 * kPi * (2.0 / w) * (ga * ga + gb * gb);
     };
     // Panels to T = 2000/w, then T doubled until the total (panels plus the

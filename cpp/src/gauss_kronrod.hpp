@@ -20,4 +20,14 @@ constexpr double kWg[4] = {0.129484966168869693270611432679082, 0.27970539148927
                            0.381830050505118944950369775488975,
                            0.417959183673469387755102040816327};
 
+// Node j (0..14, ascending) of the rule on [c - h, c + h] and its Kronrod weight.
+inline double gk_node(int j, double c, double h) {
+  const int k = j < 7 ? j : (j == 7 ? 7 : 14 - j);
+  return c + (j < 7 ? -1.0 : 1.0) * h * kXgk[k];
+}
+inline double gk_weight(int j, double h) {
+  const int k = j < 7 ? j : (j == 7 ? 7 : 14 - j);
+  return kWgk[k] * h;
+}
+
 }  // namespace movingpunch::detail

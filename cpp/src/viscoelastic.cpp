@@ -181,6 +181,20 @@ ViscoelasticTop::ViscoelasticTop(const Viscoelastic& v, double vstar, double nu)
       relaxation_(retardation_spectrum(v)),
       memory_(compliance_.spectrum) {}
 
+double memory_tail_integral(double beta, double T) {
+  const double z = 1.0 / (beta * T);
+  if (z > 0.1) return beta * (1.0 / T - beta * std::atan(z));
+  // beta^2 (z - atan z) by its series (the difference cancels).
+  double term = z * z * z, sum = 0.0;
+  for (int k = 1; k < 40; ++k) {
+    const double add = ((k % 2) ? 1.0 : -1.0) * term / (2 * k + 1);
+    sum += add;
+    if (std::fabs(add) < 1e-18 * std::fabs(sum)) break;
+    term *= z * z;
+  }
+  return beta * beta * sum;
+}
+
 double unrelaxed_phi1(const Viscoelastic& v, double vstar, double nu) {
   const double ratio = v.ratio();
   return wave_constants(vstar / ratio, nu).phi1 / ratio;
@@ -1040,11 +1054,16 @@ void MemoryKernel::cluster_terms(std::size_t j0, std::size_t m, double w, std::v
 }
 
 Eigen::MatrixXd MemoryKernel::collocation_block(const ChebyshevNodes& nodes, double w) const {
+  // The collocation points descend (s_k = cos((2k - 1) pi/(2(N + 1)))).
+  return block_at(nodes.s.data(), nodes.n + 1, nodes, w);
+}
+
+Eigen::MatrixXd MemoryKernel::block_at(const double* s, int rows, const ChebyshevNodes& nodes,
+                                       double w) const {
   const int n = nodes.n;
-  // The collocation points descend (s_k = cos((2k - 1) pi/(2(N + 1)))): the
-  // moments of all rows in one downward sweep per cluster of retardation times.
+  // The moments of all rows in one downward sweep per cluster of retardation times.
   using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-  RowMajor mom = RowMajor::Zero(n + 1, n), one(n + 1, n);
+  RowMajor mom = RowMajor::Zero(rows, n), one(rows, n);
   std::vector<double> l, c;
   Cluster cluster;
   for (std::size_t i = 0; i + 1 < starts_.size(); ++i) {
@@ -1052,16 +1071,16 @@ Eigen::MatrixXd MemoryKernel::collocation_block(const ChebyshevNodes& nodes, dou
     if (m == 1) {
       // One term: memory_moments_descending itself.
       const std::size_t k = order_[j0];
-      memory_moments_descending(nodes.s.data(), n + 1, w / spec_.beta[k], n, one.data());
+      memory_moments_descending(s, rows, w / spec_.beta[k], n, one.data());
       mom += spec_.c[k] * one;
       continue;
     }
     cluster_terms(j0, m, w, l, c);
     for (double lt : l)
-      for (int r = 0; r <= n; ++r) check_moment_args(nodes.s(r), lt);
-    check_descending(nodes.s.data(), n + 1);
+      for (int r = 0; r < rows; ++r) check_moment_args(s[r], lt);
+    check_descending(s, rows);
     prepare_cluster(l.data(), c.data(), m, n, cluster);
-    if (n > 0) add_cluster_descending(nodes.s.data(), n + 1, cluster, n, mom.data());
+    if (n > 0) add_cluster_descending(s, rows, cluster, n, mom.data());
   }
   return mom * *basis_weights(nodes);
 }

@@ -368,4 +368,5 @@ def solve_zones(
     layers: list[tuple[float, float, float, float, float]] = ...,
     base: str = "springs",
     half_space: Sequence[float] = ...,
+    materials: Sequence[tuple[Sequence[float], Sequence[float], float]] = ...,
 ) -> ZonesSolution: ...

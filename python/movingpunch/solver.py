@@ -51,7 +51,6 @@ from movingpunch.media import (
     Base,
     GradedLayer,
     HalfSpace,
-    Layer,
     Medium,
     Sublayer,
     Winkler,
@@ -674,13 +673,6 @@ def _solve_layered(
             "(the zones' solver does not take the graded kernel's singular terms); "
             "allow_unphysical=True returns the single contact, flagged"
         )
-    if zoned and medium.viscoelastic:
-        raise UnphysicalContactError(
-            f"vstar={single.vstar:.8g}, {medium.describe()}, {shape.describe()}, "
-            f"load={single.load:.8g}: {single.validity} (a/h = {single.a:.8g}); "
-            "several contact zones on a viscoelastic layer are not supported yet; "
-            "allow_unphysical=True returns the single contact, flagged"
-        )
     if zoned and isinstance(medium.base, HalfSpace):
         raise UnphysicalContactError(
             f"vstar={single.vstar:.8g}, {medium.describe()}, {shape.describe()}, "
@@ -1170,16 +1162,6 @@ def solve_punches(
         singles.append(alone[key])
     if len(punches) == 1 and punches[0].at == 0.0:
         return singles[0]
-    if layers is not None and any(
-        isinstance(s, Layer) and not s.elastic for s in layers
-    ):
-        raise InvalidParameterError(
-            "layers: a train of punches on a viscoelastic layer is not supported "
-            "yet (the zones' solver does not take the material's memory); one "
-            "punch at x = 0 solves",
-            parameter="layers",
-            allowed="elastic sublayers for a train of punches",
-        )
     if isinstance(base, HalfSpace):
         raise InvalidParameterError(
             "base: a train of punches on a half-space base is not supported yet "

@@ -461,3 +461,31 @@ TEST(ViscoelasticStack, ADeepSublayerMeetsTheElasticStacksAndDissipates) {
     }
   }
 }
+
+// The memory block at another zone's points (any descending s, beside the
+// density's zone or across it) against the moments point by point.
+TEST(ViscoelasticZones, BlockAtIsTheMomentsAtEachPoint) {
+  mp::Viscoelastic v = prony3();
+  const mp::MemoryKernel mem(mp::retardation_spectrum(v));
+  const mp::ChebyshevNodes nd = mp::chebyshev_nodes(12);
+  const std::shared_ptr<const Eigen::MatrixXd> U = mp::MemoryKernel::basis_weights(nd);
+  for (double start : {6.0, 1.3, 0.7, -1.2, -9.0}) {
+    std::vector<double> s;
+    for (int k = 0; k <= 12; ++k) s.push_back(start - 0.17 * k);
+    const double w = 0.4;
+    const Eigen::MatrixXd B = mem.block_at(s.data(), 13, nd, w);
+    std::vector<double> mom(12);
+    for (int k = 0; k <= 12; ++k) {
+      mem.moments(s[static_cast<std::size_t>(k)], w, 12, mom.data());
+      for (int i = 0; i < 12; ++i) {
+        double want = 0.0;
+        for (int q = 0; q < 12; ++q) want += mom[static_cast<std::size_t>(q)] * (*U)(q, i);
+        EXPECT_NEAR(B(k, i), want, 1e-13 * (1.0 + std::fabs(want)))
+            << start << " " << k << " " << i;
+      }
+    }
+  }
+  // The collocation block is block_at at the nodes' own points.
+  const Eigen::MatrixXd own = mem.collocation_block(nd, 0.4);
+  EXPECT_EQ((own - mem.block_at(nd.s.data(), 13, nd, 0.4)).cwiseAbs().maxCoeff(), 0.0);
+}

@@ -326,10 +326,6 @@ def test_what_is_not_solved_yet_is_refused_by_name():
             base=mp.Winkler(1.0, damping=0.5),
         )
     assert e.value.parameter == "damping"
-    train = [mp.Punch(mp.Cylinder(R), 0.002, at) for at in (-1.0, 1.0)]
-    with pytest.raises(InvalidParameterError) as e:
-        mp.solve_punches(train, vstar=0.0, layers=layer, base=mp.Winkler(1.0))
-    assert e.value.parameter == "layers"
     s = mp.solve(vstar=0.0, radius=R, **args)
     assert s.displacement([0.1, 0.4], 0.0) == pytest.approx(
         s.surface_displacement([0.1, 0.4]), rel=1e-14

@@ -306,10 +306,6 @@ def test_what_a_viscoelastic_stack_does_not_take_is_refused_by_name():
     with pytest.raises(InvalidParameterError) as e:
         mp.solve(vstar=0.0, profile=mp.Flat(0.1), load=LOAD, layers=layers, base=base)
     assert e.value.parameter == "profile"
-    train = [mp.Punch(mp.Cylinder(R), LOAD, at) for at in (-1.0, 1.0)]
-    with pytest.raises(InvalidParameterError) as e:
-        mp.solve_punches(train, vstar=0.0, layers=layers, base=base)
-    assert e.value.parameter == "layers"
     with pytest.raises(InvalidParameterError) as e:
         solve(layers, mp.Winkler(KW, damping=0.5), 0.1)
     assert e.value.parameter == "damping"

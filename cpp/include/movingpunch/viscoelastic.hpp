@@ -137,6 +137,10 @@ class MemoryKernel {
   // matrix's W_i [1/(r_i - s_k) - w K(w (s_k - r_i))]:
   //   B(k, i) = -2 W_i sum_n U_n(r_i) moments_n(s_k).
   Eigen::MatrixXd collocation_block(const ChebyshevNodes& nodes, double w) const;
+  // The same block at `rows` descending points s[0] > s[1] > ... in the
+  // density's frame (any real s: another contact zone's collocation points,
+  // (x - c)/w): rows x N, -2 W_i sum_n U_n(r_i) moments_n(s_k).
+  Eigen::MatrixXd block_at(const double* s, int rows, const ChebyshevNodes& nodes, double w) const;
   // w (1/pi) int sqrt(1 - r^2) g(r) K_m(x - c - w r) dr for g = sum b_n U_n
   // (the slope's memory part at any x; s = (x - c)/w any real).
   double apply(const Eigen::VectorXd& b, double s, double w) const;
@@ -183,6 +187,11 @@ class ViscoelasticTop {
   RetardationSpectrum relaxation_;
   MemoryKernel memory_;
 };
+
+// int_T^inf (beta t/(1 + beta^2 t^2)) t^-3 dt = beta (1/T - beta atan(1/(beta T)))
+// (cancellation-free): one retardation time's part of the dissipation's
+// Parseval integral beyond T, where |p^|^2 has reached its t^-3 asymptotics.
+double memory_tail_integral(double beta, double T);
 
 // l J_n(s, l) for n < count (one retardation time; MemoryKernel sums them).
 void memory_moments(double s, double l, int count, double* out);

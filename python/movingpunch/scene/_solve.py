@@ -106,14 +106,26 @@ def solve_point(
     this point from ``train_of``), on the homogeneous layer of p (nu, kw,
     kp, damping) or on ``medium`` (its springs those of p: ``point_medium``)."""
     if punches:
+        # On the scene's medium when it has one (its [[layers]] and base:
+        # the springs those of p), else the homogeneous layer of p.
+        where: dict[str, Any] = {
+            "kw": p["kw"],
+            "nu": p["nu"],
+            "kp": _kp(p),
+            "damping": _damping(p),
+        }
+        if medium is not None:
+            m = point_medium(medium, p)
+            if not m.inertia:
+                raise InvalidParameterError(
+                    "inertia: a train of punches is solved with the medium's inertia "
+                    "(inertia = false is for one punch's speed sweep of a material)",
+                    parameter="inertia",
+                    allowed="true for a train of punches",
+                )
+            where = {"layers": list(m.layers), "base": m.base}
         s: ContactSolution = solve_punches(
-            train_of(punches, p),
-            vstar=p["vstar"],
-            kw=p["kw"],
-            nu=p["nu"],
-            kp=_kp(p),
-            damping=_damping(p),
-            tol=tol,
+            train_of(punches, p), vstar=p["vstar"], tol=tol, **where
         )
         stages.add_solution(s)
         return s
