@@ -794,23 +794,23 @@ class Medium:
             # (A stack with viscoelastic sublayers: its relaxed elastic stack's,
             # which the rows alone describe.)
             springs = base if isinstance(base, Winkler) else None
-            args = self.core_args()
-            args.pop("materials", None)
             vc, t = _core.medium_critical_speed(
-                **args,
+                **self.core_args(materials=False),
                 kw=springs.kw if springs else math.inf,
                 kp=springs.kp if springs else 0.0,
             )
         return float(vc), float(t)
 
-    def core_args(self) -> dict[str, Any]:
+    def core_args(self, materials: bool = True) -> dict[str, Any]:
         """The keyword arguments of ``_core.solve_contact`` for this medium
-        (kw and kp are the springs'; inf and 0 under a half-space)."""
+        (kw and kp are the springs'; inf and 0 under a half-space);
+        ``materials=False``: the relaxed elastic medium's (no ``materials``:
+        a material given by tau needs no speed then)."""
         if self.homogeneous:
             return {}
         base = self.base
         out: dict[str, Any] = {"layers": [s.row() for s in self.layers]}
-        if self.viscoelastic:
+        if self.viscoelastic and materials:
             out["materials"] = [
                 s.viscoelastic.branches()
                 if isinstance(s, Layer) and s.viscoelastic is not None

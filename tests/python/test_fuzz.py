@@ -647,6 +647,17 @@ def fuzz_viscoelastic(calls: int, seed: int) -> collections.Counter[str]:
         elif not bad and rng.random() < 0.3:
             speed = draw._loguniform(1e-10, 0.7)  # (beyond V*_cr at times)
             moving = True
+        # One draw in four puts the material in a two-sublayer stack (on top
+        # or below an elastic sublayer of another modulus), on springs or on
+        # a half-space.
+        stack: tuple[bool, float, float, bool] | None = None
+        if rng.random() < 0.25:
+            stack = (
+                rng.random() < 0.5,  # the material on top
+                float(rng.uniform(0.2, 0.8)),  # the top sublayer's thickness
+                float(draw._pick([0.3, 1.0, 3.0])),  # the other sublayer's mu
+                rng.random() < 0.3,  # a half-space base (mu 3)
+            )
         args = {
             "ratio": ratio,
             "deborah": deborah,
@@ -655,6 +666,7 @@ def fuzz_viscoelastic(calls: int, seed: int) -> collections.Counter[str]:
             "lam": lam,
             "vstar": speed,
             "moving": moving,
+            "stack": stack,
         }
 
         def run(
@@ -666,20 +678,36 @@ def fuzz_viscoelastic(calls: int, seed: int) -> collections.Counter[str]:
             kw: float = kw,
             speed: float = speed,
             moving: bool = moving,
+            stack: tuple[bool, float, float, bool] | None = stack,
         ) -> Any:
             material = (
                 mp.Zener(ratio, tau=min(deborah / math.sqrt(speed), 1e12))
                 if speed > 0.0 and not moving
                 else mp.Zener(ratio, deborah)
             )
-            layer = mp.Layer(nu=nu, viscoelastic=material)
+            layers = [mp.Layer(nu=nu, viscoelastic=material)]
+            base: mp.Winkler | mp.HalfSpace = mp.Winkler(kw)
+            if stack is not None:
+                on_top, top, mu, half_space = stack
+                if on_top:
+                    layers = [
+                        mp.Layer(top, nu=nu, viscoelastic=material),
+                        mp.Layer(1.0 - top, mu=mu, nu=0.3),
+                    ]
+                else:
+                    layers = [
+                        mp.Layer(top, nu=nu),
+                        mp.Layer(1.0 - top, mu=mu, nu=0.3, viscoelastic=material),
+                    ]
+                if half_space:
+                    base = mp.HalfSpace(mu=3.0, nu=0.25)
             return mp.solve(
                 vstar=speed,
                 radius=100.0,
                 load=lam / 100.0,
                 tol=tol,
-                layers=[layer],
-                base=mp.Winkler(kw),
+                layers=layers,
+                base=base,
                 allow_unphysical=True,
                 inertia=speed == 0.0 or moving,
             )
@@ -691,9 +719,11 @@ def fuzz_viscoelastic(calls: int, seed: int) -> collections.Counter[str]:
                 assert isinstance(exc, mp.InvalidParameterError), args
                 assert exc.parameter in ("ratio", "deborah"), args
             if isinstance(exc, mp.InvalidParameterError) and not bad:
-                # Only the quasi-static speed's bound (V*_cr of the relaxed layer).
+                # Only the quasi-static speed's bound (V*_cr of the relaxed
+                # layer), or a stack's own speed bound (a sublayer's shear
+                # speed, the top's Rayleigh speed).
                 assert speed > 0.0, args
-                assert not moving, args
+                assert stack is not None or not moving, args
                 assert exc.parameter == "vstar", args
             if isinstance(exc, mp.SupercriticalSpeedError):
                 assert moving, args  # the moving layer's bound: V*_cr (relaxed)

@@ -362,3 +362,19 @@ def test_the_command_line_makes_a_lower_sublayer_viscoelastic(
     )
     assert bad.returncode != 0
     assert "--visco-layer" in bad.stderr
+
+
+def test_a_deep_material_by_its_relaxation_time_sweeps_quasi_statically():
+    """inertia=False with a lower sublayer's material given by tau: the
+    stack at rest with that material at deborah = sqrt(vstar) tau (the
+    relaxed critical speed's check read the material before its speed was
+    known, and refused it naming tau)."""
+    for base in BASES.values():
+        for vstar in (1e-6, 0.01):
+            s = solve(deep_visco(mp.Zener(4.0, tau=10.0)), base, vstar, inertia=False)
+            at_rest = solve(
+                deep_visco(mp.Zener(4.0, math.sqrt(vstar) * 10.0)), base, 0.0
+            )
+            assert s.vstar == vstar
+            assert s.contact_interval == at_rest.contact_interval
+            assert s.drag == at_rest.drag > 0.0
