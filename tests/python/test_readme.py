@@ -469,6 +469,13 @@ def test_readme_python_runs(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> 
     assert [round(e, 4) for e in visco.contact_interval] == [-0.2507, 0.3186]
     assert f"{visco.drag:.4g}" == "0.0005424"
     assert abs(visco.drag - visco.dissipation) < 1e-10 * visco.drag
+    pave: Any = space["pave"]
+    assert f"{pave.drag:.4g}" == "0.01088"
+    assert abs(pave.drag - pave.dissipation) < 1e-10 * pave.drag
+    assert f"{pave.indentation:.4g}" == "0.04484"
+    bogie: Any = space["bogie"]
+    rear, front = (p.drag for p in bogie.punches)
+    assert (f"{rear:.4g}", f"{front:.4g}") == ("4.994e-05", "0.01984")
 
 
 def test_layout_paths_exist() -> None:
