@@ -778,13 +778,15 @@ namespace {
 // A viscoelastic medium's power over P V for one group of zones (its loads
 // `loads`, their sum `total`): by Parseval, (total/pi) int_0^inf Im M1 |p^|^2,
 // p^ = sum_j (P_j/total) p_j^. Im (M1 - H) on the kernel's panels (split
-// to resolve the group's span); a viscoelastic top's Im H = phi1 sum_k c_k
-// beta_k t/(1 + beta_k^2 t^2) on panels to T (from 2000 over the narrowest
-// zone, doubled until the total with the tail beyond T changes by less than
-// 1e-12 of it) and beyond T each zone's |p_j^|^2 by its leading term (pi/4)
-// (A_a^2 + A_b^2)/t^3 (the single contact's, AsymmetricSolution::
-// dissipation; the zones' cross terms oscillate with their distances and
-// leave 1/(T^3 distance) there).
+// to resolve the group's span: it decays exponentially); a viscoelastic
+// top's Im H = phi1 sum_k c_k beta_k t/(1 + beta_k^2 t^2), slow, to T (from
+// 2000 over the narrowest zone, doubled until the total with the tail beyond
+// T changes by less than 1e-12 of it) by zones: each zone's |P_j|^2 and each
+// pair's cross term (Filon in the phase of their distance; below), and
+// beyond T each zone's |p_j^|^2 by its leading term (pi/4)(A_a^2 +
+// A_b^2)/t^3 (the single contact's, AsymmetricSolution::dissipation; the
+// cross terms oscillate with the zones' distances and leave 1/(T^3
+// distance) there).
 double viscoelastic_group_power(const AsymmetricKernel& K,
                                 const std::vector<AsymmetricSolution>& parts,
                                 const std::vector<const ZoneResult*>& zones,
