@@ -378,3 +378,36 @@ def test_a_deep_material_by_its_relaxation_time_sweeps_quasi_statically():
             assert s.vstar == vstar
             assert s.contact_interval == at_rest.contact_interval
             assert s.drag == at_rest.drag > 0.0
+
+
+def test_the_bundled_asphalt_scene_is_the_api_and_its_resistance_peaks():
+    """The bundled `asphalt-rolling-resistance` sweep (a Zener course given
+    by tau over an elastic base, with the stack's inertia): each speed's drag
+    and ends are the API's direct solve, the drag peaks inside the sweep, and
+    at the peak drag = dissipation."""
+    scene = mp.Scene.bundled("asphalt-rolling-resistance")
+    table = scene.run().sweep
+    assert table is not None
+    drags = np.asarray(table.data["drag"][0])
+    k = int(np.argmax(drags))
+    assert 0 < k < len(drags) - 1
+    course = mp.Layer(0.25, mu=1.0, nu=0.35, viscoelastic=mp.Zener(10.0, tau=20.0))
+    base = mp.Layer(0.75, mu=0.1, nu=0.3, rho=0.85)
+    for j in (0, k, len(drags) - 1):
+        v = float(table.values[j])
+        direct = mp.solve(
+            vstar=v,
+            radius=100.0,
+            load=0.002,
+            layers=[course, base],
+            base=mp.Winkler(0.05),
+        )
+        assert drags[j] == direct.drag
+        assert table.data["contact_start"][0][j] == direct.contact_interval[0]
+        if j == k:
+            assert direct.drag == pytest.approx(direct.dissipation, rel=1e-10)
+    # The contact shifts ahead of the axle as the course stiffens.
+    ends = np.asarray(table.data["contact_start"][0]) + np.asarray(
+        table.data["contact_end"][0]
+    )
+    assert np.all(ends > 0.0)
