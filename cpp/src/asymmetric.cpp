@@ -585,6 +585,13 @@ double critical_vstar_of(const AsymmetricParams& p) {
   return critical_speed(*p.medium).vstar;
 }
 
+double cauchy_phi1_of(const AsymmetricParams& p) {
+  const AsymmetricParams q = with_medium_scalars(p);
+  // (An elastic top's material is empty: unrelaxed_phi1 is its phi1.)
+  return p.medium ? unrelaxed_phi1(p.medium->layers[0].visco, q.vstar, q.nu)
+                  : wave_constants(q.vstar, q.nu).phi1;
+}
+
 void validate_asymmetric_medium(const MediumSpec& m) {
   validate(m);
   if (m.layers[0].gamma != 0.0)
@@ -1570,10 +1577,7 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
   if (!(prm.damping > 0.0) && !(prm.vstar < s.vcr_))
     throw SupercriticalSpeedError(prm.vstar, s.vcr_, s.vr_);
   const WaveConstants wc = wave_constants(prm.vstar, prm.nu);
-  // The Cauchy term's coefficient: a viscoelastic top's unrelaxed half-plane's.
-  const double phi1 = prm.medium && prm.medium->viscoelastic()
-                          ? unrelaxed_phi1(prm.medium->layers[0].visco, prm.vstar, prm.nu)
-                          : wc.phi1;
+  const double phi1 = cauchy_phi1_of(prm);
   // Friction: Gauss-Jacobi collocation with the end exponents of
   // cot(pi back) = f Phi (docs/theory.md section 14); none: Gauss-Chebyshev.
   const bool frictional = prm.friction > 0.0;

@@ -170,7 +170,9 @@ struct Propagation {
 template <class S>
 class Core {
  public:
-  Core(const MediumSpec& spec, double vstar, double t = 0.0) : spec_(spec), s_(vstar) {
+  // The (relaxed) elastic stack at vstar (S = double).
+  Core(const MediumSpec& spec, double vstar) : base_(spec.base), s_(vstar) {
+    static_assert(std::is_same_v<S, double>, "a complex core is built from the relaxed one");
     double y = 0.0;
     for (const Sublayer& l : spec.layers) {
       Sub<S> sb;
@@ -180,17 +182,8 @@ class Core {
       sb.y_bot = y;
       sb.gamma = l.gamma;
       sb.graded = l.gamma != 0.0;
-      if constexpr (std::is_same_v<S, double>) {
-        sb.m_top = l.mu;
-        sb.c = wave_constants(vstar * l.rho / l.mu, l.nu);
-      } else {
-        const cplx m = l.visco.empty() ? cplx(1.0) : l.visco.modulus(t);
-        sb.m_top = l.mu * m;
-        if (m == 1.0)
-          sb.c = cast_constants(wave_constants(vstar * l.rho / l.mu, l.nu));
-        else
-          sb.c = complex_wave_constants(vstar * l.rho / sb.m_top, l.nu);
-      }
+      sb.m_top = l.mu;
+      sb.c = wave_constants(vstar * l.rho / l.mu, l.nu);
       subs_.push_back(sb);
     }
     subs_.back().y_bot = -1.0;
@@ -199,12 +192,40 @@ class Core {
     if (b.kind != BaseKind::springs) sub_ = wave_constants(vstar * b.rho / b.mu, b.nu);
   }
 
+  // The stack at wavenumber t (S = complex) from the relaxed one: its
+  // elastic sublayers and the substrate as they are (their constants do not
+  // depend on t), each viscoelastic sublayer of `spec` at mu m(t) and the
+  // speed vstar rho/(mu m(t)).
+  Core(const Core<double>& relaxed, const MediumSpec& spec, double t)
+      : base_(relaxed.base()), s_(relaxed.vstar()), sub_(relaxed.substrate()) {
+    static_assert(!std::is_same_v<S, double>, "the relaxed core is the real one");
+    const std::vector<Sub<double>>& rs = relaxed.subs();
+    subs_.reserve(rs.size());
+    for (std::size_t i = 0; i < rs.size(); ++i) {
+      const Sub<double>& r = rs[i];
+      const Sublayer& l = spec.layers[i];
+      Sub<S> sb;
+      sb.y_top = r.y_top;
+      sb.y_bot = r.y_bot;
+      sb.d = r.d;
+      sb.gamma = r.gamma;
+      sb.graded = r.graded;
+      const cplx m = l.visco.empty() ? cplx(1.0) : l.visco.modulus(t);
+      sb.m_top = r.m_top * m;
+      sb.c = m == 1.0 ? cast_constants(r.c) : complex_wave_constants(s_ * l.rho / sb.m_top, l.nu);
+      subs_.push_back(sb);
+    }
+  }
+
+  const BaseSpec& base() const { return base_; }
+  double vstar() const { return s_; }
+  const WaveConstants& substrate() const { return sub_; }
+
   const std::vector<Sub<S>>& subs() const { return subs_; }
-  const MediumSpec& spec() const { return spec_; }
 
   // The base's two-dimensional solution space at y = -1 (unscaled).
-  Mat42T<S> base(double t) const {
-    const BaseSpec& b = spec_.base;
+  Mat42T<S> base_space(double t) const {
+    const BaseSpec& b = base_;
     Mat42 M = Mat42::Zero();
     M(0, 0) = 1.0;
     if (b.kind == BaseKind::springs) {
@@ -271,7 +292,8 @@ class Core {
     P.cut = i0 < K;
     const int last = P.cut ? i0 : K - 1;
     std::vector<Segment<S>> segs(static_cast<size_t>(last + 1));
-    Mat42T<S> M = P.cut ? Mat42T<S>(Mat42T<S>::Zero()) : base(t);  // unscaled, at the current depth
+    Mat42T<S> M =
+        P.cut ? Mat42T<S>(Mat42T<S>::Zero()) : base_space(t);  // unscaled, at the current depth
     for (int i = last; i >= 0; --i) {
       const Sub<S>& sb = subs_[static_cast<size_t>(i)];
       Segment<S>& g = segs[static_cast<size_t>(i)];
@@ -412,7 +434,7 @@ class Core {
   }
 
  private:
-  MediumSpec spec_;
+  BaseSpec base_;  // (the sublayers are subs_: a complex core is built per wavenumber)
   double s_;
   std::vector<Sub<S>> subs_;
   WaveConstants sub_;
@@ -604,14 +626,14 @@ class StackMedium final : public Medium {
       throw std::invalid_argument("stack response: t = alpha h must be >= 0");
     // t = 0: the limit, to double precision (every correction is O(t)).
     const double tt = t == 0.0 ? 1e-300 : t;
-    const FullResponse r = visco_ ? Core<cplx>(spec_, s_, tt).surface(tt) : core_.surface(tt);
+    const FullResponse r = visco_ ? Core<cplx>(core_, spec_, tt).surface(tt) : core_.surface(tt);
     return MediumResponse{r.M1, r.M2, r.U0, r.W0};
   }
   std::unique_ptr<const ModeProfile> mode(double t) const override {
     if (!(t > 0.0) || !std::isfinite(t))
       throw std::invalid_argument("stack mode: t = alpha h must be finite and > 0");
     if (visco_) {
-      const Core<cplx> core(spec_, s_, t);
+      const Core<cplx> core(core_, spec_, t);
       return std::make_unique<StackProfile<cplx>>(
           core, relaxed_, t, std::make_shared<const Propagation<cplx>>(core.propagate(t, false)));
     }
@@ -624,7 +646,7 @@ class StackMedium final : public Medium {
     if (std::isnan(t) || t < 0.0)
       throw std::invalid_argument("stack response: t = alpha h must be >= 0");
     const double tt = t == 0.0 ? 1e-300 : t;
-    FullResponse r = visco_ ? responses(Core<cplx>(spec_, s_, tt), relaxed_, tt)
+    FullResponse r = visco_ ? responses(Core<cplx>(core_, spec_, tt), relaxed_, tt)
                             : responses(core_, relaxed_, tt);
     if (t == 0.0 && bar_compliance() != 0.0) r.Uq = r.Wq = std::nan("");  // the bar pole
     return r;
@@ -730,7 +752,7 @@ class StackMedium final : public Medium {
     if (!(t > 0.0) || !std::isfinite(t) || !(y >= -1.0) || !(y <= 0.0))
       throw std::invalid_argument("stack state: need t > 0 finite and -1 <= y <= 0");
     if (visco_) {
-      const Core<cplx> core(spec_, s_, t);
+      const Core<cplx> core(core_, spec_, t);
       const StackProfile<cplx> p(
           core, relaxed_, t, std::make_shared<const Propagation<cplx>>(core.propagate(t, false)),
           tangential);

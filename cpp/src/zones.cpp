@@ -856,36 +856,35 @@ double viscoelastic_group_power(const AsymmetricKernel& K,
   const std::size_t nzone = parts.size();
   std::vector<double> centres(nzone);
   for (std::size_t j = 0; j < nzone; ++j) centres[j] = parts[j].centre();
-  auto memory_sum = [&](double T, long& panel_count) {
-    AlphaQuadrature q;
-    double a0 = 0.0, a1 = std::min(zone_width, 1e-3 / beta_max);
+  // The panels and each zone's P_j at their nodes, extended as T doubles
+  // (the nodes already evaluated are kept).
+  AlphaQuadrature q;
+  std::vector<std::vector<cplx>> pz(nzone);
+  std::vector<double> ih;
+  double a0 = 0.0, a1 = std::min(zone_width, 1e-3 / beta_max);
+  auto memory_sum = [&](double T) {
     while (a0 < T) {
       const double c = 0.5 * (a0 + a1), h = 0.5 * (a1 - a0);
       q.panel_centre.push_back(c);
       q.panel_half.push_back(h);
+      check_interrupt();
       for (int j = 0; j < 15; ++j) {
-        q.alpha.push_back(detail::gk_node(j, c, h));
+        const double t = detail::gk_node(j, c, h);
+        q.alpha.push_back(t);
         q.weight.push_back(detail::gk_weight(j, h));
+        ih.push_back(im_h(t));
+        for (std::size_t z = 0; z < nzone; ++z)
+          pz[z].push_back((loads[z] / total) * parts[z].pressure_transform(t) *
+                          std::exp(cplx(0.0, t * centres[z])));
       }
       a0 = a1;
       a1 = std::min({T, 2.0 * a0, a0 + zone_width});
     }
-    panel_count = static_cast<long>(q.panel_centre.size());
     const std::size_t nq = q.alpha.size();
-    std::vector<std::vector<cplx>> P(nzone, std::vector<cplx>(nq));
-    std::vector<double> ih(nq);
-    for (std::size_t i = 0; i < nq; ++i) {
-      if (i % 1500 == 0) check_interrupt();
-      const double t = q.alpha[i];
-      ih[i] = im_h(t);
-      for (std::size_t j = 0; j < nzone; ++j)
-        P[j][i] = (loads[j] / total) * parts[j].pressure_transform(t) *
-                  std::exp(cplx(0.0, t * centres[j]));
-    }
     double sum_mem = 0.0;
     for (std::size_t i = 0; i < nq; ++i) {
       double d = 0.0;
-      for (std::size_t j = 0; j < nzone; ++j) d += std::norm(P[j][i]);
+      for (std::size_t j = 0; j < nzone; ++j) d += std::norm(pz[j][i]);
       sum_mem += q.weight[i] * ih[i] * d;
     }
     if (nzone > 1) {
@@ -894,7 +893,7 @@ double viscoelastic_group_power(const AsymmetricKernel& K,
       for (std::size_t j = 0; j < nzone; ++j)
         for (std::size_t k = j + 1; k < nzone; ++k) {
           for (std::size_t i = 0; i < nq; ++i) {
-            const cplx g = ih[i] * P[j][i] * std::conj(P[k][i]);
+            const cplx g = ih[i] * pz[j][i] * std::conj(pz[k][i]);
             gr[i] = g.real();
             gi[i] = g.imag();
           }
@@ -909,8 +908,8 @@ double viscoelastic_group_power(const AsymmetricKernel& K,
   };
   double T = 2000.0 / wmin, last = std::numeric_limits<double>::quiet_NaN();
   for (;;) {
-    long panels = 0;
-    const double now = memory_sum(T, panels) + tail_beyond(T);
+    const double now = memory_sum(T) + tail_beyond(T);
+    const auto panels = static_cast<long>(q.panel_centre.size());
     const double change = std::fabs(now - last) / std::fabs(sum + now);
     if (change <= (panels > (1L << 16) ? 1e-10 : 1e-12)) return total * (sum + now) / kPi;
     if (panels > (1L << 16)) {
@@ -1092,10 +1091,7 @@ ZonesSolution solve_connected(const ZonesParams& prm, const std::vector<PunchPro
   out.critical_vstar = critical_vstar_of(L);
   if (!(L.vstar < out.rayleigh_vstar) || (!(L.damping > 0.0) && !(L.vstar < out.critical_vstar)))
     throw SupercriticalSpeedError(L.vstar, out.critical_vstar, out.rayleigh_vstar);
-  // (A viscoelastic top: its unrelaxed half-plane's, the Cauchy term's.)
-  out.phi1 = L.medium && !L.medium->layers[0].visco.empty()
-                 ? unrelaxed_phi1(L.medium->layers[0].visco, L.vstar, L.nu)
-                 : wave_constants(L.vstar, L.nu).phi1;
+  out.phi1 = cauchy_phi1_of(L);
 
   Eigen::VectorXd e(2 * nz);
   for (int j = 0; j < nz; ++j) {

@@ -56,7 +56,7 @@ from movingpunch.profiles import (
     PunchProfile,
     RoundedFlat,
 )
-from movingpunch.regime import hints_for
+from movingpunch.regime import given_indentation, hints_for
 from movingpunch.solver import (
     critical_vstar,
     critical_wavenumber,
@@ -383,12 +383,12 @@ def _build_parser() -> argparse.ArgumentParser:
 
 
 def _indentation_text(s: ContactSolution) -> str:
-    """The indentation, or "n/a" where the medium does not give it (the
-    asymmetric solver under a half-space: a logarithmic far field)."""
-    try:
-        return _fmt(s.indentation)
-    except InvalidParameterError:
-        return "n/a (a logarithmic far field under a half-space)"
+    """The indentation, or "n/a" where the medium does not give it
+    (``regime.given_indentation``)."""
+    v = given_indentation(s)
+    return (
+        "n/a (a logarithmic far field under a half-space)" if math.isnan(v) else _fmt(v)
+    )
 
 
 def _fmt(value: float | int | bool | str) -> str:

@@ -28,6 +28,7 @@ __all__ = [
     "NEAR_CRITICAL",
     "SMALL_STRAIN",
     "WIDE_CONTACT",
+    "given_indentation",
     "half_length",
     "hints_for",
     "regime_hints",
@@ -87,9 +88,13 @@ def regime_hints(
     return tuple(out)
 
 
-def _indentation(punch: SolvedPunch) -> float:
+def given_indentation(solved: ContactSolution | SolvedPunch) -> float:
+    """The indentation delta/h of a solution or one of its punches; NaN
+    where the medium does not give it (the asymmetric solver with friction
+    under a half-space: a logarithmic far field, refused there by name).
+    What every display shows as n/a."""
     try:
-        return abs(float(punch.indentation))
+        return float(solved.indentation)
     except InvalidParameterError:
         return math.nan
 
@@ -102,9 +107,7 @@ def hints_for(
     ``stress_peaks()``, which the caller has usually computed), the peak
     strain. Reads only the contract's fields."""
     punches = solution.punches  # a single contact's one, a train's own
-    # (NaN where the medium does not give the indentation: the asymmetric
-    # solver under a half-space, a logarithmic far field.)
-    given = [v for v in map(_indentation, punches) if math.isfinite(v)]
+    given = [abs(v) for v in map(given_indentation, punches) if math.isfinite(v)]
     indent = max(given) if given else math.nan
     stresses = [abs(float(solution.p0))]
     if peaks is not None:

@@ -46,6 +46,7 @@ from movingpunch.errors import (
 from movingpunch.fields import FloatArray
 from movingpunch.media import Medium
 from movingpunch.profiles import Cylinder, Flat, PunchProfile, check_profile
+from movingpunch.regime import given_indentation
 
 __all__ = [
     "CONTACT_MODES",
@@ -268,11 +269,9 @@ class PunchResult:
 
     def to_dict(self) -> dict[str, object]:
         """JSON-safe; the indentation None where the medium does not give it
-        (the asymmetric solver under a half-space: a logarithmic far field)."""
-        try:
-            indentation: float | None = self.indentation
-        except InvalidParameterError:
-            indentation = None
+        (``regime.given_indentation``)."""
+        given = given_indentation(self)
+        indentation = None if math.isnan(given) else given
         return {
             "profile": self.profile.to_dict(),
             "load": self.load,

@@ -229,6 +229,10 @@ AsymmetricParams with_medium_scalars(const AsymmetricParams& p);
 // The critical vstar of p's medium (critical_vstar(kw, nu, kp) for the
 // homogeneous layer; critical_speed(spec) otherwise).
 double critical_vstar_of(const AsymmetricParams& p);
+// The Cauchy term's coefficient of p's medium: the top material's half-plane
+// phi1 at vstar (p's scalars: with_medium_scalars), a viscoelastic top's
+// unrelaxed one (unrelaxed_phi1; = Medium::phi1()).
+double cauchy_phi1_of(const AsymmetricParams& p);
 
 // Throws std::invalid_argument naming the parameter and its valid range (a
 // medium: its own checks, and InvalidParameter for what the asymmetric

@@ -16,9 +16,9 @@ from typing import Any
 import numpy as np
 
 from movingpunch.contract import ContactSolution
-from movingpunch.errors import InvalidParameterError
 from movingpunch.fields import StressField
 from movingpunch.media import Medium, Winkler
+from movingpunch.regime import given_indentation
 from movingpunch.scene._model import STRESS_COMPONENTS, point_medium
 from movingpunch.scene._result import (
     Curve,
@@ -109,15 +109,6 @@ def _out_contact_width(run: RunState, spec: Any, solutions: _Solutions) -> Outpu
         columns={k: np.asarray(v, dtype=np.float64) for k, v in cols.items()},
         details=details,
     )
-
-
-def given_indentation(s: ContactSolution) -> float:
-    """The indentation, NaN where the medium does not give it (the
-    asymmetric solver under a half-space: a logarithmic far field)."""
-    try:
-        return s.indentation
-    except InvalidParameterError:
-        return math.nan
 
 
 def _punch_dicts(s: ContactSolution, scale: float) -> list[dict[str, object]]:

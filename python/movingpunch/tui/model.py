@@ -20,7 +20,7 @@ import numpy as np
 import numpy.typing as npt
 
 from movingpunch.accuracy import LADDER, AccuracyReport, accuracy_report
-from movingpunch.contract import ContactSolution, SolvedPunch
+from movingpunch.contract import ContactSolution
 from movingpunch.errors import InvalidParameterError, MovingPunchError
 from movingpunch.fields import StressPeaks
 from movingpunch.media import (
@@ -37,7 +37,7 @@ from movingpunch.media import (
 from movingpunch.params import OPTIONAL, PHYSICAL
 from movingpunch.params import check as check_param
 from movingpunch.profiles import PROFILE_KINDS, Flat, Profile, PunchProfile, RoundedFlat
-from movingpunch.regime import half_length, regime_hints
+from movingpunch.regime import given_indentation, half_length, regime_hints
 from movingpunch.solver import (
     critical_vstar,
     rayleigh_vstar,
@@ -839,15 +839,6 @@ def zones_of(s: ContactSolution) -> tuple[tuple[float, float], ...]:
     return tuple((float(lo), float(hi)) for lo, hi in s.contact_zones)
 
 
-def _indentation(s: ContactSolution | SolvedPunch) -> float:
-    """The indentation, NaN (shown n/a) where the medium does not give it
-    (the asymmetric solver under a half-space: a logarithmic far field)."""
-    try:
-        return float(s.indentation)
-    except InvalidParameterError:
-        return math.nan
-
-
 def _punch_summaries(s: ContactSolution) -> tuple[PunchSummary, ...]:
     """Each punch of a train (several punches, or one off the axis)."""
     punches = s.punches
@@ -857,7 +848,7 @@ def _punch_summaries(s: ContactSolution) -> tuple[PunchSummary, ...]:
         PunchSummary(
             load=float(p.load),
             at=float(p.at),
-            indentation=_indentation(p),
+            indentation=given_indentation(p),
             contact_zones=tuple((float(a), float(b)) for a, b in p.contact_zones),
         )
         for p in punches
@@ -893,7 +884,7 @@ def summary(cache: Cache, params: Params) -> Summary:
         params=params,
         a=s.a,
         p0=s.p0,
-        indentation=_indentation(s),
+        indentation=given_indentation(s),
         top_tensile=top,
         bottom_tensile=bottom,
         iterations=s.iterations,
