@@ -962,6 +962,31 @@ double max_abs_sine_series(const Eigen::VectorXd& b) {
   return best;
 }
 
+// The medium's quadratic form is positive (asymmetric.hpp): the work of a pressure p
+// on the surface it displaces, int p (-v) dx = (1/2 pi) int Re M1 |p^|^2/|alpha|
+// d alpha (v^ = -M1 p^/|alpha|, Re M1 even), is then > 0 for every p != 0,
+// and the frictionless contact problem (a variational inequality of this
+// strictly monotone operator, symmetric or not) has one solution at most: a
+// valid steady contact is the only one (docs/theory.md section 14). Read
+// from the table's nodes, which resolve M1 (Re M1 >= 1e-3 |M1| at each, a
+// margin against a dip between nodes), and beyond them from the half-plane
+// part (all that is left there), sampled geometrically to 1e12 alpha_max.
+// An elastic layer below V*_cr (M1 > 0) passes; above V*_cr, where lambda(w)
+// can fold, Re M1 < 0 near the resonance and it fails.
+bool positive_form(const AsymmetricKernel& K) {
+  constexpr double kMargin = 1e-3;
+  const AsymmetricQuadrature& q = K.quadrature();
+  for (const cplx& m : q.m1)
+    if (!(m.real() >= kMargin * std::abs(m))) return false;
+  const Medium& md = K.model();
+  const double top = q.panels.alpha.empty() ? 1.0 : q.panels.alpha.back();
+  for (double t = top; t <= 1e12 * top; t *= 1.25) {
+    const cplx m = md.half_plane_m1(t);
+    if (!(m.real() >= kMargin * std::abs(m))) return false;
+  }
+  return true;
+}
+
 // ---------------------------------------------------------------------------
 // The contact solve
 
@@ -1596,7 +1621,7 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
     if (!kern || kern->range() < need) {
       const auto tk = std::chrono::steady_clock::now();
       bool built = false;
-      if (!medium) medium = make_medium(medium_of(prm), prm.vstar);
+      if (!medium) medium = cached_medium(medium_of(prm), prm.vstar);
       kern = cached_damped_kernel(medium, need, 2.0 * need, &built, prm.friction);
       s.kernel_builds_ += built ? 1 : 0;
       kernel_seconds +=
@@ -1632,7 +1657,7 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
     wg = detail::width_guess(phi1, guess_lambda, prm.kw, prm.nu, prm.kp);
   } else {
     // Any other medium: from its long-wave compliance (contact.cpp's).
-    medium = make_medium(medium_of(prm), prm.vstar);
+    medium = cached_medium(medium_of(prm), prm.vstar);
     constexpr double t_c = 0.05;
     wg = detail::width_guess_compliance(phi1, guess_lambda,
                                         medium->surface_response(t_c).M1.real() / t_c);
@@ -2046,8 +2071,13 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
   // Above V*_cr lambda(w) need not be monotone: a load can be carried by
   // several contacts (the steady problem has several solutions). Scan
   // lambda(w) on [w/8, 4w] (at N >= 32, steps of ln(32)/48 in ln w at most)
-  // for other roots and report them.
-  {
+  // for other roots and report them. Where the medium's form is positive
+  // (positive_form: Re M1 > 0 at every wavenumber) the frictionless steady
+  // contact is unique: a valid one is the only one, and the scan runs only
+  // when the solution found is invalid (another single contact might be the
+  // valid one).
+  const bool unique = !frictional && positive_form(*kern);
+  auto scan_other_widths = [&] {
     const ChebyshevNodes ns = nodes_of(std::max(32, nd.n));
     kernel(8.4 * s.half_);
     const double lo = std::log(std::max(detail::kMinA, s.half_ / 8.0));
@@ -2081,7 +2111,9 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
       prev_x = x;
       prev_f = f;
     }
-  }
+    s.kernel_ = kern;  // (the scan may have widened the table)
+  };
+  if (!unique) scan_other_widths();
 
   s.kernel_ = kern;
   // The change of g's coefficients between the last two sizes (for the
@@ -2265,9 +2297,19 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
       // Hilbert transforms are powers of e^-phi): interpolated in phi.
       const double reach = std::acosh(std::max(1.0, (len + s.half_) / s.half_));
       const bool mem = s.model_->memory() != nullptr;
+      // Its points, descending in phi, are one downward sweep of the memory's
+      // moments (right of the contact; the left side's reversed).
       const detail::SmoothInterpolant smooth_mem(
-          [&](double phi) {
-            return mem ? s.memory_part(s.centre_ + side * s.half_ * std::cosh(phi)) : 0.0;
+          detail::SmoothInterpolant::Batch{},
+          [&](const std::vector<double>& phis, std::vector<double>& v) {
+            if (!mem) return std::fill(v.begin(), v.end(), 0.0);
+            const std::size_t m = phis.size();
+            std::vector<double> at(m), out(m);
+            for (std::size_t j = 0; j < m; ++j)
+              at[side > 0 ? j : m - 1 - j] = side * std::cosh(phis[j]);
+            s.model_->memory()->apply_descending(s.b_, at.data(), static_cast<int>(m), s.half_,
+                                                 out.data());
+            for (std::size_t j = 0; j < m; ++j) v[j] = out[side > 0 ? j : m - 1 - j] / s.half_;
           },
           0.0, mem ? reach : 0.0);
       auto memory_at = [&](double x) {
@@ -2311,8 +2353,10 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
     why.push_back("the punch penetrates the surface beside the contact (min gap/h = " +
                   num(s.min_gap_) + ")");
   }
+  if (unique && !s.valid_) scan_other_widths();
   if (s.valid_) {
     s.validity_ = "valid: p >= 0 on the contact and no penetration within 2(a+b) of it";
+    if (unique) s.validity_ += "; unique (the medium's form is positive: Re M1 > 0)";
   } else {
     s.validity_ = "invalid: " + why.front();
     for (std::size_t i = 1; i < why.size(); ++i) s.validity_ += "; " + why[i];

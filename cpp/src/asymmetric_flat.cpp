@@ -93,7 +93,7 @@ AsymmetricSolution solve_asymmetric_flat(const AsymmetricParams& prm_in) {
     const auto tk = std::chrono::steady_clock::now();
     bool built = false;
     // |u| = w |s_k - r_i| < 2 w; twice that when built (a sweep's next face).
-    kern = cached_damped_kernel(make_medium(medium_of(prm), prm.vstar), 2.0 * w, 4.0 * w, &built,
+    kern = cached_damped_kernel(cached_medium(medium_of(prm), prm.vstar), 2.0 * w, 4.0 * w, &built,
                                 prm.friction);
     s.kernel_builds_ = built ? 1 : 0;
     kernel_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - tk).count();

@@ -27,16 +27,28 @@ inline double chebyshev_sum(const double* c, int degree, double x) {
 class SmoothInterpolant {
  public:
   template <class F>
-  SmoothInterpolant(const F& f, double a, double b) : mid_(0.5 * (a + b)), half_(0.5 * (b - a)) {
+  SmoothInterpolant(const F& f, double a, double b)
+      : SmoothInterpolant(
+            Batch{},
+            [&f](const std::vector<double>& xs, std::vector<double>& v) {
+              for (std::size_t j = 0; j < xs.size(); ++j) v[j] = f(xs[j]);
+            },
+            a, b) {}
+  // The same from a batch of values: fill(xs, v) sets v[j] = f(xs[j]) (v
+  // sized as xs; the points descend, x_j = mid + half cos(pi (j + 1/2)/m)).
+  struct Batch {};
+  template <class Fill>
+  SmoothInterpolant(Batch, const Fill& fill, double a, double b)
+      : mid_(0.5 * (a + b)), half_(0.5 * (b - a)) {
     for (int d = 16; d <= 128 && half_ > 0.0; d *= 2) {
       const int m = d + 1;
-      std::vector<double> v(static_cast<std::size_t>(m));
+      std::vector<double> xs(static_cast<std::size_t>(m)), v(static_cast<std::size_t>(m));
+      for (int j = 0; j < m; ++j)
+        xs[static_cast<std::size_t>(j)] =
+            mid_ + half_ * std::cos(3.14159265358979323846 * (j + 0.5) / m);
+      fill(xs, v);
       double vmax = 0.0;
-      for (int j = 0; j < m; ++j) {
-        v[static_cast<std::size_t>(j)] =
-            f(mid_ + half_ * std::cos(3.14159265358979323846 * (j + 0.5) / m));
-        vmax = std::max(vmax, std::fabs(v[static_cast<std::size_t>(j)]));
-      }
+      for (double x : v) vmax = std::max(vmax, std::fabs(x));
       c_.assign(static_cast<std::size_t>(m), 0.0);
       for (int k = 0; k < m; ++k) {
         double sum = 0.0;

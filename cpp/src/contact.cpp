@@ -1429,7 +1429,7 @@ SymmetricSolution solve_contact(const ContactParams& p) {
     throw SupercriticalSpeedError(p.vstar, crit.vstar, vr);
   }
 
-  const std::shared_ptr<const Medium> model = make_medium(spec, p.vstar);
+  const std::shared_ptr<const Medium> model = cached_medium(spec, p.vstar);
   const double phi1 = model->phi1();
   // Round-off of a/h (relative) from the layer response: within a hair of the
   // Rayleigh speed phi1 = nL / R(vstar) carries a relative error of about

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -409,6 +410,32 @@ std::shared_ptr<const Medium> make_medium(const MediumSpec& spec, double vstar) 
   }
   if (spec.homogeneous()) return std::make_shared<const HomogeneousMedium>(spec, vstar);
   return make_stack_medium(spec, vstar);
+}
+
+std::shared_ptr<const Medium> cached_medium(const MediumSpec& spec, double vstar) {
+  // The most recent media, newest last (a viscoelastic medium with inertia
+  // fits its memory's spectra when built: milliseconds a Prony material,
+  // more than a warm solve; a solve asks for its medium before its kernel).
+  static std::mutex mutex;
+  static std::vector<std::pair<std::vector<double>, std::shared_ptr<const Medium>>> recent;
+  std::vector<double> key{vstar};
+  const std::vector<double> sk = spec.key();
+  key.insert(key.end(), sk.begin(), sk.end());
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    for (auto it = recent.begin(); it != recent.end(); ++it)
+      if (it->first == key) {
+        auto hit = std::move(*it);
+        recent.erase(it);
+        recent.push_back(std::move(hit));
+        return recent.back().second;
+      }
+  }
+  std::shared_ptr<const Medium> m = make_medium(spec, vstar);  // (throws as make_medium)
+  const std::lock_guard<std::mutex> lock(mutex);
+  if (recent.size() >= kMediumCacheCapacity) recent.erase(recent.begin());
+  recent.emplace_back(std::move(key), m);
+  return m;
 }
 
 CriticalSpeed critical_speed(const MediumSpec& spec) {

@@ -1058,12 +1058,14 @@ Eigen::MatrixXd MemoryKernel::collocation_block(const ChebyshevNodes& nodes, dou
   return block_at(nodes.s.data(), nodes.n + 1, nodes, w);
 }
 
-Eigen::MatrixXd MemoryKernel::block_at(const double* s, int rows, const ChebyshevNodes& nodes,
-                                       double w) const {
-  const int n = nodes.n;
+void MemoryKernel::moments_descending(const double* s, int rows, double w, int count,
+                                      double* out) const {
   // The moments of all rows in one downward sweep per cluster of retardation times.
   using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-  RowMajor mom = RowMajor::Zero(rows, n), one(rows, n);
+  Eigen::Map<RowMajor> mom(out, rows, count);
+  mom.setZero();
+  if (rows <= 0 || count <= 0) return;
+  RowMajor one(rows, count);
   std::vector<double> l, c;
   Cluster cluster;
   for (std::size_t i = 0; i + 1 < starts_.size(); ++i) {
@@ -1071,7 +1073,7 @@ Eigen::MatrixXd MemoryKernel::block_at(const double* s, int rows, const Chebyshe
     if (m == 1) {
       // One term: memory_moments_descending itself.
       const std::size_t k = order_[j0];
-      memory_moments_descending(s, rows, w / spec_.beta[k], n, one.data());
+      memory_moments_descending(s, rows, w / spec_.beta[k], count, one.data());
       mom += spec_.c[k] * one;
       continue;
     }
@@ -1079,10 +1081,27 @@ Eigen::MatrixXd MemoryKernel::block_at(const double* s, int rows, const Chebyshe
     for (double lt : l)
       for (int r = 0; r < rows; ++r) check_moment_args(s[r], lt);
     check_descending(s, rows);
-    prepare_cluster(l.data(), c.data(), m, n, cluster);
-    if (n > 0) add_cluster_descending(s, rows, cluster, n, mom.data());
+    prepare_cluster(l.data(), c.data(), m, count, cluster);
+    add_cluster_descending(s, rows, cluster, count, mom.data());
   }
+}
+
+Eigen::MatrixXd MemoryKernel::block_at(const double* s, int rows, const ChebyshevNodes& nodes,
+                                       double w) const {
+  const int n = nodes.n;
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  RowMajor mom(rows, n);
+  moments_descending(s, rows, w, n, mom.data());
   return mom * *basis_weights(nodes);
+}
+
+void MemoryKernel::apply_descending(const Eigen::VectorXd& b, const double* s, int rows, double w,
+                                    double* out) const {
+  const auto n = static_cast<int>(b.size());
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  RowMajor mom(rows, n);
+  moments_descending(s, rows, w, n, mom.data());
+  Eigen::Map<Eigen::VectorXd>(out, rows) = mom * b;
 }
 
 std::shared_ptr<const Eigen::MatrixXd> MemoryKernel::basis_weights(const ChebyshevNodes& nodes) {

@@ -1132,7 +1132,7 @@ ZonesSolution solve_connected(const ZonesParams& prm, const std::vector<PunchPro
   auto kernel = [&](double need) -> const ZoneKernel& {
     if (!kern || kern->range() < need) {
       bool built = false;
-      if (!medium) medium = make_medium(medium_of(L), L.vstar);
+      if (!medium) medium = cached_medium(medium_of(L), L.vstar);
       kern = cached_damped_kernel(medium, need, 2.0 * need, &built, 0.0);
       out.kernel_builds += built ? 1 : 0;
       zk = std::make_unique<ZoneKernel>(kern);
@@ -1575,7 +1575,7 @@ ZonesSolution solve_zones(const ZonesParams& prm) {
   bool built = false;                    // the decay's kernel table was built here
   if (np > 1) {
     const ZoneKernel K(
-        cached_damped_kernel(make_medium(medium_of(L), L.vstar), 1.0, 4.0, &built, 0.0));
+        cached_damped_kernel(cached_medium(medium_of(L), L.vstar), 1.0, 4.0, &built, 0.0));
     double slope = kInf, total = 0.0;
     for (const ZoneSpan& z : prm.zones) {
       const auto k = static_cast<std::size_t>(z.punch);

@@ -18,6 +18,8 @@
 #include "movingpunch/dispersion.hpp"
 #include "movingpunch/errors.hpp"
 #include "movingpunch/kernel.hpp"
+#include "movingpunch/medium.hpp"
+#include "movingpunch/viscoelastic.hpp"
 #include "test_helpers.hpp"
 
 namespace mp = movingpunch;
@@ -594,4 +596,36 @@ TEST(AsymmetricKernelTable, CachedAcrossSolves) {
   EXPECT_NEAR(t.critical_speed + t.kernel + t.width + t.checks, fresh.elapsed(),
               1e-3 * fresh.elapsed() + 1e-6);
   mp::clear_kernel_cache();
+}
+
+// A positive form (Re M1 > 0 at every wavenumber) makes the frictionless
+// contact unique; above V*_cr (the fold above) Re M1 < 0 near the
+// resonance and the scan for other steady states runs. Anchors: the
+// undamped layer below V*_cr (M1 real and positive, Ji's sign of the
+// dispersion), the supercritical damped layer (its three contacts above),
+// and a Zener layer (Re 1/m(omega) > 0 for any passive material).
+TEST(DampedContact, APositiveFormMakesTheContactUnique) {
+  auto kernel = [](double vstar, double damping) {
+    return mp::cached_damped_kernel(vstar, 1.0, 0.2, damping, 1.0, 2.0);
+  };
+  EXPECT_TRUE(mp::positive_form(*kernel(0.0, 0.0)));
+  EXPECT_TRUE(mp::positive_form(*kernel(0.3, 0.0)));
+  EXPECT_TRUE(mp::positive_form(*kernel(0.3, 0.5)));
+  EXPECT_FALSE(mp::positive_form(*kernel(0.65, 0.01)));
+  mp::MediumSpec spec = mp::homogeneous_medium(1.0, 0.25);
+  spec.layers[0].visco = mp::zener(4.0, 0.3);
+  for (double vstar : {0.0, 0.2}) {
+    const auto zener = mp::cached_damped_kernel(mp::make_medium(spec, vstar), 1.0, 2.0);
+    EXPECT_TRUE(mp::positive_form(*zener)) << vstar;
+  }
+  // The solutions say so; the supercritical one (not unique) does not.
+  const auto below = mp::solve_asymmetric(damped(0.3, 1.0, 0.5));
+  EXPECT_NE(below.validity().find("unique (the medium's form is positive"), std::string::npos);
+  auto p = damped(0.65, 1.0, 0.01);
+  p.load = 0.0025;
+  const auto above = mp::solve_asymmetric(p);
+  EXPECT_EQ(above.validity().find("unique (the medium"), std::string::npos);
+  // With friction the operator has another part: no claim, the scan runs.
+  const auto rough = mp::solve_asymmetric(mp::testing::paper_asymmetric(0.3, 1.0, 0.5, 0.3));
+  EXPECT_EQ(rough.validity().find("unique (the medium"), std::string::npos);
 }

@@ -171,6 +171,12 @@ class AsymmetricKernel {
   void tabulate();
 };
 
+// Whether the medium of K has a positive quadratic form: Re M1 > 0 at every
+// wavenumber (on the table's nodes with a margin, and its half-plane part
+// beyond them). Then a frictionless steady contact is unique: a valid one is
+// the only one (no scan for other steady states is needed).
+bool positive_form(const AsymmetricKernel& K);
+
 // Process-wide cache of the asymmetric solver's kernel tables, keyed on the
 // medium (Medium::key(): its speed and description) and the friction (the
 // table is built to round-off whatever tol, so tol is not part of the key):

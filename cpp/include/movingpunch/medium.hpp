@@ -344,6 +344,11 @@ inline constexpr double kDisplacementReference = 100.0;
 // A damped homogeneous layer (damping > 0) has real() == false: the
 // asymmetric solver's only.
 std::shared_ptr<const Medium> make_medium(const MediumSpec& spec, double vstar);
+// make_medium through a cache of the kMediumCacheCapacity most recent media
+// (by vstar and MediumSpec::key(); immutable, shared; thread-safe): the warm
+// solves of a medium build it once.
+inline constexpr std::size_t kMediumCacheCapacity = 16;
+std::shared_ptr<const Medium> cached_medium(const MediumSpec& spec, double vstar);
 
 // The critical speed of a medium: the lowest vstar of a free steady wave,
 // including infima approached only as t -> inf or t -> 0 (t = inf or 0 then).

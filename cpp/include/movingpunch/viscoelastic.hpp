@@ -144,6 +144,12 @@ class MemoryKernel {
   // w (1/pi) int sqrt(1 - r^2) g(r) K_m(x - c - w r) dr for g = sum b_n U_n
   // (the slope's memory part at any x; s = (x - c)/w any real).
   double apply(const Eigen::VectorXd& b, double s, double w) const;
+  // apply at `rows` descending points s[0] > s[1] > ... (out[k] at s[k]):
+  // one downward sweep (each row adds the segment to the previous one).
+  void apply_descending(const Eigen::VectorXd& b, const double* s, int rows, double w,
+                        double* out) const;
+  // moments at descending points, rows x count row-major in out.
+  void moments_descending(const double* s, int rows, double w, int count, double* out) const;
   // -2 W_i U_q(r_i) (q, i < N): the block's basis, kept per size N.
   static std::shared_ptr<const Eigen::MatrixXd> basis_weights(const ChebyshevNodes& nodes);
 
