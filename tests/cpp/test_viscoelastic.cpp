@@ -489,3 +489,41 @@ TEST(ViscoelasticZones, BlockAtIsTheMomentsAtEachPoint) {
   const Eigen::MatrixXd own = mem.collocation_block(nd, 0.4);
   EXPECT_EQ((own - mem.block_at(nd.s.data(), 13, nd, 0.4)).cwiseAbs().maxCoeff(), 0.0);
 }
+
+// The gap check's memory at many points in one downward sweep is apply at
+// each point (beside the contact on both sides, a long series: a profile's).
+TEST(Viscoelastic, ApplyDescendingIsApplyAtEachPoint) {
+  const mp::MemoryKernel mem(mp::retardation_spectrum(prony3()));
+  Eigen::VectorXd b(40);
+  for (Eigen::Index q = 0; q < b.size(); ++q) b(q) = std::cos(0.7 * q) / (1.0 + q);
+  for (double start : {9.0, -1.05}) {
+    std::vector<double> s, out(17);
+    for (int k = 0; k < 17; ++k) s.push_back(start - 0.5 * std::pow(k / 4.0, 2.0));
+    const double w = 0.3;
+    mem.apply_descending(b, s.data(), 17, w, out.data());
+    for (int k = 0; k < 17; ++k) {
+      const double want = mem.apply(b, s[static_cast<std::size_t>(k)], w);
+      EXPECT_NEAR(out[static_cast<std::size_t>(k)], want, 1e-13 * (1.0 + std::fabs(want)))
+          << start << " " << k;
+    }
+  }
+}
+
+// Media are built once per (vstar, spec): a warm solve reuses the one its
+// kernel was built for; another material or speed is another medium, and a
+// refused spec is refused as make_medium refuses it.
+TEST(Viscoelastic, MediaAreCachedByTheirSpecAndSpeed) {
+  mp::MediumSpec spec = mp::homogeneous_medium(1.0, 0.25);
+  spec.layers[0].visco = prony3();
+  const auto a = mp::cached_medium(spec, 0.1), b = mp::cached_medium(spec, 0.1);
+  EXPECT_EQ(a.get(), b.get());
+  EXPECT_NE(mp::cached_medium(spec, 0.2).get(), a.get());
+  mp::MediumSpec other = spec;
+  other.layers[0].visco.shift = 2.0;
+  const auto c = mp::cached_medium(other, 0.1);
+  EXPECT_NE(c.get(), a.get());
+  EXPECT_NE(c->key(), a->key());
+  EXPECT_EQ(a->key(), mp::make_medium(spec, 0.1)->key());
+  other.base.damping = 0.5;  // dashpots under a viscoelastic layer
+  EXPECT_THROW(mp::cached_medium(other, 0.1), mp::InvalidParameter);
+}

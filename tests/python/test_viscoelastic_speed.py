@@ -404,3 +404,29 @@ def test_a_quasi_static_speed_just_below_the_relaxed_critical_speed_solves():
     with pytest.raises(InvalidParameterError, match="critical") as err:
         quasi_static(vcr, material)
     assert err.value.parameter == "vstar"
+
+
+@pytest.mark.parametrize("vstar", [0.0, 0.2])
+def test_a_viscoelastic_contact_is_unique_and_grows_with_its_load(vstar):
+    """A passive material's form is positive (Re M1 > 0: Re 1/m > 0 for
+    every Zener or Prony modulus), so the frictionless contact is unique:
+    the solver says so instead of scanning the load curve for other steady
+    states, and (its consequence, checked independently of that claim) the
+    contact grows with the load over three decades, both ends moving out."""
+    material = mp.Zener(3.0, 0.2)
+    ends = []
+    for load in np.geomspace(1e-4, 0.1, 12):
+        s = mp.solve(
+            vstar=vstar,
+            radius=R,
+            load=float(load),
+            layers=[layer(material)],
+            base=mp.Winkler(1.0),
+        )
+        assert s.valid
+        assert "unique (the medium's form is positive" in s.validity
+        assert s.other_half_widths == ()
+        ends.append(s.contact_interval)
+    lo, hi = np.array(ends).T
+    assert np.all(np.diff(hi) > 0.0)
+    assert np.all(np.diff(lo) < 0.0)
