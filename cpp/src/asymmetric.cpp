@@ -585,6 +585,21 @@ double critical_vstar_of(const AsymmetricParams& p) {
   return critical_speed(*p.medium).vstar;
 }
 
+void require_steady_speed(const AsymmetricParams& p, double vcr, double vr) {
+  if (!(p.vstar < vr)) throw SupercriticalSpeedError(p.vstar, vcr, vr);
+  // The undamped layer's steady problem is bounded only below V*_cr (real
+  // poles above it). Dashpots, or one viscoelastic layer on springs (Im
+  // m(alpha) != 0 at every alpha > 0: no free steady wave below its relaxed
+  // Rayleigh speed; docs/theory.md section 17.9), bound it above V*_cr too.
+  // (A stack's elastic sublayer, or its bottom face's waves, could carry a
+  // free wave: not claimed.)
+  const bool visco_layer = p.medium && p.medium->layers.size() == 1 &&
+                           p.medium->base.kind == BaseKind::springs &&
+                           !p.medium->layers[0].visco.empty();
+  if (!(p.damping > 0.0) && !visco_layer && !(p.vstar < vcr))
+    throw SupercriticalSpeedError(p.vstar, vcr, vr);
+}
+
 double cauchy_phi1_of(const AsymmetricParams& p) {
   const AsymmetricParams q = with_medium_scalars(p);
   // (An elastic top's material is empty: unrelaxed_phi1 is its phi1.)
@@ -1596,11 +1611,7 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   };
   const double t_critical = since_start();
-  if (!(prm.vstar < s.vr_)) throw SupercriticalSpeedError(prm.vstar, s.vcr_, s.vr_);
-  // Friction without damping: the undamped layer's steady problem, bounded
-  // only below V*_cr (real poles above it).
-  if (!(prm.damping > 0.0) && !(prm.vstar < s.vcr_))
-    throw SupercriticalSpeedError(prm.vstar, s.vcr_, s.vr_);
+  require_steady_speed(prm, s.vcr_, s.vr_);
   const WaveConstants wc = wave_constants(prm.vstar, prm.nu);
   const double phi1 = cauchy_phi1_of(prm);
   // Friction: Gauss-Jacobi collocation with the end exponents of

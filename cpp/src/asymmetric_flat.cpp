@@ -74,9 +74,7 @@ AsymmetricSolution solve_asymmetric_flat(const AsymmetricParams& prm_in) {
   s.vr_ = rayleigh_vstar(prm.nu);
   s.vcr_ = critical_vstar_of(prm);
   const double t_critical = since_start();
-  if (!(prm.vstar < s.vr_)) throw SupercriticalSpeedError(prm.vstar, s.vcr_, s.vr_);
-  if (!(prm.damping > 0.0) && !(prm.vstar < s.vcr_))
-    throw SupercriticalSpeedError(prm.vstar, s.vcr_, s.vr_);
+  require_steady_speed(prm, s.vcr_, s.vr_);
   const WaveConstants wc = wave_constants(prm.vstar, prm.nu);
   const double w = prm.punch().face();
   const bool frictional = prm.friction > 0.0;

@@ -1089,8 +1089,7 @@ ZonesSolution solve_connected(const ZonesParams& prm, const std::vector<PunchPro
   ZonesSolution out;
   out.rayleigh_vstar = rayleigh_vstar(L.nu);
   out.critical_vstar = critical_vstar_of(L);
-  if (!(L.vstar < out.rayleigh_vstar) || (!(L.damping > 0.0) && !(L.vstar < out.critical_vstar)))
-    throw SupercriticalSpeedError(L.vstar, out.critical_vstar, out.rayleigh_vstar);
+  require_steady_speed(L, out.critical_vstar, out.rayleigh_vstar);
   out.phi1 = cauchy_phi1_of(L);
 
   Eigen::VectorXd e(2 * nz);
@@ -1542,8 +1541,7 @@ ZonesSolution solve_zones(const ZonesParams& prm) {
   const AsymmetricParams L = with_medium_scalars(prm.layer);
   {
     const double vr = rayleigh_vstar(L.nu), vcr = critical_vstar_of(L);
-    if (!(L.vstar < vr) || (!(L.damping > 0.0) && !(L.vstar < vcr)))
-      throw SupercriticalSpeedError(L.vstar, vcr, vr);
+    require_steady_speed(L, vcr, vr);
   }
   const int nz = static_cast<int>(prm.zones.size());
   const int np = static_cast<int>(prm.punches.size());

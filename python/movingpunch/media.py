@@ -740,6 +740,19 @@ class Medium:
         return any(isinstance(s, Layer) and not s.elastic for s in self.layers)
 
     @property
+    def beyond_critical(self) -> bool:
+        """Steady contacts exist beyond V*_cr, up to the top's Rayleigh speed
+        V*_R: one viscoelastic layer on springs with its inertia (it dissipates
+        at every wavenumber but 0 and infinity: no free steady wave;
+        docs/theory.md section 17.9)."""
+        return (
+            self.inertia
+            and self.viscoelastic
+            and len(self.layers) == 1
+            and isinstance(self.base, Winkler)
+        )
+
+    @property
     def nu(self) -> float:
         """Poisson's ratio of the top sublayer (its half-plane constants)."""
         return self.layers[0].nu

@@ -21,9 +21,16 @@ from movingpunch.tui import create_app
 from movingpunch.tui import model as tui_model
 from movingpunch.tui.model import Params
 from movingpunch.tui.scene_files import from_scene, to_scene
-from movingpunch.tui.widgets import CurvePlot
+from movingpunch.tui.widgets import CurvePlot, Gauge
 from test_tui_media import open_editor, row, type_in
-from tui_pilot import assert_summary_is, screen_of, settle, sync
+from tui_pilot import (
+    assert_summary_is,
+    screen_of,
+    settle,
+    status_text,
+    sync,
+    type_into,
+)
 
 SIZE = (100, 32)
 BELL = {"kw": 1.0, "radius": 100.0, "load": 0.002}
@@ -155,6 +162,36 @@ async def test_inertia_on_a_viscoelastic_layer_shows_the_moving_solve() -> None:
         assert curves is not None
         grid = curves.grid
         assert np.array_equal(curves.series[0].values, api.surface_stress(grid))
+
+
+@sync
+async def test_a_moving_zener_layer_runs_past_the_relaxed_critical_speed() -> None:
+    """Typed V* = 0.7 beyond the relaxed V*_cr (0.572) with the inertia on:
+    the summary is the API's solve, the gauge measures V* against V*_R (the
+    bound of a material that damps), and 0.85 (beyond V*_R) is refused."""
+    app = create_app(cursor_blink=False, show_timing=False)
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        screen = screen_of(app)
+        editor = await open_editor(pilot)
+        top = row(editor, 1)
+        await choose(pilot, top.query_one(".m-kind", Select), "zener-deborah")
+        await type_in(pilot, top.box("time"), "0.1")
+        await pilot.press("enter")
+        await settle(pilot)
+        await type_into(pilot, "vstar", "0.7", paste=True)
+        layer = mp.Layer(nu=screen.params.nu, viscoelastic=mp.Zener(2.0, 0.1))
+        api = mp.solve(vstar=0.7, kw=1.0, radius=100.0, load=0.002, layers=[layer])
+        assert api.critical_vstar < 0.7 < api.rayleigh_vstar
+        assert_summary_is(app, api, "beyond V*_cr")
+        gauge = screen.query_one(Gauge)
+        assert gauge.damped
+        rendered = str(gauge.render())
+        assert rendered.startswith("V*/V*_R "), rendered
+        assert "above V*_cr" in rendered
+        await type_into(pilot, "vstar", "0.85", paste=True)
+        assert status_text(app).startswith("supercritical speed"), status_text(app)
+        assert "showing the result for V* 0.7" in status_text(app)
 
 
 @sync

@@ -231,13 +231,65 @@ def test_the_displacement_below_the_surface_meets_the_limits_and_the_springs(
     assert d2 < 0.01 * s.indentation
 
 
-def test_the_relaxed_critical_speed_bounds_the_moving_layer():
+def test_the_layer_carries_a_steady_contact_beyond_its_relaxed_critical_speed():
+    """The material dissipates at every wavenumber but 0 and infinity (Im
+    m(alpha) != 0), so no free steady wave exists below the relaxed Rayleigh
+    speed: the steady contact is bounded beyond the relaxed V*_cr too
+    (docs/theory.md section 17.9). Anchors: the energy balance and the load
+    at every speed; nothing happens at V*_cr (the contact continuous through
+    it to 1e-7); deborah -> inf is the unrelaxed elastic layer at vstar/3,
+    subcritical for it, to 1e-10; the relaxed Rayleigh speed still bounds
+    it. The independent reference's evaluation of a case beyond V*_cr is
+    test_viscoelastic_independent.py."""
     vcr = mp.critical_vstar(layers=[mp.Layer(1.0, nu=NU)], base=mp.Winkler(KW))
-    near = visco(0.98 * vcr, mp.Zener(3.0, 0.5))
-    assert near.valid
-    assert near.drag == pytest.approx(near.dissipation, rel=1e-10)
+    vr = mp.rayleigh_vstar(NU)
+    material = mp.Zener(3.0, 0.5)
+    for vstar in (0.98 * vcr, 1.05 * vcr, 0.5 * (vcr + vr), 0.995 * vr):
+        s = visco(vstar, material)
+        assert s.valid, s.validity
+        assert s.warnings == ()
+        assert s.drag == pytest.approx(s.dissipation, rel=1e-10)
+        w, c = s.half_width, s.centre
+        th = np.arange(1, 401) * np.pi / 401
+        p = s.pressure(c + w * np.cos(th))
+        assert np.all(p >= 0.0)
+        assert w * np.pi / 401 * np.sum(np.sin(th) * p) == pytest.approx(1.0, rel=1e-10)
+    below, above = visco(vcr * (1 - 1e-9), material), visco(vcr * (1 + 1e-9), material)
+    gap = np.subtract(below.contact_interval, above.contact_interval)
+    assert np.max(np.abs(gap)) < 1e-7
+    assert above.drag == pytest.approx(below.drag, rel=1e-7)
+    vstar = 1.15 * vcr
+    s, e = visco(vstar, mp.Zener(3.0, 1e12)), elastic(vstar, 3.0)
+    back, front = s.contact_interval
+    assert abs(front - e.a) < 1e-10
+    assert abs(-back - e.a) < 1e-10
+    assert 0.0 <= s.drag < 1e-10
     with pytest.raises(SupercriticalSpeedError):
-        visco(vcr, mp.Zener(3.0, 0.5))
+        visco(vr, material)
+    # A stack's elastic sublayer could carry a free wave: its relaxed V*_cr
+    # still bounds it.
+    stack = [mp.Layer(0.5, nu=NU, viscoelastic=material), mp.Layer(0.5, nu=NU)]
+    vcr_stack = mp.critical_vstar(layers=stack, base=mp.Winkler(KW))
+    with pytest.raises(SupercriticalSpeedError):
+        mp.solve(
+            vstar=1.05 * vcr_stack,
+            radius=R,
+            load=LOAD,
+            layers=stack,
+            base=mp.Winkler(KW),
+        )
+
+
+def test_a_train_runs_beyond_the_relaxed_critical_speed():
+    vcr = mp.critical_vstar(layers=[mp.Layer(1.0, nu=NU)], base=mp.Winkler(KW))
+    t = mp.solve_punches(
+        [mp.Punch(R, load=LOAD, at=0.0), mp.Punch(R, load=LOAD, at=3.0)],
+        vstar=1.1 * vcr,
+        layers=[mp.Layer(1.0, nu=NU, viscoelastic=mp.Zener(3.0, 0.5))],
+        base=mp.Winkler(KW),
+    )
+    assert t.valid
+    assert t.drag == pytest.approx(t.dissipation, rel=1e-10)
 
 
 def test_the_command_line_solves_the_moving_layer(
@@ -282,3 +334,65 @@ def test_the_strains_near_the_surface_meet_the_elastic_limits(deborah, scale):
     for name in ("eps_x", "eps_y", "gamma_xy"):
         a, b = getattr(got, name), getattr(want, name) / scale
         assert np.max(np.abs(a - b)) < 1e-9 * np.max(np.abs(b)), name
+
+
+def test_a_scenes_speed_sweep_crosses_the_relaxed_critical_speed():
+    """A scene's sweep of one moving Zener layer from below to beyond its
+    relaxed V*_cr (the scene's checks let it through; a speed beyond V*_R
+    fails at its point, naming the Rayleigh speed): every point is the
+    API's solve."""
+    vcr = mp.critical_vstar(layers=[mp.Layer(1.0, nu=NU)], base=mp.Winkler(KW))
+    vr = mp.rayleigh_vstar(NU)
+    speeds = (0.9 * vcr, 1.1 * vcr, 0.5 * (vcr + vr), 1.01 * vr)
+    text = f"""
+[params]
+load = {LOAD}
+radius = {R}
+kw = {KW}
+
+[[layers]]
+thickness = 1.0
+nu = {NU}
+viscoelastic = {{ kind = "zener", ratio = 3.0, deborah = 0.5 }}
+
+[sweep]
+param = "vstar"
+values = [{", ".join(repr(v) for v in speeds)}]
+quantities = ["drag", "a"]
+"""
+    table = mp.Scene.from_toml(text).run().sweep
+    assert table is not None
+    for j, vstar in enumerate(speeds[:-1]):
+        s = visco(vstar, mp.Zener(3.0, 0.5))
+        assert table.data["drag"][0][j] == s.drag
+        assert table.data["a"][0][j] == s.a
+    assert math.isnan(table.data["drag"][0][-1])
+
+
+def test_a_nearly_elastic_material_beyond_v_cr_is_the_limiting_absorption():
+    """Beyond V*_cr the elastic layer has no steady state; a material with a
+    vanishing loss (ratio 1 + eps) tends, at first order in eps, to the
+    limiting-absorption solution that dashpots of vanishing strength give on
+    the independent damped path (docs/damped.md: a/h = 1.2436873,
+    -b/h = 0.4215438, drag 9.098258e-3 at V* = 0.65, k_w 1). Measured: the
+    ends 1.1e-5, 1.2e-6 away at eps = 1e-4, 1e-5 (shrinking tenfold)."""
+    damped = mp.solve(
+        vstar=0.65, load=0.002, radius=100.0, kw=1.0, nu=0.2, damping=1e-7
+    )
+    gaps = []
+    for eps in (1e-4, 1e-5):
+        s = mp.solve(
+            vstar=0.65,
+            load=0.002,
+            radius=100.0,
+            layers=[mp.Layer(nu=0.2, viscoelastic=mp.Zener(1.0 + eps, 0.1))],
+            base=mp.Winkler(1.0),
+        )
+        assert s.valid and s.warnings == ()
+        assert s.drag == pytest.approx(s.dissipation, rel=1e-10)
+        gaps.append(
+            np.max(np.abs(np.subtract(s.contact_interval, damped.contact_interval)))
+        )
+        assert abs(s.drag - damped.drag) < 1e-3 * eps
+    assert gaps[1] < 5e-6
+    assert 5.0 < gaps[0] / gaps[1] < 20.0  # first order in eps

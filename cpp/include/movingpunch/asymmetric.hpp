@@ -239,6 +239,10 @@ double critical_vstar_of(const AsymmetricParams& p);
 // phi1 at vstar (p's scalars: with_medium_scalars), a viscoelastic top's
 // unrelaxed one (unrelaxed_phi1; = Medium::phi1()).
 double cauchy_phi1_of(const AsymmetricParams& p);
+// Throws SupercriticalSpeedError unless p's speed has a bounded steady
+// state: vstar < V*_R (vr), and below V*_cr (vcr) unless the medium
+// dissipates at every wavenumber (dashpots; one viscoelastic layer on springs).
+void require_steady_speed(const AsymmetricParams& p, double vcr, double vr);
 
 // Throws std::invalid_argument naming the parameter and its valid range (a
 // medium: its own checks, and InvalidParameter for what the asymmetric

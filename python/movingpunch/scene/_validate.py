@@ -1015,7 +1015,8 @@ def _check_medium_speed(
     the relaxation of a material given by tau, keep its deborah numbers in
     range and stay below the relaxed layer's V*_cr (``below_critical_speed``);
     a viscoelastic medium with inertia keeps its deborah numbers in range and
-    stays below the relaxed layer's V*_cr (the medium's)."""
+    stays below the relaxed V*_cr of a stack (one viscoelastic layer on
+    springs runs on beyond it: ``Medium.beyond_critical``)."""
     from movingpunch.solver import below_critical_speed
 
     speed = p["vstar"]
@@ -1040,6 +1041,10 @@ def _check_medium_speed(
             medium.at_speed(speed)
         except InvalidParameterError as exc:
             raise c.fail(where["vstar"], str(exc), exc.allowed or "", "vstar") from exc
+    if medium.beyond_critical:
+        # (A viscoelastic layer with its inertia runs on to V*_R: the solve
+        # refuses a speed beyond it, naming vstar.)
+        return
     vcr = medium_critical_speed(medium)
     if vcr is None or p["vstar"] == 0.0 or p["vstar"] < vcr:
         return

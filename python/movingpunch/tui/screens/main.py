@@ -691,7 +691,9 @@ class MainScreen(Screen[None]):
             gauge.limits = None
             return
         vcr, vr = speeds
-        gauge.damped = p.damped
+        medium = p.medium()
+        # Dashpots, or a viscoelastic layer with its inertia: bounded by V*_R.
+        gauge.damped = p.damped or (medium is not None and medium.beyond_critical)
         gauge.limits = (p.vstar, vcr, vr)
 
     def stale_inputs(self) -> tuple[str, ...]:
@@ -976,8 +978,9 @@ class MainScreen(Screen[None]):
         )
         if param == "vstar":
             # Four decades around the speed (or from 1e-10 at rest), below
-            # the relaxed layer's critical speed (the bound with the inertia
-            # and without it).
+            # the relaxed layer's critical speed (the bound without the
+            # inertia; with it a single viscoelastic layer runs on to V*_R,
+            # past the range a sweep starts with).
             centre = max(self.params.vstar, 1e-8)
             try:
                 top = 0.95 * model.medium_limits(self.params)[0]

@@ -113,7 +113,8 @@ class Gauge(Static):
     limits: reactive[tuple[float, float, float] | None] = reactive(None, layout=True)
     """(vstar, V*_cr, V*_R), or None before the first result."""
     damped: reactive[bool] = reactive(False, layout=True)
-    """Damping > 0: the limit is V*_R."""
+    """Damping > 0, or a viscoelastic layer with its inertia (the material
+    damps): the limit is V*_R."""
 
     def render(self) -> Text:
         if self.limits is None:
