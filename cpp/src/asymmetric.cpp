@@ -982,7 +982,7 @@ double max_abs_sine_series(const Eigen::VectorXd& b) {
 // d alpha (v^ = -M1 p^/|alpha|, Re M1 even), is then > 0 for every p != 0,
 // and the frictionless contact problem (a variational inequality of this
 // strictly monotone operator, symmetric or not) has one solution at most: a
-// valid steady contact is the only one (docs/theory.md section 14). Read
+// valid steady contact is the only one (docs/theory.md section 9). Read
 // from the table's nodes, which resolve M1 (Re M1 >= 1e-3 |M1| at each, a
 // margin against a dip between nodes), and beyond them from the half-plane
 // part (all that is left there), sampled geometrically to 1e12 alpha_max.

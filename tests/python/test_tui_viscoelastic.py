@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from typing import Any
 
 import numpy as np
 import pytest
@@ -129,6 +130,21 @@ async def test_the_editor_makes_a_quasi_static_zener_layer() -> None:
         ]
 
 
+async def moving_zener_layer(pilot: Pilot[None], app: Any) -> Any:
+    """The medium editor makes the top a Zener layer (ratio 2, deborah 0.1)
+    with its inertia on (the editor's default) and applies it; the screen."""
+    await settle(pilot)
+    screen = screen_of(app)
+    editor = await open_editor(pilot)
+    top = row(editor, 1)
+    await choose(pilot, top.query_one(".m-kind", Select), "zener-deborah")
+    await type_in(pilot, top.box("time"), "0.1")
+    assert editor.error == ""
+    await pilot.press("enter")
+    await settle(pilot)
+    return screen
+
+
 @sync
 async def test_inertia_on_a_viscoelastic_layer_shows_the_moving_solve() -> None:
     """Zener (deborah 0.1) with the inertia on at the Fig. 4 speed V* = 0.2:
@@ -136,15 +152,7 @@ async def test_inertia_on_a_viscoelastic_layer_shows_the_moving_solve() -> None:
     the surface and depth curves the API's."""
     app = create_app(cursor_blink=False, show_timing=False)
     async with app.run_test(size=SIZE) as pilot:
-        await settle(pilot)
-        screen = screen_of(app)
-        editor = await open_editor(pilot)
-        top = row(editor, 1)
-        await choose(pilot, top.query_one(".m-kind", Select), "zener-deborah")
-        await type_in(pilot, top.box("time"), "0.1")
-        assert editor.error == ""
-        await pilot.press("enter")  # inertia on, V* = 0.2
-        await settle(pilot)
+        screen = await moving_zener_layer(pilot, app)  # inertia on, V* = 0.2
         assert screen.params.inertia
         layer = mp.Layer(nu=screen.params.nu, viscoelastic=mp.Zener(2.0, 0.1))
         api = mp.solve(vstar=0.2, kw=1.0, radius=100.0, load=0.002, layers=[layer])
@@ -171,14 +179,7 @@ async def test_a_moving_zener_layer_runs_past_the_relaxed_critical_speed() -> No
     bound of a material that damps), and 0.85 (beyond V*_R) is refused."""
     app = create_app(cursor_blink=False, show_timing=False)
     async with app.run_test(size=SIZE) as pilot:
-        await settle(pilot)
-        screen = screen_of(app)
-        editor = await open_editor(pilot)
-        top = row(editor, 1)
-        await choose(pilot, top.query_one(".m-kind", Select), "zener-deborah")
-        await type_in(pilot, top.box("time"), "0.1")
-        await pilot.press("enter")
-        await settle(pilot)
+        screen = await moving_zener_layer(pilot, app)
         await type_into(pilot, "vstar", "0.7", paste=True)
         layer = mp.Layer(nu=screen.params.nu, viscoelastic=mp.Zener(2.0, 0.1))
         api = mp.solve(vstar=0.7, kw=1.0, radius=100.0, load=0.002, layers=[layer])
