@@ -3734,6 +3734,7 @@ Eigen::VectorXd AsymmetricSolution::memory_depth_displacement(
   const WaveConstants& c = model_->top();
   const RetardationSpectrum& sp = model_->memory()->spectrum();
   const double ratio = sp.ratio, phi1 = model_->phi1(), w = half_;
+  const double m0 = model_->long_wave_m1();  // (a half-space base: far_field)
   std::vector<cplx> g(f.alpha.size());
   for (std::size_t k = 0; k < g.size(); ++k) {
     const double al = f.alpha[k];
@@ -3741,8 +3742,8 @@ Eigen::VectorXd AsymmetricSolution::memory_depth_displacement(
     const double w_hp = c.hp1 * C(1, 0) + c.hp2 * C(1, 1);
     const cplx inv_m = model_->half_plane_m1(al) / (phi1 * ratio);  // 1/m(alpha)
     const cplx wl = model_->normal_state(al, y)(1);
-    g[k] =
-        (wl + w_hp * inv_m * std::expm1(-al)) / al * f.phat[k] * std::exp(cplx(0.0, al * centre_));
+    g[k] = (wl + w_hp * inv_m * std::expm1(-al) + m0 * std::exp(-al)) / al * f.phat[k] *
+           std::exp(cplx(0.0, al * centre_));
   }
   std::vector<double> g_re, g_im;
   f.coefficients(g, g_re, g_im);
@@ -3761,7 +3762,7 @@ Eigen::VectorXd AsymmetricSolution::memory_depth_displacement(
     const double mem =
         spectrum_convolution(sp, hp, u, -w, w, 1e-14 * std::max(std::fabs(here), scale),
                              "displacement at y = " + std::to_string(y));
-    v(j) = params_.load * (f.fourier(g_re, g_im, u) / kPi + (here + mem) / ratio);
+    v(j) = params_.load * (f.fourier(g_re, g_im, u) / kPi + (here + mem) / ratio + far_field(u));
   }
   return v;
 }
@@ -3776,11 +3777,12 @@ Eigen::VectorXd AsymmetricSolution::inertial_depth_displacement(
   // e^{-nT alpha |y|}, on tail panels beyond them to 36/(nT |y|) (the
   // stresses' inertial_tail). y < 0.
   const WaveConstants& c = model_->top();
+  const double m0 = model_->long_wave_m1();  // (a half-space base: far_field)
   auto integrand = [&](double al, cplx ph) {
     const Eigen::Matrix4d C = detail::modal_columns(c, al, y);
     const double w_hp = c.hp1 * C(1, 0) + c.hp2 * C(1, 1);
     const cplx wl = model_->normal_state(al, y)(1);
-    return (wl + w_hp * std::expm1(-al)) / al * ph;
+    return (wl + w_hp * std::expm1(-al) + m0 * std::exp(-al)) / al * ph;
   };
   const Fine& f = *light_;
   std::vector<cplx> g(f.alpha.size());
@@ -3808,7 +3810,8 @@ Eigen::VectorXd AsymmetricSolution::inertial_depth_displacement(
     const double u = x(j) - centre_;
     double sum = f.fourier(g_re, g_im, u);
     if (tail) sum += tail->integral(u, t_re).real() - tail->integral(u, t_im).imag();
-    v(j) = params_.load * (sum / kPi + detail::half_plane_displacement(c, b_, half_, u, y, 1));
+    v(j) = params_.load *
+           (sum / kPi + detail::half_plane_displacement(c, b_, half_, u, y, 1) + far_field(u));
   }
   return v;
 }
@@ -3840,20 +3843,10 @@ double AsymmetricSolution::indentation() const {
 Eigen::MatrixXd AsymmetricSolution::displacement(const Eigen::Ref<const Eigen::VectorXd>& x,
                                                  const Eigen::Ref<const Eigen::VectorXd>& y) const {
   detail::check_grid(x, y);
-  if (model_->long_wave_m1() != 0.0) {
-    // Under a half-space: the surface's, measured from x = kDisplacementReference
-    // (surface_value); below it not yet.
-    if (jac_ || (y.array() != 0.0).any())
-      layered_refusal(*model_,
-                      jac_ ? "the displacement with friction (a logarithmic far field)"
-                           : "the displacement below the surface (a logarithmic far field)");
-    const std::shared_ptr<const Surface> sf = surface();
-    Eigen::MatrixXd v(y.size(), x.size());
-    for (Eigen::Index i = 0; i < y.size(); ++i)
-      for (Eigen::Index j = 0; j < x.size(); ++j)
-        v(i, j) = std::fabs(x(j)) > kFarField ? 0.0 : params_.load * surface_value(*sf, x(j));
-    return v;
-  }
+  // Under a half-space (m0 != 0) every depth is measured from the surface at
+  // x = kDisplacementReference (surface_value's reference; far_field below).
+  if (jac_ && model_->long_wave_m1() != 0.0)
+    layered_refusal(*model_, "the displacement with friction (a logarithmic far field)");
   if (model_->memory()) {
     // A viscoelastic top: the surface (its memory in closed form), and
     // below it the half-plane part's memory by a convolution in x
@@ -3881,15 +3874,25 @@ Eigen::MatrixXd AsymmetricSolution::displacement(const Eigen::Ref<const Eigen::V
   const Fine& f = *light_;
   const WaveConstants& c = model_->top();
   Eigen::MatrixXd v(y.size(), x.size());
+  if (model_->long_wave_m1() != 0.0 && (y.array() == 0.0).any()) {
+    const std::shared_ptr<const Surface> sf = surface();  // the surface row: its own
+    for (Eigen::Index i = 0; i < y.size(); ++i)
+      if (y(i) == 0.0)
+        for (Eigen::Index j = 0; j < x.size(); ++j)
+          v(i, j) = std::fabs(x(j)) > kFarField ? 0.0 : params_.load * surface_value(*sf, x(j));
+  }
+  const double m0 = model_->long_wave_m1();
   std::vector<cplx> g(f.alpha.size());
   std::vector<double> g_re, g_im;
   for (Eigen::Index i = 0; i < y.size(); ++i) {
+    if (m0 != 0.0 && y(i) == 0.0) continue;
     for (std::size_t k = 0; k < g.size(); ++k) {
       const double al = f.alpha[k];
       const Eigen::Matrix4d C = detail::modal_columns(c, al, y(i));
       const double w_hp = c.hp1 * C(1, 0) + c.hp2 * C(1, 1);
       const cplx w = y(i) == 0.0 ? -f.r[k].M1 : model_->normal_state(al, y(i))(1);
-      g[k] = (w + w_hp * std::expm1(-al)) / al * f.phat[k] * std::exp(cplx(0.0, al * centre_));
+      g[k] = (w + w_hp * std::expm1(-al) + m0 * std::exp(-al)) / al * f.phat[k] *
+             std::exp(cplx(0.0, al * centre_));
     }
     f.coefficients(g, g_re, g_im);
     for (Eigen::Index j = 0; j < x.size(); ++j) {
@@ -3898,11 +3901,26 @@ Eigen::MatrixXd AsymmetricSolution::displacement(const Eigen::Ref<const Eigen::V
         continue;
       }
       const double u = x(j) - centre_;
-      v(i, j) = params_.load * (f.fourier(g_re, g_im, u) / kPi +
-                                detail::half_plane_displacement(c, b_, half_, u, y(i), 1));
+      v(i, j) =
+          params_.load * (f.fourier(g_re, g_im, u) / kPi +
+                          detail::half_plane_displacement(c, b_, half_, u, y(i), 1) + far_field(u));
     }
   }
   return v;
+}
+
+double AsymmetricSolution::far_field(double u) const {
+  // Under a half-space the layer's W(alpha, y) -> -m0 at every depth as alpha
+  // -> 0 (the substrate's half-plane carries it): -(m0/pi) Re int e^-alpha/alpha
+  // p^ e^{i alpha u} = (m0/(2 pi)) int p ln(1 + (u - xi)^2) up to a constant (the
+  // same at every depth), taken out of the sums (their integrands carry
+  // + m0 e^-alpha/alpha) and measured, as the surface's, from its value at
+  // the surface point x = kDisplacementReference (surface()->reference).
+  const double m0 = model_->long_wave_m1();
+  if (m0 == 0.0) return 0.0;
+  const std::shared_ptr<const Surface> sf = surface();
+  return m0 * half_ * detail::log1p_sum(sf->log1p_r, sf->log1p_w, half_, u) / (2.0 * kPi) -
+         sf->reference;
 }
 
 }  // namespace movingpunch

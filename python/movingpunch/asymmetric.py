@@ -276,9 +276,12 @@ def solve_asymmetric(
     ``medium``: a layered medium or a half-space base (``movingpunch.media``;
     ``kw``, ``kp``, ``nu`` are then its springs' and its top sublayer's, kw =
     inf under a half-space, and ``damping`` must be 0). The contact,
-    pressure, drag, surface slope and surface stress are solved on it; the
-    fields below the surface and, under a half-space, the displacements are
-    refused by name (the homogeneous layer's only so far).
+    pressure, drag, surface slope and surface stress are solved on it, and
+    the fields and displacements below the surface (under a half-space
+    measured from the surface at x = 100 h); with friction the fields below
+    the surface of a layered medium, and under a half-space the
+    displacements and the indentation (a logarithmic far field), are
+    refused by name.
     """
     shape = resolve_profile(radius, profile)
     inputs = _check_solve_inputs(vstar, kw, 1.0, load, nu, tol, kp)

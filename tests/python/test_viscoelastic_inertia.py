@@ -388,7 +388,8 @@ def test_a_nearly_elastic_material_beyond_v_cr_is_the_limiting_absorption():
             layers=[mp.Layer(nu=0.2, viscoelastic=mp.Zener(1.0 + eps, 0.1))],
             base=mp.Winkler(1.0),
         )
-        assert s.valid and s.warnings == ()
+        assert s.valid
+        assert s.warnings == ()
         assert s.drag == pytest.approx(s.dissipation, rel=1e-10)
         gaps.append(
             np.max(np.abs(np.subtract(s.contact_interval, damped.contact_interval)))

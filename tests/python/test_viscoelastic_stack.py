@@ -276,14 +276,78 @@ def test_the_surface_under_a_half_space_meets_the_elastic_stacks(
     assert np.max(np.abs(s.surface_displacement(on) - face)) < 1e-9 * s.indentation
 
 
-def test_below_the_surface_of_a_half_space_the_displacement_is_refused():
-    layers, base = CASES["deep-half-space"]
-    s = solve(layers, base, 0.2)
-    with pytest.raises(InvalidParameterError, match="below the surface"):
-        s.displacement(X, -0.5)
+DEPTHS = (-0.1, -0.3, -0.6, -1.0)
+FAR_X = np.array([-3.0, -1.0, 0.0, 0.2, 0.5, 2.0, 50.0, 100.0])
+
+
+@pytest.mark.parametrize("interface", ["bonded", "smooth"])
+@pytest.mark.parametrize("vstar", [0.0, 0.2])
+@pytest.mark.parametrize(("deborah", "scale"), [(1e-12, 1.0), (1e12, 4.0)])
+def test_below_the_surface_of_a_half_space_the_displacement_meets_the_elastic_stacks(
+    interface, vstar, deborah, scale
+):
+    """Below the surface too (the substrate's m0 e^-alpha/alpha taken out of
+    every depth's Fourier sum as the surface's logarithm, measured from the
+    surface at x = 100 h): the viscoelastic stack in the limits against the
+    elastic stacks' displacement at depth by the symmetric solver, to 1e-10
+    of the largest (measured 3e-12 ... 1e-16: the limits' own ends agree to
+    about 1e-12), near the contact and 50 h and 100 h away."""
+    base = mp.HalfSpace(mu=3.0, nu=0.25, rho=1.5, interface=interface)
+    s = solve(deep_visco(mp.Zener(4.0, deborah)), base, vstar)
+    e = solve(deep_visco(None, mu=0.5 * scale), base, vstar)
+    for y in DEPTHS:
+        got, want = s.displacement(FAR_X, y), e.displacement(FAR_X, y)
+        assert np.max(np.abs(got - want)) < 1e-10 * np.max(np.abs(want)), y
+
+
+@pytest.mark.parametrize("vstar", [0.0, 0.2])
+@pytest.mark.parametrize(("deborah", "scale"), [(1e-12, 1.0), (1e12, 3.0)])
+def test_a_viscoelastic_top_on_a_half_space_at_depth_meets_the_elastic_stacks(
+    vstar, deborah, scale
+):
+    """A viscoelastic top (its memory: the half-plane part's convolution,
+    with inertia its tail panels) on a half-space, at depth: the relaxed and
+    unrelaxed limits against the elastic stacks in units of mu_0 and mu_inf
+    (every modulus, the load and vstar over the scale; the densities as they
+    are), by the symmetric solver, to 1e-10 of the largest."""
+    base = mp.HalfSpace(mu=3.0, nu=0.25, rho=1.5)
+    s = solve(top_visco(mp.Zener(3.0, deborah)), base, vstar)
+    e = mp.solve(
+        vstar=vstar / scale,
+        radius=R,
+        load=LOAD / scale,
+        layers=[mp.Layer(0.4, nu=NU), mp.Layer(0.6, mu=2.0 / scale, nu=0.3, rho=1.2)],
+        base=mp.HalfSpace(mu=3.0 / scale, nu=0.25, rho=1.5),
+    )
+    for y in DEPTHS:
+        got, want = s.displacement(FAR_X, y), e.displacement(FAR_X, y)
+        assert np.max(np.abs(got - want)) < 1e-10 * np.max(np.abs(want)), y
+
+
+@pytest.mark.parametrize("case", ["top-half-space", "deep-half-space"])
+def test_below_the_surface_of_a_half_space_the_displacement_meets_the_surface(case):
+    """A genuinely viscoelastic stack (no elastic limit): the displacement at
+    depth (its own sums) tends to the surface's (surface_value, another code
+    path) at first order in |y| (the strain): 100 times closer at y = -1e-7
+    than at -1e-5, and within 1e-6 of the indentation there; 0 at the
+    reference point x = 100 h on the surface."""
+    layers, base = CASES[case]
+    s = solve(layers, base, 0.0)
+    top = s.displacement(FAR_X, 0.0)
+    assert abs(top[-1]) < 1e-15 * s.indentation
+    far = np.max(np.abs(s.displacement(FAR_X, -1e-5) - top))
+    near = np.max(np.abs(s.displacement(FAR_X, -1e-7) - top))
+    assert near < 1e-6 * s.indentation
+    assert 50.0 < far / near < 200.0
+
+
+def test_with_friction_on_a_half_space_the_displacement_is_refused():
+    base = BASES["half-space"]
     rough = solve(deep_visco(None), base, 0.2, friction=0.2)
     with pytest.raises(InvalidParameterError, match="friction"):
         rough.surface_displacement(X)
+    with pytest.raises(InvalidParameterError, match="friction"):
+        rough.displacement(X, -0.5)
     assert rough.to_dict()["indentation"] is None
 
 

@@ -530,6 +530,9 @@ class AsymmetricSolution {
   Eigen::VectorXd inertial_depth_displacement(const Eigen::Ref<const Eigen::VectorXd>& x,
                                               double y) const;
   // A viscoelastic top's v(x, y)/(P/(mu h)) at depth y < 0 (one row).
+  // Under a half-space: the substrate's long-wave part at x - c = u, the
+  // same at every depth (0 on springs); displacement's sums leave it out.
+  double far_field(double u) const;
   Eigen::VectorXd memory_depth_displacement(const Eigen::Ref<const Eigen::VectorXd>& x,
                                             double y) const;
   // The stress field's y-independent node data (on light_), prepared on first
