@@ -2,6 +2,7 @@
 #include <pybind11/pybind11.h>
 
 #include "bindings.hpp"
+#include "movingpunch/medium.hpp"
 
 #ifndef MOVINGPUNCH_VERSION
 #define MOVINGPUNCH_VERSION "unknown"
@@ -12,6 +13,8 @@ PYBIND11_MODULE(_core, m) {
       "Private compiled core of movingpunch (rigid punch sliding over an elastic "
       "layer on a Winkler foundation). Use the public API in `movingpunch`.";
   m.attr("__version__") = MOVINGPUNCH_VERSION;
+  // Under a half-space displacements are measured from the surface at x = this (h).
+  m.attr("DISPLACEMENT_REFERENCE") = movingpunch::kDisplacementReference;
 
   movingpunch::bindings::bind_errors(m);
   movingpunch::bindings::bind_interrupt(m);

@@ -9,6 +9,7 @@ import numpy.typing as npt
 _Array = npt.NDArray[np.float64]
 
 __version__: str
+DISPLACEMENT_REFERENCE: float
 _errors: ModuleType
 
 SUBLAYER_FIELDS: tuple[str, ...]

@@ -1162,15 +1162,6 @@ def solve_punches(
         singles.append(alone[key])
     if len(punches) == 1 and punches[0].at == 0.0:
         return singles[0]
-    if isinstance(base, HalfSpace):
-        raise InvalidParameterError(
-            "base: a train of punches on a half-space base is not supported yet "
-            "(the punches' indentations need the displacement, which grows like "
-            "ln|x| under a half-space); use springs (base=Winkler(...)) or one "
-            "punch at x = 0",
-            parameter="base",
-            allowed="Winkler springs for a train of punches",
-        )
     return solve_train(
         punches, singles, damping=damp, tol=resolve_tol(tol), n=size, t0=t0
     )

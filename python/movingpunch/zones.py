@@ -44,7 +44,7 @@ from movingpunch.errors import (
     UnphysicalContactError,
 )
 from movingpunch.fields import FloatArray
-from movingpunch.media import Medium
+from movingpunch.media import HalfSpace, Medium
 from movingpunch.profiles import Cylinder, Flat, PunchProfile, check_profile
 from movingpunch.regime import given_indentation
 
@@ -143,9 +143,15 @@ class _Zones:
     relative to its punch's axis (``origins``: evaluated at x - origin, so
     that a train far from x = 0 keeps its digits)."""
 
-    def __init__(self, core_zones: Sequence[Any], punches: Sequence[Punch]) -> None:
+    def __init__(
+        self, core_zones: Sequence[Any], punches: Sequence[Punch], anchored: bool
+    ) -> None:
         self.core = tuple(core_zones)
         self.origins = tuple(float(punches[int(z.punch)].at) for z in self.core)
+        self.anchored = anchored
+        """Under a half-space every zone's displacement is measured from the
+        surface at x = DISPLACEMENT_REFERENCE of its own frame (x - origin):
+        the sum takes each zone's value at the common point off instead."""
         self._solutions: tuple[Any, ...] | None = None
 
     @property
@@ -190,10 +196,25 @@ class _ZoneSum:
     def surface_slope(self, x: FloatArray) -> FloatArray:
         return self._sum(lambda z, u: z.surface_slope(u), x, weighted=False)  # type: ignore[no-any-return]
 
+    def _reference(self) -> float:
+        """What the zones' own references leave in the sum under a
+        half-space: each zone's surface displacement at the common reference
+        point x = DISPLACEMENT_REFERENCE (in its frame; 0 on springs)."""
+        if not self._all.anchored:
+            return 0.0
+        at = _core.DISPLACEMENT_REFERENCE
+        return float(
+            sum(
+                z.surface_displacement(np.array([at - o]))[0]
+                for z, o in zip(self.zones, self.origins, strict=True)
+            )
+        )
+
     def surface_displacement(self, x: FloatArray) -> FloatArray:
-        return self._sum(  # type: ignore[no-any-return]
+        v: FloatArray = self._sum(
             lambda z, u: z.surface_displacement(u), x, weighted=False
         )
+        return v - self._reference()
 
     def bottom_slope(self, x: FloatArray) -> FloatArray:
         return self._sum(lambda z, u: z.bottom_slope(u), x, weighted=False)  # type: ignore[no-any-return]
@@ -204,7 +225,8 @@ class _ZoneSum:
         )
 
     def displacement(self, x: FloatArray, y: FloatArray) -> FloatArray:
-        return self._sum(lambda z, u: z.displacement(u, y), x, weighted=False)  # type: ignore[no-any-return]
+        v: FloatArray = self._sum(lambda z, u: z.displacement(u, y), x, weighted=False)
+        return v - self._reference()
 
     def stress_field(
         self, x: FloatArray, y: FloatArray, below: bool = False
@@ -745,7 +767,11 @@ def _result(
     kernel_builds: int,
 ) -> ZonedSolution:
     total = sum(p.load for p in punches)
-    built = _Zones(z.zones, punches)
+    built = _Zones(
+        z.zones,
+        punches,
+        layer.medium is not None and isinstance(layer.medium.base, HalfSpace),
+    )
     every = range(len(z.zones))
     impl = _ZoneSum(built, every, total)
     results = []

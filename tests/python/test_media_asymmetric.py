@@ -223,13 +223,109 @@ def _equilibrium_zones(s: mp.ContactSolution) -> None:
     assert total == pytest.approx(1.0, abs=2e-4)
 
 
-def test_a_train_on_a_half_space_base_is_refused_naming_base() -> None:
-    punches = [mp.Punch(50.0, 0.004, at=0.0), mp.Punch(50.0, 0.004, at=1.2)]
-    with pytest.raises(mp.InvalidParameterError, match="half-space") as info:
-        mp.solve_punches(
+def test_a_train_on_a_half_space_base_is_measured_from_the_reference_point() -> None:
+    """Trains on a half-space (the displacement grows like ln|x|): every
+    punch's zones are solved in its own frame, and the sum of their
+    displacements is measured from the common surface point x = 100 h.
+    Anchors: one punch at x = 3 is the symmetric solver's single contact
+    moved by 3, its indentation that one's plus its displacement at 97 h
+    (1e-12); two punches: the surface under each face is the face (1e-12 of
+    the indentation) and 0 at x = 100 h; a smooth half-space ever stiffer is
+    the rigid smooth base (Winkler(inf): another base, another code path) at
+    first order in 1/mu (tenfold closer per decade)."""
+    layers = [mp.Layer(0.5), mp.Layer(0.5, mu=0.5)]
+    base = mp.HalfSpace(2.0, 0.3)
+    one = mp.solve(vstar=0.2, radius=50.0, load=0.004, layers=layers, base=base)
+    moved = mp.solve_punches(
+        [mp.Punch(50.0, 0.004, at=3.0)], vstar=0.2, layers=layers, base=base
+    ).punches[0]
+    ((left, right),) = moved.contact_zones
+    back, front = one.contact_interval
+    assert left == pytest.approx(back + 3.0, abs=1e-12)
+    assert right == pytest.approx(front + 3.0, abs=1e-12)
+    shifted = one.indentation + float(one.surface_displacement(97.0))
+    assert moved.indentation == pytest.approx(shifted, abs=1e-12 * one.indentation)
+    stack = [mp.Layer(0.3, nu=0.2), mp.Layer(0.7, mu=0.5, nu=0.3, rho=0.8)]
+    punches = [mp.Punch(5.0, load=0.05, at=0.0), mp.Punch(5.0, load=0.08, at=1.2)]
+    t = mp.solve_punches(
+        punches, vstar=0.2, layers=stack, base=mp.HalfSpace(3.0, 0.25, rho=1.5)
+    )
+    assert t.valid
+    assert float(t.surface_displacement(100.0)) == 0.0
+    for p in t.punches:
+        ((lo, hi),) = p.contact_zones
+        x = np.linspace(lo, hi, 9)[1:-1]
+        face = -p.indentation + (x - p.at) ** 2 / 10.0
+        assert np.max(np.abs(t.surface_displacement(x) - face)) < 1e-12 * p.indentation
+    rigid = mp.solve_punches(
+        punches, vstar=0.2, layers=stack, base=mp.Winkler(math.inf)
+    )
+    gaps = []
+    for mu in (1e4, 1e5):
+        h = mp.solve_punches(
             punches,
             vstar=0.2,
-            layers=[mp.Layer(0.5), mp.Layer(0.5, mu=0.5)],
-            base=mp.HalfSpace(2.0, 0.3),
+            layers=stack,
+            base=mp.HalfSpace(mu, 0.25, rho=1.0, interface="smooth"),
         )
-    assert info.value.parameter == "base"
+        gaps.append(
+            max(
+                abs(a.indentation - b.indentation)
+                + np.max(np.abs(np.subtract(a.contact_zones, b.contact_zones)))
+                for a, b in zip(h.punches, rigid.punches, strict=True)
+            )
+        )
+    assert gaps[1] < 1e-5
+    assert 5.0 < gaps[0] / gaps[1] < 20.0
+
+
+def test_a_scene_runs_a_train_on_a_half_space() -> None:
+    """A scene's [[punches]] beside a half-space [base] (it was refused):
+    its contact table and its displacement at depth are the API's train."""
+    text = """
+[params]
+vstar = 0.2
+
+[[punches]]
+radius = 5.0
+load = 0.05
+at = 0.0
+
+[[punches]]
+radius = 5.0
+load = 0.08
+at = 1.2
+
+[[layers]]
+kind = "layer"
+thickness = 0.3
+nu = 0.2
+
+[[layers]]
+kind = "layer"
+thickness = 0.7
+mu = 0.5
+nu = 0.3
+rho = 0.8
+
+[base]
+kind = "half_space"
+mu = 3.0
+nu = 0.25
+rho = 1.5
+
+[outputs]
+contact_width = true
+displacement = { x = [-2.0, 3.0], depth = -0.5, points = 11 }
+"""
+    scene = mp.Scene.from_toml(text)
+    result = scene.run()
+    train = mp.solve_punches(
+        [mp.Punch(5.0, load=0.05, at=0.0), mp.Punch(5.0, load=0.08, at=1.2)],
+        vstar=0.2,
+        layers=[mp.Layer(0.3, nu=0.2), mp.Layer(0.7, mu=0.5, nu=0.3, rho=0.8)],
+        base=mp.HalfSpace(3.0, 0.25, rho=1.5),
+    )
+    (curve,) = result.outputs["displacement"].curves
+    want = train.displacement(curve.x, -0.5)
+    assert np.max(np.abs(curve.y - want)) <= 1e-14 * np.max(np.abs(want))

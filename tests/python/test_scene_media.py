@@ -262,7 +262,10 @@ def test_a_medium_scene_is_refused_naming_the_key(
     assert allowed in str(info.value), str(info.value)
 
 
-def test_punches_under_a_half_space_are_refused() -> None:
+def test_punches_under_a_half_space_run_on_the_medium() -> None:
+    """[[punches]] beside a half-space [base] (refused before): the scene
+    runs the train on its medium, each punch's contact that of the API's
+    train (test_media_asymmetric.py anchors the train itself)."""
     text = (
         no_kw(HEAD).replace("radius = 100.0\nload = 0.002\n", "")
         + STACK
@@ -271,10 +274,11 @@ def test_punches_under_a_half_space_are_refused() -> None:
         + "[[punches]]\nload = 0.002\nradius = 100.0\nat = 4.0\n"
         + OUTPUTS
     )
-    with pytest.raises(SceneError) as info:
-        Scene.from_toml(text, "s.toml")
-    assert info.value.key == "punches"
-    assert "one punch" in str(info.value)
+    scene = Scene.from_toml(text, "s.toml")
+    assert scene.medium is not None
+    assert len(scene.punches) == 2
+    result = scene.run()
+    assert result.outputs
 
 
 IDENTICAL = """

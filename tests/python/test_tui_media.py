@@ -287,10 +287,10 @@ def test_medium_scene_round_trip() -> None:
         assert to_scene(SceneState(params=params)).medium == scene.medium, name
 
 
-def test_medium_train_runs_on_the_medium_and_is_refused_under_a_half_space() -> None:
+def test_medium_train_runs_on_the_medium_and_on_a_half_space() -> None:
     """A train on a stack on springs is solved on the stack (two identical
-    sublayers: the homogeneous layer's train, the anchor); under a
-    half-space it is refused naming the base."""
+    sublayers: the homogeneous layer's train, the anchor); on a half-space
+    it is the API's train there."""
     train = tui_model.parse_punches("0.002@-1.5, 0.002@1.5")
     stack = with_medium(Params(punches=train), [mp.Layer(0.4), mp.Layer(0.6)], None)
     got = tui_model.solution(tui_model.Cache(), stack)
@@ -302,10 +302,20 @@ def test_medium_train_runs_on_the_medium_and_is_refused_under_a_half_space() -> 
             g.contact_zones, w.contact_zones, rtol=1e-8, atol=1e-12
         )
         assert g.indentation == pytest.approx(w.indentation, rel=1e-8)
+    # On a half-space too (measured from the surface at x = 100 h): the API's.
     on_hs = with_medium(Params(punches=train), [mp.Layer(1.0)], mp.HalfSpace(0.5, 0.3))
-    with pytest.raises(InvalidParameterError) as info:
-        tui_model.solution(tui_model.Cache(), on_hs)
-    assert info.value.parameter == "base", str(info.value)
+    got = tui_model.solution(tui_model.Cache(), on_hs)
+    assert got.medium is not None
+    assert on_hs.medium() is not None
+    api = mp.solve_punches(
+        on_hs.train(),
+        vstar=on_hs.vstar,
+        layers=list(on_hs.medium().layers),
+        base=mp.HalfSpace(0.5, 0.3),
+    )
+    for g, w in zip(got.punches, api.punches, strict=True):
+        assert g.contact_zones == w.contact_zones
+        assert g.indentation == w.indentation
 
 
 # -- solves and refusals ---------------------------------------------------------

@@ -108,12 +108,7 @@ def solve_point(
     if punches:
         # On the scene's medium when it has one (its [[layers]] and base:
         # the springs those of p), else the homogeneous layer of p.
-        where: dict[str, Any] = {
-            "kw": p["kw"],
-            "nu": p["nu"],
-            "kp": _kp(p),
-            "damping": _damping(p),
-        }
+        where: dict[str, Any]
         if medium is not None:
             m = point_medium(medium, p)
             if not m.inertia:
@@ -124,6 +119,13 @@ def solve_point(
                     allowed="true for a train of punches",
                 )
             where = {"layers": list(m.layers), "base": m.base}
+        else:
+            where = {
+                "kw": p["kw"],
+                "nu": p["nu"],
+                "kp": _kp(p),
+                "damping": _damping(p),
+            }
         s: ContactSolution = solve_punches(
             train_of(punches, p), vstar=p["vstar"], tol=tol, **where
         )

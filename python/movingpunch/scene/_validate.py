@@ -311,17 +311,9 @@ def _check_medium_use(
     if medium.homogeneous:
         return  # the paper's layer: everything it supports
     # A layered medium or a half-space base: friction, asymmetric tables and
-    # trains run on it (the asymmetric solver reads the medium); damped
-    # springs under a stack and trains under a half-space do not yet.
-    if getattr(scene, "punches", ()) and isinstance(medium.base, HalfSpace):
-        raise c.fail(
-            "punches",
-            f"[[punches]] beside a half-space [base] ({medium.base.describe()}): "
-            "a train's indentation needs the displacement, which grows like "
-            "ln|x| under a half-space (not solved yet)",
-            "one punch ([params]) beside a half-space base "
-            '(or [base] kind = "winkler")',
-        )
+    # trains run on it (the asymmetric solver reads the medium; under a
+    # half-space a train's displacements are measured from the surface at
+    # x = 100 h); damped springs under a stack do not yet.
     refused = (
         "damped springs under a layered medium are not solved yet (the stack's "
         "propagation is real)"
@@ -1078,20 +1070,31 @@ def _check_overlap(scene: SceneData, c: Checker) -> None:
 
     if not any(k != "critical_speed" for k in scene.outputs):
         return
+    medium = scene.medium
     for vi, v in enumerate(scene.curve_values()):
         p = scene.point(v)
         train = train_of(scene.punches, p)
-        vstar, kw, nu = p["vstar"], p["kw"], p["nu"]
-        kp, damping = p.get("kp", 0.0), p.get("damping", 0.0)
+        vstar = p["vstar"]
+        # The point's medium: its sublayers and base, or the homogeneous layer.
+        on: dict[str, Any]
+        if medium is not None:
+            m = point_medium(medium, p)
+            if not m.inertia:
+                return  # a train is solved with the inertia: the run refuses it
+            on = {"layers": list(m.layers), "base": m.base}
+        else:
+            on = {
+                "kw": p["kw"],
+                "nu": p["nu"],
+                "kp": p.get("kp", 0.0),
+                "damping": p.get("damping", 0.0),
+            }
         ends: list[tuple[float, float, int]] = []
         for k, q in enumerate(train):
             try:
                 alone = solve(
                     vstar=vstar,
-                    kw=kw,
-                    nu=nu,
-                    kp=kp,
-                    damping=damping,
+                    **on,
                     profile=q.profile,
                     load=q.load,
                     tol=max(scene.tol, 1e-6),
@@ -1109,15 +1112,7 @@ def _check_overlap(scene: SceneData, c: Checker) -> None:
         if not close:
             continue
         try:
-            solve_punches(
-                train,
-                vstar=vstar,
-                kw=kw,
-                nu=nu,
-                kp=kp,
-                damping=damping,
-                tol=scene.tol,
-            )
+            solve_punches(train, vstar=vstar, **on, tol=scene.tol)
             continue  # together they keep apart: the run solves them
         except InvalidParameterError as err:
             if err.parameter != "punches":
