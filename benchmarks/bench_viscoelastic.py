@@ -19,6 +19,9 @@ against the same layer elastic, and a resistance curve of 100 speeds.
 * Viscoelastic sublayers in stacks moving at vstar 0.1 (a Zener course on
   an elastic base on springs; a Zener soil under an elastic top on a
   half-space), against the same stacks with their relaxed elastic moduli.
+* Beyond the relaxed critical speed: the moving Zener layer at 100 speeds
+  across V*_cr up to near V*_R; a warm train of two punches on a stack over
+  a half-space (trains there measure their displacements from x = 100 h).
 * The same as a user sweeps one material: ``Zener(ratio, tau=...)`` with
   ``inertia=False`` over 100 speeds vstar (deborah = sqrt(vstar) tau), the
   same material moving with its inertia over 100 speeds 1e-4 ... 0.5, and
@@ -206,6 +209,33 @@ def main() -> None:
         f"one material moving (tau = 1, inertia), {args.speeds} speeds 1e-4 ... "
         f"0.5: {total:.2f} s ({1e3 * total / args.speeds:.1f} ms a speed)"
     )
+    # Across the relaxed critical speed (0.572) to near the relaxed Rayleigh
+    # speed (0.830): the Zener layer's own steady states there (each speed a
+    # new medium; the load-curve scan runs where Re M1 < 0).
+    total = _sweep_seconds(
+        mp.Zener(2.0, 0.1), np.linspace(0.5, 0.82, args.speeds), True
+    )
+    print(
+        f"Zener layer across V*_cr (0.5 ... 0.82, inertia), {args.speeds} speeds: "
+        f"{total:.2f} s ({1e3 * total / args.speeds:.1f} ms a speed)"
+    )
+    # A train of two punches on a stack over a half-space (warm: the kernel
+    # table cached; the load varied as above).
+    stack = [mp.Layer(0.3, nu=NU), mp.Layer(0.7, mu=0.5, nu=0.3, rho=0.8)]
+    half_space = mp.HalfSpace(mu=3.0, nu=0.25, rho=1.5)
+    train_ms = _median_ms(
+        lambda load: mp.solve_punches(
+            [
+                mp.Punch(5.0, load=25.0 * load, at=0.0),
+                mp.Punch(5.0, load=40.0 * load, at=1.2),
+            ],
+            vstar=0.2,
+            layers=stack,
+            base=half_space,
+        ),
+        args.repeat,
+    )
+    print(f"train of two punches on a stack over a half-space, warm: {train_ms:.1f} ms")
     for jobs in (1, 2):
         scene = mp.Scene.bundled("viscoelastic-bell")
         t0 = time.perf_counter()
