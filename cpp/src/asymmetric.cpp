@@ -422,6 +422,34 @@ double asymmetric_kernel(const FilonIntegrator& f, const std::vector<double>& kr
 // ---------------------------------------------------------------------------
 // The tabulated kernel
 
+namespace {
+
+// Whether the medium's quadratic form is positive: the work of a pressure p
+// on the surface it displaces, int p (-v) dx = (1/2 pi) int Re M1 |p^|^2/|alpha|
+// d alpha (v^ = -M1 p^/|alpha|, Re M1 even), is then > 0 for every p != 0,
+// and the frictionless contact problem (a variational inequality of this
+// strictly monotone operator, symmetric or not) has one solution at most: a
+// valid steady contact is the only one (docs/theory.md section 9). Read
+// from the table's nodes, which resolve M1 (Re M1 >= 1e-3 |M1| at each, a
+// margin against a dip between nodes), and beyond them from the half-plane
+// part (all that is left there), sampled geometrically to 1e12 alpha_max.
+// An elastic layer below V*_cr (M1 > 0) passes; above V*_cr, where lambda(w)
+// can fold, Re M1 < 0 near the resonance and it fails.
+// Once per quadrature (its wider tables share it): AsymmetricKernel::positive_form.
+bool form_is_positive(const AsymmetricQuadrature& q, const Medium& md) {
+  constexpr double kMargin = 1e-3;
+  for (const cplx& m : q.m1)
+    if (!(m.real() >= kMargin * std::abs(m))) return false;
+  const double top = q.panels.alpha.empty() ? 1.0 : q.panels.alpha.back();
+  for (double t = top; t <= 1e12 * top; t *= 1.25) {
+    const cplx m = md.half_plane_m1(t);
+    if (!(m.real() >= kMargin * std::abs(m))) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 AsymmetricKernel::AsymmetricKernel(std::shared_ptr<const Medium> model, double range,
                                    double friction)
     : range_(range) {
@@ -448,6 +476,7 @@ AsymmetricKernel::AsymmetricKernel(std::shared_ptr<const Medium> model, double r
   }
   b->kr = b->filon->coefficients(re);
   b->ki = b->filon->coefficients(im);
+  b->positive_form = form_is_positive(b->quad, *b->model);
   base_ = std::move(b);
   tabulate();
 }
@@ -975,31 +1004,6 @@ double max_abs_sine_series(const Eigen::VectorXd& b) {
   }
   for (; j < m; ++j) best = std::max(best, std::fabs(sine_series(b, kPi * j / m)));
   return best;
-}
-
-// The medium's quadratic form is positive (asymmetric.hpp): the work of a pressure p
-// on the surface it displaces, int p (-v) dx = (1/2 pi) int Re M1 |p^|^2/|alpha|
-// d alpha (v^ = -M1 p^/|alpha|, Re M1 even), is then > 0 for every p != 0,
-// and the frictionless contact problem (a variational inequality of this
-// strictly monotone operator, symmetric or not) has one solution at most: a
-// valid steady contact is the only one (docs/theory.md section 9). Read
-// from the table's nodes, which resolve M1 (Re M1 >= 1e-3 |M1| at each, a
-// margin against a dip between nodes), and beyond them from the half-plane
-// part (all that is left there), sampled geometrically to 1e12 alpha_max.
-// An elastic layer below V*_cr (M1 > 0) passes; above V*_cr, where lambda(w)
-// can fold, Re M1 < 0 near the resonance and it fails.
-bool positive_form(const AsymmetricKernel& K) {
-  constexpr double kMargin = 1e-3;
-  const AsymmetricQuadrature& q = K.quadrature();
-  for (const cplx& m : q.m1)
-    if (!(m.real() >= kMargin * std::abs(m))) return false;
-  const Medium& md = K.model();
-  const double top = q.panels.alpha.empty() ? 1.0 : q.panels.alpha.back();
-  for (double t = top; t <= 1e12 * top; t *= 1.25) {
-    const cplx m = md.half_plane_m1(t);
-    if (!(m.real() >= kMargin * std::abs(m))) return false;
-  }
-  return true;
 }
 
 // ---------------------------------------------------------------------------
@@ -2083,11 +2087,11 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
   // several contacts (the steady problem has several solutions). Scan
   // lambda(w) on [w/8, 4w] (at N >= 32, steps of ln(32)/48 in ln w at most)
   // for other roots and report them. Where the medium's form is positive
-  // (positive_form: Re M1 > 0 at every wavenumber) the frictionless steady
+  // (AsymmetricKernel::positive_form: Re M1 > 0 at every wavenumber) the frictionless steady
   // contact is unique: a valid one is the only one, and the scan runs only
   // when the solution found is invalid (another single contact might be the
   // valid one).
-  const bool unique = !frictional && positive_form(*kern);
+  const bool unique = !frictional && kern->positive_form();
   auto scan_other_widths = [&] {
     const ChebyshevNodes ns = nodes_of(std::max(32, nd.n));
     kernel(8.4 * s.half_);

@@ -196,10 +196,12 @@ class _ZoneSum:
     def surface_slope(self, x: FloatArray) -> FloatArray:
         return self._sum(lambda z, u: z.surface_slope(u), x, weighted=False)  # type: ignore[no-any-return]
 
+    @functools.cached_property
     def _reference(self) -> float:
         """What the zones' own references leave in the sum under a
         half-space: each zone's surface displacement at the common reference
-        point x = DISPLACEMENT_REFERENCE (in its frame; 0 on springs)."""
+        point x = DISPLACEMENT_REFERENCE (in its frame; 0 on springs). Once
+        per sum (every displacement and indentation reads it)."""
         if not self._all.anchored:
             return 0.0
         at = _core.DISPLACEMENT_REFERENCE
@@ -214,7 +216,7 @@ class _ZoneSum:
         v: FloatArray = self._sum(
             lambda z, u: z.surface_displacement(u), x, weighted=False
         )
-        return v - self._reference()
+        return v - self._reference
 
     def bottom_slope(self, x: FloatArray) -> FloatArray:
         return self._sum(lambda z, u: z.bottom_slope(u), x, weighted=False)  # type: ignore[no-any-return]
@@ -226,7 +228,7 @@ class _ZoneSum:
 
     def displacement(self, x: FloatArray, y: FloatArray) -> FloatArray:
         v: FloatArray = self._sum(lambda z, u: z.displacement(u, y), x, weighted=False)
-        return v - self._reference()
+        return v - self._reference
 
     def stress_field(
         self, x: FloatArray, y: FloatArray, below: bool = False

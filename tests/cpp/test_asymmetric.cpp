@@ -608,15 +608,15 @@ TEST(DampedContact, APositiveFormMakesTheContactUnique) {
   auto kernel = [](double vstar, double damping) {
     return mp::cached_damped_kernel(vstar, 1.0, 0.2, damping, 1.0, 2.0);
   };
-  EXPECT_TRUE(mp::positive_form(*kernel(0.0, 0.0)));
-  EXPECT_TRUE(mp::positive_form(*kernel(0.3, 0.0)));
-  EXPECT_TRUE(mp::positive_form(*kernel(0.3, 0.5)));
-  EXPECT_FALSE(mp::positive_form(*kernel(0.65, 0.01)));
+  EXPECT_TRUE(kernel(0.0, 0.0)->positive_form());
+  EXPECT_TRUE(kernel(0.3, 0.0)->positive_form());
+  EXPECT_TRUE(kernel(0.3, 0.5)->positive_form());
+  EXPECT_FALSE(kernel(0.65, 0.01)->positive_form());
   mp::MediumSpec spec = mp::homogeneous_medium(1.0, 0.25);
   spec.layers[0].visco = mp::zener(4.0, 0.3);
   for (double vstar : {0.0, 0.2}) {
     const auto zener = mp::cached_damped_kernel(mp::make_medium(spec, vstar), 1.0, 2.0);
-    EXPECT_TRUE(mp::positive_form(*zener)) << vstar;
+    EXPECT_TRUE(zener->positive_form()) << vstar;
   }
   // The solutions say so; the supercritical one (not unique) does not.
   const auto below = mp::solve_asymmetric(damped(0.3, 1.0, 0.5));

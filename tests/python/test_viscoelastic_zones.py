@@ -167,6 +167,23 @@ def test_a_train_on_a_viscoelastic_layer_over_a_half_space():
     assert float(s.surface_displacement(100.0)) == 0.0
 
 
+TWO_PUNCHES = f"""
+[[punches]]
+radius = {R!r}
+load = {LOAD!r}
+at = -0.6
+
+[[punches]]
+radius = {R!r}
+load = {LOAD!r}
+at = 0.6
+
+[outputs]
+contact_width = true
+"""
+"""Two punches 1.2 h apart and the scenes' contact table (a scene's tail)."""
+
+
 def test_a_bogie_scene_on_an_asphalt_course():
     """A scene's train of punches on a viscoelastic course: its drag table is
     the API's."""
@@ -188,19 +205,7 @@ mu = 2.0
 nu = 0.3
 rho = 1.2
 
-[[punches]]
-radius = {R!r}
-load = {LOAD!r}
-at = -0.6
-
-[[punches]]
-radius = {R!r}
-load = {LOAD!r}
-at = 0.6
-
-[outputs]
-contact_width = true
-"""
+{TWO_PUNCHES}"""
     out = mp.Scene.from_toml(text).run()
     table = out.outputs["contact_width"].columns
     layers, base = MEDIA["course-on-base"]
@@ -227,19 +232,7 @@ thickness = 0.7
 mu = 0.3
 nu = 0.3
 
-[[punches]]
-radius = {R!r}
-load = {LOAD!r}
-at = -0.6
-
-[[punches]]
-radius = {R!r}
-load = {LOAD!r}
-at = 0.6
-
-[outputs]
-contact_width = true
-"""
+{TWO_PUNCHES}"""
     out = mp.Scene.from_toml(text).run()
     start = out.outputs["contact_width"].columns["contact_start"][0]
     layers = [mp.Layer(0.3, nu=NU), mp.Layer(0.7, mu=0.3, nu=0.3)]

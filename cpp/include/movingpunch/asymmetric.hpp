@@ -155,6 +155,12 @@ class AsymmetricKernel {
   const FilonIntegrator& filon() const noexcept { return *base_->filon; }
   const std::vector<double>& kr() const noexcept { return base_->kr; }
   const std::vector<double>& ki() const noexcept { return base_->ki; }
+  // Whether the medium has a positive quadratic form: Re M1 > 0 at every
+  // wavenumber (on the quadrature's nodes with a margin, and its half-plane
+  // part beyond them), decided once when the quadrature is built. Then a
+  // frictionless steady contact is unique: a valid one is the only one (no
+  // scan for other steady states is needed; docs/theory.md section 9).
+  bool positive_form() const noexcept { return base_->positive_form; }
 
  private:
   static constexpr int kDegree = 24;
@@ -164,18 +170,13 @@ class AsymmetricKernel {
     std::shared_ptr<const FilonIntegrator> filon;
     std::vector<double> kr, ki;  // Filon coefficients of Re, Im (M1 - phi1)/phi1
     double friction = 0.0;
+    bool positive_form = false;
   };
   std::shared_ptr<const Base> base_;
   double range_ = 0, width_ = 0, table_error_ = 0;
   std::vector<double> coef_;  // (kDegree + 1) per piece, pieces from u = -range
   void tabulate();
 };
-
-// Whether the medium of K has a positive quadratic form: Re M1 > 0 at every
-// wavenumber (on the table's nodes with a margin, and its half-plane part
-// beyond them). Then a frictionless steady contact is unique: a valid one is
-// the only one (no scan for other steady states is needed).
-bool positive_form(const AsymmetricKernel& K);
 
 // Process-wide cache of the asymmetric solver's kernel tables, keyed on the
 // medium (Medium::key(): its speed and description) and the friction (the
