@@ -80,9 +80,12 @@ void bind_asymmetric(py::module_& m) {
                              &AsymmetricSolution::pressure_error_estimate,
                              "Bound on the error of p/(P/h) at a fixed relative position "
                              "r = (x - c)/w in the contact.")
-      .def_property_readonly("stress_error_estimate", &AsymmetricSolution::stress_error_estimate,
-                             "Bound on the error of the surface sigma_x/(P/h) more than "
-                             "1e-3 (a + b)/2 from the contact ends.")
+      .def_property_readonly(
+          "stress_error_estimate",
+          py::cpp_function([](const AsymmetricSolution& s) { return s.stress_error_estimate(); },
+                           Release()),
+          "Bound on the error of the surface sigma_x/(P/h) more than 1e-3 (a + b)/2 from the "
+          "contact ends (computed on first read).")
       .def_property_readonly("max_pressure", &AsymmetricSolution::max_pressure,
                              "Maximum of p/(P/h) on the contact.")
       .def_property_readonly(

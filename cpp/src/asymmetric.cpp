@@ -477,6 +477,13 @@ AsymmetricKernel::AsymmetricKernel(std::shared_ptr<const Medium> model, double r
   b->kr = b->filon->coefficients(re);
   b->ki = b->filon->coefficients(im);
   b->positive_form = form_is_positive(b->quad, *b->model);
+  {
+    const AsymmetricQuadrature& q = b->quad;
+    const Medium& md = *b->model;
+    b->surface_band = detail::response_band(q.panels.alpha, q.panels.weight, [&](std::size_t i) {
+      return std::abs(q.m1[i] - md.half_plane_m1(q.panels.alpha[i]));
+    });
+  }
   base_ = std::move(b);
   tabulate();
 }
@@ -1108,10 +1115,16 @@ WidthSolve solve_width(int n, double lambda_t, double w_guess, double w0, double
     return out;
   };
   if (std::fabs(f0) <= xftol) return finish(x0);
-  const double step = f0 > 0.0 ? -0.4 : 0.4;
+  // The first step 0.75 |F| (ln lambda grows at least like 1.33 ln w for
+  // every punch but a wedge-like table: a cylinder's Hertz contact like 2 ln w,
+  // stiffer media faster), so from a coarser size's root (|F| ~ its change)
+  // the bracket is about that tight; each step that does not straddle the
+  // root is 4 times the last, up to 0.4.
+  const double dir = f0 > 0.0 ? -1.0 : 1.0;
+  double step = std::min(0.4, 0.75 * std::fabs(f0));
   double x1 = x0, f1 = f0;
-  for (int it = 0; it < 80; ++it) {
-    x1 = std::clamp(x0 + step, lmin, lmax);
+  for (int it = 0; it < 80; ++it, step = std::min(0.4, 4.0 * step)) {
+    x1 = std::clamp(x0 + dir * step, lmin, lmax);
     f1 = F(x1, e);
     last = x1;
     // No load at x1: a table's contact cannot be that wide where it must be
@@ -1157,7 +1170,7 @@ WidthSolve solve_width(int n, double lambda_t, double w_guess, double w0, double
     return v;
   };
   // To |F| <= xftol (round-off) or a bracket of xftol.
-  constexpr auto kSafeguard = detail::Safeguard::kStalledBracket;
+  constexpr auto kSafeguard = detail::Safeguard::kSecant;
   const double x = x0 < x1
                        ? detail::bracketed_root(f, x0, x1, f0, f1, xftol, 200, xftol, kSafeguard)
                        : detail::bracketed_root(f, x1, x0, f1, f0, xftol, 200, xftol, kSafeguard);
@@ -1689,7 +1702,6 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
   // thousands of h for a contact of 0.4 h), so only its own trial width.
   kernel((wide_guess ? 2.0 : 8.4) * guess);
   s.model_ = kern->model_ptr();
-  const Medium* model = s.model_.get();
 
   // A profile's series of g beyond the collocated terms: the half-plane's
   // (the half-plane part maps the n-th term onto Q_{n+1}: b_{m-1} =
@@ -2140,9 +2152,8 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
     db.head(bk.size()) += bk;
     db.head(b_prev.size()) -= b_prev;
   }
-  // Fine nodes for the Fourier integrals up to |x| <= 3 (a + b), with the
-  // transform of db at them.
-  std::vector<cplx> dphat;
+  // With friction the change's Jacobi series (its transform on the same
+  // rule as g's: jtr_).
   JacobiSeries dseries;
   if (frictional) {
     if (have_change) {
@@ -2163,9 +2174,6 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
         s.exps_.back);
     s.atan_wg_ = s.atan_weights(js);
   }
-  s.light_ = std::make_shared<const AsymmetricSolution::Fine>(
-      s.build_fine(2.0 * s.half_, have_change ? &db : nullptr, &dphat));
-
   // Surface sigma_x = -phi2 p - (1/pi) Re int_0^inf (M2 - phi2) p^ e^{i alpha x}
   // is linear in p: the change of sigma_x between the last two sizes, from
   // the change of the U-coefficients, measured on the surface (64 points on
@@ -2176,11 +2184,18 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
   // about pmax (da/w)(1 + 1/sqrt(2 d)) at a relative distance d >= 1e-3 from
   // an end (the square-root cusp). Round-off of the Fourier sum: 64 eps times
   // the sum of its absolute terms.
-  {
-    const double phi2 = model->phi2();
+  // Computed on first read (stress_error_estimate): the fine nodes' transform
+  // of the pressure and of its change are about half a warm solve.
+  s.stress_cache_->compute = [have_change, db = std::move(db), dseries = std::move(dseries),
+                              frictional, p_coarse, d_last = have_change ? d_p.back() : 0.0](
+                                 const AsymmetricSolution& s) {
+    std::vector<cplx> dphat;
+    AsymmetricSolution::Fine built =
+        s.build_fine(2.0 * s.half_, have_change ? &db : nullptr, &dphat);
+    const AsymmetricSolution::Fine& f = built;
+    const double phi2 = s.model_->phi2();
     double gain = 0.0;
     if (have_change) {
-      const AsymmetricSolution::Fine& f = *s.light_;
       std::vector<cplx> amp(f.alpha.size());
       for (std::size_t i = 0; i < f.alpha.size(); ++i)
         amp[i] = s.surface_stress_integrand(f.r[i], f.alpha[i]) * dphat[i];
@@ -2215,10 +2230,10 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
         }
         dmax = std::max(dmax, std::fabs(-phi2 * dp - sum / kPi + local));
       }
-      gain = std::max(std::fabs(phi2), dmax / d_p.back());
+      gain = std::max(std::fabs(phi2), dmax / d_last);
     } else {
       double im2 = 0.0;
-      const AsymmetricQuadrature& quad = kern->quadrature();
+      const AsymmetricQuadrature& quad = s.kernel_->quadrature();
       for (std::size_t i = 0; i < quad.m2.size(); ++i)
         im2 += quad.panels.weight[i] *
                std::abs(s.surface_stress_integrand(quad.r[i], quad.panels.alpha[i]));
@@ -2229,13 +2244,12 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
     }
     // A viscoelastic top with inertia: its memory moves sigma_x by -phi2 sum_k
     // d_k e_k * dp, at most |phi2| sum_k |d_k| max |dp| (int e_k = 1).
-    if (const RetardationSpectrum* sm = model->stress_memory()) {
+    if (const RetardationSpectrum* sm = s.model_->stress_memory()) {
       double d = 0.0;
       for (double c : sm->c) d += std::fabs(c);
       gain += std::fabs(phi2) * d;
     }
     double sabs = 0.0;
-    const AsymmetricSolution::Fine& f = *s.light_;
     for (std::size_t i = 0; i < f.alpha.size(); ++i)
       sabs += f.weight[i] * std::abs(s.surface_stress_integrand(f.r[i], f.alpha[i])) *
               std::abs(f.phat[i]);
@@ -2243,8 +2257,11 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
     const double gmin = std::min(s.exps_.back, s.exps_.front);
     const double ends = s.max_p_ * (s.err_ / s.half_) * (1.0 + std::pow(2e-3, gmin - 1.0));
     const double p_est = std::max(s.perr_, p_coarse + s.trunc_);
-    s.serr_ = gain * (p_est + ends) + 64.0 * kEps * (std::fabs(phi2) * s.max_p_ + sabs / kPi);
-  }
+    const double serr =
+        gain * (p_est + ends) + 64.0 * kEps * (std::fabs(phi2) * s.max_p_ + sabs / kPi);
+    s.offer_light(std::move(built));
+    return serr;
+  };
 
   // Gauss-Chebyshev (U) nodes and weights times g for surface_slope (friction:
   // Gauss-Jacobi).
@@ -2288,14 +2305,9 @@ AsymmetricSolution solve_asymmetric(const AsymmetricParams& prm_in) {
   // surface's shortest wave and refined at every dip (gap_scan.hpp).
   s.min_gap_ = kInf;
   {
-    const AsymmetricQuadrature& quad = kern->quadrature();
-    const Medium& km = kern->model();
     // The surface's shortest wave: where M1 differs from its half-plane part
     // (a viscoelastic top's memory is added exactly, memory_part).
-    const double step = detail::gap_step(
-        detail::response_band(quad.panels.alpha, quad.panels.weight, [&](std::size_t i) {
-          return std::abs(quad.m1[i] - km.half_plane_m1(quad.panels.alpha[i]));
-        }));
+    const double step = detail::gap_step(kern->surface_band());
     for (int side = -1; side <= 1; side += 2) {
       const double edge = s.centre_ + side * s.half_;
       const double room = side < 0 ? edge - prof.lower() : prof.upper() - edge;
@@ -2410,7 +2422,6 @@ AsymmetricSolution zone_solution(const AsymmetricParams& prm,
   s.half_ = half;
   s.b_ = b;
   s.n_ = static_cast<int>(b.size());
-  s.light_ = std::make_shared<const AsymmetricSolution::Fine>(s.build_fine(2.0 * half));
   // A tail-extended series: the kernel's nodes for its collocated head (the
   // kernel is smooth), as a profile's solve (solve_asymmetric).
   const Eigen::Index len = b.size();
@@ -2599,7 +2610,7 @@ std::shared_ptr<const Eigen::MatrixXd> AsymmetricSolution::friction_depth_coeffi
   // The shear traction's remainder (state i f z_q less its half-plane mix,
   // the bar pole C0 e^-alpha/alpha out of sigma_x) at depth y: Filon
   // coefficients, columns [sigma_x, sigma_y, tau] real parts, then imaginary.
-  const Fine& f = *light_;
+  const Fine& f = light();
   const WaveConstants& c = model_->top();
   const auto nq = static_cast<Eigen::Index>(f.alpha.size());
   const double ep = 4.0 * (c.c2 - 1.0) / c.c2, c0 = ep / (ep - c.s), fr = params_.friction;
@@ -2628,7 +2639,7 @@ std::shared_ptr<const AsymmetricSolution::BottomFriction> AsymmetricSolution::bo
   auto& bp = bottom_friction_cache_->data;
   if (bp) return bp;
   auto b = std::make_shared<BottomFriction>();
-  const Fine& f = *light_;
+  const Fine& f = light();
   const WaveConstants& c = model_->top();
   const double ep = 4.0 * (c.c2 - 1.0) / c.c2, c0 = ep / (ep - c.s), fr = params_.friction;
   const cplx i(0.0, 1.0);
@@ -2768,6 +2779,29 @@ double AsymmetricSolution::regular_part(double x) const {
   return kern;
 }
 
+const AsymmetricSolution::Fine& AsymmetricSolution::light() const {
+  std::lock_guard<std::mutex> lock(light_cache_->mutex);
+  if (!light_cache_->fine)
+    light_cache_->fine = std::make_shared<const Fine>(build_fine(2.0 * half_));
+  return *light_cache_->fine;
+}
+
+void AsymmetricSolution::offer_light(Fine f) const {
+  std::lock_guard<std::mutex> lock(light_cache_->mutex);
+  if (!light_cache_->fine) light_cache_->fine = std::make_shared<const Fine>(std::move(f));
+}
+
+double AsymmetricSolution::stress_error_estimate() const {
+  std::lock_guard<std::mutex> lock(stress_cache_->mutex);
+  StressCache& c = *stress_cache_;
+  if (!c.done) {
+    if (c.compute) c.value = c.compute(*this);
+    c.done = true;
+    c.compute = nullptr;  // (its captured series freed)
+  }
+  return c.value;
+}
+
 AsymmetricSolution::Fine AsymmetricSolution::build_fine(double freq, const Eigen::VectorXd* db,
                                                         std::vector<cplx>* dphat) const {
   Fine f;
@@ -2882,7 +2916,7 @@ Eigen::VectorXd AsymmetricSolution::surface_displacement(
 
 double AsymmetricSolution::surface_stress(double x) const {
   if (!std::isfinite(x)) throw std::invalid_argument("surface_stress: x must be finite");
-  const Fine& f = *light_;
+  const Fine& f = light();
   double local = pressure(x);
   if (model_->stress_memory() != nullptr) local += stress_memory_part(x);
   const double s = -model_->phi2() * local - f.fourier(f.sx_re, f.sx_im, x - centre_) / kPi;
@@ -2913,7 +2947,7 @@ std::shared_ptr<const AsymmetricSolution::FieldNodes> AsymmetricSolution::field_
   auto& np = field_cache_->nodes;
   if (np) return np;
   auto n = std::make_shared<FieldNodes>();
-  const Fine& f = *light_;
+  const Fine& f = light();
   if (!layer()) {
     // Any other medium: each node's mode profile (its remainder at any
     // depth: the state less the top material's half-plane state, sigma_x by
@@ -2971,7 +3005,7 @@ std::shared_ptr<const Eigen::MatrixXd> AsymmetricSolution::depth_coefficients(
     for (const auto& [depth, coef] : field_cache_->depths)
       if (depth == key) return coef;
   }
-  const Fine& f = *light_;
+  const Fine& f = light();
   const WaveConstants& c = model_->top();
   const auto nq = static_cast<Eigen::Index>(f.alpha.size());
   // Remainder integrands [sigma_x, sigma_y, tau] real parts, then imaginary
@@ -3172,11 +3206,11 @@ StressField AsymmetricSolution::stress_field(const Eigen::Ref<const Eigen::Vecto
   // not below e^-36 at their end take the tail up to 36/(nT |y|)
   // (inertial_tail; check_inertial_depths refuses the shallowest).
   const bool inertial = model_->memory() != nullptr && model_->vstar() > 0.0;
-  const double fine_end = light_->filon->upper();
+  const double fine_end = light().filon->upper();
   if (inertial) check_inertial_depths(y, "stresses");
   if (jac_ && !layer())
     layered_refusal(*model_, "the stress field below the surface with friction");
-  const Fine& f = *light_;
+  const Fine& f = light();
   const auto nodes = field_nodes();
   const WaveConstants& c = model_->top();
   const Eigen::Index nx = x.size(), ny = y.size(), nq = static_cast<Eigen::Index>(f.alpha.size());
@@ -3293,7 +3327,7 @@ double AsymmetricSolution::bottom_slope(double x) const {
 }
 
 double AsymmetricSolution::dissipation() const {
-  const Fine& f = *light_;
+  const Fine& f = light();
   if (model_->spec().viscoelastic()) {
     // A viscoelastic medium: the power the surface takes in, by Parseval,
     // (load/pi) int_0^inf Im M1 |p^|^2 (Im M1 >= 0 mode by mode: the
@@ -3412,7 +3446,7 @@ Eigen::VectorXd AsymmetricSolution::friction_displacement(
   // int p arctan(x - xi). The half-plane part: V(z) = w [Lambda(z + i/w) -
   // Lambda(z)], Lambda' = Phi = -cauchy_upper, by a graded Gauss-Legendre
   // rule on the vertical segment; V' = w [Phi(z + i/w) - Phi(z)].
-  const Fine& f = *light_;
+  const Fine& f = light();
   const WaveConstants& c = model_->top();
   const double fr = params_.friction, w = half_;
   const auto [q1, q2] = tangential_mix(c);
@@ -3476,7 +3510,7 @@ std::shared_ptr<const AsymmetricSolution::Surface> AsymmetricSolution::surface()
   auto& sp = surface_cache_->surface;
   if (sp) return sp;
   auto s = std::make_shared<Surface>();
-  const Fine& f = *light_;
+  const Fine& f = light();
   // Under a half-space M1 -> m0 as alpha -> 0 (the substrate's half-plane):
   // m0 e^-alpha/alpha comes out of the sum (its logarithm in x below).
   s->m0 = model_->long_wave_m1();
@@ -3503,7 +3537,7 @@ double AsymmetricSolution::surface_value(const Surface& s, double x) const {
   // -(1/pi) Re int [M1 - phi1 (1 - e^-a)]/a p^ e^{iax}
   // - (phi1/(2 pi)) int p ln(1 + (x - xi)^2) + (phi1/pi) int p ln|x - xi|,
   // the last = phi1 w [(b0/2) ln w + sum b_n L_n((x - c)/w)].
-  const Fine& f = *light_;
+  const Fine& f = light();
   const double phi1 = model_->phi1(), w = half_, u = x - centre_;
   const double smooth = f.fourier(s.smooth_re, s.smooth_im, u) / kPi;
   const double l1 = detail::log1p_sum(s.log1p_r, s.log1p_w, w, u);
@@ -3734,7 +3768,7 @@ Eigen::VectorXd AsymmetricSolution::memory_depth_displacement(
   // (1/beta_k) e^{-eta/beta_k} F(u + eta) d eta (the surface's convention,
   // memory_displacement); what is left, [W - W_hp (1 - e^-alpha)/m(alpha)]/alpha,
   // decays as on the elastic layer and is summed on the fine nodes.
-  const Fine& f = *light_;
+  const Fine& f = light();
   const WaveConstants& c = model_->top();
   const RetardationSpectrum& sp = model_->memory()->spectrum();
   const double ratio = sp.ratio, phi1 = model_->phi1(), w = half_;
@@ -3788,7 +3822,7 @@ Eigen::VectorXd AsymmetricSolution::inertial_depth_displacement(
     const cplx wl = model_->normal_state(al, y)(1);
     return (wl + w_hp * std::expm1(-al) + m0 * std::exp(-al)) / al * ph;
   };
-  const Fine& f = *light_;
+  const Fine& f = light();
   std::vector<cplx> g(f.alpha.size());
   for (std::size_t k = 0; k < g.size(); ++k)
     g[k] = integrand(f.alpha[k], f.phat[k] * std::exp(cplx(0.0, f.alpha[k] * centre_)));
@@ -3875,7 +3909,7 @@ Eigen::MatrixXd AsymmetricSolution::displacement(const Eigen::Ref<const Eigen::V
     for (Eigen::Index i = 0; i < y.size(); ++i) v.row(i) = friction_displacement(x, y(i));
     return v;
   }
-  const Fine& f = *light_;
+  const Fine& f = light();
   const WaveConstants& c = model_->top();
   Eigen::MatrixXd v(y.size(), x.size());
   if (model_->long_wave_m1() != 0.0 && (y.array() == 0.0).any()) {

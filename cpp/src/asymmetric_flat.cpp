@@ -98,7 +98,6 @@ AsymmetricSolution solve_asymmetric_flat(const AsymmetricParams& prm_in) {
   }
   s.model_ = kern->model_ptr();
   s.kernel_ = kern;
-  const Medium* model = s.model_.get();
 
   std::vector<int> sizes;
   if (prm.n > 0) {
@@ -303,19 +302,21 @@ AsymmetricSolution solve_asymmetric_flat(const AsymmetricParams& prm_in) {
   s.atan_rule_ =
       *cached_gauss_jacobi(js.size() + 64 + static_cast<int>(std::ceil(8.0 * w)), al, be);
   s.atan_wg_ = s.atan_weights(js);
-  std::vector<cplx> dphat;
-  const Eigen::VectorXd unused_db;
-  s.light_ = std::make_shared<const AsymmetricSolution::Fine>(
-      s.build_fine(2.0 * w, have_change ? &unused_db : nullptr, &dphat));
 
   // Surface sigma_x is linear in p: its change between the last two sizes at
   // 64 points of the face with |r| <= 0.999 and 32 beside it out to 6 w, over
   // the change of g, is the gain from g's error to the stress's (the local
   // term -phi2 w(r) dg included). Round-off of the Fourier sum as the
   // cylinder's.
-  {
-    const double phi2 = model->phi2();
-    const AsymmetricSolution::Fine& f = *s.light_;
+  // Computed on first read (stress_error_estimate), as the cylinder's.
+  s.stress_cache_->compute = [have_change, dseries = std::move(dseries), dg_ref, js, frictional, w,
+                              g_coarse](const AsymmetricSolution& s) {
+    std::vector<cplx> dphat;
+    const Eigen::VectorXd unused_db;
+    AsymmetricSolution::Fine built =
+        s.build_fine(2.0 * w, have_change ? &unused_db : nullptr, &dphat);
+    const AsymmetricSolution::Fine& f = built;
+    const double phi2 = s.model_->phi2();
     double gain = kInf, pin = 0.0;
     std::vector<double> rs;
     for (int j = 0; j < 96; ++j) {
@@ -350,9 +351,11 @@ AsymmetricSolution solve_asymmetric_flat(const AsymmetricParams& prm_in) {
     for (std::size_t i = 0; i < f.alpha.size(); ++i)
       sabs += f.weight[i] * std::abs(s.surface_stress_integrand(f.r[i], f.alpha[i])) *
               std::abs(f.phat[i]);
-    s.serr_ =
+    const double serr =
         gain * std::max(s.perr_, g_coarse) + 64.0 * kEps * (std::fabs(phi2) * pin + sabs / kPi);
-  }
+    s.offer_light(std::move(built));
+    return serr;
+  };
 
   // Gauss-Jacobi nodes and weights times g for surface_slope.
   {

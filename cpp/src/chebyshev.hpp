@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -18,6 +19,27 @@ inline double chebyshev_sum(const double* c, int degree, double x) {
     b1 = b0;
   }
   return c[0] + x * b1 - b2;
+}
+
+// cos(pi k (j + 1/2)/m), row k, column j (m x m, row-major), for the
+// interpolants' sizes m = d + 1, d = 16, 32, 64, 128: computed once (a
+// degree-128 interpolant's transform needs 16641 of them; the gap checks of
+// every solve build several).
+inline const double* interpolant_cosines(int d) {
+  static const std::array<std::vector<double>, 4> tables = [] {
+    std::array<std::vector<double>, 4> t;
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      const int m = (16 << i) + 1;
+      t[i].resize(static_cast<std::size_t>(m) * static_cast<std::size_t>(m));
+      for (int k = 0; k < m; ++k)
+        for (int j = 0; j < m; ++j)
+          t[i][static_cast<std::size_t>(k) * static_cast<std::size_t>(m) +
+               static_cast<std::size_t>(j)] = std::cos(3.14159265358979323846 * k * (j + 0.5) / m);
+    }
+    return t;
+  }();
+  const std::size_t i = d == 16 ? 0 : d == 32 ? 1 : d == 64 ? 2 : 3;
+  return tables[i].data();
 }
 
 // A smooth function on [a, b] as its Chebyshev interpolant at the points of
@@ -42,20 +64,18 @@ class SmoothInterpolant {
       : mid_(0.5 * (a + b)), half_(0.5 * (b - a)) {
     for (int d = 16; d <= 128 && half_ > 0.0; d *= 2) {
       const int m = d + 1;
-      std::vector<double> xs(static_cast<std::size_t>(m)), v(static_cast<std::size_t>(m));
-      for (int j = 0; j < m; ++j)
-        xs[static_cast<std::size_t>(j)] =
-            mid_ + half_ * std::cos(3.14159265358979323846 * (j + 0.5) / m);
+      const auto um = static_cast<std::size_t>(m);
+      const double* cs = interpolant_cosines(d);
+      std::vector<double> xs(um), v(um);
+      for (std::size_t j = 0; j < um; ++j) xs[j] = mid_ + half_ * cs[um + j];  // (row k = 1)
       fill(xs, v);
       double vmax = 0.0;
       for (double x : v) vmax = std::max(vmax, std::fabs(x));
-      c_.assign(static_cast<std::size_t>(m), 0.0);
-      for (int k = 0; k < m; ++k) {
+      c_.assign(um, 0.0);
+      for (std::size_t k = 0; k < um; ++k) {
         double sum = 0.0;
-        for (int j = 0; j < m; ++j)
-          sum +=
-              v[static_cast<std::size_t>(j)] * std::cos(3.14159265358979323846 * k * (j + 0.5) / m);
-        c_[static_cast<std::size_t>(k)] = (k == 0 ? 1.0 : 2.0) * sum / m;
+        for (std::size_t j = 0; j < um; ++j) sum += v[j] * cs[k * um + j];
+        c_[k] = (k == 0 ? 1.0 : 2.0) * sum / m;
       }
       if (!std::isfinite(vmax)) break;
       if (std::fabs(c_[static_cast<std::size_t>(d - 1)]) +

@@ -17,6 +17,11 @@ enum class Safeguard {
   // regula falsi): keeps Illinois' superlinear convergence, for functions
   // that are smooth down to their round-off (the contact width's load).
   kStalledBracket,
+  // The secant through the last two trial points while it stays inside the
+  // bracket and |f| at least halves a step, else kStalledBracket's step:
+  // regula falsi keeps one end of a convex f's bracket fixed and needs the
+  // safeguard's bisection; the secant converges from one side (order 1.6).
+  kSecant,
 };
 
 // The stalled-bracket safeguard of a secant or regula falsi on a bracket
@@ -56,6 +61,7 @@ inline double bracketed_root(const std::function<double(double)>& f, double lo, 
                              Safeguard safeguard = Safeguard::kFrequentBisection) {
   int side = 0;
   StallGuard stall(hi - lo);
+  double xa = lo, fa = flo, xb = hi, fb = fhi;  // the last two trial points (xb the latest)
   for (int i = 0; i < max_iter && std::fabs(hi - lo) > xtol; ++i) {
     double x = (lo * fhi - hi * flo) / (fhi - flo);
     const double w = hi - lo;
@@ -64,10 +70,17 @@ inline double bracketed_root(const std::function<double(double)>& f, double lo, 
     if (safeguard == Safeguard::kFrequentBisection) {
       if (!(x > lo + 0.01 * w && x < hi - 0.01 * w) || (i % 4 == 3)) x = mid;
     } else {
-      x = stall(x, lo, hi);
+      const double xs = fb != fa ? xb - fb * (xb - xa) / (fb - fa) : mid;
+      const bool secant = safeguard == Safeguard::kSecant && i > 0 && xs > lo && xs < hi &&
+                          std::fabs(fb) <= 0.5 * std::fabs(fa);
+      x = secant ? xs : stall(x, lo, hi);
     }
     check_interrupt();
     const double fx = f(x);
+    xa = xb;
+    fa = fb;
+    xb = x;
+    fb = fx;
     if (std::fabs(fx) <= ftol) return x;
     if ((fx < 0.0) == (flo < 0.0)) {
       lo = x;

@@ -1423,16 +1423,9 @@ ZonesSolution solve_connected(const ZonesParams& prm, const std::vector<PunchPro
   out.min_gap = kInf;
   // The sampling step: the surface's band (gap_scan.hpp) from the kernel's
   // quadrature of |M1 - phi1|.
-  const double step = [&] {
-    const AsymmetricQuadrature& quad = kern->quadrature();
-    const Medium& km = kern->model();
-    // (A viscoelastic top's whole half-plane part H(alpha): its memory is
-    // taken exactly in vslope.)
-    return detail::gap_step(
-        detail::response_band(quad.panels.alpha, quad.panels.weight, [&](std::size_t i) {
-          return std::abs(quad.m1[i] - km.half_plane_m1(quad.panels.alpha[i]));
-        }));
-  }();
+  // (A viscoelastic top's whole half-plane part H(alpha): its memory is
+  // taken exactly in vslope.)
+  const double step = detail::gap_step(kern->surface_band());
   const double phi1m = sys->phi1();
   for (int k = 0; k < np; ++k) {
     std::vector<int> mine;

@@ -7,6 +7,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "movingpunch/asymmetric.hpp"
@@ -42,7 +43,8 @@ Counted root_of(F f, double lo, double hi, double xtol, d::Safeguard sg, double 
 TEST(BracketedRoot, BothSafeguardsFindTheClosedFormRoot) {
   // x^3 = 2 on [0, 2]: the root is 2^(1/3).
   const auto f = [](double x) { return x * x * x - 2.0; };
-  for (auto sg : {d::Safeguard::kFrequentBisection, d::Safeguard::kStalledBracket}) {
+  for (auto sg :
+       {d::Safeguard::kFrequentBisection, d::Safeguard::kStalledBracket, d::Safeguard::kSecant}) {
     const Counted c = root_of(f, 0.0, 2.0, 1e-15, sg);
     EXPECT_NEAR(c.root, std::cbrt(2.0), 4e-15);
   }
@@ -61,11 +63,27 @@ TEST(BracketedRoot, StalledBracketSafeguardKeepsIllinoisFast) {
   EXPECT_LT(fast.evaluations, slow.evaluations);
 }
 
+TEST(BracketedRoot, SecantConvergesFromOneSideOfAConvexFunction) {
+  // The shape of the width's load in x = ln w: ln lambda = 2 x + ln(1 + e^x)
+  // (Hertz's w^2, stiffened by the foundation), convex, bracketed about as
+  // the solver brackets it. Regula falsi keeps one end of the bracket and
+  // waits for Illinois' halving; the secant on the last two points goes on
+  // from one side. The root is -1.25 by construction.
+  const double c = -2.5 + std::log1p(std::exp(-1.25));
+  const auto f = [c](double x) { return 2.0 * x + std::log1p(std::exp(x)) - c; };
+  const Counted illinois = root_of(f, -1.45, -1.15, 1e-15, d::Safeguard::kStalledBracket, 1e-15);
+  const Counted secant = root_of(f, -1.45, -1.15, 1e-15, d::Safeguard::kSecant, 1e-15);
+  EXPECT_NEAR(secant.root, -1.25, 1e-15);
+  EXPECT_NEAR(illinois.root, -1.25, 1e-15);
+  EXPECT_LT(secant.evaluations, illinois.evaluations);
+}
+
 TEST(BracketedRoot, NonMonotoneFunctionGivesOneOfItsRoots) {
   // cos on [1, 8] changes sign once overall but has three roots inside
   // (pi/2, 3 pi/2, 5 pi/2): the answer is one of them, to round-off.
   const auto f = [](double x) { return std::cos(x); };
-  for (auto sg : {d::Safeguard::kFrequentBisection, d::Safeguard::kStalledBracket}) {
+  for (auto sg :
+       {d::Safeguard::kFrequentBisection, d::Safeguard::kStalledBracket, d::Safeguard::kSecant}) {
     const Counted c = root_of(f, 1.0, 8.0, 1e-14, sg);
     double best = std::numeric_limits<double>::infinity();
     for (int k : {1, 3, 5}) best = std::min(best, std::fabs(c.root - 0.5 * k * kPi));
@@ -77,7 +95,8 @@ TEST(BracketedRoot, StopsAtAdjacentDoublesInsteadOfSpinning) {
   // xtol = 0 cannot be met: it stops when lo and hi are adjacent doubles
   // (before: all 200 steps), within a double of 1/3.
   const auto f = [](double x) { return x - 1.0 / 3.0; };
-  for (auto sg : {d::Safeguard::kFrequentBisection, d::Safeguard::kStalledBracket}) {
+  for (auto sg :
+       {d::Safeguard::kFrequentBisection, d::Safeguard::kStalledBracket, d::Safeguard::kSecant}) {
     const Counted c = root_of(f, 0.0, 1.0, 0.0, sg);
     EXPECT_LE(std::fabs(c.root - 1.0 / 3.0), 2.0 * std::numeric_limits<double>::epsilon());
     EXPECT_LT(c.evaluations, 200);
@@ -151,6 +170,45 @@ TEST(SolveSkeleton, BothSolversRefuseOutOfRangeWidthsWithTheSharedMessage) {
     EXPECT_NE(std::string(e.what()).find(range), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("radius * load must be >="), std::string::npos)
         << e.what();
+  }
+}
+
+TEST(AsymmetricLazyOutputs, StressEstimateIsTheSameWhateverIsReadFirstAndFromAnyThread) {
+  // The surface sigma_x's error estimate and the fine Fourier nodes are
+  // computed on first use (about half a warm solve): the estimate must not
+  // depend on whether the stress was read before it, nor on which of two
+  // threads asks first; the stress must not depend on whether the estimate's
+  // build (which also transforms the pressure's change) made the nodes.
+  for (double friction : {0.0, 0.3}) {
+    mp::AsymmetricParams p;
+    p.vstar = 0.3;
+    p.kw = 1.0;
+    p.nu = 0.2;
+    p.radius = 100.0;
+    p.load = 0.002;
+    p.damping = 0.1;
+    p.friction = friction;
+    const mp::AsymmetricSolution first = mp::solve_asymmetric(p);
+    const double est = first.stress_error_estimate();
+    const double sx = first.surface_stress(first.centre() + 0.3 * first.half_width());
+    ASSERT_TRUE(std::isfinite(est) && est > 0.0) << est;
+    const mp::AsymmetricSolution second = mp::solve_asymmetric(p);
+    EXPECT_EQ(second.surface_stress(second.centre() + 0.3 * second.half_width()), sx);
+    EXPECT_EQ(second.stress_error_estimate(), est);
+    // A copy shares the lazy state: two threads at once, one value.
+    const mp::AsymmetricSolution third = mp::solve_asymmetric(p);
+    const mp::AsymmetricSolution copy = third;
+    double e1 = 0.0, e2 = 0.0, s1 = 0.0;
+    std::thread a([&] { e1 = third.stress_error_estimate(); });
+    std::thread b([&] {
+      s1 = copy.surface_stress(copy.centre() + 0.3 * copy.half_width());
+      e2 = copy.stress_error_estimate();
+    });
+    a.join();
+    b.join();
+    EXPECT_EQ(e1, est);
+    EXPECT_EQ(e2, est);
+    EXPECT_EQ(s1, sx);
   }
 }
 

@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -161,6 +162,11 @@ class AsymmetricKernel {
   // frictionless steady contact is unique: a valid one is the only one (no
   // scan for other steady states is needed; docs/theory.md section 9).
   bool positive_form() const noexcept { return base_->positive_form; }
+  // The surface's band beside a contact (gap_scan.hpp's response_band of
+  // |M1 - H|, H the medium's half-plane part, whose memory a viscoelastic
+  // top's gap takes exactly): the gap checks' sampling step, decided once
+  // per quadrature as positive_form.
+  double surface_band() const noexcept { return base_->surface_band; }
 
  private:
   static constexpr int kDegree = 24;
@@ -171,6 +177,7 @@ class AsymmetricKernel {
     std::vector<double> kr, ki;  // Filon coefficients of Re, Im (M1 - phi1)/phi1
     double friction = 0.0;
     bool positive_form = false;
+    double surface_band = 0.0;
   };
   std::shared_ptr<const Base> base_;
   double range_ = 0, width_ = 0, table_error_ = 0;
@@ -291,7 +298,9 @@ class AsymmetricSolution {
   double pressure_error_estimate() const noexcept { return perr_; }
   // Bound on the error of the surface sigma_x/(P/h) at points more than
   // 1e-3 (a + b)/2 from the contact ends (sigma_x has a square-root cusp there).
-  double stress_error_estimate() const noexcept { return serr_; }
+  // Computed on first call (it needs the pressure's transform at the fine
+  // nodes: about half a warm solve of a smooth punch), then kept; thread-safe.
+  double stress_error_estimate() const;
   // Maximum of p/(P/h) on the contact (+inf for a flat punch, whose
   // pressure is unbounded at its edges).
   double max_pressure() const noexcept { return max_p_; }
@@ -414,7 +423,7 @@ class AsymmetricSolution {
   AsymmetricParams params_{};
   double end_k_back_ = 0, end_k_front_ = 0, end_k_err_ = 0;
   double centre_ = 0, half_ = 0, drag_ = 0, vcr_ = 0, vr_ = 0, err_ = 0, elapsed_ = 0;
-  double perr_ = 0, serr_ = 0, max_p_ = 0, margin_ = 0, trunc_ = 0;
+  double perr_ = 0, max_p_ = 0, margin_ = 0, trunc_ = 0;
   std::shared_ptr<const PunchProfile> punch_;
   std::vector<std::string> warnings_;
   int iterations_ = 0, n_ = 0, kernel_builds_ = 0;
@@ -479,8 +488,25 @@ class AsymmetricSolution {
   };
   // Resolving p^'s own oscillation (freq 2w; the centre's phase is shifted
   // out): Filon integrals at any x (surface sigma_x, the estimates, the
-  // dissipation). Built by solve_asymmetric.
-  std::shared_ptr<const Fine> light_;
+  // dissipation). Built on first use (light()), then shared between copies.
+  struct LightCache {
+    std::mutex mutex;
+    std::shared_ptr<const Fine> fine;
+  };
+  std::shared_ptr<LightCache> light_cache_ = std::make_shared<LightCache>();
+  const Fine& light() const;
+  // Installs f as light() unless one is there already (a build that came
+  // with more, as the stress estimate's).
+  void offer_light(Fine f) const;
+  // The stress estimate, computed on first read by `compute` (the solve's
+  // inputs to it captured by value), or given (`done`) by the solve.
+  struct StressCache {
+    std::mutex mutex;
+    bool done = false;
+    double value = 0.0;
+    std::function<double(const AsymmetricSolution&)> compute;
+  };
+  std::shared_ptr<StressCache> stress_cache_ = std::make_shared<StressCache>();
   // Resolving e^{i alpha x} for |x| <= 3 (a + b) too (the direct sums of the
   // bottom outputs): built on first use, then shared.
   struct FineCache {
