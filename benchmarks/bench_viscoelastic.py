@@ -15,7 +15,8 @@ against the same layer elastic, and a resistance curve of 100 speeds.
   kept only for the 16 most recent media).
 * With the layer's inertia: the Zener layer and a three-branch Prony layer
   moving at vstar 0.1 (warm), against the elastic layer at vstar 0.1 on the
-  asymmetric solver.
+  asymmetric solver and on the symmetric one. And the warm Zener solve with
+  its stress error estimate read (computed on first read).
 * Viscoelastic sublayers in stacks moving at vstar 0.1 (a Zener course on
   an elastic base on springs; a Zener soil under an elastic top on a
   half-space), against the same stacks with their relaxed elastic moduli.
@@ -121,6 +122,23 @@ def main() -> None:
         ),
         args.repeat,
     )
+    sym_moving = _median_ms(
+        lambda load: mp.solve(vstar=0.1, load=load, radius=RADIUS, kw=KW, nu=NU),
+        args.repeat,
+    )
+    # The same warm Zener solve with its stress error estimate read (computed
+    # on first read: the pressure's transform at the fine Fourier nodes).
+    with_estimate = _median_ms(
+        lambda load: zener(load).stress_error_estimate, args.repeat
+    )
+    sym_estimate = _median_ms(
+        lambda load: (
+            mp.solve(
+                vstar=0.0, load=load, radius=RADIUS, kw=KW, nu=NU
+            ).stress_error_estimate
+        ),
+        args.repeat,
+    )
     asym_moving = _median_ms(
         lambda load: mp.solve(
             vstar=0.1, load=load, radius=RADIUS, kw=KW, nu=NU, friction=1e-12
@@ -180,6 +198,15 @@ def main() -> None:
         ("elastic layer moving, asymmetric solver", asym_moving),
     ):
         print(f"{name:44} {ms:8.2f} {ms / asym_moving:9.1f}")
+    print(
+        f"{'elastic layer moving, symmetric solver':44} {sym_moving:8.2f} "
+        f"(Zener moving / it: {moving / sym_moving:.1f})"
+    )
+    print(
+        f"{'Zener layer, its stress estimate read too':44} {with_estimate:8.2f} "
+        f"(/ the symmetric elastic's, {sym_estimate:.2f} ms: "
+        f"{with_estimate / sym_estimate:.1f})"
+    )
     print(f"{'stack moving at vstar 0.1':44} {'ms':>8} {'/elastic':>9}")
     for name, ms, elastic_ms in stacks:
         print(f"{name:44} {ms:8.2f} {ms / elastic_ms:9.1f}")

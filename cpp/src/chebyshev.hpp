@@ -21,20 +21,17 @@ inline double chebyshev_sum(const double* c, int degree, double x) {
   return c[0] + x * b1 - b2;
 }
 
-// cos(pi k (j + 1/2)/m), row k, column j (m x m, row-major), for the
-// interpolants' sizes m = d + 1, d = 16, 32, 64, 128: computed once (a
-// degree-128 interpolant's transform needs 16641 of them; the gap checks of
-// every solve build several).
+// cos(pi m/d), m = 0 .. 2d - 1, for the interpolants' degrees d = 16, 32,
+// 64, 128: computed once (the transform of a degree-d interpolant takes
+// (d + 1)^2 of them; the gap checks of every solve build several).
 inline const double* interpolant_cosines(int d) {
   static const std::array<std::vector<double>, 4> tables = [] {
     std::array<std::vector<double>, 4> t;
     for (std::size_t i = 0; i < t.size(); ++i) {
-      const int m = (16 << i) + 1;
-      t[i].resize(static_cast<std::size_t>(m) * static_cast<std::size_t>(m));
-      for (int k = 0; k < m; ++k)
-        for (int j = 0; j < m; ++j)
-          t[i][static_cast<std::size_t>(k) * static_cast<std::size_t>(m) +
-               static_cast<std::size_t>(j)] = std::cos(3.14159265358979323846 * k * (j + 0.5) / m);
+      const int deg = 16 << i;
+      t[i].resize(2 * static_cast<std::size_t>(deg));
+      for (int m = 0; m < 2 * deg; ++m)
+        t[i][static_cast<std::size_t>(m)] = std::cos(3.14159265358979323846 * m / deg);
     }
     return t;
   }();
@@ -43,9 +40,11 @@ inline const double* interpolant_cosines(int d) {
 }
 
 // A smooth function on [a, b] as its Chebyshev interpolant at the points of
-// the first kind, of degree 16, 32, 64 or 128: the first whose last two
-// coefficients are at the round-off of its values (64 eps of the largest);
-// none (ok() false: evaluate directly) when even 128 is not.
+// the second kind x_j = mid + half cos(pi j/d), of degree d = 16, 32, 64 or
+// 128: the first whose last two coefficients are at the round-off of its
+// values (64 eps of the largest); none (ok() false: evaluate directly) when
+// even 128 is not. The points nest: each degree evaluates f only at the d/2
+// points the last one lacked (129 values in all up to 128, not 245).
 class SmoothInterpolant {
  public:
   template <class F>
@@ -57,31 +56,38 @@ class SmoothInterpolant {
             },
             a, b) {}
   // The same from a batch of values: fill(xs, v) sets v[j] = f(xs[j]) (v
-  // sized as xs; the points descend, x_j = mid + half cos(pi (j + 1/2)/m)).
+  // sized as xs; the points descend).
   struct Batch {};
   template <class Fill>
   SmoothInterpolant(Batch, const Fill& fill, double a, double b)
       : mid_(0.5 * (a + b)), half_(0.5 * (b - a)) {
+    std::vector<double> vals, xs, v;  // vals: f at cos(pi j/d), j = 0 .. d
     for (int d = 16; d <= 128 && half_ > 0.0; d *= 2) {
-      const int m = d + 1;
-      const auto um = static_cast<std::size_t>(m);
+      const auto ud = static_cast<std::size_t>(d);
       const double* cs = interpolant_cosines(d);
-      std::vector<double> xs(um), v(um);
-      for (std::size_t j = 0; j < um; ++j) xs[j] = mid_ + half_ * cs[um + j];  // (row k = 1)
+      // The new points: all at the first degree, else the odd j (the even
+      // ones are the last degree's points).
+      const std::size_t step = d == 16 ? 1 : 2, first = d == 16 ? 0 : 1;
+      xs.clear();
+      for (std::size_t j = first; j <= ud; j += step) xs.push_back(mid_ + half_ * cs[j]);
+      v.assign(xs.size(), 0.0);
       fill(xs, v);
+      std::vector<double> next(ud + 1);
+      for (std::size_t j = 0; j <= ud; ++j)
+        next[j] = (j - first) % step == 0 ? v[(j - first) / step] : vals[j / 2];
+      vals = std::move(next);
       double vmax = 0.0;
-      for (double x : v) vmax = std::max(vmax, std::fabs(x));
-      c_.assign(um, 0.0);
-      for (std::size_t k = 0; k < um; ++k) {
-        double sum = 0.0;
-        for (std::size_t j = 0; j < um; ++j) sum += v[j] * cs[k * um + j];
-        c_[k] = (k == 0 ? 1.0 : 2.0) * sum / m;
+      for (double x : vals) vmax = std::max(vmax, std::fabs(x));
+      // c_k = (2/d) sum_j'' f_j cos(pi j k/d) (the end terms halved; c_0 and
+      // c_d halved too).
+      c_.assign(ud + 1, 0.0);
+      for (std::size_t k = 0; k <= ud; ++k) {
+        double sum = 0.5 * (vals[0] + vals[ud] * cs[(ud * k) % (2 * ud)]);
+        for (std::size_t j = 1; j < ud; ++j) sum += vals[j] * cs[(j * k) % (2 * ud)];
+        c_[k] = ((k == 0 || k == ud) ? 1.0 : 2.0) * sum / d;
       }
       if (!std::isfinite(vmax)) break;
-      if (std::fabs(c_[static_cast<std::size_t>(d - 1)]) +
-              std::fabs(c_[static_cast<std::size_t>(d)]) <=
-          64.0 * 2.220446049250313e-16 * vmax)
-        return;
+      if (std::fabs(c_[ud - 1]) + std::fabs(c_[ud]) <= 64.0 * 2.220446049250313e-16 * vmax) return;
     }
     c_.clear();
   }

@@ -10,6 +10,7 @@
 #include <thread>
 #include <vector>
 
+#include "chebyshev.hpp"
 #include "movingpunch/asymmetric.hpp"
 #include "movingpunch/contact.hpp"
 #include "roots.hpp"
@@ -108,6 +109,37 @@ TEST(BracketedRoot, FunctionToleranceReturnsTheTrialPoint) {
   const Counted c = root_of(f, 0.0, 1.0, 0.0, d::Safeguard::kStalledBracket, 1e-3);
   EXPECT_LE(std::fabs(f(c.root)), 1e-3);
   EXPECT_LE(c.evaluations, 3);  // regula falsi on a line: the first point is exact
+}
+
+TEST(SmoothInterpolant, NestedPointsReachRoundOffAndRefuseAKink) {
+  // e^x sin(3x) on [0.2, 1.7]: entire, resolved at degree 32 or 64; each
+  // degree evaluates only the points the last one lacked (second-kind
+  // points nest), always in descending batches.
+  int values = 0;
+  bool descending = true;
+  auto f = [](double x) { return std::exp(x) * std::sin(3.0 * x); };
+  const d::SmoothInterpolant smooth(
+      d::SmoothInterpolant::Batch{},
+      [&](const std::vector<double>& xs, std::vector<double>& v) {
+        for (std::size_t j = 0; j < xs.size(); ++j) {
+          if (j > 0 && !(xs[j] < xs[j - 1])) descending = false;
+          v[j] = f(xs[j]);
+        }
+        values += static_cast<int>(xs.size());
+      },
+      0.2, 1.7);
+  ASSERT_TRUE(smooth.ok());
+  EXPECT_TRUE(descending);
+  EXPECT_TRUE(values == 17 || values == 33 || values == 65 || values == 129) << values;
+  double worst = 0.0;
+  for (int i = 0; i <= 1000; ++i) {
+    const double x = 0.2 + 1.5 * i / 1000.0;
+    worst = std::max(worst, std::fabs(smooth(x) - f(x)));
+  }
+  EXPECT_LT(worst, 1e-13);
+  // |x - 1| has a kink: no degree reaches round-off.
+  const d::SmoothInterpolant kink([](double x) { return std::fabs(x - 1.0); }, 0.2, 1.7);
+  EXPECT_FALSE(kink.ok());
 }
 
 TEST(SolveSkeleton, LadderIsEvenIncreasingAndCapped) {
