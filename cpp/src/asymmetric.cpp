@@ -678,21 +678,20 @@ void validate(const AsymmetricParams& p) {
                                "friction: a viscoelastic layer is solved frictionless (friction "
                                "= 0) so far; given friction = " +
                                    std::to_string(p.friction));
-      // A smooth punch with bounded ends: the memory's moments are those of
-      // the bounded density's U-series (a flat face's index +1 density is
-      // not), and on a rounded flat the pressure did not converge (its
-      // estimate 3e-3 at N = 512 after 25 s at deborah 1e-12, where the
-      // elastic layer's kinks converge: the kinks with the memory are not
-      // resolved yet).
+      // A smooth punch with bounded ends (the memory's moments against the
+      // U-series) or a flat face (against its T-series); on a rounded flat
+      // the pressure did not converge (its estimate 3e-3 at N = 512 after
+      // 25 s at deborah 1e-12, where the elastic layer's kinks converge:
+      // the kinks with the memory are not resolved yet).
       const ProfileKind kind = p.punch().kind();
-      if (kind == ProfileKind::flat || kind == ProfileKind::rounded_flat)
-        throw InvalidParameter("profile",
-                               "a smooth punch (cylinder or convex table) on a viscoelastic layer",
-                               "profile: a " + std::string(profile_kind_name(kind)) +
-                                   " punch on a viscoelastic layer is not solved yet (the "
-                                   "memory at the face's ends or kinks is not resolved); a "
-                                   "cylinder or a convex table is; given the " +
-                                   p.punch().describe());
+      if (kind == ProfileKind::rounded_flat)
+        throw InvalidParameter(
+            "profile", "a cylinder, a flat punch or a convex table on a viscoelastic layer",
+            "profile: a " + std::string(profile_kind_name(kind)) +
+                " punch on a viscoelastic layer is not solved yet (the memory at the face's "
+                "kinks is not resolved); a cylinder, a flat punch or a convex table is; given "
+                "the " +
+                p.punch().describe());
     }
     validate_scalars(r, visco);
     return;
@@ -2763,6 +2762,8 @@ double AsymmetricSolution::kernel_part(double x) const { return regular_part(x) 
 double AsymmetricSolution::memory_part(double x) const {
   // A viscoelastic top's memory part, exact against the U-series of g.
   const MemoryKernel* mem = model_->memory();
+  if (mem && t_coef_.size() > 0)  // a flat face: its T-series
+    return mem->apply(t_coef_, (x - centre_) / half_, half_, MemoryBasis::T) / half_;
   return mem ? mem->apply(b_, (x - centre_) / half_, half_) / half_ : 0.0;
 }
 
@@ -3200,6 +3201,7 @@ StressField AsymmetricSolution::stress_field(const Eigen::Ref<const Eigen::Vecto
                                              const Eigen::Ref<const Eigen::VectorXd>& y,
                                              bool below) const {
   detail::check_grid(x, y);
+  refuse_flat_memory("stress field below the surface");
   // A viscoelastic layer with inertia: the modes' half-plane part moves with
   // vstar/m(alpha), so the remainder below the relaxed half-plane's decays
   // only like e^{-nT alpha |y|}. Beyond the fine nodes, depths where that is
@@ -3327,6 +3329,33 @@ double AsymmetricSolution::bottom_slope(double x) const {
 }
 
 double AsymmetricSolution::dissipation() const {
+  if (model_->memory() != nullptr && t_coef_.size() > 0) {
+    // A flat face on a viscoelastic top: |p^|^2 decays only like 1/alpha
+    // (its square-root edges), too slowly for the Parseval sum's tail. The
+    // same power in x instead: the surface slope's even kernel is Im M1's,
+    // the Cauchy term odd, so load phi1 w int p (regular + memory) dx is
+    // (load/pi) int Im M1 |p^|^2 (an absolutely convergent integral; the
+    // edges' suction, which the drag is, is the Cauchy term's finite part,
+    // not used here). By Gauss-Legendre in theta (x = c + w cos theta: p dx
+    // = (P/h) w g d theta, the memory's square roots at the edges analytic
+    // in theta), doubled until two agree to 1e-14.
+    double prev = std::numeric_limits<double>::quiet_NaN();
+    for (int m = 32; m <= 2048; m *= 2) {
+      const std::shared_ptr<const JacobiRule> gl = cached_gauss_jacobi(m, 0.0, 0.0);
+      double sum = 0.0;
+      for (Eigen::Index q = 0; q < gl->x.size(); ++q) {
+        const double th = 0.5 * kPi * (gl->x(q) + 1.0), r = std::cos(th);
+        sum += gl->w(q) * jac_->g(r) * kernel_part(centre_ + half_ * r);
+      }
+      const double now = params_.load * model_->phi1() * half_ * half_ * 0.5 * kPi * sum;
+      if (std::fabs(now - prev) <= 1e-14 * std::fabs(now) + 1e-300) return now;
+      prev = now;
+    }
+    std::ostringstream msg;
+    msg << "dissipation: the flat face's power integral did not settle at 2048 nodes (last " << prev
+        << ")";
+    throw ConvergenceError(msg.str());
+  }
   const Fine& f = light();
   if (model_->spec().viscoelastic()) {
     // A viscoelastic medium: the power the surface takes in, by Parseval,
@@ -3859,13 +3888,25 @@ double AsymmetricSolution::surface_displacement(double x) const {
     throw InvalidParameter("x", "finite",
                            "surface_displacement: x must be finite, got " + std::to_string(x));
   if (std::fabs(x) > kFarField) return 0.0;  // as SymmetricSolution's (stresses.hpp)
+  refuse_flat_memory("surface displacement");
   if (jac_ && model_->long_wave_m1() != 0.0)
     layered_refusal(*model_, "the displacement with friction (a logarithmic far field)");
   if (jac_) return friction_displacement(Eigen::VectorXd::Constant(1, x), 0.0)(0);
   return params_.load * surface_value(*surface(), x);
 }
 
+void AsymmetricSolution::refuse_flat_memory(const char* what) const {
+  if (model_->memory() == nullptr || t_coef_.size() == 0) return;
+  throw InvalidParameter(
+      "profile", "a cylinder or a convex table for this output on a viscoelastic layer",
+      std::string("profile: the ") + what +
+          " of a flat punch on a viscoelastic layer is not computed yet (the memory's "
+          "displacement against the face's square-root edges); its contact, pressure, drag, "
+          "dissipation, surface slope and surface stress are");
+}
+
 double AsymmetricSolution::indentation() const {
+  refuse_flat_memory("indentation");
   if (jac_ && model_->long_wave_m1() != 0.0)
     layered_refusal(*model_, "the indentation with friction (a logarithmic far field)");
   if (jac_) {  // the punch's rigid approach at the contact's centre
@@ -3881,6 +3922,7 @@ double AsymmetricSolution::indentation() const {
 Eigen::MatrixXd AsymmetricSolution::displacement(const Eigen::Ref<const Eigen::VectorXd>& x,
                                                  const Eigen::Ref<const Eigen::VectorXd>& y) const {
   detail::check_grid(x, y);
+  refuse_flat_memory("displacement");
   // Under a half-space (m0 != 0) every depth is measured from the surface at
   // x = kDisplacementReference (surface_value's reference; far_field below).
   if (jac_ && model_->long_wave_m1() != 0.0)

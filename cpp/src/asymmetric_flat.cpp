@@ -24,6 +24,7 @@
 #include "movingpunch/asymmetric.hpp"
 #include "movingpunch/dispersion.hpp"
 #include "movingpunch/errors.hpp"
+#include "movingpunch/viscoelastic.hpp"
 #include "solve_skeleton.hpp"
 
 namespace movingpunch {
@@ -50,6 +51,21 @@ Eigen::VectorXd flat_nodal_g(const ChebyshevNodes& nd, double w, const Asymmetri
     }
     // Equilibrium: int p dx/(P/h) = w int w(r) g(r) dr = pi w sum W_i g_i = 1.
     M(m, i) = kPi * w * nd.w(i);
+  }
+  // A viscoelastic top's memory (frictionless: the weight 1/sqrt(1 - r^2),
+  // g = sum_q c_q T_q with c_q = (2 - delta_q0) sum_i W_i T_q(r_i) g_i at
+  // the N Chebyshev nodes), exactly against the T basis:
+  //   B(k, i) = -W_i sum_q (2 - delta_q0) T_q(r_i) mom_q(s_k).
+  if (const MemoryKernel* mem = K.model().memory()) {
+    using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+    RowMajor mom(m, n);
+    mem->moments_descending(nd.s.data(), m, w, n, mom.data(), MemoryBasis::T);
+    Eigen::MatrixXd basis(n, n);  // (q, i): -(2 - delta_q0) W_i T_q(r_i)
+    for (int i = 0; i < n; ++i) {
+      const double th = std::acos(std::clamp(nd.r(i), -1.0, 1.0));
+      for (int q = 0; q < n; ++q) basis(q, i) = -(q == 0 ? 1.0 : 2.0) * nd.w(i) * std::cos(q * th);
+    }
+    M.topRows(m) += mom * basis;
   }
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
   rhs(m) = 1.0;
@@ -245,6 +261,17 @@ AsymmetricSolution solve_asymmetric_flat(const AsymmetricParams& prm_in) {
   s.centre_ = 0.0;
   s.b_ = js.coefficients();
   s.jac_ = std::make_shared<const JacobiSeries>(js);
+  if (s.model_->memory() != nullptr) {
+    // g's T coefficients (the memory's basis), exact from M > deg g values at
+    // the Chebyshev points: c_q = (2 - delta_q0)/M sum_j g(cos th_j) cos(q th_j).
+    const int M = static_cast<int>(js.size()) + 1;
+    s.t_coef_ = Eigen::VectorXd::Zero(M - 1);
+    for (int j = 0; j < M; ++j) {
+      const double th = kPi * (j + 0.5) / M, gj = js.g(std::cos(th));
+      for (int q = 0; q + 1 < M; ++q)
+        s.t_coef_(q) += (q == 0 ? 1.0 : 2.0) * gj * std::cos(q * th) / M;
+    }
+  }
   s.err_ = 0.0;  // the ends are the face's: exact
   // The horizontal force: the face's normal pressure has none (f' = 0), but
   // each square-root singular edge carries one, the limit of corners rounded
@@ -256,7 +283,10 @@ AsymmetricSolution solve_asymmetric_flat(const AsymmetricParams& prm_in) {
   // dashpots' dissipation equals (the energy balance; tested). With friction
   // the trailing edge's p^2 is not integrable: the rounded corners' force
   // has no finite sharp limit, and drag reports the face's part, 0.
-  s.drag_ = frictional ? 0.0 : prm.load * wc.phi1 * (kf * kf - kb * kb) / 4.0;
+  // (A viscoelastic top: the edges see its unrelaxed half-plane, H_inf.)
+  s.drag_ = frictional ? 0.0
+                       : prm.load * (s.model_->memory() ? s.model_->phi1() : wc.phi1) *
+                             (kf * kf - kb * kb) / 4.0;
   s.end_k_back_ = kb;
   s.end_k_front_ = kf;
   s.end_k_err_ = est_k.estimate;

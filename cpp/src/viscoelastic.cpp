@@ -503,6 +503,10 @@ struct NodeList {
 
 struct NodeSet {
   NodeList inside, beyond;
+  // The density's basis: U (h_n = T_{n+1} inside, rho^{n+1} beyond) or T
+  // (h_n = -U_{n-1} inside, sgn(x) rho^n/sqrt(x^2 - 1) beyond: the beyond
+  // nodes' jac then carries 1/(|rho| sqrt(x^2 - 1)), their powers as U's).
+  MemoryBasis basis = MemoryBasis::U;
   void clear() {
     inside.clear();
     beyond.clear();
@@ -544,7 +548,9 @@ void exponential_cuts(const double* l, std::size_t m, std::vector<double>& cuts)
 // pieces analytic and short for the weight and for h_n's oscillation or
 // decay, the branch points x = +-1 taken in angles.
 void build_nodes(double s, double e0_in, double e1_in, const std::vector<double>& ecuts, int count,
-                 std::vector<double>& cuts, NodeSet& nodes) {
+                 std::vector<double>& cuts, NodeSet& nodes, MemoryBasis basis) {
+  nodes.basis = basis;
+  const bool tb = basis == MemoryBasis::T;
   static const std::shared_ptr<const JacobiRule> gl = cached_gauss_jacobi(16, 0.0, 0.0);
   const Eigen::VectorXd& gx = gl->x;
   const Eigen::VectorXd& gw = gl->w;
@@ -565,12 +571,14 @@ void build_nodes(double s, double e0_in, double e1_in, const std::vector<double>
     NodeList& list = inside ? nodes.inside : nodes.beyond;
     for (Eigen::Index q = 0; q < gx.size(); ++q) {
       const double eta = c + h * gx(q), x = s + eta;
-      double v = x;
+      double v = x, jac = h * gw(q);
       if (!inside) {
-        const double ax = std::fabs(x), r = 1.0 / (ax + std::sqrt((ax - 1.0) * (ax + 1.0)));
+        const double ax = std::fabs(x), root = std::sqrt((ax - 1.0) * (ax + 1.0));
+        const double r = 1.0 / (ax + root);
         v = x > 0.0 ? r : -r;
+        if (tb) jac /= r * root;
       }
-      list.push(eta, h * gw(q), v);
+      list.push(eta, jac, v);
     }
   };
   for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
@@ -606,7 +614,11 @@ void build_nodes(double s, double e0_in, double e1_in, const std::vector<double>
     // Near the branch point: parametrised by phi (x - 1 or -1 - x exact).
     const double ea = right ? s + e0 - 1.0 : -1.0 - (s + e1);
     const double eb = right ? s + e1 - 1.0 : -1.0 - (s + e0);
-    const double pa = acosh1p(std::max(0.0, ea)), pb = acosh1p(std::max(0.0, eb));
+    // The branch point's own cut lands within a rounding of s + (1 - s) of
+    // it: from there phi starts at 0 (acosh of a 2e-16 excess is 2e-8, and
+    // the T basis' integrand in phi, e^{-n phi}, does not vanish there).
+    const double at_branch = 4.0 * std::numeric_limits<double>::epsilon() * (1.0 + std::fabs(s));
+    const double pa = ea <= at_branch ? 0.0 : acosh1p(ea), pb = acosh1p(std::max(0.0, eb));
     // eta at |x| = cosh phi: right: (cosh phi - 1) - (s - 1); left: (-1 - s) - (cosh phi - 1).
     double p = pa;
     while (p < pb) {
@@ -622,7 +634,8 @@ void build_nodes(double s, double e0_in, double e1_in, const std::vector<double>
         const double sinh_phi = sh * (e + 1.0 / e);   // 2 sinh(phi/2) cosh(phi/2)
         const double eta = right ? cm1 - (s - 1.0) : (-1.0 - s) - cm1;
         const double r = 1.0 / (e * e);  // e^{-phi}
-        nodes.beyond.push(eta, sinh_phi * h * gw(q), right ? r : -r);
+        // (T: dx/sqrt(x^2 - 1) = d phi, over |rho| = e^-phi.)
+        nodes.beyond.push(eta, tb ? h * gw(q) * e * e : sinh_phi * h * gw(q), right ? r : -r);
       }
       p = q1;
     }
@@ -657,9 +670,12 @@ void weighted_sum(const NodeSet& nodes, const std::vector<double>& w_in,
   for (std::size_t b = 0; b < w_in.size(); b += L) {
     double x2[L], wt[L], tm[L], t[L];
     lanes(nodes.inside.value, w_in, b, t, wt);
+    // U: T_{n+1} from T_1 = x, T_0 = 1; T: -U_{n-1} from 0 (n = 0) and -U_{-2} = 1.
+    const bool tb = nodes.basis == MemoryBasis::T;
     for (int l = 0; l < L; ++l) {
       x2[l] = 2.0 * t[l];
       tm[l] = 1.0;
+      if (tb) t[l] = 0.0;
     }
     double* a = acc.data();
     for (int n = 0; n < count; ++n, a += L) {
@@ -699,11 +715,12 @@ void weighted_sum(const NodeSet& nodes, const std::vector<double>& w_in,
 
 // Adds l int_{s + e0}^{s + e1} e^{-l (x - s)} h_n(x) dx to out[n], n < count
 // (0 <= e0 < e1 <= kReach/l).
-void add_segment(double s, double l, double e0, double e1, int count, double* out) {
+void add_segment(double s, double l, double e0, double e1, int count, double* out,
+                 MemoryBasis basis) {
   Scratch& w = scratch();
   exponential_cuts(&l, 1, w.ecuts);
   w.nodes.clear();
-  build_nodes(s, e0, e1, w.ecuts, count, w.cuts, w.nodes);
+  build_nodes(s, e0, e1, w.ecuts, count, w.cuts, w.nodes, basis);
   w.w_in.resize(w.nodes.inside.size());
   w.w_out.resize(w.nodes.beyond.size());
   for (auto [list, wt] : {std::pair{&w.nodes.inside, &w.w_in}, {&w.nodes.beyond, &w.w_out}})
@@ -878,6 +895,7 @@ void term_sums(const NodeSet& nodes, Cluster& cl, double len, bool chained, int 
           for (int k = 0; k < L; ++k) {
             x2[k] = 2.0 * v[k];
             tm[k] = 1.0;
+            if (nodes.basis == MemoryBasis::T) v[k] = 0.0;  // (weighted_sum's)
           }
           for (int n = 0; n < count; ++n, h += kChunk) {
             for (int k = 0; k < L; ++k) {
@@ -915,12 +933,12 @@ void term_sums(const NodeSet& nodes, Cluster& cl, double len, bool chained, int 
 // Adds sum_t c_t l_t J_n(s, l_t) (n < count) over one cluster: one set of
 // nodes for all its terms (exponential_cuts), against the sum of their
 // exponential weights.
-void add_cluster(double s, Cluster& cl, int count, double* out) {
+void add_cluster(double s, Cluster& cl, int count, double* out, MemoryBasis basis) {
   Scratch& w = scratch();
   exponential_cuts(cl.l, cl.m, w.ecuts);
   const double reach = w.ecuts.back();
   w.nodes.clear();
-  build_nodes(s, 0.0, reach, w.ecuts, count, w.cuts, w.nodes);
+  build_nodes(s, 0.0, reach, w.ecuts, count, w.cuts, w.nodes, basis);
   combined_weights(w.nodes, cl, reach, w.w_in, w.w_out);
   weighted_sum(w.nodes, w.w_in, w.w_out, count, w.acc, out);
 }
@@ -933,7 +951,8 @@ void add_cluster(double s, Cluster& cl, int count, double* out) {
 // the previous one exceeds the cluster's reach starts afresh (the carried
 // part is below e^-kReach), and one whose next row starts afresh needs no
 // G_t: the sum of the weights will do.
-void add_cluster_descending(const double* s, int rows, Cluster& cl, int count, double* mom) {
+void add_cluster_descending(const double* s, int rows, Cluster& cl, int count, double* mom,
+                            MemoryBasis basis) {
   Scratch& w = scratch();
   exponential_cuts(cl.l, cl.m, w.ecuts);
   const double reach = w.ecuts.back();
@@ -947,7 +966,7 @@ void add_cluster_descending(const double* s, int rows, Cluster& cl, int count, d
     const bool fresh = !(gap < reach);
     const bool feeds = k + 1 < rows && s[k] - s[k + 1] < reach;
     w.nodes.clear();
-    build_nodes(s[k], 0.0, len, w.ecuts, count, w.cuts, w.nodes);
+    build_nodes(s[k], 0.0, len, w.ecuts, count, w.cuts, w.nodes, basis);
     if (feeds) {
       term_sums(w.nodes, cl, len, !fresh, count, w, w.P);
       if (fresh) {
@@ -981,18 +1000,19 @@ void check_descending(const double* s, int rows) {
 
 }  // namespace
 
-void memory_moments(double s, double l, int count, double* out) {
+void memory_moments(double s, double l, int count, double* out, MemoryBasis basis) {
   if (count <= 0) return;
   check_moment_args(s, l);
   std::fill(out, out + count, 0.0);
-  add_segment(s, l, 0.0, kReach / l, count, out);
+  add_segment(s, l, 0.0, kReach / l, count, out, basis);
 }
 
-void memory_moments_descending(const double* s, int rows, double l, int count, double* out) {
+void memory_moments_descending(const double* s, int rows, double l, int count, double* out,
+                               MemoryBasis basis) {
   if (count <= 0 || rows <= 0) return;
   for (int k = 0; k < rows; ++k) check_moment_args(s[k], l);
   check_descending(s, rows);
-  memory_moments(s[0], l, count, out);
+  memory_moments(s[0], l, count, out, basis);
   // G(s_k) = l int_{s_k}^{s_{k-1}} e^{-l (x - s_k)} h_n + e^{-l (s_{k-1} - s_k)} G(s_{k-1}):
   // one short segment a row (the factor <= 1: stable downwards).
   for (int k = 1; k < rows; ++k) {
@@ -1000,7 +1020,7 @@ void memory_moments_descending(const double* s, int rows, double l, int count, d
     const double* prev = row - count;
     const double gap = s[k - 1] - s[k], f = std::exp(-l * gap);
     for (int n = 0; n < count; ++n) row[n] = f * prev[n];
-    add_segment(s[k], l, 0.0, std::min(gap, kReach / l), count, row);
+    add_segment(s[k], l, 0.0, std::min(gap, kReach / l), count, row, basis);
   }
 }
 
@@ -1020,7 +1040,7 @@ MemoryKernel::MemoryKernel(RetardationSpectrum spectrum) : spec_(std::move(spect
   starts_.push_back(order_.size());
 }
 
-void MemoryKernel::moments(double s, double w, int count, double* out) const {
+void MemoryKernel::moments(double s, double w, int count, double* out, MemoryBasis basis) const {
   if (count <= 0) return;
   std::fill(out, out + count, 0.0);
   thread_local std::vector<double> one, l, c;
@@ -1031,14 +1051,14 @@ void MemoryKernel::moments(double s, double w, int count, double* out) const {
     if (m == 1) {
       // One term: memory_moments itself.
       const std::size_t k = order_[j0];
-      memory_moments(s, w / spec_.beta[k], count, one.data());
+      memory_moments(s, w / spec_.beta[k], count, one.data(), basis);
       for (int n = 0; n < count; ++n) out[n] += spec_.c[k] * one[static_cast<std::size_t>(n)];
       continue;
     }
     cluster_terms(j0, m, w, l, c);
     for (double lt : l) check_moment_args(s, lt);
     prepare_cluster(l.data(), c.data(), m, count, cluster);
-    add_cluster(s, cluster, count, out);
+    add_cluster(s, cluster, count, out, basis);
   }
 }
 
@@ -1058,8 +1078,8 @@ Eigen::MatrixXd MemoryKernel::collocation_block(const ChebyshevNodes& nodes, dou
   return block_at(nodes.s.data(), nodes.n + 1, nodes, w);
 }
 
-void MemoryKernel::moments_descending(const double* s, int rows, double w, int count,
-                                      double* out) const {
+void MemoryKernel::moments_descending(const double* s, int rows, double w, int count, double* out,
+                                      MemoryBasis basis) const {
   // The moments of all rows in one downward sweep per cluster of retardation times.
   using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   Eigen::Map<RowMajor> mom(out, rows, count);
@@ -1073,7 +1093,7 @@ void MemoryKernel::moments_descending(const double* s, int rows, double w, int c
     if (m == 1) {
       // One term: memory_moments_descending itself.
       const std::size_t k = order_[j0];
-      memory_moments_descending(s, rows, w / spec_.beta[k], count, one.data());
+      memory_moments_descending(s, rows, w / spec_.beta[k], count, one.data(), basis);
       mom += spec_.c[k] * one;
       continue;
     }
@@ -1082,7 +1102,7 @@ void MemoryKernel::moments_descending(const double* s, int rows, double w, int c
       for (int r = 0; r < rows; ++r) check_moment_args(s[r], lt);
     check_descending(s, rows);
     prepare_cluster(l.data(), c.data(), m, count, cluster);
-    add_cluster_descending(s, rows, cluster, count, mom.data());
+    add_cluster_descending(s, rows, cluster, count, mom.data(), basis);
   }
 }
 
@@ -1128,11 +1148,11 @@ std::shared_ptr<const Eigen::MatrixXd> MemoryKernel::basis_weights(const Chebysh
   return slot;
 }
 
-double MemoryKernel::apply(const Eigen::VectorXd& b, double s, double w) const {
+double MemoryKernel::apply(const Eigen::VectorXd& b, double s, double w, MemoryBasis basis) const {
   const int n = static_cast<int>(b.size());
   thread_local std::vector<double> mom;
   mom.resize(static_cast<std::size_t>(n));
-  moments(s, w, n, mom.data());
+  moments(s, w, n, mom.data(), basis);
   double sum = 0.0;
   for (int q = 0; q < n; ++q) sum += b(q) * mom[static_cast<std::size_t>(q)];
   return sum;

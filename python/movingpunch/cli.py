@@ -56,7 +56,7 @@ from movingpunch.profiles import (
     PunchProfile,
     RoundedFlat,
 )
-from movingpunch.regime import given_indentation, hints_for
+from movingpunch.regime import hints_for
 from movingpunch.solver import (
     critical_vstar,
     critical_wavenumber,
@@ -383,12 +383,18 @@ def _build_parser() -> argparse.ArgumentParser:
 
 
 def _indentation_text(s: ContactSolution) -> str:
-    """The indentation, or "n/a" where the medium does not give it
-    (``regime.given_indentation``)."""
-    v = given_indentation(s)
-    return (
-        "n/a (a logarithmic far field under a half-space)" if math.isnan(v) else _fmt(v)
-    )
+    """The indentation, or "n/a" and why where it is not given
+    (``regime.given_indentation``: the solver's refusal names the reason)."""
+    try:
+        return _fmt(float(s.indentation))
+    except InvalidParameterError as exc:
+        said = str(exc)
+        why = (
+            "a logarithmic far field under a half-space"
+            if "logarithmic far field" in said
+            else said.split(":", 1)[-1].strip().split(" (")[0]
+        )
+        return f"n/a ({why})"
 
 
 def _fmt(value: float | int | bool | str) -> str:

@@ -39,6 +39,18 @@ Counted root_of(F f, double lo, double hi, double xtol, d::Safeguard sg, double 
   return c;
 }
 
+// The cylinder (R/h 100) on the paper's layer (kw 1, nu 0.2) with dashpots.
+mp::AsymmetricParams damped_cylinder(double vstar, double load, double damping) {
+  mp::AsymmetricParams p;
+  p.vstar = vstar;
+  p.kw = 1.0;
+  p.nu = 0.2;
+  p.radius = 100.0;
+  p.load = load;
+  p.damping = damping;
+  return p;
+}
+
 }  // namespace
 
 TEST(BracketedRoot, BothSafeguardsFindTheClosedFormRoot) {
@@ -212,13 +224,7 @@ TEST(AsymmetricLazyOutputs, StressEstimateIsTheSameWhateverIsReadFirstAndFromAny
   // threads asks first; the stress must not depend on whether the estimate's
   // build (which also transforms the pressure's change) made the nodes.
   for (double friction : {0.0, 0.3}) {
-    mp::AsymmetricParams p;
-    p.vstar = 0.3;
-    p.kw = 1.0;
-    p.nu = 0.2;
-    p.radius = 100.0;
-    p.load = 0.002;
-    p.damping = 0.1;
+    mp::AsymmetricParams p = damped_cylinder(0.3, 0.002, 0.1);
     p.friction = friction;
     const mp::AsymmetricSolution first = mp::solve_asymmetric(p);
     const double est = first.stress_error_estimate();
@@ -250,13 +256,7 @@ TEST(AsymmetricScanMemo, WarmSolvesReuseTheScanWithoutChangingAnyResult) {
   // memoised per kernel table and N: a warm solve (memo hit), and one after a
   // fixed-n solve on the same table (another N in the memo), must give the
   // cold solve's numbers exactly; a cold solve from an empty cache too.
-  mp::AsymmetricParams p;
-  p.vstar = 0.65;
-  p.kw = 1.0;
-  p.nu = 0.2;
-  p.radius = 100.0;
-  p.load = 0.0025;
-  p.damping = 0.01;
+  mp::AsymmetricParams p = damped_cylinder(0.65, 0.0025, 0.01);
   auto same = [](const mp::AsymmetricSolution& a, const mp::AsymmetricSolution& b) {
     EXPECT_EQ(a.left(), b.left());
     EXPECT_EQ(a.right(), b.right());

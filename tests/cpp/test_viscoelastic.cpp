@@ -31,8 +31,15 @@ mp::Viscoelastic prony3() {
 
 // e^z E1(z) continued to z < 0 as -e^z Ei(-z) (the principal value): the
 // Hilbert transform of the causal exponential, (1/beta) F(u/beta) = pi H[e](u).
+// (Beyond z = 30 by E1's continued fraction, e^z E1(z) = 1/(z + 1 - 1/(z +
+// 3 - 4/(z + 5 - ...))): libstdc++'s expint(-z) is its truncated asymptotic
+// series there, e^z E1(z) = 1/z exactly at z = 100.)
 double F(double z) {
-  if (z > 0.0) return -std::exp(z) * std::expint(-z);
+  if (z > 30.0) {
+    double f = 0.0;
+    for (int k = 80; k >= 1; --k) f = k * k / (z + 2.0 * k + 1.0 - f);
+    return 1.0 / (z + 1.0 - f);
+  }
   return -std::exp(z) * std::expint(-z);
 }
 
@@ -184,6 +191,73 @@ TEST(Viscoelastic, MemoryMomentsBesideTheContactAndInTheLimits) {
   std::vector<double> tiny(4);
   mp::memory_moments(0.2, 1e-10, 4, tiny.data());
   for (double v : tiny) EXPECT_LT(std::fabs(v), 1e-8);
+}
+
+TEST(Viscoelastic, MemoryMomentsOfAFlatFacesBasis) {
+  // The T basis T_n(r)/sqrt(1 - r^2) (a flat face's square-root edges):
+  // against the kernel's integral in closed form, (w/pi) int_0^pi cos(n th)
+  // F(w (s - cos th)/beta)/beta d th, on and beside the face.
+  for (double beta : {0.07, 0.6, 4.0}) {
+    for (double w : {0.3, 1.1}) {
+      for (double s : {-2.5, -1.2, -0.93, -0.2, 0.0, 0.55, 0.99, 1.05, 1.7, 6.0}) {
+        const int count = 9;
+        std::vector<double> got(count);
+        mp::memory_moments(s, w / beta, count, got.data(), mp::MemoryBasis::T);
+        for (int n = 0; n < count; ++n) {
+          auto f = [&](double th) {
+            return std::cos(n * th) * F(w * (s - std::cos(th)) / beta) / beta;
+          };
+          const double want =
+              std::fabs(s) < 1.0
+                  ? (w / kPi) * (tanh_sinh(f, 0.0, std::acos(s)) + tanh_sinh(f, std::acos(s), kPi))
+                  : (w / kPi) * tanh_sinh(f, 0.0, kPi);
+          EXPECT_NEAR(got[static_cast<std::size_t>(n)], want, 2e-11 * (1.0 + std::fabs(want)))
+              << "beta " << beta << " w " << w << " s " << s << " n " << n;
+        }
+      }
+    }
+  }
+  // sqrt(1 - r^2) U_n = (T_n - T_{n+2})/(2 sqrt(1 - r^2)): the U basis'
+  // moments (tested above) from the T basis', to round-off.
+  for (double l : {1e-3, 0.4, 7.0, 300.0}) {
+    for (double s : {-3.0, -1.0, -0.6, 0.2, 1.0, 1.3}) {
+      const int count = 24;
+      std::vector<double> u(count), t(count + 2);
+      mp::memory_moments(s, l, count, u.data());
+      mp::memory_moments(s, l, count + 2, t.data(), mp::MemoryBasis::T);
+      for (int n = 0; n < count; ++n) {
+        const auto k = static_cast<std::size_t>(n);
+        EXPECT_NEAR(u[k], 0.5 * (t[k] - t[k + 2]), 1e-13 * (1.0 + std::fabs(u[k])))
+            << "l " << l << " s " << s << " n " << n;
+      }
+    }
+  }
+  // At the face's front edge, n = 0: l int_1^inf e^{-l (x - 1)}/sqrt(x^2 - 1)
+  // dx = l e^l K_0(l).
+  for (double l : {0.01, 0.5, 3.0, 40.0}) {
+    double got = 0.0;
+    mp::memory_moments(1.0, l, 1, &got, mp::MemoryBasis::T);
+    EXPECT_NEAR(got, l * std::exp(l) * std::cyl_bessel_k(0.0, l), 1e-13) << l;
+  }
+  // Descending rows and a cluster of nearby times (the kernel's own paths)
+  // are each point's moments.
+  mp::RetardationSpectrum sp;
+  sp.c = {0.3, 0.5, 0.2, 1.0};
+  sp.beta = {0.2, 0.21, 0.25, 3.0};
+  sp.ratio = 3.0;
+  const mp::MemoryKernel mem(sp);
+  const std::vector<double> pts{2.0, 0.9, 0.3, -0.4, -0.99, -1.5};
+  const int count = 10;
+  std::vector<double> rows(pts.size() * count), one(count);
+  mem.moments_descending(pts.data(), static_cast<int>(pts.size()), 0.7, count, rows.data(),
+                         mp::MemoryBasis::T);
+  for (std::size_t k = 0; k < pts.size(); ++k) {
+    mem.moments(pts[k], 0.7, count, one.data(), mp::MemoryBasis::T);
+    for (int n = 0; n < count; ++n)
+      EXPECT_NEAR(rows[k * count + static_cast<std::size_t>(n)], one[static_cast<std::size_t>(n)],
+                  1e-13)
+          << pts[k] << " " << n;
+  }
 }
 
 TEST(Viscoelastic, CollocationBlockIsTheCauchyTermInTheRelaxedLimit) {

@@ -26,9 +26,11 @@ from movingpunch.tui.widgets import CurvePlot, Gauge
 from test_tui_media import open_editor, row, type_in
 from tui_pilot import (
     assert_summary_is,
+    half_digit,
     screen_of,
     settle,
     status_text,
+    summary_fields,
     sync,
     type_into,
 )
@@ -343,3 +345,33 @@ def test_a_viscoelastic_sublayer_on_a_half_space_in_the_panel() -> None:
     assert tui_model.fmt(head.indentation) == "n/a"
     assert head.tangential_force == pytest.approx(0.2)
     assert tui_model.summary_hints(head) is not None
+
+
+@sync
+async def test_a_flat_punch_on_a_zener_layer_shows_what_it_has() -> None:
+    """A flat punch on a Zener layer (a scene): the summary is the API's
+    solve (drag, the edges' coefficients), and what it does not give yet
+    (the indentation, the stresses' peaks below the surface) reads n/a."""
+    from test_viscoelastic_flat import SCENE, flat
+
+    state = from_scene(Scene.from_toml(SCENE))
+    app = create_app(scene=state, cursor_blink=False, show_timing=False)
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        api = flat(0.1)
+        fields = dict(summary_fields(app))
+        back, front = api.end_coefficients
+        for label, want in (
+            ("drag/P", api.drag),
+            ("p0", api.p0),
+            ("K back", back),
+            ("K front", front),
+        ):
+            printed = fields[label]
+            assert abs(float(printed) - want) <= half_digit(printed) * (1 + 1e-9), (
+                label,
+                printed,
+                want,
+            )
+        for label in ("δ/h", "σx⁺ top", "bot"):
+            assert fields[label] == "n/a", (label, fields)

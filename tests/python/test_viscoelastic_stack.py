@@ -368,7 +368,13 @@ def test_what_a_viscoelastic_stack_does_not_take_is_refused_by_name():
         solve(layers, base, 0.0, friction=0.2)
     assert e.value.parameter == "friction"
     with pytest.raises(InvalidParameterError) as e:
-        mp.solve(vstar=0.0, profile=mp.Flat(0.1), load=LOAD, layers=layers, base=base)
+        mp.solve(
+            vstar=0.0,
+            profile=mp.RoundedFlat(0.1, 100.0),
+            load=LOAD,
+            layers=layers,
+            base=base,
+        )
     assert e.value.parameter == "profile"
     with pytest.raises(InvalidParameterError) as e:
         solve(layers, mp.Winkler(KW, damping=0.5), 0.1)
@@ -475,3 +481,16 @@ def test_the_bundled_asphalt_scene_is_the_api_and_its_resistance_peaks():
         table.data["contact_end"][0]
     )
     assert np.all(ends > 0.0)
+
+
+@pytest.mark.parametrize("vstar", [0.0, 0.25])
+@pytest.mark.parametrize("case", ["top-springs", "top-half-space", "prony-sandwich"])
+def test_a_flat_punch_on_a_viscoelastic_stack_balances_its_energy(case, vstar):
+    """A flat face on a viscoelastic top (docs/theory.md section 17.10): the
+    drag from its edges' suction at H_inf is the power dissipated, computed
+    apart in x, to 1e-10 (measured 4e-15 ... 3e-12)."""
+    layers, base = CASES[case]
+    s = mp.solve(vstar=vstar, profile=mp.Flat(0.3), load=LOAD, layers=layers, base=base)
+    assert s.valid
+    assert s.drag > 0.0
+    assert s.dissipation == pytest.approx(s.drag, rel=1e-10, abs=0.0)

@@ -433,6 +433,12 @@ class AsymmetricSolution {
   double min_p_ = 0, min_gap_ = 0;
   std::vector<double> other_widths_;
   Eigen::VectorXd b_;
+  // A flat face on a viscoelastic top: g's Chebyshev (T) coefficients, the
+  // memory's basis (MemoryBasis::T); empty otherwise.
+  Eigen::VectorXd t_coef_;
+  // InvalidParameter naming profile for an output the flat face on a
+  // viscoelastic top does not have yet (`what`); nothing otherwise.
+  void refuse_flat_memory(const char* what) const;
   // Friction > 0: the Jacobi series of g and its transform rule (light_'s
   // alpha range).
   EndExponents exps_{};

@@ -126,13 +126,21 @@ std::complex<double> half_plane_compliance(const Viscoelastic& v, double vstar, 
 // 1))^{n+1} beyond. J_n has no singularity (the kernel's logarithm is in the
 // Hilbert transform of the basis, taken exactly), and l J_n -> h_n(s) as l
 // -> inf (the relaxed limit: c_k times the Cauchy term), -> 0 as l -> 0.
+// The density's basis for the memory's moments: U, sqrt(1 - r^2) U_n(r)
+// (bounded ends: h_n as above); T, T_n(r)/sqrt(1 - r^2) (a flat face's
+// square-root edges: h_n = H[T_n/sqrt(1 - r^2)] = -U_{n-1}(x) on [-1, 1]
+// (0 for n = 0), sgn(x) rho^n/sqrt(x^2 - 1) beyond). sqrt(1 - r^2) U_n =
+// (T_n - T_{n+2})/(2 sqrt(1 - r^2)) ties the two: J^U_n = (J^T_n - J^T_{n+2})/2.
+enum class MemoryBasis { U, T };
+
 class MemoryKernel {
  public:
   explicit MemoryKernel(RetardationSpectrum spectrum);
   const RetardationSpectrum& spectrum() const noexcept { return spec_; }
   bool empty() const noexcept { return spec_.c.empty(); }
   // out[n] = sum_k c_k lambda_k J_n(s, lambda_k), n < count, for the half-width w.
-  void moments(double s, double w, int count, double* out) const;
+  void moments(double s, double w, int count, double* out,
+               MemoryBasis basis = MemoryBasis::U) const;
   // The collocation block B(k, i), (N + 1) x N, added to the asymmetric
   // matrix's W_i [1/(r_i - s_k) - w K(w (s_k - r_i))]:
   //   B(k, i) = -2 W_i sum_n U_n(r_i) moments_n(s_k).
@@ -143,13 +151,15 @@ class MemoryKernel {
   Eigen::MatrixXd block_at(const double* s, int rows, const ChebyshevNodes& nodes, double w) const;
   // w (1/pi) int sqrt(1 - r^2) g(r) K_m(x - c - w r) dr for g = sum b_n U_n
   // (the slope's memory part at any x; s = (x - c)/w any real).
-  double apply(const Eigen::VectorXd& b, double s, double w) const;
+  double apply(const Eigen::VectorXd& b, double s, double w,
+               MemoryBasis basis = MemoryBasis::U) const;
   // apply at `rows` descending points s[0] > s[1] > ... (out[k] at s[k]):
   // one downward sweep (each row adds the segment to the previous one).
   void apply_descending(const Eigen::VectorXd& b, const double* s, int rows, double w,
                         double* out) const;
   // moments at descending points, rows x count row-major in out.
-  void moments_descending(const double* s, int rows, double w, int count, double* out) const;
+  void moments_descending(const double* s, int rows, double w, int count, double* out,
+                          MemoryBasis basis = MemoryBasis::U) const;
   // -2 W_i U_q(r_i) (q, i < N): the block's basis, kept per size N.
   static std::shared_ptr<const Eigen::MatrixXd> basis_weights(const ChebyshevNodes& nodes);
 
@@ -200,10 +210,11 @@ class ViscoelasticTop {
 double memory_tail_integral(double beta, double T);
 
 // l J_n(s, l) for n < count (one retardation time; MemoryKernel sums them).
-void memory_moments(double s, double l, int count, double* out);
+void memory_moments(double s, double l, int count, double* out, MemoryBasis basis = MemoryBasis::U);
 // The same at rows points s[0] > s[1] > ... (out: rows x count, row-major),
 // by the recursion G(s_k) = (the segment [s_k, s_{k-1}]) + e^{-l (s_{k-1} -
 // s_k)} G(s_{k-1}): one short segment a row after the first.
-void memory_moments_descending(const double* s, int rows, double l, int count, double* out);
+void memory_moments_descending(const double* s, int rows, double l, int count, double* out,
+                               MemoryBasis basis = MemoryBasis::U);
 
 }  // namespace movingpunch
