@@ -377,6 +377,14 @@ AsymmetricSolution solve_asymmetric_flat(const AsymmetricParams& prm_in) {
       }
       gain = std::max(std::fabs(phi2), dmax / dg_ref);
     }
+    // A viscoelastic top with inertia: its memory moves sigma_x by -phi2
+    // sum_k d_k e_k * dp, at most |phi2| sum_k |d_k| max |dp| (as the
+    // cylinder's estimate).
+    if (const RetardationSpectrum* sm = s.model_->stress_memory()) {
+      double d = 0.0;
+      for (double c : sm->c) d += std::fabs(c);
+      gain += std::fabs(phi2) * d;
+    }
     double sabs = 0.0;
     for (std::size_t i = 0; i < f.alpha.size(); ++i)
       sabs += f.weight[i] * std::abs(s.surface_stress_integrand(f.r[i], f.alpha[i])) *

@@ -147,3 +147,17 @@ def test_the_command_line_solves_it_and_says_why_the_indentation_is_missing(
     assert proc.returncode == 0, proc.stderr
     assert "n/a (the indentation of a flat punch on a viscoelastic layer" in proc.stdout
     assert f"{flat(0.1).drag:.10g}" in proc.stdout
+
+
+@pytest.mark.parametrize("vstar", [0.0, 0.3])
+def test_the_surface_stress_estimate_bounds_its_error(vstar: float) -> None:
+    """At tol 1e-6 the surface sigma_x against N = 128: within the bound
+    (computed on first read; with inertia it includes the stress memory's
+    share)."""
+    layers = [mp.Layer(nu=NU, viscoelastic=mp.Zener(2.0, 0.1))]
+    args = {"vstar": vstar, "load": LOAD, "profile": mp.Flat(B), "layers": layers}
+    s = mp.solve(**args, base=mp.Winkler(KW), tol=1e-6)
+    ref = mp.solve(**args, base=mp.Winkler(KW), n=128)
+    xs = np.array([-0.8, -0.3, 0.0, 0.3, 0.8])
+    err = np.max(np.abs(s.surface_stress(xs) - ref.surface_stress(xs)))
+    assert err <= s.stress_error_estimate
