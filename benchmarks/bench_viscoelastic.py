@@ -22,7 +22,8 @@ against the same layer elastic, and a resistance curve of 100 speeds.
   half-space), against the same stacks with their relaxed elastic moduli.
 * Beyond the relaxed critical speed: the moving Zener layer at 100 speeds
   across V*_cr up to near V*_R; a warm train of two punches on a stack over
-  a half-space (trains there measure their displacements from x = 100 h).
+  a half-space (trains there measure their displacements from x = 100 h); a
+  flat punch on the Zener layer at rest and moving (warm).
 * The same as a user sweeps one material: ``Zener(ratio, tau=...)`` with
   ``inertia=False`` over 100 speeds vstar (deborah = sqrt(vstar) tau), the
   same material moving with its inertia over 100 speeds 1e-4 ... 0.5, and
@@ -263,6 +264,29 @@ def main() -> None:
         args.repeat,
     )
     print(f"train of two punches on a stack over a half-space, warm: {train_ms:.1f} ms")
+    # A flat punch (b/h 0.5) on the Zener layer, at rest and moving (warm),
+    # against the elastic flat punch (the symmetric solver).
+    for vstar in (0.0, 0.1):
+        flat_ms = _median_ms(
+            lambda load, v=vstar: mp.solve(
+                vstar=v,
+                load=load,
+                profile=mp.Flat(0.5),
+                layers=[mp.Layer(nu=NU, viscoelastic=mp.Zener(2.0, 0.1))],
+                base=mp.Winkler(KW),
+            ),
+            args.repeat,
+        )
+        flat_elastic = _median_ms(
+            lambda load, v=vstar: mp.solve(
+                vstar=v, load=load, profile=mp.Flat(0.5), kw=KW, nu=NU
+            ),
+            args.repeat,
+        )
+        print(
+            f"flat punch on the Zener layer at vstar {vstar}, warm: {flat_ms:.2f} ms "
+            f"(elastic flat, symmetric solver: {flat_elastic:.2f} ms)"
+        )
     for jobs in (1, 2):
         scene = mp.Scene.bundled("viscoelastic-bell")
         t0 = time.perf_counter()
