@@ -94,6 +94,12 @@ AsymmetricSolution solve_asymmetric_flat(const AsymmetricParams& prm_in) {
   const WaveConstants wc = wave_constants(prm.vstar, prm.nu);
   const double w = prm.punch().face();
   const bool frictional = prm.friction > 0.0;
+  // A viscoelastic top's shortest retardation length (0: none), and whether
+  // its boundary layer at the edges is below the node spacing at size n.
+  double beta_min = 0.0;
+  auto layer_below_nodes = [&](int n) {
+    return beta_min > 0.0 && beta_min < 2.0 * w * (1.0 - std::cos(kPi / (2.0 * n)));
+  };
   // The bounded case's exponents less 1 (cot(pi gamma_back) = f Phi).
   const EndExponents bounded =
       frictional ? end_exponents(prm.friction, tangential_half_plane(wc).Phi) : EndExponents{};
@@ -114,6 +120,10 @@ AsymmetricSolution solve_asymmetric_flat(const AsymmetricParams& prm_in) {
   }
   s.model_ = kern->model_ptr();
   s.kernel_ = kern;
+  if (const MemoryKernel* mem = s.model_->memory()) {
+    const RetardationSpectrum& sp = mem->spectrum();
+    beta_min = *std::min_element(sp.beta.begin(), sp.beta.end());
+  }
 
   std::vector<int> sizes;
   if (prm.n > 0) {
@@ -181,6 +191,10 @@ AsymmetricSolution solve_asymmetric_flat(const AsymmetricParams& prm_in) {
         est_k.estimate = std::max(est_k.estimate, d_k.back() + floor_k);
         est_g.estimate = std::max(est_g.estimate, d_g.back() + floor_g);
         if (prm.n != 0 || d_k.size() < 2) return detail::Verdict::go_on;
+        // A viscoelastic top's memory layer at the edges (width beta_min)
+        // must lie within the nodes: the sizes' changes cannot see a layer
+        // they all miss (and a flat face's drag lives in it, below).
+        if (layer_below_nodes(c.sizes.back())) return detail::Verdict::go_on;
         return detail::ladder_verdict(ladder_stop(prm.tol, est_k, d_k.back(),
                                                   std::max(std::fabs(m.kb), std::fabs(m.kf)), est_g,
                                                   d_g.back(), m.gmax));
@@ -309,6 +323,26 @@ AsymmetricSolution solve_asymmetric_flat(const AsymmetricParams& prm_in) {
   };
   note("end coefficients (K_back, K_front):", est_k.estimate, scale_k, floor_k);
   note("pressure p(x)/w(r) = g(r):", est_g.estimate, gmax, floor_g);
+  // A viscoelastic top's shortest memory beta puts a boundary layer of that
+  // width at the leading edge, where the material arriving responds with
+  // its unrelaxed modulus: K_front tends to m_inf times the relaxed K as
+  // deborah -> 0, and the drag to P H_inf K_0^2 (m_inf^2 - 1)/4, not to 0
+  // (docs/theory.md section 17.10). The ladder goes on until the layer lies
+  // within the nodes; beyond N = 512 it is said, and the dissipation (its
+  // power in x needs the layer in g) refused.
+  if (layer_below_nodes(n_done)) {
+    s.memory_unresolved_ = true;
+    std::ostringstream m;
+    m.precision(3);
+    m << "viscoelastic memory: the shortest retardation length V tau = " << beta_min
+      << " h is below the collocation's node spacing at the flat face's edges ("
+      << w * (1.0 - std::cos(kPi / (2.0 * n_done))) << " h at N = " << n_done
+      << "): the leading edge's layer of unrelaxed material is not resolved, so its end "
+         "coefficient and the drag are not computed to tol (as deborah -> 0 a flat punch's "
+         "drag tends to P H_inf K_0^2 (m_inf^2 - 1)/4, not to 0), and the dissipation is not "
+         "computed";
+    s.warnings_.push_back(m.str());
+  }
 
   // The transforms, the Fourier nodes, the arctan rule (friction), with the
   // change between the last two sizes for the stress estimate.

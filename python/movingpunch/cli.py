@@ -621,7 +621,12 @@ def _cmd_solve(args: argparse.Namespace) -> int:
     # Round-off is shown as 0 (movingpunch._display): the drag of a
     # symmetric contact or of mirror-image punches sums to ~1e-19.
     drag = shown(s.drag, scale=drag_scale((back, front), s.radius))
-    dissipation = shown(s.dissipation, scale=drag_scale((back, front), s.radius))
+    try:
+        dissipation: float | str = shown(
+            s.dissipation, scale=drag_scale((back, front), s.radius)
+        )
+    except MovingPunchError as exc:  # (said in warnings too)
+        dissipation = f"n/a ({str(exc).split(': ', 1)[-1].split(' (')[0]})"
     several = [("contact zones", _zone_text(zones))] if len(zones) > 1 else []
     results = [
         ("a/h", _fmt(s.a)),

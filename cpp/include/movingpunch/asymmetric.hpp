@@ -429,6 +429,10 @@ class AsymmetricSolution {
   int iterations_ = 0, n_ = 0, kernel_builds_ = 0;
   StageSeconds stage_seconds_{};
   bool valid_ = true;
+  // A flat face on a viscoelastic top whose shortest memory is below the
+  // collocation's node spacing at the edges (said in warnings_): its
+  // dissipation is then refused (ConvergenceError).
+  bool memory_unresolved_ = false;
   std::string validity_;
   double min_p_ = 0, min_gap_ = 0;
   std::vector<double> other_widths_;
