@@ -15,6 +15,7 @@
 #include "movingpunch/contact.hpp"
 #include "roots.hpp"
 #include "solve_skeleton.hpp"
+#include "test_helpers.hpp"
 
 namespace mp = movingpunch;
 namespace d = movingpunch::detail;
@@ -37,18 +38,6 @@ Counted root_of(F f, double lo, double hi, double xtol, d::Safeguard sg, double 
   };
   c.root = d::bracketed_root(g, lo, hi, f(lo), f(hi), xtol, 200, ftol, sg);
   return c;
-}
-
-// The cylinder (R/h 100) on the paper's layer (kw 1, nu 0.2) with dashpots.
-mp::AsymmetricParams damped_cylinder(double vstar, double load, double damping) {
-  mp::AsymmetricParams p;
-  p.vstar = vstar;
-  p.kw = 1.0;
-  p.nu = 0.2;
-  p.radius = 100.0;
-  p.load = load;
-  p.damping = damping;
-  return p;
 }
 
 }  // namespace
@@ -224,8 +213,7 @@ TEST(AsymmetricLazyOutputs, StressEstimateIsTheSameWhateverIsReadFirstAndFromAny
   // threads asks first; the stress must not depend on whether the estimate's
   // build (which also transforms the pressure's change) made the nodes.
   for (double friction : {0.0, 0.3}) {
-    mp::AsymmetricParams p = damped_cylinder(0.3, 0.002, 0.1);
-    p.friction = friction;
+    const mp::AsymmetricParams p = mp::testing::paper_asymmetric(0.3, 1.0, 0.1, friction);
     const mp::AsymmetricSolution first = mp::solve_asymmetric(p);
     const double est = first.stress_error_estimate();
     const double sx = first.surface_stress(first.centre() + 0.3 * first.half_width());
@@ -256,7 +244,8 @@ TEST(AsymmetricScanMemo, WarmSolvesReuseTheScanWithoutChangingAnyResult) {
   // memoised per kernel table and N: a warm solve (memo hit), and one after a
   // fixed-n solve on the same table (another N in the memo), must give the
   // cold solve's numbers exactly; a cold solve from an empty cache too.
-  mp::AsymmetricParams p = damped_cylinder(0.65, 0.0025, 0.01);
+  mp::AsymmetricParams p = mp::testing::paper_asymmetric(0.65, 1.0, 0.01);
+  p.load = 0.0025;
   auto same = [](const mp::AsymmetricSolution& a, const mp::AsymmetricSolution& b) {
     EXPECT_EQ(a.left(), b.left());
     EXPECT_EQ(a.right(), b.right());
