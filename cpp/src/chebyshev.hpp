@@ -66,15 +66,16 @@ class SmoothInterpolant {
       const auto ud = static_cast<std::size_t>(d);
       const double* cs = interpolant_cosines(d);
       // The new points: all at the first degree, else the odd j (the even
-      // ones are the last degree's points).
-      const std::size_t step = d == 16 ? 1 : 2, first = d == 16 ? 0 : 1;
+      // ones, j = 2i, are the last degree's point i).
+      const bool all = d == 16;
       xs.clear();
-      for (std::size_t j = first; j <= ud; j += step) xs.push_back(mid_ + half_ * cs[j]);
+      for (std::size_t j = all ? 0 : 1; j <= ud; j += all ? 1 : 2)
+        xs.push_back(mid_ + half_ * cs[j]);
       v.assign(xs.size(), 0.0);
       fill(xs, v);
       std::vector<double> next(ud + 1);
       for (std::size_t j = 0; j <= ud; ++j)
-        next[j] = (j - first) % step == 0 ? v[(j - first) / step] : vals[j / 2];
+        next[j] = all ? v[j] : (j % 2 == 1 ? v[j / 2] : vals[j / 2]);
       vals = std::move(next);
       double vmax = 0.0;
       for (double x : vals) vmax = std::max(vmax, std::fabs(x));
